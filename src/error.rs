@@ -1,0 +1,52 @@
+//! The one error type. Every message is one line that names the bad input and states the domain
+//! fact it breaks; the CLI prints it and exits with code 2.
+
+use crate::standards::DesignationError;
+
+/// Everything that can go wrong before a verdict.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A thread designation that cannot be read.
+    #[error(transparent)]
+    Designation(#[from] DesignationError),
+    /// A G-code program that cannot be read or expanded, with its place.
+    #[error("{file}:{line}:{column}: {message}")]
+    Program {
+        /// File name as given.
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A TOML file (insert, plan) that cannot be read, with its place.
+    #[error("{file}: {message}")]
+    File {
+        /// File name as given.
+        file: String,
+        /// What is wrong (with line and column where known).
+        message: String,
+    },
+    /// Geometry that cannot exist or cannot be cut (a tip radius too large, no crest left, …).
+    #[error("{0}")]
+    Geometry(String),
+    /// An option value or combination that makes no sense.
+    #[error("{0}")]
+    Input(String),
+    /// The embedded data is broken (a build defect, never the user's input).
+    #[error("embedded data: {0}")]
+    Data(String),
+    /// Reading or writing a file failed.
+    #[error("{path}: {message}")]
+    Io {
+        /// The path.
+        path: String,
+        /// The operating system's message.
+        message: String,
+    },
+}
+
+/// Shorthand for results in this crate.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -1,0 +1,228 @@
+//! The embedded catalogues (`profiles/*.toml`), parsed once on first use.
+//!
+//! The files ship inside the binary with `include_str!`, so threadcheck runs from any folder.
+
+use serde::Deserialize;
+use std::sync::OnceLock;
+
+const ISO_METRIC: &str = include_str!("../../profiles/iso-metric.toml");
+const WHITWORTH: &str = include_str!("../../profiles/whitworth.toml");
+const BSP: &str = include_str!("../../profiles/bsp.toml");
+
+/// Everything the standards module knows, from the embedded TOML files.
+#[derive(Debug)]
+pub struct Catalog {
+    /// ISO 965-1 tables and the ISO 261 series.
+    pub iso: IsoTables,
+    /// BSW (coarse) sizes, BS 84.
+    pub bsw: Vec<WhitworthSize>,
+    /// BSF (fine) sizes, BS 84.
+    pub bsf: Vec<WhitworthSize>,
+    /// BSP parallel pipe sizes, ISO 228-1.
+    pub bsp: Vec<BspSize>,
+}
+
+/// One BSW or BSF size.
+#[derive(Debug, Clone, Deserialize)]
+pub struct WhitworthSize {
+    /// Nominal size in inches as written (`1/2`, `1 1/4`).
+    pub size: String,
+    /// Threads per inch.
+    pub tpi: f64,
+}
+
+/// One ISO 228-1 size; lengths and tolerances in mm.
+#[derive(Debug, Clone, Deserialize)]
+pub struct BspSize {
+    /// Size as written after `G` (`1/2`, `1 1/4`).
+    pub size: String,
+    /// Threads per inch.
+    pub tpi: f64,
+    /// Basic major diameter d = D, mm.
+    pub d: f64,
+    /// Internal pitch-diameter tolerance TD2, mm.
+    pub td2_int: f64,
+    /// External pitch-diameter tolerance, class A, mm.
+    pub td2_a: f64,
+    /// External pitch-diameter tolerance, class B, mm.
+    pub td2_b: f64,
+    /// Internal minor-diameter tolerance TD1, mm.
+    pub td1_int: f64,
+    /// External major-diameter tolerance Td (classes A and B), mm.
+    pub td: f64,
+}
+
+/// The ISO 965-1 base tables (µm) and the ISO 261 series.
+#[derive(Debug, Deserialize)]
+pub struct IsoTables {
+    /// Fundamental deviations.
+    pub fundamental_deviations: FundamentalDeviations,
+    /// Td2(6) and TD2(6) by diameter range and pitch.
+    pub td2_grade6: RangeTable,
+    /// Td(6) by pitch.
+    pub td_grade6: TdTable,
+    /// TD1(6) by pitch.
+    pub td1_grade6: Td1Table,
+    /// Grade factors.
+    pub grade_factors: GradeFactors,
+    /// R40 rounding data.
+    pub rounding: Rounding,
+    /// ISO 261 diameter/pitch series.
+    pub series: Series,
+}
+
+/// ISO 965-1 Table 1, µm.
+#[derive(Debug, Deserialize)]
+#[allow(missing_docs)]
+pub struct FundamentalDeviations {
+    pub pitches: Vec<f64>,
+    pub es_h: Vec<i32>,
+    pub es_g: Vec<i32>,
+    #[serde(rename = "EI_H")]
+    pub ei_h: Vec<i32>,
+    #[serde(rename = "EI_G")]
+    pub ei_g: Vec<i32>,
+    pub pitches_f: Vec<f64>,
+    pub es_f: Vec<i32>,
+    pub pitches_e: Vec<f64>,
+    pub es_e: Vec<i32>,
+}
+
+/// Pitch-diameter tolerances by diameter range.
+#[derive(Debug, Deserialize)]
+pub struct RangeTable {
+    /// One entry per diameter range (over < d <= up_to).
+    pub ranges: Vec<Td2Range>,
+}
+
+/// Td2(6) and TD2(6) of one diameter range, µm.
+#[derive(Debug, Deserialize)]
+#[allow(missing_docs)]
+pub struct Td2Range {
+    pub over: f64,
+    pub up_to: f64,
+    pub pitches: Vec<f64>,
+    pub td2_external: Vec<f64>,
+    pub td2_internal: Vec<f64>,
+}
+
+/// Td(6) by pitch, µm.
+#[derive(Debug, Deserialize)]
+#[allow(missing_docs)]
+pub struct TdTable {
+    pub pitches: Vec<f64>,
+    pub td: Vec<f64>,
+}
+
+/// TD1(6) by pitch, µm.
+#[derive(Debug, Deserialize)]
+#[allow(missing_docs)]
+pub struct Td1Table {
+    pub pitches: Vec<f64>,
+    pub td1: Vec<f64>,
+}
+
+/// Grade factors relative to grade 6.
+#[derive(Debug, Deserialize)]
+#[allow(missing_docs)]
+pub struct GradeFactors {
+    pub td2: Factors,
+    pub td2_internal: Factors,
+    pub td: Factors,
+    pub td1: Factors,
+}
+
+/// Grades and their factors.
+#[derive(Debug, Deserialize)]
+#[allow(missing_docs)]
+pub struct Factors {
+    pub grades: Vec<u8>,
+    pub factors: Vec<f64>,
+}
+
+impl Factors {
+    /// The factor for `grade`, if the grade exists for this tolerance.
+    pub fn get(&self, grade: u8) -> Option<f64> {
+        self.grades.iter().position(|&g| g == grade).map(|i| self.factors[i])
+    }
+}
+
+/// R40 rounding data and the published test vectors.
+#[derive(Debug, Deserialize)]
+#[allow(missing_docs)]
+pub struct Rounding {
+    pub r40: Vec<f64>,
+    pub examples_base: Vec<f64>,
+    pub examples_factor: Vec<f64>,
+    pub examples_expected: Vec<f64>,
+}
+
+/// ISO 261.
+#[derive(Debug, Deserialize)]
+#[allow(missing_docs)]
+pub struct Series {
+    pub sizes: Vec<SeriesSize>,
+}
+
+/// One nominal diameter of ISO 261 with its pitches.
+#[derive(Debug, Clone, Deserialize)]
+#[allow(missing_docs)]
+pub struct SeriesSize {
+    pub d: f64,
+    pub choice: u8,
+    pub coarse: Option<f64>,
+    pub fine: Vec<f64>,
+}
+
+#[derive(Deserialize)]
+struct WhitworthFile {
+    bsw: Vec<WhitworthSize>,
+    bsf: Vec<WhitworthSize>,
+}
+
+#[derive(Deserialize)]
+struct BspFile {
+    size: Vec<BspSize>,
+}
+
+fn load() -> Result<Catalog, String> {
+    let iso: IsoTables = toml::from_str(ISO_METRIC).map_err(|e| format!("profiles/iso-metric.toml: {e}"))?;
+    let w: WhitworthFile = toml::from_str(WHITWORTH).map_err(|e| format!("profiles/whitworth.toml: {e}"))?;
+    let b: BspFile = toml::from_str(BSP).map_err(|e| format!("profiles/bsp.toml: {e}"))?;
+    Ok(Catalog { iso, bsw: w.bsw, bsf: w.bsf, bsp: b.size })
+}
+
+/// The embedded catalogue. Parsing happens once; the files are part of the binary, and a unit
+/// test proves they parse, so the error branch only guards against a broken build.
+pub fn catalog() -> Result<&'static Catalog, crate::Error> {
+    static CATALOG: OnceLock<Result<Catalog, String>> = OnceLock::new();
+    CATALOG.get_or_init(load).as_ref().map_err(|e| crate::Error::Data(e.clone()))
+}
+
+/// Index of `x` in `list` when equal to within 1 nm (pitches are written with few decimals).
+pub fn find_pitch(list: &[f64], x: f64) -> Option<usize> {
+    list.iter().position(|&p| (p - x).abs() < 1e-6)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn embedded_catalogues_parse_and_are_consistent() {
+        let c = catalog().unwrap();
+        let fd = &c.iso.fundamental_deviations;
+        assert_eq!(fd.pitches.len(), fd.es_g.len());
+        assert_eq!(fd.pitches_e.len(), fd.es_e.len());
+        assert_eq!(fd.pitches_f.len(), fd.es_f.len());
+        for r in &c.iso.td2_grade6.ranges {
+            assert_eq!(r.pitches.len(), r.td2_external.len());
+            assert_eq!(r.pitches.len(), r.td2_internal.len());
+        }
+        assert_eq!(c.iso.rounding.r40.len(), 40);
+        assert!(c.iso.series.sizes.len() >= 50);
+        assert!(c.iso.series.sizes.iter().any(|s| s.d == 68.0));
+        assert_eq!(c.bsw.len(), 25);
+        assert_eq!(c.bsp.len(), 20);
+    }
+}

@@ -1,0 +1,574 @@
+//! The designation parser: `M10x1.25-6g`, `M24xPh6P2-6g`, `BSF 3/8 medium`, `G1/2 A` and kin.
+//!
+//! Every error names the part of the text that is wrong, by its column.
+
+use super::data::{catalog, find_pitch, SeriesSize};
+use super::{BasicThread, Hand, ThreadForm, ThreadKind, MM_PER_INCH};
+use crate::tolerance::{Bs84Class, Iso228Class, IsoClass};
+use std::fmt;
+
+/// A parsed thread designation: the basic thread and the classes it names.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Designation {
+    /// The text as given (trimmed).
+    pub text: String,
+    /// Basic size.
+    pub thread: BasicThread,
+    /// Class of the external thread, if named.
+    pub external: Option<ClassSpec>,
+    /// Class of the internal thread, if named.
+    pub internal: Option<ClassSpec>,
+    /// True when the size/pitch pair is not in its standard series (`--allow-nonstandard`).
+    pub nonstandard: bool,
+}
+
+impl Designation {
+    /// The class for `kind`, if the designation names one.
+    pub fn class(&self, kind: ThreadKind) -> Option<&ClassSpec> {
+        match kind {
+            ThreadKind::External => self.external.as_ref(),
+            ThreadKind::Internal => self.internal.as_ref(),
+        }
+    }
+}
+
+/// A tolerance class of one of the supported standards.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ClassSpec {
+    /// ISO 965-1 (e.g. `6g`, `5g6g`, `6H`).
+    Iso(IsoClass),
+    /// BS 84 Whitworth class (close, medium, free bolts; close, medium, normal nuts).
+    Bs84(Bs84Class),
+    /// ISO 228-1 class (A or B external; the one internal class).
+    Iso228(Iso228Class),
+}
+
+impl fmt::Display for ClassSpec {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ClassSpec::Iso(c) => c.fmt(f),
+            ClassSpec::Bs84(c) => c.fmt(f),
+            ClassSpec::Iso228(c) => c.fmt(f),
+        }
+    }
+}
+
+/// Parser options.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ParseOptions {
+    /// Accept a diameter/pitch pair outside the standard series.
+    pub allow_nonstandard: bool,
+}
+
+/// A designation that cannot be read, with the offending part of the text.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("designation '{text}', column {column}{}: {message}", if part.is_empty() { String::new() } else { format!(" ('{part}')") })]
+pub struct DesignationError {
+    /// The whole designation.
+    pub text: String,
+    /// 1-based column (in characters) where the bad part starts.
+    pub column: usize,
+    /// The bad part of the text (may be empty at the end of the text).
+    pub part: String,
+    /// What is wrong, in domain terms.
+    pub message: String,
+}
+
+struct Cursor<'a> {
+    text: &'a str,
+    pos: usize,
+}
+
+impl<'a> Cursor<'a> {
+    fn rest(&self) -> &'a str {
+        &self.text[self.pos..]
+    }
+
+    fn err(&self, start: usize, end: usize, message: impl Into<String>) -> DesignationError {
+        // Spans come from byte arithmetic; snap them to character boundaries so that any text,
+        // however odd, slices cleanly.
+        let floor = |mut i: usize| {
+            i = i.min(self.text.len());
+            while !self.text.is_char_boundary(i) {
+                i -= 1;
+            }
+            i
+        };
+        let ceil = |mut i: usize| {
+            i = i.min(self.text.len());
+            while !self.text.is_char_boundary(i) {
+                i += 1;
+            }
+            i
+        };
+        let start = floor(start);
+        let end = ceil(end.max(start));
+        DesignationError {
+            text: self.text.to_string(),
+            column: self.text[..start].chars().count() + 1,
+            part: self.text[start..end].to_string(),
+            message: message.into(),
+        }
+    }
+
+    fn eat(&mut self, s: &str) -> bool {
+        if self.rest().starts_with(s) {
+            self.pos += s.len();
+            true
+        } else {
+            false
+        }
+    }
+
+    fn skip_spaces(&mut self) {
+        while self.rest().starts_with(' ') {
+            self.pos += 1;
+        }
+    }
+
+    /// A decimal number `12`, `1.25`, `.5`; returns it and its byte span.
+    fn number(&mut self, what: &str) -> Result<(f64, usize, usize), DesignationError> {
+        let start = self.pos;
+        let len = self
+            .rest()
+            .char_indices()
+            .find(|&(_, c)| !(c.is_ascii_digit() || c == '.'))
+            .map_or(self.rest().len(), |(i, _)| i);
+        let s = &self.rest()[..len];
+        if s.is_empty() {
+            let next = self.rest().chars().next().map_or(0, char::len_utf8);
+            return Err(self.err(start, start + next, format!("expected {what} (a number)")));
+        }
+        let v: f64 =
+            s.parse().map_err(|_| self.err(start, start + len, format!("{what} '{s}' is not a number")))?;
+        if !(v.is_finite() && v > 0.0) {
+            return Err(self.err(start, start + len, format!("{what} must be greater than zero")));
+        }
+        self.pos += len;
+        Ok((v, start, start + len))
+    }
+}
+
+/// Parses a designation against the embedded catalogues.
+///
+/// ```
+/// use threadcheck::{parse_designation, ParseOptions};
+/// let d = parse_designation("M10x1.25-6g", ParseOptions::default()).unwrap();
+/// assert_eq!(d.thread.pitch, 1.25);
+/// assert!(d.external.is_some() && d.internal.is_none());
+/// assert!(parse_designation("M10x1.3", ParseOptions::default()).is_err());
+/// ```
+pub fn parse_designation(text: &str, opts: ParseOptions) -> Result<Designation, crate::Error> {
+    let text = text.trim();
+    let mut c = Cursor { text, pos: 0 };
+    if text.is_empty() {
+        return Err(c.err(0, 0, "empty designation; expected e.g. M10x1.5-6g, BSW 1/2 or G1/2 A").into());
+    }
+    let upper = text.to_ascii_uppercase();
+    if upper.starts_with("BSW") || upper.starts_with("BSF") {
+        parse_whitworth(&mut c, opts).map_err(Into::into)
+    } else if upper.starts_with('G') {
+        parse_bsp(&mut c).map_err(Into::into)
+    } else if text.starts_with('M') {
+        parse_metric(&mut c, opts).map_err(Into::into)
+    } else {
+        let first = text.chars().next().map_or(0, char::len_utf8);
+        Err(c
+            .err(
+                0,
+                first.max(text.find(|ch: char| ch.is_ascii_digit()).unwrap_or(first)),
+                "unknown thread series; expected M (ISO metric), BSW, BSF (Whitworth) or G (BSP pipe)",
+            )
+            .into())
+    }
+}
+
+fn fmt_pitch(p: f64) -> String {
+    format!("{p}")
+}
+
+fn series_entry(d: f64) -> Result<Option<SeriesSize>, crate::Error> {
+    let cat = catalog()?;
+    Ok(cat.iso.series.sizes.iter().find(|s| (s.d - d).abs() < 1e-9).cloned())
+}
+
+fn standard_pitches(s: &SeriesSize) -> String {
+    let mut parts = Vec::new();
+    if let Some(c) = s.coarse {
+        parts.push(format!("{} (coarse)", fmt_pitch(c)));
+    }
+    if !s.fine.is_empty() {
+        let f: Vec<String> = s.fine.iter().map(|p| fmt_pitch(*p)).collect();
+        parts.push(format!("{} (fine)", f.join(", ")));
+    }
+    parts.join("; ")
+}
+
+fn parse_metric(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, DesignationError> {
+    c.pos = 1;
+    let (d, ds, de) = c.number("nominal diameter after M")?;
+    let entry = series_entry(d).map_err(|e| c.err(ds, de, e.to_string()))?;
+    let mut nonstandard = false;
+    if entry.is_none() {
+        if !opts.allow_nonstandard {
+            let cat = catalog().map_err(|e| c.err(ds, de, e.to_string()))?;
+            let sizes = &cat.iso.series.sizes;
+            let below = sizes.iter().rfind(|s| s.d < d).map(|s| format!("M{}", s.d));
+            let above = sizes.iter().find(|s| s.d > d).map(|s| format!("M{}", s.d));
+            let near: Vec<String> = [below, above].into_iter().flatten().collect();
+            return Err(c.err(
+                ds,
+                de,
+                format!(
+                "M{d} is not an ISO 261 diameter (M1 to M68); nearest: {}; --allow-nonstandard accepts it",
+                if near.is_empty() { "none".into() } else { near.join(", ") }
+            ),
+            ));
+        }
+        nonstandard = true;
+    }
+    let mut starts = 1u32;
+    let pitch;
+    let (ps, pe);
+    if c.eat("x") || c.eat("X") || c.eat("×") {
+        if c.eat("Ph") || c.eat("PH") {
+            let (lead, ls, le) = c.number("lead after Ph")?;
+            if !c.eat("P") {
+                let p = c.pos;
+                return Err(c.err(
+                    p,
+                    p + c.rest().chars().next().map_or(0, char::len_utf8),
+                    "expected P and the pitch after the lead (e.g. M24xPh6P2)",
+                ));
+            }
+            let (p, s, e) = c.number("pitch after P")?;
+            let n = lead / p;
+            if (n - n.round()).abs() > 1e-9 || n.round() < 1.0 {
+                return Err(c.err(ls, e, format!("lead {lead} is not a whole multiple of the pitch {p}")));
+            }
+            if n.round() > 64.0 {
+                return Err(c.err(
+                    ls,
+                    le,
+                    format!("{} starts is more than the 64 threadcheck accepts", n.round()),
+                ));
+            }
+            starts = n.round() as u32;
+            pitch = p;
+            (ps, pe) = (s, e);
+        } else {
+            let (p, s, e) = c.number("pitch after x")?;
+            pitch = p;
+            (ps, pe) = (s, e);
+        }
+        if let Some(s) = &entry {
+            let ok =
+                s.coarse.is_some_and(|cp| (cp - pitch).abs() < 1e-9) || find_pitch(&s.fine, pitch).is_some();
+            if !ok {
+                if !opts.allow_nonstandard {
+                    return Err(c.err(
+                        ps,
+                        pe,
+                        format!(
+                            "{} mm is not an ISO 261 pitch for M{d}; standard pitches: {}; --allow-nonstandard accepts it",
+                            fmt_pitch(pitch),
+                            standard_pitches(s)
+                        ),
+                    ));
+                }
+                nonstandard = true;
+            }
+        }
+    } else {
+        match &entry {
+            Some(SeriesSize { coarse: Some(p), .. }) => pitch = *p,
+            Some(s) => {
+                return Err(c.err(
+                    ds,
+                    de,
+                    format!("M{d} has no coarse pitch in ISO 261; give one: {}", standard_pitches(s)),
+                ));
+            }
+            None => {
+                return Err(c.err(ds, de, format!("give the pitch of the non-standard size, e.g. M{d}x1.5")))
+            }
+        }
+    }
+    if pitch >= d {
+        return Err(c.err(
+            ds,
+            c.pos,
+            format!("pitch {} mm is not smaller than the diameter {d} mm", fmt_pitch(pitch)),
+        ));
+    }
+    let thread =
+        BasicThread { form: ThreadForm::IsoMetric, nominal_diameter: d, pitch, starts, hand: Hand::Right };
+    let mut des =
+        Designation { text: c.text.to_string(), thread, external: None, internal: None, nonstandard };
+    // Suffixes: -LH, -6g, -6H/6g, -5g6g, in any order, each once.
+    while !c.rest().is_empty() {
+        let seg_start = c.pos;
+        if !c.eat("-") {
+            let end = c.pos + c.rest().chars().next().map_or(0, char::len_utf8);
+            return Err(c.err(seg_start, end, "expected '-' before a class or LH"));
+        }
+        let start = c.pos;
+        let len = c.rest().find('-').unwrap_or(c.rest().len());
+        let seg = &c.rest()[..len];
+        if seg.eq_ignore_ascii_case("LH") {
+            des.thread.hand = Hand::Left;
+        } else if seg.eq_ignore_ascii_case("RH") {
+            des.thread.hand = Hand::Right;
+        } else {
+            if des.external.is_some() || des.internal.is_some() {
+                return Err(c.err(start, start + len, "a second tolerance class; write a fit as 6H/6g"));
+            }
+            parse_iso_classes(c, start, seg, &mut des)?;
+        }
+        c.pos = start + len;
+    }
+    Ok(des)
+}
+
+fn parse_iso_classes(
+    c: &Cursor<'_>,
+    start: usize,
+    seg: &str,
+    des: &mut Designation,
+) -> Result<(), DesignationError> {
+    if seg.is_empty() {
+        return Err(c.err(start, start, "expected a tolerance class such as 6g, 6H or 6H/6g"));
+    }
+    let mut offset = 0;
+    for part in seg.split('/') {
+        let s = start + offset;
+        let cls = IsoClass::parse(part).map_err(|m| c.err(s, s + part.len(), m))?;
+        let slot = if cls.internal { &mut des.internal } else { &mut des.external };
+        if slot.is_some() {
+            return Err(c.err(
+                s,
+                s + part.len(),
+                format!("two {} classes in one fit", if cls.internal { "internal" } else { "external" }),
+            ));
+        }
+        cls.check_pitch(des.thread.pitch).map_err(|m| c.err(s, s + part.len(), m))?;
+        *slot = Some(ClassSpec::Iso(cls));
+        offset += part.len() + 1;
+    }
+    Ok(())
+}
+
+/// Reads an inch size `1/2`, `1`, `1 1/4`, `1-1/4`; returns the canonical text (`1 1/4`) and inches.
+fn inch_size(c: &mut Cursor<'_>) -> Result<(String, f64, usize, usize), DesignationError> {
+    let start = c.pos;
+    let len = c
+        .rest()
+        .char_indices()
+        .find(|&(i, ch)| {
+            !(ch.is_ascii_digit()
+                || ch == '/'
+                || ((ch == ' ' || ch == '-') && {
+                    // A space or dash is part of the size only between a whole number and a fraction.
+                    let after = &c.rest()[i + 1..];
+                    let frac = after.split(|x: char| !(x.is_ascii_digit() || x == '/')).next().unwrap_or("");
+                    frac.contains('/') && c.rest()[..i].chars().all(|x| x.is_ascii_digit())
+                }))
+        })
+        .map_or(c.rest().len(), |(i, _)| i);
+    let raw = &c.rest()[..len];
+    let bad =
+        |c: &Cursor<'_>| c.err(start, start + len.max(1), "expected an inch size such as 1/2, 1 or 1 1/4");
+    if raw.is_empty() {
+        return Err(bad(c));
+    }
+    let norm = raw.replace('-', " ");
+    let mut inches = 0.0;
+    for tok in norm.split(' ') {
+        if let Some((a, b)) = tok.split_once('/') {
+            let (a, b): (f64, f64) = (a.parse().map_err(|_| bad(c))?, b.parse().map_err(|_| bad(c))?);
+            if b == 0.0 {
+                return Err(bad(c));
+            }
+            inches += a / b;
+        } else {
+            inches += tok.parse::<f64>().map_err(|_| bad(c))?;
+        }
+    }
+    c.pos += len;
+    Ok((norm, inches, start, start + len))
+}
+
+fn parse_whitworth(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, DesignationError> {
+    let fine = c.text[..3].eq_ignore_ascii_case("BSF");
+    c.pos = 3;
+    c.skip_spaces();
+    let (size, inches, ss, se) = inch_size(c)?;
+    let cat = catalog().map_err(|e| c.err(ss, se, e.to_string()))?;
+    let list = if fine { &cat.bsf } else { &cat.bsw };
+    let series = if fine { "BSF" } else { "BSW" };
+    let tpi = match list.iter().find(|s| s.size == size) {
+        Some(s) => s.tpi,
+        None => {
+            let sizes: Vec<&str> = list.iter().map(|s| s.size.as_str()).collect();
+            return Err(c.err(ss, se, format!("{series} has no size {size}\"; sizes: {}", sizes.join(", "))));
+        }
+    };
+    let _ = opts;
+    let thread = BasicThread {
+        form: ThreadForm::Whitworth,
+        nominal_diameter: inches * MM_PER_INCH,
+        pitch: MM_PER_INCH / tpi,
+        starts: 1,
+        hand: Hand::Right,
+    };
+    let mut des =
+        Designation { text: c.text.to_string(), thread, external: None, internal: None, nonstandard: false };
+    loop {
+        c.skip_spaces();
+        if c.rest().is_empty() {
+            break;
+        }
+        let start = c.pos;
+        let len = c.rest().find(' ').unwrap_or(c.rest().len());
+        let word = &c.rest()[..len];
+        if word.eq_ignore_ascii_case("LH") {
+            des.thread.hand = Hand::Left;
+        } else {
+            let (ext, int) = Bs84Class::parse(word).ok_or_else(|| {
+                c.err(
+                    start,
+                    start + len,
+                    "unknown BS 84 class; bolts: close, medium, free; nuts: close, medium, normal",
+                )
+            })?;
+            if des.external.is_some() || des.internal.is_some() {
+                return Err(c.err(start, start + len, "a second class"));
+            }
+            des.external = ext.map(ClassSpec::Bs84);
+            des.internal = int.map(ClassSpec::Bs84);
+        }
+        c.pos = start + len;
+    }
+    Ok(des)
+}
+
+fn parse_bsp(c: &mut Cursor<'_>) -> Result<Designation, DesignationError> {
+    c.pos = 1;
+    c.skip_spaces();
+    let (size, _inches, ss, se) = inch_size(c)?;
+    let cat = catalog().map_err(|e| c.err(ss, se, e.to_string()))?;
+    let Some(entry) = cat.bsp.iter().find(|s| s.size == size) else {
+        let sizes: Vec<&str> = cat.bsp.iter().map(|s| s.size.as_str()).collect();
+        return Err(c.err(ss, se, format!("ISO 228-1 has no size G{size}; sizes: {}", sizes.join(", "))));
+    };
+    let thread = BasicThread {
+        form: ThreadForm::BspParallel,
+        nominal_diameter: entry.d,
+        pitch: MM_PER_INCH / entry.tpi,
+        starts: 1,
+        hand: Hand::Right,
+    };
+    let mut des =
+        Designation { text: c.text.to_string(), thread, external: None, internal: None, nonstandard: false };
+    let mut class_given = false;
+    loop {
+        c.skip_spaces();
+        if c.rest().is_empty() {
+            break;
+        }
+        let start = c.pos;
+        let len = c.rest().find(' ').unwrap_or(c.rest().len());
+        let word = &c.rest()[..len];
+        match word {
+            "A" | "a" if !class_given => des.external = Some(ClassSpec::Iso228(Iso228Class::A)),
+            "B" | "b" if !class_given => des.external = Some(ClassSpec::Iso228(Iso228Class::B)),
+            w if w.eq_ignore_ascii_case("LH") => des.thread.hand = Hand::Left,
+            _ => {
+                return Err(c.err(start, start + len, "expected the ISO 228-1 class A or B (external) or LH; an internal G thread has no class letter"));
+            }
+        }
+        class_given |= word.eq_ignore_ascii_case("A") || word.eq_ignore_ascii_case("B");
+        c.pos = start + len;
+    }
+    if !class_given {
+        // ISO 228-1 designates the internal thread by size alone: G1/2.
+        des.internal = Some(ClassSpec::Iso228(Iso228Class::Internal));
+    }
+    Ok(des)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p(s: &str) -> Result<Designation, crate::Error> {
+        parse_designation(s, ParseOptions::default())
+    }
+
+    #[test]
+    fn accepts_the_documented_forms() {
+        for s in [
+            "M10",
+            "M10x1.25",
+            "M10x1.25-6g",
+            "M10-6H/6g",
+            "M10x1-5g6g",
+            "M16x1.5-LH-6g",
+            "M24xPh6P2-6g",
+            "BSW 1/2",
+            "BSF 3/8 medium",
+            "G1/2",
+            "G1/2 A",
+            "M10-6H",
+            "BSW 1 1/4 close",
+            "G1 1/4 B",
+        ] {
+            assert!(p(s).is_ok(), "{s}: {:?}", p(s));
+        }
+    }
+
+    #[test]
+    fn coarse_pitch_multi_start_and_hand() {
+        assert_eq!(p("M10").unwrap().thread.pitch, 1.5);
+        let d = p("M24xPh6P2-6g").unwrap();
+        // Ph6 / P2: three starts (the issue text says two; Ph/P = 3).
+        assert_eq!((d.thread.pitch, d.thread.starts, d.thread.lead()), (2.0, 3, 6.0));
+        assert_eq!(p("M16x1.5-LH-6g").unwrap().thread.hand, Hand::Left);
+        let fit = p("M10-6H/6g").unwrap();
+        assert!(fit.internal.is_some() && fit.external.is_some());
+        let g = p("G1/2").unwrap();
+        assert!(g.internal.is_some() && g.external.is_none());
+        let bsw = p("BSW 1/2").unwrap();
+        assert!((bsw.thread.pitch - 25.4 / 12.0).abs() < 1e-12);
+        assert!((bsw.thread.nominal_diameter - 12.7).abs() < 1e-12);
+    }
+
+    #[test]
+    fn nonstandard_pitch_lists_the_standard_ones() {
+        let e = p("M10x1.3-6g").unwrap_err().to_string();
+        assert!(e.contains("column 5") && e.contains("'1.3'"), "{e}");
+        assert!(e.contains("1.5 (coarse); 1.25, 1, 0.75 (fine)"), "{e}");
+        let ok = parse_designation("M10x1.3", ParseOptions { allow_nonstandard: true }).unwrap();
+        assert!(ok.nonstandard);
+    }
+
+    /// Regression: the random-string proptest found a panic slicing inside a multi-byte character.
+    #[test]
+    fn regression_error_span_inside_a_multibyte_character() {
+        for s in ["¡", "M¡", "M10x¡", "BSW ¡", "G¡", "M10-6¡", "Mé10"] {
+            assert!(p(s).is_err(), "{s}");
+        }
+    }
+
+    #[test]
+    fn errors_name_the_bad_part() {
+        let e = p("Q10").unwrap_err().to_string();
+        assert!(e.contains("column 1"), "{e}");
+        let e = p("M10x1.5-6q").unwrap_err().to_string();
+        assert!(e.contains("'6q'"), "{e}");
+        let e = p("BSW 9/13").unwrap_err().to_string();
+        assert!(e.contains("'9/13'"), "{e}");
+        let e = p("M10x1.5-3h").unwrap_err().to_string();
+        assert!(e.contains("major-diameter"), "{e}");
+    }
+}

@@ -1,0 +1,470 @@
+//! Thread standards: forms, basic dimensions, one-pitch profiles and the embedded catalogues.
+//!
+//! This is where the data path starts: a designation (`M10x1.5-6g`) becomes a [`Designation`]
+//! holding a [`BasicThread`] and its classes; [`crate::tolerance`] turns those into limits.
+//!
+//! Sources: ISO 68-1 and DIN 13 for the metric form, BS 84 for Whitworth, ISO 228-1 for the
+//! BSP parallel pipe thread. The numeric data lives in `profiles/*.toml`, embedded in the binary.
+
+pub mod data;
+pub mod designation;
+
+pub use data::{catalog, BspSize, Catalog, WhitworthSize};
+pub use designation::{parse_designation, ClassSpec, Designation, DesignationError, ParseOptions};
+
+use crate::geometry::{extend_dedup, Arc, Point};
+use serde::Serialize;
+use std::f64::consts::FRAC_PI_2;
+
+/// Millimetres per inch, exact.
+pub const MM_PER_INCH: f64 = 25.4;
+
+/// The thread form: flank angle and the shape of crest and root.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ThreadForm {
+    /// ISO metric, ISO 68-1: 60°, flat crest, basic flat root; DIN 13 rounded bolt root H/6.
+    IsoMetric,
+    /// Whitworth, BS 84 (BSW, BSF): 55°, crest and root rounded with r = 0.137329·P.
+    Whitworth,
+    /// BSP parallel pipe thread, ISO 228-1 (G): the Whitworth form on pipe sizes.
+    BspParallel,
+}
+
+impl ThreadForm {
+    /// Included flank angle α, degrees.
+    pub fn flank_angle(self) -> f64 {
+        match self {
+            ThreadForm::IsoMetric => 60.0,
+            ThreadForm::Whitworth | ThreadForm::BspParallel => 55.0,
+        }
+    }
+
+    /// The name used in reports (`iso-metric`, `whitworth`, `bsp-parallel`).
+    pub fn name(self) -> &'static str {
+        match self {
+            ThreadForm::IsoMetric => "iso-metric",
+            ThreadForm::Whitworth => "whitworth",
+            ThreadForm::BspParallel => "bsp-parallel",
+        }
+    }
+
+    /// True for the rounded Whitworth family (BS 84 and ISO 228-1).
+    pub fn is_whitworth(self) -> bool {
+        !matches!(self, ThreadForm::IsoMetric)
+    }
+}
+
+/// External (bolt) or internal (nut) thread.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ThreadKind {
+    /// Bolt: material inside, the insert cuts towards the axis.
+    External,
+    /// Nut: material outside, the insert cuts away from the axis.
+    Internal,
+}
+
+impl ThreadKind {
+    /// Direction of cutting in radius: −1 for external (towards the axis), +1 for internal.
+    pub fn depth_sign(self) -> f64 {
+        match self {
+            ThreadKind::External => -1.0,
+            ThreadKind::Internal => 1.0,
+        }
+    }
+
+    /// `external` or `internal`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ThreadKind::External => "external",
+            ThreadKind::Internal => "internal",
+        }
+    }
+}
+
+/// Right- or left-hand helix.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Hand {
+    /// Right-hand (the default).
+    #[default]
+    Right,
+    /// Left-hand (`LH`).
+    Left,
+}
+
+/// A thread's basic size: form, nominal (major) diameter, pitch and starts.
+///
+/// All lengths in mm. For Whitworth and BSP threads the pitch is `25.4 / tpi` exactly.
+/// Derived dimensions are exact (unrounded); [`crate::tolerance`] rounds them to 0.001 mm the way
+/// the standards' tables print them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BasicThread {
+    /// Thread form.
+    pub form: ThreadForm,
+    /// Basic major diameter d = D, mm.
+    pub nominal_diameter: f64,
+    /// Pitch P (axial distance between adjacent grooves), mm.
+    pub pitch: f64,
+    /// Number of starts n; the lead is `n·P`.
+    pub starts: u32,
+    /// Helix hand.
+    pub hand: Hand,
+}
+
+impl BasicThread {
+    /// Lead Ph = n·P, mm: the axial advance per revolution.
+    pub fn lead(&self) -> f64 {
+        self.pitch * f64::from(self.starts)
+    }
+
+    /// Half the included flank angle, radians.
+    pub fn half_angle(&self) -> f64 {
+        0.5 * crate::geometry::deg(self.form.flank_angle())
+    }
+
+    /// Height of the fundamental (sharp) triangle H = P / (2·tan(α/2)), mm:
+    /// 0.866025·P for 60°, 0.960491·P for 55°.
+    pub fn fundamental_height(&self) -> f64 {
+        self.pitch / (2.0 * self.half_angle().tan())
+    }
+
+    /// Basic pitch diameter d2 = D2, mm: metric d − 3H/4 (= d − 0.649519·P), Whitworth d − h.
+    pub fn pitch_diameter(&self) -> f64 {
+        let h = self.fundamental_height();
+        match self.form {
+            ThreadForm::IsoMetric => self.nominal_diameter - 0.75 * h,
+            _ => self.nominal_diameter - self.thread_depth(),
+        }
+    }
+
+    /// Basic minor diameter of the nut D1 (metric d − 5H/4), or the common minor diameter of the
+    /// Whitworth forms d − 2h, mm.
+    pub fn minor_diameter_internal(&self) -> f64 {
+        match self.form {
+            ThreadForm::IsoMetric => self.nominal_diameter - 1.25 * self.fundamental_height(),
+            _ => self.nominal_diameter - 2.0 * self.thread_depth(),
+        }
+    }
+
+    /// Root diameter of the bolt d3, mm: metric d − 2·h3 (DIN 13, h3 = 17H/24), Whitworth d − 2h.
+    pub fn minor_diameter_external(&self) -> f64 {
+        self.nominal_diameter - 2.0 * self.thread_depth()
+    }
+
+    /// Thread depth of the bolt, mm: h3 = 17H/24 (metric, DIN 13) or h = 2H/3 (Whitworth).
+    pub fn thread_depth(&self) -> f64 {
+        let h = self.fundamental_height();
+        match self.form {
+            ThreadForm::IsoMetric => 17.0 * h / 24.0,
+            _ => 2.0 * h / 3.0,
+        }
+    }
+
+    /// Basic depth of engagement H1, mm: 5H/8 (metric) or h (Whitworth).
+    pub fn engagement_depth(&self) -> f64 {
+        match self.form {
+            ThreadForm::IsoMetric => 0.625 * self.fundamental_height(),
+            _ => self.thread_depth(),
+        }
+    }
+
+    /// Design root radius of the bolt, mm: H/6 (DIN 13) or 0.137329·P (Whitworth).
+    pub fn root_radius(&self) -> f64 {
+        match self.form {
+            ThreadForm::IsoMetric => self.fundamental_height() / 6.0,
+            _ => self.whitworth_radius(),
+        }
+    }
+
+    /// Crest radius, mm: `None` for the flat metric crest, 0.137329·P for Whitworth.
+    pub fn crest_radius(&self) -> Option<f64> {
+        self.form.is_whitworth().then(|| self.whitworth_radius())
+    }
+
+    /// Smallest root radius the standard allows on the bolt, mm: 0.125·P (ISO 965-1) for metric;
+    /// BS 84 and ISO 228-1 set none.
+    pub fn min_root_radius(&self) -> Option<f64> {
+        matches!(self.form, ThreadForm::IsoMetric).then_some(0.125 * self.pitch)
+    }
+
+    fn whitworth_radius(&self) -> f64 {
+        // The arc cuts H/6 off the sharp triangle and is tangent to both flanks.
+        let b = self.half_angle();
+        self.fundamental_height() / 6.0 / (1.0 / b.sin() - 1.0)
+    }
+
+    /// The groove shape of `variant` in the groove frame (see [`GrooveForm`]).
+    pub fn groove(&self, variant: ProfileKind) -> GrooveForm {
+        let h = self.fundamental_height();
+        let beta = self.half_angle();
+        let (sharp_crest, crest, root) = match (self.form, variant) {
+            (ThreadForm::IsoMetric, ProfileKind::Basic) => {
+                (-h / 8.0, Feature::Flat, Feature::FlatAt(0.625 * h))
+            }
+            (ThreadForm::IsoMetric, ProfileKind::BoltDesign) => {
+                (-h / 8.0, Feature::Flat, Feature::Arc(h / 6.0))
+            }
+            (ThreadForm::IsoMetric, ProfileKind::BoltMinRoot) => {
+                (-h / 8.0, Feature::Flat, Feature::Arc(0.125 * self.pitch))
+            }
+            // Seen from the nut: its crest is the D1 flat (P/4 wide), its root the D flat (P/8).
+            (ThreadForm::IsoMetric, ProfileKind::Nut) => {
+                (-h / 4.0, Feature::Flat, Feature::FlatAt(0.625 * h))
+            }
+            (_, _) => {
+                let r = self.whitworth_radius();
+                (-h / 6.0, Feature::Arc(r), Feature::Arc(r))
+            }
+        };
+        GrooveForm { pitch: self.pitch, half_angle: beta, sharp_crest, crest, root }
+    }
+
+    /// The crest line radius of `kind` (mm): d/2 for the bolt, D1/2 for the nut.
+    pub fn crest_radius_line(&self, kind: ThreadKind) -> f64 {
+        match kind {
+            ThreadKind::External => 0.5 * self.nominal_diameter,
+            ThreadKind::Internal => 0.5 * self.minor_diameter_internal(),
+        }
+    }
+
+    /// The basic profile over one pitch of the axial section, as `(z, r)` points from the tooth
+    /// centre at `z = −P/2` through the groove centred at `z = 0` to the next tooth centre at
+    /// `z = +P/2`. Arcs are tessellated to `tolerance` (mm).
+    ///
+    /// `ProfileKind::Nut` gives the internal thread's groove (centred on the bolt's tooth).
+    ///
+    /// ```
+    /// use threadcheck::{BasicThread, Hand, ProfileKind, ThreadForm};
+    /// let m10 = BasicThread { form: ThreadForm::IsoMetric, nominal_diameter: 10.0, pitch: 1.5,
+    ///                         starts: 1, hand: Hand::Right };
+    /// let p = m10.profile(ProfileKind::BoltDesign, 5e-5);
+    /// let lowest = p.iter().map(|q| q.r).fold(f64::INFINITY, f64::min);
+    /// assert!((2.0 * lowest - 8.160).abs() < 1e-3); // d3 = d − 1.226869·P
+    /// ```
+    pub fn profile(&self, variant: ProfileKind, tolerance: f64) -> Vec<Point> {
+        let kind = if variant == ProfileKind::Nut { ThreadKind::Internal } else { ThreadKind::External };
+        let g = self.groove(variant);
+        let base = self.crest_radius_line(kind);
+        let s = -kind.depth_sign();
+        g.polyline(tolerance).into_iter().map(|q| Point::new(q.z, base - s * q.r)).collect()
+    }
+}
+
+/// Which of a form's profiles to build.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ProfileKind {
+    /// The basic profile common to nut and bolt (ISO 68-1: flat crest and flat root at D1).
+    Basic,
+    /// The bolt as designed: DIN 13 root radius H/6 (metric), rounded crest and root (Whitworth).
+    BoltDesign,
+    /// The bolt with the smallest root ISO 965-1 allows, R = 0.125·P (metric only).
+    BoltMinRoot,
+    /// The nut's groove: crest at D1, root at D.
+    Nut,
+}
+
+/// Crest or root of a groove.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Feature {
+    /// Flat at depth 0 (only for crests).
+    Flat,
+    /// Flat at the given depth below the crest line, mm (only for roots).
+    FlatAt(f64),
+    /// Arc of the given radius tangent to both flanks, mm.
+    Arc(f64),
+}
+
+/// A symmetric V groove in its own frame: `z` across the groove (centre 0), `r` = **depth** below
+/// the crest line (0 at the crest line, positive into the part).
+///
+/// The flanks meet at the sharp root vertex at depth `sharp_crest + P/(2·tan β)` and reach the
+/// sharp crest at `sharp_crest` (negative: above the crest line) at `z = ±P/2`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GrooveForm {
+    /// Pitch, mm: the period of the profile.
+    pub pitch: f64,
+    /// Half the included angle β, radians.
+    pub half_angle: f64,
+    /// Depth of the sharp crest (negative or zero), mm.
+    pub sharp_crest: f64,
+    /// Crest: flat at depth 0, or an arc whose top is at depth 0.
+    pub crest: Feature,
+    /// Root: flat at a depth, or an arc tangent to both flanks.
+    pub root: Feature,
+}
+
+impl GrooveForm {
+    /// Depth of the sharp root vertex, mm.
+    pub fn sharp_root(&self) -> f64 {
+        self.sharp_crest + 0.5 * self.pitch / self.half_angle.tan()
+    }
+
+    /// Depth of the groove bottom, mm (the deepest point of the root).
+    pub fn bottom(&self) -> f64 {
+        match self.root {
+            Feature::Flat => 0.0,
+            Feature::FlatAt(w) => w,
+            Feature::Arc(r) => self.sharp_root() - r / self.half_angle.sin() + r,
+        }
+    }
+
+    /// Half-width of the groove (|z| on the right flank) at depth `w`, mm, on the straight flank.
+    pub fn flank_z(&self, w: f64) -> f64 {
+        (self.sharp_root() - w) * self.half_angle.tan()
+    }
+
+    /// Width of the groove at the depth of the pitch line, where groove and tooth are equal: P/2.
+    /// Returns that depth, mm.
+    pub fn pitch_line_depth(&self) -> f64 {
+        self.sharp_root() - 0.25 * self.pitch / self.half_angle.tan()
+    }
+
+    /// The groove from `z = −P/2` (tooth centre) to `z = +P/2`, in `(z, depth)` coordinates.
+    pub fn polyline(&self, tolerance: f64) -> Vec<Point> {
+        let b = self.half_angle;
+        let half = 0.5 * self.pitch;
+        let mut out = Vec::new();
+        // Left crest: from the tooth centre at z = −P/2 to where the left flank starts.
+        match self.crest {
+            Feature::Arc(rc) => {
+                // Arc centre below the sharp crest (in depth: larger depth), top at depth 0.
+                let c = Point::new(-half, rc);
+                // In (z, depth) the arc bulges upward (towards smaller depth): parametrise by
+                // angle in a frame with depth flipped.
+                let a = Arc { center: Point::new(c.z, -c.r), radius: rc, start: FRAC_PI_2, end: b };
+                extend_dedup(&mut out, a.tessellate(tolerance).into_iter().map(|p| Point::new(p.z, -p.r)));
+            }
+            _ => {
+                extend_dedup(&mut out, [Point::new(-half, 0.0), Point::new(-self.flank_z(0.0), 0.0)]);
+            }
+        }
+        // Root.
+        match self.root {
+            Feature::Arc(rr) => {
+                let cz = 0.0;
+                let cdepth = self.sharp_root() - rr / b.sin();
+                // Flipped frame again: the root arc's lowest point is its greatest depth.
+                // Two halves, so that the lowest point (d3) is a vertex of the polyline.
+                for (start, end) in [(b - std::f64::consts::PI, -FRAC_PI_2), (-FRAC_PI_2, -b)] {
+                    let a = Arc { center: Point::new(cz, -cdepth), radius: rr, start, end };
+                    extend_dedup(
+                        &mut out,
+                        a.tessellate(tolerance).into_iter().map(|p| Point::new(p.z, -p.r)),
+                    );
+                }
+            }
+            Feature::FlatAt(w) => {
+                let zf = self.flank_z(w);
+                extend_dedup(&mut out, [Point::new(-zf, w), Point::new(zf, w)]);
+            }
+            Feature::Flat => {}
+        }
+        // Right crest (mirror of the left one).
+        match self.crest {
+            Feature::Arc(rc) => {
+                let a = Arc {
+                    center: Point::new(half, -rc),
+                    radius: rc,
+                    start: std::f64::consts::PI - b,
+                    end: FRAC_PI_2,
+                };
+                extend_dedup(&mut out, a.tessellate(tolerance).into_iter().map(|p| Point::new(p.z, -p.r)));
+            }
+            _ => {
+                extend_dedup(&mut out, [Point::new(self.flank_z(0.0), 0.0), Point::new(half, 0.0)]);
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn metric(d: f64, p: f64) -> BasicThread {
+        BasicThread {
+            form: ThreadForm::IsoMetric,
+            nominal_diameter: d,
+            pitch: p,
+            starts: 1,
+            hand: Hand::Right,
+        }
+    }
+
+    /// ISO 68-1 / DIN 13 coefficients (shared/reference/README.md, VERIFIED).
+    #[test]
+    fn metric_basic_dimensions_match_iso_68_1() {
+        for p in [0.5, 1.0, 1.5, 2.5, 6.0] {
+            let t = metric(30.0, p);
+            assert!((t.fundamental_height() - 0.866025 * p).abs() < 1e-6 * p);
+            assert!((t.pitch_diameter() - (30.0 - 0.649519 * p)).abs() < 1e-6 * p);
+            assert!((t.minor_diameter_internal() - (30.0 - 1.082532 * p)).abs() < 1e-6 * p);
+            assert!((t.minor_diameter_external() - (30.0 - 1.226869 * p)).abs() < 1e-6 * p);
+            assert!((t.engagement_depth() - 0.541266 * p).abs() < 1e-6 * p);
+            assert!((t.thread_depth() - 0.613435 * p).abs() < 1e-6 * p);
+            assert!((t.root_radius() - 0.144338 * p).abs() < 1e-6 * p);
+        }
+    }
+
+    /// BS 84 form constants (shared/reference/README.md, VERIFIED).
+    #[test]
+    fn whitworth_form_constants() {
+        let t = BasicThread {
+            form: ThreadForm::Whitworth,
+            nominal_diameter: 12.7,
+            pitch: 25.4 / 12.0,
+            starts: 1,
+            hand: Hand::Right,
+        };
+        let p = t.pitch;
+        assert!((t.fundamental_height() - 0.960491 * p).abs() < 1e-6 * p);
+        assert!((t.thread_depth() - 0.640327 * p).abs() < 1e-6 * p);
+        assert!((t.root_radius() - 0.137329 * p).abs() < 1e-6 * p);
+    }
+
+    /// The profile's flanks cross the pitch line where the groove is P/2 wide, at d2.
+    #[test]
+    fn profiles_put_the_pitch_line_at_d2() {
+        for t in [metric(10.0, 1.5), metric(6.0, 1.0)] {
+            for v in [ProfileKind::Basic, ProfileKind::BoltDesign, ProfileKind::BoltMinRoot, ProfileKind::Nut]
+            {
+                let g = t.groove(v);
+                let w = g.pitch_line_depth();
+                assert!((g.flank_z(w) - 0.25 * t.pitch).abs() < 1e-12);
+                let r = match v {
+                    ProfileKind::Nut => 0.5 * t.minor_diameter_internal() + w,
+                    _ => 0.5 * t.nominal_diameter - w,
+                };
+                assert!((2.0 * r - t.pitch_diameter()).abs() < 1e-12, "{v:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn profile_depths_match_the_standard() {
+        let t = metric(10.0, 1.5);
+        let low = |v| t.profile(v, 5e-5).iter().map(|q| q.r).fold(f64::INFINITY, f64::min);
+        let high = |v| t.profile(v, 5e-5).iter().map(|q| q.r).fold(f64::NEG_INFINITY, f64::max);
+        assert!((2.0 * low(ProfileKind::BoltDesign) - t.minor_diameter_external()).abs() < 1e-12);
+        assert!((2.0 * low(ProfileKind::Basic) - t.minor_diameter_internal()).abs() < 1e-12);
+        assert!((2.0 * high(ProfileKind::Nut) - t.nominal_diameter).abs() < 1e-12);
+        assert!((2.0 * low(ProfileKind::Nut) - t.minor_diameter_internal()).abs() < 1e-12);
+        let w = BasicThread {
+            form: ThreadForm::Whitworth,
+            nominal_diameter: 12.7,
+            pitch: 25.4 / 12.0,
+            starts: 1,
+            hand: Hand::Right,
+        };
+        let pts = w.profile(ProfileKind::BoltDesign, 5e-5);
+        let top = pts.iter().map(|q| q.r).fold(f64::NEG_INFINITY, f64::max);
+        let bot = pts.iter().map(|q| q.r).fold(f64::INFINITY, f64::min);
+        assert!((top - 6.35).abs() < 1e-12);
+        assert!((6.35 - bot - 0.640327 * w.pitch).abs() < 1e-6);
+        // The profile is a function of z, left to right.
+        assert!(pts.windows(2).all(|p| p[1].z >= p[0].z - 1e-15));
+    }
+}

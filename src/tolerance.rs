@@ -1,0 +1,611 @@
+//! Tolerance classes and limits of size: ISO 965-1 (metric), BS 84 (Whitworth), ISO 228-1 (BSP).
+//!
+//! ISO 965-1 limits come from the standard's **tables** (shipped in `profiles/iso-metric.toml`),
+//! not from its formulas, which only approximate the tables. Grades other than 6 are the
+//! tabulated grade-6 value times the grade factor, rounded to the nearest R40 preferred number.
+//! Limits are rounded to 0.001 mm after the basic diameters have been rounded to 0.001 mm, as the
+//! tables print them.
+
+use crate::standards::data::{catalog, find_pitch, IsoTables};
+use crate::standards::{BasicThread, ClassSpec, Designation, ThreadForm, ThreadKind};
+use crate::Error;
+use serde::Serialize;
+use std::fmt;
+
+/// An ISO 965-1 class: pitch-diameter grade and position, crest-diameter grade and position.
+/// `5g6g` is pitch 5g, crest 6g; `6g` is both. Lower-case positions are external, upper-case
+/// internal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct IsoClass {
+    /// True for an internal (nut) class.
+    pub internal: bool,
+    /// Tolerance grade of the pitch diameter (3–9 external, 4–8 internal).
+    pub pitch_grade: u8,
+    /// Position letter of the pitch diameter, lower case (`e f g h`; `g h` for nuts).
+    pub pitch_position: char,
+    /// Tolerance grade of the crest diameter (major d: 4, 6, 8; minor D1: 4–8).
+    pub crest_grade: u8,
+    /// Position letter of the crest diameter, lower case.
+    pub crest_position: char,
+}
+
+impl IsoClass {
+    /// Parses `6g`, `5g6g`, `6H`, `4H5H`.
+    pub fn parse(s: &str) -> Result<IsoClass, String> {
+        let b: Vec<char> = s.chars().collect();
+        let pair = |g: char, p: char| -> Result<(u8, char, bool), String> {
+            let grade =
+                g.to_digit(10).ok_or_else(|| format!("'{g}' is not a tolerance grade (a digit)"))? as u8;
+            if !p.is_ascii_alphabetic() {
+                return Err(format!("'{p}' is not a tolerance position letter"));
+            }
+            Ok((grade, p.to_ascii_lowercase(), p.is_ascii_uppercase()))
+        };
+        let ((pg, pp, pi), (cg, cp, ci)) = match b.as_slice() {
+            [g, p] => {
+                let a = pair(*g, *p)?;
+                (a, a)
+            }
+            [g1, p1, g2, p2] => (pair(*g1, *p1)?, pair(*g2, *p2)?),
+            _ => return Err("expected a tolerance class such as 6g, 5g6g, 6H or 6H/6g".into()),
+        };
+        if pi != ci {
+            return Err("mixes an internal (upper-case) and an external (lower-case) position".into());
+        }
+        let c = IsoClass {
+            internal: pi,
+            pitch_grade: pg,
+            pitch_position: pp,
+            crest_grade: cg,
+            crest_position: cp,
+        };
+        c.validate()?;
+        Ok(c)
+    }
+
+    fn validate(&self) -> Result<(), String> {
+        let (positions, pitch_grades, crest_grades, crest_name): (&str, &[u8], &[u8], &str) = if self.internal
+        {
+            ("GH", &[4, 5, 6, 7, 8], &[4, 5, 6, 7, 8], "minor-diameter (TD1) grades are 4 to 8")
+        } else {
+            ("efgh", &[3, 4, 5, 6, 7, 8, 9], &[4, 6, 8], "major-diameter (Td) grades are 4, 6 and 8")
+        };
+        for p in [self.pitch_position, self.crest_position] {
+            let shown = if self.internal { p.to_ascii_uppercase() } else { p };
+            if !positions.to_ascii_lowercase().contains(p) {
+                return Err(format!(
+                    "position {shown} is not an ISO 965-1 {} position ({})",
+                    if self.internal { "internal" } else { "external" },
+                    positions.chars().map(String::from).collect::<Vec<_>>().join(", ")
+                ));
+            }
+        }
+        if !pitch_grades.contains(&self.pitch_grade) {
+            return Err(format!(
+                "grade {} has no pitch-diameter tolerance (grades {}..{})",
+                self.pitch_grade,
+                pitch_grades[0],
+                pitch_grades[pitch_grades.len() - 1]
+            ));
+        }
+        if !crest_grades.contains(&self.crest_grade) {
+            return Err(format!(
+                "grade {} has no crest tolerance: {crest_name}; write both grades, e.g. {}{}6{}",
+                self.crest_grade, self.pitch_grade, self.pitch_position, self.crest_position
+            ));
+        }
+        Ok(())
+    }
+
+    /// Checks that the positions are defined at this pitch (e is tabulated from 0.5 mm, f from
+    /// 0.35 mm).
+    pub fn check_pitch(&self, pitch: f64) -> Result<(), String> {
+        let Ok(cat) = catalog() else { return Ok(()) };
+        let fd = &cat.iso.fundamental_deviations;
+        for p in [self.pitch_position, self.crest_position] {
+            let list = match p {
+                'e' => &fd.pitches_e,
+                'f' => &fd.pitches_f,
+                _ => &fd.pitches,
+            };
+            if find_pitch(list, pitch).is_none() {
+                let shown = if self.internal { p.to_ascii_uppercase() } else { p };
+                return Err(format!("ISO 965-1 tabulates no deviation of position {shown} for P = {pitch} mm (it does for P = {}..{} mm)", list[0], list[list.len() - 1]));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl fmt::Display for IsoClass {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let c = |p: char| if self.internal { p.to_ascii_uppercase() } else { p };
+        if self.pitch_grade == self.crest_grade && self.pitch_position == self.crest_position {
+            write!(f, "{}{}", self.pitch_grade, c(self.pitch_position))
+        } else {
+            write!(
+                f,
+                "{}{}{}{}",
+                self.pitch_grade,
+                c(self.pitch_position),
+                self.crest_grade,
+                c(self.crest_position)
+            )
+        }
+    }
+}
+
+/// BS 84 classes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Bs84Class {
+    /// Close (bolts and nuts): 2/3·T.
+    Close,
+    /// Medium (bolts and nuts): T.
+    Medium,
+    /// Free (bolts): 3/2·T.
+    Free,
+    /// Normal (nuts): 3/2·T.
+    Normal,
+}
+
+impl Bs84Class {
+    /// Reads a class word; returns the (external, internal) classes it names. `medium` and
+    /// `close` exist for bolts and nuts, `free` only for bolts, `normal` only for nuts.
+    pub fn parse(word: &str) -> Option<(Option<Bs84Class>, Option<Bs84Class>)> {
+        match word.to_ascii_lowercase().as_str() {
+            "close" => Some((Some(Bs84Class::Close), Some(Bs84Class::Close))),
+            "medium" => Some((Some(Bs84Class::Medium), Some(Bs84Class::Medium))),
+            "free" => Some((Some(Bs84Class::Free), None)),
+            "normal" => Some((None, Some(Bs84Class::Normal))),
+            _ => None,
+        }
+    }
+
+    fn factor(self) -> f64 {
+        match self {
+            Bs84Class::Close => 2.0 / 3.0,
+            Bs84Class::Medium => 1.0,
+            Bs84Class::Free | Bs84Class::Normal => 1.5,
+        }
+    }
+}
+
+impl fmt::Display for Bs84Class {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Bs84Class::Close => "close",
+            Bs84Class::Medium => "medium",
+            Bs84Class::Free => "free",
+            Bs84Class::Normal => "normal",
+        })
+    }
+}
+
+/// ISO 228-1 classes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Iso228Class {
+    /// External class A (the finer).
+    A,
+    /// External class B.
+    B,
+    /// The single internal class.
+    Internal,
+}
+
+impl fmt::Display for Iso228Class {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Iso228Class::A => "A",
+            Iso228Class::B => "B",
+            Iso228Class::Internal => "internal",
+        })
+    }
+}
+
+/// A limit pair in mm; a missing side is unbounded.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Default)]
+pub struct Limit {
+    /// Largest allowed value, mm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max: Option<f64>,
+    /// Smallest allowed value, mm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min: Option<f64>,
+}
+
+impl Limit {
+    /// Both sides.
+    pub fn new(min: f64, max: f64) -> Limit {
+        Limit { min: Some(min), max: Some(max) }
+    }
+
+    /// Middle of the zone, if both sides exist.
+    pub fn mid(&self) -> Option<f64> {
+        Some(0.5 * (self.min? + self.max?))
+    }
+
+    /// Distance outside the zone in mm (0 inside).
+    pub fn deviation(&self, v: f64) -> f64 {
+        if let Some(mx) = self.max {
+            if v > mx {
+                return v - mx;
+            }
+        }
+        if let Some(mn) = self.min {
+            if v < mn {
+                return v - mn;
+            }
+        }
+        0.0
+    }
+}
+
+/// Limits of size of one thread (external or internal) in one class, mm.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ThreadLimits {
+    /// External or internal.
+    #[serde(skip)]
+    pub kind: ThreadKind,
+    /// The class as written (`6g`, `medium`, `A`).
+    pub class: String,
+    /// Major diameter d (external: max and min) or D (internal: min only).
+    pub major_diameter: Limit,
+    /// Pitch diameter d2 / D2.
+    pub pitch_diameter: Limit,
+    /// Minor diameter. External metric: max = d1 + es (flat-form limit), min = d3 min =
+    /// d2 min − H + P/4 (lowest root contour). Internal: D1 min and max.
+    pub minor_diameter: Limit,
+    /// Smallest root radius of the bolt, mm (ISO 965-1: 0.125·P), if the standard sets one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub root_radius_min: Option<f64>,
+    /// Fundamental deviation of the pitch diameter, µm (es ≤ 0 for bolts, EI ≥ 0 for nuts).
+    pub fundamental_deviation_um: f64,
+    /// Fundamental deviation of the crest diameter, µm.
+    #[serde(skip)]
+    pub crest_deviation_um: f64,
+    /// Assumptions behind values that the sources do not settle.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
+}
+
+/// Rounds mm to the micrometre, as the tables print.
+pub fn round_um(mm: f64) -> f64 {
+    (mm * 1000.0).round() / 1000.0
+}
+
+/// Rounds a tolerance (µm) to the nearest R40 preferred number in the logarithmic sense, with
+/// the R′40 integer forms below 100 µm (23.6 → 24, 26.5 → 26, …), as ISO 965-1 prints them.
+pub fn r40(x_um: f64, r40_table: &[f64]) -> f64 {
+    // R'40 rounded forms for the decade 10..100, index-aligned with the R40 mantissae.
+    const R40_ROUNDED: [f64; 40] = [
+        10.0, 10.5, 11.0, 12.0, 12.5, 13.0, 14.0, 15.0, 16.0, 17.0, 18.0, 19.0, 20.0, 21.0, 22.0, 24.0, 25.0,
+        26.0, 28.0, 30.0, 32.0, 34.0, 36.0, 38.0, 40.0, 42.0, 45.0, 48.0, 50.0, 53.0, 56.0, 60.0, 63.0, 67.0,
+        71.0, 75.0, 80.0, 85.0, 90.0, 95.0,
+    ];
+    let k = (40.0 * x_um.log10()).round() as i64;
+    let idx = k.rem_euclid(40) as usize;
+    let decade = k.div_euclid(40);
+    if decade == 1 {
+        return R40_ROUNDED[idx];
+    }
+    let v = r40_table.get(idx).copied().unwrap_or(1.0) * 10f64.powi(decade as i32);
+    // Values are whole micrometres from 100 µm up; strip the float noise of powi.
+    (v * 100.0).round() / 100.0
+}
+
+fn iso_tables() -> Result<&'static IsoTables, Error> {
+    Ok(&catalog()?.iso)
+}
+
+fn deviation_um(t: &IsoTables, position: char, internal: bool, pitch: f64) -> Result<f64, Error> {
+    let fd = &t.fundamental_deviations;
+    let (list, vals): (&[f64], &[i32]) = match (position, internal) {
+        ('e', false) => (&fd.pitches_e, &fd.es_e),
+        ('f', false) => (&fd.pitches_f, &fd.es_f),
+        ('g', false) => (&fd.pitches, &fd.es_g),
+        ('h', false) => (&fd.pitches, &fd.es_h),
+        ('g', true) => (&fd.pitches, &fd.ei_g),
+        _ => (&fd.pitches, &fd.ei_h),
+    };
+    let i = find_pitch(list, pitch).ok_or_else(|| {
+        Error::Input(format!("ISO 965-1 tabulates no fundamental deviation for P = {pitch} mm"))
+    })?;
+    Ok(f64::from(vals[i]))
+}
+
+/// Td2(6) external and TD2(6) internal (µm) for the diameter range of `d`, tabulated where the
+/// pitch is listed for that range, else the ISO 965-1 formula on the range's geometric mean
+/// diameter (noted).
+fn td2_grade6(t: &IsoTables, d: f64, pitch: f64, notes: &mut Vec<String>) -> Result<(f64, f64), Error> {
+    let range = t.td2_grade6.ranges.iter().find(|r| r.over < d && d <= r.up_to).ok_or_else(|| {
+        Error::Input(format!("ISO 965-1 tables cover diameters over 0.99 up to 355 mm, not {d} mm"))
+    })?;
+    if let Some(i) = find_pitch(&range.pitches, pitch) {
+        return Ok((range.td2_external[i], range.td2_internal[i]));
+    }
+    let dm = (range.over * range.up_to).sqrt();
+    let ext = r40(90.0 * pitch.powf(0.4) * dm.powf(0.1), &t.rounding.r40);
+    let int = r40(1.32 * ext, &t.rounding.r40);
+    notes.push(format!(
+        "Td2(6) for P = {pitch} mm in the range {}..{} mm is not tabulated; ISO 965-1 formula 90·P^0.4·d^0.1 used ({ext} µm)",
+        range.over, range.up_to
+    ));
+    Ok((ext, int))
+}
+
+fn pitch_table(pitches: &[f64], vals: &[f64], pitch: f64, what: &str) -> Result<f64, Error> {
+    find_pitch(pitches, pitch)
+        .map(|i| vals[i])
+        .ok_or_else(|| Error::Input(format!("ISO 965-1 tabulates no {what} for P = {pitch} mm")))
+}
+
+fn graded(t: &IsoTables, base: f64, factor: Option<f64>, grade: u8, what: &str) -> Result<f64, Error> {
+    let f = factor.ok_or_else(|| Error::Input(format!("ISO 965-1 has no grade {grade} for {what}")))?;
+    if f == 1.0 {
+        return Ok(base);
+    }
+    Ok(r40(f * base, &t.rounding.r40))
+}
+
+/// Limits of an ISO metric thread in an ISO 965-1 class.
+pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits, Error> {
+    let t = iso_tables()?;
+    let p = thread.pitch;
+    let d = thread.nominal_diameter;
+    let h = thread.fundamental_height();
+    let mut notes = Vec::new();
+    let d_b = round_um(d);
+    let d2_b = round_um(thread.pitch_diameter());
+    let d1_b = round_um(thread.minor_diameter_internal());
+    let dev = deviation_um(t, class.pitch_position, class.internal, p)?;
+    let dev_crest = deviation_um(t, class.crest_position, class.internal, p)?;
+    let (td2_6, _td2_int_6) = td2_grade6(t, d, p, &mut notes)?;
+    let gf = &t.grade_factors;
+    let mm = |um: f64| um / 1000.0;
+    if !class.internal {
+        let td2 = graded(t, td2_6, gf.td2.get(class.pitch_grade), class.pitch_grade, "Td2")?;
+        let td6 = pitch_table(&t.td_grade6.pitches, &t.td_grade6.td, p, "major-diameter tolerance Td")?;
+        let td = graded(t, td6, gf.td.get(class.crest_grade), class.crest_grade, "Td")?;
+        let dmax = round_um(d_b + mm(dev_crest));
+        let d2max = round_um(d2_b + mm(dev));
+        let d2min = round_um(d2max - mm(td2));
+        Ok(ThreadLimits {
+            kind: ThreadKind::External,
+            class: class.to_string(),
+            major_diameter: Limit::new(round_um(dmax - mm(td)), dmax),
+            pitch_diameter: Limit::new(d2min, d2max),
+            minor_diameter: Limit::new(round_um(d2min - h + p / 4.0), round_um(d1_b + mm(dev))),
+            root_radius_min: thread.min_root_radius(),
+            fundamental_deviation_um: dev,
+            crest_deviation_um: dev_crest,
+            notes,
+        })
+    } else {
+        // TD2 of every grade is a factor times the EXTERNAL tabulated Td2(6).
+        let td2 = graded(t, td2_6, gf.td2_internal.get(class.pitch_grade), class.pitch_grade, "TD2")?;
+        let td1_6 = match find_pitch(&t.td1_grade6.pitches, p) {
+            Some(i) => t.td1_grade6.td1[i],
+            None => {
+                // P 0.2 and 0.25 carry only fine grades (ISO 965-1 Table 3).
+                let fine = match (class.crest_grade, (p * 100.0).round() as i64) {
+                    (4, 20) => Some(38.0),
+                    (4, 25) => Some(45.0),
+                    (5, 25) => Some(56.0),
+                    _ => None,
+                };
+                let v = fine.ok_or_else(|| {
+                    Error::Input(format!(
+                        "ISO 965-1 has no TD1 of grade {} for P = {p} mm",
+                        class.crest_grade
+                    ))
+                })?;
+                let d1min = round_um(d1_b + mm(dev_crest));
+                let d2min = round_um(d2_b + mm(dev));
+                return Ok(ThreadLimits {
+                    kind: ThreadKind::Internal,
+                    class: class.to_string(),
+                    major_diameter: Limit { min: Some(round_um(d_b + mm(dev))), max: None },
+                    pitch_diameter: Limit::new(d2min, round_um(d2min + mm(td2))),
+                    minor_diameter: Limit::new(d1min, round_um(d1min + mm(v))),
+                    root_radius_min: None,
+                    fundamental_deviation_um: dev,
+                    crest_deviation_um: dev_crest,
+                    notes,
+                });
+            }
+        };
+        let td1 = graded(t, td1_6, gf.td1.get(class.crest_grade), class.crest_grade, "TD1")?;
+        let d2min = round_um(d2_b + mm(dev));
+        let d1min = round_um(d1_b + mm(dev_crest));
+        Ok(ThreadLimits {
+            kind: ThreadKind::Internal,
+            class: class.to_string(),
+            major_diameter: Limit { min: Some(round_um(d_b + mm(dev))), max: None },
+            pitch_diameter: Limit::new(d2min, round_um(d2min + mm(td2))),
+            minor_diameter: Limit::new(d1min, round_um(d1min + mm(td1))),
+            root_radius_min: None,
+            fundamental_deviation_um: dev,
+            crest_deviation_um: dev_crest,
+            notes,
+        })
+    }
+}
+
+/// Limits of a BSW/BSF thread in a BS 84 class. Computed in inches from the BS 84 formula with
+/// the length of engagement L = D and no allowance (both stated in `notes`), rounded to
+/// 0.0001 in as BS 84 prints, then converted to mm and rounded to 0.001 mm.
+pub fn bs84_limits(thread: &BasicThread, class: Bs84Class, kind: ThreadKind) -> ThreadLimits {
+    let inch = |mm: f64| mm / 25.4;
+    let big_d = inch(thread.nominal_diameter);
+    let p = inch(thread.pitch);
+    let l = big_d;
+    let t = 0.002 * big_d.cbrt() + 0.003 * l.sqrt() + 0.005 * p.sqrt();
+    let k = class.factor();
+    let h = 0.640327 * p;
+    let r4 = |x: f64| (x * 10_000.0).round() / 10_000.0;
+    let mm = |x: f64| round_um(r4(x) * 25.4);
+    let e = big_d - h;
+    let d1 = big_d - 2.0 * h;
+    let tpi = 1.0 / p;
+    let notes = vec![
+        "BS 84 tolerance formula with length of engagement L = D and no allowance (assumed; the sources do not settle them)".to_string(),
+    ];
+    match kind {
+        ThreadKind::External => {
+            let minor_extra = if class == Bs84Class::Close { 0.013 } else { 0.02 } * p.sqrt();
+            ThreadLimits {
+                kind,
+                class: class.to_string(),
+                major_diameter: Limit::new(mm(big_d - (k * t + 0.01 * p.sqrt())), mm(big_d)),
+                pitch_diameter: Limit::new(mm(e - k * t), mm(e)),
+                minor_diameter: Limit::new(mm(d1 - (k * t + minor_extra)), mm(d1)),
+                root_radius_min: None,
+                fundamental_deviation_um: 0.0,
+                crest_deviation_um: 0.0,
+                notes,
+            }
+        }
+        ThreadKind::Internal => {
+            let c = if tpi >= 26.0 - 1e-9 {
+                0.004
+            } else if tpi >= 22.0 - 1e-9 {
+                0.005
+            } else {
+                0.007
+            };
+            ThreadLimits {
+                kind,
+                class: class.to_string(),
+                major_diameter: Limit { min: Some(mm(big_d)), max: None },
+                pitch_diameter: Limit::new(mm(e), mm(e + k * t)),
+                minor_diameter: Limit::new(mm(d1), mm(d1 + 0.2 * p + c)),
+                root_radius_min: None,
+                fundamental_deviation_um: 0.0,
+                crest_deviation_um: 0.0,
+                notes,
+            }
+        }
+    }
+}
+
+/// Basic diameters of an ISO 228-1 thread as the standard prints them (mm):
+/// h = 0.640327·P rounded to 0.001 mm, then d2 = d − h and d1 = d − 2h.
+pub fn bsp_basic(thread: &BasicThread) -> (f64, f64, f64) {
+    let h = round_um(0.640327 * thread.pitch);
+    let d = round_um(thread.nominal_diameter);
+    (d, round_um(d - h), round_um(d - 2.0 * h))
+}
+
+/// Limits of an ISO 228-1 thread. Zero fundamental deviation in every class.
+pub fn iso228_limits(thread: &BasicThread, class: Iso228Class) -> Result<ThreadLimits, Error> {
+    let cat = catalog()?;
+    let size =
+        cat.bsp.iter().find(|s| (s.d - thread.nominal_diameter).abs() < 1e-9).ok_or_else(|| {
+            Error::Input(format!("no ISO 228-1 size has d = {} mm", thread.nominal_diameter))
+        })?;
+    let (d, d2, d1) = bsp_basic(thread);
+    Ok(match class {
+        Iso228Class::A | Iso228Class::B => {
+            let td2 = if class == Iso228Class::A { size.td2_a } else { size.td2_b };
+            ThreadLimits {
+                kind: ThreadKind::External,
+                class: class.to_string(),
+                major_diameter: Limit::new(round_um(d - size.td), d),
+                pitch_diameter: Limit::new(round_um(d2 - td2), d2),
+                minor_diameter: Limit { max: Some(d1), min: None },
+                root_radius_min: None,
+                fundamental_deviation_um: 0.0,
+                crest_deviation_um: 0.0,
+                notes: Vec::new(),
+            }
+        }
+        Iso228Class::Internal => ThreadLimits {
+            kind: ThreadKind::Internal,
+            class: class.to_string(),
+            major_diameter: Limit { min: Some(d), max: None },
+            pitch_diameter: Limit::new(d2, round_um(d2 + size.td2_int)),
+            minor_diameter: Limit::new(d1, round_um(d1 + size.td1_int)),
+            root_radius_min: None,
+            fundamental_deviation_um: 0.0,
+            crest_deviation_um: 0.0,
+            notes: Vec::new(),
+        },
+    })
+}
+
+/// Limits for the class a designation names for `kind`, or `None` when it names none.
+pub fn limits_for(des: &Designation, kind: ThreadKind) -> Result<Option<ThreadLimits>, Error> {
+    let Some(class) = des.class(kind) else { return Ok(None) };
+    let t = &des.thread;
+    Ok(Some(match (t.form, class) {
+        (ThreadForm::IsoMetric, ClassSpec::Iso(c)) => iso_limits(t, c)?,
+        (ThreadForm::Whitworth, ClassSpec::Bs84(c)) => bs84_limits(t, *c, kind),
+        (ThreadForm::BspParallel, ClassSpec::Iso228(c)) => iso228_limits(t, *c)?,
+        _ => {
+            return Err(Error::Input(format!("class {class} does not belong to the {} form", t.form.name())))
+        }
+    }))
+}
+
+/// Basic diameters as the limits tables print them (mm, rounded to 0.001):
+/// (major, pitch, minor external, minor internal, H).
+pub fn basic_rounded(t: &BasicThread) -> (f64, f64, f64, f64, f64) {
+    if t.form == ThreadForm::BspParallel {
+        let (d, d2, d1) = bsp_basic(t);
+        return (d, d2, d1, d1, round_um(t.fundamental_height()));
+    }
+    (
+        round_um(t.nominal_diameter),
+        round_um(t.pitch_diameter()),
+        round_um(t.minor_diameter_external()),
+        round_um(t.minor_diameter_internal()),
+        (t.fundamental_height() * 10_000.0).round() / 10_000.0,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The published test vectors of the rounding rule (profiles/iso-metric.toml, [rounding],
+    /// each naming the table cell it comes from).
+    #[test]
+    fn r40_reproduces_published_cells() {
+        let t = iso_tables().unwrap();
+        let r = &t.rounding;
+        for i in 0..r.examples_base.len() {
+            let got = r40(r.examples_factor[i] * r.examples_base[i], &r.r40);
+            assert_eq!(got, r.examples_expected[i], "vector {i}");
+        }
+    }
+
+    /// TD2(6) = R40(1.32 × Td2(6)) reproduces the tabulated internal column of every range.
+    #[test]
+    fn internal_td2_rule_matches_its_column() {
+        let t = iso_tables().unwrap();
+        for range in &t.td2_grade6.ranges {
+            for (i, ext) in range.td2_external.iter().enumerate() {
+                assert_eq!(
+                    r40(1.32 * ext, &t.rounding.r40),
+                    range.td2_internal[i],
+                    "{} P{}",
+                    range.over,
+                    range.pitches[i]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn class_parsing_and_display() {
+        assert_eq!(IsoClass::parse("6g").unwrap().to_string(), "6g");
+        assert_eq!(IsoClass::parse("5g6g").unwrap().to_string(), "5g6g");
+        assert_eq!(IsoClass::parse("6H").unwrap().to_string(), "6H");
+        assert!(IsoClass::parse("6k").is_err());
+        assert!(IsoClass::parse("6E").is_err());
+        assert!(IsoClass::parse("2g").is_err());
+        assert!(IsoClass::parse("5h").is_err()); // Td has no grade 5
+        assert!(IsoClass::parse("5h4h").is_ok());
+        assert!(IsoClass::parse("6G6h").is_err());
+    }
+}

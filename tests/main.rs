@@ -1,0 +1,65 @@
+//! The integration tests: one binary, one module per area, small helpers here.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+//!
+//! Tests read reference data only from `tests/data/` (each file names its sources), never from
+//! `../shared`.
+
+mod limits;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// Path to a file in `tests/data`.
+pub fn data(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
+}
+
+/// Parses a TOML file of `tests/data`.
+pub fn data_toml(name: &str) -> toml::Value {
+    let text = std::fs::read_to_string(data(name)).unwrap();
+    toml::from_str(&text).unwrap()
+}
+
+/// Runs the built `threadcheck` binary with `args` in folder `dir`.
+pub fn run_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_threadcheck")).args(args).current_dir(dir).output().unwrap()
+}
+
+/// Runs the built `threadcheck` binary with `args` in a fresh temporary folder.
+pub fn run(args: &[&str]) -> Output {
+    let dir = tempdir("run");
+    run_in(&dir, args)
+}
+
+/// A fresh, empty temporary folder unique to this test process and `tag`.
+pub fn tempdir(tag: &str) -> PathBuf {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    static N: AtomicUsize = AtomicUsize::new(0);
+    let d = std::env::temp_dir().join(format!(
+        "threadcheck-{}-{tag}-{}",
+        std::process::id(),
+        N.fetch_add(1, Ordering::SeqCst)
+    ));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// stdout as text.
+pub fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// stderr as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Asserts the run failed with exit code 2 and exactly one line on stderr; returns that line.
+pub fn one_line_error(o: &Output) -> String {
+    assert_eq!(o.status.code(), Some(2), "stdout: {} stderr: {}", stdout(o), stderr(o));
+    let e = stderr(o);
+    assert_eq!(e.trim_end().lines().count(), 1, "stderr is not one line: {e:?}");
+    e.trim_end().to_string()
+}
