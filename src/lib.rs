@@ -12,10 +12,16 @@
 //! axial half-plane with `(z, r)` where `r` is a radius. Deviations are reported in µm.
 
 pub mod app;
+pub mod boolean;
 pub mod error;
 pub mod geometry;
+pub mod insert;
+pub mod limits;
+pub mod measure;
 pub mod output;
+pub mod passes;
 pub mod standards;
+pub mod sweep;
 pub mod tolerance;
 
 pub use error::{Error, Result};

@@ -6,6 +6,7 @@
 //! `../shared`.
 
 mod limits;
+mod sweep;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

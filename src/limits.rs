@@ -1,0 +1,20 @@
+//! Every explicit bound on input size in one place, so that no input can make threadcheck run
+//! for ever or exhaust memory. Each limit is far above what a real program needs.
+
+/// Most passes a plan or program may expand to (all starts together).
+pub const MAX_PASSES: usize = 100_000;
+
+/// Most imprints one sweep may place (passes × crossings of the window).
+pub const MAX_IMPRINTS: usize = 2_000_000;
+
+/// Deepest nesting of subprogram calls in a G-code program.
+pub const MAX_CALL_DEPTH: usize = 16;
+
+/// Most repetitions of one subprogram call (`L9 P33`).
+pub const MAX_REPEATS: usize = 10_000;
+
+/// Most blocks a program may execute, counting repetitions, before it is taken for a loop.
+pub const MAX_EXECUTED_BLOCKS: usize = 1_000_000;
+
+/// Largest program file read, bytes.
+pub const MAX_PROGRAM_BYTES: usize = 8 << 20;

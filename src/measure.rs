@@ -1,0 +1,387 @@
+//! Measuring the as-cut profile the way a metrology lab would.
+//!
+//! Work happens in a **normalised frame** `(z, y)` with the material below the profile:
+//! `y = r` for external threads and `y = −r` for internal ones, so that "crest" is always up and
+//! "root" down. Results are converted back to diameters.
+
+use crate::geometry::{cross_at_level, dia, Point};
+use crate::standards::{BasicThread, ProfileKind, ThreadKind};
+use crate::Error;
+use nalgebra::{Isometry2, Vector2};
+use parry2d_f64::math::Point as PPoint;
+use parry2d_f64::query::{cast_shapes, PointQuery, ShapeCastOptions};
+use parry2d_f64::shape::{Ball, Polyline};
+use serde::Serialize;
+
+/// The three-wire measurement over best-size wires.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ThreeWire {
+    /// Wire diameter w, mm (best size P / (2·cos(α/2))).
+    pub wire: f64,
+    /// Measurement over the wires M, mm (no lead-angle correction).
+    pub m: f64,
+}
+
+/// What was measured on one groove and its two neighbouring teeth.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Measurement {
+    /// Major diameter, mm: the crest of the bolt (external) or the root of the nut (internal).
+    pub major_diameter: f64,
+    /// Simple pitch diameter, mm: where the groove is P/2 wide.
+    pub pitch_diameter: f64,
+    /// Minor diameter, mm: the root d3 of the bolt (external) or the crest D1 of the nut.
+    pub minor_diameter: f64,
+    /// Thread depth (major − minor)/2, mm: h3 for a bolt.
+    pub thread_depth: f64,
+    /// Depth of engagement with the basic mating thread, mm: (d − D1_measured)/2 for a nut,
+    /// (d_measured − D1)/2 for a bolt (H1 is 5H/8 at basic size).
+    pub engagement_depth: f64,
+    /// Flank half-angles from the radial, degrees: `[low-Z flank, high-Z flank]` of the groove,
+    /// each fitted by least squares on the straight middle half of the flank.
+    pub flank_angles: [f64; 2],
+    /// Smallest radius of curvature of the root (concave side), mm; `None` if the root has no
+    /// concave turn.
+    pub root_radius: Option<f64>,
+    /// Width of the narrower of the two crests 1 µm below its top, mm. Near zero: no crest left.
+    pub crest_width: f64,
+    /// Axial position of the groove centre on the pitch line, mm.
+    pub groove_center: f64,
+    /// True when the pitch line lay outside the cut flanks and the fitted flank lines were
+    /// extended to find it.
+    pub pitch_line_extrapolated: bool,
+    /// Three-wire measurement (external threads only).
+    pub three_wire: Option<ThreeWire>,
+    /// Signed smallest distance from the as-cut profile to the maximum-material profile, mm:
+    /// positive where the GO gauge enters with clearance, negative where it would not.
+    pub max_material_clearance: Option<f64>,
+}
+
+/// The profile of one groove in the normalised frame, with its crests.
+struct Groove {
+    pts: Vec<Point>,
+    root: usize,
+    left: usize,
+    right: usize,
+}
+
+fn normalise(profile: &[Point], kind: ThreadKind) -> Vec<Point> {
+    let s = if kind == ThreadKind::External { 1.0 } else { -1.0 };
+    profile.iter().map(|p| Point::new(p.z, s * p.r)).collect()
+}
+
+impl Groove {
+    fn find(pts: Vec<Point>, z_ref: f64, pitch: f64) -> Result<Groove, Error> {
+        let within = |lo: f64, hi: f64| -> Vec<usize> {
+            (0..pts.len()).filter(|&i| pts[i].z >= lo && pts[i].z <= hi).collect()
+        };
+        let root = within(z_ref - 0.5 * pitch, z_ref + 0.5 * pitch)
+            .into_iter()
+            .min_by(|&a, &b| pts[a].r.total_cmp(&pts[b].r))
+            .ok_or_else(|| Error::Geometry("no groove in the measured window".into()))?;
+        let zr = pts[root].z;
+        // A crest: the highest point within a pitch; of a flat top, the end nearest the groove.
+        let crest = |range: Vec<usize>, nearest_last: bool| -> Option<usize> {
+            let top = range.iter().map(|&i| pts[i].r).fold(f64::NEG_INFINITY, f64::max);
+            let mut on_top = range.into_iter().filter(|&i| pts[i].r >= top - 1e-9);
+            if nearest_last {
+                on_top.next_back()
+            } else {
+                on_top.next()
+            }
+        };
+        let left = crest(within(zr - pitch, zr), true);
+        let right = crest(within(zr, zr + pitch), false);
+        match (left, right) {
+            (Some(l), Some(r)) if l < root && root < r => Ok(Groove { pts, root, left: l, right: r }),
+            _ => Err(Error::Geometry("the measured window does not hold a groove between two teeth".into())),
+        }
+    }
+
+    fn y_root(&self) -> f64 {
+        self.pts[self.root].r
+    }
+
+    fn y_top(&self) -> f64 {
+        self.pts[self.left].r.min(self.pts[self.right].r)
+    }
+
+    /// Where the low-Z flank crosses level `y`, searching out from the root.
+    fn left_z(&self, y: f64) -> Option<f64> {
+        (self.left..self.root).rev().find_map(|i| cross_at_level(self.pts[i], self.pts[i + 1], y))
+    }
+
+    fn right_z(&self, y: f64) -> Option<f64> {
+        (self.root..self.right).find_map(|i| cross_at_level(self.pts[i], self.pts[i + 1], y))
+    }
+
+    fn width(&self, y: f64) -> Option<f64> {
+        Some(self.right_z(y)? - self.left_z(y)?)
+    }
+
+    /// Least-squares line z = a + b·y through the flank crossings in the middle half of the
+    /// depth; returns (a, b) for the low-Z and high-Z flank.
+    fn fit_flanks(&self) -> Option<((f64, f64), (f64, f64))> {
+        let (y0, y1) = (self.y_root(), self.y_top());
+        let n = 21;
+        let fit = |f: &dyn Fn(f64) -> Option<f64>| -> Option<(f64, f64)> {
+            let pts: Vec<(f64, f64)> = (0..n)
+                .filter_map(|k| {
+                    let y = y0 + (y1 - y0) * (0.25 + 0.5 * k as f64 / (n - 1) as f64);
+                    f(y).map(|z| (y, z))
+                })
+                .collect();
+            if pts.len() < 2 {
+                return None;
+            }
+            let m = pts.len() as f64;
+            let (sy, sz) = pts.iter().fold((0.0, 0.0), |(a, b), (y, z)| (a + y, b + z));
+            let (my, mz) = (sy / m, sz / m);
+            let (sxy, sxx) = pts
+                .iter()
+                .fold((0.0, 0.0), |(a, b), (y, z)| (a + (y - my) * (z - mz), b + (y - my) * (y - my)));
+            let b = sxy / sxx;
+            Some((mz - b * my, b))
+        };
+        Some((fit(&|y| self.left_z(y))?, fit(&|y| self.right_z(y))?))
+    }
+}
+
+/// Smallest circumradius over concave vertex triples (left turns in the normalised frame), after
+/// merging vertices closer than 0.1 µm so that boolean slivers cannot fake a tiny radius.
+fn min_concave_radius(pts: &[Point]) -> Option<f64> {
+    let mut v: Vec<Point> = Vec::with_capacity(pts.len());
+    for p in pts {
+        if v.last().is_none_or(|q: &Point| q.distance(*p) > 1e-4) {
+            v.push(*p);
+        }
+    }
+    let mut best: Option<f64> = None;
+    for w in v.windows(3) {
+        let (a, b, c) = (w[0], w[1], w[2]);
+        let cross = (b.z - a.z) * (c.r - a.r) - (b.r - a.r) * (c.z - a.z);
+        if cross <= 0.0 {
+            continue;
+        }
+        let r = a.distance(b) * b.distance(c) * c.distance(a) / (2.0 * cross);
+        best = Some(best.map_or(r, |x: f64| x.min(r)));
+    }
+    best
+}
+
+fn polyline(pts: &[Point]) -> Polyline {
+    Polyline::new(pts.iter().map(|p| PPoint::new(p.z, p.r)).collect(), None)
+}
+
+/// Golden-section search for the minimum of `f` on `[a, b]`.
+fn golden_min(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64, iters: usize) -> (f64, f64) {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let mut c = b - g * (b - a);
+    let mut d = a + g * (b - a);
+    let (mut fc, mut fd) = (f(c), f(d));
+    for _ in 0..iters {
+        if fc < fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - g * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + g * (b - a);
+            fd = f(d);
+        }
+    }
+    if fc < fd {
+        (c, fc)
+    } else {
+        (d, fd)
+    }
+}
+
+/// The lowest a ball of radius `rw` can sit in the groove: its centre height and axial position.
+fn wire_rest(g: &Groove, rw: f64) -> Option<(f64, f64)> {
+    let chain = &g.pts[g.left..=g.right];
+    let line = polyline(chain);
+    let ball = Ball::new(rw);
+    let top = chain.iter().map(|p| p.r).fold(f64::NEG_INFINITY, f64::max) + 2.0 * rw + 1.0;
+    let drop = |z: f64| -> f64 {
+        let pos = Isometry2::new(Vector2::new(z, top), 0.0);
+        let hit = cast_shapes(
+            &pos,
+            &Vector2::new(0.0, -1.0),
+            &ball,
+            &Isometry2::identity(),
+            &Vector2::zeros(),
+            &line,
+            ShapeCastOptions::with_max_time_of_impact(1e6),
+        );
+        match hit {
+            Ok(Some(h)) => top - h.time_of_impact,
+            _ => f64::INFINITY,
+        }
+    };
+    let (z0, z1) = (g.pts[g.left].z, g.pts[g.right].z);
+    let (z, y) = golden_min(&drop, z0, z1, 80);
+    y.is_finite().then_some((z, y))
+}
+
+/// Signed clearance between the as-cut groove (both half-teeth included) and the
+/// maximum-material profile `mmc` (normalised frame, material below both).
+fn signed_clearance(cut: &[Point], mmc: &[Point]) -> f64 {
+    let (lc, lm) = (polyline(cut), polyline(mmc));
+    let above = |p: Point, other: &[Point]| -> Option<f64> {
+        // Height of `other` at p.z, if it spans it.
+        let i = other
+            .windows(2)
+            .position(|w| (w[0].z <= p.z && p.z <= w[1].z) || (w[1].z <= p.z && p.z <= w[0].z))?;
+        let (a, b) = (other[i], other[i + 1]);
+        if a.z == b.z {
+            return Some(a.r.max(b.r));
+        }
+        Some(a.r + (p.z - a.z) / (b.z - a.z) * (b.r - a.r))
+    };
+    let mut penetration: f64 = 0.0;
+    let mut nearest = f64::INFINITY;
+    for &p in cut {
+        let d = lm.distance_to_local_point(&PPoint::new(p.z, p.r), false);
+        match above(p, mmc) {
+            Some(h) if p.r > h + 1e-9 => penetration = penetration.max(d),
+            Some(_) => nearest = nearest.min(d),
+            None => {}
+        }
+    }
+    for &q in mmc {
+        let d = lc.distance_to_local_point(&PPoint::new(q.z, q.r), false);
+        match above(q, cut) {
+            Some(h) if h > q.r + 1e-9 => penetration = penetration.max(d),
+            Some(_) => nearest = nearest.min(d),
+            None => {}
+        }
+    }
+    if penetration > 0.0 {
+        -penetration
+    } else {
+        nearest
+    }
+}
+
+/// What to measure against: the thread, its kind and (optionally) the maximum-material limits.
+#[derive(Clone, Copy, Debug)]
+pub struct MeasureSetup<'a> {
+    /// The basic thread.
+    pub thread: &'a BasicThread,
+    /// External or internal.
+    pub kind: ThreadKind,
+    /// Maximum-material pitch diameter (external d2 max, internal D2 min), mm; with it the
+    /// maximum-material profile is the basic profile moved radially to that pitch diameter.
+    pub mmc_pitch_diameter: Option<f64>,
+}
+
+/// Measures the groove of `profile` (part coordinates, low to high Z) nearest `z_ref`.
+pub fn measure(setup: &MeasureSetup<'_>, profile: &[Point], z_ref: f64) -> Result<Measurement, Error> {
+    let t = setup.thread;
+    let p = t.pitch;
+    let kind = setup.kind;
+    let s = if kind == ThreadKind::External { 1.0 } else { -1.0 };
+    let g = Groove::find(normalise(profile, kind), z_ref, p)?;
+    let (y_root, y_top) = (g.y_root(), g.y_top());
+    let y_crest = g.pts[g.left].r.max(g.pts[g.right].r);
+    if !(y_top > y_root) {
+        return Err(Error::Geometry("the groove has no depth".into()));
+    }
+    let flanks =
+        g.fit_flanks().ok_or_else(|| Error::Geometry("the groove flanks could not be traced".into()))?;
+    // Pitch line: where the groove is P/2 wide. Bisection on the cut flanks when it lies between
+    // root and crest, else on the fitted flank lines extended.
+    let half = 0.5 * p;
+    let w_lo = g.width(y_root + 1e-12 * (y_top - y_root).max(1.0)).unwrap_or(0.0);
+    let w_hi = g.width(y_top).unwrap_or(f64::INFINITY);
+    let (y_pitch, extrapolated, zc) = if w_lo <= half && half <= w_hi {
+        let (mut a, mut b) = (y_root, y_top);
+        for _ in 0..200 {
+            let m = 0.5 * (a + b);
+            if g.width(m).unwrap_or(0.0) < half {
+                a = m;
+            } else {
+                b = m;
+            }
+            if b - a < 1e-15 {
+                break;
+            }
+        }
+        let y = 0.5 * (a + b);
+        let zc = 0.5 * (g.left_z(y).unwrap_or(0.0) + g.right_z(y).unwrap_or(0.0));
+        (y, false, zc)
+    } else {
+        let ((al, bl), (ar, br)) = flanks;
+        // (ar − al) + (br − bl)·y = P/2
+        let y = (half - (ar - al)) / (br - bl);
+        (y, true, 0.5 * ((al + bl * y) + (ar + br * y)))
+    };
+    let angle = |b: f64| b.abs().atan().to_degrees();
+    let crest_width = [g.left, g.right]
+        .iter()
+        .map(|&i| {
+            let y = g.pts[i].r - 1e-3;
+            let lo = (0..i).rev().find_map(|k| cross_at_level(g.pts[k], g.pts[k + 1], y));
+            let hi = (i..g.pts.len() - 1).find_map(|k| cross_at_level(g.pts[k], g.pts[k + 1], y));
+            match (lo, hi) {
+                (Some(a), Some(b)) => b - a,
+                _ => f64::INFINITY,
+            }
+        })
+        .fold(f64::INFINITY, f64::min);
+    let root_radius = min_concave_radius(&g.pts[g.left..=g.right]);
+    let beta = t.half_angle();
+    let three_wire = if kind == ThreadKind::External {
+        let w = p / (2.0 * beta.cos());
+        wire_rest(&g, 0.5 * w).map(|(_, yc)| ThreeWire { wire: w, m: dia(yc) + w })
+    } else {
+        None
+    };
+    let max_material_clearance = setup.mmc_pitch_diameter.map(|d2m| {
+        // The maximum-material profile: the basic profile moved radially so its pitch diameter
+        // is d2m, centred on the measured groove; then the best axial fit, as a gauge finds it.
+        let variant = if kind == ThreadKind::External { ProfileKind::Basic } else { ProfileKind::Nut };
+        let shift_r = s * 0.5 * (d2m - t.pitch_diameter());
+        let one = normalise(&t.profile(variant, 5e-5), kind);
+        let cut: Vec<Point> = g.pts[g.left..=g.right].to_vec();
+        let clearance = |dz: f64| -> f64 {
+            let mut mmc = Vec::new();
+            for k in -1..=1 {
+                for q in &one {
+                    mmc.push(Point::new(q.z + zc + dz + k as f64 * p, q.r + s * shift_r));
+                }
+            }
+            mmc.dedup_by(|a, b| a.distance(*b) < 1e-12);
+            signed_clearance(&cut, &mmc)
+        };
+        let (_, neg) = golden_min(&|dz| -clearance(dz), -0.125 * p, 0.125 * p, 60);
+        -neg
+    });
+    let (major, minor) = if kind == ThreadKind::External {
+        (dia(y_crest), dia(y_root))
+    } else {
+        (dia(-y_root), dia(-y_crest))
+    };
+    let engagement_depth = match kind {
+        ThreadKind::External => 0.5 * (major - t.minor_diameter_internal()),
+        ThreadKind::Internal => 0.5 * (t.nominal_diameter - minor),
+    };
+    Ok(Measurement {
+        major_diameter: major,
+        pitch_diameter: dia(s * y_pitch),
+        minor_diameter: minor,
+        thread_depth: 0.5 * (major - minor),
+        engagement_depth,
+        flank_angles: [angle(flanks.0 .1), angle(flanks.1 .1)],
+        root_radius,
+        crest_width,
+        groove_center: zc,
+        pitch_line_extrapolated: extrapolated,
+        three_wire,
+        max_material_clearance,
+    })
+}

@@ -1,0 +1,335 @@
+//! Passes and generated pass plans: infeed strategies and depth schedules.
+//!
+//! A [`Pass`] is where the tool tip runs during one threading move. In the axial section it
+//! leaves one imprint of the insert per lead, at `z_start + k·Ph` along the feed direction.
+
+use crate::limits::MAX_PASSES;
+use crate::standards::ThreadKind;
+use crate::Error;
+use serde::Serialize;
+
+/// One threading pass: the tip's diameter and axial position at both ends of the move.
+///
+/// X values are tip **diameters** (mm). `z_start` → `z_end` is the direction of feed (usually
+/// towards the chuck, decreasing Z). For a parallel thread `x_start == x_end`; a taper or a
+/// run-out changes X linearly with Z.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Pass {
+    /// 1-based position in the cutting order.
+    pub index: usize,
+    /// Tip diameter at `z_start`, mm.
+    pub x_start: f64,
+    /// Tip diameter at `z_end`, mm.
+    pub x_end: f64,
+    /// Z where the threading move starts, mm.
+    pub z_start: f64,
+    /// Z where the threading move ends, mm.
+    pub z_end: f64,
+    /// Lead (axial advance per revolution), mm.
+    pub lead: f64,
+    /// Which start of a multi-start thread (0-based); its grooves are offset by this many pitches,
+    /// already included in `z_start`.
+    pub start: u32,
+    /// The program line the pass came from (1-based), `None` for generated plans.
+    pub source_line: Option<usize>,
+}
+
+impl Pass {
+    /// Direction of feed along Z: −1 towards the chuck, +1 away from it.
+    pub fn feed_direction(&self) -> f64 {
+        if self.z_end < self.z_start {
+            -1.0
+        } else {
+            1.0
+        }
+    }
+
+    /// Tip diameter where the move crosses axial position `z`, mm (linear between the ends).
+    pub fn x_at(&self, z: f64) -> f64 {
+        let span = self.z_end - self.z_start;
+        if span == 0.0 {
+            return self.x_end;
+        }
+        let t = ((z - self.z_start) / span).clamp(0.0, 1.0);
+        self.x_start + t * (self.x_end - self.x_start)
+    }
+
+    /// The axial positions in `[lo, hi]` where this pass crosses the half-plane:
+    /// `z_start + k·lead·direction` for whole k ≥ 0 within the move.
+    pub fn crossings(&self, lo: f64, hi: f64) -> Vec<f64> {
+        let dir = self.feed_direction();
+        let (zmin, zmax) = (self.z_start.min(self.z_end), self.z_start.max(self.z_end));
+        let (lo, hi) = (lo.max(zmin), hi.min(zmax));
+        if !(hi >= lo) || !(self.lead > 0.0) {
+            return Vec::new();
+        }
+        // k range from the window, so a long pass costs nothing outside it.
+        let (k0, k1) = if dir < 0.0 {
+            (((self.z_start - hi) / self.lead).ceil(), ((self.z_start - lo) / self.lead).floor())
+        } else {
+            (((lo - self.z_start) / self.lead).ceil(), ((hi - self.z_start) / self.lead).floor())
+        };
+        let k0 = k0.max(0.0);
+        if k1 < k0 || k1 - k0 > 1e6 {
+            return Vec::new();
+        }
+        (k0 as i64..=k1 as i64).map(|k| self.z_start + dir * (k as f64) * self.lead).collect()
+    }
+}
+
+/// How the tip moves from pass to pass.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(tag = "method", rename_all = "lowercase")]
+pub enum Infeed {
+    /// Straight in X: both edges cut (two-flank).
+    Radial,
+    /// Along a line `angle` degrees from the radial, towards the feed direction, so that the
+    /// leading edge cuts and the trailing edge follows the finished flank: `Δz = Δx_radial·tan(angle)`.
+    /// Flank infeed proper is half the thread angle; modified flank a few degrees less.
+    Flank {
+        /// Infeed angle from the radial, degrees.
+        angle: f64,
+    },
+    /// Alternates between the two flanks: each pass moves `Δdepth·tan(angle)` along Z, the
+    /// direction changing every pass, as a control that works in increments does.
+    Alternating {
+        /// Infeed angle from the radial, degrees.
+        angle: f64,
+    },
+}
+
+/// How deep each pass goes.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Schedule {
+    /// Equal radial depth per pass: depth after pass i = t·i/N.
+    ConstantDepth,
+    /// Constant chip area: depth after pass i = t·√(i/N).
+    ConstantArea,
+    /// Sandvik's degressive series: depth after pass x = t·√(φ/(N−1)), φ = 0.3, 1, 2, …, N−1.
+    Sandvik,
+    /// Explicit cumulative radial depths (mm), the last being the total.
+    Explicit(Vec<f64>),
+}
+
+/// Cumulative radial depths (mm) of `n` passes reaching `total`.
+pub fn schedule_depths(schedule: &Schedule, total: f64, n: usize) -> Result<Vec<f64>, Error> {
+    if let Schedule::Explicit(v) = schedule {
+        if v.is_empty() || v.len() > MAX_PASSES {
+            return Err(Error::Input(format!("an explicit schedule needs 1 to {MAX_PASSES} depths")));
+        }
+        if v.iter().any(|d| !d.is_finite() || *d < 0.0) || v.windows(2).any(|w| w[1] < w[0]) {
+            return Err(Error::Input("explicit depths must be finite, ≥ 0 and not decreasing".into()));
+        }
+        return Ok(v.clone());
+    }
+    if n == 0 || n > MAX_PASSES {
+        return Err(Error::Input(format!("{n} passes: the pass count must be 1 to {MAX_PASSES}")));
+    }
+    if !(total.is_finite() && total > 0.0) {
+        return Err(Error::Geometry(format!(
+            "thread depth {total} mm: the final X must lie inside the blank"
+        )));
+    }
+    let nf = n as f64;
+    let depth = |i: usize| {
+        let i = i as f64;
+        match schedule {
+            Schedule::ConstantDepth => total * i / nf,
+            Schedule::Sandvik if n > 1 => {
+                let phi = if i == 1.0 { 0.3 } else { i - 1.0 };
+                total * (phi / (nf - 1.0)).sqrt()
+            }
+            // Constant area; also Sandvik with one pass, and the explicit list returned above.
+            _ => total * (i / nf).sqrt(),
+        }
+    };
+    Ok((1..=n).map(depth).collect())
+}
+
+/// Axial offsets of the tip (mm) for cumulative depths `depths`, with the feed direction `dir`.
+pub fn infeed_offsets(infeed: Infeed, depths: &[f64], dir: f64) -> Vec<f64> {
+    match infeed {
+        Infeed::Radial => vec![0.0; depths.len()],
+        Infeed::Flank { angle } => {
+            let t = crate::geometry::deg(angle).tan();
+            depths.iter().map(|d| dir * d * t).collect()
+        }
+        Infeed::Alternating { angle } => {
+            let t = crate::geometry::deg(angle).tan();
+            let mut z = 0.0;
+            let mut prev = 0.0;
+            depths
+                .iter()
+                .enumerate()
+                .map(|(i, d)| {
+                    let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+                    z += sign * dir * (d - prev) * t;
+                    prev = *d;
+                    z
+                })
+                .collect()
+        }
+    }
+}
+
+/// A generated plan: everything needed to lay out the passes of a parallel thread.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlanSpec {
+    /// External or internal.
+    pub kind: ThreadKind,
+    /// Pitch, mm.
+    pub pitch: f64,
+    /// Number of starts.
+    pub starts: u32,
+    /// Diameter where the depth is zero: the blank (external) or the bore (internal), mm.
+    pub surface_x: f64,
+    /// Tip diameter of the last pass, mm.
+    pub final_x: f64,
+    /// Number of cutting passes per start.
+    pub passes: usize,
+    /// Depth schedule.
+    pub schedule: Schedule,
+    /// Infeed strategy.
+    pub infeed: Infeed,
+    /// Spring (idle) passes at the final position.
+    pub spring: usize,
+    /// Z where each move starts (for start 0 and zero offset), mm.
+    pub z_start: f64,
+    /// Length of the threading move, mm (it ends at `z_start − length`).
+    pub length: f64,
+}
+
+impl PlanSpec {
+    /// Total radial depth from the surface to the final tip, mm.
+    pub fn total_depth(&self) -> f64 {
+        match self.kind {
+            ThreadKind::External => 0.5 * (self.surface_x - self.final_x),
+            ThreadKind::Internal => 0.5 * (self.final_x - self.surface_x),
+        }
+    }
+
+    /// Lays out the passes, start after start.
+    pub fn generate(&self) -> Result<Vec<Pass>, Error> {
+        for (name, v) in [
+            ("pitch", self.pitch),
+            ("surface X", self.surface_x),
+            ("final X", self.final_x),
+            ("length", self.length),
+            ("Z start", self.z_start),
+        ] {
+            if !v.is_finite() {
+                return Err(Error::Input(format!("{name} is not a finite number")));
+            }
+        }
+        if !(self.pitch > 0.0) {
+            return Err(Error::Input(format!("pitch {} mm must be greater than zero", self.pitch)));
+        }
+        let total = self.total_depth();
+        let depths = schedule_depths(&self.schedule, total, self.passes)?;
+        let per_start = depths.len() + self.spring;
+        if self.starts == 0 || per_start.saturating_mul(self.starts as usize) > MAX_PASSES {
+            return Err(Error::Input(format!(
+                "{} passes × {} starts is more than the {MAX_PASSES} threadcheck accepts",
+                per_start, self.starts
+            )));
+        }
+        let dir = -1.0;
+        let offsets = infeed_offsets(self.infeed, &depths, dir);
+        let sign = self.kind.depth_sign();
+        let lead = self.pitch * f64::from(self.starts);
+        let mut out = Vec::with_capacity(per_start * self.starts as usize);
+        for start in 0..self.starts {
+            let z0 = self.z_start + f64::from(start) * self.pitch;
+            let mut push = |depth: f64, off: f64| {
+                let x = self.surface_x + 2.0 * sign * depth;
+                out.push(Pass {
+                    index: out.len() + 1,
+                    x_start: x,
+                    x_end: x,
+                    z_start: z0 + off,
+                    z_end: z0 + off - self.length,
+                    lead,
+                    start,
+                    source_line: None,
+                });
+            };
+            for (d, o) in depths.iter().zip(&offsets) {
+                push(*d, *o);
+            }
+            let (dl, ol) = (depths[depths.len() - 1], offsets[offsets.len() - 1]);
+            for _ in 0..self.spring {
+                push(dl, ol);
+            }
+        }
+        Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn schedules_reach_the_total_and_grow() {
+        for s in [Schedule::ConstantDepth, Schedule::ConstantArea, Schedule::Sandvik] {
+            let d = schedule_depths(&s, 0.9, 9).unwrap();
+            assert!((d[8] - 0.9).abs() < 1e-15, "{s:?}");
+            assert!(d.windows(2).all(|w| w[1] > w[0]), "{s:?}");
+        }
+        // Constant area: first step t/√N.
+        let d = schedule_depths(&Schedule::ConstantArea, 0.9, 9).unwrap();
+        assert!((d[0] - 0.3).abs() < 1e-15);
+        // Sandvik: the first pass is √0.3 of the second.
+        let s = schedule_depths(&Schedule::Sandvik, 1.0, 5).unwrap();
+        assert!((s[0] / s[1] - 0.3f64.sqrt()).abs() < 1e-15);
+    }
+
+    #[test]
+    fn flank_infeed_keeps_the_trailing_flank_on_one_line() {
+        let depths = [0.1, 0.3, 0.6];
+        let z = infeed_offsets(Infeed::Flank { angle: 30.0 }, &depths, -1.0);
+        for (d, z) in depths.iter().zip(&z) {
+            assert!((z + d * (30f64).to_radians().tan()).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn crossings_step_by_the_lead_inside_the_window() {
+        let p = Pass {
+            index: 1,
+            x_start: 9.0,
+            x_end: 9.0,
+            z_start: 0.2,
+            z_end: -30.0,
+            lead: 1.5,
+            start: 0,
+            source_line: None,
+        };
+        let z = p.crossings(-5.0, 0.0);
+        assert_eq!(z.len(), 3);
+        assert!((z[0] - (0.2 - 1.5)).abs() < 1e-12 && (z[2] - (0.2 - 4.5)).abs() < 1e-12);
+        assert!(p.crossings(5.0, 6.0).is_empty());
+    }
+
+    #[test]
+    fn generated_plan_has_spring_passes_and_starts() {
+        let spec = PlanSpec {
+            kind: ThreadKind::External,
+            pitch: 2.0,
+            starts: 2,
+            surface_x: 24.0,
+            final_x: 21.5,
+            passes: 6,
+            schedule: Schedule::ConstantArea,
+            infeed: Infeed::Radial,
+            spring: 1,
+            z_start: 1.0,
+            length: 20.0,
+        };
+        let p = spec.generate().unwrap();
+        assert_eq!(p.len(), 14);
+        assert_eq!(p[6].x_start, p[5].x_start);
+        assert!((p[7].z_start - 3.0).abs() < 1e-12 && p[7].start == 1 && p[7].lead == 4.0);
+    }
+}

@@ -1,0 +1,356 @@
+//! The sweep: every pass leaves one imprint of the insert per lead in the axial section; the
+//! union of the imprints, subtracted from the blank, is the as-cut section.
+//!
+//! All polygon booleans go through [`crate::boolean`]. The blank is kept only a little taller than
+//! the cut and the window only a few pitches wide, which keeps the backend's snapping grid in the
+//! nanometres (see [`crate::boolean`]).
+
+use crate::boolean::{union_all, Region, UnionStrategy};
+use crate::geometry::{rad, Point};
+use crate::insert::Insert;
+use crate::limits::MAX_IMPRINTS;
+use crate::passes::Pass;
+use crate::standards::ThreadKind;
+use crate::Error;
+use parry2d_f64::math::Point as PPoint;
+use parry2d_f64::query::PointQuery;
+use parry2d_f64::shape::Polyline;
+use serde::Serialize;
+
+/// An axial range of the section, mm.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Window {
+    /// Lower Z, mm.
+    pub z_min: f64,
+    /// Upper Z, mm.
+    pub z_max: f64,
+}
+
+impl Window {
+    /// The window of `pitches` pitches centred on `z_center`.
+    pub fn around(z_center: f64, pitch: f64, pitches: f64) -> Window {
+        Window { z_min: z_center - 0.5 * pitches * pitch, z_max: z_center + 0.5 * pitches * pitch }
+    }
+}
+
+/// What the sweep works on.
+#[derive(Clone, Copy, Debug)]
+pub struct SweepSetup<'a> {
+    /// External or internal.
+    pub kind: ThreadKind,
+    /// The insert.
+    pub insert: &'a Insert,
+    /// Diameter of the blank: the turned bar (external) or the bore (internal), mm.
+    pub blank_diameter: f64,
+    /// Pitch, mm (for windows and grooves).
+    pub pitch: f64,
+}
+
+/// One imprint: pass `pass` (0-based index into the pass list) crossing at `z` with its tip on
+/// diameter `x`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Imprint {
+    /// Index into the pass list (0-based).
+    pub pass: usize,
+    /// Axial position of the tip, mm.
+    pub z: f64,
+    /// Tip diameter, mm.
+    pub x: f64,
+}
+
+/// The as-cut section: material polygons, exteriors counter-clockwise, holes clockwise, every
+/// coordinate finite. Built only by the sweep.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Section {
+    /// External or internal.
+    pub kind: ThreadKind,
+    /// The window it covers.
+    pub window: Window,
+    /// Radius of the blank surface (the crest left by turning), mm.
+    pub surface_r: f64,
+    /// Radius of the artificial far side of the blank (floor or ceiling), mm.
+    pub far_r: f64,
+    region: Region,
+}
+
+impl Section {
+    /// Material area, mm².
+    pub fn area(&self) -> f64 {
+        self.region.area()
+    }
+
+    /// The polygons as (exterior, holes).
+    pub fn polygons(&self) -> Vec<(Vec<Point>, Vec<Vec<Point>>)> {
+        self.region.polygons()
+    }
+
+    /// The material as a region, for further booleans.
+    pub fn region(&self) -> &Region {
+        &self.region
+    }
+
+    /// The cut surface as a polyline from low to high Z: the material boundary without the
+    /// window's sides and the far side. Where the section falls apart into pieces, the longest
+    /// stretch is returned.
+    pub fn profile(&self) -> Vec<Point> {
+        let eps = 1e-6;
+        let w = self.window;
+        let artificial = |a: Point, b: Point| {
+            ((a.z - w.z_min).abs() < eps && (b.z - w.z_min).abs() < eps)
+                || ((a.z - w.z_max).abs() < eps && (b.z - w.z_max).abs() < eps)
+                || ((a.r - self.far_r).abs() < eps && (b.r - self.far_r).abs() < eps)
+        };
+        let mut best: Vec<Point> = Vec::new();
+        for (ext, _) in self.polygons() {
+            let n = ext.len();
+            // Start the walk just after an artificial edge so that runs are not split.
+            let Some(s) = (0..n).find(|&i| artificial(ext[i], ext[(i + 1) % n])) else { continue };
+            let mut run: Vec<Point> = Vec::new();
+            for k in 1..=n {
+                let i = (s + k) % n;
+                let (a, b) = (ext[i], ext[(i + 1) % n]);
+                if artificial(a, b) {
+                    if run.len() > best.len() {
+                        best = std::mem::take(&mut run);
+                    }
+                    run.clear();
+                } else {
+                    if run.is_empty() {
+                        run.push(a);
+                    }
+                    run.push(b);
+                }
+            }
+            if run.len() > best.len() {
+                best = run;
+            }
+        }
+        if best.len() > 1 && best[0].z > best[best.len() - 1].z {
+            best.reverse();
+        }
+        best
+    }
+}
+
+/// The result of a sweep.
+#[derive(Clone, Debug)]
+pub struct Sweep {
+    /// The as-cut section.
+    pub section: Section,
+    /// The imprints placed, in pass order.
+    pub imprints: Vec<Imprint>,
+}
+
+fn check_finite(passes: &[Pass]) -> Result<(), Error> {
+    for p in passes {
+        for (name, v) in
+            [("X", p.x_start), ("X", p.x_end), ("Z", p.z_start), ("Z", p.z_end), ("lead", p.lead)]
+        {
+            if !v.is_finite() {
+                return Err(Error::Input(format!("pass {}: {name} is not a finite number", p.index)));
+            }
+        }
+        if !(p.lead > 0.0) {
+            return Err(Error::Input(format!(
+                "pass {}: lead {} mm must be greater than zero",
+                p.index, p.lead
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The far side of the blank (floor for external threads, ceiling for internal ones), radius mm.
+///
+/// The insert cannot cut deeper below the surface than its own height (the sweep refuses passes
+/// where it would), so a floor a little beyond that height holds every cut, and it does not
+/// depend on the passes: sections of different plans are directly comparable.
+fn far_side(kind: ThreadKind, surface_r: f64, insert_height: f64) -> f64 {
+    let margin = 0.05;
+    match kind {
+        ThreadKind::External => (surface_r - insert_height - margin).max(0.0),
+        ThreadKind::Internal => surface_r + insert_height + margin,
+    }
+}
+
+/// The imprints of `passes` that touch `window`.
+pub fn imprints(setup: &SweepSetup<'_>, passes: &[Pass], window: Window) -> Result<Vec<Imprint>, Error> {
+    check_finite(passes)?;
+    let (lo, hi) = setup.insert.z_extent();
+    let reach = lo.abs().max(hi.abs());
+    let mut out = Vec::new();
+    for (i, p) in passes.iter().enumerate() {
+        for z in p.crossings(window.z_min - reach, window.z_max + reach) {
+            out.push(Imprint { pass: i, z, x: p.x_at(z) });
+            if out.len() > MAX_IMPRINTS {
+                return Err(Error::Input(format!("more than {MAX_IMPRINTS} imprints in one section")));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Sweeps the insert along `passes` and returns the material left in `window`.
+pub fn sweep(
+    setup: &SweepSetup<'_>,
+    passes: &[Pass],
+    window: Window,
+    strategy: UnionStrategy,
+) -> Result<Sweep, Error> {
+    if !(window.z_max > window.z_min) || !window.z_min.is_finite() || !window.z_max.is_finite() {
+        return Err(Error::Input("the section window is empty".into()));
+    }
+    if !(setup.blank_diameter.is_finite() && setup.blank_diameter > 0.0) {
+        return Err(Error::Input(format!(
+            "blank diameter {} mm must be a positive length",
+            setup.blank_diameter
+        )));
+    }
+    let imps = imprints(setup, passes, window)?;
+    if imps.is_empty() {
+        return Err(Error::Geometry(
+            "no pass crosses the section: the passes do not reach the thread".into(),
+        ));
+    }
+    let kind = setup.kind;
+    let surface_r = rad(setup.blank_diameter);
+    let height = setup.insert.height();
+    for im in &imps {
+        let r = rad(im.x);
+        let p = &passes[im.pass];
+        match kind {
+            ThreadKind::External => {
+                if im.x < 0.0 {
+                    return Err(Error::Geometry(format!(
+                        "pass {}: tip at X{:.4} is beyond the spindle axis",
+                        p.index, im.x
+                    )));
+                }
+                if r + height <= surface_r {
+                    return Err(Error::Geometry(format!(
+                        "pass {}: the insert ({height:.3} mm tall) ends inside the blank at X{:.4}; it cannot cut that deep",
+                        p.index, im.x
+                    )));
+                }
+            }
+            ThreadKind::Internal => {
+                if r - height >= surface_r {
+                    return Err(Error::Geometry(format!(
+                        "pass {}: the insert ({height:.3} mm tall) ends inside the part at X{:.4}; it cannot cut that deep",
+                        p.index, im.x
+                    )));
+                }
+            }
+        }
+    }
+    let far_r = far_side(kind, surface_r, height);
+    let (r0, r1) = if kind == ThreadKind::External { (far_r, surface_r) } else { (surface_r, far_r) };
+    let blank = Region::rect(window.z_min, window.z_max, r0, r1);
+    let mut sorted = imps.clone();
+    sorted.sort_by(|a, b| a.z.total_cmp(&b.z).then(a.pass.cmp(&b.pass)));
+    let regions: Vec<Region> = sorted
+        .iter()
+        .map(|im| Region::from_ring(&setup.insert.placed(&Insert::placement(im.z, rad(im.x), kind))))
+        .collect();
+    let cut = union_all(regions, strategy);
+    let material = blank.difference(&cut);
+    for (ext, holes) in material.polygons() {
+        if ext.iter().chain(holes.iter().flatten()).any(|p| !p.is_finite()) {
+            return Err(Error::Geometry("the section has a non-finite vertex".into()));
+        }
+    }
+    Ok(Sweep { section: Section { kind, window, surface_r, far_r, region: material }, imprints: imps })
+}
+
+/// What one pass does at one groove.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Default)]
+pub struct PassMetrics {
+    /// Area of the chip cross-section this pass removes from one groove, mm².
+    pub chip_area: f64,
+    /// Engaged cutting-edge length on the leading flank (facing the feed), mm.
+    pub leading: f64,
+    /// Engaged cutting-edge length on the trailing flank, mm.
+    pub trailing: f64,
+    /// Engaged cutting-edge length on the tip (below the insert's tip zone), mm.
+    pub tip: f64,
+    /// Largest chip thickness: the greatest distance from the removed material to the new
+    /// surface, measured normal to the cutting edge, mm.
+    pub max_chip_thickness: f64,
+}
+
+/// Per-pass metrics at the groove nearest `z_ref`, in cutting order.
+///
+/// The chip of a pass is what its imprint takes from the material left by every earlier pass
+/// and by its own previous revolution (one lead back along the feed), in steady state.
+pub fn pass_metrics(setup: &SweepSetup<'_>, passes: &[Pass], z_ref: f64) -> Result<Vec<PassMetrics>, Error> {
+    check_finite(passes)?;
+    let kind = setup.kind;
+    let p = setup.pitch;
+    let (lo, hi) = setup.insert.z_extent();
+    let reach = lo.abs().max(hi.abs());
+    let window = Window { z_min: z_ref - reach - p, z_max: z_ref + reach + p };
+    let surface_r = rad(setup.blank_diameter);
+    let far_r = far_side(kind, surface_r, setup.insert.height());
+    let (r0, r1) = if kind == ThreadKind::External { (far_r, surface_r) } else { (surface_r, far_r) };
+    let blank = Region::rect(window.z_min, window.z_max, r0, r1);
+    let mut removed = Region::empty();
+    let mut out = Vec::with_capacity(passes.len());
+    for pass in passes {
+        let near = |z: f64| {
+            pass.crossings(z - 0.5 * p, z + 0.5 * p)
+                .into_iter()
+                .min_by(|a, b| (a - z).abs().total_cmp(&(b - z).abs()))
+        };
+        let Some(z) = near(z_ref) else {
+            out.push(PassMetrics::default());
+            continue;
+        };
+        let place = |z: f64| {
+            let iso = Insert::placement(z, rad(pass.x_at(z)), kind);
+            (setup.insert.placed(&iso), iso)
+        };
+        let (outline, _) = place(z);
+        let imprint = Region::from_ring(&outline);
+        // The same pass one revolution earlier, one lead back against the feed.
+        let prev_z = z - pass.feed_direction() * pass.lead;
+        let before = removed.union(&Region::from_ring(&place(prev_z).0));
+        let material = blank.difference(&before);
+        let chip = imprint.intersection(&material);
+        let mut m = PassMetrics { chip_area: chip.area(), ..PassMetrics::default() };
+        if m.chip_area > 0.0 {
+            let mut closed = outline.clone();
+            closed.push(outline[0]);
+            let pts: Vec<PPoint<f64>> = closed.iter().map(|q| PPoint::new(q.z, q.r)).collect();
+            let line = Polyline::new(pts, None);
+            let r_tip = rad(pass.x_at(z));
+            for (ext, holes) in chip.polygons() {
+                for ring in std::iter::once(&ext).chain(holes.iter()) {
+                    for k in 0..ring.len() {
+                        let (a, b) = (ring[k], ring[(k + 1) % ring.len()]);
+                        let mid = Point::new(0.5 * (a.z + b.z), 0.5 * (a.r + b.r));
+                        let on_edge = [a, mid, b]
+                            .iter()
+                            .all(|q| line.distance_to_local_point(&PPoint::new(q.z, q.r), false) < 1e-6);
+                        let len = a.distance(b);
+                        if on_edge {
+                            let up = (mid.r - r_tip).abs();
+                            if up <= setup.insert.tip_zone {
+                                m.tip += len;
+                            } else if (mid.z - z) * pass.feed_direction() > 0.0 {
+                                m.leading += len;
+                            } else {
+                                m.trailing += len;
+                            }
+                        } else {
+                            let d = line.distance_to_local_point(&PPoint::new(a.z, a.r), false);
+                            m.max_chip_thickness = m.max_chip_thickness.max(d);
+                        }
+                    }
+                }
+            }
+        }
+        removed = removed.union(&imprint);
+        out.push(m);
+    }
+    Ok(out)
+}
