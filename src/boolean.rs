@@ -51,6 +51,37 @@ fn from_coords(ls: &LineString<f64>) -> Vec<Point> {
     if v.len() > 1 && v.first() == v.last() {
         v.pop();
     }
+    remove_spikes(v)
+}
+
+/// Removes zero-width spikes: vertices where the ring runs out along a line and straight back,
+/// and vertices within 1e-7 mm of their neighbour.
+/// The backend leaves them where two operands share a collinear edge (a trailing flank sliding
+/// along the finished flank); they enclose no area but would count twice as boundary.
+fn remove_spikes(mut v: Vec<Point>) -> Vec<Point> {
+    let mut changed = true;
+    while changed && v.len() >= 3 {
+        changed = false;
+        let n = v.len();
+        for i in 0..n {
+            let (a, b, c) = (v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
+            let (u, w) = (b - a, c - b);
+            let (lu, lw) = (u.z.hypot(u.r), w.z.hypot(w.r));
+            // Vertices a few grid steps apart are one vertex (a spike's apex can carry a jog).
+            if lu < 1e-7 || lw < 1e-7 {
+                v.remove(i);
+                changed = true;
+                break;
+            }
+            let cross = (u.z * w.r - u.r * w.z) / (lu * lw);
+            let dot = u.z * w.z + u.r * w.r;
+            if cross.abs() < 1e-6 && dot < 0.0 {
+                v.remove(i);
+                changed = true;
+                break;
+            }
+        }
+    }
     v
 }
 
@@ -192,6 +223,20 @@ mod tests {
             // 50 operations on a 6 mm box: each may move a 1 mm edge by one 4 nm grid step.
             assert!((got - want).abs() < 50.0 * 1.0 * 4e-9, "{s:?} {got}");
         }
+    }
+
+    #[test]
+    fn spikes_are_removed() {
+        let ring = vec![
+            Point::new(0.0, 0.0),
+            Point::new(2.0, 0.0),
+            Point::new(2.0, 1.0),
+            Point::new(3.0, 2.0), // out along a line ...
+            Point::new(2.0, 1.0), // ... and back
+            Point::new(0.0, 1.0),
+        ];
+        let clean = remove_spikes(ring);
+        assert_eq!(clean.len(), 4);
     }
 
     #[test]

@@ -279,3 +279,73 @@ proptest! {
         prop_assert!((a.area() - b.area()).abs() < SNAP * profile_length(&a));
     }
 }
+
+fn metrics(
+    t: &BasicThread,
+    ins: &Insert,
+    blank: f64,
+    depths: &[f64],
+    infeed: Infeed,
+) -> Vec<threadcheck::sweep::PassMetrics> {
+    let spec = PlanSpec {
+        kind: ThreadKind::External,
+        pitch: t.pitch,
+        starts: 1,
+        surface_x: blank,
+        final_x: blank - 2.0 * depths[depths.len() - 1],
+        passes: depths.len(),
+        schedule: Schedule::Explicit(depths.to_vec()),
+        infeed,
+        spring: 0,
+        z_start: 6.0 * t.pitch,
+        length: 12.0 * t.pitch,
+    };
+    let passes = spec.generate().unwrap();
+    let setup = SweepSetup { kind: ThreadKind::External, insert: ins, blank_diameter: blank, pitch: t.pitch };
+    threadcheck::sweep::pass_metrics(&setup, &passes, 0.0).unwrap()
+}
+
+/// Sharp 60° V, radial, constant-area depths d_i = t·√(i/N): every chip is tan30°·t²/N
+/// (a V groove of depth d has area d²·tan β), both flanks engage over d_i / cos β, the tip not at
+/// all, and the chip is (d_i − d_{i−1})·sin β thick.
+#[test]
+fn radial_chips_of_a_sharp_v_are_analytic() {
+    let t = thread("M10x1.5");
+    let ins = Insert::partial(60.0, 0.0, 2.0, TOL).unwrap();
+    let (total, n) = (0.9, 6);
+    let depths: Vec<f64> = (1..=n).map(|i| total * (i as f64 / n as f64).sqrt()).collect();
+    let m = metrics(&t, &ins, 9.9, &depths, Infeed::Radial);
+    let b = 30f64.to_radians();
+    let mut prev = 0.0;
+    for (i, (d, pm)) in depths.iter().zip(&m).enumerate() {
+        near(pm.chip_area, b.tan() * total * total / n as f64, 1e-8, &format!("pass {} chip", i + 1));
+        near(pm.leading, d / b.cos(), 1e-6, &format!("pass {} leading", i + 1));
+        near(pm.trailing, d / b.cos(), 1e-6, &format!("pass {} trailing", i + 1));
+        near(pm.tip, 0.0, 1e-9, "tip");
+        near(pm.max_chip_thickness, (d - prev) * b.sin(), 1e-6, &format!("pass {} thickness", i + 1));
+        prev = *d;
+    }
+}
+
+/// Flank infeed at α/2 with a sharp V: the leading edge (facing the feed, −Z) engages over its
+/// whole length d_i / cos β. From the second pass on, the trailing edge lies on the finished
+/// flank line and forms new surface only below the previous root: (d_i − d_{i−1}) / cos β, the
+/// strip the trade's "only one edge cuts" leaves out. The first pass meets a flat surface and
+/// engages both edges fully. The chip area is tan β·(d_i² − d_{i−1}²): the groove is a V of depth
+/// d_i either way.
+#[test]
+fn flank_infeed_engages_only_the_leading_edge() {
+    let t = thread("M10x1.5");
+    let ins = Insert::partial(60.0, 0.0, 2.0, TOL).unwrap();
+    let depths = [0.2, 0.4, 0.55, 0.7, 0.8];
+    let m = metrics(&t, &ins, 9.9, &depths, Infeed::Flank { angle: 30.0 });
+    let b = 30f64.to_radians();
+    let mut prev = 0.0f64;
+    for (i, (d, pm)) in depths.iter().zip(&m).enumerate() {
+        near(pm.chip_area, b.tan() * (d * d - prev * prev), 1e-8, &format!("pass {} chip", i + 1));
+        near(pm.leading, d / b.cos(), 1e-6, &format!("pass {} leading", i + 1));
+        let trailing = (d - prev) / b.cos();
+        near(pm.trailing, trailing, 1e-6, &format!("pass {} trailing", i + 1));
+        prev = *d;
+    }
+}
