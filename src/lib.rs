@@ -8,11 +8,49 @@
 //! 1. [`standards`]: a designation (`M10x1.5-6g`) becomes a basic thread and its class;
 //! 2. [`tolerance`]: the class becomes limits of size (ISO 965-1, BS 84, ISO 228-1);
 //!
+//! 3. [`insert`]: the insert is a polygon with its tip at the origin;
+//! 4. [`passes`]: a pass plan says where the tip runs, pass after pass;
+//! 5. [`sweep`]: the insert is placed once per lead for every pass, the imprints are unioned
+//!    (through [`boolean`], the one module that talks to `geo`) and subtracted from the blank;
+//! 6. [`measure`]: the as-cut groove is measured as a metrology lab would.
+//!
+//! ```
+//! use threadcheck::boolean::UnionStrategy;
+//! use threadcheck::insert::Insert;
+//! use threadcheck::measure::{measure, MeasureSetup};
+//! use threadcheck::passes::{Infeed, PlanSpec, Schedule};
+//! use threadcheck::sweep::{sweep, SweepSetup, Window};
+//! use threadcheck::{parse_designation, ParseOptions, ThreadKind};
+//!
+//! let m10 = parse_designation("M10x1.5", ParseOptions::default())?.thread;
+//! // A 60° partial-profile insert with a 0.04 mm tip, arcs to 0.05 µm.
+//! let insert = Insert::partial_for(&m10, 0.04, 5e-5)?;
+//! // Its depth for the basic pitch diameter is 7H/8 − r below the crest line.
+//! let h = m10.fundamental_height();
+//! let final_x = 10.0 - 2.0 * (7.0 * h / 8.0 - 0.04);
+//! let passes = PlanSpec {
+//!     kind: ThreadKind::External, pitch: 1.5, starts: 1,
+//!     surface_x: 9.85, final_x, passes: 8,
+//!     schedule: Schedule::ConstantArea, infeed: Infeed::Flank { angle: 29.5 },
+//!     spring: 1, first_depth: None, min_depth: 0.0, finish: 0.0,
+//!     z_start: 2.0, length: 20.0,
+//! }.generate()?;
+//! let setup = SweepSetup { kind: ThreadKind::External, insert: &insert, blank_diameter: 9.85, pitch: 1.5 };
+//! let groove = passes.last().unwrap().z_start - 2.0; // where the last pass's groove sits near z = 0
+//! let cut = sweep(&setup, &passes, Window::around(groove, 1.5, 4.0), UnionStrategy::BalancedTree)?;
+//! let ms = MeasureSetup { thread: &m10, kind: ThreadKind::External, mmc_pitch_diameter: None };
+//! let m = measure(&ms, &cut.section.profile(), groove)?;
+//! println!("d2 = {:.4} mm", m.pitch_diameter);
+//! assert!((m.pitch_diameter - 9.0257).abs() < 1e-4); // basic d2 = d − 0.649519·P
+//! # Ok::<(), threadcheck::Error>(())
+//! ```
+//!
 //! All lengths are millimetres (`f64`). Lathe X values are **diameters**; geometry works in the
 //! axial half-plane with `(z, r)` where `r` is a radius. Deviations are reported in µm.
 
 pub mod app;
 pub mod boolean;
+pub mod check;
 pub mod error;
 pub mod geometry;
 pub mod insert;

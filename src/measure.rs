@@ -46,6 +46,9 @@ pub struct Measurement {
     pub crest_width: f64,
     /// Axial position of the groove centre on the pitch line, mm.
     pub groove_center: f64,
+    /// Separate pockets in the root (local minima parted by a ridge over 1 µm high); more than
+    /// one means the passes did not land in one groove.
+    pub root_pockets: usize,
     /// True when the pitch line lay outside the cut flanks and the fitted flank lines were
     /// extended to find it.
     pub pitch_line_extrapolated: bool,
@@ -144,6 +147,32 @@ impl Groove {
         };
         Some((fit(&|y| self.left_z(y))?, fit(&|y| self.right_z(y))?))
     }
+}
+
+/// Counts the pockets of a groove: local minima separated by a ridge rising more than `ridge`
+/// above the higher of the two.
+fn count_pockets(pts: &[Point], ridge: f64) -> usize {
+    let mut pockets = 0;
+    let mut low = f64::INFINITY;
+    let mut high_since_low = f64::NEG_INFINITY;
+    for p in pts {
+        if p.r < low {
+            low = p.r;
+            high_since_low = p.r;
+        }
+        high_since_low = high_since_low.max(p.r);
+        if pockets == 0 && low.is_finite() {
+            pockets = 1;
+        }
+        // Climbing out of the current pocket by more than the ridge height and back down counts
+        // a new pocket once it goes below the ridge again.
+        if high_since_low - low > ridge && p.r < high_since_low - ridge && p.r < low + ridge {
+            pockets += 1;
+            low = p.r;
+            high_since_low = p.r;
+        }
+    }
+    pockets
 }
 
 /// Smallest circumradius over concave vertex triples (left turns in the normalised frame), after
@@ -380,8 +409,23 @@ pub fn measure(setup: &MeasureSetup<'_>, profile: &[Point], z_ref: f64) -> Resul
         root_radius,
         crest_width,
         groove_center: zc,
+        root_pockets: count_pockets(&g.pts[g.left..=g.right], 1e-3),
         pitch_line_extrapolated: extrapolated,
         three_wire,
         max_material_clearance,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pockets_are_counted_across_ridges_only() {
+        let v = |r: &[f64]| r.iter().enumerate().map(|(i, &r)| Point::new(i as f64, r)).collect::<Vec<_>>();
+        assert_eq!(count_pockets(&v(&[1.0, 0.5, 0.0, 0.5, 1.0]), 1e-3), 1);
+        assert_eq!(count_pockets(&v(&[1.0, 0.0, 0.3, 0.0, 1.0]), 1e-3), 2);
+        // A ridge lower than the threshold is not a second pocket.
+        assert_eq!(count_pockets(&v(&[1.0, 0.0, 0.0005, 0.0, 1.0]), 1e-3), 1);
+    }
 }

@@ -194,6 +194,14 @@ pub struct PlanSpec {
     pub infeed: Infeed,
     /// Spring (idle) passes at the final position.
     pub spring: usize,
+    /// Depth of the first pass, mm: when given, it sets the number of rough passes
+    /// (constant area: N = ⌈(t/first)²⌉; constant depth: N = ⌈t/first⌉) instead of `passes`.
+    pub first_depth: Option<f64>,
+    /// Smallest radial step of a rough pass, mm (the Fanuc G76 Q rule); 0 for none.
+    pub min_depth: f64,
+    /// Finishing allowance, mm: the rough passes stop this short of the final depth and one
+    /// finishing pass takes it; 0 for none.
+    pub finish: f64,
     /// Z where each move starts (for start 0 and zero offset), mm.
     pub z_start: f64,
     /// Length of the threading move, mm (it ends at `z_start − length`).
@@ -207,6 +215,69 @@ impl PlanSpec {
             ThreadKind::External => 0.5 * (self.surface_x - self.final_x),
             ThreadKind::Internal => 0.5 * (self.final_x - self.surface_x),
         }
+    }
+
+    /// Cumulative radial depths of the cutting passes (mm), rough then finish.
+    pub fn depths(&self) -> Result<Vec<f64>, Error> {
+        let total = self.total_depth();
+        if !(total.is_finite() && total > 0.0) {
+            return Err(Error::Geometry(format!(
+                "final X{:.4} does not cut into the {} at X{:.4}",
+                self.final_x,
+                if self.kind == ThreadKind::External { "blank" } else { "bore" },
+                self.surface_x
+            )));
+        }
+        for (name, v) in [("finishing allowance", self.finish), ("minimum depth", self.min_depth)] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(Error::Input(format!("{name} {v} mm must be a length ≥ 0")));
+            }
+        }
+        if self.finish >= total {
+            return Err(Error::Input(format!(
+                "finishing allowance {} mm is not less than the thread depth {total:.4} mm",
+                self.finish
+            )));
+        }
+        let rough_total = total - self.finish;
+        let finish_passes = usize::from(self.finish > 0.0);
+        let rough_n = match self.first_depth {
+            Some(f) if !(f.is_finite() && f > 0.0) => {
+                return Err(Error::Input(format!("first depth {f} mm must be greater than zero")));
+            }
+            Some(f) => {
+                // A hair below, so that an exact ratio (0.9 / 0.3) does not round up a pass.
+                let ratio = rough_total / f * (1.0 - 1e-12);
+                let n = match self.schedule {
+                    Schedule::ConstantDepth => ratio.ceil(),
+                    _ => (ratio * ratio).ceil(),
+                };
+                if n > MAX_PASSES as f64 {
+                    return Err(Error::Input(format!(
+                        "a first depth of {f} mm needs {n} passes, more than {MAX_PASSES}"
+                    )));
+                }
+                (n as usize).max(1)
+            }
+            None => self.passes.saturating_sub(finish_passes).max(1),
+        };
+        let mut depths = schedule_depths(&self.schedule, rough_total, rough_n)?;
+        if self.min_depth > 0.0 {
+            let mut prev = 0.0f64;
+            let mut clamped = Vec::with_capacity(depths.len());
+            for d in depths {
+                let d = d.max(prev + self.min_depth).min(rough_total);
+                if d > prev {
+                    clamped.push(d);
+                    prev = d;
+                }
+            }
+            depths = clamped;
+        }
+        if finish_passes > 0 {
+            depths.push(total);
+        }
+        Ok(depths)
     }
 
     /// Lays out the passes, start after start.
@@ -225,8 +296,7 @@ impl PlanSpec {
         if !(self.pitch > 0.0) {
             return Err(Error::Input(format!("pitch {} mm must be greater than zero", self.pitch)));
         }
-        let total = self.total_depth();
-        let depths = schedule_depths(&self.schedule, total, self.passes)?;
+        let depths = self.depths()?;
         let per_start = depths.len() + self.spring;
         if self.starts == 0 || per_start.saturating_mul(self.starts as usize) > MAX_PASSES {
             return Err(Error::Input(format!(
@@ -313,6 +383,37 @@ mod tests {
     }
 
     #[test]
+    fn first_depth_min_step_and_finish() {
+        let mut spec = PlanSpec {
+            kind: ThreadKind::External,
+            pitch: 1.5,
+            starts: 1,
+            surface_x: 10.0,
+            final_x: 8.2,
+            passes: 0,
+            schedule: Schedule::ConstantArea,
+            infeed: Infeed::Radial,
+            spring: 0,
+            first_depth: Some(0.3),
+            min_depth: 0.0,
+            finish: 0.0,
+            z_start: 0.0,
+            length: 10.0,
+        };
+        // t = 0.9, first 0.3: (0.9/0.3)² = 9 passes of constant area.
+        assert_eq!(spec.depths().unwrap().len(), 9);
+        spec.first_depth = None;
+        spec.passes = 9;
+        spec.finish = 0.05;
+        spec.min_depth = 0.08;
+        let d = spec.depths().unwrap();
+        assert!((d[d.len() - 1] - 0.9).abs() < 1e-12 && (d[d.len() - 2] - 0.85).abs() < 1e-12);
+        assert!(d[..d.len() - 1]
+            .windows(2)
+            .all(|w| w[1] - w[0] >= 0.08 - 1e-12 || (w[1] - 0.85).abs() < 1e-12));
+    }
+
+    #[test]
     fn generated_plan_has_spring_passes_and_starts() {
         let spec = PlanSpec {
             kind: ThreadKind::External,
@@ -324,6 +425,9 @@ mod tests {
             schedule: Schedule::ConstantArea,
             infeed: Infeed::Radial,
             spring: 1,
+            first_depth: None,
+            min_depth: 0.0,
+            finish: 0.0,
             z_start: 1.0,
             length: 20.0,
         };

@@ -38,6 +38,9 @@ fn cut(
         schedule: Schedule::ConstantArea,
         infeed,
         spring: 0,
+        first_depth: None,
+        min_depth: 0.0,
+        finish: 0.0,
         z_start: 5.0 * t.lead(),
         length: 10.0 * t.lead(),
     };
@@ -190,6 +193,9 @@ fn build(
         schedule: Schedule::Explicit(depths),
         infeed: Infeed::Flank { angle: *angle },
         spring: 0,
+        first_depth: None,
+        min_depth: 0.0,
+        finish: 0.0,
         z_start: 6.0 * t.pitch + phase,
         length: 12.0 * t.pitch,
     };
@@ -297,6 +303,9 @@ fn metrics(
         schedule: Schedule::Explicit(depths.to_vec()),
         infeed,
         spring: 0,
+        first_depth: None,
+        min_depth: 0.0,
+        finish: 0.0,
         z_start: 6.0 * t.pitch,
         length: 12.0 * t.pitch,
     };

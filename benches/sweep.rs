@@ -1,0 +1,115 @@
+//! Criterion benches of the sweep engine. Run with `cargo bench --bench sweep`; CI only builds
+//! them (`cargo bench --no-run`). Results go to `reports/performance.md` by hand with the machine
+//! named.
+
+#![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
+
+use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
+use threadcheck::boolean::UnionStrategy;
+use threadcheck::insert::Insert;
+use threadcheck::measure::{measure, MeasureSetup};
+use threadcheck::passes::{Infeed, Pass, PlanSpec, Schedule};
+use threadcheck::sweep::{sweep, SweepSetup, Window};
+use threadcheck::{parse_designation, BasicThread, ParseOptions, ThreadKind};
+
+fn m10() -> BasicThread {
+    parse_designation("M10x1.5", ParseOptions::default()).unwrap().thread
+}
+
+fn plan(n: usize, infeed: Infeed) -> Vec<Pass> {
+    PlanSpec {
+        kind: ThreadKind::External,
+        pitch: 1.5,
+        starts: 1,
+        surface_x: 9.85,
+        final_x: 8.10,
+        passes: n,
+        schedule: Schedule::ConstantArea,
+        infeed,
+        spring: 0,
+        first_depth: None,
+        min_depth: 0.0,
+        finish: 0.0,
+        z_start: 6.0,
+        length: 12.0,
+    }
+    .generate()
+    .unwrap()
+}
+
+fn groove(passes: &[Pass]) -> f64 {
+    passes[passes.len() - 1].z_start - 6.0
+}
+
+/// One M10x1.5 thread, 12 passes, partial insert: plan + sweep + measure.
+fn one_thread(c: &mut Criterion) {
+    let t = m10();
+    let ins = Insert::partial_for(&t, 0.04, 5e-5).unwrap();
+    c.bench_function("m10x1.5 12 passes: plan+sweep+measure", |b| {
+        b.iter(|| {
+            let passes = plan(12, Infeed::Flank { angle: 29.5 });
+            let setup =
+                SweepSetup { kind: ThreadKind::External, insert: &ins, blank_diameter: 9.85, pitch: 1.5 };
+            let z = groove(&passes);
+            let s = sweep(&setup, &passes, Window::around(z, 1.5, 4.0), UnionStrategy::BalancedTree).unwrap();
+            let ms = MeasureSetup { thread: &t, kind: ThreadKind::External, mmc_pitch_diameter: Some(8.994) };
+            black_box(measure(&ms, &s.section.profile(), z).unwrap())
+        })
+    });
+}
+
+/// The union strategies side by side on the same placements.
+fn union_strategies(c: &mut Criterion) {
+    let t = m10();
+    let ins = Insert::partial_for(&t, 0.04, 5e-5).unwrap();
+    let mut g = c.benchmark_group("union strategy, M10x1.5");
+    g.sample_size(10);
+    for n in [12usize, 100, 400] {
+        let passes = plan(n, Infeed::Flank { angle: 29.5 });
+        let setup = SweepSetup { kind: ThreadKind::External, insert: &ins, blank_diameter: 9.85, pitch: 1.5 };
+        let w = Window::around(groove(&passes), 1.5, 4.0);
+        for (name, s) in [
+            ("tree", UnionStrategy::BalancedTree),
+            ("unary", UnionStrategy::Unary),
+            ("sequential", UnionStrategy::Sequential),
+        ] {
+            g.bench_with_input(BenchmarkId::new(name, n), &n, |b, _| {
+                b.iter(|| black_box(sweep(&setup, &passes, w, s).unwrap()))
+            });
+        }
+    }
+    g.finish();
+}
+
+/// Cost per pass from 10 to 10 000 passes (balanced tree).
+fn scaling(c: &mut Criterion) {
+    let t = m10();
+    let ins = Insert::partial_for(&t, 0.04, 5e-5).unwrap();
+    let mut g = c.benchmark_group("scaling, M10x1.5 tree");
+    g.sample_size(10);
+    for n in [10usize, 100, 1_000, 10_000] {
+        let passes = plan(n, Infeed::Flank { angle: 29.5 });
+        let setup = SweepSetup { kind: ThreadKind::External, insert: &ins, blank_diameter: 9.85, pitch: 1.5 };
+        let w = Window::around(groove(&passes), 1.5, 4.0);
+        g.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+            b.iter(|| black_box(sweep(&setup, &passes, w, UnionStrategy::BalancedTree).unwrap()))
+        });
+    }
+    g.finish();
+}
+
+/// Measurement alone on a finished section.
+fn measurement(c: &mut Criterion) {
+    let t = m10();
+    let ins = Insert::partial_for(&t, 0.04, 5e-5).unwrap();
+    let passes = plan(12, Infeed::Flank { angle: 29.5 });
+    let setup = SweepSetup { kind: ThreadKind::External, insert: &ins, blank_diameter: 9.85, pitch: 1.5 };
+    let z = groove(&passes);
+    let s = sweep(&setup, &passes, Window::around(z, 1.5, 4.0), UnionStrategy::BalancedTree).unwrap();
+    let profile = s.section.profile();
+    let ms = MeasureSetup { thread: &t, kind: ThreadKind::External, mmc_pitch_diameter: Some(8.994) };
+    c.bench_function("measure M10x1.5", |b| b.iter(|| black_box(measure(&ms, &profile, z).unwrap())));
+}
+
+criterion_group!(benches, one_thread, union_strategies, scaling, measurement);
+criterion_main!(benches);

@@ -1,0 +1,172 @@
+//! Checks of a measured thread against its limits, and the verdict.
+//!
+//! Each check is `size` (what GO/NO-GO gauges see: major and pitch diameter, the
+//! maximum-material condition, and whether a crest is left at all) or `form` (root radius,
+//! minor-diameter zone, flank angles, a single groove). `--gauge-only` leaves the form checks
+//! out of the verdict but reports them.
+
+use crate::measure::Measurement;
+use crate::standards::{BasicThread, ThreadKind};
+use crate::tolerance::{Limit, ThreadLimits};
+use serde::Serialize;
+
+/// Flank half-angles have no product tolerance in ISO 965-1 (it is absorbed by the pitch
+/// diameter); threadcheck flags a flank more than this many degrees off nominal.
+pub const FLANK_ANGLE_TOLERANCE_DEG: f64 = 1.0;
+
+/// The maximum-material check allows this much apparent interference, mm (0.05 µm): the
+/// geometry's own accuracy, so that a thread cut exactly at basic size with an `h`/`H` class
+/// passes.
+pub const MMC_SLACK: f64 = 5e-5;
+
+/// A crest narrower than this (mm) 1 µm below its top is no crest: the grooves have met.
+pub const MIN_CREST_WIDTH: f64 = 1e-3;
+
+/// Whether a check is what a thread gauge decides (size) or a form requirement.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CheckKind {
+    /// GO/NO-GO gauging: major, pitch, maximum material, crest present.
+    Size,
+    /// Form: root radius, minor-diameter zone, flank angles, single groove.
+    Form,
+}
+
+/// One check: value, limits, verdict and deviation.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Check {
+    /// `major_diameter`, `pitch_diameter`, `minor_diameter`, `root_radius`, `flank_angle`,
+    /// `max_material`, `crest`, `single_groove`.
+    pub feature: &'static str,
+    /// Size or form.
+    pub kind: CheckKind,
+    /// Measured value (mm, or degrees for flank angles).
+    pub value: f64,
+    /// Lower limit, if any.
+    pub min: Option<f64>,
+    /// Upper limit, if any.
+    pub max: Option<f64>,
+    /// Within the limits.
+    pub ok: bool,
+    /// 0 inside the limits, else the signed distance to the nearer limit, µm (degrees × 1000
+    /// for flank angles is not used: angles report their deviation in degrees in `note`).
+    pub deviation_um: f64,
+    /// Which flank (`low-z`, `high-z`) or other detail.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
+}
+
+fn check(feature: &'static str, kind: CheckKind, value: f64, lim: Limit, note: Option<String>) -> Check {
+    let dev = lim.deviation(value);
+    Check {
+        feature,
+        kind,
+        value,
+        min: lim.min,
+        max: lim.max,
+        ok: dev == 0.0,
+        deviation_um: dev * 1000.0,
+        note,
+    }
+}
+
+/// Everything checked for one thread.
+pub fn checks(
+    m: &Measurement,
+    limits: &ThreadLimits,
+    thread: &BasicThread,
+    kind: ThreadKind,
+    single_groove: bool,
+) -> Vec<Check> {
+    let mut out = vec![
+        check("major_diameter", CheckKind::Size, m.major_diameter, limits.major_diameter, None),
+        check("pitch_diameter", CheckKind::Size, m.pitch_diameter, limits.pitch_diameter, None),
+        check("minor_diameter", CheckKind::Form, m.minor_diameter, limits.minor_diameter, None),
+    ];
+    if kind == ThreadKind::External {
+        if let Some(rmin) = limits.root_radius_min {
+            let r = m.root_radius.unwrap_or(0.0);
+            out.push(check("root_radius", CheckKind::Form, r, Limit { min: Some(rmin), max: None }, None));
+        }
+    }
+    let nominal = 0.5 * thread.form.flank_angle();
+    for (a, which) in m.flank_angles.iter().zip(["low-z flank", "high-z flank"]) {
+        let lim = Limit::new(nominal - FLANK_ANGLE_TOLERANCE_DEG, nominal + FLANK_ANGLE_TOLERANCE_DEG);
+        let mut c = check("flank_angle", CheckKind::Form, *a, lim, Some(which.to_string()));
+        // Angles are not lengths: report the deviation in degrees in the note, 0 µm.
+        if !c.ok {
+            c.note =
+                Some(format!("{which}, {:+.3}° outside ±{FLANK_ANGLE_TOLERANCE_DEG}°", lim.deviation(*a)));
+        }
+        c.deviation_um = 0.0;
+        out.push(c);
+    }
+    if let Some(cl) = m.max_material_clearance {
+        let mut c =
+            check("max_material", CheckKind::Size, cl, Limit { min: Some(-MMC_SLACK), max: None }, None);
+        c.min = Some(0.0);
+        if !c.ok {
+            c.deviation_um = cl * 1000.0;
+            c.note = Some("the GO gauge would not enter".into());
+        }
+        out.push(c);
+    }
+    let crest_ok = m.crest_width >= MIN_CREST_WIDTH;
+    out.push(Check {
+        feature: "crest",
+        kind: CheckKind::Size,
+        value: m.crest_width,
+        min: Some(MIN_CREST_WIDTH),
+        max: None,
+        ok: crest_ok,
+        deviation_um: if crest_ok { 0.0 } else { (m.crest_width - MIN_CREST_WIDTH) * 1000.0 },
+        note: (!crest_ok).then(|| "no crest left: the grooves overlap and meet in a sharp edge".to_string()),
+    });
+    out.push(Check {
+        feature: "single_groove",
+        kind: CheckKind::Form,
+        value: if single_groove { 1.0 } else { 0.0 },
+        min: Some(1.0),
+        max: None,
+        ok: single_groove,
+        deviation_um: 0.0,
+        note: (!single_groove)
+            .then(|| "the passes do not land in one groove: the root has more than one pocket".to_string()),
+    });
+    out
+}
+
+/// True when every check that counts passes; with `gauge_only`, only size checks count.
+pub fn verdict(checks: &[Check], gauge_only: bool) -> bool {
+    checks.iter().filter(|c| !gauge_only || c.kind == CheckKind::Size).all(|c| c.ok)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gauge_only_ignores_form() {
+        let mk = |kind, ok| Check {
+            feature: "x",
+            kind,
+            value: 0.0,
+            min: None,
+            max: None,
+            ok,
+            deviation_um: 0.0,
+            note: None,
+        };
+        let cs = vec![mk(CheckKind::Size, true), mk(CheckKind::Form, false)];
+        assert!(!verdict(&cs, false));
+        assert!(verdict(&cs, true));
+    }
+
+    #[test]
+    fn deviation_is_distance_to_the_nearer_limit_in_um() {
+        let c = check("pitch_diameter", CheckKind::Size, 9.026, Limit::new(8.862, 8.994), None);
+        assert!(!c.ok && (c.deviation_um - 32.0).abs() < 1e-9);
+        let c = check("pitch_diameter", CheckKind::Size, 8.9, Limit::new(8.862, 8.994), None);
+        assert!(c.ok && c.deviation_um == 0.0);
+    }
+}
