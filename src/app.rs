@@ -151,3 +151,171 @@ fn limits_table(des: &Designation, ext: Option<&ThreadLimits>, int: Option<&Thre
     }
     s
 }
+
+/// Reads `--insert`: `full`, `partial`, `partial:R` (tip radius mm) or a TOML file path.
+pub fn parse_insert(s: &str) -> Result<crate::verify::InsertChoice, Error> {
+    use crate::verify::InsertChoice;
+    match s {
+        "full" => Ok(InsertChoice::Full),
+        "partial" => Ok(InsertChoice::Partial { tip_radius: 0.04 }),
+        _ => {
+            if let Some(r) = s.strip_prefix("partial:") {
+                let tip_radius = parse_len(r, "--insert partial tip radius")?;
+                if tip_radius < 0.0 {
+                    return Err(Error::Input(format!("--insert partial:{r}: the tip radius must be ≥ 0")));
+                }
+                Ok(InsertChoice::Partial { tip_radius })
+            } else {
+                Ok(InsertChoice::File(std::path::PathBuf::from(s)))
+            }
+        }
+    }
+}
+
+/// Reads `--infeed`: `radial`, `flank[:ANGLE]`, `alternating[:ANGLE]` (degrees from the radial;
+/// default half the thread angle).
+pub fn parse_infeed(s: &str, half_angle: f64) -> Result<crate::passes::Infeed, Error> {
+    use crate::passes::Infeed;
+    let (name, angle) = match s.split_once(':') {
+        Some((n, a)) => (n, Some(parse_len(a, "--infeed angle")?)),
+        None => (s, None),
+    };
+    let angle = angle.unwrap_or(half_angle);
+    if !(0.0..90.0).contains(&angle) {
+        return Err(Error::Input(format!("--infeed {s}: the angle must be from 0 to under 90 degrees")));
+    }
+    match name {
+        "radial" if angle == half_angle || s == "radial" => Ok(Infeed::Radial),
+        "flank" => Ok(Infeed::Flank { angle }),
+        "alternating" => Ok(Infeed::Alternating { angle }),
+        _ => Err(Error::Input(format!(
+            "--infeed '{s}': expected radial, flank[:ANGLE] or alternating[:ANGLE]"
+        ))),
+    }
+}
+
+/// Reads `--schedule`: `constant-area`, `constant-depth` or `sandvik`.
+pub fn parse_schedule(s: &str) -> Result<crate::passes::Schedule, Error> {
+    use crate::passes::Schedule;
+    match s {
+        "constant-area" => Ok(Schedule::ConstantArea),
+        "constant-depth" => Ok(Schedule::ConstantDepth),
+        "sandvik" => Ok(Schedule::Sandvik),
+        _ => {
+            Err(Error::Input(format!("--schedule '{s}': expected constant-area, constant-depth or sandvik")))
+        }
+    }
+}
+
+/// A finite number from an option value, or an error naming the option.
+pub fn parse_len(s: &str, what: &str) -> Result<f64, Error> {
+    let v: f64 = s.trim().parse().map_err(|_| Error::Input(format!("{what} '{s}' is not a number")))?;
+    if !v.is_finite() {
+        return Err(Error::Input(format!("{what} '{s}' is not a finite number")));
+    }
+    Ok(v)
+}
+
+/// `threadcheck verify`.
+#[derive(Clone, Debug)]
+pub struct VerifyJob {
+    /// What to verify.
+    pub spec: crate::verify::VerifySpec,
+    /// Write the SVG cross-section here.
+    pub svg: Option<std::path::PathBuf>,
+    /// Write the JSON report here; `-` prints it on stdout instead of the table.
+    pub json: Option<String>,
+}
+
+impl VerifyJob {
+    /// Runs the job: the report on stdout, files written atomically, pass or out of tolerance.
+    pub fn run(&self) -> Result<(String, Outcome), Error> {
+        let v = crate::verify::verify(&self.spec)?;
+        let outcome = if v.pass { Outcome::Pass } else { Outcome::OutOfTolerance };
+        // Render everything before writing anything, so a failure leaves no file half-done.
+        let json_text = match &self.json {
+            Some(_) => {
+                let mut s = serde_json::to_string_pretty(&crate::report::verify_json(&v))
+                    .map_err(|e| Error::Data(e.to_string()))?;
+                s.push('\n');
+                Some(s)
+            }
+            None => None,
+        };
+        let svg_text = self.svg.as_ref().map(|_| crate::render::verify_svg(&v));
+        if let (Some(path), Some(text)) = (&self.svg, &svg_text) {
+            crate::output::write_atomic(path, text.as_bytes())?;
+        }
+        let mut stdout = String::new();
+        match (&self.json, json_text) {
+            (Some(p), Some(text)) if p == "-" => stdout = text,
+            (Some(p), Some(text)) => {
+                crate::output::write_atomic(std::path::Path::new(p), text.as_bytes())?;
+                stdout = crate::report::verify_text(&v);
+            }
+            _ => stdout.push_str(&crate::report::verify_text(&v)),
+        }
+        Ok((stdout, outcome))
+    }
+}
+
+/// `threadcheck passes`: the expanded pass plan.
+#[derive(Clone, Debug)]
+pub struct PassesJob {
+    /// The plan, as for verify (the final X is solved the same way when not given).
+    pub spec: crate::verify::VerifySpec,
+    /// JSON instead of a table.
+    pub json: bool,
+}
+
+impl PassesJob {
+    /// Runs the job.
+    pub fn run(&self) -> Result<(String, Outcome), Error> {
+        let v = crate::verify::verify(&self.spec)?;
+        let passes: Vec<serde_json::Value> = v
+            .passes
+            .iter()
+            .map(|p| {
+                json!({
+                    "index": p.index, "x_start": p.x_start, "x_end": p.x_end, "z_start": p.z_start,
+                    "z_end": p.z_end, "lead": p.lead, "start": p.start, "source_line": p.source_line,
+                })
+            })
+            .collect();
+        let text = if self.json {
+            let obj = json!({
+                "thread": crate::report::thread_json(&v),
+                "thread_start": v.passes.first().map(|p| p.z_start),
+                "thread_end": v.passes.first().map(|p| p.z_end),
+                "final_x": v.final_x,
+                "blank_diameter": v.blank_diameter,
+                "passes": passes,
+            });
+            let mut s = serde_json::to_string_pretty(&obj).map_err(|e| Error::Data(e.to_string()))?;
+            s.push('\n');
+            s
+        } else {
+            let mut s = format!(
+                "{} {}: {} passes, blank X{:.4}, final X{:.4}\n\n  pass  start        X      depth          Z\n",
+                v.designation.text,
+                v.kind.name(),
+                v.passes.len(),
+                v.blank_diameter,
+                v.final_x
+            );
+            for p in &v.passes {
+                let _ = writeln!(
+                    s,
+                    "  {:>4}  {:>5}  {:>9.4}  {:>9.4}  {:>9.4}",
+                    p.index,
+                    p.start + 1,
+                    p.x_end,
+                    0.5 * (p.x_end - v.blank_diameter).abs(),
+                    p.z_start
+                );
+            }
+            s
+        };
+        Ok((text, Outcome::Pass))
+    }
+}

@@ -58,9 +58,12 @@ pub mod limits;
 pub mod measure;
 pub mod output;
 pub mod passes;
+pub mod render;
+pub mod report;
 pub mod standards;
 pub mod sweep;
 pub mod tolerance;
+pub mod verify;
 
 pub use error::{Error, Result};
 pub use geometry::{Arc, Point, DEFAULT_TOLERANCE};

@@ -1,10 +1,14 @@
 //! The `threadcheck` command line: parses arguments into a validated job from the library, runs
 //! it, and maps the outcome to the exit code (0 pass, 1 out of tolerance, 2 error).
 
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
 use std::io::Write;
+use std::path::PathBuf;
 use std::process::ExitCode;
-use threadcheck::app::{LimitsJob, Outcome};
+use threadcheck::app::{
+    parse_infeed, parse_insert, parse_len, parse_schedule, LimitsJob, Outcome, PassesJob, VerifyJob,
+};
+use threadcheck::verify::VerifySpec;
 
 /// Predicts the thread a CNC lathe program cuts and checks it against its standard.
 #[derive(Parser)]
@@ -27,6 +31,99 @@ enum Command {
         #[arg(long)]
         allow_nonstandard: bool,
     },
+    /// Cut the thread in the computer and check it against its class.
+    Verify {
+        #[command(flatten)]
+        plan: PlanArgs,
+        /// Leave form checks (root radius, minor-diameter zone, flank angles) out of the verdict.
+        #[arg(long)]
+        gauge_only: bool,
+        /// Write an SVG cross-section to this file.
+        #[arg(long, value_name = "FILE")]
+        svg: Option<PathBuf>,
+        /// Write the JSON report to this file, or `-` for stdout.
+        #[arg(long, value_name = "FILE|-")]
+        json: Option<String>,
+    },
+    /// Print the expanded pass plan.
+    Passes {
+        #[command(flatten)]
+        plan: PlanArgs,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+#[derive(Args)]
+struct PlanArgs {
+    /// Thread with its class, e.g. M10x1.5-6g.
+    #[arg(long)]
+    thread: String,
+    /// The internal thread (else external; implied by an upper-case class alone).
+    #[arg(long)]
+    internal: bool,
+    /// Accept a diameter/pitch pair outside the standard series.
+    #[arg(long)]
+    allow_nonstandard: bool,
+    /// full | partial[:TIP_RADIUS] | FILE.toml
+    #[arg(long, default_value = "partial")]
+    insert: String,
+    /// radial | flank[:ANGLE] | alternating[:ANGLE] (default: flank at half the thread angle − 0.5°)
+    #[arg(long)]
+    infeed: Option<String>,
+    /// Number of cutting passes (default about 3.5 + 2·P).
+    #[arg(long, conflicts_with = "first_depth")]
+    passes: Option<usize>,
+    /// Depth of the first pass, mm (sets the pass count).
+    #[arg(long, value_name = "MM")]
+    first_depth: Option<String>,
+    /// Smallest radial step, mm.
+    #[arg(long, value_name = "MM")]
+    min_depth: Option<String>,
+    /// Finishing allowance, mm.
+    #[arg(long, value_name = "MM")]
+    finish: Option<String>,
+    /// Spring (idle) passes at full depth.
+    #[arg(long, default_value_t = 0)]
+    spring: usize,
+    /// constant-area | constant-depth | sandvik
+    #[arg(long, default_value = "constant-area")]
+    schedule: String,
+    /// Tip diameter of the last pass (default: what puts the pitch diameter mid-tolerance).
+    #[arg(long, value_name = "DIA")]
+    final_x: Option<String>,
+    /// Blank (external) or bore (internal) diameter, mm.
+    #[arg(long, value_name = "MM")]
+    blank_diameter: Option<String>,
+}
+
+impl PlanArgs {
+    fn spec(&self, gauge_only: bool) -> Result<VerifySpec, threadcheck::Error> {
+        let mut s = VerifySpec::new(&self.thread);
+        s.internal = self.internal;
+        s.allow_nonstandard = self.allow_nonstandard;
+        s.insert = parse_insert(&self.insert)?;
+        if let Some(i) = &self.infeed {
+            // The half angle depends on the form; parse it once the designation is known.
+            let des = threadcheck::parse_designation(
+                &self.thread,
+                threadcheck::ParseOptions { allow_nonstandard: self.allow_nonstandard },
+            )?;
+            s.infeed = Some(parse_infeed(i, 0.5 * des.thread.form.flank_angle())?);
+        }
+        s.passes = self.passes;
+        let opt = |v: &Option<String>, what: &str| v.as_deref().map(|x| parse_len(x, what)).transpose();
+        s.first_depth = opt(&self.first_depth, "--first-depth")?;
+        s.min_depth = opt(&self.min_depth, "--min-depth")?.unwrap_or(0.0);
+        s.finish = opt(&self.finish, "--finish")?.unwrap_or(0.0);
+        s.spring = self.spring;
+        s.schedule = parse_schedule(&self.schedule)?;
+        s.final_x = opt(&self.final_x, "--final-x")?;
+        s.blank_diameter = opt(&self.blank_diameter, "--blank-diameter")?;
+        s.gauge_only = gauge_only;
+        Ok(s)
+    }
 }
 
 fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
@@ -34,6 +131,10 @@ fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
         Command::Limits { designation, json, allow_nonstandard } => {
             LimitsJob { designation, allow_nonstandard, json }.run()?
         }
+        Command::Verify { plan, gauge_only, svg, json } => {
+            VerifyJob { spec: plan.spec(gauge_only)?, svg, json }.run()?
+        }
+        Command::Passes { plan, json } => PassesJob { spec: plan.spec(false)?, json }.run()?,
     };
     let mut out = std::io::stdout().lock();
     // A closed pipe (`| head`) is not an error worth a message.
@@ -46,7 +147,8 @@ fn main() -> ExitCode {
     match run(cli) {
         Ok(o) => ExitCode::from(o.exit_code() as u8),
         Err(e) => {
-            eprintln!("threadcheck: error: {e}");
+            // One line, whatever the message carried.
+            eprintln!("threadcheck: error: {}", e.to_string().replace('\n', " "));
             ExitCode::from(2)
         }
     }

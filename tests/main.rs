@@ -7,6 +7,7 @@
 
 mod limits;
 mod sweep;
+mod verify;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

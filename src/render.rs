@@ -1,0 +1,388 @@
+//! SVG cross-sections of a verification: self-contained, readable in any browser.
+//!
+//! Layers are `<g id="…">` groups: `title`, `blank`, `tolerance-zone`, `basic-profile`,
+//! `passes`, `as-cut`, `dimensions`, `legend`, `chip-chart`, each view (`tooth`, `window`) holding
+//! its own copies. Text from user input (designations, insert names) is escaped by the `svg`
+//! crate.
+
+use crate::geometry::{rad, Point};
+use crate::insert::Insert;
+use crate::standards::{ProfileKind, ThreadKind};
+use crate::verify::Verification;
+use svg::node::element::{Group, Line, Polygon, Polyline, Rectangle, Text};
+use svg::Document;
+
+/// Maps the axial plane (mm) into a panel (px), radius up.
+#[derive(Clone, Copy)]
+struct Frame {
+    x0: f64,
+    y0: f64,
+    w: f64,
+    h: f64,
+    z_min: f64,
+    r_max: f64,
+    scale: f64,
+}
+
+impl Frame {
+    fn new(x0: f64, y0: f64, w: f64, h: f64, z: (f64, f64), r: (f64, f64)) -> Frame {
+        let scale = (w / (z.1 - z.0)).min(h / (r.1 - r.0));
+        // Centre the drawing in the panel.
+        let z_min = 0.5 * (z.0 + z.1) - 0.5 * w / scale;
+        let r_max = 0.5 * (r.0 + r.1) + 0.5 * h / scale;
+        Frame { x0, y0, w, h, z_min, r_max, scale }
+    }
+
+    fn x(&self, z: f64) -> f64 {
+        self.x0 + (z - self.z_min) * self.scale
+    }
+
+    fn y(&self, r: f64) -> f64 {
+        self.y0 + (self.r_max - r) * self.scale
+    }
+
+    fn points(&self, pts: &[Point]) -> String {
+        pts.iter().map(|p| format!("{:.2},{:.2}", self.x(p.z), self.y(p.r))).collect::<Vec<_>>().join(" ")
+    }
+
+    fn z_range(&self) -> (f64, f64) {
+        (self.z_min, self.z_min + self.w / self.scale)
+    }
+}
+
+fn text(x: f64, y: f64, size: f64, s: impl Into<String>) -> Text {
+    Text::new(s.into())
+        .set("x", format!("{x:.1}"))
+        .set("y", format!("{y:.1}"))
+        .set("font-size", size)
+        .set("font-family", "sans-serif")
+}
+
+/// The profile `kind` of the thread moved radially so its pitch diameter is `d2`, repeated over
+/// `z_range` around the groove at `zc`, and clamped to the crest limit `crest` (radius) if given.
+fn shifted_profile(
+    v: &Verification,
+    variant: ProfileKind,
+    d2: f64,
+    zc: f64,
+    z_range: (f64, f64),
+    crest: Option<f64>,
+) -> Vec<Point> {
+    let t = &v.designation.thread;
+    let one = t.profile(variant, 1e-3);
+    let shift = 0.5 * (d2 - t.pitch_diameter());
+    let p = t.pitch;
+    let k0 = ((z_range.0 - zc) / p).floor() as i64 - 1;
+    let k1 = ((z_range.1 - zc) / p).ceil() as i64 + 1;
+    let mut out: Vec<Point> = Vec::new();
+    for k in k0..=k1 {
+        for q in &one {
+            let mut r = q.r + shift;
+            if let Some(c) = crest {
+                r = match v.kind {
+                    ThreadKind::External => r.min(c),
+                    ThreadKind::Internal => r.max(c),
+                };
+            }
+            let z = q.z + zc + k as f64 * p;
+            if out.last().is_none_or(|l| (l.z - z).abs() > 1e-12 || (l.r - r).abs() > 1e-12) {
+                out.push(Point::new(z, r));
+            }
+        }
+    }
+    out.into_iter().filter(|q| q.z >= z_range.0 && q.z <= z_range.1).collect()
+}
+
+fn colour(i: usize, n: usize) -> String {
+    let h = if n <= 1 { 220.0 } else { 220.0 - 220.0 * i as f64 / (n - 1) as f64 };
+    format!("hsl({h:.0},75%,45%)")
+}
+
+fn view(v: &Verification, f: &Frame, id: &str, label: &str) -> Group {
+    let kind = v.kind;
+    let m = &v.measurement;
+    let zr = f.z_range();
+    let surface = rad(v.blank_diameter);
+    let far = v.section.far_r;
+    let clip_id = format!("clip-{id}");
+    let mut g = Group::new().set("id", id);
+    g = g.add(
+        svg::node::element::Definitions::new().add(
+            svg::node::element::ClipPath::new()
+                .set("id", clip_id.clone())
+                .add(Rectangle::new().set("x", f.x0).set("y", f.y0).set("width", f.w).set("height", f.h)),
+        ),
+    );
+    g = g.add(
+        Rectangle::new()
+            .set("x", f.x0)
+            .set("y", f.y0)
+            .set("width", f.w)
+            .set("height", f.h)
+            .set("fill", "white")
+            .set("stroke", "#999"),
+    );
+    g = g.add(text(f.x0 + 6.0, f.y0 + 16.0, 12.0, label));
+    let mut body = Group::new().set("clip-path", format!("url(#{clip_id})"));
+    // Blank: what was there before threading.
+    let (b0, b1) = if kind == ThreadKind::External { (far, surface) } else { (surface, far) };
+    body = body.add(
+        Group::new().set("id", format!("{id}-blank")).add(
+            Polygon::new()
+                .set(
+                    "points",
+                    f.points(&[
+                        Point::new(zr.0, b0),
+                        Point::new(zr.1, b0),
+                        Point::new(zr.1, b1),
+                        Point::new(zr.0, b1),
+                    ]),
+                )
+                .set("fill", "#e9e9e9")
+                .set("stroke", "none"),
+        ),
+    );
+    // As-cut material.
+    let mut cut = Group::new().set("id", format!("{id}-as-cut"));
+    for (ext, holes) in v.section.polygons() {
+        let mut d = String::new();
+        for ring in std::iter::once(&ext).chain(holes.iter()) {
+            d.push_str(&format!("M {} Z ", f.points(ring).replace(' ', " L ")));
+        }
+        cut = cut.add(
+            svg::node::element::Path::new()
+                .set("d", d)
+                .set("fill", "#b8c7d9")
+                .set("fill-rule", "evenodd")
+                .set("stroke", "none"),
+        );
+    }
+    cut = cut.add(
+        Polyline::new()
+            .set("points", f.points(&v.section.profile()))
+            .set("fill", "none")
+            .set("stroke", "#111")
+            .set("stroke-width", 2.2),
+    );
+    // Tolerance zone between the maximum- and minimum-material profiles.
+    let l = &v.limits;
+    let (mmc_d2, lmc_d2) = match kind {
+        ThreadKind::External => (l.pitch_diameter.max, l.pitch_diameter.min),
+        ThreadKind::Internal => (l.pitch_diameter.min, l.pitch_diameter.max),
+    };
+    let mut zone = Group::new().set("id", format!("{id}-tolerance-zone"));
+    if let (Some(a), Some(b)) = (mmc_d2, lmc_d2) {
+        let (mmc_variant, lmc_variant, lmc_crest) = match kind {
+            ThreadKind::External => {
+                (ProfileKind::Basic, ProfileKind::BoltMinRoot, l.major_diameter.min.map(rad))
+            }
+            ThreadKind::Internal => (ProfileKind::Nut, ProfileKind::Nut, l.minor_diameter.max.map(rad)),
+        };
+        let mmc = shifted_profile(v, mmc_variant, a, m.groove_center, zr, None);
+        let mut lmc = shifted_profile(v, lmc_variant, b, m.groove_center, zr, lmc_crest);
+        let mut poly = mmc.clone();
+        lmc.reverse();
+        poly.extend(lmc);
+        zone = zone
+            .add(
+                Polygon::new()
+                    .set("points", f.points(&poly))
+                    .set("fill", "#2e9e4f")
+                    .set("fill-opacity", 0.25)
+                    .set("stroke", "none"),
+            )
+            .add(
+                Polyline::new()
+                    .set("points", f.points(&mmc))
+                    .set("fill", "none")
+                    .set("stroke", "#2e9e4f")
+                    .set("stroke-width", 1.2),
+            );
+    }
+    let basic_variant = if kind == ThreadKind::External { ProfileKind::Basic } else { ProfileKind::Nut };
+    let basic =
+        shifted_profile(v, basic_variant, v.designation.thread.pitch_diameter(), m.groove_center, zr, None);
+    let basic_g = Group::new().set("id", format!("{id}-basic-profile")).add(
+        Polyline::new()
+            .set("points", f.points(&basic))
+            .set("fill", "none")
+            .set("stroke", "#555")
+            .set("stroke-dasharray", "6 4")
+            .set("stroke-width", 1.0),
+    );
+    // Every pass's insert at the measured groove, coloured by order (blue first, red last).
+    let mut passes = Group::new().set("id", format!("{id}-passes"));
+    let n = v.passes.len();
+    for (i, p) in v.passes.iter().enumerate() {
+        let Some(z) = p.crossings(v.z_ref - 0.5 * p.lead, v.z_ref + 0.5 * p.lead).into_iter().next() else {
+            continue;
+        };
+        let pts = v.insert.placed(&Insert::placement(z, rad(p.x_at(z)), kind));
+        passes = passes.add(
+            Polygon::new()
+                .set("points", f.points(&pts))
+                .set("fill", "none")
+                .set("stroke", colour(i, n))
+                .set("stroke-width", 0.8)
+                .set("stroke-opacity", 0.8),
+        );
+    }
+    body = body.add(zone).add(cut).add(basic_g).add(passes);
+    g = g.add(body);
+    // Dimension lines of the measured diameters.
+    let mut dims = Group::new().set("id", format!("{id}-dimensions"));
+    for (name, d, colour) in [
+        ("d", m.major_diameter, "#b03030"),
+        (if kind == ThreadKind::External { "d2" } else { "D2" }, m.pitch_diameter, "#1f5fbf"),
+        (if kind == ThreadKind::External { "d3" } else { "D1" }, m.minor_diameter, "#7a3fb0"),
+    ] {
+        let name = if name == "d" && kind == ThreadKind::Internal { "D" } else { name };
+        let y = f.y(rad(d));
+        if y < f.y0 || y > f.y0 + f.h {
+            continue;
+        }
+        dims = dims
+            .add(
+                Line::new()
+                    .set("x1", f.x0)
+                    .set("x2", f.x0 + f.w)
+                    .set("y1", y)
+                    .set("y2", y)
+                    .set("stroke", colour)
+                    .set("stroke-width", 0.8)
+                    .set("stroke-dasharray", "2 3"),
+            )
+            .add(text(f.x0 + f.w - 120.0, y - 3.0, 11.0, format!("{name} = {d:.4}")).set("fill", colour));
+    }
+    g.add(dims)
+}
+
+fn legend(x: f64, y: f64) -> Group {
+    let mut g = Group::new().set("id", "legend");
+    let items: [(&str, &str, bool); 6] = [
+        ("#e9e9e9", "blank before threading", true),
+        ("#b8c7d9", "material as cut", true),
+        ("#2e9e4f", "tolerance zone (max. to min. material)", true),
+        ("#555", "basic profile (dashed)", false),
+        ("#111", "as-cut profile", false),
+        ("hsl(120,75%,45%)", "insert at each pass, blue first, red last", false),
+    ];
+    for (i, (c, label, fill)) in items.iter().enumerate() {
+        let yy = y + 18.0 * i as f64;
+        if *fill {
+            g = g.add(
+                Rectangle::new()
+                    .set("x", x)
+                    .set("y", yy - 10.0)
+                    .set("width", 14)
+                    .set("height", 10)
+                    .set("fill", *c)
+                    .set("fill-opacity", if *c == "#2e9e4f" { 0.4 } else { 1.0 }),
+            );
+        } else {
+            g = g.add(
+                Line::new()
+                    .set("x1", x)
+                    .set("x2", x + 14.0)
+                    .set("y1", yy - 5.0)
+                    .set("y2", yy - 5.0)
+                    .set("stroke", *c)
+                    .set("stroke-width", 2),
+            );
+        }
+        g = g.add(text(x + 20.0, yy, 11.0, *label));
+    }
+    g
+}
+
+fn chip_chart(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Group {
+    let mut g = Group::new().set("id", "chip-chart");
+    g = g.add(text(x, y - 6.0, 12.0, "chip area per pass, mm²"));
+    let max = v.metrics.iter().map(|m| m.chip_area).fold(0.0, f64::max);
+    let n = v.metrics.len().max(1);
+    let bw = w / n as f64;
+    g = g.add(
+        Line::new().set("x1", x).set("x2", x + w).set("y1", y + h).set("y2", y + h).set("stroke", "#333"),
+    );
+    for (i, m) in v.metrics.iter().enumerate() {
+        let bh = if max > 0.0 { h * m.chip_area / max } else { 0.0 };
+        g = g.add(
+            Rectangle::new()
+                .set("x", format!("{:.2}", x + i as f64 * bw + 0.1 * bw))
+                .set("y", format!("{:.2}", y + h - bh))
+                .set("width", format!("{:.2}", 0.8 * bw))
+                .set("height", format!("{bh:.2}"))
+                .set("fill", colour(i, n)),
+        );
+    }
+    g.add(text(x + w + 4.0, y + 10.0, 10.0, format!("{max:.4}")))
+}
+
+/// The SVG document of a verification.
+pub fn verify_svg(v: &Verification) -> String {
+    let t = &v.designation.thread;
+    let p = t.pitch;
+    let m = &v.measurement;
+    let (width, height) = (1100.0, 760.0);
+    let lo = m.minor_diameter.min(m.major_diameter);
+    let hi = m.major_diameter.max(m.minor_diameter).max(v.blank_diameter);
+    let (r0, r1) = (rad(lo) - 0.15 * p, rad(hi) + 0.12 * p);
+    let tooth = Frame::new(
+        20.0,
+        90.0,
+        640.0,
+        460.0,
+        (m.groove_center - 0.75 * p, m.groove_center + 0.75 * p),
+        (r0, r1),
+    );
+    let w = v.section.window;
+    let window = Frame::new(680.0, 90.0, 400.0, 300.0, (w.z_min, w.z_max), (r0 - 0.2 * p, r1 + 0.1 * p));
+    let verdict = if v.pass { "PASS" } else { "FAIL" };
+    let failed: Vec<&str> = v.checks.iter().filter(|c| !c.ok).map(|c| c.feature).collect();
+    let title = Group::new()
+        .set("id", "title")
+        .add(text(
+            20.0,
+            30.0,
+            20.0,
+            format!("{} — {} thread, class {}", v.designation.text, v.kind.name(), v.limits.class),
+        ))
+        .add(text(
+            20.0,
+            52.0,
+            13.0,
+            format!(
+                "insert: {} · infeed: {} · {} passes · blank X{:.3} · final X{:.4}",
+                v.insert.name,
+                crate::report::infeed_text(&v.infeed),
+                v.passes.len(),
+                v.blank_diameter,
+                v.final_x
+            ),
+        ))
+        .add(
+            text(
+                20.0,
+                76.0,
+                16.0,
+                if v.pass {
+                    format!("verdict: {verdict}")
+                } else {
+                    format!("verdict: {verdict} ({})", failed.join(", "))
+                },
+            )
+            .set("fill", if v.pass { "#1d7a36" } else { "#b3261e" })
+            .set("font-weight", "bold"),
+        );
+    let doc = Document::new()
+        .set("viewBox", (0, 0, width, height))
+        .set("width", width)
+        .set("height", height)
+        .add(Rectangle::new().set("width", width).set("height", height).set("fill", "white"))
+        .add(title)
+        .add(view(v, &tooth, "tooth", "one tooth"))
+        .add(view(v, &window, "window", "four pitches"))
+        .add(legend(690.0, 420.0))
+        .add(chip_chart(v, 690.0, 570.0, 360.0, 150.0));
+    doc.to_string()
+}

@@ -1,0 +1,218 @@
+//! The `verify` report: JSON as the CLI contract specifies, and the human table.
+
+use crate::check::CheckKind;
+use crate::geometry::rad;
+use crate::passes::{Infeed, Schedule};
+use crate::standards::{Hand, ThreadKind};
+use crate::verify::Verification;
+use serde_json::{json, Value};
+use std::fmt::Write as _;
+
+/// The infeed as words (`flank 29.5°`).
+pub fn infeed_text(i: &Infeed) -> String {
+    match i {
+        Infeed::Radial => "radial".into(),
+        Infeed::Flank { angle } => format!("flank {angle}°"),
+        Infeed::Alternating { angle } => format!("alternating {angle}°"),
+    }
+}
+
+fn schedule_text(s: &Schedule) -> &'static str {
+    match s {
+        Schedule::ConstantDepth => "constant-depth",
+        Schedule::ConstantArea => "constant-area",
+        Schedule::Sandvik => "sandvik",
+        Schedule::Explicit(_) => "explicit",
+    }
+}
+
+/// The `thread` object of the reports.
+pub fn thread_json(v: &Verification) -> Value {
+    let t = &v.designation.thread;
+    json!({
+        "designation": v.designation.text,
+        "form": t.form.name(),
+        "kind": v.kind.name(),
+        "nominal_diameter": t.nominal_diameter,
+        "pitch": t.pitch,
+        "lead": t.lead(),
+        "starts": t.starts,
+        "hand": if t.hand == Hand::Left { "left" } else { "right" },
+        "class": v.limits.class,
+    })
+}
+
+/// The whole `verify --json` object.
+pub fn verify_json(v: &Verification) -> Value {
+    let m = &v.measurement;
+    let surface = rad(v.blank_diameter);
+    let passes: Vec<Value> = v
+        .passes
+        .iter()
+        .zip(&v.metrics)
+        .map(|(p, pm)| {
+            json!({
+                "index": p.index,
+                "x": p.x_end,
+                "z": p.z_start,
+                "depth": (rad(p.x_end) - surface).abs(),
+                "start": p.start,
+                "chip_area": pm.chip_area,
+                "engaged_edge": {"leading": pm.leading, "trailing": pm.trailing, "tip": pm.tip},
+                "max_chip_thickness": pm.max_chip_thickness,
+                "source_line": p.source_line,
+            })
+        })
+        .collect();
+    json!({
+        "thread": thread_json(v),
+        "insert": {
+            "kind": v.insert.kind,
+            "name": v.insert.name,
+            "angle": v.insert.angle,
+            "tip_radius": v.insert.tip_radius,
+        },
+        "plan": {
+            "infeed": v.infeed,
+            "schedule": schedule_text(&v.schedule),
+            "blank_diameter": v.blank_diameter,
+            "final_x": v.final_x,
+            "final_x_solved": v.final_x_solved,
+        },
+        "passes": passes,
+        "measured": {
+            "major_diameter": m.major_diameter,
+            "pitch_diameter": m.pitch_diameter,
+            "minor_diameter": m.minor_diameter,
+            "root_radius": m.root_radius,
+            "flank_angles": m.flank_angles,
+            "thread_depth": m.thread_depth,
+            "engagement_depth": m.engagement_depth,
+            "crest_width": m.crest_width,
+            "three_wire": m.three_wire,
+            "max_material_clearance": m.max_material_clearance,
+        },
+        "limits": v.limits,
+        "checks": v.checks,
+        "verdict": if v.pass { "pass" } else { "fail" },
+        "gauge_only": v.gauge_only,
+        "suggested_final_x": v.suggested_final_x,
+        "notes": v.notes,
+    })
+}
+
+fn opt(v: Option<f64>, prec: usize) -> String {
+    v.map_or_else(|| "—".to_string(), |x| format!("{x:.prec$}"))
+}
+
+/// The human report: a compact table of checks with ✓/✗ and deviations in µm.
+pub fn verify_text(v: &Verification) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{} {} ({}), {} insert '{}', {} infeed, {}, {} passes",
+        v.designation.text,
+        v.kind.name(),
+        v.limits.class,
+        match v.insert.kind {
+            crate::insert::InsertKind::Full => "full-profile",
+            crate::insert::InsertKind::Partial => "partial-profile",
+            crate::insert::InsertKind::Custom => "custom",
+        },
+        v.insert.name,
+        infeed_text(&v.infeed),
+        schedule_text(&v.schedule),
+        v.passes.len()
+    );
+    let _ = writeln!(
+        s,
+        "{} X{:.4}, final X{:.4}{}",
+        if v.kind == ThreadKind::External { "blank" } else { "bore" },
+        v.blank_diameter,
+        v.final_x,
+        if v.final_x_solved {
+            " (solved for mid-tolerance pitch diameter: use it as the cycle's X)"
+        } else {
+            ""
+        }
+    );
+    let _ =
+        writeln!(s, "\n    {:<16}{:>10}{:>10}{:>10}{:>10}  kind", "check", "value", "min", "max", "dev µm");
+    for c in &v.checks {
+        let counts = !v.gauge_only || c.kind == CheckKind::Size;
+        let mark = if c.ok {
+            "✓"
+        } else if counts {
+            "✗"
+        } else {
+            "·"
+        };
+        let prec = if c.feature == "flank_angle" { 3 } else { 4 };
+        let name = match c.feature {
+            "flank_angle" => "flank angle",
+            "pitch_diameter" => "pitch diameter",
+            "major_diameter" => "major diameter",
+            "minor_diameter" => "minor diameter",
+            "root_radius" => "root radius",
+            "max_material" => "max material",
+            "single_groove" => "one groove",
+            other => other,
+        };
+        let value = if c.feature == "single_groove" {
+            if c.ok {
+                "yes".into()
+            } else {
+                "no".into()
+            }
+        } else {
+            format!("{:.prec$}", c.value)
+        };
+        let _ = write!(
+            s,
+            "  {mark} {:<16}{:>10}{:>10}{:>10}{:>10.1}  {}",
+            name,
+            value,
+            if c.feature == "single_groove" { String::new() } else { opt(c.min, prec) },
+            if c.feature == "single_groove" { String::new() } else { opt(c.max, prec) },
+            c.deviation_um,
+            if c.kind == CheckKind::Size { "size" } else { "form" }
+        );
+        if let Some(n) = &c.note {
+            let _ = write!(s, "  {n}");
+        }
+        s.push('\n');
+    }
+    let m = &v.measurement;
+    let _ = writeln!(
+        s,
+        "\n  measured: thread depth {:.4}, flanks {:.3}°/{:.3}°{}{}",
+        m.thread_depth,
+        m.flank_angles[0],
+        m.flank_angles[1],
+        m.three_wire.map_or(String::new(), |w| format!(", M over {:.4} wires {:.4}", w.wire, w.m)),
+        m.max_material_clearance
+            .map_or(String::new(), |c| format!(", GO-gauge clearance {:+.1} µm", c * 1000.0))
+    );
+    let failed: Vec<&str> = v
+        .checks
+        .iter()
+        .filter(|c| !c.ok && (!v.gauge_only || c.kind == CheckKind::Size))
+        .map(|c| c.feature)
+        .collect();
+    if v.pass {
+        let _ = writeln!(s, "\nverdict: PASS");
+    } else {
+        let _ = writeln!(s, "\nverdict: FAIL ({})", failed.join(", "));
+    }
+    if let Some(x) = v.suggested_final_x {
+        let off = v.checks.iter().find(|c| c.feature == "pitch_diameter").map_or(0.0, |c| c.deviation_um);
+        let _ = writeln!(
+            s,
+            "pitch diameter is {off:+.1} µm off: program the last pass at X{x:.4} for mid-tolerance"
+        );
+    }
+    for n in &v.notes {
+        let _ = writeln!(s, "note: {n}");
+    }
+    s
+}

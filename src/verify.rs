@@ -1,0 +1,374 @@
+//! `verify` as a library call: from a designation with its class, an insert and a pass plan to
+//! the as-cut thread, its measurement, the checks and the verdict.
+
+use crate::boolean::UnionStrategy;
+use crate::check::{checks, verdict, Check};
+use crate::insert::{Insert, InsertKind};
+use crate::measure::{measure, MeasureSetup, Measurement};
+use crate::passes::{Infeed, Pass, PlanSpec, Schedule};
+use crate::standards::{parse_designation, Designation, ParseOptions, ProfileKind, ThreadKind};
+use crate::sweep::{pass_metrics, sweep, PassMetrics, Section, SweepSetup, Window};
+use crate::tolerance::{limits_for, ThreadLimits};
+use crate::{BasicThread, Error};
+use std::path::PathBuf;
+
+/// Which insert to cut with.
+#[derive(Clone, Debug, PartialEq)]
+pub enum InsertChoice {
+    /// Full profile for the thread's form and pitch.
+    Full,
+    /// Partial-profile V of the form's angle with this tip radius, mm.
+    Partial {
+        /// Tip radius, mm.
+        tip_radius: f64,
+    },
+    /// A TOML insert file.
+    File(PathBuf),
+}
+
+/// Everything `verify` needs; the CLI fills it from its options.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VerifySpec {
+    /// Designation with a class (`M10x1.5-6g`).
+    pub designation: String,
+    /// Verify the internal thread (else external, unless the designation names only an internal
+    /// class).
+    pub internal: bool,
+    /// Accept sizes outside the standard series.
+    pub allow_nonstandard: bool,
+    /// The insert.
+    pub insert: InsertChoice,
+    /// Infeed; `None` picks modified flank at half the thread angle less 0.5°.
+    pub infeed: Option<Infeed>,
+    /// Cutting passes; `None` uses [`default_pass_count`].
+    pub passes: Option<usize>,
+    /// Depth of the first pass, mm (sets the pass count instead).
+    pub first_depth: Option<f64>,
+    /// Smallest rough step, mm.
+    pub min_depth: f64,
+    /// Finishing allowance, mm.
+    pub finish: f64,
+    /// Spring passes.
+    pub spring: usize,
+    /// Depth schedule.
+    pub schedule: Schedule,
+    /// Tip diameter of the last pass, mm; `None` solves for the middle of the pitch-diameter
+    /// tolerance.
+    pub final_x: Option<f64>,
+    /// Blank (external) or bore (internal) diameter, mm; `None` uses [`default_blank`].
+    pub blank_diameter: Option<f64>,
+    /// Leave form checks out of the verdict.
+    pub gauge_only: bool,
+    /// Chord tolerance for arcs, mm.
+    pub tolerance: f64,
+}
+
+impl VerifySpec {
+    /// A spec with the defaults for everything but the designation.
+    pub fn new(designation: &str) -> VerifySpec {
+        VerifySpec {
+            designation: designation.to_string(),
+            internal: false,
+            allow_nonstandard: false,
+            insert: InsertChoice::Partial { tip_radius: 0.04 },
+            infeed: None,
+            passes: None,
+            first_depth: None,
+            min_depth: 0.0,
+            finish: 0.0,
+            spring: 0,
+            schedule: Schedule::ConstantArea,
+            final_x: None,
+            blank_diameter: None,
+            gauge_only: false,
+            tolerance: crate::DEFAULT_TOLERANCE,
+        }
+    }
+}
+
+/// Everything `verify` found.
+#[derive(Clone, Debug)]
+pub struct Verification {
+    /// The parsed designation.
+    pub designation: Designation,
+    /// External or internal.
+    pub kind: ThreadKind,
+    /// Limits of the class verified.
+    pub limits: ThreadLimits,
+    /// The insert used.
+    pub insert: Insert,
+    /// Infeed used.
+    pub infeed: Infeed,
+    /// Schedule used.
+    pub schedule: Schedule,
+    /// Blank or bore diameter, mm.
+    pub blank_diameter: f64,
+    /// Tip diameter of the last pass, mm.
+    pub final_x: f64,
+    /// True when `final_x` was solved for mid-tolerance pitch diameter.
+    pub final_x_solved: bool,
+    /// The passes.
+    pub passes: Vec<Pass>,
+    /// Per-pass chip and edge metrics at the measured groove.
+    pub metrics: Vec<PassMetrics>,
+    /// The as-cut section around the measured groove.
+    pub section: Section,
+    /// Axial position of the measured groove, mm.
+    pub z_ref: f64,
+    /// The measurement.
+    pub measurement: Measurement,
+    /// The checks.
+    pub checks: Vec<Check>,
+    /// The verdict.
+    pub pass: bool,
+    /// Final X that would put the pitch diameter mid-tolerance, when it is off, mm.
+    pub suggested_final_x: Option<f64>,
+    /// Form checks left out of the verdict.
+    pub gauge_only: bool,
+    /// Assumptions and warnings worth printing.
+    pub notes: Vec<String>,
+}
+
+/// Usual number of passes for a pitch P (mm): about 3.5 + 2·P, the order of the insert makers'
+/// recommendations for steel (4 passes at P 0.5, 6 at P 1.5, 15 at P 6). A default, not a standard.
+pub fn default_pass_count(pitch: f64) -> usize {
+    (3.5 + 2.0 * pitch).round().clamp(3.0, 40.0) as usize
+}
+
+/// The blank a shop turns before threading: for a full-profile insert, d + 0.1 mm (external) or
+/// D1 − 0.1 mm (internal), which the insert tops; otherwise the middle of the major-diameter
+/// tolerance (external) or of the D1 tolerance (internal), since that is the crest left.
+pub fn default_blank(thread: &BasicThread, kind: ThreadKind, limits: &ThreadLimits, insert: &Insert) -> f64 {
+    match (insert.kind == InsertKind::Full, kind) {
+        (true, ThreadKind::External) => thread.nominal_diameter + 0.1,
+        (true, ThreadKind::Internal) => thread.minor_diameter_internal() - 0.1,
+        (false, ThreadKind::External) => limits
+            .major_diameter
+            .mid()
+            .unwrap_or_else(|| limits.major_diameter.max.unwrap_or(thread.nominal_diameter)),
+        (false, ThreadKind::Internal) => {
+            limits.minor_diameter.mid().unwrap_or(thread.minor_diameter_internal())
+        }
+    }
+}
+
+fn resolve_kind(des: &Designation, internal: bool) -> Result<ThreadKind, Error> {
+    let kind = if internal || (des.external.is_none() && des.internal.is_some()) {
+        ThreadKind::Internal
+    } else {
+        ThreadKind::External
+    };
+    if des.class(kind).is_none() {
+        return Err(Error::Input(format!(
+            "'{}' names no {} class to verify against; add one, e.g. {}",
+            des.text,
+            kind.name(),
+            match (des.thread.form, kind) {
+                (crate::ThreadForm::IsoMetric, ThreadKind::External) => format!("{}-6g", des.text),
+                (crate::ThreadForm::IsoMetric, ThreadKind::Internal) => format!("{}-6H", des.text),
+                (crate::ThreadForm::Whitworth, _) => format!("{} medium", des.text),
+                (crate::ThreadForm::BspParallel, ThreadKind::External) => format!("{} A", des.text),
+                (crate::ThreadForm::BspParallel, ThreadKind::Internal) => des.text.clone(),
+            }
+        )));
+    }
+    Ok(kind)
+}
+
+fn build_insert(choice: &InsertChoice, t: &BasicThread, kind: ThreadKind, tol: f64) -> Result<Insert, Error> {
+    let ins = match choice {
+        InsertChoice::Full => Insert::full_profile(t, kind, tol),
+        InsertChoice::Partial { tip_radius } => {
+            let limit = t.root_radius();
+            if *tip_radius > limit {
+                return Err(Error::Geometry(format!(
+                    "tip radius {tip_radius} mm is larger than the thread allows: the largest root radius of a {} P{} thread is {limit:.4} mm",
+                    t.form.name(),
+                    t.pitch
+                )));
+            }
+            Insert::partial_for(t, *tip_radius, tol)?
+        }
+        InsertChoice::File(path) => {
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| Error::Io { path: path.display().to_string(), message: e.to_string() })?;
+            Insert::from_toml(&text, &path.display().to_string(), tol)?
+        }
+    };
+    if let Some((lo, hi)) = ins.pitch_range {
+        if ins.kind != InsertKind::Full && !(lo - 1e-9 <= t.pitch && t.pitch <= hi + 1e-9) {
+            return Err(Error::Geometry(format!(
+                "insert '{}' covers pitches {lo} to {hi} mm, not {} mm",
+                ins.name, t.pitch
+            )));
+        }
+    }
+    if ins.kind != InsertKind::Full {
+        // Width at the thread depth: wider than the pitch, it would cut the neighbouring teeth.
+        let h = t.thread_depth();
+        let width = width_at(&ins.outline, h);
+        if width > t.pitch {
+            return Err(Error::Geometry(format!(
+                "insert '{}' is {width:.3} mm wide at the thread depth {h:.3} mm, wider than the pitch {} mm",
+                ins.name, t.pitch
+            )));
+        }
+    }
+    Ok(ins)
+}
+
+/// Width of a closed outline at height `y` (extent of its crossings of that level), mm.
+fn width_at(outline: &[crate::Point], y: f64) -> f64 {
+    let n = outline.len();
+    let zs: Vec<f64> =
+        (0..n).filter_map(|i| crate::geometry::cross_at_level(outline[i], outline[(i + 1) % n], y)).collect();
+    let (lo, hi) = zs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), z| (a.min(*z), b.max(*z)));
+    if hi >= lo {
+        hi - lo
+    } else {
+        0.0
+    }
+}
+
+/// A first guess of the final X that puts d2 at `target`: the insert's depth for basic d2,
+/// moved by the wanted pitch-diameter change (X and d2 move one for one).
+fn initial_final_x(t: &BasicThread, kind: ThreadKind, ins: &Insert, target: f64) -> f64 {
+    let delta = target - t.pitch_diameter();
+    let (variant, base) = match kind {
+        ThreadKind::External => (ProfileKind::BoltDesign, t.nominal_diameter),
+        ThreadKind::Internal => (ProfileKind::Nut, t.minor_diameter_internal()),
+    };
+    let g = t.groove(variant);
+    let depth = match ins.kind {
+        InsertKind::Full => g.bottom(),
+        _ => {
+            let b = t.half_angle();
+            g.sharp_root() - (ins.tip_radius / b.sin() - ins.tip_radius)
+        }
+    };
+    match kind {
+        ThreadKind::External => base - 2.0 * depth + delta,
+        ThreadKind::Internal => base + 2.0 * depth + delta,
+    }
+}
+
+struct Cut {
+    passes: Vec<Pass>,
+    section: Section,
+    z_ref: f64,
+    measurement: Measurement,
+}
+
+/// Runs `verify`.
+pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
+    if !(spec.tolerance.is_finite() && spec.tolerance > 0.0 && spec.tolerance <= 0.01) {
+        return Err(Error::Input(format!("chord tolerance {} mm must be in (0, 0.01]", spec.tolerance)));
+    }
+    let des =
+        parse_designation(&spec.designation, ParseOptions { allow_nonstandard: spec.allow_nonstandard })?;
+    let kind = resolve_kind(&des, spec.internal)?;
+    let limits = limits_for(&des, kind)?.ok_or_else(|| Error::Input("no class".into()))?;
+    let t = des.thread;
+    let insert = build_insert(&spec.insert, &t, kind, spec.tolerance)?;
+    let blank = match spec.blank_diameter {
+        Some(b) if !(b.is_finite() && b > 0.0) => {
+            return Err(Error::Input(format!("blank diameter {b} mm must be a positive length")));
+        }
+        Some(b) => b,
+        None => default_blank(&t, kind, &limits, &insert),
+    };
+    let infeed = spec.infeed.unwrap_or(Infeed::Flank { angle: 0.5 * t.form.flank_angle() - 0.5 });
+    let passes_n = spec.passes.unwrap_or_else(|| default_pass_count(t.pitch));
+    let mut notes = limits.notes.clone();
+    let lead = t.lead();
+    let plan = |final_x: f64| PlanSpec {
+        kind,
+        pitch: t.pitch,
+        starts: t.starts,
+        surface_x: blank,
+        final_x,
+        passes: passes_n,
+        schedule: spec.schedule.clone(),
+        infeed,
+        spring: spec.spring,
+        first_depth: spec.first_depth,
+        min_depth: spec.min_depth,
+        finish: spec.finish,
+        z_start: 0.0,
+        length: 10.0 * lead,
+    };
+    let setup = SweepSetup { kind, insert: &insert, blank_diameter: blank, pitch: t.pitch };
+    let mmc = match kind {
+        ThreadKind::External => limits.pitch_diameter.max,
+        ThreadKind::Internal => limits.pitch_diameter.min,
+    };
+    let ms = MeasureSetup { thread: &t, kind, mmc_pitch_diameter: mmc };
+    let run = |final_x: f64| -> Result<Cut, Error> {
+        let passes = plan(final_x).generate()?;
+        // The groove of the last pass of the first start, in the middle of the virtual length.
+        let last = passes.iter().rev().find(|p| p.start == 0).copied().unwrap_or(passes[passes.len() - 1]);
+        let z_ref = last.z_start - 5.0 * lead;
+        let window = Window::around(z_ref, t.pitch, 4.0);
+        let s = sweep(&setup, &passes, window, UnionStrategy::BalancedTree)?;
+        let measurement = measure(&ms, &s.section.profile(), z_ref)?;
+        Ok(Cut { passes, section: s.section, z_ref, measurement })
+    };
+    let target = limits
+        .pitch_diameter
+        .mid()
+        .ok_or_else(|| Error::Input("the class has no two-sided pitch-diameter tolerance".into()))?;
+    let (final_x, solved, cut) = match spec.final_x {
+        Some(x) if !x.is_finite() => return Err(Error::Input(format!("final X {x} is not a finite number"))),
+        Some(x) => (x, false, run(x)?),
+        None => {
+            // X and d2 move one for one, so a few corrections converge to well below 0.01 µm.
+            let mut x = initial_final_x(&t, kind, &insert, target);
+            let mut cut = run(x)?;
+            for _ in 0..6 {
+                let err = target - cut.measurement.pitch_diameter;
+                if err.abs() < 1e-8 {
+                    break;
+                }
+                x += err;
+                cut = run(x)?;
+            }
+            (x, true, cut)
+        }
+    };
+    let metrics = pass_metrics(&setup, &cut.passes, cut.z_ref)?;
+    let m = &cut.measurement;
+    if m.pitch_line_extrapolated {
+        notes.push(
+            "the pitch line lies outside the cut flanks; the fitted flank lines were extended to find it"
+                .into(),
+        );
+    }
+    let cs = checks(m, &limits, &t, kind, m.root_pockets <= 1);
+    let pass = verdict(&cs, spec.gauge_only);
+    let d2_off = cs.iter().any(|c| c.feature == "pitch_diameter" && !c.ok);
+    let suggested = d2_off.then(|| final_x + (target - m.pitch_diameter));
+    if spec.gauge_only {
+        notes.push("--gauge-only: form checks are reported but left out of the verdict".into());
+    }
+    Ok(Verification {
+        designation: des,
+        kind,
+        limits,
+        insert,
+        infeed,
+        schedule: spec.schedule.clone(),
+        blank_diameter: blank,
+        final_x,
+        final_x_solved: solved,
+        passes: cut.passes,
+        metrics,
+        section: cut.section,
+        z_ref: cut.z_ref,
+        measurement: cut.measurement,
+        checks: cs,
+        pass,
+        suggested_final_x: suggested,
+        gauge_only: spec.gauge_only,
+        notes,
+    })
+}

@@ -1,0 +1,220 @@
+//! Issue 5: `threadcheck verify` end to end, from the command line.
+
+use crate::*;
+
+const M10_D3: &str = "8.160"; // d3 = d − 1.226869·P for M10x1.5 (ISO 68-1 / DIN 13)
+
+fn json_of(args: &[&str]) -> (i32, serde_json::Value) {
+    let mut a = args.to_vec();
+    a.extend(["--json", "-"]);
+    let o = run(&a);
+    let code = o.status.code().unwrap();
+    assert!(code == 0 || code == 1, "{}", stderr(&o));
+    (code, serde_json::from_slice(&o.stdout).unwrap())
+}
+
+fn check<'a>(v: &'a serde_json::Value, feature: &str) -> &'a serde_json::Value {
+    v["checks"].as_array().unwrap().iter().find(|c| c["feature"] == feature).unwrap()
+}
+
+/// Full profile, final X solved for mid-tolerance d2 (8.928 = (8.994 + 8.862)/2, ISO 965-2):
+/// every check passes, exit 0.
+#[test]
+fn full_profile_m10_mid_tolerance_passes() {
+    let (code, v) = json_of(&["verify", "--thread", "M10x1.5-6g", "--insert", "full"]);
+    assert_eq!(code, 0, "{v:#}");
+    assert_eq!(v["verdict"], "pass");
+    let d2 = v["measured"]["pitch_diameter"].as_f64().unwrap();
+    assert!((d2 - 8.928).abs() < 1e-4, "{d2}");
+    // At X = d3 = 8.159696 the full-profile insert gives basic d2 = 9.025721; X and d2 move one
+    // for one, so d2 = 8.928 needs X = 8.159696 − (9.025721 − 8.928) = 8.061975.
+    let x = v["plan"]["final_x"].as_f64().unwrap();
+    assert!((x - 8.061975).abs() < 1e-6, "{x}");
+}
+
+/// The same plan ending at X = d3: d2 = basic 9.026, 32 µm over d2 max = 8.994 (es(g) = −32 µm
+/// at P 1.5, ISO 965-1 Table 1). Exit 1, and the report suggests the X that fixes it.
+#[test]
+fn full_profile_m10_at_d3_is_32_um_over() {
+    let (code, v) = json_of(&["verify", "--thread", "M10x1.5-6g", "--insert", "full", "--final-x", M10_D3]);
+    assert_eq!(code, 1);
+    assert_eq!(v["verdict"], "fail");
+    let c = check(&v, "pitch_diameter");
+    assert_eq!(c["ok"], false);
+    let dev = c["deviation_um"].as_f64().unwrap();
+    // 9.02572 + 0.0003 (X 8.160 vs 8.1597) − 8.994 = 32.0 µm.
+    assert!((dev - 32.0).abs() < 0.5, "{dev}");
+    let x = v["suggested_final_x"].as_f64().unwrap();
+    assert!((x - 8.061975).abs() < 1e-6, "{x}");
+}
+
+/// A partial insert (r 0.04) cut to the full-profile depth X = d3: its tip lies 7H/8 − r − h3 =
+/// 0.1766 mm higher than the depth that gives basic d2, so d2 = 9.026 + 0.353 = 9.379, 385 µm
+/// over 8.994.
+#[test]
+fn partial_insert_at_full_profile_depth_is_far_over() {
+    let (code, v) =
+        json_of(&["verify", "--thread", "M10x1.5-6g", "--insert", "partial", "--final-x", M10_D3]);
+    assert_eq!(code, 1);
+    let dev = check(&v, "pitch_diameter")["deviation_um"].as_f64().unwrap();
+    assert!(dev > 300.0, "{dev}");
+    let want = (0.875 * 1.299038 - 0.04 - 0.613435 * 1.5) * 2.0 * 1000.0 + 32.0;
+    assert!((dev - want).abs() < 1.0, "{dev} vs {want}");
+}
+
+/// Partial insert at mid-tolerance d2: the 0.04 mm root radius is below R min = 0.125·P and the
+/// root below d3 min, both form checks; `--gauge-only` leaves them out and the thread passes.
+#[test]
+fn gauge_only_turns_a_partial_thread_from_fail_to_pass() {
+    let (code, v) = json_of(&["verify", "--thread", "M10x1.5-6g", "--insert", "partial"]);
+    assert_eq!(code, 1);
+    assert_eq!(check(&v, "root_radius")["ok"], false);
+    assert_eq!(check(&v, "root_radius")["kind"], "form");
+    let (code, v) = json_of(&["verify", "--thread", "M10x1.5-6g", "--insert", "partial", "--gauge-only"]);
+    assert_eq!(code, 0);
+    assert_eq!(v["verdict"], "pass");
+    assert_eq!(check(&v, "root_radius")["ok"], false, "still reported");
+}
+
+/// The JSON report carries every key of the CLI contract (shared/spec/cli.md).
+#[test]
+fn verify_json_has_the_contract_keys() {
+    let (_, v) = json_of(&["verify", "--thread", "M10x1.5-6g"]);
+    for k in ["designation", "form", "kind", "nominal_diameter", "pitch", "lead", "starts", "hand", "class"] {
+        assert!(v["thread"].get(k).is_some(), "thread.{k}");
+    }
+    for k in ["kind", "angle", "tip_radius"] {
+        assert!(v["insert"].get(k).is_some(), "insert.{k}");
+    }
+    let p = &v["passes"][0];
+    for k in ["index", "x", "z", "depth", "chip_area"] {
+        assert!(p.get(k).is_some(), "passes[].{k}");
+    }
+    for k in ["leading", "trailing", "tip"] {
+        assert!(p["engaged_edge"].get(k).is_some(), "engaged_edge.{k}");
+    }
+    for k in
+        ["major_diameter", "pitch_diameter", "minor_diameter", "root_radius", "flank_angles", "thread_depth"]
+    {
+        assert!(v["measured"].get(k).is_some(), "measured.{k}");
+    }
+    let features =
+        ["major_diameter", "pitch_diameter", "minor_diameter", "root_radius", "flank_angle", "max_material"];
+    for f in features {
+        let c = check(&v, f);
+        for k in ["feature", "kind", "value", "min", "max", "ok", "deviation_um"] {
+            assert!(c.get(k).is_some(), "checks[{f}].{k}");
+        }
+        let kind =
+            if ["major_diameter", "pitch_diameter", "max_material"].contains(&f) { "size" } else { "form" };
+        assert_eq!(c["kind"], kind, "{f}");
+    }
+    assert!(v["verdict"] == "pass" || v["verdict"] == "fail");
+    assert_eq!(v["thread"]["kind"], "external");
+    assert_eq!(v["insert"]["kind"], "partial");
+}
+
+/// The SVG has each layer as a named group, and text from user input is escaped.
+#[test]
+fn svg_has_named_layers_and_escapes_text() {
+    let dir = tempdir("svg");
+    let ins = dir.join("ins.toml");
+    std::fs::write(
+        &ins,
+        "name = \"<script>alert(1)</script> & co\"\nangle = 60\ntip_radius = 0.05\nheight = 3\n",
+    )
+    .unwrap();
+    let svg = dir.join("out.svg");
+    let o = run_in(&dir, &["verify", "--thread", "M10x1.5-6g", "--insert", "ins.toml", "--svg", "out.svg"]);
+    assert!(o.status.code() == Some(0) || o.status.code() == Some(1), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&svg).unwrap();
+    for id in ["title", "legend", "chip-chart", "tooth", "window"] {
+        assert!(text.contains(&format!("id=\"{id}\"")), "group {id}");
+    }
+    for layer in ["blank", "tolerance-zone", "basic-profile", "passes", "as-cut", "dimensions"] {
+        assert!(text.contains(&format!("id=\"tooth-{layer}\"")), "layer {layer}");
+    }
+    assert!(!text.contains("<script>"));
+    assert!(text.contains("&lt;script&gt;"));
+    // Well-formed enough to start like an SVG document.
+    assert!(text.trim_start().starts_with("<svg"));
+}
+
+/// When Chromium is installed, the README's SVG opens in it and renders (a screenshot file).
+#[test]
+fn svg_opens_in_chromium_when_installed() {
+    let Some(chromium) = ["chromium", "chromium-browser"].iter().find_map(|c| which(c)) else {
+        eprintln!("chromium not installed: skipped");
+        return;
+    };
+    let dir = tempdir("chromium");
+    let o = run_in(&dir, &["verify", "--thread", "M10x1.5-6g", "--svg", "m10.svg"]);
+    assert!(o.status.code() == Some(1) || o.status.code() == Some(0));
+    let shot = dir.join("shot.png");
+    let status = std::process::Command::new(chromium)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-background-networking",
+            "--no-first-run",
+        ])
+        .arg(format!("--user-data-dir={}", dir.join("profile").display()))
+        .arg(format!("--screenshot={}", shot.display()))
+        .arg("--window-size=1100,760")
+        .arg(format!("file://{}", dir.join("m10.svg").display()))
+        .output()
+        .unwrap();
+    assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stderr));
+    let png = std::fs::read(&shot).unwrap();
+    assert!(png.len() > 10_000 && png.starts_with(b"\x89PNG"));
+}
+
+fn which(cmd: &str) -> Option<std::path::PathBuf> {
+    std::env::var_os("PATH")?
+        .to_str()?
+        .split(':')
+        .map(|d| std::path::Path::new(d).join(cmd))
+        .find(|p| p.is_file())
+}
+
+/// An error mid-run (here: an impossible final X) leaves an existing output file untouched.
+#[test]
+fn an_error_leaves_existing_outputs_untouched() {
+    let dir = tempdir("keep");
+    std::fs::write(dir.join("r.json"), "old").unwrap();
+    std::fs::write(dir.join("r.svg"), "old").unwrap();
+    let o = run_in(
+        &dir,
+        &["verify", "--thread", "M10x1.5-6g", "--final-x", "12.0", "--json", "r.json", "--svg", "r.svg"],
+    );
+    one_line_error(&o);
+    assert_eq!(std::fs::read_to_string(dir.join("r.json")).unwrap(), "old");
+    assert_eq!(std::fs::read_to_string(dir.join("r.svg")).unwrap(), "old");
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 2, "no temporary left behind");
+}
+
+/// Internal threads: a partial insert at mid-tolerance D2 of 6H passes the size checks.
+#[test]
+fn internal_thread_verifies() {
+    let (code, v) = json_of(&["verify", "--thread", "M10x1.5-6H", "--gauge-only"]);
+    assert_eq!(v["thread"]["kind"], "internal");
+    assert_eq!(code, 0, "{v:#}");
+    let d2 = v["measured"]["pitch_diameter"].as_f64().unwrap();
+    assert!((d2 - (9.026 + 9.206) / 2.0).abs() < 1e-4);
+}
+
+#[test]
+fn verify_errors_are_one_line() {
+    for (args, part) in [
+        (vec!["verify", "--thread", "M10x1.5"], "names no external class"),
+        (vec!["verify", "--thread", "M10x1.5-6g", "--insert", "partial:0.5"], "tip radius"),
+        (vec!["verify", "--thread", "M10x1.5-6g", "--final-x", "NaN"], "--final-x"),
+        (vec!["verify", "--thread", "M10x1.5-6g", "--passes", "1000000000"], "passes"),
+        (vec!["verify", "--thread", "M10x1.5-6g", "--infeed", "sideways"], "--infeed"),
+        (vec!["verify", "--thread", "M10x1.5-6g", "--insert", "no-such.toml"], "no-such.toml"),
+    ] {
+        let line = one_line_error(&run(&args));
+        assert!(line.contains(part), "{args:?}: {line}");
+    }
+}
