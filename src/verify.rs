@@ -346,7 +346,7 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
     let cs = checks(m, &limits, &t, kind, m.root_pockets <= 1);
     let pass = verdict(&cs, spec.gauge_only);
     let d2_off = cs.iter().any(|c| c.feature == "pitch_diameter" && !c.ok);
-    let suggested = d2_off.then(|| final_x + (target - m.pitch_diameter));
+    let suggested = d2_off.then_some(final_x + (target - m.pitch_diameter));
     if spec.gauge_only {
         notes.push("--gauge-only: form checks are reported but left out of the verdict".into());
     }
