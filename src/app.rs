@@ -269,49 +269,78 @@ pub struct PassesJob {
 }
 
 impl PassesJob {
-    /// Runs the job.
+    /// Runs the job: a program is read and expanded; a generated plan is laid out as `verify`
+    /// would (solving the final X when it is not given).
     pub fn run(&self) -> Result<(String, Outcome), Error> {
-        let v = crate::verify::verify(&self.spec)?;
-        let passes: Vec<serde_json::Value> = v
-            .passes
-            .iter()
-            .map(|p| {
-                json!({
-                    "index": p.index, "x_start": p.x_start, "x_end": p.x_end, "z_start": p.z_start,
-                    "z_end": p.z_end, "lead": p.lead, "start": p.start, "source_line": p.source_line,
-                })
-            })
-            .collect();
+        let (thread, passes, header) = match (&self.spec.program, self.spec.designation.is_empty()) {
+            (Some((path, dialect)), no_thread) => {
+                let shown = path.display().to_string();
+                let text = std::fs::read_to_string(path)
+                    .map_err(|e| Error::Io { path: shown.clone(), message: e.to_string() })?;
+                let prog = crate::gcode::read_program(&text, &shown, *dialect)?;
+                let thread = if no_thread {
+                    serde_json::Value::Null
+                } else {
+                    let d = parse_designation(
+                        &self.spec.designation,
+                        ParseOptions { allow_nonstandard: self.spec.allow_nonstandard },
+                    )?;
+                    json!({"designation": d.text, "form": d.thread.form.name(), "pitch": d.thread.pitch, "lead": d.thread.lead()})
+                };
+                let header = format!(
+                    "{shown} ({}): {} passes, lead {} mm, {} other blocks read for position\n",
+                    dialect.name(),
+                    prog.passes.len(),
+                    prog.lead().unwrap_or(0.0),
+                    prog.skipped_blocks
+                );
+                (thread, prog.passes, header)
+            }
+            (None, _) => {
+                let v = crate::verify::verify(&self.spec)?;
+                let header = format!(
+                    "{} {}: {} passes, blank X{:.4}, final X{:.4}\n",
+                    v.designation.text,
+                    v.kind.name(),
+                    v.passes.len(),
+                    v.blank_diameter,
+                    v.final_x
+                );
+                (crate::report::thread_json(&v), v.passes, header)
+            }
+        };
         let text = if self.json {
-            let obj = json!({
-                "thread": crate::report::thread_json(&v),
-                "thread_start": v.passes.first().map(|p| p.z_start),
-                "thread_end": v.passes.first().map(|p| p.z_end),
-                "final_x": v.final_x,
-                "blank_diameter": v.blank_diameter,
-                "passes": passes,
+            let list: Vec<serde_json::Value> = passes
+                .iter()
+                .map(|p| {
+                    json!({
+                        "index": p.index, "x_start": p.x_start, "x_end": p.x_end, "z_start": p.z_start,
+                        "z_end": p.z_end, "lead": p.lead, "start": p.start, "source_line": p.source_line,
+                        "taper_in": p.taper_in, "taper_out": p.taper_out, "x_taper": p.x_taper,
+                    })
+                })
+                .collect();
+            let (start, end) = passes.iter().fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), p| {
+                (a.max(p.z_start.max(p.z_end)), b.min(p.z_start.min(p.z_end)))
             });
+            let obj = json!({"thread": thread, "thread_start": start, "thread_end": end, "passes": list});
             let mut s = serde_json::to_string_pretty(&obj).map_err(|e| Error::Data(e.to_string()))?;
             s.push('\n');
             s
         } else {
-            let mut s = format!(
-                "{} {}: {} passes, blank X{:.4}, final X{:.4}\n\n  pass  start        X      depth          Z\n",
-                v.designation.text,
-                v.kind.name(),
-                v.passes.len(),
-                v.blank_diameter,
-                v.final_x
-            );
-            for p in &v.passes {
+            let mut s = header;
+            s.push_str("\n  pass  start    X start      X end    Z start      Z end   line\n");
+            for p in &passes {
                 let _ = writeln!(
                     s,
-                    "  {:>4}  {:>5}  {:>9.4}  {:>9.4}  {:>9.4}",
+                    "  {:>4}  {:>5}  {:>9.4}  {:>9.4}  {:>9.4}  {:>9.4}  {:>5}",
                     p.index,
                     p.start + 1,
+                    p.x_start,
                     p.x_end,
-                    0.5 * (p.x_end - v.blank_diameter).abs(),
-                    p.z_start
+                    p.z_start,
+                    p.z_end,
+                    p.source_line.map_or("—".to_string(), |l| l.to_string())
                 );
             }
             s

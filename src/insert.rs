@@ -392,6 +392,38 @@ mod tests {
         assert!(e.starts_with("bad.toml:2:"), "{e}");
     }
 
+    /// Every shipped insert file loads, is counter-clockwise and has its tip at the origin.
+    #[test]
+    fn shipped_insert_files_load() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/inserts");
+        let mut n = 0;
+        for e in std::fs::read_dir(dir).unwrap() {
+            let path = e.unwrap().path();
+            let text = std::fs::read_to_string(&path).unwrap();
+            let ins = Insert::from_toml(&text, &path.display().to_string(), 5e-5).unwrap();
+            assert!(signed_area(&ins.outline) > 0.0);
+            let low = ins.outline.iter().map(|p| p.r).fold(f64::INFINITY, f64::min);
+            assert!(low.abs() < 1e-6, "{}: {low}", path.display());
+            n += 1;
+        }
+        assert!(n >= 4);
+    }
+
+    /// The bulge example is a V with a 0.1 mm tip arc: its edges are tangent to that arc, so it
+    /// matches the analytic partial insert (centre 2r above the sharp vertex).
+    #[test]
+    fn bulge_outline_matches_the_analytic_v() {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("profiles/inserts/custom-example.toml");
+        let ins = Insert::from_toml(&std::fs::read_to_string(path).unwrap(), "custom", 5e-5).unwrap();
+        // All arc points at distance 0.1 from the centre (0, 0.1).
+        let arc: Vec<&Point> = ins.outline.iter().filter(|p| p.r < 0.05 - 1e-9).collect();
+        assert!(arc.len() > 5);
+        for p in arc {
+            assert!((p.distance(Point::new(0.0, 0.1)) - 0.1).abs() < 1e-6, "{p:?}");
+        }
+    }
+
     #[test]
     fn placement_turns_internal_inserts_over() {
         let i = Insert::partial(60.0, 0.0, 1.0, 5e-5).unwrap();

@@ -52,6 +52,7 @@ pub mod app;
 pub mod boolean;
 pub mod check;
 pub mod error;
+pub mod gcode;
 pub mod geometry;
 pub mod insert;
 pub mod limits;

@@ -58,8 +58,8 @@ enum Command {
 #[derive(Args)]
 struct PlanArgs {
     /// Thread with its class, e.g. M10x1.5-6g.
-    #[arg(long)]
-    thread: String,
+    #[arg(long, required_unless_present = "program")]
+    thread: Option<String>,
     /// The internal thread (else external; implied by an upper-case class alone).
     #[arg(long)]
     internal: bool,
@@ -96,18 +96,24 @@ struct PlanArgs {
     /// Blank (external) or bore (internal) diameter, mm.
     #[arg(long, value_name = "MM")]
     blank_diameter: Option<String>,
+    /// Take the passes from this G-code program.
+    #[arg(long, value_name = "FILE")]
+    program: Option<PathBuf>,
+    /// fanuc | sinumerik | linuxcnc
+    #[arg(long, default_value = "fanuc", requires = "program")]
+    dialect: String,
 }
 
 impl PlanArgs {
     fn spec(&self, gauge_only: bool) -> Result<VerifySpec, threadcheck::Error> {
-        let mut s = VerifySpec::new(&self.thread);
+        let mut s = VerifySpec::new(self.thread.as_deref().unwrap_or(""));
         s.internal = self.internal;
         s.allow_nonstandard = self.allow_nonstandard;
         s.insert = parse_insert(&self.insert)?;
         if let Some(i) = &self.infeed {
             // The half angle depends on the form; parse it once the designation is known.
             let des = threadcheck::parse_designation(
-                &self.thread,
+                &s.designation,
                 threadcheck::ParseOptions { allow_nonstandard: self.allow_nonstandard },
             )?;
             s.infeed = Some(parse_infeed(i, 0.5 * des.thread.form.flank_angle())?);
@@ -122,6 +128,9 @@ impl PlanArgs {
         s.final_x = opt(&self.final_x, "--final-x")?;
         s.blank_diameter = opt(&self.blank_diameter, "--blank-diameter")?;
         s.gauge_only = gauge_only;
+        if let Some(p) = &self.program {
+            s.program = Some((p.clone(), threadcheck::gcode::Dialect::parse(&self.dialect)?));
+        }
         Ok(s)
     }
 }

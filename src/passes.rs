@@ -32,9 +32,34 @@ pub struct Pass {
     pub start: u32,
     /// The program line the pass came from (1-based), `None` for generated plans.
     pub source_line: Option<usize>,
+    /// Length of Z (mm) at the start of the move over which X ramps in from `x_taper`
+    /// (LinuxCNC entry taper); 0 for none.
+    pub taper_in: f64,
+    /// Length of Z (mm) at the end of the move over which X ramps out to `x_taper` (Fanuc
+    /// chamfer, LinuxCNC exit taper, a run-out block); 0 for none.
+    pub taper_out: f64,
+    /// Tip diameter at the outer ends of the tapers, mm (usually the crest line).
+    pub x_taper: f64,
 }
 
 impl Pass {
+    /// A parallel pass without tapers: tip on diameter `x` from `z_start` to `z_end`.
+    pub fn parallel(index: usize, x: f64, z_start: f64, z_end: f64, lead: f64) -> Pass {
+        Pass {
+            index,
+            x_start: x,
+            x_end: x,
+            z_start,
+            z_end,
+            lead,
+            start: 0,
+            source_line: None,
+            taper_in: 0.0,
+            taper_out: 0.0,
+            x_taper: x,
+        }
+    }
+
     /// Direction of feed along Z: −1 towards the chuck, +1 away from it.
     pub fn feed_direction(&self) -> f64 {
         if self.z_end < self.z_start {
@@ -44,14 +69,39 @@ impl Pass {
         }
     }
 
-    /// Tip diameter where the move crosses axial position `z`, mm (linear between the ends).
-    pub fn x_at(&self, z: f64) -> f64 {
+    /// Tip diameter of the main line at `z` (linear between `x_start` and `x_end`), mm.
+    fn x_main(&self, z: f64) -> f64 {
         let span = self.z_end - self.z_start;
         if span == 0.0 {
             return self.x_end;
         }
         let t = ((z - self.z_start) / span).clamp(0.0, 1.0);
         self.x_start + t * (self.x_end - self.x_start)
+    }
+
+    /// Tip diameter where the move crosses axial position `z`, mm: the main line, ramped from or
+    /// to `x_taper` over the entry and exit tapers.
+    pub fn x_at(&self, z: f64) -> f64 {
+        let main = self.x_main(z);
+        let from_start = (z - self.z_start).abs();
+        let to_end = (self.z_end - z).abs();
+        if self.taper_out > 0.0 && to_end < self.taper_out {
+            let t = 1.0 - to_end / self.taper_out;
+            return main + t * (self.x_taper - main);
+        }
+        if self.taper_in > 0.0 && from_start < self.taper_in {
+            let t = 1.0 - from_start / self.taper_in;
+            return main + t * (self.x_taper - main);
+        }
+        main
+    }
+
+    /// The Z range over which the tip is on its main line (no taper), as (low, high), mm.
+    pub fn full_depth_range(&self) -> (f64, f64) {
+        let dir = self.feed_direction();
+        let a = self.z_start + dir * self.taper_in;
+        let b = self.z_end - dir * self.taper_out;
+        (a.min(b), a.max(b))
     }
 
     /// The axial positions in `[lo, hi]` where this pass crosses the half-plane:
@@ -322,6 +372,9 @@ impl PlanSpec {
                     lead,
                     start,
                     source_line: None,
+                    taper_in: 0.0,
+                    taper_out: 0.0,
+                    x_taper: x,
                 });
             };
             for (d, o) in depths.iter().zip(&offsets) {
@@ -365,17 +418,19 @@ mod tests {
     }
 
     #[test]
+    fn tapers_ramp_to_the_crest() {
+        let mut p = Pass::parallel(1, 9.0, 0.0, -10.0, 1.5);
+        p.taper_out = 2.0;
+        p.x_taper = 10.0;
+        assert_eq!(p.x_at(-5.0), 9.0);
+        assert!((p.x_at(-9.0) - 9.5).abs() < 1e-12);
+        assert!((p.x_at(-10.0) - 10.0).abs() < 1e-12);
+        assert_eq!(p.full_depth_range(), (-8.0, 0.0));
+    }
+
+    #[test]
     fn crossings_step_by_the_lead_inside_the_window() {
-        let p = Pass {
-            index: 1,
-            x_start: 9.0,
-            x_end: 9.0,
-            z_start: 0.2,
-            z_end: -30.0,
-            lead: 1.5,
-            start: 0,
-            source_line: None,
-        };
+        let p = Pass::parallel(1, 9.0, 0.2, -30.0, 1.5);
         let z = p.crossings(-5.0, 0.0);
         assert_eq!(z.len(), 3);
         assert!((z[0] - (0.2 - 1.5)).abs() < 1e-12 && (z[2] - (0.2 - 4.5)).abs() < 1e-12);

@@ -59,6 +59,8 @@ pub struct VerifySpec {
     pub blank_diameter: Option<f64>,
     /// Leave form checks out of the verdict.
     pub gauge_only: bool,
+    /// Take the passes from this G-code program instead of generating a plan.
+    pub program: Option<(PathBuf, crate::gcode::Dialect)>,
     /// Chord tolerance for arcs, mm.
     pub tolerance: f64,
 }
@@ -81,6 +83,7 @@ impl VerifySpec {
             final_x: None,
             blank_diameter: None,
             gauge_only: false,
+            program: None,
             tolerance: crate::DEFAULT_TOLERANCE,
         }
     }
@@ -259,6 +262,25 @@ struct Cut {
     measurement: Measurement,
 }
 
+/// The text of a program file: UTF-8 (a byte-order mark is fine), no NUL bytes.
+fn text_of(bytes: &[u8], file: &str) -> Result<String, Error> {
+    let at = |offset: usize, message: String| {
+        let before = &bytes[..offset];
+        let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+        let column = offset - before.iter().rposition(|&b| b == b'\n').map_or(0, |p| p + 1) + 1;
+        Error::Program { file: file.to_string(), line, column, message }
+    };
+    if bytes.is_empty() {
+        return Err(at(0, "the program is empty".into()));
+    }
+    if let Some(i) = bytes.iter().position(|&b| b == 0) {
+        return Err(at(i, "a NUL byte: this is a binary file, not a program".into()));
+    }
+    String::from_utf8(bytes.to_vec()).map_err(|e| {
+        at(e.utf8_error().valid_up_to(), "not UTF-8 text: a binary file or another encoding".into())
+    })
+}
+
 /// Runs `verify`.
 pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
     if !(spec.tolerance.is_finite() && spec.tolerance > 0.0 && spec.tolerance <= 0.01) {
@@ -317,22 +339,68 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
         .pitch_diameter
         .mid()
         .ok_or_else(|| Error::Input("the class has no two-sided pitch-diameter tolerance".into()))?;
-    let (final_x, solved, cut) = match spec.final_x {
-        Some(x) if !x.is_finite() => return Err(Error::Input(format!("final X {x} is not a finite number"))),
-        Some(x) => (x, false, run(x)?),
-        None => {
-            // X and d2 move one for one, so a few corrections converge to well below 0.01 µm.
-            let mut x = initial_final_x(&t, kind, &insert, target);
-            let mut cut = run(x)?;
-            for _ in 0..6 {
-                let err = target - cut.measurement.pitch_diameter;
-                if err.abs() < 1e-8 {
-                    break;
-                }
-                x += err;
-                cut = run(x)?;
+    let (final_x, solved, cut) = if let Some((path, dialect)) = &spec.program {
+        if spec.final_x.is_some() {
+            return Err(Error::Input(
+                "--final-x and --program exclude each other: the program sets the passes".into(),
+            ));
+        }
+        let shown = path.display().to_string();
+        let bytes =
+            std::fs::read(path).map_err(|e| Error::Io { path: shown.clone(), message: e.to_string() })?;
+        if bytes.len() > crate::limits::MAX_PROGRAM_BYTES {
+            return Err(Error::Program {
+                file: shown,
+                line: 1,
+                column: 1,
+                message: format!("the program is larger than {} bytes", crate::limits::MAX_PROGRAM_BYTES),
+            });
+        }
+        let text = text_of(&bytes, &shown)?;
+        let prog = crate::gcode::read_program(&text, &shown, *dialect)?;
+        notes.extend(prog.notes.iter().cloned());
+        if (prog.lead().unwrap_or(lead) - lead).abs() > 1e-6 {
+            let p0 = prog.passes[0];
+            return Err(Error::Program {
+                file: shown,
+                line: p0.source_line.unwrap_or(1),
+                column: 1,
+                message: format!(
+                    "the program cuts a lead of {} mm, the designation {} has {lead} mm",
+                    p0.lead, des.text
+                ),
+            });
+        }
+        let passes = prog.passes;
+        let last = passes.iter().rev().find(|p| p.start == 0).copied().unwrap_or(passes[passes.len() - 1]);
+        // Measure where the last pass runs at full depth, in the middle of the thread.
+        let (lo, hi) = last.full_depth_range();
+        let mid = 0.5 * (lo + hi);
+        let k = ((mid - last.z_start) / last.lead).round();
+        let z_ref = last.z_start + k * last.lead;
+        let s = sweep(&setup, &passes, Window::around(z_ref, t.pitch, 4.0), UnionStrategy::BalancedTree)?;
+        let measurement = measure(&ms, &s.section.profile(), z_ref)?;
+        (last.x_at(z_ref), false, Cut { passes, section: s.section, z_ref, measurement })
+    } else {
+        match spec.final_x {
+            Some(x) if !x.is_finite() => {
+                return Err(Error::Input(format!("final X {x} is not a finite number")))
             }
-            (x, true, cut)
+            Some(x) => (x, false, run(x)?),
+            None => {
+                // X and d2 move one for one, so a few corrections converge to well below 0.01 µm.
+                let mut x = initial_final_x(&t, kind, &insert, target);
+                let mut cut = run(x)?;
+                for _ in 0..6 {
+                    let err = target - cut.measurement.pitch_diameter;
+                    if err.abs() < 1e-8 {
+                        break;
+                    }
+                    x += err;
+                    cut = run(x)?;
+                }
+                (x, true, cut)
+            }
         }
     };
     let metrics = pass_metrics(&setup, &cut.passes, cut.z_ref)?;

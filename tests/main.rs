@@ -5,6 +5,7 @@
 //! Tests read reference data only from `tests/data/` (each file names its sources), never from
 //! `../shared`.
 
+mod gcode;
 mod limits;
 mod sweep;
 mod verify;

@@ -218,3 +218,48 @@ fn verify_errors_are_one_line() {
         assert!(line.contains(part), "{args:?}: {line}");
     }
 }
+
+/// A Fanuc G76 with the full-profile depth (X = d3 = 8.160, P = 0.6134·P = 920 µm) cut with a
+/// partial insert: the V stops 7H/8 − r − h3 = 0.1766 mm short of the depth that gives basic d2,
+/// so d2 ≈ 9.026 + 0.353 = 9.379, over its maximum 8.994 by about 385 µm.
+#[test]
+fn partial_insert_with_a_full_profile_g76_program() {
+    let prog = data("programs/fanuc-m10-full-depth-g76.nc");
+    let (code, v) = json_of(&[
+        "verify",
+        "--thread",
+        "M10x1.5-6g",
+        "--insert",
+        "partial",
+        "--program",
+        prog.to_str().unwrap(),
+        "--dialect",
+        "fanuc",
+    ]);
+    assert_eq!(code, 1);
+    let c = check(&v, "pitch_diameter");
+    let dev = c["deviation_um"].as_f64().unwrap();
+    assert!(dev > 300.0, "{dev}");
+    assert!((dev - 385.2).abs() < 1.5, "{dev}");
+    // Every pass points back to the G76 line of the program.
+    assert!(v["passes"].as_array().unwrap().iter().all(|p| p["source_line"] == 6));
+}
+
+/// The same program with the full-profile insert it was written for: d2 = basic 9.026, which
+/// is 32 µm over 6g's 8.994 (the program has no allowance for es).
+#[test]
+fn full_profile_insert_with_the_same_program() {
+    let prog = data("programs/fanuc-m10-full-depth-g76.nc");
+    let (code, v) = json_of(&[
+        "verify",
+        "--thread",
+        "M10x1.5-6g",
+        "--insert",
+        "full",
+        "--program",
+        prog.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1);
+    let dev = check(&v, "pitch_diameter")["deviation_um"].as_f64().unwrap();
+    assert!((dev - 32.0).abs() < 0.5, "{dev}");
+}
