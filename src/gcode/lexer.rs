@@ -362,10 +362,11 @@ mod tests {
         .unwrap();
         assert_eq!(b.len(), 3);
         assert_eq!(b[1].line, 3);
-        let p = &b[1].words[1];
+        // Sequence numbers stay in the block as N words.
+        let p = &b[1].words[2];
         assert_eq!((p.name.as_str(), p.val.clone()), ("P", Val::Num { v: 11060.0, point: false }));
-        assert_eq!(b[2].words[1].val, Val::Num { v: 8.16, point: true });
-        assert_eq!(b[2].words[2].col, 17);
+        assert_eq!(b[2].words[2].val, Val::Num { v: 8.16, point: true });
+        assert_eq!(b[2].words[2].col, 9);
     }
 
     #[test]
@@ -382,10 +383,10 @@ mod tests {
             Dialect::Sinumerik,
         )
         .unwrap();
-        assert_eq!(b[0].words[0].val, Val::Expr("R3 - 0.05 ".into()));
-        assert_eq!(b[1].words[1].name, "X");
-        assert_eq!(b[1].words[1].val, Val::Expr("R3 ".into()));
-        assert_eq!(b[1].words[2].num(), Some(2.0));
+        assert_eq!(b[0].words[1].val, Val::Expr("R3 - 0.05 ".into()));
+        assert_eq!(b[1].words[2].name, "X");
+        assert_eq!(b[1].words[2].val, Val::Expr("R3 ".into()));
+        assert_eq!(b[1].words[3].num(), Some(2.0));
         assert_eq!(b[2].words[0].name, "L");
         match &b[3].words[0].val {
             Val::Args(a) => assert_eq!((a.len(), a[1].0.clone()), (9, None)),
