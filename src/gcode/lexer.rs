@@ -267,8 +267,8 @@ fn sinumerik_word(
             skip_spaces(chars, i);
             let start = *i;
             expression_end(chars, i);
-            let expr: String = chars[start..*i].iter().collect();
-            if expr.trim().is_empty() {
+            let expr: String = chars[start..*i].iter().collect::<String>().trim().to_string();
+            if expr.is_empty() {
                 return Err((ln, start + 1, format!("{name}= has no value")));
             }
             Ok(Word { name, val: Val::Expr(expr), col })
@@ -383,9 +383,9 @@ mod tests {
             Dialect::Sinumerik,
         )
         .unwrap();
-        assert_eq!(b[0].words[1].val, Val::Expr("R3 - 0.05 ".into()));
+        assert_eq!(b[0].words[1].val, Val::Expr("R3 - 0.05".into()));
         assert_eq!(b[1].words[2].name, "X");
-        assert_eq!(b[1].words[2].val, Val::Expr("R3 ".into()));
+        assert_eq!(b[1].words[2].val, Val::Expr("R3".into()));
         assert_eq!(b[1].words[3].num(), Some(2.0));
         assert_eq!(b[2].words[0].name, "L");
         match &b[3].words[0].val {
