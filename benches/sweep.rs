@@ -31,6 +31,9 @@ fn plan(n: usize, infeed: Infeed) -> Vec<Pass> {
         first_depth: None,
         min_depth: 0.0,
         finish: 0.0,
+        taper: 0.0,
+        chamfer_leads: 0.0,
+        left_hand: false,
         z_start: 6.0,
         length: 12.0,
     }

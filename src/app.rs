@@ -296,6 +296,23 @@ impl PassesJob {
                 );
                 (thread, prog.passes, header)
             }
+            (None, _) if self.spec.final_x.is_some() => {
+                // With the final X given, the plan is laid out without cutting it.
+                let r = crate::verify::resolve(&self.spec)?;
+                let x = self.spec.final_x.unwrap_or_default();
+                let passes = r.plan(x).generate()?;
+                let header = format!(
+                    "{} {}: {} passes, blank X{:.4}, final X{x:.4}\n",
+                    r.designation.text,
+                    r.kind.name(),
+                    passes.len(),
+                    r.blank
+                );
+                let t = &r.designation.thread;
+                let thread = json!({"designation": r.designation.text, "form": t.form.name(), "kind": r.kind.name(),
+                    "pitch": t.pitch, "lead": t.lead(), "starts": t.starts, "class": r.limits.class});
+                (thread, passes, header)
+            }
             (None, _) => {
                 let v = crate::verify::verify(&self.spec)?;
                 let header = format!(

@@ -54,8 +54,14 @@ fn from_coords(ls: &LineString<f64>) -> Vec<Point> {
     remove_spikes(v)
 }
 
-/// Removes zero-width spikes: vertices where the ring runs out along a line and straight back,
-/// and vertices within 1e-7 mm of their neighbour.
+/// Distance (mm) under which a vertex counts as lying on the line through its neighbours: a few
+/// backend grid steps, far below the offset of a real arc vertex (about four times the chord
+/// tolerance, which is at least [`crate::geometry::MIN_TOLERANCE`]).
+pub const COLLINEAR: f64 = 2e-8;
+
+/// Removes zero-width spikes (vertices where the ring runs out along a line and straight back),
+/// vertices within 1e-7 mm of their neighbour, and vertices within [`COLLINEAR`] of the line
+/// through their neighbours.
 /// The backend leaves them where two operands share a collinear edge (a trailing flank sliding
 /// along the finished flank); they enclose no area but would count twice as boundary.
 fn remove_spikes(mut v: Vec<Point>) -> Vec<Point> {
@@ -64,6 +70,9 @@ fn remove_spikes(mut v: Vec<Point>) -> Vec<Point> {
         changed = false;
         let n = v.len();
         for i in 0..n {
+            if v.len() < 3 {
+                break;
+            }
             let (a, b, c) = (v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
             let (u, w) = (b - a, c - b);
             let (lu, lw) = (u.z.hypot(u.r), w.z.hypot(w.r));
@@ -79,6 +88,18 @@ fn remove_spikes(mut v: Vec<Point>) -> Vec<Point> {
                 v.remove(i);
                 changed = true;
                 break;
+            }
+            // A vertex within COLLINEAR of the line through its neighbours is one the backend
+            // inserted where nearly coincident edges crossed (repeated passes snapped on
+            // different grids); it lies on a chord, and a 3-point radius through it is wrong.
+            let base = a.distance(c);
+            if base > 0.0 && dot > 0.0 {
+                let off = ((c.z - a.z) * (b.r - a.r) - (c.r - a.r) * (b.z - a.z)).abs() / base;
+                if off < COLLINEAR {
+                    v.remove(i);
+                    changed = true;
+                    break;
+                }
             }
         }
     }

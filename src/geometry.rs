@@ -56,6 +56,10 @@ pub fn rad(diameter: f64) -> f64 {
     0.5 * diameter
 }
 
+/// Smallest chord tolerance accepted, mm (0.001 µm): finer would put arc vertices within the
+/// backend's snapping noise.
+pub const MIN_TOLERANCE: f64 = 1e-6;
+
 /// Default chord tolerance for arcs, mm: 0.05 µm, so that tessellation stays well inside the
 /// 0.1 µm accuracy budget of every measured value.
 pub const DEFAULT_TOLERANCE: f64 = 5e-5;

@@ -33,6 +33,7 @@
 //!     surface_x: 9.85, final_x, passes: 8,
 //!     schedule: Schedule::ConstantArea, infeed: Infeed::Flank { angle: 29.5 },
 //!     spring: 1, first_depth: None, min_depth: 0.0, finish: 0.0,
+//!     taper: 0.0, chamfer_leads: 0.0, left_hand: false,
 //!     z_start: 2.0, length: 20.0,
 //! }.generate()?;
 //! let setup = SweepSetup { kind: ThreadKind::External, insert: &insert, blank_diameter: 9.85, pitch: 1.5 };

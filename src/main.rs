@@ -90,6 +90,15 @@ struct PlanArgs {
     /// constant-area | constant-depth | sandvik
     #[arg(long, default_value = "constant-area")]
     schedule: String,
+    /// Explicit cumulative radial depths, mm, e.g. 0.2,0.35,0.45 (instead of a schedule).
+    #[arg(long, value_name = "LIST", conflicts_with_all = ["passes", "first_depth"])]
+    depths: Option<String>,
+    /// Taper: diameter change per mm of travel, e.g. 0.0625 for 1:16 (passes only).
+    #[arg(long, value_name = "RATIO")]
+    taper: Option<String>,
+    /// Run-out chamfer at the thread end, in leads.
+    #[arg(long, value_name = "LEADS")]
+    chamfer: Option<String>,
     /// Tip diameter of the last pass (default: what puts the pitch diameter mid-tolerance).
     #[arg(long, value_name = "DIA")]
     final_x: Option<String>,
@@ -125,6 +134,12 @@ impl PlanArgs {
         s.finish = opt(&self.finish, "--finish")?.unwrap_or(0.0);
         s.spring = self.spring;
         s.schedule = parse_schedule(&self.schedule)?;
+        if let Some(list) = &self.depths {
+            let d = list.split(',').map(|x| parse_len(x, "--depths")).collect::<Result<Vec<f64>, _>>()?;
+            s.schedule = threadcheck::passes::Schedule::Explicit(d);
+        }
+        s.taper = opt(&self.taper, "--taper")?.unwrap_or(0.0);
+        s.chamfer_leads = opt(&self.chamfer, "--chamfer")?.unwrap_or(0.0);
         s.final_x = opt(&self.final_x, "--final-x")?;
         s.blank_diameter = opt(&self.blank_diameter, "--blank-diameter")?;
         s.gauge_only = gauge_only;

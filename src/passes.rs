@@ -252,6 +252,12 @@ pub struct PlanSpec {
     /// Finishing allowance, mm: the rough passes stop this short of the final depth and one
     /// finishing pass takes it; 0 for none.
     pub finish: f64,
+    /// Diameter change per mm of travel along the feed (taper threads); 0 for parallel.
+    pub taper: f64,
+    /// Run-out chamfer at the thread end, in leads: X ramps back to the surface over that length.
+    pub chamfer_leads: f64,
+    /// Left-hand thread: the tool feeds towards +Z (away from the chuck).
+    pub left_hand: bool,
     /// Z where each move starts (for start 0 and zero offset), mm.
     pub z_start: f64,
     /// Length of the threading move, mm (it ends at `z_start − length`).
@@ -354,27 +360,32 @@ impl PlanSpec {
                 per_start, self.starts
             )));
         }
-        let dir = -1.0;
+        for (name, v) in [("taper", self.taper), ("chamfer", self.chamfer_leads)] {
+            if !v.is_finite() || (name == "chamfer" && v < 0.0) {
+                return Err(Error::Input(format!("{name} {v} is not usable")));
+            }
+        }
+        let dir = if self.left_hand { 1.0 } else { -1.0 };
         let offsets = infeed_offsets(self.infeed, &depths, dir);
         let sign = self.kind.depth_sign();
         let lead = self.pitch * f64::from(self.starts);
         let mut out = Vec::with_capacity(per_start * self.starts as usize);
         for start in 0..self.starts {
-            let z0 = self.z_start + f64::from(start) * self.pitch;
+            let z0 = self.z_start - dir * f64::from(start) * self.pitch;
             let mut push = |depth: f64, off: f64| {
                 let x = self.surface_x + 2.0 * sign * depth;
                 out.push(Pass {
                     index: out.len() + 1,
                     x_start: x,
-                    x_end: x,
+                    x_end: x + self.taper * self.length,
                     z_start: z0 + off,
-                    z_end: z0 + off - self.length,
+                    z_end: z0 + off + dir * self.length,
                     lead,
                     start,
                     source_line: None,
                     taper_in: 0.0,
-                    taper_out: 0.0,
-                    x_taper: x,
+                    taper_out: self.chamfer_leads * lead,
+                    x_taper: self.surface_x + self.taper * self.length,
                 });
             };
             for (d, o) in depths.iter().zip(&offsets) {
@@ -418,6 +429,36 @@ mod tests {
     }
 
     #[test]
+    fn left_hand_taper_and_chamfer() {
+        let spec = PlanSpec {
+            kind: ThreadKind::External,
+            pitch: 1.5,
+            starts: 1,
+            surface_x: 20.0,
+            final_x: 18.0,
+            passes: 4,
+            schedule: Schedule::ConstantDepth,
+            infeed: Infeed::Flank { angle: 30.0 },
+            spring: 0,
+            first_depth: None,
+            min_depth: 0.0,
+            finish: 0.0,
+            taper: 1.0 / 16.0,
+            chamfer_leads: 1.5,
+            left_hand: true,
+            z_start: -30.0,
+            length: 20.0,
+        };
+        let p = spec.generate().unwrap();
+        let last = p[3];
+        // Feed towards +Z; the flank offset goes with the feed; 1:16 on the diameter over 20 mm.
+        assert!((last.z_end - last.z_start - 20.0).abs() < 1e-12);
+        assert!((last.z_start - (-30.0 + 1.0 * 30f64.to_radians().tan())).abs() < 1e-12);
+        assert!((last.x_end - last.x_start - 1.25).abs() < 1e-12);
+        assert!((last.taper_out - 2.25).abs() < 1e-12 && (last.x_taper - 21.25).abs() < 1e-12);
+    }
+
+    #[test]
     fn tapers_ramp_to_the_crest() {
         let mut p = Pass::parallel(1, 9.0, 0.0, -10.0, 1.5);
         p.taper_out = 2.0;
@@ -452,6 +493,9 @@ mod tests {
             first_depth: Some(0.3),
             min_depth: 0.0,
             finish: 0.0,
+            taper: 0.0,
+            chamfer_leads: 0.0,
+            left_hand: false,
             z_start: 0.0,
             length: 10.0,
         };
@@ -483,12 +527,16 @@ mod tests {
             first_depth: None,
             min_depth: 0.0,
             finish: 0.0,
+            taper: 0.0,
+            chamfer_leads: 0.0,
+            left_hand: false,
             z_start: 1.0,
             length: 20.0,
         };
         let p = spec.generate().unwrap();
         assert_eq!(p.len(), 14);
         assert_eq!(p[6].x_start, p[5].x_start);
+        // The second start begins one pitch back against the feed (−Z feed: at +2 mm).
         assert!((p[7].z_start - 3.0).abs() < 1e-12 && p[7].start == 1 && p[7].lead == 4.0);
     }
 }

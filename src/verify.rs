@@ -50,6 +50,11 @@ pub struct VerifySpec {
     pub finish: f64,
     /// Spring passes.
     pub spring: usize,
+    /// Diameter change per mm of travel (taper threads; `passes` only, `verify` checks parallel
+    /// threads).
+    pub taper: f64,
+    /// Run-out chamfer at the thread end, in leads.
+    pub chamfer_leads: f64,
     /// Depth schedule.
     pub schedule: Schedule,
     /// Tip diameter of the last pass, mm; `None` solves for the middle of the pitch-diameter
@@ -78,6 +83,8 @@ impl VerifySpec {
             first_depth: None,
             min_depth: 0.0,
             finish: 0.0,
+            taper: 0.0,
+            chamfer_leads: 0.0,
             spring: 0,
             schedule: Schedule::ConstantArea,
             final_x: None,
@@ -255,6 +262,15 @@ fn initial_final_x(t: &BasicThread, kind: ThreadKind, ins: &Insert, target: f64)
     }
 }
 
+/// Where to measure: the groove of the last pass of the first start, on the crossing nearest the
+/// middle of its full-depth stretch (clear of run-in and run-out).
+pub fn reference_groove(passes: &[Pass]) -> f64 {
+    let Some(last) = passes.iter().rev().find(|p| p.start == 0).or(passes.last()) else { return 0.0 };
+    let (lo, hi) = last.full_depth_range();
+    let k = ((0.5 * (lo + hi) - last.z_start) / last.lead).round();
+    last.z_start + k * last.lead
+}
+
 struct Cut {
     passes: Vec<Pass>,
     section: Section,
@@ -281,10 +297,60 @@ fn text_of(bytes: &[u8], file: &str) -> Result<String, Error> {
     })
 }
 
-/// Runs `verify`.
-pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
-    if !(spec.tolerance.is_finite() && spec.tolerance > 0.0 && spec.tolerance <= 0.01) {
-        return Err(Error::Input(format!("chord tolerance {} mm must be in (0, 0.01]", spec.tolerance)));
+/// A spec resolved against the standards: everything but the passes.
+#[derive(Clone, Debug)]
+pub struct Resolved {
+    /// The designation.
+    pub designation: Designation,
+    /// External or internal.
+    pub kind: ThreadKind,
+    /// The class's limits.
+    pub limits: ThreadLimits,
+    /// The insert.
+    pub insert: Insert,
+    /// Blank or bore diameter, mm.
+    pub blank: f64,
+    /// Infeed.
+    pub infeed: Infeed,
+    /// Notes so far.
+    pub notes: Vec<String>,
+    spec: VerifySpec,
+}
+
+impl Resolved {
+    /// The generated plan that ends with its tip on diameter `final_x`.
+    pub fn plan(&self, final_x: f64) -> PlanSpec {
+        let t = &self.designation.thread;
+        let s = &self.spec;
+        PlanSpec {
+            kind: self.kind,
+            pitch: t.pitch,
+            starts: t.starts,
+            surface_x: self.blank,
+            final_x,
+            passes: s.passes.unwrap_or_else(|| default_pass_count(t.pitch)),
+            schedule: s.schedule.clone(),
+            infeed: self.infeed,
+            spring: s.spring,
+            first_depth: s.first_depth,
+            min_depth: s.min_depth,
+            finish: s.finish,
+            taper: s.taper,
+            chamfer_leads: s.chamfer_leads,
+            left_hand: t.hand == crate::Hand::Left,
+            z_start: 0.0,
+            length: 10.0 * t.lead(),
+        }
+    }
+}
+
+/// Resolves a spec: designation, kind, limits, insert, blank and infeed.
+pub fn resolve(spec: &VerifySpec) -> Result<Resolved, Error> {
+    if !(spec.tolerance.is_finite()
+        && spec.tolerance >= crate::geometry::MIN_TOLERANCE
+        && spec.tolerance <= 0.01)
+    {
+        return Err(Error::Input(format!("chord tolerance {} mm must be from 1e-6 to 0.01", spec.tolerance)));
     }
     let des =
         parse_designation(&spec.designation, ParseOptions { allow_nonstandard: spec.allow_nonstandard })?;
@@ -300,25 +366,22 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
         None => default_blank(&t, kind, &limits, &insert),
     };
     let infeed = spec.infeed.unwrap_or(Infeed::Flank { angle: 0.5 * t.form.flank_angle() - 0.5 });
-    let passes_n = spec.passes.unwrap_or_else(|| default_pass_count(t.pitch));
-    let mut notes = limits.notes.clone();
+    let notes = limits.notes.clone();
+    Ok(Resolved { designation: des, kind, limits, insert, blank, infeed, notes, spec: spec.clone() })
+}
+
+/// Runs `verify`.
+pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
+    if spec.taper != 0.0 {
+        return Err(Error::Input("verify checks parallel threads against ISO 965-1, BS 84 and ISO 228-1; --taper is for `threadcheck passes`".into()));
+    }
+    let r = resolve(spec)?;
+    let (des, kind, limits, insert, blank, infeed) =
+        (r.designation.clone(), r.kind, r.limits.clone(), r.insert.clone(), r.blank, r.infeed);
+    let mut notes = r.notes.clone();
+    let t = des.thread;
     let lead = t.lead();
-    let plan = |final_x: f64| PlanSpec {
-        kind,
-        pitch: t.pitch,
-        starts: t.starts,
-        surface_x: blank,
-        final_x,
-        passes: passes_n,
-        schedule: spec.schedule.clone(),
-        infeed,
-        spring: spec.spring,
-        first_depth: spec.first_depth,
-        min_depth: spec.min_depth,
-        finish: spec.finish,
-        z_start: 0.0,
-        length: 10.0 * lead,
-    };
+    let plan = |final_x: f64| r.plan(final_x);
     let setup = SweepSetup { kind, insert: &insert, blank_diameter: blank, pitch: t.pitch };
     let mmc = match kind {
         ThreadKind::External => limits.pitch_diameter.max,
@@ -327,9 +390,7 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
     let ms = MeasureSetup { thread: &t, kind, mmc_pitch_diameter: mmc };
     let run = |final_x: f64| -> Result<Cut, Error> {
         let passes = plan(final_x).generate()?;
-        // The groove of the last pass of the first start, in the middle of the virtual length.
-        let last = passes.iter().rev().find(|p| p.start == 0).copied().unwrap_or(passes[passes.len() - 1]);
-        let z_ref = last.z_start - 5.0 * lead;
+        let z_ref = reference_groove(&passes);
         let window = Window::around(z_ref, t.pitch, 4.0);
         let s = sweep(&setup, &passes, window, UnionStrategy::BalancedTree)?;
         let measurement = measure(&ms, &s.section.profile(), z_ref)?;
@@ -372,12 +433,8 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
             });
         }
         let passes = prog.passes;
+        let z_ref = reference_groove(&passes);
         let last = passes.iter().rev().find(|p| p.start == 0).copied().unwrap_or(passes[passes.len() - 1]);
-        // Measure where the last pass runs at full depth, in the middle of the thread.
-        let (lo, hi) = last.full_depth_range();
-        let mid = 0.5 * (lo + hi);
-        let k = ((mid - last.z_start) / last.lead).round();
-        let z_ref = last.z_start + k * last.lead;
         let s = sweep(&setup, &passes, Window::around(z_ref, t.pitch, 4.0), UnionStrategy::BalancedTree)?;
         let measurement = measure(&ms, &s.section.profile(), z_ref)?;
         (last.x_at(z_ref), false, Cut { passes, section: s.section, z_ref, measurement })

@@ -209,3 +209,18 @@ proptest! {
         let _ = read_program(&parts.concat(), "fuzz.nc", dialect);
     }
 }
+
+/// CYCLE97 VARI 2 (internal, constant depth): DM is the tap-hole diameter and the cut goes
+/// outwards; TDEP 0.812 (H1 of P 1.5) in 4 equal steps, no allowance, one idle pass:
+/// X = 18.376 + 2·0.812·i/4, then once more at full depth.
+#[test]
+fn sinumerik_cycle97_internal_cuts_outwards_from_the_tap_hole() {
+    let p = prog("sinumerik-cycle97-internal.mpf", Dialect::Sinumerik);
+    assert_eq!(p.passes.len(), 5);
+    for (i, pass) in p.passes.iter().enumerate() {
+        let d = 0.812 * ((i + 1).min(4) as f64) / 4.0;
+        assert!((pass.x_start - (18.376 + 2.0 * d)).abs() < 1e-9, "pass {}: {}", i + 1, pass.x_start);
+        assert_eq!(pass.z_start, 2.0);
+        assert_eq!(pass.z_end, -21.0);
+    }
+}

@@ -41,6 +41,9 @@ fn cut(
         first_depth: None,
         min_depth: 0.0,
         finish: 0.0,
+        taper: 0.0,
+        chamfer_leads: 0.0,
+        left_hand: false,
         z_start: 5.0 * t.lead(),
         length: 10.0 * t.lead(),
     };
@@ -196,6 +199,9 @@ fn build(
         first_depth: None,
         min_depth: 0.0,
         finish: 0.0,
+        taper: 0.0,
+        chamfer_leads: 0.0,
+        left_hand: false,
         z_start: 6.0 * t.pitch + phase,
         length: 12.0 * t.pitch,
     };
@@ -306,6 +312,9 @@ fn metrics(
         first_depth: None,
         min_depth: 0.0,
         finish: 0.0,
+        taper: 0.0,
+        chamfer_leads: 0.0,
+        left_hand: false,
         z_start: 6.0 * t.pitch,
         length: 12.0 * t.pitch,
     };
@@ -356,5 +365,44 @@ fn flank_infeed_engages_only_the_leading_edge() {
         let trailing = (d - prev) / b.cos();
         near(pm.trailing, trailing, 1e-6, &format!("pass {} trailing", i + 1));
         prev = *d;
+    }
+}
+
+/// Regression: repeated passes at one position (spring passes, a finishing pass plus idle passes)
+/// made the backend insert vertices on the root arc's chords, and the smallest root radius of a
+/// full-profile M20x2.5 dropped from H/6 = 0.3608 to 0.136. It must stay H/6 whatever the number
+/// of repeats.
+#[test]
+fn regression_repeated_passes_fake_a_small_root_radius() {
+    let t = thread("M20x2.5");
+    let ins = Insert::full_profile(&t, ThreadKind::External, TOL);
+    let d3 = 20.0 - 1.226869 * 2.5;
+    for spring in 0..4 {
+        let spec = PlanSpec {
+            kind: ThreadKind::External,
+            pitch: 2.5,
+            starts: 1,
+            surface_x: 20.1,
+            final_x: d3,
+            passes: 9,
+            schedule: Schedule::ConstantArea,
+            infeed: Infeed::Flank { angle: 29.5 },
+            spring,
+            first_depth: None,
+            min_depth: 0.0,
+            finish: 0.0,
+            taper: 0.0,
+            chamfer_leads: 0.0,
+            left_hand: false,
+            z_start: 12.5,
+            length: 25.0,
+        };
+        let passes = spec.generate().unwrap();
+        let z = threadcheck::verify::reference_groove(&passes);
+        let setup = SweepSetup { kind: ThreadKind::External, insert: &ins, blank_diameter: 20.1, pitch: 2.5 };
+        let s = sweep(&setup, &passes, Window::around(z, 2.5, 4.0), UnionStrategy::BalancedTree).unwrap();
+        let ms = MeasureSetup { thread: &t, kind: ThreadKind::External, mmc_pitch_diameter: None };
+        let m = measure(&ms, &s.section.profile(), z).unwrap();
+        near(m.root_radius.unwrap(), 0.144338 * 2.5, 1e-3, &format!("{spring} spring passes"));
     }
 }

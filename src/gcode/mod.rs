@@ -882,7 +882,8 @@ impl<'a> Machine<'a> {
     /// CYCLE97(PIT, MPIT, SPL, FPL, DM1, DM2, APP, ROP, TDEP, FAL, IANG, NSP, NRC, NID, VARI, NUMT).
     ///
     /// PIT is the pitch; with NUMT starts the lead is NUMT·PIT and the starts are one pitch
-    /// apart. VARI 1/3 external, 2/4 internal; 1/2 constant depth, 3/4 constant chip area.
+    /// apart. VARI 1/3 external, 2/4 internal (DM1/DM2 are then the tap-hole diameters);
+    /// 1/2 constant depth, 3/4 constant chip area.
     /// NRC rough passes to TDEP − FAL, one finishing pass at TDEP, NID idle passes. IANG > 0
     /// infeeds along one flank, IANG < 0 alternates flanks.
     fn cycle97(&mut self, b: &Block, w: &Word) -> Result<(), Error> {
@@ -959,7 +960,9 @@ impl<'a> Machine<'a> {
         for start in 0..numt as u32 {
             let phase = f64::from(start) * pitch + nsp / 360.0 * lead;
             for (d, off) in depths.iter().zip(&offsets) {
-                let xd = |dm: f64| if external { dm - 2.0 * d } else { dm - 2.0 * (tdep - d) };
+                // External: DM is the major diameter, cut inwards. Internal: DM is the tap-hole
+                // diameter, cut outwards (Sinumerik cycle documentation).
+                let xd = |dm: f64| if external { dm - 2.0 * d } else { dm + 2.0 * d };
                 self.push_pass(Pass {
                     index: 0,
                     x_start: xd(d1),
