@@ -275,8 +275,7 @@ impl PassesJob {
         let (thread, passes, header) = match (&self.spec.program, self.spec.designation.is_empty()) {
             (Some((path, dialect)), no_thread) => {
                 let shown = path.display().to_string();
-                let text = std::fs::read_to_string(path)
-                    .map_err(|e| Error::Io { path: shown.clone(), message: e.to_string() })?;
+                let text = crate::verify::read_program_text(path)?;
                 let prog = crate::gcode::read_program(&text, &shown, *dialect)?;
                 let thread = if no_thread {
                     serde_json::Value::Null

@@ -76,13 +76,13 @@ struct PlanArgs {
     #[arg(long, conflicts_with = "first_depth")]
     passes: Option<usize>,
     /// Depth of the first pass, mm (sets the pass count).
-    #[arg(long, value_name = "MM")]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     first_depth: Option<String>,
     /// Smallest radial step, mm.
-    #[arg(long, value_name = "MM")]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     min_depth: Option<String>,
     /// Finishing allowance, mm.
-    #[arg(long, value_name = "MM")]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     finish: Option<String>,
     /// Spring (idle) passes at full depth.
     #[arg(long, default_value_t = 0)]
@@ -94,16 +94,16 @@ struct PlanArgs {
     #[arg(long, value_name = "LIST", conflicts_with_all = ["passes", "first_depth"])]
     depths: Option<String>,
     /// Taper: diameter change per mm of travel, e.g. 0.0625 for 1:16 (passes only).
-    #[arg(long, value_name = "RATIO")]
+    #[arg(long, value_name = "RATIO", allow_hyphen_values = true)]
     taper: Option<String>,
     /// Run-out chamfer at the thread end, in leads.
     #[arg(long, value_name = "LEADS")]
     chamfer: Option<String>,
     /// Tip diameter of the last pass (default: what puts the pitch diameter mid-tolerance).
-    #[arg(long, value_name = "DIA")]
+    #[arg(long, value_name = "DIA", allow_hyphen_values = true)]
     final_x: Option<String>,
     /// Blank (external) or bore (internal) diameter, mm.
-    #[arg(long, value_name = "MM")]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true)]
     blank_diameter: Option<String>,
     /// Take the passes from this G-code program.
     #[arg(long, value_name = "FILE")]

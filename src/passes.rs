@@ -275,6 +275,12 @@ impl PlanSpec {
 
     /// Cumulative radial depths of the cutting passes (mm), rough then finish.
     pub fn depths(&self) -> Result<Vec<f64>, Error> {
+        if self.final_x < 0.0 {
+            return Err(Error::Geometry(format!(
+                "final X{:.4} lies beyond the spindle axis: X is a diameter and cannot be negative",
+                self.final_x
+            )));
+        }
         let total = self.total_depth();
         if !(total.is_finite() && total > 0.0) {
             return Err(Error::Geometry(format!(

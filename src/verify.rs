@@ -192,9 +192,9 @@ fn build_insert(choice: &InsertChoice, t: &BasicThread, kind: ThreadKind, tol: f
             let limit = t.root_radius();
             if *tip_radius > limit {
                 return Err(Error::Geometry(format!(
-                    "tip radius {tip_radius} mm is larger than the thread allows: the largest root radius of a {} P{} thread is {limit:.4} mm",
-                    t.form.name(),
-                    t.pitch
+                    "tip radius {tip_radius} mm is larger than the thread allows: the largest root radius at pitch {} mm ({} form) is {limit:.4} mm",
+                    t.pitch,
+                    t.form.name()
                 )));
             }
             Insert::partial_for(t, *tip_radius, tol)?
@@ -278,8 +278,25 @@ struct Cut {
     measurement: Measurement,
 }
 
+/// Reads a program file as text, bounded in size, refusing binary files.
+pub fn read_program_text(path: &std::path::Path) -> Result<String, Error> {
+    let shown = path.display().to_string();
+    let meta =
+        std::fs::metadata(path).map_err(|e| Error::Io { path: shown.clone(), message: e.to_string() })?;
+    if meta.len() > crate::limits::MAX_PROGRAM_BYTES as u64 {
+        return Err(Error::Program {
+            file: shown,
+            line: 1,
+            column: 1,
+            message: format!("the program is larger than {} bytes", crate::limits::MAX_PROGRAM_BYTES),
+        });
+    }
+    let bytes = std::fs::read(path).map_err(|e| Error::Io { path: shown.clone(), message: e.to_string() })?;
+    text_of(&bytes, &shown)
+}
+
 /// The text of a program file: UTF-8 (a byte-order mark is fine), no NUL bytes.
-fn text_of(bytes: &[u8], file: &str) -> Result<String, Error> {
+pub fn text_of(bytes: &[u8], file: &str) -> Result<String, Error> {
     let at = |offset: usize, message: String| {
         let before = &bytes[..offset];
         let line = before.iter().filter(|&&b| b == b'\n').count() + 1;

@@ -5,6 +5,7 @@
 //! Tests read reference data only from `tests/data/` (each file names its sources), never from
 //! `../shared`.
 
+mod bad_inputs;
 mod gcode;
 mod limits;
 mod sweep;

@@ -31,6 +31,8 @@ pub struct Word {
     pub val: Val,
     /// 1-based column of the word's first character.
     pub col: usize,
+    /// The word as written (`P1.950`), for messages.
+    pub text: String,
 }
 
 impl Word {
@@ -150,7 +152,9 @@ fn lex_line(line: &str, ln: usize, dialect: Dialect, out: &mut Vec<Block>) -> Re
                     break;
                 }
                 let word = if dialect == Dialect::Sinumerik {
-                    sinumerik_word(&chars, &mut i, letters, col, ln)?
+                    let mut w = sinumerik_word(&chars, &mut i, letters, col, ln)?;
+                    w.text = chars[start..i].iter().collect();
+                    w
                 } else {
                     if letters.len() > 1 {
                         return Err((
@@ -160,7 +164,12 @@ fn lex_line(line: &str, ln: usize, dialect: Dialect, out: &mut Vec<Block>) -> Re
                         ));
                     }
                     let (v, point) = number(&chars, &mut i, ln, &letters)?;
-                    Word { name: letters, val: Val::Num { v, point }, col }
+                    Word {
+                        name: letters,
+                        val: Val::Num { v, point },
+                        col,
+                        text: chars[start..i].iter().collect(),
+                    }
                 };
                 block.words.push(word);
             }
@@ -221,6 +230,23 @@ fn number(chars: &[char], i: &mut usize, ln: usize, name: &str) -> Result<(f64, 
     if digits == 0 {
         return Err((ln, col, format!("word {name} has no number")));
     }
+    // `X1e309` would otherwise read as X1 and an E word: G-code has no exponents.
+    if *i + 1 < chars.len()
+        && matches!(chars[*i], 'e' | 'E')
+        && (chars[*i + 1].is_ascii_digit()
+            || (matches!(chars[*i + 1], '+' | '-') && chars.get(*i + 2).is_some_and(|c| c.is_ascii_digit())))
+    {
+        let mut j = *i + 1;
+        while j < chars.len() && (chars[j].is_ascii_alphanumeric() || matches!(chars[j], '+' | '-' | '.')) {
+            j += 1;
+        }
+        let all: String = chars[start..j].iter().collect();
+        return Err((
+            ln,
+            col - name.len(),
+            format!("{name}{all}: G-code numbers have no exponent; write the value in full"),
+        ));
+    }
     let v: f64 = text.parse().map_err(|_| (ln, col, format!("'{name}{text}' is not a number")))?;
     if !v.is_finite() {
         return Err((ln, col, format!("'{name}{text}' is not a finite number")));
@@ -258,7 +284,7 @@ fn sinumerik_word(
         // fraction: `X10.5`.
         *i = dstart;
         let (v, point) = number(chars, i, ln, &letters)?;
-        return Ok(Word { name, val: Val::Num { v, point }, col });
+        return Ok(Word { name, val: Val::Num { v, point }, col, text: String::new() });
     }
     name.push_str(&digits);
     match next {
@@ -271,7 +297,7 @@ fn sinumerik_word(
             if expr.is_empty() {
                 return Err((ln, start + 1, format!("{name}= has no value")));
             }
-            Ok(Word { name, val: Val::Expr(expr), col })
+            Ok(Word { name, val: Val::Expr(expr), col, text: String::new() })
         }
         Some('(') => {
             let close = chars[after..].iter().position(|&c| c == ')').ok_or((
@@ -288,13 +314,13 @@ fn sinumerik_word(
                 c0 += part.chars().count() + 1;
             }
             *i = after + close + 1;
-            Ok(Word { name, val: Val::Args(args), col })
+            Ok(Word { name, val: Val::Args(args), col, text: String::new() })
         }
         _ if letters.len() == 1 && digits.is_empty() && is_number_start(chars.get(*i)) => {
             let (v, point) = number(chars, i, ln, &letters)?;
-            Ok(Word { name, val: Val::Num { v, point }, col })
+            Ok(Word { name, val: Val::Num { v, point }, col, text: String::new() })
         }
-        _ => Ok(Word { name, val: Val::Bare, col }),
+        _ => Ok(Word { name, val: Val::Bare, col, text: String::new() }),
     }
 }
 

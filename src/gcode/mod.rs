@@ -522,7 +522,11 @@ impl<'a> Machine<'a> {
                     Val::Num { v, point: true } => Err(this.werr(
                         b,
                         w,
-                        format!("G76 {n}{v} has a decimal point, but {what} is read in least-input increments (µm): write {n}{}", (v * 1000.0).round() as i64),
+                        format!(
+                            "G76 {} has a decimal point, but {what} is read in least-input increments (µm): write {n}{}",
+                            w.text,
+                            (v * 1000.0).round() as i64
+                        ),
                     )),
                     _ => Err(this.werr(b, w, format!("G76 {n} needs a number"))),
                 },
