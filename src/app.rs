@@ -364,3 +364,36 @@ impl PassesJob {
         Ok((text, Outcome::Pass))
     }
 }
+
+/// `threadcheck compare`: the same thread with every infeed strategy.
+#[derive(Clone, Debug)]
+pub struct CompareJob {
+    /// Thread, insert and plan (infeed and schedule are varied).
+    pub spec: crate::verify::VerifySpec,
+    /// Modified-flank angles, degrees.
+    pub modified: Vec<f64>,
+    /// JSON on stdout.
+    pub json: bool,
+    /// Write the table as Markdown here.
+    pub markdown: Option<std::path::PathBuf>,
+}
+
+impl CompareJob {
+    /// Runs the job.
+    pub fn run(&self) -> Result<(String, Outcome), Error> {
+        let c = crate::compare::compare(&self.spec, &self.modified)?;
+        let md = crate::compare::markdown(&c);
+        let out = if self.json {
+            let mut s = serde_json::to_string_pretty(&crate::compare::to_json(&c))
+                .map_err(|e| Error::Data(e.to_string()))?;
+            s.push('\n');
+            s
+        } else {
+            crate::compare::text(&c)
+        };
+        if let Some(p) = &self.markdown {
+            crate::output::write_atomic(p, md.as_bytes())?;
+        }
+        Ok((out, Outcome::Pass))
+    }
+}

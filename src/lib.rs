@@ -52,6 +52,7 @@
 pub mod app;
 pub mod boolean;
 pub mod check;
+pub mod compare;
 pub mod error;
 pub mod gcode;
 pub mod geometry;

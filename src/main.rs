@@ -6,7 +6,8 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use threadcheck::app::{
-    parse_infeed, parse_insert, parse_len, parse_schedule, LimitsJob, Outcome, PassesJob, VerifyJob,
+    parse_infeed, parse_insert, parse_len, parse_schedule, CompareJob, LimitsJob, Outcome, PassesJob,
+    VerifyJob,
 };
 use threadcheck::verify::VerifySpec;
 
@@ -44,6 +45,28 @@ enum Command {
         /// Write the JSON report to this file, or `-` for stdout.
         #[arg(long, value_name = "FILE|-")]
         json: Option<String>,
+    },
+    /// The same thread with radial, flank, modified-flank and alternating infeed.
+    Compare {
+        #[command(flatten)]
+        plan: PlanArgs,
+        /// Modified-flank angles, degrees (comma-separated).
+        #[arg(long, default_value = "29.5,27", value_name = "ANGLES")]
+        modified: String,
+        /// Print JSON: every verify report and the per-strategy figures.
+        #[arg(long)]
+        json: bool,
+        /// Write the table as Markdown to this file.
+        #[arg(long, value_name = "FILE")]
+        markdown: Option<PathBuf>,
+    },
+    /// Regenerate a committed report (`infeed-comparison`).
+    Report {
+        /// Which report: infeed-comparison.
+        name: String,
+        /// Folder to write it and its pictures into.
+        #[arg(long, default_value = "reports")]
+        out: PathBuf,
     },
     /// Print the expanded pass plan.
     Passes {
@@ -159,6 +182,28 @@ fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
             VerifyJob { spec: plan.spec(gauge_only)?, svg, json }.run()?
         }
         Command::Passes { plan, json } => PassesJob { spec: plan.spec(false)?, json }.run()?,
+        Command::Report { name, out } => {
+            if name != "infeed-comparison" {
+                return Err(threadcheck::Error::Input(format!(
+                    "unknown report '{name}': expected infeed-comparison"
+                )));
+            }
+            threadcheck::compare::write_report(&out)?;
+            (format!("wrote {}\n", out.join("infeed-comparison.md").display()), Outcome::Pass)
+        }
+        Command::Compare { plan, modified, json, markdown } => {
+            if plan.thread.is_none() {
+                return Err(threadcheck::Error::Input(
+                    "compare needs --thread with a class, e.g. --thread M10x1.5-6g".into(),
+                ));
+            }
+            let modified = modified
+                .split(',')
+                .filter(|s| !s.trim().is_empty())
+                .map(|a| parse_len(a, "--modified"))
+                .collect::<Result<Vec<f64>, _>>()?;
+            CompareJob { spec: plan.spec(false)?, modified, json, markdown }.run()?
+        }
     };
     let mut out = std::io::stdout().lock();
     // A closed pipe (`| head`) is not an error worth a message.

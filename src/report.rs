@@ -60,6 +60,7 @@ pub fn verify_json(v: &Verification) -> Value {
                 "chip_area": pm.chip_area,
                 "engaged_edge": {"leading": pm.leading, "trailing": pm.trailing, "tip": pm.tip},
                 "max_chip_thickness": pm.max_chip_thickness,
+                "trailing_area": pm.trailing_area,
                 "source_line": p.source_line,
             })
         })

@@ -305,6 +305,9 @@ pub struct PassMetrics {
     /// Largest chip thickness: the greatest distance from the removed material to the new
     /// surface, measured normal to the cutting edge, mm.
     pub max_chip_thickness: f64,
+    /// Part of the chip area on the trailing side of the tip (behind it, against the feed),
+    /// mm²: about half the chip for radial infeed, little for flank infeed.
+    pub trailing_area: f64,
 }
 
 /// Per-pass metrics at the groove nearest `z_ref`, in cutting order.
@@ -346,6 +349,10 @@ pub fn pass_metrics(setup: &SweepSetup<'_>, passes: &[Pass], z_ref: f64) -> Resu
         let material = blank.difference(&before);
         let chip = imprint.intersection(&material);
         let mut m = PassMetrics { chip_area: chip.area(), ..PassMetrics::default() };
+        if m.chip_area > 0.0 {
+            let (z0, z1) = if pass.feed_direction() < 0.0 { (z, window.z_max) } else { (window.z_min, z) };
+            m.trailing_area = chip.intersection(&Region::rect(z0, z1, r0, r1)).area();
+        }
         if m.chip_area > 0.0 {
             let mut closed = outline.clone();
             closed.push(outline[0]);

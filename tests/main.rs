@@ -7,6 +7,7 @@
 
 mod bad_inputs;
 mod gcode;
+mod infeed_comparison;
 mod limits;
 mod sweep;
 mod verify;
