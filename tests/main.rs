@@ -9,6 +9,7 @@ mod bad_inputs;
 mod gcode;
 mod infeed_comparison;
 mod limits;
+mod properties;
 mod sweep;
 mod verify;
 
