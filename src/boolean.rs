@@ -34,6 +34,10 @@ pub enum UnionStrategy {
     Unary,
     /// Pairwise as a balanced binary tree, neighbours first; levels run in parallel.
     BalancedTree,
+    /// No union at all: the sweep takes the lower envelope of the imprints
+    /// ([`crate::envelope`]). For a plain union of regions it is the balanced tree; the sweep falls
+    /// back to the tree for inserts whose underside is not a function of z.
+    Envelope,
 }
 
 fn to_coords(ring: &[Point]) -> LineString<f64> {
@@ -194,7 +198,7 @@ pub fn union_all(regions: Vec<Region>, strategy: UnionStrategy) -> Region {
             let polys: Vec<Polygon<f64>> = regions.into_iter().flat_map(|r| r.0 .0).collect();
             Region(geo::unary_union(&polys).orient(Direction::Default))
         }
-        UnionStrategy::BalancedTree => {
+        UnionStrategy::BalancedTree | UnionStrategy::Envelope => {
             let mut level = regions;
             while level.len() > 1 {
                 let pair = |c: &[Region]| if c.len() == 2 { c[0].union(&c[1]) } else { c[0].clone() };

@@ -53,6 +53,7 @@ pub mod app;
 pub mod boolean;
 pub mod check;
 pub mod compare;
+pub mod envelope;
 pub mod error;
 pub mod gcode;
 pub mod geometry;

@@ -71,6 +71,8 @@ pub struct Section {
     /// Radius of the artificial far side of the blank (floor or ceiling), mm.
     pub far_r: f64,
     region: Region,
+    /// The cut surface when the envelope computed it exactly.
+    exact_profile: Option<Vec<Point>>,
 }
 
 impl Section {
@@ -93,6 +95,9 @@ impl Section {
     /// window's sides and the far side. Where the section falls apart into pieces, the longest
     /// stretch is returned.
     pub fn profile(&self) -> Vec<Point> {
+        if let Some(p) = &self.exact_profile {
+            return p.clone();
+        }
         let eps = 1e-6;
         let w = self.window;
         let artificial = |a: Point, b: Point| {
@@ -244,6 +249,12 @@ pub fn sweep(
         }
     }
     let far_r = far_side(kind, surface_r, height);
+    if strategy == UnionStrategy::Envelope {
+        if let Some(chain) = crate::envelope::bottom_chain(&setup.insert.outline) {
+            let section = envelope_section(kind, &chain, &imps, window, surface_r, far_r);
+            return Ok(Sweep { section, imprints: imps });
+        }
+    }
     let (r0, r1) = if kind == ThreadKind::External { (far_r, surface_r) } else { (surface_r, far_r) };
     let blank = Region::rect(window.z_min, window.z_max, r0, r1);
     let mut sorted = imps.clone();
@@ -259,7 +270,40 @@ pub fn sweep(
             return Err(Error::Geometry("the section has a non-finite vertex".into()));
         }
     }
-    Ok(Sweep { section: Section { kind, window, surface_r, far_r, region: material }, imprints: imps })
+    Ok(Sweep {
+        section: Section { kind, window, surface_r, far_r, region: material, exact_profile: None },
+        imprints: imps,
+    })
+}
+
+/// The section as the lower envelope of the imprints' bottom chains (normalised frame: `y = r`
+/// external, `y = −r` internal, where an internal placement also mirrors the insert in z).
+fn envelope_section(
+    kind: ThreadKind,
+    chain: &[Point],
+    imps: &[Imprint],
+    window: Window,
+    surface_r: f64,
+    far_r: f64,
+) -> Section {
+    use crate::envelope::Chain;
+    let s = if kind == ThreadKind::External { 1.0 } else { -1.0 };
+    let mut env = Chain::flat(window.z_min, window.z_max, s * surface_r);
+    let mut sorted = imps.to_vec();
+    sorted.sort_by(|a, b| a.z.total_cmp(&b.z));
+    let mirrored: Vec<Point> = chain.iter().rev().map(|p| Point::new(-p.z, p.r)).collect();
+    let local = if kind == ThreadKind::External { chain } else { &mirrored[..] };
+    let mut f: Vec<Point> = Vec::with_capacity(local.len());
+    for im in &sorted {
+        let (zt, yt) = (im.z, s * rad(im.x));
+        f.clear();
+        f.extend(local.iter().map(|p| Point::new(zt + p.z, yt + p.r)));
+        env = env.min_with(&f);
+    }
+    let profile: Vec<Point> = env.0.iter().map(|p| Point::new(p.z, s * p.r)).collect();
+    let mut ring = vec![Point::new(window.z_min, far_r), Point::new(window.z_max, far_r)];
+    ring.extend(profile.iter().rev().copied());
+    Section { kind, window, surface_r, far_r, region: Region::from_ring(&ring), exact_profile: Some(profile) }
 }
 
 /// The greatest distance from segment `a`–`b` to `line`. Distance to a polyline, taken along a

@@ -409,7 +409,7 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
         let passes = plan(final_x).generate()?;
         let z_ref = reference_groove(&passes);
         let window = Window::around(z_ref, t.pitch, 4.0);
-        let s = sweep(&setup, &passes, window, UnionStrategy::BalancedTree)?;
+        let s = sweep(&setup, &passes, window, UnionStrategy::Envelope)?;
         let measurement = measure(&ms, &s.section.profile(), z_ref)?;
         Ok(Cut { passes, section: s.section, z_ref, measurement })
     };
@@ -452,7 +452,7 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
         let passes = prog.passes;
         let z_ref = reference_groove(&passes);
         let last = passes.iter().rev().find(|p| p.start == 0).copied().unwrap_or(passes[passes.len() - 1]);
-        let s = sweep(&setup, &passes, Window::around(z_ref, t.pitch, 4.0), UnionStrategy::BalancedTree)?;
+        let s = sweep(&setup, &passes, Window::around(z_ref, t.pitch, 4.0), UnionStrategy::Envelope)?;
         let measurement = measure(&ms, &s.section.profile(), z_ref)?;
         (last.x_at(z_ref), false, Cut { passes, section: s.section, z_ref, measurement })
     } else {

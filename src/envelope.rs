@@ -1,0 +1,224 @@
+//! The as-cut surface as the lower envelope of the imprints, without polygon booleans.
+//!
+//! In the normalised frame (material below; `y = r` for external threads, `y = −r` for internal
+//! ones) an imprint removes everything above its **bottom chain**, the part of the insert
+//! outline from its leftmost to its rightmost point along the underside. When that chain is a
+//! function of `z` (true for V, rounded-V and full-profile inserts), the cut surface is the
+//! pointwise minimum of the blank's top and every bottom chain: a lower envelope of
+//! piecewise-linear functions. Merging one chain into the envelope costs time proportional to the
+//! part of the envelope under that chain, so the cost per pass stays flat however many passes
+//! there are, and the arithmetic is plain `f64` with no snapping grid.
+//!
+//! A chain is a polyline with non-decreasing `z`; equal `z` on consecutive vertices is a
+//! vertical step (where an imprint's domain begins or ends).
+
+use crate::geometry::Point;
+
+/// A lower envelope (or any chain) in the normalised frame: vertices with non-decreasing `z`.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Chain(pub Vec<Point>);
+
+impl Chain {
+    /// The constant function `y` over `[z0, z1]`.
+    pub fn flat(z0: f64, z1: f64, y: f64) -> Chain {
+        Chain(vec![Point::new(z0, y), Point::new(z1, y)])
+    }
+
+    /// The value just left of `z` (the left limit at a vertical step).
+    fn left(&self, z: f64) -> f64 {
+        let v = &self.0;
+        // First vertex with z' >= z.
+        let i = v.partition_point(|p| p.z < z);
+        if i == 0 {
+            return v[0].r;
+        }
+        if i >= v.len() {
+            return v[v.len() - 1].r;
+        }
+        let (a, b) = (v[i - 1], v[i]);
+        if b.z == a.z {
+            return a.r;
+        }
+        a.r + (z - a.z) / (b.z - a.z) * (b.r - a.r)
+    }
+
+    /// The value just right of `z` (the right limit at a vertical step).
+    fn right(&self, z: f64) -> f64 {
+        let v = &self.0;
+        // First vertex with z' > z.
+        let i = v.partition_point(|p| p.z <= z);
+        if i == 0 {
+            return v[0].r;
+        }
+        if i >= v.len() {
+            return v[v.len() - 1].r;
+        }
+        let (a, b) = (v[i - 1], v[i]);
+        if b.z == a.z {
+            return b.r;
+        }
+        a.r + (z - a.z) / (b.z - a.z) * (b.r - a.r)
+    }
+
+    /// The pointwise minimum of `self` and `f`, where `f` is defined on `[f.first.z, f.last.z]`
+    /// (and has no effect outside). `f` must have strictly increasing `z`.
+    pub fn min_with(&self, f: &[Point]) -> Chain {
+        let v = &self.0;
+        let (lo, hi) = (f[0].z.max(v[0].z), f[f.len() - 1].z.min(v[v.len() - 1].z));
+        if !(hi > lo) {
+            return self.clone();
+        }
+        let fc = Chain(f.to_vec());
+        let i0 = v.partition_point(|p| p.z < lo);
+        let i1 = v.partition_point(|p| p.z <= hi);
+        let mut out: Vec<Point> = Vec::with_capacity(v.len() + f.len() + 4);
+        out.extend_from_slice(&v[..i0]);
+        let mut zs: Vec<f64> = Vec::with_capacity(i1 - i0 + f.len() + 2);
+        zs.push(lo);
+        zs.extend(v[i0..i1].iter().map(|p| p.z));
+        zs.extend(f.iter().map(|p| p.z).filter(|z| *z > lo && *z < hi));
+        zs.push(hi);
+        zs.sort_by(f64::total_cmp);
+        zs.dedup();
+        // The imprint acts on its own domain only: where that domain starts (not where the
+        // envelope's window cuts it) the left limit is the envelope's, where it ends the right
+        // limit is.
+        let (own_start, own_end) = (f[0].z >= v[0].z, f[f.len() - 1].z <= v[v.len() - 1].z);
+        let (last_k, n) = (zs.len() - 1, zs.len());
+        for k in 0..n {
+            let z = zs[k];
+            let left = if k == 0 && own_start { self.left(z) } else { self.left(z).min(fc.left(z)) };
+            let right = if k == last_k && own_end { self.right(z) } else { self.right(z).min(fc.right(z)) };
+            out.push(Point::new(z, left));
+            // A real step (an imprint's end, a vertical in either chain), not rounding noise.
+            if (right - left).abs() > STEP {
+                out.push(Point::new(z, right));
+            }
+            if k < last_k {
+                let zb = zs[k + 1];
+                let (da, db) = (self.right(z) - fc.right(z), self.left(zb) - fc.left(zb));
+                if (da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0) {
+                    let t = da / (da - db);
+                    let (ea, eb) = (self.right(z), self.left(zb));
+                    out.push(Point::new(z + t * (zb - z), ea + t * (eb - ea)));
+                }
+            }
+        }
+        out.extend_from_slice(&v[i1..]);
+        Chain(simplify(out))
+    }
+}
+
+/// Steps smaller than this (mm) are rounding between a left and a right evaluation, not steps.
+const STEP: f64 = 1e-12;
+
+/// Removes repeated vertices and vertices exactly on the line through their neighbours (on a
+/// stretch with increasing z). Merging emits such points where one chain's vertex falls on the
+/// other's segment; on an arc they would sit on a chord and spoil a 3-point root radius.
+fn simplify(v: Vec<Point>) -> Vec<Point> {
+    let mut out: Vec<Point> = Vec::with_capacity(v.len());
+    for p in v {
+        if let Some(&last) = out.last() {
+            if (last.z - p.z).abs() <= STEP && (last.r - p.r).abs() <= STEP {
+                continue;
+            }
+            if out.len() >= 2 {
+                let a = out[out.len() - 2];
+                if a.z < last.z && last.z < p.z {
+                    let cross = (last.z - a.z) * (p.r - a.r) - (last.r - a.r) * (p.z - a.z);
+                    // Distance of `last` from the line a–p under 1e-10 mm: on it, to rounding.
+                    let len = (p.z - a.z).hypot(p.r - a.r);
+                    if cross.abs() <= 1e-10 * len {
+                        out.pop();
+                    }
+                }
+            }
+        }
+        out.push(p);
+    }
+    out
+}
+
+/// The bottom chain of a counter-clockwise outline (insert frame: `r` up into the tool): from its
+/// leftmost to its rightmost vertex along the underside, with strictly increasing `z`; `None`
+/// when the underside doubles back (an undercut), which the envelope cannot represent.
+pub fn bottom_chain(outline: &[Point]) -> Option<Vec<Point>> {
+    let n = outline.len();
+    if n < 3 {
+        return None;
+    }
+    // Leftmost vertex (the lowest of ties) and rightmost vertex (the lowest of ties).
+    let pick = |better: &dyn Fn(Point, Point) -> bool| {
+        (0..n).fold(0, |b, i| if better(outline[i], outline[b]) { i } else { b })
+    };
+    let left = pick(&|p, q| p.z < q.z || (p.z == q.z && p.r < q.r));
+    let right = pick(&|p, q| p.z > q.z || (p.z == q.z && p.r < q.r));
+    // Counter-clockwise, the underside runs from the leftmost to the rightmost vertex.
+    let mut chain = Vec::new();
+    let mut i = left;
+    loop {
+        chain.push(outline[i]);
+        if i == right {
+            break;
+        }
+        i = (i + 1) % n;
+        if chain.len() > n {
+            return None;
+        }
+    }
+    chain.windows(2).all(|w| w[1].z > w[0].z).then_some(chain)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn min_of_a_flat_and_a_v() {
+        let e = Chain::flat(-2.0, 2.0, 1.0);
+        let v = [Point::new(-1.0, 2.0), Point::new(0.0, 0.0), Point::new(1.0, 2.0)];
+        let m = e.min_with(&v);
+        // Flat at 1 until the V crosses it at z = ±0.5, down to 0 at z = 0.
+        let want = [(-2.0, 1.0), (-0.5, 1.0), (0.0, 0.0), (0.5, 1.0), (2.0, 1.0)];
+        assert_eq!(m.0.len(), want.len(), "{m:?}");
+        for (p, (z, r)) in m.0.iter().zip(want) {
+            assert!((p.z - z).abs() < 1e-15 && (p.r - r).abs() < 1e-15, "{m:?}");
+        }
+    }
+
+    #[test]
+    fn a_step_where_an_imprint_domain_ends() {
+        let e = Chain::flat(0.0, 4.0, 1.0);
+        let m = e.min_with(&[Point::new(1.0, 0.5), Point::new(2.0, 0.5)]);
+        assert_eq!(
+            m.0,
+            vec![
+                Point::new(0.0, 1.0),
+                Point::new(1.0, 1.0),
+                Point::new(1.0, 0.5),
+                Point::new(2.0, 0.5),
+                Point::new(2.0, 1.0),
+                Point::new(4.0, 1.0)
+            ]
+        );
+        // Merging the same imprint again changes nothing.
+        assert_eq!(m.min_with(&[Point::new(1.0, 0.5), Point::new(2.0, 0.5)]), m);
+    }
+
+    #[test]
+    fn bottom_chain_of_a_v_and_of_an_undercut() {
+        let v = [Point::new(-1.0, 2.0), Point::new(0.0, 0.0), Point::new(1.0, 2.0)];
+        assert_eq!(bottom_chain(&v).unwrap(), v.to_vec());
+        // An undercut: the underside runs right to z = 2, back to z = 1, then on to z = 3.
+        let hook = [
+            Point::new(0.0, 0.0),
+            Point::new(2.0, 0.0),
+            Point::new(1.0, 0.5),
+            Point::new(3.0, 0.2),
+            Point::new(3.0, 2.0),
+            Point::new(0.0, 2.0),
+        ];
+        assert!(crate::geometry::signed_area(&hook) > 0.0);
+        assert_eq!(bottom_chain(&hook), None);
+    }
+}
