@@ -56,7 +56,12 @@ fn one_thread(c: &mut Criterion) {
                 SweepSetup { kind: ThreadKind::External, insert: &ins, blank_diameter: 9.85, pitch: 1.5 };
             let z = groove(&passes);
             let s = sweep(&setup, &passes, Window::around(z, 1.5, 4.0), UnionStrategy::BalancedTree).unwrap();
-            let ms = MeasureSetup { thread: &t, kind: ThreadKind::External, mmc_pitch_diameter: Some(8.994) };
+            let ms = MeasureSetup {
+                thread: &t,
+                kind: ThreadKind::External,
+                mmc_pitch_diameter: Some(8.994),
+                extras: true,
+            };
             black_box(measure(&ms, &s.section.profile(), z).unwrap())
         })
     });
@@ -111,7 +116,12 @@ fn measurement(c: &mut Criterion) {
     let z = groove(&passes);
     let s = sweep(&setup, &passes, Window::around(z, 1.5, 4.0), UnionStrategy::BalancedTree).unwrap();
     let profile = s.section.profile();
-    let ms = MeasureSetup { thread: &t, kind: ThreadKind::External, mmc_pitch_diameter: Some(8.994) };
+    let ms = MeasureSetup {
+        thread: &t,
+        kind: ThreadKind::External,
+        mmc_pitch_diameter: Some(8.994),
+        extras: true,
+    };
     c.bench_function("measure M10x1.5", |b| b.iter(|| black_box(measure(&ms, &profile, z).unwrap())));
 }
 

@@ -397,3 +397,107 @@ impl CompareJob {
         Ok((out, Outcome::Pass))
     }
 }
+
+/// `threadcheck sweep`: the catalogue in parallel.
+#[derive(Clone, Debug)]
+pub struct SweepJob {
+    /// What to sweep.
+    pub spec: crate::catalogue::CatalogueSpec,
+    /// JSON Lines: one verify report per case.
+    pub json: bool,
+    /// Write every case's blank, insert placements and measured d2 here (JSON Lines), for an
+    /// outside baseline to redo the cut.
+    pub export_placements: Option<std::path::PathBuf>,
+}
+
+impl SweepJob {
+    /// Runs the job: the report on stdout, the summary line last (on stderr with `--json`).
+    pub fn run(&self) -> Result<(String, String, Outcome), Error> {
+        let start = std::time::Instant::now();
+        let cases = crate::catalogue::cases(&self.spec)?;
+        if cases.is_empty() {
+            return Err(Error::Input("the catalogue selection is empty".into()));
+        }
+        let results = crate::catalogue::run(&cases);
+        let (mut pass, mut fail) = (0usize, 0usize);
+        let mut out = String::new();
+        let mut export = String::new();
+        for (c, r) in cases.iter().zip(&results) {
+            match r {
+                Ok(v) => {
+                    if v.pass {
+                        pass += 1;
+                    } else {
+                        fail += 1;
+                    }
+                    if self.json {
+                        out.push_str(
+                            &serde_json::to_string(&crate::report::verify_json(v))
+                                .map_err(|e| Error::Data(e.to_string()))?,
+                        );
+                        out.push('\n');
+                    } else if !v.pass {
+                        let failed: Vec<String> = v
+                            .checks
+                            .iter()
+                            .filter(|k| !k.ok && (!v.gauge_only || k.kind == crate::check::CheckKind::Size))
+                            .map(|k| {
+                                if k.deviation_um != 0.0 {
+                                    format!("{} {:+.1} µm", k.feature, k.deviation_um)
+                                } else {
+                                    k.feature.to_string()
+                                }
+                            })
+                            .collect();
+                        let _ = writeln!(out, "FAIL {}: {}", c.label, failed.join(", "));
+                    }
+                    if self.export_placements.is_some() {
+                        export.push_str(&placements_line(&c.label, v)?);
+                    }
+                }
+                Err(e) => {
+                    fail += 1;
+                    if self.json {
+                        let _ = writeln!(out, "{}", json!({"case": c.label, "error": e.to_string()}));
+                    } else {
+                        let _ = writeln!(out, "ERROR {}: {e}", c.label);
+                    }
+                }
+            }
+        }
+        if let Some(p) = &self.export_placements {
+            crate::output::write_atomic(p, export.as_bytes())?;
+        }
+        let summary = format!(
+            "{} cases, {pass} pass, {fail} fail, {:.3} s\n",
+            cases.len(),
+            start.elapsed().as_secs_f64()
+        );
+        Ok((out, summary, Outcome::Pass))
+    }
+}
+
+fn placements_line(label: &str, v: &crate::verify::Verification) -> Result<String, Error> {
+    let t = &v.designation.thread;
+    let setup = crate::sweep::SweepSetup {
+        kind: v.kind,
+        insert: &v.insert,
+        blank_diameter: v.blank_diameter,
+        pitch: t.pitch,
+    };
+    let window = crate::sweep::Window::around(v.z_ref, t.pitch, 4.0);
+    let (blank, rings) = crate::sweep::placements(&setup, &v.passes, window)?;
+    let ring = |r: &[crate::Point]| r.iter().map(|p| [p.z, p.r]).collect::<Vec<_>>();
+    let mut s = serde_json::to_string(&json!({
+        "case": label,
+        "kind": v.kind.name(),
+        "pitch": t.pitch,
+        "z_ref": v.z_ref,
+        "blank": ring(&blank),
+        "placements": rings.iter().map(|r| ring(r)).collect::<Vec<_>>(),
+        "pitch_diameter": v.measurement.pitch_diameter,
+    }))
+    .map_err(|e| Error::Data(e.to_string()))?;
+    s.push('\n');
+    Ok(s)
+}

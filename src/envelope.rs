@@ -73,13 +73,25 @@ impl Chain {
         let i1 = v.partition_point(|p| p.z <= hi);
         let mut out: Vec<Point> = Vec::with_capacity(v.len() + f.len() + 4);
         out.extend_from_slice(&v[..i0]);
+        // Events: every vertex z of both in [lo, hi], merged from the two sorted lists.
         let mut zs: Vec<f64> = Vec::with_capacity(i1 - i0 + f.len() + 2);
         zs.push(lo);
-        zs.extend(v[i0..i1].iter().map(|p| p.z));
-        zs.extend(f.iter().map(|p| p.z).filter(|z| *z > lo && *z < hi));
+        let (mut a, mut b) = (i0, 0);
+        while a < i1 || b < f.len() {
+            let za = if a < i1 { v[a].z } else { f64::INFINITY };
+            let zb = if b < f.len() { f[b].z } else { f64::INFINITY };
+            let z = if za <= zb {
+                a += 1;
+                za
+            } else {
+                b += 1;
+                zb
+            };
+            if z > lo && z < hi && zs.last().is_none_or(|l| *l != z) {
+                zs.push(z);
+            }
+        }
         zs.push(hi);
-        zs.sort_by(f64::total_cmp);
-        zs.dedup();
         // The imprint acts on its own domain only: where that domain starts (not where the
         // envelope's window cuts it) the left limit is the envelope's, where it ends the right
         // limit is.

@@ -60,6 +60,39 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         markdown: Option<PathBuf>,
     },
+    /// Verify the ISO 261 catalogue (M1–M68, coarse and fine) in parallel.
+    Sweep {
+        /// coarse | fine | all
+        #[arg(long, default_value = "all")]
+        series: String,
+        /// Smallest nominal diameter, mm.
+        #[arg(long, default_value_t = 1.0)]
+        min_d: f64,
+        /// Largest nominal diameter, mm.
+        #[arg(long, default_value_t = 68.0)]
+        max_d: f64,
+        /// Tolerance class of the external thread.
+        #[arg(long, default_value = "6g")]
+        class: String,
+        /// full | partial | both
+        #[arg(long, default_value = "both")]
+        insert: String,
+        /// Comma-separated infeeds: radial, flank, modified (29.5°), alternating.
+        #[arg(long, default_value = "radial,flank,modified,alternating")]
+        infeed: String,
+        /// Comma-separated schedules: constant-area, constant-depth, sandvik.
+        #[arg(long, default_value = "constant-area,constant-depth")]
+        schedule: String,
+        /// Leave form checks out of the verdicts.
+        #[arg(long)]
+        gauge_only: bool,
+        /// One verify report per line (JSON Lines); the summary goes to stderr.
+        #[arg(long)]
+        json: bool,
+        /// Write each case's blank, placements and measured d2 here (JSON Lines).
+        #[arg(long, value_name = "FILE")]
+        export_placements: Option<PathBuf>,
+    },
     /// Regenerate a committed report (`infeed-comparison`).
     Report {
         /// Which report: infeed-comparison.
@@ -182,6 +215,70 @@ fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
             VerifyJob { spec: plan.spec(gauge_only)?, svg, json }.run()?
         }
         Command::Passes { plan, json } => PassesJob { spec: plan.spec(false)?, json }.run()?,
+        Command::Sweep {
+            series,
+            min_d,
+            max_d,
+            class,
+            insert,
+            infeed,
+            schedule,
+            gauge_only,
+            json,
+            export_placements,
+        } => {
+            let mut spec = threadcheck::catalogue::CatalogueSpec::default();
+            (spec.coarse, spec.fine) = match series.as_str() {
+                "coarse" => (true, false),
+                "fine" => (false, true),
+                "all" => (true, true),
+                _ => {
+                    return Err(threadcheck::Error::Input(format!(
+                        "--series '{series}': expected coarse, fine or all"
+                    )))
+                }
+            };
+            if !(min_d.is_finite() && max_d.is_finite() && min_d <= max_d) {
+                return Err(threadcheck::Error::Input(
+                    "--min-d and --max-d must be finite with min ≤ max".into(),
+                ));
+            }
+            spec.diameters = (min_d, max_d);
+            spec.class = class;
+            (spec.full, spec.partial) = match insert.as_str() {
+                "full" => (true, false),
+                "partial" => (false, true),
+                "both" => (true, true),
+                _ => {
+                    return Err(threadcheck::Error::Input(format!(
+                        "--insert '{insert}': expected full, partial or both"
+                    )))
+                }
+            };
+            spec.infeeds = infeed
+                .split(',')
+                .map(|i| match i.trim() {
+                    "radial" => Ok(threadcheck::passes::Infeed::Radial),
+                    "flank" => Ok(threadcheck::passes::Infeed::Flank { angle: 30.0 }),
+                    "modified" => Ok(threadcheck::passes::Infeed::Flank { angle: 29.5 }),
+                    "alternating" => Ok(threadcheck::passes::Infeed::Alternating { angle: 30.0 }),
+                    other => Err(threadcheck::Error::Input(format!(
+                        "--infeed '{other}': expected radial, flank, modified or alternating"
+                    ))),
+                })
+                .collect::<Result<_, _>>()?;
+            spec.schedules =
+                schedule.split(',').map(|s| parse_schedule(s.trim())).collect::<Result<_, _>>()?;
+            spec.gauge_only = gauge_only;
+            let (out, summary, outcome) =
+                threadcheck::app::SweepJob { spec, json, export_placements }.run()?;
+            if json {
+                eprint!("{summary}");
+                (out, outcome)
+            } else {
+                (out + &summary, outcome)
+            }
+        }
         Command::Report { name, out } => {
             if name != "infeed-comparison" {
                 return Err(threadcheck::Error::Input(format!(

@@ -230,9 +230,37 @@ fn golden_min(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64, iters: usize) -> (
 }
 
 /// The lowest a ball of radius `rw` can sit in the groove: its centre height and axial position.
-fn wire_rest(g: &Groove, rw: f64) -> Option<(f64, f64)> {
+/// Where a ball of radius `rw` rests on two straight flanks `z = a + b·y` (low-Z flank, b < 0
+/// going down) and `z = c + d·y`: the point at distance `rw` from both lines, inside the groove.
+fn rest_on_lines(left: (f64, f64), right: (f64, f64), rw: f64) -> Option<(f64, f64)> {
+    // Line z − b·y − a = 0 has unit normal (1, −b)/√(1 + b²); inside the groove is +z of the
+    // low-Z flank and −z of the high-Z flank.
+    let ((a, b), (c, d)) = (left, right);
+    let (nl, nr) = ((1.0 + b * b).sqrt(), (1.0 + d * d).sqrt());
+    // z − b·y − a = rw·nl and −(z − d·y − c) = rw·nr.
+    let det = (-b) - (-d);
+    if det.abs() < 1e-12 {
+        return None;
+    }
+    let y = ((c - rw * nr) - (a + rw * nl)) / (b - d);
+    let z = a + rw * nl + b * y;
+    (z.is_finite() && y.is_finite()).then_some((z, y))
+}
+
+/// The lowest a ball of radius `rw` can sit in the groove: its centre's axial position and
+/// height. On straight flanks the centre is where the flank lines offset by `rw` meet; that is
+/// accepted only when parry finds no part of the profile nearer than `rw` (the wire touches the
+/// flanks, not the root or a crest). Otherwise the ball is dropped onto the profile with parry
+/// shape casts and the lowest resting place found by golden section.
+fn wire_rest(g: &Groove, rw: f64, flanks: ((f64, f64), (f64, f64))) -> Option<(f64, f64)> {
     let chain = &g.pts[g.left..=g.right];
     let line = polyline(chain);
+    if let Some((z, y)) = rest_on_lines(flanks.0, flanks.1, rw) {
+        let d = line.distance_to_local_point(&PPoint::new(z, y), false);
+        if (d - rw).abs() < 1e-9 {
+            return Some((z, y));
+        }
+    }
     let ball = Ball::new(rw);
     let top = chain.iter().map(|p| p.r).fold(f64::NEG_INFINITY, f64::max) + 2.0 * rw + 1.0;
     let drop = |z: f64| -> f64 {
@@ -252,47 +280,68 @@ fn wire_rest(g: &Groove, rw: f64) -> Option<(f64, f64)> {
         }
     };
     let (z0, z1) = (g.pts[g.left].z, g.pts[g.right].z);
-    let (z, y) = golden_min(&drop, z0, z1, 80);
+    let (z, y) = golden_min(&drop, z0, z1, 56);
     y.is_finite().then_some((z, y))
 }
 
-/// Signed clearance between the as-cut groove (both half-teeth included) and the
-/// maximum-material profile `mmc` (normalised frame, material below both).
-fn signed_clearance(cut: &[Point], mmc: &[Point]) -> f64 {
-    let (lc, lm) = (polyline(cut), polyline(mmc));
-    let above = |p: Point, other: &[Point]| -> Option<f64> {
-        // Height of `other` at p.z, if it spans it.
-        let i = other
-            .windows(2)
-            .position(|w| (w[0].z <= p.z && p.z <= w[1].z) || (w[1].z <= p.z && p.z <= w[0].z))?;
-        let (a, b) = (other[i], other[i + 1]);
+/// The as-cut groove and the maximum-material profile, each with its search tree built once,
+/// for the signed clearance at any axial shift of the gauge.
+struct Clearance {
+    cut: Vec<Point>,
+    mmc: Vec<Point>,
+    lc: Polyline,
+    lm: Polyline,
+}
+
+impl Clearance {
+    fn new(cut: Vec<Point>, mmc: Vec<Point>) -> Clearance {
+        let (lc, lm) = (polyline(&cut), polyline(&mmc));
+        Clearance { cut, mmc, lc, lm }
+    }
+
+    /// Height of `line` at `z`, if it spans it (the polylines run with non-decreasing z).
+    fn height(line: &[Point], z: f64) -> Option<f64> {
+        let j = line.partition_point(|q| q.z < z);
+        if j == 0 || j >= line.len() {
+            return (j < line.len() && line[j].z == z).then(|| line[j].r);
+        }
+        let (a, b) = (line[j - 1], line[j]);
         if a.z == b.z {
             return Some(a.r.max(b.r));
         }
-        Some(a.r + (p.z - a.z) / (b.z - a.z) * (b.r - a.r))
-    };
-    let mut penetration: f64 = 0.0;
-    let mut nearest = f64::INFINITY;
-    for &p in cut {
-        let d = lm.distance_to_local_point(&PPoint::new(p.z, p.r), false);
-        match above(p, mmc) {
-            Some(h) if p.r > h + 1e-9 => penetration = penetration.max(d),
-            Some(_) => nearest = nearest.min(d),
-            None => {}
-        }
+        Some(a.r + (z - a.z) / (b.z - a.z) * (b.r - a.r))
     }
-    for &q in mmc {
-        let d = lc.distance_to_local_point(&PPoint::new(q.z, q.r), false);
-        match above(q, cut) {
-            Some(h) if h > q.r + 1e-9 => penetration = penetration.max(d),
-            Some(_) => nearest = nearest.min(d),
-            None => {}
+
+    /// Signed clearance with the maximum-material profile moved by `dz` along the axis
+    /// (normalised frame, material below both): the smallest distance where the cut stays inside,
+    /// minus the deepest penetration where it does not.
+    fn at(&self, dz: f64) -> f64 {
+        let mut penetration: f64 = 0.0;
+        let mut nearest = f64::INFINITY;
+        for &p in &self.cut {
+            // The gauge moved by dz is the gauge at rest seen from p moved by −dz.
+            let q = Point::new(p.z - dz, p.r);
+            let d = self.lm.distance_to_local_point(&PPoint::new(q.z, q.r), false);
+            match Clearance::height(&self.mmc, q.z) {
+                Some(h) if p.r > h + 1e-9 => penetration = penetration.max(d),
+                Some(_) => nearest = nearest.min(d),
+                None => {}
+            }
         }
-    }
-    if penetration > 0.0 {
-        -penetration
-    } else {
-        nearest
+        for &m in &self.mmc {
+            let q = Point::new(m.z + dz, m.r);
+            let d = self.lc.distance_to_local_point(&PPoint::new(q.z, q.r), false);
+            match Clearance::height(&self.cut, q.z) {
+                Some(h) if h > q.r + 1e-9 => penetration = penetration.max(d),
+                Some(_) => nearest = nearest.min(d),
+                None => {}
+            }
+        }
+        if penetration > 0.0 {
+            -penetration
+        } else {
+            nearest
+        }
     }
 }
 
@@ -306,6 +355,16 @@ pub struct MeasureSetup<'a> {
     /// Maximum-material pitch diameter (external d2 max, internal D2 min), mm; with it the
     /// maximum-material profile is the basic profile moved radially to that pitch diameter.
     pub mmc_pitch_diameter: Option<f64>,
+    /// Compute the costlier extras: the three-wire M and the maximum-material clearance.
+    pub extras: bool,
+}
+
+impl MeasureSetup<'_> {
+    /// The same setup measuring sizes only (no three-wire M, no maximum-material check): what an
+    /// iteration on the final X needs.
+    pub fn sizes_only(&self) -> Self {
+        MeasureSetup { extras: false, ..*self }
+    }
 }
 
 /// Measures the groove of `profile` (part coordinates, low to high Z) nearest `z_ref`.
@@ -364,30 +423,29 @@ pub fn measure(setup: &MeasureSetup<'_>, profile: &[Point], z_ref: f64) -> Resul
         .fold(f64::INFINITY, f64::min);
     let root_radius = min_concave_radius(&g.pts[g.left..=g.right]);
     let beta = t.half_angle();
-    let three_wire = if kind == ThreadKind::External {
+    let three_wire = if kind == ThreadKind::External && setup.extras {
         let w = p / (2.0 * beta.cos());
-        wire_rest(&g, 0.5 * w).map(|(_, yc)| ThreeWire { wire: w, m: dia(yc) + w })
+        wire_rest(&g, 0.5 * w, flanks).map(|(_, yc)| ThreeWire { wire: w, m: dia(yc) + w })
     } else {
         None
     };
-    let max_material_clearance = setup.mmc_pitch_diameter.map(|d2m| {
+    let max_material_clearance = setup.mmc_pitch_diameter.filter(|_| setup.extras).map(|d2m| {
         // The maximum-material profile: the basic profile moved radially so its pitch diameter
         // is d2m, centred on the measured groove; then the best axial fit, as a gauge finds it.
         let variant = if kind == ThreadKind::External { ProfileKind::Basic } else { ProfileKind::Nut };
         let shift_r = s * 0.5 * (d2m - t.pitch_diameter());
         let one = normalise(&t.profile(variant, 5e-5), kind);
         let cut: Vec<Point> = g.pts[g.left..=g.right].to_vec();
-        let clearance = |dz: f64| -> f64 {
-            let mut mmc = Vec::new();
-            for k in -1..=1 {
-                for q in &one {
-                    mmc.push(Point::new(q.z + zc + dz + k as f64 * p, q.r + s * shift_r));
-                }
+        let mut mmc = Vec::new();
+        for k in -1..=1 {
+            for q in &one {
+                mmc.push(Point::new(q.z + zc + k as f64 * p, q.r + s * shift_r));
             }
-            mmc.dedup_by(|a, b| a.distance(*b) < 1e-12);
-            signed_clearance(&cut, &mmc)
-        };
-        let (_, neg) = golden_min(&|dz| -clearance(dz), -0.125 * p, 0.125 * p, 60);
+        }
+        mmc.dedup_by(|a, b| a.distance(*b) < 1e-12);
+        let c = Clearance::new(cut, mmc);
+        let clearance = |dz: f64| c.at(dz);
+        let (_, neg) = golden_min(&|dz| -clearance(dz), -0.125 * p, 0.125 * p, 32);
         -neg
     });
     let (major, minor) = if kind == ThreadKind::External {

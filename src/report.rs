@@ -49,20 +49,27 @@ pub fn verify_json(v: &Verification) -> Value {
     let passes: Vec<Value> = v
         .passes
         .iter()
-        .zip(&v.metrics)
-        .map(|(p, pm)| {
-            json!({
+        .enumerate()
+        .map(|(i, p)| {
+            let mut o = json!({
                 "index": p.index,
                 "x": p.x_end,
                 "z": p.z_start,
                 "depth": (rad(p.x_end) - surface).abs(),
                 "start": p.start,
-                "chip_area": pm.chip_area,
-                "engaged_edge": {"leading": pm.leading, "trailing": pm.trailing, "tip": pm.tip},
-                "max_chip_thickness": pm.max_chip_thickness,
-                "trailing_area": pm.trailing_area,
                 "source_line": p.source_line,
-            })
+            });
+            // Per-pass metrics are absent when the run skipped them (catalogue sweeps).
+            if let (Some(pm), Some(obj)) = (v.metrics.get(i), o.as_object_mut()) {
+                obj.insert("chip_area".into(), json!(pm.chip_area));
+                obj.insert(
+                    "engaged_edge".into(),
+                    json!({"leading": pm.leading, "trailing": pm.trailing, "tip": pm.tip}),
+                );
+                obj.insert("max_chip_thickness".into(), json!(pm.max_chip_thickness));
+                obj.insert("trailing_area".into(), json!(pm.trailing_area));
+            }
+            o
         })
         .collect();
     json!({

@@ -178,6 +178,29 @@ fn far_side(kind: ThreadKind, surface_r: f64, insert_height: f64) -> f64 {
     }
 }
 
+/// The blank rectangle and every placed imprint outline (part coordinates, counter-clockwise)
+/// that a sweep of `passes` over `window` works on: what a baseline with another geometry
+/// library needs to redo the cut.
+pub fn placements(
+    setup: &SweepSetup<'_>,
+    passes: &[Pass],
+    window: Window,
+) -> Result<(Vec<Point>, Vec<Vec<Point>>), Error> {
+    let imps = imprints(setup, passes, window)?;
+    let surface_r = rad(setup.blank_diameter);
+    let far_r = far_side(setup.kind, surface_r, setup.insert.height());
+    let (r0, r1) = if setup.kind == ThreadKind::External { (far_r, surface_r) } else { (surface_r, far_r) };
+    let blank = vec![
+        Point::new(window.z_min, r0),
+        Point::new(window.z_max, r0),
+        Point::new(window.z_max, r1),
+        Point::new(window.z_min, r1),
+    ];
+    let rings =
+        imps.iter().map(|im| setup.insert.placed(&Insert::placement(im.z, rad(im.x), setup.kind))).collect();
+    Ok((blank, rings))
+}
+
 /// The imprints of `passes` that touch `window`.
 pub fn imprints(setup: &SweepSetup<'_>, passes: &[Pass], window: Window) -> Result<Vec<Imprint>, Error> {
     check_finite(passes)?;

@@ -66,6 +66,9 @@ pub struct VerifySpec {
     pub gauge_only: bool,
     /// Take the passes from this G-code program instead of generating a plan.
     pub program: Option<(PathBuf, crate::gcode::Dialect)>,
+    /// Compute the per-pass chip and edge metrics (polygon booleans; reports need them, a
+    /// catalogue sweep does not).
+    pub metrics: bool,
     /// Chord tolerance for arcs, mm.
     pub tolerance: f64,
 }
@@ -91,6 +94,7 @@ impl VerifySpec {
             blank_diameter: None,
             gauge_only: false,
             program: None,
+            metrics: true,
             tolerance: crate::DEFAULT_TOLERANCE,
         }
     }
@@ -404,15 +408,18 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
         ThreadKind::External => limits.pitch_diameter.max,
         ThreadKind::Internal => limits.pitch_diameter.min,
     };
-    let ms = MeasureSetup { thread: &t, kind, mmc_pitch_diameter: mmc };
-    let run = |final_x: f64| -> Result<Cut, Error> {
+    let ms = MeasureSetup { thread: &t, kind, mmc_pitch_diameter: mmc, extras: true };
+    // While solving for the final X only the pitch diameter matters: sizes only.
+    let ms_solve = ms.sizes_only();
+    let run_with = |final_x: f64, ms: &MeasureSetup<'_>| -> Result<Cut, Error> {
         let passes = plan(final_x).generate()?;
         let z_ref = reference_groove(&passes);
         let window = Window::around(z_ref, t.pitch, 4.0);
         let s = sweep(&setup, &passes, window, UnionStrategy::Envelope)?;
-        let measurement = measure(&ms, &s.section.profile(), z_ref)?;
+        let measurement = measure(ms, &s.section.profile(), z_ref)?;
         Ok(Cut { passes, section: s.section, z_ref, measurement })
     };
+    let run = |final_x: f64| run_with(final_x, &ms);
     let target = limits
         .pitch_diameter
         .mid()
@@ -464,20 +471,22 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
             None => {
                 // X and d2 move one for one, so a few corrections converge to well below 0.01 µm.
                 let mut x = initial_final_x(&t, kind, &insert, target);
-                let mut cut = run(x)?;
+                let mut cut = run_with(x, &ms_solve)?;
                 for _ in 0..6 {
                     let err = target - cut.measurement.pitch_diameter;
                     if err.abs() < 1e-8 {
                         break;
                     }
                     x += err;
-                    cut = run(x)?;
+                    cut = run_with(x, &ms_solve)?;
                 }
-                (x, true, cut)
+                // The full measurement, maximum-material check included, on the solved cut.
+                let measurement = measure(&ms, &cut.section.profile(), cut.z_ref)?;
+                (x, true, Cut { measurement, ..cut })
             }
         }
     };
-    let metrics = pass_metrics(&setup, &cut.passes, cut.z_ref)?;
+    let metrics = if spec.metrics { pass_metrics(&setup, &cut.passes, cut.z_ref)? } else { Vec::new() };
     let m = &cut.measurement;
     if m.pitch_line_extrapolated {
         notes.push(

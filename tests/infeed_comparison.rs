@@ -24,7 +24,7 @@ fn profile(t: &BasicThread, ins: &Insert, blank: f64, passes: &[Pass], z: f64) -
 }
 
 fn measured(t: &BasicThread, ins: &Insert, blank: f64, passes: &[Pass], z: f64) -> Measurement {
-    let ms = MeasureSetup { thread: t, kind: ThreadKind::External, mmc_pitch_diameter: None };
+    let ms = MeasureSetup { thread: t, kind: ThreadKind::External, mmc_pitch_diameter: None, extras: true };
     measure(&ms, &profile(t, ins, blank, passes, z), z).unwrap()
 }
 
