@@ -487,6 +487,18 @@ fn placements_line(label: &str, v: &crate::verify::Verification) -> Result<Strin
     };
     let window = crate::sweep::Window::around(v.z_ref, t.pitch, 4.0);
     let (blank, rings) = crate::sweep::placements(&setup, &v.passes, window)?;
+    // threadcheck's own time for the same work on the same placements (sweep + pitch
+    // diameter), best of five, so the baseline can state a ratio measured in one run.
+    let ms =
+        crate::measure::MeasureSetup { thread: t, kind: v.kind, mmc_pitch_diameter: None, extras: false };
+    let mut best = f64::INFINITY;
+    for _ in 0..5 {
+        let start = std::time::Instant::now();
+        let s = crate::sweep::sweep(&setup, &v.passes, window, crate::boolean::UnionStrategy::Envelope)?;
+        let m = crate::measure::measure(&ms, &s.section.profile(), v.z_ref)?;
+        std::hint::black_box(m.pitch_diameter);
+        best = best.min(start.elapsed().as_secs_f64());
+    }
     let ring = |r: &[crate::Point]| r.iter().map(|p| [p.z, p.r]).collect::<Vec<_>>();
     let mut s = serde_json::to_string(&json!({
         "case": label,
@@ -496,6 +508,7 @@ fn placements_line(label: &str, v: &crate::verify::Verification) -> Result<Strin
         "blank": ring(&blank),
         "placements": rings.iter().map(|r| ring(r)).collect::<Vec<_>>(),
         "pitch_diameter": v.measurement.pitch_diameter,
+        "threadcheck_seconds": best,
     }))
     .map_err(|e| Error::Data(e.to_string()))?;
     s.push('\n');
