@@ -9,7 +9,7 @@ use std::hint::black_box;
 use threadcheck::boolean::UnionStrategy;
 use threadcheck::insert::Insert;
 use threadcheck::measure::{measure, MeasureSetup};
-use threadcheck::passes::{Infeed, Pass, PlanSpec, Schedule};
+use threadcheck::passes::{Infeed, Pass, PlanSpec};
 use threadcheck::sweep::{sweep, SweepSetup, Window};
 use threadcheck::{parse_designation, BasicThread, ParseOptions, ThreadKind};
 
@@ -18,27 +18,9 @@ fn m10() -> BasicThread {
 }
 
 fn plan(n: usize, infeed: Infeed) -> Vec<Pass> {
-    PlanSpec {
-        kind: ThreadKind::External,
-        pitch: 1.5,
-        starts: 1,
-        surface_x: 9.85,
-        final_x: 8.10,
-        passes: n,
-        schedule: Schedule::ConstantArea,
-        infeed,
-        spring: 0,
-        first_depth: None,
-        min_depth: 0.0,
-        finish: 0.0,
-        taper: 0.0,
-        chamfer_leads: 0.0,
-        left_hand: false,
-        z_start: 6.0,
-        length: 12.0,
-    }
-    .generate()
-    .unwrap()
+    PlanSpec { infeed, z_start: 6.0, length: 12.0, ..PlanSpec::new(ThreadKind::External, 1.5, 9.85, 8.10, n) }
+        .generate()
+        .unwrap()
 }
 
 fn groove(passes: &[Pass]) -> f64 {

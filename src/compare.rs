@@ -141,33 +141,50 @@ pub fn compare(base: &VerifySpec, modified: &[f64]) -> Result<Comparison, Error>
     Ok(Comparison { final_x, runs })
 }
 
+/// The column headers of the comparison table (Markdown), and the same for the text table.
+const HEADERS: [(&str, &str); 13] = [
+    ("infeed", "infeed"),
+    ("schedule", "schedule"),
+    ("passes", "passes"),
+    ("chip first mm²", "chip 1st"),
+    ("chip max mm²", "chip max"),
+    ("chip last mm²", "chip end"),
+    ("max/min", "max/min"),
+    ("two-flank passes", "2-fl"),
+    ("chip behind the tip", "behind"),
+    ("d2 mm", "d2"),
+    ("d3 mm", "d3"),
+    ("flanks °", "flanks"),
+    ("verdict", "verdict"),
+];
+
+/// The cells of one strategy's row, formatted once for both tables.
+fn cells(m: &Summary) -> [String; 13] {
+    [
+        m.infeed.clone(),
+        m.schedule.clone(),
+        m.passes.to_string(),
+        format!("{:.4}", m.chip_first),
+        format!("{:.4}", m.chip_max),
+        format!("{:.4}", m.chip_last),
+        format!("{:.2}", m.chip_spread),
+        m.two_flank_passes.to_string(),
+        pct(m.trailing_share),
+        format!("{:.4}", m.pitch_diameter),
+        format!("{:.4}", m.minor_diameter),
+        format!("{:.2}/{:.2}", m.flank_angles[0], m.flank_angles[1]),
+        (if m.pass { "pass" } else { "fail" }).to_string(),
+    ]
+}
+
 /// The comparison as a Markdown table.
 pub fn markdown(c: &Comparison) -> String {
     let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "| infeed | schedule | passes | chip first mm² | chip max mm² | chip last mm² | max/min | two-flank passes | chip behind the tip | d2 mm | d3 mm | flanks ° | verdict |"
-    );
+    let head: Vec<&str> = HEADERS.iter().map(|h| h.0).collect();
+    let _ = writeln!(s, "| {} |", head.join(" | "));
     let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|");
     for (m, _) in &c.runs {
-        let _ = writeln!(
-            s,
-            "| {} | {} | {} | {:.4} | {:.4} | {:.4} | {:.2} | {} | {:.0}% | {:.4} | {:.4} | {:.2}/{:.2} | {} |",
-            m.infeed,
-            m.schedule,
-            m.passes,
-            m.chip_first,
-            m.chip_max,
-            m.chip_last,
-            m.chip_spread,
-            m.two_flank_passes,
-            100.0 * m.trailing_share,
-            m.pitch_diameter,
-            m.minor_diameter,
-            m.flank_angles[0],
-            m.flank_angles[1],
-            if m.pass { "pass" } else { "fail" }
-        );
+        let _ = writeln!(s, "| {} |", cells(m).join(" | "));
     }
     s
 }
@@ -186,40 +203,31 @@ pub fn text(c: &Comparison) -> String {
             c.final_x
         );
     }
-    let _ = writeln!(
-        s,
-        "{:<18}{:<16}{:>6}{:>10}{:>10}{:>10}{:>8}{:>7}{:>7}{:>10}{:>10}  {:<13}verdict",
-        "infeed",
-        "schedule",
-        "passes",
-        "chip 1st",
-        "chip max",
-        "chip end",
-        "max/min",
-        "2-fl",
-        "behind",
-        "d2",
-        "d3",
-        "flanks"
-    );
+    // Widths per column: left-aligned words, right-aligned numbers.
+    const W: [(usize, bool); 13] = [
+        (18, true),
+        (16, true),
+        (6, false),
+        (10, false),
+        (10, false),
+        (10, false),
+        (8, false),
+        (6, false),
+        (7, false),
+        (10, false),
+        (10, false),
+        (14, false),
+        (9, false),
+    ];
+    let line = |s: &mut String, row: &[String]| {
+        for (cell, (w, left)) in row.iter().zip(W) {
+            let _ = if left { write!(s, "{cell:<w$}") } else { write!(s, "{cell:>w$}") };
+        }
+        s.push('\n');
+    };
+    line(&mut s, &HEADERS.iter().map(|h| h.1.to_string()).collect::<Vec<_>>());
     for (m, _) in &c.runs {
-        let _ = writeln!(
-            s,
-            "{:<18}{:<16}{:>6}{:>10.4}{:>10.4}{:>10.4}{:>8.2}{:>7}{:>6.0}%{:>10.4}{:>10.4}  {:<13}{}",
-            m.infeed,
-            m.schedule,
-            m.passes,
-            m.chip_first,
-            m.chip_max,
-            m.chip_last,
-            m.chip_spread,
-            m.two_flank_passes,
-            100.0 * m.trailing_share,
-            m.pitch_diameter,
-            m.minor_diameter,
-            format!("{:.2}/{:.2}", m.flank_angles[0], m.flank_angles[1]),
-            if m.pass { "pass" } else { "fail" }
-        );
+        line(&mut s, &cells(m));
     }
     s
 }

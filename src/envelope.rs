@@ -24,11 +24,11 @@ impl Chain {
         Chain(vec![Point::new(z0, y), Point::new(z1, y)])
     }
 
-    /// The value just left of `z` (the left limit at a vertical step).
-    fn left(&self, z: f64) -> f64 {
+    /// The value at `z`: the left limit, or with `from_right` the right limit, at a vertical step.
+    fn at(&self, z: f64, from_right: bool) -> f64 {
         let v = &self.0;
-        // First vertex with z' >= z.
-        let i = v.partition_point(|p| p.z < z);
+        // First vertex past z (at or past it for the left limit).
+        let i = if from_right { v.partition_point(|p| p.z <= z) } else { v.partition_point(|p| p.z < z) };
         if i == 0 {
             return v[0].r;
         }
@@ -37,27 +37,17 @@ impl Chain {
         }
         let (a, b) = (v[i - 1], v[i]);
         if b.z == a.z {
-            return a.r;
+            return if from_right { b.r } else { a.r };
         }
         a.r + (z - a.z) / (b.z - a.z) * (b.r - a.r)
     }
 
-    /// The value just right of `z` (the right limit at a vertical step).
+    fn left(&self, z: f64) -> f64 {
+        self.at(z, false)
+    }
+
     fn right(&self, z: f64) -> f64 {
-        let v = &self.0;
-        // First vertex with z' > z.
-        let i = v.partition_point(|p| p.z <= z);
-        if i == 0 {
-            return v[0].r;
-        }
-        if i >= v.len() {
-            return v[v.len() - 1].r;
-        }
-        let (a, b) = (v[i - 1], v[i]);
-        if b.z == a.z {
-            return b.r;
-        }
-        a.r + (z - a.z) / (b.z - a.z) * (b.r - a.r)
+        self.at(z, true)
     }
 
     /// The pointwise minimum of `self` and `f`, where `f` is defined on `[f.first.z, f.last.z]`

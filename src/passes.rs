@@ -265,6 +265,31 @@ pub struct PlanSpec {
 }
 
 impl PlanSpec {
+    /// A single-start, right-hand, parallel plan of `passes` radial constant-area passes from the
+    /// surface at `surface_x` to the tip on `final_x`, starting at Z0 over ten pitches; change
+    /// the rest with struct-update syntax (`PlanSpec { infeed, ..PlanSpec::new(…) }`).
+    pub fn new(kind: ThreadKind, pitch: f64, surface_x: f64, final_x: f64, passes: usize) -> PlanSpec {
+        PlanSpec {
+            kind,
+            pitch,
+            starts: 1,
+            surface_x,
+            final_x,
+            passes,
+            schedule: Schedule::ConstantArea,
+            infeed: Infeed::Radial,
+            spring: 0,
+            first_depth: None,
+            min_depth: 0.0,
+            finish: 0.0,
+            taper: 0.0,
+            chamfer_leads: 0.0,
+            left_hand: false,
+            z_start: 0.0,
+            length: 10.0 * pitch,
+        }
+    }
+
     /// Total radial depth from the surface to the final tip, mm.
     pub fn total_depth(&self) -> f64 {
         match self.kind {

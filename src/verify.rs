@@ -344,12 +344,7 @@ impl Resolved {
         let t = &self.designation.thread;
         let s = &self.spec;
         PlanSpec {
-            kind: self.kind,
-            pitch: t.pitch,
             starts: t.starts,
-            surface_x: self.blank,
-            final_x,
-            passes: s.passes.unwrap_or_else(|| default_pass_count(t.pitch)),
             schedule: s.schedule.clone(),
             infeed: self.infeed,
             spring: s.spring,
@@ -359,8 +354,14 @@ impl Resolved {
             taper: s.taper,
             chamfer_leads: s.chamfer_leads,
             left_hand: t.hand == crate::Hand::Left,
-            z_start: 0.0,
             length: 10.0 * t.lead(),
+            ..PlanSpec::new(
+                self.kind,
+                t.pitch,
+                self.blank,
+                final_x,
+                s.passes.unwrap_or_else(|| default_pass_count(t.pitch)),
+            )
         }
     }
 }

@@ -49,23 +49,11 @@ fn plan(
     infeed: Infeed,
 ) -> Vec<Pass> {
     PlanSpec {
-        kind: ThreadKind::External,
-        pitch: t.pitch,
-        starts: 1,
-        surface_x: blank,
-        final_x,
-        passes: n,
         schedule,
         infeed,
-        spring: 0,
-        first_depth: None,
-        min_depth: 0.0,
-        finish: 0.0,
-        taper: 0.0,
-        chamfer_leads: 0.0,
-        left_hand: false,
         z_start: 5.0 * t.pitch,
         length: 10.0 * t.pitch,
+        ..PlanSpec::new(ThreadKind::External, t.pitch, blank, final_x, n)
     }
     .generate()
     .unwrap()

@@ -4,7 +4,7 @@ use proptest::prelude::*;
 use threadcheck::boolean::UnionStrategy;
 use threadcheck::insert::Insert;
 use threadcheck::measure::{measure, MeasureSetup};
-use threadcheck::passes::{Infeed, Pass, PlanSpec, Schedule};
+use threadcheck::passes::{Infeed, Pass, PlanSpec};
 use threadcheck::sweep::{sweep, Section, SweepSetup, Window};
 use threadcheck::verify::reference_groove;
 use threadcheck::{BasicThread, Hand, ThreadForm, ThreadKind};
@@ -23,23 +23,10 @@ fn plan(
     z_start: f64,
 ) -> Vec<Pass> {
     PlanSpec {
-        kind,
-        pitch: p,
-        starts: 1,
-        surface_x: surface,
-        final_x,
-        passes: n,
-        schedule: Schedule::ConstantArea,
         infeed: Infeed::Flank { angle },
-        spring: 0,
-        first_depth: None,
-        min_depth: 0.0,
-        finish: 0.0,
-        taper: 0.0,
-        chamfer_leads: 0.0,
-        left_hand: false,
         z_start,
         length: 12.0 * p,
+        ..PlanSpec::new(kind, p, surface, final_x, n)
     }
     .generate()
     .unwrap()

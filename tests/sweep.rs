@@ -29,23 +29,11 @@ fn cut(
     infeed: Infeed,
 ) -> Measurement {
     let spec = PlanSpec {
-        kind,
-        pitch: t.pitch,
         starts: t.starts,
-        surface_x: blank,
-        final_x,
-        passes: n,
-        schedule: Schedule::ConstantArea,
         infeed,
-        spring: 0,
-        first_depth: None,
-        min_depth: 0.0,
-        finish: 0.0,
-        taper: 0.0,
-        chamfer_leads: 0.0,
-        left_hand: false,
         z_start: 5.0 * t.lead(),
         length: 10.0 * t.lead(),
+        ..PlanSpec::new(kind, t.pitch, blank, final_x, n)
     };
     let passes = spec.generate().unwrap();
     let setup = SweepSetup { kind, insert, blank_diameter: blank, pitch: t.pitch };
@@ -186,24 +174,13 @@ fn build(
     let total = 0.7 * t.pitch;
     let mut depths: Vec<f64> = fr.iter().map(|f| f * total).collect();
     depths.sort_by(f64::total_cmp);
+    let (final_x, n) = (blank - 2.0 * depths[depths.len() - 1], depths.len());
     let spec = PlanSpec {
-        kind: ThreadKind::External,
-        pitch: t.pitch,
-        starts: 1,
-        surface_x: blank,
-        final_x: blank - 2.0 * depths[depths.len() - 1],
-        passes: depths.len(),
         schedule: Schedule::Explicit(depths),
         infeed: Infeed::Flank { angle: *angle },
-        spring: 0,
-        first_depth: None,
-        min_depth: 0.0,
-        finish: 0.0,
-        taper: 0.0,
-        chamfer_leads: 0.0,
-        left_hand: false,
         z_start: 6.0 * t.pitch + phase,
         length: 12.0 * t.pitch,
+        ..PlanSpec::new(ThreadKind::External, t.pitch, blank, final_x, n)
     };
     (t, ins, blank, spec.generate().unwrap())
 }
@@ -300,23 +277,17 @@ fn metrics(
     infeed: Infeed,
 ) -> Vec<threadcheck::sweep::PassMetrics> {
     let spec = PlanSpec {
-        kind: ThreadKind::External,
-        pitch: t.pitch,
-        starts: 1,
-        surface_x: blank,
-        final_x: blank - 2.0 * depths[depths.len() - 1],
-        passes: depths.len(),
         schedule: Schedule::Explicit(depths.to_vec()),
         infeed,
-        spring: 0,
-        first_depth: None,
-        min_depth: 0.0,
-        finish: 0.0,
-        taper: 0.0,
-        chamfer_leads: 0.0,
-        left_hand: false,
         z_start: 6.0 * t.pitch,
         length: 12.0 * t.pitch,
+        ..PlanSpec::new(
+            ThreadKind::External,
+            t.pitch,
+            blank,
+            blank - 2.0 * depths[depths.len() - 1],
+            depths.len(),
+        )
     };
     let passes = spec.generate().unwrap();
     let setup = SweepSetup { kind: ThreadKind::External, insert: ins, blank_diameter: blank, pitch: t.pitch };
@@ -379,23 +350,11 @@ fn regression_repeated_passes_fake_a_small_root_radius() {
     let d3 = 20.0 - 1.226869 * 2.5;
     for spring in 0..4 {
         let spec = PlanSpec {
-            kind: ThreadKind::External,
-            pitch: 2.5,
-            starts: 1,
-            surface_x: 20.1,
-            final_x: d3,
-            passes: 9,
-            schedule: Schedule::ConstantArea,
             infeed: Infeed::Flank { angle: 29.5 },
             spring,
-            first_depth: None,
-            min_depth: 0.0,
-            finish: 0.0,
-            taper: 0.0,
-            chamfer_leads: 0.0,
-            left_hand: false,
             z_start: 12.5,
             length: 25.0,
+            ..PlanSpec::new(ThreadKind::External, 2.5, 20.1, d3, 9)
         };
         let passes = spec.generate().unwrap();
         let z = threadcheck::verify::reference_groove(&passes);
