@@ -257,6 +257,60 @@ fn view(v: &Verification, f: &Frame, id: &str, label: &str) -> Group {
     g.add(dims)
 }
 
+/// The whole thread along its length: blank, material as cut and the cut surface.
+fn full_view(section: &crate::sweep::Section, f: &Frame, v: &Verification) -> Group {
+    let zr = f.z_range();
+    let (b0, b1) = if v.kind == ThreadKind::External {
+        (section.far_r, section.surface_r)
+    } else {
+        (section.surface_r, section.far_r)
+    };
+    let mut g = Group::new().set("id", "full-length");
+    g = g.add(
+        Rectangle::new()
+            .set("x", f.x0)
+            .set("y", f.y0)
+            .set("width", f.w)
+            .set("height", f.h)
+            .set("fill", "white")
+            .set("stroke", "#999"),
+    );
+    g = g.add(text(f.x0 + 6.0, f.y0 + 16.0, 12.0, "full length: incomplete teeth at the thread's ends"));
+    let mut body = Group::new().set("clip-path", "url(#clip-full)");
+    body = body.add(
+        svg::node::element::Definitions::new().add(
+            svg::node::element::ClipPath::new()
+                .set("id", "clip-full")
+                .add(Rectangle::new().set("x", f.x0).set("y", f.y0).set("width", f.w).set("height", f.h)),
+        ),
+    );
+    body = body.add(
+        Polygon::new()
+            .set(
+                "points",
+                f.points(&[
+                    Point::new(zr.0, b0),
+                    Point::new(zr.1, b0),
+                    Point::new(zr.1, b1),
+                    Point::new(zr.0, b1),
+                ]),
+            )
+            .set("fill", "#e9e9e9"),
+    );
+    for (ext, _) in section.polygons() {
+        body = body
+            .add(Polygon::new().set("points", f.points(&ext)).set("fill", "#b8c7d9").set("stroke", "none"));
+    }
+    body = body.add(
+        Polyline::new()
+            .set("points", f.points(&section.profile()))
+            .set("fill", "none")
+            .set("stroke", "#111")
+            .set("stroke-width", 1.2),
+    );
+    g.add(body)
+}
+
 fn legend(x: f64, y: f64) -> Group {
     let mut g = Group::new().set("id", "legend");
     let items: [(&str, &str, bool); 6] = [
@@ -323,7 +377,7 @@ pub fn verify_svg(v: &Verification) -> String {
     let t = &v.designation.thread;
     let p = t.pitch;
     let m = &v.measurement;
-    let (width, height) = (1100.0, 760.0);
+    let (width, height) = (1100.0, 960.0);
     let lo = m.minor_diameter.min(m.major_diameter);
     let hi = m.major_diameter.max(m.minor_diameter).max(v.blank_diameter);
     let (r0, r1) = (rad(lo) - 0.15 * p, rad(hi) + 0.12 * p);
@@ -352,9 +406,12 @@ pub fn verify_svg(v: &Verification) -> String {
             52.0,
             13.0,
             format!(
-                "insert: {} · infeed: {} · {} passes · blank X{:.3} · final X{:.4}",
+                "insert: {} · {} · {} passes · blank X{:.3} · final X{:.4}",
                 v.insert.name,
-                crate::report::infeed_text(&v.infeed),
+                match &v.program {
+                    Some(p) => format!("program {p}"),
+                    None => format!("infeed: {}", crate::report::infeed_text(&v.infeed)),
+                },
                 v.passes.len(),
                 v.blank_diameter,
                 v.final_x
@@ -374,6 +431,18 @@ pub fn verify_svg(v: &Verification) -> String {
             .set("fill", if v.pass { "#1d7a36" } else { "#b3261e" })
             .set("font-weight", "bold"),
         );
+    // The whole thread, run-out included: the envelope over the full length (the tree for
+    // undercut custom inserts).
+    let full = {
+        let setup = crate::sweep::SweepSetup {
+            kind: v.kind,
+            insert: &v.insert,
+            blank_diameter: v.blank_diameter,
+            pitch: p,
+        };
+        let w = crate::sweep::full_length_window(&v.passes, p);
+        crate::sweep::sweep(&setup, &v.passes, w, crate::boolean::UnionStrategy::Envelope).ok()
+    };
     let doc = Document::new()
         .set("viewBox", (0, 0, width, height))
         .set("width", width)
@@ -384,5 +453,14 @@ pub fn verify_svg(v: &Verification) -> String {
         .add(view(v, &window, "window", "four pitches"))
         .add(legend(690.0, 420.0))
         .add(chip_chart(v, 690.0, 570.0, 360.0, 150.0));
+    let doc = match &full {
+        Some(f) => {
+            let fw = f.section.window;
+            let frame =
+                Frame::new(20.0, 770.0, 1060.0, 170.0, (fw.z_min, fw.z_max), (r0 - 0.3 * p, r1 + 0.2 * p));
+            doc.add(full_view(&f.section, &frame, v))
+        }
+        None => doc,
+    };
     doc.to_string()
 }

@@ -81,6 +81,7 @@ pub fn verify_json(v: &Verification) -> Value {
             "tip_radius": v.insert.tip_radius,
         },
         "plan": {
+            "program": v.program,
             "infeed": v.infeed,
             "schedule": schedule_text(&v.schedule),
             "blank_diameter": v.blank_diameter,
@@ -118,7 +119,7 @@ pub fn verify_text(v: &Verification) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{} {} ({}), {} insert '{}', {} infeed, {}, {} passes",
+        "{} {} ({}), {} insert '{}', {}, {} passes",
         v.designation.text,
         v.kind.name(),
         v.limits.class,
@@ -128,8 +129,10 @@ pub fn verify_text(v: &Verification) -> String {
             crate::insert::InsertKind::Custom => "custom",
         },
         v.insert.name,
-        infeed_text(&v.infeed),
-        schedule_text(&v.schedule),
+        match &v.program {
+            Some(p) => format!("passes from {p}"),
+            None => format!("{} infeed, {}", infeed_text(&v.infeed), schedule_text(&v.schedule)),
+        },
         v.passes.len()
     );
     let _ = writeln!(

@@ -178,6 +178,15 @@ fn far_side(kind: ThreadKind, surface_r: f64, insert_height: f64) -> f64 {
     }
 }
 
+/// The window from one pitch before the threading moves start to one pitch past where they
+/// end: the whole thread, with its incomplete teeth at the run-out.
+pub fn full_length_window(passes: &[Pass], pitch: f64) -> Window {
+    let (lo, hi) = passes.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+        (lo.min(p.z_start.min(p.z_end)), hi.max(p.z_start.max(p.z_end)))
+    });
+    Window { z_min: lo - pitch, z_max: hi + pitch }
+}
+
 /// The blank rectangle and every placed imprint outline (part coordinates, counter-clockwise)
 /// that a sweep of `passes` over `window` works on: what a baseline with another geometry
 /// library needs to redo the cut.

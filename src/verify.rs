@@ -141,6 +141,8 @@ pub struct Verification {
     pub gauge_only: bool,
     /// Assumptions and warnings worth printing.
     pub notes: Vec<String>,
+    /// The program the passes came from and its dialect, when they came from one.
+    pub program: Option<String>,
 }
 
 /// Usual number of passes for a pitch P (mm): about 3.5 + 2·P, the order of the insert makers'
@@ -522,5 +524,6 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
         suggested_final_x: suggested,
         gauge_only: spec.gauge_only,
         notes,
+        program: spec.program.as_ref().map(|(p, d)| format!("{} ({})", p.display(), d.name())),
     })
 }

@@ -128,7 +128,7 @@ fn svg_has_named_layers_and_escapes_text() {
     let o = run_in(&dir, &["verify", "--thread", "M10x1.5-6g", "--insert", "ins.toml", "--svg", "out.svg"]);
     assert!(o.status.code() == Some(0) || o.status.code() == Some(1), "{}", stderr(&o));
     let text = std::fs::read_to_string(&svg).unwrap();
-    for id in ["title", "legend", "chip-chart", "tooth", "window"] {
+    for id in ["title", "legend", "chip-chart", "tooth", "window", "full-length"] {
         assert!(text.contains(&format!("id=\"{id}\"")), "group {id}");
     }
     for layer in ["blank", "tolerance-zone", "basic-profile", "passes", "as-cut", "dimensions"] {
