@@ -42,7 +42,8 @@ pub struct Measurement {
     /// Smallest radius of curvature of the root (concave side), mm; `None` if the root has no
     /// concave turn.
     pub root_radius: Option<f64>,
-    /// Width of the narrower of the two crests 1 µm below its top, mm. Near zero: no crest left.
+    /// Width of the narrower of the two crests, mm: its width 1 µm below the top less what two
+    /// sharp flanks would span there. Near zero: the grooves meet, no crest is left.
     pub crest_width: f64,
     /// Axial position of the groove centre on the pitch line, mm.
     pub groove_center: f64,
@@ -409,14 +410,18 @@ pub fn measure(setup: &MeasureSetup<'_>, profile: &[Point], z_ref: f64) -> Resul
         (y, true, 0.5 * ((al + bl * y) + (ar + br * y)))
     };
     let angle = |b: f64| b.abs().atan().to_degrees();
+    // Width of each crest 1 µm below its top, less what two flanks meeting in a sharp peak would
+    // span there (2·1 µm·tan β): about 0 for a peak, the flat or rounded top's width otherwise.
+    let delta = 1e-3;
+    let peak = 2.0 * delta * t.half_angle().tan();
     let crest_width = [g.left, g.right]
         .iter()
         .map(|&i| {
-            let y = g.pts[i].r - 1e-3;
+            let y = g.pts[i].r - delta;
             let lo = (0..i).rev().find_map(|k| cross_at_level(g.pts[k], g.pts[k + 1], y));
             let hi = (i..g.pts.len() - 1).find_map(|k| cross_at_level(g.pts[k], g.pts[k + 1], y));
             match (lo, hi) {
-                (Some(a), Some(b)) => b - a,
+                (Some(a), Some(b)) => (b - a - peak).max(0.0),
                 _ => f64::INFINITY,
             }
         })

@@ -263,3 +263,31 @@ fn full_profile_insert_with_the_same_program() {
     let dev = check(&v, "pitch_diameter")["deviation_um"].as_f64().unwrap();
     assert!((dev - 32.0).abs() < 0.5, "{dev}");
 }
+
+/// Grooves so deep that they meet leave no crest: a partial V at X7.0 from a 9.85 blank is
+/// 2·1.425·tan 30° = 1.645 mm wide at the blank, more than the 1.5 mm pitch. Its own failure,
+/// with its own message.
+#[test]
+fn grooves_that_meet_leave_no_crest() {
+    let (code, v) = json_of(&["verify", "--thread", "M10x1.5-6g", "--final-x", "7.0"]);
+    assert_eq!(code, 1);
+    let c = check(&v, "crest");
+    assert_eq!(c["ok"], false);
+    assert!(c["note"].as_str().unwrap().contains("no crest left"), "{c}");
+}
+
+/// Two passes at the same depth 0.4 mm apart along Z (a phase error) cut two V pockets with a
+/// ridge 0.4 / (2·tan 30°) = 0.35 mm high between them: the passes do not land in one groove.
+#[test]
+fn passes_off_the_helix_do_not_land_in_one_groove() {
+    let prog = data("programs/fanuc-g32-phase-error.nc");
+    let (code, v) =
+        json_of(&["verify", "--thread", "M10x1.5-6g", "--program", prog.to_str().unwrap(), "--gauge-only"]);
+    let c = check(&v, "single_groove");
+    assert_eq!(c["ok"], false, "{v:#}");
+    assert!(c["note"].as_str().unwrap().contains("do not land in one groove"));
+    // The check is a form check: --gauge-only leaves it out, the size checks decide.
+    let _ = code;
+    let (code_full, _) = json_of(&["verify", "--thread", "M10x1.5-6g", "--program", prog.to_str().unwrap()]);
+    assert_eq!(code_full, 1);
+}
