@@ -93,6 +93,40 @@ fn shifted_profile(
     out.into_iter().filter(|q| q.z >= z_range.0 && q.z <= z_range.1).collect()
 }
 
+/// A panel: its group (with the clip path, white background and label) and the group to draw
+/// in, clipped to the panel.
+fn panel(f: &Frame, id: &str, label: &str) -> (Group, Group) {
+    let clip_id = format!("clip-{id}");
+    let frame = Rectangle::new().set("x", f.x0).set("y", f.y0).set("width", f.w).set("height", f.h);
+    let g = Group::new()
+        .set("id", id)
+        .add(
+            svg::node::element::Definitions::new()
+                .add(svg::node::element::ClipPath::new().set("id", clip_id.clone()).add(frame.clone())),
+        )
+        .add(frame.set("fill", "white").set("stroke", "#999"))
+        .add(text(f.x0 + 6.0, f.y0 + 16.0, 12.0, label));
+    (g, Group::new().set("clip-path", format!("url(#{clip_id})")))
+}
+
+/// The blank before threading across the panel: between the surface and the far side.
+fn blank_polygon(f: &Frame, kind: ThreadKind, surface_r: f64, far_r: f64) -> Polygon {
+    let zr = f.z_range();
+    let (b0, b1) = if kind == ThreadKind::External { (far_r, surface_r) } else { (surface_r, far_r) };
+    Polygon::new()
+        .set(
+            "points",
+            f.points(&[
+                Point::new(zr.0, b0),
+                Point::new(zr.1, b0),
+                Point::new(zr.1, b1),
+                Point::new(zr.0, b1),
+            ]),
+        )
+        .set("fill", "#e9e9e9")
+        .set("stroke", "none")
+}
+
 fn colour(i: usize, n: usize) -> String {
     let h = if n <= 1 { 220.0 } else { 220.0 - 220.0 * i as f64 / (n - 1) as f64 };
     format!("hsl({h:.0},75%,45%)")
@@ -104,44 +138,8 @@ fn view(v: &Verification, f: &Frame, id: &str, label: &str) -> Group {
     let zr = f.z_range();
     let surface = rad(v.blank_diameter);
     let far = v.section.far_r;
-    let clip_id = format!("clip-{id}");
-    let mut g = Group::new().set("id", id);
-    g = g.add(
-        svg::node::element::Definitions::new().add(
-            svg::node::element::ClipPath::new()
-                .set("id", clip_id.clone())
-                .add(Rectangle::new().set("x", f.x0).set("y", f.y0).set("width", f.w).set("height", f.h)),
-        ),
-    );
-    g = g.add(
-        Rectangle::new()
-            .set("x", f.x0)
-            .set("y", f.y0)
-            .set("width", f.w)
-            .set("height", f.h)
-            .set("fill", "white")
-            .set("stroke", "#999"),
-    );
-    g = g.add(text(f.x0 + 6.0, f.y0 + 16.0, 12.0, label));
-    let mut body = Group::new().set("clip-path", format!("url(#{clip_id})"));
-    // Blank: what was there before threading.
-    let (b0, b1) = if kind == ThreadKind::External { (far, surface) } else { (surface, far) };
-    body = body.add(
-        Group::new().set("id", format!("{id}-blank")).add(
-            Polygon::new()
-                .set(
-                    "points",
-                    f.points(&[
-                        Point::new(zr.0, b0),
-                        Point::new(zr.1, b0),
-                        Point::new(zr.1, b1),
-                        Point::new(zr.0, b1),
-                    ]),
-                )
-                .set("fill", "#e9e9e9")
-                .set("stroke", "none"),
-        ),
-    );
+    let (mut g, mut body) = panel(f, id, label);
+    body = body.add(Group::new().set("id", format!("{id}-blank")).add(blank_polygon(f, kind, surface, far)));
     // As-cut material.
     let mut cut = Group::new().set("id", format!("{id}-as-cut"));
     for (ext, holes) in v.section.polygons() {
@@ -259,44 +257,8 @@ fn view(v: &Verification, f: &Frame, id: &str, label: &str) -> Group {
 
 /// The whole thread along its length: blank, material as cut and the cut surface.
 fn full_view(section: &crate::sweep::Section, f: &Frame, v: &Verification) -> Group {
-    let zr = f.z_range();
-    let (b0, b1) = if v.kind == ThreadKind::External {
-        (section.far_r, section.surface_r)
-    } else {
-        (section.surface_r, section.far_r)
-    };
-    let mut g = Group::new().set("id", "full-length");
-    g = g.add(
-        Rectangle::new()
-            .set("x", f.x0)
-            .set("y", f.y0)
-            .set("width", f.w)
-            .set("height", f.h)
-            .set("fill", "white")
-            .set("stroke", "#999"),
-    );
-    g = g.add(text(f.x0 + 6.0, f.y0 + 16.0, 12.0, "full length: incomplete teeth at the thread's ends"));
-    let mut body = Group::new().set("clip-path", "url(#clip-full)");
-    body = body.add(
-        svg::node::element::Definitions::new().add(
-            svg::node::element::ClipPath::new()
-                .set("id", "clip-full")
-                .add(Rectangle::new().set("x", f.x0).set("y", f.y0).set("width", f.w).set("height", f.h)),
-        ),
-    );
-    body = body.add(
-        Polygon::new()
-            .set(
-                "points",
-                f.points(&[
-                    Point::new(zr.0, b0),
-                    Point::new(zr.1, b0),
-                    Point::new(zr.1, b1),
-                    Point::new(zr.0, b1),
-                ]),
-            )
-            .set("fill", "#e9e9e9"),
-    );
+    let (g, mut body) = panel(f, "full-length", "full length: incomplete teeth at the thread's ends");
+    body = body.add(blank_polygon(f, v.kind, section.surface_r, section.far_r));
     for (ext, _) in section.polygons() {
         body = body
             .add(Polygon::new().set("points", f.points(&ext)).set("fill", "#b8c7d9").set("stroke", "none"));
