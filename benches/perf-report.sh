@@ -11,6 +11,7 @@ cargo build --release --quiet
 bin=target/release/threadcheck
 
 echo "== criterion benches" >&2
+rm -rf target/criterion  # only this run's results go into the report
 cargo bench --quiet --bench sweep -- --warm-up-time 1 --measurement-time 4 > "$tmp/criterion.txt" 2>&1
 
 echo "== catalogue sweep: wall time (process start included) and peak memory, 7 runs" >&2
