@@ -7,12 +7,18 @@
 //!
 //! 1. [`standards`]: a designation (`M10x1.5-6g`) becomes a basic thread and its class;
 //! 2. [`tolerance`]: the class becomes limits of size (ISO 965-1, BS 84, ISO 228-1);
-//!
 //! 3. [`insert`]: the insert is a polygon with its tip at the origin;
-//! 4. [`passes`]: a pass plan says where the tip runs, pass after pass;
-//! 5. [`sweep`]: the insert is placed once per lead for every pass, the imprints are unioned
-//!    (through [`boolean`], the one module that talks to `geo`) and subtracted from the blank;
-//! 6. [`measure`]: the as-cut groove is measured as a metrology lab would.
+//! 4. [`passes`] and [`gcode`]: a generated plan, or a real program expanded as the control
+//!    would, says where the tip runs pass after pass;
+//! 5. [`sweep`]: the insert is placed once per lead for every pass; the cut surface is the lower
+//!    envelope of the imprints ([`envelope`]), or their union through [`boolean`] (the one module
+//!    that talks to `geo`) subtracted from the blank;
+//! 6. [`measure`]: the as-cut groove is measured as a metrology lab would;
+//! 7. [`check`]: the measurements against the limits, and the verdict;
+//! 8. [`render`] and [`report`]: the SVG cross-section, the JSON and text reports.
+//!
+//! [`verify`] runs the whole path as one call; [`compare`] and [`catalogue`] run it many times;
+//! [`app`] holds the validated jobs behind the command line.
 //!
 //! ```
 //! use threadcheck::boolean::UnionStrategy;
