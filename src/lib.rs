@@ -24,7 +24,7 @@
 //! use threadcheck::boolean::UnionStrategy;
 //! use threadcheck::insert::Insert;
 //! use threadcheck::measure::{measure, MeasureSetup};
-//! use threadcheck::passes::{Infeed, PlanSpec, Schedule};
+//! use threadcheck::passes::{Infeed, PlanSpec};
 //! use threadcheck::sweep::{sweep, SweepSetup, Window};
 //! use threadcheck::{parse_designation, ParseOptions, ThreadKind};
 //!
@@ -34,13 +34,10 @@
 //! // Its depth for the basic pitch diameter is 7H/8 − r below the crest line.
 //! let h = m10.fundamental_height();
 //! let final_x = 10.0 - 2.0 * (7.0 * h / 8.0 - 0.04);
+//! // Eight constant-area passes, modified flank infeed, one spring pass.
 //! let passes = PlanSpec {
-//!     kind: ThreadKind::External, pitch: 1.5, starts: 1,
-//!     surface_x: 9.85, final_x, passes: 8,
-//!     schedule: Schedule::ConstantArea, infeed: Infeed::Flank { angle: 29.5 },
-//!     spring: 1, first_depth: None, min_depth: 0.0, finish: 0.0,
-//!     taper: 0.0, chamfer_leads: 0.0, left_hand: false,
-//!     z_start: 2.0, length: 20.0,
+//!     infeed: Infeed::Flank { angle: 29.5 }, spring: 1, z_start: 2.0, length: 20.0,
+//!     ..PlanSpec::new(ThreadKind::External, 1.5, 9.85, final_x, 8)
 //! }.generate()?;
 //! let setup = SweepSetup { kind: ThreadKind::External, insert: &insert, blank_diameter: 9.85, pitch: 1.5 };
 //! let groove = passes.last().unwrap().z_start - 2.0; // where the last pass's groove sits near z = 0
