@@ -26,20 +26,7 @@ impl Chain {
 
     /// The value at `z`: the left limit, or with `from_right` the right limit, at a vertical step.
     fn at(&self, z: f64, from_right: bool) -> f64 {
-        let v = &self.0;
-        // First vertex past z (at or past it for the left limit).
-        let i = if from_right { v.partition_point(|p| p.z <= z) } else { v.partition_point(|p| p.z < z) };
-        if i == 0 {
-            return v[0].r;
-        }
-        if i >= v.len() {
-            return v[v.len() - 1].r;
-        }
-        let (a, b) = (v[i - 1], v[i]);
-        if b.z == a.z {
-            return if from_right { b.r } else { a.r };
-        }
-        a.r + (z - a.z) / (b.z - a.z) * (b.r - a.r)
+        eval(&self.0, z, from_right)
     }
 
     fn left(&self, z: f64) -> f64 {
@@ -58,7 +45,6 @@ impl Chain {
         if !(hi > lo) {
             return self.clone();
         }
-        let fc = Chain(f.to_vec());
         let i0 = v.partition_point(|p| p.z < lo);
         let i1 = v.partition_point(|p| p.z <= hi);
         let mut out: Vec<Point> = Vec::with_capacity(v.len() + f.len() + 4);
@@ -89,8 +75,9 @@ impl Chain {
         let (last_k, n) = (zs.len() - 1, zs.len());
         for k in 0..n {
             let z = zs[k];
-            let left = if k == 0 && own_start { self.left(z) } else { self.left(z).min(fc.left(z)) };
-            let right = if k == last_k && own_end { self.right(z) } else { self.right(z).min(fc.right(z)) };
+            let left = if k == 0 && own_start { self.left(z) } else { self.left(z).min(eval(f, z, false)) };
+            let right =
+                if k == last_k && own_end { self.right(z) } else { self.right(z).min(eval(f, z, true)) };
             out.push(Point::new(z, left));
             // A real step (an imprint's end, a vertical in either chain), not rounding noise.
             if (right - left).abs() > STEP {
@@ -98,7 +85,7 @@ impl Chain {
             }
             if k < last_k {
                 let zb = zs[k + 1];
-                let (da, db) = (self.right(z) - fc.right(z), self.left(zb) - fc.left(zb));
+                let (da, db) = (self.right(z) - eval(f, z, true), self.left(zb) - eval(f, zb, false));
                 if (da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0) {
                     let t = da / (da - db);
                     let (ea, eb) = (self.right(z), self.left(zb));
@@ -109,6 +96,24 @@ impl Chain {
         out.extend_from_slice(&v[i1..]);
         Chain(simplify(out))
     }
+}
+
+/// The value of the chain `v` at `z`: the left limit, or with `from_right` the right limit, at
+/// a vertical step; constant beyond the ends.
+fn eval(v: &[Point], z: f64, from_right: bool) -> f64 {
+    // First vertex past z (at or past it for the left limit).
+    let i = if from_right { v.partition_point(|p| p.z <= z) } else { v.partition_point(|p| p.z < z) };
+    if i == 0 {
+        return v[0].r;
+    }
+    if i >= v.len() {
+        return v[v.len() - 1].r;
+    }
+    let (a, b) = (v[i - 1], v[i]);
+    if b.z == a.z {
+        return if from_right { b.r } else { a.r };
+    }
+    a.r + (z - a.z) / (b.z - a.z) * (b.r - a.r)
 }
 
 /// Steps smaller than this (mm) are rounding between a left and a right evaluation, not steps.

@@ -308,6 +308,32 @@ pub fn sweep(
     })
 }
 
+/// The part of a bottom chain (insert frame, heights above the tip) at or below `height`, cut at
+/// the crossings; the chain's ends above that height cannot touch the blank.
+fn clip_chain(chain: &[Point], height: f64) -> Vec<Point> {
+    let first = chain.iter().position(|p| p.r <= height);
+    let last = chain.iter().rposition(|p| p.r <= height);
+    let (Some(i), Some(j)) = (first, last) else { return chain.to_vec() };
+    let mut out = Vec::with_capacity(j - i + 3);
+    if i > 0 {
+        if let Some(z) = crate::geometry::cross_at_level(chain[i - 1], chain[i], height) {
+            out.push(Point::new(z, height));
+        }
+    }
+    out.extend_from_slice(&chain[i..=j]);
+    if j + 1 < chain.len() {
+        if let Some(z) = crate::geometry::cross_at_level(chain[j], chain[j + 1], height) {
+            out.push(Point::new(z, height));
+        }
+    }
+    out.dedup_by(|a, b| a.z == b.z && a.r == b.r);
+    if out.windows(2).all(|w| w[1].z > w[0].z) {
+        out
+    } else {
+        chain.to_vec()
+    }
+}
+
 /// The section as the lower envelope of the imprints' bottom chains (normalised frame: `y = r`
 /// external, `y = −r` internal, where an internal placement also mirrors the insert in z).
 fn envelope_section(
@@ -323,11 +349,22 @@ fn envelope_section(
     let mut env = Chain::flat(window.z_min, window.z_max, s * surface_r);
     let mut sorted = imps.to_vec();
     sorted.sort_by(|a, b| a.z.total_cmp(&b.z));
-    let mirrored: Vec<Point> = chain.iter().rev().map(|p| Point::new(-p.z, p.r)).collect();
-    let local = if kind == ThreadKind::External { chain } else { &mirrored[..] };
+    // Only the part of the chain that can reach into the blank matters: clip it at the greatest
+    // height (above its own tip) that any imprint's tip lies below the surface. That shortens
+    // the chain's reach along Z and so the number of imprints a window sees.
+    let reach = sorted.iter().map(|im| s * surface_r - s * rad(im.x)).fold(0.0f64, f64::max) + 1e-6;
+    let clipped = clip_chain(chain, reach);
+    let mirrored: Vec<Point> = clipped.iter().rev().map(|p| Point::new(-p.z, p.r)).collect();
+    let local = if kind == ThreadKind::External { &clipped[..] } else { &mirrored[..] };
     let mut f: Vec<Point> = Vec::with_capacity(local.len());
+    let (lo, hi) = (local[0].z, local[local.len() - 1].z);
     for im in &sorted {
         let (zt, yt) = (im.z, s * rad(im.x));
+        // An imprint whose (clipped) chain misses the window, or stays above the surface, cannot
+        // change the envelope.
+        if zt + hi <= window.z_min || zt + lo >= window.z_max || yt >= s * surface_r {
+            continue;
+        }
         f.clear();
         f.extend(local.iter().map(|p| Point::new(zt + p.z, yt + p.r)));
         env = env.min_with(&f);
