@@ -11,6 +11,7 @@
 //! one more rotation away.
 
 use crate::geometry::{deg, extend_dedup, signed_area, Arc, Point};
+use crate::limits::{MAX_INSERT_REACH, MAX_OUTLINE_POINTS};
 use crate::standards::{BasicThread, ProfileKind, ThreadKind};
 use crate::Error;
 use nalgebra::{Isometry2, Point2, Vector2};
@@ -271,6 +272,13 @@ fn outline_from_points(points: &[Vec<f64>], tolerance: f64) -> Result<Vec<Point>
         if !(z.is_finite() && r.is_finite() && b.is_finite()) {
             return Err(format!("outline point {} is not finite", i + 1));
         }
+        if z.hypot(r) > MAX_INSERT_REACH {
+            return Err(format!(
+                "outline point {} is {:.1} mm from the tip; an insert reaches at most {MAX_INSERT_REACH} mm",
+                i + 1,
+                z.hypot(r)
+            ));
+        }
         if b.abs() > 1e3 {
             return Err(format!("outline point {}: bulge {b} is not a usable arc", i + 1));
         }
@@ -294,6 +302,12 @@ fn outline_from_points(points: &[Vec<f64>], tolerance: f64) -> Result<Vec<Point>
             let centre = Point::new(mid.z - sign * dr * dist, mid.r + sign * dz * dist);
             let start = (a.r - centre.r).atan2(a.z - centre.z);
             let arc = Arc { center: centre, radius, start, end: start + theta };
+            if out.len() + arc.segments_for(tolerance) > MAX_OUTLINE_POINTS {
+                return Err(format!(
+                    "the arc after outline point {} needs more than the {MAX_OUTLINE_POINTS} outline points threadcheck accepts at a {tolerance} mm chord tolerance",
+                    i + 1
+                ));
+            }
             let pts = arc.tessellate(tolerance);
             extend_dedup(&mut out, pts.into_iter().skip(1).take_while(|p| p.distance(c) > 1e-12));
         }
@@ -326,18 +340,30 @@ fn first_self_intersection(ring: &[Point]) -> Option<(usize, usize)> {
         let (a, b) = (ring[i], ring[(i + 1) % n]);
         Line::new(Coord { x: a.z, y: a.r }, Coord { x: b.z, y: b.r })
     };
-    // Quadratic, bounded by the 10 000-point limit on outlines; insert outlines are small.
-    for i in 0..n {
-        for j in (i + 1)..n {
-            if j == i + 1 || (i == 0 && j == n - 1) {
+    // Sweep along z: only edges whose z-extents overlap can cross.
+    let extent = |i: usize| {
+        let (a, b) = (ring[i], ring[(i + 1) % n]);
+        (a.z.min(b.z), a.z.max(b.z))
+    };
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| extent(a).0.total_cmp(&extent(b).0));
+    let mut found: Option<(usize, usize)> = None;
+    for (k, &i) in order.iter().enumerate() {
+        let hi = extent(i).1;
+        for &j in &order[k + 1..] {
+            if extent(j).0 > hi {
+                break;
+            }
+            let (a, b) = (i.min(j), i.max(j));
+            if b == a + 1 || (a == 0 && b == n - 1) {
                 continue;
             }
-            if line_intersection(seg(i), seg(j)).is_some() {
-                return Some((i, j));
+            if line_intersection(seg(a), seg(b)).is_some() && found.is_none_or(|f| (a, b) < f) {
+                found = Some((a, b));
             }
         }
     }
-    None
+    found
 }
 
 #[cfg(test)]
@@ -422,6 +448,20 @@ mod tests {
         for p in arc {
             assert!((p.distance(Point::new(0.0, 0.1)) - 0.1).abs() < 1e-6, "{p:?}");
         }
+    }
+
+    /// Regression (found by the insert_toml fuzz target): a bulge arc with a 10⁸ mm chord was
+    /// tessellated to 100 000 points and the self-intersection check took 19 s. It is refused at
+    /// once for its reach, and an arc that needs too many points is refused by name.
+    #[test]
+    fn regression_fuzz_insert_huge_bulge_arc_timeout() {
+        let text = "outline = [[-111266025, 0.05, 0.57735003], [5.0866, 0.05], [1.1547005, 2.0]]\n";
+        let e = Insert::from_toml(text, "fuzz.toml", 1e-3).unwrap_err().to_string();
+        assert!(e.contains("from the tip"), "{e}");
+        // A large but plausible half circle at a needlessly fine tolerance: too many points.
+        let text = "outline = [[-99, 0, 1.0], [99, 0], [0, 1]]\n";
+        let e = Insert::from_toml(text, "big.toml", 1e-9).unwrap_err().to_string();
+        assert!(e.contains("outline points"), "{e}");
     }
 
     #[test]

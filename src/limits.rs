@@ -18,3 +18,10 @@ pub const MAX_EXECUTED_BLOCKS: usize = 1_000_000;
 
 /// Largest program file read, bytes.
 pub const MAX_PROGRAM_BYTES: usize = 8 << 20;
+
+/// Most points a custom insert outline may have, arcs tessellated included.
+pub const MAX_OUTLINE_POINTS: usize = 10_000;
+
+/// Farthest an insert outline point may lie from the tip, mm: an insert is a few millimetres
+/// across (found by fuzzing: a bulge arc with a 10⁸ mm chord took 19 s to check).
+pub const MAX_INSERT_REACH: f64 = 100.0;
