@@ -24,19 +24,6 @@ impl Chain {
         Chain(vec![Point::new(z0, y), Point::new(z1, y)])
     }
 
-    /// The value at `z`: the left limit, or with `from_right` the right limit, at a vertical step.
-    fn at(&self, z: f64, from_right: bool) -> f64 {
-        eval(&self.0, z, from_right)
-    }
-
-    fn left(&self, z: f64) -> f64 {
-        self.at(z, false)
-    }
-
-    fn right(&self, z: f64) -> f64 {
-        self.at(z, true)
-    }
-
     /// The pointwise minimum of `self` and `f`, where `f` is defined on `[f.first.z, f.last.z]`
     /// (and has no effect outside). `f` must have strictly increasing `z`.
     pub fn min_with(&self, f: &[Point]) -> Chain {
@@ -72,12 +59,21 @@ impl Chain {
         // envelope's window cuts it) the left limit is the envelope's, where it ends the right
         // limit is.
         let (own_start, own_end) = (f[0].z >= v[0].z, f[f.len() - 1].z <= v[v.len() - 1].z);
-        let (last_k, n) = (zs.len() - 1, zs.len());
-        for k in 0..n {
-            let z = zs[k];
-            let left = if k == 0 && own_start { self.left(z) } else { self.left(z).min(eval(f, z, false)) };
-            let right =
-                if k == last_k && own_end { self.right(z) } else { self.right(z).min(eval(f, z, true)) };
+        // Left and right limits of both chains at every event, walking both once.
+        let (mut we, mut wf) = (Walker::new(v, i0), Walker::new(f, 0));
+        let lim: Vec<[f64; 4]> = zs
+            .iter()
+            .map(|&z| {
+                we.seek(z);
+                wf.seek(z);
+                [we.left(z), we.right(z), wf.left(z), wf.right(z)]
+            })
+            .collect();
+        let last_k = zs.len() - 1;
+        for (k, &z) in zs.iter().enumerate() {
+            let [el, er, fl, fr] = lim[k];
+            let left = if k == 0 && own_start { el } else { el.min(fl) };
+            let right = if k == last_k && own_end { er } else { er.min(fr) };
             out.push(Point::new(z, left));
             // A real step (an imprint's end, a vertical in either chain), not rounding noise.
             if (right - left).abs() > STEP {
@@ -85,11 +81,11 @@ impl Chain {
             }
             if k < last_k {
                 let zb = zs[k + 1];
-                let (da, db) = (self.right(z) - eval(f, z, true), self.left(zb) - eval(f, zb, false));
+                let [ebl, _, fbl, _] = lim[k + 1];
+                let (da, db) = (er - fr, ebl - fbl);
                 if (da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0) {
                     let t = da / (da - db);
-                    let (ea, eb) = (self.right(z), self.left(zb));
-                    out.push(Point::new(z + t * (zb - z), ea + t * (eb - ea)));
+                    out.push(Point::new(z + t * (zb - z), er + t * (ebl - er)));
                 }
             }
         }
@@ -98,22 +94,51 @@ impl Chain {
     }
 }
 
-/// The value of the chain `v` at `z`: the left limit, or with `from_right` the right limit, at
-/// a vertical step; constant beyond the ends.
-fn eval(v: &[Point], z: f64, from_right: bool) -> f64 {
-    // First vertex past z (at or past it for the left limit).
-    let i = if from_right { v.partition_point(|p| p.z <= z) } else { v.partition_point(|p| p.z < z) };
-    if i == 0 {
-        return v[0].r;
+/// Walks a chain with increasing query points, keeping the indices of the first vertex at or
+/// past the point (for the left limit) and strictly past it (for the right limit).
+struct Walker<'a> {
+    v: &'a [Point],
+    lo: usize,
+    hi: usize,
+}
+
+impl<'a> Walker<'a> {
+    fn new(v: &'a [Point], from: usize) -> Walker<'a> {
+        Walker { v, lo: from, hi: from }
     }
-    if i >= v.len() {
-        return v[v.len() - 1].r;
+
+    fn seek(&mut self, z: f64) {
+        while self.lo < self.v.len() && self.v[self.lo].z < z {
+            self.lo += 1;
+        }
+        self.hi = self.hi.max(self.lo);
+        while self.hi < self.v.len() && self.v[self.hi].z <= z {
+            self.hi += 1;
+        }
     }
-    let (a, b) = (v[i - 1], v[i]);
-    if b.z == a.z {
-        return if from_right { b.r } else { a.r };
+
+    fn value(&self, i: usize, z: f64, from_right: bool) -> f64 {
+        let v = self.v;
+        if i == 0 {
+            return v[0].r;
+        }
+        if i >= v.len() {
+            return v[v.len() - 1].r;
+        }
+        let (a, b) = (v[i - 1], v[i]);
+        if b.z == a.z {
+            return if from_right { b.r } else { a.r };
+        }
+        a.r + (z - a.z) / (b.z - a.z) * (b.r - a.r)
     }
-    a.r + (z - a.z) / (b.z - a.z) * (b.r - a.r)
+
+    fn left(&self, z: f64) -> f64 {
+        self.value(self.lo, z, false)
+    }
+
+    fn right(&self, z: f64) -> f64 {
+        self.value(self.hi, z, true)
+    }
 }
 
 /// Steps smaller than this (mm) are rounding between a left and a right evaluation, not steps.
