@@ -24,18 +24,30 @@ impl Chain {
         Chain(vec![Point::new(z0, y), Point::new(z1, y)])
     }
 
-    /// The pointwise minimum of `self` and `f`, where `f` is defined on `[f.first.z, f.last.z]`
-    /// (and has no effect outside). `f` must have strictly increasing `z`.
+    /// The pointwise minimum of `self` and `f` (see [`Chain::merge`]).
     pub fn min_with(&self, f: &[Point]) -> Chain {
+        let mut c = self.clone();
+        c.merge(f);
+        c
+    }
+
+    /// Makes `self` the pointwise minimum of itself and `f`, where `f` is defined on
+    /// `[f.first.z, f.last.z]` (and has no effect outside) with strictly increasing `z`. Only
+    /// the stretch under `f` is rebuilt and spliced in: the cost is that stretch, not the chain.
+    pub fn merge(&mut self, f: &[Point]) {
         let v = &self.0;
         let (lo, hi) = (f[0].z.max(v[0].z), f[f.len() - 1].z.min(v[v.len() - 1].z));
         if !(hi > lo) {
-            return self.clone();
+            return;
         }
         let i0 = v.partition_point(|p| p.z < lo);
         let i1 = v.partition_point(|p| p.z <= hi);
-        let mut out: Vec<Point> = Vec::with_capacity(v.len() + f.len() + 4);
-        out.extend_from_slice(&v[..i0]);
+        // The new stretch, between the untouched neighbours on either side (kept so that the
+        // simplification sees across the junctions).
+        let mut out: Vec<Point> = Vec::with_capacity(i1 - i0 + 2 * f.len() + 4);
+        if i0 > 0 {
+            out.push(v[i0 - 1]);
+        }
         // Events: every vertex z of both in [lo, hi], merged from the two sorted lists.
         let mut zs: Vec<f64> = Vec::with_capacity(i1 - i0 + f.len() + 2);
         zs.push(lo);
@@ -89,8 +101,12 @@ impl Chain {
                 }
             }
         }
-        out.extend_from_slice(&v[i1..]);
-        Chain(simplify(out))
+        if i1 < v.len() {
+            out.push(v[i1]);
+        }
+        let out = simplify(out);
+        // The neighbours are first and last of `out` (simplify keeps the ends): splice over them.
+        self.0.splice(i0.saturating_sub(1)..(i1 + 1).min(self.0.len()), out);
     }
 }
 

@@ -367,7 +367,7 @@ fn envelope_section(
         }
         f.clear();
         f.extend(local.iter().map(|p| Point::new(zt + p.z, yt + p.r)));
-        env = env.min_with(&f);
+        env.merge(&f);
     }
     let profile: Vec<Point> = env.0.iter().map(|p| Point::new(p.z, s * p.r)).collect();
     let mut ring = vec![Point::new(window.z_min, far_r), Point::new(window.z_max, far_r)];
