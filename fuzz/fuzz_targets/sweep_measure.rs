@@ -3,8 +3,8 @@
 #![no_main]
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
-use threadcheck::verify::{verify, InsertChoice, VerifySpec};
 use threadcheck::passes::{Infeed, Schedule};
+use threadcheck::verify::{verify, InsertChoice, VerifySpec};
 
 #[derive(Arbitrary, Debug)]
 struct Case {
@@ -21,7 +21,16 @@ struct Case {
     blank_offset: i8,
 }
 
-const SIZES: [&str; 8] = ["M3-6H/6g", "M6x0.75-6H/6g", "M10x1.5-6H/6g", "M16x1.5-6H/6g", "M24xPh6P2-6H/6g", "M36x4-6H/6g", "BSW 1/2 medium", "G1/2 A"];
+const SIZES: [&str; 8] = [
+    "M3-6H/6g",
+    "M6x0.75-6H/6g",
+    "M10x1.5-6H/6g",
+    "M16x1.5-6H/6g",
+    "M24xPh6P2-6H/6g",
+    "M36x4-6H/6g",
+    "BSW 1/2 medium",
+    "G1/2 A",
+];
 
 fuzz_target!(|c: Case| {
     let mut s = VerifySpec::new(SIZES[c.size as usize % SIZES.len()]);
@@ -36,13 +45,16 @@ fuzz_target!(|c: Case| {
         1 => Infeed::Flank { angle },
         _ => Infeed::Alternating { angle },
     });
-    s.schedule = [Schedule::ConstantArea, Schedule::ConstantDepth, Schedule::Sandvik][c.schedule as usize % 3].clone();
+    s.schedule =
+        [Schedule::ConstantArea, Schedule::ConstantDepth, Schedule::Sandvik][c.schedule as usize % 3].clone();
     s.passes = Some(1 + (c.passes % 40) as usize);
     s.spring = (c.spring % 4) as usize;
     s.tolerance = 1e-3;
     if c.final_offset != 0 {
         // Around the basic root: ±0.33 mm on the diameter in 10 µm steps.
-        let base = threadcheck::parse_designation(&s.designation, threadcheck::ParseOptions::default()).map(|d| d.thread.minor_diameter_external()).unwrap_or(8.0);
+        let base = threadcheck::parse_designation(&s.designation, threadcheck::ParseOptions::default())
+            .map(|d| d.thread.minor_diameter_external())
+            .unwrap_or(8.0);
         s.final_x = Some(base + f64::from(c.final_offset % 33) * 0.01);
     }
     if c.blank_offset != 0 {
