@@ -39,6 +39,9 @@ enum Command {
         /// Leave form checks (root radius, minor-diameter zone, flank angles) out of the verdict.
         #[arg(long)]
         gauge_only: bool,
+        /// Skip the per-pass chip and edge metrics (polygon booleans): a faster verdict.
+        #[arg(long)]
+        no_pass_metrics: bool,
         /// Write an SVG cross-section to this file.
         #[arg(long, value_name = "FILE")]
         svg: Option<PathBuf>,
@@ -211,8 +214,15 @@ fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
         Command::Limits { designation, json, allow_nonstandard } => {
             LimitsJob { designation, allow_nonstandard, json }.run()?
         }
-        Command::Verify { plan, gauge_only, svg, json } => {
-            VerifyJob { spec: plan.spec(gauge_only)?, svg, json }.run()?
+        Command::Verify { plan, gauge_only, no_pass_metrics, svg, json } => {
+            if plan.thread.is_none() {
+                return Err(threadcheck::Error::Input(
+                    "verify needs --thread with a class, e.g. --thread M10x1.5-6g".into(),
+                ));
+            }
+            let mut spec = plan.spec(gauge_only)?;
+            spec.metrics = !no_pass_metrics;
+            VerifyJob { spec, svg, json }.run()?
         }
         Command::Passes { plan, json } => PassesJob { spec: plan.spec(false)?, json }.run()?,
         Command::Sweep {

@@ -291,3 +291,16 @@ fn passes_off_the_helix_do_not_land_in_one_groove() {
     let (code_full, _) = json_of(&["verify", "--thread", "M10x1.5-6g", "--program", prog.to_str().unwrap()]);
     assert_eq!(code_full, 1);
 }
+
+/// `--no-pass-metrics` gives the same verdict and measurement without the per-pass chip data.
+#[test]
+fn no_pass_metrics_keeps_the_verdict() {
+    let (code_a, a) = json_of(&["verify", "--thread", "M10x1.5-6g"]);
+    let (code_b, b) = json_of(&["verify", "--thread", "M10x1.5-6g", "--no-pass-metrics"]);
+    assert_eq!(code_a, code_b);
+    assert_eq!(a["measured"], b["measured"]);
+    assert_eq!(a["verdict"], b["verdict"]);
+    assert!(a["passes"][0].get("chip_area").is_some());
+    assert!(b["passes"][0].get("chip_area").is_none());
+    assert_eq!(a["passes"].as_array().unwrap().len(), b["passes"].as_array().unwrap().len());
+}
