@@ -451,13 +451,15 @@ pub fn measure(setup: &MeasureSetup<'_>, profile: &[Point], z_ref: f64) -> Resul
         // The maximum-material profile: the basic profile moved radially so its pitch diameter
         // is d2m, centred on the measured groove; then the best axial fit, as a gauge finds it.
         let variant = if kind == ThreadKind::External { ProfileKind::Basic } else { ProfileKind::Nut };
+        // In normalised coordinates (r = −radius inside a nut) a larger pitch diameter is a
+        // shift of s·Δd2/2.
         let shift_r = s * 0.5 * (d2m - t.pitch_diameter());
         let one = normalise(&t.profile(variant, 5e-5), kind);
         let cut: Vec<Point> = g.pts[g.left..=g.right].to_vec();
         let mut mmc = Vec::new();
         for k in -1..=1 {
             for q in &one {
-                mmc.push(Point::new(q.z + zc + k as f64 * p, q.r + s * shift_r));
+                mmc.push(Point::new(q.z + zc + k as f64 * p, q.r + shift_r));
             }
         }
         mmc.dedup_by(|a, b| a.distance(*b) < 1e-12);

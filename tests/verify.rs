@@ -304,3 +304,46 @@ fn no_pass_metrics_keeps_the_verdict() {
     assert!(b["passes"][0].get("chip_area").is_none());
     assert_eq!(a["passes"].as_array().unwrap().len(), b["passes"].as_array().unwrap().len());
 }
+
+/// Bug: inside a nut the maximum-material profile was moved the wrong way, so a 6G nut was
+/// gauged against a GO profile 2·EI below the basic D2 instead of EI above it (M20x1.5-6G at
+/// D2 = D2 min read +16 µm clearance). A full-profile insert at X cuts D2 = X − 0.649519·P and
+/// clears the maximum-material flanks by (D2 − D2 min)/2 · sin 30° (normal distance between
+/// parallel 60° flanks); D2 min = D2 min(6H) + EI(G), EI(G) = −es(g) (ISO 965-1).
+#[test]
+fn regression_internal_gauge_moved_the_wrong_way() {
+    let t = data_toml("iso965-limits.toml");
+    let row = t["thread"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["designation"].as_str() == Some("M20x1.5-6H/6g"))
+        .unwrap();
+    let ei_g = -row["es_um"].as_integer().unwrap() as f64 * 1e-3;
+    let d2_min_6g_nut = row["internal"]["D2_min"].as_float().unwrap() + ei_g;
+    let d2_max_bolt = row["external"]["d2_max"].as_float().unwrap();
+    let sin30 = 0.5;
+    let cases: [(&str, &[&str], f64, f64); 3] = [
+        ("M20x1.5-6G", &[], 20.052, d2_min_6g_nut),
+        // Not at X = D min: the published D2 min (from the rounded basic 19.026) puts the GO
+        // profile's flats 0.14 µm off the exact basic, which would decide a case on the limit.
+        ("M20x1.5-6G", &[], 20.042, d2_min_6g_nut),
+        // The bolt with a blank below d max, so the crest is not topped above the GO profile.
+        ("M20x1.5-6g", &["--blank-diameter", "19.9"], 18.124, d2_max_bolt),
+    ];
+    for (thread, extra, x, d2_mmc) in cases {
+        let xs = format!("{x}");
+        let mut args = vec!["verify", "--thread", thread, "--insert", "full", "--infeed", "radial"];
+        args.extend(["--final-x", &xs]);
+        args.extend(extra);
+        let (_, v) = json_of(&args);
+        let internal = thread.ends_with('G');
+        // Basic: d2 = d − 0.649519·P; the insert's tip at X = d (nut) or X = d3 (bolt).
+        let d2 = if internal { x - 0.649_519 * 1.5 } else { x + 1.226_869 * 1.5 - 0.649_519 * 1.5 };
+        let m = &v["measured"];
+        assert!((m["pitch_diameter"].as_f64().unwrap() - d2).abs() < 2e-6, "{thread} X{x}: {m:#}");
+        let want = if internal { d2 - d2_mmc } else { d2_mmc - d2 } / 2.0 * sin30;
+        let got = m["max_material_clearance"].as_f64().unwrap();
+        assert!((got - want).abs() < 1e-5, "{thread} X{x}: clearance {got} mm, analytic {want} mm");
+    }
+}
