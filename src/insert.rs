@@ -369,16 +369,9 @@ fn first_self_intersection(ring: &[Point]) -> Option<(usize, usize)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::standards::{Hand, ThreadForm};
 
     fn m(d: f64, p: f64) -> BasicThread {
-        BasicThread {
-            form: ThreadForm::IsoMetric,
-            nominal_diameter: d,
-            pitch: p,
-            starts: 1,
-            hand: Hand::Right,
-        }
+        BasicThread::metric(d, p)
     }
 
     #[test]

@@ -7,10 +7,10 @@ use threadcheck::measure::{measure, MeasureSetup};
 use threadcheck::passes::{Infeed, Pass, PlanSpec};
 use threadcheck::sweep::{sweep, Section, SweepSetup, Window};
 use threadcheck::verify::reference_groove;
-use threadcheck::{BasicThread, Hand, ThreadForm, ThreadKind};
+use threadcheck::{BasicThread, ThreadKind};
 
 fn metric(d: f64, p: f64) -> BasicThread {
-    BasicThread { form: ThreadForm::IsoMetric, nominal_diameter: d, pitch: p, starts: 1, hand: Hand::Right }
+    BasicThread::metric(d, p)
 }
 
 fn plan(

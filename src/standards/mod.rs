@@ -114,6 +114,17 @@ pub struct BasicThread {
 }
 
 impl BasicThread {
+    /// A single-start, right-hand ISO metric thread: nominal diameter `d` and pitch `p`, mm.
+    pub fn metric(d: f64, p: f64) -> BasicThread {
+        BasicThread {
+            form: ThreadForm::IsoMetric,
+            nominal_diameter: d,
+            pitch: p,
+            starts: 1,
+            hand: Hand::Right,
+        }
+    }
+
     /// Lead Ph = n·P, mm: the axial advance per revolution.
     pub fn lead(&self) -> f64 {
         self.pitch * f64::from(self.starts)
@@ -236,9 +247,8 @@ impl BasicThread {
     /// `ProfileKind::Nut` gives the internal thread's groove (centred on the bolt's tooth).
     ///
     /// ```
-    /// use threadcheck::{BasicThread, Hand, ProfileKind, ThreadForm};
-    /// let m10 = BasicThread { form: ThreadForm::IsoMetric, nominal_diameter: 10.0, pitch: 1.5,
-    ///                         starts: 1, hand: Hand::Right };
+    /// use threadcheck::{BasicThread, ProfileKind};
+    /// let m10 = BasicThread::metric(10.0, 1.5);
     /// let p = m10.profile(ProfileKind::BoltDesign, 5e-5);
     /// let lowest = p.iter().map(|q| q.r).fold(f64::INFINITY, f64::min);
     /// assert!((2.0 * lowest - 8.160).abs() < 1e-3); // d3 = d − 1.226869·P
@@ -385,13 +395,7 @@ mod tests {
     use super::*;
 
     fn metric(d: f64, p: f64) -> BasicThread {
-        BasicThread {
-            form: ThreadForm::IsoMetric,
-            nominal_diameter: d,
-            pitch: p,
-            starts: 1,
-            hand: Hand::Right,
-        }
+        BasicThread::metric(d, p)
     }
 
     /// ISO 68-1 / DIN 13 coefficients (shared/reference/README.md, VERIFIED).
