@@ -1,14 +1,30 @@
 //! Writing output files without ever leaving a half-written one: write a temporary file in the
 //! same folder, flush it to disk, then rename it over the target (atomic on one file system).
+//! A target that is not a regular file (a device such as `/dev/null`, a FIFO) is written in
+//! place: renaming over it would replace the device with a file.
 
 use crate::Error;
 use std::io::Write;
 use std::path::Path;
 
 /// Writes `bytes` to `path` atomically. On any error the existing file at `path`, if any, is
-/// left untouched and the temporary file is removed.
+/// left untouched and the temporary file is removed. A symbolic link is followed, so the file it
+/// points to is replaced, not the link; a device or FIFO is written directly.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
     let io = |e: std::io::Error| Error::Io { path: path.display().to_string(), message: e.to_string() };
+    if let Ok(meta) = std::fs::metadata(path) {
+        if meta.is_dir() {
+            return Err(Error::Input(format!("{}: is a folder, not a file", path.display())));
+        }
+        if !meta.is_file() {
+            let mut f = std::fs::OpenOptions::new().write(true).open(path).map_err(io)?;
+            return f.write_all(bytes).map_err(io);
+        }
+        if std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink()) {
+            let real = std::fs::canonicalize(path).map_err(io)?;
+            return write_atomic(&real, bytes);
+        }
+    }
     let dir = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => std::path::PathBuf::from("."),
@@ -47,6 +63,26 @@ mod tests {
         let n = std::fs::read_dir(&dir).unwrap().count();
         assert_eq!(n, 1);
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_symlink_is_followed() {
+        let dir = std::env::temp_dir().join(format!("tc-link-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (target, link) = (dir.join("real.json"), dir.join("link.json"));
+        std::fs::write(&target, b"old").unwrap();
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        write_atomic(&link, b"new").unwrap();
+        assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+        assert_eq!(std::fs::read(&target).unwrap(), b"new");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_folder_is_refused() {
+        let e = write_atomic(&std::env::temp_dir(), b"x").unwrap_err();
+        assert!(e.to_string().contains("is a folder"), "{e}");
     }
 
     #[test]

@@ -347,3 +347,41 @@ fn regression_internal_gauge_moved_the_wrong_way() {
         assert!((got - want).abs() < 1e-5, "{thread} X{x}: clearance {got} mm, analytic {want} mm");
     }
 }
+
+/// Bug: `--json /dev/null` wrote a temporary file in /dev and renamed it over the device, so
+/// (run as root) /dev/null became a regular file and every later `2>/dev/null` filled it. A
+/// FIFO stands in for the device here: it must still be a FIFO afterwards and carry the report.
+/// The read end is opened non-blocking, so a regression fails instead of hanging.
+#[cfg(target_os = "linux")]
+#[test]
+fn regression_json_to_dev_null_replaced_the_device() {
+    use std::io::Read;
+    use std::os::unix::fs::{FileTypeExt, OpenOptionsExt};
+    const O_NONBLOCK: i32 = 0o4000; // Linux, x86-64 and AArch64
+    let dir = tempdir("fifo");
+    let fifo = dir.join("report.json");
+    let made = Command::new("mkfifo").arg(&fifo).status();
+    if !made.is_ok_and(|s| s.success()) {
+        return; // no mkfifo on this machine: nothing to check
+    }
+    let mut reader = std::fs::OpenOptions::new().read(true).custom_flags(O_NONBLOCK).open(&fifo).unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_threadcheck"))
+        .args(["verify", "--thread", "M10x1.5-6g", "--insert", "full", "--json"])
+        .arg(&fifo)
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let (mut got, mut buf, mut done) = (Vec::new(), [0u8; 65536], false);
+    loop {
+        match reader.read(&mut buf) {
+            Ok(n) if n > 0 => got.extend_from_slice(&buf[..n]),
+            Ok(_) if done => break,
+            _ => std::thread::sleep(std::time::Duration::from_millis(2)),
+        }
+        // One more read after the exit drains what the child wrote last.
+        done = done || child.try_wait().unwrap().is_some();
+    }
+    assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo(), "the FIFO was replaced");
+    let v: serde_json::Value = serde_json::from_slice(&got).expect("the report came through the FIFO");
+    assert_eq!(v["verdict"], "pass");
+}
