@@ -462,23 +462,14 @@ mod tests {
     #[test]
     fn left_hand_taper_and_chamfer() {
         let spec = PlanSpec {
-            kind: ThreadKind::External,
-            pitch: 1.5,
-            starts: 1,
-            surface_x: 20.0,
-            final_x: 18.0,
-            passes: 4,
             schedule: Schedule::ConstantDepth,
             infeed: Infeed::Flank { angle: 30.0 },
-            spring: 0,
-            first_depth: None,
-            min_depth: 0.0,
-            finish: 0.0,
             taper: 1.0 / 16.0,
             chamfer_leads: 1.5,
             left_hand: true,
             z_start: -30.0,
             length: 20.0,
+            ..PlanSpec::new(ThreadKind::External, 1.5, 20.0, 18.0, 4)
         };
         let p = spec.generate().unwrap();
         let last = p[3];
@@ -512,23 +503,9 @@ mod tests {
     #[test]
     fn first_depth_min_step_and_finish() {
         let mut spec = PlanSpec {
-            kind: ThreadKind::External,
-            pitch: 1.5,
-            starts: 1,
-            surface_x: 10.0,
-            final_x: 8.2,
-            passes: 0,
-            schedule: Schedule::ConstantArea,
-            infeed: Infeed::Radial,
-            spring: 0,
             first_depth: Some(0.3),
-            min_depth: 0.0,
-            finish: 0.0,
-            taper: 0.0,
-            chamfer_leads: 0.0,
-            left_hand: false,
-            z_start: 0.0,
             length: 10.0,
+            ..PlanSpec::new(ThreadKind::External, 1.5, 10.0, 8.2, 0)
         };
         // t = 0.9, first 0.3: (0.9/0.3)² = 9 passes of constant area.
         assert_eq!(spec.depths().unwrap().len(), 9);
@@ -546,23 +523,11 @@ mod tests {
     #[test]
     fn generated_plan_has_spring_passes_and_starts() {
         let spec = PlanSpec {
-            kind: ThreadKind::External,
-            pitch: 2.0,
             starts: 2,
-            surface_x: 24.0,
-            final_x: 21.5,
-            passes: 6,
-            schedule: Schedule::ConstantArea,
-            infeed: Infeed::Radial,
             spring: 1,
-            first_depth: None,
-            min_depth: 0.0,
-            finish: 0.0,
-            taper: 0.0,
-            chamfer_leads: 0.0,
-            left_hand: false,
             z_start: 1.0,
             length: 20.0,
+            ..PlanSpec::new(ThreadKind::External, 2.0, 24.0, 21.5, 6)
         };
         let p = spec.generate().unwrap();
         assert_eq!(p.len(), 14);
