@@ -238,16 +238,7 @@ fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
             export_placements,
         } => {
             let mut spec = threadcheck::catalogue::CatalogueSpec::default();
-            (spec.coarse, spec.fine) = match series.as_str() {
-                "coarse" => (true, false),
-                "fine" => (false, true),
-                "all" => (true, true),
-                _ => {
-                    return Err(threadcheck::Error::Input(format!(
-                        "--series '{series}': expected coarse, fine or all"
-                    )))
-                }
-            };
+            (spec.coarse, spec.fine) = one_or_both("series", &series, ["coarse", "fine", "all"])?;
             if !(min_d.is_finite() && max_d.is_finite() && min_d <= max_d) {
                 return Err(threadcheck::Error::Input(
                     "--min-d and --max-d must be finite with min ≤ max".into(),
@@ -255,16 +246,7 @@ fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
             }
             spec.diameters = (min_d, max_d);
             spec.class = class;
-            (spec.full, spec.partial) = match insert.as_str() {
-                "full" => (true, false),
-                "partial" => (false, true),
-                "both" => (true, true),
-                _ => {
-                    return Err(threadcheck::Error::Input(format!(
-                        "--insert '{insert}': expected full, partial or both"
-                    )))
-                }
-            };
+            (spec.full, spec.partial) = one_or_both("insert", &insert, ["full", "partial", "both"])?;
             spec.infeeds = infeed
                 .split(',')
                 .map(|i| match i.trim() {
@@ -316,6 +298,17 @@ fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
     // A closed pipe (`| head`) is not an error worth a message.
     let _ = out.write_all(text.as_bytes());
     Ok(outcome)
+}
+
+/// A two-way option: `[first, second, both]` becomes (first, second) flags.
+fn one_or_both(option: &str, value: &str, names: [&str; 3]) -> Result<(bool, bool), threadcheck::Error> {
+    let [a, b, both] = names;
+    match value {
+        v if v == a => Ok((true, false)),
+        v if v == b => Ok((false, true)),
+        v if v == both => Ok((true, true)),
+        _ => Err(threadcheck::Error::Input(format!("--{option} '{value}': expected {a}, {b} or {both}"))),
+    }
 }
 
 fn main() -> ExitCode {
