@@ -13,8 +13,13 @@ pub const MAX_CALL_DEPTH: usize = 16;
 /// Most repetitions of one subprogram call (`L9 P33`).
 pub const MAX_REPEATS: usize = 10_000;
 
-/// Most blocks a program may execute, counting repetitions, before it is taken for a loop.
-pub const MAX_EXECUTED_BLOCKS: usize = 1_000_000;
+/// Most blocks a program may execute, counting repetitions, before it is taken for a loop. The
+/// seed paraboloid program runs about 8 million (800 layers of 1440 steps of 7 blocks).
+pub const MAX_EXECUTED_BLOCKS: usize = 20_000_000;
+
+/// Most loop iterations and backward jumps (WHILE, GOTO back, o-word loops, M73/M74) one
+/// program may make: a runaway loop stops here, well within a second.
+pub const MAX_BACKWARD_JUMPS: usize = 2_000_000;
 
 /// Largest program file read, bytes.
 pub const MAX_PROGRAM_BYTES: usize = 8 << 20;

@@ -25,6 +25,11 @@ pub struct Pass {
     pub z_start: f64,
     /// Z where the threading move ends, mm.
     pub z_end: f64,
+    /// Z of one crossing of the helix with the half-plane, mm: the pass crosses at
+    /// `z_phase + k·lead` for whole k. It is `z_start` for a single move; a later segment of a
+    /// synchronised chain (G32/G33 blocks one after the other) keeps the phase of the chain's
+    /// first segment.
+    pub z_phase: f64,
     /// Lead (axial advance per revolution), mm.
     pub lead: f64,
     /// Which start of a multi-start thread (0-based); its grooves are offset by this many pitches,
@@ -51,6 +56,7 @@ impl Pass {
             x_end: x,
             z_start,
             z_end,
+            z_phase: z_start,
             lead,
             start: 0,
             source_line: None,
@@ -105,25 +111,27 @@ impl Pass {
     }
 
     /// The axial positions in `[lo, hi]` where this pass crosses the half-plane:
-    /// `z_start + k·lead·direction` for whole k ≥ 0 within the move.
+    /// `z_phase + k·lead` for whole k, within the move.
     pub fn crossings(&self, lo: f64, hi: f64) -> Vec<f64> {
-        let dir = self.feed_direction();
         let (zmin, zmax) = (self.z_start.min(self.z_end), self.z_start.max(self.z_end));
         let (lo, hi) = (lo.max(zmin), hi.min(zmax));
         if !(hi >= lo) || !(self.lead > 0.0) {
             return Vec::new();
         }
-        // k range from the window, so a long pass costs nothing outside it.
-        let (k0, k1) = if dir < 0.0 {
-            (((self.z_start - hi) / self.lead).ceil(), ((self.z_start - lo) / self.lead).floor())
-        } else {
-            (((lo - self.z_start) / self.lead).ceil(), ((hi - self.z_start) / self.lead).floor())
-        };
-        let k0 = k0.max(0.0);
+        // k range from the window, so a long pass costs nothing outside it. The move's own ends
+        // count (a crossing at z_start within rounding).
+        let eps = 1e-12 * (1.0 + self.z_start.abs());
+        let k0 = ((lo - eps - self.z_phase) / self.lead).ceil();
+        let k1 = ((hi + eps - self.z_phase) / self.lead).floor();
         if k1 < k0 || k1 - k0 > 1e6 {
             return Vec::new();
         }
-        (k0 as i64..=k1 as i64).map(|k| self.z_start + dir * (k as f64) * self.lead).collect()
+        let mut v: Vec<f64> =
+            (k0 as i64..=k1 as i64).map(|k| self.z_phase + (k as f64) * self.lead).collect();
+        if self.feed_direction() < 0.0 {
+            v.reverse();
+        }
+        v
     }
 }
 
@@ -411,6 +419,7 @@ impl PlanSpec {
                     x_end: x + self.taper * self.length,
                     z_start: z0 + off,
                     z_end: z0 + off + dir * self.length,
+                    z_phase: z0 + off,
                     lead,
                     start,
                     source_line: None,

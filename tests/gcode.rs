@@ -32,10 +32,12 @@ fn linuxcnc_g76_reference_example() {
             pass.x_start
         );
         assert!((pass.z_start - (0.2 - depth * q) * IN).abs() < 1e-9, "pass {} Z", i + 1);
-        assert!((pass.z_end + 0.5 * IN).abs() < 1e-9);
+        // The synchronised stretch ends at target_z − zoff = −0.5 + (K − depth)·tan Q.
+        assert!((pass.z_end - (-0.5 + (0.045 - depth) * q) * IN).abs() < 1e-9, "pass {} end", i + 1);
         assert!((pass.lead - 0.05 * IN).abs() < 1e-12);
         assert!((pass.taper_out - 0.05 * IN).abs() < 1e-12 && pass.taper_in == 0.0);
-        assert!((pass.x_taper - 2.0 * 0.125 * IN).abs() < 1e-9);
+        // The exit taper climbs to (K − depth) above the crest.
+        assert!((pass.x_taper - 2.0 * (0.125 + 0.045 - depth) * IN).abs() < 1e-9);
         assert_eq!(pass.source_line, Some(6));
     }
 }
@@ -76,19 +78,46 @@ fn fanuc_g92_taper_internal_with_repeats() {
     }
 }
 
-/// Fanuc G32 by hand: three passes from the X set before each; the last G32 with X continues the
-/// helix as a run-out from X10.6 at Z-20 to X12.4 at Z-21.5.
+/// Fanuc G32 by hand: three passes from the X set before each; the last G32 block with X
+/// continues the third pass's helix as a run-out from X10.6 at Z-20 to X12.4 at Z-21.5: a fourth
+/// segment of the same chain, phased from the chain's start at Z5 (its F1.5 runs along Z, the
+/// longer axis).
 #[test]
 fn fanuc_g32_sequence() {
     let p = prog("fanuc-g32.nc", Dialect::Fanuc);
+    assert_eq!(p.operations.len(), 1);
     let xs = [11.4, 10.9, 10.6];
-    assert_eq!(p.passes.len(), 3);
+    assert_eq!(p.passes.len(), 4);
     for (pass, x) in p.passes.iter().zip(xs) {
-        assert_eq!((pass.x_start, pass.x_end, pass.z_start, pass.lead), (x, x, 5.0, 1.5));
+        assert_eq!((pass.x_start, pass.x_end, pass.z_start, pass.z_end, pass.lead), (x, x, 5.0, -20.0, 1.5));
+        assert_eq!(pass.z_phase, 5.0);
     }
-    let last = &p.passes[2];
-    assert_eq!((last.z_end, last.taper_out, last.x_taper), (-21.5, 1.5, 12.4));
-    assert!((last.x_at(-20.75) - 11.5).abs() < 1e-12);
+    let out = &p.passes[3];
+    assert_eq!(
+        (out.x_start, out.x_end, out.z_start, out.z_end, out.z_phase, out.lead),
+        (10.6, 12.4, -20.0, -21.5, 5.0, 1.5)
+    );
+    assert!((out.x_at(-20.75) - 11.5).abs() < 1e-12);
+}
+
+/// Regression (A3): a G33 chain straight → taper → straight keeps every segment: the deeper
+/// stretch after the taper is cut at its own diameter, on the helix of the chain's start.
+#[test]
+fn g33_chain_keeps_the_stretch_after_a_taper() {
+    let text = "G21 G18 G8\nG0 X25 Z2\nG33 K2 X25 Z-10\nG33 K2 X25 Z-20\nG33 X20 Z-30 K2.2360679775\nG33 K2 X20 Z-41\nG0 X30\nM2\n";
+    let p = read_program(text, "chain.ngc", Dialect::LinuxCnc).unwrap();
+    assert_eq!(p.passes.len(), 4);
+    // Radius mode: X25 is Ø50. The taper drops 5 mm of radius over 10 mm of Z: K along the
+    // line √125 = 11.18 mm per 10 mm of Z, so K2.2360679775 advances Z by 2 per revolution.
+    let xs = [(50.0, 50.0), (50.0, 50.0), (50.0, 40.0), (40.0, 40.0)];
+    for (pass, (a, b)) in p.passes.iter().zip(xs) {
+        assert_eq!((pass.x_start, pass.x_end), (a, b));
+        assert_eq!(pass.z_phase, 2.0);
+        assert!((pass.lead - 2.0).abs() < 1e-9, "{}", pass.lead);
+    }
+    assert_eq!((p.passes[3].z_start, p.passes[3].z_end), (-30.0, -41.0));
+    // Crossings of the last segment are on the helix from Z2: −32, −34, …, −40.
+    assert_eq!(p.passes[3].crossings(-41.0, -30.5), vec![-32.0, -34.0, -36.0, -38.0, -40.0]);
 }
 
 /// Sinumerik: L9 P33 runs the subprogram 33 times; each run sets R3 = R3 − 0.05 from 21.7 and cuts
@@ -143,7 +172,7 @@ fn malformed_programs_name_file_line_column() {
         ),
         ("no-f.nc", "G0 X14 Z5\nX11.4\nG32 Z-20\n", "no-f.nc:3:1:", "add F"),
         ("comma.nc", "G0 X14 Z5\nG32 Z-39,65 F1.5\n", "comma.nc:2:5:", "write Z-39.65"),
-        ("point.nc", "G0 X22 Z5\nG76 P1.950 Q100 R0.05\n", "point.nc:2:5:", "write P1950"),
+        ("point.nc", "G0 X22 Z5\nG76 P1.950 Q100 R0.05\n", "point.nc:2:5:", "P(m)(r)(a) is six digits"),
         ("nothing.nc", "G0 X10 Z5\nG1 Z-20 F0.2\nM30\n", "nothing.nc:1:1:", "no threading pass"),
     ];
     for (name, text, place, msg) in cases {

@@ -51,7 +51,7 @@ proptest! {
         let ins = Insert::partial_for(&t, r, 1e-3).unwrap();
         let final_x = d - 2.0 * (0.875 * t.fundamental_height() - r);
         let a = plan(ThreadKind::External, p, d - 0.1, final_x, n, angle, 6.0 * p + phase);
-        let b: Vec<Pass> = a.iter().map(|q| Pass { z_start: q.z_start + p, z_end: q.z_end + p, ..*q }).collect();
+        let b: Vec<Pass> = a.iter().map(|q| Pass { z_start: q.z_start + p, z_end: q.z_end + p, z_phase: q.z_phase + p, ..*q }).collect();
         let (za, zb) = (reference_groove(&a), reference_groove(&b));
         prop_assert!((zb - za - p).abs() < 1e-9);
         let ms = MeasureSetup { thread: &t, kind: ThreadKind::External, mmc_pitch_diameter: Some(t.pitch_diameter()), extras: true };
@@ -83,7 +83,7 @@ proptest! {
         let nut0 = plan(ThreadKind::Internal, p, d1 - 0.1, d, n, angle, 6.0 * p);
         let zb = reference_groove(&bolt);
         let shift = zb + 0.5 * p - reference_groove(&nut0);
-        let nut: Vec<Pass> = nut0.iter().map(|q| Pass { z_start: q.z_start + shift, z_end: q.z_end + shift, ..*q }).collect();
+        let nut: Vec<Pass> = nut0.iter().map(|q| Pass { z_start: q.z_start + shift, z_end: q.z_end + shift, z_phase: q.z_phase + shift, ..*q }).collect();
         let zn = reference_groove(&nut);
         prop_assert!((zn - zb - 0.5 * p).abs() < 1e-9);
         let sb = section(ThreadKind::External, &bolt_ins, d + 0.1, p, &bolt, zb);

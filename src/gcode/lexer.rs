@@ -1,11 +1,19 @@
-//! Splits a program into blocks of words, per dialect, keeping line and column of every word and
+//! Splits a program into blocks of words and macro statements, per dialect, keeping the line and
+//! column of everything (columns count characters of the line as written, blanks included) and
 //! whether each number had a decimal point (Fanuc reads some words in least-input increments).
+//!
+//! Fanuc, Haas, LinuxCNC and Dyna ignore blanks outside comments, so `O 1234`, `S 500` and
+//! `X 84` are `O1234`, `S500` and `X84`: the line is read with its blanks taken out, and a map
+//! keeps every character's column. Sinumerik separates words with blanks and writes expressions
+//! after `=`, so it is read token by token, blanks allowed around `=` and between an address and
+//! its number (`I 1.82`).
 
+use super::expr::{Expr, Parser, Syntax, VarRef};
 use super::Dialect;
 
-/// A value as written.
+/// A word's value as written.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Val {
+pub enum WVal {
     /// A number, and whether it was written with a decimal point.
     Num {
         /// The value.
@@ -13,50 +21,183 @@ pub enum Val {
         /// Written with a decimal point.
         point: bool,
     },
-    /// An expression after `=` (Sinumerik), evaluated when the block runs.
-    Expr(String),
-    /// Arguments of a call such as `CYCLE97(1.5,,0,…)`: each raw text (None where empty) and
-    /// its column.
-    Args(Vec<(Option<String>, usize)>),
-    /// A bare name (`M17` is `M` with a number; `DIAMON` is a bare name).
+    /// An expression (`X[#1+2]`, `X#24`, Sinumerik `X=R3`), evaluated when the block runs.
+    Expr(Expr),
+    /// Arguments of a Sinumerik call such as `CYCLE97(1.5,,0,…)`: each parsed (None where
+    /// empty) with its column.
+    Args(Vec<(Option<Expr>, usize)>),
+    /// A bare name (`DIAMON`).
     Bare,
 }
 
-/// One word: an address (uppercase) and its value, at a column (1-based, characters).
+/// One word: an address (upper case) and its value, at a column.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Word {
-    /// Address: `X`, `G`, `R3` (an R-parameter target), `CYCLE97`, `SF`, …
+    /// Address: `X`, `G`, `CYCLE97`, `SF`, …
     pub name: String,
     /// The value.
-    pub val: Val,
+    pub val: WVal,
     /// 1-based column of the word's first character.
     pub col: usize,
     /// The word as written (`P1.950`), for messages.
     pub text: String,
 }
 
-impl Word {
-    /// The number, if it is one.
-    pub fn num(&self) -> Option<f64> {
-        match self.val {
-            Val::Num { v, .. } => Some(v),
-            _ => None,
-        }
-    }
+/// A LinuxCNC O-word keyword.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OKw {
+    /// `sub`
+    Sub,
+    /// `endsub`
+    EndSub,
+    /// `call`
+    Call,
+    /// `return`
+    Return,
+    /// `while`
+    While,
+    /// `endwhile`
+    EndWhile,
+    /// `do`
+    Do,
+    /// `if`
+    If,
+    /// `elseif`
+    ElseIf,
+    /// `else`
+    Else,
+    /// `endif`
+    EndIf,
+    /// `repeat`
+    Repeat,
+    /// `endrepeat`
+    EndRepeat,
+    /// `break`
+    Break,
+    /// `continue`
+    Continue,
 }
 
-/// A block: its words and the 1-based line it stands on.
+/// A macro statement.
 #[derive(Clone, Debug, PartialEq)]
+pub enum Stmt {
+    /// `#1=…`, `R3=…`.
+    Assign {
+        /// The variable set.
+        var: VarRef,
+        /// Its new value.
+        expr: Expr,
+        /// Column of the variable.
+        col: usize,
+        /// The statement as written, for messages.
+        text: String,
+    },
+    /// Fanuc `GOTO n`.
+    Goto {
+        /// The sequence number.
+        target: Expr,
+        /// Column.
+        col: usize,
+    },
+    /// Fanuc `IF [c] GOTO n`.
+    IfGoto {
+        /// Condition.
+        cond: Expr,
+        /// Sequence number.
+        target: Expr,
+        /// Column.
+        col: usize,
+    },
+    /// Fanuc `IF [c] THEN #i=…`.
+    IfThen {
+        /// Condition.
+        cond: Expr,
+        /// The assignment done when true.
+        then: Box<Stmt>,
+        /// Column.
+        col: usize,
+    },
+    /// Fanuc `WHILE [c] DOm`.
+    While {
+        /// Condition.
+        cond: Expr,
+        /// Loop number m.
+        id: u32,
+        /// Column.
+        col: usize,
+    },
+    /// Fanuc `DOm` without WHILE: an endless loop.
+    Do {
+        /// Loop number.
+        id: u32,
+        /// Column.
+        col: usize,
+    },
+    /// Fanuc `ENDm`.
+    End {
+        /// Loop number.
+        id: u32,
+        /// Column.
+        col: usize,
+    },
+    /// Sinumerik `GOTOF label`, `GOTOB label`, `GOTO label`, optionally behind `IF cond`.
+    Jump {
+        /// Some(true) forward, Some(false) backward, None both (GOTO).
+        forward: Option<bool>,
+        /// Label or sequence number (`N100`).
+        label: String,
+        /// Condition.
+        cond: Option<Expr>,
+        /// Column.
+        col: usize,
+    },
+    /// A LinuxCNC O-word.
+    O {
+        /// Its name: `100` or `<threading>` (lower case).
+        name: String,
+        /// The keyword.
+        kw: OKw,
+        /// The bracketed condition (while, if, elseif, repeat count, do … while) or return value.
+        cond: Option<Expr>,
+        /// Call arguments.
+        args: Vec<Expr>,
+        /// Column.
+        col: usize,
+    },
+}
+
+/// A block.
+#[derive(Clone, Debug, PartialEq, Default)]
 pub struct Block {
     /// 1-based line.
     pub line: usize,
     /// Column of the first word.
     pub col: usize,
+    /// Sequence number `N…`, if the block starts with one.
+    pub n: Option<f64>,
+    /// A Sinumerik label (`MARK1:`).
+    pub label: Option<String>,
+    /// A program header: Fanuc `O1234`, a Sinumerik subprogram (`L9` alone on its line after the
+    /// main program, or `%_N_L9_SPF`).
+    pub header: Option<String>,
     /// The words in order.
     pub words: Vec<Word>,
-    /// A Sinumerik subprogram header (`%_N_L9_SPF`, or a line holding only `L9` after the main
-    /// program's end) names the subprogram that starts here.
-    pub label: Option<String>,
+    /// Macro statements in order.
+    pub stmts: Vec<Stmt>,
+}
+
+impl Block {
+    fn new(line: usize) -> Block {
+        Block { line, col: 1, ..Block::default() }
+    }
+
+    fn is_empty(&self) -> bool {
+        self.n.is_none()
+            && self.label.is_none()
+            && self.header.is_none()
+            && self.words.is_empty()
+            && self.stmts.is_empty()
+    }
 }
 
 /// A lexing error: line, column, message.
@@ -68,191 +209,466 @@ pub fn lex(text: &str, dialect: Dialect) -> Result<Vec<Block>, LexError> {
     let mut blocks = Vec::new();
     for (i, raw) in text.split('\n').enumerate() {
         let line = raw.strip_suffix('\r').unwrap_or(raw);
-        lex_line(line, i + 1, dialect, &mut blocks)?;
+        match dialect {
+            Dialect::Sinumerik => sinumerik_line(line, i + 1, &mut blocks)?,
+            Dialect::Fanuc | Dialect::Haas | Dialect::LinuxCnc | Dialect::Dyna => {
+                bracket_line(line, i + 1, dialect, &mut blocks)?
+            }
+        }
     }
     Ok(blocks)
 }
 
-fn is_number_start(c: Option<&char>) -> bool {
-    matches!(c, Some(c) if c.is_ascii_digit() || *c == '.' || *c == '-' || *c == '+')
+/// The expression syntax of a dialect.
+pub fn syntax_of(d: Dialect) -> Syntax {
+    match d {
+        Dialect::Fanuc | Dialect::Haas => Syntax::MacroB,
+        Dialect::LinuxCnc => Syntax::LinuxCnc,
+        Dialect::Dyna => Syntax::Dyna,
+        Dialect::Sinumerik => Syntax::Sinumerik,
+    }
 }
 
-fn lex_line(line: &str, ln: usize, dialect: Dialect, out: &mut Vec<Block>) -> Result<(), LexError> {
-    let chars: Vec<char> = line.chars().collect();
-    let trimmed = line.trim();
-    if dialect == Dialect::Sinumerik {
-        // `%_N_L9_SPF` starts subprogram L9 (file headers of a listing).
-        if let Some(rest) = trimmed.strip_prefix("%_N_") {
-            let name = rest.trim_end_matches("_SPF").trim_end_matches("_MPF").to_ascii_uppercase();
-            let label = rest.ends_with("_SPF").then_some(name);
-            out.push(Block { line: ln, col: 1, words: Vec::new(), label });
-            return Ok(());
-        }
+/// One line of a bracket dialect, blanks removed, with the column of every kept character.
+struct Squeezed {
+    c: Vec<char>,
+    col: Vec<usize>,
+}
+
+impl Squeezed {
+    fn col_at(&self, i: usize) -> usize {
+        self.col.get(i).copied().unwrap_or_else(|| self.col.last().map_or(1, |c| c + 1))
     }
-    let mut block = Block { line: ln, col: 1, words: Vec::new(), label: None };
+}
+
+/// Takes comments out and splits at `;` where it ends a block (Fanuc, Haas, Dyna); LinuxCNC's
+/// `;` starts a comment.
+fn squeeze(line: &str, ln: usize, dialect: Dialect) -> Result<Vec<Squeezed>, LexError> {
+    let chars: Vec<char> = line.chars().collect();
+    let mut out = vec![Squeezed { c: Vec::new(), col: Vec::new() }];
     let mut i = 0;
-    let push = |b: &mut Block, out: &mut Vec<Block>| {
-        if !b.words.is_empty() {
-            out.push(std::mem::replace(b, Block { line: ln, col: 1, words: Vec::new(), label: None }));
-        }
-    };
     while i < chars.len() {
         let c = chars[i];
-        let col = i + 1;
         match c {
             ' ' | '\t' => i += 1,
             '(' => {
                 let close = chars[i..].iter().position(|&x| x == ')').ok_or((
                     ln,
-                    col,
+                    i + 1,
                     "comment '(' is not closed on this line".to_string(),
                 ))?;
                 i += close + 1;
             }
+            ';' if dialect == Dialect::LinuxCnc => break,
             ';' => {
-                if dialect == Dialect::Fanuc {
-                    // End of block (EOB) as Fanuc listings write it.
-                    push(&mut block, out);
-                    i += 1;
-                } else {
-                    break;
-                }
+                out.push(Squeezed { c: Vec::new(), col: Vec::new() });
+                i += 1;
             }
-            '%' => {
-                if block.words.is_empty() {
-                    break;
+            _ => {
+                if let Some(s) = out.last_mut() {
+                    s.c.push(c.to_ascii_uppercase());
+                    s.col.push(i + 1);
                 }
-                return Err((ln, col, "'%' inside a block".into()));
-            }
-            '/' if block.words.is_empty() => i += 1,
-            '#' | '[' => {
-                return Err((
-                    ln,
-                    col,
-                    format!(
-                        "'{c}': parameters and expressions are not supported in the {} dialect",
-                        dialect.name()
-                    ),
-                ));
-            }
-            c if c.is_ascii_alphabetic() || c == '_' => {
-                let start = i;
-                while i < chars.len() && (chars[i].is_ascii_alphabetic() || chars[i] == '_') {
-                    i += 1;
-                }
-                let letters: String = chars[start..i].iter().collect::<String>().to_ascii_uppercase();
-                if block.words.is_empty() {
-                    block.col = col;
-                }
-                // Sinumerik `LF` written at the end of a listing line is the block end.
-                if dialect == Dialect::Sinumerik
-                    && letters == "LF"
-                    && chars[i..].iter().all(|c| c.is_whitespace())
-                {
-                    break;
-                }
-                let word = if dialect == Dialect::Sinumerik {
-                    let mut w = sinumerik_word(&chars, &mut i, letters, col, ln)?;
-                    w.text = chars[start..i].iter().collect();
-                    w
-                } else {
-                    if letters.len() > 1 {
-                        return Err((
-                            ln,
-                            col,
-                            format!("'{letters}' is not a word of the {} dialect", dialect.name()),
-                        ));
-                    }
-                    let (v, point) = number(&chars, &mut i, ln, &letters)?;
-                    Word {
-                        name: letters,
-                        val: Val::Num { v, point },
-                        col,
-                        text: chars[start..i].iter().collect(),
-                    }
-                };
-                block.words.push(word);
-            }
-            _ => return Err((ln, col, format!("unexpected character '{c}'"))),
-        }
-    }
-    // A Sinumerik subprogram in the same listing starts with a line holding only its name.
-    if dialect == Dialect::Sinumerik
-        && block.words.len() == 1
-        && line.split(';').next().is_some_and(|s| {
-            let t = s.trim().trim_end_matches("LF").trim();
-            t.len() > 1 && t.starts_with(['L', 'l']) && t[1..].chars().all(|c| c.is_ascii_digit())
-        })
-    {
-        if let Some(w) = block.words.first() {
-            if w.name == "L" {
-                block.label = Some(format!("L{}", w.num().unwrap_or(0.0) as i64));
+                i += 1;
             }
         }
     }
-    push(&mut block, out);
+    Ok(out)
+}
+
+fn bracket_line(line: &str, ln: usize, dialect: Dialect, out: &mut Vec<Block>) -> Result<(), LexError> {
+    // LinuxCNC named parameters keep their case-insensitive names; everything is upper case here
+    // and names are lower-cased when read.
+    let trimmed = line.trim();
+    if trimmed.starts_with('%') {
+        return Ok(());
+    }
+    for seg in squeeze(line, ln, dialect)? {
+        if seg.c.is_empty() {
+            continue;
+        }
+        let mut b = Block::new(ln);
+        bracket_block(&seg, ln, dialect, &mut b)?;
+        if !b.is_empty() {
+            out.push(b);
+        }
+    }
     Ok(())
 }
 
-/// A signed decimal number at `chars[*i]`; a decimal comma is an error that says how to write it.
-fn number(chars: &[char], i: &mut usize, ln: usize, name: &str) -> Result<(f64, bool), LexError> {
+fn letters(c: &[char], i: usize) -> String {
+    let mut j = i;
+    while j < c.len() && c[j].is_ascii_alphabetic() {
+        j += 1;
+    }
+    c[i..j].iter().collect()
+}
+
+/// The letters at `i` that stand together in the line as written (`X INF` is X, then INF).
+fn adjacent_letters(s: &Squeezed, i: usize) -> String {
+    let c = &s.c;
+    let mut j = i;
+    while j < c.len() && c[j].is_ascii_alphabetic() && (j == i || s.col_at(j) == s.col_at(j - 1) + 1) {
+        j += 1;
+    }
+    c[i..j].iter().collect()
+}
+
+fn bracket_block(s: &Squeezed, ln: usize, dialect: Dialect, b: &mut Block) -> Result<(), LexError> {
+    let c = &s.c;
+    let syntax = syntax_of(dialect);
+    let perr = |i: usize, m: String| (ln, s.col_at(i), m);
+    let mut i = 0;
+    if c.first() == Some(&'/') {
+        // Block delete, with the switch off: the block runs.
+        i += 1;
+    }
+    b.col = s.col_at(i);
+    // Sequence number.
+    if c.get(i) == Some(&'N') && c.get(i + 1).is_some_and(|d| d.is_ascii_digit()) {
+        let mut j = i + 1;
+        while j < c.len() && (c[j].is_ascii_digit() || c[j] == '.') {
+            j += 1;
+        }
+        let t: String = c[i + 1..j].iter().collect();
+        b.n = t.parse().ok();
+        i = j;
+    }
+    // Program headers and O-words.
+    if c.get(i) == Some(&'O') || (c.get(i) == Some(&':') && i == 0) {
+        let o_col = i;
+        let j = i + 1;
+        if dialect == Dialect::LinuxCnc {
+            return o_word(s, j, ln, b, o_col);
+        }
+        let mut k = j;
+        while k < c.len() && c[k].is_ascii_digit() {
+            k += 1;
+        }
+        if k == j {
+            return Err(perr(o_col, "O must be followed by the program number".into()));
+        }
+        let num: String = c[j..k].iter().collect();
+        if k < c.len() && letters(c, k).len() > 1 {
+            let w = letters(c, k).to_ascii_lowercase();
+            return Err(perr(
+                o_col,
+                format!(
+                    "'o{num} {w}' is a LinuxCNC O-word; in the {} dialect O{num} names a program (subprograms end with M99 and are called with M98 P{num})",
+                    dialect.name()
+                ),
+            ));
+        }
+        b.header = Some(format!("O{}", num.trim_start_matches('0')));
+        if k < c.len() {
+            // `O1000 G0 …`: the rest is an ordinary block.
+            i = k;
+        } else {
+            return Ok(());
+        }
+    }
+    while i < c.len() {
+        let ch = c[i];
+        if ch == '#' {
+            // Assignment: #n=expr.
+            let mut p = Parser::new(c, i, syntax);
+            let var = p.var().map_err(|(o, m)| perr(o, m))?;
+            if c.get(p.i) != Some(&'=') {
+                return Err(perr(i, format!("{var} stands alone: write {var}=value, or use it in a word")));
+            }
+            p.i += 1;
+            let expr = p.expr().map_err(|(o, m)| perr(o, m))?;
+            let text = line_text(s, i, p.i);
+            b.stmts.push(Stmt::Assign { var, expr, col: s.col_at(i), text });
+            i = p.i;
+            continue;
+        }
+        if !ch.is_ascii_alphabetic() {
+            return Err(perr(i, format!("unexpected character '{ch}'")));
+        }
+        let w = adjacent_letters(s, i);
+        if w.len() > 1 {
+            i = keyword(s, i, &w, ln, dialect, b)?;
+            continue;
+        }
+        // One-letter address and its value.
+        let start = i;
+        i += 1;
+        let val = value(s, &mut i, ln, &w, syntax)?;
+        let text: String = line_text(s, start, i);
+        b.words.push(Word { name: w, val, col: s.col_at(start), text });
+    }
+    Ok(())
+}
+
+fn line_text(s: &Squeezed, from: usize, to: usize) -> String {
+    s.c[from..to.min(s.c.len())].iter().collect()
+}
+
+/// The value of a one-letter address at `c[*i]`: a number (with decimal-comma and exponent
+/// checks), or an expression (`#1`, `-#1`, `[…]`).
+fn value(s: &Squeezed, i: &mut usize, ln: usize, name: &str, syntax: Syntax) -> Result<WVal, LexError> {
+    let c = &s.c;
+    let perr = |i: usize, m: String| (ln, s.col_at(i), m);
+    let mut j = *i;
+    while j < c.len() && matches!(c[j], '-' | '+') {
+        j += 1;
+    }
+    let is_expr = matches!(c.get(j), Some('#' | '['))
+        || (c.get(j).is_some_and(|x| x.is_ascii_alphabetic())
+            && syntax == Syntax::Dyna
+            && letters(c, j).len() > 1);
+    if is_expr {
+        let mut p = Parser::new(c, *i, syntax);
+        let e = p.unary().map_err(|(o, m)| perr(o, format!("{name}: {m}")))?;
+        *i = p.i;
+        return Ok(WVal::Expr(e));
+    }
     let start = *i;
-    let col = start + 1;
-    if !is_number_start(chars.get(*i)) {
-        return Err((ln, col.max(1), format!("word {name} has no number")));
+    if !(c.get(j).is_some_and(|x| x.is_ascii_digit() || *x == '.')) || j > *i + 1 {
+        return Err(perr(start.saturating_sub(1), format!("word {name} has no number")));
     }
-    if matches!(chars[*i], '-' | '+') {
-        *i += 1;
-    }
+    *i = j;
     let mut point = false;
     let mut digits = 0;
-    while *i < chars.len() && (chars[*i].is_ascii_digit() || (chars[*i] == '.' && !point)) {
-        if chars[*i] == '.' {
+    while *i < c.len() && (c[*i].is_ascii_digit() || (c[*i] == '.' && !point)) {
+        if c[*i] == '.' {
             point = true;
         } else {
             digits += 1;
         }
         *i += 1;
     }
-    let text: String = chars[start..*i].iter().collect();
-    if *i + 1 < chars.len() && chars[*i] == ',' && chars[*i + 1].is_ascii_digit() {
-        let mut j = *i + 1;
-        while j < chars.len() && chars[j].is_ascii_digit() {
-            j += 1;
+    let text: String = c[start..*i].iter().collect();
+    if *i + 1 < c.len() && c[*i] == ',' && c[*i + 1].is_ascii_digit() {
+        let mut k = *i + 1;
+        while k < c.len() && c[k].is_ascii_digit() {
+            k += 1;
         }
-        let frac: String = chars[*i + 1..j].iter().collect();
-        return Err((
-            ln,
-            col - name.len(),
+        let frac: String = c[*i + 1..k].iter().collect();
+        return Err(perr(
+            start - 1,
             format!("decimal comma in {name}{text},{frac}: write {name}{text}.{frac}"),
         ));
     }
     if digits == 0 {
-        return Err((ln, col, format!("word {name} has no number")));
+        return Err(perr(start - 1, format!("word {name} has no number")));
     }
-    // `X1e309` would otherwise read as X1 and an E word: G-code has no exponents.
-    if *i + 1 < chars.len()
-        && matches!(chars[*i], 'e' | 'E')
-        && (chars[*i + 1].is_ascii_digit()
-            || (matches!(chars[*i + 1], '+' | '-') && chars.get(*i + 2).is_some_and(|c| c.is_ascii_digit())))
+    // `X1e309` would otherwise read as X1 and an E word: G-code has no exponents. Only when the
+    // E stands right after the digits in the line as written (`H3 E5` is two words).
+    if *i + 1 < c.len()
+        && c[*i] == 'E'
+        && s.col_at(*i) == s.col_at(*i - 1) + 1
+        && (c[*i + 1].is_ascii_digit()
+            || (matches!(c[*i + 1], '+' | '-') && c.get(*i + 2).is_some_and(|x| x.is_ascii_digit())))
+        && s.col_at(*i + 1) == s.col_at(*i) + 1
     {
-        let mut j = *i + 1;
-        while j < chars.len() && (chars[j].is_ascii_alphanumeric() || matches!(chars[j], '+' | '-' | '.')) {
-            j += 1;
+        let mut k = *i + 1;
+        if matches!(c[k], '+' | '-') {
+            k += 1;
         }
-        let all: String = chars[start..j].iter().collect();
-        return Err((
-            ln,
-            col - name.len(),
+        while k < c.len() && c[k].is_ascii_digit() {
+            k += 1;
+        }
+        let all: String = c[start..k].iter().collect::<String>().replace('E', "e");
+        return Err(perr(
+            start - 1,
             format!("{name}{all}: G-code numbers have no exponent; write the value in full"),
         ));
     }
-    let v: f64 = text.parse().map_err(|_| (ln, col, format!("'{name}{text}' is not a number")))?;
+    let v: f64 = text.parse().map_err(|_| perr(start, format!("'{name}{text}' is not a number")))?;
     if !v.is_finite() {
-        return Err((ln, col, format!("'{name}{text}' is not a finite number")));
+        return Err(perr(start, format!("'{name}{text}' is not a finite number")));
     }
-    Ok((v, point))
+    Ok(WVal::Num { v, point })
 }
+
+/// A bracketed condition at `c[*i]` (`[…]`).
+fn bracketed(s: &Squeezed, i: &mut usize, ln: usize, syntax: Syntax, what: &str) -> Result<Expr, LexError> {
+    if s.c.get(*i) != Some(&'[') {
+        return Err((ln, s.col_at(*i), format!("{what} needs its condition in [ ]")));
+    }
+    let mut p = Parser::new(&s.c, *i, syntax);
+    let e = p.unary().map_err(|(o, m)| (ln, s.col_at(o), m))?;
+    *i = p.i;
+    Ok(e)
+}
+
+fn loop_id(s: &Squeezed, i: &mut usize, ln: usize, what: &str) -> Result<u32, LexError> {
+    let st = *i;
+    while *i < s.c.len() && s.c[*i].is_ascii_digit() {
+        *i += 1;
+    }
+    let t: String = s.c[st..*i].iter().collect();
+    t.parse::<u32>().ok().filter(|n| (1..=9).contains(n)).ok_or((
+        ln,
+        s.col_at(st),
+        format!("{what} needs a loop number 1 to 9"),
+    ))
+}
+
+/// A multi-letter keyword of the macro languages at `c[i]` (`IF`, `WHILE`, `GOTO`, `DO`, `END`),
+/// or a named refusal.
+fn keyword(
+    s: &Squeezed,
+    i: usize,
+    w: &str,
+    ln: usize,
+    dialect: Dialect,
+    b: &mut Block,
+) -> Result<usize, LexError> {
+    let c = &s.c;
+    let syntax = syntax_of(dialect);
+    let col = s.col_at(i);
+    let macro_b = matches!(dialect, Dialect::Fanuc | Dialect::Haas | Dialect::Dyna);
+    let refuse = |m: String| Err((ln, col, m));
+    let mut j = i + w.len();
+    // The keywords may be run together with what follows (`GOTO10`, `END1`, `DO1`).
+    if macro_b && w.starts_with("GOTO") {
+        j = i + 4;
+        let mut p = Parser::new(c, j, syntax);
+        let target = p.unary().map_err(|(o, m)| (ln, s.col_at(o), format!("GOTO: {m}")))?;
+        b.stmts.push(Stmt::Goto { target, col });
+        return Ok(p.i);
+    }
+    if macro_b && w.starts_with("IF") && c.get(i + 2) == Some(&'[') {
+        j = i + 2;
+        let cond = bracketed(s, &mut j, ln, syntax, "IF")?;
+        let next = letters(c, j);
+        if next.starts_with("GOTO") {
+            let mut p = Parser::new(c, j + 4, syntax);
+            let target = p.unary().map_err(|(o, m)| (ln, s.col_at(o), format!("GOTO: {m}")))?;
+            b.stmts.push(Stmt::IfGoto { cond, target, col });
+            return Ok(p.i);
+        }
+        if next.starts_with("THEN") {
+            let k = j + 4;
+            if c.get(k) != Some(&'#') {
+                return Err((ln, s.col_at(k), "IF … THEN takes one assignment, #i=…".into()));
+            }
+            let mut p = Parser::new(c, k, syntax);
+            let var = p.var().map_err(|(o, m)| (ln, s.col_at(o), m))?;
+            if c.get(p.i) != Some(&'=') {
+                return Err((ln, s.col_at(k), "IF … THEN takes one assignment, #i=…".into()));
+            }
+            p.i += 1;
+            let expr = p.expr().map_err(|(o, m)| (ln, s.col_at(o), m))?;
+            let text = line_text(s, k, p.i);
+            b.stmts.push(Stmt::IfThen {
+                cond,
+                then: Box::new(Stmt::Assign { var, expr, col: s.col_at(k), text }),
+                col,
+            });
+            return Ok(p.i);
+        }
+        return Err((ln, s.col_at(j), "IF [ ] must be followed by GOTO n or THEN #i=…".into()));
+    }
+    if macro_b && w.starts_with("WHILE") && c.get(i + 5) == Some(&'[') {
+        j = i + 5;
+        let cond = bracketed(s, &mut j, ln, syntax, "WHILE")?;
+        if letters(c, j) != "DO" {
+            return Err((ln, s.col_at(j), "WHILE [ ] must be followed by DOm".into()));
+        }
+        j += 2;
+        let id = loop_id(s, &mut j, ln, "DO")?;
+        b.stmts.push(Stmt::While { cond, id, col });
+        return Ok(j);
+    }
+    if macro_b && w == "DO" {
+        let id = loop_id(s, &mut j, ln, "DO")?;
+        b.stmts.push(Stmt::Do { id, col });
+        return Ok(j);
+    }
+    if macro_b && w == "END" {
+        let id = loop_id(s, &mut j, ln, "END")?;
+        b.stmts.push(Stmt::End { id, col });
+        return Ok(j);
+    }
+    match (w, dialect) {
+        ("THREAD", Dialect::Dyna) => refuse(
+            "the DYNA THREAD cycle is not supported: its pass law is not published (program the passes with G33)".into(),
+        ),
+        ("SUB" | "ENDSUB" | "CALL" | "WHILE" | "ENDWHILE" | "IF" | "ENDIF", _) if dialect != Dialect::LinuxCnc => {
+            refuse(format!("'{w}' is a LinuxCNC O-word keyword; this is the {} dialect", dialect.name()))
+        }
+        _ => refuse(format!("'{w}' is not a word of the {} dialect", dialect.name())),
+    }
+}
+
+/// A LinuxCNC O-word at `c[j]` (after the `O`).
+fn o_word(s: &Squeezed, mut j: usize, ln: usize, b: &mut Block, o_col: usize) -> Result<(), LexError> {
+    let c = &s.c;
+    let col = s.col_at(o_col);
+    let name = if c.get(j) == Some(&'<') {
+        let close =
+            c[j..].iter().position(|&x| x == '>').ok_or((ln, col, "O<… has no closing '>'".to_string()))?;
+        let n: String = c[j + 1..j + close].iter().collect::<String>().to_ascii_lowercase();
+        j += close + 1;
+        format!("<{n}>")
+    } else {
+        let st = j;
+        while j < c.len() && c[j].is_ascii_digit() {
+            j += 1;
+        }
+        if st == j {
+            return Err((ln, col, "O must be followed by a number or <name>".into()));
+        }
+        c[st..j].iter().collect::<String>().trim_start_matches('0').to_string()
+    };
+    let w = letters(c, j);
+    let kw = match w.as_str() {
+        "SUB" => OKw::Sub,
+        "ENDSUB" => OKw::EndSub,
+        "CALL" => OKw::Call,
+        "RETURN" => OKw::Return,
+        "WHILE" => OKw::While,
+        "ENDWHILE" => OKw::EndWhile,
+        "DO" => OKw::Do,
+        "IF" => OKw::If,
+        "ELSEIF" => OKw::ElseIf,
+        "ELSE" => OKw::Else,
+        "ENDIF" => OKw::EndIf,
+        "REPEAT" => OKw::Repeat,
+        "ENDREPEAT" => OKw::EndRepeat,
+        "BREAK" => OKw::Break,
+        "CONTINUE" => OKw::Continue,
+        "" => return Err((ln, col, format!("O{name} needs a keyword (sub, call, while, if, …)"))),
+        other => {
+            return Err((
+                ln,
+                s.col_at(j),
+                format!("'{}' is not an O-word keyword", other.to_ascii_lowercase()),
+            ))
+        }
+    };
+    j += w.len();
+    let mut cond = None;
+    let mut args = Vec::new();
+    while c.get(j) == Some(&'[') {
+        let mut p = Parser::new(c, j, Syntax::LinuxCnc);
+        let e = p.unary().map_err(|(o, m)| (ln, s.col_at(o), m))?;
+        j = p.i;
+        if kw == OKw::Call {
+            args.push(e);
+        } else if cond.is_none() {
+            cond = Some(e);
+        } else {
+            return Err((ln, s.col_at(j), "one [condition] only".into()));
+        }
+    }
+    if j < c.len() {
+        return Err((ln, s.col_at(j), format!("unexpected '{}' after the O-word", c[j])));
+    }
+    let needs_cond = matches!(kw, OKw::While | OKw::If | OKw::ElseIf | OKw::Repeat);
+    if needs_cond && cond.is_none() {
+        return Err((ln, col, format!("O{name} {} needs a [condition]", w.to_ascii_lowercase())));
+    }
+    b.stmts.push(Stmt::O { name, kw, cond, args, col });
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sinumerik
 
 fn skip_spaces(chars: &[char], i: &mut usize) {
     while *i < chars.len() && (chars[*i] == ' ' || chars[*i] == '\t') {
@@ -260,44 +676,234 @@ fn skip_spaces(chars: &[char], i: &mut usize) {
     }
 }
 
-/// A Sinumerik word: `X-20`, `G33`, `R3=R3-0.05`, `X=R3`, `SF=90`, `CYCLE97(…)`, `DIAMON`, `L9`.
+fn sinumerik_line(line: &str, ln: usize, out: &mut Vec<Block>) -> Result<(), LexError> {
+    let chars: Vec<char> = line.chars().collect();
+    let trimmed = line.trim();
+    // `%_N_L9_SPF` starts subprogram L9 (file headers of a listing); `%7772` names the program.
+    if let Some(rest) = trimmed.strip_prefix("%_N_") {
+        let name = rest.trim_end_matches("_SPF").trim_end_matches("_MPF").to_ascii_uppercase();
+        if rest.ends_with("_SPF") {
+            out.push(Block { line: ln, col: 1, header: Some(name), ..Block::default() });
+        }
+        return Ok(());
+    }
+    if trimmed.starts_with('%') {
+        return Ok(());
+    }
+    // A subprogram in the same listing starts with a line holding only its name (`L9`).
+    let bare = trimmed.split(';').next().unwrap_or("").trim().trim_end_matches("LF").trim();
+    if bare.len() > 1 && bare.starts_with(['L', 'l']) && bare[1..].chars().all(|c| c.is_ascii_digit()) {
+        let n: u64 = bare[1..].parse().unwrap_or(0);
+        out.push(Block { line: ln, col: 1, header: Some(format!("L{n}")), ..Block::default() });
+        return Ok(());
+    }
+    let mut b = Block::new(ln);
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        let col = i + 1;
+        match c {
+            ' ' | '\t' => i += 1,
+            ';' => break,
+            '/' if b.words.is_empty() && b.stmts.is_empty() => i += 1,
+            '%' => return Err((ln, col, "'%' inside a block".into())),
+            c if c.is_ascii_alphabetic() || c == '_' || c == '$' => {
+                let start = i;
+                while i < chars.len()
+                    && (chars[i].is_ascii_alphabetic() || chars[i] == '_' || chars[i] == '$')
+                {
+                    i += 1;
+                }
+                let letters: String = chars[start..i].iter().collect::<String>().to_ascii_uppercase();
+                if b.words.is_empty() && b.stmts.is_empty() {
+                    b.col = col;
+                }
+                // `LF` written at the end of a listing line is the block end.
+                if letters == "LF" && chars[i..].iter().all(|c| c.is_whitespace()) {
+                    break;
+                }
+                if letters.starts_with('$') {
+                    return Err((ln, col, format!("system variable {letters} is not supported")));
+                }
+                // A label: `MARK1:` (letters, digits, underscores, then a colon).
+                let mut k = i;
+                while k < chars.len() && (chars[k].is_ascii_alphanumeric() || chars[k] == '_') {
+                    k += 1;
+                }
+                if chars.get(k) == Some(&':')
+                    && letters.len() >= 2
+                    && b.words.is_empty()
+                    && b.stmts.is_empty()
+                {
+                    b.label = Some(chars[start..k].iter().collect::<String>().to_ascii_uppercase());
+                    i = k + 1;
+                    continue;
+                }
+                match letters.as_str() {
+                    "GOTOF" | "GOTOB" | "GOTO" | "IF" => {
+                        i = sinumerik_jump(&chars, start, ln, &mut b)?;
+                        continue;
+                    }
+                    "ELSE" | "ENDIF" | "WHILE" | "ENDWHILE" | "FOR" | "ENDFOR" | "REPEAT" | "UNTIL"
+                    | "LOOP" | "ENDLOOP" | "DEF" | "PROC" | "CASE" => {
+                        return Err((
+                            ln,
+                            col,
+                            format!("Sinumerik {letters} is not supported (labels, GOTOF/GOTOB and IF … GOTOF are)"),
+                        ));
+                    }
+                    _ => {}
+                }
+                let word = sinumerik_word(&chars, &mut i, letters, col, ln)?;
+                match word {
+                    SinWord::Word(mut w) => {
+                        w.text = chars[start..i].iter().collect();
+                        if w.name == "N" && b.words.is_empty() && b.n.is_none() {
+                            if let WVal::Num { v, .. } = w.val {
+                                b.n = Some(v);
+                                continue;
+                            }
+                        }
+                        b.words.push(w);
+                    }
+                    SinWord::Assign(s) => b.stmts.push(s),
+                }
+            }
+            _ => return Err((ln, col, format!("unexpected character '{c}'"))),
+        }
+    }
+    if !b.is_empty() {
+        out.push(b);
+    }
+    Ok(())
+}
+
+/// `GOTOF label`, `GOTOB label`, `GOTO label`, `IF cond GOTOF label`.
+fn sinumerik_jump(chars: &[char], start: usize, ln: usize, b: &mut Block) -> Result<usize, LexError> {
+    let col = start + 1;
+    let mut i = start;
+    let mut cond = None;
+    let word_at = |i: usize| -> String {
+        let mut j = i;
+        while j < chars.len() && chars[j].is_ascii_alphabetic() {
+            j += 1;
+        }
+        chars[i..j].iter().collect::<String>().to_ascii_uppercase()
+    };
+    if word_at(i) == "IF" {
+        i += 2;
+        // The condition runs to GOTOF/GOTOB/GOTO.
+        let rest: String = chars[i..].iter().collect::<String>().to_ascii_uppercase();
+        let at = rest.find("GOTO").ok_or((
+            ln,
+            col,
+            "Sinumerik IF without GOTOF/GOTOB: only IF … GOTOF label is supported".to_string(),
+        ))?;
+        let text: String = chars[i..i + at].iter().collect::<String>().to_ascii_uppercase();
+        let e = super::expr::parse_all(text.trim_end(), Syntax::Sinumerik)
+            .map_err(|(o, m)| (ln, i + o + 1 + (text.len() - text.trim_start().len()), m))?;
+        cond = Some(e);
+        i += at;
+    }
+    let w = word_at(i);
+    let forward = match w.as_str() {
+        "GOTOF" => Some(true),
+        "GOTOB" => Some(false),
+        "GOTO" => None,
+        _ => return Err((ln, i + 1, "GOTOF, GOTOB or GOTO expected".into())),
+    };
+    i += w.len();
+    skip_spaces(chars, &mut i);
+    let ls = i;
+    while i < chars.len() && (chars[i].is_ascii_alphanumeric() || chars[i] == '_') {
+        i += 1;
+    }
+    if ls == i {
+        return Err((ln, ls + 1, format!("{w} needs a label")));
+    }
+    let label: String = chars[ls..i].iter().collect::<String>().to_ascii_uppercase();
+    b.stmts.push(Stmt::Jump { forward, label, cond, col });
+    Ok(i)
+}
+
+enum SinWord {
+    Word(Word),
+    Assign(Stmt),
+}
+
+/// A Sinumerik number at `chars[*i]` (sign allowed), with decimal-comma and exponent checks.
+fn sin_number(chars: &[char], i: &mut usize, ln: usize, name: &str) -> Result<(f64, bool), LexError> {
+    let s: String = chars.iter().collect::<String>().to_ascii_uppercase();
+    let sq = Squeezed { c: s.chars().collect(), col: (1..=chars.len()).collect() };
+    let mut j = *i;
+    let v = value(&sq, &mut j, ln, name, Syntax::Sinumerik)?;
+    *i = j;
+    match v {
+        WVal::Num { v, point } => Ok((v, point)),
+        _ => Err((ln, *i + 1, format!("word {name} has no number"))),
+    }
+}
+
+fn sin_expr(chars: &[char], i: &mut usize, ln: usize, name: &str) -> Result<Expr, LexError> {
+    let up: Vec<char> = chars.iter().map(|c| c.to_ascii_uppercase()).collect();
+    let mut p = Parser::new(&up, *i, Syntax::Sinumerik);
+    let e = p.expr().map_err(|(o, m)| (ln, o + 1, format!("{name}=: {m}")))?;
+    *i = p.i;
+    Ok(e)
+}
+
+/// A Sinumerik word: `X-20`, `G33`, `R3=R3-0.05`, `X=R3`, `SF=90`, `CYCLE97(…)`, `DIAMON`, `L9`,
+/// `S 500`.
 fn sinumerik_word(
     chars: &[char],
     i: &mut usize,
     letters: String,
     col: usize,
     ln: usize,
-) -> Result<Word, LexError> {
-    // Digits right after the letters: the value of a one-letter address (G33, L9, R3), part of
-    // the name of a longer one (CYCLE97).
+) -> Result<SinWord, LexError> {
     let dstart = *i;
     while *i < chars.len() && chars[*i].is_ascii_digit() {
         *i += 1;
     }
     let digits: String = chars[dstart..*i].iter().collect();
-    let mut name = letters.clone();
     let mut after = *i;
     skip_spaces(chars, &mut after);
     let next = chars.get(after).copied();
-    if letters.len() == 1 && !digits.is_empty() && next != Some('=') {
-        // `G33`, `L9`, `M17`, `X10` (a one-letter address and a whole number), maybe with a
-        // fraction: `X10.5`.
-        *i = dstart;
-        let (v, point) = number(chars, i, ln, &letters)?;
-        return Ok(Word { name, val: Val::Num { v, point }, col, text: String::new() });
+    let word = |name: String, val: WVal| Ok(SinWord::Word(Word { name, val, col, text: String::new() }));
+    if letters == "T" && next == Some('=') {
+        return Err((
+            ln,
+            col,
+            "Sinumerik tool names (T=\"…\") are not supported: write the tool number, T4".into(),
+        ));
     }
+    if letters.len() == 1 && !digits.is_empty() && next != Some('=') {
+        // `G33`, `L9`, `M17`, `X10.5`: a one-letter address and its number.
+        *i = dstart;
+        let (v, point) = sin_number(chars, i, ln, &letters)?;
+        return word(letters, WVal::Num { v, point });
+    }
+    let mut name = letters.clone();
     name.push_str(&digits);
     match next {
         Some('=') => {
             *i = after + 1;
             skip_spaces(chars, i);
-            let start = *i;
-            expression_end(chars, i);
-            let expr: String = chars[start..*i].iter().collect::<String>().trim().to_string();
-            if expr.is_empty() {
-                return Err((ln, start + 1, format!("{name}= has no value")));
+            if *i >= chars.len() || chars[*i] == ';' {
+                return Err((ln, *i + 1, format!("{name}= has no value")));
             }
-            Ok(Word { name, val: Val::Expr(expr), col, text: String::new() })
+            if chars[*i] == '"' {
+                return Err((ln, *i + 1, format!("{name}=\"…\": strings are not supported")));
+            }
+            let expr_start = *i;
+            let expr = sin_expr(chars, i, ln, &name)?;
+            if letters == "R" && !digits.is_empty() {
+                let n: i64 =
+                    digits.parse().map_err(|_| (ln, col, format!("{name} is not an R-parameter")))?;
+                let text = format!("{name}={}", chars[expr_start..*i].iter().collect::<String>().trim());
+                return Ok(SinWord::Assign(Stmt::Assign { var: VarRef::Num(n), expr, col, text }));
+            }
+            word(name, WVal::Expr(expr))
         }
         Some('(') => {
             let close = chars[after..].iter().position(|&c| c == ')').ok_or((
@@ -305,79 +911,51 @@ fn sinumerik_word(
                 after + 1,
                 format!("{name}( is not closed"),
             ))?;
-            let inner: String = chars[after + 1..after + close].iter().collect();
             let mut args = Vec::new();
-            let mut c0 = after + 2;
-            for part in inner.split(',') {
+            let mut c0 = after + 1;
+            let inner_end = after + close;
+            while c0 <= inner_end {
+                let end = chars[c0..inner_end].iter().position(|&c| c == ',').map_or(inner_end, |p| c0 + p);
+                let part: String = chars[c0..end].iter().collect();
                 let t = part.trim();
-                args.push(((!t.is_empty()).then(|| t.to_string()), c0));
-                c0 += part.chars().count() + 1;
+                let e = if t.is_empty() {
+                    None
+                } else {
+                    let lead = part.len() - part.trim_start().len();
+                    Some(
+                        super::expr::parse_all(&t.to_ascii_uppercase(), Syntax::Sinumerik)
+                            .map_err(|(o, m)| (ln, c0 + lead + o + 1, format!("{name} parameter: {m}")))?,
+                    )
+                };
+                args.push((e, c0 + 1));
+                c0 = end + 1;
             }
             *i = after + close + 1;
-            Ok(Word { name, val: Val::Args(args), col, text: String::new() })
+            word(name, WVal::Args(args))
         }
-        _ if letters.len() == 1 && digits.is_empty() && is_number_start(chars.get(*i)) => {
-            let (v, point) = number(chars, i, ln, &letters)?;
-            Ok(Word { name, val: Val::Num { v, point }, col, text: String::new() })
+        _ if letters.len() == 1
+            && digits.is_empty()
+            && chars.get(after).is_some_and(|c| c.is_ascii_digit() || matches!(c, '.' | '-' | '+')) =>
+        {
+            // `S 500`, `I 1.82`: a blank between the address and its number.
+            *i = after;
+            let (v, point) = sin_number(chars, i, ln, &letters)?;
+            word(name, WVal::Num { v, point })
         }
-        _ => Ok(Word { name, val: Val::Bare, col, text: String::new() }),
-    }
-}
-
-/// Advances over an expression: operands (numbers, names such as R3, calls) joined by binary
-/// operators; stops at the first operand not followed by an operator.
-fn expression_end(chars: &[char], i: &mut usize) {
-    loop {
-        skip_spaces(chars, i);
-        // Unary signs.
-        while *i < chars.len() && matches!(chars[*i], '-' | '+') {
-            *i += 1;
-            skip_spaces(chars, i);
-        }
-        if *i >= chars.len() {
-            return;
-        }
-        if chars[*i] == '(' {
-            let mut depth = 0;
-            while *i < chars.len() {
-                match chars[*i] {
-                    '(' => depth += 1,
-                    ')' => {
-                        depth -= 1;
-                        if depth == 0 {
-                            *i += 1;
-                            break;
-                        }
-                    }
-                    _ => {}
-                }
-                *i += 1;
-            }
-        } else if chars[*i].is_ascii_alphanumeric() || chars[*i] == '.' {
-            while *i < chars.len()
-                && (chars[*i].is_ascii_alphanumeric() || chars[*i] == '.' || chars[*i] == '_')
-            {
-                *i += 1;
-            }
-            if *i < chars.len() && chars[*i] == '(' {
-                continue;
-            }
-        } else {
-            return;
-        }
-        let mut j = *i;
-        skip_spaces(chars, &mut j);
-        if j < chars.len() && matches!(chars[j], '+' | '-' | '*' | '/') {
-            *i = j + 1;
-        } else {
-            return;
-        }
+        _ => word(name, WVal::Bare),
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn num(w: &Word) -> Option<f64> {
+        match w.val {
+            WVal::Num { v, .. } => Some(v),
+            _ => None,
+        }
+    }
 
     #[test]
     fn fanuc_blocks_words_and_points() {
@@ -387,12 +965,33 @@ mod tests {
         )
         .unwrap();
         assert_eq!(b.len(), 3);
+        assert_eq!(b[0].header.as_deref(), Some("O1000"));
         assert_eq!(b[1].line, 3);
-        // Sequence numbers stay in the block as N words.
-        let p = &b[1].words[2];
-        assert_eq!((p.name.as_str(), p.val.clone()), ("P", Val::Num { v: 11060.0, point: false }));
-        assert_eq!(b[2].words[2].val, Val::Num { v: 8.16, point: true });
-        assert_eq!(b[2].words[2].col, 9);
+        assert_eq!(b[1].n, Some(10.0));
+        let p = &b[1].words[1];
+        assert_eq!((p.name.as_str(), p.val.clone()), ("P", WVal::Num { v: 11060.0, point: false }));
+        assert_eq!(b[2].words[1].val, WVal::Num { v: 8.16, point: true });
+        assert_eq!(b[2].words[1].col, 9);
+    }
+
+    #[test]
+    fn blanks_inside_words_keep_their_columns() {
+        let b = lex("O 1234\nG0 X 4 2. Z5.;\nS 500 M3", Dialect::Fanuc).unwrap();
+        assert_eq!(b[0].header.as_deref(), Some("O1234"));
+        assert_eq!(num(&b[1].words[1]), Some(42.0));
+        assert_eq!(b[1].words[1].col, 4);
+        assert_eq!(b[1].words[2].col, 11);
+        assert_eq!(num(&b[2].words[0]), Some(500.0));
+        let e = lex("G0 X 4 2,5", Dialect::Fanuc).unwrap_err();
+        assert_eq!((e.0, e.1), (1, 4));
+        let b = lex("N40 G33 Z-36 X = R9 K2 LF\nN30 S 500 M03 LF\nG33 X114.9 I 1.82 K5", Dialect::Sinumerik)
+            .unwrap();
+        assert_eq!(b[0].n, Some(40.0));
+        assert_eq!(b[0].words[2].name, "X");
+        assert!(matches!(b[0].words[2].val, WVal::Expr(_)));
+        assert_eq!(num(&b[0].words[3]), Some(2.0));
+        assert_eq!(num(&b[1].words[0]), Some(500.0));
+        assert_eq!((num(&b[2].words[2]), b[2].words[2].col), (Some(1.82), 12));
     }
 
     #[test]
@@ -403,21 +1002,43 @@ mod tests {
     }
 
     #[test]
-    fn sinumerik_assignments_calls_and_lf() {
+    fn macro_statements() {
+        let b =
+            lex("#1=#1+1\nWHILE[#1LT10]DO1\nIF[#1 EQ 3]GOTO 20\nEND1\nX[#1*COS[#2]] Z-#3", Dialect::Fanuc)
+                .unwrap();
+        assert!(matches!(b[0].stmts[0], Stmt::Assign { .. }));
+        assert!(matches!(b[1].stmts[0], Stmt::While { id: 1, .. }));
+        assert!(matches!(b[2].stmts[0], Stmt::IfGoto { .. }));
+        assert!(matches!(b[3].stmts[0], Stmt::End { id: 1, .. }));
+        assert!(matches!(b[4].words[0].val, WVal::Expr(_)));
+        assert!(matches!(b[4].words[1].val, WVal::Expr(_)));
         let b = lex(
-            "N10 R3 = R3 - 0.05 LF\nN20 G0 X=R3 Z2 ; comment\nL9 P33\nCYCLE97(1.5,,0,-30,20,20,3,2,0.92)",
+            "o100 while [#1 GE .04]\no<threading> call [1] [2]\n#<od> = [#1 - 0.1] ; c",
+            Dialect::LinuxCnc,
+        )
+        .unwrap();
+        assert!(matches!(&b[0].stmts[0], Stmt::O { kw: OKw::While, cond: Some(_), .. }));
+        assert!(matches!(&b[1].stmts[0], Stmt::O { kw: OKw::Call, args, .. } if args.len() == 2));
+        assert!(matches!(&b[2].stmts[0], Stmt::Assign { var: VarRef::Named(n), .. } if n == "od"));
+    }
+
+    #[test]
+    fn sinumerik_assignments_calls_labels_and_lf() {
+        let b = lex(
+            "N10 R3 = R3 - 0.05 LF\nN20 G0 X=R3 Z2 ; comment\nL9 P33\nCYCLE97(1.5,,0,-30,20,20,3,2,0.92)\nLOOP1: G0 X1\nIF R3>1 GOTOB LOOP1",
             Dialect::Sinumerik,
         )
         .unwrap();
-        assert_eq!(b[0].words[1].val, Val::Expr("R3 - 0.05".into()));
-        assert_eq!(b[1].words[2].name, "X");
-        assert_eq!(b[1].words[2].val, Val::Expr("R3".into()));
-        assert_eq!(b[1].words[3].num(), Some(2.0));
+        assert!(matches!(b[0].stmts[0], Stmt::Assign { var: VarRef::Num(3), .. }));
+        assert_eq!(b[1].words[1].name, "X");
+        assert_eq!(num(&b[1].words[2]), Some(2.0));
         assert_eq!(b[2].words[0].name, "L");
         match &b[3].words[0].val {
-            Val::Args(a) => assert_eq!((a.len(), a[1].0.clone()), (9, None)),
+            WVal::Args(a) => assert_eq!((a.len(), a[1].0.clone()), (9, None)),
             v => panic!("{v:?}"),
         }
+        assert_eq!(b[4].label.as_deref(), Some("LOOP1"));
+        assert!(matches!(&b[5].stmts[0], Stmt::Jump { forward: Some(false), cond: Some(_), .. }));
     }
 
     #[test]

@@ -1,0 +1,806 @@
+//! The macro expression engine shared by every dialect: one AST, one evaluator, and a parser per
+//! surface syntax (square brackets for Fanuc macro B, Haas, LinuxCNC and Dyna; round brackets and
+//! R-parameters for Sinumerik).
+//!
+//! Values follow Fanuc macro B's null rules ([`Value`] is `None` for null, "vacant"): null acts as
+//! 0 in arithmetic, is copied by a plain assignment, and is told apart from 0 only by `EQ`/`NE`.
+//! Dialects without null (LinuxCNC, Sinumerik, Dyna) read an unset variable as 0; the reader
+//! reports every variable read before it is set, in every dialect.
+
+use std::fmt;
+
+/// A value: `None` is Fanuc's null (`#0`, an unset variable).
+pub type Value = Option<f64>;
+
+/// A variable as written.
+#[derive(Clone, Debug, PartialEq)]
+pub enum VarRef {
+    /// `#12`, `R3`: a numbered variable.
+    Num(i64),
+    /// `#[#1+2]`: a number computed at run time.
+    Indirect(Box<Expr>),
+    /// `#<name>` (LinuxCNC named parameter; `_` first is global).
+    Named(String),
+}
+
+impl fmt::Display for VarRef {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            VarRef::Num(n) => write!(f, "#{n}"),
+            VarRef::Indirect(_) => write!(f, "#[…]"),
+            VarRef::Named(s) => write!(f, "#<{s}>"),
+        }
+    }
+}
+
+/// A variable once its number is known: the key of the variable store.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum VarKey {
+    /// A numbered variable (`#12`, `R3`).
+    Num(i64),
+    /// A named one, lower case (`#<_x>`).
+    Named(String),
+}
+
+/// Binary operators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BinOp {
+    /// `+`
+    Add,
+    /// `-`
+    Sub,
+    /// `*`
+    Mul,
+    /// `/`
+    Div,
+    /// `MOD` (LinuxCNC, Sinumerik; result has the sign of the divisor as in LinuxCNC)
+    Mod,
+    /// `**` (LinuxCNC)
+    Pow,
+    /// `EQ`, `==`
+    Eq,
+    /// `NE`, `<>`
+    Ne,
+    /// `GT`, `>`
+    Gt,
+    /// `GE`, `>=`
+    Ge,
+    /// `LT`, `<`
+    Lt,
+    /// `LE`, `<=`
+    Le,
+    /// Fanuc `AND`: bitwise on the integer values.
+    BitAnd,
+    /// Fanuc `OR`: bitwise.
+    BitOr,
+    /// Fanuc `XOR`: bitwise.
+    BitXor,
+    /// LinuxCNC and Sinumerik `AND`: logical.
+    And,
+    /// Logical `OR`.
+    Or,
+    /// Logical `XOR`.
+    Xor,
+}
+
+/// Functions of one argument (two for `ATAN[y]/[x]`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Func {
+    /// Sine of degrees.
+    Sin,
+    /// Cosine of degrees.
+    Cos,
+    /// Tangent of degrees.
+    Tan,
+    /// Arc sine, degrees.
+    Asin,
+    /// Arc cosine, degrees.
+    Acos,
+    /// Arc tangent of one argument, degrees (−90 … 90).
+    Atan,
+    /// Fanuc `ATAN[y]/[x]`: 0 … 360 degrees (the Fanuc range, unsourced here: see the README).
+    Atan2Full,
+    /// LinuxCNC `ATAN[y]/[x]`: −180 … 180 degrees.
+    Atan2Signed,
+    /// Square root (`SQRT`, Dyna `SQR`).
+    Sqrt,
+    /// Absolute value.
+    Abs,
+    /// Round half away from zero.
+    Round,
+    /// Toward zero (`FIX`, Sinumerik `TRUNC`).
+    Fix,
+    /// Away from zero (Fanuc `FUP`; LinuxCNC's FUP is the ceiling, see [`Func::Ceil`]).
+    Fup,
+    /// Ceiling (LinuxCNC `FUP`).
+    Ceil,
+    /// Floor (LinuxCNC `FIX`).
+    Floor,
+    /// Natural logarithm.
+    Ln,
+    /// eˣ.
+    Exp,
+    /// LinuxCNC `EXISTS[#<name>]`.
+    Exists,
+    /// Logical not (Sinumerik `NOT`).
+    Not,
+}
+
+impl Func {
+    /// The function's name as the dialects spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Func::Sin => "SIN",
+            Func::Cos => "COS",
+            Func::Tan => "TAN",
+            Func::Asin => "ASIN",
+            Func::Acos => "ACOS",
+            Func::Atan | Func::Atan2Full | Func::Atan2Signed => "ATAN",
+            Func::Sqrt => "SQRT",
+            Func::Abs => "ABS",
+            Func::Round => "ROUND",
+            Func::Fix | Func::Floor => "FIX",
+            Func::Fup | Func::Ceil => "FUP",
+            Func::Ln => "LN",
+            Func::Exp => "EXP",
+            Func::Exists => "EXISTS",
+            Func::Not => "NOT",
+        }
+    }
+}
+
+/// An expression.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Expr {
+    /// A literal.
+    Num(f64),
+    /// A variable.
+    Var(VarRef),
+    /// Unary minus.
+    Neg(Box<Expr>),
+    /// A binary operation.
+    Bin(BinOp, Box<Expr>, Box<Expr>),
+    /// A function of its arguments.
+    Call(Func, Vec<Expr>),
+}
+
+/// Where the evaluator reads variables.
+pub trait Env {
+    /// The value of a variable (`None` for null or unset); the environment notes reads of unset
+    /// variables itself.
+    fn get(&mut self, key: &VarKey) -> Result<Value, String>;
+    /// Whether a named variable exists (LinuxCNC `EXISTS`).
+    fn exists(&mut self, key: &VarKey) -> bool;
+}
+
+/// Most nested levels of an expression (brackets, unary signs, function calls).
+pub const MAX_EXPR_DEPTH: usize = 64;
+
+fn truthy(v: f64) -> bool {
+    v != 0.0
+}
+
+fn bits(v: f64, what: &str) -> Result<i64, String> {
+    let r = v.round();
+    if (v - r).abs() > 1e-9 || r.abs() > 9.0e15 {
+        return Err(format!("{what} takes whole numbers, not {v}"));
+    }
+    Ok(r as i64)
+}
+
+/// Resolves a variable reference to its key.
+pub fn key_of(v: &VarRef, env: &mut dyn Env) -> Result<VarKey, String> {
+    match v {
+        VarRef::Num(n) => Ok(VarKey::Num(*n)),
+        VarRef::Named(s) => Ok(VarKey::Named(s.clone())),
+        VarRef::Indirect(e) => {
+            let n = eval(e, env, 0)?.unwrap_or(0.0);
+            let r = n.round();
+            if (n - r).abs() > 1e-6 || !(0.0..=1.0e6).contains(&r) {
+                return Err(format!("#[{n}] is not a variable number"));
+            }
+            Ok(VarKey::Num(r as i64))
+        }
+    }
+}
+
+/// Evaluates an expression; null propagates through a bare variable only.
+pub fn eval(e: &Expr, env: &mut dyn Env, depth: usize) -> Result<Value, String> {
+    if depth > MAX_EXPR_DEPTH {
+        return Err("the expression nests too deeply".into());
+    }
+    let num =
+        |e: &Expr, env: &mut dyn Env| -> Result<f64, String> { Ok(eval(e, env, depth + 1)?.unwrap_or(0.0)) };
+    let v = match e {
+        Expr::Num(v) => *v,
+        Expr::Var(r) => {
+            let k = key_of(r, env)?;
+            return env.get(&k);
+        }
+        Expr::Neg(a) => -num(a, env)?,
+        Expr::Bin(op, a, b) => {
+            // EQ and NE tell null from 0 (Fanuc); the other operators read null as 0.
+            if matches!(op, BinOp::Eq | BinOp::Ne) {
+                let (x, y) = (eval(a, env, depth + 1)?, eval(b, env, depth + 1)?);
+                let eq = match (x, y) {
+                    (None, None) => true,
+                    (Some(x), Some(y)) => (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0),
+                    _ => false,
+                };
+                return Ok(Some(if eq == (*op == BinOp::Eq) { 1.0 } else { 0.0 }));
+            }
+            let x = num(a, env)?;
+            let y = num(b, env)?;
+            let b2 = |c: bool| if c { 1.0 } else { 0.0 };
+            match op {
+                BinOp::Add => x + y,
+                BinOp::Sub => x - y,
+                BinOp::Mul => x * y,
+                BinOp::Div => {
+                    if y == 0.0 {
+                        return Err("division by zero".into());
+                    }
+                    x / y
+                }
+                BinOp::Mod => {
+                    if y == 0.0 {
+                        return Err("MOD by zero".into());
+                    }
+                    x - y * (x / y).floor()
+                }
+                BinOp::Pow => x.powf(y),
+                BinOp::Eq | BinOp::Ne => unreachable!("handled above"),
+                BinOp::Gt => b2(x > y),
+                BinOp::Ge => b2(x >= y),
+                BinOp::Lt => b2(x < y),
+                BinOp::Le => b2(x <= y),
+                BinOp::BitAnd => (bits(x, "AND")? & bits(y, "AND")?) as f64,
+                BinOp::BitOr => (bits(x, "OR")? | bits(y, "OR")?) as f64,
+                BinOp::BitXor => (bits(x, "XOR")? ^ bits(y, "XOR")?) as f64,
+                BinOp::And => b2(truthy(x) && truthy(y)),
+                BinOp::Or => b2(truthy(x) || truthy(y)),
+                BinOp::Xor => b2(truthy(x) != truthy(y)),
+            }
+        }
+        Expr::Call(f, args) => {
+            if *f == Func::Exists {
+                let Some(Expr::Var(r)) = args.first() else {
+                    return Err("EXISTS takes a named parameter".into());
+                };
+                let k = key_of(r, env)?;
+                return Ok(Some(if env.exists(&k) { 1.0 } else { 0.0 }));
+            }
+            let a = num(&args[0], env)?;
+            match f {
+                Func::Sin => a.to_radians().sin(),
+                Func::Cos => a.to_radians().cos(),
+                Func::Tan => a.to_radians().tan(),
+                Func::Asin => {
+                    if !(-1.0..=1.0).contains(&a) {
+                        return Err(format!("ASIN of {a}: outside −1 … 1"));
+                    }
+                    a.asin().to_degrees()
+                }
+                Func::Acos => {
+                    if !(-1.0..=1.0).contains(&a) {
+                        return Err(format!("ACOS of {a}: outside −1 … 1"));
+                    }
+                    a.acos().to_degrees()
+                }
+                Func::Atan => a.atan().to_degrees(),
+                Func::Atan2Full | Func::Atan2Signed => {
+                    let x = num(&args[1], env)?;
+                    let d = a.atan2(x).to_degrees();
+                    if *f == Func::Atan2Full && d < 0.0 {
+                        d + 360.0
+                    } else {
+                        d
+                    }
+                }
+                Func::Sqrt => {
+                    if a < 0.0 {
+                        return Err(format!("square root of {a}"));
+                    }
+                    a.sqrt()
+                }
+                Func::Abs => a.abs(),
+                Func::Round => a.round(),
+                Func::Fix => a.trunc(),
+                Func::Fup => {
+                    if a >= 0.0 {
+                        a.ceil()
+                    } else {
+                        a.floor()
+                    }
+                }
+                Func::Ceil => a.ceil(),
+                Func::Floor => a.floor(),
+                Func::Ln => {
+                    if a <= 0.0 {
+                        return Err(format!("LN of {a}"));
+                    }
+                    a.ln()
+                }
+                Func::Exp => a.exp(),
+                Func::Not => b2n(!truthy(a)),
+                Func::Exists => unreachable!("handled above"),
+            }
+        }
+    };
+    if !v.is_finite() {
+        return Err("the expression is not a finite number".into());
+    }
+    Ok(Some(v))
+}
+
+fn b2n(c: bool) -> f64 {
+    if c {
+        1.0
+    } else {
+        0.0
+    }
+}
+
+/// The bracket syntaxes: which operators and functions, at which precedence.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Syntax {
+    /// Fanuc custom macro B (and Haas): `* / AND MOD` above `+ - OR XOR` above the relations;
+    /// AND OR XOR bitwise; `ATAN[y]/[x]` 0 … 360°; `#0` is null.
+    MacroB,
+    /// LinuxCNC: `**` above `* / MOD` above `+ -` above the relations above `AND OR XOR`
+    /// (logical); named parameters.
+    LinuxCnc,
+    /// Dyna DM2900: Fanuc's operators, functions without brackets (`COS#14`, `SQR #13`).
+    Dyna,
+    /// Sinumerik: round brackets, R-parameters, `== <> > >= < <=`, `AND OR XOR NOT`.
+    Sinumerik,
+}
+
+/// A parse error: the 0-based character offset in the parsed text, and what is wrong.
+pub type ParseError = (usize, String);
+
+/// A parser over a whitespace-free (bracket syntaxes) or spaced (Sinumerik) upper-case text.
+pub struct Parser<'a> {
+    c: &'a [char],
+    /// Current offset.
+    pub i: usize,
+    syntax: Syntax,
+    depth: usize,
+}
+
+impl<'a> Parser<'a> {
+    /// A parser at offset `i` of `c`.
+    pub fn new(c: &'a [char], i: usize, syntax: Syntax) -> Parser<'a> {
+        Parser { c, i, syntax, depth: 0 }
+    }
+
+    fn peek(&self) -> Option<char> {
+        self.c.get(self.i).copied()
+    }
+
+    fn skip_ws(&mut self) {
+        if self.syntax == Syntax::Sinumerik {
+            while matches!(self.peek(), Some(' ' | '\t')) {
+                self.i += 1;
+            }
+        }
+    }
+
+    fn err<T>(&self, m: impl Into<String>) -> Result<T, ParseError> {
+        Err((self.i, m.into()))
+    }
+
+    fn letters_at(&self, i: usize) -> String {
+        let mut j = i;
+        while j < self.c.len() && (self.c[j].is_ascii_alphabetic() || (j > i && self.c[j] == '_')) {
+            j += 1;
+        }
+        self.c[i..j].iter().collect::<String>().to_ascii_uppercase()
+    }
+
+    fn binop(&mut self, level: u8) -> Option<BinOp> {
+        self.skip_ws();
+        let i = self.i;
+        let c = self.peek()?;
+        let two: String = self.c[i..(i + 2).min(self.c.len())].iter().collect();
+        let sym = |s: &str| -> Option<(BinOp, usize)> {
+            Some(match s {
+                "+" => (BinOp::Add, 1),
+                "-" => (BinOp::Sub, 1),
+                "*" => (BinOp::Mul, 1),
+                "/" => (BinOp::Div, 1),
+                _ => return None,
+            })
+        };
+        let (op, len) = if self.syntax == Syntax::Sinumerik && matches!(c, '=' | '<' | '>') {
+            match two.as_str() {
+                "==" => (BinOp::Eq, 2),
+                "<>" => (BinOp::Ne, 2),
+                ">=" => (BinOp::Ge, 2),
+                "<=" => (BinOp::Le, 2),
+                _ if c == '>' => (BinOp::Gt, 1),
+                _ if c == '<' => (BinOp::Lt, 1),
+                _ => return None,
+            }
+        } else if two == "**" && self.syntax == Syntax::LinuxCnc {
+            (BinOp::Pow, 2)
+        } else if c.is_ascii_alphabetic() {
+            let w = self.letters_at(i);
+            let bitwise = matches!(self.syntax, Syntax::MacroB | Syntax::Dyna);
+            let op = match w.as_str() {
+                "EQ" if self.syntax != Syntax::Sinumerik => BinOp::Eq,
+                "NE" if self.syntax != Syntax::Sinumerik => BinOp::Ne,
+                "GT" if self.syntax != Syntax::Sinumerik => BinOp::Gt,
+                "GE" if self.syntax != Syntax::Sinumerik => BinOp::Ge,
+                "LT" if self.syntax != Syntax::Sinumerik => BinOp::Lt,
+                "LE" if self.syntax != Syntax::Sinumerik => BinOp::Le,
+                "AND" if bitwise => BinOp::BitAnd,
+                "OR" if bitwise => BinOp::BitOr,
+                "XOR" if bitwise => BinOp::BitXor,
+                "AND" => BinOp::And,
+                "OR" => BinOp::Or,
+                "XOR" => BinOp::Xor,
+                "MOD" => BinOp::Mod,
+                _ => return None,
+            };
+            (op, w.len())
+        } else {
+            sym(&c.to_string())?
+        };
+        if self.level(op) != level {
+            return None;
+        }
+        self.i += len;
+        Some(op)
+    }
+
+    /// Precedence level, 0 lowest.
+    fn level(&self, op: BinOp) -> u8 {
+        use BinOp::*;
+        match self.syntax {
+            Syntax::MacroB | Syntax::Dyna => match op {
+                Eq | Ne | Gt | Ge | Lt | Le => 0,
+                Add | Sub | BitOr | BitXor | Or | Xor => 1,
+                Mul | Div | Mod | BitAnd | And => 2,
+                Pow => 3,
+            },
+            Syntax::LinuxCnc | Syntax::Sinumerik => match op {
+                And | Or | Xor | BitAnd | BitOr | BitXor => 0,
+                Eq | Ne | Gt | Ge | Lt | Le => 1,
+                Add | Sub => 2,
+                Mul | Div | Mod => 3,
+                Pow => 4,
+            },
+        }
+    }
+
+    fn top(&self) -> u8 {
+        match self.syntax {
+            Syntax::MacroB | Syntax::Dyna => 3,
+            Syntax::LinuxCnc | Syntax::Sinumerik => 4,
+        }
+    }
+
+    /// A whole expression.
+    pub fn expr(&mut self) -> Result<Expr, ParseError> {
+        self.binary(0)
+    }
+
+    fn binary(&mut self, level: u8) -> Result<Expr, ParseError> {
+        if level > self.top() {
+            return self.unary();
+        }
+        let mut lhs = self.binary(level + 1)?;
+        while let Some(op) = self.binop(level) {
+            let rhs = self.binary(level + 1)?;
+            lhs = Expr::Bin(op, Box::new(lhs), Box::new(rhs));
+        }
+        Ok(lhs)
+    }
+
+    fn open(&self) -> char {
+        if self.syntax == Syntax::Sinumerik {
+            '('
+        } else {
+            '['
+        }
+    }
+
+    fn close(&self) -> char {
+        if self.syntax == Syntax::Sinumerik {
+            ')'
+        } else {
+            ']'
+        }
+    }
+
+    /// A signed operand: what an address may take (`-#1`, `[…]`, `12.5`, `#[…]`).
+    pub fn unary(&mut self) -> Result<Expr, ParseError> {
+        self.depth += 1;
+        if self.depth > MAX_EXPR_DEPTH {
+            return self.err("the expression nests too deeply");
+        }
+        self.skip_ws();
+        let r = match self.peek() {
+            Some('-') => {
+                self.i += 1;
+                self.unary().map(|e| Expr::Neg(Box::new(e)))
+            }
+            Some('+') => {
+                self.i += 1;
+                self.unary()
+            }
+            _ => self.primary(),
+        };
+        self.depth -= 1;
+        r
+    }
+
+    fn group(&mut self) -> Result<Expr, ParseError> {
+        // At the opening bracket.
+        self.i += 1;
+        let e = self.expr()?;
+        self.skip_ws();
+        if self.peek() != Some(self.close()) {
+            return self.err(format!("'{}' missing", self.close()));
+        }
+        self.i += 1;
+        Ok(e)
+    }
+
+    fn number(&mut self) -> Result<Expr, ParseError> {
+        let s = self.i;
+        let mut point = false;
+        while let Some(c) = self.peek() {
+            if c.is_ascii_digit() || (c == '.' && !point) {
+                point |= c == '.';
+                self.i += 1;
+            } else {
+                break;
+            }
+        }
+        let t: String = self.c[s..self.i].iter().collect();
+        match t.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(Expr::Num(v)),
+            _ => Err((s, format!("'{t}' is not a number"))),
+        }
+    }
+
+    fn primary(&mut self) -> Result<Expr, ParseError> {
+        let Some(c) = self.peek() else { return self.err("the expression ends too early") };
+        if c == self.open() {
+            return self.group();
+        }
+        if c.is_ascii_digit() || c == '.' {
+            return self.number();
+        }
+        if c == '#' && self.syntax != Syntax::Sinumerik {
+            return self.var().map(Expr::Var);
+        }
+        if c.is_ascii_alphabetic() {
+            let start = self.i;
+            let name = self.letters_at(self.i);
+            // Sinumerik R-parameters: R3, R[…] is not read.
+            if self.syntax == Syntax::Sinumerik && name == "R" {
+                self.i += 1;
+                let ds = self.i;
+                while matches!(self.peek(), Some(d) if d.is_ascii_digit()) {
+                    self.i += 1;
+                }
+                let t: String = self.c[ds..self.i].iter().collect();
+                return t
+                    .parse::<i64>()
+                    .map(|n| Expr::Var(VarRef::Num(n)))
+                    .map_err(|_| (start, "R needs a parameter number".into()));
+            }
+            let f = match (name.as_str(), self.syntax) {
+                ("SIN", _) => Func::Sin,
+                ("COS", _) => Func::Cos,
+                ("TAN", _) => Func::Tan,
+                ("ASIN", _) => Func::Asin,
+                ("ACOS", _) => Func::Acos,
+                ("ATAN", Syntax::Sinumerik) => Func::Atan,
+                ("ATAN", _) => Func::Atan,
+                ("ATAN2", Syntax::Sinumerik) => Func::Atan2Signed,
+                ("SQRT", _) => Func::Sqrt,
+                ("SQR", Syntax::Dyna) => Func::Sqrt,
+                ("ABS", _) => Func::Abs,
+                ("ROUND", _) => Func::Round,
+                ("FIX", Syntax::LinuxCnc) => Func::Floor,
+                ("FUP", Syntax::LinuxCnc) => Func::Ceil,
+                ("FIX", _) | ("TRUNC", Syntax::Sinumerik) => Func::Fix,
+                ("FUP", _) => Func::Fup,
+                ("LN", _) => Func::Ln,
+                ("EXP", _) => Func::Exp,
+                ("EXISTS", Syntax::LinuxCnc) => Func::Exists,
+                ("NOT", Syntax::Sinumerik) => Func::Not,
+                ("TRUE", Syntax::Sinumerik) => {
+                    self.i += 4;
+                    return Ok(Expr::Num(1.0));
+                }
+                ("FALSE", Syntax::Sinumerik) => {
+                    self.i += 5;
+                    return Ok(Expr::Num(0.0));
+                }
+                _ => return Err((start, format!("unknown function or name {name}"))),
+            };
+            self.i += name.len();
+            if f == Func::Atan && self.syntax != Syntax::Sinumerik {
+                // ATAN[y]/[x]: the two-argument form.
+                self.skip_ws();
+                if self.peek() == Some(self.open()) {
+                    let y = self.group()?;
+                    if self.peek() == Some('/') && self.c.get(self.i + 1) == Some(&self.open()) {
+                        self.i += 1;
+                        let x = self.group()?;
+                        let f2 =
+                            if self.syntax == Syntax::LinuxCnc { Func::Atan2Signed } else { Func::Atan2Full };
+                        return Ok(Expr::Call(f2, vec![y, x]));
+                    }
+                    return Ok(Expr::Call(Func::Atan, vec![y]));
+                }
+            }
+            if f == Func::Atan2Signed && self.syntax == Syntax::Sinumerik {
+                return self.args2(f);
+            }
+            self.skip_ws();
+            let arg = if self.peek() == Some(self.open()) {
+                self.group()?
+            } else if self.syntax == Syntax::Dyna || self.syntax == Syntax::Sinumerik && f == Func::Not {
+                // Dyna writes functions without brackets: COS#14, SQR #13.
+                self.unary()?
+            } else {
+                return Err((
+                    self.i,
+                    format!("{} needs its argument in {}{}", f.name(), self.open(), self.close()),
+                ));
+            };
+            return Ok(Expr::Call(f, vec![arg]));
+        }
+        self.err(format!("unexpected '{c}' in an expression"))
+    }
+
+    fn args2(&mut self, f: Func) -> Result<Expr, ParseError> {
+        self.skip_ws();
+        if self.peek() != Some('(') {
+            return self.err(format!("{} needs ( )", f.name()));
+        }
+        self.i += 1;
+        let a = self.expr()?;
+        self.skip_ws();
+        if self.peek() != Some(',') {
+            return self.err("',' expected");
+        }
+        self.i += 1;
+        let b = self.expr()?;
+        self.skip_ws();
+        if self.peek() != Some(')') {
+            return self.err("')' missing");
+        }
+        self.i += 1;
+        Ok(Expr::Call(f, vec![a, b]))
+    }
+
+    /// A variable at `#`: `#12`, `#[expr]`, `#<name>`.
+    pub fn var(&mut self) -> Result<VarRef, ParseError> {
+        let start = self.i;
+        self.i += 1;
+        match self.peek() {
+            Some('[') => {
+                let e = self.group()?;
+                Ok(VarRef::Indirect(Box::new(e)))
+            }
+            Some('<') if self.syntax == Syntax::LinuxCnc => {
+                let close = self.c[self.i..]
+                    .iter()
+                    .position(|&c| c == '>')
+                    .ok_or((start, "named parameter #<… has no closing '>'".to_string()))?;
+                let name: String =
+                    self.c[self.i + 1..self.i + close].iter().collect::<String>().to_ascii_lowercase();
+                if name.is_empty() {
+                    return Err((start, "empty parameter name #<>".into()));
+                }
+                self.i += close + 1;
+                Ok(VarRef::Named(name))
+            }
+            Some(d) if d.is_ascii_digit() => {
+                let ds = self.i;
+                while matches!(self.peek(), Some(d) if d.is_ascii_digit()) {
+                    self.i += 1;
+                }
+                if self.peek() == Some('.') {
+                    return Err((start, "a variable number has no decimal point".into()));
+                }
+                let t: String = self.c[ds..self.i].iter().collect();
+                match t.parse::<i64>() {
+                    Ok(n) if n <= 1_000_000 => Ok(VarRef::Num(n)),
+                    _ => Err((start, format!("#{t} is not a variable number"))),
+                }
+            }
+            _ => Err((start, "'#' must be followed by a variable number, [expression] or <name>".into())),
+        }
+    }
+}
+
+/// Parses a whole text as one expression (Sinumerik `R3=…`, target files), requiring it to end.
+pub fn parse_all(text: &str, syntax: Syntax) -> Result<Expr, ParseError> {
+    let chars: Vec<char> = text.chars().collect();
+    let mut p = Parser::new(&chars, 0, syntax);
+    let e = p.expr()?;
+    p.skip_ws();
+    if p.i != chars.len() {
+        return Err((p.i, format!("unexpected '{}' in the expression", chars[p.i])));
+    }
+    Ok(e)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashMap;
+
+    struct M(HashMap<VarKey, f64>);
+    impl Env for M {
+        fn get(&mut self, k: &VarKey) -> Result<Value, String> {
+            Ok(self.0.get(k).copied())
+        }
+        fn exists(&mut self, k: &VarKey) -> bool {
+            self.0.contains_key(k)
+        }
+    }
+
+    fn ev(s: &str, syn: Syntax, vars: &[(i64, f64)]) -> Value {
+        let mut m = M(vars.iter().map(|(k, v)| (VarKey::Num(*k), *v)).collect());
+        let chars: Vec<char> = s.chars().filter(|c| syn == Syntax::Sinumerik || !c.is_whitespace()).collect();
+        let text: String = chars.iter().collect::<String>().to_ascii_uppercase();
+        eval(&parse_all(&text, syn).unwrap(), &mut m, 0).unwrap()
+    }
+
+    #[test]
+    fn macro_b_precedence_functions_and_null() {
+        // * above +: 1 + 2·3 = 7; brackets group.
+        assert_eq!(ev("1+2*3", Syntax::MacroB, &[]), Some(7.0));
+        assert_eq!(ev("[1+2]*3", Syntax::MacroB, &[]), Some(9.0));
+        // FUP/FIX from the Fanuc manual's examples.
+        assert_eq!(ev("FUP[1.2]", Syntax::MacroB, &[]), Some(2.0));
+        assert_eq!(ev("FUP[-1.2]", Syntax::MacroB, &[]), Some(-2.0));
+        assert_eq!(ev("FIX[-1.2]", Syntax::MacroB, &[]), Some(-1.0));
+        // Null: a bare null stays null, arithmetic reads it as 0, EQ tells it from 0.
+        assert_eq!(ev("#1", Syntax::MacroB, &[]), None);
+        assert_eq!(ev("#1*5", Syntax::MacroB, &[]), Some(0.0));
+        assert_eq!(ev("#0+1", Syntax::MacroB, &[]), Some(1.0));
+        assert_eq!(ev("#1EQ#0", Syntax::MacroB, &[]), Some(1.0));
+        assert_eq!(ev("#1EQ0", Syntax::MacroB, &[(1, 0.0)]), Some(1.0));
+        assert_eq!(ev("#1NE0", Syntax::MacroB, &[]), Some(1.0));
+        assert_eq!(ev("#1GE#0", Syntax::MacroB, &[]), Some(1.0));
+        assert_eq!(ev("#1GT0", Syntax::MacroB, &[]), Some(0.0));
+        // ATAN[-1]/[-1] = 225° in Fanuc's 0 … 360 range, −135° in LinuxCNC's.
+        assert!((ev("ATAN[-1]/[-1]", Syntax::MacroB, &[]).unwrap() - 225.0).abs() < 1e-12);
+        assert!((ev("ATAN[-1]/[-1]", Syntax::LinuxCnc, &[]).unwrap() + 135.0).abs() < 1e-12);
+        // Bitwise OR on integers.
+        assert_eq!(ev("5OR2", Syntax::MacroB, &[]), Some(7.0));
+    }
+
+    #[test]
+    fn linuxcnc_and_dyna_and_sinumerik() {
+        assert_eq!(ev("[2**3*2]", Syntax::LinuxCnc, &[]), Some(16.0));
+        assert_eq!(ev("[1 LT 2 AND 3 GT 4]", Syntax::LinuxCnc, &[]), Some(0.0));
+        assert_eq!(ev("[7 MOD 4]", Syntax::LinuxCnc, &[]), Some(3.0));
+        assert!((ev("COS#14", Syntax::Dyna, &[(14, 60.0)]).unwrap() - 0.5).abs() < 1e-12);
+        assert_eq!(ev("SQR #13", Syntax::Dyna, &[(13, 16.0)]), Some(4.0));
+        assert_eq!(ev("R9 - 0.05", Syntax::Sinumerik, &[(9, 1.0)]), Some(0.95));
+        assert_eq!(ev("-(R3+1)*2/4", Syntax::Sinumerik, &[(3, 20.0)]), Some(-10.5));
+        assert!((ev("SQRT(16)+SIN(30)", Syntax::Sinumerik, &[]).unwrap() - 4.5).abs() < 1e-12);
+        assert_eq!(ev("R1 >= 2", Syntax::Sinumerik, &[(1, 2.0)]), Some(1.0));
+    }
+
+    #[test]
+    fn bad_expressions_are_errors() {
+        assert!(parse_all("[1+2", Syntax::MacroB).is_err());
+        assert!(parse_all("COS 5", Syntax::MacroB).is_err());
+        let deep = "[".repeat(200) + "1" + &"]".repeat(200);
+        assert!(parse_all(&deep, Syntax::MacroB).is_err());
+        let mut m = M(HashMap::new());
+        assert!(eval(&parse_all("1/0", Syntax::MacroB).unwrap(), &mut m, 0).is_err());
+    }
+}

@@ -1,0 +1,371 @@
+//! Fanuc: `G32` (F the lead along the longer axis, Q the start angle), `G92` (with X-only repeat
+//! blocks and R taper), the two-block `G76` of the 0T/16T/0i controls, the one-block `G76` of
+//! the Series 10/11/15 tape format (recognised by its K and D words), subprograms `M98 P… L…`
+//! and macro calls `G65 P… A… B…`, `M99` returns.
+
+use super::cycles::{self, Modal, Shift};
+use super::haas;
+use super::interp::{Ctx, Flow};
+use super::motion::{Motion, RBlock, RWord};
+use crate::Error;
+
+/// The first G76 block's settings.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct G76First {
+    finish_passes: u32,
+    chamfer_tenths: u32,
+    angle: f64,
+    min_depth: f64,
+    finish: f64,
+}
+
+/// Fanuc's modal cycle state.
+#[derive(Default)]
+pub(crate) struct State {
+    g76: Option<G76First>,
+    /// The G92 cycle in force: its operation, end Z, taper R and start-angle shift.
+    g92: Option<(usize, f64, f64, f64)>,
+}
+
+/// G65 argument letters → local variables (argument specification I).
+pub(crate) fn g65_local(letter: &str) -> Option<i64> {
+    Some(match letter {
+        "A" => 1,
+        "B" => 2,
+        "C" => 3,
+        "I" => 4,
+        "J" => 5,
+        "K" => 6,
+        "D" => 7,
+        "E" => 8,
+        "F" => 9,
+        "H" => 11,
+        "M" => 13,
+        "Q" => 17,
+        "R" => 18,
+        "S" => 19,
+        "T" => 20,
+        "U" => 21,
+        "V" => 22,
+        "W" => 23,
+        "X" => 24,
+        "Y" => 25,
+        "Z" => 26,
+        _ => return None,
+    })
+}
+
+/// The call and return words shared by Fanuc and Haas (M98, G65, M99, M30/M2). `None` when the
+/// block is none of them.
+pub(crate) fn calls(m: &Motion, b: &RBlock<'_>) -> Result<Option<Flow>, Error> {
+    let file = m.file.as_str();
+    if b.has_m(30.0) || b.has_m(2.0) {
+        return Ok(Some(Flow::End));
+    }
+    if let Some((_, col)) = b.gs().find(|(g, _)| *g == 65.0 || *g == 66.0) {
+        let p = b.get("P").ok_or_else(|| m.err(b.line, col, "G65 needs P, the macro's program number"))?;
+        if b.gs().any(|(g, _)| g == 66.0) {
+            return Err(m.err(b.line, col, "G66 modal macro calls are not supported (G65 is)"));
+        }
+        let reps = b.get("L").map_or(1.0, |l| l.v);
+        let mut locals = Vec::new();
+        for w in &b.words {
+            match w.name {
+                "G" | "P" | "L" | "N" | "O" => {}
+                l => match g65_local(l) {
+                    Some(k) => locals.push((k, w.v)),
+                    None => return Err(b.werr(file, w, format!("{l} is not a G65 argument"))),
+                },
+            }
+        }
+        return Ok(Some(Flow::Call {
+            name: program_name(p.v),
+            repeats: whole(m, b, reps, col)?,
+            locals: Some(locals),
+            col,
+        }));
+    }
+    for w in &b.words {
+        if w.name != "M" {
+            continue;
+        }
+        match w.v {
+            98.0 => {
+                let p = b.get("P").ok_or_else(|| b.werr(file, w, "M98 needs P, the subprogram number"))?;
+                // P51002: O1002 five times (more than four digits: the leading ones repeat).
+                let pv = p.v.round() as u64;
+                let (prog, reps) = match b.get("L") {
+                    Some(l) => (pv, l.v),
+                    None if pv >= 10_000 && p.text.len() > 5 => (pv % 10_000, (pv / 10_000) as f64),
+                    None => (pv, 1.0),
+                };
+                return Ok(Some(Flow::Call {
+                    name: format!("O{prog}"),
+                    repeats: whole(m, b, reps, w.col)?,
+                    locals: None,
+                    col: w.col,
+                }));
+            }
+            99.0 => {
+                return Ok(Some(Flow::Return { to_n: b.get("P").map(|p| p.v), col: w.col }));
+            }
+            _ => {}
+        }
+    }
+    Ok(None)
+}
+
+fn program_name(v: f64) -> String {
+    format!("O{}", v.round() as u64)
+}
+
+fn whole(m: &Motion, b: &RBlock<'_>, v: f64, col: usize) -> Result<u32, Error> {
+    if !(v >= 0.0 && v.fract() == 0.0 && v <= crate::limits::MAX_REPEATS as f64) {
+        return Err(m.err(
+            b.line,
+            col,
+            format!("repetition count {v} must be a whole number up to {}", crate::limits::MAX_REPEATS),
+        ));
+    }
+    Ok(v as u32)
+}
+
+/// Fanuc's lead word F (E for the inch-precise form), modal.
+pub(crate) fn lead(m: &mut Motion, b: &RBlock<'_>, col: usize, what: &str) -> Result<f64, Error> {
+    let mut f = None;
+    for w in b.words.iter().filter(|w| w.name == "F" || w.name == "E") {
+        let v = m.len(w);
+        if !(v > 0.0) {
+            return Err(b.werr(&m.file, w, format!("lead {v} must be greater than zero")));
+        }
+        f = Some(v);
+    }
+    if let Some(f) = f {
+        m.lead = Some(f);
+    }
+    m.lead
+        .ok_or_else(|| m.err(b.line, col, format!("{what} without a lead: add F (the lead per revolution)")))
+}
+
+/// A start-angle word Q of G32/G92 (0.001° without a decimal point).
+fn start_angle(b: &RBlock<'_>) -> f64 {
+    b.get("Q").map_or(0.0, |q| if q.point { q.v } else { q.v / 1000.0 })
+}
+
+/// Runs one block.
+pub(crate) fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Result<Flow, Error> {
+    let md = cycles::modal(m, b)?;
+    if let Some(f) = calls(m, b)? {
+        return Ok(f);
+    }
+    check_turning_cycle_targets(m, b, &md, cx);
+    thread_block(s, m, b, &md)?;
+    Ok(Flow::Next)
+}
+
+/// Notes a Fanuc turning cycle (G70–G73) whose P/Q blocks do not exist: it is read past.
+pub(crate) fn check_turning_cycle_targets(m: &mut Motion, b: &RBlock<'_>, md: &Modal, cx: &Ctx<'_>) {
+    if let Some(g) = md.one_shot.filter(|g| (70.0..=73.0).contains(g)) {
+        for n in ["P", "Q"] {
+            if let Some(w) = b.get(n) {
+                if !cx.has_n(w.v) {
+                    m.note(
+                        b.line,
+                        w.col,
+                        format!(
+                            "G{g} {n}{}: there is no block N{} in this program; the cycle is skipped",
+                            w.v, w.v
+                        ),
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The threading words of Fanuc and Haas programs, after the modal codes.
+pub(crate) fn thread_block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, md: &Modal) -> Result<(), Error> {
+    let col = md.col.unwrap_or(b.col);
+    if md.one_shot.is_some() {
+        return cycles::other_block(m, b, md);
+    }
+    if md.motion != 92.0 {
+        s.g92 = None;
+    }
+    match md.motion as u32 {
+        76 if md.col.is_some() => {
+            cycles::need_lathe_plane(m, b, col, "G76")?;
+            if b.has("K") || b.has("D") {
+                haas::one_block_g76(m, b, col, &haas::Settings::default(), "G76")
+            } else {
+                two_block_g76(s, m, b, col)
+            }
+        }
+        92 => g92(s, m, b, col),
+        32 | 33 => {
+            if b.get("X").is_none() && b.get("Z").is_none() && b.get("U").is_none() && b.get("W").is_none() {
+                m.skipped += 1;
+                return Ok(());
+            }
+            cycles::need_lathe_plane(m, b, col, "G32")?;
+            b.allow_only(&m.file, "GXZUWFEQNMST", "G32")?;
+            let f = lead(m, b, col, "G32")?;
+            m.thread_move(b, col, "G32", |dx, dz| cycles::axial_lead_longer_axis(f, dx, dz), start_angle(b))
+        }
+        _ => cycles::other_block(m, b, md),
+    }
+}
+
+fn g92(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
+    b.allow_only(&m.file, "GXZUWRFEQNMST", "G92")?;
+    cycles::need_lathe_plane(m, b, col, "G92")?;
+    m.break_chain();
+    let lead = lead(m, b, col, "G92")?;
+    let (x, _, z) = m.target(b);
+    let (_, z0) = m.need_position(b.line, col, "G92")?;
+    let r = match b.get("R") {
+        Some(w) => m.len(w),
+        None => s.g92.map_or(0.0, |g| g.2),
+    };
+    let q = if b.has("Q") { start_angle(b) } else { s.g92.map_or(0.0, |g| g.3) };
+    let z_end =
+        z.or(s.g92.map(|g| g.1)).ok_or_else(|| m.err(b.line, col, "G92 needs Z, the end of the thread"))?;
+    let op = match s.g92 {
+        Some((op, ze, _, _)) if (ze - z_end).abs() < 1e-9 && (m.op_mut(op).lead() - lead).abs() < 1e-12 => op,
+        _ => m.begin_op("G92", b.line),
+    };
+    s.g92 = Some((op, z_end, r, q));
+    let Some(x_end) = x else {
+        // A G92 block without X only sets the cycle up.
+        return Ok(());
+    };
+    if m.css {
+        m.note(b.line, col, "G92 under constant surface speed (G96); threading wants G97");
+    }
+    // The cycle starts and ends at the start point; R is radius(start) − radius(end).
+    let x_start = x_end + 2.0 * r;
+    let dir = if z_end < z0 { -1.0 } else { 1.0 };
+    let zs = z0 + dir * q / 360.0 * lead;
+    m.push(op, b.line, cycles::pass(x_start, x_end, zs, z_end, lead, b.line, 0.0, x_end))
+}
+
+/// An integer word read in least-input increments: 0.001 mm, or 0.0001 in under G20.
+fn increments(m: &Motion, b: &RBlock<'_>, w: &RWord<'_>, what: &str) -> Result<f64, Error> {
+    let per_unit = if m.scale == 1.0 { 1000.0 } else { 10_000.0 };
+    if w.point {
+        return Err(b.werr(
+            &m.file,
+            w,
+            format!(
+                "G76 {} has a decimal point, but {what} is read in least-input increments ({}): write {}{}",
+                w.text,
+                if m.scale == 1.0 { "µm" } else { "0.0001 in" },
+                w.name,
+                (w.v * per_unit).round() as i64
+            ),
+        ));
+    }
+    Ok(w.v / per_unit * m.scale)
+}
+
+fn two_block_g76(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
+    let second = b.has("X") || b.has("U") || b.has("Z") || b.has("W");
+    if !second {
+        // First block: P(m)(r)(a) Q(Δd min) R(d).
+        b.allow_only(&m.file, "GPQRNMST", "the first G76 block")?;
+        let p = b
+            .get("P")
+            .ok_or_else(|| m.err(b.line, col, "the first G76 block needs P(m)(r)(a), e.g. P011060"))?;
+        if p.point {
+            return Err(b.werr(
+                &m.file,
+                p,
+                format!("G76 {} has a decimal point: P(m)(r)(a) is six digits, e.g. P011060", p.text),
+            ));
+        }
+        let pv = p.v as u64;
+        let (mm, r, a) = ((pv / 10_000) as u32, ((pv / 100) % 100) as u32, (pv % 100) as f64);
+        if ![80.0, 60.0, 55.0, 30.0, 29.0, 0.0].contains(&a) {
+            return Err(b.werr(
+                &m.file,
+                p,
+                format!("G76 tool angle {a} is not one of 80, 60, 55, 30, 29, 0"),
+            ));
+        }
+        let q = match b.get("Q") {
+            Some(w) => increments(m, b, w, "the minimum depth Q")?,
+            None => 0.0,
+        };
+        let finish = match b.get("R") {
+            // R without a point is in least-input increments too.
+            Some(w) if !w.point => w.v / if m.scale == 1.0 { 1000.0 } else { 10_000.0 } * m.scale,
+            Some(w) => m.len(w),
+            None => 0.0,
+        };
+        s.g76 =
+            Some(G76First { finish_passes: mm.max(1), chamfer_tenths: r, angle: a, min_depth: q, finish });
+        return Ok(());
+    }
+    b.allow_only(&m.file, "GXZUWRPQFENMST", "the second G76 block")?;
+    let Some(first) = s.g76 else {
+        return Err(m.err(
+            b.line,
+            col,
+            "G76 second block (X Z P Q F) without its first block (G76 P(m)(r)(a) Q R) before it",
+        ));
+    };
+    let lead = lead(m, b, col, "G76")?;
+    let (x0, z0) = m.need_position(b.line, col, "G76")?;
+    let (x, _, z) = m.target(b);
+    let x_root = x.ok_or_else(|| m.err(b.line, col, "G76 needs X, the root diameter"))?;
+    let z_end = z.ok_or_else(|| m.err(b.line, col, "G76 needs Z, the end of the thread"))?;
+    let k = increments(
+        m,
+        b,
+        b.get("P").ok_or_else(|| m.err(b.line, col, "G76 needs P, the thread height"))?,
+        "the thread height P",
+    )?;
+    let dd = increments(
+        m,
+        b,
+        b.get("Q").ok_or_else(|| m.err(b.line, col, "G76 needs Q, the first depth"))?,
+        "the first depth Q",
+    )?;
+    let taper = b.get("R").map_or(0.0, |w| m.len(w));
+    if !(k > 0.0 && dd > 0.0) {
+        return Err(m.err(b.line, col, "G76 thread height P and first depth Q must be greater than zero"));
+    }
+    if first.finish >= k {
+        return Err(m.err(
+            b.line,
+            col,
+            format!("G76 finishing allowance {} mm is not less than the thread height {k} mm", first.finish),
+        ));
+    }
+    if m.css {
+        m.note(b.line, col, "G76 under constant surface speed (G96); threading wants G97");
+    }
+    // External when the root lies inside the start point, internal when outside.
+    let sign = if x_root < x0 { 1.0 } else { -1.0 };
+    let mut depths = cycles::sqrt_law_with_min(dd, first.min_depth, k - first.finish)
+        .map_err(|e| m.err(b.line, col, e))?;
+    for _ in 0..first.finish_passes {
+        depths.push(k);
+    }
+    let dir = if z_end < z0 { -1.0 } else { 1.0 };
+    let half = 0.5 * first.angle;
+    let shifts = cycles::shifts(if half > 0.0 { Shift::Flank(half) } else { Shift::Radial }, &depths, dir);
+    let chamfer = f64::from(first.chamfer_tenths) / 10.0 * lead;
+    let op = m.begin_op("G76", b.line);
+    m.op_mut(op).infeed_angle = Some((half, "P(m)(r)(a): a/2".into()));
+    for (d, sh) in depths.iter().zip(shifts) {
+        // Root X at the end; the taper R (radius start − end) applies to every pass.
+        let x_end = x_root + sign * 2.0 * (k - d);
+        let x_start = x_end + 2.0 * taper;
+        let x_out = x_end + sign * 2.0 * chamfer;
+        m.push(op, b.line, cycles::pass(x_start, x_end, z0 + sh, z_end, lead, b.line, chamfer, x_out))?;
+    }
+    m.x = Some(x0);
+    m.z = Some(z0);
+    Ok(())
+}

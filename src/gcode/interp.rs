@@ -1,0 +1,1101 @@
+//! One interpreter for every dialect: a program counter over the blocks, one variable store with
+//! a local frame per call level, loops, jumps and calls. Each dialect's syntax reaches it as the
+//! same statements ([`Stmt`]) and the same call requests ([`Flow`]).
+//!
+//! Safety: the blocks executed, the loop iterations and jumps back, the call depth and the
+//! repetitions are bounded (`limits.rs`), so a runaway program is a located error, never a hang.
+
+use super::expr::{self, Env, Expr, Value, VarKey, VarRef};
+use super::lexer::{Block, OKw, Stmt, WVal};
+use super::motion::{Motion, RBlock, RWord};
+use super::{dyna, fanuc, haas, linuxcnc, sinumerik, Dialect};
+use crate::limits::{MAX_BACKWARD_JUMPS, MAX_CALL_DEPTH, MAX_EXECUTED_BLOCKS, MAX_REPEATS};
+use crate::Error;
+use std::collections::{HashMap, HashSet};
+
+/// What a dialect module asks of the interpreter after a block.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Flow {
+    /// Go on with the next block.
+    Next,
+    /// The program ends here (M30, M2).
+    End,
+    /// Call a subprogram of this file (`O1002`, `L9`) `repeats` times; with `locals`, in a new
+    /// local frame holding them (G65), else sharing the caller's (M98, L).
+    Call { name: String, repeats: u32, locals: Option<Vec<(i64, f64)>>, col: usize },
+    /// Haas `M97 Pn`: a subroutine at sequence number n of this program.
+    LocalCall { n: f64, repeats: u32, col: usize },
+    /// Return from a subprogram (M99, M17), optionally to sequence number n of the caller.
+    Return { to_n: Option<f64>, col: usize },
+    /// Dyna `M73 N k`: the following blocks up to the matching M74 run k times.
+    LoopStart { count: f64, col: usize },
+    /// Dyna `M74`.
+    LoopEnd { col: usize },
+}
+
+/// What the dialect modules may ask of the variables.
+pub(crate) struct Ctx<'a> {
+    vars: &'a mut Vars,
+    /// Subprograms defined in the file.
+    pub subs: &'a HashSet<String>,
+    /// Sequence numbers in the file.
+    ns: &'a HashSet<u64>,
+}
+
+impl Ctx<'_> {
+    /// Whether a block N`n` exists in the file.
+    pub fn has_n(&self, n: f64) -> bool {
+        self.ns.contains(&n_key(n))
+    }
+
+    /// A numbered variable (Sinumerik R-parameters for L96/L97), with a note when unset.
+    pub fn get(&mut self, m: &mut Motion, n: i64, line: usize, col: usize) -> Option<f64> {
+        let v = self.vars.read(&VarKey::Num(n));
+        if v.is_none() {
+            self.vars.warn_unset(m, &VarKey::Num(n), line, col);
+        }
+        v
+    }
+}
+
+/// Per-dialect state.
+enum State {
+    Fanuc(fanuc::State),
+    Haas(haas::State),
+    Sinumerik(sinumerik::State),
+    LinuxCnc(linuxcnc::State),
+    Dyna(dyna::State),
+}
+
+/// Numbered variables kept in a vector (fast), the rest in a map.
+const FAST_VARS: usize = 2000;
+
+struct Vars {
+    dialect: Dialect,
+    globals: Vec<Value>,
+    named_globals: HashMap<String, f64>,
+    /// Local frames: #1–#33 (Fanuc) or #1–#30 (LinuxCNC), and LinuxCNC's local named
+    /// parameters. Frame 0 is the main program's.
+    frames: Vec<(Vec<Value>, HashMap<String, f64>)>,
+    other: HashMap<i64, f64>,
+    warned: HashSet<VarKey>,
+    /// Reads of unset variables, to report with their places.
+    pending: Vec<(VarKey, usize, usize)>,
+    /// Where the block being run stands, for warnings.
+    here: (usize, usize),
+    /// Values of LinuxCNC's read-only system parameters (`#<_x>`, …), set before each block.
+    system: HashMap<String, f64>,
+}
+
+impl Vars {
+    fn new(dialect: Dialect) -> Vars {
+        Vars {
+            dialect,
+            globals: vec![None; FAST_VARS],
+            named_globals: HashMap::new(),
+            frames: vec![(vec![None; 34], HashMap::new())],
+            other: HashMap::new(),
+            warned: HashSet::new(),
+            pending: Vec::new(),
+            here: (0, 0),
+            system: HashMap::new(),
+        }
+    }
+
+    fn local_range(&self) -> i64 {
+        match self.dialect {
+            Dialect::Fanuc | Dialect::Haas => 33,
+            Dialect::LinuxCnc => 30,
+            Dialect::Sinumerik | Dialect::Dyna => 0,
+        }
+    }
+
+    fn read(&self, k: &VarKey) -> Value {
+        match k {
+            VarKey::Num(0) if matches!(self.dialect, Dialect::Fanuc | Dialect::Haas) => None,
+            VarKey::Num(n) if *n >= 1 && *n <= self.local_range() => {
+                self.frames.last().and_then(|f| f.0[*n as usize])
+            }
+            VarKey::Num(n) if (0..FAST_VARS as i64).contains(n) => self.globals[*n as usize],
+            VarKey::Num(n) => self.other.get(n).copied(),
+            VarKey::Named(s) if s.starts_with('_') => {
+                self.system.get(s).or_else(|| self.named_globals.get(s)).copied()
+            }
+            VarKey::Named(s) => self.frames.last().and_then(|f| f.1.get(s)).copied(),
+        }
+    }
+
+    fn write(&mut self, k: &VarKey, v: Value) -> Result<(), String> {
+        match k {
+            VarKey::Num(0) if matches!(self.dialect, Dialect::Fanuc | Dialect::Haas) => {
+                return Err("#0 is always null and cannot be set".into())
+            }
+            VarKey::Num(n) if *n < 0 => return Err(format!("#{n} is not a variable")),
+            VarKey::Num(n) if *n >= 1 && *n <= self.local_range() => {
+                if let Some(f) = self.frames.last_mut() {
+                    f.0[*n as usize] = v;
+                }
+            }
+            VarKey::Num(n) if (*n as usize) < FAST_VARS => self.globals[*n as usize] = v,
+            VarKey::Num(n) => {
+                if (1000..5000).contains(n) && matches!(self.dialect, Dialect::Fanuc | Dialect::Haas) {
+                    return Err(format!("#{n} is a system variable: threadcheck does not model the control's system variables"));
+                }
+                match v {
+                    Some(x) => self.other.insert(*n, x),
+                    None => self.other.remove(n),
+                };
+            }
+            VarKey::Named(s) if s.starts_with('_') => {
+                if self.system.contains_key(s) {
+                    return Err(format!("#<{s}> is read-only"));
+                }
+                match v {
+                    Some(x) => self.named_globals.insert(s.clone(), x),
+                    None => self.named_globals.remove(s),
+                };
+            }
+            VarKey::Named(s) => {
+                if let Some(f) = self.frames.last_mut() {
+                    match v {
+                        Some(x) => f.1.insert(s.clone(), x),
+                        None => f.1.remove(s),
+                    };
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn warn_unset(&mut self, m: &mut Motion, k: &VarKey, line: usize, col: usize) {
+        if self.warned.insert(k.clone()) {
+            let name = match (k, self.dialect) {
+                (VarKey::Num(n), Dialect::Sinumerik) => format!("R{n}"),
+                (VarKey::Num(n), _) => format!("#{n}"),
+                (VarKey::Named(s), _) => format!("#<{s}>"),
+            };
+            let how = match self.dialect {
+                Dialect::Fanuc | Dialect::Haas | Dialect::Dyna => "it is null (0 in arithmetic)",
+                Dialect::Sinumerik => "a Sinumerik reads it as 0",
+                Dialect::LinuxCnc => "LinuxCNC reads it as 0",
+            };
+            m.note(line, col, format!("{name} is read before it is set: {how}"));
+        }
+    }
+}
+
+struct EvalEnv<'a> {
+    vars: &'a mut Vars,
+}
+
+impl Env for EvalEnv<'_> {
+    fn get(&mut self, k: &VarKey) -> Result<Value, String> {
+        let v = self.vars.read(k);
+        if v.is_none() {
+            if let VarKey::Named(s) = k {
+                if self.vars.dialect == Dialect::LinuxCnc {
+                    return Err(format!("named parameter #<{s}> is not defined"));
+                }
+            }
+            let fanuc_null =
+                matches!(k, VarKey::Num(0)) && matches!(self.vars.dialect, Dialect::Fanuc | Dialect::Haas);
+            if !fanuc_null {
+                let (l, c) = self.vars.here;
+                self.vars.pending.push((k.clone(), l, c));
+            }
+        }
+        Ok(v)
+    }
+
+    fn exists(&mut self, k: &VarKey) -> bool {
+        self.vars.read(k).is_some()
+    }
+}
+
+/// Loop and branch structure found before running.
+#[derive(Default)]
+struct Layout {
+    /// Fanuc/Haas/Sinumerik/LinuxCNC subprograms: name → (first block, end block).
+    subs: HashMap<String, (usize, usize)>,
+    /// Where the main program ends (exclusive).
+    main_end: usize,
+    /// Sections (programs) each block belongs to: (start, end).
+    section: Vec<(usize, usize)>,
+    /// Fanuc WHILE/DO ↔ END, LinuxCNC while ↔ endwhile, do ↔ while, repeat ↔ endrepeat, and
+    /// sub → endsub: both directions.
+    pair: HashMap<usize, usize>,
+    /// LinuxCNC if/elseif/else: the next branch of the chain, and the endif.
+    next_branch: HashMap<usize, usize>,
+    endif: HashMap<usize, usize>,
+    /// LinuxCNC break/continue → the loop's head block.
+    loop_of: HashMap<usize, usize>,
+    /// Sequence numbers → blocks.
+    n_index: HashMap<u64, Vec<usize>>,
+    /// Sinumerik labels → blocks.
+    labels: HashMap<String, Vec<usize>>,
+}
+
+fn n_key(n: f64) -> u64 {
+    (n * 1000.0).round().max(0.0) as u64
+}
+
+fn layout(blocks: &[Block], dialect: Dialect, m: &mut Motion) -> Result<Layout, Error> {
+    let mut l = Layout {
+        main_end: blocks.len(),
+        section: vec![(0, blocks.len()); blocks.len()],
+        ..Layout::default()
+    };
+    let file = m.file.clone();
+    let perr = |b: &Block, col: usize, msg: String| Error::Program {
+        file: file.clone(),
+        line: b.line,
+        column: col,
+        message: msg,
+    };
+    // Programs in one file.
+    let headers: Vec<usize> =
+        blocks.iter().enumerate().filter(|(_, b)| b.header.is_some()).map(|(i, _)| i).collect();
+    match dialect {
+        Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik => {
+            // Fanuc: the first O-number program is the main one (a leading header names it).
+            // Sinumerik: subprograms follow the main program, each after its name.
+            let first_is_main =
+                matches!(dialect, Dialect::Fanuc | Dialect::Haas) && headers.first() == Some(&0);
+            let sub_headers: &[usize] = if first_is_main { &headers[1..] } else { &headers[..] };
+            l.main_end = sub_headers.first().copied().unwrap_or(blocks.len());
+            for i in 0..l.main_end {
+                l.section[i] = (0, l.main_end);
+            }
+            for (k, &h) in sub_headers.iter().enumerate() {
+                let end = sub_headers.get(k + 1).copied().unwrap_or(blocks.len());
+                let name = blocks[h].header.clone().unwrap_or_default();
+                if l.subs.insert(name.clone(), (h + 1, end)).is_some() {
+                    return Err(perr(&blocks[h], 1, format!("subprogram {name} is defined twice")));
+                }
+                for i in h..end {
+                    l.section[i] = (h + 1, end);
+                }
+            }
+        }
+        Dialect::LinuxCnc | Dialect::Dyna => {}
+    }
+    // Sequence numbers and labels, per section; repeated numbers are warned.
+    let mut seen: HashMap<(usize, u64), usize> = HashMap::new();
+    for (i, b) in blocks.iter().enumerate() {
+        if let Some(n) = b.n {
+            let k = n_key(n);
+            l.n_index.entry(k).or_default().push(i);
+            if let Some(first) = seen.insert((l.section[i].0, k), b.line) {
+                m.note(
+                    b.line,
+                    b.col,
+                    format!("N{n} is repeated (first at line {first}): a jump to it is ambiguous"),
+                );
+            }
+        }
+        if let Some(lab) = &b.label {
+            l.labels.entry(lab.clone()).or_default().push(i);
+        }
+    }
+    // Loop pairs.
+    let mut stack: Vec<(usize, u32)> = Vec::new();
+    let mut ostack: Vec<(usize, String, OKw)> = Vec::new();
+    let mut section_start = 0;
+    for (i, b) in blocks.iter().enumerate() {
+        if l.section[i].0 != section_start {
+            if let Some((j, id)) = stack.last() {
+                return Err(perr(&blocks[*j], 1, format!("DO{id} has no END{id} in its program")));
+            }
+            section_start = l.section[i].0;
+        }
+        for s in &b.stmts {
+            match s {
+                Stmt::While { id, .. } | Stmt::Do { id, .. } => {
+                    if stack.len() >= 3 && matches!(dialect, Dialect::Fanuc | Dialect::Haas) {
+                        m.note(
+                            b.line,
+                            b.col,
+                            "WHILE loops nest deeper than 3, more than a Fanuc control allows",
+                        );
+                    }
+                    stack.push((i, *id));
+                }
+                Stmt::End { id, col } => match stack.pop() {
+                    Some((j, jd)) if jd == *id => {
+                        l.pair.insert(j, i);
+                        l.pair.insert(i, j);
+                    }
+                    Some((_, jd)) => {
+                        return Err(perr(
+                            b,
+                            *col,
+                            format!("END{id} closes DO{jd}: DO/END ranges must not cross"),
+                        ))
+                    }
+                    None => return Err(perr(b, *col, format!("END{id} without WHILE … DO{id}"))),
+                },
+                Stmt::O { name, kw, col, .. } => {
+                    let close = |want: &[OKw],
+                                 ostack: &mut Vec<(usize, String, OKw)>|
+                     -> Result<(usize, OKw), Error> {
+                        match ostack.last() {
+                            Some((j, n, k)) if n == name && want.contains(k) => {
+                                let r = (*j, *k);
+                                ostack.pop();
+                                Ok(r)
+                            }
+                            Some((_, n, k)) => Err(perr(
+                                b,
+                                *col,
+                                format!(
+                                    "o{name} {} inside o{n} {}: O-word blocks must nest",
+                                    okw(*kw),
+                                    okw(*k)
+                                ),
+                            )),
+                            None => Err(perr(b, *col, format!("o{name} {} has no opening block", okw(*kw)))),
+                        }
+                    };
+                    match kw {
+                        OKw::Sub | OKw::While | OKw::Do | OKw::If | OKw::Repeat => {
+                            // A `while` that closes a `do` of the same name.
+                            if *kw == OKw::While {
+                                if let Some((j, n, OKw::Do)) = ostack.last() {
+                                    if n == name {
+                                        let j = *j;
+                                        ostack.pop();
+                                        l.pair.insert(j, i);
+                                        l.pair.insert(i, j);
+                                        continue;
+                                    }
+                                }
+                            }
+                            ostack.push((i, name.clone(), *kw));
+                        }
+                        OKw::EndSub => {
+                            let (j, _) = close(&[OKw::Sub], &mut ostack)?;
+                            l.pair.insert(j, i);
+                            l.subs.insert(name.clone(), (j + 1, i));
+                        }
+                        OKw::EndWhile => {
+                            let (j, _) = close(&[OKw::While], &mut ostack)?;
+                            l.pair.insert(j, i);
+                            l.pair.insert(i, j);
+                        }
+                        OKw::EndRepeat => {
+                            let (j, _) = close(&[OKw::Repeat], &mut ostack)?;
+                            l.pair.insert(j, i);
+                            l.pair.insert(i, j);
+                        }
+                        OKw::ElseIf | OKw::Else => {
+                            let (j, _) = close(&[OKw::If, OKw::ElseIf], &mut ostack)?;
+                            l.next_branch.insert(j, i);
+                            ostack.push((i, name.clone(), if *kw == OKw::Else { OKw::ElseIf } else { *kw }));
+                        }
+                        OKw::EndIf => {
+                            let (j, _) = close(&[OKw::If, OKw::ElseIf], &mut ostack)?;
+                            l.next_branch.insert(j, i);
+                            // Every branch head of the chain leads to this endif.
+                            let mut k = j;
+                            loop {
+                                l.endif.insert(k, i);
+                                match l.next_branch.iter().find(|(_, &v)| v == k) {
+                                    Some((&prev, _)) => k = prev,
+                                    None => break,
+                                }
+                            }
+                        }
+                        OKw::Break | OKw::Continue => {
+                            let head = ostack
+                                .iter()
+                                .rev()
+                                .find(|(_, n, k)| {
+                                    n == name && matches!(k, OKw::While | OKw::Do | OKw::Repeat)
+                                })
+                                .map(|(j, _, _)| *j)
+                                .ok_or_else(|| {
+                                    perr(
+                                        b,
+                                        *col,
+                                        format!("o{name} {} outside a loop named o{name}", okw(*kw)),
+                                    )
+                                })?;
+                            l.loop_of.insert(i, head);
+                        }
+                        OKw::Call | OKw::Return => {}
+                    }
+                }
+                Stmt::Assign { .. }
+                | Stmt::Goto { .. }
+                | Stmt::IfGoto { .. }
+                | Stmt::IfThen { .. }
+                | Stmt::Jump { .. } => {}
+            }
+        }
+    }
+    if let Some((j, id)) = stack.last() {
+        return Err(perr(&blocks[*j], 1, format!("DO{id} has no END{id}")));
+    }
+    if let Some((j, n, k)) = ostack.last() {
+        return Err(perr(&blocks[*j], 1, format!("o{n} {} is never closed", okw(*k))));
+    }
+    Ok(l)
+}
+
+fn okw(k: OKw) -> &'static str {
+    match k {
+        OKw::Sub => "sub",
+        OKw::EndSub => "endsub",
+        OKw::Call => "call",
+        OKw::Return => "return",
+        OKw::While => "while",
+        OKw::EndWhile => "endwhile",
+        OKw::Do => "do",
+        OKw::If => "if",
+        OKw::ElseIf => "elseif",
+        OKw::Else => "else",
+        OKw::EndIf => "endif",
+        OKw::Repeat => "repeat",
+        OKw::EndRepeat => "endrepeat",
+        OKw::Break => "break",
+        OKw::Continue => "continue",
+    }
+}
+
+struct Frame {
+    /// Where to go back to.
+    ret: usize,
+    /// The subprogram's first block and end.
+    start: usize,
+    end: usize,
+    repeats_left: u32,
+    /// A local frame was pushed (G65, LinuxCNC call).
+    own_locals: bool,
+    /// The caller's section (for M99 Pn).
+    caller_section: (usize, usize),
+    /// The call's place.
+    line: usize,
+    col: usize,
+    name: String,
+    /// Dyna loops open when the call was made.
+    loops: usize,
+}
+
+struct DynaLoop {
+    body: usize,
+    left: u64,
+}
+
+/// Runs the program.
+pub(crate) fn run(blocks: &[Block], dialect: Dialect, m: &mut Motion, file: &str) -> Result<(), Error> {
+    let lay = layout(blocks, dialect, m)?;
+    let sub_names: HashSet<String> = lay.subs.keys().cloned().collect();
+    let n_numbers: HashSet<u64> = lay.n_index.keys().copied().collect();
+    let mut vars = Vars::new(dialect);
+    let mut state = match dialect {
+        Dialect::Fanuc => State::Fanuc(fanuc::State::default()),
+        Dialect::Haas => State::Haas(haas::State::default()),
+        Dialect::Sinumerik => State::Sinumerik(sinumerik::State::default()),
+        Dialect::LinuxCnc => State::LinuxCnc(linuxcnc::State::default()),
+        Dialect::Dyna => State::Dyna(dyna::State::default()),
+    };
+    let perr = |b: &Block, col: usize, msg: String| Error::Program {
+        file: file.to_string(),
+        line: b.line,
+        column: col,
+        message: msg,
+    };
+    let mut pc = 0usize;
+    let mut end = lay.main_end;
+    let mut frames: Vec<Frame> = Vec::new();
+    let mut loops: Vec<DynaLoop> = Vec::new();
+    // LinuxCNC repeat counters by block.
+    let mut repeats: HashMap<usize, f64> = HashMap::new();
+    let mut executed = 0usize;
+    let mut back = 0usize;
+    let mut called: HashSet<String> = HashSet::new();
+    // The branch of an if chain being entered by a jump (evaluate it rather than skip it).
+    let mut entering_branch = false;
+    loop {
+        if pc >= end {
+            // The end of a subprogram without M99/M17/endsub returns; the main program ends.
+            match do_return(&mut frames, &mut end, &mut vars, &mut loops, None, &lay, file)? {
+                Some(next) => {
+                    pc = next;
+                    continue;
+                }
+                None => break,
+            }
+        }
+        let b = &blocks[pc];
+        executed += 1;
+        if executed > MAX_EXECUTED_BLOCKS {
+            return Err(perr(
+                b,
+                b.col,
+                format!("more than {MAX_EXECUTED_BLOCKS} blocks executed: the program loops"),
+            ));
+        }
+        vars.here = (b.line, b.col);
+        let mut next = pc + 1;
+        let mut jumped_back = false;
+        let mut skip_words = false;
+        // Statements.
+        let mut assigns: Vec<(&VarRef, &Expr, usize, &str)> = Vec::new();
+        for s in &b.stmts {
+            let ev = |e: &Expr, vars: &mut Vars, col: usize| -> Result<Value, Error> {
+                vars.here = (b.line, col);
+                expr::eval(e, &mut EvalEnv { vars }, 0).map_err(|msg| perr(b, col, msg))
+            };
+            let cond = |v: Value| v.unwrap_or(0.0) != 0.0;
+            match s {
+                Stmt::Assign { var, expr, col, text } => assigns.push((var, expr, *col, text)),
+                Stmt::Goto { target, col } => {
+                    let n = ev(target, &mut vars, *col)?.unwrap_or(0.0);
+                    next = goto_n(&lay, pc, n)
+                        .ok_or_else(|| perr(b, *col, format!("GOTO {n}: no block N{n} in this program")))?;
+                    jumped_back = next <= pc;
+                }
+                Stmt::IfGoto { cond: c, target, col } => {
+                    if cond(ev(c, &mut vars, *col)?) {
+                        let n = ev(target, &mut vars, *col)?.unwrap_or(0.0);
+                        next = goto_n(&lay, pc, n).ok_or_else(|| {
+                            perr(b, *col, format!("GOTO {n}: no block N{n} in this program"))
+                        })?;
+                        jumped_back = next <= pc;
+                    }
+                }
+                Stmt::IfThen { cond: c, then, col } => {
+                    if cond(ev(c, &mut vars, *col)?) {
+                        if let Stmt::Assign { var, expr, col, text } = then.as_ref() {
+                            assigns.push((var, expr, *col, text));
+                        }
+                    }
+                }
+                Stmt::While { cond: c, id, col } => {
+                    if !cond(ev(c, &mut vars, *col)?) {
+                        let e = lay
+                            .pair
+                            .get(&pc)
+                            .copied()
+                            .ok_or_else(|| perr(b, *col, format!("DO{id} has no END{id}")))?;
+                        next = e + 1;
+                    }
+                }
+                Stmt::Do { .. } => {}
+                Stmt::End { id, col } => {
+                    next = lay
+                        .pair
+                        .get(&pc)
+                        .copied()
+                        .ok_or_else(|| perr(b, *col, format!("END{id} without DO{id}")))?;
+                    jumped_back = true;
+                }
+                Stmt::Jump { forward, label, cond: c, col } => {
+                    let take = match c {
+                        Some(c) => cond(ev(c, &mut vars, *col)?),
+                        None => true,
+                    };
+                    if take {
+                        next = jump_label(&lay, pc, label, *forward, end).ok_or_else(|| {
+                            perr(
+                                b,
+                                *col,
+                                format!(
+                                    "no label or block {label} {} in this program",
+                                    match forward {
+                                        Some(true) => "after this block",
+                                        Some(false) => "before this block",
+                                        None => "",
+                                    }
+                                ),
+                            )
+                        })?;
+                        jumped_back = next <= pc;
+                    }
+                }
+                Stmt::O { name, kw, cond: c, args, col } => {
+                    let col = *col;
+                    match kw {
+                        OKw::Sub => {
+                            // A definition met in the program's flow: read past it.
+                            next = lay.pair.get(&pc).copied().unwrap_or(pc) + 1;
+                            skip_words = true;
+                        }
+                        OKw::EndSub | OKw::Return => {
+                            let value = match (kw, c) {
+                                (OKw::Return, Some(c)) => ev(c, &mut vars, col)?,
+                                _ => None,
+                            };
+                            next = do_return(&mut frames, &mut end, &mut vars, &mut loops, None, &lay, file)?
+                                .ok_or_else(|| {
+                                    perr(b, col, format!("o{name} {} outside a subroutine call", okw(*kw)))
+                                })?;
+                            if let Some(v) = value {
+                                vars.named_globals.insert("_value".into(), v);
+                            }
+                        }
+                        OKw::Call => {
+                            let mut vals = Vec::new();
+                            for a in args {
+                                vals.push(ev(a, &mut vars, col)?.unwrap_or(0.0));
+                            }
+                            let Some(&(start, send)) = lay.subs.get(name.as_str()) else {
+                                return Err(perr(b, col, format!("o{name} call: no o{name} sub in this file (threadcheck reads subroutines defined in the same file)")));
+                            };
+                            if frames.len() + 1 > MAX_CALL_DEPTH {
+                                return Err(perr(
+                                    b,
+                                    col,
+                                    format!(
+                                        "calls nest deeper than {MAX_CALL_DEPTH}: does o{name} call itself?"
+                                    ),
+                                ));
+                            }
+                            called.insert(name.clone());
+                            vars.frames.push((vec![None; 34], HashMap::new()));
+                            if let Some(f) = vars.frames.last_mut() {
+                                for (k, v) in vals.iter().enumerate().take(30) {
+                                    f.0[k + 1] = Some(*v);
+                                }
+                            }
+                            frames.push(Frame {
+                                ret: pc + 1,
+                                start,
+                                end: send,
+                                repeats_left: 0,
+                                own_locals: true,
+                                caller_section: lay.section[pc],
+                                line: b.line,
+                                col,
+                                name: format!("o{name}"),
+                                loops: loops.len(),
+                            });
+                            end = send;
+                            next = start;
+                        }
+                        OKw::While => {
+                            // The closing `while` of a do-loop, or a loop head.
+                            let closes_do = lay.pair.get(&pc).is_some_and(|&j| j < pc);
+                            let t = match c {
+                                Some(c) => cond(ev(c, &mut vars, col)?),
+                                None => false,
+                            };
+                            if closes_do {
+                                if t {
+                                    next = lay.pair[&pc] + 1;
+                                    jumped_back = true;
+                                }
+                            } else if !t {
+                                next = lay.pair.get(&pc).copied().unwrap_or(pc) + 1;
+                            }
+                        }
+                        OKw::EndWhile => {
+                            next = lay.pair[&pc];
+                            jumped_back = true;
+                        }
+                        OKw::Do => {}
+                        OKw::Repeat => {
+                            let left = match repeats.get(&pc) {
+                                Some(l) => *l,
+                                None => ev(c.as_ref().unwrap_or(&Expr::Num(0.0)), &mut vars, col)?
+                                    .unwrap_or(0.0)
+                                    .floor(),
+                            };
+                            if left <= 0.0 {
+                                repeats.remove(&pc);
+                                next = lay.pair.get(&pc).copied().unwrap_or(pc) + 1;
+                            } else {
+                                repeats.insert(pc, left - 1.0);
+                            }
+                        }
+                        OKw::EndRepeat => {
+                            next = lay.pair[&pc];
+                            jumped_back = true;
+                        }
+                        OKw::If | OKw::ElseIf | OKw::Else => {
+                            let head = *kw == OKw::If || entering_branch;
+                            if !head {
+                                // Reached from the end of the branch before: done.
+                                next = lay.endif.get(&pc).copied().unwrap_or(pc) + 1;
+                            } else {
+                                let t = match c {
+                                    Some(c) => cond(ev(c, &mut vars, col)?),
+                                    None => true, // else
+                                };
+                                if !t {
+                                    next = lay.next_branch.get(&pc).copied().unwrap_or(pc + 1);
+                                    // Land on the next branch head and evaluate it.
+                                    if blocks.get(next).is_some_and(|nb| {
+                                        nb.stmts
+                                            .iter()
+                                            .any(|s| matches!(s, Stmt::O { kw: OKw::ElseIf | OKw::Else, .. }))
+                                    }) {
+                                        entering_branch = true;
+                                        pc = next;
+                                        continue;
+                                    }
+                                    next += 1;
+                                }
+                            }
+                        }
+                        OKw::EndIf => {}
+                        OKw::Break => {
+                            let head = lay.loop_of[&pc];
+                            repeats.remove(&head);
+                            let e = lay.pair.get(&head).copied().unwrap_or(head);
+                            next = e.max(head) + 1;
+                        }
+                        OKw::Continue => {
+                            let head = lay.loop_of[&pc];
+                            // Back to the loop's test: the head of while/repeat, the closing while of do.
+                            let tail = lay.pair.get(&head).copied().unwrap_or(head);
+                            next = match blocks[head].stmts.iter().find_map(|s| {
+                                if let Stmt::O { kw, .. } = s {
+                                    Some(*kw)
+                                } else {
+                                    None
+                                }
+                            }) {
+                                Some(OKw::Do) => tail,
+                                _ => head,
+                            };
+                            jumped_back = true;
+                        }
+                    }
+                }
+            }
+        }
+        entering_branch = false;
+        // Words: evaluated (LinuxCNC before its assignments, the others after them).
+        let linuxcnc = dialect == Dialect::LinuxCnc;
+        if !linuxcnc {
+            do_assigns(&assigns, &mut vars, b, file)?;
+        }
+        let mut flow = Flow::Next;
+        if !skip_words && (!b.words.is_empty()) {
+            if linuxcnc {
+                linuxcnc::system_params(m, &mut vars.system);
+            }
+            let rb = resolve(b, &mut vars, dialect, file)?;
+            flush_pending(&mut vars, m);
+            let mut cx = Ctx { vars: &mut vars, subs: &sub_names, ns: &n_numbers };
+            flow = match &mut state {
+                State::Fanuc(s) => fanuc::block(s, m, &rb, &mut cx)?,
+                State::Haas(s) => haas::block(s, m, &rb, &mut cx)?,
+                State::Sinumerik(s) => sinumerik::block(s, m, &rb, &mut cx)?,
+                State::LinuxCnc(s) => linuxcnc::block(s, m, &rb, &mut cx)?,
+                State::Dyna(s) => dyna::block(s, m, &rb, &mut cx)?,
+            };
+        }
+        if linuxcnc {
+            do_assigns(&assigns, &mut vars, b, file)?;
+        }
+        flush_pending(&mut vars, m);
+        match flow {
+            Flow::Next => {}
+            Flow::End => {
+                if !frames.is_empty() {
+                    let f = &frames[frames.len() - 1];
+                    m.note(
+                        b.line,
+                        b.col,
+                        format!("the program ends inside {} (called from line {})", f.name, f.line),
+                    );
+                }
+                break;
+            }
+            Flow::Call { name, repeats: reps, locals, col } => {
+                let Some(&(start, send)) = lay.subs.get(&name) else {
+                    return Err(perr(b, col, format!("subprogram {name} is not in this file")));
+                };
+                if reps as usize > MAX_REPEATS {
+                    return Err(perr(b, col, format!("{name}: {reps} repetitions, more than {MAX_REPEATS}")));
+                }
+                if frames.len() + 1 > MAX_CALL_DEPTH {
+                    return Err(perr(
+                        b,
+                        col,
+                        format!(
+                            "subprogram calls nest deeper than {MAX_CALL_DEPTH}: does {name} call itself?"
+                        ),
+                    ));
+                }
+                if reps == 0 {
+                    pc = next;
+                    continue;
+                }
+                called.insert(name.clone());
+                let own = locals.is_some();
+                if let Some(ls) = locals {
+                    vars.frames.push((vec![None; 34], HashMap::new()));
+                    if let Some(f) = vars.frames.last_mut() {
+                        for (k, v) in ls {
+                            if (1..=33).contains(&k) {
+                                f.0[k as usize] = Some(v);
+                            }
+                        }
+                    }
+                }
+                frames.push(Frame {
+                    ret: next,
+                    start,
+                    end: send,
+                    repeats_left: reps - 1,
+                    own_locals: own,
+                    caller_section: lay.section[pc],
+                    line: b.line,
+                    col,
+                    name,
+                    loops: loops.len(),
+                });
+                end = send;
+                next = start;
+            }
+            Flow::LocalCall { n, repeats: reps, col } => {
+                let sec = lay.section[pc];
+                let target = lay
+                    .n_index
+                    .get(&n_key(n))
+                    .and_then(|v| v.iter().copied().find(|&i| i >= sec.0 && i < sec.1))
+                    .ok_or_else(|| perr(b, col, format!("M97 P{n}: no block N{n} in this program")))?;
+                if frames.len() + 1 > MAX_CALL_DEPTH {
+                    return Err(perr(b, col, format!("subprogram calls nest deeper than {MAX_CALL_DEPTH}")));
+                }
+                if reps > 0 {
+                    frames.push(Frame {
+                        ret: next,
+                        start: target,
+                        end,
+                        repeats_left: reps - 1,
+                        own_locals: false,
+                        caller_section: sec,
+                        line: b.line,
+                        col,
+                        name: format!("N{n}"),
+                        loops: loops.len(),
+                    });
+                    next = target;
+                }
+            }
+            Flow::Return { to_n, col } => {
+                match do_return(&mut frames, &mut end, &mut vars, &mut loops, to_n, &lay, file)? {
+                    Some(n) => next = n,
+                    None => {
+                        m.note(b.line, col, "M99 in the main program would run it again from the start; threadcheck ends it here");
+                        break;
+                    }
+                }
+            }
+            Flow::LoopStart { count, col } => {
+                if !(0.0..=1e9).contains(&count) {
+                    return Err(perr(b, col, format!("loop count {count} must be a whole number from 0")));
+                }
+                let k = count.round() as u64;
+                if k == 0 {
+                    // Skip to the matching M74.
+                    next = dyna::matching_end(blocks, pc)
+                        .ok_or_else(|| perr(b, col, "M73 without its M74".into()))?
+                        + 1;
+                } else {
+                    loops.push(DynaLoop { body: next, left: k });
+                }
+            }
+            Flow::LoopEnd { col } => {
+                let Some(l) = loops.last_mut() else {
+                    return Err(perr(b, col, "M74 without an open M73 loop".into()));
+                };
+                l.left -= 1;
+                if l.left > 0 {
+                    next = l.body;
+                    jumped_back = true;
+                } else {
+                    loops.pop();
+                }
+            }
+        }
+        if jumped_back {
+            back += 1;
+            if back > MAX_BACKWARD_JUMPS {
+                return Err(perr(
+                    b,
+                    b.col,
+                    format!("more than {MAX_BACKWARD_JUMPS} loop iterations: the program loops"),
+                ));
+            }
+        }
+        pc = next;
+    }
+    // Subroutines defined and never called are read past; say so.
+    for (name, &(start, _)) in &lay.subs {
+        if !called.contains(name) && start > 0 {
+            let hb = &blocks[start - 1];
+            let what = if dialect == Dialect::LinuxCnc {
+                format!("o{name} sub")
+            } else {
+                format!("subprogram {name}")
+            };
+            m.note(hb.line, hb.col, format!("{what} is defined but never called"));
+        }
+    }
+    Ok(())
+}
+
+/// Returns from the innermost call: the block to go on with, `None` when there is no call to
+/// return from. A call with repetitions left runs its subprogram again.
+#[allow(clippy::too_many_arguments)]
+fn do_return(
+    frames: &mut Vec<Frame>,
+    end: &mut usize,
+    vars: &mut Vars,
+    loops: &mut Vec<DynaLoop>,
+    to_n: Option<f64>,
+    lay: &Layout,
+    file: &str,
+) -> Result<Option<usize>, Error> {
+    let Some(f) = frames.last_mut() else { return Ok(None) };
+    loops.truncate(f.loops);
+    if f.repeats_left > 0 {
+        f.repeats_left -= 1;
+        *end = f.end;
+        return Ok(Some(f.start));
+    }
+    let Some(f) = frames.pop() else { return Ok(None) };
+    if f.own_locals {
+        vars.frames.pop();
+    }
+    *end = match frames.last() {
+        Some(g) => g.end,
+        None => lay.main_end,
+    };
+    match to_n {
+        None => Ok(Some(f.ret)),
+        Some(n) => lay
+            .n_index
+            .get(&n_key(n))
+            .and_then(|v| v.iter().copied().find(|&i| i >= f.caller_section.0 && i < f.caller_section.1))
+            .map(Some)
+            .ok_or_else(|| Error::Program {
+                file: file.to_string(),
+                line: f.line,
+                column: f.col,
+                message: format!("M99 P{n}: no block N{n} in the calling program"),
+            }),
+    }
+}
+
+fn do_assigns(
+    assigns: &[(&VarRef, &Expr, usize, &str)],
+    vars: &mut Vars,
+    b: &Block,
+    file: &str,
+) -> Result<(), Error> {
+    let perr = |col: usize, text: &str, msg: String| Error::Program {
+        file: file.to_string(),
+        line: b.line,
+        column: col,
+        message: format!("{text}: {msg}"),
+    };
+    // LinuxCNC sets the parameters of a line after reading all of them; the others in order.
+    let deferred = vars.dialect == Dialect::LinuxCnc;
+    let mut vals = Vec::new();
+    for (var, e, col, text) in assigns {
+        vars.here = (b.line, *col);
+        let v = expr::eval(e, &mut EvalEnv { vars }, 0).map_err(|m| perr(*col, text, m))?;
+        let k = expr::key_of(var, &mut EvalEnv { vars }).map_err(|m| perr(*col, text, m))?;
+        let v = if deferred { v.or(Some(0.0)) } else { v };
+        if deferred {
+            vals.push((k, v, *col, *text));
+        } else {
+            vars.write(&k, v).map_err(|m| perr(*col, text, m))?;
+        }
+    }
+    for (k, v, col, text) in vals {
+        vars.write(&k, v).map_err(|m| perr(col, text, m))?;
+    }
+    Ok(())
+}
+
+fn flush_pending(vars: &mut Vars, m: &mut Motion) {
+    let pending = std::mem::take(&mut vars.pending);
+    for (k, l, c) in pending {
+        vars.warn_unset(m, &k, l, c);
+    }
+}
+
+/// The block's words with their values; a Fanuc word whose variable is null is dropped with its
+/// address, as the control does.
+fn resolve<'b>(b: &'b Block, vars: &mut Vars, dialect: Dialect, file: &str) -> Result<RBlock<'b>, Error> {
+    let mut words = Vec::with_capacity(b.words.len());
+    for w in &b.words {
+        vars.here = (b.line, w.col);
+        let perr = |msg: String| Error::Program {
+            file: file.to_string(),
+            line: b.line,
+            column: w.col,
+            message: msg,
+        };
+        let (v, point, args) = match &w.val {
+            WVal::Num { v, point } => (*v, *point, None),
+            WVal::Expr(e) => {
+                let v =
+                    expr::eval(e, &mut EvalEnv { vars }, 0).map_err(|m| perr(format!("{}: {m}", w.name)))?;
+                match v {
+                    Some(v) => (v, v.fract() != 0.0, None),
+                    None if matches!(dialect, Dialect::Fanuc | Dialect::Haas | Dialect::Dyna) => continue,
+                    None => (0.0, false, None),
+                }
+            }
+            WVal::Args(a) => {
+                let mut out = Vec::with_capacity(a.len());
+                for (e, col) in a {
+                    let v = match e {
+                        Some(e) => expr::eval(e, &mut EvalEnv { vars }, 0)
+                            .map_err(|m| Error::Program {
+                                file: file.to_string(),
+                                line: b.line,
+                                column: *col,
+                                message: format!("{}: {m}", w.name),
+                            })?
+                            .or(Some(0.0)),
+                        None => None,
+                    };
+                    out.push((v, *col));
+                }
+                (0.0, false, Some(out))
+            }
+            WVal::Bare => (0.0, false, None),
+        };
+        words.push(RWord { name: &w.name, v, point, col: w.col, text: &w.text, args });
+    }
+    Ok(RBlock { line: b.line, col: b.col, words })
+}
+
+/// Fanuc GOTO n: the block Nn of the current program, searched forward from here, then from the
+/// program's start (the search order is the Fanuc manuals' as recalled, unsourced here).
+fn goto_n(lay: &Layout, pc: usize, n: f64) -> Option<usize> {
+    let sec = lay.section[pc];
+    let cands = lay.n_index.get(&n_key(n))?;
+    cands
+        .iter()
+        .copied()
+        .find(|&i| i > pc && i < sec.1)
+        .or_else(|| cands.iter().copied().find(|&i| i >= sec.0 && i <= pc))
+}
+
+/// Sinumerik GOTOF/GOTOB/GOTO: a label or a sequence number (`N100`).
+fn jump_label(lay: &Layout, pc: usize, label: &str, forward: Option<bool>, end: usize) -> Option<usize> {
+    let sec = lay.section.get(pc).copied().unwrap_or((0, end));
+    let mut cands: Vec<usize> = lay.labels.get(label).cloned().unwrap_or_default();
+    if let Some(num) = label.strip_prefix('N').and_then(|s| s.parse::<f64>().ok()) {
+        cands.extend(lay.n_index.get(&n_key(num)).cloned().unwrap_or_default());
+    }
+    cands.sort_unstable();
+    let fwd = cands.iter().copied().find(|&i| i > pc && i < sec.1);
+    let bwd = cands.iter().rev().copied().find(|&i| i <= pc && i >= sec.0);
+    match forward {
+        Some(true) => fwd,
+        Some(false) => bwd,
+        None => fwd.or(bwd),
+    }
+}

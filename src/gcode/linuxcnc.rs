@@ -1,0 +1,174 @@
+//! LinuxCNC: `G33 X Z K` (K the distance per revolution along the programmed line) and
+//! `G76 P Z I J K [R] [Q] [H] [E] [L]` exactly as LinuxCNC's interpreter lays it out
+//! (`convert_threading_cycle`): pass n at J·n^(1/R) beyond the crest while below K, one pass at
+//! K and H spring passes; each pass starts depth·tan Q further along the drive line and its
+//! synchronised stretch ends (K − depth)·tan Q beyond Z; with L2 (L3) an exit (entry) taper over
+//! E ramps out to (K − depth) above the crest. G7/G8, G92 offsets, `#<_x>`, `#<_z>`,
+//! `#<_imperial>`, `#<_metric>`.
+
+use super::cycles;
+use super::interp::{Ctx, Flow};
+use super::motion::{Motion, RBlock};
+use crate::Error;
+use std::collections::HashMap;
+
+/// LinuxCNC needs no modal state beyond the motion state.
+#[derive(Default)]
+pub(crate) struct State {}
+
+/// The read-only system parameters, from the motion state, before each block.
+pub(crate) fn system_params(m: &Motion, sys: &mut HashMap<String, f64>) {
+    let unit = m.scale;
+    if let Some(x) = m.x {
+        // In program units and as a radius, whatever the diameter mode (LinuxCNC's #5420).
+        sys.insert("_x".into(), 0.5 * (x - m.offset[0]) / unit);
+    }
+    if let Some(z) = m.z {
+        sys.insert("_z".into(), (z - m.offset[2]) / unit);
+    }
+    let imperial = if m.scale == 1.0 { 0.0 } else { 1.0 };
+    sys.insert("_imperial".into(), imperial);
+    sys.insert("_metric".into(), 1.0 - imperial);
+    sys.insert("_absolute".into(), if m.absolute { 1.0 } else { 0.0 });
+    sys.insert("_incremental".into(), if m.absolute { 0.0 } else { 1.0 });
+}
+
+/// Runs one block.
+pub(crate) fn block(
+    _s: &mut State,
+    m: &mut Motion,
+    b: &RBlock<'_>,
+    _cx: &mut Ctx<'_>,
+) -> Result<Flow, Error> {
+    // G7/G8 with G76 in one block scale I, J, K twice in LinuxCNC (read the interpreter's
+    // convert_lathe_diameter_mode and convert_threading_cycle); separate lines are right.
+    let mode_and_g76 = b.gs().any(|(g, _)| g == 76.0) && b.gs().any(|(g, _)| g == 7.0 || g == 8.0);
+    let md = cycles::modal(m, b)?;
+    if b.has_m(2.0) || b.has_m(30.0) {
+        return Ok(Flow::End);
+    }
+    if md.one_shot.is_some() {
+        cycles::other_block(m, b, &md)?;
+        return Ok(Flow::Next);
+    }
+    match md.motion as u32 {
+        76 if md.col.is_some() => {
+            let col = md.col.unwrap_or(b.col);
+            if mode_and_g76 {
+                return Err(m.err(
+                    b.line,
+                    col,
+                    "G7/G8 and G76 in one block: LinuxCNC scales I, J and K twice there; put G7 or G8 on a line of its own",
+                ));
+            }
+            g76(m, b, col)?;
+        }
+        33 => {
+            let col = md.col.unwrap_or(b.col);
+            let (x, _, z) = m.target(b);
+            if x.is_none() && z.is_none() {
+                m.skipped += 1;
+                return Ok(Flow::Next);
+            }
+            cycles::need_lathe_plane(m, b, col, "G33")?;
+            b.allow_only(&m.file, "GXZKNMS", "G33")?;
+            let k =
+                b.get("K").ok_or_else(|| m.err(b.line, col, "G33 without K, the distance per revolution"))?;
+            let kv = m.len(k);
+            if !(kv > 0.0) {
+                return Err(b.werr(&m.file, k, "G33 K must be greater than zero"));
+            }
+            // K runs along the programmed line: its Z component is the axial lead.
+            m.thread_move(b, col, "G33", |dx, dz| kv * dz.abs() / dx.hypot(dz), 0.0)?;
+        }
+        _ => cycles::other_block(m, b, &md)?,
+    }
+    Ok(Flow::Next)
+}
+
+fn g76(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
+    b.allow_only(&m.file, "GPZIJKRQHELNMSX", "G76")?;
+    cycles::need_lathe_plane(m, b, col, "G76")?;
+    let (x0, z0) = m.need_position(b.line, col, "G76")?;
+    let need = |n: &str, what: &str| -> Result<f64, Error> {
+        b.get(n).map(|w| w.v).ok_or_else(|| m.err(b.line, col, format!("G76 needs {n}, {what}")))
+    };
+    let pitch = need("P", "the pitch")? * m.scale;
+    let z_end = need("Z", "the end of the thread")? * m.scale;
+    let z_end = if m.absolute { z_end + m.offset[2] } else { z0 + z_end };
+    // In diameter mode (G7) I, J and K are diameters; work in radius here.
+    let to_r = |v: f64| if m.diameter { 0.5 * v } else { v } * m.scale;
+    let i = to_r(need("I", "the crest offset from the drive line")?);
+    let j = to_r(need("J", "the first depth")?);
+    let k = to_r(need("K", "the full depth")?);
+    // R below 1 (or absent) is 1, as LinuxCNC's code does (its documentation calls it an error).
+    let r = b.get("R").map_or(1.0, |w| w.v).max(1.0);
+    let q = b.get("Q").map_or(0.0, |w| w.v);
+    let h = b.get("H").map_or(0.0, |w| w.v);
+    let e = b.get("E").map_or(0.0, |w| w.v).max(0.0) * m.scale;
+    let l = b.get("L").map_or(0.0, |w| w.v);
+    if i == 0.0 {
+        return Err(m.err(
+            b.line,
+            col,
+            "G76 I must not be 0: it is the offset from the drive line to the crest",
+        ));
+    }
+    if !(pitch > 0.0 && j > 0.0 && k > j) {
+        return Err(m.err(b.line, col, "G76 needs P and J greater than zero and K greater than J"));
+    }
+    let h_ok = h >= -1.0 && h.fract() == 0.0 && h <= crate::limits::MAX_REPEATS as f64;
+    if !(h_ok && [0.0, 1.0, 2.0, 3.0].contains(&l)) {
+        return Err(m.err(
+            b.line,
+            col,
+            "G76 H must be a whole number of spring passes and L one of 0, 1, 2, 3",
+        ));
+    }
+    if m.css {
+        m.note(b.line, col, "G76 under constant surface speed (G96); threading wants G97");
+    }
+    let external = i < 0.0;
+    // Depths beyond the crest; the crest is |I| from the drive line.
+    let peak_r = 0.5 * x0 + i;
+    let mut depths = Vec::new();
+    let mut n = 1.0f64;
+    let mut d = j;
+    while d < k {
+        depths.push(d);
+        n += 1.0;
+        d = j * n.powf(1.0 / r);
+        if depths.len() > crate::limits::MAX_PASSES {
+            return Err(m.err(b.line, col, "G76 expands to too many passes"));
+        }
+    }
+    // One pass at K and H spring passes (H−1 leaves out the pass at K, as LinuxCNC does).
+    for _ in 0..(h + 1.0) as usize {
+        depths.push(k);
+    }
+    let dir = if z_end < z0 { -1.0 } else { 1.0 };
+    let tq = q.to_radians().tan();
+    let (tin, tout) =
+        (if l == 1.0 || l == 3.0 { e } else { 0.0 }, if l == 2.0 || l == 3.0 { e } else { 0.0 });
+    let op = m.begin_op("G76", b.line);
+    m.op_mut(op).infeed_angle = Some((q.abs(), "Q".into()));
+    let inward = if external { -1.0 } else { 1.0 };
+    for d in depths {
+        let x = 2.0 * (peak_r + inward * d);
+        // The tapers ramp to (K − depth) beyond the crest, away from the work.
+        let x_taper = 2.0 * (peak_r - inward * (k - d));
+        // Each pass starts depth·tan Q along the feed from Z; its synchronised stretch ends
+        // (K − depth)·tan Q short of the end Z (LinuxCNC: target_z − zoff, target_z = end + K·tan Q).
+        let (zs, ze) = (z0 + dir * d * tq, z_end - dir * (k - d) * tq);
+        let mut p = cycles::pass(x, x, zs, ze, pitch, b.line, tout, x_taper);
+        p.taper_in = tin;
+        m.push(op, b.line, p)?;
+    }
+    if let Some(xw) = b.get("X") {
+        m.x = Some(m.x_dia(xw));
+    } else {
+        m.x = Some(x0);
+    }
+    m.z = Some(z_end);
+    Ok(())
+}

@@ -1,0 +1,504 @@
+//! The motion state every dialect moves: position, units and modes, spindle, tool, and the
+//! threading operations with their passes.
+
+use super::{Dialect, Operation, Spindle};
+use crate::limits::MAX_PASSES;
+use crate::passes::Pass;
+use crate::Error;
+use serde::Serialize;
+
+/// A word with its value evaluated.
+#[derive(Clone, Debug)]
+pub(crate) struct RWord<'b> {
+    /// Address, upper case.
+    pub name: &'b str,
+    /// Its value (0 for bare names and calls).
+    pub v: f64,
+    /// Written with a decimal point (an expression counts as written with one unless whole).
+    pub point: bool,
+    /// Column.
+    pub col: usize,
+    /// As written.
+    pub text: &'b str,
+    /// Call arguments (`CYCLE97(…)`), evaluated.
+    pub args: Option<Vec<(Option<f64>, usize)>>,
+}
+
+/// A block with its words evaluated: what a dialect module sees.
+#[derive(Clone, Debug)]
+pub(crate) struct RBlock<'b> {
+    /// 1-based line.
+    pub line: usize,
+    /// Column of the first word.
+    pub col: usize,
+    /// The words.
+    pub words: Vec<RWord<'b>>,
+}
+
+impl<'b> RBlock<'b> {
+    /// The last word with this address.
+    pub fn get(&self, name: &str) -> Option<&RWord<'b>> {
+        self.words.iter().rev().find(|w| w.name == name)
+    }
+
+    /// Whether the block has this address.
+    pub fn has(&self, name: &str) -> bool {
+        self.words.iter().any(|w| w.name == name)
+    }
+
+    /// The G codes with their columns.
+    pub fn gs(&self) -> impl Iterator<Item = (f64, usize)> + '_ {
+        self.words.iter().filter(|w| w.name == "G").map(|w| (w.v, w.col))
+    }
+
+    /// Whether an M code is in the block.
+    pub fn has_m(&self, code: f64) -> bool {
+        self.words.iter().any(|w| w.name == "M" && w.v == code)
+    }
+
+    /// An error at a word.
+    pub fn werr(&self, file: &str, w: &RWord<'_>, message: impl Into<String>) -> Error {
+        Error::Program { file: file.to_string(), line: self.line, column: w.col, message: message.into() }
+    }
+
+    /// Every word must be one of `allowed` (one-letter addresses).
+    pub fn allow_only(&self, file: &str, allowed: &str, cycle: &str) -> Result<(), Error> {
+        for w in &self.words {
+            if w.name.len() != 1 || !allowed.contains(w.name) {
+                return Err(self.werr(
+                    file,
+                    w,
+                    format!(
+                        "word {} is not part of {cycle} (it takes {})",
+                        w.name,
+                        allowed.chars().map(String::from).collect::<Vec<_>>().join(" ")
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// One recorded move (milling toolpaths): straight or an arc in the XY plane.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Move {
+    /// Rapid (G0).
+    pub rapid: bool,
+    /// Start point X, Y, Z (mm).
+    pub from: [f64; 3],
+    /// End point.
+    pub to: [f64; 3],
+    /// Arc centre (X, Y) and direction (+1 counter-clockwise G3, −1 clockwise G2), for arcs.
+    pub arc: Option<([f64; 2], f64)>,
+    /// Program line.
+    pub line: usize,
+}
+
+/// An open chain of synchronised moves (G32/G33 blocks one after the other): one helix.
+#[derive(Clone, Copy, Debug)]
+struct Chain {
+    op: usize,
+    z_phase: f64,
+}
+
+/// The shared motion state.
+pub(crate) struct Motion {
+    pub dialect: Dialect,
+    pub file: String,
+    /// Position: X (diameter, mm, for lathes; plain X for mills), Y, Z — in machine coordinates.
+    pub x: Option<f64>,
+    pub y: Option<f64>,
+    pub z: Option<f64>,
+    /// LinuxCNC G92 offsets (X diameter, Y, Z), mm.
+    pub offset: [f64; 3],
+    pub absolute: bool,
+    /// 25.4 under inch units, else 1.
+    pub scale: f64,
+    /// X words are diameters.
+    pub diameter: bool,
+    /// Modal motion code (0, 1, 2, 3, 32, 33, 76, 92, …).
+    pub motion: f64,
+    /// Modal thread lead, mm.
+    pub lead: Option<f64>,
+    pub css: bool,
+    pub s: Option<f64>,
+    pub tool: Option<u32>,
+    /// Working plane (17, 18, 19).
+    pub plane: u32,
+    ops: Vec<Operation>,
+    /// The operation loose G32/G33 passes may still join.
+    loose: Option<usize>,
+    chain: Option<Chain>,
+    pub skipped: usize,
+    pub notes: Vec<String>,
+    moves: Option<Vec<Move>>,
+    passes_total: usize,
+}
+
+impl Motion {
+    pub fn new(dialect: Dialect, file: &str, record_moves: bool) -> Motion {
+        Motion {
+            dialect,
+            file: file.to_string(),
+            x: None,
+            y: None,
+            z: None,
+            offset: [0.0; 3],
+            absolute: true,
+            scale: 1.0,
+            // LinuxCNC starts in radius mode (G8); lathes with Fanuc, Haas and Sinumerik in
+            // diameter; Dyna is a mill (X is X).
+            diameter: match dialect {
+                Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik => true,
+                Dialect::LinuxCnc | Dialect::Dyna => false,
+            },
+            motion: 0.0,
+            lead: None,
+            css: false,
+            s: None,
+            tool: None,
+            plane: match dialect {
+                Dialect::Dyna => 17,
+                Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc => 18,
+            },
+            ops: Vec::new(),
+            loose: None,
+            chain: None,
+            skipped: 0,
+            notes: Vec::new(),
+            moves: record_moves.then(Vec::new),
+            passes_total: 0,
+        }
+    }
+
+    /// Whether X words are turned into diameters (lathe dialects).
+    fn lathe(&self) -> bool {
+        match self.dialect {
+            Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc => true,
+            Dialect::Dyna => false,
+        }
+    }
+
+    pub fn err(&self, line: usize, column: usize, message: impl Into<String>) -> Error {
+        Error::Program { file: self.file.clone(), line, column, message: message.into() }
+    }
+
+    /// A warning with its place.
+    pub fn note(&mut self, line: usize, column: usize, message: impl AsRef<str>) {
+        let n = format!("{}:{line}:{column}: {}", self.file, message.as_ref());
+        if !self.notes.contains(&n) {
+            self.notes.push(n);
+        }
+    }
+
+    /// A length word in mm.
+    pub fn len(&self, w: &RWord<'_>) -> f64 {
+        w.v * self.scale
+    }
+
+    /// An X word as a diameter in mm.
+    pub fn x_dia(&self, w: &RWord<'_>) -> f64 {
+        let v = self.len(w);
+        if self.diameter || !self.lathe() {
+            v
+        } else {
+            2.0 * v
+        }
+    }
+
+    /// Target position of a block: X/Y/Z absolute or incremental, U/W incremental
+    /// (Fanuc, Haas). Program coordinates are machine coordinates less the G92 offset.
+    pub fn target(&self, b: &RBlock<'_>) -> (Option<f64>, Option<f64>, Option<f64>) {
+        let uw = matches!(self.dialect, Dialect::Fanuc | Dialect::Haas);
+        let (mut x, mut y, mut z) = (None, None, None);
+        for w in &b.words {
+            match w.name {
+                "X" => {
+                    let v = self.x_dia(w);
+                    x = Some(if self.absolute { v + self.offset[0] } else { self.x.unwrap_or(0.0) + v });
+                }
+                "Y" if !self.lathe() || self.dialect == Dialect::LinuxCnc => {
+                    let v = self.len(w);
+                    y = Some(if self.absolute { v + self.offset[1] } else { self.y.unwrap_or(0.0) + v });
+                }
+                "Z" => {
+                    let v = self.len(w);
+                    z = Some(if self.absolute { v + self.offset[2] } else { self.z.unwrap_or(0.0) + v });
+                }
+                "U" if uw => x = Some(self.x.unwrap_or(0.0) + self.x_dia(w)),
+                "W" if uw => z = Some(self.z.unwrap_or(0.0) + self.len(w)),
+                _ => {}
+            }
+        }
+        (x, y, z)
+    }
+
+    /// Moves to the block's target; true if it moved. Records the move when asked.
+    pub fn move_to(&mut self, b: &RBlock<'_>) -> bool {
+        let (x, y, z) = self.target(b);
+        let moved = x.is_some() || y.is_some() || z.is_some();
+        if moved {
+            self.break_chain();
+            if let Some(mv) = self.moves.as_mut() {
+                let from = [self.x.unwrap_or(0.0), self.y.unwrap_or(0.0), self.z.unwrap_or(0.0)];
+                let to = [x.unwrap_or(from[0]), y.unwrap_or(from[1]), z.unwrap_or(from[2])];
+                mv.push(Move { rapid: self.motion == 0.0, from, to, arc: None, line: b.line });
+            }
+        }
+        if let Some(x) = x {
+            self.x = Some(x);
+        }
+        if let Some(y) = y {
+            self.y = Some(y);
+        }
+        if let Some(z) = z {
+            self.z = Some(z);
+        }
+        moved
+    }
+
+    /// Records an arc in the XY plane (G2 −1, G3 +1) to the block's target, centre from I J
+    /// (incremental) or R.
+    pub fn arc_to(&mut self, b: &RBlock<'_>, dir: f64) -> Result<bool, Error> {
+        let (x, y, z) = self.target(b);
+        if x.is_none() && y.is_none() && z.is_none() {
+            return Ok(false);
+        }
+        self.break_chain();
+        let from = [self.x.unwrap_or(0.0), self.y.unwrap_or(0.0), self.z.unwrap_or(0.0)];
+        let to = [x.unwrap_or(from[0]), y.unwrap_or(from[1]), z.unwrap_or(from[2])];
+        if self.moves.is_some() && self.plane == 17 {
+            let centre = if let Some(rw) = b.get("R") {
+                let r = self.len(rw);
+                let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
+                let d = (dx * dx + dy * dy).sqrt();
+                if d == 0.0 || d > 2.0 * r.abs() + 1e-9 {
+                    return Err(self.err(
+                        b.line,
+                        rw.col,
+                        format!("arc radius R{} cannot reach the end point", rw.v),
+                    ));
+                }
+                let h = (r * r - 0.25 * d * d).max(0.0).sqrt();
+                // R > 0: the shorter arc; the centre lies to the left of the chord for G3.
+                let s = dir * r.signum();
+                [from[0] + 0.5 * dx - s * h * dy / d, from[1] + 0.5 * dy + s * h * dx / d]
+            } else {
+                let i = b.get("I").map_or(0.0, |w| self.len(w));
+                let j = b.get("J").map_or(0.0, |w| self.len(w));
+                [from[0] + i, from[1] + j]
+            };
+            if let Some(mv) = self.moves.as_mut() {
+                mv.push(Move { rapid: false, from, to, arc: Some((centre, dir)), line: b.line });
+            }
+        }
+        self.x = Some(to[0]);
+        self.y = Some(to[1]);
+        self.z = Some(to[2]);
+        Ok(true)
+    }
+
+    /// The current X and Z, or an error naming what needs them.
+    pub fn need_position(&self, line: usize, col: usize, what: &str) -> Result<(f64, f64), Error> {
+        match (self.x, self.z) {
+            (Some(x), Some(z)) => Ok((x, z)),
+            _ => Err(self.err(
+                line,
+                col,
+                format!("{what} starts from an unknown position: move to X and Z first"),
+            )),
+        }
+    }
+
+    /// Ends an open synchronised chain.
+    pub fn break_chain(&mut self) {
+        self.chain = None;
+    }
+
+    /// The spindle as it stands.
+    pub fn spindle(&self) -> Spindle {
+        Spindle { s: self.s, constant_surface_speed: self.css }
+    }
+
+    /// Starts a new operation for a cycle call; returns its index.
+    pub fn begin_op(&mut self, cycle: &str, line: usize) -> usize {
+        self.break_chain();
+        self.loose = None;
+        self.ops.push(Operation {
+            index: self.ops.len() + 1,
+            cycle: cycle.to_string(),
+            source_line: line,
+            tool: self.tool,
+            spindle: self.spindle(),
+            infeed_angle: None,
+            passes: Vec::new(),
+            notes: Vec::new(),
+        });
+        self.ops.len() - 1
+    }
+
+    /// An operation being built.
+    pub fn op_mut(&mut self, op: usize) -> &mut Operation {
+        &mut self.ops[op]
+    }
+
+    /// Adds a pass to an operation.
+    pub fn push(&mut self, op: usize, line: usize, mut p: Pass) -> Result<(), Error> {
+        self.passes_total += 1;
+        if self.passes_total > MAX_PASSES {
+            return Err(self.err(line, 1, format!("more than {MAX_PASSES} passes")));
+        }
+        if !(p.x_start > 0.0 && p.x_end > 0.0) {
+            let x = if p.x_start <= 0.0 { p.x_start } else { p.x_end };
+            let mut msg = format!(
+                "{} pass at X{x} reaches or crosses the axis: no thread can be cut there",
+                self.ops[op].cycle
+            );
+            if let Some(n) = self.notes.iter().find(|n| n.contains("read before it is set")) {
+                let place = n.strip_prefix(&format!("{}:", self.file)).unwrap_or(n);
+                msg.push_str(&format!(" (line {place})"));
+            }
+            return Err(self.err(line, 1, msg));
+        }
+        let o = &mut self.ops[op];
+        p.index = o.passes.len() + 1;
+        o.passes.push(p);
+        Ok(())
+    }
+
+    /// A single synchronised move from the current position to the block's target (G32/G33):
+    /// `lead_of(Δx radius, Δz)` gives the axial lead of the segment. Consecutive synchronised
+    /// blocks form one chain on one helix: each segment is its own pass, phased from the chain's
+    /// start, so a straight–taper–straight chain keeps its deeper stretch.
+    pub fn thread_move(
+        &mut self,
+        b: &RBlock<'_>,
+        col: usize,
+        cycle: &str,
+        lead_of: impl Fn(f64, f64) -> f64,
+        start_offset_deg: f64,
+    ) -> Result<(), Error> {
+        let (x0, z0) = self.need_position(b.line, col, cycle)?;
+        let (x, _, z) = self.target(b);
+        let (x1, z1) = (x.unwrap_or(x0), z.unwrap_or(z0));
+        if (z1 - z0).abs() < 1e-12 {
+            return Err(self.err(b.line, col, format!("{cycle} has no Z travel: a thread needs Z")));
+        }
+        let lead = lead_of(0.5 * (x1 - x0), z1 - z0);
+        if !(lead > 0.0 && lead.is_finite()) {
+            return Err(self.err(b.line, col, format!("{cycle} lead must be greater than zero")));
+        }
+        if self.css {
+            self.note(
+                b.line,
+                col,
+                format!("{cycle} under constant surface speed (G96); threading wants G97"),
+            );
+        }
+        let dir = if z1 < z0 { -1.0 } else { 1.0 };
+        let chain = match self.chain {
+            Some(c) => c,
+            None => {
+                let z_phase = z0 + dir * start_offset_deg / 360.0 * lead;
+                // A new chain joins the loose operation when it cuts the same helix over the
+                // same stretch; otherwise it starts an operation of its own.
+                let op = match self.loose {
+                    Some(op) if self.joins(op, lead, z0, z1) => op,
+                    _ => {
+                        let op = self.begin_op(cycle, b.line);
+                        self.loose = Some(op);
+                        op
+                    }
+                };
+                Chain { op, z_phase }
+            }
+        };
+        let p = Pass {
+            index: 0,
+            x_start: x0,
+            x_end: x1,
+            z_start: z0,
+            z_end: z1,
+            z_phase: chain.z_phase,
+            lead,
+            start: 0,
+            source_line: Some(b.line),
+            taper_in: 0.0,
+            taper_out: 0.0,
+            x_taper: x1,
+        };
+        self.push(chain.op, b.line, p)?;
+        self.chain = Some(chain);
+        self.x = Some(x1);
+        self.z = Some(z1);
+        Ok(())
+    }
+
+    fn joins(&self, op: usize, lead: f64, z0: f64, z1: f64) -> bool {
+        let o = &self.ops[op];
+        let (lo, hi) = (z0.min(z1), z0.max(z1));
+        let same_lead = (o.lead() - lead).abs() < 1e-9;
+        let overlap = o.passes.iter().any(|p| {
+            let (a, b) = (p.z_start.min(p.z_end), p.z_start.max(p.z_end));
+            a.max(lo) < b.min(hi)
+        });
+        same_lead && overlap
+    }
+
+    /// The operations, skipped-block count, notes and moves. Each operation gets the warnings
+    /// of its own passes (passes that cut nothing, passes beyond the axis).
+    pub fn finish(mut self) -> (Vec<Operation>, usize, Vec<String>, Vec<Move>) {
+        let file = self.file.clone();
+        for o in &mut self.ops {
+            shallow_pass_notes(o, &file);
+        }
+        self.ops.retain(|o| !o.passes.is_empty());
+        for (i, o) in self.ops.iter_mut().enumerate() {
+            o.index = i + 1;
+        }
+        (self.ops, self.skipped, self.notes, self.moves.unwrap_or_default())
+    }
+}
+
+/// Notes on passes that do not go deeper than an earlier pass by at least 1 µm somewhere: the
+/// pass cuts nothing new (a spring pass at the same depth is normal and not noted; a pass that
+/// goes back up is).
+fn shallow_pass_notes(o: &mut Operation, file: &str) {
+    let n = o.passes.len();
+    if n < 2 {
+        return;
+    }
+    // Inward (external) when the passes end below where they began.
+    let first = o.passes[0];
+    let last = o.passes[n - 1];
+    let zm = 0.5 * (last.z_start + last.z_end);
+    let inward = last.x_at(zm) < first.x_at(zm);
+    let mut deepest: Option<(f64, usize)> = None;
+    let mut notes = Vec::new();
+    for p in &o.passes {
+        if (p.z_phase - p.z_start).abs() > 1e-12 {
+            // A later segment of a chain: its depth is its own.
+            continue;
+        }
+        let x = p.x_at(zm);
+        if let Some((d, line)) = deepest {
+            let shallower = if inward { x - d } else { d - x };
+            if shallower > 1e-3 {
+                notes.push(format!(
+                    "{file}:{}:1: pass {} at X{:.4} is {:.3} mm shallower than the pass of line {line}: it cuts nothing",
+                    p.source_line.unwrap_or(0),
+                    p.index,
+                    x,
+                    shallower
+                ));
+                continue;
+            }
+        }
+        let deeper = deepest.is_none_or(|(d, _)| if inward { x < d } else { x > d });
+        if deeper {
+            deepest = Some((x, p.source_line.unwrap_or(0)));
+        }
+    }
+    o.notes.extend(notes);
+}

@@ -1,0 +1,396 @@
+//! Sinumerik: `G33 Z K` (`I` for steep tapers, `SF=` start offset), `CYCLE97`, the old 810T/3T
+//! cycles `L96` and `L97` (R-parameters, from the 1994 thesis), subprograms `L9 P33` in the
+//! same listing (ending at `M17`), `DIAMON`/`DIAMOF`, `G70`/`G71`.
+//!
+//! L97 defaults where the sources are silent (stated in the output): the finishing allowance
+//! R25 is cut in one pass at full depth; the R23 idle passes follow it; the run-in R26 starts
+//! before R22 and the run-out R27 runs on beyond R32; every pass is shifted along Z by
+//! depth·tan R29 in the direction of feed (R29 = 0: radial). L96: constant depth increments
+//! (|R15| − R16)/R17, radial, from (R10, R11) to (R12, R13).
+
+use super::cycles::{self, Shift};
+use super::interp::{Ctx, Flow};
+use super::motion::{Motion, RBlock, RWord};
+use crate::passes::Pass;
+use crate::Error;
+
+/// Sinumerik state: the start offset SF.
+#[derive(Default)]
+pub(crate) struct State {
+    start_offset_deg: f64,
+}
+
+/// Runs one block.
+pub(crate) fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Result<Flow, Error> {
+    for w in &b.words {
+        match w.name {
+            "DIAMON" => m.diameter = true,
+            "DIAMOF" => m.diameter = false,
+            "SF" => s.start_offset_deg = w.v,
+            _ => {}
+        }
+    }
+    if b.has_m(2.0) || b.has_m(30.0) {
+        return Ok(Flow::End);
+    }
+    if let Some(w) = b.words.iter().find(|w| w.name == "M" && w.v == 17.0).or_else(|| b.get("RET")) {
+        return Ok(Flow::Return { to_n: None, col: w.col });
+    }
+    if let Some(w) = b.get("CYCLE97") {
+        cycles::modal(m, b)?;
+        return cycle97(m, b, w).map(|_| Flow::Next);
+    }
+    if let Some(w) = b.words.iter().find(|w| w.name.starts_with("CYCLE") || w.name == "LCYC97") {
+        return Err(b.werr(
+            &m.file,
+            w,
+            format!("{} is not a threading cycle threadcheck reads (CYCLE97 is)", w.name),
+        ));
+    }
+    // Subprogram call: L9 P33, or the old thread cycles L96/L97 when the file does not define them.
+    if let Some(w) = b.get("L") {
+        cycles::modal(m, b)?;
+        let name = format!("L{}", w.v.round() as i64);
+        let reps = b.get("P").map_or(1.0, |p| p.v);
+        if !(reps >= 0.0 && reps.fract() == 0.0 && reps <= crate::limits::MAX_REPEATS as f64) {
+            return Err(b.werr(
+                &m.file,
+                w,
+                format!(
+                    "{name} P{reps}: repetitions must be a whole number up to {}",
+                    crate::limits::MAX_REPEATS
+                ),
+            ));
+        }
+        if !cx.subs.contains(&name) {
+            match name.as_str() {
+                "L97" | "L96" => {
+                    for _ in 0..reps as usize {
+                        if name == "L97" {
+                            l97(m, b, w, cx)?;
+                        } else {
+                            l96(m, b, w, cx)?;
+                        }
+                    }
+                    return Ok(Flow::Next);
+                }
+                _ => return Err(b.werr(&m.file, w, format!("subprogram {name} is not in this file"))),
+            }
+        }
+        return Ok(Flow::Call { name, repeats: reps as u32, locals: None, col: w.col });
+    }
+    let md = cycles::modal(m, b)?;
+    if md.motion == 33.0 && md.one_shot.is_none() {
+        let col = md.col.unwrap_or(b.col);
+        if let Some(w) = b.get("K").or_else(|| b.get("I")) {
+            let v = m.len(w);
+            if !(v > 0.0) {
+                return Err(b.werr(&m.file, w, "G33 lead must be greater than zero"));
+            }
+        }
+        let (x, _, z) = m.target(b);
+        if x.is_none() && z.is_none() {
+            m.skipped += 1;
+            return Ok(Flow::Next);
+        }
+        cycles::need_lathe_plane(m, b, col, "G33")?;
+        let k = b.get("K").map(|w| m.len(w));
+        let i = b.get("I").map(|w| m.len(w));
+        if let Some(k) = k {
+            m.lead = Some(k);
+        }
+        let lead = match (k, i) {
+            (Some(k), _) => Some((k, false)),
+            (None, Some(i)) => Some((i, true)),
+            (None, None) => m.lead.map(|l| (l, false)),
+        };
+        let Some((l, along_x)) = lead else {
+            return Err(m.err(b.line, col, "G33 without a lead: add K (or I for a steep taper)"));
+        };
+        m.thread_move(
+            b,
+            col,
+            "G33",
+            |dx, dz| if along_x && dx != 0.0 { l * dz.abs() / dx.abs() } else { l },
+            s.start_offset_deg,
+        )?;
+        return Ok(Flow::Next);
+    }
+    cycles::other_block(m, b, &md)?;
+    Ok(Flow::Next)
+}
+
+/// An R-parameter for a cycle: a required one must be set; an optional one reads as 0.
+fn r(
+    m: &mut Motion,
+    cx: &mut Ctx<'_>,
+    n: i64,
+    b: &RBlock<'_>,
+    w: &RWord<'_>,
+    cycle: &str,
+    required: &[(i64, &str)],
+) -> Result<f64, Error> {
+    match cx.get(m, n, b.line, w.col) {
+        Some(v) => Ok(v),
+        None => match required.iter().find(|(k, _)| *k == n) {
+            Some((_, what)) => Err(b.werr(
+                &m.file,
+                w,
+                format!("{cycle} reads R{n} ({what}), which is not set before the call"),
+            )),
+            None => Ok(0.0),
+        },
+    }
+}
+
+const L97_NEEDS: [(i64, &str); 7] = [
+    (20, "the pitch"),
+    (21, "the start diameter"),
+    (22, "the start Z"),
+    (24, "the thread depth"),
+    (28, "the number of rough cuts"),
+    (31, "the end diameter"),
+    (32, "the end Z"),
+];
+
+const L96_NEEDS: [(i64, &str); 8] = [
+    (10, "the start X"),
+    (11, "the start Z"),
+    (12, "the end X"),
+    (13, "the end Z"),
+    (14, "the pitch"),
+    (15, "the thread depth"),
+    (17, "the number of rough cuts"),
+    (19, "radius or diameter programming"),
+];
+
+/// L97: the thesis's parameters (R20 pitch, R21/R22 start, R23 idle passes, R24 depth, negative
+/// external and positive internal, R25 finishing allowance, R26 run-in, R27 run-out, R28 rough
+/// cuts, R29 infeed angle, R31/R32 end). Rough cut i of R28 ends at t·√(i/R28), t = |R24| − R25.
+fn l97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>, cx: &mut Ctx<'_>) -> Result<(), Error> {
+    let sc = m.scale;
+    let mut g = |n: i64| r(m, cx, n, b, w, "L97", &L97_NEEDS);
+    let (pitch, x_a, z_a, idle, depth, fin, run_in, run_out, nrough, angle, x_e, z_e) = (
+        g(20)? * sc,
+        g(21)? * sc,
+        g(22)? * sc,
+        g(23)?,
+        g(24)? * sc,
+        g(25)? * sc,
+        g(26)? * sc,
+        g(27)? * sc,
+        g(28)?,
+        g(29)?,
+        g(31)? * sc,
+        g(32)? * sc,
+    );
+    let e = |msg: &str| b.werr(&m.file, w, format!("L97: {msg}"));
+    if !(pitch > 0.0) {
+        return Err(e("R20, the pitch, must be greater than zero"));
+    }
+    if !(nrough >= 1.0 && nrough.fract() == 0.0 && nrough <= crate::limits::MAX_REPEATS as f64) {
+        return Err(e("R28, the number of rough cuts, must be a whole number from 1"));
+    }
+    if !(idle >= 0.0 && idle.fract() == 0.0 && idle <= crate::limits::MAX_REPEATS as f64) {
+        return Err(e("R23, the number of idle passes, must be a whole number"));
+    }
+    let t_full = depth.abs();
+    if !(t_full > 0.0 && fin >= 0.0 && fin < t_full) {
+        return Err(e("R24 must not be 0 and the finishing allowance R25 must be from 0 to under |R24|"));
+    }
+    if !(run_in >= 0.0 && run_out >= 0.0) {
+        return Err(e("R26 and R27 are paths without sign"));
+    }
+    if (z_e - z_a).abs() < 1e-9 {
+        return Err(e("R22 and R32 are the same: the thread has no length"));
+    }
+    if !(0.0..90.0).contains(&angle.abs()) {
+        return Err(e("R29, the infeed angle, must be under 90°"));
+    }
+    let external = depth < 0.0;
+    let sx = if external { -1.0 } else { 1.0 };
+    let dz = (z_e - z_a).signum();
+    let (z0, z1) = (z_a - dz * run_in, z_e + dz * run_out);
+    let crest = |z: f64| x_a + (x_e - x_a) * (z - z_a) / (z_e - z_a);
+    let t = t_full - fin;
+    let n = nrough as usize;
+    let mut depths: Vec<f64> = (1..=n).map(|i| t * (i as f64 / nrough).sqrt()).collect();
+    if fin > 0.0 {
+        depths.push(t_full);
+    }
+    depths.extend(std::iter::repeat_n(t_full, idle as usize));
+    let shift = if angle != 0.0 { Shift::Flank(angle.abs()) } else { Shift::Radial };
+    let shifts = cycles::shifts(shift, &depths, dz);
+    let op = m.begin_op("L97", b.line);
+    {
+        let o = m.op_mut(op);
+        o.infeed_angle = Some((angle.abs(), "R29".into()));
+        o.notes.push(
+            "L97: the finishing allowance R25 is cut in one pass and the R23 idle passes follow it; R27 runs on beyond R32; each pass is shifted along Z by depth·tan R29 (assumed where the sources are silent)"
+                .into(),
+        );
+    }
+    for (d, sh) in depths.iter().zip(shifts) {
+        let (za, zb) = (z0 + sh, z1 + sh);
+        let xa = crest(za) + 2.0 * sx * d;
+        let xb = crest(zb) + 2.0 * sx * d;
+        m.push(op, b.line, cycles::pass(xa, xb, za, zb, pitch, b.line, 0.0, xb))?;
+    }
+    Ok(())
+}
+
+/// L96: R10/R11 start, R12/R13 end, R14 pitch, R15 depth (− external), R16 finishing allowance,
+/// R17 rough cuts, R18 idle cuts, R19 1 radius / 2 diameter programming; radial infeed.
+fn l96(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>, cx: &mut Ctx<'_>) -> Result<(), Error> {
+    let sc = m.scale;
+    let mut g = |n: i64| r(m, cx, n, b, w, "L96", &L96_NEEDS);
+    let (x_a, z_a, x_e, z_e, pitch, depth, fin, nrough, idle, mode) = (
+        g(10)? * sc,
+        g(11)? * sc,
+        g(12)? * sc,
+        g(13)? * sc,
+        g(14)? * sc,
+        g(15)? * sc,
+        g(16)? * sc,
+        g(17)?,
+        g(18)?,
+        g(19)?,
+    );
+    let e = |msg: &str| b.werr(&m.file, w, format!("L96: {msg}"));
+    if !(pitch > 0.0) {
+        return Err(e("R14, the pitch, must be greater than zero"));
+    }
+    if !(nrough >= 1.0 && nrough.fract() == 0.0 && nrough <= crate::limits::MAX_REPEATS as f64) {
+        return Err(e("R17, the number of rough cuts, must be a whole number from 1"));
+    }
+    if !(idle >= 0.0 && idle.fract() == 0.0 && idle <= crate::limits::MAX_REPEATS as f64) {
+        return Err(e("R18, the number of idle cuts, must be a whole number"));
+    }
+    let dia = match mode {
+        1.0 => 2.0,
+        2.0 => 1.0,
+        _ => return Err(e("R19 must be 1 (radius programming) or 2 (diameter programming)")),
+    };
+    let t_full = depth.abs();
+    if !(t_full > 0.0 && fin >= 0.0 && fin < t_full) {
+        return Err(e("R15 must not be 0 and the finishing allowance R16 must be from 0 to under |R15|"));
+    }
+    if (z_e - z_a).abs() < 1e-9 {
+        return Err(e("R11 and R13 are the same: the thread has no length"));
+    }
+    let sx = if depth < 0.0 { -1.0 } else { 1.0 };
+    let (xa, xe) = (x_a * dia, x_e * dia);
+    let step = (t_full - fin) / nrough;
+    let mut depths: Vec<f64> = (1..=nrough as usize).map(|i| step * i as f64).collect();
+    if fin > 0.0 {
+        depths.push(t_full);
+    }
+    depths.extend(std::iter::repeat_n(t_full, idle as usize));
+    let op = m.begin_op("L96", b.line);
+    {
+        let o = m.op_mut(op);
+        o.infeed_angle = Some((0.0, "L96 (radial)".into()));
+        o.notes.push("L96: constant depth increments (|R15| − R16)/R17, radial, no run-in or run-out (assumed where the thesis is silent)".into());
+    }
+    for d in depths {
+        let p =
+            Pass { ..cycles::pass(xa + 2.0 * sx * d, xe + 2.0 * sx * d, z_a, z_e, pitch, b.line, 0.0, xe) };
+        m.push(op, b.line, p)?;
+    }
+    Ok(())
+}
+
+/// CYCLE97(PIT, MPIT, SPL, FPL, DM1, DM2, APP, ROP, TDEP, FAL, IANG, NSP, NRC, NID, VARI, NUMT).
+///
+/// PIT is the pitch; with NUMT starts the lead is NUMT·PIT and the starts are one pitch
+/// apart. VARI 1/3 external, 2/4 internal (DM1/DM2 are then the tap-hole diameters);
+/// 1/2 constant depth, 3/4 constant chip area.
+/// NRC rough passes to TDEP − FAL, one finishing pass at TDEP, NID idle passes. IANG > 0
+/// infeeds along one flank, IANG < 0 alternates flanks.
+fn cycle97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
+    let args = w.args.clone().unwrap_or_default();
+    if args.len() > 20 {
+        return Err(b.werr(&m.file, w, format!("CYCLE97 takes 16 parameters, not {}", args.len())));
+    }
+    let mut v = [0.0f64; 16];
+    for (k, (x, _)) in args.iter().enumerate().take(16) {
+        if let Some(x) = x {
+            v[k] = *x;
+        }
+    }
+    let [pit, mpit, spl, fpl, dm1, dm2, app, rop, tdep, fal, iang, nsp, nrc, nid, vari, numt] = v;
+    let s = m.scale;
+    let pitch = if pit > 0.0 {
+        pit * s
+    } else {
+        coarse_pitch_for(mpit)
+            .ok_or_else(|| b.werr(&m.file, w, "CYCLE97 needs PIT, or MPIT the metric size 3 to 60"))?
+    };
+    let vari = if vari == 0.0 { 1.0 } else { vari };
+    if ![1.0, 2.0, 3.0, 4.0].contains(&vari) {
+        return Err(b.werr(&m.file, w, format!("CYCLE97 VARI {vari} must be 1, 2, 3 or 4")));
+    }
+    let (tdep, fal) = (tdep * s, fal * s);
+    if !(tdep > 0.0 && fal >= 0.0 && fal < tdep) {
+        return Err(b.werr(&m.file, w, "CYCLE97 needs TDEP > 0 and 0 ≤ FAL < TDEP"));
+    }
+    let nrc = if nrc == 0.0 { 1.0 } else { nrc };
+    let numt = if numt == 0.0 { 1.0 } else { numt };
+    let whole = |v: f64, lo: f64, hi: f64| v >= lo && v <= hi && v.fract() == 0.0;
+    let max = crate::limits::MAX_REPEATS as f64;
+    if !whole(nrc, 1.0, max) || !whole(nid, 0.0, max) || !whole(numt, 1.0, 64.0) {
+        return Err(b.werr(&m.file, w, "CYCLE97 NRC, NID and NUMT must be whole numbers in range"));
+    }
+    if m.css {
+        m.note(b.line, w.col, "CYCLE97 under constant surface speed (G96); threading wants G97");
+    }
+    let external = vari == 1.0 || vari == 3.0;
+    let area = vari >= 3.0;
+    let rough = tdep - fal;
+    let n = nrc as usize;
+    let mut depths: Vec<f64> = (1..=n)
+        .map(|i| if area { rough * (i as f64 / nrc).sqrt() } else { rough * i as f64 / nrc })
+        .collect();
+    if fal > 0.0 {
+        depths.push(tdep);
+    }
+    depths.extend(std::iter::repeat_n(tdep, nid as usize));
+    let shift = if iang > 0.0 {
+        Shift::Flank(iang)
+    } else if iang < 0.0 {
+        Shift::Alternating(-iang)
+    } else {
+        Shift::Radial
+    };
+    let (spl, fpl) = (spl * s, fpl * s);
+    let dir = if fpl < spl { -1.0 } else { 1.0 };
+    let offsets = cycles::shifts(shift, &depths, dir);
+    let lead = pitch * numt;
+    let (d1, d2) = (dm1 * s, dm2 * s);
+    let op = m.begin_op("CYCLE97", b.line);
+    m.op_mut(op).infeed_angle = Some((iang.abs(), "IANG".into()));
+    for start in 0..numt as u32 {
+        let phase = f64::from(start) * pitch + nsp / 360.0 * lead;
+        for (d, off) in depths.iter().zip(&offsets) {
+            // External: DM is the major diameter, cut inwards. Internal: DM is the tap-hole
+            // diameter, cut outwards (Sinumerik cycle documentation).
+            let xd = |dm: f64| if external { dm - 2.0 * d } else { dm + 2.0 * d };
+            let zs = spl - dir * app * s + off - dir * phase;
+            let mut p = cycles::pass(xd(d1), xd(d2), zs, fpl + dir * rop * s, lead, b.line, 0.0, xd(d2));
+            p.start = start;
+            m.push(op, b.line, p)?;
+        }
+    }
+    Ok(())
+}
+
+/// ISO 261 coarse pitch of the sizes CYCLE97's MPIT accepts (M3 to M60).
+fn coarse_pitch_for(size: f64) -> Option<f64> {
+    let cat = crate::standards::catalog().ok()?;
+    cat.iso
+        .series
+        .sizes
+        .iter()
+        .find(|s| (s.d - size).abs() < 1e-9 && (3.0..=60.0).contains(&size))
+        .and_then(|s| s.coarse)
+}

@@ -1,0 +1,3 @@
+o100 sub
+G0 X1
+o100 endsub
