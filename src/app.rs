@@ -221,6 +221,12 @@ pub fn parse_len(s: &str, what: &str) -> Result<f64, Error> {
 pub struct VerifyJob {
     /// What to verify.
     pub spec: crate::verify::VerifySpec,
+    /// With a program: one designation for all its operations, or one per operation.
+    pub threads: Vec<String>,
+    /// The insert was chosen on the command line (else the tool table, else the default).
+    pub insert_given: bool,
+    /// T numbers → inserts.
+    pub tools: Option<crate::tools::ToolTable>,
     /// Write the SVG cross-section here.
     pub svg: Option<std::path::PathBuf>,
     /// Write the JSON report here; `-` prints it on stdout instead of the table.
@@ -230,33 +236,108 @@ pub struct VerifyJob {
 impl VerifyJob {
     /// Runs the job: the report on stdout, files written atomically, pass or out of tolerance.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
+        if let Some((path, dialect)) = &self.spec.program {
+            return self.run_program(path, *dialect);
+        }
         let v = crate::verify::verify(&self.spec)?;
         let outcome = if v.pass { Outcome::Pass } else { Outcome::OutOfTolerance };
         // Render everything before writing anything, so a failure leaves no file half-done.
-        let json_text = match &self.json {
-            Some(_) => {
-                let mut s = serde_json::to_string_pretty(&crate::report::verify_json(&v))
-                    .map_err(|e| Error::Data(e.to_string()))?;
-                s.push('\n');
-                Some(s)
-            }
-            None => None,
-        };
+        let json_text = self.json.as_ref().map(|_| pretty(&crate::report::verify_json(&v))).transpose()?;
         let svg_text = self.svg.as_ref().map(|_| crate::render::verify_svg(&v));
-        if let (Some(path), Some(text)) = (&self.svg, &svg_text) {
-            crate::output::write_atomic(path, text.as_bytes())?;
+        let text = crate::report::verify_text(&v);
+        self.write(json_text, svg_text, text, outcome)
+    }
+
+    fn run_program(
+        &self,
+        path: &std::path::Path,
+        dialect: crate::gcode::Dialect,
+    ) -> Result<(String, Outcome), Error> {
+        if self.spec.final_x.is_some() {
+            return Err(Error::Input(
+                "--final-x and --program exclude each other: the program sets the passes".into(),
+            ));
         }
-        let mut stdout = String::new();
-        match (&self.json, json_text) {
-            (Some(p), Some(text)) if p == "-" => stdout = text,
-            (Some(p), Some(text)) => {
-                crate::output::write_atomic(std::path::Path::new(p), text.as_bytes())?;
-                stdout = crate::report::verify_text(&v);
+        let shown = path.display().to_string();
+        let text = crate::verify::read_program_text(path)?;
+        let default = self.spec.insert.clone();
+        let insert_for = |op: &crate::gcode::Operation| -> Option<(crate::verify::InsertChoice, String)> {
+            if self.insert_given {
+                return None;
             }
-            _ => stdout.push_str(&crate::report::verify_text(&v)),
+            if let (Some(tt), Some(t)) = (&self.tools, op.tool) {
+                if let Some((choice, written)) = tt.insert(t) {
+                    return Some((
+                        choice.clone(),
+                        format!("insert of tool T{t} from {}: {written}", tt.source),
+                    ));
+                }
+            }
+            let why = match (op.tool, &self.tools) {
+                (Some(t), Some(tt)) => format!("tool T{t} is not in {}", tt.source),
+                (Some(t), None) => {
+                    format!("the program names tool T{t} but no tool table was given (--tools)")
+                }
+                (None, _) => "the program names no tool".to_string(),
+            };
+            let what = match &default {
+                crate::verify::InsertChoice::Full => "a full-profile insert".to_string(),
+                crate::verify::InsertChoice::Partial { tip_radius } => {
+                    format!("a partial-profile insert with a {} mm tip", fmt_num(*tip_radius))
+                }
+                crate::verify::InsertChoice::File(p) => format!("the insert {}", p.display()),
+            };
+            Some((
+                default.clone(),
+                format!("insert assumed: {what} ({why}; choose with --insert or --tools)"),
+            ))
+        };
+        let pv =
+            crate::verify::verify_program(&self.spec, &text, &shown, dialect, &self.threads, &insert_for)?;
+        let outcome = if pv.pass() { Outcome::Pass } else { Outcome::OutOfTolerance };
+        let json_text = self.json.as_ref().map(|_| pretty(&crate::report::program_json(&pv))).transpose()?;
+        let svg_text = self.svg.as_ref().map(|_| crate::render::program_svg(&pv));
+        let text = crate::report::program_text(&pv);
+        self.write(json_text, svg_text, text, outcome)
+    }
+
+    fn write(
+        &self,
+        json_text: Option<String>,
+        svg_text: Option<String>,
+        text: String,
+        outcome: Outcome,
+    ) -> Result<(String, Outcome), Error> {
+        if let (Some(path), Some(t)) = (&self.svg, &svg_text) {
+            crate::output::write_atomic(path, t.as_bytes())?;
         }
+        let stdout = match (&self.json, json_text) {
+            (Some(p), Some(t)) if p == "-" => t,
+            (Some(p), Some(t)) => {
+                crate::output::write_atomic(std::path::Path::new(p), t.as_bytes())?;
+                text
+            }
+            _ => text,
+        };
         Ok((stdout, outcome))
     }
+}
+
+/// A number without float noise: at most six decimals, trailing zeros dropped.
+pub fn fmt_num(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.to_string()
+    }
+}
+
+fn pretty(v: &serde_json::Value) -> Result<String, Error> {
+    let mut s = serde_json::to_string_pretty(v).map_err(|e| Error::Data(e.to_string()))?;
+    s.push('\n');
+    Ok(s)
 }
 
 /// `threadcheck passes`: the expanded pass plan.
@@ -272,6 +353,7 @@ impl PassesJob {
     /// Runs the job: a program is read and expanded; a generated plan is laid out as `verify`
     /// would (solving the final X when it is not given).
     pub fn run(&self) -> Result<(String, Outcome), Error> {
+        let mut operations = None;
         let (thread, passes, header) = match (&self.spec.program, self.spec.designation.is_empty()) {
             (Some((path, dialect)), no_thread) => {
                 let shown = path.display().to_string();
@@ -286,13 +368,20 @@ impl PassesJob {
                     )?;
                     json!({"designation": d.text, "form": d.thread.form.name(), "pitch": d.thread.pitch, "lead": d.thread.lead()})
                 };
-                let header = format!(
-                    "{shown} ({}): {} passes, lead {} mm, {} other blocks read for position\n",
+                let leads: Vec<String> = prog.operations.iter().map(|o| fmt_num(o.lead())).collect();
+                let mut header = format!(
+                    "{shown} ({}): {} operation{}, {} passes, lead {} mm, {} other blocks read for position\n",
                     dialect.name(),
+                    prog.operations.len(),
+                    if prog.operations.len() == 1 { "" } else { "s" },
                     prog.passes.len(),
-                    prog.lead().unwrap_or(0.0),
+                    leads.join(" / "),
                     prog.skipped_blocks
                 );
+                for n in &prog.notes {
+                    header.push_str(&format!("note: {n}\n"));
+                }
+                operations = Some(prog.operations.clone());
                 (thread, prog.passes, header)
             }
             (None, _) if self.spec.final_x.is_some() => {
@@ -325,28 +414,34 @@ impl PassesJob {
                 (crate::report::thread_json(&v), v.passes, header)
             }
         };
+        let pass_json = |p: &crate::passes::Pass| {
+            json!({
+                "index": p.index, "x_start": p.x_start, "x_end": p.x_end, "z_start": p.z_start,
+                "z_end": p.z_end, "z_phase": p.z_phase, "lead": p.lead, "start": p.start, "source_line": p.source_line,
+                "taper_in": p.taper_in, "taper_out": p.taper_out, "x_taper": p.x_taper,
+            })
+        };
         let text = if self.json {
-            let list: Vec<serde_json::Value> = passes
-                .iter()
-                .map(|p| {
-                    json!({
-                        "index": p.index, "x_start": p.x_start, "x_end": p.x_end, "z_start": p.z_start,
-                        "z_end": p.z_end, "lead": p.lead, "start": p.start, "source_line": p.source_line,
-                        "taper_in": p.taper_in, "taper_out": p.taper_out, "x_taper": p.x_taper,
-                    })
-                })
-                .collect();
+            let list: Vec<serde_json::Value> = passes.iter().map(pass_json).collect();
             let (start, end) = passes.iter().fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), p| {
                 (a.max(p.z_start.max(p.z_end)), b.min(p.z_start.min(p.z_end)))
             });
-            let obj = json!({"thread": thread, "thread_start": start, "thread_end": end, "passes": list});
-            let mut s = serde_json::to_string_pretty(&obj).map_err(|e| Error::Data(e.to_string()))?;
-            s.push('\n');
-            s
+            let mut obj = json!({"thread": thread, "thread_start": start, "thread_end": end, "passes": list});
+            if let (Some(ops), Some(o)) = (&operations, obj.as_object_mut()) {
+                let ops: Vec<serde_json::Value> = ops
+                    .iter()
+                    .map(|op| {
+                        json!({"index": op.index, "cycle": op.cycle, "source_line": op.source_line, "tool": op.tool,
+                            "spindle": op.spindle, "lead": op.lead(), "notes": op.notes,
+                            "passes": op.passes.iter().map(pass_json).collect::<Vec<_>>()})
+                    })
+                    .collect();
+                o.insert("operations".into(), json!(ops));
+            }
+            pretty(&obj)?
         } else {
             let mut s = header;
-            s.push_str("\n  pass  start    X start      X end    Z start      Z end   line\n");
-            for p in &passes {
+            let row = |s: &mut String, p: &crate::passes::Pass| {
                 let _ = writeln!(
                     s,
                     "  {:>4}  {:>5}  {:>9.4}  {:>9.4}  {:>9.4}  {:>9.4}  {:>5}",
@@ -358,6 +453,37 @@ impl PassesJob {
                     p.z_end,
                     p.source_line.map_or("—".to_string(), |l| l.to_string())
                 );
+            };
+            let head = "  pass  start    X start      X end    Z start      Z end   line\n";
+            match &operations {
+                Some(ops) => {
+                    for op in ops {
+                        let _ = writeln!(
+                            s,
+                            "\noperation {}: {} at line {}{}, lead {} mm, {} passes",
+                            op.index,
+                            op.cycle,
+                            op.source_line,
+                            op.tool.map_or(String::new(), |t| format!(", tool T{t}")),
+                            fmt_num(op.lead()),
+                            op.passes.len()
+                        );
+                        for n in &op.notes {
+                            let _ = writeln!(s, "  note: {n}");
+                        }
+                        s.push_str(head);
+                        for p in &op.passes {
+                            row(&mut s, p);
+                        }
+                    }
+                }
+                None => {
+                    s.push('\n');
+                    s.push_str(head);
+                    for p in &passes {
+                        row(&mut s, p);
+                    }
+                }
             }
             s
         };

@@ -19,6 +19,16 @@ pub const FLANK_ANGLE_TOLERANCE_DEG: f64 = 1.0;
 /// passes.
 pub const MMC_SLACK: f64 = 5e-5;
 
+/// The standards' tables print limits to 1 µm (ISO 965-1, BS 84, ISO 228-1): a measured size is
+/// compared at that resolution, so a limit exactly met (the basic profile cut against a class
+/// whose limit is the rounded basic size) passes.
+pub const TABLE_RESOLUTION_MM: f64 = 0.001;
+
+/// `v` rounded to the tables' resolution.
+pub fn at_table_resolution(v: f64) -> f64 {
+    (v / TABLE_RESOLUTION_MM).round() * TABLE_RESOLUTION_MM
+}
+
 /// A crest narrower than this (mm) 1 µm below its top is no crest: the grooves have met.
 pub const MIN_CREST_WIDTH: f64 = 1e-3;
 
@@ -57,7 +67,8 @@ pub struct Check {
 }
 
 fn check(feature: &'static str, kind: CheckKind, value: f64, lim: Limit, note: Option<String>) -> Check {
-    let dev = lim.deviation(value);
+    // Inside at the tables' resolution: within; outside: the true distance to the limit.
+    let dev = if lim.deviation(at_table_resolution(value)) == 0.0 { 0.0 } else { lim.deviation(value) };
     Check {
         feature,
         kind,

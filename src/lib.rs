@@ -71,6 +71,7 @@ pub mod report;
 pub mod standards;
 pub mod sweep;
 pub mod tolerance;
+pub mod tools;
 pub mod verify;
 
 pub use error::{Error, Result};

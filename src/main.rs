@@ -116,18 +116,22 @@ enum Command {
 
 #[derive(Args)]
 struct PlanArgs {
-    /// Thread with its class, e.g. M10x1.5-6g.
+    /// Thread with its class, e.g. M10x1.5-6g. With a program that cuts several threads, give it
+    /// once for all or once per operation, in program order.
     #[arg(long, required_unless_present = "program")]
-    thread: Option<String>,
+    thread: Vec<String>,
     /// The internal thread (else external; implied by an upper-case class alone).
     #[arg(long)]
     internal: bool,
     /// Accept a diameter/pitch pair outside the standard series.
     #[arg(long)]
     allow_nonstandard: bool,
-    /// full | partial[:TIP_RADIUS] | FILE.toml
-    #[arg(long, default_value = "partial")]
-    insert: String,
+    /// full | partial[:TIP_RADIUS] | FILE.toml (default partial, r0.04 mm)
+    #[arg(long)]
+    insert: Option<String>,
+    /// Tool table: which insert each T number of the program holds (TOML).
+    #[arg(long, value_name = "FILE.toml", requires = "program")]
+    tools: Option<PathBuf>,
     /// radial | flank[:ANGLE] | alternating[:ANGLE] (default: flank at half the thread angle − 0.5°)
     #[arg(long)]
     infeed: Option<String>,
@@ -167,17 +171,17 @@ struct PlanArgs {
     /// Take the passes from this G-code program.
     #[arg(long, value_name = "FILE")]
     program: Option<PathBuf>,
-    /// fanuc | sinumerik | linuxcnc
+    /// fanuc | haas | sinumerik | linuxcnc | dyna
     #[arg(long, default_value = "fanuc", requires = "program")]
     dialect: String,
 }
 
 impl PlanArgs {
     fn spec(&self, gauge_only: bool) -> Result<VerifySpec, threadcheck::Error> {
-        let mut s = VerifySpec::new(self.thread.as_deref().unwrap_or(""));
+        let mut s = VerifySpec::new(self.thread.first().map_or("", String::as_str));
         s.internal = self.internal;
         s.allow_nonstandard = self.allow_nonstandard;
-        s.insert = parse_insert(&self.insert)?;
+        s.insert = parse_insert(self.insert.as_deref().unwrap_or("partial"))?;
         if let Some(i) = &self.infeed {
             // The half angle depends on the form; parse it once the designation is known.
             let des = threadcheck::parse_designation(
@@ -215,14 +219,28 @@ fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
             LimitsJob { designation, allow_nonstandard, json }.run()?
         }
         Command::Verify { plan, gauge_only, no_pass_metrics, svg, json } => {
-            if plan.thread.is_none() {
+            if plan.thread.is_empty() {
                 return Err(threadcheck::Error::Input(
                     "verify needs --thread with a class, e.g. --thread M10x1.5-6g".into(),
                 ));
             }
+            if plan.thread.len() > 1 && plan.program.is_none() {
+                return Err(threadcheck::Error::Input(
+                    "--thread is given more than once: only a program with several threads takes one per operation".into(),
+                ));
+            }
             let mut spec = plan.spec(gauge_only)?;
             spec.metrics = !no_pass_metrics;
-            VerifyJob { spec, svg, json }.run()?
+            let tools = plan.tools.as_deref().map(threadcheck::tools::ToolTable::read).transpose()?;
+            VerifyJob {
+                spec,
+                threads: plan.thread.clone(),
+                insert_given: plan.insert.is_some(),
+                tools,
+                svg,
+                json,
+            }
+            .run()?
         }
         Command::Passes { plan, json } => PassesJob { spec: plan.spec(false)?, json }.run()?,
         Command::Sweep {
@@ -281,7 +299,7 @@ fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
             (format!("wrote {}\n", out.join("infeed-comparison.md").display()), Outcome::Pass)
         }
         Command::Compare { plan, modified, json, markdown } => {
-            if plan.thread.is_none() {
+            if plan.thread.is_empty() {
                 return Err(threadcheck::Error::Input(
                     "compare needs --thread with a class, e.g. --thread M10x1.5-6g".into(),
                 ));

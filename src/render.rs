@@ -336,6 +336,57 @@ fn chip_chart(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Group {
 
 /// The SVG document of a verification.
 pub fn verify_svg(v: &Verification) -> String {
+    let (width, height) = (1100.0, 960.0);
+    Document::new()
+        .set("viewBox", (0, 0, width, height))
+        .set("width", width)
+        .set("height", height)
+        .add(verification_group(v))
+        .to_string()
+}
+
+/// The SVG of every operation of a program, one section each, stacked.
+pub fn program_svg(pv: &crate::verify::ProgramVerification) -> String {
+    let width = 1100.0;
+    let mut y = 0.0;
+    let mut doc = Document::new();
+    for o in &pv.operations {
+        let head = format!(
+            "operation {} of {}: {} at line {} of {}{}",
+            o.operation.index,
+            pv.operations.len(),
+            o.operation.cycle,
+            o.operation.source_line,
+            pv.program,
+            o.operation.tool.map_or(String::new(), |t| format!(", tool T{t}"))
+        );
+        let mut g = Group::new()
+            .set("id", format!("operation-{}", o.operation.index))
+            .set("transform", format!("translate(0,{y})"))
+            .add(Rectangle::new().set("width", width).set("height", 34).set("fill", "#eef1f5"))
+            .add(text(20.0, 23.0, 15.0, head).set("font-weight", "bold"));
+        let h = match &o.result {
+            crate::verify::OperationResult::Verified(v) => {
+                g = g.add(verification_group(v).set("transform", "translate(0,34)"));
+                34.0 + 960.0
+            }
+            crate::verify::OperationResult::NoCut { reason } => {
+                g = g.add(
+                    text(20.0, 64.0, 16.0, format!("verdict: FAIL ({}) — {reason}", o.designation))
+                        .set("fill", "#b3261e")
+                        .set("font-weight", "bold"),
+                );
+                90.0
+            }
+        };
+        doc = doc.add(g);
+        y += h;
+    }
+    doc.set("viewBox", (0, 0, width, y)).set("width", width).set("height", y).to_string()
+}
+
+/// One verification's picture: title, tooth, window, legend, chip chart and full length.
+fn verification_group(v: &Verification) -> Group {
     let t = &v.designation.thread;
     let p = t.pitch;
     let m = &v.measurement;
@@ -405,17 +456,14 @@ pub fn verify_svg(v: &Verification) -> String {
         let w = crate::sweep::full_length_window(&v.passes, p);
         crate::sweep::sweep(&setup, &v.passes, w, crate::boolean::UnionStrategy::Envelope).ok()
     };
-    let doc = Document::new()
-        .set("viewBox", (0, 0, width, height))
-        .set("width", width)
-        .set("height", height)
+    let doc = Group::new()
         .add(Rectangle::new().set("width", width).set("height", height).set("fill", "white"))
         .add(title)
         .add(view(v, &tooth, "tooth", "one tooth"))
         .add(view(v, &window, "window", "four pitches"))
         .add(legend(690.0, 420.0))
         .add(chip_chart(v, 690.0, 570.0, 360.0, 150.0));
-    let doc = match &full {
+    match &full {
         Some(f) => {
             let fw = f.section.window;
             let frame =
@@ -423,6 +471,5 @@ pub fn verify_svg(v: &Verification) -> String {
             doc.add(full_view(&f.section, &frame, v))
         }
         None => doc,
-    };
-    doc.to_string()
+    }
 }

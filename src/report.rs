@@ -227,3 +227,96 @@ pub fn verify_text(v: &Verification) -> String {
     }
     s
 }
+
+/// The `operation` object of a program report.
+fn operation_json(o: &crate::gcode::Operation) -> Value {
+    json!({
+        "index": o.index,
+        "cycle": o.cycle,
+        "source_line": o.source_line,
+        "tool": o.tool,
+        "spindle": o.spindle,
+        "infeed_angle": o.infeed_angle.as_ref().map(|(a, w)| json!({"degrees": a, "word": w})),
+        "passes": o.passes.len(),
+        "notes": o.notes,
+    })
+}
+
+/// `verify --program --json`: the program, its verdict (the worst of its operations) and every
+/// operation's full report.
+pub fn program_json(pv: &crate::verify::ProgramVerification) -> Value {
+    let ops: Vec<Value> = pv
+        .operations
+        .iter()
+        .map(|o| {
+            let mut v = match &o.result {
+                crate::verify::OperationResult::Verified(v) => verify_json(v),
+                crate::verify::OperationResult::NoCut { reason } => json!({
+                    "thread": {"designation": o.designation},
+                    "checks": [{"feature": "cut", "kind": "size", "ok": false, "note": reason}],
+                    "verdict": "fail",
+                    "reason": reason,
+                }),
+            };
+            if let Some(obj) = v.as_object_mut() {
+                obj.insert("operation".into(), operation_json(&o.operation));
+            }
+            v
+        })
+        .collect();
+    json!({
+        "program": pv.program,
+        "dialect": pv.dialect,
+        "verdict": if pv.pass() { "pass" } else { "fail" },
+        "operations": ops,
+        "skipped_blocks": pv.skipped_blocks,
+        "notes": pv.notes,
+    })
+}
+
+/// The human report of a program: one section per operation, then the program's verdict.
+pub fn program_text(pv: &crate::verify::ProgramVerification) -> String {
+    let mut s = String::new();
+    let n = pv.operations.len();
+    let _ = writeln!(s, "{}: {n} threading operation{}\n", pv.program, if n == 1 { "" } else { "s" });
+    for o in &pv.operations {
+        let op = &o.operation;
+        let _ = writeln!(
+            s,
+            "== operation {} of {n}: {} at line {}{}, {} passes",
+            op.index,
+            op.cycle,
+            op.source_line,
+            op.tool.map_or(String::new(), |t| format!(", tool T{t}")),
+            op.passes.len()
+        );
+        match &o.result {
+            crate::verify::OperationResult::Verified(v) => s.push_str(&verify_text(v)),
+            crate::verify::OperationResult::NoCut { reason } => {
+                let _ =
+                    writeln!(s, "{}: nothing to measure\n\nverdict: FAIL (no cut: {reason})", o.designation);
+                for note in &op.notes {
+                    let _ = writeln!(s, "note: {note}");
+                }
+            }
+        }
+        s.push('\n');
+    }
+    for note in &pv.notes {
+        let _ = writeln!(s, "note: {note}");
+    }
+    if n > 1 {
+        let failed: Vec<String> = pv
+            .operations
+            .iter()
+            .filter(|o| !o.result.pass())
+            .map(|o| o.operation.index.to_string())
+            .collect();
+        if failed.is_empty() {
+            let _ = writeln!(s, "program verdict: PASS (all {n} operations)");
+        } else {
+            let _ = writeln!(s, "program verdict: FAIL (operation {})", failed.join(", "));
+        }
+    }
+    s
+}

@@ -268,13 +268,64 @@ fn initial_final_x(t: &BasicThread, kind: ThreadKind, ins: &Insert, target: f64)
     }
 }
 
+/// The last pass of the first start that begins a threading move (not a later segment of a
+/// synchronised chain, such as a run-out).
+pub fn last_head(passes: &[Pass]) -> Pass {
+    let head = |p: &&Pass| (p.z_phase - p.z_start).abs() < 1e-12;
+    passes
+        .iter()
+        .rev()
+        .find(|p| p.start == 0 && head(p))
+        .or_else(|| passes.iter().rev().find(|p| p.start == 0))
+        .or(passes.last())
+        .copied()
+        .unwrap_or_else(|| Pass::parallel(0, 0.0, 0.0, 0.0, 1.0))
+}
+
 /// Where to measure: the groove of the last pass of the first start, on the crossing nearest the
 /// middle of its full-depth stretch (clear of run-in and run-out).
 pub fn reference_groove(passes: &[Pass]) -> f64 {
-    let Some(last) = passes.iter().rev().find(|p| p.start == 0).or(passes.last()) else { return 0.0 };
+    if passes.is_empty() {
+        return 0.0;
+    }
+    let last = last_head(passes);
     let (lo, hi) = last.full_depth_range();
-    let k = ((0.5 * (lo + hi) - last.z_start) / last.lead).round();
-    last.z_start + k * last.lead
+    let k = ((0.5 * (lo + hi) - last.z_phase) / last.lead).round();
+    last.z_phase + k * last.lead
+}
+
+/// An operation's passes checked against the designation: the lead must match, and the starts
+/// of a multi-start thread are told apart by their phase (pitch apart along the lead).
+pub fn program_passes(
+    op: &crate::gcode::Operation,
+    des: &Designation,
+    file: &str,
+) -> Result<Vec<Pass>, Error> {
+    let t = &des.thread;
+    let lead = t.lead();
+    let Some(p0) = op.passes.first().copied() else {
+        return Err(Error::Input(format!("{file}: operation {} has no passes", op.index)));
+    };
+    if let Some(p) = op.passes.iter().find(|p| (p.lead - lead).abs() > 1e-6) {
+        return Err(Error::Program {
+            file: file.to_string(),
+            line: p.source_line.unwrap_or(1),
+            column: 1,
+            message: format!(
+                "the program cuts a lead of {} mm, the designation {} has {lead} mm",
+                p.lead, des.text
+            ),
+        });
+    }
+    let mut passes = op.passes.clone();
+    if t.starts > 1 {
+        let n = f64::from(t.starts);
+        for p in &mut passes {
+            let k = ((p.z_phase - p0.z_phase) / t.pitch).round();
+            p.start = k.rem_euclid(n) as u32;
+        }
+    }
+    Ok(passes)
 }
 
 struct Cut {
@@ -396,6 +447,43 @@ pub fn resolve(spec: &VerifySpec) -> Result<Resolved, Error> {
 
 /// Runs `verify`.
 pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
+    if let Some((path, dialect)) = &spec.program {
+        if spec.final_x.is_some() {
+            return Err(Error::Input(
+                "--final-x and --program exclude each other: the program sets the passes".into(),
+            ));
+        }
+        let shown = path.display().to_string();
+        let text = read_program_text(path)?;
+        let prog = crate::gcode::read_program(&text, &shown, *dialect)?;
+        if prog.operations.len() != 1 {
+            let lines: Vec<String> = prog.operations.iter().map(|o| o.source_line.to_string()).collect();
+            return Err(Error::Input(format!(
+                "{shown} cuts {} threads (lines {}): verify each operation with verify_program",
+                prog.operations.len(),
+                lines.join(", ")
+            )));
+        }
+        let label = format!("{shown} ({})", dialect.name());
+        return match verify_operation(spec, &prog, &prog.operations[0], &label)? {
+            OperationResult::Verified(mut v) => {
+                v.notes.extend(prog.notes.iter().cloned());
+                Ok(*v)
+            }
+            OperationResult::NoCut { reason } => Err(Error::Geometry(reason)),
+        };
+    }
+    verify_core(spec, None)
+}
+
+/// The passes of one program operation, with what to say about them.
+struct Given {
+    passes: Vec<Pass>,
+    label: String,
+    notes: Vec<String>,
+}
+
+fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, Error> {
     if spec.taper != 0.0 {
         return Err(Error::Input("verify checks parallel threads against ISO 965-1, BS 84 and ISO 228-1; --taper is for `threadcheck passes`".into()));
     }
@@ -404,7 +492,6 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
         (r.designation.clone(), r.kind, r.limits.clone(), r.insert.clone(), r.blank, r.infeed);
     let mut notes = r.notes.clone();
     let t = des.thread;
-    let lead = t.lead();
     let plan = |final_x: f64| r.plan(final_x);
     let setup = SweepSetup { kind, insert: &insert, blank_diameter: blank, pitch: t.pitch };
     let mmc = match kind {
@@ -427,41 +514,12 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
         .pitch_diameter
         .mid()
         .ok_or_else(|| Error::Input("the class has no two-sided pitch-diameter tolerance".into()))?;
-    let (final_x, solved, cut) = if let Some((path, dialect)) = &spec.program {
-        if spec.final_x.is_some() {
-            return Err(Error::Input(
-                "--final-x and --program exclude each other: the program sets the passes".into(),
-            ));
-        }
-        let shown = path.display().to_string();
-        let bytes =
-            std::fs::read(path).map_err(|e| Error::Io { path: shown.clone(), message: e.to_string() })?;
-        if bytes.len() > crate::limits::MAX_PROGRAM_BYTES {
-            return Err(Error::Program {
-                file: shown,
-                line: 1,
-                column: 1,
-                message: format!("the program is larger than {} bytes", crate::limits::MAX_PROGRAM_BYTES),
-            });
-        }
-        let text = text_of(&bytes, &shown)?;
-        let prog = crate::gcode::read_program(&text, &shown, *dialect)?;
-        notes.extend(prog.notes.iter().cloned());
-        if (prog.lead().unwrap_or(lead) - lead).abs() > 1e-6 {
-            let p0 = prog.passes[0];
-            return Err(Error::Program {
-                file: shown,
-                line: p0.source_line.unwrap_or(1),
-                column: 1,
-                message: format!(
-                    "the program cuts a lead of {} mm, the designation {} has {lead} mm",
-                    p0.lead, des.text
-                ),
-            });
-        }
-        let passes = prog.passes;
+    let program_label = given.as_ref().map(|g| g.label.clone());
+    let (final_x, solved, cut) = if let Some(g) = given {
+        notes.extend(g.notes);
+        let passes = g.passes;
         let z_ref = reference_groove(&passes);
-        let last = passes.iter().rev().find(|p| p.start == 0).copied().unwrap_or(passes[passes.len() - 1]);
+        let last = last_head(&passes);
         let s = sweep(&setup, &passes, Window::around(z_ref, t.pitch, 4.0), UnionStrategy::Envelope)?;
         let measurement = measure(&ms, &s.section.profile(), z_ref)?;
         (last.x_at(z_ref), false, Cut { passes, section: s.section, z_ref, measurement })
@@ -524,6 +582,172 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
         suggested_final_x: suggested,
         gauge_only: spec.gauge_only,
         notes,
-        program: spec.program.as_ref().map(|(p, d)| format!("{} ({})", p.display(), d.name())),
+        program: program_label,
+    })
+}
+
+/// What became of one operation of a program.
+#[derive(Clone, Debug)]
+pub enum OperationResult {
+    /// Cut and measured.
+    Verified(Box<Verification>),
+    /// The passes never reach the material (or leave no groove to measure): a failing verdict
+    /// with the reason.
+    NoCut {
+        /// Why nothing could be measured.
+        reason: String,
+    },
+}
+
+impl OperationResult {
+    /// Whether the operation passes.
+    pub fn pass(&self) -> bool {
+        match self {
+            OperationResult::Verified(v) => v.pass,
+            OperationResult::NoCut { .. } => false,
+        }
+    }
+}
+
+/// One operation of a program and its result.
+#[derive(Clone, Debug)]
+pub struct OperationVerdict {
+    /// The operation as the program cuts it.
+    pub operation: crate::gcode::Operation,
+    /// The designation it was verified against.
+    pub designation: String,
+    /// The verdict.
+    pub result: OperationResult,
+}
+
+/// Every operation of a program, verified.
+#[derive(Clone, Debug)]
+pub struct ProgramVerification {
+    /// The program's name and dialect, as shown.
+    pub program: String,
+    /// The dialect.
+    pub dialect: crate::gcode::Dialect,
+    /// Each threading operation in program order.
+    pub operations: Vec<OperationVerdict>,
+    /// Program-wide warnings (variables read before set, repeated sequence numbers, …).
+    pub notes: Vec<String>,
+    /// Blocks read for position only.
+    pub skipped_blocks: usize,
+}
+
+impl ProgramVerification {
+    /// True when every operation passes.
+    pub fn pass(&self) -> bool {
+        self.operations.iter().all(|o| o.result.pass())
+    }
+}
+
+/// Verifies one operation of a program read already: the insert and designation come from
+/// `spec` (its `program` is ignored).
+pub fn verify_operation(
+    spec: &VerifySpec,
+    prog: &crate::gcode::Program,
+    op: &crate::gcode::Operation,
+    label: &str,
+) -> Result<OperationResult, Error> {
+    let r = resolve(spec)?;
+    // Messages name the file as given, without the dialect of the label.
+    let file = label.rsplit_once(" (").map_or(label, |x| x.0);
+    let passes = program_passes(op, &r.designation, file)?;
+    let _ = prog;
+    let mut notes: Vec<String> = op.notes.clone();
+    if let Some((angle, word)) = &op.infeed_angle {
+        let half = 0.5 * r.insert.angle;
+        if *angle > half + 1e-9 {
+            notes.push(format!(
+                "infeed angle {word} = {angle}° is above half the insert angle ({half}°): each pass moves away from the trailing flank faster than the flank slopes, so the groove widens at the crest and the trailing flank is stepped"
+            ));
+        }
+    }
+    // The passes must reach the material: external below the blank, internal above the bore.
+    let deepest = match r.kind {
+        ThreadKind::External => passes.iter().map(|p| p.x_end.min(p.x_start)).fold(f64::INFINITY, f64::min),
+        ThreadKind::Internal => {
+            passes.iter().map(|p| p.x_end.max(p.x_start)).fold(f64::NEG_INFINITY, f64::max)
+        }
+    };
+    let misses = match r.kind {
+        ThreadKind::External => deepest >= r.blank,
+        ThreadKind::Internal => deepest <= r.blank,
+    };
+    if misses {
+        return Ok(OperationResult::NoCut {
+            reason: format!(
+                "no pass reaches the {} Ø{:.4}: the deepest pass is at X{deepest:.4}, so nothing is cut (is the {} or the thread wrong?)",
+                if r.kind == ThreadKind::External { "blank" } else { "bore" },
+                r.blank,
+                if r.kind == ThreadKind::External { "blank diameter" } else { "bore diameter" },
+            ),
+        });
+    }
+    let given = Given { passes, label: label.to_string(), notes };
+    match verify_core(spec, Some(given)) {
+        Ok(v) => Ok(OperationResult::Verified(Box::new(v))),
+        Err(Error::Geometry(m)) => Ok(OperationResult::NoCut { reason: m }),
+        Err(e) => Err(e),
+    }
+}
+
+/// Verifies every threading operation of a program held in memory: `threads` gives one
+/// designation for all operations or one per operation in program order; `insert_for` chooses
+/// each operation's insert (from its tool number, say) and says what it assumed.
+///
+/// ```
+/// use threadcheck::verify::{verify_program, InsertChoice, VerifySpec};
+/// use threadcheck::gcode::Dialect;
+/// let text = "G0 X22 Z5\nG76 P011060 Q100 R0.05\nG76 X18.16 Z-20 P920 Q350 F1.5\n";
+/// let spec = VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M20x1.5-6g") };
+/// let r = verify_program(&spec, text, "m20.nc", Dialect::Fanuc, &["M20x1.5-6g".to_string()], &|_| None)?;
+/// assert_eq!(r.operations.len(), 1);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+pub fn verify_program(
+    spec: &VerifySpec,
+    text: &str,
+    name: &str,
+    dialect: crate::gcode::Dialect,
+    threads: &[String],
+    insert_for: &dyn Fn(&crate::gcode::Operation) -> Option<(InsertChoice, String)>,
+) -> Result<ProgramVerification, Error> {
+    let prog = crate::gcode::read_program(text, name, dialect)?;
+    let n = prog.operations.len();
+    if !(threads.len() == 1 || threads.len() == n) {
+        let lines: Vec<String> =
+            prog.operations.iter().map(|o| format!("{} at line {}", o.cycle, o.source_line)).collect();
+        return Err(Error::Input(format!(
+            "{name} cuts {n} thread{} ({}); give --thread once for all of them or once per operation, not {} times",
+            if n == 1 { "" } else { "s" },
+            lines.join(", "),
+            threads.len()
+        )));
+    }
+    let label = format!("{name} ({})", dialect.name());
+    let mut operations = Vec::with_capacity(n);
+    for (i, op) in prog.operations.iter().enumerate() {
+        let designation = threads[if threads.len() == 1 { 0 } else { i }].clone();
+        let mut s =
+            VerifySpec { designation: designation.clone(), program: None, final_x: None, ..spec.clone() };
+        let mut extra = Vec::new();
+        if let Some((choice, note)) = insert_for(op) {
+            s.insert = choice;
+            extra.push(note);
+        }
+        let mut result = verify_operation(&s, &prog, op, &label)?;
+        if let OperationResult::Verified(v) = &mut result {
+            v.notes.extend(extra);
+        }
+        operations.push(OperationVerdict { operation: op.clone(), designation, result });
+    }
+    Ok(ProgramVerification {
+        program: label,
+        dialect,
+        operations,
+        notes: prog.notes.clone(),
+        skipped_blocks: prog.skipped_blocks,
     })
 }

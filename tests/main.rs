@@ -9,6 +9,7 @@ mod bad_inputs;
 mod gcode;
 mod infeed_comparison;
 mod limits;
+mod programs;
 mod properties;
 mod sweep;
 mod verify;

@@ -237,7 +237,11 @@ fn partial_insert_with_a_full_profile_g76_program() {
         "fanuc",
     ]);
     assert_eq!(code, 1);
-    let c = check(&v, "pitch_diameter");
+    // A program's report holds one full report per threading operation.
+    assert_eq!(v["operations"].as_array().unwrap().len(), 1);
+    let v = &v["operations"][0];
+    assert_eq!(v["operation"]["cycle"], "G76");
+    let c = check(v, "pitch_diameter");
     let dev = c["deviation_um"].as_f64().unwrap();
     assert!(dev > 300.0, "{dev}");
     assert!((dev - 385.2).abs() < 1.5, "{dev}");
@@ -260,7 +264,7 @@ fn full_profile_insert_with_the_same_program() {
         prog.to_str().unwrap(),
     ]);
     assert_eq!(code, 1);
-    let dev = check(&v, "pitch_diameter")["deviation_um"].as_f64().unwrap();
+    let dev = check(&v["operations"][0], "pitch_diameter")["deviation_um"].as_f64().unwrap();
     assert!((dev - 32.0).abs() < 0.5, "{dev}");
 }
 
@@ -283,11 +287,14 @@ fn passes_off_the_helix_do_not_land_in_one_groove() {
     let prog = data("programs/fanuc-g32-phase-error.nc");
     let (code, v) =
         json_of(&["verify", "--thread", "M10x1.5-6g", "--program", prog.to_str().unwrap(), "--gauge-only"]);
-    let c = check(&v, "single_groove");
+    let v = &v["operations"][0];
+    let c = check(v, "single_groove");
     assert_eq!(c["ok"], false, "{v:#}");
     assert!(c["note"].as_str().unwrap().contains("do not land in one groove"));
     // The check is a form check: --gauge-only leaves it out, the size checks decide.
-    let _ = code;
+    let size_ok =
+        v["checks"].as_array().unwrap().iter().filter(|c| c["kind"] == "size").all(|c| c["ok"] == true);
+    assert_eq!(code, if size_ok { 0 } else { 1 });
     let (code_full, _) = json_of(&["verify", "--thread", "M10x1.5-6g", "--program", prog.to_str().unwrap()]);
     assert_eq!(code_full, 1);
 }
@@ -384,4 +391,77 @@ fn regression_json_to_dev_null_replaced_the_device() {
     assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo(), "the FIFO was replaced");
     let v: serde_json::Value = serde_json::from_slice(&got).expect("the report came through the FIFO");
     assert_eq!(v["verdict"], "pass");
+}
+
+/// Regression (A2): the basic profile of M30x1.5 (a full-profile insert at X30 in the nut) meets
+/// 6H's D2 min = 29.026 (the table's rounding of 29.02572) exactly: compared at the tables'
+/// 1 µm resolution, it passes.
+#[test]
+fn regression_a2_a_limit_exactly_met_passes() {
+    let (code, v) = json_of(&[
+        "verify",
+        "--thread",
+        "M30x1.5-6H",
+        "--insert",
+        "full",
+        "--final-x",
+        "30",
+        "--no-pass-metrics",
+    ]);
+    assert_eq!(code, 0, "{v:#}");
+    let c = check(&v, "pitch_diameter");
+    assert_eq!((c["ok"].as_bool(), c["min"].as_f64()), (Some(true), Some(29.026)));
+    assert!(
+        c["value"].as_f64().unwrap() < 29.026,
+        "the measured value is the true one, below the rounded limit"
+    );
+}
+
+/// Regression (A6): a program whose passes stop above the blank gets a FAIL verdict that says
+/// why, not an error.
+#[test]
+fn regression_a6_passes_that_miss_the_blank_fail_with_a_reason() {
+    let prog = data("programs/fanuc-g92-above-blank.nc");
+    let (code, v) = json_of(&["verify", "--thread", "M20x1.5-6g", "--program", prog.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    let op = &v["operations"][0];
+    assert_eq!(op["verdict"], "fail");
+    let reason = op["reason"].as_str().unwrap();
+    assert!(reason.contains("no pass reaches the blank") && reason.contains("X20.5000"), "{reason}");
+}
+
+/// `--tools` maps the program's T0303 to the full-profile insert; without it the report says
+/// which insert it assumed and why.
+#[test]
+fn tool_table_chooses_the_insert_of_the_programs_tool() {
+    let prog = data("programs/haas-g76-metric.nc");
+    let tools = data("tools.toml");
+    let args = [
+        "verify",
+        "--thread",
+        "M20x2-6g",
+        "--program",
+        prog.to_str().unwrap(),
+        "--dialect",
+        "haas",
+        "--no-pass-metrics",
+    ];
+    let mut with = args.to_vec();
+    with.extend(["--tools", tools.to_str().unwrap()]);
+    let (_, v) = json_of(&with);
+    let op = &v["operations"][0];
+    assert_eq!(op["insert"]["kind"], "full", "{op:#}");
+    assert!(op["notes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|n| n.as_str().unwrap().contains("insert of tool T3")));
+    let (_, v) = json_of(&args);
+    let op = &v["operations"][0];
+    assert_eq!(op["insert"]["kind"], "partial");
+    let notes: Vec<&str> = op["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap()).collect();
+    assert!(
+        notes.iter().any(|n| n.contains("insert assumed") && n.contains("T3") && n.contains("--tools")),
+        "{notes:?}"
+    );
 }

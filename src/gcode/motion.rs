@@ -461,44 +461,52 @@ impl Motion {
     }
 }
 
-/// Notes on passes that do not go deeper than an earlier pass by at least 1 µm somewhere: the
-/// pass cuts nothing new (a spring pass at the same depth is normal and not noted; a pass that
-/// goes back up is).
+/// Notes on passes that go deeper than no earlier pass anywhere (by 1 µm, at either end of the
+/// last pass's stretch) and come out shallower than them somewhere: such a pass cuts nothing. A
+/// spring pass at the same depth is normal and not noted.
 fn shallow_pass_notes(o: &mut Operation, file: &str) {
     let n = o.passes.len();
     if n < 2 {
         return;
     }
-    // Inward (external) when the passes end below where they began.
     let first = o.passes[0];
     let last = o.passes[n - 1];
-    let zm = 0.5 * (last.z_start + last.z_end);
-    let inward = last.x_at(zm) < first.x_at(zm);
-    let mut deepest: Option<(f64, usize)> = None;
+    let zs = [last.z_start, last.z_end];
+    // Inward (external) when the passes end below where they began.
+    let inward = last.x_at(zs[0]) + last.x_at(zs[1]) < first.x_at(zs[0]) + first.x_at(zs[1]);
+    let depth = |x: f64| if inward { -x } else { x };
+    let mut deepest: Option<([f64; 2], usize)> = None;
     let mut notes = Vec::new();
     for p in &o.passes {
         if (p.z_phase - p.z_start).abs() > 1e-12 {
             // A later segment of a chain: its depth is its own.
             continue;
         }
-        let x = p.x_at(zm);
-        if let Some((d, line)) = deepest {
-            let shallower = if inward { x - d } else { d - x };
-            if shallower > 1e-3 {
+        let d = [depth(p.x_at(zs[0])), depth(p.x_at(zs[1]))];
+        if let Some((dd, line)) = deepest {
+            let deeper = (d[0] - dd[0]).max(d[1] - dd[1]);
+            let shallower = (dd[0] - d[0]).max(dd[1] - d[1]);
+            if deeper <= 1e-3 && shallower > 1e-3 {
                 notes.push(format!(
-                    "{file}:{}:1: pass {} at X{:.4} is {:.3} mm shallower than the pass of line {line}: it cuts nothing",
+                    "{file}:{}:1: pass {} is {:.3} mm shallower than the pass of line {line} (on the diameter) and nowhere deeper: it cuts nothing",
                     p.source_line.unwrap_or(0),
                     p.index,
-                    x,
                     shallower
                 ));
-                continue;
             }
         }
-        let deeper = deepest.is_none_or(|(d, _)| if inward { x < d } else { x > d });
-        if deeper {
-            deepest = Some((x, p.source_line.unwrap_or(0)));
-        }
+        deepest = Some(match deepest {
+            None => (d, p.source_line.unwrap_or(0)),
+            Some((dd, line)) => {
+                let nd = [dd[0].max(d[0]), dd[1].max(d[1])];
+                let l = if d[0] > dd[0] + 1e-12 || d[1] > dd[1] + 1e-12 {
+                    p.source_line.unwrap_or(0)
+                } else {
+                    line
+                };
+                (nd, l)
+            }
+        });
     }
     o.notes.extend(notes);
 }
