@@ -2,7 +2,7 @@
 //! languages, and expands their threading cycles into passes, exactly as the control would lay
 //! them out, one [`Operation`] per thread cut.
 //!
-//! The data path: [`lexer`] splits the text into blocks of words and macro statements (blanks
+//! The data path: `lexer` splits the text into blocks of words and macro statements (blanks
 //! inside words are fine in every dialect); the interpreter (`interp`) runs them with one program
 //! counter, one variable store and one call stack for every dialect, evaluating expressions with
 //! the shared engine in `expr`; each block, its words evaluated, goes to its dialect's module
