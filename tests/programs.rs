@@ -442,3 +442,100 @@ fn seed_cardioid_cam_expands_in_n_order() {
         read_program_with(&text, "cam.nc", Dialect::Dyna, ReadOptions { n_order: false, ..opts }).unwrap();
     assert!(p1.moves.iter().all(|m| m.to[2] >= -0.25));
 }
+
+mod interpreter_agrees_with_plain_programs {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// A macro-free program as (block template, numbers): `{}` marks where a number goes.
+    fn plain_fanuc() -> impl Strategy<Value = Vec<(String, Vec<f64>)>> {
+        let x = || (150u32..260).prop_map(|v| f64::from(v) / 10.0);
+        let block = prop_oneof![
+            (x(), (0u32..60)).prop_map(|(a, z)| ("G0 X{} Z{}".to_string(), vec![a, f64::from(z) / 10.0])),
+            x().prop_map(|a| ("G0 X{}".to_string(), vec![a])),
+            ((1u32..40), (5u32..30))
+                .prop_map(|(z, f)| ("G32 Z-{} F{}".to_string(), vec![f64::from(z), f64::from(f) / 10.0])),
+            (x(), (1u32..40), (5u32..30)).prop_map(|(a, z, f)| (
+                "G92 X{} Z-{} F{}".to_string(),
+                vec![a, f64::from(z), f64::from(f) / 10.0]
+            )),
+            ((400u32..1500), (100u32..500), (5u32..30)).prop_map(|(p, q, f)| (
+                "G76 P011060 Q50 R0.02\nG76 X{} Z-20 P{} Q{} F{}".to_string(),
+                vec![15.0, f64::from(p), f64::from(q), f64::from(f) / 10.0]
+            )),
+        ];
+        proptest::collection::vec(block, 1..8)
+    }
+
+    fn render(blocks: &[(String, Vec<f64>)], var: &dyn Fn(usize) -> (String, String)) -> (String, String) {
+        let (mut plain, mut with_vars) = (String::from("G0 X30 Z5\n"), String::from("G0 X30 Z5\n"));
+        let mut k = 0;
+        for (tpl, nums) in blocks {
+            let mut p = tpl.clone();
+            let mut v = tpl.clone();
+            let mut sets = String::new();
+            for n in nums {
+                // Least-increment words (G76 P, Q) are written without a point.
+                let text = if n.fract() == 0.0 && *n >= 100.0 { format!("{n:.0}") } else { format!("{n}") };
+                p = p.replacen("{}", &text, 1);
+                let (set, use_) = var(k);
+                sets.push_str(&format!("{set}{text}\n"));
+                v = v.replacen("{}", &use_, 1);
+                k += 1;
+            }
+            plain.push_str(&p);
+            plain.push('\n');
+            with_vars.push_str(&sets);
+            with_vars.push_str(&v);
+            with_vars.push('\n');
+        }
+        (plain, with_vars)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+        /// The same program, its numbers once written out and once set in variables first and
+        /// read back in the words: the same passes (or the same error), in Fanuc macro B,
+        /// LinuxCNC named parameters and Sinumerik R-parameters.
+        #[test]
+        fn same_passes_with_numbers_in_variables(blocks in plain_fanuc()) {
+            let fanuc = render(&blocks, &|k| (format!("#{}=", 100 + k), format!("#{}", 100 + k)));
+            let geom = |r: Result<Program, threadcheck::Error>| {
+                r.map(|p| {
+                    p.passes
+                        .iter()
+                        .map(|q| (q.x_start, q.x_end, q.z_start, q.z_end, q.z_phase, q.lead, q.taper_out, q.x_taper))
+                        .collect::<Vec<_>>()
+                })
+                .ok()
+            };
+            // Source lines differ (the assignments take lines); the geometry must not.
+            prop_assert_eq!(
+                geom(read_program(&fanuc.0, "p.nc", Dialect::Fanuc)),
+                geom(read_program(&fanuc.1, "p.nc", Dialect::Fanuc))
+            );
+            // G33 programs in LinuxCNC (diameter mode) and Sinumerik, without the cycles.
+            let g33: Vec<(String, Vec<f64>)> = blocks
+                .iter()
+                .filter(|(t, _)| !t.contains("G76") && !t.contains("G92"))
+                .map(|(t, n)| (t.replace("G32", "G33").replace(" F{}", " K{}"), n.clone()))
+                .collect();
+            let lc = render(&g33, &|k| (format!("#<v{k}>="), format!("[#<v{k}>]")));
+            prop_assert_eq!(
+                geom(read_program(&format!("G7\n{}", lc.0), "p.ngc", Dialect::LinuxCnc)),
+                geom(read_program(&format!("G7\n{}", lc.1), "p.ngc", Dialect::LinuxCnc))
+            );
+            // Sinumerik writes an expression after `=`: Z=-R10, X=R11.
+            let g33s: Vec<(String, Vec<f64>)> = g33
+                .iter()
+                .map(|(t, n)| (t.replace("Z-{}", "Z=-{}").replace("Z{}", "Z={}").replace("X{}", "X={}").replace("K{}", "K={}"), n.clone()))
+                .collect();
+            let sn = render(&g33s, &|k| (format!("R{}=", 10 + k), format!("R{}", 10 + k)));
+            prop_assert_eq!(
+                geom(read_program(&sn.0, "p.mpf", Dialect::Sinumerik)),
+                geom(read_program(&sn.1, "p.mpf", Dialect::Sinumerik))
+            );
+        }
+    }
+}

@@ -914,7 +914,8 @@ pub(crate) fn run(blocks: &[Block], dialect: Dialect, m: &mut Motion, file: &str
                 }
             }
         }
-        if jumped_back {
+        // Every jump back (loops, GOTO, subprogram returns and repetitions) counts.
+        if jumped_back || next <= pc {
             back += 1;
             if back > MAX_BACKWARD_JUMPS {
                 return Err(perr(
