@@ -102,7 +102,7 @@ fn limits_table(des: &Designation, ext: Option<&ThreadLimits>, int: Option<&Thre
         des.text,
         t.form.name(),
         crate::tolerance::round_um(t.pitch),
-        if t.form.is_whitworth() {
+        if t.form.is_inch() {
             format!(" ({} tpi)", crate::tolerance::round_um(25.4 / t.pitch))
         } else {
             String::new()
@@ -123,8 +123,15 @@ fn limits_table(des: &Designation, ext: Option<&ThreadLimits>, int: Option<&Thre
         let dev_name = if l.kind == ThreadKind::External { "es" } else { "EI" };
         let head = format!("{} {} ({dev_name} = {} µm)", l.kind.name(), l.class, l.fundamental_deviation_um);
         let _ = writeln!(s, "\n{head:<36}{:>9} {:>9}", "max", "min");
+        // Inch tables (ASME B1.1) print inches: show them beside the mm.
+        let inch = t.form == crate::ThreadForm::Unified;
         let row = |s: &mut String, name: &str, lim: &Limit| {
-            let _ = writeln!(s, "  {name:<34}{:>9} {:>9}", fmt_opt(lim.max), fmt_opt(lim.min));
+            let _ = write!(s, "  {name:<34}{:>9} {:>9}", fmt_opt(lim.max), fmt_opt(lim.min));
+            if inch {
+                let i = |v: Option<f64>| v.map_or_else(|| "—".to_string(), |x| format!("{:.4}", x / 25.4));
+                let _ = write!(s, "   {:>7} {:>7} in", i(lim.max), i(lim.min));
+            }
+            s.push('\n');
         };
         let (maj, minor) = if l.kind == ThreadKind::External {
             ("major diameter d", "minor: d1+es (max) / d3 min (min)")

@@ -82,7 +82,15 @@ impl Insert {
         };
         Insert {
             kind: InsertKind::Full,
-            name: format!("full-profile {} P{}", thread.form.name(), thread.pitch),
+            name: if thread.form.is_inch() {
+                format!(
+                    "full-profile {} {} tpi",
+                    thread.form.name(),
+                    crate::app::fmt_num(25.4 / thread.pitch)
+                )
+            } else {
+                format!("full-profile {} P{}", thread.form.name(), crate::app::fmt_num(thread.pitch))
+            },
             angle: thread.form.flank_angle(),
             tip_radius,
             pitch_range: Some((thread.pitch, thread.pitch)),
@@ -124,7 +132,7 @@ impl Insert {
         extend_dedup(&mut outline, [Point::new(zt, height)]);
         Ok(Insert {
             kind: InsertKind::Partial,
-            name: format!("partial {angle}° r{tip_radius}"),
+            name: format!("partial {angle}° r{}", crate::app::fmt_num(tip_radius)),
             angle,
             tip_radius,
             pitch_range: None,

@@ -266,6 +266,9 @@ pub struct ThreadLimits {
     /// Assumptions behind values that the sources do not settle.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub notes: Vec<String>,
+    /// The resolution the standard's tables print limits to, mm (0.001 for ISO 965-1, BS 84 and
+    /// ISO 228-1; 0.0001 in = 0.00254 mm for ASME B1.1): sizes are compared at it.
+    pub resolution_mm: f64,
 }
 
 /// Rounds mm to the micrometre, as the tables print.
@@ -379,6 +382,7 @@ pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits
             fundamental_deviation_um: dev,
             crest_deviation_um: dev_crest,
             notes,
+            resolution_mm: 0.001,
         })
     } else {
         // TD2 of every grade is a factor times the EXTERNAL tabulated Td2(6).
@@ -411,6 +415,7 @@ pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits
                     fundamental_deviation_um: dev,
                     crest_deviation_um: dev_crest,
                     notes,
+                    resolution_mm: 0.001,
                 });
             }
         };
@@ -427,6 +432,7 @@ pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits
             fundamental_deviation_um: dev,
             crest_deviation_um: dev_crest,
             notes,
+            resolution_mm: 0.001,
         })
     }
 }
@@ -463,6 +469,7 @@ pub fn bs84_limits(thread: &BasicThread, class: Bs84Class, kind: ThreadKind) -> 
                 fundamental_deviation_um: 0.0,
                 crest_deviation_um: 0.0,
                 notes,
+                resolution_mm: 0.001,
             }
         }
         ThreadKind::Internal => {
@@ -483,6 +490,7 @@ pub fn bs84_limits(thread: &BasicThread, class: Bs84Class, kind: ThreadKind) -> 
                 fundamental_deviation_um: 0.0,
                 crest_deviation_um: 0.0,
                 notes,
+                resolution_mm: 0.001,
             }
         }
     }
@@ -517,6 +525,7 @@ pub fn iso228_limits(thread: &BasicThread, class: Iso228Class) -> Result<ThreadL
                 fundamental_deviation_um: 0.0,
                 crest_deviation_um: 0.0,
                 notes: Vec::new(),
+                resolution_mm: 0.001,
             }
         }
         Iso228Class::Internal => ThreadLimits {
@@ -529,8 +538,146 @@ pub fn iso228_limits(thread: &BasicThread, class: Iso228Class) -> Result<ThreadL
             fundamental_deviation_um: 0.0,
             crest_deviation_um: 0.0,
             notes: Vec::new(),
+            resolution_mm: 0.001,
         },
     })
+}
+
+/// The Unified series of a designation: it sets the length of engagement behind the tabulated
+/// tolerances (ASME B1.1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnifiedSeries {
+    /// Coarse (UNC, UNRC).
+    Unc,
+    /// Fine (UNF, UNRF).
+    Unf,
+    /// Extra fine (UNEF, UNREF).
+    Unef,
+    /// Constant pitch (UN, UNR: 4UN … 32UN).
+    Un,
+    /// Special (UNS).
+    Uns,
+}
+
+impl UnifiedSeries {
+    /// The series as written (`UNC`), with R for the rounded-root external form.
+    pub fn name(self, unr: bool) -> &'static str {
+        match (self, unr) {
+            (UnifiedSeries::Unc, false) => "UNC",
+            (UnifiedSeries::Unc, true) => "UNRC",
+            (UnifiedSeries::Unf, false) => "UNF",
+            (UnifiedSeries::Unf, true) => "UNRF",
+            (UnifiedSeries::Unef, false) => "UNEF",
+            (UnifiedSeries::Unef, true) => "UNREF",
+            (UnifiedSeries::Un, false) => "UN",
+            (UnifiedSeries::Un, true) => "UNR",
+            (UnifiedSeries::Uns, false) => "UNS",
+            (UnifiedSeries::Uns, true) => "UNRS",
+        }
+    }
+}
+
+/// A Unified class (1A 2A 3A external, 1B 2B 3B internal) with its series.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct UnifiedClass {
+    /// 1, 2 or 3.
+    pub grade: u8,
+    /// B (internal) or A (external).
+    pub internal: bool,
+    /// The series (for the length of engagement).
+    pub series: UnifiedSeries,
+    /// UNR: the external thread's root is rounded, radius at least 0.108·P.
+    pub unr: bool,
+}
+
+impl fmt::Display for UnifiedClass {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}{}", self.grade, if self.internal { 'B' } else { 'A' })
+    }
+}
+
+/// Limits of a Unified thread from ASME B1.1's formulas (shared reference
+/// `unified-asme-b1_1.toml`, [tolerances], [length_of_engagement], [rounding]), in inches, then
+/// converted to mm. Td2(2A) = 0.0015·D^(1/3) + 0.0015·√LE + 0.015·P^(2/3) with LE = D for UNC, UNF
+/// and 4/6/8UN, 9P for UNEF, 12UN and finer and UNS; classes 1A/2A/3A × 1.5/1/0.75, 1B/2B/3B ×
+/// 1.95/1.3/0.975; allowance es = 0.3·Td2(2A) for 1A and 2A, rounded to 0.0001 in; major Td =
+/// 0.060·P^(2/3) (0.090 for 1A); internal minor tolerance by the 1B/2B and 3B rules. Limits are
+/// rounded to 0.0001 in (the 1B/2B minor of sizes from 1/4 in to 0.001 in).
+pub fn unified_limits(t: &BasicThread, c: UnifiedClass) -> ThreadLimits {
+    let inch = crate::standards::MM_PER_INCH;
+    let (d, p) = (t.nominal_diameter / inch, t.pitch / inch);
+    let tpi = 1.0 / p;
+    let le = match c.series {
+        UnifiedSeries::Unc | UnifiedSeries::Unf => d,
+        UnifiedSeries::Un if tpi <= 8.0 + 1e-9 => d,
+        UnifiedSeries::Un | UnifiedSeries::Unef | UnifiedSeries::Uns => 9.0 * p,
+    };
+    let p23 = p.powf(2.0 / 3.0);
+    let td2_2a = 0.0015 * d.cbrt() + 0.0015 * le.sqrt() + 0.015 * p23;
+    let r4 = |x: f64| (x * 10_000.0).round() / 10_000.0;
+    let r3 = |x: f64| (x * 1000.0).round() / 1000.0;
+    let h = 0.866_025_403_784_438_6 * p;
+    let (d2, d1) = (d - 0.75 * h, d - 1.25 * h);
+    let mm = |x: f64| x * inch;
+    let gi = usize::from(c.grade.clamp(1, 3) - 1);
+    let mut notes = vec![format!(
+        "ASME B1.1 limits from its formulas with LE = {:.4} in ({}), rounded to 0.0001 in; the published tables differ from these by 0.0001 in in about one value of five",
+        le,
+        if (le - d).abs() < 1e-12 { "D" } else { "9P" }
+    )];
+    if c.internal {
+        let td2 = [1.95, 1.3, 0.975][gi] * td2_2a;
+        let a = 0.05 * p23 + 0.03 * p / d - 0.002;
+        let td1 = if c.grade <= 2 {
+            let lo = 0.25 * p - 0.4 * p * p;
+            if d >= 0.25 {
+                lo
+            } else {
+                a.min(0.394 * p).max(lo)
+            }
+        } else {
+            let lo = if tpi >= 13.0 - 1e-9 { 0.23 * p - 1.5 * p * p } else { 0.12 * p };
+            a.min(0.394 * p).max(lo)
+        };
+        let rd1 = |x: f64| if c.grade <= 2 && d >= 0.25 { r3(x) } else { r4(x) };
+        ThreadLimits {
+            kind: ThreadKind::Internal,
+            class: c.to_string(),
+            major_diameter: Limit { min: Some(mm(r4(d))), max: None },
+            pitch_diameter: Limit::new(mm(r4(d2)), mm(r4(d2 + td2))),
+            minor_diameter: Limit::new(mm(rd1(d1)), mm(rd1(d1 + td1))),
+            root_radius_min: None,
+            fundamental_deviation_um: 0.0,
+            crest_deviation_um: 0.0,
+            notes,
+            resolution_mm: 0.0001 * inch,
+        }
+    } else {
+        let es = if c.grade == 3 { 0.0 } else { r4(0.3 * td2_2a) };
+        let td2 = [1.5, 1.0, 0.75][gi] * td2_2a;
+        let td = if c.grade == 1 { 0.090 } else { 0.060 } * p23;
+        let (dmax, d2max) = (d - es, d2 - es);
+        let (dmin, d2min) = (dmax - td, d2max - td2);
+        // UNR: the rounded root's minor diameter at most d max − 1.190784·P; UN: the flat-form
+        // limit D1 − es. The lowest root: d2 min − 0.649519·P (reference).
+        let minor_max = if c.unr { dmax - 1.190_784 * p } else { d1 - es };
+        let minor_min = d2min - 0.649_519 * p;
+        if c.unr {
+            notes.push("UNR: the root radius is at least 0.108·P".into());
+        }
+        ThreadLimits {
+            kind: ThreadKind::External,
+            class: c.to_string(),
+            major_diameter: Limit::new(mm(r4(dmin)), mm(r4(dmax))),
+            pitch_diameter: Limit::new(mm(r4(d2min)), mm(r4(d2max))),
+            minor_diameter: Limit::new(mm(r4(minor_min)), mm(r4(minor_max))),
+            root_radius_min: c.unr.then_some(0.108 * t.pitch),
+            fundamental_deviation_um: -es * inch * 1000.0,
+            crest_deviation_um: -es * inch * 1000.0,
+            notes,
+            resolution_mm: 0.0001 * inch,
+        }
+    }
 }
 
 /// Limits for the class a designation names for `kind`, or `None` when it names none.
@@ -541,7 +688,11 @@ pub fn limits_for(des: &Designation, kind: ThreadKind) -> Result<Option<ThreadLi
         (ThreadForm::IsoMetric, ClassSpec::Iso(c)) => iso_limits(t, c)?,
         (ThreadForm::Whitworth, ClassSpec::Bs84(c)) => bs84_limits(t, *c, kind),
         (ThreadForm::BspParallel, ClassSpec::Iso228(c)) => iso228_limits(t, *c)?,
-        _ => {
+        (ThreadForm::Unified, ClassSpec::Unified(c)) => unified_limits(t, *c),
+        (
+            ThreadForm::IsoMetric | ThreadForm::Whitworth | ThreadForm::BspParallel | ThreadForm::Unified,
+            ClassSpec::Iso(_) | ClassSpec::Bs84(_) | ClassSpec::Iso228(_) | ClassSpec::Unified(_),
+        ) => {
             return Err(Error::Input(format!("class {class} does not belong to the {} form", t.form.name())))
         }
     }))

@@ -185,6 +185,8 @@ fn resolve_kind(des: &Designation, internal: bool) -> Result<ThreadKind, Error> 
                 (crate::ThreadForm::Whitworth, _) => format!("{} medium", des.text),
                 (crate::ThreadForm::BspParallel, ThreadKind::External) => format!("{} A", des.text),
                 (crate::ThreadForm::BspParallel, ThreadKind::Internal) => des.text.clone(),
+                (crate::ThreadForm::Unified, ThreadKind::External) => format!("{}-2A", des.text),
+                (crate::ThreadForm::Unified, ThreadKind::Internal) => format!("{}-2B", des.text),
             }
         )));
     }

@@ -6,6 +6,7 @@
 //! `../shared`.
 
 mod bad_inputs;
+mod forms;
 mod gcode;
 mod infeed_comparison;
 mod limits;

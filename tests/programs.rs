@@ -429,7 +429,7 @@ fn dyna_counted_loops_and_moves() {
 #[test]
 fn seed_cardioid_cam_expands_in_n_order() {
     let text = std::fs::read_to_string(data("programs/milling/seed002-cardioid-cam.nc")).unwrap();
-    let opts = ReadOptions { moves: true, allow_no_threading: true, n_order: true };
+    let opts = ReadOptions { moves: true, allow_no_threading: true, n_order: true, budget: None };
     let p = read_program_with(&text, "cam.nc", Dialect::Dyna, opts).unwrap();
     let last_feed = p.moves.iter().rev().find(|m| !m.rapid).unwrap();
     assert_eq!(p.moves.len(), 92_290, "the first G00 and the final G00 Z2 included");
@@ -538,4 +538,34 @@ mod interpreter_agrees_with_plain_programs {
             );
         }
     }
+}
+
+/// LinuxCNC's lathe cycles G71/G72 name their profile subroutine with Q: it is used (for turning,
+/// read past), not "defined but never called".
+#[test]
+fn linuxcnc_profile_subroutine_of_g71_counts_as_called() {
+    let text = "G21 G18 G7\no100 sub\nG1 X10 Z0\nG1 X12 Z-1\no100 endsub\nG0 X22 Z2\nG71 Q100 X20 Z2 D1\nG0 X12 Z2\nG33 Z-10 K1.5\nG0 X20\nM2\n";
+    let p = read_program(text, "g71.ngc", Dialect::LinuxCnc).unwrap();
+    assert_eq!(p.passes.len(), 1);
+    assert!(p.notes.iter().all(|n| !n.contains("never called")), "{:?}", p.notes);
+}
+
+/// The paraboloid dome executes to its toolpath as printed: 800 layers (Z0 … −39.95, so Z−40 is
+/// never machined) of 1440 steps; the notes count 1 153 603 moves. It reads `#14`, never set, and
+/// says so; with #14 null every layer starts at X = 0 + 6·cos 0 = 6, the 12 mm slot of the notes
+/// (`X6 Y0` at the previous depth, then the plunge at X6).
+#[test]
+fn seed_paraboloid_expands_and_names_hash_14() {
+    let text = std::fs::read_to_string(data("programs/milling/seed004-paraboloid.nc")).unwrap();
+    let opts = ReadOptions { moves: true, allow_no_threading: true, n_order: false, budget: None };
+    let p = read_program_with(&text, "dome.nc", Dialect::Dyna, opts).unwrap();
+    assert_eq!(p.moves.len(), 1_153_603);
+    assert!(p.notes.iter().any(|n| n.contains("#14 is read before it is set")), "{:?}", p.notes);
+    let deepest = p.moves.iter().map(|m| m.to[2]).fold(0.0, f64::min);
+    assert!(close(deepest, -39.95), "{deepest}");
+    // Layer Z−10 starts from the end of layer Z−9.95 with G01 X6 Y0, then plunges at X6.
+    let i = p.moves.iter().position(|m| close(m.to[2], -10.0)).unwrap();
+    assert_eq!((p.moves[i - 1].to[0], p.moves[i - 1].to[1]), (6.0, 0.0));
+    assert!(close(p.moves[i - 1].to[2], -9.95));
+    assert_eq!((p.moves[i].to[0], p.moves[i].to[1]), (6.0, 0.0));
 }

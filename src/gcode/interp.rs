@@ -9,7 +9,7 @@ use super::expr::{self, Env, Expr, Value, VarKey, VarRef};
 use super::lexer::{Block, OKw, Stmt, WVal};
 use super::motion::{Motion, RBlock, RWord};
 use super::{dyna, fanuc, haas, linuxcnc, sinumerik, Dialect};
-use crate::limits::{MAX_BACKWARD_JUMPS, MAX_CALL_DEPTH, MAX_EXECUTED_BLOCKS, MAX_REPEATS};
+use crate::limits::{MAX_CALL_DEPTH, MAX_REPEATS};
 use crate::Error;
 use std::collections::{HashMap, HashSet};
 
@@ -487,7 +487,13 @@ struct DynaLoop {
 }
 
 /// Runs the program.
-pub(crate) fn run(blocks: &[Block], dialect: Dialect, m: &mut Motion, file: &str) -> Result<(), Error> {
+pub(crate) fn run(
+    blocks: &[Block],
+    dialect: Dialect,
+    m: &mut Motion,
+    file: &str,
+    budget: super::Budget,
+) -> Result<(), Error> {
     let lay = layout(blocks, dialect, m)?;
     let sub_names: HashSet<String> = lay.subs.keys().cloned().collect();
     let n_numbers: HashSet<u64> = lay.n_index.keys().copied().collect();
@@ -529,11 +535,11 @@ pub(crate) fn run(blocks: &[Block], dialect: Dialect, m: &mut Motion, file: &str
         }
         let b = &blocks[pc];
         executed += 1;
-        if executed > MAX_EXECUTED_BLOCKS {
+        if executed > budget.blocks {
             return Err(perr(
                 b,
                 b.col,
-                format!("more than {MAX_EXECUTED_BLOCKS} blocks executed: the program loops"),
+                format!("more than {} blocks executed: the program loops", budget.blocks),
             ));
         }
         vars.here = (b.line, b.col);
@@ -779,6 +785,15 @@ pub(crate) fn run(blocks: &[Block], dialect: Dialect, m: &mut Motion, file: &str
             }
             let rb = resolve(b, &mut vars, dialect, file)?;
             flush_pending(&mut vars, m);
+            // LinuxCNC's lathe cycles G70/G71/G72 run the profile subroutine named by Q: it is
+            // called, for turning.
+            if dialect == Dialect::LinuxCnc
+                && rb.gs().any(|(g, _)| matches!(g as u32, 70..=72) && g.fract() == 0.0)
+            {
+                if let Some(q) = rb.get("Q") {
+                    called.insert(format!("{}", q.v.round() as i64));
+                }
+            }
             let mut cx = Ctx { vars: &mut vars, subs: &sub_names, ns: &n_numbers };
             flow = match &mut state {
                 State::Fanuc(s) => fanuc::block(s, m, &rb, &mut cx)?,
@@ -917,11 +932,11 @@ pub(crate) fn run(blocks: &[Block], dialect: Dialect, m: &mut Motion, file: &str
         // Every jump back (loops, GOTO, subprogram returns and repetitions) counts.
         if jumped_back || next <= pc {
             back += 1;
-            if back > MAX_BACKWARD_JUMPS {
+            if back > budget.backward_jumps {
                 return Err(perr(
                     b,
                     b.col,
-                    format!("more than {MAX_BACKWARD_JUMPS} loop iterations: the program loops"),
+                    format!("more than {} loop iterations: the program loops", budget.backward_jumps),
                 ));
             }
         }

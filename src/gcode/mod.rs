@@ -155,6 +155,27 @@ pub struct ReadOptions {
     pub n_order: bool,
     /// A program without any threading pass is not an error (milling).
     pub allow_no_threading: bool,
+    /// The execution budget: `None` takes the bounds of `limits.rs`; a fuzzer or a caller in a
+    /// hurry gives smaller ones.
+    pub budget: Option<Budget>,
+}
+
+/// How much a program may run before it is taken for a runaway.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Budget {
+    /// Blocks executed, repetitions counted.
+    pub blocks: usize,
+    /// Loop iterations and jumps back.
+    pub backward_jumps: usize,
+}
+
+impl Default for Budget {
+    fn default() -> Budget {
+        Budget {
+            blocks: crate::limits::MAX_EXECUTED_BLOCKS,
+            backward_jumps: crate::limits::MAX_BACKWARD_JUMPS,
+        }
+    }
 }
 
 /// Reads `text` (the contents of `file`) as a `dialect` program and expands its threading.
@@ -204,14 +225,22 @@ pub fn read_program_with(
         blocks = keyed.into_iter().map(|k| k.2).collect();
     }
     let mut m = motion::Motion::new(dialect, file, opts.moves);
-    interp::run(&blocks, dialect, &mut m, file)?;
+    interp::run(&blocks, dialect, &mut m, file, opts.budget.unwrap_or_default())?;
     let (operations, skipped, notes, moves) = m.finish();
     if operations.is_empty() && !opts.allow_no_threading {
         let mut why = format!("no threading pass in the program (looked for {})", dialect.threading_words());
+        // A subroutine defined and never called is the likely reason: point at it.
+        let (mut line, mut col) = (1, 1);
         if let Some(n) = notes.iter().find(|n| n.contains("never called")) {
-            why.push_str(&format!("; {}", n.split_once(": ").map_or(n.as_str(), |x| x.1)));
+            let rest = n.strip_prefix(&format!("{file}:")).unwrap_or(n);
+            let mut parts = rest.splitn(3, ':');
+            if let (Some(l), Some(c), Some(msg)) = (parts.next(), parts.next(), parts.next()) {
+                line = l.parse().unwrap_or(1);
+                col = c.parse().unwrap_or(1);
+                why.push_str(&format!(";{msg}"));
+            }
         }
-        return Err(perr(1, 1, why));
+        return Err(perr(line, col, why));
     }
     let passes = operations.iter().flat_map(|o| o.passes.iter().copied()).collect();
     Ok(Program { passes, operations, skipped_blocks: skipped, notes, moves })

@@ -8,6 +8,7 @@ use std::sync::OnceLock;
 const ISO_METRIC: &str = include_str!("../../profiles/iso-metric.toml");
 const WHITWORTH: &str = include_str!("../../profiles/whitworth.toml");
 const BSP: &str = include_str!("../../profiles/bsp.toml");
+const UNIFIED: &str = include_str!("../../profiles/unified.toml");
 
 /// Everything the standards module knows, from the embedded TOML files.
 #[derive(Debug)]
@@ -20,6 +21,24 @@ pub struct Catalog {
     pub bsf: Vec<WhitworthSize>,
     /// BSP parallel pipe sizes, ISO 228-1.
     pub bsp: Vec<BspSize>,
+    /// Unified inch sizes with their standard series, ASME B1.1.
+    pub unified: Vec<UnifiedSize>,
+}
+
+/// One Unified size: its name, basic major diameter (inches) and the threads per inch of the
+/// coarse, fine and extra-fine series where the size has them.
+#[derive(Debug, Clone, Deserialize)]
+pub struct UnifiedSize {
+    /// Size as written (`1/4`, `1 1/4`, `10` for #10).
+    pub name: String,
+    /// Basic major diameter, inches.
+    pub d: f64,
+    /// UNC threads per inch.
+    pub unc: Option<f64>,
+    /// UNF threads per inch.
+    pub unf: Option<f64>,
+    /// UNEF threads per inch.
+    pub unef: Option<f64>,
 }
 
 /// One BSW or BSF size.
@@ -185,11 +204,17 @@ struct BspFile {
     size: Vec<BspSize>,
 }
 
+#[derive(Deserialize)]
+struct UnifiedFile {
+    size: Vec<UnifiedSize>,
+}
+
 fn load() -> Result<Catalog, String> {
     let iso: IsoTables = toml::from_str(ISO_METRIC).map_err(|e| format!("profiles/iso-metric.toml: {e}"))?;
     let w: WhitworthFile = toml::from_str(WHITWORTH).map_err(|e| format!("profiles/whitworth.toml: {e}"))?;
     let b: BspFile = toml::from_str(BSP).map_err(|e| format!("profiles/bsp.toml: {e}"))?;
-    Ok(Catalog { iso, bsw: w.bsw, bsf: w.bsf, bsp: b.size })
+    let u: UnifiedFile = toml::from_str(UNIFIED).map_err(|e| format!("profiles/unified.toml: {e}"))?;
+    Ok(Catalog { iso, bsw: w.bsw, bsf: w.bsf, bsp: b.size, unified: u.size })
 }
 
 /// The embedded catalogue. Parsing happens once; the files are part of the binary, and a unit

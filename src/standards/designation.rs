@@ -4,7 +4,7 @@
 
 use super::data::{catalog, find_pitch, SeriesSize};
 use super::{BasicThread, Hand, ThreadForm, ThreadKind, MM_PER_INCH};
-use crate::tolerance::{Bs84Class, Iso228Class, IsoClass};
+use crate::tolerance::{Bs84Class, Iso228Class, IsoClass, UnifiedClass, UnifiedSeries};
 use std::fmt;
 
 /// A parsed thread designation: the basic thread and the classes it names.
@@ -41,6 +41,8 @@ pub enum ClassSpec {
     Bs84(Bs84Class),
     /// ISO 228-1 class (A or B external; the one internal class).
     Iso228(Iso228Class),
+    /// ASME B1.1 Unified class (1A 2A 3A, 1B 2B 3B) with its series.
+    Unified(UnifiedClass),
 }
 
 impl fmt::Display for ClassSpec {
@@ -49,6 +51,7 @@ impl fmt::Display for ClassSpec {
             ClassSpec::Iso(c) => c.fmt(f),
             ClassSpec::Bs84(c) => c.fmt(f),
             ClassSpec::Iso228(c) => c.fmt(f),
+            ClassSpec::Unified(c) => c.fmt(f),
         }
     }
 }
@@ -165,7 +168,9 @@ pub fn parse_designation(text: &str, opts: ParseOptions) -> Result<Designation, 
         return Err(c.err(0, 0, "empty designation; expected e.g. M10x1.5-6g, BSW 1/2 or G1/2 A").into());
     }
     let upper = text.to_ascii_uppercase();
-    if upper.starts_with("BSW") || upper.starts_with("BSF") {
+    if upper.contains("UN") && upper.starts_with(|ch: char| ch.is_ascii_digit() || ch == '#' || ch == '.') {
+        parse_unified(&mut c, opts).map_err(Into::into)
+    } else if upper.starts_with("BSW") || upper.starts_with("BSF") {
         parse_whitworth(&mut c, opts).map_err(Into::into)
     } else if upper.starts_with('G') {
         parse_bsp(&mut c).map_err(Into::into)
@@ -177,7 +182,7 @@ pub fn parse_designation(text: &str, opts: ParseOptions) -> Result<Designation, 
             .err(
                 0,
                 first.max(text.find(|ch: char| ch.is_ascii_digit()).unwrap_or(first)),
-                "unknown thread series; expected M (ISO metric), BSW, BSF (Whitworth) or G (BSP pipe)",
+                "unknown thread series; expected M (ISO metric), BSW, BSF (Whitworth), G (BSP pipe) or a Unified size such as 1/4-20 UNC",
             )
             .into())
     }
@@ -396,6 +401,175 @@ fn inch_size(c: &mut Cursor<'_>) -> Result<(String, f64, usize, usize), Designat
     }
     c.pos += len;
     Ok((norm, inches, start, start + len))
+}
+
+/// Unified: `1/4-20 UNC-2A`, `#10-32 UNF-2B/2A`, `0-80 UNF`, `1-8 UNC`, `1 1/4-7 UNC-2A-LH`,
+/// `.250-20 UNC`, `2.500-28 UNS-2A`, UNR/UNRC/UNRF/UNREF for the rounded-root external form.
+fn parse_unified(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, DesignationError> {
+    let upper = c.text.to_ascii_uppercase();
+    let un_at = upper.find("UN").unwrap_or(upper.len());
+    // SIZE-TPI before the series: the last '-' before it splits them.
+    let head = &c.text[..un_at];
+    let dash = head
+        .trim_end()
+        .rfind('-')
+        .ok_or_else(|| c.err(0, un_at, "expected SIZE-TPI before the series, e.g. 1/4-20 UNC"))?;
+    let size_text = head[..dash].trim();
+    let tpi_text = head[dash + 1..].trim();
+    let (ss, se) = (0, dash);
+    let (ts, te) = (dash + 1, un_at);
+    let number_size = size_text.starts_with('#');
+    let st = size_text.trim_start_matches('#');
+    // TPI: 20, 4.5 or 4 1/2.
+    let tpi = {
+        let mut v = 0.0;
+        for tok in tpi_text.split(' ').filter(|t| !t.is_empty()) {
+            let part = match tok.split_once('/') {
+                Some((a, b)) => {
+                    a.parse::<f64>().ok().zip(b.parse::<f64>().ok()).filter(|x| x.1 > 0.0).map(|(a, b)| a / b)
+                }
+                None => tok.parse::<f64>().ok(),
+            };
+            v +=
+                part.ok_or_else(|| c.err(ts, te, format!("threads per inch '{tpi_text}' is not a number")))?;
+        }
+        if !(v > 0.0 && v.is_finite()) {
+            return Err(c.err(ts, te, "expected the threads per inch after the size, e.g. 1/4-20"));
+        }
+        v
+    };
+    let cat = catalog().map_err(|e| c.err(ss, se, e.to_string()))?;
+    let in_series = |row: &super::UnifiedSize| {
+        [row.unc, row.unf, row.unef].iter().flatten().any(|t| (t - tpi).abs() < 1e-9)
+    };
+    let bad_size = || {
+        c.err(ss, se, format!("'{size_text}' is not an inch size (1/4, 1 1/4, 0.25) or a number size (#10)"))
+    };
+    // The basic major diameter, inches: a number size (#N, or N when N-TPI is a number size of
+    // the standard series), a fraction, a decimal or a whole number of inches.
+    let (d, row) = if st.contains('/') || st.contains(' ') {
+        let mut v = 0.0;
+        for tok in st.split([' ', '-']).filter(|t| !t.is_empty()) {
+            v += match tok.split_once('/') {
+                Some((a, b)) => {
+                    a.parse::<f64>().ok().zip(b.parse::<f64>().ok()).filter(|x| x.1 > 0.0).map(|(a, b)| a / b)
+                }
+                None => tok.parse::<f64>().ok(),
+            }
+            .ok_or_else(bad_size)?;
+        }
+        (v, None)
+    } else if st.contains('.') {
+        (st.parse::<f64>().map_err(|_| bad_size())?, None)
+    } else {
+        let n: u32 = st.parse().map_err(|_| bad_size())?;
+        let numbered = cat.unified.iter().find(|r| r.name == n.to_string() && r.d < 0.25 - 1e-9);
+        match numbered {
+            Some(r) if number_size || in_series(r) => (r.d, Some(r)),
+            _ if number_size => {
+                return Err(c.err(ss, se, format!("#{n} is not a Unified number size (#0 to #12)")))
+            }
+            _ => (f64::from(n), None),
+        }
+    };
+    if !(d > 0.0) {
+        return Err(bad_size());
+    }
+    let row = row.or_else(|| cat.unified.iter().find(|r| (r.d - d).abs() < 1e-6 && r.d >= 0.25 - 1e-9));
+    // The series.
+    let rest = &upper[un_at..];
+    let sl = rest.find(|ch: char| !ch.is_ascii_alphabetic()).unwrap_or(rest.len());
+    let word = &rest[..sl];
+    let (series, unr) =
+        match word {
+            "UNC" => (UnifiedSeries::Unc, false),
+            "UNF" => (UnifiedSeries::Unf, false),
+            "UNEF" => (UnifiedSeries::Unef, false),
+            "UN" => (UnifiedSeries::Un, false),
+            "UNS" => (UnifiedSeries::Uns, false),
+            "UNRC" => (UnifiedSeries::Unc, true),
+            "UNRF" => (UnifiedSeries::Unf, true),
+            "UNREF" => (UnifiedSeries::Unef, true),
+            "UNR" => (UnifiedSeries::Un, true),
+            _ => return Err(c.err(
+                un_at,
+                un_at + sl,
+                format!(
+                    "'{word}' is not a Unified series: UNC, UNF, UNEF, UN, UNS (UNR… for the rounded root)"
+                ),
+            )),
+        };
+    let mut nonstandard = false;
+    let standard = match series {
+        UnifiedSeries::Unc => row.and_then(|r| r.unc),
+        UnifiedSeries::Unf => row.and_then(|r| r.unf),
+        UnifiedSeries::Unef => row.and_then(|r| r.unef),
+        UnifiedSeries::Un => {
+            [4.0, 6.0, 8.0, 12.0, 16.0, 20.0, 28.0, 32.0].into_iter().find(|t| (t - tpi).abs() < 1e-9)
+        }
+        UnifiedSeries::Uns => Some(tpi),
+    };
+    if standard.is_none_or(|t| (t - tpi).abs() > 1e-9) {
+        if !opts.allow_nonstandard {
+            let what = match standard {
+                Some(t) => format!("the {} thread of this size has {t} tpi", series.name(false)),
+                None if series == UnifiedSeries::Un => {
+                    "the constant-pitch UN series has 4, 6, 8, 12, 16, 20, 28 and 32 tpi".into()
+                }
+                None => format!("the {} series has no size {size_text}", series.name(false)),
+            };
+            return Err(c.err(ss, te, format!("{size_text}-{tpi_text} is not a standard {} thread: {what}; write UNS for a special thread, or --allow-nonstandard accepts it", series.name(false))));
+        }
+        nonstandard = true;
+    }
+    let pitch = MM_PER_INCH / tpi;
+    let thread = BasicThread {
+        form: ThreadForm::Unified,
+        nominal_diameter: d * MM_PER_INCH,
+        pitch,
+        starts: 1,
+        hand: Hand::Right,
+    };
+    if pitch >= thread.nominal_diameter {
+        return Err(c.err(ss, te, "the pitch is not smaller than the diameter"));
+    }
+    let mut des =
+        Designation { text: c.text.to_string(), thread, external: None, internal: None, nonstandard };
+    // Classes and hand: -2A, -2B, -2B/2A, -LH, separated by '-' or blanks.
+    let mut pos = un_at + sl;
+    for part in c.text[pos..].split(['-', ' ']) {
+        let start = pos;
+        pos += part.len() + 1;
+        if part.is_empty() {
+            continue;
+        }
+        if part.eq_ignore_ascii_case("LH") {
+            des.thread.hand = Hand::Left;
+            continue;
+        }
+        if part.eq_ignore_ascii_case("RH") {
+            continue;
+        }
+        let mut off = start;
+        for cls in part.split('/') {
+            let b = cls.as_bytes();
+            let ok =
+                b.len() == 2 && (b'1'..=b'3').contains(&b[0]) && matches!(b[1], b'A' | b'a' | b'B' | b'b');
+            if !ok {
+                return Err(c.err(off, off + cls.len(), "expected a Unified class 1A, 2A, 3A (external), 1B, 2B, 3B (internal), a fit 2B/2A, or LH"));
+            }
+            let internal = matches!(b[1], b'B' | b'b');
+            let uc = UnifiedClass { grade: b[0] - b'0', internal, series, unr: unr && !internal };
+            let slot = if internal { &mut des.internal } else { &mut des.external };
+            if slot.is_some() {
+                return Err(c.err(off, off + cls.len(), "a second class for the same side"));
+            }
+            *slot = Some(ClassSpec::Unified(uc));
+            off += cls.len() + 1;
+        }
+    }
+    c.pos = c.text.len();
+    Ok(des)
 }
 
 fn parse_whitworth(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, DesignationError> {

@@ -9,7 +9,7 @@
 pub mod data;
 pub mod designation;
 
-pub use data::{catalog, BspSize, Catalog, WhitworthSize};
+pub use data::{catalog, BspSize, Catalog, UnifiedSize, WhitworthSize};
 pub use designation::{parse_designation, ClassSpec, Designation, DesignationError, ParseOptions};
 
 use crate::geometry::{extend_dedup, Arc, Point};
@@ -29,15 +29,55 @@ pub enum ThreadForm {
     Whitworth,
     /// BSP parallel pipe thread, ISO 228-1 (G): the Whitworth form on pipe sizes.
     BspParallel,
+    /// Unified inch, ASME B1.1 (UN, UNR): the ISO 68-1 basic profile on inch sizes; the UNR
+    /// external root is rounded.
+    Unified,
+}
+
+/// What each form is, in one place: every use asks its form here, so a new form does not
+/// compile until it says what it is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct FormSpec {
+    /// Included flank angle, degrees.
+    angle: f64,
+    /// The 60° family with the ISO 68-1 basic profile (flat crest H/8, nut crest P/4, root
+    /// radius up to H/6); otherwise the rounded Whitworth family (H/6 rounded off both ends).
+    truncated_v: bool,
+    /// Smallest bolt root radius as a fraction of P that the form itself sets (ISO 965-1:
+    /// 0.125; UNR sets its 0.108 in its class limits).
+    min_root_radius_p: Option<f64>,
+    /// Root radius of the bolt with the smallest root the limits allow (profile of
+    /// `ProfileKind::BoltMinRoot`), as a fraction of P.
+    min_root_profile_p: f64,
 }
 
 impl ThreadForm {
+    fn spec(self) -> FormSpec {
+        match self {
+            ThreadForm::IsoMetric => FormSpec {
+                angle: 60.0,
+                truncated_v: true,
+                min_root_radius_p: Some(0.125),
+                min_root_profile_p: 0.125,
+            },
+            ThreadForm::Unified => FormSpec {
+                angle: 60.0,
+                truncated_v: true,
+                min_root_radius_p: None,
+                min_root_profile_p: 0.108,
+            },
+            ThreadForm::Whitworth | ThreadForm::BspParallel => FormSpec {
+                angle: 55.0,
+                truncated_v: false,
+                min_root_radius_p: None,
+                min_root_profile_p: 0.137329,
+            },
+        }
+    }
+
     /// Included flank angle α, degrees.
     pub fn flank_angle(self) -> f64 {
-        match self {
-            ThreadForm::IsoMetric => 60.0,
-            ThreadForm::Whitworth | ThreadForm::BspParallel => 55.0,
-        }
+        self.spec().angle
     }
 
     /// The name used in reports (`iso-metric`, `whitworth`, `bsp-parallel`).
@@ -46,12 +86,21 @@ impl ThreadForm {
             ThreadForm::IsoMetric => "iso-metric",
             ThreadForm::Whitworth => "whitworth",
             ThreadForm::BspParallel => "bsp-parallel",
+            ThreadForm::Unified => "unified",
         }
     }
 
     /// True for the rounded Whitworth family (BS 84 and ISO 228-1).
     pub fn is_whitworth(self) -> bool {
-        !matches!(self, ThreadForm::IsoMetric)
+        !self.spec().truncated_v
+    }
+
+    /// True for forms whose sizes are inches (BS 84, ISO 228-1 and Unified sizes).
+    pub fn is_inch(self) -> bool {
+        match self {
+            ThreadForm::IsoMetric => false,
+            ThreadForm::Whitworth | ThreadForm::BspParallel | ThreadForm::Unified => true,
+        }
     }
 }
 
@@ -144,18 +193,20 @@ impl BasicThread {
     /// Basic pitch diameter d2 = D2, mm: metric d − 3H/4 (= d − 0.649519·P), Whitworth d − h.
     pub fn pitch_diameter(&self) -> f64 {
         let h = self.fundamental_height();
-        match self.form {
-            ThreadForm::IsoMetric => self.nominal_diameter - 0.75 * h,
-            _ => self.nominal_diameter - self.thread_depth(),
+        if self.form.spec().truncated_v {
+            self.nominal_diameter - 0.75 * h
+        } else {
+            self.nominal_diameter - self.thread_depth()
         }
     }
 
     /// Basic minor diameter of the nut D1 (metric d − 5H/4), or the common minor diameter of the
     /// Whitworth forms d − 2h, mm.
     pub fn minor_diameter_internal(&self) -> f64 {
-        match self.form {
-            ThreadForm::IsoMetric => self.nominal_diameter - 1.25 * self.fundamental_height(),
-            _ => self.nominal_diameter - 2.0 * self.thread_depth(),
+        if self.form.spec().truncated_v {
+            self.nominal_diameter - 1.25 * self.fundamental_height()
+        } else {
+            self.nominal_diameter - 2.0 * self.thread_depth()
         }
     }
 
@@ -167,25 +218,28 @@ impl BasicThread {
     /// Thread depth of the bolt, mm: h3 = 17H/24 (metric, DIN 13) or h = 2H/3 (Whitworth).
     pub fn thread_depth(&self) -> f64 {
         let h = self.fundamental_height();
-        match self.form {
-            ThreadForm::IsoMetric => 17.0 * h / 24.0,
-            _ => 2.0 * h / 3.0,
+        if self.form.spec().truncated_v {
+            17.0 * h / 24.0
+        } else {
+            2.0 * h / 3.0
         }
     }
 
     /// Basic depth of engagement H1, mm: 5H/8 (metric) or h (Whitworth).
     pub fn engagement_depth(&self) -> f64 {
-        match self.form {
-            ThreadForm::IsoMetric => 0.625 * self.fundamental_height(),
-            _ => self.thread_depth(),
+        if self.form.spec().truncated_v {
+            0.625 * self.fundamental_height()
+        } else {
+            self.thread_depth()
         }
     }
 
     /// Design root radius of the bolt, mm: H/6 (DIN 13) or 0.137329·P (Whitworth).
     pub fn root_radius(&self) -> f64 {
-        match self.form {
-            ThreadForm::IsoMetric => self.fundamental_height() / 6.0,
-            _ => self.whitworth_radius(),
+        if self.form.spec().truncated_v {
+            self.fundamental_height() / 6.0
+        } else {
+            self.whitworth_radius()
         }
     }
 
@@ -197,7 +251,7 @@ impl BasicThread {
     /// Smallest root radius the standard allows on the bolt, mm: 0.125·P (ISO 965-1) for metric;
     /// BS 84 and ISO 228-1 set none.
     pub fn min_root_radius(&self) -> Option<f64> {
-        matches!(self.form, ThreadForm::IsoMetric).then_some(0.125 * self.pitch)
+        self.form.spec().min_root_radius_p.map(|k| k * self.pitch)
     }
 
     fn whitworth_radius(&self) -> f64 {
@@ -210,21 +264,19 @@ impl BasicThread {
     pub fn groove(&self, variant: ProfileKind) -> GrooveForm {
         let h = self.fundamental_height();
         let beta = self.half_angle();
-        let (sharp_crest, crest, root) = match (self.form, variant) {
-            (ThreadForm::IsoMetric, ProfileKind::Basic) => {
-                (-h / 8.0, Feature::Flat, Feature::FlatAt(0.625 * h))
-            }
-            (ThreadForm::IsoMetric, ProfileKind::BoltDesign) => {
-                (-h / 8.0, Feature::Flat, Feature::Arc(h / 6.0))
-            }
-            (ThreadForm::IsoMetric, ProfileKind::BoltMinRoot) => {
-                (-h / 8.0, Feature::Flat, Feature::Arc(0.125 * self.pitch))
+        let spec = self.form.spec();
+        let (sharp_crest, crest, root) = match (spec.truncated_v, variant) {
+            (true, ProfileKind::Basic) => (-h / 8.0, Feature::Flat, Feature::FlatAt(0.625 * h)),
+            (true, ProfileKind::BoltDesign) => (-h / 8.0, Feature::Flat, Feature::Arc(h / 6.0)),
+            (true, ProfileKind::BoltMinRoot) => {
+                (-h / 8.0, Feature::Flat, Feature::Arc(spec.min_root_profile_p * self.pitch))
             }
             // Seen from the nut: its crest is the D1 flat (P/4 wide), its root the D flat (P/8).
-            (ThreadForm::IsoMetric, ProfileKind::Nut) => {
-                (-h / 4.0, Feature::Flat, Feature::FlatAt(0.625 * h))
-            }
-            (_, _) => {
+            (true, ProfileKind::Nut) => (-h / 4.0, Feature::Flat, Feature::FlatAt(0.625 * h)),
+            (
+                false,
+                ProfileKind::Basic | ProfileKind::BoltDesign | ProfileKind::BoltMinRoot | ProfileKind::Nut,
+            ) => {
                 let r = self.whitworth_radius();
                 (-h / 6.0, Feature::Arc(r), Feature::Arc(r))
             }

@@ -1,0 +1,139 @@
+//! Issue 13 (the Unified form so far): designations, limits against the reference check set,
+//! and the full-profile cut against the basic pitch diameter.
+
+use crate::*;
+use threadcheck::tolerance::limits_for;
+use threadcheck::{parse_designation, ParseOptions, ThreadForm, ThreadKind};
+
+const IN: f64 = 25.4;
+
+fn des(s: &str) -> threadcheck::Designation {
+    parse_designation(s, ParseOptions::default()).unwrap_or_else(|e| panic!("{s}: {e}"))
+}
+
+/// Every limit of the check set, at the tables' 0.0001 in.
+#[test]
+fn unified_limits_match_the_check_set() {
+    let t = data_toml("unified-limits.toml");
+    let checks = t["check"].as_array().unwrap();
+    assert_eq!(checks.len(), 8);
+    for c in checks {
+        let name = c["designation"].as_str().unwrap();
+        let d = des(name);
+        let close = |got: Option<f64>, want: f64, what: &str| {
+            let got = got.unwrap_or_else(|| panic!("{name}: no {what}")) / IN;
+            assert!((got - want).abs() < 0.5e-4, "{name} {what}: {got:.5} in, published {want}");
+        };
+        if let Some(e) = c.get("external") {
+            let l = limits_for(&d, ThreadKind::External).unwrap().unwrap();
+            close(l.major_diameter.max, e["d_max"].as_float().unwrap(), "d max");
+            close(l.major_diameter.min, e["d_min"].as_float().unwrap(), "d min");
+            close(l.pitch_diameter.max, e["d2_max"].as_float().unwrap(), "d2 max");
+            close(l.pitch_diameter.min, e["d2_min"].as_float().unwrap(), "d2 min");
+        }
+        if let Some(i) = c.get("internal") {
+            let l = limits_for(&d, ThreadKind::Internal).unwrap().unwrap();
+            close(l.minor_diameter.min, i["D1_min"].as_float().unwrap(), "D1 min");
+            close(l.minor_diameter.max, i["D1_max"].as_float().unwrap(), "D1 max");
+            close(l.pitch_diameter.min, i["D2_min"].as_float().unwrap(), "D2 min");
+            close(l.pitch_diameter.max, i["D2_max"].as_float().unwrap(), "D2 max");
+        }
+    }
+}
+
+/// Number sizes (0.060 + 0.013·N in), fractions, decimals, fits, LH, UNR, and the series check.
+#[test]
+fn unified_designations() {
+    let d = des("#10-32 UNF-2A");
+    assert!(
+        (d.thread.nominal_diameter - 0.190 * IN).abs() < 1e-9 && (d.thread.pitch - IN / 32.0).abs() < 1e-12
+    );
+    assert_eq!(d.thread.form, ThreadForm::Unified);
+    assert!((des("0-80 UNF-2A").thread.nominal_diameter - 0.060 * IN).abs() < 1e-9);
+    // 1-8 is the one-inch coarse thread, not #1 (which has 64 and 72 tpi).
+    assert!((des("1-8 UNC-2A").thread.nominal_diameter - IN).abs() < 1e-9);
+    let lh = des("1 1/4-7 UNC-2A-LH");
+    assert!((lh.thread.nominal_diameter - 1.25 * IN).abs() < 1e-9);
+    assert_eq!(lh.thread.hand, threadcheck::Hand::Left);
+    let fit = des("1/2-13 UNC-2B/2A");
+    assert!(fit.external.is_some() && fit.internal.is_some());
+    assert!((des(".250-20 UNC-2A").thread.nominal_diameter - 6.35).abs() < 1e-9);
+    // UNR: the external root radius is at least 0.108·P.
+    let unr = limits_for(&des("1/4-20 UNRC-2A"), ThreadKind::External).unwrap().unwrap();
+    assert!((unr.root_radius_min.unwrap() - 0.108 * IN / 20.0).abs() < 1e-12);
+    // Not in the series: refused with the standard tpi, unless UNS or --allow-nonstandard.
+    let e = parse_designation("1/4-24 UNC-2A", ParseOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("has 20 tpi"), "{e}");
+    assert!(parse_designation("1/4-24 UNS-2A", ParseOptions::default()).is_ok());
+    assert!(
+        parse_designation("1/4-24 UNC-2A", ParseOptions { allow_nonstandard: true }).unwrap().nonstandard
+    );
+}
+
+/// A full-profile insert cut to the basic root d − 1.226869·P measures the basic pitch diameter
+/// d − 0.649519·P to 0.1 µm; at the solved mid-tolerance X it passes.
+#[test]
+fn unified_full_profile_cuts_the_basic_pitch_diameter() {
+    for (name, d, tpi) in [
+        ("1/4-20 UNC-2A", 0.25, 20.0),
+        ("1/2-13 UNC-2A", 0.5, 13.0),
+        ("3/4-16 UNF-2A", 0.75, 16.0),
+        ("#10-32 UNF-2A", 0.19, 32.0),
+    ] {
+        let p = IN / tpi;
+        let d = d * IN;
+        let x3 = format!("{}", d - 1.226_869_027_954_1 * p);
+        let o = run(&[
+            "verify",
+            "--thread",
+            name,
+            "--insert",
+            "full",
+            "--final-x",
+            &x3,
+            "--no-pass-metrics",
+            "--json",
+            "-",
+        ]);
+        let v: serde_json::Value =
+            serde_json::from_slice(&o.stdout).unwrap_or_else(|_| panic!("{name}: {}", stderr(&o)));
+        let d2 = v["measured"]["pitch_diameter"].as_f64().unwrap();
+        assert!((d2 - (d - 0.649_519_052_838_329 * p)).abs() < 1e-4, "{name}: d2 {d2} (to 0.1 µm)");
+        let o = run(&["verify", "--thread", name, "--insert", "full", "--no-pass-metrics"]);
+        assert_eq!(o.status.code(), Some(0), "{name}: {}", stdout(&o));
+    }
+}
+
+/// A Haas 1/2-13 UNC program of ours: its root X.4056 in is 0.000025 in inside the basic root
+/// d3 = 0.5 − 1.226869/13 = 0.405625 in, so a full-profile insert cuts d2 = basic 0.450037 in
+/// less 0.000025 in, over 2A's d2 max 0.4485 in by (0.450012 − 0.4485)·25.4 mm = 38.4 µm.
+#[test]
+fn unified_program_gets_a_verdict() {
+    let prog = data("programs/haas-g76-1-2-13-unc.nc");
+    let o = run(&[
+        "verify",
+        "--program",
+        prog.to_str().unwrap(),
+        "--dialect",
+        "haas",
+        "--thread",
+        "1/2-13 UNC-2A",
+        "--insert",
+        "full",
+        "--no-pass-metrics",
+        "--json",
+        "-",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let c = v["operations"][0]["checks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["feature"] == "pitch_diameter")
+        .unwrap()
+        .clone();
+    let basic = 0.5 - 0.649_519_052_838_329 / 13.0;
+    let want = ((basic - 0.000_025) - 0.4485) * IN * 1000.0;
+    assert!((c["deviation_um"].as_f64().unwrap() - want).abs() < 0.1, "{c} vs {want}");
+}
