@@ -480,25 +480,26 @@ fn parse_unified(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, 
     let rest = &upper[un_at..];
     let sl = rest.find(|ch: char| !ch.is_ascii_alphabetic()).unwrap_or(rest.len());
     let word = &rest[..sl];
-    let (series, unr) =
-        match word {
-            "UNC" => (UnifiedSeries::Unc, false),
-            "UNF" => (UnifiedSeries::Unf, false),
-            "UNEF" => (UnifiedSeries::Unef, false),
-            "UN" => (UnifiedSeries::Un, false),
-            "UNS" => (UnifiedSeries::Uns, false),
-            "UNRC" => (UnifiedSeries::Unc, true),
-            "UNRF" => (UnifiedSeries::Unf, true),
-            "UNREF" => (UnifiedSeries::Unef, true),
-            "UNR" => (UnifiedSeries::Un, true),
-            _ => return Err(c.err(
+    let (series, unr) = match word {
+        "UNC" => (UnifiedSeries::Unc, false),
+        "UNF" => (UnifiedSeries::Unf, false),
+        "UNEF" => (UnifiedSeries::Unef, false),
+        "UN" => (UnifiedSeries::Un, false),
+        "UNS" => (UnifiedSeries::Uns, false),
+        "UNRC" => (UnifiedSeries::Unc, true),
+        "UNRF" => (UnifiedSeries::Unf, true),
+        "UNREF" => (UnifiedSeries::Unef, true),
+        "UNR" => (UnifiedSeries::Un, true),
+        _ => {
+            return Err(c.err(
                 un_at,
                 un_at + sl,
                 format!(
                     "'{word}' is not a Unified series: UNC, UNF, UNEF, UN, UNS (UNR… for the rounded root)"
                 ),
-            )),
-        };
+            ))
+        }
+    };
     let mut nonstandard = false;
     let standard = match series {
         UnifiedSeries::Unc => row.and_then(|r| r.unc),
