@@ -53,9 +53,10 @@ enum Command {
     Compare {
         #[command(flatten)]
         plan: PlanArgs,
-        /// Modified-flank angles, degrees (comma-separated).
-        #[arg(long, default_value = "29.5,27", value_name = "ANGLES")]
-        modified: String,
+        /// Modified-flank angles, degrees (comma-separated); default half the thread angle less
+        /// 0.5° and less 3° (29.5,27 for 60° threads, 14.5,12 for trapezoidal).
+        #[arg(long, value_name = "ANGLES")]
+        modified: Option<String>,
         /// Print JSON: every verify report and the per-strategy figures.
         #[arg(long)]
         json: bool,
@@ -304,12 +305,23 @@ fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
                     "compare needs --thread with a class, e.g. --thread M10x1.5-6g".into(),
                 ));
             }
-            let modified = modified
-                .split(',')
-                .filter(|s| !s.trim().is_empty())
-                .map(|a| parse_len(a, "--modified"))
-                .collect::<Result<Vec<f64>, _>>()?;
-            CompareJob { spec: plan.spec(false)?, modified, json, markdown }.run()?
+            let spec = plan.spec(false)?;
+            let modified = match modified {
+                Some(m) => m
+                    .split(',')
+                    .filter(|s| !s.trim().is_empty())
+                    .map(|a| parse_len(a, "--modified"))
+                    .collect::<Result<Vec<f64>, _>>()?,
+                None => {
+                    let des = threadcheck::parse_designation(
+                        &spec.designation,
+                        threadcheck::ParseOptions { allow_nonstandard: spec.allow_nonstandard },
+                    )?;
+                    let half = 0.5 * des.thread.form.flank_angle();
+                    vec![half - 0.5, half - 3.0]
+                }
+            };
+            CompareJob { spec, modified, json, markdown }.run()?
         }
     };
     let mut out = std::io::stdout().lock();

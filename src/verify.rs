@@ -187,6 +187,8 @@ fn resolve_kind(des: &Designation, internal: bool) -> Result<ThreadKind, Error> 
                 (crate::ThreadForm::BspParallel, ThreadKind::Internal) => des.text.clone(),
                 (crate::ThreadForm::Unified, ThreadKind::External) => format!("{}-2A", des.text),
                 (crate::ThreadForm::Unified, ThreadKind::Internal) => format!("{}-2B", des.text),
+                (crate::ThreadForm::Trapezoidal, ThreadKind::External) => format!("{}-7e", des.text),
+                (crate::ThreadForm::Trapezoidal, ThreadKind::Internal) => format!("{}-7H", des.text),
             }
         )));
     }

@@ -137,3 +137,98 @@ fn unified_program_gets_a_verdict() {
     let want = ((basic - 0.000_025) - 0.4485) * IN * 1000.0;
     assert!((c["deviation_um"].as_f64().unwrap() - want).abs() < 0.1, "{c} vs {want}");
 }
+
+/// Every limit of the trapezoidal check set, to the micrometre.
+#[test]
+fn trapezoidal_limits_match_the_check_set() {
+    let t = data_toml("trapezoidal-limits.toml");
+    let checks = t["check"].as_array().unwrap();
+    assert_eq!(checks.len(), 4);
+    for c in checks {
+        let name = c["designation"].as_str().unwrap();
+        let d = des(name);
+        let eq = |got: Option<f64>, want: f64, what: &str| {
+            let got = got.unwrap_or_else(|| panic!("{name}: no {what}"));
+            assert!((got - want).abs() < 0.5e-3, "{name} {what}: {got}, published {want}");
+        };
+        if let Some(e) = c.get("external") {
+            let l = limits_for(&d, ThreadKind::External).unwrap().unwrap();
+            eq(l.major_diameter.max, e["d_max"].as_float().unwrap(), "d max");
+            eq(l.major_diameter.min, e["d_min"].as_float().unwrap(), "d min");
+            eq(l.pitch_diameter.max, e["d2_max"].as_float().unwrap(), "d2 max");
+            eq(l.pitch_diameter.min, e["d2_min"].as_float().unwrap(), "d2 min");
+            eq(l.minor_diameter.max, e["d3_max"].as_float().unwrap(), "d3 max");
+            eq(l.minor_diameter.min, e["d3_min"].as_float().unwrap(), "d3 min");
+        }
+        if let Some(i) = c.get("internal") {
+            let l = limits_for(&d, ThreadKind::Internal).unwrap().unwrap();
+            eq(l.minor_diameter.min, i["D1_min"].as_float().unwrap(), "D1 min");
+            eq(l.minor_diameter.max, i["D1_max"].as_float().unwrap(), "D1 max");
+            eq(l.pitch_diameter.min, i["D2_min"].as_float().unwrap(), "D2 min");
+            eq(l.pitch_diameter.max, i["D2_max"].as_float().unwrap(), "D2 max");
+            eq(l.major_diameter.min, i["D4_min"].as_float().unwrap(), "D4 min");
+        }
+    }
+}
+
+/// Multi-start and left-hand designations; the series check; es(c) is sourced at P 2 only.
+#[test]
+fn trapezoidal_designations() {
+    let d = des("Tr40x14(P7)-7e");
+    assert_eq!((d.thread.pitch, d.thread.starts, d.thread.lead()), (7.0, 2, 14.0));
+    assert_eq!(des("Tr40x7LH-7e").thread.hand, threadcheck::Hand::Left);
+    assert_eq!(des("Tr40x7-LH-7H/7e").thread.hand, threadcheck::Hand::Left);
+    let e = parse_designation("Tr40x8-7e", ParseOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("3, 7, 10"), "{e}");
+    let e = limits_for(&des("Tr40x7-8c"), ThreadKind::External).unwrap_err().to_string();
+    assert!(e.contains("es(c)") && e.contains("not in the sources"), "{e}");
+}
+
+/// A full-profile insert cut to d3 = d − P − 2ac measures d2 = d − 0.5·P to 0.1 µm; the solved
+/// mid-tolerance cut passes.
+#[test]
+fn trapezoidal_full_profile_cuts_the_basic_pitch_diameter() {
+    for (name, d, p, ac) in
+        [("Tr40x7-7e", 40.0, 7.0, 0.5), ("Tr20x4-7e", 20.0, 4.0, 0.25), ("Tr10x2-7e", 10.0, 2.0, 0.25)]
+    {
+        let x3 = format!("{}", d - p - 2.0 * ac);
+        let o = run(&[
+            "verify",
+            "--thread",
+            name,
+            "--insert",
+            "full",
+            "--final-x",
+            &x3,
+            "--no-pass-metrics",
+            "--json",
+            "-",
+        ]);
+        let v: serde_json::Value =
+            serde_json::from_slice(&o.stdout).unwrap_or_else(|_| panic!("{name}: {}", stderr(&o)));
+        let d2 = v["measured"]["pitch_diameter"].as_f64().unwrap();
+        assert!((d2 - (d - 0.5 * p)).abs() < 1e-4, "{name}: d2 {d2} (to 0.1 µm)");
+        let o = run(&["verify", "--thread", name, "--insert", "full", "--no-pass-metrics"]);
+        assert_eq!(o.status.code(), Some(0), "{name}: {}", stdout(&o));
+    }
+}
+
+/// One-flank against two-flank on a Tr40x7: with the infeed along the 15° flank, fewer passes
+/// cut with both edges than with radial infeed, and less chip area lies behind the tip.
+#[test]
+fn compare_runs_on_a_trapezoidal_thread() {
+    let o = run(&["compare", "--thread", "Tr40x7-7e", "--insert", "full", "--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let rows = v["strategies"].as_array().unwrap_or_else(|| panic!("{v:#}"));
+    let get = |infeed: &str, schedule: &str| {
+        rows.iter()
+            .find(|r| r["infeed"].as_str().unwrap().starts_with(infeed) && r["schedule"] == schedule)
+            .unwrap_or_else(|| panic!("{infeed} {schedule}: {rows:#?}"))
+            .clone()
+    };
+    let radial = get("radial", "constant-depth");
+    let flank = get("flank", "constant-depth");
+    assert!(flank["two_flank_passes"].as_u64().unwrap() < radial["two_flank_passes"].as_u64().unwrap());
+    assert!(flank["trailing_share"].as_f64().unwrap() < radial["trailing_share"].as_f64().unwrap());
+}

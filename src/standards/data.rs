@@ -9,6 +9,7 @@ const ISO_METRIC: &str = include_str!("../../profiles/iso-metric.toml");
 const WHITWORTH: &str = include_str!("../../profiles/whitworth.toml");
 const BSP: &str = include_str!("../../profiles/bsp.toml");
 const UNIFIED: &str = include_str!("../../profiles/unified.toml");
+const TRAPEZOIDAL: &str = include_str!("../../profiles/trapezoidal.toml");
 
 /// Everything the standards module knows, from the embedded TOML files.
 #[derive(Debug)]
@@ -23,6 +24,52 @@ pub struct Catalog {
     pub bsp: Vec<BspSize>,
     /// Unified inch sizes with their standard series, ASME B1.1.
     pub unified: Vec<UnifiedSize>,
+    /// ISO 2902 series and ISO 2903 tables of the trapezoidal thread.
+    pub tr: TrapezoidalTables,
+}
+
+/// ISO 2901–2903 data (`profiles/trapezoidal.toml`); deviations and tolerances in µm.
+#[derive(Debug, Clone, Deserialize)]
+pub struct TrapezoidalTables {
+    /// Crest clearance ac: pitch upper bounds and values, mm.
+    pub ac_pitch_up_to: Vec<f64>,
+    /// ac, mm.
+    pub ac: Vec<f64>,
+    /// ISO 2902 diameters, mm.
+    pub series_d: Vec<f64>,
+    /// Their pitches, mm.
+    pub series_pitches: Vec<Vec<f64>>,
+    /// Pitches of the es tables.
+    pub es_pitches: Vec<f64>,
+    /// es(e), µm.
+    pub es_e: Vec<f64>,
+    /// Pitches of es(c).
+    pub es_c_pitches: Vec<f64>,
+    /// es(c), µm.
+    pub es_c: Vec<f64>,
+    /// Pitches of Td(4) and TD1(4).
+    pub td_pitches: Vec<f64>,
+    /// Td(4), µm.
+    pub td4: Vec<f64>,
+    /// TD1(4), µm.
+    pub td1_4: Vec<f64>,
+    /// Td2(7)/TD2(7) by range.
+    pub td2_7: Vec<TrTd2Range>,
+}
+
+/// One diameter range of Td2(7)/TD2(7).
+#[derive(Debug, Clone, Deserialize)]
+pub struct TrTd2Range {
+    /// Over this diameter, mm.
+    pub over: f64,
+    /// Up to this diameter, mm.
+    pub up_to: f64,
+    /// Pitches, mm.
+    pub pitches: Vec<f64>,
+    /// Td2(7), µm.
+    pub external: Vec<f64>,
+    /// TD2(7), µm.
+    pub internal: Vec<f64>,
 }
 
 /// One Unified size: its name, basic major diameter (inches) and the threads per inch of the
@@ -214,7 +261,9 @@ fn load() -> Result<Catalog, String> {
     let w: WhitworthFile = toml::from_str(WHITWORTH).map_err(|e| format!("profiles/whitworth.toml: {e}"))?;
     let b: BspFile = toml::from_str(BSP).map_err(|e| format!("profiles/bsp.toml: {e}"))?;
     let u: UnifiedFile = toml::from_str(UNIFIED).map_err(|e| format!("profiles/unified.toml: {e}"))?;
-    Ok(Catalog { iso, bsw: w.bsw, bsf: w.bsf, bsp: b.size, unified: u.size })
+    let tr: TrapezoidalTables =
+        toml::from_str(TRAPEZOIDAL).map_err(|e| format!("profiles/trapezoidal.toml: {e}"))?;
+    Ok(Catalog { iso, bsw: w.bsw, bsf: w.bsf, bsp: b.size, unified: u.size, tr })
 }
 
 /// The embedded catalogue. Parsing happens once; the files are part of the binary, and a unit

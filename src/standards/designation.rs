@@ -4,7 +4,7 @@
 
 use super::data::{catalog, find_pitch, SeriesSize};
 use super::{BasicThread, Hand, ThreadForm, ThreadKind, MM_PER_INCH};
-use crate::tolerance::{Bs84Class, Iso228Class, IsoClass, UnifiedClass, UnifiedSeries};
+use crate::tolerance::{Bs84Class, Iso228Class, IsoClass, TrClass, UnifiedClass, UnifiedSeries};
 use std::fmt;
 
 /// A parsed thread designation: the basic thread and the classes it names.
@@ -43,6 +43,8 @@ pub enum ClassSpec {
     Iso228(Iso228Class),
     /// ASME B1.1 Unified class (1A 2A 3A, 1B 2B 3B) with its series.
     Unified(UnifiedClass),
+    /// ISO 2903 trapezoidal class (7e 8e 8c 9c, 7H 8H 9H).
+    Trapezoidal(TrClass),
 }
 
 impl fmt::Display for ClassSpec {
@@ -52,6 +54,7 @@ impl fmt::Display for ClassSpec {
             ClassSpec::Bs84(c) => c.fmt(f),
             ClassSpec::Iso228(c) => c.fmt(f),
             ClassSpec::Unified(c) => c.fmt(f),
+            ClassSpec::Trapezoidal(c) => c.fmt(f),
         }
     }
 }
@@ -170,6 +173,8 @@ pub fn parse_designation(text: &str, opts: ParseOptions) -> Result<Designation, 
     let upper = text.to_ascii_uppercase();
     if upper.contains("UN") && upper.starts_with(|ch: char| ch.is_ascii_digit() || ch == '#' || ch == '.') {
         parse_unified(&mut c, opts).map_err(Into::into)
+    } else if upper.starts_with("TR") && text[2..].starts_with(|ch: char| ch.is_ascii_digit()) {
+        parse_trapezoidal(&mut c, opts).map_err(Into::into)
     } else if upper.starts_with("BSW") || upper.starts_with("BSF") {
         parse_whitworth(&mut c, opts).map_err(Into::into)
     } else if upper.starts_with('G') {
@@ -182,7 +187,7 @@ pub fn parse_designation(text: &str, opts: ParseOptions) -> Result<Designation, 
             .err(
                 0,
                 first.max(text.find(|ch: char| ch.is_ascii_digit()).unwrap_or(first)),
-                "unknown thread series; expected M (ISO metric), BSW, BSF (Whitworth), G (BSP pipe) or a Unified size such as 1/4-20 UNC",
+                "unknown thread series; expected M (ISO metric), Tr (trapezoidal), BSW, BSF (Whitworth), G (BSP pipe) or a Unified size such as 1/4-20 UNC",
             )
             .into())
     }
@@ -401,6 +406,89 @@ fn inch_size(c: &mut Cursor<'_>) -> Result<(String, f64, usize, usize), Designat
     }
     c.pos += len;
     Ok((norm, inches, start, start + len))
+}
+
+/// Trapezoidal: `Tr40x7`, `Tr40x7-7e`, `Tr40x7-7H/7e`, `Tr40x14(P7)-8e` (two starts), `Tr40x7LH`
+/// or `Tr40x7-LH-7e`.
+fn parse_trapezoidal(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, DesignationError> {
+    c.pos = 2;
+    let (d, ds, de) = c.number("nominal diameter after Tr")?;
+    if !(c.eat("x") || c.eat("X") || c.eat("×")) {
+        let p = c.pos;
+        return Err(c.err(
+            p,
+            p + c.rest().chars().next().map_or(0, char::len_utf8),
+            "expected x and the pitch (or lead), e.g. Tr40x7",
+        ));
+    }
+    let (first, fs, fe) = c.number("pitch after x")?;
+    let (mut pitch, mut starts) = (first, 1u32);
+    if c.eat("(P") || c.eat("(p") {
+        let (p, _, pe) = c.number("pitch after (P")?;
+        if !c.eat(")") {
+            return Err(c.err(pe, pe + 1, "expected ')' after the pitch, e.g. Tr40x14(P7)"));
+        }
+        let n = first / p;
+        if (n - n.round()).abs() > 1e-9 || !(1.0..=64.0).contains(&n.round()) {
+            return Err(c.err(
+                fs,
+                c.pos,
+                format!("lead {first} is not a whole multiple (1 to 64) of the pitch {p}"),
+            ));
+        }
+        pitch = p;
+        starts = n.round() as u32;
+    }
+    let cat = catalog().map_err(|e| c.err(ds, de, e.to_string()))?;
+    let tr = &cat.tr;
+    let mut nonstandard = false;
+    let listed = tr.series_d.iter().position(|x| (x - d).abs() < 1e-9).map(|i| &tr.series_pitches[i]);
+    if !listed.is_some_and(|ps| ps.iter().any(|x| (x - pitch).abs() < 1e-9)) {
+        if !opts.allow_nonstandard {
+            let msg = match listed {
+                Some(ps) => format!(
+                    "{pitch} mm is not an ISO 2902 pitch for Tr{d}; standard pitches: {}; --allow-nonstandard accepts it",
+                    ps.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(", ")
+                ),
+                None => format!("Tr{d} is not an ISO 2902 diameter (Tr8 to Tr300); --allow-nonstandard accepts it"),
+            };
+            return Err(c.err(ds, fe, msg));
+        }
+        nonstandard = true;
+    }
+    let thread =
+        BasicThread { form: ThreadForm::Trapezoidal, nominal_diameter: d, pitch, starts, hand: Hand::Right };
+    let mut des =
+        Designation { text: c.text.to_string(), thread, external: None, internal: None, nonstandard };
+    if c.eat("LH") || c.eat("lh") {
+        des.thread.hand = Hand::Left;
+    }
+    while !c.rest().is_empty() {
+        let seg_start = c.pos;
+        if !c.eat("-") {
+            let end = c.pos + c.rest().chars().next().map_or(0, char::len_utf8);
+            return Err(c.err(seg_start, end, "expected '-' before a class or LH"));
+        }
+        let start = c.pos;
+        let len = c.rest().find('-').unwrap_or(c.rest().len());
+        let seg = &c.rest()[..len];
+        if seg.eq_ignore_ascii_case("LH") {
+            des.thread.hand = Hand::Left;
+        } else {
+            let mut off = start;
+            for part in seg.split('/') {
+                let cls = TrClass::parse(part).map_err(|m| c.err(off, off + part.len(), m))?;
+                let slot = if cls.internal() { &mut des.internal } else { &mut des.external };
+                if slot.is_some() {
+                    return Err(c.err(off, off + part.len(), "a second class for the same side"));
+                }
+                *slot = Some(ClassSpec::Trapezoidal(cls));
+                off += part.len() + 1;
+            }
+        }
+        c.pos = start + len;
+    }
+    Ok(des)
 }
 
 /// Unified: `1/4-20 UNC-2A`, `#10-32 UNF-2B/2A`, `0-80 UNF`, `1-8 UNC`, `1 1/4-7 UNC-2A-LH`,

@@ -32,6 +32,20 @@ pub enum ThreadForm {
     /// Unified inch, ASME B1.1 (UN, UNR): the ISO 68-1 basic profile on inch sizes; the UNR
     /// external root is rounded.
     Unified,
+    /// ISO metric trapezoidal, ISO 2901–2904 (Tr): 30°, flat crest and root with the crest
+    /// clearance ac.
+    Trapezoidal,
+}
+
+/// The profile families: how crest and root are shaped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Family {
+    /// ISO 68-1's truncated 60° V: flat crest H/8, nut crest P/4, root radius up to H/6.
+    TruncatedV,
+    /// Whitworth: H/6 rounded off both ends.
+    Rounded,
+    /// ISO 2901 trapezoid: H1 = P/2 overlap, flat crest and root, clearance ac at both ends.
+    Trapezoid,
 }
 
 /// What each form is, in one place: every use asks its form here, so a new form does not
@@ -40,9 +54,8 @@ pub enum ThreadForm {
 struct FormSpec {
     /// Included flank angle, degrees.
     angle: f64,
-    /// The 60° family with the ISO 68-1 basic profile (flat crest H/8, nut crest P/4, root
-    /// radius up to H/6); otherwise the rounded Whitworth family (H/6 rounded off both ends).
-    truncated_v: bool,
+    /// How crest and root are shaped.
+    family: Family,
     /// Smallest bolt root radius as a fraction of P that the form itself sets (ISO 965-1:
     /// 0.125; UNR sets its 0.108 in its class limits).
     min_root_radius_p: Option<f64>,
@@ -56,21 +69,27 @@ impl ThreadForm {
         match self {
             ThreadForm::IsoMetric => FormSpec {
                 angle: 60.0,
-                truncated_v: true,
+                family: Family::TruncatedV,
                 min_root_radius_p: Some(0.125),
                 min_root_profile_p: 0.125,
             },
             ThreadForm::Unified => FormSpec {
                 angle: 60.0,
-                truncated_v: true,
+                family: Family::TruncatedV,
                 min_root_radius_p: None,
                 min_root_profile_p: 0.108,
             },
             ThreadForm::Whitworth | ThreadForm::BspParallel => FormSpec {
                 angle: 55.0,
-                truncated_v: false,
+                family: Family::Rounded,
                 min_root_radius_p: None,
                 min_root_profile_p: 0.137329,
+            },
+            ThreadForm::Trapezoidal => FormSpec {
+                angle: 30.0,
+                family: Family::Trapezoid,
+                min_root_radius_p: None,
+                min_root_profile_p: 0.0,
             },
         }
     }
@@ -87,18 +106,19 @@ impl ThreadForm {
             ThreadForm::Whitworth => "whitworth",
             ThreadForm::BspParallel => "bsp-parallel",
             ThreadForm::Unified => "unified",
+            ThreadForm::Trapezoidal => "trapezoidal",
         }
     }
 
     /// True for the rounded Whitworth family (BS 84 and ISO 228-1).
     pub fn is_whitworth(self) -> bool {
-        !self.spec().truncated_v
+        self.spec().family == Family::Rounded
     }
 
     /// True for forms whose sizes are inches (BS 84, ISO 228-1 and Unified sizes).
     pub fn is_inch(self) -> bool {
         match self {
-            ThreadForm::IsoMetric => false,
+            ThreadForm::IsoMetric | ThreadForm::Trapezoidal => false,
             ThreadForm::Whitworth | ThreadForm::BspParallel | ThreadForm::Unified => true,
         }
     }
@@ -193,20 +213,20 @@ impl BasicThread {
     /// Basic pitch diameter d2 = D2, mm: metric d − 3H/4 (= d − 0.649519·P), Whitworth d − h.
     pub fn pitch_diameter(&self) -> f64 {
         let h = self.fundamental_height();
-        if self.form.spec().truncated_v {
-            self.nominal_diameter - 0.75 * h
-        } else {
-            self.nominal_diameter - self.thread_depth()
+        match self.form.spec().family {
+            Family::TruncatedV => self.nominal_diameter - 0.75 * h,
+            Family::Rounded => self.nominal_diameter - self.thread_depth(),
+            Family::Trapezoid => self.nominal_diameter - 0.5 * self.pitch,
         }
     }
 
     /// Basic minor diameter of the nut D1 (metric d − 5H/4), or the common minor diameter of the
     /// Whitworth forms d − 2h, mm.
     pub fn minor_diameter_internal(&self) -> f64 {
-        if self.form.spec().truncated_v {
-            self.nominal_diameter - 1.25 * self.fundamental_height()
-        } else {
-            self.nominal_diameter - 2.0 * self.thread_depth()
+        match self.form.spec().family {
+            Family::TruncatedV => self.nominal_diameter - 1.25 * self.fundamental_height(),
+            Family::Rounded => self.nominal_diameter - 2.0 * self.thread_depth(),
+            Family::Trapezoid => self.nominal_diameter - self.pitch,
         }
     }
 
@@ -218,28 +238,29 @@ impl BasicThread {
     /// Thread depth of the bolt, mm: h3 = 17H/24 (metric, DIN 13) or h = 2H/3 (Whitworth).
     pub fn thread_depth(&self) -> f64 {
         let h = self.fundamental_height();
-        if self.form.spec().truncated_v {
-            17.0 * h / 24.0
-        } else {
-            2.0 * h / 3.0
+        match self.form.spec().family {
+            Family::TruncatedV => 17.0 * h / 24.0,
+            Family::Rounded => 2.0 * h / 3.0,
+            Family::Trapezoid => 0.5 * self.pitch + self.crest_clearance(),
         }
     }
 
     /// Basic depth of engagement H1, mm: 5H/8 (metric) or h (Whitworth).
     pub fn engagement_depth(&self) -> f64 {
-        if self.form.spec().truncated_v {
-            0.625 * self.fundamental_height()
-        } else {
-            self.thread_depth()
+        match self.form.spec().family {
+            Family::TruncatedV => 0.625 * self.fundamental_height(),
+            Family::Rounded => self.thread_depth(),
+            Family::Trapezoid => 0.5 * self.pitch,
         }
     }
 
     /// Design root radius of the bolt, mm: H/6 (DIN 13) or 0.137329·P (Whitworth).
     pub fn root_radius(&self) -> f64 {
-        if self.form.spec().truncated_v {
-            self.fundamental_height() / 6.0
-        } else {
-            self.whitworth_radius()
+        match self.form.spec().family {
+            Family::TruncatedV => self.fundamental_height() / 6.0,
+            Family::Rounded => self.whitworth_radius(),
+            // The root corners may be rounded up to ac (ISO 2901, R2 max).
+            Family::Trapezoid => self.crest_clearance(),
         }
     }
 
@@ -254,6 +275,26 @@ impl BasicThread {
         self.form.spec().min_root_radius_p.map(|k| k * self.pitch)
     }
 
+    /// The trapezoidal crest clearance ac, mm (ISO 2901: 0.15 at P 1.5, 0.25 to P 5, 0.5 to
+    /// P 12, 1.0 to P 44); 0 for the other forms.
+    pub fn crest_clearance(&self) -> f64 {
+        match self.form.spec().family {
+            Family::TruncatedV | Family::Rounded => 0.0,
+            Family::Trapezoid => {
+                let t = catalog().map(|c| &c.tr);
+                match t {
+                    Ok(t) => t
+                        .ac_pitch_up_to
+                        .iter()
+                        .zip(&t.ac)
+                        .find(|(up, _)| self.pitch <= **up + 1e-9)
+                        .map_or(t.ac.last().copied().unwrap_or(1.0), |(_, a)| *a),
+                    Err(_) => 0.0,
+                }
+            }
+        }
+    }
+
     fn whitworth_radius(&self) -> f64 {
         // The arc cuts H/6 off the sharp triangle and is tangent to both flanks.
         let b = self.half_angle();
@@ -265,20 +306,32 @@ impl BasicThread {
         let h = self.fundamental_height();
         let beta = self.half_angle();
         let spec = self.form.spec();
-        let (sharp_crest, crest, root) = match (spec.truncated_v, variant) {
-            (true, ProfileKind::Basic) => (-h / 8.0, Feature::Flat, Feature::FlatAt(0.625 * h)),
-            (true, ProfileKind::BoltDesign) => (-h / 8.0, Feature::Flat, Feature::Arc(h / 6.0)),
-            (true, ProfileKind::BoltMinRoot) => {
+        // The trapezoid: the pitch line P/4 below the crest line (d2 = d − P/2, D1 = d − P), so
+        // the flanks meet P/4 − (P/4)/tan β above it; the root flat at P/2 (basic) or P/2 + ac.
+        let tr_crest = 0.25 * self.pitch - 0.25 * self.pitch / beta.tan();
+        let tr_root = 0.5 * self.pitch + self.crest_clearance();
+        let (sharp_crest, crest, root) = match (spec.family, variant) {
+            (Family::TruncatedV, ProfileKind::Basic) => (-h / 8.0, Feature::Flat, Feature::FlatAt(0.625 * h)),
+            (Family::TruncatedV, ProfileKind::BoltDesign) => (-h / 8.0, Feature::Flat, Feature::Arc(h / 6.0)),
+            (Family::TruncatedV, ProfileKind::BoltMinRoot) => {
                 (-h / 8.0, Feature::Flat, Feature::Arc(spec.min_root_profile_p * self.pitch))
             }
             // Seen from the nut: its crest is the D1 flat (P/4 wide), its root the D flat (P/8).
-            (true, ProfileKind::Nut) => (-h / 4.0, Feature::Flat, Feature::FlatAt(0.625 * h)),
+            (Family::TruncatedV, ProfileKind::Nut) => (-h / 4.0, Feature::Flat, Feature::FlatAt(0.625 * h)),
             (
-                false,
+                Family::Rounded,
                 ProfileKind::Basic | ProfileKind::BoltDesign | ProfileKind::BoltMinRoot | ProfileKind::Nut,
             ) => {
                 let r = self.whitworth_radius();
                 (-h / 6.0, Feature::Arc(r), Feature::Arc(r))
+            }
+            (Family::Trapezoid, ProfileKind::Basic) => {
+                (tr_crest, Feature::Flat, Feature::FlatAt(0.5 * self.pitch))
+            }
+            // Bolt (root at d3 = d − P − 2ac) and nut (from D1 = d − P to D4 = d + 2ac) have the
+            // same groove, each from its own crest line.
+            (Family::Trapezoid, ProfileKind::BoltDesign | ProfileKind::BoltMinRoot | ProfileKind::Nut) => {
+                (tr_crest, Feature::Flat, Feature::FlatAt(tr_root))
             }
         };
         GrooveForm { pitch: self.pitch, half_angle: beta, sharp_crest, crest, root }
