@@ -105,6 +105,7 @@ fn measurement(c: &mut Criterion) {
         thread: &t,
         kind: ThreadKind::External,
         mmc_pitch_diameter: Some(8.994),
+        mmc_major_diameter: None,
         extras: true,
     };
     c.bench_function("measure M10x1.5", |b| b.iter(|| black_box(measure(&ms, &profile, z).unwrap())));

@@ -121,10 +121,15 @@ fn limits_table(des: &Designation, ext: Option<&ThreadLimits>, int: Option<&Thre
     let _ = writeln!(s, "  {:<34}{h:>9.4}", "fundamental triangle height H");
     for l in [ext, int].into_iter().flatten() {
         let dev_name = if l.kind == ThreadKind::External { "es" } else { "EI" };
-        let head = format!("{} {} ({dev_name} = {} µm)", l.kind.name(), l.class, l.fundamental_deviation_um);
+        let head = format!(
+            "{} {} ({dev_name} = {} µm)",
+            l.kind.name(),
+            l.class,
+            fmt_num((l.fundamental_deviation_um * 10.0).round() / 10.0)
+        );
         let _ = writeln!(s, "\n{head:<36}{:>9} {:>9}", "max", "min");
         // Inch tables (ASME B1.1) print inches: show them beside the mm.
-        let inch = t.form == crate::ThreadForm::Unified;
+        let inch = matches!(t.form, crate::ThreadForm::Unified | crate::ThreadForm::Acme);
         let row = |s: &mut String, name: &str, lim: &Limit| {
             let _ = write!(s, "  {name:<34}{:>9} {:>9}", fmt_opt(lim.max), fmt_opt(lim.min));
             if inch {
@@ -622,8 +627,13 @@ fn placements_line(label: &str, v: &crate::verify::Verification) -> Result<Strin
     let (blank, rings) = crate::sweep::placements(&setup, &v.passes, window)?;
     // threadcheck's own time for the same work on the same placements (sweep + pitch
     // diameter), best of five, so the baseline can state a ratio measured in one run.
-    let ms =
-        crate::measure::MeasureSetup { thread: t, kind: v.kind, mmc_pitch_diameter: None, extras: false };
+    let ms = crate::measure::MeasureSetup {
+        thread: t,
+        kind: v.kind,
+        mmc_pitch_diameter: None,
+        mmc_major_diameter: None,
+        extras: false,
+    };
     let mut best = f64::INFINITY;
     for _ in 0..5 {
         let start = std::time::Instant::now();

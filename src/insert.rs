@@ -53,7 +53,8 @@ pub struct Insert {
 impl Insert {
     /// A full-profile insert for `thread` as `kind`: it forms both flanks, the standard root
     /// (DIN 13 radius H/6, or the Whitworth radius) and tops the crest (the crest-forming edges
-    /// reach the crest line: d for external threads, D1 for internal ones).
+    /// reach the crest line: d for external threads, D1 for internal ones). A trapezoid form's
+    /// insert (Tr, Acme) forms the flanks and the flat root only.
     ///
     /// Its shoulders run P/32 past the tooth centre on each side, inside the neighbouring crest,
     /// so that adjacent imprints overlap instead of touching edge to edge.
@@ -68,14 +69,30 @@ impl Insert {
         let s = thread.pitch / 32.0;
         let top = bottom + thread.pitch.max(1.0);
         let mut outline = Vec::new();
-        // Along the cutting edge, left to right: the groove profile, turned so depth becomes
-        // height above the tip.
-        extend_dedup(&mut outline, [Point::new(-half - s, bottom)]);
-        extend_dedup(&mut outline, g.polyline(tolerance).into_iter().map(|q| Point::new(q.z, bottom - q.r)));
-        extend_dedup(
-            &mut outline,
-            [Point::new(half + s, bottom), Point::new(half + s, top), Point::new(-half - s, top)],
-        );
+        if thread.form.full_insert_tops_crest() {
+            // Along the cutting edge, left to right: the groove profile, turned so depth becomes
+            // height above the tip.
+            extend_dedup(&mut outline, [Point::new(-half - s, bottom)]);
+            extend_dedup(
+                &mut outline,
+                g.polyline(tolerance).into_iter().map(|q| Point::new(q.z, bottom - q.r)),
+            );
+            extend_dedup(
+                &mut outline,
+                [Point::new(half + s, bottom), Point::new(half + s, top), Point::new(-half - s, top)],
+            );
+        } else {
+            // The flat tip of the root and the flanks carried on past the crest line: the
+            // insert forms flanks and root and leaves the turned crest alone.
+            let zr = g.flank_z(bottom);
+            let zt = g.flank_z(bottom - top);
+            outline.extend([
+                Point::new(-zt, top),
+                Point::new(-zr, 0.0),
+                Point::new(zr, 0.0),
+                Point::new(zt, top),
+            ]);
+        }
         let tip_radius = match g.root {
             crate::standards::Feature::Arc(r) => r,
             _ => 0.0,

@@ -42,7 +42,7 @@
 //! let setup = SweepSetup { kind: ThreadKind::External, insert: &insert, blank_diameter: 9.85, pitch: 1.5 };
 //! let groove = passes.last().unwrap().z_start - 2.0; // where the last pass's groove sits near z = 0
 //! let cut = sweep(&setup, &passes, Window::around(groove, 1.5, 4.0), UnionStrategy::BalancedTree)?;
-//! let ms = MeasureSetup { thread: &m10, kind: ThreadKind::External, mmc_pitch_diameter: None, extras: true };
+//! let ms = MeasureSetup { thread: &m10, kind: ThreadKind::External, mmc_pitch_diameter: None, mmc_major_diameter: None, extras: true };
 //! let m = measure(&ms, &cut.section.profile(), groove)?;
 //! println!("d2 = {:.4} mm", m.pitch_diameter);
 //! assert!((m.pitch_diameter - 9.0257).abs() < 1e-4); // basic d2 = d − 0.649519·P

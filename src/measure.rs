@@ -369,6 +369,11 @@ pub struct MeasureSetup<'a> {
     /// Maximum-material pitch diameter (external d2 max, internal D2 min), mm; with it the
     /// maximum-material profile is the basic profile moved radially to that pitch diameter.
     pub mmc_pitch_diameter: Option<f64>,
+    /// Largest major diameter of an external thread, mm, where it lies above the basic crest
+    /// moved with the pitch diameter (trapezoid forms keep d in position h, Acme's allowance is
+    /// on d2 only): the GO gauge's root is relieved up to it, so a crest within its limits never
+    /// touches the gauge.
+    pub mmc_major_diameter: Option<f64>,
     /// Compute the costlier extras: the three-wire M and the maximum-material clearance.
     pub extras: bool,
 }
@@ -454,7 +459,32 @@ pub fn measure(setup: &MeasureSetup<'_>, profile: &[Point], z_ref: f64) -> Resul
         // In normalised coordinates (r = −radius inside a nut) a larger pitch diameter is a
         // shift of s·Δd2/2.
         let shift_r = s * 0.5 * (d2m - t.pitch_diameter());
-        let one = normalise(&t.profile(variant, 5e-5), kind);
+        let mut one = normalise(&t.profile(variant, 5e-5), kind);
+        if let (ThreadKind::External, Some(dmax)) = (kind, setup.mmc_major_diameter) {
+            // Relieve the gauge's root: the crest flat goes up to d max with vertical steps.
+            let top = one.iter().map(|q| q.r).fold(f64::NEG_INFINITY, f64::max);
+            let raise = 0.5 * dmax - (top + shift_r);
+            if raise > 0.0 {
+                let at_top = |q: &Point| q.r >= top - 1e-12;
+                let mut relieved = Vec::with_capacity(one.len() + 4);
+                for (i, q) in one.iter().enumerate() {
+                    let prev_top = i > 0 && at_top(&one[i - 1]);
+                    let next_top = i + 1 < one.len() && at_top(&one[i + 1]);
+                    if at_top(q) {
+                        if !prev_top {
+                            relieved.push(*q);
+                        }
+                        relieved.push(Point::new(q.z, q.r + raise));
+                        if !next_top {
+                            relieved.push(*q);
+                        }
+                    } else {
+                        relieved.push(*q);
+                    }
+                }
+                one = relieved;
+            }
+        }
         let cut: Vec<Point> = g.pts[g.left..=g.right].to_vec();
         let mut mmc = Vec::new();
         for k in -1..=1 {

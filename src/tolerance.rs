@@ -807,6 +807,79 @@ pub fn tr_limits(t: &BasicThread, c: TrClass) -> Result<ThreadLimits, Error> {
     })
 }
 
+/// A general-purpose Acme class, ASME B1.5: 2G, 3G or 4G (the same class for nut and bolt).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AcmeClass {
+    /// 2, 3 or 4.
+    pub grade: u8,
+}
+
+impl fmt::Display for AcmeClass {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}G", self.grade)
+    }
+}
+
+/// Limits of a general-purpose Acme thread (shared reference `acme-asme-b1_5.toml`, section
+/// formulas: inferred from, and reproducing, two public tables), inches then mm: allowance
+/// 0.008/0.006/0.004·√D (2G/3G/4G), Td2 = 0.030·√P + 0.006·√D, 0.014·√P + 0.0028·√D,
+/// 0.010·√P + 0.002·√D; d min = D − max(0.05·P, 0.005); d3 max = D − P − c (c = 0.020 in for
+/// 10 tpi and coarser, else 0.010), d3 min = d3 max − 1.5·Td2; internal D2 from E up by Td2, D1
+/// from D − P up by max(0.05·P, 0.005), D4 min = D + c (not sourced, stated). Limits to 0.0001 in.
+pub fn acme_limits(t: &BasicThread, c: AcmeClass, kind: ThreadKind) -> ThreadLimits {
+    let inch = crate::standards::MM_PER_INCH;
+    let (d, p) = (t.nominal_diameter / inch, t.pitch / inch);
+    let r4 = |x: f64| (x * 10_000.0).round() / 10_000.0;
+    let mm = |x: f64| x * inch;
+    let (allow_k, a, b) = match c.grade {
+        2 => (0.008, 0.030, 0.006),
+        3 => (0.006, 0.014, 0.0028),
+        _ => (0.004, 0.010, 0.002),
+    };
+    let allowance = allow_k * d.sqrt();
+    let td2 = a * p.sqrt() + b * d.sqrt();
+    let e = d - 0.5 * p;
+    let clear = if 1.0 / p <= 10.0 + 1e-9 { 0.020 } else { 0.010 };
+    let major_tol = (0.05 * p).max(0.005);
+    let mut notes = vec![
+        "ASME B1.5 limits from the formulas that reproduce the public tables of the reference set (the standard's own text was not available), rounded to 0.0001 in".to_string(),
+    ];
+    match kind {
+        ThreadKind::External => {
+            let d2max = e - allowance;
+            // d3 max is rounded before 1.5·Td2 comes off: that reproduces 3/4-6 2G's 0.5371.
+            let d3max = r4(d - p - clear);
+            ThreadLimits {
+                kind,
+                class: c.to_string(),
+                major_diameter: Limit::new(mm(r4(d - major_tol)), mm(r4(d))),
+                pitch_diameter: Limit::new(mm(r4(d2max - td2)), mm(r4(d2max))),
+                minor_diameter: Limit::new(mm(r4(d3max - 1.5 * td2)), mm(r4(d3max))),
+                root_radius_min: None,
+                fundamental_deviation_um: -allowance * inch * 1000.0,
+                crest_deviation_um: 0.0,
+                notes,
+                resolution_mm: 0.0001 * inch,
+            }
+        }
+        ThreadKind::Internal => {
+            notes.push(format!("the nut's major diameter minimum D + {clear} in is not sourced"));
+            ThreadLimits {
+                kind,
+                class: c.to_string(),
+                major_diameter: Limit { min: Some(mm(r4(d + clear))), max: None },
+                pitch_diameter: Limit::new(mm(r4(e)), mm(r4(e + td2))),
+                minor_diameter: Limit::new(mm(r4(d - p)), mm(r4(d - p + major_tol))),
+                root_radius_min: None,
+                fundamental_deviation_um: 0.0,
+                crest_deviation_um: 0.0,
+                notes,
+                resolution_mm: 0.0001 * inch,
+            }
+        }
+    }
+}
+
 /// Limits for the class a designation names for `kind`, or `None` when it names none.
 pub fn limits_for(des: &Designation, kind: ThreadKind) -> Result<Option<ThreadLimits>, Error> {
     let Some(class) = des.class(kind) else { return Ok(None) };
@@ -817,17 +890,20 @@ pub fn limits_for(des: &Designation, kind: ThreadKind) -> Result<Option<ThreadLi
         (ThreadForm::BspParallel, ClassSpec::Iso228(c)) => iso228_limits(t, *c)?,
         (ThreadForm::Unified, ClassSpec::Unified(c)) => unified_limits(t, *c),
         (ThreadForm::Trapezoidal, ClassSpec::Trapezoidal(c)) => tr_limits(t, *c)?,
+        (ThreadForm::Acme, ClassSpec::Acme(c)) => acme_limits(t, *c, kind),
         (
             ThreadForm::IsoMetric
             | ThreadForm::Whitworth
             | ThreadForm::BspParallel
             | ThreadForm::Unified
-            | ThreadForm::Trapezoidal,
+            | ThreadForm::Trapezoidal
+            | ThreadForm::Acme,
             ClassSpec::Iso(_)
             | ClassSpec::Bs84(_)
             | ClassSpec::Iso228(_)
             | ClassSpec::Unified(_)
-            | ClassSpec::Trapezoidal(_),
+            | ClassSpec::Trapezoidal(_)
+            | ClassSpec::Acme(_),
         ) => {
             return Err(Error::Input(format!("class {class} does not belong to the {} form", t.form.name())))
         }

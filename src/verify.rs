@@ -151,11 +151,11 @@ pub fn default_pass_count(pitch: f64) -> usize {
     (3.5 + 2.0 * pitch).round().clamp(3.0, 40.0) as usize
 }
 
-/// The blank a shop turns before threading: for a full-profile insert, d + 0.1 mm (external) or
-/// D1 − 0.1 mm (internal), which the insert tops; otherwise the middle of the major-diameter
+/// The blank a shop turns before threading: for a full-profile insert that tops the crest, d +
+/// 0.1 mm (external) or D1 − 0.1 mm (internal); otherwise the middle of the major-diameter
 /// tolerance (external) or of the D1 tolerance (internal), since that is the crest left.
 pub fn default_blank(thread: &BasicThread, kind: ThreadKind, limits: &ThreadLimits, insert: &Insert) -> f64 {
-    match (insert.kind == InsertKind::Full, kind) {
+    match (insert.kind == InsertKind::Full && thread.form.full_insert_tops_crest(), kind) {
         (true, ThreadKind::External) => thread.nominal_diameter + 0.1,
         (true, ThreadKind::Internal) => thread.minor_diameter_internal() - 0.1,
         (false, ThreadKind::External) => limits
@@ -189,6 +189,8 @@ fn resolve_kind(des: &Designation, internal: bool) -> Result<ThreadKind, Error> 
                 (crate::ThreadForm::Unified, ThreadKind::Internal) => format!("{}-2B", des.text),
                 (crate::ThreadForm::Trapezoidal, ThreadKind::External) => format!("{}-7e", des.text),
                 (crate::ThreadForm::Trapezoidal, ThreadKind::Internal) => format!("{}-7H", des.text),
+                (crate::ThreadForm::Acme, ThreadKind::External | ThreadKind::Internal) =>
+                    format!("{}-2G", des.text),
             }
         )));
     }
@@ -502,7 +504,17 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
         ThreadKind::External => limits.pitch_diameter.max,
         ThreadKind::Internal => limits.pitch_diameter.min,
     };
-    let ms = MeasureSetup { thread: &t, kind, mmc_pitch_diameter: mmc, extras: true };
+    let mmc_major = match kind {
+        ThreadKind::External => limits.major_diameter.max,
+        ThreadKind::Internal => None,
+    };
+    let ms = MeasureSetup {
+        thread: &t,
+        kind,
+        mmc_pitch_diameter: mmc,
+        mmc_major_diameter: mmc_major,
+        extras: true,
+    };
     // While solving for the final X only the pitch diameter matters: sizes only.
     let ms_solve = ms.sizes_only();
     let run_with = |final_x: f64, ms: &MeasureSetup<'_>| -> Result<Cut, Error> {

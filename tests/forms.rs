@@ -232,3 +232,76 @@ fn compare_runs_on_a_trapezoidal_thread() {
     assert!(flank["two_flank_passes"].as_u64().unwrap() < radial["two_flank_passes"].as_u64().unwrap());
     assert!(flank["trailing_share"].as_f64().unwrap() < radial["trailing_share"].as_f64().unwrap());
 }
+
+/// Every Acme limit of the check set, at 0.0001 in.
+#[test]
+fn acme_limits_match_the_check_set() {
+    let t = data_toml("acme-limits.toml");
+    let checks = t["check"].as_array().unwrap();
+    assert_eq!(checks.len(), 7);
+    let keys = [
+        ("d_max", true, 0),
+        ("d_min", true, 1),
+        ("d2_max", true, 2),
+        ("d2_min", true, 3),
+        ("d3_max", true, 4),
+        ("d3_min", true, 5),
+        ("D1_max", false, 6),
+    ];
+    for c in checks {
+        let name = c["designation"].as_str().unwrap();
+        let d = des(name);
+        for side in ["external", "internal"] {
+            let Some(vals) = c.get(side) else { continue };
+            let kind = if side == "external" { ThreadKind::External } else { ThreadKind::Internal };
+            let l = limits_for(&d, kind).unwrap().unwrap();
+            for (key, _, which) in keys {
+                let Some(want) = vals.get(key).and_then(|v| v.as_float()) else { continue };
+                let got = match which {
+                    0 => l.major_diameter.max,
+                    1 => l.major_diameter.min,
+                    2 => l.pitch_diameter.max,
+                    3 => l.pitch_diameter.min,
+                    4 => l.minor_diameter.max,
+                    5 => l.minor_diameter.min,
+                    _ => l.minor_diameter.max,
+                }
+                .unwrap()
+                    / IN;
+                assert!((got - want).abs() < 0.5e-4 + 1e-9, "{name} {key}: {got:.5}, published {want}");
+            }
+        }
+    }
+}
+
+/// A full-profile Acme insert (flat tip, 29°) cut to d3 = D − P − c measures the basic pitch
+/// diameter E = D − 0.5·P to 0.1 µm; the solved mid-tolerance cut passes, the crest left as turned.
+#[test]
+fn acme_full_profile_cuts_the_basic_pitch_diameter() {
+    for (name, d, tpi) in
+        [("1/2-10 ACME-2G", 0.5, 10.0), ("1-5 ACME-3G", 1.0, 5.0), ("1/4-16 ACME-4G", 0.25, 16.0)]
+    {
+        let p = IN / tpi;
+        let c = if tpi <= 10.0 { 0.020 } else { 0.010 } * IN;
+        let x3 = format!("{}", d * IN - p - c);
+        let o = run(&[
+            "verify",
+            "--thread",
+            name,
+            "--insert",
+            "full",
+            "--final-x",
+            &x3,
+            "--no-pass-metrics",
+            "--json",
+            "-",
+        ]);
+        let v: serde_json::Value =
+            serde_json::from_slice(&o.stdout).unwrap_or_else(|_| panic!("{name}: {}", stderr(&o)));
+        let d2 = v["measured"]["pitch_diameter"].as_f64().unwrap();
+        assert!((d2 - (d * IN - 0.5 * p)).abs() < 1e-4, "{name}: d2 {d2} (to 0.1 µm)");
+        assert_eq!(v["insert"]["angle"], 29.0);
+        let o = run(&["verify", "--thread", name, "--insert", "full", "--no-pass-metrics"]);
+        assert_eq!(o.status.code(), Some(0), "{name}: {}", stdout(&o));
+    }
+}

@@ -24,7 +24,13 @@ fn profile(t: &BasicThread, ins: &Insert, blank: f64, passes: &[Pass], z: f64) -
 }
 
 fn measured(t: &BasicThread, ins: &Insert, blank: f64, passes: &[Pass], z: f64) -> Measurement {
-    let ms = MeasureSetup { thread: t, kind: ThreadKind::External, mmc_pitch_diameter: None, extras: true };
+    let ms = MeasureSetup {
+        thread: t,
+        kind: ThreadKind::External,
+        mmc_pitch_diameter: None,
+        mmc_major_diameter: None,
+        extras: true,
+    };
     measure(&ms, &profile(t, ins, blank, passes, z), z).unwrap()
 }
 

@@ -54,7 +54,7 @@ proptest! {
         let b: Vec<Pass> = a.iter().map(|q| Pass { z_start: q.z_start + p, z_end: q.z_end + p, z_phase: q.z_phase + p, ..*q }).collect();
         let (za, zb) = (reference_groove(&a), reference_groove(&b));
         prop_assert!((zb - za - p).abs() < 1e-9);
-        let ms = MeasureSetup { thread: &t, kind: ThreadKind::External, mmc_pitch_diameter: Some(t.pitch_diameter()), extras: true };
+        let ms = MeasureSetup { thread: &t, kind: ThreadKind::External, mmc_pitch_diameter: Some(t.pitch_diameter()), mmc_major_diameter: None, extras: true };
         let ma = measure(&ms, &section(ThreadKind::External, &ins, d - 0.1, p, &a, za).profile(), za).unwrap();
         let mb = measure(&ms, &section(ThreadKind::External, &ins, d - 0.1, p, &b, zb).profile(), zb).unwrap();
         let eps = 1e-5;
@@ -102,8 +102,8 @@ proptest! {
             prop_assert!(dist < 1e-5, "flank gap {dist} at z {z}");
         }
         // And both measure basic pitch diameter.
-        let mb = measure(&MeasureSetup { thread: &t, kind: ThreadKind::External, mmc_pitch_diameter: None, extras: true }, &sb.profile(), zb).unwrap();
-        let mn = measure(&MeasureSetup { thread: &t, kind: ThreadKind::Internal, mmc_pitch_diameter: None, extras: true }, &sn.profile(), zn).unwrap();
+        let mb = measure(&MeasureSetup { thread: &t, kind: ThreadKind::External, mmc_pitch_diameter: None, mmc_major_diameter: None, extras: true }, &sb.profile(), zb).unwrap();
+        let mn = measure(&MeasureSetup { thread: &t, kind: ThreadKind::Internal, mmc_pitch_diameter: None, mmc_major_diameter: None, extras: true }, &sn.profile(), zn).unwrap();
         prop_assert!((mb.pitch_diameter - t.pitch_diameter()).abs() < 1e-5);
         prop_assert!((mn.pitch_diameter - t.pitch_diameter()).abs() < 1e-5);
     }

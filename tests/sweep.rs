@@ -42,7 +42,8 @@ fn cut(
     let z_groove = last.z_start - 5.0 * t.lead();
     let s =
         sweep(&setup, &passes, Window::around(z_groove, t.pitch, 4.0), UnionStrategy::BalancedTree).unwrap();
-    let ms = MeasureSetup { thread: t, kind, mmc_pitch_diameter: None, extras: true };
+    let ms =
+        MeasureSetup { thread: t, kind, mmc_pitch_diameter: None, mmc_major_diameter: None, extras: true };
     measure(&ms, &s.section.profile(), z_groove).unwrap()
 }
 
@@ -360,8 +361,13 @@ fn regression_repeated_passes_fake_a_small_root_radius() {
         let z = threadcheck::verify::reference_groove(&passes);
         let setup = SweepSetup { kind: ThreadKind::External, insert: &ins, blank_diameter: 20.1, pitch: 2.5 };
         let s = sweep(&setup, &passes, Window::around(z, 2.5, 4.0), UnionStrategy::BalancedTree).unwrap();
-        let ms =
-            MeasureSetup { thread: &t, kind: ThreadKind::External, mmc_pitch_diameter: None, extras: true };
+        let ms = MeasureSetup {
+            thread: &t,
+            kind: ThreadKind::External,
+            mmc_pitch_diameter: None,
+            mmc_major_diameter: None,
+            extras: true,
+        };
         let m = measure(&ms, &s.section.profile(), z).unwrap();
         near(m.root_radius.unwrap(), 0.144338 * 2.5, 1e-3, &format!("{spring} spring passes"));
     }

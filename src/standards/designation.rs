@@ -4,7 +4,7 @@
 
 use super::data::{catalog, find_pitch, SeriesSize};
 use super::{BasicThread, Hand, ThreadForm, ThreadKind, MM_PER_INCH};
-use crate::tolerance::{Bs84Class, Iso228Class, IsoClass, TrClass, UnifiedClass, UnifiedSeries};
+use crate::tolerance::{AcmeClass, Bs84Class, Iso228Class, IsoClass, TrClass, UnifiedClass, UnifiedSeries};
 use std::fmt;
 
 /// A parsed thread designation: the basic thread and the classes it names.
@@ -45,6 +45,8 @@ pub enum ClassSpec {
     Unified(UnifiedClass),
     /// ISO 2903 trapezoidal class (7e 8e 8c 9c, 7H 8H 9H).
     Trapezoidal(TrClass),
+    /// ASME B1.5 general-purpose Acme class (2G 3G 4G), for nut and bolt alike.
+    Acme(AcmeClass),
 }
 
 impl fmt::Display for ClassSpec {
@@ -55,6 +57,7 @@ impl fmt::Display for ClassSpec {
             ClassSpec::Iso228(c) => c.fmt(f),
             ClassSpec::Unified(c) => c.fmt(f),
             ClassSpec::Trapezoidal(c) => c.fmt(f),
+            ClassSpec::Acme(c) => c.fmt(f),
         }
     }
 }
@@ -171,7 +174,11 @@ pub fn parse_designation(text: &str, opts: ParseOptions) -> Result<Designation, 
         return Err(c.err(0, 0, "empty designation; expected e.g. M10x1.5-6g, BSW 1/2 or G1/2 A").into());
     }
     let upper = text.to_ascii_uppercase();
-    if upper.contains("UN") && upper.starts_with(|ch: char| ch.is_ascii_digit() || ch == '#' || ch == '.') {
+    if upper.contains("ACME") && upper.starts_with(|ch: char| ch.is_ascii_digit() || ch == '.') {
+        parse_acme(&mut c, opts).map_err(Into::into)
+    } else if upper.contains("UN")
+        && upper.starts_with(|ch: char| ch.is_ascii_digit() || ch == '#' || ch == '.')
+    {
         parse_unified(&mut c, opts).map_err(Into::into)
     } else if upper.starts_with("TR") && text[2..].starts_with(|ch: char| ch.is_ascii_digit()) {
         parse_trapezoidal(&mut c, opts).map_err(Into::into)
@@ -187,7 +194,7 @@ pub fn parse_designation(text: &str, opts: ParseOptions) -> Result<Designation, 
             .err(
                 0,
                 first.max(text.find(|ch: char| ch.is_ascii_digit()).unwrap_or(first)),
-                "unknown thread series; expected M (ISO metric), Tr (trapezoidal), BSW, BSF (Whitworth), G (BSP pipe) or a Unified size such as 1/4-20 UNC",
+                "unknown thread series; expected M (ISO metric), Tr (trapezoidal), BSW, BSF (Whitworth), G (BSP pipe), a Unified size such as 1/4-20 UNC or an Acme one such as 1/2-10 ACME",
             )
             .into())
     }
@@ -406,6 +413,112 @@ fn inch_size(c: &mut Cursor<'_>) -> Result<(String, f64, usize, usize), Designat
     }
     c.pos += len;
     Ok((norm, inches, start, start + len))
+}
+
+/// The general-purpose Acme series of ASME B1.5: size (inches) and threads per inch. Rows to
+/// 1 1/8-5 are confirmed by the reference's tables; the larger ones are the standard's series as
+/// commonly reprinted (not cross-checked here).
+const ACME_SERIES: [(f64, f64); 23] = [
+    (0.25, 16.0),
+    (0.3125, 14.0),
+    (0.375, 12.0),
+    (0.4375, 12.0),
+    (0.5, 10.0),
+    (0.625, 8.0),
+    (0.75, 6.0),
+    (0.875, 6.0),
+    (1.0, 5.0),
+    (1.125, 5.0),
+    (1.25, 5.0),
+    (1.375, 4.0),
+    (1.5, 4.0),
+    (1.75, 4.0),
+    (2.0, 4.0),
+    (2.25, 3.0),
+    (2.5, 3.0),
+    (2.75, 3.0),
+    (3.0, 2.0),
+    (3.5, 2.0),
+    (4.0, 2.0),
+    (4.5, 2.0),
+    (5.0, 2.0),
+];
+
+/// Acme: `1/2-10 ACME-2G`, `1-5 ACME-3G`, `1 1/4-5 ACME-2G-LH`. The G class is the same for nut
+/// and bolt; `--internal` chooses the nut.
+fn parse_acme(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, DesignationError> {
+    let upper = c.text.to_ascii_uppercase();
+    let at = upper.find("ACME").unwrap_or(upper.len());
+    let head = &c.text[..at];
+    let dash = head
+        .trim_end()
+        .rfind('-')
+        .ok_or_else(|| c.err(0, at, "expected SIZE-TPI before ACME, e.g. 1/2-10 ACME-2G"))?;
+    let size_text = head[..dash].trim();
+    let tpi_text = head[dash + 1..].trim();
+    let bad = |m: &str| c.err(0, at, m.to_string());
+    let mut d = 0.0;
+    for tok in size_text.split([' ', '-']).filter(|t| !t.is_empty()) {
+        d += match tok.split_once('/') {
+            Some((a, b)) => {
+                a.parse::<f64>().ok().zip(b.parse::<f64>().ok()).filter(|x| x.1 > 0.0).map(|(a, b)| a / b)
+            }
+            None => tok.parse::<f64>().ok(),
+        }
+        .ok_or_else(|| bad("expected an inch size such as 1/2, 1 or 1 1/4 before the tpi"))?;
+    }
+    let tpi: f64 =
+        tpi_text.parse().map_err(|_| bad("expected the threads per inch after the size, e.g. 1/2-10"))?;
+    if !(d > 0.0 && tpi > 0.0) {
+        return Err(bad("size and threads per inch must be greater than zero"));
+    }
+    let mut nonstandard = false;
+    if !ACME_SERIES.iter().any(|(sd, st)| (sd - d).abs() < 1e-9 && (st - tpi).abs() < 1e-9) {
+        if !opts.allow_nonstandard {
+            let std_tpi = ACME_SERIES.iter().find(|(sd, _)| (sd - d).abs() < 1e-9).map(|x| x.1);
+            let msg = match std_tpi {
+                Some(t) => format!("{size_text}-{tpi_text} is not a standard Acme thread: the series has {t} tpi for this size; --allow-nonstandard accepts it"),
+                None => format!("{size_text} is not a size of the Acme series (1/4 to 5 in); --allow-nonstandard accepts it"),
+            };
+            return Err(c.err(0, at, msg));
+        }
+        nonstandard = true;
+    }
+    let pitch = MM_PER_INCH / tpi;
+    let thread = BasicThread {
+        form: ThreadForm::Acme,
+        nominal_diameter: d * MM_PER_INCH,
+        pitch,
+        starts: 1,
+        hand: Hand::Right,
+    };
+    let mut des =
+        Designation { text: c.text.to_string(), thread, external: None, internal: None, nonstandard };
+    let mut pos = at + 4;
+    for part in c.text[at + 4..].split(['-', ' ']) {
+        let start = pos;
+        pos += part.len() + 1;
+        if part.is_empty() {
+            continue;
+        }
+        if part.eq_ignore_ascii_case("LH") {
+            des.thread.hand = Hand::Left;
+            continue;
+        }
+        let b = part.as_bytes();
+        if !(b.len() == 2 && (b'2'..=b'4').contains(&b[0]) && matches!(b[1], b'G' | b'g')) {
+            return Err(c.err(
+                start,
+                start + part.len(),
+                "expected a general-purpose Acme class 2G, 3G or 4G, or LH",
+            ));
+        }
+        let cls = ClassSpec::Acme(AcmeClass { grade: b[0] - b'0' });
+        des.external = Some(cls);
+        des.internal = Some(cls);
+    }
+    c.pos = c.text.len();
+    Ok(des)
 }
 
 /// Trapezoidal: `Tr40x7`, `Tr40x7-7e`, `Tr40x7-7H/7e`, `Tr40x14(P7)-8e` (two starts), `Tr40x7LH`

@@ -35,6 +35,9 @@ pub enum ThreadForm {
     /// ISO metric trapezoidal, ISO 2901–2904 (Tr): 30°, flat crest and root with the crest
     /// clearance ac.
     Trapezoidal,
+    /// General-purpose Acme, ASME B1.5 (2G, 3G, 4G): 29°, basic depth P/2, crest flat 0.3707·P,
+    /// root clearance 0.010 in (10 tpi and coarser) or 0.005 in on the radius.
+    Acme,
 }
 
 /// The profile families: how crest and root are shaped.
@@ -85,6 +88,12 @@ impl ThreadForm {
                 min_root_radius_p: None,
                 min_root_profile_p: 0.137329,
             },
+            ThreadForm::Acme => FormSpec {
+                angle: 29.0,
+                family: Family::Trapezoid,
+                min_root_radius_p: None,
+                min_root_profile_p: 0.0,
+            },
             ThreadForm::Trapezoidal => FormSpec {
                 angle: 30.0,
                 family: Family::Trapezoid,
@@ -107,6 +116,7 @@ impl ThreadForm {
             ThreadForm::BspParallel => "bsp-parallel",
             ThreadForm::Unified => "unified",
             ThreadForm::Trapezoidal => "trapezoidal",
+            ThreadForm::Acme => "acme",
         }
     }
 
@@ -115,11 +125,21 @@ impl ThreadForm {
         self.spec().family == Family::Rounded
     }
 
+    /// Whether a full-profile insert of this form also forms the crest (the 60° and 55° forms:
+    /// their crest is part of the insert's profile) or only the flanks and root (the trapezoid
+    /// forms, whose inserts leave the turned crest alone).
+    pub fn full_insert_tops_crest(self) -> bool {
+        match self.spec().family {
+            Family::TruncatedV | Family::Rounded => true,
+            Family::Trapezoid => false,
+        }
+    }
+
     /// True for forms whose sizes are inches (BS 84, ISO 228-1 and Unified sizes).
     pub fn is_inch(self) -> bool {
         match self {
             ThreadForm::IsoMetric | ThreadForm::Trapezoidal => false,
-            ThreadForm::Whitworth | ThreadForm::BspParallel | ThreadForm::Unified => true,
+            ThreadForm::Whitworth | ThreadForm::BspParallel | ThreadForm::Unified | ThreadForm::Acme => true,
         }
     }
 }
@@ -275,23 +295,31 @@ impl BasicThread {
         self.form.spec().min_root_radius_p.map(|k| k * self.pitch)
     }
 
-    /// The trapezoidal crest clearance ac, mm (ISO 2901: 0.15 at P 1.5, 0.25 to P 5, 0.5 to
-    /// P 12, 1.0 to P 44); 0 for the other forms.
+    /// The crest clearance of the trapezoid forms on the radius, mm: ISO 2901's ac (0.15 at
+    /// P 1.5, 0.25 to P 5, 0.5 to P 12, 1.0 to P 44), or ASME B1.5's 0.010 in for 10 tpi and
+    /// coarser, 0.005 in finer (half its diametral 0.020 / 0.010 in); 0 for the other forms.
     pub fn crest_clearance(&self) -> f64 {
-        match self.form.spec().family {
-            Family::TruncatedV | Family::Rounded => 0.0,
-            Family::Trapezoid => {
-                let t = catalog().map(|c| &c.tr);
-                match t {
-                    Ok(t) => t
-                        .ac_pitch_up_to
-                        .iter()
-                        .zip(&t.ac)
-                        .find(|(up, _)| self.pitch <= **up + 1e-9)
-                        .map_or(t.ac.last().copied().unwrap_or(1.0), |(_, a)| *a),
-                    Err(_) => 0.0,
+        match self.form {
+            ThreadForm::IsoMetric | ThreadForm::Whitworth | ThreadForm::BspParallel | ThreadForm::Unified => {
+                0.0
+            }
+            ThreadForm::Acme => {
+                let tpi = MM_PER_INCH / self.pitch;
+                if tpi <= 10.0 + 1e-9 {
+                    0.010 * MM_PER_INCH
+                } else {
+                    0.005 * MM_PER_INCH
                 }
             }
+            ThreadForm::Trapezoidal => match catalog().map(|c| &c.tr) {
+                Ok(t) => t
+                    .ac_pitch_up_to
+                    .iter()
+                    .zip(&t.ac)
+                    .find(|(up, _)| self.pitch <= **up + 1e-9)
+                    .map_or(t.ac.last().copied().unwrap_or(1.0), |(_, a)| *a),
+                Err(_) => 0.0,
+            },
         }
     }
 
