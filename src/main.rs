@@ -64,8 +64,16 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         markdown: Option<PathBuf>,
     },
-    /// Verify the ISO 261 catalogue (M1–M68, coarse and fine) in parallel.
+    /// Verify the catalogue in parallel: ISO 261 (M1–M68, coarse and fine) by default, every
+    /// form's series with --form all.
     Sweep {
+        /// Forms (comma-separated): iso-metric, unified, trapezoidal, acme, whitworth,
+        /// bsp-parallel, or all.
+        #[arg(long, default_value = "iso-metric")]
+        form: String,
+        /// Also the internal threads, in each form's medium internal class.
+        #[arg(long)]
+        internal: bool,
         /// coarse | fine | all
         #[arg(long, default_value = "all")]
         series: String,
@@ -81,7 +89,8 @@ enum Command {
         /// full | partial | both
         #[arg(long, default_value = "both")]
         insert: String,
-        /// Comma-separated infeeds: radial, flank, modified (29.5°), alternating.
+        /// Comma-separated infeeds: radial, flank (half the thread angle), modified (0.5° less),
+        /// alternating.
         #[arg(long, default_value = "radial,flank,modified,alternating")]
         infeed: String,
         /// Comma-separated schedules: constant-area, constant-depth, sandvik.
@@ -245,6 +254,8 @@ fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
         }
         Command::Passes { plan, json } => PassesJob { spec: plan.spec(false)?, json }.run()?,
         Command::Sweep {
+            form,
+            internal,
             series,
             min_d,
             max_d,
@@ -266,13 +277,31 @@ fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
             spec.diameters = (min_d, max_d);
             spec.class = class;
             (spec.full, spec.partial) = one_or_both("insert", &insert, ["full", "partial", "both"])?;
+            use threadcheck::catalogue::InfeedKind;
+            spec.forms = form
+                .split(',')
+                .map(|f| match f.trim() {
+                    "iso-metric" | "metric" => Ok(vec![threadcheck::ThreadForm::IsoMetric]),
+                    "unified" => Ok(vec![threadcheck::ThreadForm::Unified]),
+                    "trapezoidal" => Ok(vec![threadcheck::ThreadForm::Trapezoidal]),
+                    "acme" => Ok(vec![threadcheck::ThreadForm::Acme]),
+                    "whitworth" => Ok(vec![threadcheck::ThreadForm::Whitworth]),
+                    "bsp-parallel" | "bsp" => Ok(vec![threadcheck::ThreadForm::BspParallel]),
+                    "all" => Ok(threadcheck::catalogue::CatalogueSpec::all_forms().forms),
+                    other => Err(threadcheck::Error::Input(format!(
+                        "--form '{other}': expected iso-metric, unified, trapezoidal, acme, whitworth, bsp-parallel or all"
+                    ))),
+                })
+                .collect::<Result<Vec<_>, _>>()?
+                .concat();
+            spec.internal = internal;
             spec.infeeds = infeed
                 .split(',')
                 .map(|i| match i.trim() {
-                    "radial" => Ok(threadcheck::passes::Infeed::Radial),
-                    "flank" => Ok(threadcheck::passes::Infeed::Flank { angle: 30.0 }),
-                    "modified" => Ok(threadcheck::passes::Infeed::Flank { angle: 29.5 }),
-                    "alternating" => Ok(threadcheck::passes::Infeed::Alternating { angle: 30.0 }),
+                    "radial" => Ok(InfeedKind::Radial),
+                    "flank" => Ok(InfeedKind::Flank),
+                    "modified" => Ok(InfeedKind::Modified),
+                    "alternating" => Ok(InfeedKind::Alternating),
                     other => Err(threadcheck::Error::Input(format!(
                         "--infeed '{other}': expected radial, flank, modified or alternating"
                     ))),

@@ -444,6 +444,25 @@ const ACME_SERIES: [(f64, f64); 23] = [
     (5.0, 2.0),
 ];
 
+/// The Acme series as (size in inches, threads per inch).
+pub fn acme_series() -> impl Iterator<Item = (f64, f64)> {
+    ACME_SERIES.into_iter()
+}
+
+/// An inch size written `1/2`, `1`, `1 1/4` as inches.
+pub fn inch_value(s: &str) -> Option<f64> {
+    let mut v = 0.0;
+    for tok in s.split([' ', '-']).filter(|t| !t.is_empty()) {
+        v += match tok.split_once('/') {
+            Some((a, b)) => {
+                a.parse::<f64>().ok().zip(b.parse::<f64>().ok()).filter(|x| x.1 > 0.0).map(|(a, b)| a / b)?
+            }
+            None => tok.parse::<f64>().ok()?,
+        };
+    }
+    Some(v)
+}
+
 /// Acme: `1/2-10 ACME-2G`, `1-5 ACME-3G`, `1 1/4-5 ACME-2G-LH`. The G class is the same for nut
 /// and bolt; `--internal` chooses the nut.
 fn parse_acme(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, DesignationError> {
