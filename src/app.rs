@@ -143,6 +143,23 @@ fn limits_table(des: &Designation, ext: Option<&ThreadLimits>, int: Option<&Thre
         } else {
             ("major diameter D", "minor diameter D1")
         };
+        if let Some(gp) = &l.gauge_plane {
+            let _ = writeln!(
+                s,
+                "  {:<34}{:>9.3}   at {:.3} mm {}, ±{} turn (±{:.3} mm); taper 1:{}",
+                "gauge plane: pitch diameter",
+                gp.pitch_diameter,
+                gp.distance,
+                if l.kind == ThreadKind::External { "from the small end" } else { "(the face)" },
+                gp.tolerance_turns,
+                gp.tolerance_turns * t.pitch,
+                fmt_num(1.0 / gp.taper)
+            );
+            for n in &l.notes {
+                let _ = writeln!(s, "  note: {n}");
+            }
+            continue;
+        }
         row(&mut s, maj, &l.major_diameter);
         row(
             &mut s,

@@ -101,6 +101,8 @@ impl CatalogueSpec {
                 ThreadForm::Acme,
                 ThreadForm::Whitworth,
                 ThreadForm::BspParallel,
+                ThreadForm::Npt,
+                ThreadForm::Iso7Taper,
             ],
             internal: true,
             diameters: (0.0, 1000.0),
@@ -213,6 +215,23 @@ fn threads(spec: &CatalogueSpec, form: ThreadForm) -> Result<Vec<(String, f64, b
                 }
             }
         }
+        ThreadForm::Npt => {
+            let n = &cat.pipe.npt;
+            for i in 0..n.sizes.len() {
+                if within(n.OD[i] * inch) {
+                    let des = format!("{}-{} NPT", n.sizes[i], crate::app::fmt_num(n.tpi[i]));
+                    both(des.clone(), Some(des), inch / n.tpi[i]);
+                }
+            }
+        }
+        ThreadForm::Iso7Taper => {
+            let n = &cat.pipe.iso7;
+            for i in 0..n.sizes.len() {
+                if within(n.d[i]) {
+                    both(format!("R {}", n.sizes[i]), Some(format!("Rc {}", n.sizes[i])), inch / n.tpi[i]);
+                }
+            }
+        }
         ThreadForm::BspParallel => {
             for s in &cat.bsp {
                 if within(s.d) {
@@ -234,7 +253,16 @@ pub fn cases(spec: &CatalogueSpec) -> Result<Vec<Case>, Error> {
                 inserts.push(("full".to_string(), InsertChoice::Full));
             }
             if spec.partial && form.full_insert_tops_crest() {
-                let r = (0.1 * p).min(0.04);
+                // A tip that fits the form's root: NPT's truncation holds an arc of 0.033·P.
+                let fits = crate::BasicThread {
+                    form,
+                    nominal_diameter: 100.0,
+                    pitch: p,
+                    starts: 1,
+                    hand: crate::Hand::Right,
+                }
+                .root_radius();
+                let r = (0.1 * p).min(0.04).min(fits);
                 inserts.push((
                     format!("partial r{}", crate::app::fmt_num(r)),
                     InsertChoice::Partial { tip_radius: r },

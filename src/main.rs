@@ -68,7 +68,7 @@ enum Command {
     /// form's series with --form all.
     Sweep {
         /// Forms (comma-separated): iso-metric, unified, trapezoidal, acme, whitworth,
-        /// bsp-parallel, or all.
+        /// bsp-parallel, npt, iso7-taper, or all.
         #[arg(long, default_value = "iso-metric")]
         form: String,
         /// Also the internal threads, in each form's medium internal class.
@@ -287,9 +287,11 @@ fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
                     "acme" => Ok(vec![threadcheck::ThreadForm::Acme]),
                     "whitworth" => Ok(vec![threadcheck::ThreadForm::Whitworth]),
                     "bsp-parallel" | "bsp" => Ok(vec![threadcheck::ThreadForm::BspParallel]),
+                    "npt" => Ok(vec![threadcheck::ThreadForm::Npt]),
+                    "iso7-taper" | "iso7" => Ok(vec![threadcheck::ThreadForm::Iso7Taper]),
                     "all" => Ok(threadcheck::catalogue::CatalogueSpec::all_forms().forms),
                     other => Err(threadcheck::Error::Input(format!(
-                        "--form '{other}': expected iso-metric, unified, trapezoidal, acme, whitworth, bsp-parallel or all"
+                        "--form '{other}': expected iso-metric, unified, trapezoidal, acme, whitworth, bsp-parallel, npt, iso7-taper or all"
                     ))),
                 })
                 .collect::<Result<Vec<_>, _>>()?

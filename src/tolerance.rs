@@ -266,9 +266,96 @@ pub struct ThreadLimits {
     /// Assumptions behind values that the sources do not settle.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub notes: Vec<String>,
+    /// Taper threads: where the gauge plane must lie, instead of pitch-diameter limits.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gauge_plane: Option<GaugePlane>,
     /// The resolution the standard's tables print limits to, mm (0.001 for ISO 965-1, BS 84 and
     /// ISO 228-1; 0.0001 in = 0.00254 mm for ASME B1.1): sizes are compared at it.
     pub resolution_mm: f64,
+}
+
+/// A taper thread's gauge plane: the pitch diameter the gauge checks, where it must lie and how
+/// far off it may lie.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct GaugePlane {
+    /// The basic pitch diameter at the gauge plane (NPT E1, ISO 7-1 d2), mm.
+    pub pitch_diameter: f64,
+    /// Its basic distance from the reference end, mm: from the small end for an external thread
+    /// (NPT L1, ISO 7-1 gauge length), 0 (the face) for an internal one.
+    pub distance: f64,
+    /// The gauging tolerance, turns either way (±1: widely stated, not sourced here).
+    pub tolerance_turns: f64,
+    /// Taper on the diameter per mm.
+    pub taper: f64,
+}
+
+/// A taper pipe thread's designation side: the pipe (external) or the fitting (internal); its
+/// class is written `taper` (the gauge decides, there is no class letter).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TaperClass {
+    /// The fitting (NPT internal, Rc).
+    pub internal: bool,
+}
+
+impl fmt::Display for TaperClass {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("taper")
+    }
+}
+
+/// The gauge-plane limits of a taper pipe thread (`profiles/pipe-taper.toml`): the basic pitch
+/// diameter at the gauge plane (NPT E1; ISO 7-1 d2), its distance (external: L1 or the gauge
+/// length from the small end; internal: at the face), and ±1 turn of gauging tolerance, stated as
+/// an assumption. The diameters at the gauge plane are given for reference, not checked.
+pub fn taper_limits(t: &BasicThread, c: TaperClass) -> Result<ThreadLimits, Error> {
+    let cat = catalog()?;
+    let inch = crate::standards::MM_PER_INCH;
+    let (e1, l1, label) = match t.form {
+        ThreadForm::Npt => {
+            let n = &cat.pipe.npt;
+            let i = (0..n.sizes.len())
+                .find(|&i| ((n.E1[i] + 0.8 / n.tpi[i]) * inch - t.nominal_diameter).abs() < 1e-6)
+                .ok_or_else(|| Error::Input("not an NPT size".into()))?;
+            (n.E1[i] * inch, n.L1[i] * inch, "ASME B1.20.1 E1 and L1")
+        }
+        ThreadForm::Iso7Taper => {
+            let n = &cat.pipe.iso7;
+            let i = (0..n.sizes.len())
+                .find(|&i| (n.d[i] - t.nominal_diameter).abs() < 1e-6)
+                .ok_or_else(|| Error::Input("not an ISO 7-1 size".into()))?;
+            (n.d2[i], n.gauge_length_basic[i], "ISO 7-1 gauge-plane d2 and gauge length")
+        }
+        ThreadForm::IsoMetric
+        | ThreadForm::Whitworth
+        | ThreadForm::BspParallel
+        | ThreadForm::Unified
+        | ThreadForm::Trapezoidal
+        | ThreadForm::Acme => {
+            return Err(Error::Input(format!("the {} form is not a taper thread", t.form.name())))
+        }
+    };
+    let d = t.nominal_diameter;
+    let d1 = t.minor_diameter_internal();
+    Ok(ThreadLimits {
+        kind: if c.internal { ThreadKind::Internal } else { ThreadKind::External },
+        class: c.to_string(),
+        major_diameter: Limit { min: Some(round_um(d)), max: Some(round_um(d)) },
+        pitch_diameter: Limit::new(e1, e1),
+        minor_diameter: Limit { min: Some(round_um(d1)), max: Some(round_um(d1)) },
+        root_radius_min: None,
+        fundamental_deviation_um: 0.0,
+        crest_deviation_um: 0.0,
+        notes: vec![format!(
+            "taper 1:16; the gauge plane ({label}) may lie ±1 turn from its basic position: that gauging tolerance is widely used but not sourced here; diameters are at the gauge plane, for reference"
+        )],
+        gauge_plane: Some(GaugePlane {
+            pitch_diameter: e1,
+            distance: if c.internal { 0.0 } else { l1 },
+            tolerance_turns: 1.0,
+            taper: 1.0 / 16.0,
+        }),
+        resolution_mm: 0.001,
+    })
 }
 
 /// Rounds mm to the micrometre, as the tables print.
@@ -382,6 +469,7 @@ pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits
             fundamental_deviation_um: dev,
             crest_deviation_um: dev_crest,
             notes,
+            gauge_plane: None,
             resolution_mm: 0.001,
         })
     } else {
@@ -415,6 +503,7 @@ pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits
                     fundamental_deviation_um: dev,
                     crest_deviation_um: dev_crest,
                     notes,
+                    gauge_plane: None,
                     resolution_mm: 0.001,
                 });
             }
@@ -432,6 +521,7 @@ pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits
             fundamental_deviation_um: dev,
             crest_deviation_um: dev_crest,
             notes,
+            gauge_plane: None,
             resolution_mm: 0.001,
         })
     }
@@ -469,6 +559,7 @@ pub fn bs84_limits(thread: &BasicThread, class: Bs84Class, kind: ThreadKind) -> 
                 fundamental_deviation_um: 0.0,
                 crest_deviation_um: 0.0,
                 notes,
+                gauge_plane: None,
                 resolution_mm: 0.001,
             }
         }
@@ -490,6 +581,7 @@ pub fn bs84_limits(thread: &BasicThread, class: Bs84Class, kind: ThreadKind) -> 
                 fundamental_deviation_um: 0.0,
                 crest_deviation_um: 0.0,
                 notes,
+                gauge_plane: None,
                 resolution_mm: 0.001,
             }
         }
@@ -525,6 +617,7 @@ pub fn iso228_limits(thread: &BasicThread, class: Iso228Class) -> Result<ThreadL
                 fundamental_deviation_um: 0.0,
                 crest_deviation_um: 0.0,
                 notes: Vec::new(),
+                gauge_plane: None,
                 resolution_mm: 0.001,
             }
         }
@@ -538,6 +631,7 @@ pub fn iso228_limits(thread: &BasicThread, class: Iso228Class) -> Result<ThreadL
             fundamental_deviation_um: 0.0,
             crest_deviation_um: 0.0,
             notes: Vec::new(),
+            gauge_plane: None,
             resolution_mm: 0.001,
         },
     })
@@ -650,6 +744,7 @@ pub fn unified_limits(t: &BasicThread, c: UnifiedClass) -> ThreadLimits {
             fundamental_deviation_um: 0.0,
             crest_deviation_um: 0.0,
             notes,
+            gauge_plane: None,
             resolution_mm: 0.0001 * inch,
         }
     } else {
@@ -675,6 +770,7 @@ pub fn unified_limits(t: &BasicThread, c: UnifiedClass) -> ThreadLimits {
             fundamental_deviation_um: -es * inch * 1000.0,
             crest_deviation_um: -es * inch * 1000.0,
             notes,
+            gauge_plane: None,
             resolution_mm: 0.0001 * inch,
         }
     }
@@ -773,6 +869,7 @@ pub fn tr_limits(t: &BasicThread, c: TrClass) -> Result<ThreadLimits, Error> {
             fundamental_deviation_um: 0.0,
             crest_deviation_um: 0.0,
             notes,
+            gauge_plane: None,
             resolution_mm: 0.001,
         });
     }
@@ -803,6 +900,7 @@ pub fn tr_limits(t: &BasicThread, c: TrClass) -> Result<ThreadLimits, Error> {
         fundamental_deviation_um: es,
         crest_deviation_um: 0.0,
         notes,
+        gauge_plane: None,
         resolution_mm: 0.001,
     })
 }
@@ -859,6 +957,7 @@ pub fn acme_limits(t: &BasicThread, c: AcmeClass, kind: ThreadKind) -> ThreadLim
                 fundamental_deviation_um: -allowance * inch * 1000.0,
                 crest_deviation_um: 0.0,
                 notes,
+                gauge_plane: None,
                 resolution_mm: 0.0001 * inch,
             }
         }
@@ -874,6 +973,7 @@ pub fn acme_limits(t: &BasicThread, c: AcmeClass, kind: ThreadKind) -> ThreadLim
                 fundamental_deviation_um: 0.0,
                 crest_deviation_um: 0.0,
                 notes,
+                gauge_plane: None,
                 resolution_mm: 0.0001 * inch,
             }
         }
@@ -891,19 +991,23 @@ pub fn limits_for(des: &Designation, kind: ThreadKind) -> Result<Option<ThreadLi
         (ThreadForm::Unified, ClassSpec::Unified(c)) => unified_limits(t, *c),
         (ThreadForm::Trapezoidal, ClassSpec::Trapezoidal(c)) => tr_limits(t, *c)?,
         (ThreadForm::Acme, ClassSpec::Acme(c)) => acme_limits(t, *c, kind),
+        (ThreadForm::Npt | ThreadForm::Iso7Taper, ClassSpec::Taper(c)) => taper_limits(t, *c)?,
         (
             ThreadForm::IsoMetric
             | ThreadForm::Whitworth
             | ThreadForm::BspParallel
             | ThreadForm::Unified
             | ThreadForm::Trapezoidal
-            | ThreadForm::Acme,
+            | ThreadForm::Acme
+            | ThreadForm::Npt
+            | ThreadForm::Iso7Taper,
             ClassSpec::Iso(_)
             | ClassSpec::Bs84(_)
             | ClassSpec::Iso228(_)
             | ClassSpec::Unified(_)
             | ClassSpec::Trapezoidal(_)
-            | ClassSpec::Acme(_),
+            | ClassSpec::Acme(_)
+            | ClassSpec::Taper(_),
         ) => {
             return Err(Error::Input(format!("class {class} does not belong to the {} form", t.form.name())))
         }

@@ -191,6 +191,11 @@ fn resolve_kind(des: &Designation, internal: bool) -> Result<ThreadKind, Error> 
                 (crate::ThreadForm::Trapezoidal, ThreadKind::Internal) => format!("{}-7H", des.text),
                 (crate::ThreadForm::Acme, ThreadKind::External | ThreadKind::Internal) =>
                     format!("{}-2G", des.text),
+                (crate::ThreadForm::Npt, ThreadKind::External | ThreadKind::Internal) => des.text.clone(),
+                (crate::ThreadForm::Iso7Taper, ThreadKind::External) => des.text.replace("Rc", "R"),
+                (crate::ThreadForm::Iso7Taper, ThreadKind::Internal) => {
+                    format!("Rc{}", des.text.trim_start_matches(['R', 'r']))
+                }
             }
         )));
     }
@@ -205,7 +210,7 @@ fn build_insert(choice: &InsertChoice, t: &BasicThread, kind: ThreadKind, tol: f
             if *tip_radius > limit {
                 return Err(Error::Geometry(format!(
                     "tip radius {tip_radius} mm is larger than the thread allows: the largest root radius at pitch {} mm ({} form) is {limit:.4} mm",
-                    t.pitch,
+                    crate::app::fmt_num(t.pitch),
                     t.form.name()
                 )));
             }
@@ -297,6 +302,16 @@ pub fn reference_groove(passes: &[Pass]) -> f64 {
     let last = last_head(passes);
     let (lo, hi) = last.full_depth_range();
     let k = ((0.5 * (lo + hi) - last.z_phase) / last.lead).round();
+    last.z_phase + k * last.lead
+}
+
+/// The crossing of the last threading move nearest `z`.
+pub fn groove_near(passes: &[Pass], z: f64) -> f64 {
+    if passes.is_empty() {
+        return z;
+    }
+    let last = last_head(passes);
+    let k = ((z - last.z_phase) / last.lead).round();
     last.z_phase + k * last.lead
 }
 
@@ -402,7 +417,21 @@ impl Resolved {
     pub fn plan(&self, final_x: f64) -> PlanSpec {
         let t = &self.designation.thread;
         let s = &self.spec;
+        // A taper pipe thread: from a run-in of two leads before the face (Z0) inwards, the
+        // external thread growing by 1:16 on the diameter, the fitting narrowing.
+        let (taper, z_start, length) = match self.limits.gauge_plane {
+            Some(gp) => (
+                match self.kind {
+                    ThreadKind::External => gp.taper,
+                    ThreadKind::Internal => -gp.taper,
+                },
+                2.0 * t.lead(),
+                gp.distance + 2.0 * t.lead() + 10.0 * t.pitch,
+            ),
+            None => (s.taper, 0.0, 10.0 * t.lead()),
+        };
         PlanSpec {
+            z_start,
             starts: t.starts,
             schedule: s.schedule.clone(),
             infeed: self.infeed,
@@ -410,10 +439,10 @@ impl Resolved {
             first_depth: s.first_depth,
             min_depth: s.min_depth,
             finish: s.finish,
-            taper: s.taper,
+            taper,
             chamfer_leads: s.chamfer_leads,
             left_hand: t.hand == crate::Hand::Left,
-            length: 10.0 * t.lead(),
+            length,
             ..PlanSpec::new(
                 self.kind,
                 t.pitch,
@@ -499,10 +528,36 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
     let mut notes = r.notes.clone();
     let t = des.thread;
     let plan = |final_x: f64| r.plan(final_x);
+    // A taper thread is measured along its cone: at the gauge plane (external, the face at Z0)
+    // or four pitches in (internal), the section sheared so the cone's pitch line runs level.
+    let taper = limits.gauge_plane.map(|gp| {
+        let (z_meas, slope_r) = match kind {
+            ThreadKind::External => (-gp.distance, -0.5 * gp.taper),
+            ThreadKind::Internal => (-4.0 * t.pitch, 0.5 * gp.taper),
+        };
+        (gp, z_meas, slope_r)
+    });
+    if taper.is_some() {
+        notes.push("taper thread: the face (the small end of an external thread, the opening of a fitting) is taken at Z0".into());
+    }
+    let z_of = |passes: &[Pass]| match taper {
+        Some((_, z, _)) => groove_near(passes, z),
+        None => reference_groove(passes),
+    };
+    let profile_of = |section: &Section, z_ref: f64| -> Vec<crate::Point> {
+        let p = section.profile();
+        match taper {
+            Some((_, _, slope)) => {
+                p.into_iter().map(|q| crate::Point::new(q.z, q.r - slope * (q.z - z_ref))).collect()
+            }
+            None => p,
+        }
+    };
     let setup = SweepSetup { kind, insert: &insert, blank_diameter: blank, pitch: t.pitch };
-    let mmc = match kind {
-        ThreadKind::External => limits.pitch_diameter.max,
-        ThreadKind::Internal => limits.pitch_diameter.min,
+    let mmc = match (kind, taper.is_some()) {
+        (_, true) => None,
+        (ThreadKind::External, false) => limits.pitch_diameter.max,
+        (ThreadKind::Internal, false) => limits.pitch_diameter.min,
     };
     let mmc_major = match kind {
         ThreadKind::External => limits.major_diameter.max,
@@ -519,25 +574,35 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
     let ms_solve = ms.sizes_only();
     let run_with = |final_x: f64, ms: &MeasureSetup<'_>| -> Result<Cut, Error> {
         let passes = plan(final_x).generate()?;
-        let z_ref = reference_groove(&passes);
+        let z_ref = z_of(&passes);
         let window = Window::around(z_ref, t.pitch, 4.0);
         let s = sweep(&setup, &passes, window, UnionStrategy::Envelope)?;
-        let measurement = measure(ms, &s.section.profile(), z_ref)?;
+        let measurement = measure(ms, &profile_of(&s.section, z_ref), z_ref)?;
         Ok(Cut { passes, section: s.section, z_ref, measurement })
     };
     let run = |final_x: f64| run_with(final_x, &ms);
-    let target = limits
-        .pitch_diameter
-        .mid()
-        .ok_or_else(|| Error::Input("the class has no two-sided pitch-diameter tolerance".into()))?;
+    let mid = limits.pitch_diameter.mid();
+    if taper.is_none() && mid.is_none() {
+        return Err(Error::Input("the class has no two-sided pitch-diameter tolerance".into()));
+    }
+    // The pitch diameter to aim at where the thread is measured: the middle of the tolerance, or
+    // on a taper thread the basic cone's pitch diameter there.
+    let target_at = |z_ref: f64| match taper {
+        Some((gp, _, _)) => match kind {
+            ThreadKind::External => gp.pitch_diameter + (-z_ref - gp.distance) * gp.taper,
+            ThreadKind::Internal => gp.pitch_diameter - (-z_ref - gp.distance) * gp.taper,
+        },
+        None => mid.unwrap_or_default(),
+    };
+    let target = target_at(taper.map_or(0.0, |(_, z, _)| z));
     let program_label = given.as_ref().map(|g| g.label.clone());
     let (final_x, solved, cut) = if let Some(g) = given {
         notes.extend(g.notes);
         let passes = g.passes;
-        let z_ref = reference_groove(&passes);
+        let z_ref = z_of(&passes);
         let last = last_head(&passes);
         let s = sweep(&setup, &passes, Window::around(z_ref, t.pitch, 4.0), UnionStrategy::Envelope)?;
-        let measurement = measure(&ms, &s.section.profile(), z_ref)?;
+        let measurement = measure(&ms, &profile_of(&s.section, z_ref), z_ref)?;
         (last.x_at(z_ref), false, Cut { passes, section: s.section, z_ref, measurement })
     } else {
         match spec.final_x {
@@ -550,7 +615,7 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
                 let mut x = initial_final_x(&t, kind, &insert, target);
                 let mut cut = run_with(x, &ms_solve)?;
                 for _ in 0..6 {
-                    let err = target - cut.measurement.pitch_diameter;
+                    let err = target_at(cut.z_ref) - cut.measurement.pitch_diameter;
                     if err.abs() < 1e-8 {
                         break;
                     }
@@ -558,7 +623,7 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
                     cut = run_with(x, &ms_solve)?;
                 }
                 // The full measurement, maximum-material check included, on the solved cut.
-                let measurement = measure(&ms, &cut.section.profile(), cut.z_ref)?;
+                let measurement = measure(&ms, &profile_of(&cut.section, cut.z_ref), cut.z_ref)?;
                 (x, true, Cut { measurement, ..cut })
             }
         }
@@ -571,10 +636,32 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
                 .into(),
         );
     }
-    let cs = checks(m, &limits, &t, kind, m.root_pockets <= 1);
+    // The gauge plane of a taper thread: where the pitch cone reaches the basic gauge diameter,
+    // from the pitch diameter measured at z_ref and the taper, against its basic distance.
+    let cone = taper.map(|(gp, _, _)| {
+        let s_ref = -cut.z_ref;
+        let s_gp = match kind {
+            ThreadKind::External => s_ref + (gp.pitch_diameter - m.pitch_diameter) / gp.taper,
+            ThreadKind::Internal => s_ref + (m.pitch_diameter - gp.pitch_diameter) / gp.taper,
+        };
+        let last = last_head(&cut.passes);
+        let run = (last.z_end - last.z_start).abs();
+        let measured_taper = if run > 0.0 {
+            (last.x_end - last.x_start) * if kind == ThreadKind::External { 1.0 } else { -1.0 } / run
+        } else {
+            0.0
+        };
+        crate::check::Cone {
+            turns: (s_gp - gp.distance) / t.pitch,
+            tolerance_turns: gp.tolerance_turns,
+            taper: measured_taper,
+            nominal_taper: gp.taper,
+        }
+    });
+    let cs = checks(m, &limits, &t, kind, m.root_pockets <= 1, cone);
     let pass = verdict(&cs, spec.gauge_only);
-    let d2_off = cs.iter().any(|c| c.feature == "pitch_diameter" && !c.ok);
-    let suggested = d2_off.then_some(final_x + (target - m.pitch_diameter));
+    let d2_off = cs.iter().any(|c| (c.feature == "pitch_diameter" || c.feature == "gauge_plane") && !c.ok);
+    let suggested = d2_off.then_some(final_x + (target_at(cut.z_ref) - m.pitch_diameter));
     if spec.gauge_only {
         notes.push("--gauge-only: form checks are reported but left out of the verdict".into());
     }

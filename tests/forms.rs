@@ -305,3 +305,68 @@ fn acme_full_profile_cuts_the_basic_pitch_diameter() {
         assert_eq!(o.status.code(), Some(0), "{name}: {}", stdout(&o));
     }
 }
+
+/// NPT and ISO 7-1: sizes, the gauge plane's basic pitch diameter and distance (the reference
+/// tables: NPT E1/L1 in inches, ISO 7-1 gauge-plane d2 and gauge length in mm).
+#[test]
+fn taper_pipe_designations_and_gauge_planes() {
+    let npt = des("1/2-14 NPT");
+    assert!((npt.thread.pitch - IN / 14.0).abs() < 1e-12);
+    let l = limits_for(&npt, ThreadKind::External).unwrap().unwrap();
+    let gp = l.gauge_plane.unwrap();
+    assert!((gp.pitch_diameter - 0.77843 * IN).abs() < 1e-9 && (gp.distance - 0.320 * IN).abs() < 1e-9);
+    assert!((gp.taper - 1.0 / 16.0).abs() < 1e-15 && gp.tolerance_turns == 1.0);
+    assert_eq!(limits_for(&npt, ThreadKind::Internal).unwrap().unwrap().gauge_plane.unwrap().distance, 0.0);
+    assert!((des("1-1/4-11.5 NPT").thread.pitch - IN / 11.5).abs() < 1e-12);
+    let r = des("R 1/8");
+    assert!(r.external.is_some() && r.internal.is_none());
+    let gp = limits_for(&r, ThreadKind::External).unwrap().unwrap().gauge_plane.unwrap();
+    assert_eq!((gp.pitch_diameter, gp.distance), (9.147, 3.97));
+    assert!(des("R1/8").external.is_some());
+    assert!(des("Rc 1/4").internal.is_some());
+    let e = parse_designation("Rp 1/2", ParseOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("Rp") && e.contains("not in the sources"), "{e}");
+}
+
+/// A G92 program for 1/2-14 NPT: R −0.5625 = (radius at Z2) − (radius at Z−16) makes the 1:16
+/// cone, and the last pass ends at X18.9127. With a full-profile insert the pitch line is 0.4·P
+/// above the root: at the basic gauge plane (L1 = 0.320 in from the small end at Z0) X is
+/// 18.9127 − (16 − 8.128)/16 = 18.4207, so E = 18.4207 + 0.8·P = 19.8721, 0.1000 mm over E1 =
+/// 19.7721: the gauge stops 16·0.1000 = 1.600 mm, −0.882 turns, further out. The same program
+/// with the R sign turned cuts the cone the wrong way: the taper check fails.
+#[test]
+fn npt_program_gauge_plane_and_taper() {
+    let p = IN / 14.0;
+    let x_gp = 18.9127 - (16.0 - 0.320 * IN) / 16.0;
+    let e = x_gp + 0.8 * p;
+    let want = -16.0 * (e - 0.77843 * IN) / p;
+    let run_json = |prog: &str| {
+        let prog = data(&format!("programs/{prog}"));
+        let o = run(&[
+            "verify",
+            "--program",
+            prog.to_str().unwrap(),
+            "--thread",
+            "1/2-14 NPT",
+            "--insert",
+            "full",
+            "--no-pass-metrics",
+            "--json",
+            "-",
+        ]);
+        let v: serde_json::Value =
+            serde_json::from_slice(&o.stdout).unwrap_or_else(|_| panic!("{}", stderr(&o)));
+        (o.status.code(), v["operations"][0]["checks"].as_array().unwrap().clone())
+    };
+    let (code, checks) = run_json("fanuc-g92-npt-1-2.nc");
+    assert_eq!(code, Some(0));
+    let gp = checks.iter().find(|c| c["feature"] == "gauge_plane").unwrap()["value"].as_f64().unwrap();
+    // The section is sheared along the cone to measure it; that reads E 0.5 µm off the
+    // symmetric-V value (a second-order effect of the 1.79° cone): 0.01 turn is 1.1 µm on E.
+    assert!((gp - want).abs() < 0.01, "{gp} turns, derived {want}");
+    let (code, checks) = run_json("fanuc-g92-npt-wrong-r.nc");
+    assert_eq!(code, Some(1));
+    let taper = checks.iter().find(|c| c["feature"] == "taper").unwrap();
+    assert_eq!(taper["ok"], false);
+    assert!((taper["value"].as_f64().unwrap() + 1.0 / 16.0).abs() < 1e-9);
+}

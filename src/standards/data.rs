@@ -10,6 +10,7 @@ const WHITWORTH: &str = include_str!("../../profiles/whitworth.toml");
 const BSP: &str = include_str!("../../profiles/bsp.toml");
 const UNIFIED: &str = include_str!("../../profiles/unified.toml");
 const TRAPEZOIDAL: &str = include_str!("../../profiles/trapezoidal.toml");
+const PIPE_TAPER: &str = include_str!("../../profiles/pipe-taper.toml");
 
 /// Everything the standards module knows, from the embedded TOML files.
 #[derive(Debug)]
@@ -26,6 +27,54 @@ pub struct Catalog {
     pub unified: Vec<UnifiedSize>,
     /// ISO 2902 series and ISO 2903 tables of the trapezoidal thread.
     pub tr: TrapezoidalTables,
+    /// NPT (ASME B1.20.1, inches) and ISO 7-1 (mm) taper pipe sizes.
+    pub pipe: PipeTables,
+}
+
+/// Taper pipe thread sizes (`profiles/pipe-taper.toml`).
+#[derive(Debug, Clone, Deserialize)]
+pub struct PipeTables {
+    /// NPT, inches.
+    pub npt: NptTable,
+    /// ISO 7-1, mm.
+    pub iso7: Iso7Table,
+}
+
+/// NPT sizes, inches.
+#[derive(Debug, Clone, Deserialize)]
+#[allow(non_snake_case)]
+pub struct NptTable {
+    /// Sizes as written (`1/2`, `1-1/4`).
+    pub sizes: Vec<String>,
+    /// Threads per inch.
+    pub tpi: Vec<f64>,
+    /// Pipe outside diameter.
+    pub OD: Vec<f64>,
+    /// Pitch diameter at the small end of the external thread.
+    pub E0: Vec<f64>,
+    /// Pitch diameter at the hand-tight (gauge) plane.
+    pub E1: Vec<f64>,
+    /// Hand-tight engagement: the gauge plane's distance from the small end.
+    pub L1: Vec<f64>,
+    /// Effective thread length.
+    pub L2: Vec<f64>,
+}
+
+/// ISO 7-1 sizes, mm.
+#[derive(Debug, Clone, Deserialize)]
+pub struct Iso7Table {
+    /// Sizes as written (`1/2`, `1 1/4`).
+    pub sizes: Vec<String>,
+    /// Threads per inch.
+    pub tpi: Vec<f64>,
+    /// Major diameter at the gauge plane.
+    pub d: Vec<f64>,
+    /// Pitch diameter at the gauge plane.
+    pub d2: Vec<f64>,
+    /// Minor diameter at the gauge plane.
+    pub d1: Vec<f64>,
+    /// Basic gauge length: the gauge plane's distance from the small end of the external thread.
+    pub gauge_length_basic: Vec<f64>,
 }
 
 /// ISO 2901–2903 data (`profiles/trapezoidal.toml`); deviations and tolerances in µm.
@@ -263,7 +312,9 @@ fn load() -> Result<Catalog, String> {
     let u: UnifiedFile = toml::from_str(UNIFIED).map_err(|e| format!("profiles/unified.toml: {e}"))?;
     let tr: TrapezoidalTables =
         toml::from_str(TRAPEZOIDAL).map_err(|e| format!("profiles/trapezoidal.toml: {e}"))?;
-    Ok(Catalog { iso, bsw: w.bsw, bsf: w.bsf, bsp: b.size, unified: u.size, tr })
+    let pipe: PipeTables =
+        toml::from_str(PIPE_TAPER).map_err(|e| format!("profiles/pipe-taper.toml: {e}"))?;
+    Ok(Catalog { iso, bsw: w.bsw, bsf: w.bsf, bsp: b.size, unified: u.size, tr, pipe })
 }
 
 /// The embedded catalogue. Parsing happens once; the files are part of the binary, and a unit

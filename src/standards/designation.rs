@@ -4,7 +4,9 @@
 
 use super::data::{catalog, find_pitch, SeriesSize};
 use super::{BasicThread, Hand, ThreadForm, ThreadKind, MM_PER_INCH};
-use crate::tolerance::{AcmeClass, Bs84Class, Iso228Class, IsoClass, TrClass, UnifiedClass, UnifiedSeries};
+use crate::tolerance::{
+    AcmeClass, Bs84Class, Iso228Class, IsoClass, TaperClass, TrClass, UnifiedClass, UnifiedSeries,
+};
 use std::fmt;
 
 /// A parsed thread designation: the basic thread and the classes it names.
@@ -47,6 +49,8 @@ pub enum ClassSpec {
     Trapezoidal(TrClass),
     /// ASME B1.5 general-purpose Acme class (2G 3G 4G), for nut and bolt alike.
     Acme(AcmeClass),
+    /// A taper pipe thread's side (NPT; ISO 7-1 R external, Rc internal).
+    Taper(TaperClass),
 }
 
 impl fmt::Display for ClassSpec {
@@ -58,6 +62,7 @@ impl fmt::Display for ClassSpec {
             ClassSpec::Unified(c) => c.fmt(f),
             ClassSpec::Trapezoidal(c) => c.fmt(f),
             ClassSpec::Acme(c) => c.fmt(f),
+            ClassSpec::Taper(c) => c.fmt(f),
         }
     }
 }
@@ -174,7 +179,13 @@ pub fn parse_designation(text: &str, opts: ParseOptions) -> Result<Designation, 
         return Err(c.err(0, 0, "empty designation; expected e.g. M10x1.5-6g, BSW 1/2 or G1/2 A").into());
     }
     let upper = text.to_ascii_uppercase();
-    if upper.contains("ACME") && upper.starts_with(|ch: char| ch.is_ascii_digit() || ch == '.') {
+    if upper.contains("NPT") && upper.starts_with(|ch: char| ch.is_ascii_digit()) {
+        parse_npt(&mut c, opts).map_err(Into::into)
+    } else if upper.starts_with('R')
+        && upper[1..].trim_start_matches(['C', 'P']).trim_start().starts_with(|ch: char| ch.is_ascii_digit())
+    {
+        parse_iso7(&mut c).map_err(Into::into)
+    } else if upper.contains("ACME") && upper.starts_with(|ch: char| ch.is_ascii_digit() || ch == '.') {
         parse_acme(&mut c, opts).map_err(Into::into)
     } else if upper.contains("UN")
         && upper.starts_with(|ch: char| ch.is_ascii_digit() || ch == '#' || ch == '.')
@@ -194,7 +205,7 @@ pub fn parse_designation(text: &str, opts: ParseOptions) -> Result<Designation, 
             .err(
                 0,
                 first.max(text.find(|ch: char| ch.is_ascii_digit()).unwrap_or(first)),
-                "unknown thread series; expected M (ISO metric), Tr (trapezoidal), BSW, BSF (Whitworth), G (BSP pipe), a Unified size such as 1/4-20 UNC or an Acme one such as 1/2-10 ACME",
+                "unknown thread series; expected M (ISO metric), Tr (trapezoidal), BSW, BSF (Whitworth), G (BSP pipe), R/Rc (ISO 7-1 taper), or an inch size such as 1/4-20 UNC, 1/2-10 ACME or 1/2-14 NPT",
             )
             .into())
     }
@@ -443,6 +454,113 @@ const ACME_SERIES: [(f64, f64); 23] = [
     (4.5, 2.0),
     (5.0, 2.0),
 ];
+
+/// NPT: `1/2-14 NPT`, `1/2 NPT`, `1-1/4-11.5 NPT`; the same designation for pipe and fitting
+/// (`--internal` chooses the fitting).
+fn parse_npt(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, DesignationError> {
+    let _ = opts;
+    let upper = c.text.to_ascii_uppercase();
+    let at = upper.find("NPT").unwrap_or(upper.len());
+    let head = c.text[..at].trim();
+    let cat = catalog().map_err(|e| c.err(0, at, e.to_string()))?;
+    let n = &cat.pipe.npt;
+    // SIZE[-TPI]: the size may itself hold a dash (1-1/4); try the longest size first.
+    let norm = |x: &str| x.replace(' ', "-");
+    let found = (0..n.sizes.len())
+        .filter(|&i| {
+            let h = norm(head);
+            let size = norm(&n.sizes[i]);
+            h == size
+                || h.strip_prefix(&size)
+                    .and_then(|r| r.strip_prefix('-'))
+                    .is_some_and(|t| t.parse::<f64>().is_ok_and(|t| (t - n.tpi[i]).abs() < 1e-9))
+        })
+        .max_by_key(|&i| n.sizes[i].len());
+    let Some(i) = found else {
+        return Err(c.err(
+            0,
+            at,
+            format!(
+                "'{head}' is not an NPT size with its tpi; sizes: {}",
+                n.sizes.iter().zip(&n.tpi).map(|(s, t)| format!("{s}-{t}")).collect::<Vec<_>>().join(", ")
+            ),
+        ));
+    };
+    let mut des = Designation {
+        text: c.text.to_string(),
+        thread: BasicThread {
+            form: ThreadForm::Npt,
+            nominal_diameter: (n.E1[i] + 0.8 / n.tpi[i]) * MM_PER_INCH,
+            pitch: MM_PER_INCH / n.tpi[i],
+            starts: 1,
+            hand: Hand::Right,
+        },
+        external: Some(ClassSpec::Taper(TaperClass { internal: false })),
+        internal: Some(ClassSpec::Taper(TaperClass { internal: true })),
+        nonstandard: false,
+    };
+    let rest = c.text[at + 3..].trim().trim_start_matches('-').trim();
+    if rest.eq_ignore_ascii_case("LH") {
+        des.thread.hand = Hand::Left;
+    } else if !rest.is_empty() {
+        return Err(c.err(
+            at + 3,
+            c.text.len(),
+            "NPT takes no class (the gauge decides); only LH may follow",
+        ));
+    }
+    c.pos = c.text.len();
+    Ok(des)
+}
+
+/// ISO 7-1: `R 1/8`, `R1/8` (external taper), `Rc 1/4` (internal taper); `Rp` (internal parallel)
+/// is refused: its tolerances are not sourced.
+fn parse_iso7(c: &mut Cursor<'_>) -> Result<Designation, DesignationError> {
+    let upper = c.text.to_ascii_uppercase();
+    let (internal, skip) = if upper.starts_with("RC") {
+        (true, 2)
+    } else if upper.starts_with("RP") {
+        return Err(c.err(0, 2, "Rp (the parallel internal thread of ISO 7-1) is not supported: its tolerances are not in the sources; G (ISO 228-1) is"));
+    } else {
+        (false, 1)
+    };
+    c.pos = skip;
+    c.skip_spaces();
+    let (size, _, ss, se) = inch_size(c)?;
+    let cat = catalog().map_err(|e| c.err(ss, se, e.to_string()))?;
+    let n = &cat.pipe.iso7;
+    let i = n.sizes.iter().position(|x| *x == size).ok_or_else(|| {
+        c.err(ss, se, format!("ISO 7-1 has no size {size}\"; sizes: {}", n.sizes.join(", ")))
+    })?;
+    let mut des = Designation {
+        text: c.text.to_string(),
+        thread: BasicThread {
+            form: ThreadForm::Iso7Taper,
+            nominal_diameter: n.d[i],
+            pitch: MM_PER_INCH / n.tpi[i],
+            starts: 1,
+            hand: Hand::Right,
+        },
+        external: None,
+        internal: None,
+        nonstandard: false,
+    };
+    let cls = ClassSpec::Taper(TaperClass { internal });
+    if internal {
+        des.internal = Some(cls);
+    } else {
+        des.external = Some(cls);
+    }
+    let rest = c.rest().trim().trim_start_matches('-').trim();
+    if rest.eq_ignore_ascii_case("LH") {
+        des.thread.hand = Hand::Left;
+    } else if !rest.is_empty() {
+        let p = c.pos;
+        return Err(c.err(p, c.text.len(), "ISO 7-1 takes no class; only LH may follow the size"));
+    }
+    c.pos = c.text.len();
+    Ok(des)
+}
 
 /// The Acme series as (size in inches, threads per inch).
 pub fn acme_series() -> impl Iterator<Item = (f64, f64)> {

@@ -38,6 +38,11 @@ pub enum ThreadForm {
     /// General-purpose Acme, ASME B1.5 (2G, 3G, 4G): 29°, basic depth P/2, crest flat 0.3707·P,
     /// root clearance 0.010 in (10 tpi and coarser) or 0.005 in on the radius.
     Acme,
+    /// NPT taper pipe thread, ASME B1.20.1: 60°, taper 1:16, thread height 0.8·P with flat
+    /// truncations of at least 0.033·P at crest and root.
+    Npt,
+    /// ISO 7-1 taper pipe thread (R external, Rc internal): the Whitworth form on a 1:16 cone.
+    Iso7Taper,
 }
 
 /// The profile families: how crest and root are shaped.
@@ -49,6 +54,9 @@ enum Family {
     Rounded,
     /// ISO 2901 trapezoid: H1 = P/2 overlap, flat crest and root, clearance ac at both ends.
     Trapezoid,
+    /// ASME B1.20.1's 60° V truncated 0.033·P at crest and root: height 0.8·P, the same for pipe
+    /// and fitting.
+    PipeV,
 }
 
 /// What each form is, in one place: every use asks its form here, so a new form does not
@@ -82,7 +90,13 @@ impl ThreadForm {
                 min_root_radius_p: None,
                 min_root_profile_p: 0.108,
             },
-            ThreadForm::Whitworth | ThreadForm::BspParallel => FormSpec {
+            ThreadForm::Npt => FormSpec {
+                angle: 60.0,
+                family: Family::PipeV,
+                min_root_radius_p: None,
+                min_root_profile_p: 0.0,
+            },
+            ThreadForm::Whitworth | ThreadForm::BspParallel | ThreadForm::Iso7Taper => FormSpec {
                 angle: 55.0,
                 family: Family::Rounded,
                 min_root_radius_p: None,
@@ -117,6 +131,8 @@ impl ThreadForm {
             ThreadForm::Unified => "unified",
             ThreadForm::Trapezoidal => "trapezoidal",
             ThreadForm::Acme => "acme",
+            ThreadForm::Npt => "npt",
+            ThreadForm::Iso7Taper => "iso7-taper",
         }
     }
 
@@ -130,16 +146,34 @@ impl ThreadForm {
     /// forms, whose inserts leave the turned crest alone).
     pub fn full_insert_tops_crest(self) -> bool {
         match self.spec().family {
-            Family::TruncatedV | Family::Rounded => true,
+            Family::TruncatedV | Family::Rounded | Family::PipeV => true,
             Family::Trapezoid => false,
+        }
+    }
+
+    /// The taper on the diameter per unit of length: 1/16 for the pipe threads, 0 for parallel
+    /// forms.
+    pub fn taper(self) -> f64 {
+        match self {
+            ThreadForm::Npt | ThreadForm::Iso7Taper => 1.0 / 16.0,
+            ThreadForm::IsoMetric
+            | ThreadForm::Whitworth
+            | ThreadForm::BspParallel
+            | ThreadForm::Unified
+            | ThreadForm::Trapezoidal
+            | ThreadForm::Acme => 0.0,
         }
     }
 
     /// True for forms whose sizes are inches (BS 84, ISO 228-1 and Unified sizes).
     pub fn is_inch(self) -> bool {
         match self {
-            ThreadForm::IsoMetric | ThreadForm::Trapezoidal => false,
-            ThreadForm::Whitworth | ThreadForm::BspParallel | ThreadForm::Unified | ThreadForm::Acme => true,
+            ThreadForm::IsoMetric | ThreadForm::Trapezoidal | ThreadForm::Iso7Taper => false,
+            ThreadForm::Whitworth
+            | ThreadForm::BspParallel
+            | ThreadForm::Unified
+            | ThreadForm::Acme
+            | ThreadForm::Npt => true,
         }
     }
 }
@@ -237,6 +271,7 @@ impl BasicThread {
             Family::TruncatedV => self.nominal_diameter - 0.75 * h,
             Family::Rounded => self.nominal_diameter - self.thread_depth(),
             Family::Trapezoid => self.nominal_diameter - 0.5 * self.pitch,
+            Family::PipeV => self.nominal_diameter - 0.8 * self.pitch,
         }
     }
 
@@ -247,6 +282,7 @@ impl BasicThread {
             Family::TruncatedV => self.nominal_diameter - 1.25 * self.fundamental_height(),
             Family::Rounded => self.nominal_diameter - 2.0 * self.thread_depth(),
             Family::Trapezoid => self.nominal_diameter - self.pitch,
+            Family::PipeV => self.nominal_diameter - 1.6 * self.pitch,
         }
     }
 
@@ -262,6 +298,7 @@ impl BasicThread {
             Family::TruncatedV => 17.0 * h / 24.0,
             Family::Rounded => 2.0 * h / 3.0,
             Family::Trapezoid => 0.5 * self.pitch + self.crest_clearance(),
+            Family::PipeV => 0.8 * self.pitch,
         }
     }
 
@@ -271,6 +308,7 @@ impl BasicThread {
             Family::TruncatedV => 0.625 * self.fundamental_height(),
             Family::Rounded => self.thread_depth(),
             Family::Trapezoid => 0.5 * self.pitch,
+            Family::PipeV => 0.8 * self.pitch,
         }
     }
 
@@ -281,6 +319,8 @@ impl BasicThread {
             Family::Rounded => self.whitworth_radius(),
             // The root corners may be rounded up to ac (ISO 2901, R2 max).
             Family::Trapezoid => self.crest_clearance(),
+            // The largest arc inside the 0.033·P truncation of a 60° V: 0.033·P.
+            Family::PipeV => 0.033 * self.pitch,
         }
     }
 
@@ -300,9 +340,12 @@ impl BasicThread {
     /// coarser, 0.005 in finer (half its diametral 0.020 / 0.010 in); 0 for the other forms.
     pub fn crest_clearance(&self) -> f64 {
         match self.form {
-            ThreadForm::IsoMetric | ThreadForm::Whitworth | ThreadForm::BspParallel | ThreadForm::Unified => {
-                0.0
-            }
+            ThreadForm::IsoMetric
+            | ThreadForm::Whitworth
+            | ThreadForm::BspParallel
+            | ThreadForm::Unified
+            | ThreadForm::Npt
+            | ThreadForm::Iso7Taper => 0.0,
             ThreadForm::Acme => {
                 let tpi = MM_PER_INCH / self.pitch;
                 if tpi <= 10.0 + 1e-9 {
@@ -361,6 +404,11 @@ impl BasicThread {
             (Family::Trapezoid, ProfileKind::BoltDesign | ProfileKind::BoltMinRoot | ProfileKind::Nut) => {
                 (tr_crest, Feature::Flat, Feature::FlatAt(tr_root))
             }
+            // Pipe and fitting alike: flats 0.033·P into the sharp V at both ends.
+            (
+                Family::PipeV,
+                ProfileKind::Basic | ProfileKind::BoltDesign | ProfileKind::BoltMinRoot | ProfileKind::Nut,
+            ) => (-0.033 * self.pitch, Feature::Flat, Feature::FlatAt(0.8 * self.pitch)),
         };
         GrooveForm { pitch: self.pitch, half_angle: beta, sharp_crest, crest, root }
     }
