@@ -181,6 +181,9 @@ struct PlanArgs {
     /// Take the passes from this G-code program.
     #[arg(long, value_name = "FILE")]
     program: Option<PathBuf>,
+    /// Lengths in the text and the SVG: mm, or mm with inches beside them.
+    #[arg(long, value_parser = ["mm", "inch"], default_value = "mm")]
+    units: String,
     /// fanuc | haas | sinumerik | linuxcnc | dyna
     #[arg(long, default_value = "fanuc", requires = "program")]
     dialect: String,
@@ -216,6 +219,11 @@ impl PlanArgs {
         s.final_x = opt(&self.final_x, "--final-x")?;
         s.blank_diameter = opt(&self.blank_diameter, "--blank-diameter")?;
         s.gauge_only = gauge_only;
+        s.units = if self.units == "inch" {
+            threadcheck::verify::Units::Inch
+        } else {
+            threadcheck::verify::Units::Mm
+        };
         if let Some(p) = &self.program {
             s.program = Some((p.clone(), threadcheck::gcode::Dialect::parse(&self.dialect)?));
         }

@@ -250,7 +250,19 @@ fn view(v: &Verification, f: &Frame, id: &str, label: &str) -> Group {
                     .set("stroke-width", 0.8)
                     .set("stroke-dasharray", "2 3"),
             )
-            .add(text(f.x0 + f.w - 120.0, y - 3.0, 11.0, format!("{name} = {d:.4}")).set("fill", colour));
+            .add(
+                text(
+                    f.x0 + f.w - if v.units == crate::verify::Units::Inch { 200.0 } else { 120.0 },
+                    y - 3.0,
+                    11.0,
+                    if v.units == crate::verify::Units::Inch {
+                        format!("{name} = {d:.4} mm ({:.5} in)", d / 25.4)
+                    } else {
+                        format!("{name} = {d:.4}")
+                    },
+                )
+                .set("fill", colour),
+            );
     }
     g.add(dims)
 }

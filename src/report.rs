@@ -147,8 +147,16 @@ pub fn verify_text(v: &Verification) -> String {
             ""
         }
     );
-    let _ =
-        writeln!(s, "\n    {:<16}{:>10}{:>10}{:>10}{:>10}  kind", "check", "value", "min", "max", "dev µm");
+    let inch = v.units == crate::verify::Units::Inch;
+    let _ = if inch {
+        writeln!(
+            s,
+            "\n    {:<16}{:>10}{:>10}{:>10}{:>10}  kind  {:>8}{:>8}{:>8} in",
+            "check", "value", "min", "max", "dev µm", "value", "min", "max"
+        )
+    } else {
+        writeln!(s, "\n    {:<16}{:>10}{:>10}{:>10}{:>10}  kind", "check", "value", "min", "max", "dev µm")
+    };
     for c in &v.checks {
         let counts = !v.gauge_only || c.kind == CheckKind::Size;
         let mark = if c.ok {
@@ -188,6 +196,12 @@ pub fn verify_text(v: &Verification) -> String {
             c.deviation_um,
             if c.kind == CheckKind::Size { "size" } else { "form" }
         );
+        // Lengths in inches beside the mm (not the angles, the counts or the turns).
+        let length = !matches!(c.feature, "flank_angle" | "single_groove" | "gauge_plane" | "taper");
+        if inch && length {
+            let i = |x: Option<f64>| x.map_or_else(|| "—".to_string(), |x| format!("{:.5}", x / 25.4));
+            let _ = write!(s, "  {:>8}{:>8}{:>8} in", i(Some(c.value)), i(c.min), i(c.max));
+        }
         if let Some(n) = &c.note {
             let _ = write!(s, "  {n}");
         }

@@ -71,6 +71,19 @@ pub struct VerifySpec {
     pub metrics: bool,
     /// Chord tolerance for arcs, mm.
     pub tolerance: f64,
+    /// Lengths in the text and the picture: mm, or mm with inches beside them.
+    pub units: Units,
+}
+
+/// How the text report and the picture give lengths.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Units {
+    /// Millimetres.
+    #[default]
+    Mm,
+    /// Millimetres with inches beside them (the inch forms' tables print inches).
+    Inch,
 }
 
 impl VerifySpec {
@@ -96,6 +109,7 @@ impl VerifySpec {
             program: None,
             metrics: true,
             tolerance: crate::DEFAULT_TOLERANCE,
+            units: Units::Mm,
         }
     }
 }
@@ -143,6 +157,8 @@ pub struct Verification {
     pub notes: Vec<String>,
     /// The program the passes came from and its dialect, when they came from one.
     pub program: Option<String>,
+    /// Lengths in the text and the picture.
+    pub units: Units,
 }
 
 /// Usual number of passes for a pitch P (mm): about 3.5 + 2·P, the order of the insert makers'
@@ -686,6 +702,7 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
         gauge_only: spec.gauge_only,
         notes,
         program: program_label,
+        units: spec.units,
     })
 }
 

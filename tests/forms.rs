@@ -370,3 +370,31 @@ fn npt_program_gauge_plane_and_taper() {
     assert_eq!(taper["ok"], false);
     assert!((taper["value"].as_f64().unwrap() + 1.0 / 16.0).abs() < 1e-9);
 }
+
+/// `--units inch` gives the inch values beside the mm in the text and the SVG: 1/4-20 UNC-2A's
+/// d2 limits are 0.2127 and 0.2164 in (the check set).
+#[test]
+fn units_inch_in_the_text_and_the_svg() {
+    let dir = tempdir("units");
+    let svg = dir.join("un.svg");
+    let o = run(&[
+        "verify",
+        "--thread",
+        "1/4-20 UNC-2A",
+        "--insert",
+        "full",
+        "--units",
+        "inch",
+        "--no-pass-metrics",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o);
+    let line = out.lines().find(|l| l.contains("✓ pitch diameter")).unwrap();
+    assert!(line.contains("0.21270") && line.contains("0.21640") && line.ends_with(" in"), "{line}");
+    let picture = std::fs::read_to_string(&svg).unwrap();
+    assert!(picture.contains(" in)"), "no inch label in the SVG");
+    let e = run(&["verify", "--thread", "1/4-20 UNC-2A", "--units", "furlong"]);
+    assert_eq!(e.status.code(), Some(2));
+}
