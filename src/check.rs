@@ -99,6 +99,28 @@ pub struct Cone {
 /// way (recalled for NPT, not sourced here; stated in the check's note).
 pub const TAPER_TOLERANCE: f64 = 1.0 / 96.0;
 
+/// Both flank angles against half the form's angle ±1°; the deviation in degrees goes in the note.
+fn flank_checks(m: &Measurement, thread: &BasicThread) -> Vec<Check> {
+    let nominal = 0.5 * thread.form.flank_angle();
+    let lim = Limit::new(nominal - FLANK_ANGLE_TOLERANCE_DEG, nominal + FLANK_ANGLE_TOLERANCE_DEG);
+    m.flank_angles
+        .iter()
+        .zip(["low-z flank", "high-z flank"])
+        .map(|(a, which)| {
+            let mut c = check("flank_angle", CheckKind::Form, *a, lim, Some(which.to_string()));
+            // Angles are not lengths: report the deviation in degrees in the note, 0 µm.
+            if !c.ok {
+                c.note = Some(format!(
+                    "{which}, {:+.3}° outside ±{FLANK_ANGLE_TOLERANCE_DEG}°",
+                    lim.deviation(*a)
+                ));
+            }
+            c.deviation_um = 0.0;
+            c
+        })
+        .collect()
+}
+
 /// Everything checked for one thread.
 pub fn checks(
     m: &Measurement,
@@ -122,18 +144,7 @@ pub fn checks(
             out.push(check("root_radius", CheckKind::Form, r, Limit { min: Some(rmin), max: None }, None));
         }
     }
-    let nominal = 0.5 * thread.form.flank_angle();
-    for (a, which) in m.flank_angles.iter().zip(["low-z flank", "high-z flank"]) {
-        let lim = Limit::new(nominal - FLANK_ANGLE_TOLERANCE_DEG, nominal + FLANK_ANGLE_TOLERANCE_DEG);
-        let mut c = check("flank_angle", CheckKind::Form, *a, lim, Some(which.to_string()));
-        // Angles are not lengths: report the deviation in degrees in the note, 0 µm.
-        if !c.ok {
-            c.note =
-                Some(format!("{which}, {:+.3}° outside ±{FLANK_ANGLE_TOLERANCE_DEG}°", lim.deviation(*a)));
-        }
-        c.deviation_um = 0.0;
-        out.push(c);
-    }
+    out.extend(flank_checks(m, thread));
     if let Some(cl) = m.max_material_clearance {
         let mut c =
             check("max_material", CheckKind::Size, cl, Limit { min: Some(-MMC_SLACK), max: None }, None);
@@ -207,13 +218,7 @@ fn taper_checks(m: &Measurement, thread: &BasicThread, single_groove: bool, c: C
             if c.taper != 0.0 { 1.0 / c.taper } else { f64::INFINITY }
         )),
     });
-    let nominal = 0.5 * thread.form.flank_angle();
-    for (a, which) in m.flank_angles.iter().zip(["low-z flank", "high-z flank"]) {
-        let lim = Limit::new(nominal - FLANK_ANGLE_TOLERANCE_DEG, nominal + FLANK_ANGLE_TOLERANCE_DEG);
-        let mut ch = check("flank_angle", CheckKind::Form, *a, lim, Some(which.to_string()));
-        ch.deviation_um = 0.0;
-        out.push(ch);
-    }
+    out.extend(flank_checks(m, thread));
     out.push(Check {
         feature: "single_groove",
         kind: CheckKind::Form,

@@ -594,16 +594,8 @@ fn parse_acme(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, Des
     let size_text = head[..dash].trim();
     let tpi_text = head[dash + 1..].trim();
     let bad = |m: &str| c.err(0, at, m.to_string());
-    let mut d = 0.0;
-    for tok in size_text.split([' ', '-']).filter(|t| !t.is_empty()) {
-        d += match tok.split_once('/') {
-            Some((a, b)) => {
-                a.parse::<f64>().ok().zip(b.parse::<f64>().ok()).filter(|x| x.1 > 0.0).map(|(a, b)| a / b)
-            }
-            None => tok.parse::<f64>().ok(),
-        }
+    let d = inch_value(size_text)
         .ok_or_else(|| bad("expected an inch size such as 1/2, 1 or 1 1/4 before the tpi"))?;
-    }
     let tpi: f64 =
         tpi_text.parse().map_err(|_| bad("expected the threads per inch after the size, e.g. 1/2-10"))?;
     if !(d > 0.0 && tpi > 0.0) {
@@ -759,23 +751,9 @@ fn parse_unified(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, 
     let number_size = size_text.starts_with('#');
     let st = size_text.trim_start_matches('#');
     // TPI: 20, 4.5 or 4 1/2.
-    let tpi = {
-        let mut v = 0.0;
-        for tok in tpi_text.split(' ').filter(|t| !t.is_empty()) {
-            let part = match tok.split_once('/') {
-                Some((a, b)) => {
-                    a.parse::<f64>().ok().zip(b.parse::<f64>().ok()).filter(|x| x.1 > 0.0).map(|(a, b)| a / b)
-                }
-                None => tok.parse::<f64>().ok(),
-            };
-            v +=
-                part.ok_or_else(|| c.err(ts, te, format!("threads per inch '{tpi_text}' is not a number")))?;
-        }
-        if !(v > 0.0 && v.is_finite()) {
-            return Err(c.err(ts, te, "expected the threads per inch after the size, e.g. 1/4-20"));
-        }
-        v
-    };
+    let tpi = inch_value(tpi_text).filter(|v| *v > 0.0 && v.is_finite()).ok_or_else(|| {
+        c.err(ts, te, format!("threads per inch '{tpi_text}' is not a number, e.g. 1/4-20"))
+    })?;
     let cat = catalog().map_err(|e| c.err(ss, se, e.to_string()))?;
     let in_series = |row: &super::UnifiedSize| {
         [row.unc, row.unf, row.unef].iter().flatten().any(|t| (t - tpi).abs() < 1e-9)
@@ -786,17 +764,7 @@ fn parse_unified(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, 
     // The basic major diameter, inches: a number size (#N, or N when N-TPI is a number size of
     // the standard series), a fraction, a decimal or a whole number of inches.
     let (d, row) = if st.contains('/') || st.contains(' ') {
-        let mut v = 0.0;
-        for tok in st.split([' ', '-']).filter(|t| !t.is_empty()) {
-            v += match tok.split_once('/') {
-                Some((a, b)) => {
-                    a.parse::<f64>().ok().zip(b.parse::<f64>().ok()).filter(|x| x.1 > 0.0).map(|(a, b)| a / b)
-                }
-                None => tok.parse::<f64>().ok(),
-            }
-            .ok_or_else(bad_size)?;
-        }
-        (v, None)
+        (inch_value(st).ok_or_else(bad_size)?, None)
     } else if st.contains('.') {
         (st.parse::<f64>().map_err(|_| bad_size())?, None)
     } else {
