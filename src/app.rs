@@ -595,7 +595,7 @@ impl SweepJob {
                         let failed: Vec<String> = v
                             .checks
                             .iter()
-                            .filter(|k| !k.ok && (!v.gauge_only || k.kind == crate::check::CheckKind::Size))
+                            .filter(|k| !k.ok && k.kind.counts(v.gauge_only))
                             .map(|k| {
                                 if k.deviation_um != 0.0 {
                                     format!("{} {:+.1} µm", k.feature, k.deviation_um)

@@ -40,6 +40,28 @@ pub enum CheckKind {
     Size,
     /// Form: root radius, minor-diameter zone, flank angles, single groove.
     Form,
+    /// Process: constant spindle speed, the machine's speed and feed, flank clearance.
+    Process,
+}
+
+impl CheckKind {
+    /// Whether a check of this kind counts in the verdict: with `gauge_only`, the form checks
+    /// are reported but left out.
+    pub fn counts(self, gauge_only: bool) -> bool {
+        match self {
+            CheckKind::Size | CheckKind::Process => true,
+            CheckKind::Form => !gauge_only,
+        }
+    }
+
+    /// `size`, `form` or `process`.
+    pub fn name(self) -> &'static str {
+        match self {
+            CheckKind::Size => "size",
+            CheckKind::Form => "form",
+            CheckKind::Process => "process",
+        }
+    }
 }
 
 /// One check: value, limits, verdict and deviation.
@@ -234,7 +256,7 @@ fn taper_checks(m: &Measurement, thread: &BasicThread, single_groove: bool, c: C
 
 /// True when every check that counts passes; with `gauge_only`, only size checks count.
 pub fn verdict(checks: &[Check], gauge_only: bool) -> bool {
-    checks.iter().filter(|c| !gauge_only || c.kind == CheckKind::Size).all(|c| c.ok)
+    checks.iter().filter(|c| c.kind.counts(gauge_only)).all(|c| c.ok)
 }
 
 #[cfg(test)]

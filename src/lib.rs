@@ -66,6 +66,7 @@ pub mod limits;
 pub mod measure;
 pub mod output;
 pub mod passes;
+pub mod process;
 pub mod render;
 pub mod report;
 pub mod standards;

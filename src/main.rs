@@ -181,6 +181,12 @@ struct PlanArgs {
     /// Take the passes from this G-code program.
     #[arg(long, value_name = "FILE")]
     program: Option<PathBuf>,
+    /// A machine profile for the process checks of a program: FILE.toml or training-lathe.
+    #[arg(long, value_name = "FILE.toml|training-lathe", requires = "program")]
+    machine: Option<String>,
+    /// The insert's side clearance angle, degrees: checks the leading flank against the helix.
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
+    clearance_angle: Option<String>,
     /// Lengths in the text and the SVG: mm, or mm with inches beside them.
     #[arg(long, value_parser = ["mm", "inch"], default_value = "mm")]
     units: String,
@@ -219,6 +225,8 @@ impl PlanArgs {
         s.final_x = opt(&self.final_x, "--final-x")?;
         s.blank_diameter = opt(&self.blank_diameter, "--blank-diameter")?;
         s.gauge_only = gauge_only;
+        s.machine = self.machine.as_deref().map(threadcheck::process::MachineProfile::read).transpose()?;
+        s.clearance_angle = opt(&self.clearance_angle, "--clearance-angle")?;
         s.units = if self.units == "inch" {
             threadcheck::verify::Units::Inch
         } else {

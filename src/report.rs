@@ -1,6 +1,5 @@
 //! The `verify` report: JSON as the CLI contract specifies, and the human table.
 
-use crate::check::CheckKind;
 use crate::geometry::rad;
 use crate::passes::{Infeed, Schedule};
 use crate::standards::{Hand, ThreadKind};
@@ -105,6 +104,8 @@ pub fn verify_json(v: &Verification) -> Value {
         "checks": v.checks,
         "verdict": if v.pass { "pass" } else { "fail" },
         "gauge_only": v.gauge_only,
+        "helix_angle": v.helix_angle,
+        "process": v.process,
         "suggested_final_x": v.suggested_final_x,
         "notes": v.notes,
     })
@@ -158,7 +159,7 @@ pub fn verify_text(v: &Verification) -> String {
         writeln!(s, "\n    {:<16}{:>10}{:>10}{:>10}{:>10}  kind", "check", "value", "min", "max", "dev µm")
     };
     for c in &v.checks {
-        let counts = !v.gauge_only || c.kind == CheckKind::Size;
+        let counts = c.kind.counts(v.gauge_only);
         let mark = if c.ok {
             "✓"
         } else if counts {
@@ -194,7 +195,7 @@ pub fn verify_text(v: &Verification) -> String {
             if c.feature == "single_groove" { String::new() } else { opt(c.min, prec) },
             if c.feature == "single_groove" { String::new() } else { opt(c.max, prec) },
             c.deviation_um,
-            if c.kind == CheckKind::Size { "size" } else { "form" }
+            c.kind.name()
         );
         // Lengths in inches beside the mm (not the angles, the counts or the turns).
         let length = !matches!(c.feature, "flank_angle" | "single_groove" | "gauge_plane" | "taper");
@@ -218,12 +219,21 @@ pub fn verify_text(v: &Verification) -> String {
         m.max_material_clearance
             .map_or(String::new(), |c| format!(", GO-gauge clearance {:+.1} µm", c * 1000.0))
     );
-    let failed: Vec<&str> = v
-        .checks
-        .iter()
-        .filter(|c| !c.ok && (!v.gauge_only || c.kind == CheckKind::Size))
-        .map(|c| c.feature)
-        .collect();
+    let _ = writeln!(s, "  helix angle {:.3}° at d2: incline the insert by it", v.helix_angle);
+    if let Some(p) = &v.process {
+        if let Some(t) = &p.machining_time {
+            let _ = writeln!(
+                s,
+                "  machining time {:.1} s (cutting {:.1} s, rapid {:.1} s{})",
+                t.total,
+                t.cutting,
+                t.rapid,
+                p.machine.as_ref().map_or(", rapid 5000 mm/min assumed".to_string(), |m| format!(", {m}"))
+            );
+        }
+    }
+    let failed: Vec<&str> =
+        v.checks.iter().filter(|c| !c.ok && c.kind.counts(v.gauge_only)).map(|c| c.feature).collect();
     if v.pass {
         let _ = writeln!(s, "\nverdict: PASS");
     } else {

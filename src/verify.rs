@@ -73,6 +73,10 @@ pub struct VerifySpec {
     pub tolerance: f64,
     /// Lengths in the text and the picture: mm, or mm with inches beside them.
     pub units: Units,
+    /// The machine whose limits the process checks of a program use.
+    pub machine: Option<crate::process::MachineProfile>,
+    /// The insert's side clearance angle, degrees, for the flank-clearance check.
+    pub clearance_angle: Option<f64>,
 }
 
 /// How the text report and the picture give lengths.
@@ -110,6 +114,8 @@ impl VerifySpec {
             metrics: true,
             tolerance: crate::DEFAULT_TOLERANCE,
             units: Units::Mm,
+            machine: None,
+            clearance_angle: None,
         }
     }
 }
@@ -159,6 +165,10 @@ pub struct Verification {
     pub program: Option<String>,
     /// Lengths in the text and the picture.
     pub units: Units,
+    /// Helix angle at the basic pitch diameter, degrees: the insert inclination it asks for.
+    pub helix_angle: f64,
+    /// The process checks' findings, for a program's operation.
+    pub process: Option<crate::process::ProcessReport>,
 }
 
 /// Usual number of passes for a pitch P (mm): about 3.5 + 2·P, the order of the insert makers'
@@ -703,6 +713,8 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
         notes,
         program: program_label,
         units: spec.units,
+        helix_angle: crate::process::helix_angle(t.lead(), t.pitch_diameter()),
+        process: None,
     })
 }
 
@@ -860,6 +872,17 @@ pub fn verify_program(
         let mut result = verify_operation(&s, &prog, op, &label)?;
         if let OperationResult::Verified(v) = &mut result {
             v.notes.extend(extra);
+            let t = v.designation.thread;
+            let (checks, report) = crate::process::process_checks(
+                op,
+                t.pitch,
+                t.pitch_diameter(),
+                spec.machine.as_ref(),
+                spec.clearance_angle,
+            );
+            v.checks.extend(checks);
+            v.process = Some(report);
+            v.pass = verdict(&v.checks, v.gauge_only);
         }
         operations.push(OperationVerdict { operation: op.clone(), designation, result });
     }

@@ -10,6 +10,7 @@ mod forms;
 mod gcode;
 mod infeed_comparison;
 mod limits;
+mod process;
 mod programs;
 mod properties;
 mod sweep;

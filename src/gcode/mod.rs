@@ -110,6 +110,9 @@ pub struct Operation {
     /// The infeed angle the cycle was given, degrees from the radial, with the word that gave it
     /// (`R29`, `IANG`, `Q`, `A/2`), when the cycle has one.
     pub infeed_angle: Option<(f64, String)>,
+    /// Where the tool stood when the cycle was called (X diameter, Z), mm: a cycle returns there
+    /// after each pass. `None` for G32/G33 passes written one by one.
+    pub start: Option<(f64, f64)>,
     /// Its passes in cutting order.
     pub passes: Vec<Pass>,
     /// Warnings and the defaults the expansion assumed.

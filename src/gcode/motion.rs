@@ -332,6 +332,7 @@ impl Motion {
             tool: self.tool,
             spindle: self.spindle(),
             infeed_angle: None,
+            start: self.x.zip(self.z),
             passes: Vec::new(),
             notes: Vec::new(),
         });
@@ -407,6 +408,8 @@ impl Motion {
                     Some(op) if self.joins(op, lead, z0, z1) => op,
                     _ => {
                         let op = self.begin_op(cycle, b.line);
+                        // Passes written by hand: their rapids are blocks of their own.
+                        self.ops[op].start = None;
                         self.loose = Some(op);
                         op
                     }

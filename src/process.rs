@@ -1,0 +1,232 @@
+//! Process checks of a program's threading operation: what a machinist checks besides the
+//! profile. Constant spindle speed (G97, never G96, at a threading cycle), the spindle speed
+//! and the feed within a machine's limits, the machining time, and the helix angle with the
+//! insert inclination and flank clearance it asks for.
+//!
+//! A machine profile (`--machine FILE.toml`, or the built-in `training-lathe`):
+//!
+//! ```toml
+//! name = "my lathe"
+//! max_rpm = 3000
+//! max_feed_mm_min = 5000
+//! rapid_mm_min = 10000
+//! # optional: the fastest spindle speed by pitch, pitch up to (mm) and rpm
+//! rpm_per_pitch = [[0.5, 950], [1.0, 500]]
+//! ```
+
+use crate::check::{Check, CheckKind};
+use crate::gcode::Operation;
+use crate::Error;
+use serde::Serialize;
+
+/// A machine's limits for threading.
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MachineProfile {
+    /// Its name, for the report.
+    pub name: String,
+    /// Fastest spindle speed, rpm.
+    #[serde(default)]
+    pub max_rpm: Option<f64>,
+    /// Fastest feed the axes follow, mm/min.
+    #[serde(default)]
+    pub max_feed_mm_min: Option<f64>,
+    /// Rapid traverse rate, mm/min, for the machining time.
+    pub rapid_mm_min: f64,
+    /// Fastest spindle speed by pitch: (pitch up to, mm; rpm), ascending.
+    #[serde(default)]
+    pub rpm_per_pitch: Vec<(f64, f64)>,
+}
+
+impl MachineProfile {
+    /// The training lathe of the 1994 thesis (its Table 2.2: the fastest spindle speed by
+    /// pitch, 0.02 to 4.99 mm). The thesis gives no rapid rate and no feed limit: 5000 mm/min
+    /// rapid is assumed and said so.
+    pub fn training_lathe() -> MachineProfile {
+        MachineProfile {
+            name: "training-lathe (thesis Table 2.2; rapid 5000 mm/min assumed)".into(),
+            max_rpm: Some(950.0),
+            max_feed_mm_min: None,
+            rapid_mm_min: 5000.0,
+            rpm_per_pitch: vec![
+                (0.5, 950.0),
+                (1.0, 500.0),
+                (1.5, 320.0),
+                (2.0, 250.0),
+                (3.0, 170.0),
+                (4.0, 130.0),
+                (4.99, 100.0),
+            ],
+        }
+    }
+
+    /// Reads `training-lathe` or a TOML file.
+    pub fn read(arg: &str) -> Result<MachineProfile, Error> {
+        if arg == "training-lathe" {
+            return Ok(MachineProfile::training_lathe());
+        }
+        let text = std::fs::read_to_string(arg)
+            .map_err(|e| Error::Io { path: arg.to_string(), message: e.to_string() })?;
+        let m: MachineProfile = toml::from_str(&text)
+            .map_err(|e| Error::File { file: arg.to_string(), message: e.to_string().replace('\n', " ") })?;
+        if !(m.rapid_mm_min > 0.0)
+            || m.max_rpm.is_some_and(|r| !(r > 0.0))
+            || m.max_feed_mm_min.is_some_and(|f| !(f > 0.0))
+        {
+            return Err(Error::File {
+                file: arg.to_string(),
+                message: "rates must be greater than zero".into(),
+            });
+        }
+        Ok(m)
+    }
+
+    /// The fastest spindle speed for a pitch, rpm, if the machine sets one.
+    pub fn max_rpm_for(&self, pitch: f64) -> Option<f64> {
+        let by_pitch = self.rpm_per_pitch.iter().find(|(up, _)| pitch <= *up + 1e-9).map(|x| x.1);
+        match (by_pitch, self.max_rpm) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        }
+    }
+}
+
+/// Time to cut an operation, seconds.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MachiningTime {
+    /// Synchronised cutting: each pass's axial length at the lead per revolution.
+    pub cutting: f64,
+    /// Rapid moves: the retract, the return stroke and the infeed of each pass.
+    pub rapid: f64,
+    /// The two together.
+    pub total: f64,
+    /// Each pass's cutting plus rapid time.
+    pub per_pass: Vec<f64>,
+}
+
+/// What the process checks found.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ProcessReport {
+    /// The machine profile used, if any.
+    pub machine: Option<String>,
+    /// Spindle speed at the cycle, rpm (under G97).
+    pub spindle_rpm: Option<f64>,
+    /// Helix angle at the pitch diameter, degrees: atan(lead / (π·d2)).
+    pub helix_angle: f64,
+    /// The insert inclination the helix asks for (the shim angle), degrees: the helix angle.
+    pub insert_inclination: f64,
+    /// The insert's side clearance less the helix angle on the leading flank, degrees, when the
+    /// clearance angle is known.
+    pub leading_flank_clearance: Option<f64>,
+    /// The machining time, when the spindle speed is known.
+    pub machining_time: Option<MachiningTime>,
+}
+
+fn process_check(feature: &'static str, value: f64, max: Option<f64>, ok: bool, note: String) -> Check {
+    Check {
+        feature,
+        kind: CheckKind::Process,
+        value,
+        min: None,
+        max,
+        ok,
+        deviation_um: 0.0,
+        note: Some(note),
+    }
+}
+
+/// The helix angle at pitch diameter `d2` for `lead`, degrees.
+pub fn helix_angle(lead: f64, d2: f64) -> f64 {
+    (lead / (std::f64::consts::PI * d2)).atan().to_degrees()
+}
+
+/// The process checks of one program operation: constant spindle speed; with a machine, the
+/// spindle speed (overall and for the pitch) and the feed S·lead; the machining time; the helix
+/// angle and, with a clearance angle, the leading flank's clearance.
+pub fn process_checks(
+    op: &Operation,
+    pitch: f64,
+    d2: f64,
+    machine: Option<&MachineProfile>,
+    clearance_angle: Option<f64>,
+) -> (Vec<Check>, ProcessReport) {
+    let lead = op.lead();
+    let mut checks = vec![process_check(
+        "constant_spindle_speed",
+        if op.spindle.constant_surface_speed { 0.0 } else { 1.0 },
+        None,
+        !op.spindle.constant_surface_speed,
+        if op.spindle.constant_surface_speed {
+            format!("{} runs under G96 (constant surface speed): the spindle speed changes with X and the passes leave the helix; program G97", op.cycle)
+        } else {
+            "G97 (constant spindle speed)".into()
+        },
+    )];
+    let rpm = (!op.spindle.constant_surface_speed).then_some(op.spindle.s).flatten();
+    if let (Some(m), Some(s)) = (machine, rpm) {
+        if let Some(max) = m.max_rpm_for(pitch) {
+            checks.push(process_check(
+                "spindle_speed",
+                s,
+                Some(max),
+                s <= max + 1e-9,
+                format!("S{s} rpm against {max} rpm for P {} mm on {}", crate::app::fmt_num(pitch), m.name),
+            ));
+        }
+        if let Some(fmax) = m.max_feed_mm_min {
+            let f = s * lead;
+            checks.push(process_check(
+                "feed",
+                f,
+                Some(fmax),
+                f <= fmax + 1e-9,
+                format!("S·lead = {} mm/min against {fmax} mm/min", crate::app::fmt_num(f)),
+            ));
+        }
+    }
+    let machining_time = rpm.filter(|s| *s > 0.0).map(|s| {
+        let rapid = machine.map_or(5000.0, |m| m.rapid_mm_min);
+        let mut cutting = 0.0;
+        let mut rapid_t = 0.0;
+        let mut per_pass = Vec::with_capacity(op.passes.len());
+        for p in &op.passes {
+            let length = (p.z_end - p.z_start).abs();
+            let cut = length / (s * p.lead) * 60.0;
+            // Out to the start diameter, back along Z, in again.
+            let lift = op.start.map_or(0.0, |(x0, _)| 0.5 * (x0 - p.x_end).abs());
+            let back = if (p.z_phase - p.z_start).abs() < 1e-12 {
+                (length + 2.0 * lift) / rapid * 60.0
+            } else {
+                0.0
+            };
+            cutting += cut;
+            rapid_t += back;
+            per_pass.push(cut + back);
+        }
+        MachiningTime { cutting, rapid: rapid_t, total: cutting + rapid_t, per_pass }
+    });
+    let helix = helix_angle(lead, d2);
+    let leading = clearance_angle.map(|c| c - helix);
+    if let Some(l) = leading {
+        checks.push(process_check(
+            "flank_clearance",
+            l,
+            None,
+            l > 0.0,
+            if l > 0.0 {
+                format!("leading flank clearance {l:.2}° (insert clearance less the helix angle {helix:.2}°)")
+            } else {
+                format!("the helix angle {helix:.2}° eats the insert's clearance: the leading flank rubs; incline the insert by {helix:.2}° (a shim)")
+            },
+        ));
+    }
+    let report = ProcessReport {
+        machine: machine.map(|m| m.name.clone()),
+        spindle_rpm: rpm,
+        helix_angle: helix,
+        insert_inclination: helix,
+        leading_flank_clearance: leading,
+        machining_time,
+    };
+    (checks, report)
+}
