@@ -369,6 +369,40 @@ fn pretty(v: &serde_json::Value) -> Result<String, Error> {
     Ok(s)
 }
 
+/// `threadcheck fit`: a bolt and a nut assembled.
+#[derive(Clone, Debug)]
+pub struct FitJob {
+    /// The pair.
+    pub spec: crate::fit::FitSpec,
+    /// Write the SVG of the pair here.
+    pub svg: Option<std::path::PathBuf>,
+    /// Write the JSON here; `-` prints it on stdout instead of the text.
+    pub json: Option<String>,
+}
+
+impl FitJob {
+    /// Runs the job: exit 0 when the pair screws together, 1 when it does not.
+    pub fn run(&self) -> Result<(String, Outcome), Error> {
+        let r = crate::fit::fit(&self.spec)?;
+        let outcome = if r.fits { Outcome::Pass } else { Outcome::OutOfTolerance };
+        let json_text = self.json.as_ref().map(|_| pretty(&crate::fit::json(&r))).transpose()?;
+        let svg_text = self.svg.as_ref().map(|_| crate::fit::svg(&r));
+        if let (Some(path), Some(t)) = (&self.svg, &svg_text) {
+            crate::output::write_atomic(path, t.as_bytes())?;
+        }
+        let text = crate::fit::text(&r);
+        let stdout = match (&self.json, json_text) {
+            (Some(p), Some(t)) if p == "-" => t,
+            (Some(p), Some(t)) => {
+                crate::output::write_atomic(std::path::Path::new(p), t.as_bytes())?;
+                text
+            }
+            _ => text,
+        };
+        Ok((stdout, outcome))
+    }
+}
+
 /// `threadcheck passes`: the expanded pass plan.
 #[derive(Clone, Debug)]
 pub struct PassesJob {

@@ -59,6 +59,7 @@ pub mod check;
 pub mod compare;
 pub mod envelope;
 pub mod error;
+pub mod fit;
 pub mod gcode;
 pub mod geometry;
 pub mod insert;

@@ -114,6 +114,45 @@ enum Command {
         #[arg(long, default_value = "reports")]
         out: PathBuf,
     },
+    /// A bolt and a nut cut in the computer and assembled: do they screw together?
+    Fit {
+        /// A fit designation, e.g. M10x1.5-6H/6g.
+        #[arg(long)]
+        thread: String,
+        /// Accept a diameter/pitch pair outside the standard series.
+        #[arg(long)]
+        allow_nonstandard: bool,
+        /// The bolt's program (else a generated plan).
+        #[arg(long, value_name = "FILE")]
+        bolt_program: Option<PathBuf>,
+        /// Its dialect.
+        #[arg(long, default_value = "fanuc")]
+        bolt_dialect: String,
+        /// The nut's program (else a generated plan).
+        #[arg(long, value_name = "FILE")]
+        nut_program: Option<PathBuf>,
+        /// Its dialect.
+        #[arg(long, default_value = "fanuc")]
+        nut_dialect: String,
+        /// The bolt plan's last tip diameter (default: mid-tolerance).
+        #[arg(long, value_name = "DIA", allow_hyphen_values = true)]
+        bolt_final_x: Option<String>,
+        /// The nut plan's last tip diameter (default: mid-tolerance).
+        #[arg(long, value_name = "DIA", allow_hyphen_values = true)]
+        nut_final_x: Option<String>,
+        /// The bolt's insert: full | partial[:TIP_RADIUS] | FILE.toml.
+        #[arg(long, default_value = "partial")]
+        bolt_insert: String,
+        /// The nut's insert.
+        #[arg(long, default_value = "partial")]
+        nut_insert: String,
+        /// Write an SVG of the pair.
+        #[arg(long, value_name = "FILE")]
+        svg: Option<PathBuf>,
+        /// Write the JSON report to this file, or `-` for stdout.
+        #[arg(long, value_name = "FILE|-")]
+        json: Option<String>,
+    },
     /// Print the expanded pass plan.
     Passes {
         #[command(flatten)]
@@ -269,6 +308,53 @@ fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
             .run()?
         }
         Command::Passes { plan, json } => PassesJob { spec: plan.spec(false)?, json }.run()?,
+        Command::Fit {
+            thread,
+            allow_nonstandard,
+            bolt_program,
+            bolt_dialect,
+            nut_program,
+            nut_dialect,
+            bolt_final_x,
+            nut_final_x,
+            bolt_insert,
+            nut_insert,
+            svg,
+            json,
+        } => {
+            use threadcheck::fit::FitSide;
+            let side = |prog: &Option<PathBuf>,
+                        dialect: &str,
+                        x: &Option<String>,
+                        insert: &str,
+                        what: &str| {
+                let program = match prog {
+                    Some(p) => Some((
+                        threadcheck::verify::read_program_text(p)?,
+                        p.display().to_string(),
+                        threadcheck::gcode::Dialect::parse(dialect)?,
+                    )),
+                    None => None,
+                };
+                if program.is_some() && x.is_some() {
+                    return Err(threadcheck::Error::Input(format!(
+                        "--{what}-final-x and --{what}-program exclude each other: the program sets the passes"
+                    )));
+                }
+                Ok::<_, threadcheck::Error>(FitSide {
+                    insert: parse_insert(insert)?,
+                    final_x: x.as_deref().map(|v| parse_len(v, &format!("--{what}-final-x"))).transpose()?,
+                    program,
+                })
+            };
+            let spec = threadcheck::fit::FitSpec {
+                thread,
+                allow_nonstandard,
+                bolt: side(&bolt_program, &bolt_dialect, &bolt_final_x, &bolt_insert, "bolt")?,
+                nut: side(&nut_program, &nut_dialect, &nut_final_x, &nut_insert, "nut")?,
+            };
+            threadcheck::app::FitJob { spec, svg, json }.run()?
+        }
         Command::Sweep {
             form,
             internal,

@@ -359,6 +359,13 @@ impl Clearance {
     }
 }
 
+/// The signed smallest distance between a bolt's profile and a nut's, both `(z, radius)` with
+/// non-decreasing z, the nut moved axially within ±`reach` to where it fits best: positive is
+/// the gap, negative the interference (mm).
+pub(crate) fn fit_clearance(bolt: Vec<Point>, nut: Vec<Point>, reach: f64) -> f64 {
+    Clearance::new(bolt, nut).best(reach)
+}
+
 /// What to measure against: the thread, its kind and (optionally) the maximum-material limits.
 #[derive(Clone, Copy, Debug)]
 pub struct MeasureSetup<'a> {

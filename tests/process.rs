@@ -103,3 +103,118 @@ fn helix_angle_and_flank_clearance() {
         assert!((c["value"].as_f64().unwrap() - want).abs() < 1e-9);
     }
 }
+
+fn fit(args: &[&str]) -> (Option<i32>, serde_json::Value) {
+    let mut a = vec!["fit"];
+    a.extend_from_slice(args);
+    a.extend(["--json", "-"]);
+    let o = run(&a);
+    (o.status.code(), serde_json::from_slice(&o.stdout).unwrap_or_else(|_| panic!("{}", stderr(&o))))
+}
+
+/// A mid-tolerance 6H nut on a mid-tolerance 6g bolt, both full profile: D2 = (9.026 + 9.206)/2
+/// = 9.116, d2 = (8.862 + 8.994)/2 = 8.928 (ISO 965-1), so the flanks stand (9.116 − 8.928)/2 ·
+/// sin 30° = 47.0 µm apart. A bolt cut 0.238 mm larger (d2 9.166 > D2 9.116) interferes by at
+/// least (9.166 − 9.116)/2 · sin 30° = 12.5 µm.
+#[test]
+fn fit_mid_tolerance_and_oversize_bolt() {
+    let (code, v) = fit(&["--thread", "M10x1.5-6H/6g", "--bolt-insert", "full", "--nut-insert", "full"]);
+    assert_eq!(code, Some(0));
+    assert!((v["clearance_um"].as_f64().unwrap() - 47.0).abs() < 0.1, "{}", v["clearance_um"]);
+    assert_eq!(v["verdict"], "fits");
+    let (code, v) = fit(&[
+        "--thread",
+        "M10x1.5-6H/6g",
+        "--bolt-insert",
+        "full",
+        "--nut-insert",
+        "full",
+        "--bolt-final-x",
+        "8.3",
+    ]);
+    assert_eq!(code, Some(1));
+    assert!(v["clearance_um"].as_f64().unwrap() <= -12.5 + 0.1, "{}", v["clearance_um"]);
+    assert_eq!(v["verdict"], "interferes");
+}
+
+/// Every form: 1/4-20 UNC-2B/2A mid on mid: (0.21995 − 0.21455) in / 2 · sin 30° = 34.29 µm;
+/// Tr40x7-7H/7e: (36.7375 − 36.1975)/2 · sin 15° = 69.88 µm.
+#[test]
+fn fit_unified_and_trapezoidal() {
+    let (_, v) = fit(&["--thread", "1/4-20 UNC-2B/2A", "--bolt-insert", "full", "--nut-insert", "full"]);
+    let want = (0.21995 - 0.21455) * 25.4 / 2.0 * 0.5 * 1000.0;
+    assert!((v["clearance_um"].as_f64().unwrap() - want).abs() < 0.1, "{} vs {want}", v["clearance_um"]);
+    let (_, v) = fit(&["--thread", "Tr40x7-7H/7e", "--bolt-insert", "full", "--nut-insert", "full"]);
+    let want = (36.7375 - 36.1975) / 2.0 * 15f64.to_radians().sin() * 1000.0;
+    assert!((v["clearance_um"].as_f64().unwrap() - want).abs() < 0.1, "{} vs {want}", v["clearance_um"]);
+}
+
+/// The bolt from a program: the M10 G76 cut to the full-profile depth gives the basic d2 =
+/// 9.02572 with a full-profile insert; on a mid-tolerance 6H nut (D2 9.116) the flanks stand
+/// (9.116 − 9.02572)/2 · sin 30° = 22.57 µm apart. The SVG of the pair is written.
+#[test]
+fn fit_with_a_bolt_program() {
+    let dir = tempdir("fit");
+    let svg = dir.join("fit.svg");
+    let prog = data("programs/fanuc-m10-full-depth-g76.nc");
+    let (code, v) = fit(&[
+        "--thread",
+        "M10x1.5-6H/6g",
+        "--bolt-program",
+        prog.to_str().unwrap(),
+        "--bolt-insert",
+        "full",
+        "--nut-insert",
+        "full",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(0));
+    let want = (9.116 - (10.0 - 0.649_519_052_838_329 * 1.5)) / 2.0 * 0.5 * 1000.0;
+    assert!((v["clearance_um"].as_f64().unwrap() - want).abs() < 0.1, "{} vs {want}", v["clearance_um"]);
+    let picture = std::fs::read_to_string(&svg).unwrap();
+    assert!(picture.contains("FITS") && picture.contains("id=\"nut\""));
+    let e = run(&["fit", "--thread", "M10x1.5-6g"]);
+    assert!(one_line_error(&e).contains("names no fit"));
+}
+
+/// G76 P010060 Q200 R0 / X18.2 Z-20 P900 Q450 F1.5 from X24 Z5 at S400: k = 0.9, Δd = 0.45,
+/// Δd min = 0.2: depths 0.45, max(0.636, 0.65) = 0.65, max(0.779, 0.85) = 0.85, then 1.05 passes
+/// k: 0.9, and one finishing pass at 0.9. Each pass starts d·tan 30° further along −Z, so it
+/// cuts L = 25 − d·tan 30° mm at 400·1.5 = 600 mm/min (L/10 s), and its rapids run out to X24,
+/// back L and in again: (L + 2·(24 − X)/2) mm at 6000 mm/min, X = 18.2 + 2·(0.9 − d). The same
+/// program under G96 fails the constant-speed check.
+#[test]
+fn g76_machining_time_and_g96() {
+    let prog = data("programs/fanuc-g76-timing.nc");
+    let machine = data("machine.toml");
+    let (_, v) = json(&[
+        "verify",
+        "--program",
+        prog.to_str().unwrap(),
+        "--thread",
+        "M20x1.5-6g",
+        "--insert",
+        "full",
+        "--machine",
+        machine.to_str().unwrap(),
+    ]);
+    let t30 = 30f64.to_radians().tan();
+    let (mut cut, mut rapid) = (0.0, 0.0);
+    for d in [0.45, 0.65, 0.85, 0.9, 0.9] {
+        let l = 25.0 - d * t30;
+        let x = 18.2 + 2.0 * (0.9 - d);
+        cut += l / 600.0 * 60.0;
+        rapid += (l + (24.0 - x)) / 6000.0 * 60.0;
+    }
+    let t = &v["operations"][0]["process"]["machining_time"];
+    assert_eq!(t["per_pass"].as_array().unwrap().len(), 5);
+    assert!((t["cutting"].as_f64().unwrap() - cut).abs() < 1e-9, "{t} vs {cut}");
+    assert!((t["rapid"].as_f64().unwrap() - rapid).abs() < 1e-9, "{t} vs {rapid}");
+    let g96 = data("programs/fanuc-g96-g76.nc");
+    let (code, v) =
+        json(&["verify", "--program", g96.to_str().unwrap(), "--thread", "M20x1.5-6g", "--insert", "full"]);
+    assert_eq!(code, Some(1));
+    let c = check(&v["operations"][0], "constant_spindle_speed");
+    assert!(c["ok"] == false && c["note"].as_str().unwrap().contains("G76 runs under G96"), "{c}");
+}

@@ -1,0 +1,248 @@
+//! `threadcheck fit`: a bolt and a nut, each cut in the computer from a program or a generated
+//! plan, assembled in the axial section: the signed clearance at the best axial position, the
+//! real engagement depth, the flank overlap, and whether the pair screws together.
+
+use crate::geometry::Point;
+use crate::verify::{verify, verify_program, InsertChoice, OperationResult, Verification, VerifySpec};
+use crate::Error;
+
+/// How one part of the pair is cut.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FitSide {
+    /// The insert.
+    pub insert: InsertChoice,
+    /// The last pass's tip diameter of a generated plan; `None` solves for mid-tolerance.
+    pub final_x: Option<f64>,
+    /// A program instead of a plan: its text, its name and dialect. It must cut one thread.
+    pub program: Option<(String, String, crate::gcode::Dialect)>,
+}
+
+/// What `fit` needs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FitSpec {
+    /// A fit designation, e.g. `M10x1.5-6H/6g`.
+    pub thread: String,
+    /// Accept sizes outside the standard series.
+    pub allow_nonstandard: bool,
+    /// The bolt.
+    pub bolt: FitSide,
+    /// The nut.
+    pub nut: FitSide,
+}
+
+/// What `fit` found.
+#[derive(Clone, Debug)]
+pub struct FitReport {
+    /// The bolt as cut and checked.
+    pub bolt: Verification,
+    /// The nut as cut and checked.
+    pub nut: Verification,
+    /// Smallest signed distance between the two profiles at the best axial position, µm:
+    /// negative where they interfere.
+    pub clearance_um: f64,
+    /// Real depth of engagement, mm: (bolt major − nut minor)/2, as cut.
+    pub engagement_depth: f64,
+    /// Length of flank in engagement, mm: the engagement depth along a flank.
+    pub flank_overlap: f64,
+    /// The pair screws together.
+    pub fits: bool,
+}
+
+fn side(spec: &FitSpec, s: &FitSide, internal: bool) -> Result<Verification, Error> {
+    let v = VerifySpec {
+        internal,
+        allow_nonstandard: spec.allow_nonstandard,
+        insert: s.insert.clone(),
+        final_x: s.final_x,
+        metrics: false,
+        ..VerifySpec::new(&spec.thread)
+    };
+    match &s.program {
+        None => verify(&v),
+        Some((text, name, dialect)) => {
+            let pv = verify_program(&v, text, name, *dialect, std::slice::from_ref(&spec.thread), &|_| None)?;
+            if pv.operations.len() != 1 {
+                return Err(Error::Input(format!(
+                    "{name} cuts {} threads; fit takes a program with one",
+                    pv.operations.len()
+                )));
+            }
+            match pv.operations.into_iter().next().map(|o| o.result) {
+                Some(OperationResult::Verified(v)) => Ok(*v),
+                Some(OperationResult::NoCut { reason }) => Err(Error::Geometry(format!("{name}: {reason}"))),
+                None => Err(Error::Input(format!("{name} cuts no thread"))),
+            }
+        }
+    }
+}
+
+/// Cuts both parts and assembles them.
+///
+/// ```
+/// use threadcheck::fit::{fit, FitSide, FitSpec};
+/// use threadcheck::verify::InsertChoice;
+/// let side = FitSide { insert: InsertChoice::Full, final_x: None, program: None };
+/// let r = fit(&FitSpec { thread: "M10x1.5-6H/6g".into(), allow_nonstandard: false, bolt: side.clone(), nut: side })?;
+/// assert!(r.fits && r.clearance_um > 0.0);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+pub fn fit(spec: &FitSpec) -> Result<FitReport, Error> {
+    let des = crate::parse_designation(
+        &spec.thread,
+        crate::ParseOptions { allow_nonstandard: spec.allow_nonstandard },
+    )?;
+    if des.external.is_none() || des.internal.is_none() {
+        return Err(Error::Input(format!(
+            "'{}' names no fit: give the nut's and the bolt's classes, e.g. M10x1.5-6H/6g",
+            spec.thread
+        )));
+    }
+    if des.thread.form.taper() != 0.0 {
+        return Err(Error::Input(
+            "fit assembles parallel threads; a taper pipe thread is judged by its gauge plane".into(),
+        ));
+    }
+    let bolt = side(spec, &spec.bolt, false)?;
+    let nut = side(spec, &spec.nut, true)?;
+    let p = des.thread.pitch;
+    // The bolt's tooth: from its measured groove's centre one pitch on. The nut's groove goes on
+    // it: the nut's profile is moved so its groove centre lies on the tooth's centre.
+    let cb = bolt.measurement.groove_center;
+    let tooth: Vec<Point> =
+        bolt.section.profile().into_iter().filter(|q| q.z >= cb - 1e-9 && q.z <= cb + p + 1e-9).collect();
+    let shift = cb + 0.5 * p - nut.measurement.groove_center;
+    let nut_side: Vec<Point> = nut
+        .section
+        .profile()
+        .into_iter()
+        .map(|q| Point::new(q.z + shift, q.r))
+        .filter(|q| q.z >= cb - p && q.z <= cb + 2.0 * p)
+        .collect();
+    if tooth.len() < 2 || nut_side.len() < 2 {
+        return Err(Error::Geometry("the cut sections hold no whole tooth to assemble".into()));
+    }
+    let clearance = crate::measure::fit_clearance(tooth, nut_side, 0.25 * p);
+    let engagement_depth = 0.5 * (bolt.measurement.major_diameter - nut.measurement.minor_diameter);
+    let half = 0.5 * des.thread.form.flank_angle().to_radians();
+    Ok(FitReport {
+        bolt,
+        nut,
+        clearance_um: clearance * 1000.0,
+        engagement_depth,
+        flank_overlap: engagement_depth.max(0.0) / half.cos(),
+        // The geometry's own accuracy: a pair at exactly basic size fits.
+        fits: clearance >= -crate::check::MMC_SLACK,
+    })
+}
+
+/// The JSON object of `fit --json`.
+pub fn json(r: &FitReport) -> serde_json::Value {
+    serde_json::json!({
+        "thread": r.bolt.designation.text,
+        "verdict": if r.fits { "fits" } else { "interferes" },
+        "clearance_um": r.clearance_um,
+        "engagement_depth": r.engagement_depth,
+        "flank_overlap": r.flank_overlap,
+        "bolt": crate::report::verify_json(&r.bolt),
+        "nut": crate::report::verify_json(&r.nut),
+    })
+}
+
+/// The text report.
+pub fn text(r: &FitReport) -> String {
+    let b = &r.bolt.measurement;
+    let n = &r.nut.measurement;
+    format!(
+        "{} fit: bolt {} ({} insert, d2 {:.4}), nut {} ({} insert, D2 {:.4})\n\n  flank clearance at the best axial position  {:+.1} µm\n  engagement depth (bolt d − nut D1)/2      {:.4} mm\n  flank overlap                             {:.4} mm\n\nverdict: {}\n",
+        r.bolt.designation.text,
+        r.bolt.limits.class,
+        r.bolt.insert.name,
+        b.pitch_diameter,
+        r.nut.limits.class,
+        r.nut.insert.name,
+        n.pitch_diameter,
+        r.clearance_um,
+        r.engagement_depth,
+        r.flank_overlap,
+        if r.fits { "FITS (the bolt screws into the nut)" } else { "INTERFERES (the bolt does not go into the nut)" }
+    )
+}
+
+/// An SVG of the pair over three pitches: the bolt's material below its profile, the nut's
+/// above, to scale, with the clearance in the title.
+pub fn svg(r: &FitReport) -> String {
+    use svg::node::element::{Polygon, Rectangle, Text};
+    let p = r.bolt.designation.thread.pitch;
+    let cb = r.bolt.measurement.groove_center;
+    let shift = cb + 0.5 * p - r.nut.measurement.groove_center;
+    let (z0, z1) = (cb - p, cb + 2.0 * p);
+    let bolt: Vec<Point> = r.bolt.section.profile().into_iter().filter(|q| q.z >= z0 && q.z <= z1).collect();
+    let nut: Vec<Point> = r
+        .nut
+        .section
+        .profile()
+        .into_iter()
+        .map(|q| Point::new(q.z + shift, q.r))
+        .filter(|q| q.z >= z0 && q.z <= z1)
+        .collect();
+    let lo = bolt.iter().chain(&nut).map(|q| q.r).fold(f64::INFINITY, f64::min) - 0.3 * p;
+    let hi = bolt.iter().chain(&nut).map(|q| q.r).fold(f64::NEG_INFINITY, f64::max) + 0.3 * p;
+    let (w, h) = (900.0, 560.0);
+    let sx = (w - 80.0) / (z1 - z0);
+    let sy = (h - 120.0) / (hi - lo);
+    let s = sx.min(sy);
+    let x = |z: f64| 40.0 + (z - z0) * s;
+    let y = |r: f64| h - 40.0 - (r - lo) * s;
+    let poly = |pts: &[Point], base: f64| -> String {
+        let mut v: Vec<String> = pts.iter().map(|q| format!("{:.2},{:.2}", x(q.z), y(q.r))).collect();
+        if let (Some(a), Some(b)) = (pts.first(), pts.last()) {
+            v.push(format!("{:.2},{:.2}", x(b.z), y(base)));
+            v.push(format!("{:.2},{:.2}", x(a.z), y(base)));
+        }
+        v.join(" ")
+    };
+    let title = format!(
+        "{} — {} — flank clearance {:+.1} µm, engagement {:.3} mm",
+        r.bolt.designation.text,
+        if r.fits { "FITS" } else { "INTERFERES" },
+        r.clearance_um,
+        r.engagement_depth
+    );
+    svg::Document::new()
+        .set("viewBox", (0, 0, w, h))
+        .set("width", w)
+        .set("height", h)
+        .add(Rectangle::new().set("width", w).set("height", h).set("fill", "white"))
+        .add(
+            Polygon::new()
+                .set("points", poly(&bolt, lo))
+                .set("fill", "#9aa4ad")
+                .set("fill-opacity", 0.8)
+                .set("id", "bolt"),
+        )
+        .add(
+            Polygon::new()
+                .set("points", poly(&nut, hi))
+                .set("fill", "#5b8fd6")
+                .set("fill-opacity", 0.6)
+                .set("id", "nut"),
+        )
+        .add(
+            Text::new(title)
+                .set("x", 20)
+                .set("y", 28)
+                .set("font-family", "sans-serif")
+                .set("font-size", 16)
+                .set("fill", if r.fits { "#1d7a36" } else { "#b3261e" }),
+        )
+        .add(
+            Text::new(
+                "bolt (grey) and nut (blue) in the axial section, to scale, nut at its best axial position",
+            )
+            .set("x", 20)
+            .set("y", 50)
+            .set("font-family", "sans-serif")
+            .set("font-size", 12),
+        )
+        .to_string()
+}
