@@ -524,7 +524,14 @@ pub fn measure(setup: &MeasureSetup<'_>, profile: &[Point], z_ref: f64) -> Resul
         root_radius,
         crest_width,
         groove_center: zc,
-        root_pockets: count_pockets(&g.pts[g.left..=g.right], 1e-3),
+        root_pockets: {
+            // Pockets are counted below mid-depth only: a notch in a crest (on a taper thread,
+            // where neighbouring turns top the crest at different heights) is no second pocket.
+            let mid = 0.5 * (y_root + y_top);
+            let i0 = (g.left..=g.root).rev().find(|&i| g.pts[i].r >= mid).unwrap_or(g.left);
+            let i1 = (g.root..=g.right).find(|&i| g.pts[i].r >= mid).unwrap_or(g.right);
+            count_pockets(&g.pts[i0..=i1], 1e-3)
+        },
         pitch_line_extrapolated: extrapolated,
         three_wire,
         max_material_clearance,

@@ -398,3 +398,29 @@ fn units_inch_in_the_text_and_the_svg() {
     let e = run(&["verify", "--thread", "1/4-20 UNC-2A", "--units", "furlong"]);
     assert_eq!(e.status.code(), Some(2));
 }
+
+/// Regression: on an 11-tpi ISO 7-1 thread cut with a full-profile insert, neighbouring turns
+/// top the crest at heights 1/32 of a pitch apart; that notch in the crest was counted as a
+/// second root pocket and `one groove` failed. Pockets are counted below mid-depth.
+#[test]
+fn regression_crest_notch_on_a_taper_is_not_a_second_pocket() {
+    for size in ["R 1", "R 2"] {
+        let o = run(&[
+            "verify",
+            "--thread",
+            size,
+            "--insert",
+            "full",
+            "--infeed",
+            "radial",
+            "--no-pass-metrics",
+            "--json",
+            "-",
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{size}: {}", stdout(&o));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let g =
+            v["checks"].as_array().unwrap().iter().find(|c| c["feature"] == "single_groove").unwrap().clone();
+        assert_eq!(g["ok"], true, "{size}: {g}");
+    }
+}
