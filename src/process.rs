@@ -205,6 +205,9 @@ pub fn process_checks(
         }
         MachiningTime { cutting, rapid: rapid_t, total: cutting + rapid_t, per_pass }
     });
+    if let Some(c) = run_out(op, pitch) {
+        checks.push(c);
+    }
     let helix = helix_angle(lead, d2);
     let leading = clearance_angle.map(|c| c - helix);
     if let Some(l) = leading {
@@ -229,4 +232,60 @@ pub fn process_checks(
         machining_time,
     };
     (checks, report)
+}
+
+/// The run-out against the turned contour, where the program turned one before the thread:
+/// within half a pitch beyond the last pass's end (the insert's own half width) the contour must
+/// not stand above the diameter turned for the thread (external; below it, internal): a
+/// shoulder there, with no undercut or chamfer to run out into, meets the insert. `None` when
+/// the program shows no contour there.
+fn run_out(op: &Operation, pitch: f64) -> Option<Check> {
+    let last = op.passes.iter().rev().find(|p| (p.z_phase - p.z_start).abs() < 1e-12)?;
+    let dir = last.feed_direction();
+    let external = op.passes.first().is_some_and(|f| last.x_end <= f.x_end);
+    // The contour's extreme diameter over [lo, hi]: external the largest, internal the smallest.
+    let extreme = |lo: f64, hi: f64| -> Option<(f64, f64)> {
+        let mut worst: Option<(f64, f64)> = None;
+        for &[x0, z0, x1, z1] in &op.contour {
+            let (zl, zh) = (z0.min(z1), z0.max(z1));
+            if zh < lo || zl > hi {
+                continue;
+            }
+            let face = (z1 - z0).abs() < 1e-12;
+            let at = |z: f64| x0 + (x1 - x0) * (z - z0) / (z1 - z0);
+            let points = if face {
+                vec![(z0, if external { x0.max(x1) } else { x0.min(x1) })]
+            } else {
+                let (za, zb) = (zl.max(lo), zh.min(hi));
+                vec![(za, at(za)), (zb, at(zb))]
+            };
+            for (z, x) in points {
+                if worst.is_none_or(|(_, w)| if external { x > w } else { x < w }) {
+                    worst = Some((z, x));
+                }
+            }
+        }
+        worst
+    };
+    let (t0, t1) = (last.z_start.min(last.z_end), last.z_start.max(last.z_end));
+    // The diameter turned for the thread: its middle half (clear of chamfers at either end).
+    let q = 0.25 * (t1 - t0);
+    let (_, turned) = extreme(t0 + q, t1 - q)?;
+    let (a, b) = (last.z_end, last.z_end + dir * 0.5 * pitch);
+    let (z, x) = extreme(a.min(b), a.max(b))?;
+    let clear = if external { x <= turned + 1e-3 } else { x >= turned - 1e-3 };
+    Some(process_check(
+        "run_out",
+        x,
+        Some(turned),
+        clear,
+        if clear {
+            format!("the last pass runs out at Z{:.3} over turned X{x:.3}, no higher than the thread's X{turned:.3}", last.z_end)
+        } else {
+            format!(
+                "the last pass ends at Z{:.3}, but the turned contour stands at X{x:.3} at Z{z:.3}, above the thread's X{turned:.3}: no undercut or chamfer to run out into, the insert meets the shoulder",
+                last.z_end
+            )
+        },
+    ))
 }

@@ -218,3 +218,32 @@ fn g76_machining_time_and_g96() {
     let c = check(&v["operations"][0], "constant_spindle_speed");
     assert!(c["ok"] == false && c["note"].as_str().unwrap().contains("G76 runs under G96"), "{c}");
 }
+
+/// Run-out: turned to X20 up to a shoulder X30 at Z−25 and threaded to Z−25, the insert meets
+/// the shoulder; with an undercut X17 from Z−22 to Z−26 and the thread ending at Z−23.5 it runs
+/// out into the groove.
+#[test]
+fn run_out_against_the_turned_shoulder() {
+    let run_out = |name: &str| {
+        let prog = data(&format!("programs/{name}"));
+        let (_, v) = json(&[
+            "verify",
+            "--program",
+            prog.to_str().unwrap(),
+            "--thread",
+            "M20x1.5-6g",
+            "--insert",
+            "full",
+        ]);
+        check(&v["operations"][0], "run_out").clone()
+    };
+    let c = run_out("fanuc-runout-shoulder.nc");
+    assert_eq!(
+        (c["ok"].as_bool(), c["value"].as_f64(), c["max"].as_f64()),
+        (Some(false), Some(30.0), Some(20.0)),
+        "{c}"
+    );
+    assert!(c["note"].as_str().unwrap().contains("shoulder"));
+    let c = run_out("fanuc-runout-undercut.nc");
+    assert_eq!((c["ok"].as_bool(), c["value"].as_f64()), (Some(true), Some(17.0)), "{c}");
+}

@@ -113,6 +113,10 @@ pub struct Operation {
     /// Where the tool stood when the cycle was called (X diameter, Z), mm: a cycle returns there
     /// after each pass. `None` for G32/G33 passes written one by one.
     pub start: Option<(f64, f64)>,
+    /// The turned contour the program cut before this operation: its feed moves as
+    /// (X0, Z0, X1, Z1), diameters in mm (arcs as chords).
+    #[serde(skip)]
+    pub contour: Vec<[f64; 4]>,
     /// Its passes in cutting order.
     pub passes: Vec<Pass>,
     /// Warnings and the defaults the expansion assumed.

@@ -134,7 +134,13 @@ pub(crate) struct Motion {
     pub notes: Vec<String>,
     moves: Option<Vec<Move>>,
     passes_total: usize,
+    /// The turned contour so far: feed moves (G1, G2, G3) of the lathe dialects as
+    /// (X0, Z0, X1, Z1), diameters, capped at `MAX_CONTOUR` segments.
+    contour: Vec<[f64; 4]>,
 }
+
+/// Most contour segments kept for the run-out check.
+const MAX_CONTOUR: usize = 100_000;
 
 impl Motion {
     pub fn new(dialect: Dialect, file: &str, record_moves: bool) -> Motion {
@@ -169,6 +175,7 @@ impl Motion {
             notes: Vec::new(),
             moves: record_moves.then(Vec::new),
             passes_total: 0,
+            contour: Vec::new(),
         }
     }
 
@@ -245,6 +252,7 @@ impl Motion {
                 let to = [x.unwrap_or(from[0]), y.unwrap_or(from[1]), z.unwrap_or(from[2])];
                 mv.push(Move { rapid: self.motion == 0.0, from, to, arc: None, line: b.line });
             }
+            self.record_contour(x, z);
         }
         if let Some(x) = x {
             self.x = Some(x);
@@ -266,6 +274,8 @@ impl Motion {
             return Ok(false);
         }
         self.break_chain();
+        // An arc of the turned contour is kept as its chord: enough to see a shoulder.
+        self.record_contour(x, z);
         let from = [self.x.unwrap_or(0.0), self.y.unwrap_or(0.0), self.z.unwrap_or(0.0)];
         let to = [x.unwrap_or(from[0]), y.unwrap_or(from[1]), z.unwrap_or(from[2])];
         if self.moves.is_some() && self.plane == 17 {
@@ -297,6 +307,17 @@ impl Motion {
         self.y = Some(to[1]);
         self.z = Some(to[2]);
         Ok(true)
+    }
+
+    /// Keeps a feed move of a lathe program as a segment of the turned contour.
+    fn record_contour(&mut self, x: Option<f64>, z: Option<f64>) {
+        let feed = matches!(self.motion as u32, 1..=3) && self.motion.fract() == 0.0;
+        if !feed || !self.lathe() || self.contour.len() >= MAX_CONTOUR {
+            return;
+        }
+        if let (Some(x0), Some(z0)) = (self.x, self.z) {
+            self.contour.push([x0, z0, x.unwrap_or(x0), z.unwrap_or(z0)]);
+        }
     }
 
     /// The current X and Z, or an error naming what needs them.
@@ -333,6 +354,7 @@ impl Motion {
             spindle: self.spindle(),
             infeed_angle: None,
             start: self.x.zip(self.z),
+            contour: self.contour.clone(),
             passes: Vec::new(),
             notes: Vec::new(),
         });
