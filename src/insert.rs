@@ -43,6 +43,9 @@ pub struct Insert {
     pub tip_radius: f64,
     /// Pitches the insert is made for, mm, inclusive; `None` when unrestricted.
     pub pitch_range: Option<(f64, f64)>,
+    /// The side clearance angle under the cutting edges, degrees, when the insert file gives it
+    /// (for the flank-clearance process check).
+    pub clearance_angle: Option<f64>,
     /// Height of the tip zone, mm: outline points below it count as the tip when engaged edges
     /// are reported; the rest is the leading or trailing flank.
     pub tip_zone: f64,
@@ -111,6 +114,7 @@ impl Insert {
             angle: thread.form.flank_angle(),
             tip_radius,
             pitch_range: Some((thread.pitch, thread.pitch)),
+            clearance_angle: None,
             tip_zone: tip_radius.max(1e-9),
             outline,
         }
@@ -153,6 +157,7 @@ impl Insert {
             angle,
             tip_radius,
             pitch_range: None,
+            clearance_angle: None,
             tip_zone: tip_radius.max(1e-9),
             outline,
         })
@@ -188,6 +193,7 @@ impl Insert {
                     angle: spec.angle.unwrap_or(0.0),
                     tip_radius,
                     pitch_range: None,
+                    clearance_angle: None,
                     tip_zone: spec.tip_zone.unwrap_or(tip_radius.max(0.01)),
                     outline,
                 }
@@ -210,6 +216,12 @@ impl Insert {
                 return Err(ferr(format!("pitch_range [{a}, {b}] is not an increasing pair of pitches")));
             }
             ins.pitch_range = Some((a, b));
+        }
+        if let Some(c) = spec.clearance_angle {
+            if !(c.is_finite() && (0.0..45.0).contains(&c)) {
+                return Err(ferr(format!("clearance_angle {c}° must be from 0 to under 45")));
+            }
+            ins.clearance_angle = Some(c);
         }
         Ok(ins)
     }
@@ -265,6 +277,8 @@ struct InsertFile {
     height: Option<f64>,
     tip_zone: Option<f64>,
     pitch_range: Option<[f64; 2]>,
+    /// Side clearance angle, degrees.
+    clearance_angle: Option<f64>,
     /// Points `[z, r]` or `[z, r, bulge]`: a bulge b ≠ 0 makes the edge to the next point an arc
     /// of included angle 4·atan(b), counter-clockwise for b > 0 (the DXF convention).
     outline: Option<Vec<Vec<f64>>>,

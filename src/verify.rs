@@ -878,7 +878,7 @@ pub fn verify_program(
                 t.pitch,
                 t.pitch_diameter(),
                 spec.machine.as_ref(),
-                spec.clearance_angle,
+                spec.clearance_angle.or(v.insert.clearance_angle),
             );
             v.checks.extend(checks);
             v.process = Some(report);

@@ -247,3 +247,22 @@ fn run_out_against_the_turned_shoulder() {
     let c = run_out("fanuc-runout-undercut.nc");
     assert_eq!((c["ok"].as_bool(), c["value"].as_f64()), (Some(true), Some(17.0)), "{c}");
 }
+
+/// The insert file's `clearance_angle` (1°) is used when `--clearance-angle` is not given: the
+/// M20x1.5's 1.44° helix eats it.
+#[test]
+fn clearance_angle_from_the_insert_file() {
+    let prog = data("programs/fanuc-g97-g92.nc");
+    let ins = data("insert-clearance-1deg.toml");
+    let (_, v) = json(&[
+        "verify",
+        "--program",
+        prog.to_str().unwrap(),
+        "--thread",
+        "M20x1.5-6g",
+        "--insert",
+        ins.to_str().unwrap(),
+    ]);
+    let c = check(&v["operations"][0], "flank_clearance");
+    assert_eq!(c["ok"], false, "{c}");
+}
