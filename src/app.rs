@@ -662,7 +662,8 @@ impl SweepJob {
             cases.len(),
             start.elapsed().as_secs_f64()
         );
-        Ok((out, summary, Outcome::Pass))
+        // Exit 1 when any case fails, as verify does.
+        Ok((out, summary, if fail > 0 { Outcome::OutOfTolerance } else { Outcome::Pass }))
     }
 }
 

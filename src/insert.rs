@@ -14,7 +14,7 @@ use crate::geometry::{deg, extend_dedup, signed_area, Arc, Point};
 use crate::limits::{MAX_INSERT_REACH, MAX_OUTLINE_POINTS};
 use crate::standards::{BasicThread, ProfileKind, ThreadKind};
 use crate::Error;
-use nalgebra::{Isometry2, Point2, Vector2};
+use parry2d_f64::na::{Isometry2, Point2, Vector2};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, PI};
 

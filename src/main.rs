@@ -23,8 +23,12 @@ struct Cli {
 enum Command {
     /// Limits of size of a designation (ISO 965-1, BS 84, ISO 228-1).
     Limits {
-        /// Designation, e.g. M10x1.25-6g, M10-6H/6g, "BSF 3/8 medium", "G1/2 A".
-        designation: String,
+        /// Designation, e.g. M10x1.25-6g, M10-6H/6g, "BSF 3/8 medium", "G1/2 A", "1/4-20 UNC-2A".
+        #[arg(required_unless_present = "thread", conflicts_with = "thread")]
+        designation: Option<String>,
+        /// The designation as an option, as the other commands take it.
+        #[arg(long)]
+        thread: Option<String>,
         /// Print JSON instead of a table.
         #[arg(long)]
         json: bool,
@@ -248,6 +252,9 @@ impl PlanArgs {
             )?;
             s.infeed = Some(parse_infeed(i, 0.5 * des.thread.form.flank_angle())?);
         }
+        if self.passes == Some(0) {
+            return Err(threadcheck::Error::Input("--passes 0: a thread needs at least one pass".into()));
+        }
         s.passes = self.passes;
         let opt = |v: &Option<String>, what: &str| v.as_deref().map(|x| parse_len(x, what)).transpose();
         s.first_depth = opt(&self.first_depth, "--first-depth")?;
@@ -280,7 +287,8 @@ impl PlanArgs {
 
 fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
     let (text, outcome) = match cli.command {
-        Command::Limits { designation, json, allow_nonstandard } => {
+        Command::Limits { designation, thread, json, allow_nonstandard } => {
+            let designation = designation.or(thread).unwrap_or_default();
             LimitsJob { designation, allow_nonstandard, json }.run()?
         }
         Command::Verify { plan, gauge_only, no_pass_metrics, svg, json } => {

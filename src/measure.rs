@@ -7,8 +7,8 @@
 use crate::geometry::{cross_at_level, dia, Point};
 use crate::standards::{BasicThread, ProfileKind, ThreadKind};
 use crate::Error;
-use nalgebra::{Isometry2, Vector2};
 use parry2d_f64::math::Point as PPoint;
+use parry2d_f64::na::{Isometry2, Vector2};
 use parry2d_f64::query::{cast_shapes, PointQuery, ShapeCastOptions};
 use parry2d_f64::shape::{Ball, Polyline};
 use serde::Serialize;

@@ -465,3 +465,49 @@ fn tool_table_chooses_the_insert_of_the_programs_tool() {
         "{notes:?}"
     );
 }
+
+/// Issue 14's CLI points: `limits --thread` as the other commands take it, `--passes 0` is an
+/// error, and `sweep` exits 1 when a case fails (a partial insert leaves M10's root radius below
+/// 0.125·P) and 0 when none does.
+#[test]
+fn cli_limits_thread_passes_zero_and_sweep_exit_codes() {
+    let a = run(&["limits", "--thread", "M10-6g", "--json"]);
+    let b = run(&["limits", "M10-6g", "--json"]);
+    assert_eq!(a.status.code(), Some(0));
+    assert_eq!(a.stdout, b.stdout);
+    let e = run(&["verify", "--thread", "M10x1.5-6g", "--passes", "0"]);
+    assert!(one_line_error(&e).contains("--passes 0"));
+    let fail = run(&[
+        "sweep",
+        "--min-d",
+        "10",
+        "--max-d",
+        "10",
+        "--series",
+        "coarse",
+        "--insert",
+        "partial",
+        "--infeed",
+        "radial",
+        "--schedule",
+        "constant-area",
+    ]);
+    assert_eq!(fail.status.code(), Some(1), "{}", stdout(&fail));
+    assert!(stdout(&fail).contains("1 cases, 0 pass, 1 fail"));
+    let pass = run(&[
+        "sweep",
+        "--min-d",
+        "10",
+        "--max-d",
+        "10",
+        "--series",
+        "coarse",
+        "--insert",
+        "full",
+        "--infeed",
+        "radial",
+        "--schedule",
+        "constant-area",
+    ]);
+    assert_eq!(pass.status.code(), Some(0), "{}", stdout(&pass));
+}
