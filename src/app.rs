@@ -265,8 +265,8 @@ pub struct VerifyJob {
 impl VerifyJob {
     /// Runs the job: the report on stdout, files written atomically, pass or out of tolerance.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
-        if let Some((path, dialect)) = &self.spec.program {
-            return self.run_program(path, *dialect);
+        if let Some((source, dialect)) = &self.spec.program {
+            return self.run_program(source, *dialect);
         }
         let v = crate::verify::verify(&self.spec)?;
         let outcome = if v.pass { Outcome::Pass } else { Outcome::OutOfTolerance };
@@ -279,7 +279,7 @@ impl VerifyJob {
 
     fn run_program(
         &self,
-        path: &std::path::Path,
+        source: &crate::verify::ProgramSource,
         dialect: crate::gcode::Dialect,
     ) -> Result<(String, Outcome), Error> {
         if self.spec.final_x.is_some() {
@@ -287,8 +287,7 @@ impl VerifyJob {
                 "--final-x and --program exclude each other: the program sets the passes".into(),
             ));
         }
-        let shown = path.display().to_string();
-        let text = crate::verify::read_program_text(path)?;
+        let (shown, text) = source.load()?;
         let default = self.spec.insert.clone();
         let insert_for = |op: &crate::gcode::Operation| -> Option<(crate::verify::InsertChoice, String)> {
             if self.insert_given {
@@ -418,9 +417,8 @@ impl PassesJob {
     pub fn run(&self) -> Result<(String, Outcome), Error> {
         let mut operations = None;
         let (thread, passes, header) = match (&self.spec.program, self.spec.designation.is_empty()) {
-            (Some((path, dialect)), no_thread) => {
-                let shown = path.display().to_string();
-                let text = crate::verify::read_program_text(path)?;
+            (Some((source, dialect)), no_thread) => {
+                let (shown, text) = source.load()?;
                 let prog = crate::gcode::read_program(&text, &shown, *dialect)?;
                 let thread = if no_thread {
                     serde_json::Value::Null

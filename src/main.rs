@@ -279,7 +279,10 @@ impl PlanArgs {
             threadcheck::verify::Units::Mm
         };
         if let Some(p) = &self.program {
-            s.program = Some((p.clone(), threadcheck::gcode::Dialect::parse(&self.dialect)?));
+            s.program = Some((
+                threadcheck::verify::ProgramSource::File(p.clone()),
+                threadcheck::gcode::Dialect::parse(&self.dialect)?,
+            ));
         }
         Ok(s)
     }

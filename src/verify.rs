@@ -64,8 +64,9 @@ pub struct VerifySpec {
     pub blank_diameter: Option<f64>,
     /// Leave form checks out of the verdict.
     pub gauge_only: bool,
-    /// Take the passes from this G-code program instead of generating a plan.
-    pub program: Option<(PathBuf, crate::gcode::Dialect)>,
+    /// Take the passes from this G-code program (a file, or text held in memory) instead of
+    /// generating a plan.
+    pub program: Option<(ProgramSource, crate::gcode::Dialect)>,
     /// Compute the per-pass chip and edge metrics (polygon booleans; reports need them, a
     /// catalogue sweep does not).
     pub metrics: bool,
@@ -117,6 +118,29 @@ impl VerifySpec {
             machine: None,
             clearance_angle: None,
         }
+    }
+
+    /// The same spec with its passes taken from program text held in memory (a post-processor's
+    /// output); `name` is what messages call it (`name:line:column`).
+    ///
+    /// ```
+    /// use threadcheck::verify::{verify, InsertChoice, VerifySpec};
+    /// use threadcheck::gcode::Dialect;
+    /// let g76 = "G0 X22 Z5\nG76 P010060 Q100 R0.02\nG76 X18.2 Z-20 P900 Q300 F1.5\n";
+    /// let spec = VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M20x1.5-6g") };
+    /// let v = verify(&spec.with_program_text("post.nc", g76, Dialect::Fanuc))?;
+    /// // A full-profile tip at X18.2 leaves d2 = 18.2 + 0.57735·1.5 = 19.066: 72 µm over 6g.
+    /// assert!(!v.pass);
+    /// assert!(v.suggested_final_x.unwrap() < 18.2);
+    /// # Ok::<(), threadcheck::Error>(())
+    /// ```
+    pub fn with_program_text(
+        self,
+        name: impl Into<String>,
+        text: impl Into<String>,
+        dialect: crate::gcode::Dialect,
+    ) -> VerifySpec {
+        VerifySpec { program: Some((ProgramSource::text(name, text), dialect)), ..self }
     }
 }
 
@@ -382,6 +406,59 @@ struct Cut {
     measurement: Measurement,
 }
 
+/// Where a program comes from: a file, or text a post-processor holds in memory.
+///
+/// ```
+/// use threadcheck::verify::ProgramSource;
+/// let p = ProgramSource::text("post.nc", "G0 X22 Z5\nG76 P010060 Q50 R0.02\n");
+/// let (name, text) = p.load()?;
+/// assert_eq!(name, "post.nc");
+/// assert!(text.starts_with("G0"));
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum ProgramSource {
+    /// A program file.
+    File(PathBuf),
+    /// Program text; `name` stands for the file in messages (`name:line:column`).
+    Text {
+        /// What messages call the program.
+        name: String,
+        /// The program.
+        text: String,
+    },
+}
+
+impl ProgramSource {
+    /// Program text in memory, called `name` in messages.
+    pub fn text(name: impl Into<String>, text: impl Into<String>) -> Self {
+        ProgramSource::Text { name: name.into(), text: text.into() }
+    }
+
+    /// The name messages use and the text, read from the file if it is one; bounded in size
+    /// either way.
+    pub fn load(&self) -> Result<(String, String), Error> {
+        match self {
+            ProgramSource::File(path) => Ok((path.display().to_string(), read_program_text(path)?)),
+            ProgramSource::Text { name, text } => {
+                if text.len() > crate::limits::MAX_PROGRAM_BYTES {
+                    return Err(Error::Program {
+                        file: name.clone(),
+                        line: 1,
+                        column: 1,
+                        message: format!(
+                            "the program is larger than {} bytes",
+                            crate::limits::MAX_PROGRAM_BYTES
+                        ),
+                    });
+                }
+                Ok((name.clone(), text.clone()))
+            }
+        }
+    }
+}
+
 /// Reads a program file as text, bounded in size, refusing binary files.
 pub fn read_program_text(path: &std::path::Path) -> Result<String, Error> {
     let shown = path.display().to_string();
@@ -508,14 +585,13 @@ pub fn resolve(spec: &VerifySpec) -> Result<Resolved, Error> {
 
 /// Runs `verify`.
 pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
-    if let Some((path, dialect)) = &spec.program {
+    if let Some((source, dialect)) = &spec.program {
         if spec.final_x.is_some() {
             return Err(Error::Input(
                 "--final-x and --program exclude each other: the program sets the passes".into(),
             ));
         }
-        let shown = path.display().to_string();
-        let text = read_program_text(path)?;
+        let (shown, text) = source.load()?;
         let prog = crate::gcode::read_program(&text, &shown, *dialect)?;
         if prog.operations.len() != 1 {
             let lines: Vec<String> = prog.operations.iter().map(|o| o.source_line.to_string()).collect();

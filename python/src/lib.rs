@@ -1,0 +1,178 @@
+//! The compiled half of the Python package `threadcheck`: each function runs the same job as the
+//! command line and returns its JSON text; `threadcheck/__init__.py` turns it into dicts.
+//! Every error is a `ValueError` with the command line's one-line message.
+
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use threadcheck::app::{parse_infeed, parse_insert, LimitsJob, PassesJob, VerifyJob};
+use threadcheck::gcode::Dialect;
+use threadcheck::verify::{ProgramSource, VerifySpec};
+
+fn value_error(e: threadcheck::Error) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+/// The plan and program arguments `verify` and `passes` share, as the CLI's `PlanArgs`.
+#[allow(clippy::too_many_arguments)]
+fn spec(
+    threads: &[String],
+    program: Option<String>,
+    program_name: &str,
+    dialect: &str,
+    insert: Option<&str>,
+    final_x: Option<f64>,
+    internal: bool,
+    infeed: Option<&str>,
+    passes: Option<usize>,
+    blank_diameter: Option<f64>,
+    allow_nonstandard: bool,
+) -> Result<VerifySpec, threadcheck::Error> {
+    let mut s = VerifySpec::new(threads.first().map_or("", String::as_str));
+    s.internal = internal;
+    s.allow_nonstandard = allow_nonstandard;
+    s.insert = parse_insert(insert.unwrap_or("partial"))?;
+    if let Some(i) = infeed {
+        let des =
+            threadcheck::parse_designation(&s.designation, threadcheck::ParseOptions { allow_nonstandard })?;
+        s.infeed = Some(parse_infeed(i, 0.5 * des.thread.form.flank_angle())?);
+    }
+    if passes == Some(0) {
+        return Err(threadcheck::Error::Input("passes = 0: a thread needs at least one pass".into()));
+    }
+    s.passes = passes;
+    for (v, what) in [(final_x, "final_x"), (blank_diameter, "blank_diameter")] {
+        if v.is_some_and(|x| !x.is_finite()) {
+            return Err(threadcheck::Error::Input(format!("{what} is not a finite number")));
+        }
+    }
+    s.final_x = final_x;
+    s.blank_diameter = blank_diameter;
+    if let Some(text) = program {
+        s.program = Some((ProgramSource::text(program_name, text), Dialect::parse(dialect)?));
+    }
+    Ok(s)
+}
+
+/// `threadcheck verify --json -`: returns (JSON text, verdict passed).
+#[pyfunction]
+#[pyo3(signature = (threads, program=None, dialect="fanuc", insert=None, final_x=None, internal=false,
+    infeed=None, passes=None, blank_diameter=None, gauge_only=false, allow_nonstandard=false,
+    program_name="<program>"))]
+#[allow(clippy::too_many_arguments)]
+fn verify_json(
+    py: Python<'_>,
+    threads: Vec<String>,
+    program: Option<String>,
+    dialect: &str,
+    insert: Option<&str>,
+    final_x: Option<f64>,
+    internal: bool,
+    infeed: Option<&str>,
+    passes: Option<usize>,
+    blank_diameter: Option<f64>,
+    gauge_only: bool,
+    allow_nonstandard: bool,
+    program_name: &str,
+) -> PyResult<(String, bool)> {
+    let run = || -> Result<(String, bool), threadcheck::Error> {
+        if threads.is_empty() {
+            return Err(threadcheck::Error::Input(
+                "verify needs a thread with a class, e.g. M10x1.5-6g".into(),
+            ));
+        }
+        if threads.len() > 1 && program.is_none() {
+            return Err(threadcheck::Error::Input(
+                "several threads are given: only a program with several threads takes one per operation"
+                    .into(),
+            ));
+        }
+        let insert_given = insert.is_some();
+        let mut spec = spec(
+            &threads,
+            program.clone(),
+            program_name,
+            dialect,
+            insert,
+            final_x,
+            internal,
+            infeed,
+            passes,
+            blank_diameter,
+            allow_nonstandard,
+        )?;
+        spec.gauge_only = gauge_only;
+        let job = VerifyJob {
+            spec,
+            threads: threads.clone(),
+            insert_given,
+            tools: None,
+            svg: None,
+            json: Some("-".into()),
+        };
+        let (text, outcome) = job.run()?;
+        Ok((text, outcome == threadcheck::app::Outcome::Pass))
+    };
+    py.detach(run).map_err(value_error)
+}
+
+/// `threadcheck limits D --json`.
+#[pyfunction]
+#[pyo3(signature = (designation, allow_nonstandard=false))]
+fn limits_json(py: Python<'_>, designation: String, allow_nonstandard: bool) -> PyResult<String> {
+    py.detach(|| LimitsJob { designation, allow_nonstandard, json: true }.run())
+        .map(|(text, _)| text)
+        .map_err(value_error)
+}
+
+/// `threadcheck passes --json`.
+#[pyfunction]
+#[pyo3(signature = (thread=None, program=None, dialect="fanuc", insert=None, final_x=None, internal=false,
+    infeed=None, passes=None, blank_diameter=None, allow_nonstandard=false, program_name="<program>"))]
+#[allow(clippy::too_many_arguments)]
+fn passes_json(
+    py: Python<'_>,
+    thread: Option<String>,
+    program: Option<String>,
+    dialect: &str,
+    insert: Option<&str>,
+    final_x: Option<f64>,
+    internal: bool,
+    infeed: Option<&str>,
+    passes: Option<usize>,
+    blank_diameter: Option<f64>,
+    allow_nonstandard: bool,
+    program_name: &str,
+) -> PyResult<String> {
+    let run = || -> Result<String, threadcheck::Error> {
+        if thread.is_none() && program.is_none() {
+            return Err(threadcheck::Error::Input(
+                "passes needs a thread (e.g. M10x1.5-6g) or a program".into(),
+            ));
+        }
+        let threads: Vec<String> = thread.iter().cloned().collect();
+        let spec = spec(
+            &threads,
+            program.clone(),
+            program_name,
+            dialect,
+            insert,
+            final_x,
+            internal,
+            infeed,
+            passes,
+            blank_diameter,
+            allow_nonstandard,
+        )?;
+        Ok(PassesJob { spec, json: true }.run()?.0)
+    };
+    py.detach(run).map_err(value_error)
+}
+
+#[pymodule]
+fn _threadcheck(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(verify_json, m)?)?;
+    m.add_function(wrap_pyfunction!(limits_json, m)?)?;
+    m.add_function(wrap_pyfunction!(passes_json, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,110 @@
+"""Tests of the Python package against values from outside the code: ISO 965-1's tables, the
+G76 sheet's stated result, and pass depths derived by hand. THREADCHECK_BIN names the CLI binary
+the dicts are compared with (.ci/run sets it); without it that test fails, it does not skip."""
+
+import json
+import math
+import os
+import subprocess
+import tempfile
+
+import pytest
+
+import threadcheck
+
+# A two-block Fanuc G76 of our own for M20x1.5: thread height P900 (0.9 mm) from X20.0 to the
+# final X18.2, first depth Q300, finishing allowance R0.02, 60° insert.
+G76_M20 = """%
+O2001 (M20X1.5 POST OUTPUT)
+G21 G40 G97 S500 M03
+T0101
+G0 X22.0 Z5.0
+G76 P010060 Q100 R0.02
+G76 X18.2 Z-20.0 P900 Q300 F1.5
+G0 X100.0 Z100.0
+M30
+%
+"""
+
+
+def test_limits_match_iso_965_1():
+    # ISO 965-1, M10x1.5-6g: d2 8.994/8.862, d 9.968/9.732 (es = -32 µm).
+    lim = threadcheck.limits("M10x1.5-6g")
+    ext = lim["external"]
+    assert ext["pitch_diameter"] == {"max": 8.994, "min": 8.862}
+    assert ext["major_diameter"] == {"max": 9.968, "min": 9.732}
+    assert lim["internal"] is None
+    # 6H: D2 9.026/9.206, D1 8.376/8.676.
+    nut = threadcheck.limits("M10x1.5-6H")["internal"]
+    assert nut["pitch_diameter"] == {"max": 9.206, "min": 9.026}
+    assert nut["minor_diameter"] == {"max": 8.676, "min": 8.376}
+
+
+def test_verify_program_text_reads_72_um_over_6g():
+    # A full-profile insert's tip sits at d3, so the cut d2 = X + (d2 - d3) = 18.2 + 0.57735·P
+    # = 19.0660; 6g's d2 max is 19.026 - 0.032 = 18.994: 72.0 µm over (the G76 sheet's result).
+    r = threadcheck.verify("M20x1.5-6g", program=G76_M20, insert="full")
+    assert r["verdict"] == "fail"
+    (op,) = r["operations"]
+    d2 = next(c for c in op["checks"] if c["feature"] == "pitch_diameter")
+    assert abs(d2["deviation_um"] - 72.0) < 0.5
+    # The correction a post applies: the suggested X brings d2 into the tolerance.
+    x = op["suggested_final_x"]
+    fixed = threadcheck.verify("M20x1.5-6g", program=G76_M20.replace("X18.2", "X%.4f" % x), insert="full")
+    assert fixed["verdict"] == "pass"
+
+
+def test_dicts_are_the_cli_json():
+    binary = os.environ.get("THREADCHECK_BIN")
+    assert binary, "THREADCHECK_BIN must name the threadcheck binary to compare with"
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "m20.nc")
+        with open(path, "w") as f:
+            f.write(G76_M20)
+        cli = subprocess.run([binary, "verify", "--thread", "M20x1.5-6g", "--program", path,
+                              "--insert", "full", "--json", "-"], capture_output=True, text=True)
+        assert cli.returncode == 1, cli.stderr
+        py = threadcheck.verify("M20x1.5-6g", program=G76_M20, insert="full", program_name=path)
+        assert py == json.loads(cli.stdout)
+        cli = subprocess.run([binary, "limits", "M12x1.25-6H", "--json"], capture_output=True, text=True)
+        assert cli.returncode == 0, cli.stderr
+        assert threadcheck.limits("M12x1.25-6H") == json.loads(cli.stdout)
+        cli = subprocess.run([binary, "passes", "--program", path, "--json"], capture_output=True, text=True)
+        assert cli.returncode == 0, cli.stderr
+        assert threadcheck.passes(program=G76_M20, program_name=path) == json.loads(cli.stdout)
+
+
+def test_passes_of_a_plan_are_constant_area():
+    # Radial infeed, 4 passes from X10 to X8.2: depth 0.9·sqrt(i/4), X = 10 - 1.8·sqrt(i/4).
+    p = threadcheck.passes("M10x1.5-6g", final_x=8.2, passes=4, infeed="radial", blank_diameter=10.0)
+    xs = [q["x_end"] for q in p["passes"]]
+    assert len(xs) == 4
+    for i, x in enumerate(xs, start=1):
+        assert math.isclose(x, 10.0 - 1.8 * math.sqrt(i / 4), abs_tol=1e-9)
+
+
+def test_passes_of_program_text():
+    p = threadcheck.passes(program=G76_M20)
+    (op,) = p["operations"]
+    assert op["cycle"].startswith("G76") and op["source_line"] == 7
+    assert op["passes"][-1]["x_end"] == pytest.approx(18.2, abs=1e-9)
+    assert all(q["z_end"] == -20.0 and q["lead"] == 1.5 for q in op["passes"])
+
+
+def test_errors_are_value_errors_with_the_place():
+    bad = G76_M20.replace("G76 X18.2", "G76.1 X18.2")
+    with pytest.raises(ValueError, match=r"^post\.nc:7:\d+: .*G76\.1"):
+        threadcheck.verify("M20x1.5-6g", program=bad, program_name="post.nc")
+    with pytest.raises(ValueError, match="M10x1.5-6q"):
+        threadcheck.limits("M10x1.5-6q")
+    with pytest.raises(ValueError, match="at least one pass"):
+        threadcheck.passes("M10x1.5-6g", passes=0)
+    with pytest.raises(ValueError, match="dialect"):
+        threadcheck.verify("M20x1.5-6g", program=G76_M20, dialect="heidenhain")
+
+
+def test_module_docstring_example_runs():
+    import doctest
+
+    failures, tried = doctest.testmod(threadcheck)
+    assert tried >= 2 and failures == 0

@@ -1,0 +1,52 @@
+"""threadcheck: what thread a CNC lathe program will cut, and whether it meets its standard.
+
+Each function runs the same job as the command line and returns a plain dict identical to that
+command's JSON (``docs/json.md`` in the repository lists every key and its unit). Errors raise
+``ValueError`` with the command line's one-line message (``file:line:column`` for programs).
+
+>>> import threadcheck
+>>> threadcheck.limits("M10x1.5-6g")["external"]["pitch_diameter"]["max"]
+8.994
+"""
+
+import json as _json
+
+from . import _threadcheck
+
+__all__ = ["verify", "limits", "passes", "__version__"]
+__version__ = _threadcheck.__version__
+
+
+def verify(thread, program=None, dialect="fanuc", insert=None, final_x=None, internal=False,
+           infeed=None, passes=None, blank_diameter=None, gauge_only=False,
+           allow_nonstandard=False, program_name="<program>"):
+    """``threadcheck verify --json -``.
+
+    ``thread`` is a designation with its class (``"M20x1.5-6g"``), or a list of them, one per
+    threading operation of ``program``. ``program`` is the program's text (not a path); without
+    it a plan is generated and ``final_x`` (or the solved middle of the tolerance) is verified.
+    ``insert`` is ``"full"``, ``"partial"``, ``"partial:R"`` or an insert file's path; without
+    it a program is verified with a partial insert and the report says so.
+    The dict has ``verdict`` (``"PASS"``/``"FAIL"``); a program's report has ``operations``.
+    """
+    threads = [thread] if isinstance(thread, str) else list(thread)
+    text, _passed = _threadcheck.verify_json(
+        threads, program=program, dialect=dialect, insert=insert, final_x=final_x,
+        internal=internal, infeed=infeed, passes=passes, blank_diameter=blank_diameter,
+        gauge_only=gauge_only, allow_nonstandard=allow_nonstandard, program_name=program_name)
+    return _json.loads(text)
+
+
+def limits(designation, allow_nonstandard=False):
+    """``threadcheck limits DESIGNATION --json``: basic sizes and limits of size, mm."""
+    return _json.loads(_threadcheck.limits_json(designation, allow_nonstandard=allow_nonstandard))
+
+
+def passes(thread=None, program=None, dialect="fanuc", insert=None, final_x=None, internal=False,
+           infeed=None, passes=None, blank_diameter=None, allow_nonstandard=False,
+           program_name="<program>"):
+    """``threadcheck passes --json``: the passes of a generated plan or of a program's text."""
+    return _json.loads(_threadcheck.passes_json(
+        thread=thread, program=program, dialect=dialect, insert=insert, final_x=final_x,
+        internal=internal, infeed=infeed, passes=passes, blank_diameter=blank_diameter,
+        allow_nonstandard=allow_nonstandard, program_name=program_name))
