@@ -33,8 +33,8 @@ pub struct LimitsJob {
     pub designation: String,
     /// Accept sizes outside the standard series.
     pub allow_nonstandard: bool,
-    /// JSON instead of the table.
-    pub json: bool,
+    /// The JSON: `-` prints it on stdout instead of the table, a path writes it there.
+    pub json: Option<String>,
 }
 
 impl LimitsJob {
@@ -44,15 +44,10 @@ impl LimitsJob {
             parse_designation(&self.designation, ParseOptions { allow_nonstandard: self.allow_nonstandard })?;
         let ext = limits_for(&des, ThreadKind::External)?;
         let int = limits_for(&des, ThreadKind::Internal)?;
-        let text = if self.json {
-            let mut s = serde_json::to_string_pretty(&limits_json(&des, ext.as_ref(), int.as_ref()))
-                .map_err(|e| Error::Data(e.to_string()))?;
-            s.push('\n');
-            s
-        } else {
-            limits_table(&des, ext.as_ref(), int.as_ref())
-        };
-        Ok((text, Outcome::Pass))
+        let json_text =
+            self.json.as_ref().map(|_| pretty(&limits_json(&des, ext.as_ref(), int.as_ref()))).transpose()?;
+        let text = limits_table(&des, ext.as_ref(), int.as_ref());
+        Ok((route_json(self.json.as_deref(), json_text, text)?, Outcome::Pass))
     }
 }
 
@@ -339,15 +334,20 @@ impl VerifyJob {
         if let (Some(path), Some(t)) = (&self.svg, &svg_text) {
             crate::output::write_atomic(path, t.as_bytes())?;
         }
-        let stdout = match (&self.json, json_text) {
-            (Some(p), Some(t)) if p == "-" => t,
-            (Some(p), Some(t)) => {
-                crate::output::write_atomic(std::path::Path::new(p), t.as_bytes())?;
-                text
-            }
-            _ => text,
-        };
-        Ok((stdout, outcome))
+        Ok((route_json(self.json.as_deref(), json_text, text)?, outcome))
+    }
+}
+
+/// Where `--json` sends the JSON: `-` prints it on stdout instead of the text; a path writes it
+/// there (atomically) and the text goes to stdout; without `--json`, the text.
+pub fn route_json(json: Option<&str>, json_text: Option<String>, text: String) -> Result<String, Error> {
+    match (json, json_text) {
+        (Some("-"), Some(t)) => Ok(t),
+        (Some(p), Some(t)) => {
+            crate::output::write_atomic(std::path::Path::new(p), t.as_bytes())?;
+            Ok(text)
+        }
+        _ => Ok(text),
     }
 }
 
@@ -390,15 +390,7 @@ impl FitJob {
             crate::output::write_atomic(path, t.as_bytes())?;
         }
         let text = crate::fit::text(&r);
-        let stdout = match (&self.json, json_text) {
-            (Some(p), Some(t)) if p == "-" => t,
-            (Some(p), Some(t)) => {
-                crate::output::write_atomic(std::path::Path::new(p), t.as_bytes())?;
-                text
-            }
-            _ => text,
-        };
-        Ok((stdout, outcome))
+        Ok((route_json(self.json.as_deref(), json_text, text)?, outcome))
     }
 }
 
@@ -407,8 +399,8 @@ impl FitJob {
 pub struct PassesJob {
     /// The plan, as for verify (the final X is solved the same way when not given).
     pub spec: crate::verify::VerifySpec,
-    /// JSON instead of a table.
-    pub json: bool,
+    /// The JSON: `-` prints it on stdout instead of the table, a path writes it there.
+    pub json: Option<String>,
 }
 
 impl PassesJob {
@@ -482,7 +474,7 @@ impl PassesJob {
                 "taper_in": p.taper_in, "taper_out": p.taper_out, "x_taper": p.x_taper,
             })
         };
-        let text = if self.json {
+        let json_text = if self.json.is_some() {
             let list: Vec<serde_json::Value> = passes.iter().map(pass_json).collect();
             let (start, end) = passes.iter().fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), p| {
                 (a.max(p.z_start.max(p.z_end)), b.min(p.z_start.min(p.z_end)))
@@ -499,8 +491,11 @@ impl PassesJob {
                     .collect();
                 o.insert("operations".into(), json!(ops));
             }
-            pretty(&obj)?
+            Some(pretty(&obj)?)
         } else {
+            None
+        };
+        let text = {
             let mut s = header;
             let row = |s: &mut String, p: &crate::passes::Pass| {
                 let _ = writeln!(
@@ -548,7 +543,7 @@ impl PassesJob {
             }
             s
         };
-        Ok((text, Outcome::Pass))
+        Ok((route_json(self.json.as_deref(), json_text, text)?, Outcome::Pass))
     }
 }
 
@@ -559,8 +554,8 @@ pub struct CompareJob {
     pub spec: crate::verify::VerifySpec,
     /// Modified-flank angles, degrees.
     pub modified: Vec<f64>,
-    /// JSON on stdout.
-    pub json: bool,
+    /// The JSON: `-` prints it on stdout instead of the table, a path writes it there.
+    pub json: Option<String>,
     /// Write the table as Markdown here.
     pub markdown: Option<std::path::PathBuf>,
 }
@@ -570,18 +565,11 @@ impl CompareJob {
     pub fn run(&self) -> Result<(String, Outcome), Error> {
         let c = crate::compare::compare(&self.spec, &self.modified)?;
         let md = crate::compare::markdown(&c);
-        let out = if self.json {
-            let mut s = serde_json::to_string_pretty(&crate::compare::to_json(&c))
-                .map_err(|e| Error::Data(e.to_string()))?;
-            s.push('\n');
-            s
-        } else {
-            crate::compare::text(&c)
-        };
+        let json_text = self.json.as_ref().map(|_| pretty(&crate::compare::to_json(&c))).transpose()?;
         if let Some(p) = &self.markdown {
             crate::output::write_atomic(p, md.as_bytes())?;
         }
-        Ok((out, Outcome::Pass))
+        Ok((route_json(self.json.as_deref(), json_text, crate::compare::text(&c))?, Outcome::Pass))
     }
 }
 

@@ -64,12 +64,120 @@ impl CheckKind {
     }
 }
 
+/// What a check measures. The JSON names are the snake-case variant names
+/// (`pitch_diameter`, …); adding one makes every `match` on it say what it does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+#[non_exhaustive]
+pub enum CheckFeature {
+    /// Major diameter d (D for a nut), mm.
+    MajorDiameter,
+    /// Pitch diameter d2 (D2), mm.
+    PitchDiameter,
+    /// Minor diameter d3 (D1), mm.
+    MinorDiameter,
+    /// Smallest root radius, mm.
+    RootRadius,
+    /// One flank's half angle, degrees (`note` names the flank).
+    FlankAngle,
+    /// Signed clearance to the maximum-material profile (the GO gauge), mm.
+    MaxMaterial,
+    /// Crest present: the insert left part of the blank's diameter.
+    Crest,
+    /// One groove per lead: no second pocket at the root.
+    SingleGroove,
+    /// Taper threads: the gauge plane's position, turns.
+    GaugePlane,
+    /// Taper threads: the taper of the passes, diameter per length.
+    Taper,
+    /// Process: no constant surface speed at a threading cycle.
+    ConstantSpindleSpeed,
+    /// Process: the machine's spindle speed limit, rpm.
+    SpindleSpeed,
+    /// Process: the machine's feed limit (S·lead), mm/min.
+    Feed,
+    /// Process: the leading flank's side clearance against the helix, degrees.
+    FlankClearance,
+    /// Process: room for the insert beyond the last pass, mm.
+    RunOut,
+}
+
+impl CheckFeature {
+    /// The JSON name (`pitch_diameter`).
+    pub fn name(self) -> &'static str {
+        match self {
+            CheckFeature::MajorDiameter => "major_diameter",
+            CheckFeature::PitchDiameter => "pitch_diameter",
+            CheckFeature::MinorDiameter => "minor_diameter",
+            CheckFeature::RootRadius => "root_radius",
+            CheckFeature::FlankAngle => "flank_angle",
+            CheckFeature::MaxMaterial => "max_material",
+            CheckFeature::Crest => "crest",
+            CheckFeature::SingleGroove => "single_groove",
+            CheckFeature::GaugePlane => "gauge_plane",
+            CheckFeature::Taper => "taper",
+            CheckFeature::ConstantSpindleSpeed => "constant_spindle_speed",
+            CheckFeature::SpindleSpeed => "spindle_speed",
+            CheckFeature::Feed => "feed",
+            CheckFeature::FlankClearance => "flank_clearance",
+            CheckFeature::RunOut => "run_out",
+        }
+    }
+
+    /// The name in the text report (`pitch diameter`).
+    pub fn label(self) -> &'static str {
+        match self {
+            CheckFeature::MajorDiameter => "major diameter",
+            CheckFeature::PitchDiameter => "pitch diameter",
+            CheckFeature::MinorDiameter => "minor diameter",
+            CheckFeature::RootRadius => "root radius",
+            CheckFeature::FlankAngle => "flank angle",
+            CheckFeature::MaxMaterial => "max material",
+            CheckFeature::Crest => "crest",
+            CheckFeature::SingleGroove => "one groove",
+            CheckFeature::GaugePlane => "gauge_plane",
+            CheckFeature::Taper => "taper",
+            CheckFeature::ConstantSpindleSpeed => "constant_spindle_speed",
+            CheckFeature::SpindleSpeed => "spindle_speed",
+            CheckFeature::Feed => "feed",
+            CheckFeature::FlankClearance => "flank_clearance",
+            CheckFeature::RunOut => "run_out",
+        }
+    }
+
+    /// Whether the value is a length in mm (shown in inches beside it with `--units inch`).
+    pub fn is_length(self) -> bool {
+        match self {
+            CheckFeature::MajorDiameter
+            | CheckFeature::PitchDiameter
+            | CheckFeature::MinorDiameter
+            | CheckFeature::RootRadius
+            | CheckFeature::MaxMaterial
+            | CheckFeature::Crest
+            | CheckFeature::RunOut => true,
+            CheckFeature::FlankAngle
+            | CheckFeature::SingleGroove
+            | CheckFeature::GaugePlane
+            | CheckFeature::Taper
+            | CheckFeature::ConstantSpindleSpeed
+            | CheckFeature::SpindleSpeed
+            | CheckFeature::Feed
+            | CheckFeature::FlankClearance => false,
+        }
+    }
+}
+
+impl std::fmt::Display for CheckFeature {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// One check: value, limits, verdict and deviation.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Check {
-    /// `major_diameter`, `pitch_diameter`, `minor_diameter`, `root_radius`, `flank_angle`,
-    /// `max_material`, `crest`, `single_groove`.
-    pub feature: &'static str,
+    /// What is measured.
+    pub feature: CheckFeature,
     /// Size or form.
     pub kind: CheckKind,
     /// Measured value (mm, or degrees for flank angles).
@@ -88,7 +196,7 @@ pub struct Check {
     pub note: Option<String>,
 }
 
-fn check(feature: &'static str, kind: CheckKind, value: f64, lim: Limit, note: Option<String>) -> Check {
+fn check(feature: CheckFeature, kind: CheckKind, value: f64, lim: Limit, note: Option<String>) -> Check {
     // Inside at the tables' resolution: within; outside: the true distance to the limit.
     let dev = if lim.deviation(at_table_resolution(value)) == 0.0 { 0.0 } else { lim.deviation(value) };
     Check {
@@ -129,7 +237,7 @@ fn flank_checks(m: &Measurement, thread: &BasicThread) -> Vec<Check> {
         .iter()
         .zip(["low-z flank", "high-z flank"])
         .map(|(a, which)| {
-            let mut c = check("flank_angle", CheckKind::Form, *a, lim, Some(which.to_string()));
+            let mut c = check(CheckFeature::FlankAngle, CheckKind::Form, *a, lim, Some(which.to_string()));
             // Angles are not lengths: report the deviation in degrees in the note, 0 µm.
             if !c.ok {
                 c.note = Some(format!(
@@ -156,20 +264,31 @@ pub fn checks(
         return taper_checks(m, thread, single_groove, c);
     }
     let mut out = vec![
-        check("major_diameter", CheckKind::Size, m.major_diameter, limits.major_diameter, None),
-        check("pitch_diameter", CheckKind::Size, m.pitch_diameter, limits.pitch_diameter, None),
-        check("minor_diameter", CheckKind::Form, m.minor_diameter, limits.minor_diameter, None),
+        check(CheckFeature::MajorDiameter, CheckKind::Size, m.major_diameter, limits.major_diameter, None),
+        check(CheckFeature::PitchDiameter, CheckKind::Size, m.pitch_diameter, limits.pitch_diameter, None),
+        check(CheckFeature::MinorDiameter, CheckKind::Form, m.minor_diameter, limits.minor_diameter, None),
     ];
     if kind == ThreadKind::External {
         if let Some(rmin) = limits.root_radius_min {
             let r = m.root_radius.unwrap_or(0.0);
-            out.push(check("root_radius", CheckKind::Form, r, Limit { min: Some(rmin), max: None }, None));
+            out.push(check(
+                CheckFeature::RootRadius,
+                CheckKind::Form,
+                r,
+                Limit { min: Some(rmin), max: None },
+                None,
+            ));
         }
     }
     out.extend(flank_checks(m, thread));
     if let Some(cl) = m.max_material_clearance {
-        let mut c =
-            check("max_material", CheckKind::Size, cl, Limit { min: Some(-MMC_SLACK), max: None }, None);
+        let mut c = check(
+            CheckFeature::MaxMaterial,
+            CheckKind::Size,
+            cl,
+            Limit { min: Some(-MMC_SLACK), max: None },
+            None,
+        );
         c.min = Some(0.0);
         if !c.ok {
             c.deviation_um = cl * 1000.0;
@@ -179,7 +298,7 @@ pub fn checks(
     }
     let crest_ok = m.crest_width >= MIN_CREST_WIDTH;
     out.push(Check {
-        feature: "crest",
+        feature: CheckFeature::Crest,
         kind: CheckKind::Size,
         value: m.crest_width,
         min: Some(MIN_CREST_WIDTH),
@@ -189,7 +308,7 @@ pub fn checks(
         note: (!crest_ok).then(|| "no crest left: the grooves overlap and meet in a sharp edge".to_string()),
     });
     out.push(Check {
-        feature: "single_groove",
+        feature: CheckFeature::SingleGroove,
         kind: CheckKind::Form,
         value: if single_groove { 1.0 } else { 0.0 },
         min: Some(1.0),
@@ -209,7 +328,7 @@ pub fn checks(
 fn taper_checks(m: &Measurement, thread: &BasicThread, single_groove: bool, c: Cone) -> Vec<Check> {
     let gp_ok = c.turns.abs() <= c.tolerance_turns + 1e-9;
     let mut out = vec![Check {
-        feature: "gauge_plane",
+        feature: CheckFeature::GaugePlane,
         kind: CheckKind::Size,
         value: c.turns,
         min: Some(-c.tolerance_turns),
@@ -228,7 +347,7 @@ fn taper_checks(m: &Measurement, thread: &BasicThread, single_groove: bool, c: C
     }];
     let taper_ok = (c.taper - c.nominal_taper).abs() <= TAPER_TOLERANCE + 1e-12;
     out.push(Check {
-        feature: "taper",
+        feature: CheckFeature::Taper,
         kind: CheckKind::Size,
         value: c.taper,
         min: Some(c.nominal_taper - TAPER_TOLERANCE),
@@ -242,7 +361,7 @@ fn taper_checks(m: &Measurement, thread: &BasicThread, single_groove: bool, c: C
     });
     out.extend(flank_checks(m, thread));
     out.push(Check {
-        feature: "single_groove",
+        feature: CheckFeature::SingleGroove,
         kind: CheckKind::Form,
         value: if single_groove { 1.0 } else { 0.0 },
         min: Some(1.0),
@@ -266,7 +385,7 @@ mod tests {
     #[test]
     fn gauge_only_ignores_form() {
         let mk = |kind, ok| Check {
-            feature: "x",
+            feature: CheckFeature::Crest,
             kind,
             value: 0.0,
             min: None,
@@ -282,9 +401,9 @@ mod tests {
 
     #[test]
     fn deviation_is_distance_to_the_nearer_limit_in_um() {
-        let c = check("pitch_diameter", CheckKind::Size, 9.026, Limit::new(8.862, 8.994), None);
+        let c = check(CheckFeature::PitchDiameter, CheckKind::Size, 9.026, Limit::new(8.862, 8.994), None);
         assert!(!c.ok && (c.deviation_um - 32.0).abs() < 1e-9);
-        let c = check("pitch_diameter", CheckKind::Size, 8.9, Limit::new(8.862, 8.994), None);
+        let c = check(CheckFeature::PitchDiameter, CheckKind::Size, 8.9, Limit::new(8.862, 8.994), None);
         assert!(c.ok && c.deviation_um == 0.0);
     }
 }

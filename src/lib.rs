@@ -17,7 +17,7 @@
 //! 7. [`check`]: the measurements against the limits, and the verdict;
 //! 8. [`render`] and [`report`]: the SVG cross-section, the JSON and text reports.
 //!
-//! [`verify`] runs the whole path as one call; [`compare`] and [`catalogue`] run it many times;
+//! [`verify()`] runs the whole path as one call ([`mod@verify`] holds its parts); [`compare`] and [`catalogue`] run it many times;
 //! [`app`] holds the validated jobs behind the command line.
 //!
 //! ```
@@ -76,10 +76,13 @@ pub mod tolerance;
 pub mod tools;
 pub mod verify;
 
+pub use check::{Check, CheckFeature, CheckKind};
 pub use error::{Error, Result};
+pub use gcode::Dialect;
 pub use geometry::{Arc, Point, DEFAULT_TOLERANCE};
 pub use standards::{
     parse_designation, BasicThread, ClassSpec, Designation, DesignationError, Hand, ParseOptions,
     ProfileKind, ThreadForm, ThreadKind,
 };
 pub use tolerance::{Limit, ThreadLimits};
+pub use verify::{verify, verify_program, InsertChoice, ProgramSource, Verification, VerifySpec};

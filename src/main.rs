@@ -24,14 +24,14 @@ enum Command {
     /// Limits of size of a designation (ISO 965-1, BS 84, ISO 228-1).
     Limits {
         /// Designation, e.g. M10x1.25-6g, M10-6H/6g, "BSF 3/8 medium", "G1/2 A", "1/4-20 UNC-2A".
-        #[arg(required_unless_present = "thread", conflicts_with = "thread")]
+        #[arg(conflicts_with = "thread")]
         designation: Option<String>,
         /// The designation as an option, as the other commands take it.
         #[arg(long)]
         thread: Option<String>,
-        /// Print JSON instead of a table.
-        #[arg(long)]
-        json: bool,
+        /// JSON: on stdout instead of the table (`--json` or `--json -`), or written to FILE.
+        #[arg(long, value_name = "FILE|-", num_args = 0..=1, default_missing_value = "-")]
+        json: Option<String>,
         /// Accept a diameter/pitch pair outside the standard series.
         #[arg(long)]
         allow_nonstandard: bool,
@@ -49,8 +49,8 @@ enum Command {
         /// Write an SVG cross-section to this file.
         #[arg(long, value_name = "FILE")]
         svg: Option<PathBuf>,
-        /// Write the JSON report to this file, or `-` for stdout.
-        #[arg(long, value_name = "FILE|-")]
+        /// JSON: on stdout instead of the text (`--json` or `--json -`), or written to FILE.
+        #[arg(long, value_name = "FILE|-", num_args = 0..=1, default_missing_value = "-")]
         json: Option<String>,
     },
     /// The same thread with radial, flank, modified-flank and alternating infeed.
@@ -61,9 +61,10 @@ enum Command {
         /// 0.5° and less 3° (29.5,27 for 60° threads, 14.5,12 for trapezoidal).
         #[arg(long, value_name = "ANGLES")]
         modified: Option<String>,
-        /// Print JSON: every verify report and the per-strategy figures.
-        #[arg(long)]
-        json: bool,
+        /// JSON (every verify report and the per-strategy figures): on stdout instead of the
+        /// table (`--json` or `--json -`), or written to FILE.
+        #[arg(long, value_name = "FILE|-", num_args = 0..=1, default_missing_value = "-")]
+        json: Option<String>,
         /// Write the table as Markdown to this file.
         #[arg(long, value_name = "FILE")]
         markdown: Option<PathBuf>,
@@ -103,9 +104,10 @@ enum Command {
         /// Leave form checks out of the verdicts.
         #[arg(long)]
         gauge_only: bool,
-        /// One verify report per line (JSON Lines); the summary goes to stderr.
-        #[arg(long)]
-        json: bool,
+        /// One verify report per line (JSON Lines): on stdout (`--json` or `--json -`, the
+        /// summary then goes to stderr), or written to FILE.
+        #[arg(long, value_name = "FILE|-", num_args = 0..=1, default_missing_value = "-")]
+        json: Option<String>,
         /// Write each case's blank, placements and measured d2 here (JSON Lines).
         #[arg(long, value_name = "FILE")]
         export_placements: Option<PathBuf>,
@@ -153,17 +155,17 @@ enum Command {
         /// Write an SVG of the pair.
         #[arg(long, value_name = "FILE")]
         svg: Option<PathBuf>,
-        /// Write the JSON report to this file, or `-` for stdout.
-        #[arg(long, value_name = "FILE|-")]
+        /// JSON: on stdout instead of the text (`--json` or `--json -`), or written to FILE.
+        #[arg(long, value_name = "FILE|-", num_args = 0..=1, default_missing_value = "-")]
         json: Option<String>,
     },
     /// Print the expanded pass plan.
     Passes {
         #[command(flatten)]
         plan: PlanArgs,
-        /// Print JSON.
-        #[arg(long)]
-        json: bool,
+        /// JSON: on stdout instead of the table (`--json` or `--json -`), or written to FILE.
+        #[arg(long, value_name = "FILE|-", num_args = 0..=1, default_missing_value = "-")]
+        json: Option<String>,
     },
 }
 
@@ -291,7 +293,14 @@ impl PlanArgs {
 fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
     let (text, outcome) = match cli.command {
         Command::Limits { designation, thread, json, allow_nonstandard } => {
-            let designation = designation.or(thread).unwrap_or_default();
+            let Some(designation) = designation.or(thread) else {
+                return Err(threadcheck::Error::Input(match json.as_deref() {
+                    Some(v) if v != "-" => format!(
+                        "limits needs a designation: --json took '{v}' as its file; write `limits {v} --json`"
+                    ),
+                    _ => "limits needs a designation, e.g. limits M10x1.5-6g".into(),
+                }));
+            };
             LimitsJob { designation, allow_nonstandard, json }.run()?
         }
         Command::Verify { plan, gauge_only, no_pass_metrics, svg, json } => {
@@ -426,12 +435,17 @@ fn run(cli: Cli) -> Result<Outcome, threadcheck::Error> {
                 schedule.split(',').map(|s| parse_schedule(s.trim())).collect::<Result<_, _>>()?;
             spec.gauge_only = gauge_only;
             let (out, summary, outcome) =
-                threadcheck::app::SweepJob { spec, json, export_placements }.run()?;
-            if json {
-                eprint!("{summary}");
-                (out, outcome)
-            } else {
-                (out + &summary, outcome)
+                threadcheck::app::SweepJob { spec, json: json.is_some(), export_placements }.run()?;
+            match json.as_deref() {
+                Some("-") => {
+                    eprint!("{summary}");
+                    (out, outcome)
+                }
+                Some(path) => {
+                    threadcheck::output::write_atomic(std::path::Path::new(path), out.as_bytes())?;
+                    (summary, outcome)
+                }
+                None => (out + &summary, outcome),
             }
         }
         Command::Report { name, out } => {

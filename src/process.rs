@@ -122,7 +122,13 @@ pub struct ProcessReport {
     pub machining_time: Option<MachiningTime>,
 }
 
-fn process_check(feature: &'static str, value: f64, max: Option<f64>, ok: bool, note: String) -> Check {
+fn process_check(
+    feature: crate::check::CheckFeature,
+    value: f64,
+    max: Option<f64>,
+    ok: bool,
+    note: String,
+) -> Check {
     Check {
         feature,
         kind: CheckKind::Process,
@@ -152,7 +158,7 @@ pub fn process_checks(
 ) -> (Vec<Check>, ProcessReport) {
     let lead = op.lead();
     let mut checks = vec![process_check(
-        "constant_spindle_speed",
+        crate::check::CheckFeature::ConstantSpindleSpeed,
         if op.spindle.constant_surface_speed { 0.0 } else { 1.0 },
         None,
         !op.spindle.constant_surface_speed,
@@ -166,7 +172,7 @@ pub fn process_checks(
     if let (Some(m), Some(s)) = (machine, rpm) {
         if let Some(max) = m.max_rpm_for(pitch) {
             checks.push(process_check(
-                "spindle_speed",
+                crate::check::CheckFeature::SpindleSpeed,
                 s,
                 Some(max),
                 s <= max + 1e-9,
@@ -176,7 +182,7 @@ pub fn process_checks(
         if let Some(fmax) = m.max_feed_mm_min {
             let f = s * lead;
             checks.push(process_check(
-                "feed",
+                crate::check::CheckFeature::Feed,
                 f,
                 Some(fmax),
                 f <= fmax + 1e-9,
@@ -212,7 +218,7 @@ pub fn process_checks(
     let leading = clearance_angle.map(|c| c - helix);
     if let Some(l) = leading {
         checks.push(process_check(
-            "flank_clearance",
+            crate::check::CheckFeature::FlankClearance,
             l,
             None,
             l > 0.0,
@@ -275,7 +281,7 @@ fn run_out(op: &Operation, pitch: f64) -> Option<Check> {
     let (z, x) = extreme(a.min(b), a.max(b))?;
     let clear = if external { x <= turned + 1e-3 } else { x >= turned - 1e-3 };
     Some(process_check(
-        "run_out",
+        crate::check::CheckFeature::RunOut,
         x,
         Some(turned),
         clear,

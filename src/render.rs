@@ -417,7 +417,7 @@ fn verification_group(v: &Verification) -> Group {
     let w = v.section.window;
     let window = Frame::new(680.0, 90.0, 400.0, 300.0, (w.z_min, w.z_max), (r0 - 0.2 * p, r1 + 0.1 * p));
     let verdict = if v.pass { "PASS" } else { "FAIL" };
-    let failed: Vec<&str> = v.checks.iter().filter(|c| !c.ok).map(|c| c.feature).collect();
+    let failed: Vec<&str> = v.checks.iter().filter(|c| !c.ok).map(|c| c.feature.name()).collect();
     let title = Group::new()
         .set("id", "title")
         .add(text(

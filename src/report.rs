@@ -1,5 +1,6 @@
 //! The `verify` report: JSON as the CLI contract specifies, and the human table.
 
+use crate::check::CheckFeature;
 use crate::geometry::rad;
 use crate::passes::{Infeed, Schedule};
 use crate::standards::{Hand, ThreadKind};
@@ -167,18 +168,9 @@ pub fn verify_text(v: &Verification) -> String {
         } else {
             "·"
         };
-        let prec = if c.feature == "flank_angle" { 3 } else { 4 };
-        let name = match c.feature {
-            "flank_angle" => "flank angle",
-            "pitch_diameter" => "pitch diameter",
-            "major_diameter" => "major diameter",
-            "minor_diameter" => "minor diameter",
-            "root_radius" => "root radius",
-            "max_material" => "max material",
-            "single_groove" => "one groove",
-            other => other,
-        };
-        let value = if c.feature == "single_groove" {
+        let prec = if c.feature == CheckFeature::FlankAngle { 3 } else { 4 };
+        let name = c.feature.label();
+        let value = if c.feature == CheckFeature::SingleGroove {
             if c.ok {
                 "yes".into()
             } else {
@@ -192,13 +184,13 @@ pub fn verify_text(v: &Verification) -> String {
             "  {mark} {:<16}{:>10}{:>10}{:>10}{:>10.1}  {}",
             name,
             value,
-            if c.feature == "single_groove" { String::new() } else { opt(c.min, prec) },
-            if c.feature == "single_groove" { String::new() } else { opt(c.max, prec) },
+            if c.feature == CheckFeature::SingleGroove { String::new() } else { opt(c.min, prec) },
+            if c.feature == CheckFeature::SingleGroove { String::new() } else { opt(c.max, prec) },
             c.deviation_um,
             c.kind.name()
         );
         // Lengths in inches beside the mm (not the angles, the counts or the turns).
-        let length = !matches!(c.feature, "flank_angle" | "single_groove" | "gauge_plane" | "taper");
+        let length = c.feature.is_length();
         if inch && length {
             let i = |x: Option<f64>| x.map_or_else(|| "—".to_string(), |x| format!("{:.5}", x / 25.4));
             let _ = write!(s, "  {:>8}{:>8}{:>8} in", i(Some(c.value)), i(c.min), i(c.max));
@@ -233,14 +225,18 @@ pub fn verify_text(v: &Verification) -> String {
         }
     }
     let failed: Vec<&str> =
-        v.checks.iter().filter(|c| !c.ok && c.kind.counts(v.gauge_only)).map(|c| c.feature).collect();
+        v.checks.iter().filter(|c| !c.ok && c.kind.counts(v.gauge_only)).map(|c| c.feature.name()).collect();
     if v.pass {
         let _ = writeln!(s, "\nverdict: PASS");
     } else {
         let _ = writeln!(s, "\nverdict: FAIL ({})", failed.join(", "));
     }
     if let Some(x) = v.suggested_final_x {
-        let off = v.checks.iter().find(|c| c.feature == "pitch_diameter").map_or(0.0, |c| c.deviation_um);
+        let off = v
+            .checks
+            .iter()
+            .find(|c| c.feature == CheckFeature::PitchDiameter)
+            .map_or(0.0, |c| c.deviation_um);
         let _ = writeln!(
             s,
             "pitch diameter is {off:+.1} µm off: program the last pass at X{x:.4} for mid-tolerance"

@@ -762,7 +762,12 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
     });
     let cs = checks(m, &limits, &t, kind, m.root_pockets <= 1, cone);
     let pass = verdict(&cs, spec.gauge_only);
-    let d2_off = cs.iter().any(|c| (c.feature == "pitch_diameter" || c.feature == "gauge_plane") && !c.ok);
+    let d2_off = cs.iter().any(|c| {
+        matches!(
+            c.feature,
+            crate::check::CheckFeature::PitchDiameter | crate::check::CheckFeature::GaugePlane
+        ) && !c.ok
+    });
     let suggested = d2_off.then_some(final_x + (target_at(cut.z_ref) - m.pitch_diameter));
     if spec.gauge_only {
         notes.push("--gauge-only: form checks are reported but left out of the verdict".into());

@@ -511,3 +511,35 @@ fn cli_limits_thread_passes_zero_and_sweep_exit_codes() {
     ]);
     assert_eq!(pass.status.code(), Some(0), "{}", stdout(&pass));
 }
+
+/// `--json` means the same in every command: alone or with `-` the JSON on stdout, with a path
+/// the JSON in that file and the text on stdout. `limits --json M10…` names the mistake.
+#[test]
+fn json_flag_is_the_same_in_every_command() {
+    let dir = tempdir("json-flag");
+    for (args, text_marker) in [
+        (vec!["limits", "M10x1.5-6g"], "fundamental triangle height"),
+        (vec!["passes", "--thread", "M10x1.5-6g"], "X start"),
+        (vec!["verify", "--thread", "M10x1.5-6g", "--insert", "full"], "pitch diameter"),
+        (vec!["compare", "--thread", "M10x1.5-6g", "--insert", "full", "--passes", "6"], "radial"),
+    ] {
+        let bare = run_in(&dir, &[args.as_slice(), &["--json"]].concat());
+        let dash = run_in(&dir, &[args.as_slice(), &["--json", "-"]].concat());
+        assert!(matches!(bare.status.code(), Some(0 | 1)), "{args:?}: {}", stderr(&bare));
+        assert_eq!(bare.status.code(), dash.status.code());
+        assert_eq!(bare.stdout, dash.stdout, "{args:?}");
+        let on_stdout: serde_json::Value = serde_json::from_slice(&bare.stdout).unwrap();
+        let file = run_in(&dir, &[args.as_slice(), &["--json", "out.json"]].concat());
+        assert_eq!(file.status.code(), bare.status.code());
+        assert!(stdout(&file).contains(text_marker), "{args:?}: {}", stdout(&file));
+        let written: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(dir.join("out.json")).unwrap()).unwrap();
+        // The same report either way (compare's chip figures are deterministic too).
+        assert_eq!(written, on_stdout, "{args:?}");
+    }
+    let e = run(&["limits", "--json", "M10x1.5-6g"]);
+    assert_eq!(
+        one_line_error(&e),
+        "threadcheck: error: limits needs a designation: --json took 'M10x1.5-6g' as its file; write `limits M10x1.5-6g --json`"
+    );
+}

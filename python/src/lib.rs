@@ -119,7 +119,7 @@ fn verify_json(
 #[pyfunction]
 #[pyo3(signature = (designation, allow_nonstandard=false))]
 fn limits_json(py: Python<'_>, designation: String, allow_nonstandard: bool) -> PyResult<String> {
-    py.detach(|| LimitsJob { designation, allow_nonstandard, json: true }.run())
+    py.detach(|| LimitsJob { designation, allow_nonstandard, json: Some("-".into()) }.run())
         .map(|(text, _)| text)
         .map_err(value_error)
 }
@@ -163,7 +163,7 @@ fn passes_json(
             blank_diameter,
             allow_nonstandard,
         )?;
-        Ok(PassesJob { spec, json: true }.run()?.0)
+        Ok(PassesJob { spec, json: Some("-".into()) }.run()?.0)
     };
     py.detach(run).map_err(value_error)
 }

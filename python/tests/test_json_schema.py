@@ -1,0 +1,97 @@
+"""Every command's JSON, from the CLI and from the Python package, against the JSON Schema in
+docs/json-schema.json. The schema forbids keys it does not list, so a key added to the output
+without being documented fails here. THREADCHECK_BIN names the CLI (.ci/run sets it)."""
+
+import json
+import os
+import pathlib
+import subprocess
+
+import jsonschema
+import pytest
+from referencing import Registry, Resource
+
+import threadcheck
+
+REPO = pathlib.Path(__file__).resolve().parents[2]
+SCHEMA = json.loads((REPO / "docs" / "json-schema.json").read_text())
+REGISTRY = Registry().with_resource("threadcheck-json", Resource.from_contents(SCHEMA))
+PROGRAMS = REPO / "tests" / "data" / "programs"
+
+
+def validate(command, instance):
+    v = jsonschema.Draft202012Validator({"$ref": "threadcheck-json#/$defs/command_" + command},
+                                        registry=REGISTRY)
+    error = jsonschema.exceptions.best_match(v.iter_errors(instance))
+    assert error is None, f"{list(error.absolute_path)}: {error.message[:300]}"
+
+
+def cli(*args, ok=(0, 1)):
+    binary = os.environ.get("THREADCHECK_BIN")
+    assert binary, "THREADCHECK_BIN must name the threadcheck binary"
+    r = subprocess.run([binary, *args], capture_output=True, text=True, cwd=REPO)
+    assert r.returncode in ok, f"exit {r.returncode}: {r.stderr}"
+    return r.stdout
+
+
+def test_the_schema_is_a_valid_schema():
+    jsonschema.Draft202012Validator.check_schema(SCHEMA)
+
+
+@pytest.mark.parametrize("args", [
+    ["--thread", "M10x1.5-6g"],
+    ["--thread", "M10x1.5-6H", "--insert", "full"],
+    ["--thread", "1/4-20 UNC-2A", "--insert", "full"],
+    ["--thread", "Tr20x4-7e", "--insert", "full"],
+    ["--thread", "M20x2.5-6g", "--gauge-only", "--no-pass-metrics"],
+    ["--thread", "M20x1.5-6g", "--thread", "M40x1.5-6g", "--insert", "full",
+     "--program", str(PROGRAMS / "source-docs" / "seed003-two-threads.nc")],
+    ["--thread", "M10x1.5-6g", "--program", str(PROGRAMS / "fanuc-runout-shoulder.nc"),
+     "--machine", "training-lathe", "--clearance-angle", "1"],
+    ["--thread", "M10x1.5-6g", "--program", str(PROGRAMS / "fanuc-g92-above-blank.nc")],
+    ["--thread", "1/2-14 NPT", "--program", str(PROGRAMS / "fanuc-g92-npt-1-2.nc"), "--insert", "full"],
+])
+def test_verify(args):
+    validate("verify", json.loads(cli("verify", *args, "--json", "-")))
+
+
+@pytest.mark.parametrize("designation", ["M10x1.5-6g", "M10x1.5-6H/6g", "1/4-20 UNC-2A", "Tr40x7-7H",
+                                         "1-5 ACME-2G", "1/2-14 NPT", "G1/2A", "BSF 3/8 medium"])
+def test_limits(designation):
+    validate("limits", json.loads(cli("limits", designation, "--json", ok=(0,))))
+    validate("limits", threadcheck.limits(designation))
+
+
+@pytest.mark.parametrize("args", [
+    ["--thread", "M10x1.5-6g"],
+    ["--thread", "M10x1.5-6g", "--final-x", "8.2", "--passes", "4"],
+    ["--program", str(PROGRAMS / "fanuc-g32.nc")],
+    ["--program", str(PROGRAMS / "linuxcnc-g76.ngc"), "--dialect", "linuxcnc"],
+])
+def test_passes(args):
+    validate("passes", json.loads(cli("passes", *args, "--json", ok=(0,))))
+
+
+def test_compare():
+    validate("compare", json.loads(cli("compare", "--thread", "M10x1.5-6g", "--insert", "full", "--json", "-")))
+
+
+def test_fit():
+    validate("fit", json.loads(cli("fit", "--thread", "M10x1.5-6H/6g", "--json", "-")))
+
+
+def test_sweep_lines():
+    out = cli("sweep", "--min-d", "10", "--max-d", "12", "--series", "coarse", "--infeed", "radial",
+              "--schedule", "constant-area", "--json")
+    lines = [json.loads(line) for line in out.splitlines() if line.strip()]
+    assert len(lines) >= 4
+    for line in lines:
+        validate("sweep_line", line)
+
+
+def test_python_dicts():
+    g76 = "G0 X22 Z5\nG76 P010060 Q100 R0.02\nG76 X18.2 Z-20 P900 Q300 F1.5\n"
+    validate("verify", threadcheck.verify("M20x1.5-6g", program=g76, insert="full"))
+    validate("verify", threadcheck.verify("M10x1.5-6g", final_x=8.2))
+    validate("passes", threadcheck.passes(program=g76))
+    validate("passes", threadcheck.passes("M10x1.5-6g"))
