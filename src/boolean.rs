@@ -15,6 +15,25 @@ use geo::orient::{Direction, Orient};
 use geo::{Area, BooleanOps, Coord, LineString, MultiLineString, MultiPolygon, Polygon};
 use rayon::prelude::*;
 
+/// Signed area of a closed ring (geo's `Area`), mm²: positive when counter-clockwise in the
+/// `(z, r)` plane.
+///
+/// ```
+/// use threadcheck::{boolean::signed_area, Point};
+/// let square = [Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0)];
+/// assert_eq!(signed_area(&square), 1.0);
+/// let mut clockwise = square;
+/// clockwise.reverse();
+/// assert_eq!(signed_area(&clockwise), -1.0);
+/// ```
+pub fn signed_area(ring: &[Point]) -> f64 {
+    if ring.len() < 3 {
+        return 0.0;
+    }
+    Polygon::new(LineString::from(ring.iter().map(|p| Coord { x: p.z, y: p.r }).collect::<Vec<_>>()), vec![])
+        .signed_area()
+}
+
 /// A set of polygons in the axial plane (z, r), mm. Exteriors counter-clockwise, holes clockwise.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Region(MultiPolygon<f64>);

@@ -266,7 +266,7 @@ mod tests {
             Point::new(3.0, 2.0),
             Point::new(0.0, 2.0),
         ];
-        assert!(crate::geometry::signed_area(&hook) > 0.0);
+        assert!(crate::boolean::signed_area(&hook) > 0.0);
         assert_eq!(bottom_chain(&hook), None);
     }
 }

@@ -5,6 +5,7 @@ use crate::standards::DesignationError;
 
 /// Everything that can go wrong before a verdict.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum Error {
     /// A thread designation that cannot be read.
     #[error(transparent)]
@@ -39,13 +40,21 @@ pub enum Error {
     #[error("embedded data: {0}")]
     Data(String),
     /// Reading or writing a file failed.
-    #[error("{path}: {message}")]
+    #[error("{path}: {source}")]
     Io {
         /// The path.
         path: String,
-        /// The operating system's message.
-        message: String,
+        /// The operating system's error.
+        #[source]
+        source: std::io::Error,
     },
+}
+
+impl Error {
+    /// An [`Error::Io`] for `path`.
+    pub fn io(path: impl std::fmt::Display, source: std::io::Error) -> Error {
+        Error::Io { path: path.to_string(), source }
+    }
 }
 
 /// Shorthand for results in this crate.

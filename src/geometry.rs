@@ -108,22 +108,6 @@ impl Arc {
     }
 }
 
-/// Signed area of a closed ring (shoelace), mm²: positive when counter-clockwise in the
-/// `(z, r)` plane.
-pub fn signed_area(ring: &[Point]) -> f64 {
-    let n = ring.len();
-    if n < 3 {
-        return 0.0;
-    }
-    let mut s = 0.0;
-    for i in 0..n {
-        let a = ring[i];
-        let b = ring[(i + 1) % n];
-        s += a.z * b.r - b.z * a.r;
-    }
-    0.5 * s
-}
-
 /// Appends `pts` to `out`, skipping a first point that repeats the current last one.
 pub fn extend_dedup(out: &mut Vec<Point>, pts: impl IntoIterator<Item = Point>) {
     for p in pts {
@@ -168,15 +152,6 @@ mod tests {
         for p in &pts {
             assert!((p.distance(arc.center) - arc.radius).abs() < 1e-12);
         }
-    }
-
-    #[test]
-    fn area_sign_follows_orientation() {
-        let sq = [Point::new(0., 0.), Point::new(1., 0.), Point::new(1., 1.), Point::new(0., 1.)];
-        assert_eq!(signed_area(&sq), 1.0);
-        let mut rev = sq;
-        rev.reverse();
-        assert_eq!(signed_area(&rev), -1.0);
     }
 
     #[test]

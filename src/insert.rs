@@ -10,7 +10,8 @@
 //! internal threads (the tip then points away from the axis), so an inclined or mis-set insert is
 //! one more rotation away.
 
-use crate::geometry::{deg, extend_dedup, signed_area, Arc, Point};
+use crate::boolean::signed_area;
+use crate::geometry::{deg, extend_dedup, Arc, Point};
 use crate::limits::{MAX_INSERT_REACH, MAX_OUTLINE_POINTS};
 use crate::standards::{BasicThread, ProfileKind, ThreadKind};
 use crate::Error;
@@ -295,10 +296,11 @@ fn outline_from_points(points: &[Vec<f64>], tolerance: f64) -> Result<Vec<Point>
     if points.len() < 3 {
         return Err(format!("an outline needs at least 3 points, not {}", points.len()));
     }
-    if points.len() > 10_000 {
+    if points.len() > crate::limits::MAX_OUTLINE_POINTS {
         return Err(format!(
-            "an outline of {} points is more than the 10000 threadcheck accepts",
-            points.len()
+            "an outline of {} points is more than the {} threadcheck accepts",
+            points.len(),
+            crate::limits::MAX_OUTLINE_POINTS
         ));
     }
     let mut verts = Vec::with_capacity(points.len());

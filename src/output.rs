@@ -1,5 +1,6 @@
 //! Writing output files without ever leaving a half-written one: write a temporary file in the
-//! same folder, flush it to disk, then rename it over the target (atomic on one file system).
+//! same folder (`tempfile`), flush it to disk, then rename it over the target (atomic on one file
+//! system).
 //! A target that is not a regular file (a device such as `/dev/null`, a FIFO) is written in
 //! place: renaming over it would replace the device with a file.
 
@@ -11,7 +12,7 @@ use std::path::Path;
 /// left untouched and the temporary file is removed. A symbolic link is followed, so the file it
 /// points to is replaced, not the link; a device or FIFO is written directly.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
-    let io = |e: std::io::Error| Error::Io { path: path.display().to_string(), message: e.to_string() };
+    let io = |e: std::io::Error| Error::io(path.display(), e);
     if let Ok(meta) = std::fs::metadata(path) {
         if meta.is_dir() {
             return Err(Error::Input(format!("{}: is a folder, not a file", path.display())));
@@ -29,22 +30,23 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => std::path::PathBuf::from("."),
     };
-    let name = path
-        .file_name()
-        .ok_or_else(|| Error::Input(format!("{}: not a file name", path.display())))?
-        .to_string_lossy()
-        .into_owned();
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(io(e));
+    if path.file_name().is_none() {
+        return Err(Error::Input(format!("{}: not a file name", path.display())));
     }
+    // Removed on drop: an error anywhere before `persist` leaves no temporary behind.
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".threadcheck-").suffix(".tmp");
+    // tempfile creates 0600 files; an output file gets the mode a plain create would (0666 less
+    // the umask), as before.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let mut tmp = builder.tempfile_in(&dir).map_err(io)?;
+    tmp.write_all(bytes).map_err(io)?;
+    tmp.as_file().sync_all().map_err(io)?;
+    tmp.persist(path).map_err(|e| io(e.error))?;
     Ok(())
 }
 
@@ -76,6 +78,19 @@ mod tests {
         write_atomic(&link, b"new").unwrap();
         assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
         assert_eq!(std::fs::read(&target).unwrap(), b"new");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn the_mode_is_that_of_a_plain_create() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = std::env::temp_dir().join(format!("tc-mode-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::File::create(dir.join("plain")).unwrap();
+        write_atomic(&dir.join("atomic"), b"x").unwrap();
+        let mode = |n: &str| std::fs::metadata(dir.join(n)).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode("atomic"), mode("plain"));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

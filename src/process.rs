@@ -65,8 +65,7 @@ impl MachineProfile {
         if arg == "training-lathe" {
             return Ok(MachineProfile::training_lathe());
         }
-        let text = std::fs::read_to_string(arg)
-            .map_err(|e| Error::Io { path: arg.to_string(), message: e.to_string() })?;
+        let text = std::fs::read_to_string(arg).map_err(|e| Error::io(arg.to_string(), e))?;
         let m: MachineProfile = toml::from_str(&text)
             .map_err(|e| Error::File { file: arg.to_string(), message: e.to_string().replace('\n', " ") })?;
         if !(m.rapid_mm_min > 0.0)

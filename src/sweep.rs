@@ -476,7 +476,7 @@ pub fn pass_metrics(setup: &SweepSetup<'_>, passes: &[Pass], z_ref: f64) -> Resu
                 // A sliver (mean thickness 2·area/perimeter under 0.01 µm) is snapping noise where
                 // an edge slides along the finished surface, not a chip.
                 let perimeter: f64 = (0..ext.len()).map(|k| ext[k].distance(ext[(k + 1) % ext.len()])).sum();
-                let area = crate::geometry::signed_area(&ext).abs();
+                let area = crate::boolean::signed_area(&ext).abs();
                 if 2.0 * area < 1e-5 * perimeter {
                     m.chip_area -= area;
                     continue;

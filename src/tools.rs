@@ -59,8 +59,7 @@ impl ToolTable {
     /// Reads a tool table file.
     pub fn read(path: &Path) -> Result<ToolTable, Error> {
         let shown = path.display().to_string();
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| Error::Io { path: shown.clone(), message: e.to_string() })?;
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(shown.clone(), e))?;
         ToolTable::from_toml(&text, &shown, path.parent().unwrap_or(Path::new(".")))
     }
 

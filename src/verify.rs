@@ -267,8 +267,7 @@ fn build_insert(choice: &InsertChoice, t: &BasicThread, kind: ThreadKind, tol: f
             Insert::partial_for(t, *tip_radius, tol)?
         }
         InsertChoice::File(path) => {
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| Error::Io { path: path.display().to_string(), message: e.to_string() })?;
+            let text = std::fs::read_to_string(path).map_err(|e| Error::io(path.display().to_string(), e))?;
             Insert::from_toml(&text, &path.display().to_string(), tol)?
         }
     };
@@ -462,8 +461,7 @@ impl ProgramSource {
 /// Reads a program file as text, bounded in size, refusing binary files.
 pub fn read_program_text(path: &std::path::Path) -> Result<String, Error> {
     let shown = path.display().to_string();
-    let meta =
-        std::fs::metadata(path).map_err(|e| Error::Io { path: shown.clone(), message: e.to_string() })?;
+    let meta = std::fs::metadata(path).map_err(|e| Error::io(shown.clone(), e))?;
     if meta.len() > crate::limits::MAX_PROGRAM_BYTES as u64 {
         return Err(Error::Program {
             file: shown,
@@ -472,7 +470,7 @@ pub fn read_program_text(path: &std::path::Path) -> Result<String, Error> {
             message: format!("the program is larger than {} bytes", crate::limits::MAX_PROGRAM_BYTES),
         });
     }
-    let bytes = std::fs::read(path).map_err(|e| Error::Io { path: shown.clone(), message: e.to_string() })?;
+    let bytes = std::fs::read(path).map_err(|e| Error::io(shown.clone(), e))?;
     text_of(&bytes, &shown)
 }
 

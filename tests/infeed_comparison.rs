@@ -34,18 +34,6 @@ fn measured(t: &BasicThread, ins: &Insert, blank: f64, passes: &[Pass], z: f64) 
     measure(&ms, &profile(t, ins, blank, passes, z), z).unwrap()
 }
 
-fn hausdorff(a: &[Point], b: &[Point]) -> f64 {
-    use parry2d_f64::math::Point as P;
-    use parry2d_f64::query::PointQuery;
-    use parry2d_f64::shape::Polyline;
-    let line = |v: &[Point]| Polyline::new(v.iter().map(|p| P::new(p.z, p.r)).collect(), None);
-    let (la, lb) = (line(a), line(b));
-    let one = |pts: &[Point], l: &Polyline| {
-        pts.iter().map(|p| l.distance_to_local_point(&P::new(p.z, p.r), false)).fold(0.0, f64::max)
-    };
-    one(a, &lb).max(one(b, &la))
-}
-
 fn plan(
     t: &BasicThread,
     blank: f64,
@@ -103,7 +91,7 @@ fn every_infeed_up_to_half_the_angle_leaves_the_last_pass_alone() {
                     let last = passes[passes.len() - 1];
                     let all = profile(&t, &ins, blank, &passes, z);
                     let alone = profile(&t, &ins, blank, &[last], z);
-                    let dist = hausdorff(&all, &alone);
+                    let dist = crate::hausdorff(&all, &alone);
                     assert!(dist < 1e-4, "{d} {kind} {schedule:?} {angle}°: {dist}");
                     cases += 1;
                 }

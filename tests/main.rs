@@ -72,3 +72,18 @@ pub fn one_line_error(o: &Output) -> String {
     assert_eq!(e.trim_end().lines().count(), 1, "stderr is not one line: {e:?}");
     e.trim_end().to_string()
 }
+
+/// Hausdorff distance between two polylines in the axial plane, mm: every vertex of each against
+/// the other's segments (parry's point-to-polyline query). geo's `HausdorffDistance` measures
+/// vertex to vertex, which differently tessellated profiles of one curve would fail.
+pub fn hausdorff(a: &[threadcheck::Point], b: &[threadcheck::Point]) -> f64 {
+    use parry2d_f64::math::Point as P;
+    use parry2d_f64::query::PointQuery;
+    use parry2d_f64::shape::Polyline;
+    let line = |v: &[threadcheck::Point]| Polyline::new(v.iter().map(|p| P::new(p.z, p.r)).collect(), None);
+    let (la, lb) = (line(a), line(b));
+    let one = |pts: &[threadcheck::Point], l: &Polyline| {
+        pts.iter().map(|p| l.distance_to_local_point(&P::new(p.z, p.r), false)).fold(0.0, f64::max)
+    };
+    one(a, &lb).max(one(b, &la))
+}
