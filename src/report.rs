@@ -5,6 +5,7 @@ use crate::geometry::rad;
 use crate::passes::{Infeed, Schedule};
 use crate::standards::{Hand, ThreadKind};
 use crate::verify::Verification;
+use serde::Serialize;
 use serde_json::{json, Value};
 use std::fmt::Write as _;
 
@@ -27,89 +28,270 @@ fn schedule_text(s: &Schedule) -> &'static str {
 }
 
 /// The `thread` object of the reports.
-pub fn thread_json(v: &Verification) -> Value {
-    let t = &v.designation.thread;
-    json!({
-        "designation": v.designation.text,
-        "form": t.form.name(),
-        "kind": v.kind.name(),
-        "nominal_diameter": t.nominal_diameter,
-        "pitch": t.pitch,
-        "lead": t.lead(),
-        "starts": t.starts,
-        "hand": if t.hand == Hand::Left { "left" } else { "right" },
-        "class": v.limits.class,
-    })
+#[derive(Clone, Debug, Serialize)]
+pub struct ThreadReport<'a> {
+    /// The designation as written.
+    pub designation: &'a str,
+    /// The form's name (`iso-metric`, …).
+    pub form: &'static str,
+    /// `external` or `internal`.
+    pub kind: &'static str,
+    /// Nominal diameter, mm.
+    pub nominal_diameter: f64,
+    /// Pitch, mm.
+    pub pitch: f64,
+    /// Lead, mm.
+    pub lead: f64,
+    /// Number of starts.
+    pub starts: u32,
+    /// `right` or `left`.
+    pub hand: &'static str,
+    /// Tolerance class.
+    pub class: &'a str,
 }
 
-/// The whole `verify --json` object.
+impl<'a> ThreadReport<'a> {
+    /// The thread of a verification.
+    pub fn of(v: &'a Verification) -> Self {
+        let t = &v.designation.thread;
+        ThreadReport {
+            designation: &v.designation.text,
+            form: t.form.name(),
+            kind: v.kind.name(),
+            nominal_diameter: t.nominal_diameter,
+            pitch: t.pitch,
+            lead: t.lead(),
+            starts: t.starts,
+            hand: if t.hand == Hand::Left { "left" } else { "right" },
+            class: &v.limits.class,
+        }
+    }
+}
+
+/// The `thread` object of the reports, as a JSON value.
+pub fn thread_json(v: &Verification) -> Value {
+    serde_json::to_value(ThreadReport::of(v)).unwrap_or(Value::Null)
+}
+
+/// The `insert` object.
+#[derive(Clone, Debug, Serialize)]
+pub struct InsertReport<'a> {
+    /// Full, partial or custom.
+    pub kind: crate::insert::InsertKind,
+    /// Its name (`partial 60° r0.04`).
+    pub name: &'a str,
+    /// Included angle, degrees.
+    pub angle: f64,
+    /// Tip radius, mm.
+    pub tip_radius: f64,
+}
+
+/// The `plan` object.
+#[derive(Clone, Debug, Serialize)]
+pub struct PlanReport<'a> {
+    /// The program and its dialect, `None` for a generated plan.
+    pub program: Option<&'a str>,
+    /// The infeed.
+    pub infeed: Infeed,
+    /// The depth schedule's name.
+    pub schedule: &'static str,
+    /// Blank (external) or bore (internal) diameter, mm.
+    pub blank_diameter: f64,
+    /// The last pass's X, mm.
+    pub final_x: f64,
+    /// The final X was solved for the middle of the d2 tolerance.
+    pub final_x_solved: bool,
+}
+
+/// The per-pass chip and edge figures (absent when a run skipped them).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct PassMetricsReport {
+    /// Chip area, mm².
+    pub chip_area: f64,
+    /// Cutting edge in contact, mm.
+    pub engaged_edge: EngagedEdge,
+    /// Largest chip thickness, mm.
+    pub max_chip_thickness: f64,
+    /// Chip area behind the tip, mm².
+    pub trailing_area: f64,
+}
+
+/// Lengths of cutting edge in contact, mm.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct EngagedEdge {
+    /// Leading flank.
+    pub leading: f64,
+    /// Trailing flank.
+    pub trailing: f64,
+    /// Tip radius.
+    pub tip: f64,
+}
+
+/// One entry of `passes`.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct PassReport {
+    /// Pass number, 1 first.
+    pub index: usize,
+    /// X (diameter), mm.
+    pub x: f64,
+    /// Axial start, mm.
+    pub z: f64,
+    /// Radial depth below the blank, mm.
+    pub depth: f64,
+    /// Start index.
+    pub start: u32,
+    /// Program line.
+    pub source_line: Option<usize>,
+    /// Chip and edge figures.
+    #[serde(flatten)]
+    pub metrics: Option<PassMetricsReport>,
+}
+
+/// The `measured` object: the as-cut tooth.
+#[derive(Clone, Debug, Serialize)]
+pub struct MeasuredReport {
+    /// mm.
+    pub major_diameter: f64,
+    /// mm.
+    pub pitch_diameter: f64,
+    /// mm.
+    pub minor_diameter: f64,
+    /// Smallest root radius, mm.
+    pub root_radius: Option<f64>,
+    /// Half angles of the low-z and high-z flank, degrees.
+    pub flank_angles: [f64; 2],
+    /// Crest to root, mm.
+    pub thread_depth: f64,
+    /// Radial overlap with the basic mating part, mm.
+    pub engagement_depth: f64,
+    /// Crest flat, mm.
+    pub crest_width: f64,
+    /// Best wire and the measurement over three wires, mm.
+    pub three_wire: Option<crate::measure::ThreeWire>,
+    /// Signed clearance to the maximum-material profile, mm.
+    pub max_material_clearance: Option<f64>,
+}
+
+/// A verdict.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Verdict {
+    /// Every counted check is within its limits.
+    Pass,
+    /// At least one is not.
+    Fail,
+}
+
+impl Verdict {
+    /// `Pass` when `ok`.
+    pub fn of(ok: bool) -> Verdict {
+        if ok {
+            Verdict::Pass
+        } else {
+            Verdict::Fail
+        }
+    }
+}
+
+/// The whole `verify --json` object of a plan, and of each program operation (docs/json.md).
+#[derive(Clone, Debug, Serialize)]
+pub struct VerifyReport<'a> {
+    /// The thread.
+    pub thread: ThreadReport<'a>,
+    /// The insert.
+    pub insert: InsertReport<'a>,
+    /// The plan.
+    pub plan: PlanReport<'a>,
+    /// Every pass.
+    pub passes: Vec<PassReport>,
+    /// The as-cut tooth.
+    pub measured: MeasuredReport,
+    /// The class's limits.
+    pub limits: &'a crate::tolerance::ThreadLimits,
+    /// The checks.
+    pub checks: &'a [crate::check::Check],
+    /// The verdict.
+    pub verdict: Verdict,
+    /// Form checks left out of the verdict.
+    pub gauge_only: bool,
+    /// Helix angle at d2, degrees.
+    pub helix_angle: f64,
+    /// Process figures of a program's operation.
+    pub process: Option<&'a crate::process::ProcessReport>,
+    /// The X for mid-tolerance d2, mm.
+    pub suggested_final_x: Option<f64>,
+    /// Stated assumptions.
+    pub notes: &'a [String],
+}
+
+impl<'a> VerifyReport<'a> {
+    /// The report of a verification.
+    pub fn of(v: &'a Verification) -> Self {
+        let m = &v.measurement;
+        let surface = rad(v.blank_diameter);
+        let passes = v
+            .passes
+            .iter()
+            .enumerate()
+            .map(|(i, p)| PassReport {
+                index: p.index,
+                x: p.x_end,
+                z: p.z_start,
+                depth: (rad(p.x_end) - surface).abs(),
+                start: p.start,
+                source_line: p.source_line,
+                metrics: v.metrics.get(i).map(|pm| PassMetricsReport {
+                    chip_area: pm.chip_area,
+                    engaged_edge: EngagedEdge { leading: pm.leading, trailing: pm.trailing, tip: pm.tip },
+                    max_chip_thickness: pm.max_chip_thickness,
+                    trailing_area: pm.trailing_area,
+                }),
+            })
+            .collect();
+        VerifyReport {
+            thread: ThreadReport::of(v),
+            insert: InsertReport {
+                kind: v.insert.kind.clone(),
+                name: &v.insert.name,
+                angle: v.insert.angle,
+                tip_radius: v.insert.tip_radius,
+            },
+            plan: PlanReport {
+                program: v.program.as_deref(),
+                infeed: v.infeed,
+                schedule: schedule_text(&v.schedule),
+                blank_diameter: v.blank_diameter,
+                final_x: v.final_x,
+                final_x_solved: v.final_x_solved,
+            },
+            passes,
+            measured: MeasuredReport {
+                major_diameter: m.major_diameter,
+                pitch_diameter: m.pitch_diameter,
+                minor_diameter: m.minor_diameter,
+                root_radius: m.root_radius,
+                flank_angles: m.flank_angles,
+                thread_depth: m.thread_depth,
+                engagement_depth: m.engagement_depth,
+                crest_width: m.crest_width,
+                three_wire: m.three_wire,
+                max_material_clearance: m.max_material_clearance,
+            },
+            limits: &v.limits,
+            checks: &v.checks,
+            verdict: Verdict::of(v.pass),
+            gauge_only: v.gauge_only,
+            helix_angle: v.helix_angle,
+            process: v.process.as_ref(),
+            suggested_final_x: v.suggested_final_x,
+            notes: &v.notes,
+        }
+    }
+}
+
+/// The whole `verify --json` object, as a JSON value.
 pub fn verify_json(v: &Verification) -> Value {
-    let m = &v.measurement;
-    let surface = rad(v.blank_diameter);
-    let passes: Vec<Value> = v
-        .passes
-        .iter()
-        .enumerate()
-        .map(|(i, p)| {
-            let mut o = json!({
-                "index": p.index,
-                "x": p.x_end,
-                "z": p.z_start,
-                "depth": (rad(p.x_end) - surface).abs(),
-                "start": p.start,
-                "source_line": p.source_line,
-            });
-            // Per-pass metrics are absent when the run skipped them (catalogue sweeps).
-            if let (Some(pm), Some(obj)) = (v.metrics.get(i), o.as_object_mut()) {
-                obj.insert("chip_area".into(), json!(pm.chip_area));
-                obj.insert(
-                    "engaged_edge".into(),
-                    json!({"leading": pm.leading, "trailing": pm.trailing, "tip": pm.tip}),
-                );
-                obj.insert("max_chip_thickness".into(), json!(pm.max_chip_thickness));
-                obj.insert("trailing_area".into(), json!(pm.trailing_area));
-            }
-            o
-        })
-        .collect();
-    json!({
-        "thread": thread_json(v),
-        "insert": {
-            "kind": v.insert.kind,
-            "name": v.insert.name,
-            "angle": v.insert.angle,
-            "tip_radius": v.insert.tip_radius,
-        },
-        "plan": {
-            "program": v.program,
-            "infeed": v.infeed,
-            "schedule": schedule_text(&v.schedule),
-            "blank_diameter": v.blank_diameter,
-            "final_x": v.final_x,
-            "final_x_solved": v.final_x_solved,
-        },
-        "passes": passes,
-        "measured": {
-            "major_diameter": m.major_diameter,
-            "pitch_diameter": m.pitch_diameter,
-            "minor_diameter": m.minor_diameter,
-            "root_radius": m.root_radius,
-            "flank_angles": m.flank_angles,
-            "thread_depth": m.thread_depth,
-            "engagement_depth": m.engagement_depth,
-            "crest_width": m.crest_width,
-            "three_wire": m.three_wire,
-            "max_material_clearance": m.max_material_clearance,
-        },
-        "limits": v.limits,
-        "checks": v.checks,
-        "verdict": if v.pass { "pass" } else { "fail" },
-        "gauge_only": v.gauge_only,
-        "helix_angle": v.helix_angle,
-        "process": v.process,
-        "suggested_final_x": v.suggested_final_x,
-        "notes": v.notes,
-    })
+    serde_json::to_value(VerifyReport::of(v)).unwrap_or(Value::Null)
 }
 
 fn opt(v: Option<f64>, prec: usize) -> String {
