@@ -135,13 +135,13 @@ impl CheckFeature {
             CheckFeature::MaxMaterial => "max material",
             CheckFeature::Crest => "crest",
             CheckFeature::SingleGroove => "one groove",
-            CheckFeature::GaugePlane => "gauge_plane",
-            CheckFeature::Taper => "taper",
-            CheckFeature::ConstantSpindleSpeed => "constant_spindle_speed",
-            CheckFeature::SpindleSpeed => "spindle_speed",
-            CheckFeature::Feed => "feed",
-            CheckFeature::FlankClearance => "flank_clearance",
-            CheckFeature::RunOut => "run_out",
+            CheckFeature::GaugePlane
+            | CheckFeature::Taper
+            | CheckFeature::ConstantSpindleSpeed
+            | CheckFeature::SpindleSpeed
+            | CheckFeature::Feed
+            | CheckFeature::FlankClearance
+            | CheckFeature::RunOut => self.name(),
         }
     }
 

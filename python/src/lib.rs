@@ -53,14 +53,16 @@ fn spec(
     Ok(s)
 }
 
-/// `threadcheck verify --json -`: returns (JSON text, verdict passed).
+/// `verify --json -` (`command = "verify"`) or `passes --json` (`command = "passes"`): returns
+/// the JSON text and whether the job passed. The two take the same plan and program arguments.
 #[pyfunction]
-#[pyo3(signature = (threads, program=None, dialect="fanuc", insert=None, final_x=None, internal=false,
-    infeed=None, passes=None, blank_diameter=None, gauge_only=false, allow_nonstandard=false,
-    program_name="<program>"))]
+#[pyo3(signature = (command, threads, program=None, dialect="fanuc", insert=None, final_x=None,
+    internal=false, infeed=None, passes=None, blank_diameter=None, gauge_only=false,
+    allow_nonstandard=false, program_name="<program>"))]
 #[allow(clippy::too_many_arguments)]
-fn verify_json(
+fn job_json(
     py: Python<'_>,
+    command: &str,
     threads: Vec<String>,
     program: Option<String>,
     dialect: &str,
@@ -75,9 +77,23 @@ fn verify_json(
     program_name: &str,
 ) -> PyResult<(String, bool)> {
     let run = || -> Result<(String, bool), threadcheck::Error> {
-        if threads.is_empty() {
+        let verify = match command {
+            "verify" => true,
+            "passes" => false,
+            other => {
+                return Err(threadcheck::Error::Input(format!(
+                    "unknown job '{other}': expected verify or passes"
+                )))
+            }
+        };
+        if verify && threads.is_empty() {
             return Err(threadcheck::Error::Input(
                 "verify needs a thread with a class, e.g. M10x1.5-6g".into(),
+            ));
+        }
+        if !verify && threads.is_empty() && program.is_none() {
+            return Err(threadcheck::Error::Input(
+                "passes needs a thread (e.g. M10x1.5-6g) or a program".into(),
             ));
         }
         if threads.len() > 1 && program.is_none() {
@@ -86,7 +102,6 @@ fn verify_json(
                     .into(),
             ));
         }
-        let insert_given = insert.is_some();
         let mut spec = spec(
             &threads,
             program.clone(),
@@ -101,15 +116,19 @@ fn verify_json(
             allow_nonstandard,
         )?;
         spec.gauge_only = gauge_only;
-        let job = VerifyJob {
-            spec,
-            threads: threads.clone(),
-            insert_given,
-            tools: None,
-            svg: None,
-            json: Some("-".into()),
+        let (text, outcome) = if verify {
+            VerifyJob {
+                spec,
+                threads: threads.clone(),
+                insert_given: insert.is_some(),
+                tools: None,
+                svg: None,
+                json: Some("-".into()),
+            }
+            .run()?
+        } else {
+            PassesJob { spec, json: Some("-".into()) }.run()?
         };
-        let (text, outcome) = job.run()?;
         Ok((text, outcome == threadcheck::app::Outcome::Pass))
     };
     py.detach(run).map_err(value_error)
@@ -124,55 +143,10 @@ fn limits_json(py: Python<'_>, designation: String, allow_nonstandard: bool) -> 
         .map_err(value_error)
 }
 
-/// `threadcheck passes --json`.
-#[pyfunction]
-#[pyo3(signature = (thread=None, program=None, dialect="fanuc", insert=None, final_x=None, internal=false,
-    infeed=None, passes=None, blank_diameter=None, allow_nonstandard=false, program_name="<program>"))]
-#[allow(clippy::too_many_arguments)]
-fn passes_json(
-    py: Python<'_>,
-    thread: Option<String>,
-    program: Option<String>,
-    dialect: &str,
-    insert: Option<&str>,
-    final_x: Option<f64>,
-    internal: bool,
-    infeed: Option<&str>,
-    passes: Option<usize>,
-    blank_diameter: Option<f64>,
-    allow_nonstandard: bool,
-    program_name: &str,
-) -> PyResult<String> {
-    let run = || -> Result<String, threadcheck::Error> {
-        if thread.is_none() && program.is_none() {
-            return Err(threadcheck::Error::Input(
-                "passes needs a thread (e.g. M10x1.5-6g) or a program".into(),
-            ));
-        }
-        let threads: Vec<String> = thread.iter().cloned().collect();
-        let spec = spec(
-            &threads,
-            program.clone(),
-            program_name,
-            dialect,
-            insert,
-            final_x,
-            internal,
-            infeed,
-            passes,
-            blank_diameter,
-            allow_nonstandard,
-        )?;
-        Ok(PassesJob { spec, json: Some("-".into()) }.run()?.0)
-    };
-    py.detach(run).map_err(value_error)
-}
-
 #[pymodule]
 fn _threadcheck(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(verify_json, m)?)?;
+    m.add_function(wrap_pyfunction!(job_json, m)?)?;
     m.add_function(wrap_pyfunction!(limits_json, m)?)?;
-    m.add_function(wrap_pyfunction!(passes_json, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

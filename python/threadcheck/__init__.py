@@ -30,8 +30,8 @@ def verify(thread, program=None, dialect="fanuc", insert=None, final_x=None, int
     The dict has ``verdict`` (``"PASS"``/``"FAIL"``); a program's report has ``operations``.
     """
     threads = [thread] if isinstance(thread, str) else list(thread)
-    text, _passed = _threadcheck.verify_json(
-        threads, program=program, dialect=dialect, insert=insert, final_x=final_x,
+    text, _passed = _threadcheck.job_json(
+        "verify", threads, program=program, dialect=dialect, insert=insert, final_x=final_x,
         internal=internal, infeed=infeed, passes=passes, blank_diameter=blank_diameter,
         gauge_only=gauge_only, allow_nonstandard=allow_nonstandard, program_name=program_name)
     return _json.loads(text)
@@ -46,7 +46,9 @@ def passes(thread=None, program=None, dialect="fanuc", insert=None, final_x=None
            infeed=None, passes=None, blank_diameter=None, allow_nonstandard=False,
            program_name="<program>"):
     """``threadcheck passes --json``: the passes of a generated plan or of a program's text."""
-    return _json.loads(_threadcheck.passes_json(
-        thread=thread, program=program, dialect=dialect, insert=insert, final_x=final_x,
-        internal=internal, infeed=infeed, passes=passes, blank_diameter=blank_diameter,
-        allow_nonstandard=allow_nonstandard, program_name=program_name))
+    text, _ok = _threadcheck.job_json(
+        "passes", [] if thread is None else [thread], program=program, dialect=dialect,
+        insert=insert, final_x=final_x, internal=internal, infeed=infeed, passes=passes,
+        blank_diameter=blank_diameter, allow_nonstandard=allow_nonstandard,
+        program_name=program_name)
+    return _json.loads(text)
