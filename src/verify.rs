@@ -586,7 +586,7 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
     if let Some((source, dialect)) = &spec.program {
         if spec.final_x.is_some() {
             return Err(Error::Input(
-                "--final-x and --program exclude each other: the program sets the passes".into(),
+                "a final X and a program exclude each other: the program sets the passes".into(),
             ));
         }
         let (shown, text) = source.load()?;
@@ -620,7 +620,7 @@ struct Given {
 
 fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, Error> {
     if spec.taper != 0.0 {
-        return Err(Error::Input("verify checks parallel threads against ISO 965-1, BS 84 and ISO 228-1; --taper is for `threadcheck passes`".into()));
+        return Err(Error::Input("verify checks parallel threads against ISO 965-1, BS 84 and ISO 228-1; a taper plan is laid out by `passes`, not verified".into()));
     }
     let r = resolve(spec)?;
     let (des, kind, limits, insert, blank, infeed) =
@@ -768,7 +768,7 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
     });
     let suggested = d2_off.then_some(final_x + (target_at(cut.z_ref) - m.pitch_diameter));
     if spec.gauge_only {
-        notes.push("--gauge-only: form checks are reported but left out of the verdict".into());
+        notes.push("gauge only: form checks are reported but left out of the verdict".into());
     }
     Ok(Verification {
         designation: des,
@@ -931,7 +931,7 @@ pub fn verify_program(
         let lines: Vec<String> =
             prog.operations.iter().map(|o| format!("{} at line {}", o.cycle, o.source_line)).collect();
         return Err(Error::Input(format!(
-            "{name} cuts {n} thread{} ({}); give --thread once for all of them or once per operation, not {} times",
+            "{name} cuts {n} thread{} ({}); give one designation for all of them or one per operation, not {} times",
             if n == 1 { "" } else { "s" },
             lines.join(", "),
             threads.len()

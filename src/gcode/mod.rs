@@ -68,7 +68,7 @@ impl Dialect {
     /// Reads a dialect name.
     pub fn parse(s: &str) -> Result<Dialect, Error> {
         Dialect::ALL.into_iter().find(|d| d.name() == s).ok_or_else(|| {
-            Error::Input(format!("--dialect '{s}': expected fanuc, haas, sinumerik, linuxcnc or dyna"))
+            Error::Input(format!("unknown dialect '{s}': expected fanuc, haas, sinumerik, linuxcnc or dyna"))
         })
     }
 
