@@ -477,38 +477,29 @@ fn cli_limits_thread_passes_zero_and_sweep_exit_codes() {
     assert_eq!(a.stdout, b.stdout);
     let e = run(&["verify", "--thread", "M10x1.5-6g", "--passes", "0"]);
     assert!(one_line_error(&e).contains("--passes 0"));
-    let fail = run(&[
-        "sweep",
-        "--min-d",
-        "10",
-        "--max-d",
-        "10",
-        "--series",
-        "coarse",
-        "--insert",
-        "partial",
-        "--infeed",
-        "radial",
-        "--schedule",
-        "constant-area",
-    ]);
+    // One M10 coarse case, radial, constant area: the partial insert fails its form checks, the
+    // full-profile insert passes.
+    let sweep_m10 = |insert: &str| {
+        run(&[
+            "sweep",
+            "--min-d",
+            "10",
+            "--max-d",
+            "10",
+            "--series",
+            "coarse",
+            "--insert",
+            insert,
+            "--infeed",
+            "radial",
+            "--schedule",
+            "constant-area",
+        ])
+    };
+    let fail = sweep_m10("partial");
     assert_eq!(fail.status.code(), Some(1), "{}", stdout(&fail));
     assert!(stdout(&fail).contains("1 cases, 0 pass, 1 fail"));
-    let pass = run(&[
-        "sweep",
-        "--min-d",
-        "10",
-        "--max-d",
-        "10",
-        "--series",
-        "coarse",
-        "--insert",
-        "full",
-        "--infeed",
-        "radial",
-        "--schedule",
-        "constant-area",
-    ]);
+    let pass = sweep_m10("full");
     assert_eq!(pass.status.code(), Some(0), "{}", stdout(&pass));
 }
 
