@@ -6,11 +6,11 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
-use threadcheck::boolean::UnionStrategy;
 use threadcheck::insert::Insert;
 use threadcheck::measure::{measure, MeasureSetup};
 use threadcheck::passes::{Infeed, Pass, PlanSpec};
 use threadcheck::sweep::{sweep, SweepSetup, Window};
+use threadcheck::UnionStrategy;
 use threadcheck::{parse_designation, BasicThread, ParseOptions, ThreadKind};
 
 fn m10() -> BasicThread {

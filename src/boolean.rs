@@ -17,15 +17,6 @@ use rayon::prelude::*;
 
 /// Signed area of a closed ring (geo's `Area`), mm²: positive when counter-clockwise in the
 /// `(z, r)` plane.
-///
-/// ```
-/// use threadcheck::{boolean::signed_area, Point};
-/// let square = [Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0)];
-/// assert_eq!(signed_area(&square), 1.0);
-/// let mut clockwise = square;
-/// clockwise.reverse();
-/// assert_eq!(signed_area(&clockwise), -1.0);
-/// ```
 pub fn signed_area(ring: &[Point]) -> f64 {
     if ring.len() < 3 {
         return 0.0;
@@ -54,7 +45,7 @@ pub enum UnionStrategy {
     /// Pairwise as a balanced binary tree, neighbours first; levels run in parallel.
     BalancedTree,
     /// No union at all: the sweep takes the lower envelope of the imprints
-    /// ([`crate::envelope`]). For a plain union of regions it is the balanced tree; the sweep falls
+    /// (the private `envelope` module). For a plain union of regions it is the balanced tree; the sweep falls
     /// back to the tree for inserts whose underside is not a function of z.
     Envelope,
 }
@@ -236,6 +227,15 @@ pub fn union_all(regions: Vec<Region>, strategy: UnionStrategy) -> Region {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn signed_area_is_positive_counter_clockwise() {
+        let square = [Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0)];
+        assert_eq!(signed_area(&square), 1.0);
+        let mut clockwise = square;
+        clockwise.reverse();
+        assert_eq!(signed_area(&clockwise), -1.0);
+    }
 
     #[test]
     fn rectangles_union_and_difference() {

@@ -2,37 +2,11 @@
 //! ASME B1.1 and B1.5 series, ISO 2902, BS 84, ISO 228-1), external and internal, with every
 //! insert, infeed and schedule asked for, in parallel.
 
-use crate::passes::{Infeed, Schedule};
+use crate::passes::{InfeedChoice, Schedule};
 use crate::standards::{catalog, ThreadForm};
 use crate::verify::{verify, InsertChoice, Verification, VerifySpec};
 use crate::Error;
 use rayon::prelude::*;
-
-/// An infeed named relative to the form's flank.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum InfeedKind {
-    /// Straight in X.
-    Radial,
-    /// Along the flank: half the thread angle.
-    Flank,
-    /// Modified flank: half the thread angle less 0.5°.
-    Modified,
-    /// Alternating flanks at half the thread angle.
-    Alternating,
-}
-
-impl InfeedKind {
-    /// The infeed for a form of included angle `angle` (degrees).
-    pub fn for_angle(self, angle: f64) -> Infeed {
-        let half = 0.5 * angle;
-        match self {
-            InfeedKind::Radial => Infeed::Radial,
-            InfeedKind::Flank => Infeed::Flank { angle: half },
-            InfeedKind::Modified => Infeed::Flank { angle: half - 0.5 },
-            InfeedKind::Alternating => Infeed::Alternating { angle: half },
-        }
-    }
-}
 
 /// What to sweep.
 #[derive(Clone, Debug, PartialEq)]
@@ -57,7 +31,7 @@ pub struct CatalogueSpec {
     /// is no tool for a flat root.
     pub partial: bool,
     /// Infeeds.
-    pub infeeds: Vec<InfeedKind>,
+    pub infeeds: Vec<InfeedChoice>,
     /// Schedules.
     pub schedules: Vec<Schedule>,
     /// Leave form checks out of the verdicts.
@@ -78,10 +52,10 @@ impl Default for CatalogueSpec {
             full: true,
             partial: true,
             infeeds: vec![
-                InfeedKind::Radial,
-                InfeedKind::Flank,
-                InfeedKind::Modified,
-                InfeedKind::Alternating,
+                InfeedChoice::Radial,
+                InfeedChoice::Flank { angle: None },
+                InfeedChoice::Modified,
+                InfeedChoice::Alternating { angle: None },
             ],
             schedules: vec![Schedule::ConstantArea, Schedule::ConstantDepth],
             gauge_only: false,
@@ -177,7 +151,7 @@ fn threads(spec: &CatalogueSpec, form: ThreadForm) -> Result<Vec<(String, f64, b
                     [("UNC", s.unc, spec.coarse), ("UNF", s.unf, spec.fine), ("UNEF", s.unef, spec.fine)];
                 for (sname, tpi, on) in series {
                     if let (Some(t), true) = (tpi, on) {
-                        let base = format!("{name}-{} {sname}", crate::app::fmt_num(t));
+                        let base = format!("{name}-{} {sname}", crate::report::fmt_num(t));
                         both(format!("{base}-2A"), Some(format!("{base}-2B")), inch / t);
                     }
                 }
@@ -196,7 +170,7 @@ fn threads(spec: &CatalogueSpec, form: ThreadForm) -> Result<Vec<(String, f64, b
         ThreadForm::Acme => {
             for (d, tpi) in crate::standards::designation::acme_series() {
                 if within(d * inch) {
-                    let des = format!("{}-{} ACME-2G", inch_name(d), crate::app::fmt_num(tpi));
+                    let des = format!("{}-{} ACME-2G", inch_name(d), crate::report::fmt_num(tpi));
                     both(des.clone(), Some(des), inch / tpi);
                 }
             }
@@ -219,7 +193,7 @@ fn threads(spec: &CatalogueSpec, form: ThreadForm) -> Result<Vec<(String, f64, b
             let n = &cat.pipe.npt;
             for i in 0..n.sizes.len() {
                 if within(n.OD[i] * inch) {
-                    let des = format!("{}-{} NPT", n.sizes[i], crate::app::fmt_num(n.tpi[i]));
+                    let des = format!("{}-{} NPT", n.sizes[i], crate::report::fmt_num(n.tpi[i]));
                     both(des.clone(), Some(des), inch / n.tpi[i]);
                 }
             }
@@ -264,18 +238,18 @@ pub fn cases(spec: &CatalogueSpec) -> Result<Vec<Case>, Error> {
                 .root_radius();
                 let r = (0.1 * p).min(0.04).min(fits);
                 inserts.push((
-                    format!("partial r{}", crate::app::fmt_num(r)),
+                    format!("partial r{}", crate::report::fmt_num(r)),
                     InsertChoice::Partial { tip_radius: r },
                 ));
             }
             for (iname, insert) in &inserts {
                 for kind in &spec.infeeds {
-                    let infeed = kind.for_angle(form.flank_angle());
+                    let infeed = kind.resolve(form.flank_angle());
                     for schedule in &spec.schedules {
                         let mut v = VerifySpec::new(&designation);
                         v.internal = internal;
                         v.insert = insert.clone();
-                        v.infeed = Some(infeed);
+                        v.infeed = Some(*kind);
                         v.schedule = schedule.clone();
                         v.gauge_only = spec.gauge_only;
                         v.metrics = false;

@@ -10,7 +10,6 @@ use crate::passes::{Infeed, Schedule};
 use crate::verify::{verify, Verification, VerifySpec};
 use crate::Error;
 use serde::Serialize;
-use serde_json::json;
 use std::fmt::Write as _;
 
 /// A pass counts as two-flank when its trailing edge engages more than this much (mm) beyond the
@@ -115,7 +114,7 @@ pub fn compare(base: &VerifySpec, modified: &[f64]) -> Result<Comparison, Error>
         Some(x) => x,
         None => {
             let mut s = base.clone();
-            s.infeed = Some(Infeed::Radial);
+            s.infeed = Some(crate::passes::InfeedChoice::Radial);
             s.schedule = Schedule::ConstantArea;
             verify(&s)?.final_x
         }
@@ -131,7 +130,7 @@ pub fn compare(base: &VerifySpec, modified: &[f64]) -> Result<Comparison, Error>
             [("constant-depth", Schedule::ConstantDepth), ("constant-area", Schedule::ConstantArea)]
         {
             let mut s = base.clone();
-            s.infeed = Some(infeed);
+            s.infeed = Some(infeed.into());
             s.schedule = schedule;
             s.final_x = Some(final_x);
             let v = verify(&s)?;
@@ -232,13 +231,26 @@ pub fn text(c: &Comparison) -> String {
     s
 }
 
-/// The comparison as JSON: every verify report, and the per-strategy figures.
-pub fn to_json(c: &Comparison) -> serde_json::Value {
-    json!({
-        "final_x": c.final_x,
-        "reports": c.runs.iter().map(|(_, v)| crate::report::verify_json(v)).collect::<Vec<_>>(),
-        "strategies": c.runs.iter().map(|(m, _)| serde_json::to_value(m).unwrap_or_default()).collect::<Vec<_>>(),
-    })
+/// `compare --json`: every verify report, and the per-strategy figures (docs/json.md).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct CompareReport<'a> {
+    /// The last pass's X, shared by every strategy, mm.
+    pub final_x: f64,
+    /// One verify report per strategy.
+    pub reports: Vec<crate::report::VerifyReport<'a>>,
+    /// The per-strategy figures.
+    pub strategies: Vec<&'a Summary>,
+}
+
+impl<'a> CompareReport<'a> {
+    /// The report of a comparison.
+    pub fn of(c: &'a Comparison) -> Self {
+        CompareReport {
+            final_x: c.final_x,
+            reports: c.runs.iter().map(|(_, v)| crate::report::VerifyReport::of(v)).collect(),
+            strategies: c.runs.iter().map(|(m, _)| m).collect(),
+        }
+    }
 }
 
 /// The threads of the committed comparison report.

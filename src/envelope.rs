@@ -25,6 +25,7 @@ impl Chain {
     }
 
     /// The pointwise minimum of `self` and `f` (see [`Chain::merge`]).
+    #[cfg(test)]
     pub fn min_with(&self, f: &[Point]) -> Chain {
         let mut c = self.clone();
         c.merge(f);

@@ -135,17 +135,48 @@ pub fn fit(spec: &FitSpec) -> Result<FitReport, Error> {
     })
 }
 
-/// The JSON object of `fit --json`.
-pub fn json(r: &FitReport) -> serde_json::Value {
-    serde_json::json!({
-        "thread": r.bolt.designation.text,
-        "verdict": if r.fits { "fits" } else { "interferes" },
-        "clearance_um": r.clearance_um,
-        "engagement_depth": r.engagement_depth,
-        "flank_overlap": r.flank_overlap,
-        "bolt": crate::report::verify_json(&r.bolt),
-        "nut": crate::report::verify_json(&r.nut),
-    })
+/// Whether the bolt goes into the nut.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FitVerdict {
+    /// Clearance at the best axial position.
+    Fits,
+    /// Interference.
+    Interferes,
+}
+
+/// `fit --json` (docs/json.md).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct FitJson<'a> {
+    /// The fit designation.
+    pub thread: &'a str,
+    /// Fits or interferes.
+    pub verdict: FitVerdict,
+    /// Signed flank clearance at the best axial position, µm (negative: interference).
+    pub clearance_um: f64,
+    /// (bolt major − nut minor)/2, mm.
+    pub engagement_depth: f64,
+    /// Flank overlap, mm.
+    pub flank_overlap: f64,
+    /// The bolt's verify report.
+    pub bolt: crate::report::VerifyReport<'a>,
+    /// The nut's verify report.
+    pub nut: crate::report::VerifyReport<'a>,
+}
+
+impl<'a> FitJson<'a> {
+    /// The report of a fit.
+    pub fn of(r: &'a FitReport) -> Self {
+        FitJson {
+            thread: &r.bolt.designation.text,
+            verdict: if r.fits { FitVerdict::Fits } else { FitVerdict::Interferes },
+            clearance_um: r.clearance_um,
+            engagement_depth: r.engagement_depth,
+            flank_overlap: r.flank_overlap,
+            bolt: crate::report::VerifyReport::of(&r.bolt),
+            nut: crate::report::VerifyReport::of(&r.nut),
+        }
+    }
 }
 
 /// The text report.

@@ -11,22 +11,21 @@
 //! 4. [`passes`] and [`gcode`]: a generated plan, or a real program expanded as the control
 //!    would, says where the tip runs pass after pass;
 //! 5. [`sweep`]: the insert is placed once per lead for every pass; the cut surface is the lower
-//!    envelope of the imprints ([`envelope`]), or their union through [`boolean`] (the one module
-//!    that talks to `geo`) subtracted from the blank;
+//!    envelope of the imprints, or their union through the one private module that talks to
+//!    `geo`, subtracted from the blank ([`UnionStrategy`] picks which);
 //! 6. [`measure`]: the as-cut groove is measured as a metrology lab would;
 //! 7. [`check`]: the measurements against the limits, and the verdict;
 //! 8. [`render`] and [`report`]: the SVG cross-section, the JSON and text reports.
 //!
 //! [`verify()`] runs the whole path as one call ([`mod@verify`] holds its parts); [`compare`] and [`catalogue`] run it many times;
-//! [`app`] holds the validated jobs behind the command line.
+//! [`jobs`] holds the jobs behind the command line, one per command.
 //!
 //! ```
-//! use threadcheck::boolean::UnionStrategy;
 //! use threadcheck::insert::Insert;
 //! use threadcheck::measure::{measure, MeasureSetup};
 //! use threadcheck::passes::{Infeed, PlanSpec};
 //! use threadcheck::sweep::{sweep, SweepSetup, Window};
-//! use threadcheck::{parse_designation, ParseOptions, ThreadKind};
+//! use threadcheck::{parse_designation, ParseOptions, ThreadKind, UnionStrategy};
 //!
 //! let m10 = parse_designation("M10x1.5", ParseOptions::default())?.thread;
 //! // A 60° partial-profile insert with a 0.04 mm tip, arcs to 0.05 µm.
@@ -52,20 +51,20 @@
 //! All lengths are millimetres (`f64`). Lathe X values are **diameters**; geometry works in the
 //! axial half-plane with `(z, r)` where `r` is a radius. Deviations are reported in µm.
 
-pub mod app;
-pub mod boolean;
+mod boolean;
 pub mod catalogue;
 pub mod check;
 pub mod compare;
-pub mod envelope;
+mod envelope;
 pub mod error;
 pub mod fit;
 pub mod gcode;
 pub mod geometry;
 pub mod insert;
-pub mod limits;
+pub mod jobs;
+mod limits;
 pub mod measure;
-pub mod output;
+mod output;
 pub mod passes;
 pub mod process;
 pub mod render;
@@ -76,10 +75,13 @@ pub mod tolerance;
 pub mod tools;
 pub mod verify;
 
+pub use boolean::UnionStrategy;
 pub use check::{Check, CheckFeature, CheckKind};
 pub use error::{Error, Result};
 pub use gcode::Dialect;
 pub use geometry::{Arc, Point, DEFAULT_TOLERANCE};
+pub use jobs::Outcome;
+pub use passes::{Infeed, InfeedChoice, Schedule};
 pub use standards::{
     parse_designation, BasicThread, ClassSpec, Designation, DesignationError, Hand, ParseOptions,
     ProfileKind, ThreadForm, ThreadKind,

@@ -156,6 +156,104 @@ pub enum Infeed {
     },
 }
 
+/// An infeed as a user names it, before the thread's angle is known: the one vocabulary of
+/// `verify --infeed`, `sweep --infeed` and Python's `infeed=`.
+///
+/// | text | infeed |
+/// |---|---|
+/// | `radial` | straight in X |
+/// | `flank` / `flank:A` | along the flank at half the thread angle / at A° from the radial |
+/// | `modified` | flank infeed at half the thread angle less 0.5° (the default) |
+/// | `alternating` / `alternating:A` | alternating flanks at half the thread angle / at A° |
+///
+/// ```
+/// use threadcheck::passes::{Infeed, InfeedChoice};
+/// let m: InfeedChoice = "modified".parse()?;
+/// assert_eq!(m.resolve(60.0), Infeed::Flank { angle: 29.5 });
+/// let f: InfeedChoice = "flank:27".parse()?;
+/// assert_eq!(f.resolve(30.0), Infeed::Flank { angle: 27.0 });
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum InfeedChoice {
+    /// Straight in X.
+    Radial,
+    /// Along a flank line: at `angle` degrees from the radial, or half the thread angle.
+    Flank {
+        /// Degrees from the radial; `None`: half the thread angle.
+        angle: Option<f64>,
+    },
+    /// Modified flank: half the thread angle less 0.5°.
+    Modified,
+    /// Alternating flanks at `angle`, or half the thread angle.
+    Alternating {
+        /// Degrees from the radial; `None`: half the thread angle.
+        angle: Option<f64>,
+    },
+}
+
+impl InfeedChoice {
+    /// The words [`InfeedChoice::from_str`](std::str::FromStr) reads, for messages.
+    pub const WORDS: &'static str = "radial, flank[:ANGLE], modified or alternating[:ANGLE]";
+
+    /// The infeed for a form of included angle `thread_angle` (degrees).
+    pub fn resolve(self, thread_angle: f64) -> Infeed {
+        let half = 0.5 * thread_angle;
+        match self {
+            InfeedChoice::Radial => Infeed::Radial,
+            InfeedChoice::Flank { angle } => Infeed::Flank { angle: angle.unwrap_or(half) },
+            InfeedChoice::Modified => Infeed::Flank { angle: half - 0.5 },
+            InfeedChoice::Alternating { angle } => Infeed::Alternating { angle: angle.unwrap_or(half) },
+        }
+    }
+
+    /// The explicit angle, if one was given.
+    pub fn angle(self) -> Option<f64> {
+        match self {
+            InfeedChoice::Radial | InfeedChoice::Modified => None,
+            InfeedChoice::Flank { angle } | InfeedChoice::Alternating { angle } => angle,
+        }
+    }
+}
+
+impl From<Infeed> for InfeedChoice {
+    fn from(i: Infeed) -> Self {
+        match i {
+            Infeed::Radial => InfeedChoice::Radial,
+            Infeed::Flank { angle } => InfeedChoice::Flank { angle: Some(angle) },
+            Infeed::Alternating { angle } => InfeedChoice::Alternating { angle: Some(angle) },
+        }
+    }
+}
+
+impl std::str::FromStr for InfeedChoice {
+    type Err = Error;
+
+    fn from_str(s: &str) -> Result<Self, Error> {
+        let bad = || Error::Input(format!("infeed '{s}': expected {}", InfeedChoice::WORDS));
+        let (name, angle) = match s.trim().split_once(':') {
+            Some((n, a)) => {
+                let a: f64 = a.trim().parse().map_err(|_| bad())?;
+                if !(0.0..90.0).contains(&a) {
+                    return Err(Error::Input(format!(
+                        "infeed '{s}': the angle must be from 0 to under 90 degrees"
+                    )));
+                }
+                (n, Some(a))
+            }
+            None => (s.trim(), None),
+        };
+        match (name, angle) {
+            ("radial", None) => Ok(InfeedChoice::Radial),
+            ("flank", angle) => Ok(InfeedChoice::Flank { angle }),
+            ("modified", None) => Ok(InfeedChoice::Modified),
+            ("alternating", angle) => Ok(InfeedChoice::Alternating { angle }),
+            _ => Err(bad()),
+        }
+    }
+}
+
 /// How deep each pass goes.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -168,6 +266,22 @@ pub enum Schedule {
     Sandvik,
     /// Explicit cumulative radial depths (mm), the last being the total.
     Explicit(Vec<f64>),
+}
+
+impl std::str::FromStr for Schedule {
+    type Err = Error;
+
+    /// `constant-area`, `constant-depth` or `sandvik` (explicit depths are a list, not a name).
+    fn from_str(s: &str) -> Result<Self, Error> {
+        match s.trim() {
+            "constant-area" => Ok(Schedule::ConstantArea),
+            "constant-depth" => Ok(Schedule::ConstantDepth),
+            "sandvik" => Ok(Schedule::Sandvik),
+            _ => Err(Error::Input(format!(
+                "schedule '{s}': expected constant-area, constant-depth or sandvik"
+            ))),
+        }
+    }
 }
 
 /// Cumulative radial depths (mm) of `n` passes reaching `total`.

@@ -175,7 +175,11 @@ pub fn process_checks(
                 s,
                 Some(max),
                 s <= max + 1e-9,
-                format!("S{s} rpm against {max} rpm for P {} mm on {}", crate::app::fmt_num(pitch), m.name),
+                format!(
+                    "S{s} rpm against {max} rpm for P {} mm on {}",
+                    crate::report::fmt_num(pitch),
+                    m.name
+                ),
             ));
         }
         if let Some(fmax) = m.max_feed_mm_min {
@@ -185,7 +189,7 @@ pub fn process_checks(
                 f,
                 Some(fmax),
                 f <= fmax + 1e-9,
-                format!("S·lead = {} mm/min against {fmax} mm/min", crate::app::fmt_num(f)),
+                format!("S·lead = {} mm/min against {fmax} mm/min", crate::report::fmt_num(f)),
             ));
         }
     }

@@ -6,15 +6,25 @@ use crate::passes::{Infeed, Schedule};
 use crate::standards::{Hand, ThreadKind};
 use crate::verify::Verification;
 use serde::Serialize;
-use serde_json::{json, Value};
 use std::fmt::Write as _;
+
+/// A number without float noise: at most six decimals, trailing zeros dropped.
+pub(crate) fn fmt_num(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.to_string()
+    }
+}
 
 /// The infeed as words (`flank 29.5°`).
 pub fn infeed_text(i: &Infeed) -> String {
     match i {
         Infeed::Radial => "radial".into(),
-        Infeed::Flank { angle } => format!("flank {angle}°"),
-        Infeed::Alternating { angle } => format!("alternating {angle}°"),
+        Infeed::Flank { angle } => format!("flank {}°", fmt_num(*angle)),
+        Infeed::Alternating { angle } => format!("alternating {}°", fmt_num(*angle)),
     }
 }
 
@@ -53,24 +63,27 @@ pub struct ThreadReport<'a> {
 impl<'a> ThreadReport<'a> {
     /// The thread of a verification.
     pub fn of(v: &'a Verification) -> Self {
-        let t = &v.designation.thread;
+        ThreadReport::new(&v.designation, v.kind, &v.limits.class)
+    }
+
+    /// The thread of a designation, cut as `kind`, in class `class`.
+    pub fn new(designation: &'a crate::standards::Designation, kind: ThreadKind, class: &'a str) -> Self {
+        let t = &designation.thread;
         ThreadReport {
-            designation: &v.designation.text,
+            designation: &designation.text,
             form: t.form.name(),
-            kind: v.kind.name(),
+            kind: kind.name(),
             nominal_diameter: t.nominal_diameter,
             pitch: t.pitch,
             lead: t.lead(),
             starts: t.starts,
-            hand: if t.hand == Hand::Left { "left" } else { "right" },
-            class: &v.limits.class,
+            hand: match t.hand {
+                Hand::Left => "left",
+                Hand::Right => "right",
+            },
+            class,
         }
     }
-}
-
-/// The `thread` object of the reports, as a JSON value.
-pub fn thread_json(v: &Verification) -> Value {
-    serde_json::to_value(ThreadReport::of(v)).unwrap_or(Value::Null)
 }
 
 /// The `insert` object.
@@ -289,11 +302,6 @@ impl<'a> VerifyReport<'a> {
     }
 }
 
-/// The whole `verify --json` object, as a JSON value.
-pub fn verify_json(v: &Verification) -> Value {
-    serde_json::to_value(VerifyReport::of(v)).unwrap_or(Value::Null)
-}
-
 fn opt(v: Option<f64>, prec: usize) -> String {
     v.map_or_else(|| "—".to_string(), |x| format!("{x:.prec$}"))
 }
@@ -430,50 +438,154 @@ pub fn verify_text(v: &Verification) -> String {
     s
 }
 
+/// The infeed angle a cycle was given.
+#[derive(Clone, Debug, Serialize)]
+pub struct InfeedAngleReport<'a> {
+    /// Degrees from the radial.
+    pub degrees: f64,
+    /// The word that gave it (`R29`, `IANG`, `Q`, `A/2`).
+    pub word: &'a str,
+}
+
 /// The `operation` object of a program report.
-fn operation_json(o: &crate::gcode::Operation) -> Value {
-    json!({
-        "index": o.index,
-        "cycle": o.cycle,
-        "source_line": o.source_line,
-        "tool": o.tool,
-        "spindle": o.spindle,
-        "infeed_angle": o.infeed_angle.as_ref().map(|(a, w)| json!({"degrees": a, "word": w})),
-        "passes": o.passes.len(),
-        "notes": o.notes,
-    })
+#[derive(Clone, Debug, Serialize)]
+pub struct OperationInfo<'a> {
+    /// 1-based, in program order.
+    pub index: usize,
+    /// The cycle (`G76`, `G33`, `L97`, …).
+    pub cycle: &'a str,
+    /// First program line.
+    pub source_line: usize,
+    /// The T number, if named.
+    pub tool: Option<u32>,
+    /// Spindle state.
+    pub spindle: crate::gcode::Spindle,
+    /// The infeed angle, when the cycle has one.
+    pub infeed_angle: Option<InfeedAngleReport<'a>>,
+    /// Number of passes.
+    pub passes: usize,
+    /// Warnings and assumed defaults.
+    pub notes: &'a [String],
+}
+
+impl<'a> OperationInfo<'a> {
+    /// The object of an operation.
+    pub fn of(o: &'a crate::gcode::Operation) -> Self {
+        OperationInfo {
+            index: o.index,
+            cycle: &o.cycle,
+            source_line: o.source_line,
+            tool: o.tool,
+            spindle: o.spindle,
+            infeed_angle: o.infeed_angle.as_ref().map(|(a, w)| InfeedAngleReport { degrees: *a, word: w }),
+            passes: o.passes.len(),
+            notes: &o.notes,
+        }
+    }
+}
+
+/// The designation of an operation that cut nothing.
+#[derive(Clone, Debug, Serialize)]
+pub struct DesignationOnly<'a> {
+    /// As written.
+    pub designation: &'a str,
+}
+
+/// The one check of an operation that cut nothing: `cut`, not ok.
+#[derive(Clone, Debug, Serialize)]
+pub struct NoCutCheck<'a> {
+    /// Always `cut`.
+    pub feature: &'static str,
+    /// Always `size`.
+    pub kind: crate::check::CheckKind,
+    /// Always false.
+    pub ok: bool,
+    /// Why.
+    pub note: &'a str,
+}
+
+/// One entry of a program report's `operations`: a full verify report, or the reason nothing
+/// was cut; both with the `operation` object.
+#[derive(Clone, Debug, Serialize)]
+#[serde(untagged)]
+pub enum OperationReport<'a> {
+    /// Cut and measured.
+    Verified {
+        /// The verify report's keys.
+        #[serde(flatten)]
+        report: Box<VerifyReport<'a>>,
+        /// The operation.
+        operation: OperationInfo<'a>,
+    },
+    /// Nothing to measure.
+    NoCut {
+        /// The designation.
+        thread: DesignationOnly<'a>,
+        /// One failing `cut` check.
+        checks: [NoCutCheck<'a>; 1],
+        /// Always `fail`.
+        verdict: Verdict,
+        /// Why.
+        reason: &'a str,
+        /// The operation.
+        operation: OperationInfo<'a>,
+    },
 }
 
 /// `verify --program --json`: the program, its verdict (the worst of its operations) and every
-/// operation's full report.
-pub fn program_json(pv: &crate::verify::ProgramVerification) -> Value {
-    let ops: Vec<Value> = pv
-        .operations
-        .iter()
-        .map(|o| {
-            let mut v = match &o.result {
-                crate::verify::OperationResult::Verified(v) => verify_json(v),
-                crate::verify::OperationResult::NoCut { reason } => json!({
-                    "thread": {"designation": o.designation},
-                    "checks": [{"feature": "cut", "kind": "size", "ok": false, "note": reason}],
-                    "verdict": "fail",
-                    "reason": reason,
-                }),
-            };
-            if let Some(obj) = v.as_object_mut() {
-                obj.insert("operation".into(), operation_json(&o.operation));
-            }
-            v
-        })
-        .collect();
-    json!({
-        "program": pv.program,
-        "dialect": pv.dialect,
-        "verdict": if pv.pass() { "pass" } else { "fail" },
-        "operations": ops,
-        "skipped_blocks": pv.skipped_blocks,
-        "notes": pv.notes,
-    })
+/// operation's full report (docs/json.md).
+#[derive(Clone, Debug, Serialize)]
+pub struct ProgramReport<'a> {
+    /// The program's name and dialect.
+    pub program: &'a str,
+    /// The dialect.
+    pub dialect: crate::gcode::Dialect,
+    /// The worst verdict.
+    pub verdict: Verdict,
+    /// Every operation.
+    pub operations: Vec<OperationReport<'a>>,
+    /// Blocks read for position only.
+    pub skipped_blocks: usize,
+    /// Program-wide warnings.
+    pub notes: &'a [String],
+}
+
+impl<'a> ProgramReport<'a> {
+    /// The report of a program's verification.
+    pub fn of(pv: &'a crate::verify::ProgramVerification) -> Self {
+        let operations = pv
+            .operations
+            .iter()
+            .map(|o| {
+                let operation = OperationInfo::of(&o.operation);
+                match &o.result {
+                    crate::verify::OperationResult::Verified(v) => {
+                        OperationReport::Verified { report: Box::new(VerifyReport::of(v)), operation }
+                    }
+                    crate::verify::OperationResult::NoCut { reason } => OperationReport::NoCut {
+                        thread: DesignationOnly { designation: &o.designation },
+                        checks: [NoCutCheck {
+                            feature: "cut",
+                            kind: crate::check::CheckKind::Size,
+                            ok: false,
+                            note: reason,
+                        }],
+                        verdict: Verdict::Fail,
+                        reason,
+                        operation,
+                    },
+                }
+            })
+            .collect();
+        ProgramReport {
+            program: &pv.program,
+            dialect: pv.dialect,
+            verdict: Verdict::of(pv.pass()),
+            operations,
+            skipped_blocks: pv.skipped_blocks,
+            notes: &pv.notes,
+        }
+    }
 }
 
 /// The human report of a program: one section per operation, then the program's verdict.
@@ -521,4 +633,196 @@ pub fn program_text(pv: &crate::verify::ProgramVerification) -> String {
         }
     }
     s
+}
+
+/// One operation of `passes --json`.
+#[derive(Clone, Debug, Serialize)]
+pub struct PassesOperation<'a> {
+    /// 1-based, in program order.
+    pub index: usize,
+    /// The cycle (`G76`, `G33`, `L97`, …).
+    pub cycle: &'a str,
+    /// First program line.
+    pub source_line: usize,
+    /// The T number, if named.
+    pub tool: Option<u32>,
+    /// Spindle state.
+    pub spindle: crate::gcode::Spindle,
+    /// Lead, mm.
+    pub lead: f64,
+    /// Warnings and assumed defaults.
+    pub notes: &'a [String],
+    /// Its passes.
+    pub passes: &'a [crate::passes::Pass],
+}
+
+/// `passes --json` (docs/json.md).
+#[derive(Clone, Debug, Serialize)]
+pub struct PassesReport<'a> {
+    /// The thread, when one was given.
+    pub thread: Option<ThreadReport<'a>>,
+    /// Largest Z any pass reaches, mm.
+    pub thread_start: f64,
+    /// Smallest Z any pass reaches, mm.
+    pub thread_end: f64,
+    /// Every pass in cutting order.
+    pub passes: &'a [crate::passes::Pass],
+    /// A program's passes by operation.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub operations: Option<Vec<PassesOperation<'a>>>,
+}
+
+impl<'a> PassesReport<'a> {
+    /// The report of `passes`, grouped by `operations` when they come from a program.
+    pub fn new(
+        thread: Option<ThreadReport<'a>>,
+        passes: &'a [crate::passes::Pass],
+        operations: Option<&'a [crate::gcode::Operation]>,
+    ) -> Self {
+        let (thread_start, thread_end) =
+            passes.iter().fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), p| {
+                (a.max(p.z_start.max(p.z_end)), b.min(p.z_start.min(p.z_end)))
+            });
+        PassesReport {
+            thread,
+            thread_start,
+            thread_end,
+            passes,
+            operations: operations.map(|ops| {
+                ops.iter()
+                    .map(|op| PassesOperation {
+                        index: op.index,
+                        cycle: &op.cycle,
+                        source_line: op.source_line,
+                        tool: op.tool,
+                        spindle: op.spindle,
+                        lead: op.lead(),
+                        notes: &op.notes,
+                        passes: &op.passes,
+                    })
+                    .collect()
+            }),
+        }
+    }
+}
+
+/// The `basic` object of `limits --json`: the basic sizes, rounded as the tables print them.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct BasicReport {
+    /// d = D, mm.
+    pub major_diameter: f64,
+    /// d2 = D2, mm.
+    pub pitch_diameter: f64,
+    /// d3, mm.
+    pub minor_diameter_external: f64,
+    /// D1, mm.
+    pub minor_diameter_internal: f64,
+    /// H, mm.
+    pub fundamental_triangle_height: f64,
+}
+
+/// `limits --json` (docs/json.md).
+#[derive(Clone, Debug, Serialize)]
+pub struct LimitsReport<'a> {
+    /// As written.
+    pub designation: &'a str,
+    /// The form's name.
+    pub form: &'static str,
+    /// mm.
+    pub nominal_diameter: f64,
+    /// mm.
+    pub pitch: f64,
+    /// mm.
+    pub lead: f64,
+    /// Number of starts.
+    pub starts: u32,
+    /// `right` or `left`.
+    pub hand: &'static str,
+    /// Outside the standard series.
+    pub nonstandard: bool,
+    /// Basic sizes.
+    pub basic: BasicReport,
+    /// The external thread's limits, when the designation has an external class.
+    pub external: Option<&'a crate::tolerance::ThreadLimits>,
+    /// The internal thread's limits.
+    pub internal: Option<&'a crate::tolerance::ThreadLimits>,
+}
+
+impl<'a> LimitsReport<'a> {
+    /// The report of a designation's limits.
+    pub fn new(
+        des: &'a crate::standards::Designation,
+        external: Option<&'a crate::tolerance::ThreadLimits>,
+        internal: Option<&'a crate::tolerance::ThreadLimits>,
+    ) -> Self {
+        let t = &des.thread;
+        let (major_diameter, pitch_diameter, minor_diameter_external, minor_diameter_internal, h) =
+            crate::tolerance::basic_rounded(t);
+        LimitsReport {
+            designation: &des.text,
+            form: t.form.name(),
+            nominal_diameter: t.nominal_diameter,
+            pitch: t.pitch,
+            lead: t.lead(),
+            starts: t.starts,
+            hand: match t.hand {
+                Hand::Left => "left",
+                Hand::Right => "right",
+            },
+            nonstandard: des.nonstandard,
+            basic: BasicReport {
+                major_diameter,
+                pitch_diameter,
+                minor_diameter_external,
+                minor_diameter_internal,
+                fundamental_triangle_height: h,
+            },
+            external,
+            internal,
+        }
+    }
+}
+
+/// A case of `sweep --json` that could not be verified.
+#[derive(Clone, Debug, Serialize)]
+pub struct CaseError<'a> {
+    /// The case's label.
+    pub case: &'a str,
+    /// The one-line error.
+    pub error: String,
+}
+
+/// One line of `sweep --export-placements`: what an outside baseline needs to redo the cut.
+#[derive(Clone, Debug, Serialize)]
+pub struct PlacementsLine<'a> {
+    /// The case's label.
+    pub case: &'a str,
+    /// `external` or `internal`.
+    pub kind: &'static str,
+    /// mm.
+    pub pitch: f64,
+    /// Axial position of the measured groove, mm.
+    pub z_ref: f64,
+    /// The blank's outline, (z, r) mm.
+    pub blank: Vec<[f64; 2]>,
+    /// Every insert placement's outline, (z, r) mm.
+    pub placements: Vec<Vec<[f64; 2]>>,
+    /// Measured d2, mm.
+    pub pitch_diameter: f64,
+    /// threadcheck's best time for the same cut, s.
+    pub threadcheck_seconds: f64,
+}
+
+/// The JSON text of a report: pretty, with a final newline.
+pub fn to_json_pretty<T: Serialize>(v: &T) -> Result<String, crate::Error> {
+    let mut s = serde_json::to_string_pretty(v).map_err(|e| crate::Error::Data(e.to_string()))?;
+    s.push('\n');
+    Ok(s)
+}
+
+/// The JSON text of a report on one line, with a final newline (JSON Lines).
+pub fn to_json_line<T: Serialize>(v: &T) -> Result<String, crate::Error> {
+    let mut s = serde_json::to_string(v).map_err(|e| crate::Error::Data(e.to_string()))?;
+    s.push('\n');
+    Ok(s)
 }

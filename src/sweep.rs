@@ -1,9 +1,9 @@
 //! The sweep: every pass leaves one imprint of the insert per lead in the axial section; the
 //! union of the imprints, subtracted from the blank, is the as-cut section.
 //!
-//! All polygon booleans go through [`crate::boolean`]. The blank is kept only a little taller than
+//! All polygon booleans go through the private `boolean` module. The blank is kept only a little taller than
 //! the cut and the window only a few pitches wide, which keeps the backend's snapping grid in the
-//! nanometres (see [`crate::boolean`]).
+//! nanometres (see the private `boolean` module).
 
 use crate::boolean::{union_all, Region, UnionStrategy};
 use crate::geometry::{rad, Point};

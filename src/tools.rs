@@ -47,7 +47,7 @@ impl ToolTable {
                 .trim_start_matches(['T', 't'])
                 .parse()
                 .map_err(|_| ferr(format!("tool '{k}' is not a T number (write 3 = \"full\")")))?;
-            let choice = match crate::app::parse_insert(&v)? {
+            let choice = match v.parse::<crate::verify::InsertChoice>()? {
                 InsertChoice::File(p) if p.is_relative() => InsertChoice::File(dir.join(p)),
                 c => c,
             };

@@ -5,7 +5,7 @@ use crate::boolean::UnionStrategy;
 use crate::check::{checks, verdict, Check};
 use crate::insert::{Insert, InsertKind};
 use crate::measure::{measure, MeasureSetup, Measurement};
-use crate::passes::{Infeed, Pass, PlanSpec, Schedule};
+use crate::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
 use crate::standards::{parse_designation, Designation, ParseOptions, ProfileKind, ThreadKind};
 use crate::sweep::{pass_metrics, sweep, PassMetrics, Section, SweepSetup, Window};
 use crate::tolerance::{limits_for, ThreadLimits};
@@ -26,6 +26,41 @@ pub enum InsertChoice {
     File(PathBuf),
 }
 
+impl std::str::FromStr for InsertChoice {
+    type Err = Error;
+
+    /// `full`, `partial` (tip radius 0.04 mm), `partial:R` (tip radius R mm) or a TOML file's path.
+    ///
+    /// ```
+    /// use threadcheck::InsertChoice;
+    /// assert_eq!("partial:0.035".parse::<InsertChoice>()?, InsertChoice::Partial { tip_radius: 0.035 });
+    /// # Ok::<(), threadcheck::Error>(())
+    /// ```
+    fn from_str(s: &str) -> Result<Self, Error> {
+        match s {
+            "full" => Ok(InsertChoice::Full),
+            "partial" => Ok(InsertChoice::Partial { tip_radius: 0.04 }),
+            _ => match s.strip_prefix("partial:") {
+                Some(r) => {
+                    let tip_radius: f64 = r.trim().parse().map_err(|_| {
+                        Error::Input(format!("insert '{s}': the tip radius '{r}' is not a number"))
+                    })?;
+                    if !(tip_radius.is_finite() && tip_radius >= 0.0) {
+                        return Err(Error::Input(format!(
+                            "insert '{s}': the tip radius must be a length ≥ 0"
+                        )));
+                    }
+                    Ok(InsertChoice::Partial { tip_radius })
+                }
+                None if s.is_empty() => {
+                    Err(Error::Input("insert '': expected full, partial[:TIP_RADIUS] or FILE.toml".into()))
+                }
+                None => Ok(InsertChoice::File(PathBuf::from(s))),
+            },
+        }
+    }
+}
+
 /// Everything `verify` needs; the CLI fills it from its options.
 #[derive(Clone, Debug, PartialEq)]
 pub struct VerifySpec {
@@ -38,8 +73,9 @@ pub struct VerifySpec {
     pub allow_nonstandard: bool,
     /// The insert.
     pub insert: InsertChoice,
-    /// Infeed; `None` picks modified flank at half the thread angle less 0.5°.
-    pub infeed: Option<Infeed>,
+    /// Infeed; `None` picks [`InfeedChoice::Modified`]: flank infeed at half the thread angle less
+    /// 0.5°.
+    pub infeed: Option<InfeedChoice>,
     /// Cutting passes; `None` uses [`default_pass_count`].
     pub passes: Option<usize>,
     /// Depth of the first pass, mm (sets the pass count instead).
@@ -260,7 +296,7 @@ fn build_insert(choice: &InsertChoice, t: &BasicThread, kind: ThreadKind, tol: f
             if *tip_radius > limit {
                 return Err(Error::Geometry(format!(
                     "tip radius {tip_radius} mm is larger than the thread allows: the largest root radius at pitch {} mm ({} form) is {limit:.4} mm",
-                    crate::app::fmt_num(t.pitch),
+                    crate::report::fmt_num(t.pitch),
                     t.form.name()
                 )));
             }
@@ -576,7 +612,12 @@ pub fn resolve(spec: &VerifySpec) -> Result<Resolved, Error> {
         Some(b) => b,
         None => default_blank(&t, kind, &limits, &insert),
     };
-    let infeed = spec.infeed.unwrap_or(Infeed::Flank { angle: 0.5 * t.form.flank_angle() - 0.5 });
+    let infeed = spec.infeed.unwrap_or(InfeedChoice::Modified).resolve(t.form.flank_angle());
+    if let Some(a) = spec.infeed.and_then(InfeedChoice::angle) {
+        if !(0.0..90.0).contains(&a) {
+            return Err(Error::Input(format!("infeed angle {a}°: must be from 0 to under 90 degrees")));
+        }
+    }
     let notes = limits.notes.clone();
     Ok(Resolved { designation: des, kind, limits, insert, blank, infeed, notes, spec: spec.clone() })
 }

@@ -1,12 +1,12 @@
 //! Issue 6: what geometry alone says about one-flank versus two-flank infeed. Every expected value
 //! is derived in the comment above its test.
 
-use threadcheck::boolean::UnionStrategy;
 use threadcheck::insert::Insert;
 use threadcheck::measure::{measure, MeasureSetup, Measurement};
 use threadcheck::passes::{Infeed, Pass, PlanSpec, Schedule};
 use threadcheck::sweep::{sweep, SweepSetup, Window};
 use threadcheck::verify::{reference_groove, InsertChoice, VerifySpec};
+use threadcheck::UnionStrategy;
 use threadcheck::{parse_designation, BasicThread, ParseOptions, Point, ThreadKind};
 
 const TAN30: f64 = 0.577_350_269_189_625_8;

@@ -1,12 +1,12 @@
 //! Issue 8: property tests on the geometry (the sweep's own properties are in sweep.rs).
 
 use proptest::prelude::*;
-use threadcheck::boolean::UnionStrategy;
 use threadcheck::insert::Insert;
 use threadcheck::measure::{measure, MeasureSetup};
 use threadcheck::passes::{Infeed, Pass, PlanSpec};
 use threadcheck::sweep::{sweep, Section, SweepSetup, Window};
 use threadcheck::verify::reference_groove;
+use threadcheck::UnionStrategy;
 use threadcheck::{BasicThread, ThreadKind};
 
 fn metric(d: f64, p: f64) -> BasicThread {

@@ -3,11 +3,11 @@
 //! never copied from threadcheck's output.
 
 use proptest::prelude::*;
-use threadcheck::boolean::UnionStrategy;
 use threadcheck::insert::Insert;
 use threadcheck::measure::{measure, MeasureSetup, Measurement};
 use threadcheck::passes::{Infeed, PlanSpec, Schedule};
 use threadcheck::sweep::{sweep, SweepSetup, Window};
+use threadcheck::UnionStrategy;
 use threadcheck::{parse_designation, BasicThread, ParseOptions, ThreadKind};
 
 const TOL: f64 = 5e-5; // chord tolerance, mm

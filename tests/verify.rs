@@ -476,7 +476,8 @@ fn cli_limits_thread_passes_zero_and_sweep_exit_codes() {
     assert_eq!(a.status.code(), Some(0));
     assert_eq!(a.stdout, b.stdout);
     let e = run(&["verify", "--thread", "M10x1.5-6g", "--passes", "0"]);
-    assert!(one_line_error(&e).contains("--passes 0"));
+    let line = one_line_error(&e);
+    assert!(line.contains("'0' for '--passes") && line.contains("at least one pass"), "{line}");
     // One M10 coarse case, radial, constant area: the partial insert fails its form checks, the
     // full-profile insert passes.
     let sweep_m10 = |insert: &str| {
@@ -533,4 +534,39 @@ fn json_flag_is_the_same_in_every_command() {
         one_line_error(&e),
         "threadcheck: error: limits needs a designation: --json took 'M10x1.5-6g' as its file; write `limits M10x1.5-6g --json`"
     );
+}
+
+/// Issue 14: `verify --infeed` and `sweep --infeed` read the same words. `modified` is half the
+/// thread angle less 0.5° (29.5° on a 60° thread, 14.5° on a 30° trapezoidal), `flank:27` is 27°
+/// whatever the form, `flank` alone half the thread angle.
+#[test]
+fn infeed_words_are_the_same_in_verify_and_sweep() {
+    let angle = |v: &serde_json::Value| v["plan"]["infeed"]["angle"].as_f64().unwrap();
+    let verify = |thread: &str, infeed: &str| {
+        let o = run(&["verify", "--thread", thread, "--infeed", infeed, "--no-pass-metrics", "--json"]);
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()
+    };
+    assert_eq!(angle(&verify("M10x1.5-6g", "modified")), 29.5);
+    assert_eq!(angle(&verify("Tr40x7-7e", "modified")), 14.5);
+    assert_eq!(angle(&verify("Tr40x7-7e", "flank")), 15.0);
+    assert_eq!(angle(&verify("M10x1.5-6g", "flank:27")), 27.0);
+    let o = run(&[
+        "sweep",
+        "--min-d",
+        "10",
+        "--max-d",
+        "10",
+        "--series",
+        "coarse",
+        "--insert",
+        "full",
+        "--infeed",
+        "modified,flank:27",
+        "--schedule",
+        "constant-area",
+        "--json",
+    ]);
+    let angles: Vec<f64> =
+        stdout(&o).lines().map(|l| angle(&serde_json::from_str::<serde_json::Value>(l).unwrap())).collect();
+    assert_eq!(angles, [29.5, 27.0]);
 }

@@ -4,8 +4,8 @@
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use threadcheck::app::{parse_infeed, parse_insert, LimitsJob, PassesJob, VerifyJob};
 use threadcheck::gcode::Dialect;
+use threadcheck::jobs::{LimitsJob, Outcome, PassesJob, VerifyJob};
 use threadcheck::verify::{ProgramSource, VerifySpec};
 
 fn value_error(e: threadcheck::Error) -> PyErr {
@@ -30,12 +30,8 @@ fn spec(
     let mut s = VerifySpec::new(threads.first().map_or("", String::as_str));
     s.internal = internal;
     s.allow_nonstandard = allow_nonstandard;
-    s.insert = parse_insert(insert.unwrap_or("partial"))?;
-    if let Some(i) = infeed {
-        let des =
-            threadcheck::parse_designation(&s.designation, threadcheck::ParseOptions { allow_nonstandard })?;
-        s.infeed = Some(parse_infeed(i, 0.5 * des.thread.form.flank_angle())?);
-    }
+    s.insert = insert.unwrap_or("partial").parse()?;
+    s.infeed = infeed.map(str::parse).transpose()?;
     if passes == Some(0) {
         return Err(threadcheck::Error::Input("passes = 0: a thread needs at least one pass".into()));
     }
@@ -48,7 +44,7 @@ fn spec(
     s.final_x = final_x;
     s.blank_diameter = blank_diameter;
     if let Some(text) = program {
-        s.program = Some((ProgramSource::text(program_name, text), Dialect::parse(dialect)?));
+        s.program = Some((ProgramSource::text(program_name, text), dialect.parse::<Dialect>()?));
     }
     Ok(s)
 }
@@ -129,7 +125,7 @@ fn job_json(
         } else {
             PassesJob { spec, json: Some("-".into()) }.run()?
         };
-        Ok((text, outcome == threadcheck::app::Outcome::Pass))
+        Ok((text, outcome == Outcome::Pass))
     };
     py.detach(run).map_err(value_error)
 }

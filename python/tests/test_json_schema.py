@@ -66,6 +66,7 @@ def test_limits(designation):
     ["--thread", "M10x1.5-6g"],
     ["--thread", "M10x1.5-6g", "--final-x", "8.2", "--passes", "4"],
     ["--program", str(PROGRAMS / "fanuc-g32.nc")],
+    ["--program", str(PROGRAMS / "fanuc-g32.nc"), "--thread", "M10x1.5-6g"],
     ["--program", str(PROGRAMS / "linuxcnc-g76.ngc"), "--dialect", "linuxcnc"],
 ])
 def test_passes(args):

@@ -84,6 +84,14 @@ impl Dialect {
     }
 }
 
+impl std::str::FromStr for Dialect {
+    type Err = Error;
+
+    fn from_str(s: &str) -> Result<Dialect, Error> {
+        Dialect::parse(s)
+    }
+}
+
 /// Spindle state at a threading cycle.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Spindle {

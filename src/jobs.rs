@@ -1,10 +1,11 @@
-//! Validated jobs behind the command line. `main.rs` parses arguments into one of these, runs it
-//! and maps the [`Outcome`] to an exit code; everything here is usable without the CLI.
+//! The jobs behind the command line, one per command: `main.rs` parses arguments into one of
+//! these, runs it and maps the [`Outcome`] to an exit code. A job returns what the command prints,
+//! so everything here is usable without the CLI (the Python package runs the same jobs).
 
+use crate::report::{fmt_num, LimitsReport};
 use crate::standards::{parse_designation, Designation, ParseOptions, ThreadKind};
 use crate::tolerance::{basic_rounded, limits_for, Limit, ThreadLimits};
 use crate::Error;
-use serde_json::json;
 use std::fmt::Write as _;
 
 /// What a job concluded.
@@ -44,42 +45,14 @@ impl LimitsJob {
             parse_designation(&self.designation, ParseOptions { allow_nonstandard: self.allow_nonstandard })?;
         let ext = limits_for(&des, ThreadKind::External)?;
         let int = limits_for(&des, ThreadKind::Internal)?;
-        let json_text =
-            self.json.as_ref().map(|_| pretty(&limits_json(&des, ext.as_ref(), int.as_ref()))).transpose()?;
+        let json_text = self
+            .json
+            .as_ref()
+            .map(|_| pretty(&LimitsReport::new(&des, ext.as_ref(), int.as_ref())))
+            .transpose()?;
         let text = limits_table(&des, ext.as_ref(), int.as_ref());
         Ok((route_json(self.json.as_deref(), json_text, text)?, Outcome::Pass))
     }
-}
-
-/// The `limits --json` object of the CLI contract.
-pub fn limits_json(
-    des: &Designation,
-    ext: Option<&ThreadLimits>,
-    int: Option<&ThreadLimits>,
-) -> serde_json::Value {
-    let t = &des.thread;
-    let (d, d2, d3, d1, h) = basic_rounded(t);
-    let side =
-        |l: Option<&ThreadLimits>| l.map(|l| serde_json::to_value(l).unwrap_or(serde_json::Value::Null));
-    json!({
-        "designation": des.text,
-        "form": t.form.name(),
-        "nominal_diameter": t.nominal_diameter,
-        "pitch": t.pitch,
-        "lead": t.lead(),
-        "starts": t.starts,
-        "hand": match t.hand { crate::Hand::Right => "right", crate::Hand::Left => "left" },
-        "nonstandard": des.nonstandard,
-        "basic": {
-            "major_diameter": d,
-            "pitch_diameter": d2,
-            "minor_diameter_external": d3,
-            "minor_diameter_internal": d1,
-            "fundamental_triangle_height": h,
-        },
-        "external": side(ext),
-        "internal": side(int),
-    })
 }
 
 fn fmt_opt(v: Option<f64>) -> String {
@@ -176,70 +149,6 @@ fn limits_table(des: &Designation, ext: Option<&ThreadLimits>, int: Option<&Thre
     s
 }
 
-/// Reads `--insert`: `full`, `partial`, `partial:R` (tip radius mm) or a TOML file path.
-pub fn parse_insert(s: &str) -> Result<crate::verify::InsertChoice, Error> {
-    use crate::verify::InsertChoice;
-    match s {
-        "full" => Ok(InsertChoice::Full),
-        "partial" => Ok(InsertChoice::Partial { tip_radius: 0.04 }),
-        _ => {
-            if let Some(r) = s.strip_prefix("partial:") {
-                let tip_radius = parse_len(r, "--insert partial tip radius")?;
-                if tip_radius < 0.0 {
-                    return Err(Error::Input(format!("--insert partial:{r}: the tip radius must be ≥ 0")));
-                }
-                Ok(InsertChoice::Partial { tip_radius })
-            } else {
-                Ok(InsertChoice::File(std::path::PathBuf::from(s)))
-            }
-        }
-    }
-}
-
-/// Reads `--infeed`: `radial`, `flank[:ANGLE]`, `alternating[:ANGLE]` (degrees from the radial;
-/// default half the thread angle).
-pub fn parse_infeed(s: &str, half_angle: f64) -> Result<crate::passes::Infeed, Error> {
-    use crate::passes::Infeed;
-    let (name, angle) = match s.split_once(':') {
-        Some((n, a)) => (n, Some(parse_len(a, "--infeed angle")?)),
-        None => (s, None),
-    };
-    let angle = angle.unwrap_or(half_angle);
-    if !(0.0..90.0).contains(&angle) {
-        return Err(Error::Input(format!("--infeed {s}: the angle must be from 0 to under 90 degrees")));
-    }
-    match name {
-        "radial" if angle == half_angle || s == "radial" => Ok(Infeed::Radial),
-        "flank" => Ok(Infeed::Flank { angle }),
-        "alternating" => Ok(Infeed::Alternating { angle }),
-        _ => Err(Error::Input(format!(
-            "--infeed '{s}': expected radial, flank[:ANGLE] or alternating[:ANGLE]"
-        ))),
-    }
-}
-
-/// Reads `--schedule`: `constant-area`, `constant-depth` or `sandvik`.
-pub fn parse_schedule(s: &str) -> Result<crate::passes::Schedule, Error> {
-    use crate::passes::Schedule;
-    match s {
-        "constant-area" => Ok(Schedule::ConstantArea),
-        "constant-depth" => Ok(Schedule::ConstantDepth),
-        "sandvik" => Ok(Schedule::Sandvik),
-        _ => {
-            Err(Error::Input(format!("--schedule '{s}': expected constant-area, constant-depth or sandvik")))
-        }
-    }
-}
-
-/// A finite number from an option value, or an error naming the option.
-pub fn parse_len(s: &str, what: &str) -> Result<f64, Error> {
-    let v: f64 = s.trim().parse().map_err(|_| Error::Input(format!("{what} '{s}' is not a number")))?;
-    if !v.is_finite() {
-        return Err(Error::Input(format!("{what} '{s}' is not a finite number")));
-    }
-    Ok(v)
-}
-
 /// `threadcheck verify`.
 #[derive(Clone, Debug)]
 pub struct VerifyJob {
@@ -266,7 +175,8 @@ impl VerifyJob {
         let v = crate::verify::verify(&self.spec)?;
         let outcome = if v.pass { Outcome::Pass } else { Outcome::OutOfTolerance };
         // Render everything before writing anything, so a failure leaves no file half-done.
-        let json_text = self.json.as_ref().map(|_| pretty(&crate::report::verify_json(&v))).transpose()?;
+        let json_text =
+            self.json.as_ref().map(|_| pretty(&crate::report::VerifyReport::of(&v))).transpose()?;
         let svg_text = self.svg.as_ref().map(|_| crate::render::verify_svg(&v));
         let text = crate::report::verify_text(&v);
         self.write(json_text, svg_text, text, outcome)
@@ -318,7 +228,8 @@ impl VerifyJob {
         let pv =
             crate::verify::verify_program(&self.spec, &text, &shown, dialect, &self.threads, &insert_for)?;
         let outcome = if pv.pass() { Outcome::Pass } else { Outcome::OutOfTolerance };
-        let json_text = self.json.as_ref().map(|_| pretty(&crate::report::program_json(&pv))).transpose()?;
+        let json_text =
+            self.json.as_ref().map(|_| pretty(&crate::report::ProgramReport::of(&pv))).transpose()?;
         let svg_text = self.svg.as_ref().map(|_| crate::render::program_svg(&pv));
         let text = crate::report::program_text(&pv);
         self.write(json_text, svg_text, text, outcome)
@@ -340,7 +251,11 @@ impl VerifyJob {
 
 /// Where `--json` sends the JSON: `-` prints it on stdout instead of the text; a path writes it
 /// there (atomically) and the text goes to stdout; without `--json`, the text.
-pub fn route_json(json: Option<&str>, json_text: Option<String>, text: String) -> Result<String, Error> {
+pub(crate) fn route_json(
+    json: Option<&str>,
+    json_text: Option<String>,
+    text: String,
+) -> Result<String, Error> {
     match (json, json_text) {
         (Some("-"), Some(t)) => Ok(t),
         (Some(p), Some(t)) => {
@@ -351,21 +266,8 @@ pub fn route_json(json: Option<&str>, json_text: Option<String>, text: String) -
     }
 }
 
-/// A number without float noise: at most six decimals, trailing zeros dropped.
-pub fn fmt_num(v: f64) -> String {
-    let s = format!("{v:.6}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".into()
-    } else {
-        s.to_string()
-    }
-}
-
-fn pretty(v: &serde_json::Value) -> Result<String, Error> {
-    let mut s = serde_json::to_string_pretty(v).map_err(|e| Error::Data(e.to_string()))?;
-    s.push('\n');
-    Ok(s)
+fn pretty<T: serde::Serialize>(v: &T) -> Result<String, Error> {
+    crate::report::to_json_pretty(v)
 }
 
 /// `threadcheck fit`: a bolt and a nut assembled.
@@ -384,7 +286,7 @@ impl FitJob {
     pub fn run(&self) -> Result<(String, Outcome), Error> {
         let r = crate::fit::fit(&self.spec)?;
         let outcome = if r.fits { Outcome::Pass } else { Outcome::OutOfTolerance };
-        let json_text = self.json.as_ref().map(|_| pretty(&crate::fit::json(&r))).transpose()?;
+        let json_text = self.json.as_ref().map(|_| pretty(&crate::fit::FitJson::of(&r))).transpose()?;
         let svg_text = self.svg.as_ref().map(|_| crate::fit::svg(&r));
         if let (Some(path), Some(t)) = (&self.svg, &svg_text) {
             crate::output::write_atomic(path, t.as_bytes())?;
@@ -413,13 +315,10 @@ impl PassesJob {
                 let (shown, text) = source.load()?;
                 let prog = crate::gcode::read_program(&text, &shown, *dialect)?;
                 let thread = if no_thread {
-                    serde_json::Value::Null
+                    None
                 } else {
-                    let d = parse_designation(
-                        &self.spec.designation,
-                        ParseOptions { allow_nonstandard: self.spec.allow_nonstandard },
-                    )?;
-                    json!({"designation": d.text, "form": d.thread.form.name(), "pitch": d.thread.pitch, "lead": d.thread.lead()})
+                    let r = crate::verify::resolve(&self.spec)?;
+                    Some((r.designation, r.kind, r.limits.class))
                 };
                 let leads: Vec<String> = prog.operations.iter().map(|o| fmt_num(o.lead())).collect();
                 let mut header = format!(
@@ -449,10 +348,7 @@ impl PassesJob {
                     passes.len(),
                     r.blank
                 );
-                let t = &r.designation.thread;
-                let thread = json!({"designation": r.designation.text, "form": t.form.name(), "kind": r.kind.name(),
-                    "pitch": t.pitch, "lead": t.lead(), "starts": t.starts, "class": r.limits.class});
-                (thread, passes, header)
+                (Some((r.designation, r.kind, r.limits.class)), passes, header)
             }
             (None, _) => {
                 let v = crate::verify::verify(&self.spec)?;
@@ -464,34 +360,12 @@ impl PassesJob {
                     v.blank_diameter,
                     v.final_x
                 );
-                (crate::report::thread_json(&v), v.passes, header)
+                (Some((v.designation, v.kind, v.limits.class)), v.passes, header)
             }
-        };
-        let pass_json = |p: &crate::passes::Pass| {
-            json!({
-                "index": p.index, "x_start": p.x_start, "x_end": p.x_end, "z_start": p.z_start,
-                "z_end": p.z_end, "z_phase": p.z_phase, "lead": p.lead, "start": p.start, "source_line": p.source_line,
-                "taper_in": p.taper_in, "taper_out": p.taper_out, "x_taper": p.x_taper,
-            })
         };
         let json_text = if self.json.is_some() {
-            let list: Vec<serde_json::Value> = passes.iter().map(pass_json).collect();
-            let (start, end) = passes.iter().fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), p| {
-                (a.max(p.z_start.max(p.z_end)), b.min(p.z_start.min(p.z_end)))
-            });
-            let mut obj = json!({"thread": thread, "thread_start": start, "thread_end": end, "passes": list});
-            if let (Some(ops), Some(o)) = (&operations, obj.as_object_mut()) {
-                let ops: Vec<serde_json::Value> = ops
-                    .iter()
-                    .map(|op| {
-                        json!({"index": op.index, "cycle": op.cycle, "source_line": op.source_line, "tool": op.tool,
-                            "spindle": op.spindle, "lead": op.lead(), "notes": op.notes,
-                            "passes": op.passes.iter().map(pass_json).collect::<Vec<_>>()})
-                    })
-                    .collect();
-                o.insert("operations".into(), json!(ops));
-            }
-            Some(pretty(&obj)?)
+            let thread = thread.as_ref().map(|(d, k, c)| crate::report::ThreadReport::new(d, *k, c));
+            Some(pretty(&crate::report::PassesReport::new(thread, &passes, operations.as_deref()))?)
         } else {
             None
         };
@@ -565,7 +439,8 @@ impl CompareJob {
     pub fn run(&self) -> Result<(String, Outcome), Error> {
         let c = crate::compare::compare(&self.spec, &self.modified)?;
         let md = crate::compare::markdown(&c);
-        let json_text = self.json.as_ref().map(|_| pretty(&crate::compare::to_json(&c))).transpose()?;
+        let json_text =
+            self.json.as_ref().map(|_| pretty(&crate::compare::CompareReport::of(&c))).transpose()?;
         if let Some(p) = &self.markdown {
             crate::output::write_atomic(p, md.as_bytes())?;
         }
@@ -578,15 +453,17 @@ impl CompareJob {
 pub struct SweepJob {
     /// What to sweep.
     pub spec: crate::catalogue::CatalogueSpec,
-    /// JSON Lines: one verify report per case.
-    pub json: bool,
+    /// JSON Lines, one verify report per case: `-` prints them on stdout (the summary line then
+    /// goes to stderr), a path writes them there.
+    pub json: Option<String>,
     /// Write every case's blank, insert placements and measured d2 here (JSON Lines), for an
     /// outside baseline to redo the cut.
     pub export_placements: Option<std::path::PathBuf>,
 }
 
 impl SweepJob {
-    /// Runs the job: the report on stdout, the summary line last (on stderr with `--json`).
+    /// Runs the job: what to print on stdout, what on stderr (the summary line with `--json -`),
+    /// and the outcome: out of tolerance when any case fails.
     pub fn run(&self) -> Result<(String, String, Outcome), Error> {
         let start = std::time::Instant::now();
         let cases = crate::catalogue::cases(&self.spec)?;
@@ -605,12 +482,8 @@ impl SweepJob {
                     } else {
                         fail += 1;
                     }
-                    if self.json {
-                        out.push_str(
-                            &serde_json::to_string(&crate::report::verify_json(v))
-                                .map_err(|e| Error::Data(e.to_string()))?,
-                        );
-                        out.push('\n');
+                    if self.json.is_some() {
+                        out.push_str(&crate::report::to_json_line(&crate::report::VerifyReport::of(v))?);
                     } else if !v.pass {
                         let failed: Vec<String> = v
                             .checks
@@ -632,8 +505,11 @@ impl SweepJob {
                 }
                 Err(e) => {
                     fail += 1;
-                    if self.json {
-                        let _ = writeln!(out, "{}", json!({"case": c.label, "error": e.to_string()}));
+                    if self.json.is_some() {
+                        out.push_str(&crate::report::to_json_line(&crate::report::CaseError {
+                            case: &c.label,
+                            error: e.to_string(),
+                        })?);
                     } else {
                         let _ = writeln!(out, "ERROR {}: {e}", c.label);
                     }
@@ -649,7 +525,15 @@ impl SweepJob {
             start.elapsed().as_secs_f64()
         );
         // Exit 1 when any case fails, as verify does.
-        Ok((out, summary, if fail > 0 { Outcome::OutOfTolerance } else { Outcome::Pass }))
+        let outcome = if fail > 0 { Outcome::OutOfTolerance } else { Outcome::Pass };
+        match self.json.as_deref() {
+            Some("-") => Ok((out, summary, outcome)),
+            Some(path) => {
+                crate::output::write_atomic(std::path::Path::new(path), out.as_bytes())?;
+                Ok((summary, String::new(), outcome))
+            }
+            None => Ok((out + &summary, String::new(), outcome)),
+        }
     }
 }
 
@@ -681,17 +565,14 @@ fn placements_line(label: &str, v: &crate::verify::Verification) -> Result<Strin
         best = best.min(start.elapsed().as_secs_f64());
     }
     let ring = |r: &[crate::Point]| r.iter().map(|p| [p.z, p.r]).collect::<Vec<_>>();
-    let mut s = serde_json::to_string(&json!({
-        "case": label,
-        "kind": v.kind.name(),
-        "pitch": t.pitch,
-        "z_ref": v.z_ref,
-        "blank": ring(&blank),
-        "placements": rings.iter().map(|r| ring(r)).collect::<Vec<_>>(),
-        "pitch_diameter": v.measurement.pitch_diameter,
-        "threadcheck_seconds": best,
-    }))
-    .map_err(|e| Error::Data(e.to_string()))?;
-    s.push('\n');
-    Ok(s)
+    crate::report::to_json_line(&crate::report::PlacementsLine {
+        case: label,
+        kind: v.kind.name(),
+        pitch: t.pitch,
+        z_ref: v.z_ref,
+        blank: ring(&blank),
+        placements: rings.iter().map(|r| ring(r)).collect(),
+        pitch_diameter: v.measurement.pitch_diameter,
+        threadcheck_seconds: best,
+    })
 }

@@ -1,0 +1,518 @@
+//! The command line's arguments, typed once: every option is parsed by clap into the library's
+//! own types (`InsertChoice`, `InfeedChoice`, `Schedule`, `Dialect`, finite `f64`s), so a bad
+//! value is a usage error naming the option. This module belongs to the binary, not the library.
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+use threadcheck::gcode::Dialect;
+use threadcheck::jobs::{CompareJob, FitJob, LimitsJob, Outcome, PassesJob, SweepJob, VerifyJob};
+use threadcheck::passes::{InfeedChoice, Schedule};
+use threadcheck::verify::{InsertChoice, ProgramSource, Units, VerifySpec};
+use threadcheck::{Error, ThreadForm};
+
+/// Predicts the thread a CNC lathe program cuts and checks it against its standard.
+#[derive(Parser)]
+#[command(name = "threadcheck", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// A finite number (clap's own `f64` parser takes `inf` and `NaN`).
+fn finite(s: &str) -> Result<f64, String> {
+    let v: f64 = s.trim().parse().map_err(|_| "not a number".to_string())?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err("not a finite number".into())
+    }
+}
+
+/// A pass count of at least one.
+fn pass_count(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(0) => Err("a thread needs at least one pass".into()),
+        Ok(n) => Ok(n),
+        Err(_) => Err("not a whole number".into()),
+    }
+}
+
+/// The one-line form of clap's rendered error: the message and its tips, without the usage
+/// block and the `--help` hint.
+pub fn one_line(rendered: &str) -> String {
+    let mut parts = Vec::new();
+    for line in rendered.lines() {
+        let l = line.trim();
+        if l.starts_with("Usage:") || l.starts_with("For more information") {
+            break;
+        }
+        if !l.is_empty() {
+            parts.push(l.strip_prefix("error: ").unwrap_or(l));
+        }
+    }
+    parts.join(" ")
+}
+
+/// Where `--json` goes: `--json` or `--json -` for stdout, `--json FILE` for a file.
+#[derive(Args)]
+struct JsonArg {
+    /// JSON: on stdout instead of the text (`--json` or `--json -`), or written to FILE.
+    #[arg(long, value_name = "FILE|-", num_args = 0..=1, default_missing_value = "-")]
+    json: Option<String>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Limits of size of a designation (ISO 965-1, BS 84, ISO 228-1, ASME B1.1, …).
+    Limits {
+        /// Designation, e.g. M10x1.25-6g, M10-6H/6g, "BSF 3/8 medium", "G1/2 A", "1/4-20 UNC-2A".
+        #[arg(conflicts_with = "thread")]
+        designation: Option<String>,
+        /// The designation as an option, as the other commands take it.
+        #[arg(long)]
+        thread: Option<String>,
+        #[command(flatten)]
+        json: JsonArg,
+        /// Accept a diameter/pitch pair outside the standard series.
+        #[arg(long)]
+        allow_nonstandard: bool,
+    },
+    /// Cut the thread in the computer and check it against its class.
+    Verify {
+        #[command(flatten)]
+        plan: PlanArgs,
+        /// Leave form checks (root radius, minor-diameter zone, flank angles) out of the verdict.
+        #[arg(long)]
+        gauge_only: bool,
+        /// Skip the per-pass chip and edge metrics: a faster verdict.
+        #[arg(long)]
+        no_pass_metrics: bool,
+        /// Write an SVG cross-section to this file.
+        #[arg(long, value_name = "FILE")]
+        svg: Option<PathBuf>,
+        #[command(flatten)]
+        json: JsonArg,
+    },
+    /// The same thread with radial, flank, modified-flank and alternating infeed.
+    Compare {
+        #[command(flatten)]
+        plan: PlanArgs,
+        /// Modified-flank angles, degrees (comma-separated); default half the thread angle less
+        /// 0.5° and less 3° (29.5,27 for 60° threads, 14.5,12 for trapezoidal).
+        #[arg(long, value_name = "ANGLES", value_delimiter = ',', value_parser = finite)]
+        modified: Vec<f64>,
+        /// JSON (every verify report and the per-strategy figures).
+        #[command(flatten)]
+        json: JsonArg,
+        /// Write the table as Markdown to this file.
+        #[arg(long, value_name = "FILE")]
+        markdown: Option<PathBuf>,
+    },
+    /// Verify the catalogue in parallel: ISO 261 (M1–M68, coarse and fine) by default, every
+    /// form's series with --form all.
+    Sweep(SweepArgs),
+    /// Regenerate a committed report.
+    Report {
+        /// Which report.
+        name: ReportName,
+        /// Folder to write it and its pictures into.
+        #[arg(long, default_value = "reports")]
+        out: PathBuf,
+    },
+    /// A bolt and a nut cut in the computer and assembled: do they screw together?
+    Fit(FitArgs),
+    /// Print the expanded pass plan.
+    Passes {
+        #[command(flatten)]
+        plan: PlanArgs,
+        #[command(flatten)]
+        json: JsonArg,
+    },
+}
+
+/// The committed reports `report` regenerates.
+#[derive(Clone, Copy, ValueEnum)]
+enum ReportName {
+    /// reports/infeed-comparison.md and its SVGs.
+    InfeedComparison,
+}
+
+/// A form of `sweep --form`.
+#[derive(Clone, Copy, ValueEnum)]
+enum FormArg {
+    /// ISO metric, ISO 261.
+    #[value(alias = "metric")]
+    IsoMetric,
+    /// Unified inch, ASME B1.1.
+    Unified,
+    /// ISO metric trapezoidal.
+    Trapezoidal,
+    /// General-purpose Acme.
+    Acme,
+    /// BS 84 Whitworth.
+    Whitworth,
+    /// ISO 228-1 parallel pipe.
+    #[value(alias = "bsp")]
+    BspParallel,
+    /// ASME B1.20.1 NPT.
+    Npt,
+    /// ISO 7-1 taper pipe.
+    #[value(alias = "iso7")]
+    Iso7Taper,
+    /// Every form.
+    All,
+}
+
+impl FormArg {
+    fn forms(self) -> Vec<ThreadForm> {
+        match self {
+            FormArg::IsoMetric => vec![ThreadForm::IsoMetric],
+            FormArg::Unified => vec![ThreadForm::Unified],
+            FormArg::Trapezoidal => vec![ThreadForm::Trapezoidal],
+            FormArg::Acme => vec![ThreadForm::Acme],
+            FormArg::Whitworth => vec![ThreadForm::Whitworth],
+            FormArg::BspParallel => vec![ThreadForm::BspParallel],
+            FormArg::Npt => vec![ThreadForm::Npt],
+            FormArg::Iso7Taper => vec![ThreadForm::Iso7Taper],
+            FormArg::All => threadcheck::catalogue::CatalogueSpec::all_forms().forms,
+        }
+    }
+}
+
+/// `coarse`, `fine` or `all`.
+#[derive(Clone, Copy, ValueEnum)]
+enum SeriesArg {
+    Coarse,
+    Fine,
+    All,
+}
+
+/// `full`, `partial` or `both`.
+#[derive(Clone, Copy, ValueEnum)]
+enum InsertSet {
+    Full,
+    Partial,
+    Both,
+}
+
+/// Lengths in the text and the SVG.
+#[derive(Clone, Copy, ValueEnum)]
+enum UnitsArg {
+    /// Millimetres.
+    Mm,
+    /// Millimetres with inches beside them.
+    Inch,
+}
+
+#[derive(Args)]
+struct SweepArgs {
+    /// Forms (comma-separated).
+    #[arg(long, value_delimiter = ',', default_value = "iso-metric")]
+    form: Vec<FormArg>,
+    /// Also the internal threads, in each form's medium internal class.
+    #[arg(long)]
+    internal: bool,
+    /// Pitch series.
+    #[arg(long, value_enum, default_value = "all")]
+    series: SeriesArg,
+    /// Smallest nominal diameter, mm.
+    #[arg(long, default_value = "1", value_parser = finite)]
+    min_d: f64,
+    /// Largest nominal diameter, mm.
+    #[arg(long, default_value = "68", value_parser = finite)]
+    max_d: f64,
+    /// Tolerance class of the external thread.
+    #[arg(long, default_value = "6g")]
+    class: String,
+    /// Inserts.
+    #[arg(long, value_enum, default_value = "both")]
+    insert: InsertSet,
+    /// Comma-separated infeeds, as verify takes them: radial, flank[:ANGLE], modified,
+    /// alternating[:ANGLE].
+    #[arg(long, value_delimiter = ',', default_value = "radial,flank,modified,alternating")]
+    infeed: Vec<InfeedChoice>,
+    /// Comma-separated schedules: constant-area, constant-depth, sandvik.
+    #[arg(long, value_delimiter = ',', default_value = "constant-area,constant-depth")]
+    schedule: Vec<Schedule>,
+    /// Leave form checks out of the verdicts.
+    #[arg(long)]
+    gauge_only: bool,
+    /// One verify report per line (JSON Lines): on stdout (`--json` or `--json -`, the
+    /// summary then goes to stderr), or written to FILE.
+    #[arg(long, value_name = "FILE|-", num_args = 0..=1, default_missing_value = "-")]
+    json: Option<String>,
+    /// Write each case's blank, placements and measured d2 here (JSON Lines).
+    #[arg(long, value_name = "FILE")]
+    export_placements: Option<PathBuf>,
+}
+
+#[derive(Args)]
+struct FitArgs {
+    /// A fit designation, e.g. M10x1.5-6H/6g.
+    #[arg(long)]
+    thread: String,
+    /// Accept a diameter/pitch pair outside the standard series.
+    #[arg(long)]
+    allow_nonstandard: bool,
+    /// The bolt's program (else a generated plan).
+    #[arg(long, value_name = "FILE", conflicts_with = "bolt_final_x")]
+    bolt_program: Option<PathBuf>,
+    /// Its dialect: fanuc, haas, sinumerik, linuxcnc or dyna.
+    #[arg(long, default_value = "fanuc")]
+    bolt_dialect: Dialect,
+    /// The nut's program (else a generated plan).
+    #[arg(long, value_name = "FILE", conflicts_with = "nut_final_x")]
+    nut_program: Option<PathBuf>,
+    /// Its dialect.
+    #[arg(long, default_value = "fanuc")]
+    nut_dialect: Dialect,
+    /// The bolt plan's last tip diameter (default: mid-tolerance).
+    #[arg(long, value_name = "DIA", allow_hyphen_values = true, value_parser = finite)]
+    bolt_final_x: Option<f64>,
+    /// The nut plan's last tip diameter (default: mid-tolerance).
+    #[arg(long, value_name = "DIA", allow_hyphen_values = true, value_parser = finite)]
+    nut_final_x: Option<f64>,
+    /// The bolt's insert: full | partial[:TIP_RADIUS] | FILE.toml.
+    #[arg(long, default_value = "partial")]
+    bolt_insert: InsertChoice,
+    /// The nut's insert.
+    #[arg(long, default_value = "partial")]
+    nut_insert: InsertChoice,
+    /// Write an SVG of the pair.
+    #[arg(long, value_name = "FILE")]
+    svg: Option<PathBuf>,
+    #[command(flatten)]
+    json: JsonArg,
+}
+
+#[derive(Args)]
+struct PlanArgs {
+    /// Thread with its class, e.g. M10x1.5-6g. With a program that cuts several threads, give it
+    /// once for all or once per operation, in program order.
+    #[arg(long, required_unless_present = "program")]
+    thread: Vec<String>,
+    /// The internal thread (else external; implied by an upper-case class alone).
+    #[arg(long)]
+    internal: bool,
+    /// Accept a diameter/pitch pair outside the standard series.
+    #[arg(long)]
+    allow_nonstandard: bool,
+    /// full | partial[:TIP_RADIUS] | FILE.toml (default partial, r0.04 mm)
+    #[arg(long)]
+    insert: Option<InsertChoice>,
+    /// Tool table: which insert each T number of the program holds (TOML).
+    #[arg(long, value_name = "FILE.toml", requires = "program")]
+    tools: Option<PathBuf>,
+    /// radial | flank[:ANGLE] | modified | alternating[:ANGLE] (default modified: half the thread
+    /// angle less 0.5°)
+    #[arg(long)]
+    infeed: Option<InfeedChoice>,
+    /// Number of cutting passes (default about 3.5 + 2·P).
+    #[arg(long, conflicts_with = "first_depth", value_parser = pass_count)]
+    passes: Option<usize>,
+    /// Depth of the first pass, mm (sets the pass count).
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite)]
+    first_depth: Option<f64>,
+    /// Smallest radial step, mm.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite, default_value = "0")]
+    min_depth: f64,
+    /// Finishing allowance, mm.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite, default_value = "0")]
+    finish: f64,
+    /// Spring (idle) passes at full depth.
+    #[arg(long, default_value_t = 0)]
+    spring: usize,
+    /// constant-area | constant-depth | sandvik
+    #[arg(long, default_value = "constant-area")]
+    schedule: Schedule,
+    /// Explicit cumulative radial depths, mm, e.g. 0.2,0.35,0.45 (instead of a schedule).
+    #[arg(long, value_name = "LIST", value_delimiter = ',', value_parser = finite,
+          conflicts_with_all = ["passes", "first_depth"])]
+    depths: Vec<f64>,
+    /// Taper: diameter change per mm of travel, e.g. 0.0625 for 1:16 (passes only).
+    #[arg(long, value_name = "RATIO", allow_hyphen_values = true, value_parser = finite, default_value = "0")]
+    taper: f64,
+    /// Run-out chamfer at the thread end, in leads.
+    #[arg(long, value_name = "LEADS", value_parser = finite, default_value = "0")]
+    chamfer: f64,
+    /// Tip diameter of the last pass (default: what puts the pitch diameter mid-tolerance).
+    #[arg(long, value_name = "DIA", allow_hyphen_values = true, value_parser = finite)]
+    final_x: Option<f64>,
+    /// Blank (external) or bore (internal) diameter, mm.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite)]
+    blank_diameter: Option<f64>,
+    /// Take the passes from this G-code program.
+    #[arg(long, value_name = "FILE")]
+    program: Option<PathBuf>,
+    /// A machine profile for the process checks of a program: FILE.toml or training-lathe.
+    #[arg(long, value_name = "FILE.toml|training-lathe", requires = "program")]
+    machine: Option<String>,
+    /// The insert's side clearance angle, degrees: checks the leading flank against the helix.
+    #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = finite)]
+    clearance_angle: Option<f64>,
+    /// Lengths in the text and the SVG: mm, or mm with inches beside them.
+    #[arg(long, value_enum, default_value = "mm")]
+    units: UnitsArg,
+    /// fanuc | haas | sinumerik | linuxcnc | dyna
+    #[arg(long, default_value = "fanuc", requires = "program")]
+    dialect: Dialect,
+}
+
+impl PlanArgs {
+    fn spec(&self, gauge_only: bool) -> Result<VerifySpec, Error> {
+        let mut s = VerifySpec::new(self.thread.first().map_or("", String::as_str));
+        s.internal = self.internal;
+        s.allow_nonstandard = self.allow_nonstandard;
+        s.insert = self.insert.clone().unwrap_or(InsertChoice::Partial { tip_radius: 0.04 });
+        s.infeed = self.infeed;
+        s.passes = self.passes;
+        s.first_depth = self.first_depth;
+        s.min_depth = self.min_depth;
+        s.finish = self.finish;
+        s.spring = self.spring;
+        s.schedule = if self.depths.is_empty() {
+            self.schedule.clone()
+        } else {
+            Schedule::Explicit(self.depths.clone())
+        };
+        s.taper = self.taper;
+        s.chamfer_leads = self.chamfer;
+        s.final_x = self.final_x;
+        s.blank_diameter = self.blank_diameter;
+        s.gauge_only = gauge_only;
+        s.machine = self.machine.as_deref().map(threadcheck::process::MachineProfile::read).transpose()?;
+        s.clearance_angle = self.clearance_angle;
+        s.units = match self.units {
+            UnitsArg::Mm => Units::Mm,
+            UnitsArg::Inch => Units::Inch,
+        };
+        s.program = self.program.as_ref().map(|p| (ProgramSource::File(p.clone()), self.dialect));
+        Ok(s)
+    }
+
+    /// The checks a command that cuts a thread needs before it runs.
+    fn need_thread(&self, command: &str) -> Result<(), Error> {
+        if self.thread.is_empty() {
+            return Err(Error::Input(format!(
+                "{command} needs --thread with a class, e.g. --thread M10x1.5-6g"
+            )));
+        }
+        if self.thread.len() > 1 && self.program.is_none() {
+            return Err(Error::Input(
+                "--thread is given more than once: only a program with several threads takes one per operation"
+                    .into(),
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl Cli {
+    /// Runs the command: what to print on stdout and on stderr, and the outcome.
+    pub fn run(self) -> Result<(String, String, Outcome), Error> {
+        let done = |(text, outcome): (String, Outcome)| Ok((text, String::new(), outcome));
+        match self.command {
+            Command::Limits { designation, thread, json: JsonArg { json }, allow_nonstandard } => {
+                let Some(designation) = designation.or(thread) else {
+                    return Err(Error::Input(match json.as_deref() {
+                        Some(v) if v != "-" => format!(
+                            "limits needs a designation: --json took '{v}' as its file; write `limits {v} --json`"
+                        ),
+                        _ => "limits needs a designation, e.g. limits M10x1.5-6g".into(),
+                    }));
+                };
+                done(LimitsJob { designation, allow_nonstandard, json }.run()?)
+            }
+            Command::Verify { plan, gauge_only, no_pass_metrics, svg, json: JsonArg { json } } => {
+                plan.need_thread("verify")?;
+                let mut spec = plan.spec(gauge_only)?;
+                spec.metrics = !no_pass_metrics;
+                let tools = plan.tools.as_deref().map(threadcheck::tools::ToolTable::read).transpose()?;
+                done(
+                    VerifyJob {
+                        spec,
+                        threads: plan.thread.clone(),
+                        insert_given: plan.insert.is_some(),
+                        tools,
+                        svg,
+                        json,
+                    }
+                    .run()?,
+                )
+            }
+            Command::Passes { plan, json: JsonArg { json } } => {
+                done(PassesJob { spec: plan.spec(false)?, json }.run()?)
+            }
+            Command::Compare { plan, modified, json: JsonArg { json }, markdown } => {
+                plan.need_thread("compare")?;
+                let spec = plan.spec(false)?;
+                let modified = if modified.is_empty() {
+                    let des = threadcheck::parse_designation(
+                        &spec.designation,
+                        threadcheck::ParseOptions { allow_nonstandard: spec.allow_nonstandard },
+                    )?;
+                    let half = 0.5 * des.thread.form.flank_angle();
+                    vec![half - 0.5, half - 3.0]
+                } else {
+                    modified
+                };
+                done(CompareJob { spec, modified, json, markdown }.run()?)
+            }
+            Command::Fit(f) => {
+                use threadcheck::fit::FitSide;
+                let side = |prog: &Option<PathBuf>,
+                            dialect: Dialect,
+                            final_x: Option<f64>,
+                            insert: &InsertChoice| {
+                    let program = match prog {
+                        Some(p) => Some((
+                            threadcheck::verify::read_program_text(p)?,
+                            p.display().to_string(),
+                            dialect,
+                        )),
+                        None => None,
+                    };
+                    Ok::<_, Error>(FitSide { insert: insert.clone(), final_x, program })
+                };
+                let spec = threadcheck::fit::FitSpec {
+                    thread: f.thread,
+                    allow_nonstandard: f.allow_nonstandard,
+                    bolt: side(&f.bolt_program, f.bolt_dialect, f.bolt_final_x, &f.bolt_insert)?,
+                    nut: side(&f.nut_program, f.nut_dialect, f.nut_final_x, &f.nut_insert)?,
+                };
+                done(FitJob { spec, svg: f.svg, json: f.json.json }.run()?)
+            }
+            Command::Sweep(a) => {
+                if a.min_d > a.max_d {
+                    return Err(Error::Input("--min-d must not be above --max-d".into()));
+                }
+                let mut spec = threadcheck::catalogue::CatalogueSpec::default();
+                (spec.coarse, spec.fine) = match a.series {
+                    SeriesArg::Coarse => (true, false),
+                    SeriesArg::Fine => (false, true),
+                    SeriesArg::All => (true, true),
+                };
+                (spec.full, spec.partial) = match a.insert {
+                    InsertSet::Full => (true, false),
+                    InsertSet::Partial => (false, true),
+                    InsertSet::Both => (true, true),
+                };
+                spec.diameters = (a.min_d, a.max_d);
+                spec.class = a.class;
+                spec.forms = a.form.iter().flat_map(|f| f.forms()).collect();
+                spec.forms.dedup();
+                spec.internal = a.internal;
+                spec.infeeds = a.infeed;
+                spec.schedules = a.schedule;
+                spec.gauge_only = a.gauge_only;
+                SweepJob { spec, json: a.json, export_placements: a.export_placements }.run()
+            }
+            Command::Report { name, out } => match name {
+                ReportName::InfeedComparison => {
+                    threadcheck::compare::write_report(&out)?;
+                    done((format!("wrote {}\n", out.join("infeed-comparison.md").display()), Outcome::Pass))
+                }
+            },
+        }
+    }
+}

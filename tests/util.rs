@@ -1,0 +1,74 @@
+//! Helpers shared by every test module: paths into `tests/data`, running the binary, reading
+//! its output, and the one Hausdorff distance.
+
+use std::path::{Path, PathBuf};
+pub use std::process::{Command, Output};
+
+/// Path to a file in `tests/data`.
+pub fn data(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
+}
+
+/// Parses a TOML file of `tests/data`.
+pub fn data_toml(name: &str) -> toml::Value {
+    let text = std::fs::read_to_string(data(name)).unwrap();
+    toml::from_str(&text).unwrap()
+}
+
+/// Runs the built `threadcheck` binary with `args` in folder `dir`.
+pub fn run_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_threadcheck")).args(args).current_dir(dir).output().unwrap()
+}
+
+/// Runs the built `threadcheck` binary with `args` in a fresh temporary folder.
+pub fn run(args: &[&str]) -> Output {
+    let dir = tempdir("run");
+    run_in(&dir, args)
+}
+
+/// A fresh, empty temporary folder unique to this test process and `tag`.
+pub fn tempdir(tag: &str) -> PathBuf {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    static N: AtomicUsize = AtomicUsize::new(0);
+    let d = std::env::temp_dir().join(format!(
+        "threadcheck-{}-{tag}-{}",
+        std::process::id(),
+        N.fetch_add(1, Ordering::SeqCst)
+    ));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// stdout as text.
+pub fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// stderr as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Asserts the run failed with exit code 2 and exactly one line on stderr; returns that line.
+pub fn one_line_error(o: &Output) -> String {
+    assert_eq!(o.status.code(), Some(2), "stdout: {} stderr: {}", stdout(o), stderr(o));
+    let e = stderr(o);
+    assert_eq!(e.trim_end().lines().count(), 1, "stderr is not one line: {e:?}");
+    e.trim_end().to_string()
+}
+
+/// Hausdorff distance between two polylines in the axial plane, mm: every vertex of each against
+/// the other's segments (parry's point-to-polyline query). geo's `HausdorffDistance` measures
+/// vertex to vertex, which differently tessellated profiles of one curve would fail.
+pub fn hausdorff(a: &[threadcheck::Point], b: &[threadcheck::Point]) -> f64 {
+    use parry2d_f64::math::Point as P;
+    use parry2d_f64::query::PointQuery;
+    use parry2d_f64::shape::Polyline;
+    let line = |v: &[threadcheck::Point]| Polyline::new(v.iter().map(|p| P::new(p.z, p.r)).collect(), None);
+    let (la, lb) = (line(a), line(b));
+    let one = |pts: &[threadcheck::Point], l: &Polyline| {
+        pts.iter().map(|p| l.distance_to_local_point(&P::new(p.z, p.r), false)).fold(0.0, f64::max)
+    };
+    one(a, &lb).max(one(b, &la))
+}
