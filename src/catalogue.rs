@@ -274,6 +274,22 @@ pub fn cases(spec: &CatalogueSpec) -> Result<Vec<Case>, Error> {
 }
 
 /// Runs every case in parallel (rayon), keeping catalogue order in the results.
+///
+/// ```
+/// use threadcheck::catalogue::{cases, run, CatalogueSpec};
+/// use threadcheck::passes::{InfeedChoice, Schedule};
+/// // M10 coarse (ISO 261: P 1.5), full-profile insert, radial, constant area: one case.
+/// let spec = CatalogueSpec {
+///     diameters: (10.0, 10.0), fine: false, partial: false,
+///     infeeds: vec![InfeedChoice::Radial], schedules: vec![Schedule::ConstantArea],
+///     ..CatalogueSpec::default()
+/// };
+/// let cs = cases(&spec)?;
+/// assert_eq!(cs.len(), 1);
+/// let v = run(&cs).remove(0)?;
+/// assert_eq!(v.designation.thread.pitch, 1.5);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
 pub fn run(cases: &[Case]) -> Vec<Result<Verification, Error>> {
     cases.par_iter().map(|c| verify(&c.spec)).collect()
 }

@@ -109,6 +109,17 @@ fn summarise(label: &str, schedule: &str, v: &Verification) -> Summary {
 }
 
 /// Runs every strategy × {constant depth, constant area} on `base`, all ending at one final X.
+///
+/// ```
+/// use threadcheck::compare::compare;
+/// use threadcheck::{InsertChoice, VerifySpec};
+/// let base = VerifySpec { insert: InsertChoice::Full, final_x: Some(8.2), ..VerifySpec::new("M10x1.5-6g") };
+/// // Radial, flank, one modified angle and alternating, each with two schedules.
+/// let c = compare(&base, &[29.5])?;
+/// assert_eq!(c.runs.len(), 8);
+/// assert!(c.runs.iter().all(|(_, v)| v.final_x == 8.2));
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
 pub fn compare(base: &VerifySpec, modified: &[f64]) -> Result<Comparison, Error> {
     let final_x = match base.final_x {
         Some(x) => x,

@@ -28,6 +28,16 @@ impl Outcome {
 }
 
 /// `threadcheck limits`: the limits of size of a designation.
+///
+/// ```
+/// use threadcheck::jobs::{LimitsJob, Outcome};
+/// let job = LimitsJob { designation: "M10x1.5-6g".into(), allow_nonstandard: false, json: Some("-".into()) };
+/// let (json, outcome) = job.run()?;
+/// let v: serde_json::Value = serde_json::from_str(&json).expect("JSON");
+/// assert_eq!(v["external"]["pitch_diameter"]["max"], 8.994); // ISO 965-2
+/// assert_eq!(outcome, Outcome::Pass);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct LimitsJob {
     /// The designation text.
@@ -149,7 +159,20 @@ fn limits_table(des: &Designation, ext: Option<&ThreadLimits>, int: Option<&Thre
     s
 }
 
-/// `threadcheck verify`.
+/// `threadcheck verify`: the text (or JSON) the command prints, and pass or out of tolerance.
+///
+/// ```
+/// use threadcheck::jobs::{Outcome, VerifyJob};
+/// use threadcheck::{InsertChoice, VerifySpec};
+/// let spec = VerifySpec { insert: InsertChoice::Full, final_x: Some(8.2), ..VerifySpec::new("M10x1.5-6g") };
+/// let job = VerifyJob { spec, threads: vec!["M10x1.5-6g".into()], insert_given: true, tools: None, svg: None, json: None };
+/// let (text, outcome) = job.run()?;
+/// // A full-profile insert with its tip on d3 = d − 1.226869·P = 8.160 cuts the basic d2, 9.026;
+/// // X8.2 is shallower still, so d2 comes out above 6g's 8.994.
+/// assert_eq!(outcome, Outcome::OutOfTolerance);
+/// assert!(text.contains("verdict: FAIL"));
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct VerifyJob {
     /// What to verify.
@@ -297,6 +320,19 @@ impl FitJob {
 }
 
 /// `threadcheck passes`: the expanded pass plan.
+///
+/// ```
+/// use threadcheck::jobs::PassesJob;
+/// use threadcheck::{Dialect, VerifySpec};
+/// // A G92 box cycle: one pass per X word.
+/// let program = "G0 X12 Z3\nG92 X9.4 Z-15 F1.5\nX9.0\nX8.6\nX8.2\nG0 X50\nM30\n";
+/// let spec = VerifySpec::new("").with_program_text("box.nc", program, Dialect::Fanuc);
+/// let (json, _) = PassesJob { spec, json: Some("-".into()) }.run()?;
+/// let v: serde_json::Value = serde_json::from_str(&json).expect("JSON");
+/// let xs: Vec<f64> = v["passes"].as_array().expect("passes").iter().map(|p| p["x_end"].as_f64().unwrap_or(0.0)).collect();
+/// assert_eq!(xs, [9.4, 9.0, 8.6, 8.2]);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct PassesJob {
     /// The plan, as for verify (the final X is solved the same way when not given).

@@ -490,6 +490,18 @@ impl PlanSpec {
     }
 
     /// Lays out the passes, start after start.
+    ///
+    /// ```
+    /// use threadcheck::passes::{PlanSpec, Schedule};
+    /// use threadcheck::ThreadKind;
+    /// // 0.8 mm deep in four equal radial steps: X 9.6, 9.2, 8.8, 8.4.
+    /// let plan = PlanSpec { schedule: Schedule::ConstantDepth, ..PlanSpec::new(ThreadKind::External, 1.5, 10.0, 8.4, 4) };
+    /// let xs: Vec<f64> = plan.generate()?.iter().map(|p| p.x_end).collect();
+    /// for (x, want) in xs.iter().zip([9.6, 9.2, 8.8, 8.4]) {
+    ///     assert!((x - want).abs() < 1e-12);
+    /// }
+    /// # Ok::<(), threadcheck::Error>(())
+    /// ```
     pub fn generate(&self) -> Result<Vec<Pass>, Error> {
         for (name, v) in [
             ("pitch", self.pitch),

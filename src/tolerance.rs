@@ -981,6 +981,18 @@ pub fn acme_limits(t: &BasicThread, c: AcmeClass, kind: ThreadKind) -> ThreadLim
 }
 
 /// Limits for the class a designation names for `kind`, or `None` when it names none.
+///
+/// ```
+/// use threadcheck::tolerance::limits_for;
+/// use threadcheck::{parse_designation, ParseOptions, ThreadKind};
+/// let des = parse_designation("M10x1.5-6g", ParseOptions::default())?;
+/// let l = limits_for(&des, ThreadKind::External)?.expect("6g is an external class");
+/// // ISO 965-2: d2 8.994/8.862, d 9.968/9.732.
+/// assert_eq!((l.pitch_diameter.max, l.pitch_diameter.min), (Some(8.994), Some(8.862)));
+/// assert_eq!((l.major_diameter.max, l.major_diameter.min), (Some(9.968), Some(9.732)));
+/// assert!(limits_for(&des, ThreadKind::Internal)?.is_none()); // no internal class given
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
 pub fn limits_for(des: &Designation, kind: ThreadKind) -> Result<Option<ThreadLimits>, Error> {
     let Some(class) = des.class(kind) else { return Ok(None) };
     let t = &des.thread;

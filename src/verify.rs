@@ -622,7 +622,17 @@ pub fn resolve(spec: &VerifySpec) -> Result<Resolved, Error> {
     Ok(Resolved { designation: des, kind, limits, insert, blank, infeed, notes, spec: spec.clone() })
 }
 
-/// Runs `verify`.
+/// Runs `verify`: resolves the thread, its limits and the insert, lays out (or reads) the passes,
+/// cuts them, measures the groove and checks it.
+///
+/// ```
+/// use threadcheck::{verify, InsertChoice, VerifySpec};
+/// // A full-profile insert, the final X solved for the middle of 6g's d2 band (8.862–8.994).
+/// let v = verify(&VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M10x1.5-6g") })?;
+/// assert!(v.pass);
+/// assert!((v.measurement.pitch_diameter - 8.928).abs() < 1e-3);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
 pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
     if let Some((source, dialect)) = &spec.program {
         if spec.final_x.is_some() {
