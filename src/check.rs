@@ -33,7 +33,7 @@ pub fn at_table_resolution(v: f64) -> f64 {
 pub const MIN_CREST_WIDTH: f64 = 1e-3;
 
 /// Whether a check is what a thread gauge decides (size) or a form requirement.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum CheckKind {
     /// GO/NO-GO gauging: major, pitch, maximum material, crest present.

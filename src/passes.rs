@@ -13,7 +13,7 @@ use serde::Serialize;
 /// X values are tip **diameters** (mm). `z_start` → `z_end` is the direction of feed (usually
 /// towards the chuck, decreasing Z). For a parallel thread `x_start == x_end`; a taper or a
 /// run-out changes X linearly with Z.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct Pass {
     /// 1-based position in the cutting order.
     pub index: usize,
@@ -136,7 +136,7 @@ impl Pass {
 }
 
 /// How the tip moves from pass to pass.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, serde::Deserialize)]
 #[serde(tag = "method", rename_all = "lowercase")]
 pub enum Infeed {
     /// Straight in X: both edges cut (two-flank).
@@ -255,7 +255,7 @@ impl std::str::FromStr for InfeedChoice {
 }
 
 /// How deep each pass goes.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Schedule {
     /// Equal radial depth per pass: depth after pass i = t·i/N.

@@ -117,7 +117,7 @@ pub struct VerifySpec {
 }
 
 /// How the text report and the picture give lengths.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Units {
     /// Millimetres.

@@ -570,3 +570,39 @@ fn infeed_words_are_the_same_in_verify_and_sweep() {
         stdout(&o).lines().map(|l| angle(&serde_json::from_str::<serde_json::Value>(l).unwrap())).collect();
     assert_eq!(angles, [29.5, 27.0]);
 }
+
+/// Issue 14: the value types of the reports read back (`Deserialize`): a post can keep the pass
+/// list of `passes --json` as `Vec<Pass>`. A G92 box cycle with X words 9.4, 9.0, 8.6, 8.2 from
+/// Z3 to Z-15 at lead 1.5.
+#[test]
+fn passes_json_reads_back_as_pass_values() {
+    use threadcheck::passes::Pass;
+    let dir = tempdir("readback");
+    std::fs::write(dir.join("box.nc"), "G0 X12 Z3\nG92 X9.4 Z-15 F1.5\nX9.0\nX8.6\nX8.2\nG0 X50\nM30\n")
+        .unwrap();
+    let o = run_in(&dir, &["passes", "--program", "box.nc", "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let passes: Vec<Pass> = serde_json::from_value(v["passes"].clone()).unwrap();
+    let xs: Vec<f64> = passes.iter().map(|p| p.x_end).collect();
+    assert_eq!(xs, [9.4, 9.0, 8.6, 8.2]);
+    assert!(passes.iter().all(|p| p.z_start == 3.0 && p.z_end == -15.0 && p.lead == 1.5));
+    let infeed: threadcheck::Infeed = serde_json::from_str(r#"{"method":"flank","angle":29.5}"#).unwrap();
+    assert_eq!(infeed, threadcheck::Infeed::Flank { angle: 29.5 });
+}
+
+/// Issue 14: labels carry no float noise: 0.035 is not 0.034999999999999996.
+#[test]
+fn insert_label_has_no_float_noise() {
+    let o = run(&[
+        "verify",
+        "--thread",
+        "M10x1.5-6g",
+        "--insert",
+        "partial:0.035",
+        "--no-pass-metrics",
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["insert"]["name"], "partial 60° r0.035");
+    assert_eq!(v["insert"]["tip_radius"], 0.035);
+}

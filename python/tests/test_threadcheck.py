@@ -91,6 +91,14 @@ def test_passes_of_program_text():
     assert all(q["z_end"] == -20.0 and q["lead"] == 1.5 for q in op["passes"])
 
 
+def test_infeed_words_are_the_cli_words():
+    # Half of 60° less 0.5° is 29.5°; flank:27 is 27° whatever the form.
+    assert threadcheck.verify("M10x1.5-6g", infeed="modified")["plan"]["infeed"]["angle"] == 29.5
+    assert threadcheck.verify("M10x1.5-6g", infeed="flank:27")["plan"]["infeed"]["angle"] == 27.0
+    with pytest.raises(ValueError, match="expected radial, flank"):
+        threadcheck.verify("M10x1.5-6g", infeed="sideways")
+
+
 def test_errors_are_value_errors_with_the_place():
     bad = G76_M20.replace("G76 X18.2", "G76.1 X18.2")
     with pytest.raises(ValueError, match=r"^post\.nc:7:\d+: .*G76\.1"):

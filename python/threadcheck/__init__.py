@@ -26,8 +26,10 @@ def verify(thread, program=None, dialect="fanuc", insert=None, final_x=None, int
     threading operation of ``program``. ``program`` is the program's text (not a path); without
     it a plan is generated and ``final_x`` (or the solved middle of the tolerance) is verified.
     ``insert`` is ``"full"``, ``"partial"``, ``"partial:R"`` or an insert file's path; without
-    it a program is verified with a partial insert and the report says so.
-    The dict has ``verdict`` (``"PASS"``/``"FAIL"``); a program's report has ``operations``.
+    it a program is verified with a partial insert and the report says so. ``infeed`` takes the
+    command line's words: ``"radial"``, ``"flank"``, ``"flank:27"``, ``"modified"`` (the default:
+    half the thread angle less 0.5°), ``"alternating"``, ``"alternating:ANGLE"``.
+    The dict has ``verdict`` (``"pass"``/``"fail"``); a program's report has ``operations``.
     """
     threads = [thread] if isinstance(thread, str) else list(thread)
     text, _passed = _threadcheck.job_json(

@@ -33,7 +33,7 @@ use serde::Serialize;
 pub use motion::Move;
 
 /// Which control's G-code.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Dialect {
     /// Fanuc (and its many compatibles), with custom macro B.
