@@ -40,6 +40,27 @@ pub fn tempdir(tag: &str) -> PathBuf {
     d
 }
 
+/// `sweep` over M10 coarse alone (P 1.5), one insert set, the given infeeds, constant area.
+pub fn sweep_m10(insert: &str, infeeds: &str, more: &[&str]) -> Output {
+    let mut args = vec![
+        "sweep",
+        "--min-d",
+        "10",
+        "--max-d",
+        "10",
+        "--series",
+        "coarse",
+        "--insert",
+        insert,
+        "--infeed",
+        infeeds,
+        "--schedule",
+        "constant-area",
+    ];
+    args.extend_from_slice(more);
+    run(&args)
+}
+
 /// stdout as text.
 pub fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()

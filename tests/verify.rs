@@ -480,27 +480,10 @@ fn cli_limits_thread_passes_zero_and_sweep_exit_codes() {
     assert!(line.contains("'0' for '--passes") && line.contains("at least one pass"), "{line}");
     // One M10 coarse case, radial, constant area: the partial insert fails its form checks, the
     // full-profile insert passes.
-    let sweep_m10 = |insert: &str| {
-        run(&[
-            "sweep",
-            "--min-d",
-            "10",
-            "--max-d",
-            "10",
-            "--series",
-            "coarse",
-            "--insert",
-            insert,
-            "--infeed",
-            "radial",
-            "--schedule",
-            "constant-area",
-        ])
-    };
-    let fail = sweep_m10("partial");
+    let fail = sweep_m10("partial", "radial", &[]);
     assert_eq!(fail.status.code(), Some(1), "{}", stdout(&fail));
     assert!(stdout(&fail).contains("1 cases, 0 pass, 1 fail"));
-    let pass = sweep_m10("full");
+    let pass = sweep_m10("full", "radial", &[]);
     assert_eq!(pass.status.code(), Some(0), "{}", stdout(&pass));
 }
 
@@ -550,22 +533,7 @@ fn infeed_words_are_the_same_in_verify_and_sweep() {
     assert_eq!(angle(&verify("Tr40x7-7e", "modified")), 14.5);
     assert_eq!(angle(&verify("Tr40x7-7e", "flank")), 15.0);
     assert_eq!(angle(&verify("M10x1.5-6g", "flank:27")), 27.0);
-    let o = run(&[
-        "sweep",
-        "--min-d",
-        "10",
-        "--max-d",
-        "10",
-        "--series",
-        "coarse",
-        "--insert",
-        "full",
-        "--infeed",
-        "modified,flank:27",
-        "--schedule",
-        "constant-area",
-        "--json",
-    ]);
+    let o = sweep_m10("full", "modified,flank:27", &["--json"]);
     let angles: Vec<f64> =
         stdout(&o).lines().map(|l| angle(&serde_json::from_str::<serde_json::Value>(l).unwrap())).collect();
     assert_eq!(angles, [29.5, 27.0]);
