@@ -25,6 +25,16 @@ pub fn signed_area(ring: &[Point]) -> f64 {
         .signed_area()
 }
 
+/// Whether the closed ring `ring` (first point not repeated, or repeated) holds `p` (geo's
+/// `Contains`: a point on the boundary is not inside).
+pub fn ring_contains(ring: &[Point], p: Point) -> bool {
+    use geo::Contains;
+    if ring.len() < 3 {
+        return false;
+    }
+    Polygon::new(to_coords(ring), Vec::new()).contains(&Coord { x: p.z, y: p.r })
+}
+
 /// A set of polygons in the axial plane (z, r), mm. Exteriors counter-clockwise, holes clockwise.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Region(MultiPolygon<f64>);

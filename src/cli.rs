@@ -5,7 +5,7 @@
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use threadcheck::gcode::Dialect;
-use threadcheck::jobs::{CompareJob, FitJob, LimitsJob, Outcome, PassesJob, SweepJob, VerifyJob};
+use threadcheck::jobs::{CompareJob, FitJob, LimitsJob, MillJob, Outcome, PassesJob, SweepJob, VerifyJob};
 use threadcheck::passes::{InfeedChoice, Schedule};
 use threadcheck::verify::{InsertChoice, ProgramSource, Units, VerifySpec};
 use threadcheck::{Error, ThreadForm};
@@ -121,6 +121,9 @@ enum Command {
     },
     /// A bolt and a nut cut in the computer and assembled: do they screw together?
     Fit(FitArgs),
+    /// A milling program's cutter swept along each Z level and measured against a target curve:
+    /// gouge and material left.
+    Mill(MillArgs),
     /// Print the expanded pass plan.
     Passes {
         #[command(flatten)]
@@ -279,6 +282,33 @@ struct FitArgs {
     #[arg(long, default_value = "partial")]
     nut_insert: InsertChoice,
     /// Write an SVG of the pair.
+    #[arg(long, value_name = "FILE")]
+    svg: Option<PathBuf>,
+    #[command(flatten)]
+    json: JsonArg,
+}
+
+#[derive(Args)]
+struct MillArgs {
+    /// The milling program.
+    #[arg(long, value_name = "FILE")]
+    program: PathBuf,
+    /// fanuc | haas | sinumerik | linuxcnc | dyna
+    #[arg(long, default_value = "fanuc")]
+    dialect: Dialect,
+    /// Run the blocks in the order of their N numbers (a listing whose page break moved blocks).
+    #[arg(long)]
+    n_order: bool,
+    /// Cutter diameter, mm.
+    #[arg(long, value_name = "MM", value_parser = finite)]
+    tool_diameter: f64,
+    /// The target curve (TOML: x, y in t and z; t range; material inside|outside; optional z range).
+    #[arg(long, value_name = "FILE.toml")]
+    target: PathBuf,
+    /// Allowed gouge and material left, mm.
+    #[arg(long, value_name = "MM", value_parser = finite, default_value = "0.01")]
+    tolerance: f64,
+    /// Write an SVG of the worst level.
     #[arg(long, value_name = "FILE")]
     svg: Option<PathBuf>,
     #[command(flatten)]
@@ -506,6 +536,18 @@ impl Cli {
                 spec.schedules = a.schedule;
                 spec.gauge_only = a.gauge_only;
                 SweepJob { spec, json: a.json, export_placements: a.export_placements }.run()
+            }
+            Command::Mill(m) => {
+                let text = threadcheck::verify::read_program_text(&m.program)?;
+                let spec = threadcheck::mill::MillSpec {
+                    program: (text, m.program.display().to_string()),
+                    dialect: m.dialect,
+                    n_order: m.n_order,
+                    tool_diameter: m.tool_diameter,
+                    target: threadcheck::mill::Target::read(&m.target)?,
+                    tolerance: m.tolerance,
+                };
+                done(MillJob { spec, svg: m.svg, json: m.json.json }.run()?)
             }
             Command::Report { name, out } => match name {
                 ReportName::InfeedComparison => {

@@ -612,3 +612,28 @@ fn placements_line(label: &str, v: &crate::verify::Verification) -> Result<Strin
         threadcheck_seconds: best,
     })
 }
+
+/// `threadcheck mill`: a milling program's cutter against a target curve.
+#[derive(Clone, Debug)]
+pub struct MillJob {
+    /// What to check.
+    pub spec: crate::mill::MillSpec,
+    /// Write the SVG of the worst level here.
+    pub svg: Option<std::path::PathBuf>,
+    /// The JSON: `-` prints it on stdout instead of the text, a path writes it there.
+    pub json: Option<String>,
+}
+
+impl MillJob {
+    /// Runs the job: pass when the gouge and the leftover are within the tolerance.
+    pub fn run(&self) -> Result<(String, Outcome), Error> {
+        let r = crate::mill::mill(&self.spec)?;
+        if let Some(path) = &self.svg {
+            crate::output::write_atomic(path, crate::render::mill_svg(&r).as_bytes())?;
+        }
+        let json_text = self.json.as_ref().map(|_| pretty(&r)).transpose()?;
+        let outcome =
+            if r.verdict == crate::report::Verdict::Pass { Outcome::Pass } else { Outcome::OutOfTolerance };
+        Ok((route_json(self.json.as_deref(), json_text, crate::mill::text(&r))?, outcome))
+    }
+}

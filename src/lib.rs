@@ -64,6 +64,7 @@ pub mod insert;
 pub mod jobs;
 mod limits;
 pub mod measure;
+pub mod mill;
 mod output;
 pub mod passes;
 pub mod process;

@@ -510,3 +510,21 @@ pub fn pass_metrics(setup: &SweepSetup<'_>, passes: &[Pass], z_ref: f64) -> Resu
     }
     Ok(out)
 }
+
+/// The area a disk of `radius` sweeps along straight moves in a plane: one imprint (a capsule)
+/// per move, united through the same boolean door as the thread's imprints. Milling uses it with
+/// a [`Point`]'s (z, r) carrying (x, y); arcs are given as chords. `tolerance` bounds the
+/// capsules' arcs, mm.
+pub(crate) fn swept_disk(moves: &[(Point, Point)], radius: f64, tolerance: f64) -> Region {
+    use std::f64::consts::{FRAC_PI_2, PI};
+    let capsule = |&(a, b): &(Point, Point)| {
+        let phi = if a.distance(b) > 1e-12 { (b.r - a.r).atan2(b.z - a.z) } else { 0.0 };
+        let arc = |c: Point, s: f64, e: f64| {
+            crate::geometry::Arc { center: c, radius, start: s, end: e }.tessellate(tolerance)
+        };
+        let mut ring = arc(b, phi - FRAC_PI_2, phi + FRAC_PI_2);
+        ring.extend(arc(a, phi + FRAC_PI_2, phi + PI + FRAC_PI_2));
+        Region::from_ring(&ring)
+    };
+    union_all(moves.iter().map(capsule).collect(), UnionStrategy::BalancedTree)
+}

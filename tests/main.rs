@@ -10,6 +10,7 @@ mod forms;
 mod gcode;
 mod infeed_comparison;
 mod limits;
+mod mill;
 mod process;
 mod programs;
 mod properties;

@@ -81,6 +81,17 @@ def test_fit():
     validate("fit", json.loads(cli("fit", "--thread", "M10x1.5-6H/6g", "--json", "-")))
 
 
+@pytest.mark.parametrize("program,dialect,target,diameter", [
+    ("boss-chords.nc", "fanuc", "boss.toml", "6"),
+    ("cam-normal-offset.nc", "dyna", "cardioid.toml", "6"),
+])
+def test_mill(program, dialect, target, diameter):
+    data = PROGRAMS.parent
+    out = cli("mill", "--program", str(PROGRAMS / "milling" / program), "--dialect", dialect,
+              "--target", str(data / "targets" / target), "--tool-diameter", diameter, "--json", ok=(0, 1))
+    validate("mill", json.loads(out))
+
+
 def test_sweep_lines():
     out = cli("sweep", "--min-d", "10", "--max-d", "12", "--series", "coarse", "--infeed", "radial",
               "--schedule", "constant-area", "--json")

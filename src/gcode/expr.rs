@@ -171,6 +171,11 @@ pub trait Env {
     fn get(&mut self, key: &VarKey) -> Result<Value, String>;
     /// Whether a named variable exists (LinuxCNC `EXISTS`).
     fn exists(&mut self, key: &VarKey) -> bool;
+    /// The value of a named variable; an environment of a few names (a target's `t` and `z`)
+    /// answers without building a key.
+    fn get_named(&mut self, name: &str) -> Result<Value, String> {
+        self.get(&VarKey::Named(name.to_string()))
+    }
 }
 
 /// Most nested levels of an expression (brackets, unary signs, function calls).
@@ -213,6 +218,7 @@ pub fn eval(e: &Expr, env: &mut dyn Env, depth: usize) -> Result<Value, String> 
         |e: &Expr, env: &mut dyn Env| -> Result<f64, String> { Ok(eval(e, env, depth + 1)?.unwrap_or(0.0)) };
     let v = match e {
         Expr::Num(v) => *v,
+        Expr::Var(VarRef::Named(name)) => return env.get_named(name),
         Expr::Var(r) => {
             let k = key_of(r, env)?;
             return env.get(&k);
@@ -354,6 +360,10 @@ pub enum Syntax {
     Dyna,
     /// Sinumerik: round brackets, R-parameters, `== <> > >= < <=`, `AND OR XOR NOT`.
     Sinumerik,
+    /// Formulas of target files: round brackets, named variables as bare words (`t`, `z`), `PI`,
+    /// `^` and `**` for powers, functions `sin(…)` … `atan2(y, x)` in degrees as the macros have
+    /// them.
+    Formula,
 }
 
 /// A parse error: the 0-based character offset in the parsed text, and what is wrong.
@@ -379,7 +389,7 @@ impl<'a> Parser<'a> {
     }
 
     fn skip_ws(&mut self) {
-        if self.syntax == Syntax::Sinumerik {
+        if matches!(self.syntax, Syntax::Sinumerik | Syntax::Formula) {
             while matches!(self.peek(), Some(' ' | '\t')) {
                 self.i += 1;
             }
@@ -422,8 +432,13 @@ impl<'a> Parser<'a> {
                 _ if c == '<' => (BinOp::Lt, 1),
                 _ => return None,
             }
-        } else if two == "**" && self.syntax == Syntax::LinuxCnc {
+        } else if two == "**" && matches!(self.syntax, Syntax::LinuxCnc | Syntax::Formula) {
             (BinOp::Pow, 2)
+        } else if c == '^' && self.syntax == Syntax::Formula {
+            (BinOp::Pow, 1)
+        } else if c.is_ascii_alphabetic() && self.syntax == Syntax::Formula {
+            // Formulas have no word operators: a word there is a name, not an operator.
+            return None;
         } else if c.is_ascii_alphabetic() {
             let w = self.letters_at(i);
             let bitwise = matches!(self.syntax, Syntax::MacroB | Syntax::Dyna);
@@ -464,7 +479,7 @@ impl<'a> Parser<'a> {
                 Mul | Div | Mod | BitAnd | And => 2,
                 Pow => 3,
             },
-            Syntax::LinuxCnc | Syntax::Sinumerik => match op {
+            Syntax::LinuxCnc | Syntax::Sinumerik | Syntax::Formula => match op {
                 And | Or | Xor | BitAnd | BitOr | BitXor => 0,
                 Eq | Ne | Gt | Ge | Lt | Le => 1,
                 Add | Sub => 2,
@@ -477,7 +492,7 @@ impl<'a> Parser<'a> {
     fn top(&self) -> u8 {
         match self.syntax {
             Syntax::MacroB | Syntax::Dyna => 3,
-            Syntax::LinuxCnc | Syntax::Sinumerik => 4,
+            Syntax::LinuxCnc | Syntax::Sinumerik | Syntax::Formula => 4,
         }
     }
 
@@ -499,7 +514,7 @@ impl<'a> Parser<'a> {
     }
 
     fn open(&self) -> char {
-        if self.syntax == Syntax::Sinumerik {
+        if matches!(self.syntax, Syntax::Sinumerik | Syntax::Formula) {
             '('
         } else {
             '['
@@ -507,7 +522,7 @@ impl<'a> Parser<'a> {
     }
 
     fn close(&self) -> char {
-        if self.syntax == Syntax::Sinumerik {
+        if matches!(self.syntax, Syntax::Sinumerik | Syntax::Formula) {
             ')'
         } else {
             ']'
@@ -574,7 +589,7 @@ impl<'a> Parser<'a> {
         if c.is_ascii_digit() || c == '.' {
             return self.number();
         }
-        if c == '#' && self.syntax != Syntax::Sinumerik {
+        if c == '#' && !matches!(self.syntax, Syntax::Sinumerik | Syntax::Formula) {
             return self.var().map(Expr::Var);
         }
         if c.is_ascii_alphabetic() {
@@ -593,6 +608,21 @@ impl<'a> Parser<'a> {
                     .map(|n| Expr::Var(VarRef::Num(n)))
                     .map_err(|_| (start, "R needs a parameter number".into()));
             }
+            if self.syntax == Syntax::Formula {
+                // A word not followed by '(' is a name (`t`, `z`) or the constant PI.
+                let mut j = self.i + name.len();
+                while matches!(self.c.get(j), Some(' ' | '\t')) {
+                    j += 1;
+                }
+                if self.c.get(j) != Some(&'(') {
+                    self.i += name.len();
+                    return Ok(if name == "PI" {
+                        Expr::Num(std::f64::consts::PI)
+                    } else {
+                        Expr::Var(VarRef::Named(name.to_ascii_lowercase()))
+                    });
+                }
+            }
             let f = match (name.as_str(), self.syntax) {
                 ("SIN", _) => Func::Sin,
                 ("COS", _) => Func::Cos,
@@ -601,7 +631,7 @@ impl<'a> Parser<'a> {
                 ("ACOS", _) => Func::Acos,
                 ("ATAN", Syntax::Sinumerik) => Func::Atan,
                 ("ATAN", _) => Func::Atan,
-                ("ATAN2", Syntax::Sinumerik) => Func::Atan2Signed,
+                ("ATAN2", Syntax::Sinumerik | Syntax::Formula) => Func::Atan2Signed,
                 ("SQRT", _) => Func::Sqrt,
                 ("SQR", Syntax::Dyna) => Func::Sqrt,
                 ("ABS", _) => Func::Abs,
@@ -640,7 +670,7 @@ impl<'a> Parser<'a> {
                     return Ok(Expr::Call(Func::Atan, vec![y]));
                 }
             }
-            if f == Func::Atan2Signed && self.syntax == Syntax::Sinumerik {
+            if f == Func::Atan2Signed && matches!(self.syntax, Syntax::Sinumerik | Syntax::Formula) {
                 return self.args2(f);
             }
             self.skip_ws();

@@ -17,7 +17,7 @@
 
 mod cycles;
 mod dyna;
-mod expr;
+pub(crate) mod expr;
 mod fanuc;
 mod haas;
 mod interp;
@@ -223,6 +223,25 @@ pub fn read_program_with(
         dyna::prescan(text).map_err(|(l, c, m)| perr(l, c, m))?;
     }
     let mut blocks = lexer::lex(text, dialect).map_err(|(l, c, m)| perr(l, c, m))?;
+    // A toolpath read as printed whose sequence numbers go back (a listing whose page break moved
+    // blocks) is worth a word: the reader can run it in N order instead.
+    let mut order_note = None;
+    if opts.moves && !opts.n_order {
+        let mut last: Option<(f64, usize)> = None;
+        for b in &blocks {
+            if let Some(n) = b.n {
+                if let Some((prev, line)) = last {
+                    if n < prev && order_note.is_none() {
+                        order_note = Some(format!(
+                            "{file}:{}:{}: N{n} follows N{prev} (line {line}): the blocks are not in N order and run as printed; read them in N order if the listing's order is a misprint",
+                            b.line, b.col
+                        ));
+                    }
+                }
+                last = Some((n, b.line));
+            }
+        }
+    }
     if opts.n_order {
         // A stable sort keeps blocks without N after their predecessor.
         let mut last = f64::NEG_INFINITY;
@@ -241,7 +260,8 @@ pub fn read_program_with(
     }
     let mut m = motion::Motion::new(dialect, file, opts.moves);
     interp::run(&blocks, dialect, &mut m, file, opts.budget.unwrap_or_default())?;
-    let (operations, skipped, notes, moves) = m.finish();
+    let (operations, skipped, mut notes, moves) = m.finish();
+    notes.extend(order_note);
     if operations.is_empty() && !opts.allow_no_threading {
         let mut why = format!("no threading pass in the program (looked for {})", dialect.threading_words());
         // A subroutine defined and never called is the likely reason: point at it.

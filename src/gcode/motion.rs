@@ -105,6 +105,8 @@ struct Chain {
 /// The shared motion state.
 pub(crate) struct Motion {
     pub dialect: Dialect,
+    /// Read as a milling toolpath (X and Y in the plane, G17).
+    mill: bool,
     pub file: String,
     /// Position: X (diameter, mm, for lathes; plain X for mills), Y, Z — in machine coordinates.
     pub x: Option<f64>,
@@ -143,9 +145,12 @@ pub(crate) struct Motion {
 const MAX_CONTOUR: usize = 100_000;
 
 impl Motion {
+    /// A motion state at the program start. `record_moves` reads the program as a milling
+    /// toolpath: X and Y are plane coordinates in every dialect, G17 the plane.
     pub fn new(dialect: Dialect, file: &str, record_moves: bool) -> Motion {
         Motion {
             dialect,
+            mill: record_moves,
             file: file.to_string(),
             x: None,
             y: None,
@@ -156,6 +161,7 @@ impl Motion {
             // LinuxCNC starts in radius mode (G8); lathes with Fanuc, Haas and Sinumerik in
             // diameter; Dyna is a mill (X is X).
             diameter: match dialect {
+                _ if record_moves => false,
                 Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik => true,
                 Dialect::LinuxCnc | Dialect::Dyna => false,
             },
@@ -165,6 +171,7 @@ impl Motion {
             s: None,
             tool: None,
             plane: match dialect {
+                _ if record_moves => 17,
                 Dialect::Dyna => 17,
                 Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc => 18,
             },
@@ -181,6 +188,9 @@ impl Motion {
 
     /// Whether X words are turned into diameters (lathe dialects).
     fn lathe(&self) -> bool {
+        if self.mill {
+            return false;
+        }
         match self.dialect {
             Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc => true,
             Dialect::Dyna => false,

@@ -1,0 +1,952 @@
+//! Contour milling: the cutter of a milling program as a disk swept along the feed moves of each
+//! Z level, measured against an analytic target curve.
+//!
+//! The same parts as the lathe path: the program is expanded by [`crate::gcode`] (any dialect,
+//! macros included) with its moves recorded; the target's formulas are read by the macro
+//! expression engine; distances are parry queries as in [`crate::measure`]; the picture's swept
+//! area is the union of the cutter's imprints through the same boolean door as the thread
+//! sweep ([`crate::sweep`]).
+//!
+//! **What is measured.** At a level Z, the cutter removes every point within the tool radius r of
+//! its centre path. With sd(c) the signed distance from a centre c to the target curve (positive
+//! on the side without material), the cutter at c reaches r − sd(c) past the curve into the
+//! part: that is the *gouge* when positive (the deepest point the disk reaches into the part,
+//! for a target locally smoother than the disk). It is the largest over every centre of every
+//! feed move of the level, straight moves and arcs (arcs as chords within 0.01 µm). A target
+//! point P is *left over* by dist(P, path) − r when that is positive and P lies within the
+//! cutter's reach (dist(P, path) ≤ 2r): material outside the target that the cutter passed
+//! without taking.
+//!
+//! The curve is evaluated exactly: a polyline of samples only finds the basin of the nearest
+//! point, which Newton's method then places on the curve itself, so the gouge is right to far
+//! better than 0.1 µm.
+//!
+//! **Levels.** A feed move belongs to the level of its deeper end (a plunge is a point there).
+//! Each level is checked against the target at its own Z, the section its tool bottom cuts: the
+//! tool's flank also passes the sections above, which is the same check for targets that do not
+//! grow upward (prisms such as a cam, domes). Levels at or above the target's top (its `z` range,
+//! else Z0) cut air and are left out.
+
+use crate::gcode::expr::{parse_all, Env, Expr, Syntax, Value, VarKey, VarRef};
+use crate::gcode::{Dialect, Move, ReadOptions};
+use crate::geometry::Point;
+use crate::report::Verdict;
+use crate::Error;
+use parry2d_f64::math::Point as PPoint;
+use parry2d_f64::query::{PointQuery, PointQueryWithLocation};
+use parry2d_f64::shape::Polyline;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// Arcs become chords no farther than this from the arc, mm (0.01 µm).
+const ARC_TOLERANCE: f64 = 1e-5;
+/// Spacing of the target's sample polyline, mm: it only finds the nearest point's basin.
+const SAMPLE_SPACING: f64 = 0.05;
+/// A limit met to within this passes, mm (0.1 µm, the resolution the gouge is computed to).
+const RESOLUTION: f64 = 1e-7;
+
+/// Which side of the closed target curve is the part.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Material {
+    /// The part is inside the curve (a cam, a boss): the cutter works outside it.
+    Inside,
+    /// The part is outside the curve (a pocket): the cutter works inside it.
+    Outside,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTarget {
+    x: String,
+    y: String,
+    t: [f64; 2],
+    material: Material,
+    z: Option<[f64; 2]>,
+}
+
+/// A target curve: x(t, z), y(t, z) in mm, t in degrees over a range, z the level.
+///
+/// ```
+/// use threadcheck::mill::Target;
+/// let cam = Target::from_toml(r#"
+///     x = "20*(1+cos(t))*cos(t)"
+///     y = "20*(1+cos(t))*sin(t)"
+///     t = [0, 360]
+///     material = "inside"
+/// "#, "cam.toml")?;
+/// let p = cam.point(90.0, -1.0)?;
+/// assert!((p.z - 0.0).abs() < 1e-12 && (p.r - 20.0).abs() < 1e-12); // (x, y) = (0, 20)
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+#[derive(Clone, Debug, Serialize)]
+pub struct Target {
+    /// The x formula as written.
+    pub x: String,
+    /// The y formula as written.
+    pub y: String,
+    /// The parameter range, degrees.
+    pub t: [f64; 2],
+    /// The part's Z range (bottom, top), if given; else its top is Z0.
+    pub z: Option<[f64; 2]>,
+    /// Which side is the part.
+    pub material: Material,
+    #[serde(skip)]
+    source: String,
+    #[serde(skip)]
+    ex: Expr,
+    #[serde(skip)]
+    ey: Expr,
+    #[serde(skip)]
+    uses_z: bool,
+}
+
+/// The environment of a target formula: `t` and `z`, nothing else.
+struct TZ {
+    t: f64,
+    z: f64,
+}
+
+impl Env for TZ {
+    fn get(&mut self, key: &VarKey) -> Result<Value, String> {
+        match key {
+            VarKey::Named(n) => self.get_named(n),
+            VarKey::Num(n) => Err(format!("#{n}: a target formula reads only t and z")),
+        }
+    }
+
+    fn exists(&mut self, _key: &VarKey) -> bool {
+        false
+    }
+
+    fn get_named(&mut self, name: &str) -> Result<Value, String> {
+        match name {
+            "t" => Ok(Some(self.t)),
+            "z" => Ok(Some(self.z)),
+            _ => Err(format!(
+                "unknown name '{name}': a target formula reads t (degrees) and z (the level, mm)"
+            )),
+        }
+    }
+}
+
+/// `e` at level `z`: z replaced by its value and every subexpression without t evaluated once,
+/// so that a curve's many evaluations pay only for what depends on t.
+fn fold(e: &Expr, z: f64) -> Expr {
+    let constant = |e: Expr| -> Expr {
+        let mut env = TZ { t: f64::NAN, z };
+        match crate::gcode::expr::eval(&e, &mut env, 0) {
+            Ok(Some(v)) if v.is_finite() => Expr::Num(v),
+            _ => e,
+        }
+    };
+    match e {
+        Expr::Var(VarRef::Named(n)) if n == "z" => Expr::Num(z),
+        Expr::Num(_) | Expr::Var(_) => e.clone(),
+        Expr::Neg(a) => {
+            let a = fold(a, z);
+            match a {
+                Expr::Num(v) => Expr::Num(-v),
+                a => Expr::Neg(Box::new(a)),
+            }
+        }
+        Expr::Bin(op, a, b) => {
+            let (a, b) = (fold(a, z), fold(b, z));
+            let both = matches!((&a, &b), (Expr::Num(_), Expr::Num(_)));
+            let f = Expr::Bin(*op, Box::new(a), Box::new(b));
+            if both {
+                constant(f)
+            } else {
+                f
+            }
+        }
+        Expr::Call(func, args) => {
+            let args: Vec<Expr> = args.iter().map(|a| fold(a, z)).collect();
+            let all = args.iter().all(|a| matches!(a, Expr::Num(_)));
+            let f = Expr::Call(*func, args);
+            if all {
+                constant(f)
+            } else {
+                f
+            }
+        }
+    }
+}
+
+fn names_z(e: &Expr) -> bool {
+    match e {
+        Expr::Num(_) => false,
+        Expr::Var(VarRef::Named(n)) => n == "z",
+        Expr::Var(_) => false,
+        Expr::Neg(a) => names_z(a),
+        Expr::Bin(_, a, b) => names_z(a) || names_z(b),
+        Expr::Call(_, args) => args.iter().any(names_z),
+    }
+}
+
+impl Target {
+    /// Reads a target from TOML text; `source` names it in messages.
+    pub fn from_toml(text: &str, source: &str) -> Result<Target, Error> {
+        let ferr = |m: String| Error::File { file: source.to_string(), message: m };
+        let raw: RawTarget = toml::from_str(text).map_err(|e| ferr(e.to_string().replace('\n', " ")))?;
+        let [t0, t1] = raw.t;
+        if !(t0.is_finite() && t1.is_finite() && t0 < t1) {
+            return Err(ferr(format!("t = [{t0}, {t1}]: the range must be finite and increasing")));
+        }
+        if let Some([z0, z1]) = raw.z {
+            if !(z0.is_finite() && z1.is_finite() && z0 < z1) {
+                return Err(ferr(format!("z = [{z0}, {z1}]: the range must be finite and increasing")));
+            }
+        }
+        let parse = |what: &str, s: &str| {
+            parse_all(s.trim(), Syntax::Formula)
+                .map_err(|(i, m)| ferr(format!("{what} = \"{s}\": column {}: {m}", i + 1)))
+        };
+        let (ex, ey) = (parse("x", &raw.x)?, parse("y", &raw.y)?);
+        let uses_z = names_z(&ex) || names_z(&ey);
+        let target = Target {
+            x: raw.x,
+            y: raw.y,
+            t: raw.t,
+            z: raw.z,
+            material: raw.material,
+            source: source.into(),
+            ex,
+            ey,
+            uses_z,
+        };
+        // One evaluation names an unknown word or a bad function now, not halfway through a run.
+        let z = raw.z.map_or(0.0, |z| z[0]);
+        target.point(t0, z).map_err(|e| ferr(e.to_string()))?;
+        Ok(target)
+    }
+
+    /// Reads a target file.
+    pub fn read(path: &std::path::Path) -> Result<Target, Error> {
+        let shown = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(shown.clone(), e))?;
+        Target::from_toml(&text, &shown)
+    }
+
+    /// The point at parameter `t` (degrees) of level `z`, as (x, y) in a [`Point`]'s (z, r).
+    pub fn point(&self, t: f64, z: f64) -> Result<Point, Error> {
+        eval_xy(&self.ex, &self.ey, t, z)
+    }
+
+    /// The part's top: levels at or above it cut air.
+    pub fn top(&self) -> f64 {
+        self.z.map_or(0.0, |z| z[1])
+    }
+}
+
+fn eval_xy(ex: &Expr, ey: &Expr, t: f64, z: f64) -> Result<Point, Error> {
+    {
+        let mut env = TZ { t, z };
+        let mut ev = |e: &Expr, what: &str| match crate::gcode::expr::eval(e, &mut env, 0) {
+            Ok(v) => {
+                let v = v.unwrap_or(0.0);
+                if v.is_finite() {
+                    Ok(v)
+                } else {
+                    Err(Error::Input(format!("target {what} at t = {t}, z = {z} is not a finite number")))
+                }
+            }
+            Err(m) => Err(Error::Input(format!("target {what} at t = {t}, z = {z}: {m}"))),
+        };
+        Ok(Point::new(ev(ex, "x")?, ev(ey, "y")?))
+    }
+}
+
+/// The target at one level: samples, their polyline, and the exact curve behind them.
+struct Curve<'a> {
+    target: &'a Target,
+    z: f64,
+    /// The formulas folded at this level.
+    ex: Expr,
+    ey: Expr,
+    t: Vec<f64>,
+    p: Vec<Point>,
+    poly: Polyline,
+    ccw: bool,
+}
+
+/// The nearest point of the curve to a point.
+#[derive(Clone, Copy, Debug)]
+struct Near {
+    t: f64,
+    /// Signed distance: positive on the side without material.
+    sd: f64,
+}
+
+fn ppoint(p: Point) -> PPoint<f64> {
+    PPoint::new(p.z, p.r)
+}
+
+impl<'a> Curve<'a> {
+    /// Samples the target at level `z`; `None` when the curve has no extent there (a dome's apex).
+    fn new(target: &'a Target, z: f64) -> Result<Option<Curve<'a>>, Error> {
+        let [t0, t1] = target.t;
+        let (ex, ey) = (fold(&target.ex, z), fold(&target.ey, z));
+        let sample = |n: usize| -> Result<(Vec<f64>, Vec<Point>), Error> {
+            let t: Vec<f64> = (0..=n).map(|i| t0 + (t1 - t0) * i as f64 / n as f64).collect();
+            let p = t.iter().map(|&t| eval_xy(&ex, &ey, t, z)).collect::<Result<Vec<_>, _>>()?;
+            Ok((t, p))
+        };
+        let length = |p: &[Point]| p.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>();
+        let (t_coarse, coarse) = sample(1024)?;
+        let len = length(&coarse);
+        if !(len > 1e-6) {
+            return Ok(None);
+        }
+        if coarse[0].distance(coarse[coarse.len() - 1]) > 1e-6 * len.max(1.0) {
+            return Err(Error::Input(format!(
+                "{}: the target is not closed at Z{z}: t = {t0} gives ({:.4}, {:.4}), t = {t1} gives ({:.4}, {:.4})",
+                target.source,
+                coarse[0].z,
+                coarse[0].r,
+                coarse[coarse.len() - 1].z,
+                coarse[coarse.len() - 1].r
+            )));
+        }
+        let n = ((len / SAMPLE_SPACING).ceil() as usize).clamp(1024, 100_000);
+        let (t, p) = if n == 1024 { (t_coarse, coarse) } else { sample(n)? };
+        let ccw = crate::boolean::signed_area(&p[..p.len() - 1]) > 0.0;
+        let poly = Polyline::new(p.iter().map(|&q| ppoint(q)).collect(), None);
+        Ok(Some(Curve { target, z, ex, ey, t, p, poly, ccw }))
+    }
+
+    fn at(&self, t: f64) -> Point {
+        // Every t in range evaluated once already when sampling; a failure here is a formula
+        // that fails between samples, which the sampled neighbours stand in for.
+        eval_xy(&self.ex, &self.ey, t, self.z).unwrap_or_else(|_| {
+            let i = self.t.partition_point(|&s| s < t).min(self.p.len() - 1);
+            self.p[i]
+        })
+    }
+
+    /// The nearest curve point to `c`: the sample polyline's nearest segment, then Newton's
+    /// method on the exact curve within the neighbouring samples.
+    fn nearest(&self, c: Point) -> Near {
+        let (proj, (seg, _)) = self.poly.project_local_point_and_get_location(&ppoint(c), false);
+        let i = seg as usize;
+        let n = self.t.len() - 1;
+        let (a, b) = (self.t[i.saturating_sub(1)], self.t[(i + 2).min(n)]);
+        let (pi, pj) = (self.p[i], self.p[(i + 1).min(n)]);
+        let u = {
+            let q = Point::new(proj.point.x, proj.point.y);
+            let l = pi.distance(pj);
+            if l > 0.0 {
+                (pi.distance(q) / l).clamp(0.0, 1.0)
+            } else {
+                0.0
+            }
+        };
+        let t_guess = self.t[i] + u * (self.t[(i + 1).min(n)] - self.t[i]);
+        let phi = |t: f64| {
+            let p = self.at(t);
+            (p.z - c.z).powi(2) + (p.r - c.r).powi(2)
+        };
+        let h = 1e-3 * (b - a).max(1e-12) / 3.0;
+        let mut t = t_guess;
+        let mut ok = false;
+        for _ in 0..12 {
+            let (f0, fp, fm) = (phi(t), phi((t + h).min(b)), phi((t - h).max(a)));
+            let d1 = (fp - fm) / (2.0 * h);
+            let d2 = (fp - 2.0 * f0 + fm) / (h * h);
+            if !(d2 > 0.0) {
+                break;
+            }
+            let step = d1 / d2;
+            let next = (t - step).clamp(a, b);
+            let done = (next - t).abs() <= 1e-10 * (b - a);
+            t = next;
+            if done {
+                ok = true;
+                break;
+            }
+        }
+        if !ok {
+            t = golden_min(phi, a, b, 80);
+        }
+        let p = self.at(t);
+        let dist = p.distance(c);
+        let tangent = {
+            let (p1, p0) = (self.at((t + h).min(b)), self.at((t - h).max(a)));
+            Point::new(p1.z - p0.z, p1.r - p0.r)
+        };
+        let outside = self.outside(c, p, tangent, dist);
+        let free = match self.target.material {
+            Material::Inside => outside,
+            Material::Outside => !outside,
+        };
+        Near { t, sd: if free { dist } else { -dist } }
+    }
+
+    /// Whether `c` lies outside the closed curve, from the normal at its nearest point `p`, or
+    /// from the sample polygon where the normal does not decide (a cusp, a corner).
+    fn outside(&self, c: Point, p: Point, tangent: Point, dist: f64) -> bool {
+        let tl = (tangent.z * tangent.z + tangent.r * tangent.r).sqrt();
+        if dist > 0.0 && tl > 0.0 {
+            let sign = if self.ccw { 1.0 } else { -1.0 };
+            let dot = sign * ((c.z - p.z) * tangent.r - (c.r - p.r) * tangent.z) / (tl * dist);
+            if dot.abs() > 0.5 {
+                return dot > 0.0;
+            }
+        }
+        !crate::boolean::ring_contains(&self.p, c)
+    }
+
+    /// The arc length of the samples up to sample `i`, for spacing along the curve.
+    fn spacing(&self) -> f64 {
+        self.p.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>() / (self.p.len() - 1) as f64
+    }
+}
+
+/// The minimum of `f` on [a, b] by golden section (`n` steps).
+fn golden_min(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64, n: usize) -> f64 {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut x1, mut x2) = (b - g * (b - a), a + g * (b - a));
+    let (mut f1, mut f2) = (f(x1), f(x2));
+    for _ in 0..n {
+        if f1 <= f2 {
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = b - g * (b - a);
+            f1 = f(x1);
+        } else {
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = a + g * (b - a);
+            f2 = f(x2);
+        }
+    }
+    if f1 <= f2 {
+        x1
+    } else {
+        x2
+    }
+}
+
+/// A place on the part: the tool centre (gouge) or the target point (leftover), the curve
+/// parameter of the target point, the level and the program line.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Spot {
+    /// mm.
+    pub x: f64,
+    /// mm.
+    pub y: f64,
+    /// The level, mm.
+    pub z: f64,
+    /// The target's parameter at the nearest curve point, degrees.
+    pub t: f64,
+    /// The program line of the move (0 for a leftover, which no one move made).
+    pub line: usize,
+}
+
+/// One level's figures.
+#[derive(Clone, Debug, Serialize)]
+pub struct LevelReport {
+    /// Z of the level, mm.
+    pub z: f64,
+    /// Feed moves at this level.
+    pub moves: usize,
+    /// Largest gouge, mm (0: none).
+    pub gouge: f64,
+    /// Where (the tool centre).
+    pub gouge_at: Option<Spot>,
+    /// Largest leftover within the cutter's reach, mm (0: none).
+    pub leftover: f64,
+    /// Where (the target point).
+    pub leftover_at: Option<Spot>,
+}
+
+/// The deviation at one tool centre of the worst level: sd − r, negative where the cutter
+/// gouges, positive where it stays clear of the target.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct ProfilePoint {
+    /// Tool centre x, mm.
+    pub x: f64,
+    /// Tool centre y, mm.
+    pub y: f64,
+    /// The nearest target point's parameter, degrees.
+    pub t: f64,
+    /// sd − r, mm.
+    pub deviation: f64,
+}
+
+/// What the picture of the worst level needs.
+#[derive(Clone, Debug)]
+pub struct MillPicture {
+    /// The level.
+    pub z: f64,
+    /// The target's samples at that level.
+    pub target: Vec<Point>,
+    /// dist(P, path) − r at each sample, mm.
+    pub deviation: Vec<f64>,
+    /// The tool centre path's feed moves (arcs as chords).
+    pub path: Vec<(Point, Point)>,
+    /// The area the cutter swept (the union of its imprints).
+    pub swept: Vec<(Vec<Point>, Vec<Vec<Point>>)>,
+    /// The worst gouge's place, if any.
+    pub gouge_at: Option<Spot>,
+}
+
+/// `threadcheck mill`: the whole report (docs/json.md).
+#[derive(Clone, Debug, Serialize)]
+pub struct MillReport {
+    /// The program's name.
+    pub program: String,
+    /// Its dialect.
+    pub dialect: Dialect,
+    /// Cutter diameter, mm.
+    pub tool_diameter: f64,
+    /// Allowed gouge and leftover, mm.
+    pub tolerance: f64,
+    /// The target.
+    pub target: Target,
+    /// Pass when the gouge and the leftover are within the tolerance.
+    pub verdict: Verdict,
+    /// Largest gouge over all levels, mm.
+    pub gouge_max: f64,
+    /// Where.
+    pub gouge_at: Option<Spot>,
+    /// Largest leftover over all levels, mm.
+    pub leftover_max: f64,
+    /// Where.
+    pub leftover_at: Option<Spot>,
+    /// Every level that cuts, top down.
+    pub levels: Vec<LevelReport>,
+    /// The level the profile and the picture show: the worst gouge's, else the worst
+    /// leftover's.
+    pub worst_level: Option<f64>,
+    /// The deviation at each tool centre (move end) of that level.
+    pub profile: Vec<ProfilePoint>,
+    /// Warnings from the program and the stated assumptions.
+    pub notes: Vec<String>,
+    /// The picture's data.
+    #[serde(skip)]
+    pub picture: Option<MillPicture>,
+}
+
+/// What to check.
+#[derive(Clone, Debug)]
+pub struct MillSpec {
+    /// The program's text and its name for messages.
+    pub program: (String, String),
+    /// Its dialect.
+    pub dialect: Dialect,
+    /// Run the blocks in N order (a listing whose page break moved blocks).
+    pub n_order: bool,
+    /// Cutter diameter, mm.
+    pub tool_diameter: f64,
+    /// The target.
+    pub target: Target,
+    /// Allowed gouge and leftover, mm.
+    pub tolerance: f64,
+}
+
+/// One level's moves: (from, to, line), centres in the XY plane.
+struct LevelMoves {
+    z: f64,
+    segs: Vec<(Point, Point, usize)>,
+}
+
+/// Groups the feed moves by level (the deeper end's Z, to 1 nm), arcs as chords.
+fn levels(moves: &[Move]) -> Vec<LevelMoves> {
+    let mut out: Vec<LevelMoves> = Vec::new();
+    for m in moves.iter().filter(|m| !m.rapid) {
+        let z = m.from[2].min(m.to[2]);
+        let key = (z * 1e6).round() / 1e6;
+        let (a, b) = (Point::new(m.from[0], m.from[1]), Point::new(m.to[0], m.to[1]));
+        let pts: Vec<Point> = match m.arc {
+            Some((c, dir)) => {
+                let c = Point::new(c[0], c[1]);
+                let r = c.distance(a);
+                let s = (a.r - c.r).atan2(a.z - c.z);
+                let mut e = (b.r - c.r).atan2(b.z - c.z);
+                if dir > 0.0 {
+                    while e <= s {
+                        e += std::f64::consts::TAU;
+                    }
+                } else {
+                    while e >= s {
+                        e -= std::f64::consts::TAU;
+                    }
+                }
+                let mut pts =
+                    crate::geometry::Arc { center: c, radius: r, start: s, end: e }.tessellate(ARC_TOLERANCE);
+                if let Some(last) = pts.last_mut() {
+                    *last = b;
+                }
+                pts
+            }
+            None => vec![a, b],
+        };
+        let level = match out.iter_mut().find(|l| l.z == key) {
+            Some(l) => l,
+            None => {
+                out.push(LevelMoves { z: key, segs: Vec::new() });
+                let n = out.len() - 1;
+                &mut out[n]
+            }
+        };
+        for w in pts.windows(2) {
+            level.segs.push((w[0], w[1], m.line));
+        }
+    }
+    out.sort_by(|a, b| b.z.total_cmp(&a.z));
+    out
+}
+
+/// One level measured: its report, the profile at its move ends, and the deviation along the
+/// target for the picture.
+struct Measured {
+    report: LevelReport,
+    profile: Vec<ProfilePoint>,
+    deviation: Vec<f64>,
+    samples: Vec<Point>,
+}
+
+fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64) -> Measured {
+    let z = lm.z;
+    // The gouge at every move end, then inside the moves that could beat the worst end.
+    let mut ends: Vec<(Point, Near)> = Vec::with_capacity(lm.segs.len() + 1);
+    let mut seg_ends: Vec<(usize, usize)> = Vec::with_capacity(lm.segs.len());
+    for &(a, b, _) in &lm.segs {
+        let ia = match ends.last() {
+            Some((p, _)) if *p == a => ends.len() - 1,
+            _ => {
+                ends.push((a, curve.nearest(a)));
+                ends.len() - 1
+            }
+        };
+        ends.push((b, curve.nearest(b)));
+        seg_ends.push((ia, ends.len() - 1));
+    }
+    let g = |n: &Near| r - n.sd;
+    let mut best: Option<(f64, Point, Near, usize)> = None;
+    for (k, &(ia, ib)) in seg_ends.iter().enumerate() {
+        for &i in &[ia, ib] {
+            let v = g(&ends[i].1);
+            if best.is_none_or(|b| v > b.0) {
+                best = Some((v, ends[i].0, ends[i].1, lm.segs[k].2));
+            }
+        }
+    }
+    // sd is 1-Lipschitz: a move's inside can beat its ends by at most half its length.
+    let mut order: Vec<(f64, usize)> = seg_ends
+        .iter()
+        .enumerate()
+        .map(|(k, &(ia, ib))| {
+            let (a, b, _) = lm.segs[k];
+            (g(&ends[ia].1).max(g(&ends[ib].1)) + 0.5 * a.distance(b), k)
+        })
+        .collect();
+    order.sort_by(|x, y| y.0.total_cmp(&x.0));
+    for (bound, k) in order {
+        let top = best.map_or(f64::NEG_INFINITY, |b| b.0);
+        if bound <= top + 1e-10 {
+            break;
+        }
+        let (a, b, line) = lm.segs[k];
+        let at = |s: f64| Point::new(a.z + s * (b.z - a.z), a.r + s * (b.r - a.r));
+        let s = golden_min(|s| -g(&curve.nearest(at(s))), 0.0, 1.0, 60);
+        let c = at(s);
+        let near = curve.nearest(c);
+        if g(&near) > top {
+            best = Some((g(&near), c, near, line));
+        }
+    }
+    let profile =
+        ends.iter().map(|(p, n)| ProfilePoint { x: p.z, y: p.r, t: n.t, deviation: n.sd - r }).collect();
+    let (gouge, gouge_at) = match best {
+        Some((v, c, n, line)) if v > 0.0 => (v, Some(Spot { x: c.z, y: c.r, z, t: n.t, line })),
+        _ => (0.0, None),
+    };
+    // The leftover: target samples against the path, the largest refined on the exact curve.
+    let path = {
+        let mut v = Vec::new();
+        let mut idx = Vec::new();
+        for &(a, b, _) in &lm.segs {
+            if a.distance(b) > 1e-12 {
+                idx.push([v.len() as u32, v.len() as u32 + 1]);
+                v.push(ppoint(a));
+                v.push(ppoint(b));
+            }
+        }
+        (!idx.is_empty()).then(|| Polyline::new(v, Some(idx)))
+    };
+    let lone: Vec<Point> = lm.segs.iter().filter(|(a, b, _)| a.distance(*b) <= 1e-12).map(|s| s.0).collect();
+    let dist_to_path = |p: Point| {
+        let d = path.as_ref().map_or(f64::INFINITY, |pl| pl.distance_to_local_point(&ppoint(p), true));
+        lone.iter().map(|q| q.distance(p)).fold(d, f64::min)
+    };
+    let deviation: Vec<f64> = curve.p.iter().map(|&p| dist_to_path(p) - r).collect();
+    let reach = |d: f64| d > 0.0 && d <= r;
+    let mut left: Option<(f64, f64)> = None;
+    let n = curve.t.len() - 1;
+    let spacing = curve.spacing();
+    let mut cands: Vec<usize> = (0..=n).filter(|&i| reach(deviation[i])).collect();
+    cands.sort_by(|&a, &b| deviation[b].total_cmp(&deviation[a]));
+    for i in cands {
+        let top = left.map_or(0.0, |l| l.0);
+        if deviation[i] + spacing <= top {
+            break;
+        }
+        let (a, b) = (curve.t[i.saturating_sub(1)], curve.t[(i + 1).min(n)]);
+        let t = golden_min(|t| -dist_to_path(curve.at(t)), a, b, 60);
+        let d = dist_to_path(curve.at(t)) - r;
+        let (d, t) = if d >= deviation[i] { (d, t) } else { (deviation[i], curve.t[i]) };
+        if reach(d) && d > top {
+            left = Some((d, t));
+        }
+    }
+    let (leftover, leftover_at) = match left {
+        Some((d, t)) => {
+            let p = curve.at(t);
+            (d, Some(Spot { x: p.z, y: p.r, z, t, line: 0 }))
+        }
+        None => (0.0, None),
+    };
+    Measured {
+        report: LevelReport { z, moves: lm.segs.len(), gouge, gouge_at, leftover, leftover_at },
+        profile,
+        deviation,
+        samples: curve.p.clone(),
+    }
+}
+
+/// Runs the check: expands the program, measures every level against the target.
+///
+/// ```
+/// use threadcheck::mill::{mill, MillSpec, Target};
+/// use threadcheck::Dialect;
+/// // A Ø40 boss cut with a Ø6 cutter along 36 chords of the centre circle R = 23: the worst
+/// // gouge is the chord sag 23·(1 − cos 5°) = 0.087518 mm, at the middle of a chord.
+/// let mut prog = String::from("G0 X23 Y0 Z2\nG1 Z-1\n");
+/// for k in 1..=36 {
+///     let a = (10.0 * k as f64).to_radians();
+///     prog.push_str(&format!("G1 X{:.9} Y{:.9}\n", 23.0 * a.cos(), 23.0 * a.sin()));
+/// }
+/// prog.push_str("G0 Z2\nM30\n");
+/// let target = Target::from_toml("x = \"20*cos(t)\"\ny = \"20*sin(t)\"\nt = [0, 360]\nmaterial = \"inside\"", "boss.toml")?;
+/// let spec = MillSpec { program: (prog, "boss.nc".into()), dialect: Dialect::Fanuc, n_order: false,
+///                       tool_diameter: 6.0, target, tolerance: 0.01 };
+/// let r = mill(&spec)?;
+/// assert!((r.gouge_max - 23.0 * (1.0 - 5f64.to_radians().cos())).abs() < 1e-7);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
+    let d = spec.tool_diameter;
+    if !(d.is_finite() && d > 0.0) {
+        return Err(Error::Input(format!("tool diameter {d} mm must be a positive length")));
+    }
+    if !(spec.tolerance.is_finite() && spec.tolerance >= 0.0) {
+        return Err(Error::Input(format!("tolerance {} mm must be a length ≥ 0", spec.tolerance)));
+    }
+    let r = 0.5 * d;
+    let (text, name) = &spec.program;
+    let opts = ReadOptions { moves: true, allow_no_threading: true, n_order: spec.n_order, budget: None };
+    let prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
+    let mut notes = prog.notes.clone();
+    if spec.n_order {
+        notes.push("the blocks run in the order of their N numbers, not as printed".into());
+    }
+    let top = spec.target.top();
+    let all = levels(&prog.moves);
+    if all.is_empty() {
+        return Err(Error::Input(format!("{name}: no feed move (G1, G2, G3) to check")));
+    }
+    let (cut, air): (Vec<LevelMoves>, Vec<LevelMoves>) = all.into_iter().partition(|l| l.z < top - 1e-9);
+    if !air.is_empty() {
+        notes.push(format!(
+            "{} level{} at or above the part's top Z{} cut air and {} left out (Z{} … Z{})",
+            air.len(),
+            if air.len() == 1 { "" } else { "s" },
+            crate::report::fmt_num(top),
+            if air.len() == 1 { "is" } else { "are" },
+            crate::report::fmt_num(air[air.len() - 1].z),
+            crate::report::fmt_num(air[0].z),
+        ));
+    }
+    let (cut, below): (Vec<LevelMoves>, Vec<LevelMoves>) =
+        cut.into_iter().partition(|l| spec.target.z.is_none_or(|z| l.z >= z[0] - 1e-9));
+    if !below.is_empty() {
+        notes.push(format!(
+            "{} level{} below the part's bottom Z{} left out",
+            below.len(),
+            if below.len() == 1 { "" } else { "s" },
+            crate::report::fmt_num(spec.target.z.map_or(0.0, |z| z[0]))
+        ));
+    }
+    if let (Some([bottom, _]), Some(deepest)) = (spec.target.z, cut.last()) {
+        if deepest.z > bottom + 1e-9 {
+            notes.push(format!(
+                "the target reaches down to Z{} but the deepest level cut is Z{}: {} mm of it is never machined",
+                crate::report::fmt_num(bottom),
+                crate::report::fmt_num(deepest.z),
+                crate::report::fmt_num(deepest.z - bottom)
+            ));
+        }
+    }
+    notes.push(
+        "each level is checked against the target at its own Z (the section its tool bottom cuts); the tool's flank also passes the sections above it".into(),
+    );
+    // A target that does not depend on z is sampled once.
+    let shared = if spec.target.uses_z {
+        None
+    } else {
+        Some(
+            Curve::new(&spec.target, 0.0)?
+                .ok_or_else(|| Error::Input("the target curve has no extent".into()))?,
+        )
+    };
+    let measured: Vec<Result<Option<Measured>, Error>> = cut
+        .par_iter()
+        .map(|lm| match &shared {
+            Some(c) => Ok(Some(measure_level(c, lm, r))),
+            None => Ok(Curve::new(&spec.target, lm.z)?.map(|c| measure_level(&c, lm, r))),
+        })
+        .collect();
+    let mut levels_out = Vec::new();
+    let mut kept: Vec<(Measured, &LevelMoves)> = Vec::new();
+    for (m, lm) in measured.into_iter().zip(&cut) {
+        match m? {
+            Some(m) => {
+                levels_out.push(m.report.clone());
+                kept.push((m, lm));
+            }
+            None => notes.push(format!(
+                "the target has no extent at Z{}: that level is not checked",
+                crate::report::fmt_num(lm.z)
+            )),
+        }
+    }
+    let worst_g = kept.iter().max_by(|a, b| a.0.report.gouge.total_cmp(&b.0.report.gouge));
+    let worst_l = kept.iter().max_by(|a, b| a.0.report.leftover.total_cmp(&b.0.report.leftover));
+    let gouge_max = worst_g.map_or(0.0, |m| m.0.report.gouge);
+    let leftover_max = worst_l.map_or(0.0, |m| m.0.report.leftover);
+    let shown = if gouge_max > 0.0 { worst_g } else { worst_l };
+    let picture = shown.map(|(m, lm)| {
+        let path: Vec<(Point, Point)> = lm.segs.iter().map(|&(a, b, _)| (a, b)).collect();
+        MillPicture {
+            z: m.report.z,
+            target: m.samples.clone(),
+            deviation: m.deviation.clone(),
+            swept: crate::sweep::swept_disk(&path, r, 1e-3).polygons(),
+            path,
+            gouge_at: m.report.gouge_at,
+        }
+    });
+    let pass = gouge_max <= spec.tolerance + RESOLUTION && leftover_max <= spec.tolerance + RESOLUTION;
+    Ok(MillReport {
+        program: name.clone(),
+        dialect: spec.dialect,
+        tool_diameter: d,
+        tolerance: spec.tolerance,
+        target: spec.target.clone(),
+        verdict: Verdict::of(pass),
+        gouge_max,
+        gouge_at: worst_g.and_then(|m| m.0.report.gouge_at),
+        leftover_max,
+        leftover_at: worst_l.and_then(|m| m.0.report.leftover_at),
+        worst_level: shown.map(|m| m.0.report.z),
+        profile: shown.map(|m| m.0.profile.clone()).unwrap_or_default(),
+        levels: levels_out,
+        notes,
+        picture,
+    })
+}
+
+/// The text report.
+pub fn text(r: &MillReport) -> String {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{} ({}): Ø{} mm cutter, {} levels checked against x = {}, y = {} (material {})",
+        r.program,
+        r.dialect.name(),
+        crate::report::fmt_num(r.tool_diameter),
+        r.levels.len(),
+        r.target.x,
+        r.target.y,
+        match r.target.material {
+            Material::Inside => "inside",
+            Material::Outside => "outside",
+        }
+    );
+    let spot = |p: &Option<Spot>| {
+        p.map_or(String::new(), |p| {
+            format!(
+                " at X{:.4} Y{:.4} Z{} (t = {:.2}°{})",
+                p.x,
+                p.y,
+                crate::report::fmt_num(p.z),
+                p.t,
+                if p.line > 0 { format!(", line {}", p.line) } else { String::new() }
+            )
+        })
+    };
+    let _ = writeln!(s, "\n  gouge     {:.4} mm{}", r.gouge_max, spot(&r.gouge_at));
+    let _ = writeln!(s, "  leftover  {:.4} mm{}", r.leftover_max, spot(&r.leftover_at));
+    let _ = writeln!(s, "  tolerance {:.4} mm", r.tolerance);
+    if r.levels.len() > 1 {
+        let _ = writeln!(s, "\n  level Z     moves     gouge mm   leftover mm");
+        let show: Vec<&LevelReport> = if r.levels.len() <= 12 {
+            r.levels.iter().collect()
+        } else {
+            // The first and last few, and the worst.
+            let mut v: Vec<&LevelReport> =
+                r.levels.iter().take(4).chain(r.levels.iter().rev().take(4).rev()).collect();
+            if let Some(w) = r.levels.iter().max_by(|a, b| a.gouge.total_cmp(&b.gouge)) {
+                if !v.iter().any(|l| l.z == w.z) {
+                    v.push(w);
+                }
+            }
+            v.sort_by(|a, b| b.z.total_cmp(&a.z));
+            v
+        };
+        let mut last_z = None;
+        for l in show {
+            if let Some(prev) = last_z {
+                let gap = r.levels.iter().filter(|m| m.z < prev && m.z > l.z).count();
+                if gap > 0 {
+                    let _ = writeln!(s, "  … {gap} more");
+                }
+            }
+            let _ = writeln!(
+                s,
+                "  {:>8}  {:>7}  {:>10.4}  {:>12.4}",
+                crate::report::fmt_num(l.z),
+                l.moves,
+                l.gouge,
+                l.leftover
+            );
+            last_z = Some(l.z);
+        }
+    }
+    let _ = writeln!(
+        s,
+        "\nverdict: {}",
+        match r.verdict {
+            Verdict::Pass => "PASS".to_string(),
+            Verdict::Fail => {
+                let mut why = Vec::new();
+                if r.gouge_max > r.tolerance + RESOLUTION {
+                    why.push("gouge");
+                }
+                if r.leftover_max > r.tolerance + RESOLUTION {
+                    why.push("material left");
+                }
+                format!("FAIL ({} beyond {} mm)", why.join(", "), crate::report::fmt_num(r.tolerance))
+            }
+        }
+    );
+    for n in &r.notes {
+        let _ = writeln!(s, "note: {n}");
+    }
+    s
+}
