@@ -212,3 +212,20 @@ fn committed_cam_picture_is_current() {
     let committed = std::fs::read(repo.join("reports/mill-cardioid-cam.svg")).unwrap();
     assert!(fresh == committed, "reports/mill-cardioid-cam.svg is stale: rerun the README's mill command");
 }
+
+/// G3 arcs (I J and R): the centre circle R23.05 leaves 0.05 mm on the Ø40 boss all round (the
+/// cutter's edge runs at 23.05 − 3 = 20.05); R23 is on size. Arcs are swept as chords within
+/// 0.01 µm, so neither level gouges by more than that.
+#[test]
+fn boss_cut_by_arcs_leaves_the_offset() {
+    let (_, v) = mill_json(&[
+        "--program", "programs/milling/boss-arcs.nc", "--tool-diameter", "6", "--target", "targets/boss.toml",
+    ]);
+    let levels = v["levels"].as_array().unwrap();
+    let at = |z: f64| levels.iter().find(|l| l["z"].as_f64() == Some(z)).unwrap();
+    assert!((at(-1.0)["leftover"].as_f64().unwrap() - 0.05).abs() <= 1e-5, "{}", at(-1.0));
+    assert!(at(-2.0)["leftover"].as_f64().unwrap() <= 1e-5, "{}", at(-2.0));
+    for z in [-1.0, -2.0] {
+        assert!(at(z)["gouge"].as_f64().unwrap() <= 1e-5, "{}", at(z));
+    }
+}
