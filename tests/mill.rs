@@ -219,7 +219,12 @@ fn committed_cam_picture_is_current() {
 #[test]
 fn boss_cut_by_arcs_leaves_the_offset() {
     let (_, v) = mill_json(&[
-        "--program", "programs/milling/boss-arcs.nc", "--tool-diameter", "6", "--target", "targets/boss.toml",
+        "--program",
+        "programs/milling/boss-arcs.nc",
+        "--tool-diameter",
+        "6",
+        "--target",
+        "targets/boss.toml",
     ]);
     let levels = v["levels"].as_array().unwrap();
     let at = |z: f64| levels.iter().find(|l| l["z"].as_f64() == Some(z)).unwrap();
