@@ -145,6 +145,32 @@ impl CheckFeature {
         }
     }
 
+    /// The words a machinist uses for the feature of a bolt (`External`) or a nut: `pitch
+    /// diameter d2`, `minor diameter D1`, `GO gauge (maximum material)`.
+    pub fn words(self, kind: crate::ThreadKind) -> &'static str {
+        let ext = kind == crate::ThreadKind::External;
+        match self {
+            CheckFeature::MajorDiameter if ext => "major diameter d",
+            CheckFeature::MajorDiameter => "major diameter D",
+            CheckFeature::PitchDiameter if ext => "pitch diameter d2",
+            CheckFeature::PitchDiameter => "pitch diameter D2",
+            CheckFeature::MinorDiameter if ext => "minor diameter d3",
+            CheckFeature::MinorDiameter => "minor diameter D1",
+            CheckFeature::RootRadius => "root radius",
+            CheckFeature::FlankAngle => "flank angle",
+            CheckFeature::MaxMaterial => "GO gauge (max. material)",
+            CheckFeature::Crest => "crest left standing",
+            CheckFeature::SingleGroove => "one groove per pitch",
+            CheckFeature::GaugePlane => "gauge plane",
+            CheckFeature::Taper => "taper",
+            CheckFeature::ConstantSpindleSpeed => "constant rpm (G97)",
+            CheckFeature::SpindleSpeed => "spindle speed",
+            CheckFeature::Feed => "feed (S × lead)",
+            CheckFeature::FlankClearance => "flank clearance",
+            CheckFeature::RunOut => "run-out room",
+        }
+    }
+
     /// Whether the value is a length in mm (shown in inches beside it with `--units inch`).
     pub fn is_length(self) -> bool {
         match self {

@@ -90,6 +90,9 @@ enum Command {
         /// Write an SVG cross-section to this file.
         #[arg(long, value_name = "FILE")]
         svg: Option<PathBuf>,
+        /// Write a self-contained HTML report (picture, checks, passes, notes) to this file.
+        #[arg(long, value_name = "FILE")]
+        html: Option<PathBuf>,
         #[command(flatten)]
         json: JsonArg,
     },
@@ -107,6 +110,9 @@ enum Command {
         /// Write the table as Markdown to this file.
         #[arg(long, value_name = "FILE")]
         markdown: Option<PathBuf>,
+        /// Write a self-contained HTML report (the table and each strategy's picture) to this file.
+        #[arg(long, value_name = "FILE")]
+        html: Option<PathBuf>,
     },
     /// Verify the catalogue in parallel: ISO 261 (M1–M68, coarse and fine) by default, every
     /// form's series with --form all.
@@ -453,7 +459,7 @@ impl Cli {
                 };
                 done(LimitsJob { designation, allow_nonstandard, json }.run()?)
             }
-            Command::Verify { plan, gauge_only, no_pass_metrics, svg, json: JsonArg { json } } => {
+            Command::Verify { plan, gauge_only, no_pass_metrics, svg, html, json: JsonArg { json } } => {
                 plan.need_thread("verify")?;
                 let mut spec = plan.spec(gauge_only)?;
                 spec.metrics = !no_pass_metrics;
@@ -465,6 +471,7 @@ impl Cli {
                         insert_given: plan.insert.is_some(),
                         tools,
                         svg,
+                        html,
                         json,
                     }
                     .run()?,
@@ -473,7 +480,7 @@ impl Cli {
             Command::Passes { plan, json: JsonArg { json } } => {
                 done(PassesJob { spec: plan.spec(false)?, json }.run()?)
             }
-            Command::Compare { plan, modified, json: JsonArg { json }, markdown } => {
+            Command::Compare { plan, modified, json: JsonArg { json }, markdown, html } => {
                 plan.need_thread("compare")?;
                 let spec = plan.spec(false)?;
                 let modified = if modified.is_empty() {
@@ -486,7 +493,7 @@ impl Cli {
                 } else {
                     modified
                 };
-                done(CompareJob { spec, modified, json, markdown }.run()?)
+                done(CompareJob { spec, modified, json, markdown, html }.run()?)
             }
             Command::Fit(f) => {
                 use threadcheck::fit::FitSide;

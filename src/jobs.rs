@@ -165,7 +165,7 @@ fn limits_table(des: &Designation, ext: Option<&ThreadLimits>, int: Option<&Thre
 /// use threadcheck::jobs::{Outcome, VerifyJob};
 /// use threadcheck::{InsertChoice, VerifySpec};
 /// let spec = VerifySpec { insert: InsertChoice::Full, final_x: Some(8.2), ..VerifySpec::new("M10x1.5-6g") };
-/// let job = VerifyJob { spec, threads: vec!["M10x1.5-6g".into()], insert_given: true, tools: None, svg: None, json: None };
+/// let job = VerifyJob { spec, threads: vec!["M10x1.5-6g".into()], insert_given: true, tools: None, svg: None, html: None, json: None };
 /// let (text, outcome) = job.run()?;
 /// // A full-profile insert with its tip on d3 = d − 1.226869·P = 8.160 cuts the basic d2, 9.026;
 /// // X8.2 is shallower still, so d2 comes out above 6g's 8.994.
@@ -185,6 +185,8 @@ pub struct VerifyJob {
     pub tools: Option<crate::tools::ToolTable>,
     /// Write the SVG cross-section here.
     pub svg: Option<std::path::PathBuf>,
+    /// Write the self-contained HTML report here.
+    pub html: Option<std::path::PathBuf>,
     /// Write the JSON report here; `-` prints it on stdout instead of the table.
     pub json: Option<String>,
 }
@@ -201,8 +203,9 @@ impl VerifyJob {
         let json_text =
             self.json.as_ref().map(|_| pretty(&crate::report::VerifyReport::of(&v))).transpose()?;
         let svg_text = self.svg.as_ref().map(|_| crate::render::verify_svg(&v));
+        let html_text = self.html.as_ref().map(|_| crate::html::verify_html(&v));
         let text = crate::report::verify_text(&v);
-        self.write(json_text, svg_text, text, outcome)
+        self.write(json_text, svg_text, html_text, text, outcome)
     }
 
     fn run_program(
@@ -254,19 +257,23 @@ impl VerifyJob {
         let json_text =
             self.json.as_ref().map(|_| pretty(&crate::report::ProgramReport::of(&pv))).transpose()?;
         let svg_text = self.svg.as_ref().map(|_| crate::render::program_svg(&pv));
+        let html_text = self.html.as_ref().map(|_| crate::html::program_html(&pv));
         let text = crate::report::program_text(&pv);
-        self.write(json_text, svg_text, text, outcome)
+        self.write(json_text, svg_text, html_text, text, outcome)
     }
 
     fn write(
         &self,
         json_text: Option<String>,
         svg_text: Option<String>,
+        html_text: Option<String>,
         text: String,
         outcome: Outcome,
     ) -> Result<(String, Outcome), Error> {
-        if let (Some(path), Some(t)) = (&self.svg, &svg_text) {
-            crate::output::write_atomic(path, t.as_bytes())?;
+        for (path, t) in [(&self.svg, &svg_text), (&self.html, &html_text)] {
+            if let (Some(path), Some(t)) = (path, t) {
+                crate::output::write_atomic(path, t.as_bytes())?;
+            }
         }
         Ok((route_json(self.json.as_deref(), json_text, text)?, outcome))
     }
@@ -468,6 +475,8 @@ pub struct CompareJob {
     pub json: Option<String>,
     /// Write the table as Markdown here.
     pub markdown: Option<std::path::PathBuf>,
+    /// Write the self-contained HTML report (the table and every strategy's picture) here.
+    pub html: Option<std::path::PathBuf>,
 }
 
 impl CompareJob {
@@ -477,8 +486,12 @@ impl CompareJob {
         let md = crate::compare::markdown(&c);
         let json_text =
             self.json.as_ref().map(|_| pretty(&crate::compare::CompareReport::of(&c))).transpose()?;
+        let html = self.html.as_ref().map(|_| crate::html::compare_html(&c));
         if let Some(p) = &self.markdown {
             crate::output::write_atomic(p, md.as_bytes())?;
+        }
+        if let (Some(p), Some(h)) = (&self.html, &html) {
+            crate::output::write_atomic(p, h.as_bytes())?;
         }
         Ok((route_json(self.json.as_deref(), json_text, crate::compare::text(&c))?, Outcome::Pass))
     }

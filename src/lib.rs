@@ -60,6 +60,7 @@ pub mod error;
 pub mod fit;
 pub mod gcode;
 pub mod geometry;
+pub mod html;
 pub mod insert;
 pub mod jobs;
 mod limits;

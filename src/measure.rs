@@ -202,8 +202,8 @@ fn polyline(pts: &[Point]) -> Polyline {
     Polyline::new(pts.iter().map(|p| PPoint::new(p.z, p.r)).collect(), None)
 }
 
-/// Golden-section search for the minimum of `f` on `[a, b]`.
-fn golden_min(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64, iters: usize) -> (f64, f64) {
+/// Golden-section search for the minimum of `f` on `[a, b]`: (argument, value).
+pub(crate) fn golden_min(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64, iters: usize) -> (f64, f64) {
     let g = 0.5 * (5f64.sqrt() - 1.0);
     let mut c = b - g * (b - a);
     let mut d = a + g * (b - a);
@@ -536,6 +536,52 @@ pub fn measure(setup: &MeasureSetup<'_>, profile: &[Point], z_ref: f64) -> Resul
         three_wire,
         max_material_clearance,
     })
+}
+
+/// The normal deviation of profile `other` from the `reference` profile (both in part
+/// coordinates, low to high Z), at `n` points spaced evenly along the reference: (arc length
+/// along it, signed distance in mm, region). The distance is positive where `other` lies on
+/// the air side (more material): the air is above the profile (`air_up`, a bolt) or below it (a
+/// nut). The region is 0 root, 1 flank, 2 crest, read off the reference's slope and height.
+pub fn deviation_along(reference: &[Point], other: &[Point], air_up: bool, n: usize) -> Vec<(f64, f64, u8)> {
+    if reference.len() < 2 || other.len() < 2 || n < 2 {
+        return Vec::new();
+    }
+    let lengths: Vec<f64> = std::iter::once(0.0)
+        .chain(reference.windows(2).scan(0.0, |acc, w| {
+            *acc += w[0].distance(w[1]);
+            Some(*acc)
+        }))
+        .collect();
+    let total = lengths[lengths.len() - 1];
+    let (r_lo, r_hi) =
+        reference.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.r), b.max(p.r)));
+    let mid = 0.5 * (r_lo + r_hi);
+    let line = polyline(other);
+    let mut out = Vec::with_capacity(n);
+    for k in 0..n {
+        let s = total * k as f64 / (n - 1) as f64;
+        let i = lengths.partition_point(|&l| l < s).clamp(1, reference.len() - 1);
+        let (a, b) = (reference[i - 1], reference[i]);
+        let seg = lengths[i] - lengths[i - 1];
+        let u = if seg > 0.0 { ((s - lengths[i - 1]) / seg).clamp(0.0, 1.0) } else { 0.0 };
+        let q = Point::new(a.z + u * (b.z - a.z), a.r + u * (b.r - a.r));
+        let (tz, tr) = ((b.z - a.z) / seg.max(1e-15), (b.r - a.r) / seg.max(1e-15));
+        let (nz, nr) = if air_up { (-tr, tz) } else { (tr, -tz) };
+        let proj = line.project_local_point(&PPoint::new(q.z, q.r), false);
+        let (cz, cr) = (proj.point.x - q.z, proj.point.y - q.r);
+        let d = cz.hypot(cr);
+        let dev = if cz * nz + cr * nr >= 0.0 { d } else { -d };
+        let region = if tr.abs() > 0.05 {
+            1
+        } else if (q.r < mid) == air_up {
+            0
+        } else {
+            2
+        };
+        out.push((s, dev, region));
+    }
+    out
 }
 
 #[cfg(test)]

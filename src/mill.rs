@@ -30,6 +30,7 @@
 use crate::gcode::expr::{parse_all, Env, Expr, Syntax, Value, VarKey, VarRef};
 use crate::gcode::{Dialect, Move, ReadOptions};
 use crate::geometry::Point;
+use crate::measure::golden_min;
 use crate::report::Verdict;
 use crate::Error;
 use parry2d_f64::math::Point as PPoint;
@@ -366,7 +367,7 @@ impl<'a> Curve<'a> {
             }
         }
         if !ok {
-            t = golden_min(phi, a, b, 80);
+            t = golden_min(&phi, a, b, 80).0;
         }
         let p = self.at(t);
         let dist = p.distance(c);
@@ -399,33 +400,6 @@ impl<'a> Curve<'a> {
     /// The arc length of the samples up to sample `i`, for spacing along the curve.
     fn spacing(&self) -> f64 {
         self.p.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>() / (self.p.len() - 1) as f64
-    }
-}
-
-/// The minimum of `f` on [a, b] by golden section (`n` steps).
-fn golden_min(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64, n: usize) -> f64 {
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut x1, mut x2) = (b - g * (b - a), a + g * (b - a));
-    let (mut f1, mut f2) = (f(x1), f(x2));
-    for _ in 0..n {
-        if f1 <= f2 {
-            b = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = b - g * (b - a);
-            f1 = f(x1);
-        } else {
-            a = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = a + g * (b - a);
-            f2 = f(x2);
-        }
-    }
-    if f1 <= f2 {
-        x1
-    } else {
-        x2
     }
 }
 
@@ -652,7 +626,7 @@ fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64) -> Measured {
         }
         let (a, b, line) = lm.segs[k];
         let at = |s: f64| Point::new(a.z + s * (b.z - a.z), a.r + s * (b.r - a.r));
-        let s = golden_min(|s| -g(&curve.nearest(at(s))), 0.0, 1.0, 60);
+        let s = golden_min(&|s| -g(&curve.nearest(at(s))), 0.0, 1.0, 60).0;
         let c = at(s);
         let near = curve.nearest(c);
         if g(&near) > top {
@@ -696,7 +670,7 @@ fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64) -> Measured {
             break;
         }
         let (a, b) = (curve.t[i.saturating_sub(1)], curve.t[(i + 1).min(n)]);
-        let t = golden_min(|t| -dist_to_path(curve.at(t)), a, b, 60);
+        let t = golden_min(&|t| -dist_to_path(curve.at(t)), a, b, 60).0;
         let d = dist_to_path(curve.at(t)) - r;
         let (d, t) = if d >= deviation[i] { (d, t) } else { (deviation[i], curve.t[i]) };
         if reach(d) && d > top {

@@ -93,8 +93,9 @@ fn shifted_profile(
     out.into_iter().filter(|q| q.z >= z_range.0 && q.z <= z_range.1).collect()
 }
 
-/// A panel: its group (with the clip path, white background and label) and the group to draw
-/// in, clipped to the panel.
+/// A panel: its group (with the clip path, white background, frame and the caption above it)
+/// and the group to draw in, clipped to the panel. The frame carries `class="panel"`: nothing
+/// written in the picture lies inside one (the layout test checks it).
 fn panel(f: &Frame, id: &str, label: &str) -> (Group, Group) {
     let clip_id = format!("clip-{id}");
     let frame = Rectangle::new().set("x", f.x0).set("y", f.y0).set("width", f.w).set("height", f.h);
@@ -104,9 +105,72 @@ fn panel(f: &Frame, id: &str, label: &str) -> (Group, Group) {
             svg::node::element::Definitions::new()
                 .add(svg::node::element::ClipPath::new().set("id", clip_id.clone()).add(frame.clone())),
         )
-        .add(frame.set("fill", "white").set("stroke", "#999"))
-        .add(text(f.x0 + 6.0, f.y0 + 16.0, 12.0, label));
+        .add(frame.set("fill", "white").set("stroke", "#999").set("class", "panel"))
+        .add(text(f.x0, f.y0 - 5.0, 12.0, label).set("font-weight", "bold"));
     (g, Group::new().set("clip-path", format!("url(#{clip_id})")))
+}
+
+/// A tick step of 1, 2 or 5 × 10ⁿ giving about `n` ticks over `span`.
+fn tick_step(span: f64, n: f64) -> f64 {
+    let raw = (span / n).max(1e-9);
+    let e = 10f64.powf(raw.log10().floor());
+    [1.0, 2.0, 5.0, 10.0].into_iter().map(|k| k * e).find(|s| *s >= raw).unwrap_or(10.0 * e)
+}
+
+/// A tick label without float noise.
+fn tick_label(v: f64, step: f64) -> String {
+    let decimals = (-step.log10().floor()).max(0.0) as usize;
+    let s = format!("{v:.decimals$}");
+    if s.starts_with('-') && s.trim_start_matches(['-', '0', '.']).is_empty() {
+        s[1..].to_string()
+    } else {
+        s
+    }
+}
+
+/// Axes of a panel: Z (mm) ticks below it, diameter (mm, twice the radius) ticks on its right.
+fn axes(f: &Frame, diameter_axis: bool) -> Group {
+    let mut g = Group::new().set("class", "axes");
+    let (z0, z1) = f.z_range();
+    let step = tick_step(z1 - z0, 6.0);
+    let mut z = (z0 / step).ceil() * step;
+    while z <= z1 + 1e-9 {
+        let x = f.x(z);
+        g = g
+            .add(
+                Line::new()
+                    .set("x1", x)
+                    .set("x2", x)
+                    .set("y1", f.y0 + f.h)
+                    .set("y2", f.y0 + f.h + 4.0)
+                    .set("stroke", "#333"),
+            )
+            .add(text(x, f.y0 + f.h + 14.0, 9.0, tick_label(z, step)).set("text-anchor", "middle"));
+        z += step;
+    }
+    g = g.add(text(f.x0 + f.w, f.y0 + f.h + 26.0, 9.0, "Z mm").set("text-anchor", "end"));
+    if diameter_axis {
+        let r_lo = f.r_max - f.h / f.scale;
+        let (d0, d1) = (2.0 * r_lo, 2.0 * f.r_max);
+        let step = tick_step(d1 - d0, 5.0);
+        let mut d = (d0 / step).ceil() * step;
+        while d <= d1 + 1e-9 {
+            let y = f.y(0.5 * d);
+            g = g
+                .add(
+                    Line::new()
+                        .set("x1", f.x0 + f.w)
+                        .set("x2", f.x0 + f.w + 4.0)
+                        .set("y1", y)
+                        .set("y2", y)
+                        .set("stroke", "#333"),
+                )
+                .add(text(f.x0 + f.w + 6.0, y + 3.0, 9.0, tick_label(d, step)));
+            d += step;
+        }
+        g = g.add(text(f.x0 + f.w + 6.0, f.y0 - 5.0, 9.0, "Ø mm"));
+    }
+    g
 }
 
 /// The blank before threading across the panel: between the surface and the far side.
@@ -132,6 +196,28 @@ fn colour(i: usize, n: usize) -> String {
     format!("hsl({h:.0},75%,45%)")
 }
 
+const ZONE: &str = "#2e9e4f";
+const FAIL: &str = "#c62828";
+
+/// The maximum- and minimum-material profiles around the groove (`None` without d2 limits).
+fn zone_profiles(v: &Verification, zr: (f64, f64)) -> Option<(Vec<Point>, Vec<Point>)> {
+    let l = &v.limits;
+    let (mmc_d2, lmc_d2) = match v.kind {
+        ThreadKind::External => (l.pitch_diameter.max, l.pitch_diameter.min),
+        ThreadKind::Internal => (l.pitch_diameter.min, l.pitch_diameter.max),
+    };
+    let (a, b) = (mmc_d2?, lmc_d2?);
+    let (mmc_variant, lmc_variant, lmc_crest) = match v.kind {
+        ThreadKind::External => (ProfileKind::Basic, ProfileKind::BoltMinRoot, l.major_diameter.min.map(rad)),
+        ThreadKind::Internal => (ProfileKind::Nut, ProfileKind::Nut, l.minor_diameter.max.map(rad)),
+    };
+    let zc = v.measurement.groove_center;
+    Some((
+        shifted_profile(v, mmc_variant, a, zc, zr, None),
+        shifted_profile(v, lmc_variant, b, zc, zr, lmc_crest),
+    ))
+}
+
 fn view(v: &Verification, f: &Frame, id: &str, label: &str) -> Group {
     let kind = v.kind;
     let m = &v.measurement;
@@ -155,48 +241,43 @@ fn view(v: &Verification, f: &Frame, id: &str, label: &str) -> Group {
                 .set("stroke", "none"),
         );
     }
-    cut = cut.add(
-        Polyline::new()
-            .set("points", f.points(&v.section.profile()))
-            .set("fill", "none")
-            .set("stroke", "#111")
-            .set("stroke-width", 2.2),
-    );
-    // Tolerance zone between the maximum- and minimum-material profiles.
-    let l = &v.limits;
-    let (mmc_d2, lmc_d2) = match kind {
-        ThreadKind::External => (l.pitch_diameter.max, l.pitch_diameter.min),
-        ThreadKind::Internal => (l.pitch_diameter.min, l.pitch_diameter.max),
-    };
+    // The tolerance zone between the maximum- and minimum-material profiles, over the material
+    // and translucent: both its sides show, in material and in air.
     let mut zone = Group::new().set("id", format!("{id}-tolerance-zone"));
-    if let (Some(a), Some(b)) = (mmc_d2, lmc_d2) {
-        let (mmc_variant, lmc_variant, lmc_crest) = match kind {
-            ThreadKind::External => {
-                (ProfileKind::Basic, ProfileKind::BoltMinRoot, l.major_diameter.min.map(rad))
-            }
-            ThreadKind::Internal => (ProfileKind::Nut, ProfileKind::Nut, l.minor_diameter.max.map(rad)),
-        };
-        let mmc = shifted_profile(v, mmc_variant, a, m.groove_center, zr, None);
-        let mut lmc = shifted_profile(v, lmc_variant, b, m.groove_center, zr, lmc_crest);
+    if let Some((mmc, mut lmc)) = zone_profiles(v, zr) {
         let mut poly = mmc.clone();
+        let lmc_line = lmc.clone();
         lmc.reverse();
         poly.extend(lmc);
         zone = zone
             .add(
                 Polygon::new()
                     .set("points", f.points(&poly))
-                    .set("fill", "#2e9e4f")
-                    .set("fill-opacity", 0.25)
+                    .set("fill", ZONE)
+                    .set("fill-opacity", 0.35)
                     .set("stroke", "none"),
             )
             .add(
                 Polyline::new()
                     .set("points", f.points(&mmc))
                     .set("fill", "none")
-                    .set("stroke", "#2e9e4f")
-                    .set("stroke-width", 1.2),
+                    .set("stroke", ZONE)
+                    .set("stroke-width", 1.0),
+            )
+            .add(
+                Polyline::new()
+                    .set("points", f.points(&lmc_line))
+                    .set("fill", "none")
+                    .set("stroke", ZONE)
+                    .set("stroke-width", 1.0)
+                    .set("stroke-dasharray", "4 2"),
             );
     }
+    let profile = Polyline::new()
+        .set("points", f.points(&v.section.profile()))
+        .set("fill", "none")
+        .set("stroke", "#111")
+        .set("stroke-width", 2.0);
     let basic_variant = if kind == ThreadKind::External { ProfileKind::Basic } else { ProfileKind::Nut };
     let basic =
         shifted_profile(v, basic_variant, v.designation.thread.pitch_diameter(), m.groove_center, zr, None);
@@ -225,46 +306,117 @@ fn view(v: &Verification, f: &Frame, id: &str, label: &str) -> Group {
                 .set("stroke-opacity", 0.8),
         );
     }
-    body = body.add(zone).add(cut).add(basic_g).add(passes);
-    g = g.add(body);
-    // Dimension lines of the measured diameters.
+    body = body
+        .add(cut)
+        .add(zone)
+        .add(basic_g)
+        .add(passes)
+        .add(Group::new().set("id", format!("{id}-profile")).add(profile));
+    // Dimension lines of the measured diameters, red when out of their limits.
     let mut dims = Group::new().set("id", format!("{id}-dimensions"));
-    for (name, d, colour) in [
-        ("d", m.major_diameter, "#b03030"),
-        (if kind == ThreadKind::External { "d2" } else { "D2" }, m.pitch_diameter, "#1f5fbf"),
-        (if kind == ThreadKind::External { "d3" } else { "D1" }, m.minor_diameter, "#7a3fb0"),
-    ] {
-        let name = if name == "d" && kind == ThreadKind::Internal { "D" } else { name };
+    for (feature, d) in dimension_features(v) {
         let y = f.y(rad(d));
         if y < f.y0 || y > f.y0 + f.h {
             continue;
         }
-        dims = dims
+        let ok = v.checks.iter().find(|c| c.feature == feature).is_none_or(|c| c.ok);
+        dims = dims.add(
+            Line::new()
+                .set("id", format!("{id}-dim-{}", feature.name()))
+                .set("x1", f.x0)
+                .set("x2", f.x0 + f.w)
+                .set("y1", format!("{y:.2}"))
+                .set("y2", format!("{y:.2}"))
+                .set("stroke", if ok { "#1f5fbf" } else { FAIL })
+                .set("stroke-width", if ok { 0.8 } else { 1.4 })
+                .set("stroke-dasharray", "2 3"),
+        );
+    }
+    body = body.add(dims);
+    g = g.add(body);
+    g.add(axes(f, true))
+}
+
+/// The diameters dimensioned in the picture: major, pitch and minor, as measured.
+fn dimension_features(v: &Verification) -> [(crate::CheckFeature, f64); 3] {
+    let m = &v.measurement;
+    [
+        (crate::CheckFeature::MajorDiameter, m.major_diameter),
+        (crate::CheckFeature::PitchDiameter, m.pitch_diameter),
+        (crate::CheckFeature::MinorDiameter, m.minor_diameter),
+    ]
+}
+
+fn fmt_limits(min: Option<f64>, max: Option<f64>) -> String {
+    match (min, max) {
+        (Some(a), Some(b)) => format!("[{a:.3} – {b:.3}]"),
+        (Some(a), None) => format!("[≥ {a:.3}]"),
+        (None, Some(b)) => format!("[≤ {b:.3}]"),
+        (None, None) => String::new(),
+    }
+}
+
+/// The dimension labels of the tooth panel, in the column left of it (`right` is the column's
+/// right edge): value, limits and unit, each joined to its line by a leader, spread so that
+/// no two overlap, red when out of limits.
+fn dimension_labels(v: &Verification, f: &Frame, right: f64) -> Group {
+    let mut g = Group::new().set("id", "dimension-labels");
+    let mut items: Vec<(f64, String, String, bool)> = Vec::new();
+    for (feature, d) in dimension_features(v) {
+        let y = f.y(rad(d));
+        if y < f.y0 || y > f.y0 + f.h {
+            continue;
+        }
+        let check = v.checks.iter().find(|c| c.feature == feature);
+        let ok = check.is_none_or(|c| c.ok);
+        let name = feature.words(v.kind).rsplit(' ').next().unwrap_or("");
+        let line1 = if v.units == crate::verify::Units::Inch {
+            format!("{name} {d:.4} mm ({:.5} in)", d / 25.4)
+        } else {
+            format!("{name} {d:.4} mm")
+        };
+        let line2 = check.map_or(String::new(), |c| {
+            let lim = fmt_limits(c.min, c.max);
+            if c.ok {
+                lim
+            } else {
+                format!("{lim} {:+.1} µm", c.deviation_um)
+            }
+        });
+        items.push((y, line1, line2, ok));
+    }
+    items.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Spread: each label needs 28 px; push down, then pull back up from the panel's bottom.
+    let mut ys: Vec<f64> = items.iter().map(|i| i.0).collect();
+    for i in 1..ys.len() {
+        ys[i] = ys[i].max(ys[i - 1] + 28.0);
+    }
+    let bottom = f.y0 + f.h - 14.0;
+    for i in (0..ys.len()).rev() {
+        let limit = if i + 1 < ys.len() { ys[i + 1] - 28.0 } else { bottom };
+        ys[i] = ys[i].min(limit).max(f.y0 + 12.0);
+    }
+    for ((y, l1, l2, ok), ly) in items.into_iter().zip(ys) {
+        let c = if ok { "#1f5fbf" } else { FAIL };
+        g = g
             .add(
                 Line::new()
-                    .set("x1", f.x0)
-                    .set("x2", f.x0 + f.w)
-                    .set("y1", y)
-                    .set("y2", y)
-                    .set("stroke", colour)
-                    .set("stroke-width", 0.8)
-                    .set("stroke-dasharray", "2 3"),
+                    .set("x1", right + 2.0)
+                    .set("y1", format!("{ly:.2}"))
+                    .set("x2", f.x0)
+                    .set("y2", format!("{y:.2}"))
+                    .set("stroke", c)
+                    .set("stroke-width", 0.7),
             )
             .add(
-                text(
-                    f.x0 + f.w - if v.units == crate::verify::Units::Inch { 200.0 } else { 120.0 },
-                    y - 3.0,
-                    11.0,
-                    if v.units == crate::verify::Units::Inch {
-                        format!("{name} = {d:.4} mm ({:.5} in)", d / 25.4)
-                    } else {
-                        format!("{name} = {d:.4}")
-                    },
-                )
-                .set("fill", colour),
-            );
+                text(right, ly - 2.0, 11.0, l1)
+                    .set("text-anchor", "end")
+                    .set("fill", c)
+                    .set("font-weight", if ok { "normal" } else { "bold" }),
+            )
+            .add(text(right, ly + 11.0, 10.0, l2).set("text-anchor", "end").set("fill", c));
     }
-    g.add(dims)
+    g
 }
 
 /// The whole thread along its length: blank, material as cut and the cut surface.
@@ -282,21 +434,22 @@ fn full_view(section: &crate::sweep::Section, f: &Frame, v: &Verification) -> Gr
             .set("stroke", "#111")
             .set("stroke-width", 1.2),
     );
-    g.add(body)
+    g.add(body).add(axes(f, true))
 }
 
-fn legend(x: f64, y: f64) -> Group {
+fn legend(x: f64, y: f64, kind: ThreadKind) -> Group {
     let mut g = Group::new().set("id", "legend");
+    let blank = if kind == ThreadKind::External { "blank before threading" } else { "bore before threading" };
     let items: [(&str, &str, bool); 6] = [
-        ("#e9e9e9", "blank before threading", true),
+        ("#e9e9e9", blank, true),
         ("#b8c7d9", "material as cut", true),
-        ("#2e9e4f", "tolerance zone (max. to min. material)", true),
+        (ZONE, "tolerance zone (solid: max. material, dashed: min.)", true),
         ("#555", "basic profile (dashed)", false),
         ("#111", "as-cut profile", false),
         ("hsl(120,75%,45%)", "insert at each pass, blue first, red last", false),
     ];
     for (i, (c, label, fill)) in items.iter().enumerate() {
-        let yy = y + 18.0 * i as f64;
+        let yy = y + 16.0 * i as f64;
         if *fill {
             g = g.add(
                 Rectangle::new()
@@ -305,7 +458,7 @@ fn legend(x: f64, y: f64) -> Group {
                     .set("width", 14)
                     .set("height", 10)
                     .set("fill", *c)
-                    .set("fill-opacity", if *c == "#2e9e4f" { 0.4 } else { 1.0 }),
+                    .set("fill-opacity", if *c == ZONE { 0.35 } else { 1.0 }),
             );
         } else {
             g = g.add(
@@ -323,15 +476,88 @@ fn legend(x: f64, y: f64) -> Group {
     g
 }
 
+/// The check table: every check in words, its value, limits, deviation and verdict.
+fn check_table(v: &Verification, x: f64, y: f64) -> (Group, f64) {
+    let mut g = Group::new().set("id", "check-table");
+    g = g.add(text(x, y, 12.0, "checks").set("font-weight", "bold"));
+    let cols = [x, x + 150.0, x + 205.0, x + 300.0, x + 360.0];
+    let head = ["feature", "value", "limits", "off", ""];
+    for (c, h) in cols.iter().zip(head) {
+        g = g.add(text(*c, y + 16.0, 10.0, h).set("fill", "#555"));
+    }
+    let mut yy = y + 32.0;
+    for c in &v.checks {
+        let counts = c.kind.counts(v.gauge_only);
+        let colour = if c.ok {
+            "#1d1d1d"
+        } else if counts {
+            FAIL
+        } else {
+            "#8a6d00"
+        };
+        let unit = if c.feature.is_length() { "" } else { "°" };
+        let value = match c.feature {
+            crate::CheckFeature::FlankAngle => format!("{:.2}°", c.value),
+            f if f.is_length() => format!("{:.4}", c.value),
+            _ => crate::report::fmt_num(c.value),
+        };
+        // Four decimals at most: the inch forms' limits converted to mm carry more.
+        let num = |v: f64| crate::report::fmt_num((v * 1e4).round() / 1e4);
+        let lim = match (c.min, c.max) {
+            (Some(a), Some(b)) => format!("{} – {}{unit}", num(a), num(b)),
+            (Some(a), None) => format!("≥ {}{unit}", num(a)),
+            (None, Some(b)) => format!("≤ {}{unit}", num(b)),
+            (None, None) => String::new(),
+        };
+        let off = if c.deviation_um == 0.0 || !c.feature.is_length() {
+            String::new()
+        } else {
+            format!("{:+.1} µm", c.deviation_um)
+        };
+        let verdict = match (c.ok, counts) {
+            (true, _) => "ok",
+            (false, true) => "OUT",
+            (false, false) => "form",
+        };
+        let mut feature = c.feature.words(v.kind).to_string();
+        if let Some(n) = &c.note {
+            if c.feature == crate::CheckFeature::FlankAngle {
+                feature = format!("{feature} {}", n.split_whitespace().next().unwrap_or(""));
+            }
+        }
+        for (col, s) in cols.iter().zip([feature, value, lim, off, verdict.to_string()]) {
+            g = g.add(text(*col, yy, 10.0, s).set("fill", colour));
+        }
+        yy += 14.0;
+    }
+    (g, yy)
+}
+
+/// Chip area per pass as bars with axes: pass numbers below, mm² on the left.
 fn chip_chart(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Group {
     let mut g = Group::new().set("id", "chip-chart");
-    g = g.add(text(x, y - 6.0, 12.0, "chip area per pass, mm²"));
+    g = g.add(text(x - 36.0, y - 8.0, 12.0, "chip area per pass").set("font-weight", "bold"));
     let max = v.metrics.iter().map(|m| m.chip_area).fold(0.0, f64::max);
     let n = v.metrics.len().max(1);
     let bw = w / n as f64;
-    g = g.add(
-        Line::new().set("x1", x).set("x2", x + w).set("y1", y + h).set("y2", y + h).set("stroke", "#333"),
-    );
+    g = g
+        .add(
+            Line::new().set("x1", x).set("x2", x + w).set("y1", y + h).set("y2", y + h).set("stroke", "#333"),
+        )
+        .add(Line::new().set("x1", x).set("x2", x).set("y1", y).set("y2", y + h).set("stroke", "#333"));
+    let step = tick_step(max, 3.0);
+    let mut a = 0.0;
+    while a <= max * (1.0 + 1e-9) && max > 0.0 {
+        let yy = y + h - h * a / max;
+        g = g
+            .add(
+                Line::new().set("x1", x - 4.0).set("x2", x).set("y1", yy).set("y2", yy).set("stroke", "#333"),
+            )
+            .add(text(x - 6.0, yy + 3.0, 9.0, tick_label(a, step)).set("text-anchor", "end"));
+        a += step;
+    }
+    g = g.add(text(x - 36.0, y + h + 28.0, 9.0, "mm² (bars) by pass number"));
+    let label_every = ((n as f64 * 18.0 / w).ceil() as usize).max(1);
     for (i, m) in v.metrics.iter().enumerate() {
         let bh = if max > 0.0 { h * m.chip_area / max } else { 0.0 };
         g = g.add(
@@ -342,120 +568,325 @@ fn chip_chart(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Group {
                 .set("height", format!("{bh:.2}"))
                 .set("fill", colour(i, n)),
         );
+        if (i + 1) % label_every == 0 || i == 0 {
+            g = g.add(
+                text(x + (i as f64 + 0.5) * bw, y + h + 12.0, 9.0, (i + 1).to_string())
+                    .set("text-anchor", "middle"),
+            );
+        }
     }
-    g.add(text(x + w + 4.0, y + 10.0, 10.0, format!("{max:.4}")))
+    g
+}
+
+/// The normal deviation of the as-cut profile, and of the maximum- and minimum-material
+/// profiles, from the basic profile along one pitch (root, flank, crest, flank), magnified, as a
+/// contour-measuring machine reports it, with the values at the flank midpoints.
+fn deviation_plot(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Group {
+    let f = Frame { x0: x, y0: y, w, h, z_min: 0.0, r_max: 0.0, scale: 1.0 };
+    let (mut g, mut body) = panel(&f, "deviation-plot", "deviation from the basic profile, normal to it, µm");
+    let p = v.designation.thread.pitch;
+    let zc = v.measurement.groove_center;
+    let basic_variant = if v.kind == ThreadKind::External { ProfileKind::Basic } else { ProfileKind::Nut };
+    let zr = (zc - 0.5 * p, zc + 0.5 * p);
+    let basic = shifted_profile(v, basic_variant, v.designation.thread.pitch_diameter(), zc, zr, None);
+    let air_up = v.kind == ThreadKind::External;
+    let samples = crate::measure::deviation_along(&basic, &v.section.profile(), air_up, 400);
+    if samples.is_empty() {
+        return g.add(body);
+    }
+    let zone = zone_profiles(v, (zr.0 - p, zr.1 + p));
+    let bound = |prof: &[Point]| crate::measure::deviation_along(&basic, prof, air_up, 400);
+    let (mmc, lmc) = zone.as_ref().map_or((Vec::new(), Vec::new()), |(a, b)| (bound(a), bound(b)));
+    let s_max = samples.last().map_or(1.0, |s| s.0).max(1e-9);
+    let all = samples.iter().chain(&mmc).chain(&lmc).map(|s| s.1.abs()).fold(0.0, f64::max).max(1e-4);
+    let um = 1000.0;
+    let span = all * um * 1.15;
+    let px = |s: f64| x + 40.0 + (w - 60.0) * s / s_max;
+    let py = |d: f64| y + 0.5 * h - (0.5 * h - 12.0) * (d * um) / span;
+    let line = |pts: &[(f64, f64, u8)]| {
+        pts.iter().map(|q| format!("{:.2},{:.2}", px(q.0), py(q.1))).collect::<Vec<_>>().join(" ")
+    };
+    if !mmc.is_empty() && mmc.len() == lmc.len() {
+        let mut band: Vec<(f64, f64, u8)> = mmc.clone();
+        band.extend(lmc.iter().rev().copied());
+        body = body
+            .add(
+                Polygon::new()
+                    .set("points", line(&band))
+                    .set("fill", ZONE)
+                    .set("fill-opacity", 0.3)
+                    .set("stroke", "none"),
+            )
+            .add(Polyline::new().set("points", line(&mmc)).set("fill", "none").set("stroke", ZONE))
+            .add(
+                Polyline::new()
+                    .set("points", line(&lmc))
+                    .set("fill", "none")
+                    .set("stroke", ZONE)
+                    .set("stroke-dasharray", "4 2"),
+            );
+    }
+    body = body
+        .add(
+            Line::new()
+                .set("x1", px(0.0))
+                .set("x2", px(s_max))
+                .set("y1", py(0.0))
+                .set("y2", py(0.0))
+                .set("stroke", "#555")
+                .set("stroke-dasharray", "6 4"),
+        )
+        .add(
+            Polyline::new()
+                .set("points", line(&samples))
+                .set("fill", "none")
+                .set("stroke", "#111")
+                .set("stroke-width", 1.6),
+        );
+    // The regions (root, flank, crest) and the values at the flank midpoints.
+    let mut labels: Vec<(f64, String)> = Vec::new();
+    let mut start = 0;
+    for i in 1..=samples.len() {
+        if i == samples.len() || samples[i].2 != samples[start].2 {
+            let mid = &samples[(start + i - 1) / 2];
+            let name = match samples[start].2 {
+                0 => "root",
+                1 => "flank",
+                _ => "crest",
+            };
+            let cx = px(0.5 * (samples[start].0 + samples[i - 1].0));
+            if samples[start].2 == 1 {
+                // The value at the flank's middle: a dot on the curve, the number below the panel.
+                body = body.add(
+                    svg::node::element::Circle::new()
+                        .set("cx", format!("{:.2}", px(mid.0)))
+                        .set("cy", format!("{:.2}", py(mid.1)))
+                        .set("r", 2.5)
+                        .set("fill", "#111"),
+                );
+                labels.push((px(mid.0), format!("flank {:+.1} µm", mid.1 * um)));
+            } else {
+                labels.push((cx, name.to_string()));
+            }
+            start = i;
+        }
+    }
+    g = g.add(body);
+    // Region names and flank values below the panel, on two rows when they would touch.
+    let mut last_end = [f64::NEG_INFINITY; 2];
+    for (cx, l) in labels {
+        let half = 0.5 * 0.6 * 9.0 * l.chars().count() as f64;
+        let row = usize::from(cx - half < last_end[0] + 4.0);
+        last_end[row] = cx + half;
+        g = g.add(
+            text(cx, y + h + 12.0 + 12.0 * row as f64, 9.0, l)
+                .set("text-anchor", "middle")
+                .set("fill", "#333"),
+        );
+    }
+    // The µm scale on the left, outside the panel.
+    let step = tick_step(span, 2.0);
+    let mut d = -(span / step).floor() * step;
+    while d <= span + 1e-9 {
+        let yy = py(d / um);
+        g = g
+            .add(
+                Line::new()
+                    .set("x1", x - 4.0)
+                    .set("x2", x)
+                    .set("y1", format!("{yy:.2}"))
+                    .set("y2", format!("{yy:.2}"))
+                    .set("stroke", "#333"),
+            )
+            .add(text(x - 6.0, yy + 3.0, 9.0, tick_label(d, step)).set("text-anchor", "end"));
+        d += step;
+    }
+    g.add(
+        text(
+            x + w,
+            y + h + 40.0,
+            9.0,
+            "along one pitch: black as cut, green the tolerance zone; + is material added",
+        )
+        .set("text-anchor", "end"),
+    )
 }
 
 /// The SVG document of a verification.
 pub fn verify_svg(v: &Verification) -> String {
-    let (width, height) = (1100.0, 960.0);
+    let (g, height) = verification_group(v);
     Document::new()
-        .set("viewBox", (0, 0, width, height))
-        .set("width", width)
+        .set("viewBox", (0, 0, WIDTH, height))
+        .set("width", WIDTH)
         .set("height", height)
-        .add(verification_group(v))
+        .add(g)
         .to_string()
 }
 
+const WIDTH: f64 = 1100.0;
+
 /// The SVG of every operation of a program, one section each, stacked.
 pub fn program_svg(pv: &crate::verify::ProgramVerification) -> String {
-    let width = 1100.0;
     let mut y = 0.0;
     let mut doc = Document::new();
     for o in &pv.operations {
-        let head = format!(
-            "operation {} of {}: {} at line {} of {}{}",
-            o.operation.index,
-            pv.operations.len(),
-            o.operation.cycle,
-            o.operation.source_line,
-            pv.program,
-            o.operation.tool.map_or(String::new(), |t| format!(", tool T{t}"))
+        let head = shorten(
+            &format!(
+                "operation {} of {}: {} at line {} of {}{}",
+                o.operation.index,
+                pv.operations.len(),
+                o.operation.cycle,
+                o.operation.source_line,
+                file_name(&pv.program),
+                o.operation.tool.map_or(String::new(), |t| format!(", tool T{t}"))
+            ),
+            120,
         );
         let mut g = Group::new()
             .set("id", format!("operation-{}", o.operation.index))
             .set("transform", format!("translate(0,{y})"))
-            .add(Rectangle::new().set("width", width).set("height", 34).set("fill", "#eef1f5"))
+            .add(Rectangle::new().set("width", WIDTH).set("height", 34).set("fill", "#eef1f5"))
             .add(text(20.0, 23.0, 15.0, head).set("font-weight", "bold"));
         let h = match &o.result {
             crate::verify::OperationResult::Verified(v) => {
-                g = g.add(verification_group(v).set("transform", "translate(0,34)"));
-                34.0 + 960.0
+                let (vg, height) = verification_group(v);
+                g = g.add(vg.set("transform", "translate(0,34)"));
+                34.0 + height
             }
             crate::verify::OperationResult::NoCut { reason } => {
-                g = g.add(
-                    text(20.0, 64.0, 16.0, format!("verdict: FAIL ({}) — {reason}", o.designation))
-                        .set("fill", "#b3261e")
-                        .set("font-weight", "bold"),
-                );
-                90.0
+                for (i, l) in
+                    wrap(&format!("OUT OF TOLERANCE ({}): {reason}", o.designation), 100).iter().enumerate()
+                {
+                    g = g.add(
+                        text(20.0, 64.0 + 20.0 * i as f64, 16.0, l.clone())
+                            .set("fill", FAIL)
+                            .set("font-weight", "bold"),
+                    );
+                }
+                110.0
             }
         };
         doc = doc.add(g);
         y += h;
     }
-    doc.set("viewBox", (0, 0, width, y)).set("width", width).set("height", y).to_string()
+    doc.set("viewBox", (0, 0, WIDTH, y)).set("width", WIDTH).set("height", y).to_string()
 }
 
-/// One verification's picture: title, tooth, window, legend, chip chart and full length.
-fn verification_group(v: &Verification) -> Group {
+/// The file name of a program label (`dir/p.nc (fanuc)` → `p.nc (fanuc)`).
+fn file_name(label: &str) -> String {
+    let (path, rest) = match label.rsplit_once(" (") {
+        Some((p, r)) => (p, format!(" ({r}")),
+        None => (label, String::new()),
+    };
+    let name =
+        std::path::Path::new(path).file_name().map_or(path.to_string(), |n| n.to_string_lossy().into_owned());
+    name + &rest
+}
+
+/// `s` cut to `n` characters with an ellipsis.
+fn shorten(s: &str, n: usize) -> String {
+    if s.chars().count() <= n {
+        s.to_string()
+    } else {
+        s.chars().take(n - 1).collect::<String>() + "…"
+    }
+}
+
+/// `s` in lines of at most `n` characters, broken at spaces.
+fn wrap(s: &str, n: usize) -> Vec<String> {
+    let mut lines = vec![String::new()];
+    for word in s.split(' ') {
+        let last = lines.last_mut().map_or(0, |l| l.chars().count());
+        if last > 0 && last + 1 + word.chars().count() > n {
+            lines.push(String::new());
+        }
+        if let Some(l) = lines.last_mut() {
+            if !l.is_empty() {
+                l.push(' ');
+            }
+            l.push_str(&shorten(word, n));
+        }
+    }
+    lines
+}
+
+/// The verdict in a machinist's words.
+fn verdict_words(v: &Verification) -> String {
+    let failed: Vec<String> = v
+        .checks
+        .iter()
+        .filter(|c| !c.ok && c.kind.counts(v.gauge_only))
+        .map(|c| {
+            if c.feature.is_length() && c.deviation_um != 0.0 {
+                let dir = if c.deviation_um > 0.0 { "over" } else { "under" };
+                format!("{} {:.1} µm {dir}", c.feature.words(v.kind), c.deviation_um.abs())
+            } else {
+                c.feature.words(v.kind).to_string()
+            }
+        })
+        .collect();
+    let gauge = if v.gauge_only { " (gauge-only: form checks are not counted)" } else { "" };
+    if failed.is_empty() {
+        format!("IN TOLERANCE{gauge}")
+    } else {
+        format!("OUT OF TOLERANCE: {}{gauge}", failed.join(", "))
+    }
+}
+
+/// One verification's picture: title, tooth with its dimension labels, window, check table,
+/// legend, chip chart, deviation plot and full length.
+fn verification_group(v: &Verification) -> (Group, f64) {
     let t = &v.designation.thread;
     let p = t.pitch;
     let m = &v.measurement;
-    let (width, height) = (1100.0, 960.0);
     let lo = m.minor_diameter.min(m.major_diameter);
     let hi = m.major_diameter.max(m.minor_diameter).max(v.blank_diameter);
     let (r0, r1) = (rad(lo) - 0.15 * p, rad(hi) + 0.12 * p);
+    let top = 30.0 + 20.0 * 3.0 + 30.0;
     let tooth = Frame::new(
-        20.0,
-        90.0,
-        640.0,
-        460.0,
+        200.0,
+        top,
+        430.0,
+        400.0,
         (m.groove_center - 0.75 * p, m.groove_center + 0.75 * p),
         (r0, r1),
     );
     let w = v.section.window;
-    let window = Frame::new(680.0, 90.0, 400.0, 300.0, (w.z_min, w.z_max), (r0 - 0.2 * p, r1 + 0.1 * p));
-    let verdict = if v.pass { "PASS" } else { "FAIL" };
-    let failed: Vec<&str> = v.checks.iter().filter(|c| !c.ok).map(|c| c.feature.name()).collect();
-    let title = Group::new()
-        .set("id", "title")
-        .add(text(
-            20.0,
-            30.0,
-            20.0,
-            format!("{} — {} thread, class {}", v.designation.text, v.kind.name(), v.limits.class),
-        ))
-        .add(text(
-            20.0,
-            52.0,
-            13.0,
-            format!(
-                "insert: {} · {} · {} passes · blank X{:.3} · final X{:.4}",
-                v.insert.name,
-                match &v.program {
-                    Some(p) => format!("program {p}"),
-                    None => format!("infeed: {}", crate::report::infeed_text(&v.infeed)),
-                },
-                v.passes.len(),
-                v.blank_diameter,
-                v.final_x
-            ),
-        ))
-        .add(
-            text(
-                20.0,
-                76.0,
-                16.0,
-                if v.pass {
-                    format!("verdict: {verdict}")
-                } else {
-                    format!("verdict: {verdict} ({})", failed.join(", "))
-                },
-            )
-            .set("fill", if v.pass { "#1d7a36" } else { "#b3261e" })
-            .set("font-weight", "bold"),
+    let window = Frame::new(690.0, top, 350.0, 220.0, (w.z_min, w.z_max), (r0 - 0.2 * p, r1 + 0.1 * p));
+    let part =
+        if v.kind == ThreadKind::External { "bolt (external thread)" } else { "nut (internal thread)" };
+    let stock = if v.kind == ThreadKind::External { "blank" } else { "bore" };
+    let mut title = Group::new().set("id", "title").add(text(
+        20.0,
+        30.0,
+        20.0,
+        shorten(&format!("{} — {part}, class {}", v.designation.text, v.limits.class), 80),
+    ));
+    let source = match &v.program {
+        Some(p) => format!("program {}", file_name(p)),
+        None => format!("infeed: {}", crate::report::infeed_text(&v.infeed)),
+    };
+    let sub = format!(
+        "insert: {} · {} · {} passes · {stock} Ø{:.3} · last pass X{:.4}",
+        v.insert.name,
+        source,
+        v.passes.len(),
+        v.blank_diameter,
+        v.final_x
+    );
+    let mut yy = 50.0;
+    for l in wrap(&sub, 150).into_iter().take(2) {
+        title = title.add(text(20.0, yy, 12.0, l));
+        yy += 16.0;
+    }
+    for l in wrap(&verdict_words(v), 110).into_iter().take(3) {
+        title = title.add(
+            text(20.0, yy + 4.0, 15.0, l)
+                .set("fill", if v.pass { "#1d7a36" } else { FAIL })
+                .set("font-weight", "bold"),
         );
+        yy += 19.0;
+    }
     // The whole thread, run-out included: the envelope over the full length (the tree for
     // undercut custom inserts).
     let full = {
@@ -468,22 +899,38 @@ fn verification_group(v: &Verification) -> Group {
         let w = crate::sweep::full_length_window(&v.passes, p);
         crate::sweep::sweep(&setup, &v.passes, w, crate::boolean::UnionStrategy::Envelope).ok()
     };
-    let doc = Group::new()
-        .add(Rectangle::new().set("width", width).set("height", height).set("fill", "white"))
+    let (table, table_end) = check_table(v, 690.0, top + 220.0 + 50.0);
+    let legend_y = table_end + 16.0;
+    let below = (top + 460.0).max(legend_y + 6.0 * 16.0 + 30.0);
+    let height = below + 260.0 + 160.0 + 40.0;
+    let mut doc = Group::new()
+        .add(Rectangle::new().set("width", WIDTH).set("height", height).set("fill", "white"))
         .add(title)
         .add(view(v, &tooth, "tooth", "one tooth"))
+        .add(dimension_labels(v, &tooth, 188.0))
         .add(view(v, &window, "window", "four pitches"))
-        .add(legend(690.0, 420.0))
-        .add(chip_chart(v, 690.0, 570.0, 360.0, 150.0));
-    match &full {
+        .add(table)
+        .add(legend(690.0, legend_y, v.kind));
+    doc = doc.add(deviation_plot(v, 60.0, below, 570.0, 200.0));
+    if !v.metrics.is_empty() {
+        doc = doc.add(chip_chart(v, 730.0, below + 20.0, 330.0, 150.0));
+    }
+    let doc = match &full {
         Some(f) => {
             let fw = f.section.window;
-            let frame =
-                Frame::new(20.0, 770.0, 1060.0, 170.0, (fw.z_min, fw.z_max), (r0 - 0.3 * p, r1 + 0.2 * p));
+            let frame = Frame::new(
+                20.0,
+                below + 260.0,
+                1020.0,
+                160.0,
+                (fw.z_min, fw.z_max),
+                (r0 - 0.3 * p, r1 + 0.2 * p),
+            );
             doc.add(full_view(&f.section, &frame, v))
         }
         None => doc,
-    }
+    };
+    (doc, height)
 }
 
 /// The SVG of a milling check: the worst level's target, the area the cutter swept, the tool

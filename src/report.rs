@@ -414,8 +414,12 @@ pub fn verify_text(v: &Verification) -> String {
             );
         }
     }
-    let failed: Vec<&str> =
-        v.checks.iter().filter(|c| !c.ok && c.kind.counts(v.gauge_only)).map(|c| c.feature.name()).collect();
+    let failed: Vec<&str> = v
+        .checks
+        .iter()
+        .filter(|c| !c.ok && c.kind.counts(v.gauge_only))
+        .map(|c| c.feature.words(v.kind))
+        .collect();
     if v.pass {
         let _ = writeln!(s, "\nverdict: PASS");
     } else {

@@ -6,6 +6,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod bad_inputs;
+mod browser;
 mod forms;
 mod gcode;
 mod infeed_comparison;

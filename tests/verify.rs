@@ -140,44 +140,6 @@ fn svg_has_named_layers_and_escapes_text() {
     assert!(text.trim_start().starts_with("<svg"));
 }
 
-/// When Chromium is installed, the README's SVG opens in it and renders (a screenshot file).
-#[test]
-fn svg_opens_in_chromium_when_installed() {
-    let Some(chromium) = ["chromium", "chromium-browser"].iter().find_map(|c| which(c)) else {
-        eprintln!("chromium not installed: skipped");
-        return;
-    };
-    let dir = tempdir("chromium");
-    let o = run_in(&dir, &["verify", "--thread", "M10x1.5-6g", "--svg", "m10.svg"]);
-    assert!(o.status.code() == Some(1) || o.status.code() == Some(0));
-    let shot = dir.join("shot.png");
-    let status = std::process::Command::new(chromium)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-background-networking",
-            "--no-first-run",
-        ])
-        .arg(format!("--user-data-dir={}", dir.join("profile").display()))
-        .arg(format!("--screenshot={}", shot.display()))
-        .arg("--window-size=1100,760")
-        .arg(format!("file://{}", dir.join("m10.svg").display()))
-        .output()
-        .unwrap();
-    assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stderr));
-    let png = std::fs::read(&shot).unwrap();
-    assert!(png.len() > 10_000 && png.starts_with(b"\x89PNG"));
-}
-
-fn which(cmd: &str) -> Option<std::path::PathBuf> {
-    std::env::var_os("PATH")?
-        .to_str()?
-        .split(':')
-        .map(|d| std::path::Path::new(d).join(cmd))
-        .find(|p| p.is_file())
-}
-
 /// An error mid-run (here: an impossible final X) leaves an existing output file untouched.
 #[test]
 fn an_error_leaves_existing_outputs_untouched() {

@@ -119,6 +119,7 @@ fn job_json(
                 insert_given: insert.is_some(),
                 tools: None,
                 svg: None,
+                html: None,
                 json: Some("-".into()),
             }
             .run()?

@@ -1,0 +1,273 @@
+//! Issue 15: the pictures and the HTML report as a person sees them, rendered by headless
+//! Chromium and checked pixel by pixel. Without Chromium these tests fail with a message: they
+//! never pass unseen (`.ci/run` installs Debian's `chromium` when it is missing).
+
+use crate::*;
+use std::path::{Path, PathBuf};
+
+/// Chromium, or a failure that says how to get it.
+fn chromium() -> PathBuf {
+    for dir in std::env::var("PATH").unwrap_or_default().split(':').chain(["/usr/bin"]) {
+        for name in ["chromium", "chromium-browser"] {
+            let p = Path::new(dir).join(name);
+            if p.is_file() {
+                return p;
+            }
+        }
+    }
+    panic!("Chromium is not installed: the browser tests need it (apt-get install chromium; .ci/run installs it)");
+}
+
+/// A screenshot: its size, RGB pixels and Chromium's log (console messages included).
+struct Shot {
+    w: usize,
+    h: usize,
+    rgb: Vec<[u8; 3]>,
+    log: String,
+}
+
+impl Shot {
+    fn at(&self, x: usize, y: usize) -> [u8; 3] {
+        self.rgb[y * self.w + x]
+    }
+}
+
+/// Opens `file` in headless Chromium with a `w`×`h` window and takes a screenshot.
+fn screenshot(file: &Path, w: usize, h: usize) -> Shot {
+    let dir = tempdir("chromium");
+    let png = dir.join("shot.png");
+    let out = std::process::Command::new(chromium())
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--hide-scrollbars",
+            "--enable-logging=stderr",
+            "--v=0",
+            "--force-device-scale-factor=1",
+        ])
+        .arg(format!("--user-data-dir={}", dir.join("profile").display()))
+        .arg(format!("--window-size={w},{h}"))
+        .arg(format!("--screenshot={}", png.display()))
+        .arg(format!("file://{}", file.display()))
+        .output()
+        .unwrap();
+    assert!(png.is_file(), "Chromium wrote no screenshot: {}", String::from_utf8_lossy(&out.stderr));
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&png).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let ch = match info.color_type {
+        png::ColorType::Rgba => 4,
+        png::ColorType::Rgb => 3,
+        other => panic!("unexpected PNG colour type {other:?}"),
+    };
+    let rgb = buf[..info.buffer_size()].chunks(ch).map(|c| [c[0], c[1], c[2]]).collect();
+    Shot {
+        w: info.width as usize,
+        h: info.height as usize,
+        rgb,
+        log: String::from_utf8_lossy(&out.stderr).into_owned(),
+    }
+}
+
+/// The console messages Chromium logged for the page (it logs `console.error` at INFO level, so
+/// every message counts: the reports have no script, so any message is an error).
+fn console_errors(log: &str) -> Vec<&str> {
+    log.lines().filter(|l| l.contains(":CONSOLE") || l.contains("Uncaught")).collect()
+}
+
+/// The translucent tolerance zone over the as-cut material (blue-grey) and over the air
+/// (white): green dominates in both.
+fn zone_over_material(p: [u8; 3]) -> bool {
+    let [r, g, b] = p.map(i32::from);
+    g > r + 25 && g > b && g < 215
+}
+
+fn zone_over_air(p: [u8; 3]) -> bool {
+    let [r, g, b] = p.map(i32::from);
+    g > r + 20 && g > b + 10 && g >= 215
+}
+
+/// The y of an SVG line element `id` (its `y1`).
+fn line_y(svg: &str, id: &str) -> f64 {
+    let at = svg.find(&format!("id=\"{id}\"")).unwrap_or_else(|| panic!("no {id} in the SVG"));
+    let tag_start = svg[..at].rfind('<').unwrap();
+    let tag = &svg[tag_start..tag_start + svg[tag_start..].find('>').unwrap()];
+    let v = tag.split("y1=\"").nth(1).unwrap();
+    v[..v.find('"').unwrap()].parse().unwrap()
+}
+
+/// The SVG's width and height.
+fn svg_size(svg: &str) -> (usize, usize) {
+    let attr = |k: &str| -> usize {
+        let v = svg.split(&format!(" {k}=\"")).nth(1).unwrap();
+        v[..v.find('"').unwrap()].parse::<f64>().unwrap().ceil() as usize
+    };
+    (attr("width"), attr("height"))
+}
+
+/// The tolerance zone shows on both sides of the as-cut flank at the pitch diameter, over the
+/// material and over the air, for a bolt and for a nut; and no dark pixel touches the picture's
+/// edges (no text clipped).
+#[test]
+fn tolerance_zone_shows_on_both_sides_of_d2_for_bolt_and_nut() {
+    for (thread, extra, id) in [
+        ("M10x1.5-6g", None, "tooth-dim-pitch_diameter"),
+        ("M10x1.5-6H", Some("--internal"), "tooth-dim-pitch_diameter"),
+    ] {
+        let dir = tempdir("zone");
+        let svg_path = dir.join("v.svg");
+        let mut args = vec!["verify", "--thread", thread, "--svg", svg_path.to_str().unwrap()];
+        args.extend(extra);
+        let o = run(&args);
+        assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+        let svg = std::fs::read_to_string(&svg_path).unwrap();
+        let (w, h) = svg_size(&svg);
+        let shot = screenshot(&svg_path, w, h);
+        assert_eq!((shot.w, shot.h), (w, h));
+        let y = line_y(&svg, id).round() as usize;
+        // The tooth panel spans x 200 … 630.
+        let count = |rows: std::ops::Range<usize>, f: fn([u8; 3]) -> bool| {
+            rows.flat_map(|yy| (200..630).map(move |x| (x, yy))).filter(|&(x, yy)| f(shot.at(x, yy))).count()
+        };
+        for (rows, side) in [(y - 8..y - 2, "above"), (y + 3..y + 9, "below")] {
+            let m = count(rows.clone(), zone_over_material);
+            let a = count(rows, zone_over_air);
+            assert!(m >= 6 && a >= 6, "{thread}: zone {side} d2: {m} px over material, {a} px over air");
+        }
+        for (x, yy) in (0..w)
+            .flat_map(|x| [(x, 0), (x, 1), (x, h - 2), (x, h - 1)])
+            .chain((0..h).flat_map(|yy| [(0, yy), (1, yy), (w - 2, yy), (w - 1, yy)]))
+        {
+            let [r, g, b] = shot.at(x, yy);
+            assert!(
+                u32::from(r) + u32::from(g) + u32::from(b) > 600,
+                "{thread}: dark pixel at the edge ({x}, {yy})"
+            );
+        }
+    }
+}
+
+/// The HTML report opens offline with no console error, its picture inline; the detector itself
+/// sees an error when a page has one.
+#[test]
+fn html_report_renders_without_console_errors() {
+    let dir = tempdir("html");
+    let bad = dir.join("bad.html");
+    std::fs::write(
+        &bad,
+        "<!DOCTYPE html><html><body><script>console.error('planted')</script></body></html>",
+    )
+    .unwrap();
+    assert!(
+        !console_errors(&screenshot(&bad, 400, 300).log).is_empty(),
+        "the console-error detector saw nothing"
+    );
+    let html = dir.join("r.html");
+    let o = run(&["verify", "--thread", "M10x1.5-6g", "--html", html.to_str().unwrap()]);
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&html).unwrap();
+    // Self-contained: the picture inline, no script, no outside resource.
+    assert!(
+        text.contains("<svg")
+            && !text.contains("<script")
+            && !text.contains("src=")
+            && !text.contains("<link")
+    );
+    let shot = screenshot(&html, 1200, 1600);
+    assert!(console_errors(&shot.log).is_empty(), "{:?}", console_errors(&shot.log));
+    // The verdict is drawn: some dark-green or red text in the top 200 px.
+    let coloured = (0..200).flat_map(|y| (0..1200).map(move |x| (x, y))).filter(|&(x, y)| {
+        let [r, g, b] = shot.at(x, y);
+        (r > 150 && g < 80 && b < 80) || (g > 90 && r < 60 && b < 90)
+    });
+    assert!(coloured.count() > 50, "no verdict drawn");
+}
+
+/// An attribute of a tag's text.
+fn attr(tag: &str, k: &str) -> Option<String> {
+    let v = tag.split(&format!(" {k}=\"")).nth(1)?;
+    Some(v[..v.find('"')?].to_string())
+}
+
+/// A box: x0, y0, x1, y1 in px.
+type Boxed = [f64; 4];
+
+/// Every text's box, estimated (0.6 em per character, an em tall), and every panel's frame.
+fn layout(svg: &str) -> (Vec<(String, Boxed)>, Vec<Boxed>) {
+    let mut texts = Vec::new();
+    for part in svg.split("<text").skip(1) {
+        let tag = &part[..part.find('>').unwrap()];
+        let content = &part[part.find('>').unwrap() + 1..part.find("</text>").unwrap()];
+        let content = content.trim().replace("&lt;", "<").replace("&gt;", ">").replace("&amp;", "&");
+        let n = |k: &str| attr(tag, k).unwrap().parse::<f64>().unwrap();
+        let (x, y, size) = (n("x"), n("y"), n("font-size"));
+        let w = 0.6 * size * content.chars().count() as f64;
+        let x0 = match attr(tag, "text-anchor").as_deref() {
+            Some("end") => x - w,
+            Some("middle") => x - 0.5 * w,
+            _ => x,
+        };
+        if !content.trim().is_empty() {
+            texts.push((content, [x0, y - 0.8 * size, x0 + w, y + 0.2 * size]));
+        }
+    }
+    let panels = svg
+        .split("<rect")
+        .skip(1)
+        .map(|p| &p[..p.find('>').unwrap()])
+        .filter(|t| t.contains("class=\"panel\""))
+        .map(|t| {
+            let n = |k: &str| attr(t, k).unwrap().parse::<f64>().unwrap();
+            [n("x"), n("y"), n("x") + n("width"), n("y") + n("height")]
+        })
+        .collect();
+    (texts, panels)
+}
+
+fn overlap(a: [f64; 4], b: [f64; 4]) -> bool {
+    a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
+}
+
+/// No label crosses another label, none lies on a panel where the profiles are drawn, and every
+/// one is inside the picture: the text boxes computed from the SVG, for a bolt that passes, a
+/// failing partial-insert bolt with long inch labels, and a nut.
+#[test]
+fn svg_labels_do_not_overlap_each_other_or_the_panels() {
+    for args in [
+        vec!["--thread", "M10x1.5-6g", "--insert", "full"],
+        vec!["--thread", "M20x2.5-6g", "--final-x", "17.2", "--units", "inch", "--gauge-only"],
+        vec!["--thread", "M10x1.5-6H", "--internal"],
+        vec!["--thread", "1/4-20 UNC-2A"],
+    ] {
+        let dir = tempdir("layout");
+        let path = dir.join("v.svg");
+        let mut all = vec!["verify"];
+        all.extend(&args);
+        all.extend(["--svg", path.to_str().unwrap()]);
+        let o = run(&all);
+        assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+        let svg = std::fs::read_to_string(&path).unwrap();
+        let (w, h) = svg_size(&svg);
+        let (texts, panels) = layout(&svg);
+        assert!(panels.len() >= 4, "{args:?}: {} panels", panels.len());
+        for (i, (ta, a)) in texts.iter().enumerate() {
+            assert!(
+                a[0] >= 0.0 && a[1] >= 0.0 && a[2] <= w as f64 && a[3] <= h as f64,
+                "{args:?}: '{ta}' leaves the picture"
+            );
+            for p in &panels {
+                assert!(!overlap(*a, *p), "{args:?}: '{ta}' lies on a panel");
+            }
+            for (tb, b) in &texts[i + 1..] {
+                assert!(!overlap(*a, *b), "{args:?}: '{ta}' crosses '{tb}'");
+            }
+        }
+    }
+}
