@@ -501,8 +501,14 @@ fn check_table(v: &Verification, x: f64, y: f64) -> (Group, f64) {
             f if f.is_length() => format!("{:.4}", c.value),
             _ => crate::report::fmt_num(c.value),
         };
-        // Four decimals at most: the inch forms' limits converted to mm carry more.
-        let num = |v: f64| crate::report::fmt_num((v * 1e4).round() / 1e4);
+        // The tables' 1 µm as three decimals; the inch forms' limits converted to mm with four.
+        let num = |v: f64| {
+            if ((v * 1e3).round() - v * 1e3).abs() < 1e-6 {
+                format!("{v:.3}")
+            } else {
+                format!("{v:.4}")
+            }
+        };
         let lim = match (c.min, c.max) {
             (Some(a), Some(b)) => format!("{} – {}{unit}", num(a), num(b)),
             (Some(a), None) => format!("≥ {}{unit}", num(a)),

@@ -271,3 +271,50 @@ fn svg_labels_do_not_overlap_each_other_or_the_panels() {
         }
     }
 }
+
+/// `verify --html` for a program cutting two threads: one section per operation, and user text
+/// (here the program's file name) escaped. `compare --html`: one table row and one picture per
+/// strategy (radial, flank, one modified angle, alternating × two schedules = 8).
+#[test]
+fn html_reports_of_programs_and_comparisons() {
+    let dir = tempdir("html-program");
+    let name = "two<b>&threads.nc";
+    std::fs::write(
+        dir.join(name),
+        "G21 G97 S500 M3\nG0 X22 Z5\nG76 P010060 Q100 R0.02\nG76 X18.2 Z-20 P900 Q300 F1.5\nG0 X12 Z5\nG92 X9.6 Z-15 F1.5\nX9.2\nX8.8\nX8.4\nX8.2\nG0 X50\nM30\n",
+    )
+    .unwrap();
+    let o = run_in(
+        &dir,
+        &[
+            "verify",
+            "--thread",
+            "M20x1.5-6g",
+            "--thread",
+            "M10x1.5-6g",
+            "--program",
+            name,
+            "--insert",
+            "full",
+            "--html",
+            "r.html",
+        ],
+    );
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let html = std::fs::read_to_string(dir.join("r.html")).unwrap();
+    assert!(html.contains("Operation 1 of 2") && html.contains("Operation 2 of 2"));
+    assert_eq!(html.matches("<svg").count(), 2);
+    assert!(html.contains("two&lt;b&gt;&amp;threads.nc") && !html.contains("two<b>"));
+    let o = run_in(
+        &dir,
+        &["compare", "--thread", "M10x1.5-6g", "--insert", "full", "--modified", "29.5", "--html", "c.html"],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let html = std::fs::read_to_string(dir.join("c.html")).unwrap();
+    assert_eq!(html.matches("<svg").count(), 8);
+    assert_eq!(
+        html.matches("<tr><td>").count(),
+        8 + 8 * 9,
+        "8 strategy rows, and each report's 9 check rows"
+    );
+}
