@@ -38,6 +38,12 @@ fn one_thread(c: &mut Criterion) {
     c.bench_function("verify M10x1.5-6g, 12 passes (sweep+measure+check)", |b| {
         b.iter(|| black_box(threadcheck::verify::verify(&spec).unwrap().pass))
     });
+    // The CLI's default: the same with the per-pass chip and edge metrics (from envelopes).
+    let mut with_metrics = spec.clone();
+    with_metrics.metrics = true;
+    c.bench_function("verify M10x1.5-6g, 12 passes, with per-pass metrics", |b| {
+        b.iter(|| black_box(threadcheck::verify::verify(&with_metrics).unwrap().pass))
+    });
     let mut solve = spec.clone();
     solve.final_x = None;
     c.bench_function("verify M10x1.5-6g, 12 passes, final X solved", |b| {

@@ -32,6 +32,32 @@ impl Chain {
         c
     }
 
+    /// The value at `z` inside the domain (linear between vertices; at a vertical step, the value
+    /// after it).
+    pub fn value(&self, z: f64) -> f64 {
+        let v = &self.0;
+        let i = v.partition_point(|p| p.z <= z).clamp(1, v.len() - 1);
+        let (a, b) = (v[i - 1], v[i]);
+        if b.z > a.z {
+            a.r + (b.r - a.r) * (z - a.z) / (b.z - a.z)
+        } else {
+            b.r
+        }
+    }
+
+    /// ∫ y dz over `[z0, z1]` ∩ the domain, exactly (trapezoids; steps add nothing).
+    pub fn integral(&self, z0: f64, z1: f64) -> f64 {
+        let mut sum = 0.0;
+        for w in self.0.windows(2) {
+            let (a, b) = (w[0].z.max(z0), w[1].z.min(z1));
+            if b > a && w[1].z > w[0].z {
+                let at = |z: f64| w[0].r + (w[1].r - w[0].r) * (z - w[0].z) / (w[1].z - w[0].z);
+                sum += 0.5 * (at(a) + at(b)) * (b - a);
+            }
+        }
+        sum
+    }
+
     /// Makes `self` the pointwise minimum of itself and `f`, where `f` is defined on
     /// `[f.first.z, f.last.z]` (and has no effect outside) with strictly increasing `z`. Only
     /// the stretch under `f` is rebuilt and spliced in: the cost is that stretch, not the chain.

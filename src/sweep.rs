@@ -384,24 +384,15 @@ fn farthest_on_segment(line: &Polyline, a: Point, b: Point) -> f64 {
         let q = Point::new(a.z + t * (b.z - a.z), a.r + t * (b.r - a.r));
         line.distance_to_local_point(&PPoint::new(q.z, q.r), false)
     };
-    let n = 32;
-    let (best_k, mut best) =
+    let n = 6;
+    let (best_k, best) =
         (0..=n)
             .map(|k| (k, at(k as f64 / n as f64)))
             .fold((0, 0.0), |acc, x| if x.1 > acc.1 { x } else { acc });
-    let (mut lo, mut hi) =
+    let (lo, hi) =
         (((best_k as f64) - 1.0).max(0.0) / n as f64, ((best_k as f64) + 1.0).min(n as f64) / n as f64);
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..60 {
-        let (c, d) = (hi - g * (hi - lo), lo + g * (hi - lo));
-        if at(c) > at(d) {
-            hi = d;
-        } else {
-            lo = c;
-        }
-    }
-    best = best.max(at(0.5 * (lo + hi)));
-    best
+    let (_, f) = crate::measure::golden_min(&|t| -at(t), lo, hi, 28);
+    best.max(-f)
 }
 
 /// What one pass does at one groove.
@@ -429,6 +420,158 @@ pub struct PassMetrics {
 /// and by its own previous revolution (one lead back along the feed), in steady state.
 pub fn pass_metrics(setup: &SweepSetup<'_>, passes: &[Pass], z_ref: f64) -> Result<Vec<PassMetrics>, Error> {
     check_finite(passes)?;
+    if let Some(chain) = crate::envelope::bottom_chain(&setup.insert.outline) {
+        return Ok(envelope_pass_metrics(setup, passes, z_ref, &chain));
+    }
+    boolean_pass_metrics(setup, passes, z_ref)
+}
+
+/// Pass metrics from envelopes, for inserts whose underside is a function of z: the chip of a
+/// pass lies between the envelope before it (every earlier pass and its own previous
+/// revolution) and its bottom chain, so its area is the integral of their gap, its engaged edge
+/// the part of the chain under the material, its thickness the material side's greatest
+/// distance from the insert. No polygon boolean: exact to rounding.
+fn envelope_pass_metrics(
+    setup: &SweepSetup<'_>,
+    passes: &[Pass],
+    z_ref: f64,
+    chain: &[Point],
+) -> Vec<PassMetrics> {
+    use crate::envelope::Chain;
+    let kind = setup.kind;
+    let p = setup.pitch;
+    let (lo, hi) = setup.insert.z_extent();
+    let reach = lo.abs().max(hi.abs());
+    let window = Window { z_min: z_ref - reach - p, z_max: z_ref + reach + p };
+    let s = if kind == ThreadKind::External { 1.0 } else { -1.0 };
+    let surface = s * rad(setup.blank_diameter);
+    let mirrored: Vec<Point> = chain.iter().rev().map(|q| Point::new(-q.z, q.r)).collect();
+    let local = if kind == ThreadKind::External { chain } else { &mirrored[..] };
+    let placed =
+        |z: f64, y: f64| -> Vec<Point> { local.iter().map(|q| Point::new(z + q.z, y + q.r)).collect() };
+    // In contact: somewhere more than 1 nm of material above the edge (an edge sliding along the
+    // finished surface is not cutting).
+    const CONTACT: f64 = 1e-6;
+    let mut env = Chain::flat(window.z_min, window.z_max, surface);
+    let mut out = Vec::with_capacity(passes.len());
+    for pass in passes {
+        let near = pass
+            .crossings(z_ref - 0.5 * p, z_ref + 0.5 * p)
+            .into_iter()
+            .min_by(|a, b| (a - z_ref).abs().total_cmp(&(b - z_ref).abs()));
+        let Some(z) = near else {
+            out.push(PassMetrics::default());
+            continue;
+        };
+        let y_tip = s * rad(pass.x_at(z));
+        let prev_z = z - pass.feed_direction() * pass.lead;
+        let mut before = env.clone();
+        before.merge(&placed(prev_z, s * rad(pass.x_at(prev_z))));
+        let f = placed(z, y_tip);
+        let mut after = before.clone();
+        after.merge(&f);
+        let mut m = PassMetrics::default();
+        let (w0, w1) = (window.z_min, window.z_max);
+        m.chip_area = (before.integral(w0, w1) - after.integral(w0, w1)).max(0.0);
+        if m.chip_area > 0.0 {
+            let (t0, t1) = if pass.feed_direction() < 0.0 { (z, w1) } else { (w0, z) };
+            m.trailing_area = (before.integral(t0, t1) - after.integral(t0, t1)).max(0.0);
+            // Between every breakpoint of the chain and of the material before it, both are
+            // straight: the gap is linear there.
+            let (f0, f1) = (f[0].z.max(w0), f[f.len() - 1].z.min(w1));
+            let mut zs: Vec<f64> = f
+                .iter()
+                .map(|q| q.z)
+                .chain(before.0.iter().map(|q| q.z))
+                .filter(|&q| q > f0 && q < f1)
+                .collect();
+            zs.push(f0);
+            zs.push(f1);
+            // Where the edge leaves the tip zone, so that each stretch is tip or flank (a sharp
+            // tip has no zone to leave).
+            let zone = y_tip + setup.insert.tip_zone;
+            for w in f.windows(2).filter(|_| setup.insert.tip_zone > 1e-6) {
+                if (w[0].r - zone) * (w[1].r - zone) < 0.0 {
+                    zs.push(w[0].z + (w[1].z - w[0].z) * (zone - w[0].r) / (w[1].r - w[0].r));
+                }
+            }
+            zs.retain(|&q| q >= f0 && q <= f1);
+            zs.sort_by(f64::total_cmp);
+            zs.dedup();
+            let edge = Chain(f.clone());
+            let outline = setup.insert.placed(&Insert::placement(z, rad(pass.x_at(z)), kind));
+            let mut closed = outline.clone();
+            closed.push(outline[0]);
+            let line = Polyline::new(closed.iter().map(|q| PPoint::new(q.z, q.r)).collect(), None);
+            let mut tops: Vec<(f64, Point, Point)> = Vec::new();
+            for w in zs.windows(2) {
+                let (a, b) = (w[0], w[1]);
+                if !(b > a) {
+                    continue;
+                }
+                let eps = 1e-9 * (b - a);
+                let gap = |q: f64| before.value(q) - edge.value(q);
+                let (ga, gb) = (gap(a + eps), gap(b - eps));
+                // The stretch of [a, b] under material, when the material there is thicker than
+                // the contact threshold somewhere.
+                if ga.max(gb) <= CONTACT {
+                    continue;
+                }
+                let (c0, c1) = match (ga > 0.0, gb > 0.0) {
+                    (true, true) => (a, b),
+                    (false, false) => continue,
+                    (true, false) => (a, a + (b - a) * ga / (ga - gb)),
+                    (false, true) => (a + (b - a) * (-ga) / (gb - ga), b),
+                };
+                let (ya, yb) = (edge.value(c0 + eps), edge.value(c1 - eps));
+                let len = (c1 - c0).hypot(yb - ya);
+                let mid = 0.5 * (c0 + c1);
+                if 0.5 * (ya + yb) - y_tip <= setup.insert.tip_zone {
+                    m.tip += len;
+                } else if (mid - z) * pass.feed_direction() > 0.0 {
+                    m.leading += len;
+                } else {
+                    m.trailing += len;
+                }
+                // The material's side of the chip, back in part coordinates; the gap straight
+                // down to the edge bounds its distance from the insert.
+                let (pa, pb) =
+                    (Point::new(c0, s * before.value(c0 + eps)), Point::new(c1, s * before.value(c1 - eps)));
+                // Consecutive stretches under one straight piece of material are one segment.
+                match tops.last_mut() {
+                    Some(last)
+                        if last.2 == pa
+                            && ((last.2.z - last.1.z) * (pb.r - pa.r)
+                                - (last.2.r - last.1.r) * (pb.z - pa.z))
+                                .abs()
+                                <= 1e-12 * (1.0 + last.1.distance(pb).powi(2)) =>
+                    {
+                        last.0 = last.0.max(ga.max(gb));
+                        last.2 = pb;
+                    }
+                    _ => tops.push((ga.max(gb), pa, pb)),
+                }
+            }
+            tops.sort_by(|a, b| b.0.total_cmp(&a.0));
+            for (bound, pa, pb) in tops {
+                if bound <= m.max_chip_thickness {
+                    break;
+                }
+                m.max_chip_thickness = m.max_chip_thickness.max(farthest_on_segment(&line, pa, pb));
+            }
+        }
+        env.merge(&f);
+        out.push(m);
+    }
+    out
+}
+
+/// Pass metrics with polygon booleans: for inserts whose underside doubles back.
+fn boolean_pass_metrics(
+    setup: &SweepSetup<'_>,
+    passes: &[Pass],
+    z_ref: f64,
+) -> Result<Vec<PassMetrics>, Error> {
     let kind = setup.kind;
     let p = setup.pitch;
     let (lo, hi) = setup.insert.z_extent();
@@ -527,4 +670,47 @@ pub(crate) fn swept_disk(moves: &[(Point, Point)], radius: f64, tolerance: f64) 
         Region::from_ring(&ring)
     };
     union_all(moves.iter().map(capsule).collect(), UnionStrategy::BalancedTree)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::passes::{Infeed, PlanSpec};
+
+    /// The envelope metrics and the polygon-boolean metrics measure the same chips: the areas to
+    /// the booleans' snapping (1e-8 mm²), the engaged edge in total and the thickness to 1 nm,
+    /// for a partial insert with radial, flank and alternating infeed.
+    #[test]
+    fn envelope_metrics_agree_with_the_booleans() {
+        let m10 = crate::parse_designation("M10x1.5", crate::ParseOptions::default()).expect("M10").thread;
+        let insert = Insert::partial_for(&m10, 0.04, 5e-5).expect("insert");
+        let setup =
+            SweepSetup { kind: ThreadKind::External, insert: &insert, blank_diameter: 9.85, pitch: 1.5 };
+        for infeed in [Infeed::Radial, Infeed::Flank { angle: 29.5 }, Infeed::Alternating { angle: 30.0 }] {
+            let passes = PlanSpec {
+                infeed,
+                z_start: 2.0,
+                length: 20.0,
+                ..PlanSpec::new(ThreadKind::External, 1.5, 9.85, 7.9, 7)
+            }
+            .generate()
+            .expect("plan");
+            let chain = crate::envelope::bottom_chain(&insert.outline).expect("a V has a bottom chain");
+            let a = envelope_pass_metrics(&setup, &passes, -8.0, &chain);
+            let b = boolean_pass_metrics(&setup, &passes, -8.0).expect("booleans");
+            for (i, (x, y)) in a.iter().zip(&b).enumerate() {
+                let what = format!("{infeed:?} pass {}", i + 1);
+                assert!(
+                    (x.chip_area - y.chip_area).abs() < 1e-8,
+                    "{what}: {} vs {}",
+                    x.chip_area,
+                    y.chip_area
+                );
+                assert!((x.trailing_area - y.trailing_area).abs() < 1e-8, "{what}");
+                let (ex, ey) = (x.leading + x.trailing + x.tip, y.leading + y.trailing + y.tip);
+                assert!((ex - ey).abs() < 1e-6, "{what}: engaged {ex} vs {ey}");
+                assert!((x.max_chip_thickness - y.max_chip_thickness).abs() < 1e-6, "{what}");
+            }
+        }
+    }
 }
