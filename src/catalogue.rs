@@ -294,6 +294,15 @@ pub fn run(cases: &[Case]) -> Vec<Result<Verification, Error>> {
     cases.par_iter().map(|c| verify(&c.spec)).collect()
 }
 
+/// Runs every case in parallel and keeps only what `f` makes of each (in catalogue order): a
+/// sweep that reports each case in a line needs no verification kept.
+pub fn run_map<T: Send>(
+    cases: &[Case],
+    f: impl Fn(&Case, Result<Verification, Error>) -> T + Sync,
+) -> Vec<T> {
+    cases.par_iter().map(|c| f(c, verify(&c.spec))).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -813,8 +813,10 @@ pub struct PlacementsLine<'a> {
     pub placements: Vec<Vec<[f64; 2]>>,
     /// Measured d2, mm.
     pub pitch_diameter: f64,
-    /// threadcheck's best time for the same cut, s.
+    /// threadcheck's best time for the same cut (sweep and pitch diameter), s.
     pub threadcheck_seconds: f64,
+    /// threadcheck's best time for the case's whole verify, s.
+    pub verify_seconds: f64,
 }
 
 /// The JSON text of a report: pretty, with a final newline.
