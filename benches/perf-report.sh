@@ -46,7 +46,9 @@ for path in glob.glob("target/criterion/**/new/benchmark.json", recursive=True):
     est = json.load(open(os.path.join(os.path.dirname(path), "estimates.json")))
     bench[meta["full_id"]] = est["median"]["point_estimate"]  # ns
 
-times = [tuple(map(float, open(f).read().split())) for f in sorted(glob.glob(f"{tmp}/time.*"))]
+# GNU time writes "Command exited with non-zero status 1" first when a case fails: the figures
+# are the last line.
+times = [tuple(map(float, open(f).read().strip().splitlines()[-1].split())) for f in sorted(glob.glob(f"{tmp}/time.*"))]
 walls = sorted(t[0] for t in times)
 peak_mb = max(t[1] for t in times) / 1024.0
 summary = open(f"{tmp}/sweep-summary.txt").read().strip()
