@@ -290,14 +290,11 @@ fn wire_rest(g: &Groove, rw: f64, flanks: ((f64, f64), (f64, f64))) -> Option<(f
 struct Clearance {
     cut: Vec<Point>,
     mmc: Vec<Point>,
-    lc: Polyline,
-    lm: Polyline,
 }
 
 impl Clearance {
     fn new(cut: Vec<Point>, mmc: Vec<Point>) -> Clearance {
-        let (lc, lm) = (polyline(&cut), polyline(&mmc));
-        Clearance { cut, mmc, lc, lm }
+        Clearance { cut, mmc }
     }
 
     /// Height of `line` at `z`, if it spans it (the polylines run with non-decreasing z).
@@ -322,15 +319,30 @@ impl Clearance {
             // The gauge moved by dz is the gauge at rest seen from p moved by −dz.
             let q = Point::new(p.z - dz, p.r);
             let h = Clearance::height(&self.mmc, q.z)?;
-            let d = self.lm.distance_to_local_point(&PPoint::new(q.z, q.r), false);
+            let d = Clearance::distance(&self.mmc, q, h);
             Some(if p.r > h + 1e-9 { -d } else { d })
         } else {
             let m = self.mmc[k - self.cut.len()];
             let q = Point::new(m.z + dz, m.r);
             let h = Clearance::height(&self.cut, q.z)?;
-            let d = self.lc.distance_to_local_point(&PPoint::new(q.z, q.r), false);
+            let d = Clearance::distance(&self.cut, q, h);
             Some(if h > q.r + 1e-9 { -d } else { d })
         }
+    }
+
+    /// Distance from `q` to `line` (non-decreasing z), whose height at `q.z` is `h`: the point
+    /// straight above or below is on the line, so the nearest lies within |q.r − h| along z, and
+    /// only the segments there are asked (parry's point–segment query), not the whole line.
+    fn distance(line: &[Point], q: Point, h: f64) -> f64 {
+        use parry2d_f64::shape::Segment;
+        let dv = (q.r - h).abs();
+        let lo = line.partition_point(|p| p.z < q.z - dv).saturating_sub(1);
+        let hi = line.partition_point(|p| p.z <= q.z + dv).min(line.len() - 1);
+        let pq = PPoint::new(q.z, q.r);
+        (lo..hi).fold(dv, |best, i| {
+            let s = Segment::new(PPoint::new(line[i].z, line[i].r), PPoint::new(line[i + 1].z, line[i + 1].r));
+            best.min(s.distance_to_local_point(&pq, false))
+        })
     }
 
     /// The clearance over the vertices `ks`: the smallest signed value (the deepest penetration,

@@ -182,6 +182,16 @@ fn html_report_renders_without_console_errors() {
     );
     let shot = screenshot(&html, 1200, 1600);
     assert!(console_errors(&shot.log).is_empty(), "{:?}", console_errors(&shot.log));
+    // Nothing runs off the page's sides: the outer columns stay background.
+    for y in 0..shot.h {
+        for x in [0, 1, shot.w - 2, shot.w - 1] {
+            let [r, g, b] = shot.at(x, y);
+            assert!(
+                u32::from(r) + u32::from(g) + u32::from(b) > 600,
+                "dark pixel at the page's edge ({x}, {y})"
+            );
+        }
+    }
     // The verdict is drawn: some dark-green or red text in the top 200 px.
     let coloured = (0..200).flat_map(|y| (0..1200).map(move |x| (x, y))).filter(|&(x, y)| {
         let [r, g, b] = shot.at(x, y);
