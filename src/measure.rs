@@ -335,14 +335,26 @@ impl Clearance {
     /// only the segments there are asked (parry's point–segment query), not the whole line.
     fn distance(line: &[Point], q: Point, h: f64) -> f64 {
         use parry2d_f64::shape::Segment;
-        let dv = (q.r - h).abs();
-        let lo = line.partition_point(|p| p.z < q.z - dv).saturating_sub(1);
-        let hi = line.partition_point(|p| p.z <= q.z + dv).min(line.len() - 1);
         let pq = PPoint::new(q.z, q.r);
-        (lo..hi).fold(dv, |best, i| {
-            let s = Segment::new(PPoint::new(line[i].z, line[i].r), PPoint::new(line[i + 1].z, line[i + 1].r));
-            best.min(s.distance_to_local_point(&pq, false))
-        })
+        let seg = |i: usize| {
+            Segment::new(PPoint::new(line[i].z, line[i].r), PPoint::new(line[i + 1].z, line[i + 1].r))
+                .distance_to_local_point(&pq, false)
+        };
+        // Outward from q.z on both sides, each side stopping where the segments lie farther along
+        // z than the best distance so far.
+        let mut best = (q.r - h).abs();
+        let start = line.partition_point(|p| p.z < q.z);
+        let mut i = start;
+        while i + 1 < line.len() && line[i].z <= q.z + best {
+            best = best.min(seg(i));
+            i += 1;
+        }
+        let mut j = start;
+        while j > 0 && line[j].z >= q.z - best {
+            best = best.min(seg(j - 1));
+            j -= 1;
+        }
+        best
     }
 
     /// The clearance over the vertices `ks`: the smallest signed value (the deepest penetration,
