@@ -143,8 +143,8 @@ w(f"The arithmetic floor: 12 passes cross the 4-pitch window about 5 times each;
   f"few microseconds. The sweep takes about {sweep_us:.0f} µs, an order of magnitude above that floor: every imprint "
   f"collects and deduplicates its events, evaluates both chains at each, simplifies the new stretch and splices it in. "
   f"Merging all imprints of one pitch in a single sorted pass (a k-way lower envelope) would close most of the gap. "
-  f"The rest of the ~{(one or 0)/1e3:.0f} µs is measurement, whose largest part is the maximum-material search (parry point "
-  f"queries over the groove while the gauge slides along the axis; the vertices that cannot touch are dropped as the "
+  f"The rest of the ~{(one or 0)/1e3:.0f} µs is measurement, whose largest part is the maximum-material search (point–segment "
+  f"distances near each vertex while the gauge slides along the axis; the vertices that cannot touch are dropped as the "
   f"search narrows), and fixed per-call setup. A closed form of the clearance on straight flanks would remove most of "
   f"it. A CLI `verify` also computes the per-pass chip and edge metrics, now from the envelopes before and after each "
   f"pass, without polygon booleans.\n")
