@@ -4,7 +4,7 @@
 //! of user text (designations, program names, notes) is escaped.
 
 use crate::compare::Comparison;
-use crate::report::fmt_num;
+use crate::report::{fmt_num, opt};
 use crate::standards::ThreadKind;
 use crate::verify::{OperationResult, ProgramVerification, Verification};
 use std::fmt::Write as _;
@@ -38,10 +38,6 @@ fn page(title: &str, body: &str) -> String {
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n{body}</body>\n</html>\n",
         esc(title)
     )
-}
-
-fn opt(v: Option<f64>, prec: usize) -> String {
-    v.map_or_else(|| "—".to_string(), |x| format!("{x:.prec$}"))
 }
 
 /// The sections of one verification: verdict, picture, checks, passes, extras, notes.

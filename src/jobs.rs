@@ -65,10 +65,6 @@ impl LimitsJob {
     }
 }
 
-fn fmt_opt(v: Option<f64>) -> String {
-    v.map_or_else(|| "—".to_string(), |x| format!("{x:.3}"))
-}
-
 fn limits_table(des: &Designation, ext: Option<&ThreadLimits>, int: Option<&ThreadLimits>) -> String {
     let t = &des.thread;
     let (d, d2, d3, d1, h) = basic_rounded(t);
@@ -109,7 +105,12 @@ fn limits_table(des: &Designation, ext: Option<&ThreadLimits>, int: Option<&Thre
         // Inch tables (ASME B1.1) print inches: show them beside the mm.
         let inch = matches!(t.form, crate::ThreadForm::Unified | crate::ThreadForm::Acme);
         let row = |s: &mut String, name: &str, lim: &Limit| {
-            let _ = write!(s, "  {name:<34}{:>9} {:>9}", fmt_opt(lim.max), fmt_opt(lim.min));
+            let _ = write!(
+                s,
+                "  {name:<34}{:>9} {:>9}",
+                crate::report::opt(lim.max, 3),
+                crate::report::opt(lim.min, 3)
+            );
             if inch {
                 let i = |v: Option<f64>| v.map_or_else(|| "—".to_string(), |x| format!("{:.4}", x / 25.4));
                 let _ = write!(s, "   {:>7} {:>7} in", i(lim.max), i(lim.min));
@@ -270,13 +271,26 @@ impl VerifyJob {
         text: String,
         outcome: Outcome,
     ) -> Result<(String, Outcome), Error> {
-        for (path, t) in [(&self.svg, &svg_text), (&self.html, &html_text)] {
-            if let (Some(path), Some(t)) = (path, t) {
-                crate::output::write_atomic(path, t.as_bytes())?;
-            }
-        }
-        Ok((route_json(self.json.as_deref(), json_text, text)?, outcome))
+        let files = [(&self.svg, svg_text), (&self.html, html_text)];
+        Ok((write_outputs(&files, self.json.as_deref(), json_text, text)?, outcome))
     }
+}
+
+/// The one output step of the jobs, after everything is rendered (so a failure leaves no file
+/// half-done): each picture or page to its file, atomically, then the JSON routed as
+/// [`route_json`] does. Returns what to print.
+fn write_outputs(
+    files: &[(&Option<std::path::PathBuf>, Option<String>)],
+    json: Option<&str>,
+    json_text: Option<String>,
+    text: String,
+) -> Result<String, Error> {
+    for (path, t) in files {
+        if let (Some(path), Some(t)) = (path, t) {
+            crate::output::write_atomic(path, t.as_bytes())?;
+        }
+    }
+    route_json(json, json_text, text)
 }
 
 /// Where `--json` sends the JSON: `-` prints it on stdout instead of the text; a path writes it
@@ -318,11 +332,8 @@ impl FitJob {
         let outcome = if r.fits { Outcome::Pass } else { Outcome::OutOfTolerance };
         let json_text = self.json.as_ref().map(|_| pretty(&crate::fit::FitJson::of(&r))).transpose()?;
         let svg_text = self.svg.as_ref().map(|_| crate::fit::svg(&r));
-        if let (Some(path), Some(t)) = (&self.svg, &svg_text) {
-            crate::output::write_atomic(path, t.as_bytes())?;
-        }
         let text = crate::fit::text(&r);
-        Ok((route_json(self.json.as_deref(), json_text, text)?, outcome))
+        Ok((write_outputs(&[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?, outcome))
     }
 }
 
@@ -664,12 +675,11 @@ impl MillJob {
     /// Runs the job: pass when the gouge and the leftover are within the tolerance.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
         let r = crate::mill::mill(&self.spec)?;
-        if let Some(path) = &self.svg {
-            crate::output::write_atomic(path, crate::render::mill_svg(&r).as_bytes())?;
-        }
+        let svg_text = self.svg.as_ref().map(|_| crate::render::mill_svg(&r));
         let json_text = self.json.as_ref().map(|_| pretty(&r)).transpose()?;
         let outcome =
             if r.verdict == crate::report::Verdict::Pass { Outcome::Pass } else { Outcome::OutOfTolerance };
-        Ok((route_json(self.json.as_deref(), json_text, crate::mill::text(&r))?, outcome))
+        let text = crate::mill::text(&r);
+        Ok((write_outputs(&[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?, outcome))
     }
 }

@@ -347,11 +347,22 @@ fn dimension_features(v: &Verification) -> [(crate::CheckFeature, f64); 3] {
     ]
 }
 
-fn fmt_limits(min: Option<f64>, max: Option<f64>) -> String {
+/// A limit as the tables give it: three decimals at their 1 µm, four for the inch forms'
+/// limits converted to mm.
+fn fmt_limit(v: f64) -> String {
+    if ((v * 1e3).round() - v * 1e3).abs() < 1e-6 {
+        format!("{v:.3}")
+    } else {
+        format!("{v:.4}")
+    }
+}
+
+/// A pair of limits (`8.862 – 8.994`, `≥ 0.187`), `unit` at the end.
+fn fmt_limits(min: Option<f64>, max: Option<f64>, unit: &str) -> String {
     match (min, max) {
-        (Some(a), Some(b)) => format!("[{a:.3} – {b:.3}]"),
-        (Some(a), None) => format!("[≥ {a:.3}]"),
-        (None, Some(b)) => format!("[≤ {b:.3}]"),
+        (Some(a), Some(b)) => format!("{} – {}{unit}", fmt_limit(a), fmt_limit(b)),
+        (Some(a), None) => format!("≥ {}{unit}", fmt_limit(a)),
+        (None, Some(b)) => format!("≤ {}{unit}", fmt_limit(b)),
         (None, None) => String::new(),
     }
 }
@@ -376,7 +387,10 @@ fn dimension_labels(v: &Verification, f: &Frame, right: f64) -> Group {
             format!("{name} {d:.4} mm")
         };
         let line2 = check.map_or(String::new(), |c| {
-            let lim = fmt_limits(c.min, c.max);
+            let lim = match (c.min, c.max) {
+                (None, None) => String::new(),
+                (min, max) => format!("[{}]", fmt_limits(min, max, "")),
+            };
             if c.ok {
                 lim
             } else {
@@ -501,20 +515,7 @@ fn check_table(v: &Verification, x: f64, y: f64) -> (Group, f64) {
             f if f.is_length() => format!("{:.4}", c.value),
             _ => crate::report::fmt_num(c.value),
         };
-        // The tables' 1 µm as three decimals; the inch forms' limits converted to mm with four.
-        let num = |v: f64| {
-            if ((v * 1e3).round() - v * 1e3).abs() < 1e-6 {
-                format!("{v:.3}")
-            } else {
-                format!("{v:.4}")
-            }
-        };
-        let lim = match (c.min, c.max) {
-            (Some(a), Some(b)) => format!("{} – {}{unit}", num(a), num(b)),
-            (Some(a), None) => format!("≥ {}{unit}", num(a)),
-            (None, Some(b)) => format!("≤ {}{unit}", num(b)),
-            (None, None) => String::new(),
-        };
+        let lim = fmt_limits(c.min, c.max, unit);
         let off = if c.deviation_um == 0.0 || !c.feature.is_length() {
             String::new()
         } else {

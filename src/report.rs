@@ -302,7 +302,8 @@ impl<'a> VerifyReport<'a> {
     }
 }
 
-fn opt(v: Option<f64>, prec: usize) -> String {
+/// A value with `prec` decimals, or a dash when there is none.
+pub(crate) fn opt(v: Option<f64>, prec: usize) -> String {
     v.map_or_else(|| "—".to_string(), |x| format!("{x:.prec$}"))
 }
 

@@ -426,6 +426,21 @@ pub fn pass_metrics(setup: &SweepSetup<'_>, passes: &[Pass], z_ref: f64) -> Resu
     boolean_pass_metrics(setup, passes, z_ref)
 }
 
+/// The window the per-pass metrics look at: the groove at `z_ref`, the insert's reach and one
+/// pitch either side.
+fn metrics_window(setup: &SweepSetup<'_>, z_ref: f64) -> Window {
+    let (lo, hi) = setup.insert.z_extent();
+    let reach = lo.abs().max(hi.abs());
+    Window { z_min: z_ref - reach - setup.pitch, z_max: z_ref + reach + setup.pitch }
+}
+
+/// Where `pass` crosses the groove at `z_ref`: its crossing nearest to it within half a pitch.
+fn groove_crossing(pass: &Pass, z_ref: f64, pitch: f64) -> Option<f64> {
+    pass.crossings(z_ref - 0.5 * pitch, z_ref + 0.5 * pitch)
+        .into_iter()
+        .min_by(|a, b| (a - z_ref).abs().total_cmp(&(b - z_ref).abs()))
+}
+
 /// Pass metrics from envelopes, for inserts whose underside is a function of z: the chip of a
 /// pass lies between the envelope before it (every earlier pass and its own previous
 /// revolution) and its bottom chain, so its area is the integral of their gap, its engaged edge
@@ -439,10 +454,7 @@ fn envelope_pass_metrics(
 ) -> Vec<PassMetrics> {
     use crate::envelope::Chain;
     let kind = setup.kind;
-    let p = setup.pitch;
-    let (lo, hi) = setup.insert.z_extent();
-    let reach = lo.abs().max(hi.abs());
-    let window = Window { z_min: z_ref - reach - p, z_max: z_ref + reach + p };
+    let window = metrics_window(setup, z_ref);
     let s = if kind == ThreadKind::External { 1.0 } else { -1.0 };
     let surface = s * rad(setup.blank_diameter);
     let mirrored: Vec<Point> = chain.iter().rev().map(|q| Point::new(-q.z, q.r)).collect();
@@ -455,11 +467,7 @@ fn envelope_pass_metrics(
     let mut env = Chain::flat(window.z_min, window.z_max, surface);
     let mut out = Vec::with_capacity(passes.len());
     for pass in passes {
-        let near = pass
-            .crossings(z_ref - 0.5 * p, z_ref + 0.5 * p)
-            .into_iter()
-            .min_by(|a, b| (a - z_ref).abs().total_cmp(&(b - z_ref).abs()));
-        let Some(z) = near else {
+        let Some(z) = groove_crossing(pass, z_ref, setup.pitch) else {
             out.push(PassMetrics::default());
             continue;
         };
@@ -573,10 +581,7 @@ fn boolean_pass_metrics(
     z_ref: f64,
 ) -> Result<Vec<PassMetrics>, Error> {
     let kind = setup.kind;
-    let p = setup.pitch;
-    let (lo, hi) = setup.insert.z_extent();
-    let reach = lo.abs().max(hi.abs());
-    let window = Window { z_min: z_ref - reach - p, z_max: z_ref + reach + p };
+    let window = metrics_window(setup, z_ref);
     let surface_r = rad(setup.blank_diameter);
     let far_r = far_side(kind, surface_r, setup.insert.height());
     let (r0, r1) = if kind == ThreadKind::External { (far_r, surface_r) } else { (surface_r, far_r) };
@@ -584,12 +589,7 @@ fn boolean_pass_metrics(
     let mut removed = Region::empty();
     let mut out = Vec::with_capacity(passes.len());
     for pass in passes {
-        let near = |z: f64| {
-            pass.crossings(z - 0.5 * p, z + 0.5 * p)
-                .into_iter()
-                .min_by(|a, b| (a - z).abs().total_cmp(&(b - z).abs()))
-        };
-        let Some(z) = near(z_ref) else {
+        let Some(z) = groove_crossing(pass, z_ref, setup.pitch) else {
             out.push(PassMetrics::default());
             continue;
         };
