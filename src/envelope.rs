@@ -137,6 +137,301 @@ impl Chain {
     }
 }
 
+/// The lower envelope over `[z_min, z_max]` of the surface `y = surface` and `chain` (strictly
+/// increasing `z`, acting on its own domain only) translated by every `(z, y)` in `tips`: the
+/// cut surface of every imprint at once.
+///
+/// The chain is split at its concave vertices into convex runs; a chain is the pointwise minimum
+/// of its runs, each on its own domain. The translates of one convex run on an interval cross
+/// pairwise at most once in the order of their offsets (the difference of two translates is
+/// monotone where both are defined), so their envelope is one stack pass over the tips sorted
+/// by `z`, each crossing found by binary search on the run's vertices: O(n log m) for n tips and
+/// m vertices instead of a merge per imprint. The runs' envelopes (one for a V or rounded-V
+/// insert, three for a full-profile insert's flanks and crest shoulders) are then merged into
+/// the surface with [`Chain::merge`]. The same function as merging every imprint in turn, to
+/// rounding (a unit test holds the two together).
+pub fn lower_envelope(chain: &[Point], tips: &[(f64, f64)], z_min: f64, z_max: f64, surface: f64) -> Chain {
+    lower_envelope_runs(chain, tips, (z_min, z_max), surface, MAX_RUNS)
+}
+
+/// [`lower_envelope`] with the number of convex runs above which it merges imprint by imprint.
+fn lower_envelope_runs(
+    chain: &[Point],
+    tips: &[(f64, f64)],
+    (z_min, z_max): (f64, f64),
+    surface: f64,
+    max_runs: usize,
+) -> Chain {
+    debug_assert!(chain.windows(2).all(|w| w[1].z > w[0].z), "a chain runs with increasing z");
+    if chain.len() < 2 || tips.is_empty() {
+        return Chain::flat(z_min, z_max, surface);
+    }
+    // Sorted by z; of equal z only the lowest, which lies under the others everywhere.
+    let mut sorted = tips.to_vec();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    sorted.dedup_by(|b, a| a.0 == b.0);
+    let runs = convex_runs(chain);
+    if runs.len() > max_runs {
+        let mut env = Chain::flat(z_min, z_max, surface);
+        let mut f: Vec<Point> = Vec::with_capacity(chain.len());
+        for &(zt, yt) in &sorted {
+            f.clear();
+            f.extend(chain.iter().map(|p| Point::new(zt + p.z, yt + p.r)));
+            env.merge(&f);
+        }
+        return env;
+    }
+    // The widest run (a V's whole underside, a full profile's flanks and root) is laid against
+    // the surface directly; the others (crest shoulders) are merged into that.
+    let width = |r: &[Point]| r[r.len() - 1].z - r[0].z;
+    let widest = (0..runs.len()).max_by(|&a, &b| width(&runs[a]).total_cmp(&width(&runs[b]))).unwrap_or(0);
+    let mut env = against_surface(&runs[widest], &sorted, z_min, z_max, surface);
+    let mut stretch: Vec<Point> = Vec::new();
+    for (_, run) in runs.iter().enumerate().filter(|(i, _)| *i != widest) {
+        for (zk, yk, a, b) in pieces(run, &sorted, z_min, z_max) {
+            // A gap before this piece ends the stretch so far.
+            if stretch.last().is_some_and(|p| p.z < a) {
+                flush(&mut env, &mut stretch);
+            }
+            push_piece(&mut stretch, run, zk, yk, a, b);
+        }
+        flush(&mut env, &mut stretch);
+    }
+    env
+}
+
+/// The pieces of the envelope of one run's translates, in z order: the translate `(zk, yk)` is
+/// the lowest over `[a, b]` (a > b never; pieces of no length are left out, their one value
+/// seen by no other point). Pieces reaching past the window by more than the run's width are
+/// cut there (still outside it, so that a merge sees them cross the window's edge).
+fn pieces<'a>(
+    run: &'a [Point],
+    tips: &'a [(f64, f64)],
+    z_min: f64,
+    z_max: f64,
+) -> impl Iterator<Item = (f64, f64, f64, f64)> + 'a {
+    let stack = run_envelope(run, tips);
+    let (u0, u1) = (run[0].z, run[run.len() - 1].z);
+    (0..stack.len()).filter_map(move |i| {
+        let (k, s) = stack[i];
+        let (zk, yk) = tips[k];
+        let e = stack.get(i + 1).map_or(zk + u1, |n| n.1);
+        let a = s.max(zk + u0).max(z_min - (u1 - u0));
+        let b = e.min(z_max + (u1 - u0));
+        (b > a).then_some((zk, yk, a, b))
+    })
+}
+
+/// Appends the translate `(zk, yk)` of `run` over `[a, b]`: its values at both ends and its
+/// vertices between.
+fn push_piece(out: &mut Vec<Point>, run: &[Point], zk: f64, yk: f64, a: f64, b: f64) {
+    out.push(Point::new(a, yk + at(run, a - zk)));
+    let first = run.partition_point(|p| zk + p.z <= a);
+    let last = run.partition_point(|p| zk + p.z < b);
+    out.extend(run[first..last].iter().map(|p| Point::new(zk + p.z, yk + p.r)));
+    out.push(Point::new(b, yk + at(run, b - zk)));
+}
+
+/// The minimum of the surface and the envelope of one run's translates over `[z_min, z_max]`,
+/// laid out in one pass: the pieces inside the window, the surface across the gaps between
+/// them (with vertical steps where a piece ends below it), then everything above the surface
+/// brought down to it, with a vertex where a piece crosses it.
+fn against_surface(run: &[Point], tips: &[(f64, f64)], z_min: f64, z_max: f64, surface: f64) -> Chain {
+    let mut raw: Vec<Point> = Vec::with_capacity(4 * run.len() + 8);
+    for (zk, yk, a, b) in pieces(run, tips, z_min, z_max) {
+        let (a, b) = (a.max(z_min), b.min(z_max));
+        if b < a || (b == a && a != z_min) {
+            continue;
+        }
+        match raw.last() {
+            None if a > z_min => raw.extend([Point::new(z_min, surface), Point::new(a, surface)]),
+            Some(&last) if last.z < a => {
+                raw.extend([Point::new(last.z, surface), Point::new(a, surface)]);
+            }
+            _ => {}
+        }
+        push_piece(&mut raw, run, zk, yk, a, b);
+    }
+    match raw.last() {
+        None => return Chain::flat(z_min, z_max, surface),
+        Some(&last) if last.z < z_max => {
+            raw.extend([Point::new(last.z, surface), Point::new(z_max, surface)])
+        }
+        _ => {}
+    }
+    let mut out: Vec<Point> = Vec::with_capacity(raw.len() + 8);
+    for (i, &p) in raw.iter().enumerate() {
+        out.push(Point::new(p.z, p.r.min(surface)));
+        if let Some(&q) = raw.get(i + 1) {
+            let (dp, dq) = (p.r - surface, q.r - surface);
+            if q.z > p.z && ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0)) {
+                let t = dp / (dp - dq);
+                out.push(Point::new(p.z + t * (q.z - p.z), surface));
+            }
+        }
+    }
+    Chain(simplify(out))
+}
+
+/// Merges one defined stretch of a run's envelope into `env` and empties it. Where pieces meet
+/// at a crossing the stretch holds the point twice; where one piece ends and the next starts
+/// at another height, it holds a vertical step, which the merge splits into two stretches.
+fn flush(env: &mut Chain, stretch: &mut Vec<Point>) {
+    stretch.dedup_by(|b, a| a.z == b.z && (a.r - b.r).abs() <= STEP);
+    let mut start = 0;
+    for i in 1..=stretch.len() {
+        if i == stretch.len() || stretch[i].z <= stretch[i - 1].z {
+            if i - start >= 2 {
+                env.merge(&stretch[start..i]);
+            }
+            start = i;
+        }
+    }
+    stretch.clear();
+}
+
+/// More convex runs than this (a chain with concave arcs, where every arc vertex is a run)
+/// are cheaper merged imprint by imprint.
+const MAX_RUNS: usize = 4;
+
+/// The chain as the pointwise minimum of convex runs, each on its own domain: split at its
+/// concave vertices (turns within rounding of straight count as convex), each run then carried
+/// on past a concave end along its end segment for as long as that line stays on or above the
+/// chain. The runs so overlap by at least a segment, so no rounding of where one ends and the
+/// next begins can leave a gap between them; a run that becomes another's duplicate (a full
+/// profile's two crest shoulders, each carried across the whole insert) is kept once.
+fn convex_runs(c: &[Point]) -> Vec<Vec<Point>> {
+    let n = c.len();
+    let mut cuts = vec![0];
+    for i in 1..n.saturating_sub(1) {
+        let (a, b, d) = (c[i - 1], c[i], c[i + 1]);
+        let cross = (b.z - a.z) * (d.r - b.r) - (b.r - a.r) * (d.z - b.z);
+        if cross < -1e-12 * a.distance(b) * b.distance(d) {
+            cuts.push(i);
+        }
+    }
+    cuts.push(n - 1);
+    // How far the line through `p` with slope `m` stays on or above the chain, walking the
+    // vertices `order` away from p: the z where it passes below the chain, or the last vertex.
+    let reach = |p: Point, m: f64, order: &mut dyn Iterator<Item = usize>| -> Point {
+        let line = |z: f64| p.r + m * (z - p.z);
+        let mut prev = p;
+        for k in order {
+            let q = c[k];
+            let gap = q.r - line(q.z);
+            if gap > 1e-12 {
+                // Crosses between prev (on or under the line) and q.
+                let g0 = prev.r - line(prev.z);
+                let t = -g0 / (gap - g0);
+                let z = prev.z + t * (q.z - prev.z);
+                return Point::new(z, line(z));
+            }
+            prev = q;
+        }
+        Point::new(prev.z, line(prev.z))
+    };
+    let mut runs: Vec<Vec<Point>> = Vec::with_capacity(cuts.len() - 1);
+    for w in cuts.windows(2) {
+        let (i0, i1) = (w[0], w[1]);
+        let mut run = Vec::with_capacity(i1 - i0 + 3);
+        if i0 > 0 {
+            let (a, b) = (c[i0], c[i0 + 1]);
+            let e = reach(a, (b.r - a.r) / (b.z - a.z), &mut (0..i0).rev());
+            if e.z < a.z {
+                run.push(e);
+            }
+        }
+        run.extend_from_slice(&c[i0..=i1]);
+        if i1 < n - 1 {
+            let (a, b) = (c[i1 - 1], c[i1]);
+            let e = reach(b, (b.r - a.r) / (b.z - a.z), &mut (i1 + 1..n));
+            if e.z > b.z {
+                run.push(e);
+            }
+        }
+        let run = simplify(run);
+        if !runs.contains(&run) {
+            runs.push(run);
+        }
+    }
+    runs
+}
+
+/// The value of a run (strictly increasing z) at `u` inside its domain.
+fn at(run: &[Point], u: f64) -> f64 {
+    let i = run.partition_point(|p| p.z < u).clamp(1, run.len() - 1);
+    let (a, b) = (run[i - 1], run[i]);
+    a.r + (b.r - a.r) * (u - a.z) / (b.z - a.z)
+}
+
+/// The envelope of the translates of one convex run by `tips` (sorted by z, distinct z): the
+/// tips on it in z order, each with the z from which it is the lowest (the one before it is
+/// the lowest up to there).
+fn run_envelope(run: &[Point], tips: &[(f64, f64)]) -> Vec<(usize, f64)> {
+    let mut stack: Vec<(usize, f64)> = Vec::with_capacity(tips.len());
+    for j in 0..tips.len() {
+        let mut x = f64::NEG_INFINITY;
+        while let Some(&(k, s)) = stack.last() {
+            x = crossing(run, tips[k], tips[j]);
+            if x <= s {
+                stack.pop();
+                x = f64::NEG_INFINITY;
+            } else {
+                break;
+            }
+        }
+        stack.push((j, x));
+    }
+    stack
+}
+
+/// Where translate `j` of a convex run starts to lie below translate `k` (`k.0 < j.0`): the
+/// translates are defined on intervals of equal length, `j`'s starting later, and their
+/// difference is non-decreasing where both are defined, so `j` is the lower one from that z on
+/// (undefined counts as infinitely high). Exact: binary search over both translates' vertices
+/// for the stretch where the difference is linear, then its root.
+fn crossing(run: &[Point], k: (f64, f64), j: (f64, f64)) -> f64 {
+    let (u0, u1) = (run[0].z, run[run.len() - 1].z);
+    let (lo, hi) = (j.0 + u0, k.0 + u1);
+    if lo > hi {
+        // Disjoint: k ends before j starts.
+        return hi;
+    }
+    let d = |z: f64| (k.1 + at(run, z - k.0)) - (j.1 + at(run, z - j.0));
+    let (mut a, mut b) = (lo, hi);
+    let (mut da, mut db) = (d(a), d(b));
+    if da > 0.0 {
+        return lo;
+    }
+    if db <= 0.0 {
+        return hi;
+    }
+    // Narrow [a, b] (d(a) ≤ 0 < d(b)) to the vertices of each translate in turn.
+    for off in [k.0, j.0] {
+        let first = run.partition_point(|p| off + p.z <= a);
+        let last = run.partition_point(|p| off + p.z < b);
+        let (mut l, mut r) = (first, last);
+        while l < r {
+            let mid = (l + r) / 2;
+            if d(off + run[mid].z) > 0.0 {
+                r = mid;
+            } else {
+                l = mid + 1;
+            }
+        }
+        if l < last {
+            b = off + run[l].z;
+            db = d(b);
+        }
+        if l > first {
+            a = off + run[l - 1].z;
+            da = d(a);
+        }
+    }
+    debug_assert!(da <= 0.0 && db > 0.0);
+    a + (b - a) * (-da / (db - da))
+}
+
 /// Walks a chain with increasing query points, keeping the indices of the first vertex at or
 /// past the point (for the left limit) and strictly past it (for the right limit).
 struct Walker<'a> {
@@ -280,6 +575,178 @@ mod tests {
         );
         // Merging the same imprint again changes nothing.
         assert_eq!(m.min_with(&[Point::new(1.0, 0.5), Point::new(2.0, 0.5)]), m);
+    }
+
+    /// A small deterministic generator for the comparison below (no test depends on its
+    /// sequence, only on the two envelopes agreeing).
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// Every vertex of either chain lies on the other (vertical steps included), to 1e-12 mm:
+    /// no spike of rounding width where runs or imprints meet.
+    fn assert_same(one: &Chain, each: &Chain, label: &str) {
+        let off = |p: Point, c: &Chain| {
+            c.0.windows(2)
+                .map(|w| {
+                    let (a, b) = (w[0], w[1]);
+                    let (dz, dr) = (b.z - a.z, b.r - a.r);
+                    let l2 = dz * dz + dr * dr;
+                    let t = if l2 > 0.0 {
+                        (((p.z - a.z) * dz + (p.r - a.r) * dr) / l2).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    Point::new(a.z + t * dz, a.r + t * dr).distance(p)
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        for (x, y) in [(one, each), (each, one)] {
+            for &p in &x.0 {
+                assert!(off(p, y) < 1e-12, "{label}: vertex {p:?} is {} off", off(p, y));
+            }
+        }
+    }
+
+    fn merge_each(chain: &[Point], tips: &[(f64, f64)], z0: f64, z1: f64, surface: f64) -> Chain {
+        let mut each = Chain::flat(z0, z1, surface);
+        let mut sorted = tips.to_vec();
+        sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for (zt, yt) in sorted {
+            let f: Vec<Point> = chain.iter().map(|p| Point::new(zt + p.z, yt + p.r)).collect();
+            each.merge(&f);
+        }
+        each
+    }
+
+    /// Regression (the crest of a Whitworth nut read as the bore): the runs of a nut insert
+    /// whose shoulders meet the flanks in concave arcs, every arc vertex a run, through the runs
+    /// however many, on the passes that showed it, agree with merging each imprint.
+    #[test]
+    fn runs_meeting_in_concave_arcs_leave_no_gap() {
+        use crate::geometry::rad;
+        let mut spec = crate::verify::VerifySpec::new("BSW 7/16 medium");
+        spec.internal = true;
+        spec.insert = crate::verify::InsertChoice::Full;
+        spec.infeed = Some("alternating:27.5".parse().unwrap());
+        spec.schedule = crate::passes::Schedule::ConstantDepth;
+        let v = crate::verify::verify(&spec).unwrap();
+        let chain: Vec<Point> =
+            bottom_chain(&v.insert.outline).unwrap().iter().rev().map(|p| Point::new(-p.z, p.r)).collect();
+        assert!(convex_runs(&chain).len() > MAX_RUNS);
+        let setup = crate::sweep::SweepSetup {
+            kind: v.kind,
+            insert: &v.insert,
+            blank_diameter: v.blank_diameter,
+            pitch: v.designation.thread.pitch,
+        };
+        let w = v.section.window;
+        let tips: Vec<(f64, f64)> = crate::sweep::imprints(&setup, &v.passes, w)
+            .unwrap()
+            .iter()
+            .map(|im| (im.z, -rad(im.x)))
+            .collect();
+        let surface = -rad(v.blank_diameter);
+        let one = lower_envelope_runs(&chain, &tips, (w.z_min, w.z_max), surface, usize::MAX);
+        assert_same(&one, &merge_each(&chain, &tips, w.z_min, w.z_max, surface), "BSW 7/16 nut");
+    }
+
+    /// The one-pass envelope of translates is the same function as merging every imprint in
+    /// turn, for a rounded V (one convex run), a full-profile chain (flat shoulders: three runs,
+    /// vertical steps where shoulders end) and arbitrary non-convex chains, with tips above and
+    /// below the surface, overlapping, disjoint and at equal z.
+    #[test]
+    fn envelope_of_translates_matches_merging_each_imprint() {
+        let mut g = Lcg(7);
+        let rounded_v: Vec<Point> = {
+            let mut v = vec![Point::new(-1.2, 2.0)];
+            for k in 0..=12 {
+                let a = -60f64.to_radians() + k as f64 * 10f64.to_radians();
+                v.push(Point::new(0.04 * a.sin(), 0.04 * (1.0 - a.cos())));
+            }
+            v.push(Point::new(1.2, 2.0));
+            v
+        };
+        let full = vec![
+            Point::new(-0.80, 0.92),
+            Point::new(-0.66, 0.92),
+            Point::new(-0.1, 0.05),
+            Point::new(0.0, 0.0),
+            Point::new(0.1, 0.05),
+            Point::new(0.66, 0.92),
+            Point::new(0.80, 0.92),
+        ];
+        // A Whitworth nut insert: flat shoulders, concave arcs down to the flanks (every arc
+        // vertex a run of its own), a convex root arc.
+        let rounded_full: Vec<Point> = {
+            let mut v = vec![Point::new(-0.96, 1.16)];
+            for k in 0..=10 {
+                let a = k as f64 * 5.5f64.to_radians();
+                v.push(Point::new(-0.91 + 0.15 * a.sin(), 1.16 - 0.15 * (1.0 - a.cos())));
+            }
+            for k in 0..=10 {
+                let a = -27.5f64.to_radians() + k as f64 * 5.5f64.to_radians();
+                v.push(Point::new(0.2 * a.sin(), 0.2 * (1.0 - a.cos())));
+            }
+            for k in (0..=10).rev() {
+                let a = k as f64 * 5.5f64.to_radians();
+                v.push(Point::new(0.91 - 0.15 * a.sin(), 1.16 - 0.15 * (1.0 - a.cos())));
+            }
+            v.push(Point::new(0.96, 1.16));
+            v
+        };
+        assert!(rounded_full.windows(2).all(|w| w[1].z > w[0].z));
+        for case in 0..160 {
+            let chain: Vec<Point> = match case % 4 {
+                0 => rounded_v.clone(),
+                1 => full.clone(),
+                2 => rounded_full.clone(),
+                _ => {
+                    let mut z = -1.0;
+                    (0..8)
+                        .map(|_| {
+                            z += 0.05 + 0.3 * g.next();
+                            Point::new(z, g.next())
+                        })
+                        .collect()
+                }
+            };
+            let n = 1 + (g.next() * 40.0) as usize;
+            let mut tips: Vec<(f64, f64)> =
+                (0..n).map(|_| (-3.0 + 6.0 * g.next(), 0.5 - 1.5 * g.next())).collect();
+            // Equal z, and a pitch-spaced row as passes leave.
+            tips.push(tips[0]);
+            tips.push((tips[0].0, tips[0].1 - 0.01));
+            tips.extend((0..5).map(|i| (-2.0 + 1.5 * i as f64, -0.3)));
+            // Passes as a lathe leaves them: a row of tips one pitch apart per pass, each pass
+            // deeper and shifted along the flank or alternately, so that breakpoints of different
+            // imprints fall within rounding of each other.
+            let pitch = 1.8142857142857143;
+            for pass in 0..8 {
+                let shift = if case % 2 == 0 { 0.02 * pass as f64 } else { 0.03 * (pass % 2) as f64 - 0.015 };
+                let y = -0.05 - 0.04 * pass as f64;
+                tips.extend((-2..=2).map(|k| (-0.3 + shift + k as f64 * pitch, y)));
+            }
+            let (z0, z1, surface) = (-2.5, 2.5, 0.6);
+            // Both ways: the default, and every chain through its convex runs however many.
+            let one = if case % 8 < 4 {
+                lower_envelope(&chain, &tips, z0, z1, surface)
+            } else {
+                lower_envelope_runs(&chain, &tips, (z0, z1), surface, usize::MAX)
+            };
+            let each = merge_each(&chain, &tips, z0, z1, surface);
+            for k in 0..4000 {
+                let z = z0 + (z1 - z0) * (k as f64 + 0.37) / 4000.0;
+                let (a, b) = (one.value(z), each.value(z));
+                assert!((a - b).abs() < 1e-12, "case {case}: at z {z}: {a} against {b}");
+            }
+            assert!((one.integral(z0, z1) - each.integral(z0, z1)).abs() < 1e-12, "case {case}");
+            assert_same(&one, &each, &format!("case {case}"));
+        }
     }
 
     #[test]

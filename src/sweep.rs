@@ -344,31 +344,23 @@ fn envelope_section(
     surface_r: f64,
     far_r: f64,
 ) -> Section {
-    use crate::envelope::Chain;
     let s = if kind == ThreadKind::External { 1.0 } else { -1.0 };
-    let mut env = Chain::flat(window.z_min, window.z_max, s * surface_r);
-    let mut sorted = imps.to_vec();
-    sorted.sort_by(|a, b| a.z.total_cmp(&b.z));
     // Only the part of the chain that can reach into the blank matters: clip it at the greatest
     // height (above its own tip) that any imprint's tip lies below the surface. That shortens
     // the chain's reach along Z and so the number of imprints a window sees.
-    let reach = sorted.iter().map(|im| s * surface_r - s * rad(im.x)).fold(0.0f64, f64::max) + 1e-6;
+    let reach = imps.iter().map(|im| s * surface_r - s * rad(im.x)).fold(0.0f64, f64::max) + 1e-6;
     let clipped = clip_chain(chain, reach);
     let mirrored: Vec<Point> = clipped.iter().rev().map(|p| Point::new(-p.z, p.r)).collect();
     let local = if kind == ThreadKind::External { &clipped[..] } else { &mirrored[..] };
-    let mut f: Vec<Point> = Vec::with_capacity(local.len());
     let (lo, hi) = (local[0].z, local[local.len() - 1].z);
-    for im in &sorted {
-        let (zt, yt) = (im.z, s * rad(im.x));
-        // An imprint whose (clipped) chain misses the window, or stays above the surface, cannot
-        // change the envelope.
-        if zt + hi <= window.z_min || zt + lo >= window.z_max || yt >= s * surface_r {
-            continue;
-        }
-        f.clear();
-        f.extend(local.iter().map(|p| Point::new(zt + p.z, yt + p.r)));
-        env.merge(&f);
-    }
+    // An imprint whose (clipped) chain misses the window, or stays above the surface, cannot
+    // change the envelope.
+    let tips: Vec<(f64, f64)> = imps
+        .iter()
+        .map(|im| (im.z, s * rad(im.x)))
+        .filter(|&(zt, yt)| zt + hi > window.z_min && zt + lo < window.z_max && yt < s * surface_r)
+        .collect();
+    let env = crate::envelope::lower_envelope(local, &tips, window.z_min, window.z_max, s * surface_r);
     let profile: Vec<Point> = env.0.iter().map(|p| Point::new(p.z, s * p.r)).collect();
     let mut ring = vec![Point::new(window.z_min, far_r), Point::new(window.z_max, far_r)];
     ring.extend(profile.iter().rev().copied());

@@ -411,3 +411,30 @@ proptest! {
         prop_assert!((a.area() - b.area()).abs() < SNAP * profile_length(&a), "areas {} {}", a.area(), b.area());
     }
 }
+
+/// Regression: a nut insert whose crest shoulders run into the flanks through concave arcs
+/// (Whitworth) once lost the crest cut where the envelope's convex runs met, in rounding-wide
+/// gaps: the minor diameter read as the bore. The envelope must agree with the polygon
+/// booleans, crest included.
+#[test]
+fn whitworth_nut_full_insert_tops_the_crest() {
+    let mut spec = threadcheck::verify::VerifySpec::new("BSW 7/16 medium");
+    spec.internal = true;
+    spec.insert = threadcheck::verify::InsertChoice::Full;
+    spec.infeed = Some("alternating:27.5".parse().unwrap());
+    spec.schedule = Schedule::ConstantDepth;
+    let v = threadcheck::verify::verify(&spec).unwrap();
+    let setup = SweepSetup {
+        kind: v.kind,
+        insert: &v.insert,
+        blank_diameter: v.blank_diameter,
+        pitch: v.designation.thread.pitch,
+    };
+    let w = v.section.window;
+    let a = sweep(&setup, &v.passes, w, UnionStrategy::Envelope).unwrap().section;
+    let b = sweep(&setup, &v.passes, w, UnionStrategy::BalancedTree).unwrap().section;
+    let d = profile_distance(&a.profile(), &b.profile());
+    assert!(d < SNAP, "distance {d}");
+    // The crest is cut: the minor diameter lies above the bore.
+    assert!(v.measurement.minor_diameter > v.blank_diameter + 0.1, "{:?}", v.measurement);
+}
