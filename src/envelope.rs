@@ -237,7 +237,7 @@ fn push_piece(out: &mut Vec<Point>, run: &[Point], zk: f64, yk: f64, a: f64, b: 
 /// them (with vertical steps where a piece ends below it), then everything above the surface
 /// brought down to it, with a vertex where a piece crosses it.
 fn against_surface(run: &[Point], tips: &[(f64, f64)], z_min: f64, z_max: f64, surface: f64) -> Chain {
-    let mut raw: Vec<Point> = Vec::with_capacity(4 * run.len() + 8);
+    let mut raw: Vec<Point> = Vec::with_capacity(2 * (run.len() + 2 * tips.len()) + 8);
     for (zk, yk, a, b) in pieces(run, tips, z_min, z_max) {
         let (a, b) = (a.max(z_min), b.min(z_max));
         if b < a || (b == a && a != z_min) {

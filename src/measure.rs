@@ -255,13 +255,14 @@ fn rest_on_lines(left: (f64, f64), right: (f64, f64), rw: f64) -> Option<(f64, f
 /// shape casts and the lowest resting place found by golden section.
 fn wire_rest(g: &Groove, rw: f64, flanks: ((f64, f64), (f64, f64))) -> Option<(f64, f64)> {
     let chain = &g.pts[g.left..=g.right];
-    let line = polyline(chain);
     if let Some((z, y)) = rest_on_lines(flanks.0, flanks.1, rw) {
-        let d = line.distance_to_local_point(&PPoint::new(z, y), false);
-        if (d - rw).abs() < 1e-9 {
+        // The groove's nearest point to the centre (its height there bounds the search).
+        let d = Clearance::height(chain, z).map(|h| Clearance::distance(chain, Point::new(z, y), h));
+        if d.is_some_and(|d| (d - rw).abs() < 1e-9) {
             return Some((z, y));
         }
     }
+    let line = polyline(chain);
     let ball = Ball::new(rw);
     let top = chain.iter().map(|p| p.r).fold(f64::NEG_INFINITY, f64::max) + 2.0 * rw + 1.0;
     let drop = |z: f64| -> f64 {
@@ -460,19 +461,37 @@ pub fn measure(setup: &MeasureSetup<'_>, profile: &[Point], z_ref: f64) -> Resul
     let w_lo = g.width(y_root + 1e-12 * (y_top - y_root).max(1.0)).unwrap_or(0.0);
     let w_hi = g.width(y_top).unwrap_or(f64::INFINITY);
     let (y_pitch, extrapolated, zc) = if w_lo <= half && half <= w_hi {
-        let (mut a, mut b) = (y_root, y_top);
-        for _ in 0..200 {
-            let m = 0.5 * (a + b);
-            if g.width(m).unwrap_or(0.0) < half {
-                a = m;
+        // Between two vertex heights both flank crossings run along fixed segments, so the
+        // width is linear there: a binary search over the heights finds the stretch where it
+        // reaches P/2, and the line there the level, exactly.
+        let mut hs: Vec<f64> =
+            g.pts[g.left..=g.right].iter().map(|q| q.r).filter(|&r| r > y_root && r < y_top).collect();
+        hs.push(y_root);
+        hs.push(y_top);
+        hs.sort_by(f64::total_cmp);
+        hs.dedup();
+        let w = |y: f64| g.width(y).unwrap_or(0.0);
+        let (mut i, mut j) = (0, hs.len() - 1);
+        while j - i > 1 {
+            let m = (i + j) / 2;
+            if w(hs[m]) < half {
+                i = m;
             } else {
-                b = m;
-            }
-            if b - a < 1e-15 {
-                break;
+                j = m;
             }
         }
-        let y = 0.5 * (a + b);
+        // The line through two points inside the stretch (where the crossing moves from one
+        // flank segment to the next around a notch, the width jumps at a vertex height, and the
+        // stretch's own line starts after the jump); where a jump passes P/2, at the jump.
+        let (ya, yb) = (hs[i] + (hs[j] - hs[i]) / 3.0, hs[i] + 2.0 * (hs[j] - hs[i]) / 3.0);
+        let (wa, wb) = (w(ya), w(yb));
+        let y = if wb > wa {
+            (ya + (half - wa) / (wb - wa) * (yb - ya)).clamp(hs[i], hs[j])
+        } else if wa >= half {
+            hs[i]
+        } else {
+            hs[j]
+        };
         let zc = 0.5 * (g.left_z(y).unwrap_or(0.0) + g.right_z(y).unwrap_or(0.0));
         (y, false, zc)
     } else {
