@@ -366,24 +366,38 @@ impl Clearance {
 
     /// The best clearance over axial shifts in `[-reach, reach]`, as a gauge screws on to where
     /// it fits best: a golden search on the shift (24 steps narrow it to 0.618²⁴·2·reach, a few
-    /// nm). Every few steps the vertices that cannot be the least anywhere in the bracket are
+    /// nm). Now and then the vertices that cannot be the least anywhere in the bracket are
     /// dropped: with the bracket w wide around its middle m, each value moves at most w/2, so a
     /// vertex whose value at m exceeds the least there by more than w never becomes the least.
     /// The search then runs on the few vertices that touch, with the same result as on all.
+    ///
+    /// Once a few vertices are left and the bracket is under 50 µm, the search tries to finish
+    /// exactly: where the touching vertices face straight flanks, each value is linear in the
+    /// shift, so the best shift is where the chords of their values across the bracket cross
+    /// (the maximum of the least of a few lines). The finish is taken when every vertex's value
+    /// there lies on its chord to 1e-10 mm (the touching parts are straight); otherwise the
+    /// golden steps go on. Either way the result is a value the gauge reaches at some shift.
     fn best(&self, reach: f64) -> f64 {
         let mut ks: Vec<usize> = (0..self.cut.len() + self.mmc.len()).collect();
         let g = 0.5 * (5f64.sqrt() - 1.0);
         let (mut a, mut b) = (-reach, reach);
         let prune = |ks: &mut Vec<usize>, a: f64, b: f64| {
             let m = 0.5 * (a + b);
-            let vals: Vec<(usize, f64)> =
-                ks.iter().filter_map(|&k| self.vertex(k, m).map(|v| (k, v))).collect();
-            let least = vals.iter().map(|x| x.1).fold(f64::INFINITY, f64::min);
-            *ks = vals.into_iter().filter(|x| x.1 <= least + (b - a)).map(|x| x.0).collect();
+            let mut least = f64::INFINITY;
+            let mut vals: Vec<(usize, f64)> = Vec::with_capacity(ks.len());
+            for &k in ks.iter() {
+                if let Some(v) = self.vertex(k, m) {
+                    least = least.min(v);
+                    vals.push((k, v));
+                }
+            }
+            ks.clear();
+            ks.extend(vals.into_iter().filter(|x| x.1 <= least + (b - a)).map(|x| x.0));
         };
         prune(&mut ks, a, b);
         let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
         let (mut fc, mut fd) = (self.over(&ks, c), self.over(&ks, d));
+        let mut tried_exact = false;
         for step in 0..24 {
             // Maximise the clearance.
             if fc > fd {
@@ -399,11 +413,56 @@ impl Clearance {
                 d = a + g * (b - a);
                 fd = self.over(&ks, d);
             }
-            if step % 2 == 1 && ks.len() > 2 {
+            // Prune while it pays: every other step until few vertices are left, then seldom.
+            if ks.len() > 2 && (step % 2 == 1 && (ks.len() > 6 || step % 8 == 7)) {
                 prune(&mut ks, a, b);
+            }
+            if !tried_exact && ks.len() <= 6 && b - a < 0.05 {
+                tried_exact = true;
+                if let Some(v) = self.exact_finish(&ks, a, b) {
+                    return v.max(fc).max(fd);
+                }
             }
         }
         fc.max(fd)
+    }
+
+    /// The exact finish of [`Clearance::best`] on `[a, b]`: the shift where the least of the
+    /// vertices' chords is greatest, and the clearance there, when every vertex's value there
+    /// lies on its chord (None otherwise, or where a vertex has no value).
+    fn exact_finish(&self, ks: &[usize], a: f64, b: f64) -> Option<f64> {
+        let mut lines: Vec<(f64, f64)> = Vec::with_capacity(ks.len());
+        for &k in ks {
+            let (va, vb) = (self.vertex(k, a)?, self.vertex(k, b)?);
+            lines.push((va, (vb - va) / (b - a)));
+        }
+        let least = |x: f64| lines.iter().map(|&(v, m)| v + m * (x - a)).fold(f64::INFINITY, f64::min);
+        let mut x_best = a;
+        let mut candidates = vec![a, b];
+        for (i, &(v1, m1)) in lines.iter().enumerate() {
+            for &(v2, m2) in &lines[i + 1..] {
+                if m1 != m2 {
+                    let x = a + (v2 - v1) / (m1 - m2);
+                    if x > a && x < b {
+                        candidates.push(x);
+                    }
+                }
+            }
+        }
+        for x in candidates {
+            if least(x) > least(x_best) {
+                x_best = x;
+            }
+        }
+        let mut f = f64::INFINITY;
+        for (&k, &(v, m)) in ks.iter().zip(&lines) {
+            let got = self.vertex(k, x_best)?;
+            if (got - (v + m * (x_best - a))).abs() > 1e-10 {
+                return None;
+            }
+            f = f.min(got);
+        }
+        Some(f)
     }
 }
 
