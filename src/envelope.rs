@@ -168,7 +168,7 @@ fn lower_envelope_runs(
     }
     // Sorted by z; of equal z only the lowest, which lies under the others everywhere.
     let mut sorted = tips.to_vec();
-    sorted.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    sorted.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
     sorted.dedup_by(|b, a| a.0 == b.0);
     let runs = convex_runs(chain);
     if runs.len() > max_runs {
@@ -237,8 +237,9 @@ fn push_piece(out: &mut Vec<Point>, run: &[Point], zk: f64, yk: f64, a: f64, b: 
 /// them (with vertical steps where a piece ends below it), then everything above the surface
 /// brought down to it, with a vertex where a piece crosses it.
 fn against_surface(run: &[Point], tips: &[(f64, f64)], z_min: f64, z_max: f64, surface: f64) -> Chain {
-    let mut raw: Vec<Point> = Vec::with_capacity(2 * (run.len() + 2 * tips.len()) + 8);
-    for (zk, yk, a, b) in pieces(run, tips, z_min, z_max) {
+    let all = pieces(run, tips, z_min, z_max);
+    let mut raw: Vec<Point> = Vec::with_capacity(all.size_hint().1.unwrap_or(0) * (run.len() + 4) + 4);
+    for (zk, yk, a, b) in all {
         let (a, b) = (a.max(z_min), b.min(z_max));
         if b < a || (b == a && a != z_min) {
             continue;

@@ -387,7 +387,7 @@ impl Clearance {
     /// vertex whose value at m exceeds the least there by more than w never becomes the least.
     /// The search then runs on the few vertices that touch, with the same result as on all.
     ///
-    /// Once a few vertices are left and the bracket is under 50 µm, the search tries to finish
+    /// Once few vertices are left ([`FEW`]) and the bracket is under 50 µm, the search tries to finish
     /// exactly: where the touching vertices face straight flanks, each value is linear in the
     /// shift, so the best shift is where the chords of their values across the bracket cross
     /// (the maximum of the least of a few lines). The finish is taken when every vertex's value
@@ -430,10 +430,10 @@ impl Clearance {
                 fd = self.over(&ks, d);
             }
             // Prune while it pays: every other step until few vertices are left, then seldom.
-            if ks.len() > 2 && (step % 2 == 1 && (ks.len() > 6 || step % 8 == 7)) {
+            if ks.len() > 2 && (step % 2 == 1 && (ks.len() > FEW || step % 8 == 7)) {
                 prune(&mut ks, a, b);
             }
-            if !tried_exact && ks.len() <= 6 && b - a < 0.05 {
+            if !tried_exact && ks.len() <= FEW && b - a < 0.05 {
                 tried_exact = true;
                 if let Some((x, v)) = self.exact_finish(&ks, a, b) {
                     return [(x, v), (c, fc), (d, fd)].into_iter().fold((x, v), |m, p| {
@@ -491,6 +491,11 @@ impl Clearance {
         Some((x_best, f))
     }
 }
+
+/// So many vertices or fewer left in a clearance search count as few: pruned seldom, and
+/// tried for the exact finish (the crest corners of both flanks and the gauge's own corners
+/// often stay within a narrow bracket's width of touching, eight of them on a symmetric cut).
+const FEW: usize = 12;
 
 /// The signed smallest distance between a bolt's profile and a nut's, both `(z, radius)` with
 /// non-decreasing z, the nut moved axially within ±`reach` to where it fits best: positive is

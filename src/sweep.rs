@@ -70,7 +70,9 @@ pub struct Section {
     pub surface_r: f64,
     /// Radius of the artificial far side of the blank (floor or ceiling), mm.
     pub far_r: f64,
-    region: Region,
+    /// The material as polygons: from the booleans, or built from the exact profile when first
+    /// asked for (a verify that only measures never needs it).
+    region: std::sync::OnceLock<Region>,
     /// The cut surface when the envelope computed it exactly.
     exact_profile: Option<Vec<Point>>,
 }
@@ -78,17 +80,24 @@ pub struct Section {
 impl Section {
     /// Material area, mm².
     pub fn area(&self) -> f64 {
-        self.region.area()
+        self.region().area()
     }
 
     /// The polygons as (exterior, holes).
     pub fn polygons(&self) -> Vec<(Vec<Point>, Vec<Vec<Point>>)> {
-        self.region.polygons()
+        self.region().polygons()
     }
 
     /// The material as a region, for further booleans.
     pub fn region(&self) -> &Region {
-        &self.region
+        self.region.get_or_init(|| {
+            // Only envelope sections leave it unset, and they hold their profile.
+            let profile = self.exact_profile.as_deref().unwrap_or_default();
+            let w = self.window;
+            let mut ring = vec![Point::new(w.z_min, self.far_r), Point::new(w.z_max, self.far_r)];
+            ring.extend(profile.iter().rev().copied());
+            Region::from_ring(&ring)
+        })
     }
 
     /// The cut surface as a polyline from low to high Z: the material boundary without the
@@ -303,7 +312,7 @@ pub fn sweep(
         }
     }
     Ok(Sweep {
-        section: Section { kind, window, surface_r, far_r, region: material, exact_profile: None },
+        section: Section { kind, window, surface_r, far_r, region: material.into(), exact_profile: None },
         imprints: imps,
     })
 }
@@ -362,9 +371,7 @@ fn envelope_section(
         .collect();
     let env = crate::envelope::lower_envelope(local, &tips, window.z_min, window.z_max, s * surface_r);
     let profile: Vec<Point> = env.0.iter().map(|p| Point::new(p.z, s * p.r)).collect();
-    let mut ring = vec![Point::new(window.z_min, far_r), Point::new(window.z_max, far_r)];
-    ring.extend(profile.iter().rev().copied());
-    Section { kind, window, surface_r, far_r, region: Region::from_ring(&ring), exact_profile: Some(profile) }
+    Section { kind, window, surface_r, far_r, region: std::sync::OnceLock::new(), exact_profile: Some(profile) }
 }
 
 /// The greatest distance from segment `a`–`b` to `line`. Distance to a polyline, taken along a
