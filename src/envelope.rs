@@ -512,6 +512,19 @@ fn simplify(v: Vec<Point>) -> Vec<Point> {
     out
 }
 
+/// The indices of an outline's leftmost and rightmost vertices (the lowest of ties), where its
+/// underside (the bottom chain) starts and ends; counter-clockwise, the rest of the outline runs
+/// from the rightmost back to the leftmost.
+pub fn chain_ends(outline: &[Point]) -> (usize, usize) {
+    let n = outline.len();
+    let pick = |better: &dyn Fn(Point, Point) -> bool| {
+        (0..n).fold(0, |b, i| if better(outline[i], outline[b]) { i } else { b })
+    };
+    let left = pick(&|p, q| p.z < q.z || (p.z == q.z && p.r < q.r));
+    let right = pick(&|p, q| p.z > q.z || (p.z == q.z && p.r < q.r));
+    (left, right)
+}
+
 /// The bottom chain of a counter-clockwise outline (insert frame: `r` up into the tool): from its
 /// leftmost to its rightmost vertex along the underside, with strictly increasing `z`; `None`
 /// when the underside doubles back (an undercut), which the envelope cannot represent.
@@ -520,12 +533,7 @@ pub fn bottom_chain(outline: &[Point]) -> Option<Vec<Point>> {
     if n < 3 {
         return None;
     }
-    // Leftmost vertex (the lowest of ties) and rightmost vertex (the lowest of ties).
-    let pick = |better: &dyn Fn(Point, Point) -> bool| {
-        (0..n).fold(0, |b, i| if better(outline[i], outline[b]) { i } else { b })
-    };
-    let left = pick(&|p, q| p.z < q.z || (p.z == q.z && p.r < q.r));
-    let right = pick(&|p, q| p.z > q.z || (p.z == q.z && p.r < q.r));
+    let (left, right) = chain_ends(outline);
     // Counter-clockwise, the underside runs from the leftmost to the rightmost vertex.
     let mut chain = Vec::new();
     let mut i = left;

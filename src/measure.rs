@@ -4,7 +4,7 @@
 //! `y = r` for external threads and `y = −r` for internal ones, so that "crest" is always up and
 //! "root" down. Results are converted back to diameters.
 
-use crate::geometry::{cross_at_level, dia, Point};
+use crate::geometry::{cross_at_level, dia, distance_to_graph, height_at, Point};
 use crate::standards::{BasicThread, ProfileKind, ThreadKind};
 use crate::Error;
 use parry2d_f64::math::Point as PPoint;
@@ -257,7 +257,7 @@ fn wire_rest(g: &Groove, rw: f64, flanks: ((f64, f64), (f64, f64))) -> Option<(f
     let chain = &g.pts[g.left..=g.right];
     if let Some((z, y)) = rest_on_lines(flanks.0, flanks.1, rw) {
         // The groove's nearest point to the centre (its height there bounds the search).
-        let d = Clearance::height(chain, z).map(|h| Clearance::distance(chain, Point::new(z, y), h));
+        let d = height_at(chain, z).map(|h| distance_to_graph(chain, Point::new(z, y), h));
         if d.is_some_and(|d| (d - rw).abs() < 1e-9) {
             return Some((z, y));
         }
@@ -298,19 +298,6 @@ impl Clearance {
         Clearance { cut, mmc }
     }
 
-    /// Height of `line` at `z`, if it spans it (the polylines run with non-decreasing z).
-    fn height(line: &[Point], z: f64) -> Option<f64> {
-        let j = line.partition_point(|q| q.z < z);
-        if j == 0 || j >= line.len() {
-            return (j < line.len() && line[j].z == z).then(|| line[j].r);
-        }
-        let (a, b) = (line[j - 1], line[j]);
-        if a.z == b.z {
-            return Some(a.r.max(b.r));
-        }
-        Some(a.r + (z - a.z) / (b.z - a.z) * (b.r - a.r))
-    }
-
     /// Signed clearance of one vertex with the gauge moved by `dz`: its distance to the other
     /// profile, negative where the cut stands outside the maximum-material profile. Vertices
     /// `0..cut.len()` are the cut's, the rest the gauge's. 1-Lipschitz in `dz`.
@@ -319,43 +306,16 @@ impl Clearance {
             let p = self.cut[k];
             // The gauge moved by dz is the gauge at rest seen from p moved by −dz.
             let q = Point::new(p.z - dz, p.r);
-            let h = Clearance::height(&self.mmc, q.z)?;
-            let d = Clearance::distance(&self.mmc, q, h);
+            let h = height_at(&self.mmc, q.z)?;
+            let d = distance_to_graph(&self.mmc, q, h);
             Some(if p.r > h + 1e-9 { -d } else { d })
         } else {
             let m = self.mmc[k - self.cut.len()];
             let q = Point::new(m.z + dz, m.r);
-            let h = Clearance::height(&self.cut, q.z)?;
-            let d = Clearance::distance(&self.cut, q, h);
+            let h = height_at(&self.cut, q.z)?;
+            let d = distance_to_graph(&self.cut, q, h);
             Some(if h > q.r + 1e-9 { -d } else { d })
         }
-    }
-
-    /// Distance from `q` to `line` (non-decreasing z), whose height at `q.z` is `h`: the point
-    /// straight above or below is on the line, so the nearest lies within |q.r − h| along z, and
-    /// only the segments there are asked (parry's point–segment query), not the whole line.
-    fn distance(line: &[Point], q: Point, h: f64) -> f64 {
-        use parry2d_f64::shape::Segment;
-        let pq = PPoint::new(q.z, q.r);
-        let seg = |i: usize| {
-            Segment::new(PPoint::new(line[i].z, line[i].r), PPoint::new(line[i + 1].z, line[i + 1].r))
-                .distance_to_local_point(&pq, false)
-        };
-        // Outward from q.z on both sides, each side stopping where the segments lie farther along
-        // z than the best distance so far.
-        let mut best = (q.r - h).abs();
-        let start = line.partition_point(|p| p.z < q.z);
-        let mut i = start;
-        while i + 1 < line.len() && line[i].z <= q.z + best {
-            best = best.min(seg(i));
-            i += 1;
-        }
-        let mut j = start;
-        while j > 0 && line[j].z >= q.z - best {
-            best = best.min(seg(j - 1));
-            j -= 1;
-        }
-        best
     }
 
     /// The clearance over the vertices `ks`: the smallest signed value (the deepest penetration,

@@ -371,25 +371,65 @@ fn envelope_section(
         .collect();
     let env = crate::envelope::lower_envelope(local, &tips, window.z_min, window.z_max, s * surface_r);
     let profile: Vec<Point> = env.0.iter().map(|p| Point::new(p.z, s * p.r)).collect();
-    Section { kind, window, surface_r, far_r, region: std::sync::OnceLock::new(), exact_profile: Some(profile) }
+    Section {
+        kind,
+        window,
+        surface_r,
+        far_r,
+        region: std::sync::OnceLock::new(),
+        exact_profile: Some(profile),
+    }
 }
 
-/// The greatest distance from segment `a`–`b` to `line`. Distance to a polyline, taken along a
+/// The greatest `distance` (to an insert's outline) along segment `a`–`b`. Distance to a polyline, taken along a
 /// segment, is a lower envelope of convex functions and may peak inside the segment (the middle
 /// of a first pass's flat chip top, above the tip), so the segment is sampled and the best sample
 /// refined by golden section.
-fn farthest_on_segment(line: &Polyline, a: Point, b: Point) -> f64 {
-    let at = |t: f64| {
-        let q = Point::new(a.z + t * (b.z - a.z), a.r + t * (b.r - a.r));
-        line.distance_to_local_point(&PPoint::new(q.z, q.r), false)
-    };
+///
+/// `floor` is the greatest distance found so far elsewhere: distance is 1-Lipschitz along the
+/// segment, so nothing on it exceeds (d(a) + d(b) + |ab|)/2, and a segment whose bound stays
+/// at or under the floor is settled by its two ends.
+fn farthest_on_segment(distance: &dyn Fn(Point) -> f64, a: Point, b: Point, floor: f64, convex: bool) -> f64 {
+    let at = |t: f64| distance(Point::new(a.z + t * (b.z - a.z), a.r + t * (b.r - a.r)));
+    let len = a.distance(b);
+    let (d0, d1) = (at(0.0), at(1.0));
+    if 0.5 * (d0 + d1 + len) <= floor {
+        return d0.max(d1);
+    }
+    if convex {
+        // Inside a convex insert the distance to its outline is the least of the distances to
+        // its edges' lines, concave along the segment: the chords just inside either end,
+        // carried on, bound it from above; where they cannot beat what is known, the ends
+        // settle it, else a golden search on the whole segment (a concave function is
+        // unimodal) finds its top.
+        let e = 1e-6;
+        let (de0, de1) = (at(e), at(1.0 - e));
+        let best = d0.max(d1).max(de0).max(de1);
+        let (s0, s1) = ((de0 - d0) / e, (d1 - de1) / e);
+        // The greatest of min(d0 + s0·t, d1 − s1·(1 − t)) over [0, 1]: at an end or where the
+        // lines meet.
+        let lower = |t: f64| (d0 + s0 * t).min(d1 - s1 * (1.0 - t));
+        let meet = if s0 != s1 { ((d1 - s1) - d0) / (s0 - s1) } else { 0.0 };
+        let bound = lower(0.0).max(lower(1.0)).max(lower(meet.clamp(0.0, 1.0)));
+        if bound <= floor.max(best) + 1e-12 {
+            return best;
+        }
+        let (_, f) = crate::measure::golden_min(&|t| -at(t), 0.0, 1.0, 40);
+        return best.max(-f);
+    }
     let n = 6;
-    let (best_k, best) =
-        (0..=n)
-            .map(|k| (k, at(k as f64 / n as f64)))
-            .fold((0, 0.0), |acc, x| if x.1 > acc.1 { x } else { acc });
-    let (lo, hi) =
-        (((best_k as f64) - 1.0).max(0.0) / n as f64, ((best_k as f64) + 1.0).min(n as f64) / n as f64);
+    let mut d = [0.0; 7];
+    (d[0], d[n]) = (d0, d1);
+    for (k, v) in d.iter_mut().enumerate().take(n).skip(1) {
+        *v = at(k as f64 / n as f64);
+    }
+    let best_k = (0..=n).fold(0, |b, k| if d[k] > d[b] { k } else { b });
+    let best = d[best_k];
+    // Where no stretch between samples can rise above the floor, the samples settle it.
+    if (0..n).all(|k| 0.5 * (d[k] + d[k + 1] + len / n as f64) <= floor.max(best)) {
+        return best;
+    }
+    let (lo, hi) = (best_k.saturating_sub(1) as f64 / n as f64, (best_k + 1).min(n) as f64 / n as f64);
     let (_, f) = crate::measure::golden_min(&|t| -at(t), lo, hi, 28);
     best.max(-f)
 }
@@ -456,6 +496,12 @@ fn envelope_pass_metrics(
     let window = metrics_window(setup, z_ref);
     let s = if kind == ThreadKind::External { 1.0 } else { -1.0 };
     let surface = s * rad(setup.blank_diameter);
+    // A convex insert (a V or rounded V) makes the distance from it concave along a line.
+    let o = &setup.insert.outline;
+    let convex = (0..o.len()).all(|i| {
+        let (p, q, r) = (o[i], o[(i + 1) % o.len()], o[(i + 2) % o.len()]);
+        (q.z - p.z) * (r.r - q.r) - (q.r - p.r) * (r.z - q.z) >= -1e-12 * p.distance(q) * q.distance(r)
+    });
     let mirrored: Vec<Point> = chain.iter().rev().map(|q| Point::new(-q.z, q.r)).collect();
     let local = if kind == ThreadKind::External { chain } else { &mirrored[..] };
     let placed =
@@ -506,10 +552,14 @@ fn envelope_pass_metrics(
             zs.sort_by(f64::total_cmp);
             zs.dedup();
             let edge = Chain(f.clone());
+            // The insert's outline in the normalised frame (a chip point lies inside it), as one
+            // parry polyline with its search tree.
             let outline = setup.insert.placed(&Insert::placement(z, rad(pass.x_at(z)), kind));
-            let mut closed = outline.clone();
-            closed.push(outline[0]);
-            let line = Polyline::new(closed.iter().map(|q| PPoint::new(q.z, q.r)).collect(), None);
+            let line = Polyline::new(
+                outline.iter().chain(outline.first()).map(|q| PPoint::new(q.z, s * q.r)).collect(),
+                None,
+            );
+            let distance = |q: Point| line.distance_to_local_point(&PPoint::new(q.z, q.r), false);
             let mut tops: Vec<(f64, Point, Point)> = Vec::new();
             for w in zs.windows(2) {
                 let (a, b) = (w[0], w[1]);
@@ -540,10 +590,10 @@ fn envelope_pass_metrics(
                 } else {
                     m.trailing += len;
                 }
-                // The material's side of the chip, back in part coordinates; the gap straight
-                // down to the edge bounds its distance from the insert.
+                // The material's side of the chip; the gap straight down to the edge bounds its
+                // distance from the insert.
                 let (pa, pb) =
-                    (Point::new(c0, s * before.value(c0 + eps)), Point::new(c1, s * before.value(c1 - eps)));
+                    (Point::new(c0, before.value(c0 + eps)), Point::new(c1, before.value(c1 - eps)));
                 // Consecutive stretches under one straight piece of material are one segment.
                 match tops.last_mut() {
                     Some(last)
@@ -564,7 +614,13 @@ fn envelope_pass_metrics(
                 if bound <= m.max_chip_thickness {
                     break;
                 }
-                m.max_chip_thickness = m.max_chip_thickness.max(farthest_on_segment(&line, pa, pb));
+                m.max_chip_thickness = m.max_chip_thickness.max(farthest_on_segment(
+                    &distance,
+                    pa,
+                    pb,
+                    m.max_chip_thickness,
+                    convex,
+                ));
             }
         }
         env.merge(&f);
@@ -641,7 +697,15 @@ fn boolean_pass_metrics(
                                 m.trailing += len;
                             }
                         } else {
-                            m.max_chip_thickness = m.max_chip_thickness.max(farthest_on_segment(&line, a, b));
+                            let distance =
+                                |q: Point| line.distance_to_local_point(&PPoint::new(q.z, q.r), false);
+                            m.max_chip_thickness = m.max_chip_thickness.max(farthest_on_segment(
+                                &distance,
+                                a,
+                                b,
+                                m.max_chip_thickness,
+                                false,
+                            ));
                         }
                     }
                 }
