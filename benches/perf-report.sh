@@ -136,18 +136,23 @@ for label, key in parts:
     if v and whole:
         w(f"| {label} | {100.0 * v / whole:.0f}% |")
 w("")
-sweep_share = (incl("threadcheck::sweep::sweep [") or 0) / whole if whole else 0.0
-sweep_us = sweep_share * (one or 0) / 1e3
-w(f"The arithmetic floor: 12 passes cross the 4-pitch window about 5 times each; each imprint's bottom chain has about "
-  f"30 vertices at the 0.05 µm chord tolerance, so the envelope needs some 2 000 vertex merges of a few flops each: a "
-  f"few microseconds. The sweep takes about {sweep_us:.0f} µs, an order of magnitude above that floor: every imprint "
-  f"collects and deduplicates its events, evaluates both chains at each, simplifies the new stretch and splices it in. "
-  f"Merging all imprints of one pitch in a single sorted pass (a k-way lower envelope) would close most of the gap. "
-  f"The rest of the ~{(one or 0)/1e3:.0f} µs is measurement, whose largest part is the maximum-material search (point–segment "
-  f"distances near each vertex while the gauge slides along the axis; the vertices that cannot touch are dropped as the "
-  f"search narrows), and fixed per-call setup. A closed form of the clearance on straight flanks would remove most of "
-  f"it. A CLI `verify` also computes the per-pass chip and edge metrics, now from the envelopes before and after each "
-  f"pass, without polygon booleans.\n")
+share = lambda key: (incl(key) or 0) / whole if whole else 0.0
+sweep_us = share("threadcheck::sweep::sweep [") * (one or 0) / 1e3
+measure_us = share("threadcheck::measure::measure [") * (one or 0) / 1e3
+w(f"How it gets there. The sweep (about {sweep_us:.0f} µs here) lays the lower envelope of every imprint in one pass: "
+  f"the insert's underside is split into convex runs (one for a V or rounded V, the flanks and root plus the crest "
+  f"shoulders for a full profile); translates of one convex run cross pairwise at most once, in the order of their "
+  f"offsets, so their envelope is a stack pass over the imprints sorted by Z, each crossing found by binary search on "
+  f"the run's vertices, and the result is laid against the blank's surface directly. The measurement (about "
+  f"{measure_us:.0f} µs) solves the pitch line exactly on the stretch between two vertex heights and finds the GO "
+  f"gauge's best axial position first within an eighth of its reach, finishing exactly where the touching vertices "
+  f"face straight flanks (their clearances are then linear in the shift, and the best shift is where their chords "
+  f"cross; the finish is taken only when every value there lies on its chord). The rest is per-call setup: the "
+  f"designation, the limits and the insert's outline. A CLI `verify` adds the per-pass chip and edge metrics from "
+  f"the envelopes before and after each pass (no polygon booleans); their largest part is the greatest chip "
+  f"thickness, where a stretch of the old surface is settled by its ends whenever 1-Lipschitz bounds (or, inside a "
+  f"convex insert, where the distance is concave along the stretch, the chords inside its ends) cannot beat the "
+  f"thickest found.\n")
 open("reports/performance.md", "w").write("\n".join(lines))
 print("wrote reports/performance.md")
 PY
