@@ -116,12 +116,16 @@ w(f"Shapely {base['shapely']} (GEOS {base['geos']}) unions the same insert place
   f"**{base['median_ratio_whole_verify_per_case']}×** per case.\n")
 w("## Where the time goes\n")
 def incl(name):
+    # callgrind_annotate lists a function once per source file its inlined code comes from; the
+    # largest of those lines is the function's inclusive cost.
+    name = name.rstrip(" [")
+    best = None
     for l in cg:
-        if name in l and "[" in l:
-            m = re.match(r"\s*([\d,]+)", l)
-            if m:
-                return int(m.group(1).replace(",", ""))
-    return None
+        m = re.match(r"\s*([\d,]+)\s+\([ \d.]+%\)\s+(\S+)", l)
+        if m and m.group(2).endswith(":" + name):
+            v = int(m.group(1).replace(",", ""))
+            best = v if best is None else max(best, v)
+    return best
 parts = [("sweep (lower envelope of 60 imprints)", "threadcheck::sweep::sweep ["),
          ("measure (pitch line, flanks, root, three-wire, maximum-material search)", "threadcheck::measure::measure ["),
          ("checks", "threadcheck::check::checks ["),

@@ -142,14 +142,17 @@ impl Chain {
 /// cut surface of every imprint at once.
 ///
 /// The chain is split at its concave vertices into convex runs; a chain is the pointwise minimum
-/// of its runs, each on its own domain. The translates of one convex run on an interval cross
-/// pairwise at most once in the order of their offsets (the difference of two translates is
-/// monotone where both are defined), so their envelope is one stack pass over the tips sorted
-/// by `z`, each crossing found by binary search on the run's vertices: O(n log m) for n tips and
-/// m vertices instead of a merge per imprint. The runs' envelopes (one for a V or rounded-V
-/// insert, three for a full-profile insert's flanks and crest shoulders) are then merged into
-/// the surface with [`Chain::merge`]. The same function as merging every imprint in turn, to
-/// rounding (a unit test holds the two together).
+/// of its runs, each on its own domain (carried past its concave ends while it stays above the
+/// chain, so that neighbouring runs overlap). The translates of one convex run on an interval
+/// cross pairwise at most once in the order of their offsets (the difference of two translates
+/// is monotone where both are defined), so their envelope is one stack pass over the tips
+/// sorted by `z`, each crossing found by binary search on the run's vertices: O(n log m) for n
+/// tips and m vertices instead of a merge per imprint. The widest run's envelope is laid
+/// against the surface directly, the others' (a full profile's crest shoulders, which become
+/// one flat run across the insert) are merged into it with [`Chain::merge`]. A chain of more
+/// than a few runs (concave arcs, every vertex a run) is merged imprint by imprint instead.
+/// The same function as merging every imprint in turn, to rounding (unit tests hold the two
+/// together, vertex by vertex).
 pub fn lower_envelope(chain: &[Point], tips: &[(f64, f64)], z_min: f64, z_max: f64, surface: f64) -> Chain {
     lower_envelope_runs(chain, tips, (z_min, z_max), surface, MAX_RUNS)
 }

@@ -412,10 +412,11 @@ proptest! {
     }
 }
 
-/// Regression: a nut insert whose crest shoulders run into the flanks through concave arcs
-/// (Whitworth) once lost the crest cut where the envelope's convex runs met, in rounding-wide
-/// gaps: the minor diameter read as the bore. The envelope must agree with the polygon
-/// booleans, crest included.
+/// A nut insert whose crest shoulders run into the flanks through concave arcs (Whitworth), the
+/// case the property test above (metric forms) does not reach: the envelope agrees with the
+/// polygon booleans, crest included, and the insert tops the crest above the bore. (The unit
+/// test `runs_meeting_in_concave_arcs_leave_no_gap` holds the envelope's convex runs to the
+/// same passes, where they once lost this crest in rounding-wide gaps.)
 #[test]
 fn whitworth_nut_full_insert_tops_the_crest() {
     let mut spec = threadcheck::verify::VerifySpec::new("BSW 7/16 medium");
