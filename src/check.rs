@@ -333,17 +333,7 @@ pub fn checks(
         deviation_um: if crest_ok { 0.0 } else { (m.crest_width - MIN_CREST_WIDTH) * 1000.0 },
         note: (!crest_ok).then(|| "no crest left: the grooves overlap and meet in a sharp edge".to_string()),
     });
-    out.push(Check {
-        feature: CheckFeature::SingleGroove,
-        kind: CheckKind::Form,
-        value: if single_groove { 1.0 } else { 0.0 },
-        min: Some(1.0),
-        max: None,
-        ok: single_groove,
-        deviation_um: 0.0,
-        note: (!single_groove)
-            .then(|| "the passes do not land in one groove: the root has more than one pocket".to_string()),
-    });
+    out.push(single_groove_check(single_groove));
     out
 }
 
@@ -386,7 +376,14 @@ fn taper_checks(m: &Measurement, thread: &BasicThread, single_groove: bool, c: C
         )),
     });
     out.extend(flank_checks(m, thread));
-    out.push(Check {
+    out.push(single_groove_check(single_groove));
+    out
+}
+
+/// One groove per pitch (a form check, parallel and taper threads alike): the root has at most
+/// one pocket below mid-depth.
+fn single_groove_check(single_groove: bool) -> Check {
+    Check {
         feature: CheckFeature::SingleGroove,
         kind: CheckKind::Form,
         value: if single_groove { 1.0 } else { 0.0 },
@@ -394,9 +391,9 @@ fn taper_checks(m: &Measurement, thread: &BasicThread, single_groove: bool, c: C
         max: None,
         ok: single_groove,
         deviation_um: 0.0,
-        note: (!single_groove).then(|| "the passes do not land in one groove".to_string()),
-    });
-    out
+        note: (!single_groove)
+            .then(|| "the passes do not land in one groove: the root has more than one pocket".to_string()),
+    }
 }
 
 /// True when every check that counts passes; with `gauge_only`, only size checks count.

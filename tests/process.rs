@@ -10,6 +10,14 @@ fn json(args: &[&str]) -> (Option<i32>, serde_json::Value) {
     (o.status.code(), serde_json::from_slice(&o.stdout).unwrap_or_else(|_| panic!("{}", stderr(&o))))
 }
 
+/// `verify --program tests/data/programs/NAME --thread M20x1.5-6g` and `extra`, as JSON.
+fn verify_m20(name: &str, extra: &[&str]) -> (Option<i32>, serde_json::Value) {
+    let prog = data(&format!("programs/{name}"));
+    let mut a = vec!["verify", "--program", prog.to_str().unwrap(), "--thread", "M20x1.5-6g"];
+    a.extend_from_slice(extra);
+    json(&a)
+}
+
 fn check<'a>(op: &'a serde_json::Value, feature: &str) -> &'a serde_json::Value {
     op["checks"]
         .as_array()
@@ -22,9 +30,7 @@ fn check<'a>(op: &'a serde_json::Value, feature: &str) -> &'a serde_json::Value 
 /// G96 before the G92: the process check fails and says why, and the verdict fails with it.
 #[test]
 fn g96_at_a_threading_cycle_fails() {
-    let prog = data("programs/fanuc-g96-g92.nc");
-    let (code, v) =
-        json(&["verify", "--program", prog.to_str().unwrap(), "--thread", "M20x1.5-6g", "--insert", "full"]);
+    let (code, v) = verify_m20("fanuc-g96-g92.nc", &["--insert", "full"]);
     assert_eq!(code, Some(1));
     let c = check(&v["operations"][0], "constant_spindle_speed");
     assert_eq!((c["ok"].as_bool(), c["kind"].as_str()), (Some(false), Some("process")));
@@ -37,19 +43,9 @@ fn g96_at_a_threading_cycle_fails() {
 /// in all, 1.20624 s. S·lead = 750 mm/min is within 1000; S500 within 2000 rpm.
 #[test]
 fn machining_time_and_machine_limits() {
-    let prog = data("programs/fanuc-g97-g92.nc");
     let machine = data("machine.toml");
-    let (_, v) = json(&[
-        "verify",
-        "--program",
-        prog.to_str().unwrap(),
-        "--thread",
-        "M20x1.5-6g",
-        "--insert",
-        "full",
-        "--machine",
-        machine.to_str().unwrap(),
-    ]);
+    let (_, v) =
+        verify_m20("fanuc-g97-g92.nc", &["--insert", "full", "--machine", machine.to_str().unwrap()]);
     let op = &v["operations"][0];
     let t = &op["process"]["machining_time"];
     assert!((t["cutting"].as_f64().unwrap() - 8.0).abs() < 1e-9, "{t}");
@@ -58,17 +54,7 @@ fn machining_time_and_machine_limits() {
     assert_eq!(check(op, "feed")["value"], 750.0);
     assert_eq!(check(op, "spindle_speed")["ok"], true);
     // The thesis's training lathe allows 320 rpm at P 1.5 (its Table 2.2): S500 fails.
-    let (code, v) = json(&[
-        "verify",
-        "--program",
-        prog.to_str().unwrap(),
-        "--thread",
-        "M20x1.5-6g",
-        "--insert",
-        "full",
-        "--machine",
-        "training-lathe",
-    ]);
+    let (code, v) = verify_m20("fanuc-g97-g92.nc", &["--insert", "full", "--machine", "training-lathe"]);
     assert_eq!(code, Some(1));
     let c = check(&v["operations"][0], "spindle_speed");
     assert_eq!((c["ok"].as_bool(), c["max"].as_f64()), (Some(false), Some(320.0)));
@@ -83,20 +69,9 @@ fn helix_angle_and_flank_clearance() {
     assert!((v["helix_angle"].as_f64().unwrap() - 2.4797).abs() < 1e-4, "{}", v["helix_angle"]);
     let (_, v) = json(&["verify", "--thread", "Tr40x14(P7)-7e", "--insert", "full"]);
     assert!((v["helix_angle"].as_f64().unwrap() - 6.96087).abs() < 1e-4, "{}", v["helix_angle"]);
-    let prog = data("programs/fanuc-g97-g92.nc");
     let helix = (1.5f64 / (std::f64::consts::PI * (20.0 - 0.649_519_052_838_329 * 1.5))).atan().to_degrees();
     for (clearance, ok) in [("3", true), ("1", false)] {
-        let (_, v) = json(&[
-            "verify",
-            "--program",
-            prog.to_str().unwrap(),
-            "--thread",
-            "M20x1.5-6g",
-            "--insert",
-            "full",
-            "--clearance-angle",
-            clearance,
-        ]);
+        let (_, v) = verify_m20("fanuc-g97-g92.nc", &["--insert", "full", "--clearance-angle", clearance]);
         let c = check(&v["operations"][0], "flank_clearance");
         assert_eq!(c["ok"], ok, "{c}");
         let want = clearance.parse::<f64>().unwrap() - helix;
@@ -186,19 +161,9 @@ fn fit_with_a_bolt_program() {
 /// program under G96 fails the constant-speed check.
 #[test]
 fn g76_machining_time_and_g96() {
-    let prog = data("programs/fanuc-g76-timing.nc");
     let machine = data("machine.toml");
-    let (_, v) = json(&[
-        "verify",
-        "--program",
-        prog.to_str().unwrap(),
-        "--thread",
-        "M20x1.5-6g",
-        "--insert",
-        "full",
-        "--machine",
-        machine.to_str().unwrap(),
-    ]);
+    let (_, v) =
+        verify_m20("fanuc-g76-timing.nc", &["--insert", "full", "--machine", machine.to_str().unwrap()]);
     let t30 = 30f64.to_radians().tan();
     let (mut cut, mut rapid) = (0.0, 0.0);
     for d in [0.45, 0.65, 0.85, 0.9, 0.9] {
@@ -211,9 +176,7 @@ fn g76_machining_time_and_g96() {
     assert_eq!(t["per_pass"].as_array().unwrap().len(), 5);
     assert!((t["cutting"].as_f64().unwrap() - cut).abs() < 1e-9, "{t} vs {cut}");
     assert!((t["rapid"].as_f64().unwrap() - rapid).abs() < 1e-9, "{t} vs {rapid}");
-    let g96 = data("programs/fanuc-g96-g76.nc");
-    let (code, v) =
-        json(&["verify", "--program", g96.to_str().unwrap(), "--thread", "M20x1.5-6g", "--insert", "full"]);
+    let (code, v) = verify_m20("fanuc-g96-g76.nc", &["--insert", "full"]);
     assert_eq!(code, Some(1));
     let c = check(&v["operations"][0], "constant_spindle_speed");
     assert!(c["ok"] == false && c["note"].as_str().unwrap().contains("G76 runs under G96"), "{c}");
@@ -225,16 +188,7 @@ fn g76_machining_time_and_g96() {
 #[test]
 fn run_out_against_the_turned_shoulder() {
     let run_out = |name: &str| {
-        let prog = data(&format!("programs/{name}"));
-        let (_, v) = json(&[
-            "verify",
-            "--program",
-            prog.to_str().unwrap(),
-            "--thread",
-            "M20x1.5-6g",
-            "--insert",
-            "full",
-        ]);
+        let (_, v) = verify_m20(name, &["--insert", "full"]);
         check(&v["operations"][0], "run_out").clone()
     };
     let c = run_out("fanuc-runout-shoulder.nc");
@@ -252,17 +206,8 @@ fn run_out_against_the_turned_shoulder() {
 /// M20x1.5's 1.44° helix eats it.
 #[test]
 fn clearance_angle_from_the_insert_file() {
-    let prog = data("programs/fanuc-g97-g92.nc");
     let ins = data("insert-clearance-1deg.toml");
-    let (_, v) = json(&[
-        "verify",
-        "--program",
-        prog.to_str().unwrap(),
-        "--thread",
-        "M20x1.5-6g",
-        "--insert",
-        ins.to_str().unwrap(),
-    ]);
+    let (_, v) = verify_m20("fanuc-g97-g92.nc", &["--insert", ins.to_str().unwrap()]);
     let c = check(&v["operations"][0], "flank_clearance");
     assert_eq!(c["ok"], false, "{c}");
 }

@@ -40,11 +40,14 @@ fuzz_target!(|c: Case| {
         _ => InsertChoice::Partial { tip_radius: f64::from(c.tip % 100) * 0.002 },
     };
     let angle = f64::from(c.angle % 61);
-    s.infeed = Some(match c.infeed % 3 {
-        0 => Infeed::Radial,
-        1 => Infeed::Flank { angle },
-        _ => Infeed::Alternating { angle },
-    });
+    s.infeed = Some(
+        match c.infeed % 3 {
+            0 => Infeed::Radial,
+            1 => Infeed::Flank { angle },
+            _ => Infeed::Alternating { angle },
+        }
+        .into(),
+    );
     s.schedule =
         [Schedule::ConstantArea, Schedule::ConstantDepth, Schedule::Sandvik][c.schedule as usize % 3].clone();
     s.passes = Some(1 + (c.passes % 40) as usize);
