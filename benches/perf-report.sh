@@ -55,7 +55,7 @@ summary = open(f"{tmp}/sweep-summary.txt").read().strip()
 base = json.loads(open(f"{tmp}/baseline.txt").read().strip().splitlines()[-1])
 cg = open(f"{tmp}/cg.txt").read().splitlines()
 total = next((l for l in cg if "PROGRAM TOTALS" in l), "")
-tops = [l for l in cg if re.search(r"threadcheck::(sweep|measure|envelope|verify|check|standards|tolerance|passes)::", l)][:12]
+tops = [l for l in cg if re.search(r"threadcheck::(ground|standards|gcode|geometry|analysis)::", l)][:12]
 
 def b(key):
     return bench.get(key)
@@ -126,11 +126,11 @@ def incl(name):
             v = int(m.group(1).replace(",", ""))
             best = v if best is None else max(best, v)
     return best
-parts = [("sweep (lower envelope of 60 imprints)", "threadcheck::sweep::sweep ["),
-         ("measure (pitch line, flanks, root, three-wire, maximum-material search)", "threadcheck::measure::measure ["),
-         ("checks", "threadcheck::check::checks ["),
-         ("resolve (designation, limits, insert, blank)", "threadcheck::verify::resolve [")]
-whole = incl("threadcheck::verify::verify [")
+parts = [("sweep (lower envelope of 60 imprints)", "threadcheck::geometry::sweep::sweep ["),
+         ("measure (pitch line, flanks, root, three-wire, maximum-material search)", "threadcheck::geometry::measure::measure ["),
+         ("checks", "threadcheck::analysis::check::checks ["),
+         ("resolve (designation, limits, insert, blank)", "threadcheck::analysis::verify::resolve [")]
+whole = incl("threadcheck::analysis::verify::verify [")
 w("callgrind on the one-thread bench (`verify M10x1.5-6g, 12 passes`, final X given, no per-pass chip metrics), "
   "instructions inside `verify`:\n")
 w("| part | share |")
@@ -141,8 +141,8 @@ for label, key in parts:
         w(f"| {label} | {100.0 * v / whole:.0f}% |")
 w("")
 share = lambda key: (incl(key) or 0) / whole if whole else 0.0
-sweep_us = share("threadcheck::sweep::sweep [") * (one or 0) / 1e3
-measure_us = share("threadcheck::measure::measure [") * (one or 0) / 1e3
+sweep_us = share("threadcheck::geometry::sweep::sweep [") * (one or 0) / 1e3
+measure_us = share("threadcheck::geometry::measure::measure [") * (one or 0) / 1e3
 w(f"How it gets there. The sweep (about {sweep_us:.0f} µs here) lays the lower envelope of every imprint in one pass: "
   f"the insert's underside is split into convex runs (one for a V or rounded V, the flanks and root plus the crest "
   f"shoulders for a full profile); translates of one convex run cross pairwise at most once, in the order of their "

@@ -6,12 +6,12 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use std::hint::black_box;
-use threadcheck::insert::Insert;
-use threadcheck::measure::{measure, MeasureSetup};
-use threadcheck::passes::{Infeed, Pass, PlanSpec};
-use threadcheck::sweep::{sweep, SweepSetup, Window};
+use threadcheck::Insert;
 use threadcheck::UnionStrategy;
+use threadcheck::{measure, MeasureSetup};
 use threadcheck::{parse_designation, BasicThread, ParseOptions, ThreadKind};
+use threadcheck::{sweep, SweepSetup, Window};
+use threadcheck::{Infeed, Pass, PlanSpec};
 
 fn m10() -> BasicThread {
     parse_designation("M10x1.5", ParseOptions::default()).unwrap().thread
@@ -31,23 +31,23 @@ fn groove(passes: &[Pass]) -> f64 {
 /// designation, limits, plan, sweep, measure (with three-wire M and the maximum-material check)
 /// and checks, with the final X given and no per-pass chip metrics.
 fn one_thread(c: &mut Criterion) {
-    let mut spec = threadcheck::verify::VerifySpec::new("M10x1.5-6g");
+    let mut spec = threadcheck::VerifySpec::new("M10x1.5-6g");
     spec.passes = Some(12);
     spec.final_x = Some(7.709);
     spec.metrics = false;
     c.bench_function("verify M10x1.5-6g, 12 passes (sweep+measure+check)", |b| {
-        b.iter(|| black_box(threadcheck::verify::verify(&spec).unwrap().pass))
+        b.iter(|| black_box(threadcheck::verify(&spec).unwrap().pass))
     });
     // The CLI's default: the same with the per-pass chip and edge metrics (from envelopes).
     let mut with_metrics = spec.clone();
     with_metrics.metrics = true;
     c.bench_function("verify M10x1.5-6g, 12 passes, with per-pass metrics", |b| {
-        b.iter(|| black_box(threadcheck::verify::verify(&with_metrics).unwrap().pass))
+        b.iter(|| black_box(threadcheck::verify(&with_metrics).unwrap().pass))
     });
     let mut solve = spec.clone();
     solve.final_x = None;
     c.bench_function("verify M10x1.5-6g, 12 passes, final X solved", |b| {
-        b.iter(|| black_box(threadcheck::verify::verify(&solve).unwrap().pass))
+        b.iter(|| black_box(threadcheck::verify(&solve).unwrap().pass))
     });
 }
 

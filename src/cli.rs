@@ -4,11 +4,13 @@
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
-use threadcheck::gcode::Dialect;
-use threadcheck::jobs::{CompareJob, FitJob, LimitsJob, MillJob, Outcome, PassesJob, SweepJob, VerifyJob};
-use threadcheck::passes::{InfeedChoice, Schedule};
-use threadcheck::verify::{InsertChoice, ProgramSource, Units, VerifySpec};
+use threadcheck::Dialect;
+use threadcheck::{
+    CompareJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob, SweepJob, VerifyJob,
+};
 use threadcheck::{Error, ThreadForm};
+use threadcheck::{InfeedChoice, Schedule};
+use threadcheck::{InsertChoice, ProgramSource, Units, VerifySpec};
 
 /// Predicts the thread a CNC lathe program cuts and checks it against its standard.
 #[derive(Parser)]
@@ -183,7 +185,7 @@ impl FormArg {
             FormArg::BspParallel => vec![ThreadForm::BspParallel],
             FormArg::Npt => vec![ThreadForm::Npt],
             FormArg::Iso7Taper => vec![ThreadForm::Iso7Taper],
-            FormArg::All => threadcheck::catalogue::CatalogueSpec::all_forms().forms,
+            FormArg::All => threadcheck::CatalogueSpec::all_forms().forms,
         }
     }
 }
@@ -416,7 +418,7 @@ impl PlanArgs {
         s.final_x = self.final_x;
         s.blank_diameter = self.blank_diameter;
         s.gauge_only = gauge_only;
-        s.machine = self.machine.as_deref().map(threadcheck::process::MachineProfile::read).transpose()?;
+        s.machine = self.machine.as_deref().map(threadcheck::MachineProfile::read).transpose()?;
         s.clearance_angle = self.clearance_angle;
         s.units = match self.units {
             UnitsArg::Mm => Units::Mm,
@@ -463,7 +465,7 @@ impl Cli {
                 plan.need_thread("verify")?;
                 let mut spec = plan.spec(gauge_only)?;
                 spec.metrics = !no_pass_metrics;
-                let tools = plan.tools.as_deref().map(threadcheck::tools::ToolTable::read).transpose()?;
+                let tools = plan.tools.as_deref().map(threadcheck::ToolTable::read).transpose()?;
                 done(
                     VerifyJob {
                         spec,
@@ -496,22 +498,20 @@ impl Cli {
                 done(CompareJob { spec, modified, json, markdown, html }.run()?)
             }
             Command::Fit(f) => {
-                use threadcheck::fit::FitSide;
+                use threadcheck::FitSide;
                 let side = |prog: &Option<PathBuf>,
                             dialect: Dialect,
                             final_x: Option<f64>,
                             insert: &InsertChoice| {
                     let program = match prog {
-                        Some(p) => Some((
-                            threadcheck::verify::read_program_text(p)?,
-                            p.display().to_string(),
-                            dialect,
-                        )),
+                        Some(p) => {
+                            Some((threadcheck::read_program_text(p)?, p.display().to_string(), dialect))
+                        }
                         None => None,
                     };
                     Ok::<_, Error>(FitSide { insert: insert.clone(), final_x, program })
                 };
-                let spec = threadcheck::fit::FitSpec {
+                let spec = threadcheck::FitSpec {
                     thread: f.thread,
                     allow_nonstandard: f.allow_nonstandard,
                     bolt: side(&f.bolt_program, f.bolt_dialect, f.bolt_final_x, &f.bolt_insert)?,
@@ -523,7 +523,7 @@ impl Cli {
                 if a.min_d > a.max_d {
                     return Err(Error::Input("--min-d must not be above --max-d".into()));
                 }
-                let mut spec = threadcheck::catalogue::CatalogueSpec::default();
+                let mut spec = threadcheck::CatalogueSpec::default();
                 (spec.coarse, spec.fine) = match a.series {
                     SeriesArg::Coarse => (true, false),
                     SeriesArg::Fine => (false, true),
@@ -545,20 +545,20 @@ impl Cli {
                 SweepJob { spec, json: a.json, export_placements: a.export_placements }.run()
             }
             Command::Mill(m) => {
-                let text = threadcheck::verify::read_program_text(&m.program)?;
-                let spec = threadcheck::mill::MillSpec {
+                let text = threadcheck::read_program_text(&m.program)?;
+                let spec = threadcheck::MillSpec {
                     program: (text, m.program.display().to_string()),
                     dialect: m.dialect,
                     n_order: m.n_order,
                     tool_diameter: m.tool_diameter,
-                    target: threadcheck::mill::Target::read(&m.target)?,
+                    target: threadcheck::Target::read(&m.target)?,
                     tolerance: m.tolerance,
                 };
                 done(MillJob { spec, svg: m.svg, json: m.json.json }.run()?)
             }
             Command::Report { name, out } => match name {
                 ReportName::InfeedComparison => {
-                    threadcheck::compare::write_report(&out)?;
+                    InfeedReportJob { out: out.clone() }.run()?;
                     done((format!("wrote {}\n", out.join("infeed-comparison.md").display()), Outcome::Pass))
                 }
             },

@@ -3,8 +3,8 @@
 //! so everything here is usable without the CLI (the Python package runs the same jobs).
 
 use crate::report::{fmt_num, LimitsReport};
+use crate::standards::tolerance::{basic_rounded, limits_for, Limit, ThreadLimits};
 use crate::standards::{parse_designation, Designation, ParseOptions, ThreadKind};
-use crate::tolerance::{basic_rounded, limits_for, Limit, ThreadLimits};
 use crate::Error;
 use std::fmt::Write as _;
 
@@ -30,7 +30,7 @@ impl Outcome {
 /// `threadcheck limits`: the limits of size of a designation.
 ///
 /// ```
-/// use threadcheck::jobs::{LimitsJob, Outcome};
+/// use threadcheck::{LimitsJob, Outcome};
 /// let job = LimitsJob { designation: "M10x1.5-6g".into(), allow_nonstandard: false, json: Some("-".into()) };
 /// let (json, outcome) = job.run()?;
 /// let v: serde_json::Value = serde_json::from_str(&json).expect("JSON");
@@ -75,13 +75,13 @@ fn limits_table(des: &Designation, ext: Option<&ThreadLimits>, int: Option<&Thre
         "{}  {}, P = {} mm{}, lead {} mm, {} start{}, {}{}",
         des.text,
         t.form.name(),
-        crate::tolerance::round_um(t.pitch),
+        crate::standards::tolerance::round_um(t.pitch),
         if t.form.is_inch() {
-            format!(" ({} tpi)", crate::tolerance::round_um(25.4 / t.pitch))
+            format!(" ({} tpi)", crate::standards::tolerance::round_um(25.4 / t.pitch))
         } else {
             String::new()
         },
-        crate::tolerance::round_um(t.lead()),
+        crate::standards::tolerance::round_um(t.lead()),
         t.starts,
         if t.starts == 1 { "" } else { "s" },
         hand,
@@ -163,7 +163,7 @@ fn limits_table(des: &Designation, ext: Option<&ThreadLimits>, int: Option<&Thre
 /// `threadcheck verify`: the text (or JSON) the command prints, and pass or out of tolerance.
 ///
 /// ```
-/// use threadcheck::jobs::{Outcome, VerifyJob};
+/// use threadcheck::{Outcome, VerifyJob};
 /// use threadcheck::{InsertChoice, VerifySpec};
 /// let spec = VerifySpec { insert: InsertChoice::Full, final_x: Some(8.2), ..VerifySpec::new("M10x1.5-6g") };
 /// let job = VerifyJob { spec, threads: vec!["M10x1.5-6g".into()], insert_given: true, tools: None, svg: None, html: None, json: None };
@@ -177,13 +177,13 @@ fn limits_table(des: &Designation, ext: Option<&ThreadLimits>, int: Option<&Thre
 #[derive(Clone, Debug)]
 pub struct VerifyJob {
     /// What to verify.
-    pub spec: crate::verify::VerifySpec,
+    pub spec: crate::analysis::verify::VerifySpec,
     /// With a program: one designation for all its operations, or one per operation.
     pub threads: Vec<String>,
     /// The insert was chosen on the command line (else the tool table, else the default).
     pub insert_given: bool,
     /// T numbers → inserts.
-    pub tools: Option<crate::tools::ToolTable>,
+    pub tools: Option<crate::analysis::tools::ToolTable>,
     /// Write the SVG cross-section here.
     pub svg: Option<std::path::PathBuf>,
     /// Write the self-contained HTML report here.
@@ -198,20 +198,20 @@ impl VerifyJob {
         if let Some((source, dialect)) = &self.spec.program {
             return self.run_program(source, *dialect);
         }
-        let v = crate::verify::verify(&self.spec)?;
+        let v = crate::analysis::verify::verify(&self.spec)?;
         let outcome = if v.pass { Outcome::Pass } else { Outcome::OutOfTolerance };
         // Render everything before writing anything, so a failure leaves no file half-done.
         let json_text =
             self.json.as_ref().map(|_| pretty(&crate::report::VerifyReport::of(&v))).transpose()?;
-        let svg_text = self.svg.as_ref().map(|_| crate::render::verify_svg(&v));
-        let html_text = self.html.as_ref().map(|_| crate::html::verify_html(&v));
+        let svg_text = self.svg.as_ref().map(|_| crate::report::svg::verify_svg(&v));
+        let html_text = self.html.as_ref().map(|_| crate::report::html::verify_html(&v));
         let text = crate::report::verify_text(&v);
         self.write(json_text, svg_text, html_text, text, outcome)
     }
 
     fn run_program(
         &self,
-        source: &crate::verify::ProgramSource,
+        source: &crate::analysis::verify::ProgramSource,
         dialect: crate::gcode::Dialect,
     ) -> Result<(String, Outcome), Error> {
         if self.spec.final_x.is_some() {
@@ -221,44 +221,51 @@ impl VerifyJob {
         }
         let (shown, text) = source.load()?;
         let default = self.spec.insert.clone();
-        let insert_for = |op: &crate::gcode::Operation| -> Option<(crate::verify::InsertChoice, String)> {
-            if self.insert_given {
-                return None;
-            }
-            if let (Some(tt), Some(t)) = (&self.tools, op.tool) {
-                if let Some((choice, written)) = tt.insert(t) {
-                    return Some((
-                        choice.clone(),
-                        format!("insert of tool T{t} from {}: {written}", tt.source),
-                    ));
+        let insert_for =
+            |op: &crate::gcode::Operation| -> Option<(crate::analysis::verify::InsertChoice, String)> {
+                if self.insert_given {
+                    return None;
                 }
-            }
-            let why = match (op.tool, &self.tools) {
-                (Some(t), Some(tt)) => format!("tool T{t} is not in {}", tt.source),
-                (Some(t), None) => {
-                    format!("the program names tool T{t} but no tool table was given (--tools)")
+                if let (Some(tt), Some(t)) = (&self.tools, op.tool) {
+                    if let Some((choice, written)) = tt.insert(t) {
+                        return Some((
+                            choice.clone(),
+                            format!("insert of tool T{t} from {}: {written}", tt.source),
+                        ));
+                    }
                 }
-                (None, _) => "the program names no tool".to_string(),
+                let why = match (op.tool, &self.tools) {
+                    (Some(t), Some(tt)) => format!("tool T{t} is not in {}", tt.source),
+                    (Some(t), None) => {
+                        format!("the program names tool T{t} but no tool table was given (--tools)")
+                    }
+                    (None, _) => "the program names no tool".to_string(),
+                };
+                let what = match &default {
+                    crate::analysis::verify::InsertChoice::Full => "a full-profile insert".to_string(),
+                    crate::analysis::verify::InsertChoice::Partial { tip_radius } => {
+                        format!("a partial-profile insert with a {} mm tip", fmt_num(*tip_radius))
+                    }
+                    crate::analysis::verify::InsertChoice::File(p) => format!("the insert {}", p.display()),
+                };
+                Some((
+                    default.clone(),
+                    format!("insert assumed: {what} ({why}; choose with --insert or --tools)"),
+                ))
             };
-            let what = match &default {
-                crate::verify::InsertChoice::Full => "a full-profile insert".to_string(),
-                crate::verify::InsertChoice::Partial { tip_radius } => {
-                    format!("a partial-profile insert with a {} mm tip", fmt_num(*tip_radius))
-                }
-                crate::verify::InsertChoice::File(p) => format!("the insert {}", p.display()),
-            };
-            Some((
-                default.clone(),
-                format!("insert assumed: {what} ({why}; choose with --insert or --tools)"),
-            ))
-        };
-        let pv =
-            crate::verify::verify_program(&self.spec, &text, &shown, dialect, &self.threads, &insert_for)?;
+        let pv = crate::analysis::verify::verify_program(
+            &self.spec,
+            &text,
+            &shown,
+            dialect,
+            &self.threads,
+            &insert_for,
+        )?;
         let outcome = if pv.pass() { Outcome::Pass } else { Outcome::OutOfTolerance };
         let json_text =
             self.json.as_ref().map(|_| pretty(&crate::report::ProgramReport::of(&pv))).transpose()?;
-        let svg_text = self.svg.as_ref().map(|_| crate::render::program_svg(&pv));
-        let html_text = self.html.as_ref().map(|_| crate::html::program_html(&pv));
+        let svg_text = self.svg.as_ref().map(|_| crate::report::svg::program_svg(&pv));
+        let html_text = self.html.as_ref().map(|_| crate::report::html::program_html(&pv));
         let text = crate::report::program_text(&pv);
         self.write(json_text, svg_text, html_text, text, outcome)
     }
@@ -287,7 +294,7 @@ fn write_outputs(
 ) -> Result<String, Error> {
     for (path, t) in files {
         if let (Some(path), Some(t)) = (path, t) {
-            crate::output::write_atomic(path, t.as_bytes())?;
+            crate::report::output::write_atomic(path, t.as_bytes())?;
         }
     }
     route_json(json, json_text, text)
@@ -303,7 +310,7 @@ pub(crate) fn route_json(
     match (json, json_text) {
         (Some("-"), Some(t)) => Ok(t),
         (Some(p), Some(t)) => {
-            crate::output::write_atomic(std::path::Path::new(p), t.as_bytes())?;
+            crate::report::output::write_atomic(std::path::Path::new(p), t.as_bytes())?;
             Ok(text)
         }
         _ => Ok(text),
@@ -318,7 +325,7 @@ fn pretty<T: serde::Serialize>(v: &T) -> Result<String, Error> {
 #[derive(Clone, Debug)]
 pub struct FitJob {
     /// The pair.
-    pub spec: crate::fit::FitSpec,
+    pub spec: crate::analysis::fit::FitSpec,
     /// Write the SVG of the pair here.
     pub svg: Option<std::path::PathBuf>,
     /// Write the JSON here; `-` prints it on stdout instead of the text.
@@ -328,11 +335,12 @@ pub struct FitJob {
 impl FitJob {
     /// Runs the job: exit 0 when the pair screws together, 1 when it does not.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
-        let r = crate::fit::fit(&self.spec)?;
+        let r = crate::analysis::fit::fit(&self.spec)?;
         let outcome = if r.fits { Outcome::Pass } else { Outcome::OutOfTolerance };
-        let json_text = self.json.as_ref().map(|_| pretty(&crate::fit::FitJson::of(&r))).transpose()?;
-        let svg_text = self.svg.as_ref().map(|_| crate::fit::svg(&r));
-        let text = crate::fit::text(&r);
+        let json_text =
+            self.json.as_ref().map(|_| pretty(&crate::analysis::fit::FitJson::of(&r))).transpose()?;
+        let svg_text = self.svg.as_ref().map(|_| crate::analysis::fit::svg(&r));
+        let text = crate::analysis::fit::text(&r);
         Ok((write_outputs(&[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?, outcome))
     }
 }
@@ -340,7 +348,7 @@ impl FitJob {
 /// `threadcheck passes`: the expanded pass plan.
 ///
 /// ```
-/// use threadcheck::jobs::PassesJob;
+/// use threadcheck::PassesJob;
 /// use threadcheck::{Dialect, VerifySpec};
 /// // A G92 box cycle: one pass per X word.
 /// let program = "G0 X12 Z3\nG92 X9.4 Z-15 F1.5\nX9.0\nX8.6\nX8.2\nG0 X50\nM30\n";
@@ -354,7 +362,7 @@ impl FitJob {
 #[derive(Clone, Debug)]
 pub struct PassesJob {
     /// The plan, as for verify (the final X is solved the same way when not given).
-    pub spec: crate::verify::VerifySpec,
+    pub spec: crate::analysis::verify::VerifySpec,
     /// The JSON: `-` prints it on stdout instead of the table, a path writes it there.
     pub json: Option<String>,
 }
@@ -371,7 +379,7 @@ impl PassesJob {
                 let thread = if no_thread {
                     None
                 } else {
-                    let r = crate::verify::resolve(&self.spec)?;
+                    let r = crate::analysis::verify::resolve(&self.spec)?;
                     Some((r.designation, r.kind, r.limits.class))
                 };
                 let leads: Vec<String> = prog.operations.iter().map(|o| fmt_num(o.lead())).collect();
@@ -392,7 +400,7 @@ impl PassesJob {
             }
             (None, _) if self.spec.final_x.is_some() => {
                 // With the final X given, the plan is laid out without cutting it.
-                let r = crate::verify::resolve(&self.spec)?;
+                let r = crate::analysis::verify::resolve(&self.spec)?;
                 let x = self.spec.final_x.unwrap_or_default();
                 let passes = r.plan(x).generate()?;
                 let header = format!(
@@ -405,7 +413,7 @@ impl PassesJob {
                 (Some((r.designation, r.kind, r.limits.class)), passes, header)
             }
             (None, _) => {
-                let v = crate::verify::verify(&self.spec)?;
+                let v = crate::analysis::verify::verify(&self.spec)?;
                 let header = format!(
                     "{} {}: {} passes, blank X{:.4}, final X{:.4}\n",
                     v.designation.text,
@@ -425,7 +433,7 @@ impl PassesJob {
         };
         let text = {
             let mut s = header;
-            let row = |s: &mut String, p: &crate::passes::Pass| {
+            let row = |s: &mut String, p: &crate::gcode::passes::Pass| {
                 let _ = writeln!(
                     s,
                     "  {:>4}  {:>5}  {:>9.4}  {:>9.4}  {:>9.4}  {:>9.4}  {:>5}",
@@ -479,7 +487,7 @@ impl PassesJob {
 #[derive(Clone, Debug)]
 pub struct CompareJob {
     /// Thread, insert and plan (infeed and schedule are varied).
-    pub spec: crate::verify::VerifySpec,
+    pub spec: crate::analysis::verify::VerifySpec,
     /// Modified-flank angles, degrees.
     pub modified: Vec<f64>,
     /// The JSON: `-` prints it on stdout instead of the table, a path writes it there.
@@ -493,18 +501,18 @@ pub struct CompareJob {
 impl CompareJob {
     /// Runs the job.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
-        let c = crate::compare::compare(&self.spec, &self.modified)?;
-        let md = crate::compare::markdown(&c);
+        let c = crate::analysis::compare::compare(&self.spec, &self.modified)?;
+        let md = crate::report::compare::markdown(&c);
         let json_text =
-            self.json.as_ref().map(|_| pretty(&crate::compare::CompareReport::of(&c))).transpose()?;
-        let html = self.html.as_ref().map(|_| crate::html::compare_html(&c));
+            self.json.as_ref().map(|_| pretty(&crate::report::compare::CompareReport::of(&c))).transpose()?;
+        let html = self.html.as_ref().map(|_| crate::report::html::compare_html(&c));
         if let Some(p) = &self.markdown {
-            crate::output::write_atomic(p, md.as_bytes())?;
+            crate::report::output::write_atomic(p, md.as_bytes())?;
         }
         if let (Some(p), Some(h)) = (&self.html, &html) {
-            crate::output::write_atomic(p, h.as_bytes())?;
+            crate::report::output::write_atomic(p, h.as_bytes())?;
         }
-        Ok((route_json(self.json.as_deref(), json_text, crate::compare::text(&c))?, Outcome::Pass))
+        Ok((route_json(self.json.as_deref(), json_text, crate::report::compare::text(&c))?, Outcome::Pass))
     }
 }
 
@@ -512,7 +520,7 @@ impl CompareJob {
 #[derive(Clone, Debug)]
 pub struct SweepJob {
     /// What to sweep.
-    pub spec: crate::catalogue::CatalogueSpec,
+    pub spec: crate::analysis::catalogue::CatalogueSpec,
     /// JSON Lines, one verify report per case: `-` prints them on stdout (the summary line then
     /// goes to stderr), a path writes them there.
     pub json: Option<String>,
@@ -526,53 +534,54 @@ impl SweepJob {
     /// and the outcome: out of tolerance when any case fails.
     pub fn run(&self) -> Result<(String, String, Outcome), Error> {
         let start = std::time::Instant::now();
-        let cases = crate::catalogue::cases(&self.spec)?;
+        let cases = crate::analysis::catalogue::cases(&self.spec)?;
         if cases.is_empty() {
             return Err(Error::Input("the catalogue selection is empty".into()));
         }
         // Each case becomes its lines as soon as it is verified, in parallel: no verification is
         // kept, so memory stays at one case per thread.
-        let lines = crate::catalogue::run_map(&cases, |c, r| -> Result<(bool, String, String), Error> {
-            let mut out = String::new();
-            let mut export = String::new();
-            let ok = match r {
-                Ok(v) => {
-                    if self.json.is_some() {
-                        out.push_str(&crate::report::to_json_line(&crate::report::VerifyReport::of(&v))?);
-                    } else if !v.pass {
-                        let failed: Vec<String> = v
-                            .checks
-                            .iter()
-                            .filter(|k| !k.ok && k.kind.counts(v.gauge_only))
-                            .map(|k| {
-                                if k.deviation_um != 0.0 {
-                                    format!("{} {:+.1} µm", k.feature, k.deviation_um)
-                                } else {
-                                    k.feature.to_string()
-                                }
-                            })
-                            .collect();
-                        let _ = writeln!(out, "FAIL {}: {}", c.label, failed.join(", "));
+        let lines =
+            crate::analysis::catalogue::run_map(&cases, |c, r| -> Result<(bool, String, String), Error> {
+                let mut out = String::new();
+                let mut export = String::new();
+                let ok = match r {
+                    Ok(v) => {
+                        if self.json.is_some() {
+                            out.push_str(&crate::report::to_json_line(&crate::report::VerifyReport::of(&v))?);
+                        } else if !v.pass {
+                            let failed: Vec<String> = v
+                                .checks
+                                .iter()
+                                .filter(|k| !k.ok && k.kind.counts(v.gauge_only))
+                                .map(|k| {
+                                    if k.deviation_um != 0.0 {
+                                        format!("{} {:+.1} µm", k.feature, k.deviation_um)
+                                    } else {
+                                        k.feature.to_string()
+                                    }
+                                })
+                                .collect();
+                            let _ = writeln!(out, "FAIL {}: {}", c.label, failed.join(", "));
+                        }
+                        if self.export_placements.is_some() {
+                            export.push_str(&placements_line(&c.label, &c.spec, &v)?);
+                        }
+                        v.pass
                     }
-                    if self.export_placements.is_some() {
-                        export.push_str(&placements_line(&c.label, &c.spec, &v)?);
+                    Err(e) => {
+                        if self.json.is_some() {
+                            out.push_str(&crate::report::to_json_line(&crate::report::CaseError {
+                                case: &c.label,
+                                error: e.to_string(),
+                            })?);
+                        } else {
+                            let _ = writeln!(out, "ERROR {}: {e}", c.label);
+                        }
+                        false
                     }
-                    v.pass
-                }
-                Err(e) => {
-                    if self.json.is_some() {
-                        out.push_str(&crate::report::to_json_line(&crate::report::CaseError {
-                            case: &c.label,
-                            error: e.to_string(),
-                        })?);
-                    } else {
-                        let _ = writeln!(out, "ERROR {}: {e}", c.label);
-                    }
-                    false
-                }
-            };
-            Ok((ok, out, export))
-        });
+                };
+                Ok((ok, out, export))
+            });
         let (mut pass, mut fail) = (0usize, 0usize);
         let mut out = String::new();
         let mut export = String::new();
@@ -587,7 +596,7 @@ impl SweepJob {
             export.push_str(&e);
         }
         if let Some(p) = &self.export_placements {
-            crate::output::write_atomic(p, export.as_bytes())?;
+            crate::report::output::write_atomic(p, export.as_bytes())?;
         }
         let summary = format!(
             "{} cases, {pass} pass, {fail} fail, {:.3} s\n",
@@ -599,7 +608,7 @@ impl SweepJob {
         match self.json.as_deref() {
             Some("-") => Ok((out, summary, outcome)),
             Some(path) => {
-                crate::output::write_atomic(std::path::Path::new(path), out.as_bytes())?;
+                crate::report::output::write_atomic(std::path::Path::new(path), out.as_bytes())?;
                 Ok((summary, String::new(), outcome))
             }
             None => Ok((out + &summary, String::new(), outcome)),
@@ -609,21 +618,21 @@ impl SweepJob {
 
 fn placements_line(
     label: &str,
-    spec: &crate::verify::VerifySpec,
-    v: &crate::verify::Verification,
+    spec: &crate::analysis::verify::VerifySpec,
+    v: &crate::analysis::verify::Verification,
 ) -> Result<String, Error> {
     let t = &v.designation.thread;
-    let setup = crate::sweep::SweepSetup {
+    let setup = crate::geometry::sweep::SweepSetup {
         kind: v.kind,
         insert: &v.insert,
         blank_diameter: v.blank_diameter,
         pitch: t.pitch,
     };
-    let window = crate::sweep::Window::around(v.z_ref, t.pitch, 4.0);
-    let (blank, rings) = crate::sweep::placements(&setup, &v.passes, window)?;
+    let window = crate::geometry::sweep::Window::around(v.z_ref, t.pitch, 4.0);
+    let (blank, rings) = crate::geometry::sweep::placements(&setup, &v.passes, window)?;
     // threadcheck's own time for the same work on the same placements (sweep + pitch
     // diameter), best of five, so the baseline can state a ratio measured in one run.
-    let ms = crate::measure::MeasureSetup {
+    let ms = crate::geometry::measure::MeasureSetup {
         thread: t,
         kind: v.kind,
         mmc_pitch_diameter: None,
@@ -633,8 +642,13 @@ fn placements_line(
     let mut best = f64::INFINITY;
     for _ in 0..5 {
         let start = std::time::Instant::now();
-        let s = crate::sweep::sweep(&setup, &v.passes, window, crate::boolean::UnionStrategy::Envelope)?;
-        let m = crate::measure::measure(&ms, &s.section.profile(), v.z_ref)?;
+        let s = crate::geometry::sweep::sweep(
+            &setup,
+            &v.passes,
+            window,
+            crate::geometry::boolean::UnionStrategy::Envelope,
+        )?;
+        let m = crate::geometry::measure::measure(&ms, &s.section.profile(), v.z_ref)?;
         std::hint::black_box(m.pitch_diameter);
         best = best.min(start.elapsed().as_secs_f64());
     }
@@ -643,7 +657,7 @@ fn placements_line(
     let mut whole = f64::INFINITY;
     for _ in 0..5 {
         let start = std::time::Instant::now();
-        std::hint::black_box(crate::verify::verify(spec)?.pass);
+        std::hint::black_box(crate::analysis::verify::verify(spec)?.pass);
         whole = whole.min(start.elapsed().as_secs_f64());
     }
     let ring = |r: &[crate::Point]| r.iter().map(|p| [p.z, p.r]).collect::<Vec<_>>();
@@ -664,7 +678,7 @@ fn placements_line(
 #[derive(Clone, Debug)]
 pub struct MillJob {
     /// What to check.
-    pub spec: crate::mill::MillSpec,
+    pub spec: crate::analysis::mill::MillSpec,
     /// Write the SVG of the worst level here.
     pub svg: Option<std::path::PathBuf>,
     /// The JSON: `-` prints it on stdout instead of the text, a path writes it there.
@@ -674,12 +688,54 @@ pub struct MillJob {
 impl MillJob {
     /// Runs the job: pass when the gouge and the leftover are within the tolerance.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
-        let r = crate::mill::mill(&self.spec)?;
-        let svg_text = self.svg.as_ref().map(|_| crate::render::mill_svg(&r));
+        let r = crate::analysis::mill::mill(&self.spec)?;
+        let svg_text = self.svg.as_ref().map(|_| crate::report::svg::mill_svg(&r));
         let json_text = self.json.as_ref().map(|_| pretty(&r)).transpose()?;
         let outcome =
             if r.verdict == crate::report::Verdict::Pass { Outcome::Pass } else { Outcome::OutOfTolerance };
-        let text = crate::mill::text(&r);
+        let text = crate::analysis::mill::text(&r);
         Ok((write_outputs(&[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?, outcome))
+    }
+}
+
+/// `threadcheck report infeed-comparison`: every strategy compared on the report's threads with
+/// a full- and a partial-profile insert, the page and its pictures written together.
+#[derive(Clone, Debug)]
+pub struct InfeedReportJob {
+    /// The folder to write `infeed-comparison.md` and its pictures into.
+    pub out: std::path::PathBuf,
+}
+
+impl InfeedReportJob {
+    /// Runs the comparisons, renders the page and writes it with its pictures. Returns the
+    /// Markdown.
+    pub fn run(&self) -> Result<String, Error> {
+        use crate::analysis::compare::{compare, REPORT_THREADS};
+        use crate::analysis::verify::{InsertChoice, VerifySpec};
+        let inserts = [
+            ("full-profile", InsertChoice::Full),
+            ("partial-profile r0.04", InsertChoice::Partial { tip_radius: 0.04 }),
+        ];
+        let mut runs = Vec::new();
+        for d in REPORT_THREADS {
+            for (iname, choice) in &inserts {
+                let spec = VerifySpec { insert: choice.clone(), ..VerifySpec::new(d) };
+                runs.push((d, *iname, compare(&spec, &[29.5, 27.0])?));
+            }
+        }
+        let sections: Vec<crate::report::compare::InfeedSection<'_>> = runs
+            .iter()
+            .map(|(thread, insert, comparison)| crate::report::compare::InfeedSection {
+                thread,
+                insert,
+                comparison,
+            })
+            .collect();
+        let (md, pictures) = crate::report::compare::infeed_comparison_page(&sections);
+        let mut files: Vec<(std::path::PathBuf, Vec<u8>)> =
+            pictures.into_iter().map(|(name, svg)| (self.out.join(name), svg.into_bytes())).collect();
+        files.push((self.out.join("infeed-comparison.md"), md.clone().into_bytes()));
+        crate::report::output::write_all_atomic(&files)?;
+        Ok(md)
     }
 }

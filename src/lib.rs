@@ -21,10 +21,10 @@
 //! [`jobs`] holds the jobs behind the command line, one per command.
 //!
 //! ```
-//! use threadcheck::insert::Insert;
-//! use threadcheck::measure::{measure, MeasureSetup};
-//! use threadcheck::passes::{Infeed, PlanSpec};
-//! use threadcheck::sweep::{sweep, SweepSetup, Window};
+//! use threadcheck::Insert;
+//! use threadcheck::{measure, MeasureSetup};
+//! use threadcheck::{Infeed, PlanSpec};
+//! use threadcheck::{sweep, SweepSetup, Window};
 //! use threadcheck::{parse_designation, ParseOptions, ThreadKind, UnionStrategy};
 //!
 //! let m10 = parse_designation("M10x1.5", ParseOptions::default())?.thread;
@@ -51,42 +51,53 @@
 //! All lengths are millimetres (`f64`). Lathe X values are **diameters**; geometry works in the
 //! axial half-plane with `(z, r)` where `r` is a radius. Deviations are reported in µm.
 
-mod boolean;
-pub mod catalogue;
-pub mod check;
-pub mod compare;
-mod envelope;
-pub mod error;
-pub mod fit;
-pub mod gcode;
-pub mod geometry;
-pub mod html;
-pub mod insert;
-pub mod jobs;
-mod limits;
-pub mod measure;
-pub mod mill;
-mod output;
-pub mod passes;
-pub mod process;
-pub mod render;
-pub mod report;
-pub mod standards;
-pub mod sweep;
-pub mod tolerance;
-pub mod tools;
-pub mod verify;
+// The wings, in the order the data flows; each imports only the wings above it in this list.
+mod analysis;
+mod gcode;
+mod geometry;
+mod ground;
+mod jobs;
+mod report;
+mod standards;
 
-pub use boolean::UnionStrategy;
-pub use check::{Check, CheckFeature, CheckKind};
-pub use error::{Error, Result};
-pub use gcode::Dialect;
-pub use geometry::{Arc, Point, DEFAULT_TOLERANCE};
-pub use jobs::Outcome;
-pub use passes::{Infeed, InfeedChoice, Schedule};
-pub use standards::{
-    parse_designation, BasicThread, ClassSpec, Designation, DesignationError, Hand, ParseOptions,
-    ProfileKind, ThreadForm, ThreadKind,
+// Ground: the error, the plane's value types.
+pub use ground::error::{Error, Result};
+pub use ground::plane::{Arc, Point, DEFAULT_TOLERANCE, MIN_TOLERANCE};
+
+// Standards: designations, forms, classes and their limits of size.
+pub use standards::tolerance::{
+    iso_limits, limits_for, AcmeClass, Bs84Class, GaugePlane, Iso228Class, IsoClass, Limit, TaperClass,
+    ThreadLimits, TrClass, UnifiedClass, UnifiedSeries,
 };
-pub use tolerance::{Limit, ThreadLimits};
-pub use verify::{verify, verify_program, InsertChoice, ProgramSource, Verification, VerifySpec};
+pub use standards::{
+    catalog, parse_designation, BasicThread, Catalog, ClassSpec, Designation, DesignationError, Hand,
+    ParseOptions, ProfileKind, ThreadForm, ThreadKind, MM_PER_INCH,
+};
+
+// Toolpaths: generated plans and programs read as a control would.
+pub use gcode::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
+pub use gcode::{read_program, read_program_with, Budget, Dialect, Operation, Program, ReadOptions, Spindle};
+
+// Geometry: the insert, the sweep, the measurement.
+pub use geometry::boolean::UnionStrategy;
+pub use geometry::insert::{Insert, InsertKind};
+pub use geometry::measure::{measure, MeasureSetup, Measurement, ThreeWire};
+pub use geometry::sweep::{pass_metrics, sweep, PassMetrics, Section, Sweep, SweepSetup, Window};
+
+// The computations.
+pub use analysis::catalogue::{cases as catalogue_cases, run as run_catalogue, Case, CatalogueSpec};
+pub use analysis::check::{checks, Check, CheckFeature, CheckKind};
+pub use analysis::compare::{compare, Comparison};
+pub use analysis::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};
+pub use analysis::mill::{mill, MillReport, MillSpec, Target};
+pub use analysis::process::MachineProfile;
+pub use analysis::tools::ToolTable;
+pub use analysis::verify::{
+    program_passes, read_program_text, reference_groove, verify, verify_program, InsertChoice, ProgramSource,
+    ProgramVerification, Units, Verification, VerifySpec,
+};
+
+// The commands: one job per command, returning what the command prints.
+pub use jobs::{
+    CompareJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob, SweepJob, VerifyJob,
+};

@@ -2,7 +2,7 @@
 //! and the full-profile cut against the basic pitch diameter.
 
 use crate::*;
-use threadcheck::tolerance::limits_for;
+use threadcheck::limits_for;
 use threadcheck::{parse_designation, ParseOptions, ThreadForm, ThreadKind};
 
 const IN: f64 = 25.4;

@@ -3,9 +3,9 @@
 
 use crate::*;
 use proptest::prelude::*;
-use threadcheck::gcode::{read_program, Dialect};
+use threadcheck::{read_program, Dialect};
 
-fn prog(name: &str, d: Dialect) -> threadcheck::gcode::Program {
+fn prog(name: &str, d: Dialect) -> threadcheck::Program {
     let text = std::fs::read_to_string(data(&format!("programs/{name}"))).unwrap();
     read_program(&text, name, d).unwrap()
 }

@@ -1,13 +1,13 @@
 //! Issue 6: what geometry alone says about one-flank versus two-flank infeed. Every expected value
 //! is derived in the comment above its test.
 
-use threadcheck::insert::Insert;
-use threadcheck::measure::{measure, MeasureSetup, Measurement};
-use threadcheck::passes::{Infeed, Pass, PlanSpec, Schedule};
-use threadcheck::sweep::{sweep, SweepSetup, Window};
-use threadcheck::verify::{reference_groove, InsertChoice, VerifySpec};
+use threadcheck::Insert;
 use threadcheck::UnionStrategy;
+use threadcheck::{measure, MeasureSetup, Measurement};
 use threadcheck::{parse_designation, BasicThread, ParseOptions, Point, ThreadKind};
+use threadcheck::{reference_groove, InsertChoice, VerifySpec};
+use threadcheck::{sweep, SweepSetup, Window};
+use threadcheck::{Infeed, Pass, PlanSpec, Schedule};
 
 const TAN30: f64 = 0.577_350_269_189_625_8;
 
@@ -176,11 +176,11 @@ fn incremental_alternating_nests_like_flank_infeed() {
     }
 }
 
-fn compare_sharp(schedule_n: usize) -> threadcheck::compare::Comparison {
+fn compare_sharp(schedule_n: usize) -> threadcheck::Comparison {
     let mut spec = VerifySpec::new("M10x1.5-6g");
     spec.insert = InsertChoice::Partial { tip_radius: 0.0 };
     spec.passes = Some(schedule_n);
-    threadcheck::compare::compare(&spec, &[29.5]).unwrap()
+    threadcheck::compare(&spec, &[29.5]).unwrap()
 }
 
 /// Radial passes with a sharp V engage both flanks along their whole length d_i / cos 30° on
@@ -245,7 +245,7 @@ fn constant_depth_grows_the_chip_constant_area_holds_it() {
 #[test]
 fn the_committed_report_regenerates_byte_for_byte() {
     let dir = crate::tempdir("report");
-    threadcheck::compare::write_report(&dir).unwrap();
+    threadcheck::InfeedReportJob { out: dir.clone() }.run().unwrap();
     let committed = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("reports");
     let mut n = 0;
     for e in std::fs::read_dir(&dir).unwrap() {

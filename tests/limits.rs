@@ -3,7 +3,7 @@
 
 use crate::*;
 use proptest::prelude::*;
-use threadcheck::tolerance::{iso_limits, limits_for, IsoClass};
+use threadcheck::{iso_limits, limits_for, IsoClass};
 use threadcheck::{parse_designation, ParseOptions, ThreadKind};
 
 fn close(got: Option<f64>, want: f64, what: &str) {
@@ -77,7 +77,7 @@ fn iso228_basic_sizes_and_limits() {
 }
 
 fn all_series() -> Vec<(f64, f64)> {
-    let cat = threadcheck::standards::catalog().unwrap();
+    let cat = threadcheck::catalog().unwrap();
     let mut v = Vec::new();
     for s in &cat.iso.series.sizes {
         v.extend(s.coarse.map(|p| (s.d, p)));

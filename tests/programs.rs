@@ -2,7 +2,7 @@
 //! asks, and the macro languages expand to the passes derived by hand in each test's comment.
 
 use crate::*;
-use threadcheck::gcode::{read_program, read_program_with, Dialect, Program, ReadOptions};
+use threadcheck::{read_program, read_program_with, Dialect, Program, ReadOptions};
 
 fn src(name: &str, d: Dialect) -> Program {
     let text = std::fs::read_to_string(data(&format!("programs/source-docs/{name}"))).unwrap();
@@ -179,7 +179,7 @@ fn thesis_g33_three_start() {
     let des =
         threadcheck::parse_designation("M84xPh6P2-6g", threadcheck::ParseOptions { allow_nonstandard: true })
             .unwrap();
-    let passes = threadcheck::verify::program_passes(&p.operations[0], &des, "x").unwrap();
+    let passes = threadcheck::program_passes(&p.operations[0], &des, "x").unwrap();
     let starts: Vec<u32> = passes.iter().map(|q| q.start).collect();
     assert_eq!(starts, [0, 0, 0, 1, 1, 1, 2, 2, 2]);
 }

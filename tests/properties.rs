@@ -1,13 +1,13 @@
 //! Issue 8: property tests on the geometry (the sweep's own properties are in sweep.rs).
 
 use proptest::prelude::*;
-use threadcheck::insert::Insert;
-use threadcheck::measure::{measure, MeasureSetup};
-use threadcheck::passes::{Infeed, Pass, PlanSpec};
-use threadcheck::sweep::{sweep, Section, SweepSetup, Window};
-use threadcheck::verify::reference_groove;
+use threadcheck::reference_groove;
+use threadcheck::Insert;
 use threadcheck::UnionStrategy;
+use threadcheck::{measure, MeasureSetup};
+use threadcheck::{sweep, Section, SweepSetup, Window};
 use threadcheck::{BasicThread, ThreadKind};
+use threadcheck::{Infeed, Pass, PlanSpec};
 
 fn metric(d: f64, p: f64) -> BasicThread {
     BasicThread::metric(d, p)

@@ -3,12 +3,12 @@
 //! never copied from threadcheck's output.
 
 use proptest::prelude::*;
-use threadcheck::insert::Insert;
-use threadcheck::measure::{measure, MeasureSetup, Measurement};
-use threadcheck::passes::{Infeed, PlanSpec, Schedule};
-use threadcheck::sweep::{sweep, SweepSetup, Window};
+use threadcheck::Insert;
 use threadcheck::UnionStrategy;
+use threadcheck::{measure, MeasureSetup, Measurement};
 use threadcheck::{parse_designation, BasicThread, ParseOptions, ThreadKind};
+use threadcheck::{sweep, SweepSetup, Window};
+use threadcheck::{Infeed, PlanSpec, Schedule};
 
 const TOL: f64 = 5e-5; // chord tolerance, mm
 const UM01: f64 = 1e-4; // 0.1 µm in mm
@@ -162,7 +162,7 @@ fn plan_strategy() -> impl Strategy<Value = (usize, bool, f64, Vec<f64>, f64, f6
 
 fn build(
     case: &(usize, bool, f64, Vec<f64>, f64, f64),
-) -> (BasicThread, Insert, f64, Vec<threadcheck::passes::Pass>) {
+) -> (BasicThread, Insert, f64, Vec<threadcheck::Pass>) {
     let (ti, full, r, fr, angle, phase) = case;
     let t = thread(["M6x1", "M10x1.5", "M20x2.5"][*ti]);
     let ins = if *full {
@@ -190,9 +190,9 @@ fn section(
     t: &BasicThread,
     ins: &Insert,
     blank: f64,
-    passes: &[threadcheck::passes::Pass],
+    passes: &[threadcheck::Pass],
     center: f64,
-) -> threadcheck::sweep::Section {
+) -> threadcheck::Section {
     let setup = SweepSetup { kind: ThreadKind::External, insert: ins, blank_diameter: blank, pitch: t.pitch };
     sweep(&setup, passes, Window::around(center, t.pitch, 3.0), UnionStrategy::BalancedTree).unwrap().section
 }
@@ -214,7 +214,7 @@ fn profile_distance(a: &[threadcheck::Point], b: &[threadcheck::Point]) -> f64 {
 /// are compared to 0.01 µm, a tenth of the accuracy budget.
 const SNAP: f64 = 1e-5;
 
-fn profile_length(s: &threadcheck::sweep::Section) -> f64 {
+fn profile_length(s: &threadcheck::Section) -> f64 {
     s.profile().windows(2).map(|w| w[0].distance(w[1])).sum()
 }
 
@@ -276,7 +276,7 @@ fn metrics(
     blank: f64,
     depths: &[f64],
     infeed: Infeed,
-) -> Vec<threadcheck::sweep::PassMetrics> {
+) -> Vec<threadcheck::PassMetrics> {
     let spec = PlanSpec {
         schedule: Schedule::Explicit(depths.to_vec()),
         infeed,
@@ -292,7 +292,7 @@ fn metrics(
     };
     let passes = spec.generate().unwrap();
     let setup = SweepSetup { kind: ThreadKind::External, insert: ins, blank_diameter: blank, pitch: t.pitch };
-    threadcheck::sweep::pass_metrics(&setup, &passes, 0.0).unwrap()
+    threadcheck::pass_metrics(&setup, &passes, 0.0).unwrap()
 }
 
 /// Sharp 60° V, radial, constant-area depths d_i = t·√(i/N): every chip is tan30°·t²/N
@@ -358,7 +358,7 @@ fn regression_repeated_passes_fake_a_small_root_radius() {
             ..PlanSpec::new(ThreadKind::External, 2.5, 20.1, d3, 9)
         };
         let passes = spec.generate().unwrap();
-        let z = threadcheck::verify::reference_groove(&passes);
+        let z = threadcheck::reference_groove(&passes);
         let setup = SweepSetup { kind: ThreadKind::External, insert: &ins, blank_diameter: 20.1, pitch: 2.5 };
         let s = sweep(&setup, &passes, Window::around(z, 2.5, 4.0), UnionStrategy::BalancedTree).unwrap();
         let ms = MeasureSetup {
@@ -419,12 +419,12 @@ proptest! {
 /// same passes, where they once lost this crest in rounding-wide gaps.)
 #[test]
 fn whitworth_nut_full_insert_tops_the_crest() {
-    let mut spec = threadcheck::verify::VerifySpec::new("BSW 7/16 medium");
+    let mut spec = threadcheck::VerifySpec::new("BSW 7/16 medium");
     spec.internal = true;
-    spec.insert = threadcheck::verify::InsertChoice::Full;
+    spec.insert = threadcheck::InsertChoice::Full;
     spec.infeed = Some("alternating:27.5".parse().unwrap());
     spec.schedule = Schedule::ConstantDepth;
-    let v = threadcheck::verify::verify(&spec).unwrap();
+    let v = threadcheck::verify(&spec).unwrap();
     let setup = SweepSetup {
         kind: v.kind,
         insert: &v.insert,

@@ -506,7 +506,7 @@ fn infeed_words_are_the_same_in_verify_and_sweep() {
 /// Z3 to Z-15 at lead 1.5.
 #[test]
 fn passes_json_reads_back_as_pass_values() {
-    use threadcheck::passes::Pass;
+    use threadcheck::Pass;
     let dir = tempdir("readback");
     std::fs::write(dir.join("box.nc"), "G0 X12 Z3\nG92 X9.4 Z-15 F1.5\nX9.0\nX8.6\nX8.2\nG0 X50\nM30\n")
         .unwrap();

@@ -1,7 +1,7 @@
 //! Any text as a designation, then its limits for both kinds: never a panic.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use threadcheck::tolerance::limits_for;
+use threadcheck::limits_for;
 use threadcheck::{parse_designation, ParseOptions, ThreadKind};
 
 fuzz_target!(|data: &[u8]| {

@@ -3,11 +3,14 @@
 //! `limits.rs` are the same code with larger numbers.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use threadcheck::gcode::{read_program_with, Budget, Dialect, ReadOptions};
+use threadcheck::{read_program_with, Budget, Dialect, ReadOptions};
 
 fuzz_target!(|data: &[u8]| {
     if let Ok(text) = std::str::from_utf8(data) {
-        let opts = ReadOptions { budget: Some(Budget { blocks: 200_000, backward_jumps: 20_000 }), ..ReadOptions::default() };
+        let opts = ReadOptions {
+            budget: Some(Budget { blocks: 200_000, backward_jumps: 20_000 }),
+            ..ReadOptions::default()
+        };
         for d in Dialect::ALL {
             let _ = read_program_with(text, "fuzz.nc", d, opts);
         }

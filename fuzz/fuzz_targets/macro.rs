@@ -3,7 +3,7 @@
 //! calls are bounded; a small budget keeps runaway loops quick under the sanitizer).
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use threadcheck::gcode::{read_program_with, Budget, Dialect, ReadOptions};
+use threadcheck::{read_program_with, Budget, Dialect, ReadOptions};
 
 fuzz_target!(|data: &[u8]| {
     let Some((&first, rest)) = data.split_first() else { return };

@@ -3,8 +3,8 @@
 #![no_main]
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
-use threadcheck::passes::{Infeed, Schedule};
-use threadcheck::verify::{verify, InsertChoice, VerifySpec};
+use threadcheck::{verify, InsertChoice, VerifySpec};
+use threadcheck::{Infeed, Schedule};
 
 #[derive(Arbitrary, Debug)]
 struct Case {

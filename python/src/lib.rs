@@ -4,9 +4,9 @@
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use threadcheck::gcode::Dialect;
-use threadcheck::jobs::{LimitsJob, Outcome, PassesJob, VerifyJob};
-use threadcheck::verify::{ProgramSource, VerifySpec};
+use threadcheck::Dialect;
+use threadcheck::{LimitsJob, Outcome, PassesJob, VerifyJob};
+use threadcheck::{ProgramSource, VerifySpec};
 
 fn value_error(e: threadcheck::Error) -> PyErr {
     PyValueError::new_err(e.to_string())

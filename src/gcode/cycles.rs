@@ -3,8 +3,8 @@
 
 use super::motion::{Motion, RBlock};
 use super::Dialect;
-use crate::limits::MAX_PASSES;
-use crate::passes::Pass;
+use crate::gcode::passes::Pass;
+use crate::ground::bounds::MAX_PASSES;
 use crate::Error;
 
 /// The motion G code of a block, after the modal codes were applied.
@@ -219,8 +219,8 @@ pub(crate) fn shifts(shift: Shift, depths: &[f64], dir: f64) -> Vec<f64> {
             depths.iter().map(|d| dir * d * t).collect()
         }
         Shift::Alternating(a) => {
-            let infeed = crate::passes::Infeed::Alternating { angle: a };
-            crate::passes::infeed_offsets(infeed, depths, dir)
+            let infeed = crate::gcode::passes::Infeed::Alternating { angle: a };
+            crate::gcode::passes::infeed_offsets(infeed, depths, dir)
         }
     }
 }

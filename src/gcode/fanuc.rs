@@ -120,11 +120,14 @@ fn program_name(v: f64) -> String {
 }
 
 fn whole(m: &Motion, b: &RBlock<'_>, v: f64, col: usize) -> Result<u32, Error> {
-    if !(v >= 0.0 && v.fract() == 0.0 && v <= crate::limits::MAX_REPEATS as f64) {
+    if !(v >= 0.0 && v.fract() == 0.0 && v <= crate::ground::bounds::MAX_REPEATS as f64) {
         return Err(m.err(
             b.line,
             col,
-            format!("repetition count {v} must be a whole number up to {}", crate::limits::MAX_REPEATS),
+            format!(
+                "repetition count {v} must be a whole number up to {}",
+                crate::ground::bounds::MAX_REPEATS
+            ),
         ));
     }
     Ok(v as u32)

@@ -49,7 +49,8 @@ pub(crate) fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<
                     b.werr(&m.file, w, "M97 needs P, the sequence number of the local subroutine")
                 })?;
                 let reps = b.get("L").map_or(1.0, |l| l.v);
-                if !(reps >= 0.0 && reps.fract() == 0.0 && reps <= crate::limits::MAX_REPEATS as f64) {
+                if !(reps >= 0.0 && reps.fract() == 0.0 && reps <= crate::ground::bounds::MAX_REPEATS as f64)
+                {
                     return Err(b.werr(
                         &m.file,
                         w,
@@ -155,7 +156,7 @@ pub(crate) fn one_block_g76(
         depths.push(dn);
         prev = dn;
         n += 1.0;
-        if depths.len() > crate::limits::MAX_PASSES {
+        if depths.len() > crate::ground::bounds::MAX_PASSES {
             return Err(m.err(b.line, col, format!("{cycle} expands to too many passes")));
         }
     }

@@ -9,7 +9,7 @@ use super::expr::{self, Env, Expr, Value, VarKey, VarRef};
 use super::lexer::{Block, OKw, Stmt, WVal};
 use super::motion::{Motion, RBlock, RWord};
 use super::{dyna, fanuc, haas, linuxcnc, sinumerik, Dialect};
-use crate::limits::{MAX_CALL_DEPTH, MAX_REPEATS};
+use crate::ground::bounds::{MAX_CALL_DEPTH, MAX_REPEATS};
 use crate::Error;
 use std::collections::{HashMap, HashSet};
 

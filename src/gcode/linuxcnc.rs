@@ -117,7 +117,7 @@ fn g76(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
     if !(pitch > 0.0 && j > 0.0 && k > j) {
         return Err(m.err(b.line, col, "G76 needs P and J greater than zero and K greater than J"));
     }
-    let h_ok = h >= -1.0 && h.fract() == 0.0 && h <= crate::limits::MAX_REPEATS as f64;
+    let h_ok = h >= -1.0 && h.fract() == 0.0 && h <= crate::ground::bounds::MAX_REPEATS as f64;
     if !(h_ok && [0.0, 1.0, 2.0, 3.0].contains(&l)) {
         return Err(m.err(
             b.line,
@@ -138,7 +138,7 @@ fn g76(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
         depths.push(d);
         n += 1.0;
         d = j * n.powf(1.0 / r);
-        if depths.len() > crate::limits::MAX_PASSES {
+        if depths.len() > crate::ground::bounds::MAX_PASSES {
             return Err(m.err(b.line, col, "G76 expands to too many passes"));
         }
     }

@@ -24,9 +24,10 @@ mod interp;
 mod lexer;
 mod linuxcnc;
 mod motion;
+pub mod passes;
 mod sinumerik;
 
-use crate::passes::Pass;
+use crate::gcode::passes::Pass;
 use crate::Error;
 use serde::Serialize;
 
@@ -187,8 +188,8 @@ pub struct Budget {
 impl Default for Budget {
     fn default() -> Budget {
         Budget {
-            blocks: crate::limits::MAX_EXECUTED_BLOCKS,
-            backward_jumps: crate::limits::MAX_BACKWARD_JUMPS,
+            blocks: crate::ground::bounds::MAX_EXECUTED_BLOCKS,
+            backward_jumps: crate::ground::bounds::MAX_BACKWARD_JUMPS,
         }
     }
 }
@@ -196,7 +197,7 @@ impl Default for Budget {
 /// Reads `text` (the contents of `file`) as a `dialect` program and expands its threading.
 ///
 /// ```
-/// use threadcheck::gcode::{read_program, Dialect};
+/// use threadcheck::{read_program, Dialect};
 /// let p = read_program("G0 X22 Z5\nG76 P011060 Q100 R0.05\nG76 X18.16 Z-20 P920 Q350 F1.5\n", "m20.nc", Dialect::Fanuc)?;
 /// assert_eq!(p.operations.len(), 1);
 /// assert_eq!(p.passes.last().unwrap().x_end, 18.16);

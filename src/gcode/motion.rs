@@ -2,8 +2,8 @@
 //! threading operations with their passes.
 
 use super::{Dialect, Operation, Spindle};
-use crate::limits::MAX_PASSES;
-use crate::passes::Pass;
+use crate::gcode::passes::Pass;
+use crate::ground::bounds::MAX_PASSES;
 use crate::Error;
 use serde::Serialize;
 

@@ -11,7 +11,7 @@
 use super::cycles::{self, Shift};
 use super::interp::{Ctx, Flow};
 use super::motion::{Motion, RBlock, RWord};
-use crate::passes::Pass;
+use crate::gcode::passes::Pass;
 use crate::Error;
 
 /// Sinumerik state: the start offset SF.
@@ -52,13 +52,13 @@ pub(crate) fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<
         cycles::modal(m, b)?;
         let name = format!("L{}", w.v.round() as i64);
         let reps = b.get("P").map_or(1.0, |p| p.v);
-        if !(reps >= 0.0 && reps.fract() == 0.0 && reps <= crate::limits::MAX_REPEATS as f64) {
+        if !(reps >= 0.0 && reps.fract() == 0.0 && reps <= crate::ground::bounds::MAX_REPEATS as f64) {
             return Err(b.werr(
                 &m.file,
                 w,
                 format!(
                     "{name} P{reps}: repetitions must be a whole number up to {}",
-                    crate::limits::MAX_REPEATS
+                    crate::ground::bounds::MAX_REPEATS
                 ),
             ));
         }
@@ -188,10 +188,10 @@ fn l97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>, cx: &mut Ctx<'_>) -> Resul
     if !(pitch > 0.0) {
         return Err(e("R20, the pitch, must be greater than zero"));
     }
-    if !(nrough >= 1.0 && nrough.fract() == 0.0 && nrough <= crate::limits::MAX_REPEATS as f64) {
+    if !(nrough >= 1.0 && nrough.fract() == 0.0 && nrough <= crate::ground::bounds::MAX_REPEATS as f64) {
         return Err(e("R28, the number of rough cuts, must be a whole number from 1"));
     }
-    if !(idle >= 0.0 && idle.fract() == 0.0 && idle <= crate::limits::MAX_REPEATS as f64) {
+    if !(idle >= 0.0 && idle.fract() == 0.0 && idle <= crate::ground::bounds::MAX_REPEATS as f64) {
         return Err(e("R23, the number of idle passes, must be a whole number"));
     }
     let t_full = depth.abs();
@@ -260,10 +260,10 @@ fn l96(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>, cx: &mut Ctx<'_>) -> Resul
     if !(pitch > 0.0) {
         return Err(e("R14, the pitch, must be greater than zero"));
     }
-    if !(nrough >= 1.0 && nrough.fract() == 0.0 && nrough <= crate::limits::MAX_REPEATS as f64) {
+    if !(nrough >= 1.0 && nrough.fract() == 0.0 && nrough <= crate::ground::bounds::MAX_REPEATS as f64) {
         return Err(e("R17, the number of rough cuts, must be a whole number from 1"));
     }
-    if !(idle >= 0.0 && idle.fract() == 0.0 && idle <= crate::limits::MAX_REPEATS as f64) {
+    if !(idle >= 0.0 && idle.fract() == 0.0 && idle <= crate::ground::bounds::MAX_REPEATS as f64) {
         return Err(e("R18, the number of idle cuts, must be a whole number"));
     }
     let dia = match mode {
@@ -337,7 +337,7 @@ fn cycle97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
     let nrc = if nrc == 0.0 { 1.0 } else { nrc };
     let numt = if numt == 0.0 { 1.0 } else { numt };
     let whole = |v: f64, lo: f64, hi: f64| v >= lo && v <= hi && v.fract() == 0.0;
-    let max = crate::limits::MAX_REPEATS as f64;
+    let max = crate::ground::bounds::MAX_REPEATS as f64;
     if !whole(nrc, 1.0, max) || !whole(nid, 0.0, max) || !whole(numt, 1.0, 64.0) {
         return Err(b.werr(&m.file, w, "CYCLE97 NRC, NID and NUMT must be whole numbers in range"));
     }

@@ -4,7 +4,7 @@
 
 use super::data::{catalog, find_pitch, SeriesSize};
 use super::{BasicThread, Hand, ThreadForm, ThreadKind, MM_PER_INCH};
-use crate::tolerance::{
+use crate::standards::tolerance::{
     AcmeClass, Bs84Class, Iso228Class, IsoClass, TaperClass, TrClass, UnifiedClass, UnifiedSeries,
 };
 use std::fmt;

@@ -1,18 +1,19 @@
 //! Thread standards: forms, basic dimensions, one-pitch profiles and the embedded catalogues.
 //!
 //! This is where the data path starts: a designation (`M10x1.5-6g`) becomes a [`Designation`]
-//! holding a [`BasicThread`] and its classes; [`crate::tolerance`] turns those into limits.
+//! holding a [`BasicThread`] and its classes; [`crate::standards::tolerance`] turns those into limits.
 //!
 //! Sources: ISO 68-1 and DIN 13 for the metric form, BS 84 for Whitworth, ISO 228-1 for the
 //! BSP parallel pipe thread. The numeric data lives in `profiles/*.toml`, embedded in the binary.
 
 pub mod data;
 pub mod designation;
+pub mod tolerance;
 
-pub use data::{catalog, BspSize, Catalog, UnifiedSize, WhitworthSize};
+pub use data::{catalog, Catalog, UnifiedSize};
 pub use designation::{parse_designation, ClassSpec, Designation, DesignationError, ParseOptions};
 
-use crate::geometry::{extend_dedup, Arc, Point};
+use crate::ground::plane::{extend_dedup, Arc, Point};
 use serde::Serialize;
 use std::f64::consts::FRAC_PI_2;
 
@@ -220,7 +221,7 @@ pub enum Hand {
 /// A thread's basic size: form, nominal (major) diameter, pitch and starts.
 ///
 /// All lengths in mm. For Whitworth and BSP threads the pitch is `25.4 / tpi` exactly.
-/// Derived dimensions are exact (unrounded); [`crate::tolerance`] rounds them to 0.001 mm the way
+/// Derived dimensions are exact (unrounded); [`crate::standards::tolerance`] rounds them to 0.001 mm the way
 /// the standards' tables print them.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BasicThread {
@@ -255,7 +256,7 @@ impl BasicThread {
 
     /// Half the included flank angle, radians.
     pub fn half_angle(&self) -> f64 {
-        0.5 * crate::geometry::deg(self.form.flank_angle())
+        0.5 * crate::ground::plane::deg(self.form.flank_angle())
     }
 
     /// Height of the fundamental (sharp) triangle H = P / (2·tan(α/2)), mm:

@@ -9,7 +9,7 @@
 //! 7 = "inserts/tr-30deg.toml"
 //! ```
 
-use crate::verify::InsertChoice;
+use crate::analysis::verify::InsertChoice;
 use crate::Error;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -32,8 +32,8 @@ impl ToolTable {
     /// Reads a tool table; insert files are taken relative to `dir`.
     ///
     /// ```
-    /// use threadcheck::tools::ToolTable;
-    /// use threadcheck::verify::InsertChoice;
+    /// use threadcheck::ToolTable;
+    /// use threadcheck::InsertChoice;
     /// let t = ToolTable::from_toml("[tools]\n3 = \"full\"\n", "tools.toml", std::path::Path::new("."))?;
     /// assert_eq!(t.insert(3).map(|x| &x.0), Some(&InsertChoice::Full));
     /// # Ok::<(), threadcheck::Error>(())
@@ -47,7 +47,7 @@ impl ToolTable {
                 .trim_start_matches(['T', 't'])
                 .parse()
                 .map_err(|_| ferr(format!("tool '{k}' is not a T number (write 3 = \"full\")")))?;
-            let choice = match v.parse::<crate::verify::InsertChoice>()? {
+            let choice = match v.parse::<crate::analysis::verify::InsertChoice>()? {
                 InsertChoice::File(p) if p.is_relative() => InsertChoice::File(dir.join(p)),
                 c => c,
             };

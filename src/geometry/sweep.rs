@@ -5,11 +5,11 @@
 //! the cut and the window only a few pitches wide, which keeps the backend's snapping grid in the
 //! nanometres (see the private `boolean` module).
 
-use crate::boolean::{union_all, Region, UnionStrategy};
-use crate::geometry::{rad, Point};
-use crate::insert::Insert;
-use crate::limits::MAX_IMPRINTS;
-use crate::passes::Pass;
+use crate::gcode::passes::Pass;
+use crate::geometry::boolean::{union_all, Region, UnionStrategy};
+use crate::geometry::insert::Insert;
+use crate::ground::bounds::MAX_IMPRINTS;
+use crate::ground::plane::{rad, Point};
 use crate::standards::ThreadKind;
 use crate::Error;
 use parry2d_f64::math::Point as PPoint;
@@ -291,7 +291,7 @@ pub fn sweep(
     }
     let far_r = far_side(kind, surface_r, height);
     if strategy == UnionStrategy::Envelope {
-        if let Some(chain) = crate::envelope::bottom_chain(&setup.insert.outline) {
+        if let Some(chain) = crate::geometry::envelope::bottom_chain(&setup.insert.outline) {
             let section = envelope_section(kind, &chain, &imps, window, surface_r, far_r);
             return Ok(Sweep { section, imprints: imps });
         }
@@ -325,13 +325,13 @@ fn clip_chain(chain: &[Point], height: f64) -> Vec<Point> {
     let (Some(i), Some(j)) = (first, last) else { return chain.to_vec() };
     let mut out = Vec::with_capacity(j - i + 3);
     if i > 0 {
-        if let Some(z) = crate::geometry::cross_at_level(chain[i - 1], chain[i], height) {
+        if let Some(z) = crate::ground::plane::cross_at_level(chain[i - 1], chain[i], height) {
             out.push(Point::new(z, height));
         }
     }
     out.extend_from_slice(&chain[i..=j]);
     if j + 1 < chain.len() {
-        if let Some(z) = crate::geometry::cross_at_level(chain[j], chain[j + 1], height) {
+        if let Some(z) = crate::ground::plane::cross_at_level(chain[j], chain[j + 1], height) {
             out.push(Point::new(z, height));
         }
     }
@@ -369,7 +369,8 @@ fn envelope_section(
         .map(|im| (im.z, s * rad(im.x)))
         .filter(|&(zt, yt)| zt + hi > window.z_min && zt + lo < window.z_max && yt < s * surface_r)
         .collect();
-    let env = crate::envelope::lower_envelope(local, &tips, window.z_min, window.z_max, s * surface_r);
+    let env =
+        crate::geometry::envelope::lower_envelope(local, &tips, window.z_min, window.z_max, s * surface_r);
     let profile: Vec<Point> = env.0.iter().map(|p| Point::new(p.z, s * p.r)).collect();
     Section {
         kind,
@@ -414,7 +415,7 @@ fn farthest_on_segment(distance: &dyn Fn(Point) -> f64, a: Point, b: Point, floo
         if bound <= floor.max(best) + 1e-12 {
             return best;
         }
-        let (_, f) = crate::measure::golden_min(&|t| -at(t), 0.0, 1.0, 40);
+        let (_, f) = crate::geometry::measure::golden_min(&|t| -at(t), 0.0, 1.0, 40);
         return best.max(-f);
     }
     let n = 6;
@@ -430,7 +431,7 @@ fn farthest_on_segment(distance: &dyn Fn(Point) -> f64, a: Point, b: Point, floo
         return best;
     }
     let (lo, hi) = (best_k.saturating_sub(1) as f64 / n as f64, (best_k + 1).min(n) as f64 / n as f64);
-    let (_, f) = crate::measure::golden_min(&|t| -at(t), lo, hi, 28);
+    let (_, f) = crate::geometry::measure::golden_min(&|t| -at(t), lo, hi, 28);
     best.max(-f)
 }
 
@@ -459,7 +460,7 @@ pub struct PassMetrics {
 /// and by its own previous revolution (one lead back along the feed), in steady state.
 pub fn pass_metrics(setup: &SweepSetup<'_>, passes: &[Pass], z_ref: f64) -> Result<Vec<PassMetrics>, Error> {
     check_finite(passes)?;
-    if let Some(chain) = crate::envelope::bottom_chain(&setup.insert.outline) {
+    if let Some(chain) = crate::geometry::envelope::bottom_chain(&setup.insert.outline) {
         return Ok(envelope_pass_metrics(setup, passes, z_ref, &chain));
     }
     boolean_pass_metrics(setup, passes, z_ref)
@@ -491,7 +492,7 @@ fn envelope_pass_metrics(
     z_ref: f64,
     chain: &[Point],
 ) -> Vec<PassMetrics> {
-    use crate::envelope::Chain;
+    use crate::geometry::envelope::Chain;
     let kind = setup.kind;
     let window = metrics_window(setup, z_ref);
     let s = if kind == ThreadKind::External { 1.0 } else { -1.0 };
@@ -674,7 +675,7 @@ fn boolean_pass_metrics(
                 // A sliver (mean thickness 2·area/perimeter under 0.01 µm) is snapping noise where
                 // an edge slides along the finished surface, not a chip.
                 let perimeter: f64 = (0..ext.len()).map(|k| ext[k].distance(ext[(k + 1) % ext.len()])).sum();
-                let area = crate::boolean::signed_area(&ext).abs();
+                let area = crate::geometry::boolean::signed_area(&ext).abs();
                 if 2.0 * area < 1e-5 * perimeter {
                     m.chip_area -= area;
                     continue;
@@ -726,7 +727,7 @@ pub(crate) fn swept_disk(moves: &[(Point, Point)], radius: f64, tolerance: f64) 
     let capsule = |&(a, b): &(Point, Point)| {
         let phi = if a.distance(b) > 1e-12 { (b.r - a.r).atan2(b.z - a.z) } else { 0.0 };
         let arc = |c: Point, s: f64, e: f64| {
-            crate::geometry::Arc { center: c, radius, start: s, end: e }.tessellate(tolerance)
+            crate::ground::plane::Arc { center: c, radius, start: s, end: e }.tessellate(tolerance)
         };
         let mut ring = arc(b, phi - FRAC_PI_2, phi + FRAC_PI_2);
         ring.extend(arc(a, phi + FRAC_PI_2, phi + PI + FRAC_PI_2));
@@ -738,7 +739,7 @@ pub(crate) fn swept_disk(moves: &[(Point, Point)], radius: f64, tolerance: f64) 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::passes::{Infeed, PlanSpec};
+    use crate::gcode::passes::{Infeed, PlanSpec};
 
     /// The envelope metrics and the polygon-boolean metrics measure the same chips: the areas to
     /// the booleans' snapping (1e-8 mm²), the engaged edge in total and the thickness to 1 nm,
@@ -758,7 +759,8 @@ mod tests {
             }
             .generate()
             .expect("plan");
-            let chain = crate::envelope::bottom_chain(&insert.outline).expect("a V has a bottom chain");
+            let chain =
+                crate::geometry::envelope::bottom_chain(&insert.outline).expect("a V has a bottom chain");
             let a = envelope_pass_metrics(&setup, &passes, -8.0, &chain);
             let b = boolean_pass_metrics(&setup, &passes, -8.0).expect("booleans");
             for (i, (x, y)) in a.iter().zip(&b).enumerate() {

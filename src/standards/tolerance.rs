@@ -983,7 +983,7 @@ pub fn acme_limits(t: &BasicThread, c: AcmeClass, kind: ThreadKind) -> ThreadLim
 /// Limits for the class a designation names for `kind`, or `None` when it names none.
 ///
 /// ```
-/// use threadcheck::tolerance::limits_for;
+/// use threadcheck::limits_for;
 /// use threadcheck::{parse_designation, ParseOptions, ThreadKind};
 /// let des = parse_designation("M10x1.5-6g", ParseOptions::default())?;
 /// let l = limits_for(&des, ThreadKind::External)?.expect("6g is an external class");

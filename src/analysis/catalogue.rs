@@ -2,9 +2,9 @@
 //! ASME B1.1 and B1.5 series, ISO 2902, BS 84, ISO 228-1), external and internal, with every
 //! insert, infeed and schedule asked for, in parallel.
 
-use crate::passes::{InfeedChoice, Schedule};
+use crate::analysis::verify::{verify, InsertChoice, Verification, VerifySpec};
+use crate::gcode::passes::{InfeedChoice, Schedule};
 use crate::standards::{catalog, ThreadForm};
-use crate::verify::{verify, InsertChoice, Verification, VerifySpec};
 use crate::Error;
 use rayon::prelude::*;
 
@@ -276,17 +276,17 @@ pub fn cases(spec: &CatalogueSpec) -> Result<Vec<Case>, Error> {
 /// Runs every case in parallel (rayon), keeping catalogue order in the results.
 ///
 /// ```
-/// use threadcheck::catalogue::{cases, run, CatalogueSpec};
-/// use threadcheck::passes::{InfeedChoice, Schedule};
+/// use threadcheck::{catalogue_cases, run_catalogue, CatalogueSpec};
+/// use threadcheck::{InfeedChoice, Schedule};
 /// // M10 coarse (ISO 261: P 1.5), full-profile insert, radial, constant area: one case.
 /// let spec = CatalogueSpec {
 ///     diameters: (10.0, 10.0), fine: false, partial: false,
 ///     infeeds: vec![InfeedChoice::Radial], schedules: vec![Schedule::ConstantArea],
 ///     ..CatalogueSpec::default()
 /// };
-/// let cs = cases(&spec)?;
+/// let cs = catalogue_cases(&spec)?;
 /// assert_eq!(cs.len(), 1);
-/// let v = run(&cs).remove(0)?;
+/// let v = run_catalogue(&cs).remove(0)?;
 /// assert_eq!(v.designation.thread.pitch, 1.5);
 /// # Ok::<(), threadcheck::Error>(())
 /// ```

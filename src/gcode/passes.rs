@@ -3,7 +3,7 @@
 //! A [`Pass`] is where the tool tip runs during one threading move. In the axial section it
 //! leaves one imprint of the insert per lead, at `z_start + k·Ph` along the feed direction.
 
-use crate::limits::MAX_PASSES;
+use crate::ground::bounds::MAX_PASSES;
 use crate::standards::ThreadKind;
 use crate::Error;
 use serde::Serialize;
@@ -167,7 +167,7 @@ pub enum Infeed {
 /// | `alternating` / `alternating:A` | alternating flanks at half the thread angle / at A° |
 ///
 /// ```
-/// use threadcheck::passes::{Infeed, InfeedChoice};
+/// use threadcheck::{Infeed, InfeedChoice};
 /// let m: InfeedChoice = "modified".parse()?;
 /// assert_eq!(m.resolve(60.0), Infeed::Flank { angle: 29.5 });
 /// let f: InfeedChoice = "flank:27".parse()?;
@@ -324,11 +324,11 @@ pub fn infeed_offsets(infeed: Infeed, depths: &[f64], dir: f64) -> Vec<f64> {
     match infeed {
         Infeed::Radial => vec![0.0; depths.len()],
         Infeed::Flank { angle } => {
-            let t = crate::geometry::deg(angle).tan();
+            let t = crate::ground::plane::deg(angle).tan();
             depths.iter().map(|d| dir * d * t).collect()
         }
         Infeed::Alternating { angle } => {
-            let t = crate::geometry::deg(angle).tan();
+            let t = crate::ground::plane::deg(angle).tan();
             let mut z = 0.0;
             let mut prev = 0.0;
             depths
@@ -492,7 +492,7 @@ impl PlanSpec {
     /// Lays out the passes, start after start.
     ///
     /// ```
-    /// use threadcheck::passes::{PlanSpec, Schedule};
+    /// use threadcheck::{PlanSpec, Schedule};
     /// use threadcheck::ThreadKind;
     /// // 0.8 mm deep in four equal radial steps: X 9.6, 9.2, 8.8, 8.4.
     /// let plan = PlanSpec { schedule: Schedule::ConstantDepth, ..PlanSpec::new(ThreadKind::External, 1.5, 10.0, 8.4, 4) };

@@ -5,10 +5,10 @@
 //! its own copies. Text from user input (designations, insert names) is escaped by the `svg`
 //! crate.
 
-use crate::geometry::{rad, Point};
-use crate::insert::Insert;
+use crate::analysis::verify::Verification;
+use crate::geometry::insert::Insert;
+use crate::ground::plane::{rad, Point};
 use crate::standards::{ProfileKind, ThreadKind};
-use crate::verify::Verification;
 use svg::node::element::{Group, Line, Polygon, Polyline, Rectangle, Text};
 use svg::Document;
 
@@ -381,7 +381,7 @@ fn dimension_labels(v: &Verification, f: &Frame, right: f64) -> Group {
         let check = v.checks.iter().find(|c| c.feature == feature);
         let ok = check.is_none_or(|c| c.ok);
         let name = feature.words(v.kind).rsplit(' ').next().unwrap_or("");
-        let line1 = if v.units == crate::verify::Units::Inch {
+        let line1 = if v.units == crate::analysis::verify::Units::Inch {
             format!("{name} {d:.4} mm ({:.5} in)", d / 25.4)
         } else {
             format!("{name} {d:.4} mm")
@@ -434,7 +434,7 @@ fn dimension_labels(v: &Verification, f: &Frame, right: f64) -> Group {
 }
 
 /// The whole thread along its length: blank, material as cut and the cut surface.
-fn full_view(section: &crate::sweep::Section, f: &Frame, v: &Verification) -> Group {
+fn full_view(section: &crate::geometry::sweep::Section, f: &Frame, v: &Verification) -> Group {
     let (g, mut body) = panel(f, "full-length", "full length: incomplete teeth at the thread's ends");
     body = body.add(blank_polygon(f, v.kind, section.surface_r, section.far_r));
     for (ext, _) in section.polygons() {
@@ -597,12 +597,12 @@ fn deviation_plot(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Group {
     let zr = (zc - 0.5 * p, zc + 0.5 * p);
     let basic = shifted_profile(v, basic_variant, v.designation.thread.pitch_diameter(), zc, zr, None);
     let air_up = v.kind == ThreadKind::External;
-    let samples = crate::measure::deviation_along(&basic, &v.section.profile(), air_up, 400);
+    let samples = crate::geometry::measure::deviation_along(&basic, &v.section.profile(), air_up, 400);
     if samples.is_empty() {
         return g.add(body);
     }
     let zone = zone_profiles(v, (zr.0 - p, zr.1 + p));
-    let bound = |prof: &[Point]| crate::measure::deviation_along(&basic, prof, air_up, 400);
+    let bound = |prof: &[Point]| crate::geometry::measure::deviation_along(&basic, prof, air_up, 400);
     let (mmc, lmc) = zone.as_ref().map_or((Vec::new(), Vec::new()), |(a, b)| (bound(a), bound(b)));
     let s_max = samples.last().map_or(1.0, |s| s.0).max(1e-9);
     let all = samples.iter().chain(&mmc).chain(&lmc).map(|s| s.1.abs()).fold(0.0, f64::max).max(1e-4);
@@ -733,7 +733,7 @@ pub fn verify_svg(v: &Verification) -> String {
 const WIDTH: f64 = 1100.0;
 
 /// The SVG of every operation of a program, one section each, stacked.
-pub fn program_svg(pv: &crate::verify::ProgramVerification) -> String {
+pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String {
     let mut y = 0.0;
     let mut doc = Document::new();
     for o in &pv.operations {
@@ -755,12 +755,12 @@ pub fn program_svg(pv: &crate::verify::ProgramVerification) -> String {
             .add(Rectangle::new().set("width", WIDTH).set("height", 34).set("fill", "#eef1f5"))
             .add(text(20.0, 23.0, 15.0, head).set("font-weight", "bold"));
         let h = match &o.result {
-            crate::verify::OperationResult::Verified(v) => {
+            crate::analysis::verify::OperationResult::Verified(v) => {
                 let (vg, height) = verification_group(v);
                 g = g.add(vg.set("transform", "translate(0,34)"));
                 34.0 + height
             }
-            crate::verify::OperationResult::NoCut { reason } => {
+            crate::analysis::verify::OperationResult::NoCut { reason } => {
                 for (i, l) in
                     wrap(&format!("OUT OF TOLERANCE ({}): {reason}", o.designation), 100).iter().enumerate()
                 {
@@ -897,14 +897,15 @@ fn verification_group(v: &Verification) -> (Group, f64) {
     // The whole thread, run-out included: the envelope over the full length (the tree for
     // undercut custom inserts).
     let full = {
-        let setup = crate::sweep::SweepSetup {
+        let setup = crate::geometry::sweep::SweepSetup {
             kind: v.kind,
             insert: &v.insert,
             blank_diameter: v.blank_diameter,
             pitch: p,
         };
-        let w = crate::sweep::full_length_window(&v.passes, p);
-        crate::sweep::sweep(&setup, &v.passes, w, crate::boolean::UnionStrategy::Envelope).ok()
+        let w = crate::geometry::sweep::full_length_window(&v.passes, p);
+        crate::geometry::sweep::sweep(&setup, &v.passes, w, crate::geometry::boolean::UnionStrategy::Envelope)
+            .ok()
     };
     let (table, table_end) = check_table(v, 690.0, top + 220.0 + 50.0);
     let legend_y = table_end + 16.0;
@@ -942,7 +943,7 @@ fn verification_group(v: &Verification) -> (Group, f64) {
 
 /// The SVG of a milling check: the worst level's target, the area the cutter swept, the tool
 /// centre path, and the deviation along the target, magnified.
-pub fn mill_svg(r: &crate::mill::MillReport) -> String {
+pub fn mill_svg(r: &crate::analysis::mill::MillReport) -> String {
     let (w, h) = (900.0, 760.0);
     let mut doc = Document::new().set("viewBox", (0, 0, w, h)).set("width", w).set("height", h);
     doc = doc.add(Rectangle::new().set("width", w).set("height", h).set("fill", "white"));
@@ -1000,7 +1001,7 @@ pub fn mill_svg(r: &crate::mill::MillReport) -> String {
     let worst = pic.deviation.iter().fold(0.0f64, |m, d| m.max(d.abs().min(0.5 * r.tool_diameter)));
     let size = (x1 - x0).max(y1 - y0);
     let mag = if worst > 0.0 { (0.08 * size / worst).clamp(1.0, 1e5) } else { 1.0 };
-    let ccw = crate::boolean::signed_area(&pic.target[..n.saturating_sub(1)]) > 0.0;
+    let ccw = crate::geometry::boolean::signed_area(&pic.target[..n.saturating_sub(1)]) > 0.0;
     let sign = if ccw { 1.0 } else { -1.0 };
     let outward = |i: usize| {
         let (a, b) = (pic.target[i.saturating_sub(1)], pic.target[(i + 1).min(n - 1)]);

@@ -6,29 +6,68 @@
 
 use crate::Error;
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Writes `bytes` to `path` atomically. On any error the existing file at `path`, if any, is
 /// left untouched and the temporary file is removed. A symbolic link is followed, so the file it
 /// points to is replaced, not the link; a device or FIFO is written directly.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    write_all_atomic(&[(path.to_path_buf(), bytes.to_vec())])
+}
+
+/// Where one output goes: a regular file replaced by renaming a temporary over it, or a device
+/// (or FIFO) written in place.
+enum Target {
+    File { path: PathBuf, tmp: tempfile::NamedTempFile },
+    Device { path: PathBuf },
+}
+
+/// Writes every output of one run, all or none: each regular file's bytes go to a temporary
+/// beside it first (flushed to disk, with the mode of the file it replaces, or that of a plain
+/// create); devices are written next; only when all of that succeeded are the temporaries
+/// renamed over their targets. On an error before the renames, every old file is kept and every
+/// temporary removed.
+pub fn write_all_atomic(outputs: &[(PathBuf, Vec<u8>)]) -> Result<(), Error> {
+    let mut targets = Vec::with_capacity(outputs.len());
+    for (path, bytes) in outputs {
+        targets.push(prepare(path, bytes)?);
+    }
+    for ((_, bytes), t) in outputs.iter().zip(&targets) {
+        if let Target::Device { path } = t {
+            let io = |e: std::io::Error| Error::io(path.display(), e);
+            let mut f = std::fs::OpenOptions::new().write(true).open(path).map_err(io)?;
+            f.write_all(bytes).and_then(|()| f.flush()).map_err(io)?;
+        }
+    }
+    for t in targets {
+        if let Target::File { path, tmp } = t {
+            tmp.persist(&path).map_err(|e| Error::io(path.display(), e.error))?;
+        }
+    }
+    Ok(())
+}
+
+/// Resolves a target (following a symbolic link, refusing a folder) and, for a regular file,
+/// writes its temporary.
+fn prepare(path: &Path, bytes: &[u8]) -> Result<Target, Error> {
     let io = |e: std::io::Error| Error::io(path.display(), e);
+    let mut mode = None;
     if let Ok(meta) = std::fs::metadata(path) {
         if meta.is_dir() {
             return Err(Error::Input(format!("{}: is a folder, not a file", path.display())));
         }
         if !meta.is_file() {
-            let mut f = std::fs::OpenOptions::new().write(true).open(path).map_err(io)?;
-            return f.write_all(bytes).map_err(io);
+            return Ok(Target::Device { path: path.to_path_buf() });
         }
         if std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink()) {
             let real = std::fs::canonicalize(path).map_err(io)?;
-            return write_atomic(&real, bytes);
+            return prepare(&real, bytes);
         }
+        mode = Some(meta.permissions());
     }
     let dir = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => std::path::PathBuf::from("."),
+        _ => PathBuf::from("."),
     };
     if path.file_name().is_none() {
         return Err(Error::Input(format!("{}: not a file name", path.display())));
@@ -36,18 +75,25 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
     // Removed on drop: an error anywhere before `persist` leaves no temporary behind.
     let mut builder = tempfile::Builder::new();
     builder.prefix(".threadcheck-").suffix(".tmp");
-    // tempfile creates 0600 files; an output file gets the mode a plain create would (0666 less
-    // the umask), as before.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    match mode {
+        // A replaced file keeps its mode.
+        Some(p) => {
+            builder.permissions(p);
+        }
+        // tempfile creates 0600 files; a new output file gets the mode a plain create would
+        // (0666 less the umask).
+        None => {
+            #[cfg(unix)]
+            {
+                use std::os::unix::fs::PermissionsExt;
+                builder.permissions(std::fs::Permissions::from_mode(0o666));
+            }
+        }
     }
     let mut tmp = builder.tempfile_in(&dir).map_err(io)?;
     tmp.write_all(bytes).map_err(io)?;
     tmp.as_file().sync_all().map_err(io)?;
-    tmp.persist(path).map_err(|e| io(e.error))?;
-    Ok(())
+    Ok(Target::File { path: path.to_path_buf(), tmp })
 }
 
 #[cfg(test)]

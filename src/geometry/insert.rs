@@ -10,9 +10,9 @@
 //! internal threads (the tip then points away from the axis), so an inclined or mis-set insert is
 //! one more rotation away.
 
-use crate::boolean::signed_area;
-use crate::geometry::{deg, extend_dedup, Arc, Point};
-use crate::limits::{MAX_INSERT_REACH, MAX_OUTLINE_POINTS};
+use crate::geometry::boolean::signed_area;
+use crate::ground::bounds::{MAX_INSERT_REACH, MAX_OUTLINE_POINTS};
+use crate::ground::plane::{deg, extend_dedup, Arc, Point};
 use crate::standards::{BasicThread, ProfileKind, ThreadKind};
 use crate::Error;
 use parry2d_f64::na::{Isometry2, Point2, Vector2};
@@ -296,11 +296,11 @@ fn outline_from_points(points: &[Vec<f64>], tolerance: f64) -> Result<Vec<Point>
     if points.len() < 3 {
         return Err(format!("an outline needs at least 3 points, not {}", points.len()));
     }
-    if points.len() > crate::limits::MAX_OUTLINE_POINTS {
+    if points.len() > crate::ground::bounds::MAX_OUTLINE_POINTS {
         return Err(format!(
             "an outline of {} points is more than the {} threadcheck accepts",
             points.len(),
-            crate::limits::MAX_OUTLINE_POINTS
+            crate::ground::bounds::MAX_OUTLINE_POINTS
         ));
     }
     let mut verts = Vec::with_capacity(points.len());

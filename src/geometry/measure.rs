@@ -4,7 +4,7 @@
 //! `y = r` for external threads and `y = −r` for internal ones, so that "crest" is always up and
 //! "root" down. Results are converted back to diameters.
 
-use crate::geometry::{cross_at_level, dia, distance_to_graph, height_at, Point};
+use crate::ground::plane::{cross_at_level, dia, distance_to_graph, height_at, Point};
 use crate::standards::{BasicThread, ProfileKind, ThreadKind};
 use crate::Error;
 use parry2d_f64::math::Point as PPoint;

@@ -1,10 +1,15 @@
 //! The `verify` report: JSON as the CLI contract specifies, and the human table.
 
-use crate::check::CheckFeature;
-use crate::geometry::rad;
-use crate::passes::{Infeed, Schedule};
+pub mod compare;
+pub mod html;
+pub(crate) mod output;
+pub mod svg;
+
+use crate::analysis::check::CheckFeature;
+use crate::analysis::verify::Verification;
+use crate::gcode::passes::{Infeed, Schedule};
+use crate::ground::plane::rad;
 use crate::standards::{Hand, ThreadKind};
-use crate::verify::Verification;
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -90,7 +95,7 @@ impl<'a> ThreadReport<'a> {
 #[derive(Clone, Debug, Serialize)]
 pub struct InsertReport<'a> {
     /// Full, partial or custom.
-    pub kind: crate::insert::InsertKind,
+    pub kind: crate::geometry::insert::InsertKind,
     /// Its name (`partial 60° r0.04`).
     pub name: &'a str,
     /// Included angle, degrees.
@@ -180,7 +185,7 @@ pub struct MeasuredReport {
     /// Crest flat, mm.
     pub crest_width: f64,
     /// Best wire and the measurement over three wires, mm.
-    pub three_wire: Option<crate::measure::ThreeWire>,
+    pub three_wire: Option<crate::geometry::measure::ThreeWire>,
     /// Signed clearance to the maximum-material profile, mm.
     pub max_material_clearance: Option<f64>,
 }
@@ -220,9 +225,9 @@ pub struct VerifyReport<'a> {
     /// The as-cut tooth.
     pub measured: MeasuredReport,
     /// The class's limits.
-    pub limits: &'a crate::tolerance::ThreadLimits,
+    pub limits: &'a crate::standards::tolerance::ThreadLimits,
     /// The checks.
-    pub checks: &'a [crate::check::Check],
+    pub checks: &'a [crate::analysis::check::Check],
     /// The verdict.
     pub verdict: Verdict,
     /// Form checks left out of the verdict.
@@ -230,7 +235,7 @@ pub struct VerifyReport<'a> {
     /// Helix angle at d2, degrees.
     pub helix_angle: f64,
     /// Process figures of a program's operation.
-    pub process: Option<&'a crate::process::ProcessReport>,
+    pub process: Option<&'a crate::analysis::process::ProcessReport>,
     /// The X for mid-tolerance d2, mm.
     pub suggested_final_x: Option<f64>,
     /// Stated assumptions.
@@ -317,9 +322,9 @@ pub fn verify_text(v: &Verification) -> String {
         v.kind.name(),
         v.limits.class,
         match v.insert.kind {
-            crate::insert::InsertKind::Full => "full-profile",
-            crate::insert::InsertKind::Partial => "partial-profile",
-            crate::insert::InsertKind::Custom => "custom",
+            crate::geometry::insert::InsertKind::Full => "full-profile",
+            crate::geometry::insert::InsertKind::Partial => "partial-profile",
+            crate::geometry::insert::InsertKind::Custom => "custom",
         },
         v.insert.name,
         match &v.program {
@@ -340,7 +345,7 @@ pub fn verify_text(v: &Verification) -> String {
             ""
         }
     );
-    let inch = v.units == crate::verify::Units::Inch;
+    let inch = v.units == crate::analysis::verify::Units::Inch;
     let _ = if inch {
         writeln!(
             s,
@@ -502,7 +507,7 @@ pub struct NoCutCheck<'a> {
     /// Always `cut`.
     pub feature: &'static str,
     /// Always `size`.
-    pub kind: crate::check::CheckKind,
+    pub kind: crate::analysis::check::CheckKind,
     /// Always false.
     pub ok: bool,
     /// Why.
@@ -557,21 +562,21 @@ pub struct ProgramReport<'a> {
 
 impl<'a> ProgramReport<'a> {
     /// The report of a program's verification.
-    pub fn of(pv: &'a crate::verify::ProgramVerification) -> Self {
+    pub fn of(pv: &'a crate::analysis::verify::ProgramVerification) -> Self {
         let operations = pv
             .operations
             .iter()
             .map(|o| {
                 let operation = OperationInfo::of(&o.operation);
                 match &o.result {
-                    crate::verify::OperationResult::Verified(v) => {
+                    crate::analysis::verify::OperationResult::Verified(v) => {
                         OperationReport::Verified { report: Box::new(VerifyReport::of(v)), operation }
                     }
-                    crate::verify::OperationResult::NoCut { reason } => OperationReport::NoCut {
+                    crate::analysis::verify::OperationResult::NoCut { reason } => OperationReport::NoCut {
                         thread: DesignationOnly { designation: &o.designation },
                         checks: [NoCutCheck {
                             feature: "cut",
-                            kind: crate::check::CheckKind::Size,
+                            kind: crate::analysis::check::CheckKind::Size,
                             ok: false,
                             note: reason,
                         }],
@@ -594,7 +599,7 @@ impl<'a> ProgramReport<'a> {
 }
 
 /// The human report of a program: one section per operation, then the program's verdict.
-pub fn program_text(pv: &crate::verify::ProgramVerification) -> String {
+pub fn program_text(pv: &crate::analysis::verify::ProgramVerification) -> String {
     let mut s = String::new();
     let n = pv.operations.len();
     let _ = writeln!(s, "{}: {n} threading operation{}\n", pv.program, if n == 1 { "" } else { "s" });
@@ -610,8 +615,8 @@ pub fn program_text(pv: &crate::verify::ProgramVerification) -> String {
             op.passes.len()
         );
         match &o.result {
-            crate::verify::OperationResult::Verified(v) => s.push_str(&verify_text(v)),
-            crate::verify::OperationResult::NoCut { reason } => {
+            crate::analysis::verify::OperationResult::Verified(v) => s.push_str(&verify_text(v)),
+            crate::analysis::verify::OperationResult::NoCut { reason } => {
                 let _ =
                     writeln!(s, "{}: nothing to measure\n\nverdict: FAIL (no cut: {reason})", o.designation);
                 for note in &op.notes {
@@ -658,7 +663,7 @@ pub struct PassesOperation<'a> {
     /// Warnings and assumed defaults.
     pub notes: &'a [String],
     /// Its passes.
-    pub passes: &'a [crate::passes::Pass],
+    pub passes: &'a [crate::gcode::passes::Pass],
 }
 
 /// `passes --json` (docs/json.md).
@@ -671,7 +676,7 @@ pub struct PassesReport<'a> {
     /// Smallest Z any pass reaches, mm.
     pub thread_end: f64,
     /// Every pass in cutting order.
-    pub passes: &'a [crate::passes::Pass],
+    pub passes: &'a [crate::gcode::passes::Pass],
     /// A program's passes by operation.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub operations: Option<Vec<PassesOperation<'a>>>,
@@ -681,7 +686,7 @@ impl<'a> PassesReport<'a> {
     /// The report of `passes`, grouped by `operations` when they come from a program.
     pub fn new(
         thread: Option<ThreadReport<'a>>,
-        passes: &'a [crate::passes::Pass],
+        passes: &'a [crate::gcode::passes::Pass],
         operations: Option<&'a [crate::gcode::Operation]>,
     ) -> Self {
         let (thread_start, thread_end) =
@@ -748,21 +753,21 @@ pub struct LimitsReport<'a> {
     /// Basic sizes.
     pub basic: BasicReport,
     /// The external thread's limits, when the designation has an external class.
-    pub external: Option<&'a crate::tolerance::ThreadLimits>,
+    pub external: Option<&'a crate::standards::tolerance::ThreadLimits>,
     /// The internal thread's limits.
-    pub internal: Option<&'a crate::tolerance::ThreadLimits>,
+    pub internal: Option<&'a crate::standards::tolerance::ThreadLimits>,
 }
 
 impl<'a> LimitsReport<'a> {
     /// The report of a designation's limits.
     pub fn new(
         des: &'a crate::standards::Designation,
-        external: Option<&'a crate::tolerance::ThreadLimits>,
-        internal: Option<&'a crate::tolerance::ThreadLimits>,
+        external: Option<&'a crate::standards::tolerance::ThreadLimits>,
+        internal: Option<&'a crate::standards::tolerance::ThreadLimits>,
     ) -> Self {
         let t = &des.thread;
         let (major_diameter, pitch_diameter, minor_diameter_external, minor_diameter_internal, h) =
-            crate::tolerance::basic_rounded(t);
+            crate::standards::tolerance::basic_rounded(t);
         LimitsReport {
             designation: &des.text,
             form: t.form.name(),

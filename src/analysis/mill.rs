@@ -3,9 +3,9 @@
 //!
 //! The same parts as the lathe path: the program is expanded by [`crate::gcode`] (any dialect,
 //! macros included) with its moves recorded; the target's formulas are read by the macro
-//! expression engine; distances are parry queries as in [`crate::measure`]; the picture's swept
+//! expression engine; distances are parry queries as in [`crate::geometry::measure`]; the picture's swept
 //! area is the union of the cutter's imprints through the same boolean door as the thread
-//! sweep ([`crate::sweep`]).
+//! sweep ([`crate::geometry::sweep`]).
 //!
 //! **What is measured.** At a level Z, the cutter removes every point within the tool radius r of
 //! its centre path. With sd(c) the signed distance from a centre c to the target curve (positive
@@ -29,8 +29,8 @@
 
 use crate::gcode::expr::{parse_all, Env, Expr, Syntax, Value, VarKey, VarRef};
 use crate::gcode::{Dialect, Move, ReadOptions};
-use crate::geometry::Point;
-use crate::measure::golden_min;
+use crate::geometry::measure::golden_min;
+use crate::ground::plane::Point;
 use crate::report::Verdict;
 use crate::Error;
 use parry2d_f64::math::Point as PPoint;
@@ -69,7 +69,7 @@ struct RawTarget {
 /// A target curve: x(t, z), y(t, z) in mm, t in degrees over a range, z the level.
 ///
 /// ```
-/// use threadcheck::mill::Target;
+/// use threadcheck::Target;
 /// let cam = Target::from_toml(r#"
 ///     x = "20*(1+cos(t))*cos(t)"
 ///     y = "20*(1+cos(t))*sin(t)"
@@ -311,7 +311,7 @@ impl<'a> Curve<'a> {
         }
         let n = ((len / SAMPLE_SPACING).ceil() as usize).clamp(1024, 100_000);
         let (t, p) = if n == 1024 { (t_coarse, coarse) } else { sample(n)? };
-        let ccw = crate::boolean::signed_area(&p[..p.len() - 1]) > 0.0;
+        let ccw = crate::geometry::boolean::signed_area(&p[..p.len() - 1]) > 0.0;
         let poly = Polyline::new(p.iter().map(|&q| ppoint(q)).collect(), None);
         Ok(Some(Curve { target, z, ex, ey, t, p, poly, ccw }))
     }
@@ -394,7 +394,7 @@ impl<'a> Curve<'a> {
                 return dot > 0.0;
             }
         }
-        !crate::boolean::ring_contains(&self.p, c)
+        !crate::geometry::boolean::ring_contains(&self.p, c)
     }
 
     /// The arc length of the samples up to sample `i`, for spacing along the curve.
@@ -549,8 +549,8 @@ fn levels(moves: &[Move]) -> Vec<LevelMoves> {
                         e -= std::f64::consts::TAU;
                     }
                 }
-                let mut pts =
-                    crate::geometry::Arc { center: c, radius: r, start: s, end: e }.tessellate(ARC_TOLERANCE);
+                let mut pts = crate::ground::plane::Arc { center: c, radius: r, start: s, end: e }
+                    .tessellate(ARC_TOLERANCE);
                 if let Some(last) = pts.last_mut() {
                     *last = b;
                 }
@@ -695,7 +695,7 @@ fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64) -> Measured {
 /// Runs the check: expands the program, measures every level against the target.
 ///
 /// ```
-/// use threadcheck::mill::{mill, MillSpec, Target};
+/// use threadcheck::{mill, MillSpec, Target};
 /// use threadcheck::Dialect;
 /// // A Ø40 boss cut with a Ø6 cutter along 36 chords of the centre circle R = 23: the worst
 /// // gouge is the chord sag 23·(1 − cos 5°) = 0.087518 mm, at the middle of a chord.
@@ -809,7 +809,7 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
             z: m.report.z,
             target: m.samples.clone(),
             deviation: m.deviation.clone(),
-            swept: crate::sweep::swept_disk(&path, r, 1e-3).polygons(),
+            swept: crate::geometry::sweep::swept_disk(&path, r, 1e-3).polygons(),
             path,
             gouge_at: m.report.gouge_at,
         }

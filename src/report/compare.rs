@@ -1,155 +1,8 @@
-//! One-flank versus two-flank infeed: the same thread, insert and final X cut with radial, flank,
-//! modified-flank and alternating infeed, each with constant-depth and constant-area schedules.
-//!
-//! Every strategy ends at the **same** final X (given, or the one that centres the pitch
-//! diameter with radial, constant-area passes), so differences in the tooth come from the infeed
-//! alone.
+//! The comparison of infeed strategies for a reader: the text and Markdown tables, the JSON
+//! report, and the committed infeed-comparison page.
 
-use crate::geometry::deg;
-use crate::passes::{Infeed, Schedule};
-use crate::verify::{verify, Verification, VerifySpec};
-use crate::Error;
-use serde::Serialize;
+use crate::analysis::compare::{Comparison, Summary};
 use std::fmt::Write as _;
-
-/// A pass counts as two-flank when its trailing edge engages more than this much (mm) beyond the
-/// strip below the previous root, which even flank infeed cuts (see [`Summary::two_flank_passes`]).
-pub const TWO_FLANK_MARGIN: f64 = 1e-3;
-
-/// Per-strategy figures.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Summary {
-    /// Strategy label (`radial`, `flank 30°`, `modified 29.5°`, `alternating 30°`).
-    pub infeed: String,
-    /// `constant-depth` or `constant-area`.
-    pub schedule: String,
-    /// Number of passes.
-    pub passes: usize,
-    /// Chip area of the first pass, mm².
-    pub chip_first: f64,
-    /// Largest chip area, mm².
-    pub chip_max: f64,
-    /// Chip area of the last cutting pass, mm².
-    pub chip_last: f64,
-    /// Largest over smallest chip area of the cutting passes.
-    pub chip_spread: f64,
-    /// Passes whose trailing edge cuts above the previous root: its engaged length exceeds the
-    /// strip (Δdepth / cos(α/2)) below the previous root by more than [`TWO_FLANK_MARGIN`].
-    pub two_flank_passes: usize,
-    /// Share of all chip area that lies on the trailing side of the tip, 0 to 1 (about 0.5 for
-    /// radial infeed).
-    pub trailing_share: f64,
-    /// Measured pitch diameter, mm.
-    pub pitch_diameter: f64,
-    /// Measured minor (root) diameter, mm.
-    pub minor_diameter: f64,
-    /// Measured flank half-angles, degrees.
-    pub flank_angles: [f64; 2],
-    /// Verdict.
-    pub pass: bool,
-}
-
-/// A comparison of strategies for one thread.
-#[derive(Clone, Debug)]
-pub struct Comparison {
-    /// The final X all strategies end at, mm.
-    pub final_x: f64,
-    /// One verification per strategy, with its summary.
-    pub runs: Vec<(Summary, Verification)>,
-}
-
-/// The strategies compared: radial, flank at half the thread angle, each modified-flank angle,
-/// and alternating at half the thread angle.
-pub fn strategies(half_angle: f64, modified: &[f64]) -> Vec<(String, Infeed)> {
-    let mut v = vec![
-        ("radial".to_string(), Infeed::Radial),
-        (format!("flank {half_angle}°"), Infeed::Flank { angle: half_angle }),
-    ];
-    for a in modified {
-        v.push((format!("modified {a}°"), Infeed::Flank { angle: *a }));
-    }
-    v.push((format!("alternating {half_angle}°"), Infeed::Alternating { angle: half_angle }));
-    v
-}
-
-fn summarise(label: &str, schedule: &str, v: &Verification) -> Summary {
-    let cutting: Vec<&crate::sweep::PassMetrics> = v.metrics.iter().filter(|m| m.chip_area > 1e-12).collect();
-    let areas: Vec<f64> = cutting.iter().map(|m| m.chip_area).collect();
-    let max = areas.iter().copied().fold(0.0, f64::max);
-    let min = areas.iter().copied().fold(f64::INFINITY, f64::min);
-    let beta = deg(0.5 * v.designation.thread.form.flank_angle());
-    let mut prev_depth = 0.0;
-    let mut two = 0;
-    let (mut chip_total, mut trail_total) = (0.0, 0.0);
-    for (p, m) in v.passes.iter().zip(&v.metrics) {
-        let depth = 0.5 * (p.x_at(v.z_ref) - v.blank_diameter).abs();
-        let strip = (depth - prev_depth).max(0.0) / beta.cos();
-        if m.trailing > strip + TWO_FLANK_MARGIN {
-            two += 1;
-        }
-        chip_total += m.chip_area;
-        trail_total += m.trailing_area;
-        prev_depth = depth;
-    }
-    Summary {
-        infeed: label.to_string(),
-        schedule: schedule.to_string(),
-        passes: v.passes.len(),
-        chip_first: areas.first().copied().unwrap_or(0.0),
-        chip_max: max,
-        chip_last: areas.last().copied().unwrap_or(0.0),
-        chip_spread: if min > 0.0 { max / min } else { f64::INFINITY },
-        two_flank_passes: two,
-        trailing_share: if chip_total > 0.0 { trail_total / chip_total } else { 0.0 },
-        pitch_diameter: v.measurement.pitch_diameter,
-        minor_diameter: v.measurement.minor_diameter,
-        flank_angles: v.measurement.flank_angles,
-        pass: v.pass,
-    }
-}
-
-/// Runs every strategy × {constant depth, constant area} on `base`, all ending at one final X.
-///
-/// ```
-/// use threadcheck::compare::compare;
-/// use threadcheck::{InsertChoice, VerifySpec};
-/// let base = VerifySpec { insert: InsertChoice::Full, final_x: Some(8.2), ..VerifySpec::new("M10x1.5-6g") };
-/// // Radial, flank, one modified angle and alternating, each with two schedules.
-/// let c = compare(&base, &[29.5])?;
-/// assert_eq!(c.runs.len(), 8);
-/// assert!(c.runs.iter().all(|(_, v)| v.final_x == 8.2));
-/// # Ok::<(), threadcheck::Error>(())
-/// ```
-pub fn compare(base: &VerifySpec, modified: &[f64]) -> Result<Comparison, Error> {
-    let final_x = match base.final_x {
-        Some(x) => x,
-        None => {
-            let mut s = base.clone();
-            s.infeed = Some(crate::passes::InfeedChoice::Radial);
-            s.schedule = Schedule::ConstantArea;
-            verify(&s)?.final_x
-        }
-    };
-    let des = crate::parse_designation(
-        &base.designation,
-        crate::ParseOptions { allow_nonstandard: base.allow_nonstandard },
-    )?;
-    let half = 0.5 * des.thread.form.flank_angle();
-    let mut runs = Vec::new();
-    for (label, infeed) in strategies(half, modified) {
-        for (sname, schedule) in
-            [("constant-depth", Schedule::ConstantDepth), ("constant-area", Schedule::ConstantArea)]
-        {
-            let mut s = base.clone();
-            s.infeed = Some(infeed.into());
-            s.schedule = schedule;
-            s.final_x = Some(final_x);
-            let v = verify(&s)?;
-            runs.push((summarise(&label, sname, &v), v));
-        }
-    }
-    Ok(Comparison { final_x, runs })
-}
 
 /// The column headers of the comparison table (Markdown), and the same for the text table.
 const HEADERS: [(&str, &str); 13] = [
@@ -248,7 +101,7 @@ pub struct CompareReport<'a> {
     /// The last pass's X, shared by every strategy, mm.
     pub final_x: f64,
     /// One verify report per strategy.
-    pub reports: Vec<crate::report::VerifyReport<'a>>,
+    pub reports: Vec<super::VerifyReport<'a>>,
     /// The per-strategy figures.
     pub strategies: Vec<&'a Summary>,
 }
@@ -258,23 +111,30 @@ impl<'a> CompareReport<'a> {
     pub fn of(c: &'a Comparison) -> Self {
         CompareReport {
             final_x: c.final_x,
-            reports: c.runs.iter().map(|(_, v)| crate::report::VerifyReport::of(v)).collect(),
+            reports: c.runs.iter().map(|(_, v)| super::VerifyReport::of(v)).collect(),
             strategies: c.runs.iter().map(|(m, _)| m).collect(),
         }
     }
 }
 
-/// The threads of the committed comparison report.
-pub const REPORT_THREADS: [&str; 4] = ["M6x1-6g", "M10x1.5-6g", "M20x2.5-6g", "M36x4-6g"];
-
 fn pct(x: f64) -> String {
     format!("{:.0}%", 100.0 * x)
 }
 
-/// Writes `infeed-comparison.md` and its SVGs into `dir` (atomically, deterministically: the
-/// same build writes the same bytes). Returns the Markdown.
-pub fn write_report(dir: &std::path::Path) -> Result<String, Error> {
-    use crate::verify::InsertChoice;
+/// One section of the infeed-comparison page: a thread, the insert's name and the comparison.
+pub struct InfeedSection<'a> {
+    /// The designation.
+    pub thread: &'a str,
+    /// `full-profile` or `partial-profile r0.04`.
+    pub insert: &'a str,
+    /// The comparison of every strategy.
+    pub comparison: &'a Comparison,
+}
+
+/// The page `infeed-comparison.md` and its pictures (file name, SVG), deterministically: the
+/// same build renders the same bytes.
+pub fn infeed_comparison_page(sections: &[InfeedSection<'_>]) -> (String, Vec<(String, String)>) {
+    let mut pictures = Vec::new();
     let mut md = String::new();
     let _ = writeln!(md, "# One-flank versus two-flank infeed: what the geometry says\n");
     let _ = writeln!(
@@ -299,14 +159,9 @@ pub fn write_report(dir: &std::path::Path) -> Result<String, Error> {
          behind the tip* the share of all chip area on the trailing side of the tip.\n\n",
     );
     let mut findings: Vec<String> = Vec::new();
-    for d in REPORT_THREADS {
-        for (iname, choice) in [
-            ("full-profile", InsertChoice::Full),
-            ("partial-profile r0.04", InsertChoice::Partial { tip_radius: 0.04 }),
-        ] {
-            let mut spec = VerifySpec::new(d);
-            spec.insert = choice;
-            let c = compare(&spec, &[29.5, 27.0])?;
+    for sec in sections {
+        {
+            let (d, iname, c) = (sec.thread, sec.insert, sec.comparison);
             let Some((_, v0)) = c.runs.first() else { continue };
             let _ = writeln!(md, "## {d}, {iname} insert\n");
             let _ = writeln!(
@@ -318,7 +173,7 @@ pub fn write_report(dir: &std::path::Path) -> Result<String, Error> {
                 v0.limits.pitch_diameter.min.unwrap_or(f64::NAN),
                 v0.limits.pitch_diameter.max.unwrap_or(f64::NAN)
             );
-            md.push_str(&markdown(&c));
+            md.push_str(&markdown(c));
             md.push('\n');
             let slug = d.to_ascii_lowercase().replace('.', "_");
             let islug = if iname.starts_with("full") { "full" } else { "partial" };
@@ -328,7 +183,7 @@ pub fn write_report(dir: &std::path::Path) -> Result<String, Error> {
                         "infeed-{slug}-{islug}-{}.svg",
                         if label == "radial" { "radial" } else { "flank" }
                     );
-                    crate::output::write_atomic(&dir.join(&name), crate::render::verify_svg(v).as_bytes())?;
+                    pictures.push((name.clone(), super::svg::verify_svg(v)));
                     let _ = writeln!(md, "![{d} {iname}, {label} infeed, {sched}]({name})");
                 }
             }
@@ -342,17 +197,14 @@ pub fn write_report(dir: &std::path::Path) -> Result<String, Error> {
                 get("flank 30°", "constant-area"),
                 get("modified 29.5°", "constant-area"),
             ) {
-                let d2s: Vec<f64> = c.runs.iter().map(|(m, _)| m.pitch_diameter).collect();
-                let spread = d2s.iter().copied().fold(f64::NEG_INFINITY, f64::max)
-                    - d2s.iter().copied().fold(f64::INFINITY, f64::min);
                 findings.push(format!(
                     "| {d} | {iname} | {:.1}× | {:.2} | {} / {} / {} | {:.2} µm |",
-                    rd.chip_last / rd.chip_first,
+                    rd.chip_growth(),
                     ra.chip_spread,
                     pct(ra.trailing_share),
                     pct(ma.trailing_share),
                     pct(fa.trailing_share),
-                    1000.0 * spread
+                    1000.0 * c.pitch_diameter_spread()
                 ));
             }
         }
@@ -396,6 +248,5 @@ pub fn write_report(dir: &std::path::Path) -> Result<String, Error> {
          A partial-profile insert passes the size checks at the solved X but cannot meet ISO 965-1's root \
          requirements (R min = 0.125·P, d3 min); where those matter, use a full-profile insert.\n",
     );
-    crate::output::write_atomic(&dir.join("infeed-comparison.md"), md.as_bytes())?;
-    Ok(md)
+    (md, pictures)
 }

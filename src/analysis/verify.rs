@@ -1,14 +1,14 @@
 //! `verify` as a library call: from a designation with its class, an insert and a pass plan to
 //! the as-cut thread, its measurement, the checks and the verdict.
 
-use crate::boolean::UnionStrategy;
-use crate::check::{checks, verdict, Check};
-use crate::insert::{Insert, InsertKind};
-use crate::measure::{measure, MeasureSetup, Measurement};
-use crate::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
+use crate::analysis::check::{checks, verdict, Check};
+use crate::gcode::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
+use crate::geometry::boolean::UnionStrategy;
+use crate::geometry::insert::{Insert, InsertKind};
+use crate::geometry::measure::{measure, MeasureSetup, Measurement};
+use crate::geometry::sweep::{pass_metrics, sweep, PassMetrics, Section, SweepSetup, Window};
+use crate::standards::tolerance::{limits_for, ThreadLimits};
 use crate::standards::{parse_designation, Designation, ParseOptions, ProfileKind, ThreadKind};
-use crate::sweep::{pass_metrics, sweep, PassMetrics, Section, SweepSetup, Window};
-use crate::tolerance::{limits_for, ThreadLimits};
 use crate::{BasicThread, Error};
 use std::path::PathBuf;
 
@@ -111,7 +111,7 @@ pub struct VerifySpec {
     /// Lengths in the text and the picture: mm, or mm with inches beside them.
     pub units: Units,
     /// The machine whose limits the process checks of a program use.
-    pub machine: Option<crate::process::MachineProfile>,
+    pub machine: Option<crate::analysis::process::MachineProfile>,
     /// The insert's side clearance angle, degrees, for the flank-clearance check.
     pub clearance_angle: Option<f64>,
 }
@@ -160,8 +160,8 @@ impl VerifySpec {
     /// output); `name` is what messages call it (`name:line:column`).
     ///
     /// ```
-    /// use threadcheck::verify::{verify, InsertChoice, VerifySpec};
-    /// use threadcheck::gcode::Dialect;
+    /// use threadcheck::{verify, InsertChoice, VerifySpec};
+    /// use threadcheck::Dialect;
     /// let g76 = "G0 X22 Z5\nG76 P010060 Q100 R0.02\nG76 X18.2 Z-20 P900 Q300 F1.5\n";
     /// let spec = VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M20x1.5-6g") };
     /// let v = verify(&spec.with_program_text("post.nc", g76, Dialect::Fanuc))?;
@@ -228,7 +228,7 @@ pub struct Verification {
     /// Helix angle at the basic pitch diameter, degrees: the insert inclination it asks for.
     pub helix_angle: f64,
     /// The process checks' findings, for a program's operation.
-    pub process: Option<crate::process::ProcessReport>,
+    pub process: Option<crate::analysis::process::ProcessReport>,
 }
 
 /// Usual number of passes for a pitch P (mm): about 3.5 + 2·P, the order of the insert makers'
@@ -332,8 +332,9 @@ fn build_insert(choice: &InsertChoice, t: &BasicThread, kind: ThreadKind, tol: f
 /// Width of a closed outline at height `y` (extent of its crossings of that level), mm.
 fn width_at(outline: &[crate::Point], y: f64) -> f64 {
     let n = outline.len();
-    let zs: Vec<f64> =
-        (0..n).filter_map(|i| crate::geometry::cross_at_level(outline[i], outline[(i + 1) % n], y)).collect();
+    let zs: Vec<f64> = (0..n)
+        .filter_map(|i| crate::ground::plane::cross_at_level(outline[i], outline[(i + 1) % n], y))
+        .collect();
     let (lo, hi) = zs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), z| (a.min(*z), b.max(*z)));
     if hi >= lo {
         hi - lo
@@ -444,7 +445,7 @@ struct Cut {
 /// Where a program comes from: a file, or text a post-processor holds in memory.
 ///
 /// ```
-/// use threadcheck::verify::ProgramSource;
+/// use threadcheck::ProgramSource;
 /// let p = ProgramSource::text("post.nc", "G0 X22 Z5\nG76 P010060 Q50 R0.02\n");
 /// let (name, text) = p.load()?;
 /// assert_eq!(name, "post.nc");
@@ -477,14 +478,14 @@ impl ProgramSource {
         match self {
             ProgramSource::File(path) => Ok((path.display().to_string(), read_program_text(path)?)),
             ProgramSource::Text { name, text } => {
-                if text.len() > crate::limits::MAX_PROGRAM_BYTES {
+                if text.len() > crate::ground::bounds::MAX_PROGRAM_BYTES {
                     return Err(Error::Program {
                         file: name.clone(),
                         line: 1,
                         column: 1,
                         message: format!(
                             "the program is larger than {} bytes",
-                            crate::limits::MAX_PROGRAM_BYTES
+                            crate::ground::bounds::MAX_PROGRAM_BYTES
                         ),
                     });
                 }
@@ -498,12 +499,12 @@ impl ProgramSource {
 pub fn read_program_text(path: &std::path::Path) -> Result<String, Error> {
     let shown = path.display().to_string();
     let meta = std::fs::metadata(path).map_err(|e| Error::io(shown.clone(), e))?;
-    if meta.len() > crate::limits::MAX_PROGRAM_BYTES as u64 {
+    if meta.len() > crate::ground::bounds::MAX_PROGRAM_BYTES as u64 {
         return Err(Error::Program {
             file: shown,
             line: 1,
             column: 1,
-            message: format!("the program is larger than {} bytes", crate::limits::MAX_PROGRAM_BYTES),
+            message: format!("the program is larger than {} bytes", crate::ground::bounds::MAX_PROGRAM_BYTES),
         });
     }
     let bytes = std::fs::read(path).map_err(|e| Error::io(shown.clone(), e))?;
@@ -594,7 +595,7 @@ impl Resolved {
 /// Resolves a spec: designation, kind, limits, insert, blank and infeed.
 pub fn resolve(spec: &VerifySpec) -> Result<Resolved, Error> {
     if !(spec.tolerance.is_finite()
-        && spec.tolerance >= crate::geometry::MIN_TOLERANCE
+        && spec.tolerance >= crate::ground::plane::MIN_TOLERANCE
         && spec.tolerance <= 0.01)
     {
         return Err(Error::Input(format!("chord tolerance {} mm must be from 1e-6 to 0.01", spec.tolerance)));
@@ -802,7 +803,7 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
         } else {
             0.0
         };
-        crate::check::Cone {
+        crate::analysis::check::Cone {
             turns: (s_gp - gp.distance) / t.pitch,
             tolerance_turns: gp.tolerance_turns,
             taper: measured_taper,
@@ -814,7 +815,8 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
     let d2_off = cs.iter().any(|c| {
         matches!(
             c.feature,
-            crate::check::CheckFeature::PitchDiameter | crate::check::CheckFeature::GaugePlane
+            crate::analysis::check::CheckFeature::PitchDiameter
+                | crate::analysis::check::CheckFeature::GaugePlane
         ) && !c.ok
     });
     let suggested = d2_off.then_some(final_x + (target_at(cut.z_ref) - m.pitch_diameter));
@@ -843,7 +845,7 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
         notes,
         program: program_label,
         units: spec.units,
-        helix_angle: crate::process::helix_angle(t.lead(), t.pitch_diameter()),
+        helix_angle: crate::analysis::process::helix_angle(t.lead(), t.pitch_diameter()),
         process: None,
     })
 }
@@ -960,8 +962,8 @@ pub fn verify_operation(
 /// each operation's insert (from its tool number, say) and says what it assumed.
 ///
 /// ```
-/// use threadcheck::verify::{verify_program, InsertChoice, VerifySpec};
-/// use threadcheck::gcode::Dialect;
+/// use threadcheck::{verify_program, InsertChoice, VerifySpec};
+/// use threadcheck::Dialect;
 /// let text = "G0 X22 Z5\nG76 P011060 Q100 R0.05\nG76 X18.16 Z-20 P920 Q350 F1.5\n";
 /// let spec = VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M20x1.5-6g") };
 /// let r = verify_program(&spec, text, "m20.nc", Dialect::Fanuc, &["M20x1.5-6g".to_string()], &|_| None)?;
@@ -1003,7 +1005,7 @@ pub fn verify_program(
         if let OperationResult::Verified(v) = &mut result {
             v.notes.extend(extra);
             let t = v.designation.thread;
-            let (checks, report) = crate::process::process_checks(
+            let (checks, report) = crate::analysis::process::process_checks(
                 op,
                 t.pitch,
                 t.pitch_diameter(),

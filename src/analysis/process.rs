@@ -14,7 +14,7 @@
 //! rpm_per_pitch = [[0.5, 950], [1.0, 500]]
 //! ```
 
-use crate::check::{Check, CheckKind};
+use crate::analysis::check::{Check, CheckKind};
 use crate::gcode::Operation;
 use crate::Error;
 use serde::Serialize;
@@ -122,7 +122,7 @@ pub struct ProcessReport {
 }
 
 fn process_check(
-    feature: crate::check::CheckFeature,
+    feature: crate::analysis::check::CheckFeature,
     value: f64,
     max: Option<f64>,
     ok: bool,
@@ -157,7 +157,7 @@ pub fn process_checks(
 ) -> (Vec<Check>, ProcessReport) {
     let lead = op.lead();
     let mut checks = vec![process_check(
-        crate::check::CheckFeature::ConstantSpindleSpeed,
+        crate::analysis::check::CheckFeature::ConstantSpindleSpeed,
         if op.spindle.constant_surface_speed { 0.0 } else { 1.0 },
         None,
         !op.spindle.constant_surface_speed,
@@ -171,7 +171,7 @@ pub fn process_checks(
     if let (Some(m), Some(s)) = (machine, rpm) {
         if let Some(max) = m.max_rpm_for(pitch) {
             checks.push(process_check(
-                crate::check::CheckFeature::SpindleSpeed,
+                crate::analysis::check::CheckFeature::SpindleSpeed,
                 s,
                 Some(max),
                 s <= max + 1e-9,
@@ -185,7 +185,7 @@ pub fn process_checks(
         if let Some(fmax) = m.max_feed_mm_min {
             let f = s * lead;
             checks.push(process_check(
-                crate::check::CheckFeature::Feed,
+                crate::analysis::check::CheckFeature::Feed,
                 f,
                 Some(fmax),
                 f <= fmax + 1e-9,
@@ -221,7 +221,7 @@ pub fn process_checks(
     let leading = clearance_angle.map(|c| c - helix);
     if let Some(l) = leading {
         checks.push(process_check(
-            crate::check::CheckFeature::FlankClearance,
+            crate::analysis::check::CheckFeature::FlankClearance,
             l,
             None,
             l > 0.0,
@@ -284,7 +284,7 @@ fn run_out(op: &Operation, pitch: f64) -> Option<Check> {
     let (z, x) = extreme(a.min(b), a.max(b))?;
     let clear = if external { x <= turned + 1e-3 } else { x >= turned - 1e-3 };
     Some(process_check(
-        crate::check::CheckFeature::RunOut,
+        crate::analysis::check::CheckFeature::RunOut,
         x,
         Some(turned),
         clear,

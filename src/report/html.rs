@@ -3,10 +3,10 @@
 //! extras, the notes and the stated assumptions. No script, no outside resource; every piece
 //! of user text (designations, program names, notes) is escaped.
 
-use crate::compare::Comparison;
+use crate::analysis::compare::Comparison;
+use crate::analysis::verify::{OperationResult, ProgramVerification, Verification};
 use crate::report::{fmt_num, opt};
 use crate::standards::ThreadKind;
-use crate::verify::{OperationResult, ProgramVerification, Verification};
 use std::fmt::Write as _;
 
 /// Text for HTML: `& < > " '` escaped.
@@ -142,7 +142,7 @@ fn verification_body(v: &Verification, svg: &str, level: u8) -> String {
 pub fn verify_html(v: &Verification) -> String {
     let title = format!("threadcheck: {} {}", v.designation.text, v.kind.name());
     let body =
-        format!("<h1>{}</h1>\n{}", esc(&title), verification_body(v, &crate::render::verify_svg(v), 2));
+        format!("<h1>{}</h1>\n{}", esc(&title), verification_body(v, &crate::report::svg::verify_svg(v), 2));
     page(&title, &body)
 }
 
@@ -181,7 +181,7 @@ pub fn program_html(pv: &ProgramVerification) -> String {
         }
         match &o.result {
             OperationResult::Verified(v) => {
-                body.push_str(&verification_body(v, &crate::render::verify_svg(v), 3))
+                body.push_str(&verification_body(v, &crate::report::svg::verify_svg(v), 3))
             }
             OperationResult::NoCut { reason } => {
                 let _ = writeln!(body, "<p class=\"verdict out\">OUT OF TOLERANCE: {}</p>", esc(reason));
@@ -229,7 +229,7 @@ pub fn compare_html(c: &Comparison) -> String {
     body.push_str("</table>\n");
     for (m, v) in &c.runs {
         let _ = writeln!(body, "<h2>{} infeed, {}</h2>", esc(&m.infeed), esc(&m.schedule));
-        body.push_str(&verification_body(v, &crate::render::verify_svg(v), 3));
+        body.push_str(&verification_body(v, &crate::report::svg::verify_svg(v), 3));
     }
     page(&title, &body)
 }

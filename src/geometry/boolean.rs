@@ -10,7 +10,7 @@
 //! their operands tight (a blank only a little taller than the cut, a window of a few pitches)
 //! so that snapping stays far inside the 0.1 µm budget.
 
-use crate::geometry::Point;
+use crate::ground::plane::Point;
 use geo::orient::{Direction, Orient};
 use geo::{Area, BooleanOps, Coord, LineString, MultiLineString, MultiPolygon, Polygon};
 use rayon::prelude::*;
@@ -80,7 +80,7 @@ fn from_coords(ls: &LineString<f64>) -> Vec<Point> {
 
 /// Distance (mm) under which a vertex counts as lying on the line through its neighbours: a few
 /// backend grid steps, far below the offset of a real arc vertex (about four times the chord
-/// tolerance, which is at least [`crate::geometry::MIN_TOLERANCE`]).
+/// tolerance, which is at least [`crate::ground::plane::MIN_TOLERANCE`]).
 pub const COLLINEAR: f64 = 2e-8;
 
 /// Removes zero-width spikes (vertices where the ring runs out along a line and straight back),

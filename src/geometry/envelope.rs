@@ -12,7 +12,7 @@
 //! A chain is a polyline with non-decreasing `z`; equal `z` on consecutive vertices is a
 //! vertical step (where an imprint's domain begins or ends).
 
-use crate::geometry::Point;
+use crate::ground::plane::Point;
 
 /// A lower envelope (or any chain) in the normalised frame: vertices with non-decreasing `z`.
 #[derive(Clone, Debug, PartialEq, Default)]
@@ -640,24 +640,24 @@ mod tests {
     /// however many, on the passes that showed it, agree with merging each imprint.
     #[test]
     fn runs_meeting_in_concave_arcs_leave_no_gap() {
-        use crate::geometry::rad;
-        let mut spec = crate::verify::VerifySpec::new("BSW 7/16 medium");
+        use crate::ground::plane::rad;
+        let mut spec = crate::analysis::verify::VerifySpec::new("BSW 7/16 medium");
         spec.internal = true;
-        spec.insert = crate::verify::InsertChoice::Full;
+        spec.insert = crate::analysis::verify::InsertChoice::Full;
         spec.infeed = Some("alternating:27.5".parse().unwrap());
-        spec.schedule = crate::passes::Schedule::ConstantDepth;
-        let v = crate::verify::verify(&spec).unwrap();
+        spec.schedule = crate::gcode::passes::Schedule::ConstantDepth;
+        let v = crate::analysis::verify::verify(&spec).unwrap();
         let chain: Vec<Point> =
             bottom_chain(&v.insert.outline).unwrap().iter().rev().map(|p| Point::new(-p.z, p.r)).collect();
         assert!(convex_runs(&chain).len() > MAX_RUNS);
-        let setup = crate::sweep::SweepSetup {
+        let setup = crate::geometry::sweep::SweepSetup {
             kind: v.kind,
             insert: &v.insert,
             blank_diameter: v.blank_diameter,
             pitch: v.designation.thread.pitch,
         };
         let w = v.section.window;
-        let tips: Vec<(f64, f64)> = crate::sweep::imprints(&setup, &v.passes, w)
+        let tips: Vec<(f64, f64)> = crate::geometry::sweep::imprints(&setup, &v.passes, w)
             .unwrap()
             .iter()
             .map(|im| (im.z, -rad(im.x)))
@@ -774,7 +774,7 @@ mod tests {
             Point::new(3.0, 2.0),
             Point::new(0.0, 2.0),
         ];
-        assert!(crate::boolean::signed_area(&hook) > 0.0);
+        assert!(crate::geometry::boolean::signed_area(&hook) > 0.0);
         assert_eq!(bottom_chain(&hook), None);
     }
 }

@@ -2,8 +2,10 @@
 //! plan, assembled in the axial section: the signed clearance at the best axial position, the
 //! real engagement depth, the flank overlap, and whether the pair screws together.
 
-use crate::geometry::Point;
-use crate::verify::{verify, verify_program, InsertChoice, OperationResult, Verification, VerifySpec};
+use crate::analysis::verify::{
+    verify, verify_program, InsertChoice, OperationResult, Verification, VerifySpec,
+};
+use crate::ground::plane::Point;
 use crate::Error;
 
 /// How one part of the pair is cut.
@@ -79,8 +81,8 @@ fn side(spec: &FitSpec, s: &FitSide, internal: bool) -> Result<Verification, Err
 /// Cuts both parts and assembles them.
 ///
 /// ```
-/// use threadcheck::fit::{fit, FitSide, FitSpec};
-/// use threadcheck::verify::InsertChoice;
+/// use threadcheck::{fit, FitSide, FitSpec};
+/// use threadcheck::InsertChoice;
 /// let side = FitSide { insert: InsertChoice::Full, final_x: None, program: None };
 /// let r = fit(&FitSpec { thread: "M10x1.5-6H/6g".into(), allow_nonstandard: false, bolt: side.clone(), nut: side })?;
 /// assert!(r.fits && r.clearance_um > 0.0);
@@ -121,7 +123,7 @@ pub fn fit(spec: &FitSpec) -> Result<FitReport, Error> {
     if tooth.len() < 2 || nut_side.len() < 2 {
         return Err(Error::Geometry("the cut sections hold no whole tooth to assemble".into()));
     }
-    let clearance = crate::measure::fit_clearance(tooth, nut_side, 0.25 * p);
+    let clearance = crate::geometry::measure::fit_clearance(tooth, nut_side, 0.25 * p);
     let engagement_depth = 0.5 * (bolt.measurement.major_diameter - nut.measurement.minor_diameter);
     let half = 0.5 * des.thread.form.flank_angle().to_radians();
     Ok(FitReport {
@@ -131,7 +133,7 @@ pub fn fit(spec: &FitSpec) -> Result<FitReport, Error> {
         engagement_depth,
         flank_overlap: engagement_depth.max(0.0) / half.cos(),
         // The geometry's own accuracy: a pair at exactly basic size fits.
-        fits: clearance >= -crate::check::MMC_SLACK,
+        fits: clearance >= -crate::analysis::check::MMC_SLACK,
     })
 }
 

@@ -5,9 +5,9 @@
 //! minor-diameter zone, flank angles, a single groove). `--gauge-only` leaves the form checks
 //! out of the verdict but reports them.
 
-use crate::measure::Measurement;
+use crate::geometry::measure::Measurement;
+use crate::standards::tolerance::{Limit, ThreadLimits};
 use crate::standards::{BasicThread, ThreadKind};
-use crate::tolerance::{Limit, ThreadLimits};
 use serde::Serialize;
 
 /// Flank half-angles have no product tolerance in ISO 965-1 (it is absorbed by the pitch

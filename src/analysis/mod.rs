@@ -1,0 +1,10 @@
+//! The computations: plain data in, plain data out, no text for a reader.
+
+pub mod catalogue;
+pub mod check;
+pub mod compare;
+pub mod fit;
+pub mod mill;
+pub mod process;
+pub mod tools;
+pub mod verify;

@@ -1,0 +1,10 @@
+//! The cut in the axial section: the insert's outline, the imprints of the passes and their
+//! envelope, the section left standing and its measurement.
+//!
+//! `boolean` is the one door to `geo`, `parry` the one door to `parry2d-f64`.
+
+pub mod boolean;
+pub mod envelope;
+pub mod insert;
+pub mod measure;
+pub mod sweep;
