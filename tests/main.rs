@@ -15,6 +15,7 @@ mod mill;
 mod process;
 mod programs;
 mod properties;
+mod regressions;
 mod sweep;
 mod util;
 mod verify;

@@ -19,14 +19,9 @@ pub const FLANK_ANGLE_TOLERANCE_DEG: f64 = 1.0;
 /// passes.
 pub const MMC_SLACK: f64 = 5e-5;
 
-/// The standards' tables print limits to 1 µm (ISO 965-1, BS 84, ISO 228-1): a measured size is
-/// compared at that resolution, so a limit exactly met (the basic profile cut against a class
-/// whose limit is the rounded basic size) passes.
-pub const TABLE_RESOLUTION_MM: f64 = 0.001;
-
-/// `v` rounded to the tables' resolution.
-pub fn at_table_resolution(v: f64) -> f64 {
-    (v / TABLE_RESOLUTION_MM).round() * TABLE_RESOLUTION_MM
+/// Flank angles are compared at 0.001°.
+fn at_millidegree(deg: f64) -> f64 {
+    (deg * 1000.0).round() / 1000.0
 }
 
 /// A crest narrower than this (mm) 1 µm below its top is no crest: the grooves have met.
@@ -222,9 +217,18 @@ pub struct Check {
     pub note: Option<String>,
 }
 
-fn check(feature: CheckFeature, kind: CheckKind, value: f64, lim: Limit, note: Option<String>) -> Check {
-    // Inside at the tables' resolution: within; outside: the true distance to the limit.
-    let dev = if lim.deviation(at_table_resolution(value)) == 0.0 { 0.0 } else { lim.deviation(value) };
+/// A check of `value` against `lim`, compared at the resolution `at` rounds to (the standard's:
+/// [`Resolution::round`]): inside at that resolution is within, so a limit exactly met passes;
+/// outside, the deviation is the true distance to the limit.
+fn check(
+    feature: CheckFeature,
+    kind: CheckKind,
+    value: f64,
+    lim: Limit,
+    note: Option<String>,
+    at: impl Fn(f64) -> f64,
+) -> Check {
+    let dev = if lim.deviation(at(value)) == 0.0 { 0.0 } else { lim.deviation(value) };
     Check {
         feature,
         kind,
@@ -263,7 +267,14 @@ fn flank_checks(m: &Measurement, thread: &BasicThread) -> Vec<Check> {
         .iter()
         .zip(["low-z flank", "high-z flank"])
         .map(|(a, which)| {
-            let mut c = check(CheckFeature::FlankAngle, CheckKind::Form, *a, lim, Some(which.to_string()));
+            let mut c = check(
+                CheckFeature::FlankAngle,
+                CheckKind::Form,
+                *a,
+                lim,
+                Some(which.to_string()),
+                at_millidegree,
+            );
             // Angles are not lengths: report the deviation in degrees in the note, 0 µm.
             if !c.ok {
                 c.note = Some(format!(
@@ -289,10 +300,32 @@ pub fn checks(
     if let Some(c) = cone {
         return taper_checks(m, thread, single_groove, c);
     }
+    let at = |v: f64| limits.resolution.round(v);
     let mut out = vec![
-        check(CheckFeature::MajorDiameter, CheckKind::Size, m.major_diameter, limits.major_diameter, None),
-        check(CheckFeature::PitchDiameter, CheckKind::Size, m.pitch_diameter, limits.pitch_diameter, None),
-        check(CheckFeature::MinorDiameter, CheckKind::Form, m.minor_diameter, limits.minor_diameter, None),
+        check(
+            CheckFeature::MajorDiameter,
+            CheckKind::Size,
+            m.major_diameter,
+            limits.major_diameter,
+            None,
+            at,
+        ),
+        check(
+            CheckFeature::PitchDiameter,
+            CheckKind::Size,
+            m.pitch_diameter,
+            limits.pitch_diameter,
+            None,
+            at,
+        ),
+        check(
+            CheckFeature::MinorDiameter,
+            CheckKind::Form,
+            m.minor_diameter,
+            limits.minor_diameter,
+            None,
+            at,
+        ),
     ];
     if kind == ThreadKind::External {
         if let Some(rmin) = limits.root_radius_min {
@@ -303,6 +336,7 @@ pub fn checks(
                 r,
                 Limit { min: Some(rmin), max: None },
                 None,
+                at,
             ));
         }
     }
@@ -314,6 +348,7 @@ pub fn checks(
             cl,
             Limit { min: Some(-MMC_SLACK), max: None },
             None,
+            at,
         );
         c.min = Some(0.0);
         if !c.ok {
@@ -424,9 +459,23 @@ mod tests {
 
     #[test]
     fn deviation_is_distance_to_the_nearer_limit_in_um() {
-        let c = check(CheckFeature::PitchDiameter, CheckKind::Size, 9.026, Limit::new(8.862, 8.994), None);
+        let c = check(
+            CheckFeature::PitchDiameter,
+            CheckKind::Size,
+            9.026,
+            Limit::new(8.862, 8.994),
+            None,
+            crate::standards::tolerance::round_um,
+        );
         assert!(!c.ok && (c.deviation_um - 32.0).abs() < 1e-9);
-        let c = check(CheckFeature::PitchDiameter, CheckKind::Size, 8.9, Limit::new(8.862, 8.994), None);
+        let c = check(
+            CheckFeature::PitchDiameter,
+            CheckKind::Size,
+            8.9,
+            Limit::new(8.862, 8.994),
+            None,
+            crate::standards::tolerance::round_um,
+        );
         assert!(c.ok && c.deviation_um == 0.0);
     }
 }

@@ -269,9 +269,49 @@ pub struct ThreadLimits {
     /// Taper threads: where the gauge plane must lie, instead of pitch-diameter limits.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gauge_plane: Option<GaugePlane>,
-    /// The resolution the standard's tables print limits to, mm (0.001 for ISO 965-1, BS 84 and
-    /// ISO 228-1; 0.0001 in = 0.00254 mm for ASME B1.1): sizes are compared at it.
-    pub resolution_mm: f64,
+    /// The resolution the standard's tables print limits to (1 µm for ISO 965-1, BS 84, ISO
+    /// 228-1, ISO 2903 and the pipe tapers; 0.0001 in for ASME B1.1 and B1.5): sizes are
+    /// compared at it. In JSON, `resolution_mm`.
+    #[serde(rename = "resolution_mm")]
+    pub resolution: Resolution,
+}
+
+/// The resolution a standard prints its limits to, and so the one sizes are compared at: a limit
+/// exactly met passes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Resolution {
+    /// 0.001 mm (the metric tables).
+    Micrometre,
+    /// 0.0001 in (the inch tables).
+    TenThousandthInch,
+}
+
+impl Resolution {
+    /// The step, mm.
+    pub fn mm(self) -> f64 {
+        match self {
+            Resolution::Micrometre => 0.001,
+            Resolution::TenThousandthInch => 0.0001 * crate::standards::MM_PER_INCH,
+        }
+    }
+
+    /// `mm` rounded to this resolution, the way the limits themselves were rounded (in inches,
+    /// then converted, for the inch tables), so that a value on a limit compares equal to it.
+    pub fn round(self, mm: f64) -> f64 {
+        match self {
+            Resolution::Micrometre => round_um(mm),
+            Resolution::TenThousandthInch => {
+                let inch = crate::standards::MM_PER_INCH;
+                ((mm / inch) * 10_000.0).round() / 10_000.0 * inch
+            }
+        }
+    }
+}
+
+impl Serialize for Resolution {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_f64(self.mm())
+    }
 }
 
 /// A taper thread's gauge plane: the pitch diameter the gauge checks, where it must lie and how
@@ -354,7 +394,7 @@ pub fn taper_limits(t: &BasicThread, c: TaperClass) -> Result<ThreadLimits, Erro
             tolerance_turns: 1.0,
             taper: 1.0 / 16.0,
         }),
-        resolution_mm: 0.001,
+        resolution: Resolution::Micrometre,
     })
 }
 
@@ -470,7 +510,7 @@ pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits
             crest_deviation_um: dev_crest,
             notes,
             gauge_plane: None,
-            resolution_mm: 0.001,
+            resolution: Resolution::Micrometre,
         })
     } else {
         // TD2 of every grade is a factor times the EXTERNAL tabulated Td2(6).
@@ -504,7 +544,7 @@ pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits
                     crest_deviation_um: dev_crest,
                     notes,
                     gauge_plane: None,
-                    resolution_mm: 0.001,
+                    resolution: Resolution::Micrometre,
                 });
             }
         };
@@ -522,7 +562,7 @@ pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits
             crest_deviation_um: dev_crest,
             notes,
             gauge_plane: None,
-            resolution_mm: 0.001,
+            resolution: Resolution::Micrometre,
         })
     }
 }
@@ -560,7 +600,7 @@ pub fn bs84_limits(thread: &BasicThread, class: Bs84Class, kind: ThreadKind) -> 
                 crest_deviation_um: 0.0,
                 notes,
                 gauge_plane: None,
-                resolution_mm: 0.001,
+                resolution: Resolution::Micrometre,
             }
         }
         ThreadKind::Internal => {
@@ -582,7 +622,7 @@ pub fn bs84_limits(thread: &BasicThread, class: Bs84Class, kind: ThreadKind) -> 
                 crest_deviation_um: 0.0,
                 notes,
                 gauge_plane: None,
-                resolution_mm: 0.001,
+                resolution: Resolution::Micrometre,
             }
         }
     }
@@ -618,7 +658,7 @@ pub fn iso228_limits(thread: &BasicThread, class: Iso228Class) -> Result<ThreadL
                 crest_deviation_um: 0.0,
                 notes: Vec::new(),
                 gauge_plane: None,
-                resolution_mm: 0.001,
+                resolution: Resolution::Micrometre,
             }
         }
         Iso228Class::Internal => ThreadLimits {
@@ -632,7 +672,7 @@ pub fn iso228_limits(thread: &BasicThread, class: Iso228Class) -> Result<ThreadL
             crest_deviation_um: 0.0,
             notes: Vec::new(),
             gauge_plane: None,
-            resolution_mm: 0.001,
+            resolution: Resolution::Micrometre,
         },
     })
 }
@@ -745,7 +785,7 @@ pub fn unified_limits(t: &BasicThread, c: UnifiedClass) -> ThreadLimits {
             crest_deviation_um: 0.0,
             notes,
             gauge_plane: None,
-            resolution_mm: 0.0001 * inch,
+            resolution: Resolution::TenThousandthInch,
         }
     } else {
         let es = if c.grade == 3 { 0.0 } else { r4(0.3 * td2_2a) };
@@ -771,7 +811,7 @@ pub fn unified_limits(t: &BasicThread, c: UnifiedClass) -> ThreadLimits {
             crest_deviation_um: -es * inch * 1000.0,
             notes,
             gauge_plane: None,
-            resolution_mm: 0.0001 * inch,
+            resolution: Resolution::TenThousandthInch,
         }
     }
 }
@@ -870,7 +910,7 @@ pub fn tr_limits(t: &BasicThread, c: TrClass) -> Result<ThreadLimits, Error> {
             crest_deviation_um: 0.0,
             notes,
             gauge_plane: None,
-            resolution_mm: 0.001,
+            resolution: Resolution::Micrometre,
         });
     }
     let es = match c.position {
@@ -901,7 +941,7 @@ pub fn tr_limits(t: &BasicThread, c: TrClass) -> Result<ThreadLimits, Error> {
         crest_deviation_um: 0.0,
         notes,
         gauge_plane: None,
-        resolution_mm: 0.001,
+        resolution: Resolution::Micrometre,
     })
 }
 
@@ -958,7 +998,7 @@ pub fn acme_limits(t: &BasicThread, c: AcmeClass, kind: ThreadKind) -> ThreadLim
                 crest_deviation_um: 0.0,
                 notes,
                 gauge_plane: None,
-                resolution_mm: 0.0001 * inch,
+                resolution: Resolution::TenThousandthInch,
             }
         }
         ThreadKind::Internal => {
@@ -974,7 +1014,7 @@ pub fn acme_limits(t: &BasicThread, c: AcmeClass, kind: ThreadKind) -> ThreadLim
                 crest_deviation_um: 0.0,
                 notes,
                 gauge_plane: None,
-                resolution_mm: 0.0001 * inch,
+                resolution: Resolution::TenThousandthInch,
             }
         }
     }

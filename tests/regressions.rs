@@ -1,0 +1,32 @@
+//! One test per bug, named after it: each failed on the code before its fix.
+
+use threadcheck::{verify, CheckFeature, InsertChoice, VerifySpec};
+
+/// Issue 23: sizes were compared at 1 µm for every standard, though ASME B1.1 prints its limits
+/// to 0.0001 in (2.54 µm). 1/2-13 UNC-2A has d2 max = 0.4485 in = 11.3919 mm (ASME B1.1): a
+/// pitch diameter 1.2 µm above it is 0.000047 in above, which rounds to the limit at 0.0001 in
+/// (within), while at 1 µm it was 11.393 > 11.3919 (out). 1.4 µm above (0.000055 in) is out either
+/// way.
+#[test]
+fn unified_sizes_are_compared_at_a_ten_thousandth_of_an_inch() {
+    let d2_max = 0.4485 * 25.4;
+    let at = |final_x: f64| {
+        let spec = VerifySpec {
+            insert: InsertChoice::Full,
+            final_x: Some(final_x),
+            ..VerifySpec::new("1/2-13 UNC-2A")
+        };
+        verify(&spec).unwrap()
+    };
+    // A full-profile insert with radial infeed moves d2 with the final X one to one (diameters).
+    let probe = at(10.0);
+    let d2_0 = probe.measurement.pitch_diameter;
+    for (over_um, ok) in [(1.2, true), (1.4, false)] {
+        let v = at(10.0 + (d2_max + over_um / 1000.0 - d2_0));
+        let d2 = v.measurement.pitch_diameter;
+        assert!((d2 - d2_max - over_um / 1000.0).abs() < 1e-5, "d2 {d2} is not {over_um} µm over {d2_max}");
+        let c = v.checks.iter().find(|c| c.feature == CheckFeature::PitchDiameter).unwrap();
+        assert_eq!(c.max, Some(d2_max));
+        assert_eq!(c.ok, ok, "{over_um} µm over d2 max: {c:?}");
+    }
+}
