@@ -354,7 +354,7 @@ fn initial_final_x(t: &BasicThread, kind: ThreadKind, ins: &Insert, target: f64)
     let g = t.groove(variant);
     let depth = match ins.kind {
         InsertKind::Full => g.bottom(),
-        _ => {
+        InsertKind::Partial | InsertKind::Custom => {
             let b = t.half_angle();
             g.sharp_root() - (ins.tip_radius / b.sin() - ins.tip_radius)
         }

@@ -4,7 +4,7 @@
 //! `THREAD` cycle is refused: its pass law is not published.
 
 use super::cycles;
-use super::interp::{Ctx, Flow};
+use super::dialect::{Ctx, Flow, Rules};
 use super::lexer::Block;
 use super::motion::{Motion, RBlock};
 use crate::Error;
@@ -30,12 +30,7 @@ pub(crate) fn prescan(text: &str) -> Result<(), (usize, usize, String)> {
 }
 
 /// Runs one block.
-pub(crate) fn block(
-    _s: &mut State,
-    m: &mut Motion,
-    b: &RBlock<'_>,
-    _cx: &mut Ctx<'_>,
-) -> Result<Flow, Error> {
+fn block(_s: &mut State, m: &mut Motion, b: &RBlock<'_>, _cx: &mut Ctx<'_>) -> Result<Flow, Error> {
     let md = cycles::modal(m, b)?;
     for w in b.words.iter().filter(|w| w.name == "M") {
         match w.v {
@@ -58,7 +53,7 @@ pub(crate) fn block(
 }
 
 /// The M74 that closes the M73 at `pc`.
-pub(crate) fn matching_end(blocks: &[Block], pc: usize) -> Option<usize> {
+fn matching_end(blocks: &[Block], pc: usize) -> Option<usize> {
     let mut depth = 0i64;
     for (i, b) in blocks.iter().enumerate().skip(pc) {
         for w in b.words.iter().filter(|w| w.name == "M") {
@@ -75,4 +70,14 @@ pub(crate) fn matching_end(blocks: &[Block], pc: usize) -> Option<usize> {
         }
     }
     None
+}
+
+impl Rules for State {
+    fn block(&mut self, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Result<Flow, Error> {
+        block(self, m, b, cx)
+    }
+
+    fn loop_end(&self, blocks: &[Block], pc: usize) -> Option<usize> {
+        matching_end(blocks, pc)
+    }
 }

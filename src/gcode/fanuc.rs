@@ -4,8 +4,7 @@
 //! and macro calls `G65 P… A… B…`, `M99` returns.
 
 use super::cycles::{self, Modal, Shift};
-use super::haas;
-use super::interp::{Ctx, Flow};
+use super::dialect::{Ctx, Flow, Rules};
 use super::motion::{Motion, RBlock, RWord};
 use crate::Error;
 
@@ -156,7 +155,7 @@ fn start_angle(b: &RBlock<'_>) -> f64 {
 }
 
 /// Runs one block.
-pub(crate) fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Result<Flow, Error> {
+fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Result<Flow, Error> {
     let md = cycles::modal(m, b)?;
     if let Some(f) = calls(m, b)? {
         return Ok(f);
@@ -199,7 +198,7 @@ pub(crate) fn thread_block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, md: &M
         76 if md.col.is_some() => {
             cycles::need_lathe_plane(m, b, col, "G76")?;
             if b.has("K") || b.has("D") {
-                haas::one_block_g76(m, b, col, &haas::Settings::default(), "G76")
+                one_block_g76(m, b, col, &Settings::default(), "G76")
             } else {
                 two_block_g76(s, m, b, col)
             }
@@ -371,4 +370,141 @@ fn two_block_g76(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> R
     m.x = Some(x0);
     m.z = Some(z0);
     Ok(())
+}
+
+/// The machine settings the one-block G76 reads (Haas's numbers; Fanuc's tape format takes the
+/// defaults).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Settings {
+    /// Setting 86, thread finish allowance (radius, mm).
+    pub finish: f64,
+    /// Setting 99, thread minimum cut (radius, mm).
+    pub min_cut: f64,
+    /// Setting 95, chamfer size in leads (when M23 is on).
+    pub chamfer_leads: f64,
+    /// M23 on (chamfer) or M24 off.
+    pub chamfer: bool,
+}
+
+impl Default for Settings {
+    fn default() -> Settings {
+        Settings { finish: 0.0, min_cut: 0.0, chamfer_leads: 1.0, chamfer: false }
+    }
+}
+
+/// The one-block G76 (Haas; Fanuc Series 10/11/15 tape format): X the root diameter, K the
+/// thread height, D the first depth (radius), F the lead, I the taper (radius), A the tool
+/// angle (flank infeed at A/2; none: radial), P the cutting method (P1 one edge, constant chip
+/// area; P2 alternating, constant area; P3 one edge, constant depth; P4 alternating, constant
+/// depth), Q the start angle (0.001°). Pass n goes to D·√n (P1, P2) or n·D (P3, P4) while below
+/// K less the finish allowance, each step at least the minimum cut; then the allowance at K.
+pub(crate) fn one_block_g76(
+    m: &mut Motion,
+    b: &RBlock<'_>,
+    col: usize,
+    st: &Settings,
+    cycle: &str,
+) -> Result<(), Error> {
+    b.allow_only(&m.file, "GXZUWKDFEIAPQNMST", "the one-block G76")?;
+    let f = lead(m, b, col, cycle)?;
+    let (x0, z0) = m.need_position(b.line, col, cycle)?;
+    let (x, _, z) = m.target(b);
+    let x_root = x.ok_or_else(|| m.err(b.line, col, format!("{cycle} needs X, the root diameter")))?;
+    let z_end = z.ok_or_else(|| m.err(b.line, col, format!("{cycle} needs Z, the end of the thread")))?;
+    let k = b
+        .get("K")
+        .map(|w| m.len(w))
+        .ok_or_else(|| m.err(b.line, col, format!("{cycle} needs K, the thread height")))?;
+    let d = b
+        .get("D")
+        .map(|w| m.len(w))
+        .ok_or_else(|| m.err(b.line, col, format!("{cycle} needs D, the first depth")))?;
+    let taper = b.get("I").map_or(0.0, |w| m.len(w));
+    let a = b.get("A").map_or(0.0, |w| w.v);
+    let p = b.get("P").map_or(1.0, |w| w.v);
+    let q = b.get("Q").map_or(0.0, |w| if w.point { w.v } else { w.v / 1000.0 });
+    if let Some(w) = b.get("A").filter(|w| w.point && w.v.fract() != 0.0) {
+        return Err(b.werr(
+            &m.file,
+            w,
+            format!("{cycle} A{} has a decimal point: write the tool angle in whole degrees", w.v),
+        ));
+    }
+    if !(k > 0.0 && d > 0.0) {
+        return Err(m.err(b.line, col, format!("{cycle} K and D must be greater than zero")));
+    }
+    if !(0.0..=120.0).contains(&a) {
+        return Err(m.err(b.line, col, format!("{cycle} tool angle A{a} must be from 0 to 120")));
+    }
+    if ![1.0, 2.0, 3.0, 4.0].contains(&p) {
+        return Err(m.err(b.line, col, format!("{cycle} P{p}: the cutting method is P1, P2, P3 or P4")));
+    }
+    if st.finish >= k {
+        return Err(m.err(
+            b.line,
+            col,
+            format!("{cycle} finish allowance {} mm is not less than K", st.finish),
+        ));
+    }
+    if m.css {
+        m.note(b.line, col, format!("{cycle} under constant surface speed (G96); threading wants G97"));
+    }
+    let rough_to = k - st.finish;
+    let mut depths = Vec::new();
+    let mut prev = 0.0f64;
+    let mut n = 1.0f64;
+    loop {
+        let mut dn = if p <= 2.0 { d * n.sqrt() } else { d * n };
+        if dn - prev < st.min_cut {
+            dn = prev + st.min_cut;
+        }
+        // Within rounding of the end (D = K/4 is a common CAM choice: 16 passes exactly).
+        if dn >= rough_to - 1e-9 {
+            depths.push(rough_to);
+            break;
+        }
+        depths.push(dn);
+        prev = dn;
+        n += 1.0;
+        if depths.len() > crate::ground::bounds::MAX_PASSES {
+            return Err(m.err(b.line, col, format!("{cycle} expands to too many passes")));
+        }
+    }
+    if st.finish > 0.0 {
+        depths.push(k);
+    }
+    let sign = if x_root < x0 { 1.0 } else { -1.0 };
+    let dir = if z_end < z0 { -1.0 } else { 1.0 };
+    let half = 0.5 * a;
+    let shift = match (half > 0.0, p == 2.0 || p == 4.0) {
+        (false, _) => Shift::Radial,
+        (true, false) => Shift::Flank(half),
+        (true, true) => Shift::Alternating(half),
+    };
+    let shifts = cycles::shifts(shift, &depths, dir);
+    let chamfer = if st.chamfer { st.chamfer_leads * f } else { 0.0 };
+    let phase = dir * q / 360.0 * f;
+    let op = m.begin_op(cycle, b.line);
+    if half > 0.0 {
+        m.op_mut(op).infeed_angle = Some((half, "A/2".into()));
+    }
+    m.op_mut(op).notes.push(format!(
+        "{cycle}: Setting 86 (finish allowance) {} mm and Setting 99 (minimum cut) {} mm assumed; P{p}",
+        st.finish, st.min_cut
+    ));
+    for (dn, sh) in depths.iter().zip(shifts) {
+        let x_end = x_root + sign * 2.0 * (k - dn);
+        let x_start = x_end + 2.0 * taper;
+        let x_out = x_end + sign * 2.0 * chamfer;
+        m.push(op, b.line, cycles::pass(x_start, x_end, z0 + sh + phase, z_end, f, b.line, chamfer, x_out))?;
+    }
+    m.x = Some(x0);
+    m.z = Some(z0);
+    Ok(())
+}
+
+impl Rules for State {
+    fn block(&mut self, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Result<Flow, Error> {
+        block(self, m, b, cx)
+    }
 }

@@ -5,73 +5,19 @@
 //! Safety: the blocks executed, the loop iterations and jumps back, the call depth and the
 //! repetitions are bounded (`limits.rs`), so a runaway program is a located error, never a hang.
 
+use super::dialect::{n_key, Ctx, Flow, Language, Rules, Store};
 use super::expr::{self, Env, Expr, Value, VarKey, VarRef};
 use super::lexer::{Block, OKw, Stmt, WVal};
 use super::motion::{Motion, RBlock, RWord};
-use super::{dyna, fanuc, haas, linuxcnc, sinumerik, Dialect};
 use crate::ground::bounds::{MAX_CALL_DEPTH, MAX_REPEATS};
 use crate::Error;
 use std::collections::{HashMap, HashSet};
-
-/// What a dialect module asks of the interpreter after a block.
-#[derive(Clone, Debug, PartialEq)]
-pub(crate) enum Flow {
-    /// Go on with the next block.
-    Next,
-    /// The program ends here (M30, M2).
-    End,
-    /// Call a subprogram of this file (`O1002`, `L9`) `repeats` times; with `locals`, in a new
-    /// local frame holding them (G65), else sharing the caller's (M98, L).
-    Call { name: String, repeats: u32, locals: Option<Vec<(i64, f64)>>, col: usize },
-    /// Haas `M97 Pn`: a subroutine at sequence number n of this program.
-    LocalCall { n: f64, repeats: u32, col: usize },
-    /// Return from a subprogram (M99, M17), optionally to sequence number n of the caller.
-    Return { to_n: Option<f64>, col: usize },
-    /// Dyna `M73 N k`: the following blocks up to the matching M74 run k times.
-    LoopStart { count: f64, col: usize },
-    /// Dyna `M74`.
-    LoopEnd { col: usize },
-}
-
-/// What the dialect modules may ask of the variables.
-pub(crate) struct Ctx<'a> {
-    vars: &'a mut Vars,
-    /// Subprograms defined in the file.
-    pub subs: &'a HashSet<String>,
-    /// Sequence numbers in the file.
-    ns: &'a HashSet<u64>,
-}
-
-impl Ctx<'_> {
-    /// Whether a block N`n` exists in the file.
-    pub fn has_n(&self, n: f64) -> bool {
-        self.ns.contains(&n_key(n))
-    }
-
-    /// A numbered variable (Sinumerik R-parameters for L96/L97), with a note when unset.
-    pub fn get(&mut self, m: &mut Motion, n: i64, line: usize, col: usize) -> Option<f64> {
-        let v = self.vars.read(&VarKey::Num(n));
-        if v.is_none() {
-            self.vars.warn_unset(m, &VarKey::Num(n), line, col);
-        }
-        v
-    }
-}
-
-/// Per-dialect state.
-enum State {
-    Fanuc(fanuc::State),
-    Haas(haas::State),
-    Sinumerik(sinumerik::State),
-    LinuxCnc(linuxcnc::State),
-    Dyna(dyna::State),
-}
 
 /// Numbered variables kept in a vector (fast), the rest in a map.
 const FAST_VARS: usize = 2000;
 
 struct Vars {
-    dialect: Dialect,
+    lang: Language,
     globals: Vec<Value>,
     named_globals: HashMap<String, f64>,
     /// Local frames: #1–#33 (Fanuc) or #1–#30 (LinuxCNC), and LinuxCNC's local named
@@ -88,9 +34,9 @@ struct Vars {
 }
 
 impl Vars {
-    fn new(dialect: Dialect) -> Vars {
+    fn new(lang: Language) -> Vars {
         Vars {
-            dialect,
+            lang,
             globals: vec![None; FAST_VARS],
             named_globals: HashMap::new(),
             frames: vec![(vec![None; 34], HashMap::new())],
@@ -103,16 +49,12 @@ impl Vars {
     }
 
     fn local_range(&self) -> i64 {
-        match self.dialect {
-            Dialect::Fanuc | Dialect::Haas => 33,
-            Dialect::LinuxCnc => 30,
-            Dialect::Sinumerik | Dialect::Dyna => 0,
-        }
+        self.lang.local_range
     }
 
     fn read(&self, k: &VarKey) -> Value {
         match k {
-            VarKey::Num(0) if matches!(self.dialect, Dialect::Fanuc | Dialect::Haas) => None,
+            VarKey::Num(0) if self.lang.fanuc_macro => None,
             VarKey::Num(n) if *n >= 1 && *n <= self.local_range() => {
                 self.frames.last().and_then(|f| f.0[*n as usize])
             }
@@ -127,7 +69,7 @@ impl Vars {
 
     fn write(&mut self, k: &VarKey, v: Value) -> Result<(), String> {
         match k {
-            VarKey::Num(0) if matches!(self.dialect, Dialect::Fanuc | Dialect::Haas) => {
+            VarKey::Num(0) if self.lang.fanuc_macro => {
                 return Err("#0 is always null and cannot be set".into())
             }
             VarKey::Num(n) if *n < 0 => return Err(format!("#{n} is not a variable")),
@@ -138,7 +80,7 @@ impl Vars {
             }
             VarKey::Num(n) if (*n as usize) < FAST_VARS => self.globals[*n as usize] = v,
             VarKey::Num(n) => {
-                if (1000..5000).contains(n) && matches!(self.dialect, Dialect::Fanuc | Dialect::Haas) {
+                if (1000..5000).contains(n) && self.lang.fanuc_macro {
                     return Err(format!("#{n} is a system variable: threadcheck does not model the control's system variables"));
                 }
                 match v {
@@ -169,16 +111,12 @@ impl Vars {
 
     fn warn_unset(&mut self, m: &mut Motion, k: &VarKey, line: usize, col: usize) {
         if self.warned.insert(k.clone()) {
-            let name = match (k, self.dialect) {
-                (VarKey::Num(n), Dialect::Sinumerik) => format!("R{n}"),
-                (VarKey::Num(n), _) => format!("#{n}"),
-                (VarKey::Named(s), _) => format!("#<{s}>"),
+            let name = match k {
+                VarKey::Num(n) if self.lang.r_parameters => format!("R{n}"),
+                VarKey::Num(n) => format!("#{n}"),
+                VarKey::Named(s) => format!("#<{s}>"),
             };
-            let how = match self.dialect {
-                Dialect::Fanuc | Dialect::Haas | Dialect::Dyna => "it is null (0 in arithmetic)",
-                Dialect::Sinumerik => "a Sinumerik reads it as 0",
-                Dialect::LinuxCnc => "LinuxCNC reads it as 0",
-            };
+            let how = self.lang.unset_reads;
             m.note(line, col, format!("{name} is read before it is set: {how}"));
         }
     }
@@ -193,12 +131,11 @@ impl Env for EvalEnv<'_> {
         let v = self.vars.read(k);
         if v.is_none() {
             if let VarKey::Named(s) = k {
-                if self.vars.dialect == Dialect::LinuxCnc {
+                if self.vars.lang.named_must_exist {
                     return Err(format!("named parameter #<{s}> is not defined"));
                 }
             }
-            let fanuc_null =
-                matches!(k, VarKey::Num(0)) && matches!(self.vars.dialect, Dialect::Fanuc | Dialect::Haas);
+            let fanuc_null = matches!(k, VarKey::Num(0)) && self.vars.lang.fanuc_macro;
             if !fanuc_null {
                 let (l, c) = self.vars.here;
                 self.vars.pending.push((k.clone(), l, c));
@@ -235,11 +172,7 @@ struct Layout {
     labels: HashMap<String, Vec<usize>>,
 }
 
-fn n_key(n: f64) -> u64 {
-    (n * 1000.0).round().max(0.0) as u64
-}
-
-fn layout(blocks: &[Block], dialect: Dialect, m: &mut Motion) -> Result<Layout, Error> {
+fn layout(blocks: &[Block], lang: Language, m: &mut Motion) -> Result<Layout, Error> {
     let mut l = Layout {
         main_end: blocks.len(),
         section: vec![(0, blocks.len()); blocks.len()],
@@ -255,12 +188,11 @@ fn layout(blocks: &[Block], dialect: Dialect, m: &mut Motion) -> Result<Layout, 
     // Programs in one file.
     let headers: Vec<usize> =
         blocks.iter().enumerate().filter(|(_, b)| b.header.is_some()).map(|(i, _)| i).collect();
-    match dialect {
-        Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik => {
+    if lang.headers_split_programs {
+        {
             // Fanuc: the first O-number program is the main one (a leading header names it).
             // Sinumerik: subprograms follow the main program, each after its name.
-            let first_is_main =
-                matches!(dialect, Dialect::Fanuc | Dialect::Haas) && headers.first() == Some(&0);
+            let first_is_main = lang.leading_header_is_main && headers.first() == Some(&0);
             let sub_headers: &[usize] = if first_is_main { &headers[1..] } else { &headers[..] };
             l.main_end = sub_headers.first().copied().unwrap_or(blocks.len());
             for i in 0..l.main_end {
@@ -277,7 +209,6 @@ fn layout(blocks: &[Block], dialect: Dialect, m: &mut Motion) -> Result<Layout, 
                 }
             }
         }
-        Dialect::LinuxCnc | Dialect::Dyna => {}
     }
     // Sequence numbers and labels, per section; repeated numbers are warned.
     let mut seen: HashMap<(usize, u64), usize> = HashMap::new();
@@ -311,7 +242,7 @@ fn layout(blocks: &[Block], dialect: Dialect, m: &mut Motion) -> Result<Layout, 
         for s in &b.stmts {
             match s {
                 Stmt::While { id, .. } | Stmt::Do { id, .. } => {
-                    if stack.len() >= 3 && matches!(dialect, Dialect::Fanuc | Dialect::Haas) {
+                    if lang.max_while_nesting.is_some_and(|max| stack.len() >= max) {
                         m.note(
                             b.line,
                             b.col,
@@ -489,22 +420,16 @@ struct DynaLoop {
 /// Runs the program.
 pub(crate) fn run(
     blocks: &[Block],
-    dialect: Dialect,
+    lang: Language,
+    rules: &mut dyn Rules,
     m: &mut Motion,
     file: &str,
     budget: super::Budget,
 ) -> Result<(), Error> {
-    let lay = layout(blocks, dialect, m)?;
+    let lay = layout(blocks, lang, m)?;
     let sub_names: HashSet<String> = lay.subs.keys().cloned().collect();
     let n_numbers: HashSet<u64> = lay.n_index.keys().copied().collect();
-    let mut vars = Vars::new(dialect);
-    let mut state = match dialect {
-        Dialect::Fanuc => State::Fanuc(fanuc::State::default()),
-        Dialect::Haas => State::Haas(haas::State::default()),
-        Dialect::Sinumerik => State::Sinumerik(sinumerik::State::default()),
-        Dialect::LinuxCnc => State::LinuxCnc(linuxcnc::State::default()),
-        Dialect::Dyna => State::Dyna(dyna::State::default()),
-    };
+    let mut vars = Vars::new(lang);
     let perr = |b: &Block, col: usize, msg: String| Error::Program {
         file: file.to_string(),
         line: b.line,
@@ -774,36 +699,28 @@ pub(crate) fn run(
         }
         entering_branch = false;
         // Words: evaluated (LinuxCNC before its assignments, the others after them).
-        let linuxcnc = dialect == Dialect::LinuxCnc;
-        if !linuxcnc {
+        let deferred = vars.lang.deferred_assignments;
+        if !deferred {
             do_assigns(&assigns, &mut vars, b, file)?;
         }
         let mut flow = Flow::Next;
         if !skip_words && (!b.words.is_empty()) {
-            if linuxcnc {
-                linuxcnc::system_params(m, &mut vars.system);
-            }
-            let rb = resolve(b, &mut vars, dialect, file)?;
+            rules.system_params(m, &mut vars.system);
+            let rb = resolve(b, &mut vars, file)?;
             flush_pending(&mut vars, m);
             // LinuxCNC's lathe cycles G70/G71/G72 run the profile subroutine named by Q: it is
             // called, for turning.
-            if dialect == Dialect::LinuxCnc
+            if vars.lang.lathe_cycles_call_q
                 && rb.gs().any(|(g, _)| matches!(g as u32, 70..=72) && g.fract() == 0.0)
             {
                 if let Some(q) = rb.get("Q") {
                     called.insert(format!("{}", q.v.round() as i64));
                 }
             }
-            let mut cx = Ctx { vars: &mut vars, subs: &sub_names, ns: &n_numbers };
-            flow = match &mut state {
-                State::Fanuc(s) => fanuc::block(s, m, &rb, &mut cx)?,
-                State::Haas(s) => haas::block(s, m, &rb, &mut cx)?,
-                State::Sinumerik(s) => sinumerik::block(s, m, &rb, &mut cx)?,
-                State::LinuxCnc(s) => linuxcnc::block(s, m, &rb, &mut cx)?,
-                State::Dyna(s) => dyna::block(s, m, &rb, &mut cx)?,
-            };
+            let mut cx = Ctx { store: &mut vars, subs: &sub_names, ns: &n_numbers };
+            flow = rules.block(m, &rb, &mut cx)?;
         }
-        if linuxcnc {
+        if deferred {
             do_assigns(&assigns, &mut vars, b, file)?;
         }
         flush_pending(&mut vars, m);
@@ -909,7 +826,8 @@ pub(crate) fn run(
                 let k = count.round() as u64;
                 if k == 0 {
                     // Skip to the matching M74.
-                    next = dyna::matching_end(blocks, pc)
+                    next = rules
+                        .loop_end(blocks, pc)
                         .ok_or_else(|| perr(b, col, "M73 without its M74".into()))?
                         + 1;
                 } else {
@@ -946,11 +864,7 @@ pub(crate) fn run(
     for (name, &(start, _)) in &lay.subs {
         if !called.contains(name) && start > 0 {
             let hb = &blocks[start - 1];
-            let what = if dialect == Dialect::LinuxCnc {
-                format!("o{name} sub")
-            } else {
-                format!("subprogram {name}")
-            };
+            let what = (vars.lang.sub_word)(name);
             m.note(hb.line, hb.col, format!("{what} is defined but never called"));
         }
     }
@@ -1013,7 +927,7 @@ fn do_assigns(
         message: format!("{text}: {msg}"),
     };
     // LinuxCNC sets the parameters of a line after reading all of them; the others in order.
-    let deferred = vars.dialect == Dialect::LinuxCnc;
+    let deferred = vars.lang.deferred_assignments;
     let mut vals = Vec::new();
     for (var, e, col, text) in assigns {
         vars.here = (b.line, *col);
@@ -1041,7 +955,7 @@ fn flush_pending(vars: &mut Vars, m: &mut Motion) {
 
 /// The block's words with their values; a Fanuc word whose variable is null is dropped with its
 /// address, as the control does.
-fn resolve<'b>(b: &'b Block, vars: &mut Vars, dialect: Dialect, file: &str) -> Result<RBlock<'b>, Error> {
+fn resolve<'b>(b: &'b Block, vars: &mut Vars, file: &str) -> Result<RBlock<'b>, Error> {
     let mut words = Vec::with_capacity(b.words.len());
     for w in &b.words {
         vars.here = (b.line, w.col);
@@ -1058,7 +972,7 @@ fn resolve<'b>(b: &'b Block, vars: &mut Vars, dialect: Dialect, file: &str) -> R
                     expr::eval(e, &mut EvalEnv { vars }, 0).map_err(|m| perr(format!("{}: {m}", w.name)))?;
                 match v {
                     Some(v) => (v, v.fract() != 0.0, None),
-                    None if matches!(dialect, Dialect::Fanuc | Dialect::Haas | Dialect::Dyna) => continue,
+                    None if vars.lang.null_word_omitted => continue,
                     None => (0.0, false, None),
                 }
             }
@@ -1113,5 +1027,15 @@ fn jump_label(lay: &Layout, pc: usize, label: &str, forward: Option<bool>, end: 
         Some(true) => fwd,
         Some(false) => bwd,
         None => fwd.or(bwd),
+    }
+}
+
+impl Store for Vars {
+    fn numbered(&mut self, m: &mut Motion, n: i64, line: usize, col: usize) -> Option<f64> {
+        let v = self.read(&VarKey::Num(n));
+        if v.is_none() {
+            self.warn_unset(m, &VarKey::Num(n), line, col);
+        }
+        v
     }
 }

@@ -7,7 +7,7 @@
 //! `#<_imperial>`, `#<_metric>`.
 
 use super::cycles;
-use super::interp::{Ctx, Flow};
+use super::dialect::{Ctx, Flow, Rules};
 use super::motion::{Motion, RBlock};
 use crate::Error;
 use std::collections::HashMap;
@@ -17,7 +17,7 @@ use std::collections::HashMap;
 pub(crate) struct State {}
 
 /// The read-only system parameters, from the motion state, before each block.
-pub(crate) fn system_params(m: &Motion, sys: &mut HashMap<String, f64>) {
+fn system_params(m: &Motion, sys: &mut HashMap<String, f64>) {
     let unit = m.scale;
     if let Some(x) = m.x {
         // In program units and as a radius, whatever the diameter mode (LinuxCNC's #5420).
@@ -34,12 +34,7 @@ pub(crate) fn system_params(m: &Motion, sys: &mut HashMap<String, f64>) {
 }
 
 /// Runs one block.
-pub(crate) fn block(
-    _s: &mut State,
-    m: &mut Motion,
-    b: &RBlock<'_>,
-    _cx: &mut Ctx<'_>,
-) -> Result<Flow, Error> {
+fn block(_s: &mut State, m: &mut Motion, b: &RBlock<'_>, _cx: &mut Ctx<'_>) -> Result<Flow, Error> {
     // G7/G8 with G76 in one block scale I, J, K twice in LinuxCNC (read the interpreter's
     // convert_lathe_diameter_mode and convert_threading_cycle); separate lines are right.
     let mode_and_g76 = b.gs().any(|(g, _)| g == 76.0) && b.gs().any(|(g, _)| g == 7.0 || g == 8.0);
@@ -171,4 +166,14 @@ fn g76(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
     }
     m.z = Some(z_end);
     Ok(())
+}
+
+impl Rules for State {
+    fn block(&mut self, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Result<Flow, Error> {
+        block(self, m, b, cx)
+    }
+
+    fn system_params(&self, m: &Motion, sys: &mut HashMap<String, f64>) {
+        system_params(m, sys);
+    }
 }

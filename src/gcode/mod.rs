@@ -16,6 +16,7 @@
 //! counted as skipped.
 
 mod cycles;
+mod dialect;
 mod dyna;
 pub(crate) mod expr;
 mod fanuc;
@@ -260,7 +261,14 @@ pub fn read_program_with(
         blocks = keyed.into_iter().map(|k| k.2).collect();
     }
     let mut m = motion::Motion::new(dialect, file, opts.moves);
-    interp::run(&blocks, dialect, &mut m, file, opts.budget.unwrap_or_default())?;
+    interp::run(
+        &blocks,
+        dialect::Language::of(dialect),
+        rules(dialect).as_mut(),
+        &mut m,
+        file,
+        opts.budget.unwrap_or_default(),
+    )?;
     let (operations, skipped, mut notes, moves) = m.finish();
     notes.extend(order_note);
     if operations.is_empty() && !opts.allow_no_threading {
@@ -280,4 +288,15 @@ pub fn read_program_with(
     }
     let passes = operations.iter().flat_map(|o| o.passes.iter().copied()).collect();
     Ok(Program { passes, operations, skipped_blocks: skipped, notes, moves })
+}
+
+/// The dialect table: the rules each dialect's module implements, with a fresh modal state.
+fn rules(dialect: Dialect) -> Box<dyn dialect::Rules> {
+    match dialect {
+        Dialect::Fanuc => Box::<fanuc::State>::default(),
+        Dialect::Haas => Box::<haas::State>::default(),
+        Dialect::Sinumerik => Box::<sinumerik::State>::default(),
+        Dialect::LinuxCnc => Box::<linuxcnc::State>::default(),
+        Dialect::Dyna => Box::<dyna::State>::default(),
+    }
 }

@@ -312,8 +312,9 @@ pub fn schedule_depths(schedule: &Schedule, total: f64, n: usize) -> Result<Vec<
                 let phi = if i == 1.0 { 0.3 } else { i - 1.0 };
                 total * (phi / (nf - 1.0)).sqrt()
             }
-            // Constant area; also Sandvik with one pass, and the explicit list returned above.
-            _ => total * (i / nf).sqrt(),
+            // Sandvik's series needs two passes; one pass is the whole depth, as constant area.
+            Schedule::ConstantArea | Schedule::Sandvik => total * (i / nf).sqrt(),
+            Schedule::Explicit(_) => unreachable!("an explicit schedule is returned above"),
         }
     };
     Ok((1..=n).map(depth).collect())
@@ -457,9 +458,13 @@ impl PlanSpec {
             Some(f) => {
                 // A hair below, so that an exact ratio (0.9 / 0.3) does not round up a pass.
                 let ratio = rough_total / f * (1.0 - 1e-12);
-                let n = match self.schedule {
+                // The first pass's depth under each law: t/N (constant depth), t·√(1/N)
+                // (constant area), t·√(0.3/(N−1)) (Sandvik); an explicit list sets its own count.
+                let n = match &self.schedule {
                     Schedule::ConstantDepth => ratio.ceil(),
-                    _ => (ratio * ratio).ceil(),
+                    Schedule::ConstantArea => (ratio * ratio).ceil(),
+                    Schedule::Sandvik => (0.3 * ratio * ratio).ceil() + 1.0,
+                    Schedule::Explicit(v) => v.len() as f64,
                 };
                 if n > MAX_PASSES as f64 {
                     return Err(Error::Input(format!(

@@ -9,7 +9,7 @@
 //! (|R15| − R16)/R17, radial, from (R10, R11) to (R12, R13).
 
 use super::cycles::{self, Shift};
-use super::interp::{Ctx, Flow};
+use super::dialect::{Ctx, Flow, Rules};
 use super::motion::{Motion, RBlock, RWord};
 use crate::gcode::passes::Pass;
 use crate::Error;
@@ -21,7 +21,7 @@ pub(crate) struct State {
 }
 
 /// Runs one block.
-pub(crate) fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Result<Flow, Error> {
+fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Result<Flow, Error> {
     for w in &b.words {
         match w.name {
             "DIAMON" => m.diameter = true,
@@ -393,4 +393,10 @@ fn coarse_pitch_for(size: f64) -> Option<f64> {
         .iter()
         .find(|s| (s.d - size).abs() < 1e-9 && (3.0..=60.0).contains(&size))
         .and_then(|s| s.coarse)
+}
+
+impl Rules for State {
+    fn block(&mut self, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Result<Flow, Error> {
+        block(self, m, b, cx)
+    }
 }

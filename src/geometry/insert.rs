@@ -99,7 +99,8 @@ impl Insert {
         }
         let tip_radius = match g.root {
             crate::standards::Feature::Arc(r) => r,
-            _ => 0.0,
+            // A flat root is formed by a flat tip: no tip radius.
+            crate::standards::Feature::Flat | crate::standards::Feature::FlatAt(_) => 0.0,
         };
         Insert {
             kind: InsertKind::Full,

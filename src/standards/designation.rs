@@ -5,7 +5,8 @@
 use super::data::{catalog, find_pitch, SeriesSize};
 use super::{BasicThread, Hand, ThreadForm, ThreadKind, MM_PER_INCH};
 use crate::standards::tolerance::{
-    AcmeClass, Bs84Class, Iso228Class, IsoClass, TaperClass, TrClass, UnifiedClass, UnifiedSeries,
+    AcmeClass, Bs84Class, Iso228Class, IsoClass, TaperClass, TrClass, UnifiedClass, UnifiedGrade,
+    UnifiedSeries,
 };
 use std::fmt;
 
@@ -635,14 +636,18 @@ fn parse_acme(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, Des
             continue;
         }
         let b = part.as_bytes();
-        if !(b.len() == 2 && (b'2'..=b'4').contains(&b[0]) && matches!(b[1], b'G' | b'g')) {
+        let grade = match b {
+            [g, b'G' | b'g'] => AcmeClass::from_digit(g.wrapping_sub(b'0')),
+            _ => None,
+        };
+        let Some(grade) = grade else {
             return Err(c.err(
                 start,
                 start + part.len(),
                 "expected a general-purpose Acme class 2G, 3G or 4G, or LH",
             ));
-        }
-        let cls = ClassSpec::Acme(AcmeClass { grade: b[0] - b'0' });
+        };
+        let cls = ClassSpec::Acme(grade);
         des.external = Some(cls);
         des.internal = Some(cls);
     }
@@ -860,13 +865,15 @@ fn parse_unified(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, 
         let mut off = start;
         for cls in part.split('/') {
             let b = cls.as_bytes();
-            let ok =
-                b.len() == 2 && (b'1'..=b'3').contains(&b[0]) && matches!(b[1], b'A' | b'a' | b'B' | b'b');
-            if !ok {
+            let parsed = match b {
+                [g, side @ (b'A' | b'a' | b'B' | b'b')] => UnifiedGrade::from_digit(g.wrapping_sub(b'0'))
+                    .map(|grade| (grade, matches!(side, b'B' | b'b'))),
+                _ => None,
+            };
+            let Some((grade, internal)) = parsed else {
                 return Err(c.err(off, off + cls.len(), "expected a Unified class 1A, 2A, 3A (external), 1B, 2B, 3B (internal), a fit 2B/2A, or LH"));
-            }
-            let internal = matches!(b[1], b'B' | b'b');
-            let uc = UnifiedClass { grade: b[0] - b'0', internal, series, unr: unr && !internal };
+            };
+            let uc = UnifiedClass { grade, internal, series, unr: unr && !internal };
             let slot = if internal { &mut des.internal } else { &mut des.external };
             if slot.is_some() {
                 return Err(c.err(off, off + cls.len(), "a second class for the same side"));

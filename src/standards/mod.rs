@@ -528,7 +528,11 @@ impl GrooveForm {
                 let a = Arc { center: Point::new(c.z, -c.r), radius: rc, start: FRAC_PI_2, end: b };
                 extend_dedup(&mut out, a.tessellate(tolerance).into_iter().map(|p| Point::new(p.z, -p.r)));
             }
-            _ => {
+            Feature::Flat | Feature::FlatAt(_) => {
+                debug_assert!(
+                    !matches!(self.crest, Feature::FlatAt(d) if d != 0.0),
+                    "a crest lies on the crest line"
+                );
                 extend_dedup(&mut out, [Point::new(-half, 0.0), Point::new(-self.flank_z(0.0), 0.0)]);
             }
         }
@@ -564,7 +568,7 @@ impl GrooveForm {
                 };
                 extend_dedup(&mut out, a.tessellate(tolerance).into_iter().map(|p| Point::new(p.z, -p.r)));
             }
-            _ => {
+            Feature::Flat | Feature::FlatAt(_) => {
                 extend_dedup(&mut out, [Point::new(self.flank_z(0.0), 0.0), Point::new(half, 0.0)]);
             }
         }

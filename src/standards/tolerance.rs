@@ -12,6 +12,109 @@ use crate::Error;
 use serde::Serialize;
 use std::fmt;
 
+/// An ISO 965-1 tolerance position: `e f g h` for bolts, `G H` for nuts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IsoPosition {
+    /// e (bolts only).
+    E,
+    /// f (bolts only).
+    F,
+    /// g (bolts) or G (nuts).
+    G,
+    /// h (bolts) or H (nuts): zero fundamental deviation.
+    H,
+}
+
+impl IsoPosition {
+    /// Reads a position letter of either case.
+    fn from_letter(c: char) -> Option<IsoPosition> {
+        match c.to_ascii_lowercase() {
+            'e' => Some(IsoPosition::E),
+            'f' => Some(IsoPosition::F),
+            'g' => Some(IsoPosition::G),
+            'h' => Some(IsoPosition::H),
+            _ => None,
+        }
+    }
+
+    /// The letter, upper case for nuts.
+    pub fn letter(self, internal: bool) -> char {
+        let c = match self {
+            IsoPosition::E => 'e',
+            IsoPosition::F => 'f',
+            IsoPosition::G => 'g',
+            IsoPosition::H => 'h',
+        };
+        if internal {
+            c.to_ascii_uppercase()
+        } else {
+            c
+        }
+    }
+
+    /// Whether ISO 965-1 defines the position for nuts (`internal`) or bolts.
+    fn exists(self, internal: bool) -> bool {
+        match self {
+            IsoPosition::E | IsoPosition::F => !internal,
+            IsoPosition::G | IsoPosition::H => true,
+        }
+    }
+}
+
+/// An ISO 965-1 tolerance grade, 3 to 9 (which of them a diameter has is the standard's table).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IsoGrade {
+    /// Grade 3.
+    G3,
+    /// Grade 4.
+    G4,
+    /// Grade 5.
+    G5,
+    /// Grade 6.
+    G6,
+    /// Grade 7.
+    G7,
+    /// Grade 8.
+    G8,
+    /// Grade 9.
+    G9,
+}
+
+impl IsoGrade {
+    /// Reads a grade digit.
+    fn from_digit(d: u32) -> Option<IsoGrade> {
+        Some(match d {
+            3 => IsoGrade::G3,
+            4 => IsoGrade::G4,
+            5 => IsoGrade::G5,
+            6 => IsoGrade::G6,
+            7 => IsoGrade::G7,
+            8 => IsoGrade::G8,
+            9 => IsoGrade::G9,
+            _ => return None,
+        })
+    }
+
+    /// The grade's number.
+    pub fn number(self) -> u8 {
+        match self {
+            IsoGrade::G3 => 3,
+            IsoGrade::G4 => 4,
+            IsoGrade::G5 => 5,
+            IsoGrade::G6 => 6,
+            IsoGrade::G7 => 7,
+            IsoGrade::G8 => 8,
+            IsoGrade::G9 => 9,
+        }
+    }
+}
+
+impl fmt::Display for IsoGrade {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.number())
+    }
+}
+
 /// An ISO 965-1 class: pitch-diameter grade and position, crest-diameter grade and position.
 /// `5g6g` is pitch 5g, crest 6g; `6g` is both. Lower-case positions are external, upper-case
 /// internal.
@@ -20,26 +123,37 @@ pub struct IsoClass {
     /// True for an internal (nut) class.
     pub internal: bool,
     /// Tolerance grade of the pitch diameter (3–9 external, 4–8 internal).
-    pub pitch_grade: u8,
-    /// Position letter of the pitch diameter, lower case (`e f g h`; `g h` for nuts).
-    pub pitch_position: char,
+    pub pitch_grade: IsoGrade,
+    /// Position of the pitch diameter (`e f g h`; `G H` for nuts).
+    pub pitch_position: IsoPosition,
     /// Tolerance grade of the crest diameter (major d: 4, 6, 8; minor D1: 4–8).
-    pub crest_grade: u8,
-    /// Position letter of the crest diameter, lower case.
-    pub crest_position: char,
+    pub crest_grade: IsoGrade,
+    /// Position of the crest diameter.
+    pub crest_position: IsoPosition,
 }
 
 impl IsoClass {
     /// Parses `6g`, `5g6g`, `6H`, `4H5H`.
     pub fn parse(s: &str) -> Result<IsoClass, String> {
         let b: Vec<char> = s.chars().collect();
-        let pair = |g: char, p: char| -> Result<(u8, char, bool), String> {
-            let grade =
-                g.to_digit(10).ok_or_else(|| format!("'{g}' is not a tolerance grade (a digit)"))? as u8;
+        let pair = |g: char, p: char| -> Result<(IsoGrade, IsoPosition, bool), String> {
+            let digit = g.to_digit(10).ok_or_else(|| format!("'{g}' is not a tolerance grade (a digit)"))?;
             if !p.is_ascii_alphabetic() {
                 return Err(format!("'{p}' is not a tolerance position letter"));
             }
-            Ok((grade, p.to_ascii_lowercase(), p.is_ascii_uppercase()))
+            let internal = p.is_ascii_uppercase();
+            let side = if internal { "internal" } else { "external" };
+            let positions = if internal { "G, H" } else { "e, f, g, h" };
+            let position = IsoPosition::from_letter(p)
+                .filter(|q| q.exists(internal))
+                .ok_or_else(|| format!("position {p} is not an ISO 965-1 {side} position ({positions})"))?;
+            let grade = IsoGrade::from_digit(digit).ok_or_else(|| {
+                format!(
+                    "grade {digit} has no pitch-diameter tolerance (grades {})",
+                    if internal { "4..8" } else { "3..9" }
+                )
+            })?;
+            Ok((grade, position, internal))
         };
         let ((pg, pp, pi), (cg, cp, ci)) = match b.as_slice() {
             [g, p] => {
@@ -64,34 +178,35 @@ impl IsoClass {
     }
 
     fn validate(&self) -> Result<(), String> {
-        let (positions, pitch_grades, crest_grades, crest_name): (&str, &[u8], &[u8], &str) = if self.internal
-        {
-            ("GH", &[4, 5, 6, 7, 8], &[4, 5, 6, 7, 8], "minor-diameter (TD1) grades are 4 to 8")
+        use IsoGrade::{G3, G4, G5, G6, G7, G8, G9};
+        let (pitch_ok, crest_ok, pitch_range, crest_name) = if self.internal {
+            (
+                matches!(self.pitch_grade, G4 | G5 | G6 | G7 | G8),
+                matches!(self.crest_grade, G4 | G5 | G6 | G7 | G8),
+                "4..8",
+                "minor-diameter (TD1) grades are 4 to 8",
+            )
         } else {
-            ("efgh", &[3, 4, 5, 6, 7, 8, 9], &[4, 6, 8], "major-diameter (Td) grades are 4, 6 and 8")
+            (
+                matches!(self.pitch_grade, G3 | G4 | G5 | G6 | G7 | G8 | G9),
+                matches!(self.crest_grade, G4 | G6 | G8),
+                "3..9",
+                "major-diameter (Td) grades are 4, 6 and 8",
+            )
         };
-        for p in [self.pitch_position, self.crest_position] {
-            let shown = if self.internal { p.to_ascii_uppercase() } else { p };
-            if !positions.to_ascii_lowercase().contains(p) {
-                return Err(format!(
-                    "position {shown} is not an ISO 965-1 {} position ({})",
-                    if self.internal { "internal" } else { "external" },
-                    positions.chars().map(String::from).collect::<Vec<_>>().join(", ")
-                ));
-            }
-        }
-        if !pitch_grades.contains(&self.pitch_grade) {
+        if !pitch_ok {
             return Err(format!(
-                "grade {} has no pitch-diameter tolerance (grades {}..{})",
-                self.pitch_grade,
-                pitch_grades[0],
-                pitch_grades[pitch_grades.len() - 1]
+                "grade {} has no pitch-diameter tolerance (grades {pitch_range})",
+                self.pitch_grade
             ));
         }
-        if !crest_grades.contains(&self.crest_grade) {
+        if !crest_ok {
             return Err(format!(
                 "grade {} has no crest tolerance: {crest_name}; write both grades, e.g. {}{}6{}",
-                self.crest_grade, self.pitch_grade, self.pitch_position, self.crest_position
+                self.crest_grade,
+                self.pitch_grade,
+                self.pitch_position.letter(self.internal),
+                self.crest_position.letter(self.internal)
             ));
         }
         Ok(())
@@ -104,12 +219,12 @@ impl IsoClass {
         let fd = &cat.iso.fundamental_deviations;
         for p in [self.pitch_position, self.crest_position] {
             let list = match p {
-                'e' => &fd.pitches_e,
-                'f' => &fd.pitches_f,
-                _ => &fd.pitches,
+                IsoPosition::E => &fd.pitches_e,
+                IsoPosition::F => &fd.pitches_f,
+                IsoPosition::G | IsoPosition::H => &fd.pitches,
             };
             if find_pitch(list, pitch).is_none() {
-                let shown = if self.internal { p.to_ascii_uppercase() } else { p };
+                let shown = p.letter(self.internal);
                 return Err(format!("ISO 965-1 tabulates no deviation of position {shown} for P = {pitch} mm (it does for P = {}..{} mm)", list[0], list[list.len() - 1]));
             }
         }
@@ -119,7 +234,7 @@ impl IsoClass {
 
 impl fmt::Display for IsoClass {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let c = |p: char| if self.internal { p.to_ascii_uppercase() } else { p };
+        let c = |p: IsoPosition| p.letter(self.internal);
         if self.pitch_grade == self.crest_grade && self.pitch_position == self.crest_position {
             write!(f, "{}{}", self.pitch_grade, c(self.pitch_position))
         } else {
@@ -427,15 +542,18 @@ fn iso_tables() -> Result<&'static IsoTables, Error> {
     Ok(&catalog()?.iso)
 }
 
-fn deviation_um(t: &IsoTables, position: char, internal: bool, pitch: f64) -> Result<f64, Error> {
+fn deviation_um(t: &IsoTables, position: IsoPosition, internal: bool, pitch: f64) -> Result<f64, Error> {
     let fd = &t.fundamental_deviations;
     let (list, vals): (&[f64], &[i32]) = match (position, internal) {
-        ('e', false) => (&fd.pitches_e, &fd.es_e),
-        ('f', false) => (&fd.pitches_f, &fd.es_f),
-        ('g', false) => (&fd.pitches, &fd.es_g),
-        ('h', false) => (&fd.pitches, &fd.es_h),
-        ('g', true) => (&fd.pitches, &fd.ei_g),
-        _ => (&fd.pitches, &fd.ei_h),
+        (IsoPosition::E, false) => (&fd.pitches_e, &fd.es_e),
+        (IsoPosition::F, false) => (&fd.pitches_f, &fd.es_f),
+        (IsoPosition::G, false) => (&fd.pitches, &fd.es_g),
+        (IsoPosition::H, false) => (&fd.pitches, &fd.es_h),
+        (IsoPosition::G, true) => (&fd.pitches, &fd.ei_g),
+        (IsoPosition::H, true) => (&fd.pitches, &fd.ei_h),
+        (IsoPosition::E | IsoPosition::F, true) => {
+            return Err(Error::Input(format!("ISO 965-1 has no internal position {}", position.letter(true))))
+        }
     };
     let i = find_pitch(list, pitch).ok_or_else(|| {
         Error::Input(format!("ISO 965-1 tabulates no fundamental deviation for P = {pitch} mm"))
@@ -469,7 +587,7 @@ fn pitch_table(pitches: &[f64], vals: &[f64], pitch: f64, what: &str) -> Result<
         .ok_or_else(|| Error::Input(format!("ISO 965-1 tabulates no {what} for P = {pitch} mm")))
 }
 
-fn graded(t: &IsoTables, base: f64, factor: Option<f64>, grade: u8, what: &str) -> Result<f64, Error> {
+fn graded(t: &IsoTables, base: f64, factor: Option<f64>, grade: IsoGrade, what: &str) -> Result<f64, Error> {
     let f = factor.ok_or_else(|| Error::Input(format!("ISO 965-1 has no grade {grade} for {what}")))?;
     if f == 1.0 {
         return Ok(base);
@@ -493,9 +611,9 @@ pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits
     let gf = &t.grade_factors;
     let mm = |um: f64| um / 1000.0;
     if !class.internal {
-        let td2 = graded(t, td2_6, gf.td2.get(class.pitch_grade), class.pitch_grade, "Td2")?;
+        let td2 = graded(t, td2_6, gf.td2.get(class.pitch_grade.number()), class.pitch_grade, "Td2")?;
         let td6 = pitch_table(&t.td_grade6.pitches, &t.td_grade6.td, p, "major-diameter tolerance Td")?;
-        let td = graded(t, td6, gf.td.get(class.crest_grade), class.crest_grade, "Td")?;
+        let td = graded(t, td6, gf.td.get(class.crest_grade.number()), class.crest_grade, "Td")?;
         let dmax = round_um(d_b + mm(dev_crest));
         let d2max = round_um(d2_b + mm(dev));
         let d2min = round_um(d2max - mm(td2));
@@ -514,15 +632,16 @@ pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits
         })
     } else {
         // TD2 of every grade is a factor times the EXTERNAL tabulated Td2(6).
-        let td2 = graded(t, td2_6, gf.td2_internal.get(class.pitch_grade), class.pitch_grade, "TD2")?;
+        let td2 =
+            graded(t, td2_6, gf.td2_internal.get(class.pitch_grade.number()), class.pitch_grade, "TD2")?;
         let td1_6 = match find_pitch(&t.td1_grade6.pitches, p) {
             Some(i) => t.td1_grade6.td1[i],
             None => {
                 // P 0.2 and 0.25 carry only fine grades (ISO 965-1 Table 3).
                 let fine = match (class.crest_grade, (p * 100.0).round() as i64) {
-                    (4, 20) => Some(38.0),
-                    (4, 25) => Some(45.0),
-                    (5, 25) => Some(56.0),
+                    (IsoGrade::G4, 20) => Some(38.0),
+                    (IsoGrade::G4, 25) => Some(45.0),
+                    (IsoGrade::G5, 25) => Some(56.0),
                     _ => None,
                 };
                 let v = fine.ok_or_else(|| {
@@ -548,7 +667,7 @@ pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits
                 });
             }
         };
-        let td1 = graded(t, td1_6, gf.td1.get(class.crest_grade), class.crest_grade, "TD1")?;
+        let td1 = graded(t, td1_6, gf.td1.get(class.crest_grade.number()), class.crest_grade, "TD1")?;
         let d2min = round_um(d2_b + mm(dev));
         let d1min = round_um(d1_b + mm(dev_crest));
         Ok(ThreadLimits {
@@ -711,11 +830,43 @@ impl UnifiedSeries {
     }
 }
 
+/// A Unified class number: 1 (loosest), 2, 3 (tightest).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnifiedGrade {
+    /// 1A / 1B.
+    G1,
+    /// 2A / 2B.
+    G2,
+    /// 3A / 3B.
+    G3,
+}
+
+impl UnifiedGrade {
+    /// Reads the class digit.
+    pub fn from_digit(d: u8) -> Option<UnifiedGrade> {
+        match d {
+            1 => Some(UnifiedGrade::G1),
+            2 => Some(UnifiedGrade::G2),
+            3 => Some(UnifiedGrade::G3),
+            _ => None,
+        }
+    }
+
+    /// The class number.
+    pub fn number(self) -> u8 {
+        match self {
+            UnifiedGrade::G1 => 1,
+            UnifiedGrade::G2 => 2,
+            UnifiedGrade::G3 => 3,
+        }
+    }
+}
+
 /// A Unified class (1A 2A 3A external, 1B 2B 3B internal) with its series.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct UnifiedClass {
     /// 1, 2 or 3.
-    pub grade: u8,
+    pub grade: UnifiedGrade,
     /// B (internal) or A (external).
     pub internal: bool,
     /// The series (for the length of engagement).
@@ -726,7 +877,7 @@ pub struct UnifiedClass {
 
 impl fmt::Display for UnifiedClass {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}{}", self.grade, if self.internal { 'B' } else { 'A' })
+        write!(f, "{}{}", self.grade.number(), if self.internal { 'B' } else { 'A' })
     }
 }
 
@@ -753,16 +904,21 @@ pub fn unified_limits(t: &BasicThread, c: UnifiedClass) -> ThreadLimits {
     let h = 0.866_025_403_784_438_6 * p;
     let (d2, d1) = (d - 0.75 * h, d - 1.25 * h);
     let mm = |x: f64| x * inch;
-    let gi = usize::from(c.grade.clamp(1, 3) - 1);
+    // The class factors on Td2(2A): external 1A/2A/3A, internal 1B/2B/3B (ASME B1.1).
+    let (td2_ext, td2_int) = match c.grade {
+        UnifiedGrade::G1 => (1.5, 1.95),
+        UnifiedGrade::G2 => (1.0, 1.3),
+        UnifiedGrade::G3 => (0.75, 0.975),
+    };
     let mut notes = vec![format!(
         "ASME B1.1 limits from its formulas with LE = {:.4} in ({}), rounded to 0.0001 in; the published tables differ from these by 0.0001 in in about one value of five",
         le,
         if (le - d).abs() < 1e-12 { "D" } else { "9P" }
     )];
     if c.internal {
-        let td2 = [1.95, 1.3, 0.975][gi] * td2_2a;
+        let td2 = td2_int * td2_2a;
         let a = 0.05 * p23 + 0.03 * p / d - 0.002;
-        let td1 = if c.grade <= 2 {
+        let td1 = if matches!(c.grade, UnifiedGrade::G1 | UnifiedGrade::G2) {
             let lo = 0.25 * p - 0.4 * p * p;
             if d >= 0.25 {
                 lo
@@ -773,7 +929,13 @@ pub fn unified_limits(t: &BasicThread, c: UnifiedClass) -> ThreadLimits {
             let lo = if tpi >= 13.0 - 1e-9 { 0.23 * p - 1.5 * p * p } else { 0.12 * p };
             a.min(0.394 * p).max(lo)
         };
-        let rd1 = |x: f64| if c.grade <= 2 && d >= 0.25 { r3(x) } else { r4(x) };
+        let rd1 = |x: f64| {
+            if matches!(c.grade, UnifiedGrade::G1 | UnifiedGrade::G2) && d >= 0.25 {
+                r3(x)
+            } else {
+                r4(x)
+            }
+        };
         ThreadLimits {
             kind: ThreadKind::Internal,
             class: c.to_string(),
@@ -788,9 +950,15 @@ pub fn unified_limits(t: &BasicThread, c: UnifiedClass) -> ThreadLimits {
             resolution: Resolution::TenThousandthInch,
         }
     } else {
-        let es = if c.grade == 3 { 0.0 } else { r4(0.3 * td2_2a) };
-        let td2 = [1.5, 1.0, 0.75][gi] * td2_2a;
-        let td = if c.grade == 1 { 0.090 } else { 0.060 } * p23;
+        let es = match c.grade {
+            UnifiedGrade::G3 => 0.0,
+            UnifiedGrade::G1 | UnifiedGrade::G2 => r4(0.3 * td2_2a),
+        };
+        let td2 = td2_ext * td2_2a;
+        let td = match c.grade {
+            UnifiedGrade::G1 => 0.090,
+            UnifiedGrade::G2 | UnifiedGrade::G3 => 0.060,
+        } * p23;
         let (dmax, d2max) = (d - es, d2 - es);
         let (dmin, d2min) = (dmax - td, d2max - td2);
         // UNR: the rounded root's minor diameter at most d max − 1.190784·P; UN: the flat-form
@@ -816,38 +984,92 @@ pub fn unified_limits(t: &BasicThread, c: UnifiedClass) -> ThreadLimits {
     }
 }
 
+/// An ISO 2903 tolerance grade of the pitch diameter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TrGrade {
+    /// Grade 7 (the published tables).
+    G7,
+    /// Grade 8 (from grade 7 by the ISO 965-1 grade factors, stated).
+    G8,
+    /// Grade 9 (likewise).
+    G9,
+}
+
+/// An ISO 2903 tolerance position of the pitch diameter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TrPosition {
+    /// e (external).
+    E,
+    /// c (external, larger allowance).
+    C,
+    /// H (internal).
+    H,
+}
+
 /// An ISO 2903 trapezoidal class: grade 7, 8 or 9 and position e or c (external, d2; d and d3
 /// are always h) or H (internal).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TrClass {
     /// 7, 8 or 9.
-    pub grade: u8,
+    pub grade: TrGrade,
     /// `e`, `c` or `H`.
-    pub position: char,
+    pub position: TrPosition,
 }
 
 impl TrClass {
     /// Reads `7e`, `8c`, `7H`.
     pub fn parse(s: &str) -> Result<TrClass, String> {
-        let b = s.as_bytes();
-        let ok = b.len() == 2 && (b'7'..=b'9').contains(&b[0]) && matches!(b[1], b'e' | b'c' | b'H');
-        if !ok {
-            return Err(format!(
-                "'{s}' is not an ISO 2903 class: 7e, 8e, 8c, 9c (external), 7H, 8H, 9H (internal)"
-            ));
-        }
-        Ok(TrClass { grade: b[0] - b'0', position: char::from(b[1]) })
+        let bad =
+            || format!("'{s}' is not an ISO 2903 class: 7e, 8e, 8c, 9c (external), 7H, 8H, 9H (internal)");
+        let (grade, position) = match s.as_bytes() {
+            [g, p] => (
+                match g {
+                    b'7' => TrGrade::G7,
+                    b'8' => TrGrade::G8,
+                    b'9' => TrGrade::G9,
+                    _ => return Err(bad()),
+                },
+                match p {
+                    b'e' => TrPosition::E,
+                    b'c' => TrPosition::C,
+                    b'H' => TrPosition::H,
+                    _ => return Err(bad()),
+                },
+            ),
+            _ => return Err(bad()),
+        };
+        Ok(TrClass { grade, position })
     }
 
     /// Internal (H).
     pub fn internal(self) -> bool {
-        self.position == 'H'
+        match self.position {
+            TrPosition::H => true,
+            TrPosition::E | TrPosition::C => false,
+        }
+    }
+}
+
+impl TrGrade {
+    /// The grade's number.
+    pub fn number(self) -> u8 {
+        match self {
+            TrGrade::G7 => 7,
+            TrGrade::G8 => 8,
+            TrGrade::G9 => 9,
+        }
     }
 }
 
 impl fmt::Display for TrClass {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}{}", self.grade, self.position)
+        let g = self.grade.number();
+        let p = match self.position {
+            TrPosition::E => 'e',
+            TrPosition::C => 'c',
+            TrPosition::H => 'H',
+        };
+        write!(f, "{g}{p}")
     }
 }
 
@@ -879,25 +1101,37 @@ pub fn tr_limits(t: &BasicThread, c: TrClass) -> Result<ThreadLimits, Error> {
     })?;
     let (td2_7, tdd2_7) = (range.external[i], range.internal[i]);
     let mut notes = Vec::new();
-    let grade_factor = |g: u8, internal: bool| -> f64 {
-        match (g, internal) {
-            (8, false) => 1.6 / 1.25,
-            (9, false) => 2.0 / 1.25,
-            (8, true) => 2.12 / 1.7,
-            (9, true) => 2.65 / 1.7,
-            _ => 1.0,
+    // The ISO 965-1 grade factors (bolt Td2, nut TD2) relative to grade 7; None for grade 7
+    // itself, which the tables give.
+    let grade_factor = |internal: bool| -> Option<f64> {
+        match (c.grade, internal) {
+            (TrGrade::G7, _) => None,
+            (TrGrade::G8, false) => Some(1.6 / 1.25),
+            (TrGrade::G9, false) => Some(2.0 / 1.25),
+            (TrGrade::G8, true) => Some(2.12 / 1.7),
+            (TrGrade::G9, true) => Some(2.65 / 1.7),
         }
     };
-    if c.grade != 7 {
+    let graded = |td2_7: f64, internal: bool| grade_factor(internal).map_or(td2_7, |f| r40(f * td2_7, r40t));
+    if grade_factor(false).is_some() {
         notes.push(format!(
             "grade {} pitch-diameter tolerance from grade 7 by the ISO 965-1 grade factors (not published in the sources; one 8c value, Tr10x2-8c, agrees)",
-            c.grade
+            c.grade.number()
         ));
     }
     let (d2, d1, d3) = (t.pitch_diameter(), t.minor_diameter_internal(), t.minor_diameter_external());
     let ac = t.crest_clearance();
-    if c.internal() {
-        let td2 = if c.grade == 7 { tdd2_7 } else { r40(grade_factor(c.grade, true) * tdd2_7, r40t) };
+    let es = match c.position {
+        TrPosition::H => None,
+        TrPosition::E => Some(at(&tr.es_pitches, &tr.es_e, "es(e)")?),
+        TrPosition::C => Some(find_pitch(&tr.es_c_pitches, p).map(|i| tr.es_c[i]).ok_or_else(|| {
+            Error::Input(format!(
+                "es(c) of ISO 2903 at P = {p} mm is not in the sources (only P = 2 mm, −150 µm, is): use position e"
+            ))
+        })?),
+    };
+    let Some(es) = es else {
+        let td2 = graded(tdd2_7, true);
         let td1 = at(&tr.td_pitches, &tr.td1_4, "TD1(4)")?;
         return Ok(ThreadLimits {
             kind: ThreadKind::Internal,
@@ -912,19 +1146,11 @@ pub fn tr_limits(t: &BasicThread, c: TrClass) -> Result<ThreadLimits, Error> {
             gauge_plane: None,
             resolution: Resolution::Micrometre,
         });
-    }
-    let es = match c.position {
-        'e' => at(&tr.es_pitches, &tr.es_e, "es(e)")?,
-        _ => find_pitch(&tr.es_c_pitches, p).map(|i| tr.es_c[i]).ok_or_else(|| {
-            Error::Input(format!(
-                "es(c) of ISO 2903 at P = {p} mm is not in the sources (only P = 2 mm, −150 µm, is): use position e"
-            ))
-        })?,
     };
-    if c.position == 'e' && (p - 12.0).abs() < 1e-9 {
+    if c.position == TrPosition::E && (p - 12.0).abs() < 1e-9 {
         notes.push("es(e) at P = 12 is −170 µm as the table prints it; its d3 rows imply −160 µm (unresolved in the sources)".into());
     }
-    let td2 = if c.grade == 7 { td2_7 } else { r40(grade_factor(c.grade, false) * td2_7, r40t) };
+    let td2 = graded(td2_7, false);
     let td = at(&tr.td_pitches, &tr.td4, "Td(4)")?;
     // Td3 is a whole number of µm, rounded half up: Tr10x2-7e (308.5 → 309) prints 7.191
     // and the other published rows.
@@ -947,14 +1173,34 @@ pub fn tr_limits(t: &BasicThread, c: TrClass) -> Result<ThreadLimits, Error> {
 
 /// A general-purpose Acme class, ASME B1.5: 2G, 3G or 4G (the same class for nut and bolt).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct AcmeClass {
-    /// 2, 3 or 4.
-    pub grade: u8,
+pub enum AcmeClass {
+    /// 2G.
+    G2,
+    /// 3G.
+    G3,
+    /// 4G.
+    G4,
+}
+
+impl AcmeClass {
+    /// Reads the grade digit of `2G`, `3G`, `4G`.
+    pub fn from_digit(d: u8) -> Option<AcmeClass> {
+        match d {
+            2 => Some(AcmeClass::G2),
+            3 => Some(AcmeClass::G3),
+            4 => Some(AcmeClass::G4),
+            _ => None,
+        }
+    }
 }
 
 impl fmt::Display for AcmeClass {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}G", self.grade)
+        f.write_str(match self {
+            AcmeClass::G2 => "2G",
+            AcmeClass::G3 => "3G",
+            AcmeClass::G4 => "4G",
+        })
     }
 }
 
@@ -969,10 +1215,10 @@ pub fn acme_limits(t: &BasicThread, c: AcmeClass, kind: ThreadKind) -> ThreadLim
     let (d, p) = (t.nominal_diameter / inch, t.pitch / inch);
     let r4 = |x: f64| (x * 10_000.0).round() / 10_000.0;
     let mm = |x: f64| x * inch;
-    let (allow_k, a, b) = match c.grade {
-        2 => (0.008, 0.030, 0.006),
-        3 => (0.006, 0.014, 0.0028),
-        _ => (0.004, 0.010, 0.002),
+    let (allow_k, a, b) = match c {
+        AcmeClass::G2 => (0.008, 0.030, 0.006),
+        AcmeClass::G3 => (0.006, 0.014, 0.0028),
+        AcmeClass::G4 => (0.004, 0.010, 0.002),
     };
     let allowance = allow_k * d.sqrt();
     let td2 = a * p.sqrt() + b * d.sqrt();
