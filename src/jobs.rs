@@ -195,10 +195,15 @@ pub struct VerifyJob {
 impl VerifyJob {
     /// Runs the job: the report on stdout, files written atomically, pass or out of tolerance.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
-        if let Some((source, dialect)) = &self.spec.program {
-            return self.run_program(source, *dialect);
+        // The pictures and the JSON's deviation samples are computed with the verification.
+        let spec = crate::analysis::verify::VerifySpec {
+            picture: self.svg.is_some() || self.html.is_some() || self.json.is_some(),
+            ..self.spec.clone()
+        };
+        if let Some((source, dialect)) = &spec.program {
+            return self.run_program(&spec, source, *dialect);
         }
-        let v = crate::analysis::verify::verify(&self.spec)?;
+        let v = crate::analysis::verify::verify(&spec)?;
         let outcome = if v.pass { Outcome::Pass } else { Outcome::OutOfTolerance };
         // Render everything before writing anything, so a failure leaves no file half-done.
         let json_text =
@@ -211,16 +216,17 @@ impl VerifyJob {
 
     fn run_program(
         &self,
+        spec: &crate::analysis::verify::VerifySpec,
         source: &crate::analysis::verify::ProgramSource,
         dialect: crate::gcode::Dialect,
     ) -> Result<(String, Outcome), Error> {
-        if self.spec.final_x.is_some() {
+        if spec.final_x.is_some() {
             return Err(Error::Input(
                 "--final-x and --program exclude each other: the program sets the passes".into(),
             ));
         }
         let (shown, text) = source.load()?;
-        let default = self.spec.insert.clone();
+        let default = spec.insert.clone();
         let insert_for =
             |op: &crate::gcode::Operation| -> Option<(crate::analysis::verify::InsertChoice, String)> {
                 if self.insert_given {
@@ -283,21 +289,31 @@ impl VerifyJob {
     }
 }
 
-/// The one output step of the jobs, after everything is rendered (so a failure leaves no file
-/// half-done): each picture or page to its file, atomically, then the JSON routed as
-/// [`route_json`] does. Returns what to print.
+/// The one output step of the jobs, after everything is rendered: every picture, page and JSON
+/// file of the run written together, all or none (so a failure leaves no file half-done and
+/// every old output in place); the JSON routed as [`route_json`] does. Returns what to print.
 fn write_outputs(
     files: &[(&Option<std::path::PathBuf>, Option<String>)],
     json: Option<&str>,
     json_text: Option<String>,
     text: String,
 ) -> Result<String, Error> {
+    let mut outputs: Vec<(std::path::PathBuf, Vec<u8>)> = Vec::new();
     for (path, t) in files {
         if let (Some(path), Some(t)) = (path, t) {
-            crate::report::output::write_atomic(path, t.as_bytes())?;
+            outputs.push((path.clone(), t.clone().into_bytes()));
         }
     }
-    route_json(json, json_text, text)
+    let shown = match (json, json_text) {
+        (Some("-"), Some(t)) => t,
+        (Some(p), Some(t)) => {
+            outputs.push((std::path::PathBuf::from(p), t.into_bytes()));
+            text
+        }
+        _ => text,
+    };
+    crate::report::output::write_all_atomic(&outputs)?;
+    Ok(shown)
 }
 
 /// Where `--json` sends the JSON: `-` prints it on stdout instead of the text; a path writes it
@@ -338,9 +354,9 @@ impl FitJob {
         let r = crate::analysis::fit::fit(&self.spec)?;
         let outcome = if r.fits { Outcome::Pass } else { Outcome::OutOfTolerance };
         let json_text =
-            self.json.as_ref().map(|_| pretty(&crate::analysis::fit::FitJson::of(&r))).transpose()?;
-        let svg_text = self.svg.as_ref().map(|_| crate::analysis::fit::svg(&r));
-        let text = crate::analysis::fit::text(&r);
+            self.json.as_ref().map(|_| pretty(&crate::report::fit::FitJson::of(&r))).transpose()?;
+        let svg_text = self.svg.as_ref().map(|_| crate::report::fit::svg(&r));
+        let text = crate::report::fit::text(&r);
         Ok((write_outputs(&[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?, outcome))
     }
 }
@@ -501,18 +517,17 @@ pub struct CompareJob {
 impl CompareJob {
     /// Runs the job.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
-        let c = crate::analysis::compare::compare(&self.spec, &self.modified)?;
-        let md = crate::report::compare::markdown(&c);
+        let spec = crate::analysis::verify::VerifySpec { picture: self.html.is_some(), ..self.spec.clone() };
+        let c = crate::analysis::compare::compare(&spec, &self.modified)?;
+        let md = self.markdown.as_ref().map(|_| crate::report::compare::markdown(&c));
         let json_text =
             self.json.as_ref().map(|_| pretty(&crate::report::compare::CompareReport::of(&c))).transpose()?;
         let html = self.html.as_ref().map(|_| crate::report::html::compare_html(&c));
-        if let Some(p) = &self.markdown {
-            crate::report::output::write_atomic(p, md.as_bytes())?;
-        }
-        if let (Some(p), Some(h)) = (&self.html, &html) {
-            crate::report::output::write_atomic(p, h.as_bytes())?;
-        }
-        Ok((route_json(self.json.as_deref(), json_text, crate::report::compare::text(&c))?, Outcome::Pass))
+        let files = [(&self.markdown, md), (&self.html, html)];
+        Ok((
+            write_outputs(&files, self.json.as_deref(), json_text, crate::report::compare::text(&c))?,
+            Outcome::Pass,
+        ))
     }
 }
 
@@ -691,9 +706,12 @@ impl MillJob {
         let r = crate::analysis::mill::mill(&self.spec)?;
         let svg_text = self.svg.as_ref().map(|_| crate::report::svg::mill_svg(&r));
         let json_text = self.json.as_ref().map(|_| pretty(&r)).transpose()?;
-        let outcome =
-            if r.verdict == crate::report::Verdict::Pass { Outcome::Pass } else { Outcome::OutOfTolerance };
-        let text = crate::analysis::mill::text(&r);
+        let outcome = if r.verdict == crate::analysis::check::Verdict::Pass {
+            Outcome::Pass
+        } else {
+            Outcome::OutOfTolerance
+        };
+        let text = crate::report::mill::text(&r);
         Ok((write_outputs(&[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?, outcome))
     }
 }
@@ -719,7 +737,7 @@ impl InfeedReportJob {
         let mut runs = Vec::new();
         for d in REPORT_THREADS {
             for (iname, choice) in &inserts {
-                let spec = VerifySpec { insert: choice.clone(), ..VerifySpec::new(d) };
+                let spec = VerifySpec { insert: choice.clone(), picture: true, ..VerifySpec::new(d) };
                 runs.push((d, *iname, compare(&spec, &[29.5, 27.0])?));
             }
         }

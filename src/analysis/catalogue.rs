@@ -151,7 +151,7 @@ fn threads(spec: &CatalogueSpec, form: ThreadForm) -> Result<Vec<(String, f64, b
                     [("UNC", s.unc, spec.coarse), ("UNF", s.unf, spec.fine), ("UNEF", s.unef, spec.fine)];
                 for (sname, tpi, on) in series {
                     if let (Some(t), true) = (tpi, on) {
-                        let base = format!("{name}-{} {sname}", crate::report::fmt_num(t));
+                        let base = format!("{name}-{} {sname}", crate::ground::fmt::fmt_num(t));
                         both(format!("{base}-2A"), Some(format!("{base}-2B")), inch / t);
                     }
                 }
@@ -170,7 +170,7 @@ fn threads(spec: &CatalogueSpec, form: ThreadForm) -> Result<Vec<(String, f64, b
         ThreadForm::Acme => {
             for (d, tpi) in crate::standards::designation::acme_series() {
                 if within(d * inch) {
-                    let des = format!("{}-{} ACME-2G", inch_name(d), crate::report::fmt_num(tpi));
+                    let des = format!("{}-{} ACME-2G", inch_name(d), crate::ground::fmt::fmt_num(tpi));
                     both(des.clone(), Some(des), inch / tpi);
                 }
             }
@@ -193,7 +193,7 @@ fn threads(spec: &CatalogueSpec, form: ThreadForm) -> Result<Vec<(String, f64, b
             let n = &cat.pipe.npt;
             for i in 0..n.sizes.len() {
                 if within(n.OD[i] * inch) {
-                    let des = format!("{}-{} NPT", n.sizes[i], crate::report::fmt_num(n.tpi[i]));
+                    let des = format!("{}-{} NPT", n.sizes[i], crate::ground::fmt::fmt_num(n.tpi[i]));
                     both(des.clone(), Some(des), inch / n.tpi[i]);
                 }
             }
@@ -238,7 +238,7 @@ pub fn cases(spec: &CatalogueSpec) -> Result<Vec<Case>, Error> {
                 .root_radius();
                 let r = (0.1 * p).min(0.04).min(fits);
                 inserts.push((
-                    format!("partial r{}", crate::report::fmt_num(r)),
+                    format!("partial r{}", crate::ground::fmt::fmt_num(r)),
                     InsertChoice::Partial { tip_radius: r },
                 ));
             }
@@ -256,7 +256,7 @@ pub fn cases(spec: &CatalogueSpec) -> Result<Vec<Case>, Error> {
                         let label = format!(
                             "{designation}{} {iname} {} {}",
                             if internal { " internal" } else { "" },
-                            crate::report::infeed_text(&infeed),
+                            infeed,
                             match schedule {
                                 Schedule::ConstantArea => "constant-area",
                                 Schedule::ConstantDepth => "constant-depth",

@@ -436,6 +436,27 @@ pub fn verdict(checks: &[Check], gauge_only: bool) -> bool {
     checks.iter().filter(|c| c.kind.counts(gauge_only)).all(|c| c.ok)
 }
 
+/// A verdict.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Verdict {
+    /// Every counted check is within its limits.
+    Pass,
+    /// At least one is not.
+    Fail,
+}
+
+impl Verdict {
+    /// `Pass` when `ok`.
+    pub fn of(ok: bool) -> Verdict {
+        if ok {
+            Verdict::Pass
+        } else {
+            Verdict::Fail
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -27,11 +27,11 @@
 //! grow upward (prisms such as a cam, domes). Levels at or above the target's top (its `z` range,
 //! else Z0) cut air and are left out.
 
+use crate::analysis::check::Verdict;
 use crate::gcode::expr::{parse_all, Env, Expr, Syntax, Value, VarKey, VarRef};
 use crate::gcode::{Dialect, Move, ReadOptions};
 use crate::geometry::measure::golden_min;
 use crate::ground::plane::Point;
-use crate::report::Verdict;
 use crate::Error;
 use parry2d_f64::math::Point as PPoint;
 use parry2d_f64::query::{PointQuery, PointQueryWithLocation};
@@ -482,6 +482,12 @@ pub struct MillReport {
     pub target: Target,
     /// Pass when the gouge and the leftover are within the tolerance.
     pub verdict: Verdict,
+    /// The gouge is beyond the tolerance.
+    #[serde(skip)]
+    pub gouge_out: bool,
+    /// The leftover is beyond the tolerance.
+    #[serde(skip)]
+    pub leftover_out: bool,
     /// Largest gouge over all levels, mm.
     pub gouge_max: f64,
     /// Where.
@@ -739,10 +745,10 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
             "{} level{} at or above the part's top Z{} cut air and {} left out (Z{} … Z{})",
             air.len(),
             if air.len() == 1 { "" } else { "s" },
-            crate::report::fmt_num(top),
+            crate::ground::fmt::fmt_num(top),
             if air.len() == 1 { "is" } else { "are" },
-            crate::report::fmt_num(air[air.len() - 1].z),
-            crate::report::fmt_num(air[0].z),
+            crate::ground::fmt::fmt_num(air[air.len() - 1].z),
+            crate::ground::fmt::fmt_num(air[0].z),
         ));
     }
     let (cut, below): (Vec<LevelMoves>, Vec<LevelMoves>) =
@@ -752,16 +758,16 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
             "{} level{} below the part's bottom Z{} left out",
             below.len(),
             if below.len() == 1 { "" } else { "s" },
-            crate::report::fmt_num(spec.target.z.map_or(0.0, |z| z[0]))
+            crate::ground::fmt::fmt_num(spec.target.z.map_or(0.0, |z| z[0]))
         ));
     }
     if let (Some([bottom, _]), Some(deepest)) = (spec.target.z, cut.last()) {
         if deepest.z > bottom + 1e-9 {
             notes.push(format!(
                 "the target reaches down to Z{} but the deepest level cut is Z{}: {} mm of it is never machined",
-                crate::report::fmt_num(bottom),
-                crate::report::fmt_num(deepest.z),
-                crate::report::fmt_num(deepest.z - bottom)
+                crate::ground::fmt::fmt_num(bottom),
+                crate::ground::fmt::fmt_num(deepest.z),
+                crate::ground::fmt::fmt_num(deepest.z - bottom)
             ));
         }
     }
@@ -794,7 +800,7 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
             }
             None => notes.push(format!(
                 "the target has no extent at Z{}: that level is not checked",
-                crate::report::fmt_num(lm.z)
+                crate::ground::fmt::fmt_num(lm.z)
             )),
         }
     }
@@ -814,14 +820,17 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
             gouge_at: m.report.gouge_at,
         }
     });
-    let pass = gouge_max <= spec.tolerance + RESOLUTION && leftover_max <= spec.tolerance + RESOLUTION;
+    let gouge_out = gouge_max > spec.tolerance + RESOLUTION;
+    let leftover_out = leftover_max > spec.tolerance + RESOLUTION;
     Ok(MillReport {
         program: name.clone(),
         dialect: spec.dialect,
         tool_diameter: d,
         tolerance: spec.tolerance,
         target: spec.target.clone(),
-        verdict: Verdict::of(pass),
+        verdict: Verdict::of(!gouge_out && !leftover_out),
+        gouge_out,
+        leftover_out,
         gouge_max,
         gouge_at: worst_g.and_then(|m| m.0.report.gouge_at),
         leftover_max,
@@ -832,95 +841,4 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
         notes,
         picture,
     })
-}
-
-/// The text report.
-pub fn text(r: &MillReport) -> String {
-    use std::fmt::Write as _;
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "{} ({}): Ø{} mm cutter, {} levels checked against x = {}, y = {} (material {})",
-        r.program,
-        r.dialect.name(),
-        crate::report::fmt_num(r.tool_diameter),
-        r.levels.len(),
-        r.target.x,
-        r.target.y,
-        match r.target.material {
-            Material::Inside => "inside",
-            Material::Outside => "outside",
-        }
-    );
-    let spot = |p: &Option<Spot>| {
-        p.map_or(String::new(), |p| {
-            format!(
-                " at X{:.4} Y{:.4} Z{} (t = {:.2}°{})",
-                p.x,
-                p.y,
-                crate::report::fmt_num(p.z),
-                p.t,
-                if p.line > 0 { format!(", line {}", p.line) } else { String::new() }
-            )
-        })
-    };
-    let _ = writeln!(s, "\n  gouge     {:.4} mm{}", r.gouge_max, spot(&r.gouge_at));
-    let _ = writeln!(s, "  leftover  {:.4} mm{}", r.leftover_max, spot(&r.leftover_at));
-    let _ = writeln!(s, "  tolerance {:.4} mm", r.tolerance);
-    if r.levels.len() > 1 {
-        let _ = writeln!(s, "\n  level Z     moves     gouge mm   leftover mm");
-        let show: Vec<&LevelReport> = if r.levels.len() <= 12 {
-            r.levels.iter().collect()
-        } else {
-            // The first and last few, and the worst.
-            let mut v: Vec<&LevelReport> =
-                r.levels.iter().take(4).chain(r.levels.iter().rev().take(4).rev()).collect();
-            if let Some(w) = r.levels.iter().max_by(|a, b| a.gouge.total_cmp(&b.gouge)) {
-                if !v.iter().any(|l| l.z == w.z) {
-                    v.push(w);
-                }
-            }
-            v.sort_by(|a, b| b.z.total_cmp(&a.z));
-            v
-        };
-        let mut last_z = None;
-        for l in show {
-            if let Some(prev) = last_z {
-                let gap = r.levels.iter().filter(|m| m.z < prev && m.z > l.z).count();
-                if gap > 0 {
-                    let _ = writeln!(s, "  … {gap} more");
-                }
-            }
-            let _ = writeln!(
-                s,
-                "  {:>8}  {:>7}  {:>10.4}  {:>12.4}",
-                crate::report::fmt_num(l.z),
-                l.moves,
-                l.gouge,
-                l.leftover
-            );
-            last_z = Some(l.z);
-        }
-    }
-    let _ = writeln!(
-        s,
-        "\nverdict: {}",
-        match r.verdict {
-            Verdict::Pass => "PASS".to_string(),
-            Verdict::Fail => {
-                let mut why = Vec::new();
-                if r.gouge_max > r.tolerance + RESOLUTION {
-                    why.push("gouge");
-                }
-                if r.leftover_max > r.tolerance + RESOLUTION {
-                    why.push("material left");
-                }
-                format!("FAIL ({} beyond {} mm)", why.join(", "), crate::report::fmt_num(r.tolerance))
-            }
-        }
-    );
-    for n in &r.notes {
-        let _ = writeln!(s, "note: {n}");
-    }
-    s
 }

@@ -5,6 +5,7 @@ pub mod check;
 pub mod compare;
 pub mod fit;
 pub mod mill;
+pub mod picture;
 pub mod process;
 pub mod tools;
 pub mod verify;

@@ -177,7 +177,7 @@ pub fn process_checks(
                 s <= max + 1e-9,
                 format!(
                     "S{s} rpm against {max} rpm for P {} mm on {}",
-                    crate::report::fmt_num(pitch),
+                    crate::ground::fmt::fmt_num(pitch),
                     m.name
                 ),
             ));
@@ -189,7 +189,7 @@ pub fn process_checks(
                 f,
                 Some(fmax),
                 f <= fmax + 1e-9,
-                format!("S·lead = {} mm/min against {fmax} mm/min", crate::report::fmt_num(f)),
+                format!("S·lead = {} mm/min against {fmax} mm/min", crate::ground::fmt::fmt_num(f)),
             ));
         }
     }

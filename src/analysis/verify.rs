@@ -106,6 +106,9 @@ pub struct VerifySpec {
     /// Compute the per-pass chip and edge metrics (polygon booleans; reports need them, a
     /// catalogue sweep does not).
     pub metrics: bool,
+    /// Compute what the pictures draw ([`Picture`](crate::analysis::picture::Picture): the
+    /// full-length section, the zone and basic profiles, the deviation samples), for a report.
+    pub picture: bool,
     /// Chord tolerance for arcs, mm.
     pub tolerance: f64,
     /// Lengths in the text and the picture: mm, or mm with inches beside them.
@@ -149,6 +152,7 @@ impl VerifySpec {
             gauge_only: false,
             program: None,
             metrics: true,
+            picture: false,
             tolerance: crate::DEFAULT_TOLERANCE,
             units: Units::Mm,
             machine: None,
@@ -229,6 +233,8 @@ pub struct Verification {
     pub helix_angle: f64,
     /// The process checks' findings, for a program's operation.
     pub process: Option<crate::analysis::process::ProcessReport>,
+    /// What the pictures draw, when the spec asked for it.
+    pub picture: Option<crate::analysis::picture::Picture>,
 }
 
 /// Usual number of passes for a pitch P (mm): about 3.5 + 2·P, the order of the insert makers'
@@ -296,7 +302,7 @@ fn build_insert(choice: &InsertChoice, t: &BasicThread, kind: ThreadKind, tol: f
             if *tip_radius > limit {
                 return Err(Error::Geometry(format!(
                     "tip radius {tip_radius} mm is larger than the thread allows: the largest root radius at pitch {} mm ({} form) is {limit:.4} mm",
-                    crate::report::fmt_num(t.pitch),
+                    crate::ground::fmt::fmt_num(t.pitch),
                     t.form.name()
                 )));
             }
@@ -823,7 +829,7 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
     if spec.gauge_only {
         notes.push("gauge only: form checks are reported but left out of the verdict".into());
     }
-    Ok(Verification {
+    let mut v = Verification {
         designation: des,
         kind,
         limits,
@@ -847,7 +853,12 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
         units: spec.units,
         helix_angle: crate::analysis::process::helix_angle(t.lead(), t.pitch_diameter()),
         process: None,
-    })
+        picture: None,
+    };
+    if spec.picture {
+        v.picture = Some(crate::analysis::picture::picture(&v)?);
+    }
+    Ok(v)
 }
 
 /// What became of one operation of a program.

@@ -268,6 +268,18 @@ pub enum Schedule {
     Explicit(Vec<f64>),
 }
 
+impl std::fmt::Display for Infeed {
+    /// The infeed as words: `radial`, `flank 29.5°`, `alternating 30°`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use crate::ground::fmt::fmt_num;
+        match self {
+            Infeed::Radial => f.write_str("radial"),
+            Infeed::Flank { angle } => write!(f, "flank {}°", fmt_num(*angle)),
+            Infeed::Alternating { angle } => write!(f, "alternating {}°", fmt_num(*angle)),
+        }
+    }
+}
+
 impl std::str::FromStr for Schedule {
     type Err = Error;
 

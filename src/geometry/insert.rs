@@ -108,10 +108,10 @@ impl Insert {
                 format!(
                     "full-profile {} {} tpi",
                     thread.form.name(),
-                    crate::report::fmt_num(25.4 / thread.pitch)
+                    crate::ground::fmt::fmt_num(25.4 / thread.pitch)
                 )
             } else {
-                format!("full-profile {} P{}", thread.form.name(), crate::report::fmt_num(thread.pitch))
+                format!("full-profile {} P{}", thread.form.name(), crate::ground::fmt::fmt_num(thread.pitch))
             },
             angle: thread.form.flank_angle(),
             tip_radius,
@@ -155,7 +155,7 @@ impl Insert {
         extend_dedup(&mut outline, [Point::new(zt, height)]);
         Ok(Insert {
             kind: InsertKind::Partial,
-            name: format!("partial {angle}° r{}", crate::report::fmt_num(tip_radius)),
+            name: format!("partial {angle}° r{}", crate::ground::fmt::fmt_num(tip_radius)),
             angle,
             tip_radius,
             pitch_range: None,

@@ -654,12 +654,36 @@ pub fn measure(setup: &MeasureSetup<'_>, profile: &[Point], z_ref: f64) -> Resul
     })
 }
 
+/// Where along a thread profile a point lies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ProfileRegion {
+    /// The root.
+    Root,
+    /// A flank.
+    Flank,
+    /// The crest.
+    Crest,
+}
+
+/// One sample of a profile's normal deviation from a reference profile.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct DeviationSample {
+    /// Arc length along the reference from its start, mm.
+    pub s: f64,
+    /// Signed normal distance, mm: positive where the profile lies on the air side (more
+    /// material).
+    pub deviation: f64,
+    /// Where on the reference the sample lies.
+    pub region: ProfileRegion,
+}
+
 /// The normal deviation of profile `other` from the `reference` profile (both in part
-/// coordinates, low to high Z), at `n` points spaced evenly along the reference: (arc length
-/// along it, signed distance in mm, region). The distance is positive where `other` lies on
-/// the air side (more material): the air is above the profile (`air_up`, a bolt) or below it (a
-/// nut). The region is 0 root, 1 flank, 2 crest, read off the reference's slope and height.
-pub fn deviation_along(reference: &[Point], other: &[Point], air_up: bool, n: usize) -> Vec<(f64, f64, u8)> {
+/// coordinates, low to high Z), at `n` points spaced evenly along the reference. The distance is
+/// positive where `other` lies on the air side (more material): the air is above the profile
+/// (`air_up`, a bolt) or below it (a nut). The region is read off the reference's slope and
+/// height.
+pub fn deviation_along(reference: &[Point], other: &[Point], air_up: bool, n: usize) -> Vec<DeviationSample> {
     if reference.len() < 2 || other.len() < 2 || n < 2 {
         return Vec::new();
     }
@@ -689,13 +713,13 @@ pub fn deviation_along(reference: &[Point], other: &[Point], air_up: bool, n: us
         let d = cz.hypot(cr);
         let dev = if cz * nz + cr * nr >= 0.0 { d } else { -d };
         let region = if tr.abs() > 0.05 {
-            1
+            ProfileRegion::Flank
         } else if (q.r < mid) == air_up {
-            0
+            ProfileRegion::Root
         } else {
-            2
+            ProfileRegion::Crest
         };
-        out.push((s, dev, region));
+        out.push(DeviationSample { s, deviation: dev, region });
     }
     out
 }

@@ -3,4 +3,5 @@
 
 pub mod bounds;
 pub mod error;
+pub mod fmt;
 pub mod plane;

@@ -1,37 +1,20 @@
 //! The `verify` report: JSON as the CLI contract specifies, and the human table.
 
 pub mod compare;
+pub mod fit;
 pub mod html;
+pub mod mill;
 pub(crate) mod output;
 pub mod svg;
 
-use crate::analysis::check::CheckFeature;
+use crate::analysis::check::{CheckFeature, Verdict};
 use crate::analysis::verify::Verification;
 use crate::gcode::passes::{Infeed, Schedule};
+pub(crate) use crate::ground::fmt::fmt_num;
 use crate::ground::plane::rad;
 use crate::standards::{Hand, ThreadKind};
 use serde::Serialize;
 use std::fmt::Write as _;
-
-/// A number without float noise: at most six decimals, trailing zeros dropped.
-pub(crate) fn fmt_num(v: f64) -> String {
-    let s = format!("{v:.6}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".into()
-    } else {
-        s.to_string()
-    }
-}
-
-/// The infeed as words (`flank 29.5°`).
-pub fn infeed_text(i: &Infeed) -> String {
-    match i {
-        Infeed::Radial => "radial".into(),
-        Infeed::Flank { angle } => format!("flank {}°", fmt_num(*angle)),
-        Infeed::Alternating { angle } => format!("alternating {}°", fmt_num(*angle)),
-    }
-}
 
 fn schedule_text(s: &Schedule) -> &'static str {
     match s {
@@ -190,27 +173,6 @@ pub struct MeasuredReport {
     pub max_material_clearance: Option<f64>,
 }
 
-/// A verdict.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Verdict {
-    /// Every counted check is within its limits.
-    Pass,
-    /// At least one is not.
-    Fail,
-}
-
-impl Verdict {
-    /// `Pass` when `ok`.
-    pub fn of(ok: bool) -> Verdict {
-        if ok {
-            Verdict::Pass
-        } else {
-            Verdict::Fail
-        }
-    }
-}
-
 /// The whole `verify --json` object of a plan, and of each program operation (docs/json.md).
 #[derive(Clone, Debug, Serialize)]
 pub struct VerifyReport<'a> {
@@ -240,6 +202,10 @@ pub struct VerifyReport<'a> {
     pub suggested_final_x: Option<f64>,
     /// Stated assumptions.
     pub notes: &'a [String],
+    /// The normal deviation from the basic profile along one pitch, as the picture plots it
+    /// (when the verification carries its picture).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub deviation: Option<&'a crate::analysis::picture::Deviation>,
 }
 
 impl<'a> VerifyReport<'a> {
@@ -303,6 +269,7 @@ impl<'a> VerifyReport<'a> {
             process: v.process.as_ref(),
             suggested_final_x: v.suggested_final_x,
             notes: &v.notes,
+            deviation: v.picture.as_ref().map(|p| &p.deviation),
         }
     }
 }
@@ -329,7 +296,7 @@ pub fn verify_text(v: &Verification) -> String {
         v.insert.name,
         match &v.program {
             Some(p) => format!("passes from {p}"),
-            None => format!("{} infeed, {}", infeed_text(&v.infeed), schedule_text(&v.schedule)),
+            None => format!("{} infeed, {}", v.infeed, schedule_text(&v.schedule)),
         },
         v.passes.len()
     );

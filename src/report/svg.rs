@@ -5,10 +5,12 @@
 //! its own copies. Text from user input (designations, insert names) is escaped by the `svg`
 //! crate.
 
+use crate::analysis::picture::Picture;
 use crate::analysis::verify::Verification;
 use crate::geometry::insert::Insert;
+use crate::geometry::measure::{DeviationSample, ProfileRegion};
 use crate::ground::plane::{rad, Point};
-use crate::standards::{ProfileKind, ThreadKind};
+use crate::standards::ThreadKind;
 use svg::node::element::{Group, Line, Polygon, Polyline, Rectangle, Text};
 use svg::Document;
 
@@ -56,41 +58,6 @@ fn text(x: f64, y: f64, size: f64, s: impl Into<String>) -> Text {
         .set("y", format!("{y:.1}"))
         .set("font-size", size)
         .set("font-family", "sans-serif")
-}
-
-/// The profile `kind` of the thread moved radially so its pitch diameter is `d2`, repeated over
-/// `z_range` around the groove at `zc`, and clamped to the crest limit `crest` (radius) if given.
-fn shifted_profile(
-    v: &Verification,
-    variant: ProfileKind,
-    d2: f64,
-    zc: f64,
-    z_range: (f64, f64),
-    crest: Option<f64>,
-) -> Vec<Point> {
-    let t = &v.designation.thread;
-    let one = t.profile(variant, 1e-3);
-    let shift = 0.5 * (d2 - t.pitch_diameter());
-    let p = t.pitch;
-    let k0 = ((z_range.0 - zc) / p).floor() as i64 - 1;
-    let k1 = ((z_range.1 - zc) / p).ceil() as i64 + 1;
-    let mut out: Vec<Point> = Vec::new();
-    for k in k0..=k1 {
-        for q in &one {
-            let mut r = q.r + shift;
-            if let Some(c) = crest {
-                r = match v.kind {
-                    ThreadKind::External => r.min(c),
-                    ThreadKind::Internal => r.max(c),
-                };
-            }
-            let z = q.z + zc + k as f64 * p;
-            if out.last().is_none_or(|l| (l.z - z).abs() > 1e-12 || (l.r - r).abs() > 1e-12) {
-                out.push(Point::new(z, r));
-            }
-        }
-    }
-    out.into_iter().filter(|q| q.z >= z_range.0 && q.z <= z_range.1).collect()
 }
 
 /// A panel: its group (with the clip path, white background, frame and the caption above it)
@@ -199,28 +166,8 @@ fn colour(i: usize, n: usize) -> String {
 const ZONE: &str = "#2e9e4f";
 const FAIL: &str = "#c62828";
 
-/// The maximum- and minimum-material profiles around the groove (`None` without d2 limits).
-fn zone_profiles(v: &Verification, zr: (f64, f64)) -> Option<(Vec<Point>, Vec<Point>)> {
-    let l = &v.limits;
-    let (mmc_d2, lmc_d2) = match v.kind {
-        ThreadKind::External => (l.pitch_diameter.max, l.pitch_diameter.min),
-        ThreadKind::Internal => (l.pitch_diameter.min, l.pitch_diameter.max),
-    };
-    let (a, b) = (mmc_d2?, lmc_d2?);
-    let (mmc_variant, lmc_variant, lmc_crest) = match v.kind {
-        ThreadKind::External => (ProfileKind::Basic, ProfileKind::BoltMinRoot, l.major_diameter.min.map(rad)),
-        ThreadKind::Internal => (ProfileKind::Nut, ProfileKind::Nut, l.minor_diameter.max.map(rad)),
-    };
-    let zc = v.measurement.groove_center;
-    Some((
-        shifted_profile(v, mmc_variant, a, zc, zr, None),
-        shifted_profile(v, lmc_variant, b, zc, zr, lmc_crest),
-    ))
-}
-
-fn view(v: &Verification, f: &Frame, id: &str, label: &str) -> Group {
+fn view(v: &Verification, pic: Option<&Picture>, f: &Frame, id: &str, label: &str) -> Group {
     let kind = v.kind;
-    let m = &v.measurement;
     let zr = f.z_range();
     let surface = rad(v.blank_diameter);
     let far = v.section.far_r;
@@ -244,7 +191,7 @@ fn view(v: &Verification, f: &Frame, id: &str, label: &str) -> Group {
     // The tolerance zone between the maximum- and minimum-material profiles, over the material
     // and translucent: both its sides show, in material and in air.
     let mut zone = Group::new().set("id", format!("{id}-tolerance-zone"));
-    if let Some((mmc, mut lmc)) = zone_profiles(v, zr) {
+    if let Some((mmc, mut lmc)) = pic.and_then(|p| p.zone(zr)) {
         let mut poly = mmc.clone();
         let lmc_line = lmc.clone();
         lmc.reverse();
@@ -278,9 +225,7 @@ fn view(v: &Verification, f: &Frame, id: &str, label: &str) -> Group {
         .set("fill", "none")
         .set("stroke", "#111")
         .set("stroke-width", 2.0);
-    let basic_variant = if kind == ThreadKind::External { ProfileKind::Basic } else { ProfileKind::Nut };
-    let basic =
-        shifted_profile(v, basic_variant, v.designation.thread.pitch_diameter(), m.groove_center, zr, None);
+    let basic = pic.map(|p| Picture::clip(&p.basic, zr)).unwrap_or_default();
     let basic_g = Group::new().set("id", format!("{id}-basic-profile")).add(
         Polyline::new()
             .set("points", f.points(&basic))
@@ -513,7 +458,7 @@ fn check_table(v: &Verification, x: f64, y: f64) -> (Group, f64) {
         let value = match c.feature {
             crate::CheckFeature::FlankAngle => format!("{:.2}°", c.value),
             f if f.is_length() => format!("{:.4}", c.value),
-            _ => crate::report::fmt_num(c.value),
+            _ => crate::ground::fmt::fmt_num(c.value),
         };
         let lim = fmt_limits(c.min, c.max, unit);
         let off = if c.deviation_um == 0.0 || !c.feature.is_length() {
@@ -588,33 +533,25 @@ fn chip_chart(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Group {
 /// The normal deviation of the as-cut profile, and of the maximum- and minimum-material
 /// profiles, from the basic profile along one pitch (root, flank, crest, flank), magnified, as a
 /// contour-measuring machine reports it, with the values at the flank midpoints.
-fn deviation_plot(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Group {
+fn deviation_plot(pic: &Picture, x: f64, y: f64, w: f64, h: f64) -> Group {
     let f = Frame { x0: x, y0: y, w, h, z_min: 0.0, r_max: 0.0, scale: 1.0 };
     let (mut g, mut body) = panel(&f, "deviation-plot", "deviation from the basic profile, normal to it, µm");
-    let p = v.designation.thread.pitch;
-    let zc = v.measurement.groove_center;
-    let basic_variant = if v.kind == ThreadKind::External { ProfileKind::Basic } else { ProfileKind::Nut };
-    let zr = (zc - 0.5 * p, zc + 0.5 * p);
-    let basic = shifted_profile(v, basic_variant, v.designation.thread.pitch_diameter(), zc, zr, None);
-    let air_up = v.kind == ThreadKind::External;
-    let samples = crate::geometry::measure::deviation_along(&basic, &v.section.profile(), air_up, 400);
+    let dev = &pic.deviation;
+    let (samples, mmc, lmc) = (&dev.as_cut, &dev.max_material, &dev.min_material);
     if samples.is_empty() {
         return g.add(body);
     }
-    let zone = zone_profiles(v, (zr.0 - p, zr.1 + p));
-    let bound = |prof: &[Point]| crate::geometry::measure::deviation_along(&basic, prof, air_up, 400);
-    let (mmc, lmc) = zone.as_ref().map_or((Vec::new(), Vec::new()), |(a, b)| (bound(a), bound(b)));
-    let s_max = samples.last().map_or(1.0, |s| s.0).max(1e-9);
-    let all = samples.iter().chain(&mmc).chain(&lmc).map(|s| s.1.abs()).fold(0.0, f64::max).max(1e-4);
+    let s_max = samples.last().map_or(1.0, |s| s.s).max(1e-9);
+    let all = samples.iter().chain(mmc).chain(lmc).map(|s| s.deviation.abs()).fold(0.0, f64::max).max(1e-4);
     let um = 1000.0;
     let span = all * um * 1.15;
     let px = |s: f64| x + 40.0 + (w - 60.0) * s / s_max;
     let py = |d: f64| y + 0.5 * h - (0.5 * h - 12.0) * (d * um) / span;
-    let line = |pts: &[(f64, f64, u8)]| {
-        pts.iter().map(|q| format!("{:.2},{:.2}", px(q.0), py(q.1))).collect::<Vec<_>>().join(" ")
+    let line = |pts: &[DeviationSample]| {
+        pts.iter().map(|q| format!("{:.2},{:.2}", px(q.s), py(q.deviation))).collect::<Vec<_>>().join(" ")
     };
     if !mmc.is_empty() && mmc.len() == lmc.len() {
-        let mut band: Vec<(f64, f64, u8)> = mmc.clone();
+        let mut band: Vec<DeviationSample> = mmc.clone();
         band.extend(lmc.iter().rev().copied());
         body = body
             .add(
@@ -624,10 +561,10 @@ fn deviation_plot(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Group {
                     .set("fill-opacity", 0.3)
                     .set("stroke", "none"),
             )
-            .add(Polyline::new().set("points", line(&mmc)).set("fill", "none").set("stroke", ZONE))
+            .add(Polyline::new().set("points", line(mmc)).set("fill", "none").set("stroke", ZONE))
             .add(
                 Polyline::new()
-                    .set("points", line(&lmc))
+                    .set("points", line(lmc))
                     .set("fill", "none")
                     .set("stroke", ZONE)
                     .set("stroke-dasharray", "4 2"),
@@ -645,7 +582,7 @@ fn deviation_plot(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Group {
         )
         .add(
             Polyline::new()
-                .set("points", line(&samples))
+                .set("points", line(samples))
                 .set("fill", "none")
                 .set("stroke", "#111")
                 .set("stroke-width", 1.6),
@@ -654,24 +591,24 @@ fn deviation_plot(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Group {
     let mut labels: Vec<(f64, String)> = Vec::new();
     let mut start = 0;
     for i in 1..=samples.len() {
-        if i == samples.len() || samples[i].2 != samples[start].2 {
+        if i == samples.len() || samples[i].region != samples[start].region {
             let mid = &samples[(start + i - 1) / 2];
-            let name = match samples[start].2 {
-                0 => "root",
-                1 => "flank",
-                _ => "crest",
+            let name = match samples[start].region {
+                ProfileRegion::Root => "root",
+                ProfileRegion::Flank => "flank",
+                ProfileRegion::Crest => "crest",
             };
-            let cx = px(0.5 * (samples[start].0 + samples[i - 1].0));
-            if samples[start].2 == 1 {
+            let cx = px(0.5 * (samples[start].s + samples[i - 1].s));
+            if samples[start].region == ProfileRegion::Flank {
                 // The value at the flank's middle: a dot on the curve, the number below the panel.
                 body = body.add(
                     svg::node::element::Circle::new()
-                        .set("cx", format!("{:.2}", px(mid.0)))
-                        .set("cy", format!("{:.2}", py(mid.1)))
+                        .set("cx", format!("{:.2}", px(mid.s)))
+                        .set("cy", format!("{:.2}", py(mid.deviation)))
                         .set("r", 2.5)
                         .set("fill", "#111"),
                 );
-                labels.push((px(mid.0), format!("flank {:+.1} µm", mid.1 * um)));
+                labels.push((px(mid.s), format!("flank {:+.1} µm", mid.deviation * um)));
             } else {
                 labels.push((cx, name.to_string()));
             }
@@ -871,7 +808,7 @@ fn verification_group(v: &Verification) -> (Group, f64) {
     ));
     let source = match &v.program {
         Some(p) => format!("program {}", file_name(p)),
-        None => format!("infeed: {}", crate::report::infeed_text(&v.infeed)),
+        None => format!("infeed: {}", v.infeed),
     };
     let sub = format!(
         "insert: {} · {} · {} passes · {stock} Ø{:.3} · last pass X{:.4}",
@@ -894,19 +831,6 @@ fn verification_group(v: &Verification) -> (Group, f64) {
         );
         yy += 19.0;
     }
-    // The whole thread, run-out included: the envelope over the full length (the tree for
-    // undercut custom inserts).
-    let full = {
-        let setup = crate::geometry::sweep::SweepSetup {
-            kind: v.kind,
-            insert: &v.insert,
-            blank_diameter: v.blank_diameter,
-            pitch: p,
-        };
-        let w = crate::geometry::sweep::full_length_window(&v.passes, p);
-        crate::geometry::sweep::sweep(&setup, &v.passes, w, crate::geometry::boolean::UnionStrategy::Envelope)
-            .ok()
-    };
     let (table, table_end) = check_table(v, 690.0, top + 220.0 + 50.0);
     let legend_y = table_end + 16.0;
     let below = (top + 460.0).max(legend_y + 6.0 * 16.0 + 30.0);
@@ -914,18 +838,23 @@ fn verification_group(v: &Verification) -> (Group, f64) {
     let mut doc = Group::new()
         .add(Rectangle::new().set("width", WIDTH).set("height", height).set("fill", "white"))
         .add(title)
-        .add(view(v, &tooth, "tooth", "one tooth"))
+        .add(view(v, v.picture.as_ref(), &tooth, "tooth", "one tooth"))
         .add(dimension_labels(v, &tooth, 188.0))
-        .add(view(v, &window, "window", "four pitches"))
+        .add(view(v, v.picture.as_ref(), &window, "window", "four pitches"))
         .add(table)
         .add(legend(690.0, legend_y, v.kind));
-    doc = doc.add(deviation_plot(v, 60.0, below, 570.0, 200.0));
+    // The deviation plot and the whole thread, run-out included, are drawn from the
+    // verification's picture (computed when `VerifySpec::picture` asks for it).
+    if let Some(pic) = &v.picture {
+        doc = doc.add(deviation_plot(pic, 60.0, below, 570.0, 200.0));
+    }
     if !v.metrics.is_empty() {
         doc = doc.add(chip_chart(v, 730.0, below + 20.0, 330.0, 150.0));
     }
-    let doc = match &full {
-        Some(f) => {
-            let fw = f.section.window;
+    let doc = match &v.picture {
+        Some(pic) => {
+            let f = &pic.full_length;
+            let fw = f.window;
             let frame = Frame::new(
                 20.0,
                 below + 260.0,
@@ -934,7 +863,7 @@ fn verification_group(v: &Verification) -> (Group, f64) {
                 (fw.z_min, fw.z_max),
                 (r0 - 0.3 * p, r1 + 0.2 * p),
             );
-            doc.add(full_view(&f.section, &frame, v))
+            doc.add(full_view(f, &frame, v))
         }
         None => doc,
     };
@@ -1046,14 +975,14 @@ pub fn mill_svg(r: &crate::analysis::mill::MillReport) -> String {
     }
     doc = doc.add(g);
     let verdict = match r.verdict {
-        crate::report::Verdict::Pass => "PASS",
-        crate::report::Verdict::Fail => "FAIL",
+        crate::analysis::check::Verdict::Pass => "PASS",
+        crate::analysis::check::Verdict::Fail => "FAIL",
     };
     doc = doc.add(text(
         20.0,
         30.0,
         18.0,
-        format!("{name}: level Z{} — {verdict}", crate::report::fmt_num(pic.z)),
+        format!("{name}: level Z{} — {verdict}", crate::ground::fmt::fmt_num(pic.z)),
     ));
     doc = doc.add(text(
         20.0,
@@ -1061,11 +990,11 @@ pub fn mill_svg(r: &crate::analysis::mill::MillReport) -> String {
         13.0,
         format!(
             "Ø{} mm cutter; gouge {:.4} mm, leftover {:.4} mm, tolerance {} mm; red: deviation from the target × {}",
-            crate::report::fmt_num(r.tool_diameter),
+            crate::ground::fmt::fmt_num(r.tool_diameter),
             r.gouge_max,
             r.leftover_max,
-            crate::report::fmt_num(r.tolerance),
-            crate::report::fmt_num((mag * 10.0).round() / 10.0)
+            crate::ground::fmt::fmt_num(r.tolerance),
+            crate::ground::fmt::fmt_num((mag * 10.0).round() / 10.0)
         ),
     ));
     doc = doc.add(text(20.0, 74.0, 12.0, "black: target; blue: area the cutter swept and its centre path; red inside the black line: gouge, outside: material left"));
