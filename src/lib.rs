@@ -62,6 +62,7 @@ mod standards;
 
 // Ground: the error, the plane's value types.
 pub use ground::error::{Error, Result};
+pub use ground::note::{Note, NoteKind, Place};
 pub use ground::plane::{Arc, Point, DEFAULT_TOLERANCE, MIN_TOLERANCE};
 
 // Standards: designations, forms, classes and their limits of size.

@@ -104,7 +104,11 @@ fn seed_o1818_damaged_reads_as_written_and_leaves_no_crest() {
     assert!(p.passes.iter().all(|q| q.lead == 0.75));
     let last = p.passes.last().unwrap();
     assert!(close(last.x_end, 9.8531));
-    assert!(p.notes.iter().any(|n| n.contains("G70 P1") && n.contains("no block N1")), "{:?}", p.notes);
+    assert!(
+        p.notes.iter().any(|n| n.to_string().contains("G70 P1") && n.to_string().contains("no block N1")),
+        "{:?}",
+        p.notes
+    );
     let o = run(&[
         "verify",
         "--program",
@@ -191,10 +195,12 @@ fn thesis_g33_taper_warns_repeats_and_the_shallow_pass() {
     let p = src("thesis-g33-taper.mpf", Dialect::Sinumerik);
     assert_eq!(p.passes.len(), 4);
     assert!(close(p.passes[0].x_start, 73.43) && close(p.passes[0].x_end, 117.1));
-    assert!(p.notes.iter().any(|n| n.contains("N210 is repeated")), "{:?}", p.notes);
+    assert!(p.notes.iter().any(|n| n.to_string().contains("N210 is repeated")), "{:?}", p.notes);
     let op = &p.operations[0];
     assert!(
-        op.notes.iter().any(|n| n.contains("pass 3") && n.contains("0.070 mm shallower")),
+        op.notes
+            .iter()
+            .any(|n| n.to_string().contains("pass 3") && n.to_string().contains("0.070 mm shallower")),
         "{:?}",
         op.notes
     );
@@ -377,8 +383,10 @@ fn macro_b_null_word_is_dropped_and_named() {
     let p = own("macro-b-null-word.nc", Dialect::Fanuc);
     assert_eq!(p.passes[0].z_start, 5.0);
     assert!(
-        p.notes.iter().any(|n| n.ends_with("#9 is read before it is set: it is null (0 in arithmetic)")
-            && n.contains(":3:10:")),
+        p.notes
+            .iter()
+            .any(|n| n.to_string().ends_with("#9 is read before it is set: it is null (0 in arithmetic)")
+                && n.to_string().contains(":3:10:")),
         "{:?}",
         p.notes
     );
@@ -395,8 +403,12 @@ fn linuxcnc_o_word_subroutines_and_while() {
     for (x, d) in xs.iter().zip([0.2, 0.4, 0.6, 0.8]) {
         assert!(close(*x, 2.0 * (10.0 - d)), "{xs:?}");
     }
-    assert!(p.notes.iter().any(|n| n.contains("o<unused> sub is defined but never called")), "{:?}", p.notes);
-    assert!(!p.notes.iter().any(|n| n.contains("o<contour>")));
+    assert!(
+        p.notes.iter().any(|n| n.to_string().contains("o<unused> sub is defined but never called")),
+        "{:?}",
+        p.notes
+    );
+    assert!(!p.notes.iter().any(|n| n.to_string().contains("o<contour>")));
 }
 
 /// Sinumerik labels and IF … GOTOB: three passes at X = 20 − 0.4·R1; GOTOF skips N100.
@@ -547,7 +559,7 @@ fn linuxcnc_profile_subroutine_of_g71_counts_as_called() {
     let text = "G21 G18 G7\no100 sub\nG1 X10 Z0\nG1 X12 Z-1\no100 endsub\nG0 X22 Z2\nG71 Q100 X20 Z2 D1\nG0 X12 Z2\nG33 Z-10 K1.5\nG0 X20\nM2\n";
     let p = read_program(text, "g71.ngc", Dialect::LinuxCnc).unwrap();
     assert_eq!(p.passes.len(), 1);
-    assert!(p.notes.iter().all(|n| !n.contains("never called")), "{:?}", p.notes);
+    assert!(p.notes.iter().all(|n| !n.to_string().contains("never called")), "{:?}", p.notes);
 }
 
 /// The paraboloid dome executes to its toolpath as printed: 800 layers (Z0 … −39.95, so Z−40 is
@@ -560,7 +572,7 @@ fn seed_paraboloid_expands_and_names_hash_14() {
     let opts = ReadOptions { moves: true, allow_no_threading: true, n_order: false, budget: None };
     let p = read_program_with(&text, "dome.nc", Dialect::Dyna, opts).unwrap();
     assert_eq!(p.moves.len(), 1_153_603);
-    assert!(p.notes.iter().any(|n| n.contains("#14 is read before it is set")), "{:?}", p.notes);
+    assert!(p.notes.iter().any(|n| n.to_string().contains("#14 is read before it is set")), "{:?}", p.notes);
     let deepest = p.moves.iter().map(|m| m.to[2]).fold(0.0, f64::min);
     assert!(close(deepest, -39.95), "{deepest}");
     // Layer Z−10 starts from the end of layer Z−9.95 with G01 X6 Y0, then plunges at X6.

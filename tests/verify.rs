@@ -423,7 +423,9 @@ fn tool_table_chooses_the_insert_of_the_programs_tool() {
     assert_eq!(op["insert"]["kind"], "partial");
     let notes: Vec<&str> = op["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap()).collect();
     assert!(
-        notes.iter().any(|n| n.contains("insert assumed") && n.contains("T3") && n.contains("--tools")),
+        notes.iter().any(|n| n.to_string().contains("insert assumed")
+            && n.to_string().contains("T3")
+            && n.to_string().contains("--tools")),
         "{notes:?}"
     );
 }

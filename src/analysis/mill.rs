@@ -504,7 +504,7 @@ pub struct MillReport {
     /// The deviation at each tool centre (move end) of that level.
     pub profile: Vec<ProfilePoint>,
     /// Warnings from the program and the stated assumptions.
-    pub notes: Vec<String>,
+    pub notes: Vec<crate::ground::note::Note>,
     /// The picture's data.
     #[serde(skip)]
     pub picture: Option<MillPicture>,
@@ -741,7 +741,7 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
     }
     let (cut, air): (Vec<LevelMoves>, Vec<LevelMoves>) = all.into_iter().partition(|l| l.z < top - 1e-9);
     if !air.is_empty() {
-        notes.push(format!(
+        notes.push(crate::ground::note::Note::from(format!(
             "{} level{} at or above the part's top Z{} cut air and {} left out (Z{} … Z{})",
             air.len(),
             if air.len() == 1 { "" } else { "s" },
@@ -749,31 +749,31 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
             if air.len() == 1 { "is" } else { "are" },
             crate::ground::fmt::fmt_num(air[air.len() - 1].z),
             crate::ground::fmt::fmt_num(air[0].z),
-        ));
+        )));
     }
     let (cut, below): (Vec<LevelMoves>, Vec<LevelMoves>) =
         cut.into_iter().partition(|l| spec.target.z.is_none_or(|z| l.z >= z[0] - 1e-9));
     if !below.is_empty() {
-        notes.push(format!(
+        notes.push(crate::ground::note::Note::from(format!(
             "{} level{} below the part's bottom Z{} left out",
             below.len(),
             if below.len() == 1 { "" } else { "s" },
             crate::ground::fmt::fmt_num(spec.target.z.map_or(0.0, |z| z[0]))
-        ));
+        )));
     }
     if let (Some([bottom, _]), Some(deepest)) = (spec.target.z, cut.last()) {
         if deepest.z > bottom + 1e-9 {
-            notes.push(format!(
+            notes.push(crate::ground::note::Note::from(format!(
                 "the target reaches down to Z{} but the deepest level cut is Z{}: {} mm of it is never machined",
                 crate::ground::fmt::fmt_num(bottom),
                 crate::ground::fmt::fmt_num(deepest.z),
                 crate::ground::fmt::fmt_num(deepest.z - bottom)
-            ));
+            )));
         }
     }
-    notes.push(
-        "each level is checked against the target at its own Z (the section its tool bottom cuts); the tool's flank also passes the sections above it".into(),
-    );
+    notes.push(crate::ground::note::Note::from(
+        "each level is checked against the target at its own Z (the section its tool bottom cuts); the tool's flank also passes the sections above it",
+    ));
     // A target that does not depend on z is sampled once.
     let shared = if spec.target.uses_z {
         None
@@ -798,10 +798,10 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
                 levels_out.push(m.report.clone());
                 kept.push((m, lm));
             }
-            None => notes.push(format!(
+            None => notes.push(crate::ground::note::Note::from(format!(
                 "the target has no extent at Z{}: that level is not checked",
                 crate::ground::fmt::fmt_num(lm.z)
-            )),
+            ))),
         }
     }
     let worst_g = kept.iter().max_by(|a, b| a.0.report.gouge.total_cmp(&b.0.report.gouge));

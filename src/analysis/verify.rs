@@ -224,7 +224,7 @@ pub struct Verification {
     /// Form checks left out of the verdict.
     pub gauge_only: bool,
     /// Assumptions and warnings worth printing.
-    pub notes: Vec<String>,
+    pub notes: Vec<crate::ground::note::Note>,
     /// The program the passes came from and its dialect, when they came from one.
     pub program: Option<String>,
     /// Lengths in the text and the picture.
@@ -552,7 +552,7 @@ pub struct Resolved {
     /// Infeed.
     pub infeed: Infeed,
     /// Notes so far.
-    pub notes: Vec<String>,
+    pub notes: Vec<crate::ground::note::Note>,
     spec: VerifySpec,
 }
 
@@ -625,7 +625,7 @@ pub fn resolve(spec: &VerifySpec) -> Result<Resolved, Error> {
             return Err(Error::Input(format!("infeed angle {a}°: must be from 0 to under 90 degrees")));
         }
     }
-    let notes = limits.notes.clone();
+    let notes = limits.notes.iter().map(|n| crate::ground::note::Note::from(n.as_str())).collect();
     Ok(Resolved { designation: des, kind, limits, insert, blank, infeed, notes, spec: spec.clone() })
 }
 
@@ -673,7 +673,7 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
 struct Given {
     passes: Vec<Pass>,
     label: String,
-    notes: Vec<String>,
+    notes: Vec<crate::ground::note::Note>,
 }
 
 fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, Error> {
@@ -755,7 +755,7 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
     let target = target_at(taper.map_or(0.0, |(_, z, _)| z));
     let program_label = given.as_ref().map(|g| g.label.clone());
     let (final_x, solved, cut) = if let Some(g) = given {
-        notes.extend(g.notes);
+        notes.extend(g.notes.into_iter().map(crate::ground::note::Note::from));
         let passes = g.passes;
         let z_ref = z_of(&passes);
         let last = last_head(&passes);
@@ -789,10 +789,9 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
     let metrics = if spec.metrics { pass_metrics(&setup, &cut.passes, cut.z_ref)? } else { Vec::new() };
     let m = &cut.measurement;
     if m.pitch_line_extrapolated {
-        notes.push(
-            "the pitch line lies outside the cut flanks; the fitted flank lines were extended to find it"
-                .into(),
-        );
+        notes.push(crate::ground::note::Note::from(
+            "the pitch line lies outside the cut flanks; the fitted flank lines were extended to find it",
+        ));
     }
     // The gauge plane of a taper thread: where the pitch cone reaches the basic gauge diameter,
     // from the pitch diameter measured at z_ref and the taper, against its basic distance.
@@ -905,7 +904,7 @@ pub struct ProgramVerification {
     /// Each threading operation in program order.
     pub operations: Vec<OperationVerdict>,
     /// Program-wide warnings (variables read before set, repeated sequence numbers, …).
-    pub notes: Vec<String>,
+    pub notes: Vec<crate::ground::note::Note>,
     /// Blocks read for position only.
     pub skipped_blocks: usize,
 }
@@ -930,13 +929,13 @@ pub fn verify_operation(
     let file = label.rsplit_once(" (").map_or(label, |x| x.0);
     let passes = program_passes(op, &r.designation, file)?;
     let _ = prog;
-    let mut notes: Vec<String> = op.notes.clone();
+    let mut notes: Vec<crate::ground::note::Note> = op.notes.clone();
     if let Some((angle, word)) = &op.infeed_angle {
         let half = 0.5 * r.insert.angle;
         if *angle > half + 1e-9 {
-            notes.push(format!(
+            notes.push(crate::ground::note::Note::from(format!(
                 "infeed angle {word} = {angle}° is above half the insert angle ({half}°): each pass moves away from the trailing flank faster than the flank slopes, so the groove widens at the crest and the trailing flank is stepped"
-            ));
+            )));
         }
     }
     // The passes must reach the material: external below the blank, internal above the bore.
@@ -1014,7 +1013,7 @@ pub fn verify_program(
         }
         let mut result = verify_operation(&s, &prog, op, &label)?;
         if let OperationResult::Verified(v) = &mut result {
-            v.notes.extend(extra);
+            v.notes.extend(extra.into_iter().map(crate::ground::note::Note::from));
             let t = v.designation.thread;
             let (checks, report) = crate::analysis::process::process_checks(
                 op,

@@ -488,10 +488,10 @@ pub(crate) fn one_block_g76(
     if half > 0.0 {
         m.op_mut(op).infeed_angle = Some((half, "A/2".into()));
     }
-    m.op_mut(op).notes.push(format!(
+    m.op_mut(op).notes.push(crate::ground::note::Note::from(format!(
         "{cycle}: Setting 86 (finish allowance) {} mm and Setting 99 (minimum cut) {} mm assumed; P{p}",
         st.finish, st.min_cut
-    ));
+    )));
     for (dn, sh) in depths.iter().zip(shifts) {
         let x_end = x_root + sign * 2.0 * (k - dn);
         let x_start = x_end + 2.0 * taper;

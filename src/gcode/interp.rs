@@ -10,6 +10,7 @@ use super::expr::{self, Env, Expr, Value, VarKey, VarRef};
 use super::lexer::{Block, OKw, Stmt, WVal};
 use super::motion::{Motion, RBlock, RWord};
 use crate::ground::bounds::{MAX_CALL_DEPTH, MAX_REPEATS};
+use crate::ground::note::NoteKind;
 use crate::Error;
 use std::collections::{HashMap, HashSet};
 
@@ -117,7 +118,7 @@ impl Vars {
                 VarKey::Named(s) => format!("#<{s}>"),
             };
             let how = self.lang.unset_reads;
-            m.note(line, col, format!("{name} is read before it is set: {how}"));
+            m.note_of(NoteKind::UnsetVariable, line, col, format!("{name} is read before it is set: {how}"));
         }
     }
 }
@@ -860,12 +861,19 @@ pub(crate) fn run(
         }
         pc = next;
     }
-    // Subroutines defined and never called are read past; say so.
-    for (name, &(start, _)) in &lay.subs {
-        if !called.contains(name) && start > 0 {
+    // Subroutines defined and never called are read past; say so, in the order they stand.
+    let mut never: Vec<(usize, &String)> = lay
+        .subs
+        .iter()
+        .filter(|(name, _)| !called.contains(*name))
+        .map(|(name, &(start, _))| (start, name))
+        .collect();
+    never.sort_unstable();
+    for (start, name) in never {
+        if start > 0 {
             let hb = &blocks[start - 1];
             let what = (vars.lang.sub_word)(name);
-            m.note(hb.line, hb.col, format!("{what} is defined but never called"));
+            m.note_of(NoteKind::NeverCalled, hb.line, hb.col, format!("{what} is defined but never called"));
         }
     }
     Ok(())

@@ -29,6 +29,7 @@ pub mod passes;
 mod sinumerik;
 
 use crate::gcode::passes::Pass;
+use crate::ground::note::{Note, NoteKind};
 use crate::Error;
 use serde::Serialize;
 
@@ -130,7 +131,7 @@ pub struct Operation {
     /// Its passes in cutting order.
     pub passes: Vec<Pass>,
     /// Warnings and the defaults the expansion assumed.
-    pub notes: Vec<String>,
+    pub notes: Vec<Note>,
 }
 
 impl Operation {
@@ -149,8 +150,8 @@ pub struct Program {
     pub operations: Vec<Operation>,
     /// Blocks read for position only (turning, tool changes, …).
     pub skipped_blocks: usize,
-    /// Warnings worth printing, each with its place (`file:line:column:` where known).
-    pub notes: Vec<String>,
+    /// Warnings worth printing, each with its place where it has one.
+    pub notes: Vec<Note>,
     /// Every feed and rapid move, when asked for ([`ReadOptions::moves`]).
     pub moves: Vec<Move>,
 }
@@ -270,19 +271,16 @@ pub fn read_program_with(
         opts.budget.unwrap_or_default(),
     )?;
     let (operations, skipped, mut notes, moves) = m.finish();
-    notes.extend(order_note);
+    notes.extend(order_note.map(Note::from));
     if operations.is_empty() && !opts.allow_no_threading {
         let mut why = format!("no threading pass in the program (looked for {})", dialect.threading_words());
         // A subroutine defined and never called is the likely reason: point at it.
         let (mut line, mut col) = (1, 1);
-        if let Some(n) = notes.iter().find(|n| n.contains("never called")) {
-            let rest = n.strip_prefix(&format!("{file}:")).unwrap_or(n);
-            let mut parts = rest.splitn(3, ':');
-            if let (Some(l), Some(c), Some(msg)) = (parts.next(), parts.next(), parts.next()) {
-                line = l.parse().unwrap_or(1);
-                col = c.parse().unwrap_or(1);
-                why.push_str(&format!(";{msg}"));
+        if let Some(n) = notes.iter().find(|n| n.kind == NoteKind::NeverCalled) {
+            if let Some(p) = &n.place {
+                (line, col) = (p.line, p.column);
             }
+            why.push_str(&format!("; {}", n.message));
         }
         return Err(perr(line, col, why));
     }

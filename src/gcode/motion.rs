@@ -4,6 +4,7 @@
 use super::{Dialect, Operation, Spindle};
 use crate::gcode::passes::Pass;
 use crate::ground::bounds::MAX_PASSES;
+use crate::ground::note::{Note, NoteKind, Notes};
 use crate::Error;
 use serde::Serialize;
 
@@ -133,7 +134,7 @@ pub(crate) struct Motion {
     loose: Option<usize>,
     chain: Option<Chain>,
     pub skipped: usize,
-    pub notes: Vec<String>,
+    pub notes: Notes,
     moves: Option<Vec<Move>>,
     passes_total: usize,
     /// The turned contour so far: feed moves (G1, G2, G3) of the lathe dialects as
@@ -179,7 +180,7 @@ impl Motion {
             loose: None,
             chain: None,
             skipped: 0,
-            notes: Vec::new(),
+            notes: Notes::default(),
             moves: record_moves.then(Vec::new),
             passes_total: 0,
             contour: Vec::new(),
@@ -202,11 +203,13 @@ impl Motion {
     }
 
     /// A warning with its place.
-    pub fn note(&mut self, line: usize, column: usize, message: impl AsRef<str>) {
-        let n = format!("{}:{line}:{column}: {}", self.file, message.as_ref());
-        if !self.notes.contains(&n) {
-            self.notes.push(n);
-        }
+    pub fn note(&mut self, line: usize, column: usize, message: impl Into<String>) {
+        self.notes.push(Note::at(&self.file, line, column, message));
+    }
+
+    /// A note of a kind the reader decides on, with its place.
+    pub fn note_of(&mut self, kind: NoteKind, line: usize, column: usize, message: impl Into<String>) {
+        self.notes.push(Note::at(&self.file, line, column, message).of_kind(kind));
     }
 
     /// A length word in mm.
@@ -388,9 +391,10 @@ impl Motion {
                 "{} pass at X{x} reaches or crosses the axis: no thread can be cut there",
                 self.ops[op].cycle
             );
-            if let Some(n) = self.notes.iter().find(|n| n.contains("read before it is set")) {
-                let place = n.strip_prefix(&format!("{}:", self.file)).unwrap_or(n);
-                msg.push_str(&format!(" (line {place})"));
+            if let Some(n) = self.notes.find(NoteKind::UnsetVariable) {
+                if let Some(p) = &n.place {
+                    msg.push_str(&format!(" (line {}:{}: {})", p.line, p.column, n.message));
+                }
             }
             return Err(self.err(line, 1, msg));
         }
@@ -483,7 +487,7 @@ impl Motion {
 
     /// The operations, skipped-block count, notes and moves. Each operation gets the warnings
     /// of its own passes (passes that cut nothing, passes beyond the axis).
-    pub fn finish(mut self) -> (Vec<Operation>, usize, Vec<String>, Vec<Move>) {
+    pub fn finish(mut self) -> (Vec<Operation>, usize, Vec<Note>, Vec<Move>) {
         let file = self.file.clone();
         for o in &mut self.ops {
             shallow_pass_notes(o, &file);
@@ -492,7 +496,7 @@ impl Motion {
         for (i, o) in self.ops.iter_mut().enumerate() {
             o.index = i + 1;
         }
-        (self.ops, self.skipped, self.notes, self.moves.unwrap_or_default())
+        (self.ops, self.skipped, self.notes.into_vec(), self.moves.unwrap_or_default())
     }
 }
 
@@ -522,11 +526,14 @@ fn shallow_pass_notes(o: &mut Operation, file: &str) {
             let deeper = (d[0] - dd[0]).max(d[1] - dd[1]);
             let shallower = (dd[0] - d[0]).max(dd[1] - d[1]);
             if deeper <= 1e-3 && shallower > 1e-3 {
-                notes.push(format!(
-                    "{file}:{}:1: pass {} is {:.3} mm shallower than the pass of line {line} (on the diameter) and nowhere deeper: it cuts nothing",
+                notes.push(Note::at(
+                    file,
                     p.source_line.unwrap_or(0),
-                    p.index,
-                    shallower
+                    1,
+                    format!(
+                        "pass {} is {:.3} mm shallower than the pass of line {line} (on the diameter) and nowhere deeper: it cuts nothing",
+                        p.index, shallower
+                    ),
                 ));
             }
         }

@@ -225,10 +225,9 @@ fn l97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>, cx: &mut Ctx<'_>) -> Resul
     {
         let o = m.op_mut(op);
         o.infeed_angle = Some((angle.abs(), "R29".into()));
-        o.notes.push(
-            "L97: the finishing allowance R25 is cut in one pass and the R23 idle passes follow it; R27 runs on beyond R32; each pass is shifted along Z by depth·tan R29 (assumed where the sources are silent)"
-                .into(),
-        );
+        o.notes.push(crate::ground::note::Note::from(
+            "L97: the finishing allowance R25 is cut in one pass and the R23 idle passes follow it; R27 runs on beyond R32; each pass is shifted along Z by depth·tan R29 (assumed where the sources are silent)",
+        ));
     }
     for (d, sh) in depths.iter().zip(shifts) {
         let (za, zb) = (z0 + sh, z1 + sh);

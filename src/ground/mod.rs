@@ -4,4 +4,5 @@
 pub mod bounds;
 pub mod error;
 pub mod fmt;
+pub mod note;
 pub mod plane;

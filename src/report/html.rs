@@ -131,7 +131,7 @@ fn verification_body(v: &Verification, svg: &str, level: u8) -> String {
     if !v.notes.is_empty() {
         let _ = writeln!(s, "<{0}>Notes and assumptions</{0}>\n<ul class=\"notes\">", h(0));
         for n in &v.notes {
-            let _ = writeln!(s, "<li>{}</li>", esc(n));
+            let _ = writeln!(s, "<li>{}</li>", esc(&n.to_string()));
         }
         s.push_str("</ul>\n");
     }
@@ -160,7 +160,7 @@ pub fn program_html(pv: &ProgramVerification) -> String {
     if !pv.notes.is_empty() {
         body.push_str("<ul class=\"notes\">\n");
         for n in &pv.notes {
-            let _ = writeln!(body, "<li>{}</li>", esc(n));
+            let _ = writeln!(body, "<li>{}</li>", esc(&n.to_string()));
         }
         body.push_str("</ul>\n");
     }
@@ -177,7 +177,7 @@ pub fn program_html(pv: &ProgramVerification) -> String {
             esc(&o.designation)
         );
         for n in &op.notes {
-            let _ = writeln!(body, "<p class=\"form\">{}</p>", esc(n));
+            let _ = writeln!(body, "<p class=\"form\">{}</p>", esc(&n.to_string()));
         }
         match &o.result {
             OperationResult::Verified(v) => {

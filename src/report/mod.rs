@@ -201,7 +201,7 @@ pub struct VerifyReport<'a> {
     /// The X for mid-tolerance d2, mm.
     pub suggested_final_x: Option<f64>,
     /// Stated assumptions.
-    pub notes: &'a [String],
+    pub notes: &'a [crate::ground::note::Note],
     /// The normal deviation from the basic profile along one pitch, as the picture plots it
     /// (when the verification carries its picture).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -442,7 +442,7 @@ pub struct OperationInfo<'a> {
     /// Number of passes.
     pub passes: usize,
     /// Warnings and assumed defaults.
-    pub notes: &'a [String],
+    pub notes: &'a [crate::ground::note::Note],
 }
 
 impl<'a> OperationInfo<'a> {
@@ -524,7 +524,7 @@ pub struct ProgramReport<'a> {
     /// Blocks read for position only.
     pub skipped_blocks: usize,
     /// Program-wide warnings.
-    pub notes: &'a [String],
+    pub notes: &'a [crate::ground::note::Note],
 }
 
 impl<'a> ProgramReport<'a> {
@@ -628,7 +628,7 @@ pub struct PassesOperation<'a> {
     /// Lead, mm.
     pub lead: f64,
     /// Warnings and assumed defaults.
-    pub notes: &'a [String],
+    pub notes: &'a [crate::ground::note::Note],
     /// Its passes.
     pub passes: &'a [crate::gcode::passes::Pass],
 }
