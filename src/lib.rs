@@ -94,8 +94,8 @@ pub use analysis::mill::{mill, MillReport, MillSpec, Target};
 pub use analysis::process::MachineProfile;
 pub use analysis::tools::ToolTable;
 pub use analysis::verify::{
-    program_passes, read_program_text, reference_groove, verify, verify_program, InsertChoice, ProgramSource,
-    ProgramVerification, Units, Verification, VerifySpec,
+    program_passes, read_program_text, reference_groove, verify, verify_program, InsertChoice, ProgramLabel,
+    ProgramSource, ProgramVerification, Units, Verification, VerifySpec,
 };
 
 // The commands: one job per command, returning what the command prints.

@@ -226,7 +226,7 @@ pub struct Verification {
     /// Assumptions and warnings worth printing.
     pub notes: Vec<crate::ground::note::Note>,
     /// The program the passes came from and its dialect, when they came from one.
-    pub program: Option<String>,
+    pub program: Option<ProgramLabel>,
     /// Lengths in the text and the picture.
     pub units: Units,
     /// Helix angle at the basic pitch diameter, degrees: the insert inclination it asks for.
@@ -657,30 +657,28 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
                 lines.join(", ")
             )));
         }
-        let label = format!("{shown} ({})", dialect.name());
-        return match verify_operation(spec, &prog, &prog.operations[0], &label)? {
-            OperationResult::Verified(mut v) => {
-                v.notes.extend(prog.notes.iter().cloned());
-                Ok(*v)
-            }
-            OperationResult::NoCut { reason } => Err(Error::Geometry(reason)),
-        };
+        let label = ProgramLabel { file: shown, dialect: *dialect };
+        let mut v = verify_given(&resolve(spec)?, &prog.operations[0], &label)?;
+        v.notes.extend(prog.notes.iter().cloned());
+        return Ok(v);
     }
-    verify_core(spec, None)
+    verify_core(&resolve(spec)?, None)
 }
 
 /// The passes of one program operation, with what to say about them.
 struct Given {
     passes: Vec<Pass>,
-    label: String,
+    label: ProgramLabel,
     notes: Vec<crate::ground::note::Note>,
 }
 
-fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, Error> {
+/// The verification of a resolved spec, with the passes of a program operation or its own plan.
+/// A cut that leaves nothing to measure is an [`Error::Geometry`].
+fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error> {
+    let spec = &r.spec;
     if spec.taper != 0.0 {
         return Err(Error::Input("verify checks parallel threads against ISO 965-1, BS 84 and ISO 228-1; a taper plan is laid out by `passes`, not verified".into()));
     }
-    let r = resolve(spec)?;
     let (des, kind, limits, insert, blank, infeed) =
         (r.designation.clone(), r.kind, r.limits.clone(), r.insert.clone(), r.blank, r.infeed);
     let mut notes = r.notes.clone();
@@ -860,6 +858,28 @@ fn verify_core(spec: &VerifySpec, given: Option<Given>) -> Result<Verification, 
     Ok(v)
 }
 
+/// A program as the reports name it: the file (as given) and the dialect it was read in.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ProgramLabel {
+    /// The file's name as given (messages name it so).
+    pub file: String,
+    /// The dialect.
+    pub dialect: crate::gcode::Dialect,
+}
+
+impl std::fmt::Display for ProgramLabel {
+    /// `dir/p.nc (fanuc)`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} ({})", self.file, self.dialect.name())
+    }
+}
+
+impl serde::Serialize for ProgramLabel {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
 /// What became of one operation of a program.
 #[derive(Clone, Debug)]
 pub enum OperationResult {
@@ -898,7 +918,7 @@ pub struct OperationVerdict {
 #[derive(Clone, Debug)]
 pub struct ProgramVerification {
     /// The program's name and dialect, as shown.
-    pub program: String,
+    pub program: ProgramLabel,
     /// The dialect.
     pub dialect: crate::gcode::Dialect,
     /// Each threading operation in program order.
@@ -920,15 +940,23 @@ impl ProgramVerification {
 /// `spec` (its `program` is ignored).
 pub fn verify_operation(
     spec: &VerifySpec,
-    prog: &crate::gcode::Program,
     op: &crate::gcode::Operation,
-    label: &str,
+    label: &ProgramLabel,
 ) -> Result<OperationResult, Error> {
-    let r = resolve(spec)?;
-    // Messages name the file as given, without the dialect of the label.
-    let file = label.rsplit_once(" (").map_or(label, |x| x.0);
-    let passes = program_passes(op, &r.designation, file)?;
-    let _ = prog;
+    match verify_given(&resolve(spec)?, op, label) {
+        Ok(v) => Ok(OperationResult::Verified(Box::new(v))),
+        Err(Error::Geometry(m)) => Ok(OperationResult::NoCut { reason: m }),
+        Err(e) => Err(e),
+    }
+}
+
+/// One program operation verified; passes that cut nothing are an [`Error::Geometry`].
+fn verify_given(
+    r: &Resolved,
+    op: &crate::gcode::Operation,
+    label: &ProgramLabel,
+) -> Result<Verification, Error> {
+    let passes = program_passes(op, &r.designation, &label.file)?;
     let mut notes: Vec<crate::ground::note::Note> = op.notes.clone();
     if let Some((angle, word)) = &op.infeed_angle {
         let half = 0.5 * r.insert.angle;
@@ -950,21 +978,14 @@ pub fn verify_operation(
         ThreadKind::Internal => deepest <= r.blank,
     };
     if misses {
-        return Ok(OperationResult::NoCut {
-            reason: format!(
+        return Err(Error::Geometry(format!(
                 "no pass reaches the {} Ø{:.4}: the deepest pass is at X{deepest:.4}, so nothing is cut (is the {} or the thread wrong?)",
                 if r.kind == ThreadKind::External { "blank" } else { "bore" },
                 r.blank,
                 if r.kind == ThreadKind::External { "blank diameter" } else { "bore diameter" },
-            ),
-        });
+        )));
     }
-    let given = Given { passes, label: label.to_string(), notes };
-    match verify_core(spec, Some(given)) {
-        Ok(v) => Ok(OperationResult::Verified(Box::new(v))),
-        Err(Error::Geometry(m)) => Ok(OperationResult::NoCut { reason: m }),
-        Err(e) => Err(e),
-    }
+    verify_core(r, Some(Given { passes, label: label.clone(), notes }))
 }
 
 /// Verifies every threading operation of a program held in memory: `threads` gives one
@@ -1000,7 +1021,7 @@ pub fn verify_program(
             threads.len()
         )));
     }
-    let label = format!("{name} ({})", dialect.name());
+    let label = ProgramLabel { file: name.to_string(), dialect };
     let mut operations = Vec::with_capacity(n);
     for (i, op) in prog.operations.iter().enumerate() {
         let designation = threads[if threads.len() == 1 { 0 } else { i }].clone();
@@ -1011,7 +1032,7 @@ pub fn verify_program(
             s.insert = choice;
             extra.push(note);
         }
-        let mut result = verify_operation(&s, &prog, op, &label)?;
+        let mut result = verify_operation(&s, op, &label)?;
         if let OperationResult::Verified(v) = &mut result {
             v.notes.extend(extra.into_iter().map(crate::ground::note::Note::from));
             let t = v.designation.thread;

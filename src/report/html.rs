@@ -58,7 +58,7 @@ fn verification_body(v: &Verification, svg: &str, level: u8) -> String {
         v.passes.len(),
         v.blank_diameter,
         v.final_x,
-        v.program.as_ref().map_or(String::new(), |p| format!(" · program {}", esc(p)))
+        v.program.as_ref().map_or(String::new(), |p| format!(" · program {}", esc(&p.to_string())))
     );
     if let Some(x) = v.suggested_final_x {
         if !v.pass {

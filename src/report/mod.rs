@@ -91,7 +91,7 @@ pub struct InsertReport<'a> {
 #[derive(Clone, Debug, Serialize)]
 pub struct PlanReport<'a> {
     /// The program and its dialect, `None` for a generated plan.
-    pub program: Option<&'a str>,
+    pub program: Option<&'a crate::analysis::verify::ProgramLabel>,
     /// The infeed.
     pub infeed: Infeed,
     /// The depth schedule's name.
@@ -241,7 +241,7 @@ impl<'a> VerifyReport<'a> {
                 tip_radius: v.insert.tip_radius,
             },
             plan: PlanReport {
-                program: v.program.as_deref(),
+                program: v.program.as_ref(),
                 infeed: v.infeed,
                 schedule: schedule_text(&v.schedule),
                 blank_diameter: v.blank_diameter,
@@ -514,7 +514,7 @@ pub enum OperationReport<'a> {
 #[derive(Clone, Debug, Serialize)]
 pub struct ProgramReport<'a> {
     /// The program's name and dialect.
-    pub program: &'a str,
+    pub program: &'a crate::analysis::verify::ProgramLabel,
     /// The dialect.
     pub dialect: crate::gcode::Dialect,
     /// The worst verdict.

@@ -716,15 +716,11 @@ pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String 
     doc.set("viewBox", (0, 0, WIDTH, y)).set("width", WIDTH).set("height", y).to_string()
 }
 
-/// The file name of a program label (`dir/p.nc (fanuc)` → `p.nc (fanuc)`).
-fn file_name(label: &str) -> String {
-    let (path, rest) = match label.rsplit_once(" (") {
-        Some((p, r)) => (p, format!(" ({r}")),
-        None => (label, String::new()),
-    };
-    let name =
-        std::path::Path::new(path).file_name().map_or(path.to_string(), |n| n.to_string_lossy().into_owned());
-    name + &rest
+/// The file name of a program label, with its dialect (`dir/p.nc (fanuc)` → `p.nc (fanuc)`).
+fn file_name(label: &crate::analysis::verify::ProgramLabel) -> String {
+    let path = std::path::Path::new(&label.file);
+    let name = path.file_name().map_or(label.file.clone(), |n| n.to_string_lossy().into_owned());
+    format!("{name} ({})", label.dialect.name())
 }
 
 /// `s` cut to `n` characters with an ellipsis.
