@@ -10,6 +10,7 @@ mod browser;
 mod forms;
 mod gcode;
 mod infeed_comparison;
+mod layout;
 mod limits;
 mod mill;
 mod process;

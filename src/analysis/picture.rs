@@ -4,12 +4,14 @@
 //! thread's full length, run-out included. `report/` draws these and computes nothing; the JSON
 //! carries the deviation samples.
 
-use crate::analysis::verify::Verification;
+use crate::gcode::passes::Pass;
 use crate::geometry::boolean::UnionStrategy;
+use crate::geometry::insert::Insert;
 use crate::geometry::measure::{deviation_along, DeviationSample};
 use crate::geometry::sweep::{full_length_window, sweep, Section, SweepSetup};
 use crate::ground::plane::{rad, Point};
-use crate::standards::{ProfileKind, ThreadKind};
+use crate::standards::tolerance::ThreadLimits;
+use crate::standards::{BasicThread, ProfileKind, ThreadKind};
 use crate::Error;
 use serde::Serialize;
 
@@ -26,6 +28,27 @@ pub struct Deviation {
     pub max_material: Vec<DeviationSample>,
     /// The minimum-material profile (likewise).
     pub min_material: Vec<DeviationSample>,
+}
+
+/// What a picture is drawn from: the verification's thread, cut and measured groove.
+#[derive(Clone, Copy, Debug)]
+pub struct Cut<'a> {
+    /// The basic thread.
+    pub thread: &'a BasicThread,
+    /// External or internal.
+    pub kind: ThreadKind,
+    /// Its limits of size.
+    pub limits: &'a ThreadLimits,
+    /// The measured groove's centre, mm.
+    pub groove_center: f64,
+    /// The measured section.
+    pub section: &'a Section,
+    /// The insert.
+    pub insert: &'a Insert,
+    /// The blank (or bore) diameter, mm.
+    pub blank_diameter: f64,
+    /// The passes.
+    pub passes: &'a [Pass],
 }
 
 /// What the pictures draw.
@@ -59,14 +82,14 @@ impl Picture {
 /// at `zc` over `z_range` (a pitch beyond it each way, so that clipping any range inside it gives
 /// the same points), its crest cut at radius `crest` when given.
 fn shifted_profile(
-    v: &Verification,
+    v: &Cut<'_>,
     variant: ProfileKind,
     d2: f64,
     zc: f64,
     z_range: (f64, f64),
     crest: Option<f64>,
 ) -> Vec<Point> {
-    let t = &v.designation.thread;
+    let t = v.thread;
     let one = t.profile(variant, 1e-3);
     let shift = 0.5 * (d2 - t.pitch_diameter());
     let p = t.pitch;
@@ -92,8 +115,8 @@ fn shifted_profile(
 }
 
 /// The maximum- and minimum-material profiles over `zr`.
-fn zone_profiles(v: &Verification, zr: (f64, f64)) -> Option<(Vec<Point>, Vec<Point>)> {
-    let l = &v.limits;
+fn zone_profiles(v: &Cut<'_>, zr: (f64, f64)) -> Option<(Vec<Point>, Vec<Point>)> {
+    let l = v.limits;
     let (mmc_d2, lmc_d2) = match v.kind {
         ThreadKind::External => (l.pitch_diameter.max, l.pitch_diameter.min),
         ThreadKind::Internal => (l.pitch_diameter.min, l.pitch_diameter.max),
@@ -103,18 +126,18 @@ fn zone_profiles(v: &Verification, zr: (f64, f64)) -> Option<(Vec<Point>, Vec<Po
         ThreadKind::External => (ProfileKind::Basic, ProfileKind::BoltMinRoot, l.major_diameter.min.map(rad)),
         ThreadKind::Internal => (ProfileKind::Nut, ProfileKind::Nut, l.minor_diameter.max.map(rad)),
     };
-    let zc = v.measurement.groove_center;
+    let zc = v.groove_center;
     Some((
         shifted_profile(v, mmc_variant, a, zc, zr, None),
         shifted_profile(v, lmc_variant, b, zc, zr, lmc_crest),
     ))
 }
 
-/// Computes what the pictures of `v` draw.
-pub fn picture(v: &Verification) -> Result<Picture, Error> {
-    let t = &v.designation.thread;
+/// Computes what the pictures of a cut draw.
+pub fn picture(v: &Cut<'_>) -> Result<Picture, Error> {
+    let t = v.thread;
     let p = t.pitch;
-    let zc = v.measurement.groove_center;
+    let zc = v.groove_center;
     let basic_variant = match v.kind {
         ThreadKind::External => ProfileKind::Basic,
         ThreadKind::Internal => ProfileKind::Nut,
@@ -138,8 +161,8 @@ pub fn picture(v: &Verification) -> Result<Picture, Error> {
         _ => (Vec::new(), Vec::new()),
     };
     // The whole thread, run-out included: the envelope over the full length.
-    let setup = SweepSetup { kind: v.kind, insert: &v.insert, blank_diameter: v.blank_diameter, pitch: p };
-    let full = sweep(&setup, &v.passes, full_length_window(&v.passes, p), UnionStrategy::Envelope)?;
+    let setup = SweepSetup { kind: v.kind, insert: v.insert, blank_diameter: v.blank_diameter, pitch: p };
+    let full = sweep(&setup, v.passes, full_length_window(v.passes, p), UnionStrategy::Envelope)?;
     Ok(Picture {
         basic,
         zone,

@@ -853,7 +853,16 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         picture: None,
     };
     if spec.picture {
-        v.picture = Some(crate::analysis::picture::picture(&v)?);
+        v.picture = Some(crate::analysis::picture::picture(&crate::analysis::picture::Cut {
+            thread: &v.designation.thread,
+            kind: v.kind,
+            limits: &v.limits,
+            groove_center: v.measurement.groove_center,
+            section: &v.section,
+            insert: &v.insert,
+            blank_diameter: v.blank_diameter,
+            passes: &v.passes,
+        })?);
     }
     Ok(v)
 }

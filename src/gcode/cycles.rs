@@ -29,7 +29,10 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
     let d = m.dialect;
     let mut motion = None;
     let mut one_shot = None;
-    let fanuc_like = matches!(d, Dialect::Fanuc | Dialect::Haas);
+    let fanuc_like = match d {
+        Dialect::Fanuc | Dialect::Haas => true,
+        Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna => false,
+    };
     let inch_codes = match d {
         Dialect::Sinumerik => (70.0, 71.0),
         Dialect::Fanuc | Dialect::Haas | Dialect::LinuxCnc | Dialect::Dyna => (20.0, 21.0),

@@ -259,7 +259,8 @@ fn squeeze(line: &str, ln: usize, dialect: Dialect) -> Result<Vec<Squeezed>, Lex
                 ))?;
                 i += close + 1;
             }
-            ';' if dialect == Dialect::LinuxCnc => break,
+            // A semicolon is a comment to the line's end in LinuxCNC, the end of a block elsewhere.
+            ';' if semicolon_ends_line(dialect) => break,
             ';' => {
                 out.push(Squeezed { c: Vec::new(), col: Vec::new() });
                 i += 1;
@@ -338,7 +339,7 @@ fn bracket_block(s: &Squeezed, ln: usize, dialect: Dialect, b: &mut Block) -> Re
     if c.get(i) == Some(&'O') || (c.get(i) == Some(&':') && i == 0) {
         let o_col = i;
         let j = i + 1;
-        if dialect == Dialect::LinuxCnc {
+        if o_words_are_flow(dialect) {
             return o_word(s, j, ln, b, o_col);
         }
         let mut k = j;
@@ -520,7 +521,10 @@ fn keyword(
     let c = &s.c;
     let syntax = syntax_of(dialect);
     let col = s.col_at(i);
-    let macro_b = matches!(dialect, Dialect::Fanuc | Dialect::Haas | Dialect::Dyna);
+    let macro_b = match dialect {
+        Dialect::Fanuc | Dialect::Haas | Dialect::Dyna => true,
+        Dialect::Sinumerik | Dialect::LinuxCnc => false,
+    };
     let refuse = |m: String| Err((ln, col, m));
     let mut j = i + w.len();
     // The keywords may be run together with what follows (`GOTO10`, `END1`, `DO1`).
@@ -588,7 +592,7 @@ fn keyword(
         ("THREAD", Dialect::Dyna) => refuse(
             "the DYNA THREAD cycle is not supported: its pass law is not published (program the passes with G33)".into(),
         ),
-        ("SUB" | "ENDSUB" | "CALL" | "WHILE" | "ENDWHILE" | "IF" | "ENDIF", _) if dialect != Dialect::LinuxCnc => {
+        ("SUB" | "ENDSUB" | "CALL" | "WHILE" | "ENDWHILE" | "IF" | "ENDIF", _) if !o_words_are_flow(dialect) => {
             refuse(format!("'{w}' is a LinuxCNC O-word keyword; this is the {} dialect", dialect.name()))
         }
         _ => refuse(format!("'{w}' is not a word of the {} dialect", dialect.name())),
@@ -943,6 +947,22 @@ fn sinumerik_word(
             word(name, WVal::Num { v, point })
         }
         _ => word(name, WVal::Bare),
+    }
+}
+
+/// LinuxCNC's `;` starts a comment to the line's end; elsewhere it ends a block (EOB).
+fn semicolon_ends_line(dialect: Dialect) -> bool {
+    match dialect {
+        Dialect::LinuxCnc => true,
+        Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::Dyna => false,
+    }
+}
+
+/// O-words are LinuxCNC's flow control (`o100 sub`), program numbers elsewhere.
+fn o_words_are_flow(dialect: Dialect) -> bool {
+    match dialect {
+        Dialect::LinuxCnc => true,
+        Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::Dyna => false,
     }
 }
 

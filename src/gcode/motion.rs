@@ -230,7 +230,10 @@ impl Motion {
     /// Target position of a block: X/Y/Z absolute or incremental, U/W incremental
     /// (Fanuc, Haas). Program coordinates are machine coordinates less the G92 offset.
     pub fn target(&self, b: &RBlock<'_>) -> (Option<f64>, Option<f64>, Option<f64>) {
-        let uw = matches!(self.dialect, Dialect::Fanuc | Dialect::Haas);
+        let uw = match self.dialect {
+            Dialect::Fanuc | Dialect::Haas => true,
+            Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna => false,
+        };
         let (mut x, mut y, mut z) = (None, None, None);
         for w in &b.words {
             match w.name {

@@ -1,8 +1,6 @@
 //! The one error type. Every message is one line that names the bad input and states the domain
 //! fact it breaks; the CLI prints it and exits with code 2.
 
-use crate::standards::DesignationError;
-
 /// Everything that can go wrong before a verdict.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
@@ -59,3 +57,17 @@ impl Error {
 
 /// Shorthand for results in this crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// A designation that cannot be read, with the offending part of the text.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("designation '{text}', column {column}{}: {message}", if part.is_empty() { String::new() } else { format!(" ('{part}')") })]
+pub struct DesignationError {
+    /// The whole designation.
+    pub text: String,
+    /// 1-based column (in characters) where the bad part starts.
+    pub column: usize,
+    /// The bad part of the text (may be empty at the end of the text).
+    pub part: String,
+    /// What is wrong, in domain terms.
+    pub message: String,
+}

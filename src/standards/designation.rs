@@ -4,6 +4,7 @@
 
 use super::data::{catalog, find_pitch, SeriesSize};
 use super::{BasicThread, Hand, ThreadForm, ThreadKind, MM_PER_INCH};
+pub use crate::ground::error::DesignationError;
 use crate::standards::tolerance::{
     AcmeClass, Bs84Class, Iso228Class, IsoClass, TaperClass, TrClass, UnifiedClass, UnifiedGrade,
     UnifiedSeries,
@@ -73,20 +74,6 @@ impl fmt::Display for ClassSpec {
 pub struct ParseOptions {
     /// Accept a diameter/pitch pair outside the standard series.
     pub allow_nonstandard: bool,
-}
-
-/// A designation that cannot be read, with the offending part of the text.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("designation '{text}', column {column}{}: {message}", if part.is_empty() { String::new() } else { format!(" ('{part}')") })]
-pub struct DesignationError {
-    /// The whole designation.
-    pub text: String,
-    /// 1-based column (in characters) where the bad part starts.
-    pub column: usize,
-    /// The bad part of the text (may be empty at the end of the text).
-    pub part: String,
-    /// What is wrong, in domain terms.
-    pub message: String,
 }
 
 struct Cursor<'a> {
