@@ -87,3 +87,26 @@ fn src_has_few_top_level_files() {
         .collect();
     assert!(top.len() <= 8, "{top:?}");
 }
+
+/// Each geometry backend behind one door: `geo` only in `geometry/boolean.rs`, `parry2d-f64`
+/// only in `geometry/parry.rs`.
+#[test]
+fn each_backend_has_one_door() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut wrong = Vec::new();
+    for f in &files {
+        let rel = f.strip_prefix(&src).unwrap().to_string_lossy().replace('\\', "/");
+        let text = code(&std::fs::read_to_string(f).unwrap());
+        for (krate, door) in [("geo::", "geometry/boolean.rs"), ("parry2d_f64::", "geometry/parry.rs")] {
+            let uses = text.match_indices(krate).any(|(i, _)| {
+                !text[..i].ends_with(|c: char| c.is_ascii_alphanumeric() || c == '_' || c == ':')
+            });
+            if uses && rel != door {
+                wrong.push(format!("{rel} uses {krate}"));
+            }
+        }
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}

@@ -31,11 +31,9 @@ use crate::analysis::check::Verdict;
 use crate::gcode::expr::{parse_all, Env, Expr, Syntax, Value, VarKey, VarRef};
 use crate::gcode::{Dialect, Move, ReadOptions};
 use crate::geometry::measure::golden_min;
+use crate::geometry::parry::Line;
 use crate::ground::plane::Point;
 use crate::Error;
-use parry2d_f64::math::Point as PPoint;
-use parry2d_f64::query::{PointQuery, PointQueryWithLocation};
-use parry2d_f64::shape::Polyline;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -267,7 +265,7 @@ struct Curve<'a> {
     ey: Expr,
     t: Vec<f64>,
     p: Vec<Point>,
-    poly: Polyline,
+    poly: Line,
     ccw: bool,
 }
 
@@ -277,10 +275,6 @@ struct Near {
     t: f64,
     /// Signed distance: positive on the side without material.
     sd: f64,
-}
-
-fn ppoint(p: Point) -> PPoint<f64> {
-    PPoint::new(p.z, p.r)
 }
 
 impl<'a> Curve<'a> {
@@ -312,7 +306,7 @@ impl<'a> Curve<'a> {
         let n = ((len / SAMPLE_SPACING).ceil() as usize).clamp(1024, 100_000);
         let (t, p) = if n == 1024 { (t_coarse, coarse) } else { sample(n)? };
         let ccw = crate::geometry::boolean::signed_area(&p[..p.len() - 1]) > 0.0;
-        let poly = Polyline::new(p.iter().map(|&q| ppoint(q)).collect(), None);
+        let poly = Line::through(p.iter().copied());
         Ok(Some(Curve { target, z, ex, ey, t, p, poly, ccw }))
     }
 
@@ -328,13 +322,11 @@ impl<'a> Curve<'a> {
     /// The nearest curve point to `c`: the sample polyline's nearest segment, then Newton's
     /// method on the exact curve within the neighbouring samples.
     fn nearest(&self, c: Point) -> Near {
-        let (proj, (seg, _)) = self.poly.project_local_point_and_get_location(&ppoint(c), false);
-        let i = seg as usize;
+        let (q, i) = self.poly.project(c);
         let n = self.t.len() - 1;
         let (a, b) = (self.t[i.saturating_sub(1)], self.t[(i + 2).min(n)]);
         let (pi, pj) = (self.p[i], self.p[(i + 1).min(n)]);
         let u = {
-            let q = Point::new(proj.point.x, proj.point.y);
             let l = pi.distance(pj);
             if l > 0.0 {
                 (pi.distance(q) / l).clamp(0.0, 1.0)
@@ -647,20 +639,11 @@ fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64) -> Measured {
     };
     // The leftover: target samples against the path, the largest refined on the exact curve.
     let path = {
-        let mut v = Vec::new();
-        let mut idx = Vec::new();
-        for &(a, b, _) in &lm.segs {
-            if a.distance(b) > 1e-12 {
-                idx.push([v.len() as u32, v.len() as u32 + 1]);
-                v.push(ppoint(a));
-                v.push(ppoint(b));
-            }
-        }
-        (!idx.is_empty()).then(|| Polyline::new(v, Some(idx)))
+        Line::segments(lm.segs.iter().filter(|(a, b, _)| a.distance(*b) > 1e-12).map(|&(a, b, _)| (a, b)))
     };
     let lone: Vec<Point> = lm.segs.iter().filter(|(a, b, _)| a.distance(*b) <= 1e-12).map(|s| s.0).collect();
     let dist_to_path = |p: Point| {
-        let d = path.as_ref().map_or(f64::INFINITY, |pl| pl.distance_to_local_point(&ppoint(p), true));
+        let d = path.as_ref().map_or(f64::INFINITY, |pl| pl.distance(p));
         lone.iter().map(|q| q.distance(p)).fold(d, f64::min)
     };
     let deviation: Vec<f64> = curve.p.iter().map(|&p| dist_to_path(p) - r).collect();

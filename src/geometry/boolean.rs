@@ -234,6 +234,13 @@ pub fn union_all(regions: Vec<Region>, strategy: UnionStrategy) -> Region {
     }
 }
 
+/// Whether the segments `a` and `b` (each two ends) meet: cross, touch or overlap.
+pub fn segments_meet(a: (Point, Point), b: (Point, Point)) -> bool {
+    use geo::line_intersection::line_intersection;
+    let line = |(p, q): (Point, Point)| geo::Line::new(Coord { x: p.z, y: p.r }, Coord { x: q.z, y: q.r });
+    line_intersection(line(a), line(b)).is_some()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -11,11 +11,11 @@
 //! one more rotation away.
 
 use crate::geometry::boolean::signed_area;
+use crate::geometry::parry::Placement;
 use crate::ground::bounds::{MAX_INSERT_REACH, MAX_OUTLINE_POINTS};
 use crate::ground::plane::{deg, extend_dedup, Arc, Point};
 use crate::standards::{BasicThread, ProfileKind, ThreadKind};
 use crate::Error;
-use parry2d_f64::na::{Isometry2, Point2, Vector2};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -249,24 +249,18 @@ impl Insert {
 
     /// The isometry that puts the insert tip at axial position `z` and radius `r_tip`, for an
     /// external (rotation 0) or internal (rotation π) thread.
-    pub fn placement(z: f64, r_tip: f64, kind: ThreadKind) -> Isometry2<f64> {
+    pub fn placement(z: f64, r_tip: f64, kind: ThreadKind) -> Placement {
         let angle = match kind {
             ThreadKind::External => 0.0,
             ThreadKind::Internal => PI,
         };
-        Isometry2::new(Vector2::new(z, r_tip), angle)
+        Placement::new(z, r_tip, angle)
     }
 
-    /// The outline placed by `iso`, in part coordinates `(z, r)`, still counter-clockwise
+    /// The outline placed by `at`, in part coordinates `(z, r)`, still counter-clockwise
     /// (a proper rotation keeps the orientation).
-    pub fn placed(&self, iso: &Isometry2<f64>) -> Vec<Point> {
-        self.outline
-            .iter()
-            .map(|p| {
-                let q = iso * Point2::new(p.z, p.r);
-                Point::new(q.x, q.y)
-            })
-            .collect()
+    pub fn placed(&self, at: &Placement) -> Vec<Point> {
+        self.outline.iter().map(|&p| at.apply(p)).collect()
     }
 }
 
@@ -375,13 +369,8 @@ fn outline_from_points(points: &[Vec<f64>], tolerance: f64) -> Result<Vec<Point>
 }
 
 fn first_self_intersection(ring: &[Point]) -> Option<(usize, usize)> {
-    use geo::line_intersection::line_intersection;
-    use geo::{Coord, Line};
     let n = ring.len();
-    let seg = |i: usize| {
-        let (a, b) = (ring[i], ring[(i + 1) % n]);
-        Line::new(Coord { x: a.z, y: a.r }, Coord { x: b.z, y: b.r })
-    };
+    let seg = |i: usize| (ring[i], ring[(i + 1) % n]);
     // Sweep along z: only edges whose z-extents overlap can cross.
     let extent = |i: usize| {
         let (a, b) = (ring[i], ring[(i + 1) % n]);
@@ -400,7 +389,7 @@ fn first_self_intersection(ring: &[Point]) -> Option<(usize, usize)> {
             if b == a + 1 || (a == 0 && b == n - 1) {
                 continue;
             }
-            if line_intersection(seg(a), seg(b)).is_some() && found.is_none_or(|f| (a, b) < f) {
+            if crate::geometry::boolean::segments_meet(seg(a), seg(b)) && found.is_none_or(|f| (a, b) < f) {
                 found = Some((a, b));
             }
         }

@@ -4,13 +4,10 @@
 //! `y = r` for external threads and `y = −r` for internal ones, so that "crest" is always up and
 //! "root" down. Results are converted back to diameters.
 
-use crate::ground::plane::{cross_at_level, dia, distance_to_graph, height_at, Point};
+use crate::geometry::parry::{distance_to_graph, Line};
+use crate::ground::plane::{cross_at_level, dia, height_at, Point};
 use crate::standards::{BasicThread, ProfileKind, ThreadKind};
 use crate::Error;
-use parry2d_f64::math::Point as PPoint;
-use parry2d_f64::na::{Isometry2, Vector2};
-use parry2d_f64::query::{cast_shapes, PointQuery, ShapeCastOptions};
-use parry2d_f64::shape::{Ball, Polyline};
 use serde::Serialize;
 
 /// The three-wire measurement over best-size wires.
@@ -198,10 +195,6 @@ fn min_concave_radius(pts: &[Point]) -> Option<f64> {
     best
 }
 
-fn polyline(pts: &[Point]) -> Polyline {
-    Polyline::new(pts.iter().map(|p| PPoint::new(p.z, p.r)).collect(), None)
-}
-
 /// Golden-section search for the minimum of `f` on `[a, b]`: (argument, value).
 pub(crate) fn golden_min(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64, iters: usize) -> (f64, f64) {
     let g = 0.5 * (5f64.sqrt() - 1.0);
@@ -262,25 +255,9 @@ fn wire_rest(g: &Groove, rw: f64, flanks: ((f64, f64), (f64, f64))) -> Option<(f
             return Some((z, y));
         }
     }
-    let line = polyline(chain);
-    let ball = Ball::new(rw);
+    let line = Line::through(chain.iter().copied());
     let top = chain.iter().map(|p| p.r).fold(f64::NEG_INFINITY, f64::max) + 2.0 * rw + 1.0;
-    let drop = |z: f64| -> f64 {
-        let pos = Isometry2::new(Vector2::new(z, top), 0.0);
-        let hit = cast_shapes(
-            &pos,
-            &Vector2::new(0.0, -1.0),
-            &ball,
-            &Isometry2::identity(),
-            &Vector2::zeros(),
-            &line,
-            ShapeCastOptions::with_max_time_of_impact(1e6),
-        );
-        match hit {
-            Ok(Some(h)) => top - h.time_of_impact,
-            _ => f64::INFINITY,
-        }
-    };
+    let drop = |z: f64| -> f64 { line.ball_rest(z, top, rw).unwrap_or(f64::INFINITY) };
     let (z0, z1) = (g.pts[g.left].z, g.pts[g.right].z);
     let (z, y) = golden_min(&drop, z0, z1, 56);
     y.is_finite().then_some((z, y))
@@ -697,7 +674,7 @@ pub fn deviation_along(reference: &[Point], other: &[Point], air_up: bool, n: us
     let (r_lo, r_hi) =
         reference.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.r), b.max(p.r)));
     let mid = 0.5 * (r_lo + r_hi);
-    let line = polyline(other);
+    let line = Line::through(other.iter().copied());
     let mut out = Vec::with_capacity(n);
     for k in 0..n {
         let s = total * k as f64 / (n - 1) as f64;
@@ -708,8 +685,8 @@ pub fn deviation_along(reference: &[Point], other: &[Point], air_up: bool, n: us
         let q = Point::new(a.z + u * (b.z - a.z), a.r + u * (b.r - a.r));
         let (tz, tr) = ((b.z - a.z) / seg.max(1e-15), (b.r - a.r) / seg.max(1e-15));
         let (nz, nr) = if air_up { (-tr, tz) } else { (tr, -tz) };
-        let proj = line.project_local_point(&PPoint::new(q.z, q.r), false);
-        let (cz, cr) = (proj.point.x - q.z, proj.point.y - q.r);
+        let (proj, _) = line.project(q);
+        let (cz, cr) = (proj.z - q.z, proj.r - q.r);
         let d = cz.hypot(cr);
         let dev = if cz * nz + cr * nr >= 0.0 { d } else { -d };
         let region = if tr.abs() > 0.05 {

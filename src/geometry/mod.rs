@@ -7,4 +7,5 @@ pub mod boolean;
 pub mod envelope;
 pub mod insert;
 pub mod measure;
+pub mod parry;
 pub mod sweep;

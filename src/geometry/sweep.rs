@@ -8,13 +8,11 @@
 use crate::gcode::passes::Pass;
 use crate::geometry::boolean::{union_all, Region, UnionStrategy};
 use crate::geometry::insert::Insert;
+use crate::geometry::parry::Line;
 use crate::ground::bounds::MAX_IMPRINTS;
 use crate::ground::plane::{rad, Point};
 use crate::standards::ThreadKind;
 use crate::Error;
-use parry2d_f64::math::Point as PPoint;
-use parry2d_f64::query::PointQuery;
-use parry2d_f64::shape::Polyline;
 use serde::Serialize;
 
 /// An axial range of the section, mm.
@@ -556,11 +554,8 @@ fn envelope_pass_metrics(
             // The insert's outline in the normalised frame (a chip point lies inside it), as one
             // parry polyline with its search tree.
             let outline = setup.insert.placed(&Insert::placement(z, rad(pass.x_at(z)), kind));
-            let line = Polyline::new(
-                outline.iter().chain(outline.first()).map(|q| PPoint::new(q.z, s * q.r)).collect(),
-                None,
-            );
-            let distance = |q: Point| line.distance_to_local_point(&PPoint::new(q.z, q.r), false);
+            let line = Line::through(outline.iter().chain(outline.first()).map(|q| Point::new(q.z, s * q.r)));
+            let distance = |q: Point| line.distance(q);
             let mut tops: Vec<(f64, Point, Point)> = Vec::new();
             for w in zs.windows(2) {
                 let (a, b) = (w[0], w[1]);
@@ -668,8 +663,7 @@ fn boolean_pass_metrics(
         if m.chip_area > 0.0 {
             let mut closed = outline.clone();
             closed.push(outline[0]);
-            let pts: Vec<PPoint<f64>> = closed.iter().map(|q| PPoint::new(q.z, q.r)).collect();
-            let line = Polyline::new(pts, None);
+            let line = Line::through(closed.iter().copied());
             let r_tip = rad(pass.x_at(z));
             for (ext, holes) in chip.polygons() {
                 // A sliver (mean thickness 2·area/perimeter under 0.01 µm) is snapping noise where
@@ -684,9 +678,7 @@ fn boolean_pass_metrics(
                     for k in 0..ring.len() {
                         let (a, b) = (ring[k], ring[(k + 1) % ring.len()]);
                         let mid = Point::new(0.5 * (a.z + b.z), 0.5 * (a.r + b.r));
-                        let on_edge = [a, mid, b]
-                            .iter()
-                            .all(|q| line.distance_to_local_point(&PPoint::new(q.z, q.r), false) < 1e-6);
+                        let on_edge = [a, mid, b].iter().all(|q| line.distance(*q) < 1e-6);
                         let len = a.distance(b);
                         if on_edge {
                             let up = (mid.r - r_tip).abs();
@@ -698,8 +690,7 @@ fn boolean_pass_metrics(
                                 m.trailing += len;
                             }
                         } else {
-                            let distance =
-                                |q: Point| line.distance_to_local_point(&PPoint::new(q.z, q.r), false);
+                            let distance = |q: Point| line.distance(q);
                             m.max_chip_thickness = m.max_chip_thickness.max(farthest_on_segment(
                                 &distance,
                                 a,

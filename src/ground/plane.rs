@@ -138,47 +138,6 @@ pub(crate) fn height_at(line: &[Point], z: f64) -> Option<f64> {
     Some(a.r + (z - a.z) / (b.z - a.z) * (b.r - a.r))
 }
 
-/// Distance from `q` to `line` (non-decreasing z), whose height at `q.z` is `h`: the point
-/// straight above or below is on the line, so the nearest lies within |q.r − h| along z, and
-/// only the segments there are asked (parry's point–segment query), not the whole line.
-pub(crate) fn distance_to_graph(line: &[Point], q: Point, h: f64) -> f64 {
-    use parry2d_f64::math::Point as PPoint;
-    use parry2d_f64::query::PointQuery;
-    use parry2d_f64::shape::Segment;
-    let pq = PPoint::new(q.z, q.r);
-    // Segment i's distance, asked of parry only when its bounding box lies nearer than `best`
-    // (the arcs' many short segments near a tip mostly do not).
-    let seg = |i: usize, best: f64| {
-        let (a, b) = (line[i], line[i + 1]);
-        let off_r = (a.r.min(b.r) - q.r).max(q.r - a.r.max(b.r));
-        let off_z = (a.z - q.z).max(q.z - b.z);
-        if off_r >= best || off_z >= best {
-            return best;
-        }
-        best.min(
-            Segment::new(PPoint::new(a.z, a.r), PPoint::new(b.z, b.r)).distance_to_local_point(&pq, false),
-        )
-    };
-    // The segment under q first (it is often the nearest), then outward on both sides, each side
-    // stopping where the segments lie farther along z than the best distance so far.
-    let mut best = (q.r - h).abs();
-    let start = line.partition_point(|p| p.z < q.z);
-    if start > 0 && start < line.len() {
-        best = seg(start - 1, best);
-    }
-    let mut i = start;
-    while i + 1 < line.len() && line[i].z <= q.z + best {
-        best = seg(i, best);
-        i += 1;
-    }
-    let mut j = start.saturating_sub(1);
-    while j > 0 && line[j].z >= q.z - best {
-        best = seg(j - 1, best);
-        j -= 1;
-    }
-    best
-}
-
 /// Where the segment `a`–`b` crosses the horizontal line `r = level`, as a `z` value, if it does
 /// (end points included).
 pub fn cross_at_level(a: Point, b: Point, level: f64) -> Option<f64> {
