@@ -569,18 +569,26 @@ pub fn inch_value(s: &str) -> Option<f64> {
     Some(v)
 }
 
+/// The inch forms' `SIZE-TPI` before the series word `word` (found case-insensitively): the
+/// last `-` before it splits them. Returns where the word starts, the dash, the size and the
+/// tpi text.
+fn size_and_tpi<'t>(
+    c: &Cursor<'t>,
+    word: &str,
+    missing: &str,
+) -> Result<(usize, usize, &'t str, &'t str), DesignationError> {
+    let upper = c.text.to_ascii_uppercase();
+    let at = upper.find(word).unwrap_or(upper.len());
+    let head = &c.text[..at];
+    let dash = head.trim_end().rfind('-').ok_or_else(|| c.err(0, at, missing))?;
+    Ok((at, dash, head[..dash].trim(), head[dash + 1..].trim()))
+}
+
 /// Acme: `1/2-10 ACME-2G`, `1-5 ACME-3G`, `1 1/4-5 ACME-2G-LH`. The G class is the same for nut
 /// and bolt; `--internal` chooses the nut.
 fn parse_acme(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, DesignationError> {
-    let upper = c.text.to_ascii_uppercase();
-    let at = upper.find("ACME").unwrap_or(upper.len());
-    let head = &c.text[..at];
-    let dash = head
-        .trim_end()
-        .rfind('-')
-        .ok_or_else(|| c.err(0, at, "expected SIZE-TPI before ACME, e.g. 1/2-10 ACME-2G"))?;
-    let size_text = head[..dash].trim();
-    let tpi_text = head[dash + 1..].trim();
+    let (at, _, size_text, tpi_text) =
+        size_and_tpi(c, "ACME", "expected SIZE-TPI before ACME, e.g. 1/2-10 ACME-2G")?;
     let bad = |m: &str| c.err(0, at, m.to_string());
     let d = inch_value(size_text)
         .ok_or_else(|| bad("expected an inch size such as 1/2, 1 or 1 1/4 before the tpi"))?;
@@ -728,16 +736,9 @@ fn parse_trapezoidal(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designati
 /// Unified: `1/4-20 UNC-2A`, `#10-32 UNF-2B/2A`, `0-80 UNF`, `1-8 UNC`, `1 1/4-7 UNC-2A-LH`,
 /// `.250-20 UNC`, `2.500-28 UNS-2A`, UNR/UNRC/UNRF/UNREF for the rounded-root external form.
 fn parse_unified(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, DesignationError> {
+    let (un_at, dash, size_text, tpi_text) =
+        size_and_tpi(c, "UN", "expected SIZE-TPI before the series, e.g. 1/4-20 UNC")?;
     let upper = c.text.to_ascii_uppercase();
-    let un_at = upper.find("UN").unwrap_or(upper.len());
-    // SIZE-TPI before the series: the last '-' before it splits them.
-    let head = &c.text[..un_at];
-    let dash = head
-        .trim_end()
-        .rfind('-')
-        .ok_or_else(|| c.err(0, un_at, "expected SIZE-TPI before the series, e.g. 1/4-20 UNC"))?;
-    let size_text = head[..dash].trim();
-    let tpi_text = head[dash + 1..].trim();
     let (ss, se) = (0, dash);
     let (ts, te) = (dash + 1, un_at);
     let number_size = size_text.starts_with('#');

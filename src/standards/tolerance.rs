@@ -634,8 +634,14 @@ pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits
         // TD2 of every grade is a factor times the EXTERNAL tabulated Td2(6).
         let td2 =
             graded(t, td2_6, gf.td2_internal.get(class.pitch_grade.number()), class.pitch_grade, "TD2")?;
-        let td1_6 = match find_pitch(&t.td1_grade6.pitches, p) {
-            Some(i) => t.td1_grade6.td1[i],
+        let td1 = match find_pitch(&t.td1_grade6.pitches, p) {
+            Some(i) => graded(
+                t,
+                t.td1_grade6.td1[i],
+                gf.td1.get(class.crest_grade.number()),
+                class.crest_grade,
+                "TD1",
+            )?,
             None => {
                 // P 0.2 and 0.25 carry only fine grades (ISO 965-1 Table 3).
                 let fine = match (class.crest_grade, (p * 100.0).round() as i64) {
@@ -644,30 +650,14 @@ pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits
                     (IsoGrade::G5, 25) => Some(56.0),
                     _ => None,
                 };
-                let v = fine.ok_or_else(|| {
+                fine.ok_or_else(|| {
                     Error::Input(format!(
                         "ISO 965-1 has no TD1 of grade {} for P = {p} mm",
                         class.crest_grade
                     ))
-                })?;
-                let d1min = round_um(d1_b + mm(dev_crest));
-                let d2min = round_um(d2_b + mm(dev));
-                return Ok(ThreadLimits {
-                    kind: ThreadKind::Internal,
-                    class: class.to_string(),
-                    major_diameter: Limit { min: Some(round_um(d_b + mm(dev))), max: None },
-                    pitch_diameter: Limit::new(d2min, round_um(d2min + mm(td2))),
-                    minor_diameter: Limit::new(d1min, round_um(d1min + mm(v))),
-                    root_radius_min: None,
-                    fundamental_deviation_um: dev,
-                    crest_deviation_um: dev_crest,
-                    notes,
-                    gauge_plane: None,
-                    resolution: Resolution::Micrometre,
-                });
+                })?
             }
         };
-        let td1 = graded(t, td1_6, gf.td1.get(class.crest_grade.number()), class.crest_grade, "TD1")?;
         let d2min = round_um(d2_b + mm(dev));
         let d1min = round_um(d1_b + mm(dev_crest));
         Ok(ThreadLimits {
