@@ -387,6 +387,14 @@ pub fn last_head(passes: &[Pass]) -> Pass {
 
 /// Where to measure: the groove of the last pass of the first start, on the crossing nearest the
 /// middle of its full-depth stretch (clear of run-in and run-out).
+///
+/// ```
+/// use threadcheck::{reference_groove, Pass};
+/// // One pass from Z5 to Z−20 at lead 1.5, phase at Z5: the groove nearest the middle, Z−7.5,
+/// // on the lead's grid 5 − 1.5·k is Z−8.5 or Z−7 (k = 9 gives −8.5; k = 8 gives −7).
+/// let z = reference_groove(&[Pass::parallel(1, 8.16, 5.0, -20.0, 1.5)]);
+/// assert!(((z - 5.0) / 1.5).fract().abs() < 1e-9 && (z + 7.5).abs() <= 0.75);
+/// ```
 pub fn reference_groove(passes: &[Pass]) -> f64 {
     if passes.is_empty() {
         return 0.0;
@@ -409,6 +417,17 @@ pub fn groove_near(passes: &[Pass], z: f64) -> f64 {
 
 /// An operation's passes checked against the designation: the lead must match, and the starts
 /// of a multi-start thread are told apart by their phase (pitch apart along the lead).
+///
+/// ```
+/// use threadcheck::{parse_designation, program_passes, read_program, Dialect, ParseOptions};
+/// let p = read_program("G0 X22 Z5\nG76 P011060 Q100 R0.05\nG76 X18.16 Z-20 P920 Q350 F1.5\n", "m20.nc", Dialect::Fanuc)?;
+/// let des = parse_designation("M20x1.5-6g", ParseOptions::default())?;
+/// let passes = program_passes(&p.operations[0], &des, "m20.nc")?;
+/// assert!(passes.iter().all(|q| q.lead == 1.5 && q.start == 0));
+/// // A designation with another lead is refused.
+/// assert!(program_passes(&p.operations[0], &parse_designation("M20x2-6g", ParseOptions::default())?, "m20.nc").is_err());
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
 pub fn program_passes(
     op: &crate::gcode::Operation,
     des: &Designation,
@@ -502,6 +521,11 @@ impl ProgramSource {
 }
 
 /// Reads a program file as text, bounded in size, refusing binary files.
+///
+/// ```
+/// let e = threadcheck::read_program_text(std::path::Path::new("no/such/program.nc")).unwrap_err();
+/// assert!(e.to_string().starts_with("no/such/program.nc:"));
+/// ```
 pub fn read_program_text(path: &std::path::Path) -> Result<String, Error> {
     let shown = path.display().to_string();
     let meta = std::fs::metadata(path).map_err(|e| Error::io(shown.clone(), e))?;
@@ -753,7 +777,7 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
     let target = target_at(taper.map_or(0.0, |(_, z, _)| z));
     let program_label = given.as_ref().map(|g| g.label.clone());
     let (final_x, solved, cut) = if let Some(g) = given {
-        notes.extend(g.notes.into_iter().map(crate::ground::note::Note::from));
+        notes.extend(g.notes);
         let passes = g.passes;
         let z_ref = z_of(&passes);
         let last = last_head(&passes);

@@ -210,6 +210,16 @@ pub fn read_program(text: &str, file: &str, dialect: Dialect) -> Result<Program,
 }
 
 /// [`read_program`] with options.
+///
+/// ```
+/// use threadcheck::{read_program_with, Dialect, ReadOptions};
+/// // A turning program with no threading in it, read for its moves.
+/// let opts = ReadOptions { moves: true, allow_no_threading: true, ..ReadOptions::default() };
+/// let p = read_program_with("G0 X20 Z2\nG1 Z-10 F0.2\nG0 X25\n", "turn.nc", Dialect::Fanuc, opts)?;
+/// assert!(p.operations.is_empty());
+/// assert_eq!(p.moves.len(), 3);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
 pub fn read_program_with(
     text: &str,
     file: &str,

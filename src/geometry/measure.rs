@@ -469,6 +469,20 @@ impl MeasureSetup<'_> {
 }
 
 /// Measures the groove of `profile` (part coordinates, low to high Z) nearest `z_ref`.
+///
+/// The basic profile of M10x1.5 measures its basic pitch diameter, d − 0.649519·P:
+///
+/// ```
+/// use threadcheck::{measure, BasicThread, MeasureSetup, ProfileKind, ThreadKind};
+/// let m10 = BasicThread::metric(10.0, 1.5);
+/// // Four pitches of the basic profile, grooves centred at z = 0, ±1.5, ±3.
+/// let one = m10.profile(ProfileKind::Basic, 5e-5);
+/// let profile: Vec<_> = (-2..2).flat_map(|k| one.iter().map(move |p| threadcheck::Point::new(p.z + 1.5 * k as f64, p.r))).collect();
+/// let ms = MeasureSetup { thread: &m10, kind: ThreadKind::External, mmc_pitch_diameter: None, mmc_major_diameter: None, extras: false };
+/// let m = measure(&ms, &profile, 0.0)?;
+/// assert!((m.pitch_diameter - (10.0 - 0.649519 * 1.5)).abs() < 1e-5);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
 pub fn measure(setup: &MeasureSetup<'_>, profile: &[Point], z_ref: f64) -> Result<Measurement, Error> {
     let t = setup.thread;
     let p = t.pitch;

@@ -234,6 +234,22 @@ pub fn imprints(setup: &SweepSetup<'_>, passes: &[Pass], window: Window) -> Resu
     Ok(out)
 }
 
+/// A full-profile insert cut once to the basic minor diameter d3 of M10x1.5 leaves the basic
+/// pitch diameter, 10 − 0.649519·1.5 = 9.0257 mm:
+///
+/// ```
+/// use threadcheck::{measure, sweep, BasicThread, Insert, MeasureSetup, Pass, SweepSetup, ThreadKind, UnionStrategy, Window};
+/// let m10 = BasicThread::metric(10.0, 1.5);
+/// let insert = Insert::full_profile(&m10, ThreadKind::External, 5e-5);
+/// let d3 = 10.0 - 1.226869 * 1.5;
+/// let passes = [Pass::parallel(1, d3, 5.0, -20.0, 1.5)];
+/// let setup = SweepSetup { kind: ThreadKind::External, insert: &insert, blank_diameter: 10.0, pitch: 1.5 };
+/// let cut = sweep(&setup, &passes, Window::around(-10.0, 1.5, 4.0), UnionStrategy::Envelope)?;
+/// let ms = MeasureSetup { thread: &m10, kind: ThreadKind::External, mmc_pitch_diameter: None, mmc_major_diameter: None, extras: false };
+/// let m = measure(&ms, &cut.section.profile(), -10.0)?;
+/// assert!((m.pitch_diameter - 9.0257).abs() < 1e-4);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
 /// Sweeps the insert along `passes` and returns the material left in `window`.
 pub fn sweep(
     setup: &SweepSetup<'_>,
@@ -456,6 +472,19 @@ pub struct PassMetrics {
 ///
 /// The chip of a pass is what its imprint takes from the material left by every earlier pass
 /// and by its own previous revolution (one lead back along the feed), in steady state.
+///
+/// ```
+/// use threadcheck::{pass_metrics, BasicThread, Insert, Pass, SweepSetup, ThreadKind};
+/// let m10 = BasicThread::metric(10.0, 1.5);
+/// let insert = Insert::full_profile(&m10, ThreadKind::External, 5e-5);
+/// // Two radial passes: the second takes the strip between X9.0 and X8.16.
+/// let passes = [Pass::parallel(1, 9.0, 5.0, -20.0, 1.5), Pass::parallel(2, 8.16, 5.0, -20.0, 1.5)];
+/// let setup = SweepSetup { kind: ThreadKind::External, insert: &insert, blank_diameter: 10.0, pitch: 1.5 };
+/// let m = pass_metrics(&setup, &passes, -10.0)?;
+/// assert_eq!(m.len(), 2);
+/// assert!(m[0].chip_area > 0.0 && m[1].chip_area > 0.0);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
 pub fn pass_metrics(setup: &SweepSetup<'_>, passes: &[Pass], z_ref: f64) -> Result<Vec<PassMetrics>, Error> {
     check_finite(passes)?;
     if let Some(chain) = crate::geometry::envelope::bottom_chain(&setup.insert.outline) {

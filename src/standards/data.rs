@@ -319,6 +319,14 @@ fn load() -> Result<Catalog, String> {
 
 /// The embedded catalogue. Parsing happens once; the files are part of the binary, and a unit
 /// test proves they parse, so the error branch only guards against a broken build.
+///
+/// ```
+/// let cat = threadcheck::catalog()?;
+/// // ISO 228-1: G1/2 is 20.955 mm over the crests, 14 threads per inch.
+/// let g12 = cat.bsp.iter().find(|s| s.size == "1/2").expect("G1/2");
+/// assert_eq!((g12.d, g12.tpi), (20.955, 14.0));
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
 pub fn catalog() -> Result<&'static Catalog, crate::Error> {
     static CATALOG: OnceLock<Result<Catalog, String>> = OnceLock::new();
     CATALOG.get_or_init(load).as_ref().map_err(|e| crate::Error::Data(e.clone()))

@@ -596,6 +596,15 @@ fn graded(t: &IsoTables, base: f64, factor: Option<f64>, grade: IsoGrade, what: 
 }
 
 /// Limits of an ISO metric thread in an ISO 965-1 class.
+///
+/// ```
+/// use threadcheck::{iso_limits, BasicThread, IsoClass};
+/// let l = iso_limits(&BasicThread::metric(10.0, 1.5), &IsoClass::parse("6H").expect("a class"))?;
+/// // ISO 965-2, M10x1.5-6H: D2 9.026 to 9.206, D1 8.376 to 8.676.
+/// assert_eq!((l.pitch_diameter.min, l.pitch_diameter.max), (Some(9.026), Some(9.206)));
+/// assert_eq!((l.minor_diameter.min, l.minor_diameter.max), (Some(8.376), Some(8.676)));
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
 pub fn iso_limits(thread: &BasicThread, class: &IsoClass) -> Result<ThreadLimits, Error> {
     let t = iso_tables()?;
     let p = thread.pitch;
