@@ -3,22 +3,22 @@
 //! Tells a machinist, before any metal is cut, what thread a CNC lathe program will produce and
 //! whether that thread meets its standard.
 //!
-//! The modules follow the path the data takes:
+//! The source follows the path the data takes, one private folder per step, and this crate
+//! root re-exports what a program needs, flat:
 //!
-//! 1. [`standards`]: a designation (`M10x1.5-6g`) becomes a basic thread and its class;
-//! 2. [`tolerance`]: the class becomes limits of size (ISO 965-1, BS 84, ISO 228-1);
-//! 3. [`insert`]: the insert is a polygon with its tip at the origin;
-//! 4. [`passes`] and [`gcode`]: a generated plan, or a real program expanded as the control
-//!    would, says where the tip runs pass after pass;
-//! 5. [`sweep`]: the insert is placed once per lead for every pass; the cut surface is the lower
-//!    envelope of the imprints, or their union through the one private module that talks to
-//!    `geo`, subtracted from the blank ([`UnionStrategy`] picks which);
-//! 6. [`measure`]: the as-cut groove is measured as a metrology lab would;
-//! 7. [`check`]: the measurements against the limits, and the verdict;
-//! 8. [`render`] and [`report`]: the SVG cross-section, the JSON and text reports.
-//!
-//! [`verify()`] runs the whole path as one call ([`mod@verify`] holds its parts); [`compare`] and [`catalogue`] run it many times;
-//! [`jobs`] holds the jobs behind the command line, one per command.
+//! 1. standards: a designation (`M10x1.5-6g`, [`parse_designation`]) becomes a
+//!    [`BasicThread`] and its classes, and [`limits_for`] their limits of size;
+//! 2. toolpaths: a generated plan ([`PlanSpec`]) or a real program read as the control expands
+//!    it ([`read_program`]) says where the tip runs, pass after pass ([`Pass`]);
+//! 3. geometry: the [`Insert`] is placed once per lead for every pass; the cut surface is the
+//!    lower envelope of the imprints, or their polygon union ([`UnionStrategy`]), subtracted from
+//!    the blank ([`sweep`]); the as-cut groove is measured as a metrology lab would
+//!    ([`measure`]);
+//! 4. analysis: the measurements against the limits ([`checks`]) and the verdict, the whole
+//!    path as one call ([`verify`], [`verify_program`]), and the studies built on it
+//!    ([`compare`], [`fit`], [`mill`], [`run_catalogue`]);
+//! 5. report: text, JSON, SVG and HTML of those results, written by the jobs behind the command
+//!    line ([`VerifyJob`], [`PassesJob`], [`LimitsJob`], …).
 //!
 //! ```
 //! use threadcheck::Insert;
@@ -74,6 +74,7 @@ pub use standards::{
     catalog, parse_designation, BasicThread, Catalog, ClassSpec, Designation, DesignationError, Hand,
     ParseOptions, ProfileKind, ThreadForm, ThreadKind, MM_PER_INCH,
 };
+pub use standards::{Feature, GrooveForm};
 
 // Toolpaths: generated plans and programs read as a control would.
 pub use gcode::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
@@ -82,20 +83,23 @@ pub use gcode::{read_program, read_program_with, Budget, Dialect, Operation, Pro
 // Geometry: the insert, the sweep, the measurement.
 pub use geometry::boolean::UnionStrategy;
 pub use geometry::insert::{Insert, InsertKind};
-pub use geometry::measure::{measure, MeasureSetup, Measurement, ThreeWire};
+pub use geometry::measure::{measure, DeviationSample, MeasureSetup, Measurement, ProfileRegion, ThreeWire};
+pub use geometry::parry::Placement;
 pub use geometry::sweep::{pass_metrics, sweep, PassMetrics, Section, Sweep, SweepSetup, Window};
 
 // The computations.
 pub use analysis::catalogue::{cases as catalogue_cases, run as run_catalogue, Case, CatalogueSpec};
-pub use analysis::check::{checks, Check, CheckFeature, CheckKind};
+pub use analysis::check::{checks, Check, CheckFeature, CheckKind, Verdict};
 pub use analysis::compare::{compare, Comparison};
 pub use analysis::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};
 pub use analysis::mill::{mill, MillReport, MillSpec, Target};
+pub use analysis::picture::{Cut, Deviation, Picture};
 pub use analysis::process::MachineProfile;
 pub use analysis::tools::ToolTable;
 pub use analysis::verify::{
-    program_passes, read_program_text, reference_groove, verify, verify_program, InsertChoice, ProgramLabel,
-    ProgramSource, ProgramVerification, Units, Verification, VerifySpec,
+    default_blank, default_pass_count, program_passes, read_program_text, reference_groove, verify,
+    verify_program, InsertChoice, ProgramLabel, ProgramSource, ProgramVerification, Units, Verification,
+    VerifySpec,
 };
 
 // The commands: one job per command, returning what the command prints.

@@ -106,7 +106,7 @@ pub struct VerifySpec {
     /// Compute the per-pass chip and edge metrics (polygon booleans; reports need them, a
     /// catalogue sweep does not).
     pub metrics: bool,
-    /// Compute what the pictures draw ([`Picture`](crate::analysis::picture::Picture): the
+    /// Compute what the pictures draw ([`Picture`](crate::Picture): the
     /// full-length section, the zone and basic profiles, the deviation samples), for a report.
     pub picture: bool,
     /// Chord tolerance for arcs, mm.

@@ -221,7 +221,7 @@ pub enum Hand {
 /// A thread's basic size: form, nominal (major) diameter, pitch and starts.
 ///
 /// All lengths in mm. For Whitworth and BSP threads the pitch is `25.4 / tpi` exactly.
-/// Derived dimensions are exact (unrounded); [`crate::standards::tolerance`] rounds them to 0.001 mm the way
+/// Derived dimensions are exact (unrounded); the limits of size ([`crate::limits_for`]) round them to 0.001 mm the way
 /// the standards' tables print them.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BasicThread {
