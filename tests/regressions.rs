@@ -57,3 +57,23 @@ fn never_called_subprograms_are_noted_in_file_order() {
         assert_eq!(msg, &format!("subprogram O{} is defined but never called", 2000 + k));
     }
 }
+
+/// Issue 24: a flat sum of about 130 000 terms (a 262 kB line, far under the program limit)
+/// overflowed the stack when its expression tree was freed, in every dialect; a legal sum of 66
+/// terms was refused as nesting too deeply. A sum is one level, whatever its length.
+#[test]
+fn a_long_flat_sum_is_one_level_deep() {
+    for terms in [66usize, 130_000] {
+        // 0+0+…+0+1.5 (terms − 1 zeros): the lead of the G32 pass.
+        let sum = format!("{}1.5", "0+".repeat(terms - 1));
+        let text = format!("#100=[{sum}]\nG21 G99\nG0 X12 Z5\nX9.2\nG32 Z-20 F#100\nG0 X12\nZ5\nM30\n");
+        let p = threadcheck::read_program(&text, "sum.nc", threadcheck::Dialect::Fanuc).unwrap();
+        assert_eq!(p.passes.len(), 1);
+        assert_eq!(p.passes[0].lead, 1.5, "{terms} terms");
+        // LinuxCNC: the same sum in a named parameter.
+        let text =
+            format!("#<lead>=[{sum}]\nG21 G18 G7\nG0 X12 Z5\nX9.2\nG33 Z-20 K#<lead>\nG0 X12\nZ5\nM2\n");
+        let p = threadcheck::read_program(&text, "sum.ngc", threadcheck::Dialect::LinuxCnc).unwrap();
+        assert_eq!(p.passes[0].lead, 1.5, "{terms} terms, LinuxCNC");
+    }
+}

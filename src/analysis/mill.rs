@@ -28,7 +28,7 @@
 //! else Z0) cut air and are left out.
 
 use crate::analysis::check::Verdict;
-use crate::gcode::expr::{parse_all, Env, Expr, Syntax, Value, VarKey, VarRef};
+use crate::gcode::expr::{parse_all, BinOp, Env, Expr, Syntax, Value, VarKey, VarRef};
 use crate::gcode::{Dialect, Move, ReadOptions};
 use crate::geometry::measure::golden_min;
 use crate::geometry::parry::Line;
@@ -149,11 +149,12 @@ fn fold(e: &Expr, z: f64) -> Expr {
                 a => Expr::Neg(Box::new(a)),
             }
         }
-        Expr::Bin(op, a, b) => {
-            let (a, b) = (fold(a, z), fold(b, z));
-            let both = matches!((&a, &b), (Expr::Num(_), Expr::Num(_)));
-            let f = Expr::Bin(*op, Box::new(a), Box::new(b));
-            if both {
+        Expr::Chain(first, rest) => {
+            let first = fold(first, z);
+            let rest: Vec<(BinOp, Expr)> = rest.iter().map(|(op, e)| (*op, fold(e, z))).collect();
+            let all = matches!(first, Expr::Num(_)) && rest.iter().all(|(_, e)| matches!(e, Expr::Num(_)));
+            let f = Expr::Chain(Box::new(first), rest);
+            if all {
                 constant(f)
             } else {
                 f
@@ -178,7 +179,7 @@ fn names_z(e: &Expr) -> bool {
         Expr::Var(VarRef::Named(n)) => n == "z",
         Expr::Var(_) => false,
         Expr::Neg(a) => names_z(a),
-        Expr::Bin(_, a, b) => names_z(a) || names_z(b),
+        Expr::Chain(first, rest) => names_z(first) || rest.iter().any(|(_, e)| names_z(e)),
         Expr::Call(_, args) => args.iter().any(names_z),
     }
 }

@@ -158,8 +158,10 @@ pub enum Expr {
     Var(VarRef),
     /// Unary minus.
     Neg(Box<Expr>),
-    /// A binary operation.
-    Bin(BinOp, Box<Expr>, Box<Expr>),
+    /// Operators of one precedence level applied left to right: `a + b - c` is the first operand
+    /// and `[(+, b), (−, c)]`. Flat, so that a long sum is built, evaluated and dropped without
+    /// recursing once per term.
+    Chain(Box<Expr>, Vec<(BinOp, Expr)>),
     /// A function of its arguments.
     Call(Func, Vec<Expr>),
 }
@@ -209,6 +211,50 @@ pub fn key_of(v: &VarRef, env: &mut dyn Env) -> Result<VarKey, String> {
     }
 }
 
+/// One binary operator on two values: EQ and NE tell null from 0 (Fanuc), the other operators
+/// read null as 0.
+fn apply(op: BinOp, x: Value, y: Value) -> Result<f64, String> {
+    if matches!(op, BinOp::Eq | BinOp::Ne) {
+        let eq = match (x, y) {
+            (None, None) => true,
+            (Some(x), Some(y)) => (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0),
+            _ => false,
+        };
+        return Ok(if eq == (op == BinOp::Eq) { 1.0 } else { 0.0 });
+    }
+    let (x, y) = (x.unwrap_or(0.0), y.unwrap_or(0.0));
+    let b2 = |c: bool| if c { 1.0 } else { 0.0 };
+    Ok(match op {
+        BinOp::Add => x + y,
+        BinOp::Sub => x - y,
+        BinOp::Mul => x * y,
+        BinOp::Div => {
+            if y == 0.0 {
+                return Err("division by zero".into());
+            }
+            x / y
+        }
+        BinOp::Mod => {
+            if y == 0.0 {
+                return Err("MOD by zero".into());
+            }
+            x - y * (x / y).floor()
+        }
+        BinOp::Pow => x.powf(y),
+        BinOp::Eq | BinOp::Ne => unreachable!("handled above"),
+        BinOp::Gt => b2(x > y),
+        BinOp::Ge => b2(x >= y),
+        BinOp::Lt => b2(x < y),
+        BinOp::Le => b2(x <= y),
+        BinOp::BitAnd => (bits(x, "AND")? & bits(y, "AND")?) as f64,
+        BinOp::BitOr => (bits(x, "OR")? | bits(y, "OR")?) as f64,
+        BinOp::BitXor => (bits(x, "XOR")? ^ bits(y, "XOR")?) as f64,
+        BinOp::And => b2(truthy(x) && truthy(y)),
+        BinOp::Or => b2(truthy(x) || truthy(y)),
+        BinOp::Xor => b2(truthy(x) != truthy(y)),
+    })
+}
+
 /// Evaluates an expression; null propagates through a bare variable only.
 pub fn eval(e: &Expr, env: &mut dyn Env, depth: usize) -> Result<Value, String> {
     if depth > MAX_EXPR_DEPTH {
@@ -224,49 +270,13 @@ pub fn eval(e: &Expr, env: &mut dyn Env, depth: usize) -> Result<Value, String> 
             return env.get(&k);
         }
         Expr::Neg(a) => -num(a, env)?,
-        Expr::Bin(op, a, b) => {
-            // EQ and NE tell null from 0 (Fanuc); the other operators read null as 0.
-            if matches!(op, BinOp::Eq | BinOp::Ne) {
-                let (x, y) = (eval(a, env, depth + 1)?, eval(b, env, depth + 1)?);
-                let eq = match (x, y) {
-                    (None, None) => true,
-                    (Some(x), Some(y)) => (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0),
-                    _ => false,
-                };
-                return Ok(Some(if eq == (*op == BinOp::Eq) { 1.0 } else { 0.0 }));
+        Expr::Chain(first, rest) => {
+            let mut acc = eval(first, env, depth + 1)?;
+            for (op, e) in rest {
+                let y = eval(e, env, depth + 1)?;
+                acc = Some(apply(*op, acc, y)?);
             }
-            let x = num(a, env)?;
-            let y = num(b, env)?;
-            let b2 = |c: bool| if c { 1.0 } else { 0.0 };
-            match op {
-                BinOp::Add => x + y,
-                BinOp::Sub => x - y,
-                BinOp::Mul => x * y,
-                BinOp::Div => {
-                    if y == 0.0 {
-                        return Err("division by zero".into());
-                    }
-                    x / y
-                }
-                BinOp::Mod => {
-                    if y == 0.0 {
-                        return Err("MOD by zero".into());
-                    }
-                    x - y * (x / y).floor()
-                }
-                BinOp::Pow => x.powf(y),
-                BinOp::Eq | BinOp::Ne => unreachable!("handled above"),
-                BinOp::Gt => b2(x > y),
-                BinOp::Ge => b2(x >= y),
-                BinOp::Lt => b2(x < y),
-                BinOp::Le => b2(x <= y),
-                BinOp::BitAnd => (bits(x, "AND")? & bits(y, "AND")?) as f64,
-                BinOp::BitOr => (bits(x, "OR")? | bits(y, "OR")?) as f64,
-                BinOp::BitXor => (bits(x, "XOR")? ^ bits(y, "XOR")?) as f64,
-                BinOp::And => b2(truthy(x) && truthy(y)),
-                BinOp::Or => b2(truthy(x) || truthy(y)),
-                BinOp::Xor => b2(truthy(x) != truthy(y)),
-            }
+            return Ok(acc);
         }
         Expr::Call(f, args) => {
             if *f == Func::Exists {
@@ -505,12 +515,12 @@ impl<'a> Parser<'a> {
         if level > self.top() {
             return self.unary();
         }
-        let mut lhs = self.binary(level + 1)?;
+        let lhs = self.binary(level + 1)?;
+        let mut rest = Vec::new();
         while let Some(op) = self.binop(level) {
-            let rhs = self.binary(level + 1)?;
-            lhs = Expr::Bin(op, Box::new(lhs), Box::new(rhs));
+            rest.push((op, self.binary(level + 1)?));
         }
-        Ok(lhs)
+        Ok(if rest.is_empty() { lhs } else { Expr::Chain(Box::new(lhs), rest) })
     }
 
     fn open(&self) -> char {
