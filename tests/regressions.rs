@@ -77,3 +77,21 @@ fn a_long_flat_sum_is_one_level_deep() {
         assert_eq!(p.passes[0].lead, 1.5, "{terms} terms, LinuxCNC");
     }
 }
+
+/// Issue 24: a FIFO with no writer blocked the reader for ever. It is given up after the stated
+/// time with one line naming it; a pipe that delivers is read as before.
+#[cfg(unix)]
+#[test]
+fn a_fifo_with_no_writer_is_given_up() {
+    let dir = crate::tempdir("fifo");
+    let fifo = dir.join("program.nc");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status().expect("mkfifo runs");
+    assert!(made.success());
+    let out = crate::run(&["verify", "--thread", "M10x1.5-6g", "--program", fifo.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = crate::one_line_error(&out);
+    assert!(
+        err.ends_with("program.nc: no data within 10 s: a FIFO or device with no writer is not read"),
+        "{err}"
+    );
+}

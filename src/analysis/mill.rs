@@ -224,7 +224,11 @@ impl Target {
     /// Reads a target file.
     pub fn read(path: &std::path::Path) -> Result<Target, Error> {
         let shown = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(shown.clone(), e))?;
+        let text = crate::ground::input::read_text_bounded(
+            path,
+            crate::ground::bounds::MAX_DATA_FILE_BYTES,
+            "a target file",
+        )?;
         Target::from_toml(&text, &shown)
     }
 

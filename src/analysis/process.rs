@@ -65,7 +65,11 @@ impl MachineProfile {
         if arg == "training-lathe" {
             return Ok(MachineProfile::training_lathe());
         }
-        let text = std::fs::read_to_string(arg).map_err(|e| Error::io(arg.to_string(), e))?;
+        let text = crate::ground::input::read_text_bounded(
+            std::path::Path::new(arg),
+            crate::ground::bounds::MAX_DATA_FILE_BYTES,
+            "a machine profile",
+        )?;
         let m: MachineProfile = toml::from_str(&text)
             .map_err(|e| Error::File { file: arg.to_string(), message: e.to_string().replace('\n', " ") })?;
         if !(m.rapid_mm_min > 0.0)

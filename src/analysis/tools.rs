@@ -59,7 +59,11 @@ impl ToolTable {
     /// Reads a tool table file.
     pub fn read(path: &Path) -> Result<ToolTable, Error> {
         let shown = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(shown.clone(), e))?;
+        let text = crate::ground::input::read_text_bounded(
+            path,
+            crate::ground::bounds::MAX_DATA_FILE_BYTES,
+            "a tool table",
+        )?;
         ToolTable::from_toml(&text, &shown, path.parent().unwrap_or(Path::new(".")))
     }
 

@@ -7,6 +7,7 @@ use crate::geometry::boolean::UnionStrategy;
 use crate::geometry::insert::{Insert, InsertKind};
 use crate::geometry::measure::{measure, MeasureSetup, Measurement};
 use crate::geometry::sweep::{pass_metrics, sweep, PassMetrics, Section, SweepSetup, Window};
+use crate::ground::bounds::MAX_DATA_FILE_BYTES;
 use crate::standards::tolerance::{limits_for, ThreadLimits};
 use crate::standards::{parse_designation, Designation, ParseOptions, ProfileKind, ThreadKind};
 use crate::{BasicThread, Error};
@@ -309,7 +310,7 @@ fn build_insert(choice: &InsertChoice, t: &BasicThread, kind: ThreadKind, tol: f
             Insert::partial_for(t, *tip_radius, tol)?
         }
         InsertChoice::File(path) => {
-            let text = std::fs::read_to_string(path).map_err(|e| Error::io(path.display().to_string(), e))?;
+            let text = crate::ground::input::read_text_bounded(path, MAX_DATA_FILE_BYTES, "an insert file")?;
             Insert::from_toml(&text, &path.display().to_string(), tol)?
         }
     };
@@ -528,16 +529,8 @@ impl ProgramSource {
 /// ```
 pub fn read_program_text(path: &std::path::Path) -> Result<String, Error> {
     let shown = path.display().to_string();
-    let meta = std::fs::metadata(path).map_err(|e| Error::io(shown.clone(), e))?;
-    if meta.len() > crate::ground::bounds::MAX_PROGRAM_BYTES as u64 {
-        return Err(Error::Program {
-            file: shown,
-            line: 1,
-            column: 1,
-            message: format!("the program is larger than {} bytes", crate::ground::bounds::MAX_PROGRAM_BYTES),
-        });
-    }
-    let bytes = std::fs::read(path).map_err(|e| Error::io(shown.clone(), e))?;
+    let bytes =
+        crate::ground::input::read_bounded(path, crate::ground::bounds::MAX_PROGRAM_BYTES, "the program")?;
     text_of(&bytes, &shown)
 }
 

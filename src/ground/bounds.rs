@@ -24,6 +24,9 @@ pub const MAX_BACKWARD_JUMPS: usize = 2_000_000;
 /// Largest program file read, bytes.
 pub const MAX_PROGRAM_BYTES: usize = 8 << 20;
 
+/// Largest insert, tool table, machine profile or target file read (TOML), bytes.
+pub const MAX_DATA_FILE_BYTES: usize = 1 << 20;
+
 /// Most points a custom insert outline may have, arcs tessellated included.
 pub const MAX_OUTLINE_POINTS: usize = 10_000;
 

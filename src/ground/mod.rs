@@ -4,5 +4,6 @@
 pub mod bounds;
 pub mod error;
 pub mod fmt;
+pub mod input;
 pub mod note;
 pub mod plane;
