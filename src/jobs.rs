@@ -285,7 +285,9 @@ impl VerifyJob {
         outcome: Outcome,
     ) -> Result<(String, Outcome), Error> {
         let files = [(&self.svg, svg_text), (&self.html, html_text)];
-        Ok((write_outputs(&files, self.json.as_deref(), json_text, text)?, outcome))
+        let mut inputs = spec_inputs(&self.spec);
+        inputs.extend(self.tools.iter().map(|t| std::path::PathBuf::from(&t.source)));
+        Ok((write_outputs(&inputs, &files, self.json.as_deref(), json_text, text)?, outcome))
     }
 }
 
@@ -293,6 +295,7 @@ impl VerifyJob {
 /// file of the run written together, all or none (so a failure leaves no file half-done and
 /// every old output in place); the JSON routed as [`route_json`] does. Returns what to print.
 fn write_outputs(
+    inputs: &[std::path::PathBuf],
     files: &[(&Option<std::path::PathBuf>, Option<String>)],
     json: Option<&str>,
     json_text: Option<String>,
@@ -312,8 +315,21 @@ fn write_outputs(
         }
         _ => text,
     };
+    crate::report::output::refuse_inputs(&outputs, inputs)?;
     crate::report::output::write_all_atomic(&outputs)?;
     Ok(shown)
+}
+
+/// The files a verification spec reads: its program and its insert.
+fn spec_inputs(spec: &crate::analysis::verify::VerifySpec) -> Vec<std::path::PathBuf> {
+    let mut v = Vec::new();
+    if let Some((crate::analysis::verify::ProgramSource::File(p), _)) = &spec.program {
+        v.push(p.clone());
+    }
+    if let crate::analysis::verify::InsertChoice::File(p) = &spec.insert {
+        v.push(p.clone());
+    }
+    v
 }
 
 /// Where `--json` sends the JSON: `-` prints it on stdout instead of the text; a path writes it
@@ -357,7 +373,22 @@ impl FitJob {
             self.json.as_ref().map(|_| pretty(&crate::report::fit::FitJson::of(&r))).transpose()?;
         let svg_text = self.svg.as_ref().map(|_| crate::report::fit::svg(&r));
         let text = crate::report::fit::text(&r);
-        Ok((write_outputs(&[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?, outcome))
+        let inputs: Vec<std::path::PathBuf> = [&self.spec.bolt, &self.spec.nut]
+            .iter()
+            .flat_map(|side| {
+                let program = side.program.as_ref().map(|(_, name, _)| std::path::PathBuf::from(name));
+                let insert = match &side.insert {
+                    crate::analysis::verify::InsertChoice::File(p) => Some(p.clone()),
+                    crate::analysis::verify::InsertChoice::Full
+                    | crate::analysis::verify::InsertChoice::Partial { .. } => None,
+                };
+                program.into_iter().chain(insert)
+            })
+            .collect();
+        Ok((
+            write_outputs(&inputs, &[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?,
+            outcome,
+        ))
     }
 }
 
@@ -525,7 +556,13 @@ impl CompareJob {
         let html = self.html.as_ref().map(|_| crate::report::html::compare_html(&c));
         let files = [(&self.markdown, md), (&self.html, html)];
         Ok((
-            write_outputs(&files, self.json.as_deref(), json_text, crate::report::compare::text(&c))?,
+            write_outputs(
+                &spec_inputs(&spec),
+                &files,
+                self.json.as_deref(),
+                json_text,
+                crate::report::compare::text(&c),
+            )?,
             Outcome::Pass,
         ))
     }
@@ -712,7 +749,14 @@ impl MillJob {
             Outcome::OutOfTolerance
         };
         let text = crate::report::mill::text(&r);
-        Ok((write_outputs(&[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?, outcome))
+        let inputs = [
+            std::path::PathBuf::from(&self.spec.program.1),
+            std::path::PathBuf::from(&self.spec.target.source),
+        ];
+        Ok((
+            write_outputs(&inputs, &[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?,
+            outcome,
+        ))
     }
 }
 

@@ -61,7 +61,7 @@ mod report;
 mod standards;
 
 // Ground: the error, the plane's value types.
-pub use ground::error::{Error, Result};
+pub use ground::error::{one_line, Error, Result};
 pub use ground::note::{Note, NoteKind, Place};
 pub use ground::plane::{Arc, Point, DEFAULT_TOLERANCE, MIN_TOLERANCE};
 

@@ -15,14 +15,26 @@ fn main() -> ExitCode {
     };
     match cli.run() {
         Ok((stdout, stderr, outcome)) => {
-            // A closed pipe (`| head`) is not an error worth a message.
-            let _ = std::io::stdout().lock().write_all(stdout.as_bytes());
+            let written = std::io::stdout()
+                .lock()
+                .write_all(stdout.as_bytes())
+                .and_then(|()| std::io::stdout().flush());
             let _ = std::io::stderr().lock().write_all(stderr.as_bytes());
-            ExitCode::from(outcome.exit_code() as u8)
+            match written {
+                // A closed pipe (`| head`) is the reader's choice, not an error worth a message.
+                Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+                    eprintln!(
+                        "threadcheck: error: standard output: {}",
+                        threadcheck::one_line(&e.to_string())
+                    );
+                    ExitCode::from(2)
+                }
+                _ => ExitCode::from(outcome.exit_code() as u8),
+            }
         }
         Err(e) => {
             // One line, whatever the message carried.
-            eprintln!("threadcheck: error: {}", e.to_string().replace('\n', " "));
+            eprintln!("threadcheck: error: {}", e.one_line());
             ExitCode::from(2)
         }
     }
@@ -42,7 +54,7 @@ fn usage_error(e: &clap::Error) -> ExitCode {
             ExitCode::from(2)
         }
         _ => {
-            eprintln!("threadcheck: error: {}", cli::one_line(&e.to_string()));
+            eprintln!("threadcheck: error: {}", threadcheck::one_line(&cli::one_line(&e.to_string())));
             ExitCode::from(2)
         }
     }

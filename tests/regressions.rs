@@ -95,3 +95,73 @@ fn a_fifo_with_no_writer_is_given_up() {
         "{err}"
     );
 }
+
+/// Issue 24: `verify --svg old.svg --html /dev/full` exited 2 with old.svg already replaced:
+/// outputs were renamed one after another. Now every output of a run is written, or none.
+#[cfg(unix)]
+#[test]
+fn a_failed_output_keeps_every_old_output() {
+    let dir = crate::tempdir("all-or-none");
+    let old = dir.join("old.svg");
+    std::fs::write(&old, "old").unwrap();
+    let out = crate::run(&[
+        "verify",
+        "--thread",
+        "M10x1.5-6g",
+        "--svg",
+        old.to_str().unwrap(),
+        "--html",
+        "/dev/full",
+    ]);
+    assert!(crate::one_line_error(&out).ends_with("/dev/full: No space left on device (os error 28)"));
+    assert_eq!(std::fs::read_to_string(&old).unwrap(), "old");
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "a temporary was left behind");
+}
+
+/// Issue 24: an output path equal to the program silently overwrote the program.
+#[test]
+fn an_output_that_is_an_input_is_refused() {
+    let dir = crate::tempdir("input-output");
+    let prog = dir.join("m10.nc");
+    let text = "G0 X12 Z5\nG76 P011060 Q100 R0.05\nG76 X8.16 Z-20 P920 Q350 F1.5\n";
+    std::fs::write(&prog, text).unwrap();
+    let p = prog.to_str().unwrap();
+    for flag in ["--svg", "--html", "--json"] {
+        let out = crate::run(&["verify", "--thread", "M10x1.5-6g", "--program", p, flag, p]);
+        let err = crate::one_line_error(&out);
+        assert!(err.ends_with("m10.nc: is an input of this run; an output must not replace it"), "{err}");
+        assert_eq!(std::fs::read_to_string(&prog).unwrap(), text);
+    }
+}
+
+/// Issue 24: a write error on standard output (a full disk) exited 0.
+#[cfg(unix)]
+#[test]
+fn a_stdout_write_error_exits_2() {
+    let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_threadcheck"))
+        .args(["limits", "M10x1.5-6g"])
+        .stdout(full)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr).trim_end(),
+        "threadcheck: error: standard output: No space left on device (os error 28)"
+    );
+}
+
+/// Issue 24: a replaced output changed its mode from 0600 to 0644.
+#[cfg(unix)]
+#[test]
+fn a_replaced_output_keeps_its_mode() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = crate::tempdir("mode");
+    let json = dir.join("v.json");
+    std::fs::write(&json, "{}").unwrap();
+    std::fs::set_permissions(&json, std::fs::Permissions::from_mode(0o600)).unwrap();
+    let out = crate::run(&["verify", "--thread", "M10x1.5-6g", "--json", json.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1), "{}", crate::stderr(&out)); // the partial insert fails d3
+    assert_eq!(std::fs::metadata(&json).unwrap().permissions().mode() & 0o777, 0o600);
+    assert!(std::fs::read_to_string(&json).unwrap().contains("\"verdict\""));
+}

@@ -9,7 +9,7 @@ use threadcheck::{LimitsJob, Outcome, PassesJob, VerifyJob};
 use threadcheck::{ProgramSource, VerifySpec};
 
 fn value_error(e: threadcheck::Error) -> PyErr {
-    PyValueError::new_err(e.to_string())
+    PyValueError::new_err(e.one_line())
 }
 
 /// The plan and program arguments `verify` and `passes` share, as the CLI's `PlanArgs`.

@@ -91,7 +91,7 @@ pub struct Target {
     /// Which side is the part.
     pub material: Material,
     #[serde(skip)]
-    source: String,
+    pub(crate) source: String,
     #[serde(skip)]
     ex: Expr,
     #[serde(skip)]

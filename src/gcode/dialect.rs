@@ -39,7 +39,73 @@ pub(crate) struct Language {
     pub lathe_cycles_call_q: bool,
     /// How a subprogram is called in the dialect's words (`subprogram 1001`, `o100 sub`).
     pub sub_word: fn(&str) -> String,
+    /// Predefined named parameters, read-only to a program (LinuxCNC's `#<_x>`, `#<_metric>` …).
+    pub read_only_names: &'static [&'static str],
 }
+
+/// LinuxCNC's predefined named parameters (its manual, "Predefined Named Parameters"): a program
+/// reads them and cannot set them.
+const LINUXCNC_PREDEFINED: &[&str] = &[
+    "_vmajor",
+    "_vminor",
+    "_line",
+    "_motion_mode",
+    "_plane",
+    "_ccomp",
+    "_metric",
+    "_imperial",
+    "_absolute",
+    "_incremental",
+    "_inverse_time",
+    "_units_per_minute",
+    "_units_per_rev",
+    "_coord_system",
+    "_tool_offset",
+    "_retract_r_plane",
+    "_retract_old_z",
+    "_spindle_rpm_mode",
+    "_spindle_css_mode",
+    "_ijk_absolute_mode",
+    "_lathe_diameter_mode",
+    "_lathe_radius_mode",
+    "_spindle_on",
+    "_spindle_cw",
+    "_mist",
+    "_flood",
+    "_speed_override",
+    "_feed_override",
+    "_adaptive_feed",
+    "_feed_hold",
+    "_feed",
+    "_rpm",
+    "_x",
+    "_y",
+    "_z",
+    "_a",
+    "_b",
+    "_c",
+    "_u",
+    "_v",
+    "_w",
+    "_abs_x",
+    "_abs_y",
+    "_abs_z",
+    "_abs_a",
+    "_abs_b",
+    "_abs_c",
+    "_abs_u",
+    "_abs_v",
+    "_abs_w",
+    "_current_tool",
+    "_current_pocket",
+    "_selected_tool",
+    "_selected_pocket",
+    "_value",
+    "_value_returned",
+    "_task",
+    "_call_level",
+    "_remap_level",
+];
 
 impl Language {
     /// The table.
@@ -57,6 +123,7 @@ impl Language {
             max_while_nesting: Some(3),
             lathe_cycles_call_q: false,
             sub_word: |n| format!("subprogram {n}"),
+            read_only_names: &[],
         };
         match dialect {
             Dialect::Fanuc | Dialect::Haas => fanuc,
@@ -82,6 +149,7 @@ impl Language {
                 max_while_nesting: None,
                 lathe_cycles_call_q: true,
                 sub_word: |n| format!("o{n} sub"),
+                read_only_names: LINUXCNC_PREDEFINED,
                 ..fanuc
             },
             Dialect::Dyna => Language {

@@ -90,7 +90,7 @@ impl Vars {
                 };
             }
             VarKey::Named(s) if s.starts_with('_') => {
-                if self.system.contains_key(s) {
+                if self.system.contains_key(s) || self.lang.read_only_names.contains(&s.as_str()) {
                     return Err(format!("#<{s}> is read-only"));
                 }
                 match v {

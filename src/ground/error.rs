@@ -53,6 +53,61 @@ impl Error {
     pub fn io(path: impl std::fmt::Display, source: std::io::Error) -> Error {
         Error::Io { path: path.to_string(), source }
     }
+
+    /// The message as the one line the CLI prints and Python raises: see [`one_line`].
+    ///
+    /// ```
+    /// let e = threadcheck::Error::Input("a\nb \u{1b}[31m".into());
+    /// assert_eq!(e.one_line(), "a b \\u{1b}[31m");
+    /// ```
+    pub fn one_line(&self) -> String {
+        one_line(&self.to_string())
+    }
+}
+
+/// Longest run of text without a space that an error line shows whole; a longer one (a
+/// megabyte-long number) is shortened to its first [`TOKEN_HEAD`] and last [`TOKEN_TAIL`]
+/// characters around an ellipsis.
+pub const MAX_TOKEN: usize = 80;
+/// Characters kept from the start of a shortened token.
+pub const TOKEN_HEAD: usize = 40;
+/// Characters kept from the end of a shortened token.
+pub const TOKEN_TAIL: usize = 12;
+
+/// `text` as one line a terminal shows as it is: line breaks become spaces; other control
+/// characters and the bidirectional overrides (U+202A–U+202E, U+2066–U+2069), which could
+/// disguise a file name or a message, are written `\u{…}`; a run of more than [`MAX_TOKEN`]
+/// characters without a space is shortened around an ellipsis.
+pub fn one_line(text: &str) -> String {
+    let mut out = String::with_capacity(text.len().min(4096));
+    for token in text.split(' ') {
+        if !out.is_empty() {
+            out.push(' ');
+        }
+        let n = token.chars().count();
+        if n > MAX_TOKEN {
+            escape_into(&mut out, token.chars().take(TOKEN_HEAD));
+            out.push('…');
+            escape_into(&mut out, token.chars().skip(n - TOKEN_TAIL));
+        } else {
+            escape_into(&mut out, token.chars());
+        }
+    }
+    out
+}
+
+fn escape_into(out: &mut String, chars: impl Iterator<Item = char>) {
+    for c in chars {
+        match c {
+            '\n' | '\r' if out.ends_with(' ') => {}
+            '\n' | '\r' => out.push(' '),
+            '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}' => {
+                out.push_str(&format!("\\u{{{:x}}}", c as u32))
+            }
+            c if c.is_control() => out.push_str(&format!("\\u{{{:x}}}", c as u32)),
+            c => out.push(c),
+        }
+    }
 }
 
 /// Shorthand for results in this crate.

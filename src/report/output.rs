@@ -47,6 +47,23 @@ pub fn write_all_atomic(outputs: &[(PathBuf, Vec<u8>)]) -> Result<(), Error> {
     Ok(())
 }
 
+/// Refuses an output that is one of the run's inputs (the same file, by any path): writing it
+/// would replace the program or the insert being checked.
+pub fn refuse_inputs(outputs: &[(PathBuf, Vec<u8>)], inputs: &[PathBuf]) -> Result<(), Error> {
+    let inputs: Vec<PathBuf> = inputs.iter().filter_map(|p| std::fs::canonicalize(p).ok()).collect();
+    for (path, _) in outputs {
+        if let Ok(real) = std::fs::canonicalize(path) {
+            if inputs.contains(&real) {
+                return Err(Error::Input(format!(
+                    "{}: is an input of this run; an output must not replace it",
+                    path.display()
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Resolves a target (following a symbolic link, refusing a folder) and, for a regular file,
 /// writes its temporary.
 fn prepare(path: &Path, bytes: &[u8]) -> Result<Target, Error> {
