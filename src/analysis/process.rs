@@ -72,13 +72,15 @@ impl MachineProfile {
         )?;
         let m: MachineProfile = toml::from_str(&text)
             .map_err(|e| Error::File { file: arg.to_string(), message: e.to_string().replace('\n', " ") })?;
-        if !(m.rapid_mm_min > 0.0)
-            || m.max_rpm.is_some_and(|r| !(r > 0.0))
-            || m.max_feed_mm_min.is_some_and(|f| !(f > 0.0))
+        let positive = |v: f64| v > 0.0 && v.is_finite();
+        if !positive(m.rapid_mm_min)
+            || m.max_rpm.is_some_and(|r| !positive(r))
+            || m.max_feed_mm_min.is_some_and(|f| !positive(f))
+            || m.rpm_per_pitch.iter().any(|(up, rpm)| !positive(*up) || !positive(*rpm))
         {
             return Err(Error::File {
                 file: arg.to_string(),
-                message: "rates must be greater than zero".into(),
+                message: "rates, speeds and pitches must be finite and greater than zero".into(),
             });
         }
         Ok(m)

@@ -358,6 +358,9 @@ pub fn infeed_offsets(infeed: Infeed, depths: &[f64], dir: f64) -> Vec<f64> {
     }
 }
 
+/// The steepest taper a plan accepts, diameter change per mm of length.
+pub const MAX_TAPER: f64 = 1.0;
+
 /// A generated plan: everything needed to lay out the passes of a parallel thread.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlanSpec {
@@ -542,10 +545,23 @@ impl PlanSpec {
                 per_start, self.starts
             )));
         }
-        for (name, v) in [("taper", self.taper), ("chamfer", self.chamfer_leads)] {
-            if !v.is_finite() || (name == "chamfer" && v < 0.0) {
-                return Err(Error::Input(format!("{name} {v} is not usable")));
-            }
+        // A thread cone steeper than a half-angle of 26.6° (a diameter change of 1 mm per mm) is
+        // a face, not a taper thread; NPT's 1:16 is 0.0625.
+        if !(self.taper.abs() <= MAX_TAPER) {
+            return Err(Error::Input(format!(
+                "taper {} must be between −{MAX_TAPER} and {MAX_TAPER} (diameter change per mm of length; 1:16 is 0.0625)",
+                crate::ground::fmt::fmt_shown(self.taper)
+            )));
+        }
+        // A run-out longer than the thread's length in leads cannot be cut.
+        if !(self.chamfer_leads >= 0.0
+            && self.chamfer_leads * self.pitch <= self.length.abs().max(self.pitch))
+        {
+            return Err(Error::Input(format!(
+                "chamfer {} leads must be from 0 to the thread's length ({} mm)",
+                crate::ground::fmt::fmt_shown(self.chamfer_leads),
+                self.length
+            )));
         }
         let dir = if self.left_hand { 1.0 } else { -1.0 };
         let offsets = infeed_offsets(self.infeed, &depths, dir);

@@ -10,3 +10,13 @@ pub fn fmt_num(v: f64) -> String {
         s.to_string()
     }
 }
+
+/// A number as a message shows it: plainly, or in exponent form when it is huge or tiny
+/// (`1e308`, not 309 digits).
+pub fn fmt_shown(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-6..1e9).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
