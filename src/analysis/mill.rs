@@ -33,6 +33,7 @@ use crate::gcode::{Dialect, Move, ReadOptions};
 use crate::geometry::measure::golden_min;
 use crate::geometry::parry::Line;
 use crate::ground::plane::Point;
+use crate::ground::bounds::MAX_MILL_LEVELS;
 use crate::Error;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -533,6 +534,8 @@ struct LevelMoves {
 /// Groups the feed moves by level (the deeper end's Z, to 1 nm), arcs as chords.
 fn levels(moves: &[Move]) -> Vec<LevelMoves> {
     let mut out: Vec<LevelMoves> = Vec::new();
+    // Level by key, found in constant time (a linear search made many levels quadratic).
+    let mut index: std::collections::HashMap<u64, usize> = std::collections::HashMap::new();
     for m in moves.iter().filter(|m| !m.rapid) {
         let z = m.from[2].min(m.to[2]);
         let key = (z * 1e6).round() / 1e6;
@@ -561,14 +564,11 @@ fn levels(moves: &[Move]) -> Vec<LevelMoves> {
             }
             None => vec![a, b],
         };
-        let level = match out.iter_mut().find(|l| l.z == key) {
-            Some(l) => l,
-            None => {
-                out.push(LevelMoves { z: key, segs: Vec::new() });
-                let n = out.len() - 1;
-                &mut out[n]
-            }
-        };
+        let n = *index.entry(key.to_bits()).or_insert_with(|| {
+            out.push(LevelMoves { z: key, segs: Vec::new() });
+            out.len() - 1
+        });
+        let level = &mut out[n];
         for w in pts.windows(2) {
             level.segs.push((w[0], w[1], m.line));
         }
@@ -727,6 +727,12 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
     if all.is_empty() {
         return Err(Error::Input(format!("{name}: no feed move (G1, G2, G3) to check")));
     }
+    if all.len() > MAX_MILL_LEVELS {
+        return Err(Error::Input(format!(
+            "{name}: {} Z levels, more than the {MAX_MILL_LEVELS} threadcheck checks",
+            all.len()
+        )));
+    }
     let (cut, air): (Vec<LevelMoves>, Vec<LevelMoves>) = all.into_iter().partition(|l| l.z < top - 1e-9);
     if !air.is_empty() {
         notes.push(crate::ground::note::Note::from(format!(
@@ -771,20 +777,24 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
                 .ok_or_else(|| Error::Input("the target curve has no extent".into()))?,
         )
     };
-    let measured: Vec<Result<Option<Measured>, Error>> = cut
-        .par_iter()
-        .map(|lm| match &shared {
+    let measure = |lm: &LevelMoves| -> Result<Option<Measured>, Error> {
+        match &shared {
             Some(c) => Ok(Some(measure_level(c, lm, r))),
             None => Ok(Curve::new(&spec.target, lm.z)?.map(|c| measure_level(&c, lm, r))),
-        })
-        .collect();
+        }
+    };
+    // Each level's report only: a level's samples and profile are dropped as soon as it is
+    // measured, so memory does not grow with the number of levels; the one level the picture
+    // shows is measured again below.
+    let reports: Vec<Result<Option<LevelReport>, Error>> =
+        cut.par_iter().map(|lm| Ok(measure(lm)?.map(|m| m.report))).collect();
     let mut levels_out = Vec::new();
-    let mut kept: Vec<(Measured, &LevelMoves)> = Vec::new();
-    for (m, lm) in measured.into_iter().zip(&cut) {
+    let mut kept: Vec<(LevelReport, &LevelMoves)> = Vec::new();
+    for (m, lm) in reports.into_iter().zip(&cut) {
         match m? {
-            Some(m) => {
-                levels_out.push(m.report.clone());
-                kept.push((m, lm));
+            Some(report) => {
+                levels_out.push(report.clone());
+                kept.push((report, lm));
             }
             None => notes.push(crate::ground::note::Note::from(format!(
                 "the target has no extent at Z{}: that level is not checked",
@@ -792,11 +802,16 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
             ))),
         }
     }
-    let worst_g = kept.iter().max_by(|a, b| a.0.report.gouge.total_cmp(&b.0.report.gouge));
-    let worst_l = kept.iter().max_by(|a, b| a.0.report.leftover.total_cmp(&b.0.report.leftover));
-    let gouge_max = worst_g.map_or(0.0, |m| m.0.report.gouge);
-    let leftover_max = worst_l.map_or(0.0, |m| m.0.report.leftover);
-    let shown = if gouge_max > 0.0 { worst_g } else { worst_l };
+    let worst_g = kept.iter().max_by(|a, b| a.0.gouge.total_cmp(&b.0.gouge));
+    let worst_l = kept.iter().max_by(|a, b| a.0.leftover.total_cmp(&b.0.leftover));
+    let gouge_max = worst_g.map_or(0.0, |m| m.0.gouge);
+    let leftover_max = worst_l.map_or(0.0, |m| m.0.leftover);
+    let shown_level = if gouge_max > 0.0 { worst_g } else { worst_l };
+    let shown: Option<(Measured, &LevelMoves)> = match shown_level {
+        Some((_, lm)) => measure(lm)?.map(|m| (m, *lm)),
+        None => None,
+    };
+    let shown = shown.as_ref();
     let picture = shown.map(|(m, lm)| {
         let path: Vec<(Point, Point)> = lm.segs.iter().map(|&(a, b, _)| (a, b)).collect();
         MillPicture {
@@ -820,9 +835,9 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
         gouge_out,
         leftover_out,
         gouge_max,
-        gouge_at: worst_g.and_then(|m| m.0.report.gouge_at),
+        gouge_at: worst_g.and_then(|m| m.0.gouge_at),
         leftover_max,
-        leftover_at: worst_l.and_then(|m| m.0.report.leftover_at),
+        leftover_at: worst_l.and_then(|m| m.0.leftover_at),
         worst_level: shown.map(|m| m.0.report.z),
         profile: shown.map(|m| m.0.profile.clone()).unwrap_or_default(),
         levels: levels_out,

@@ -33,3 +33,7 @@ pub const MAX_OUTLINE_POINTS: usize = 10_000;
 /// Farthest an insert outline point may lie from the tip, mm: an insert is a few millimetres
 /// across (found by fuzzing: a bulge arc with a 10⁸ mm chord took 19 s to check).
 pub const MAX_INSERT_REACH: f64 = 100.0;
+
+/// Most Z levels a milling program may cut for `mill` to check (the source documents' dome has
+/// 799).
+pub const MAX_MILL_LEVELS: usize = 5_000;

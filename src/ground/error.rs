@@ -76,7 +76,7 @@ pub const TOKEN_TAIL: usize = 12;
 
 /// `text` as one line a terminal shows as it is: line breaks become spaces; other control
 /// characters and the bidirectional overrides (U+202A–U+202E, U+2066–U+2069), which could
-/// disguise a file name or a message, are written `\u{…}`; a run of more than [`MAX_TOKEN`]
+/// disguise a file name or a message, are written `\u{…}`; a run of more than 80
 /// characters without a space is shortened around an ellipsis.
 pub fn one_line(text: &str) -> String {
     let mut out = String::with_capacity(text.len().min(4096));
