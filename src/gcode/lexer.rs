@@ -191,6 +191,18 @@ impl Block {
         Block { line, col: 1, ..Block::default() }
     }
 
+    /// The block with no spare capacity: a program of a million one-word blocks held 400 bytes
+    /// of unused word slots in each.
+    fn compact(mut self) -> Block {
+        self.words.shrink_to_fit();
+        self.stmts.shrink_to_fit();
+        for w in &mut self.words {
+            w.name.shrink_to_fit();
+            w.text.shrink_to_fit();
+        }
+        self
+    }
+
     fn is_empty(&self) -> bool {
         self.n.is_none()
             && self.label.is_none()
@@ -291,7 +303,7 @@ fn bracket_line(line: &str, ln: usize, dialect: Dialect, out: &mut Vec<Block>) -
         let mut b = Block::new(ln);
         bracket_block(&seg, ln, dialect, &mut b)?;
         if !b.is_empty() {
-            out.push(b);
+            out.push(b.compact());
         }
     }
     Ok(())
@@ -777,7 +789,7 @@ fn sinumerik_line(line: &str, ln: usize, out: &mut Vec<Block>) -> Result<(), Lex
         }
     }
     if !b.is_empty() {
-        out.push(b);
+        out.push(b.compact());
     }
     Ok(())
 }

@@ -1,8 +1,10 @@
 //! Every explicit bound on input size in one place, so that no input can make threadcheck run
 //! for ever or exhaust memory. Each limit is far above what a real program needs.
 
-/// Most passes a plan or program may expand to (all starts together).
-pub const MAX_PASSES: usize = 100_000;
+/// Most passes a plan or program may expand to (all starts together): a real thread takes 5 to
+/// a few hundred; a verify of 1 000 passes with its pictures takes 0.7 s (100 000 took
+/// 61 s and 1 GB).
+pub const MAX_PASSES: usize = 1_000;
 
 /// Most imprints one sweep may place (passes × crossings of the window).
 pub const MAX_IMPRINTS: usize = 2_000_000;
@@ -14,15 +16,18 @@ pub const MAX_CALL_DEPTH: usize = 16;
 pub const MAX_REPEATS: usize = 10_000;
 
 /// Most blocks a program may execute, counting repetitions, before it is taken for a loop. The
-/// seed paraboloid program runs about 8 million (800 layers of 1440 steps of 7 blocks).
-pub const MAX_EXECUTED_BLOCKS: usize = 20_000_000;
+/// seed paraboloid program runs about 8 million (800 layers of 1440 steps of 7 blocks); the
+/// bound trips in about a second (20 million took 1.9 s).
+pub const MAX_EXECUTED_BLOCKS: usize = 10_000_000;
 
 /// Most loop iterations and backward jumps (WHILE, GOTO back, o-word loops, M73/M74) one
 /// program may make: a runaway loop stops here, well within a second.
 pub const MAX_BACKWARD_JUMPS: usize = 2_000_000;
 
-/// Largest program file read, bytes.
-pub const MAX_PROGRAM_BYTES: usize = 8 << 20;
+/// Largest program file read, bytes: 2 MiB, some 600 times the largest threading program met
+/// (3 kB); its worst case, a million one-word blocks, reads in under a second in 250 MB (8 MiB
+/// took 2.8 s and 1.5 GB).
+pub const MAX_PROGRAM_BYTES: usize = 2 << 20;
 
 /// Largest insert, tool table, machine profile or target file read (TOML), bytes.
 pub const MAX_DATA_FILE_BYTES: usize = 1 << 20;
@@ -37,3 +42,11 @@ pub const MAX_INSERT_REACH: f64 = 100.0;
 /// Most Z levels a milling program may cut for `mill` to check (the source documents' dome has
 /// 799).
 pub const MAX_MILL_LEVELS: usize = 5_000;
+
+/// Most straight pieces (moves, arcs as chords) `mill` checks over all levels (the source
+/// documents' dome has 1 153 603): about 40 bytes each while the levels are held.
+pub const MAX_MILL_SEGMENTS: usize = 2_000_000;
+
+/// Largest cutter `mill` checks, mm (a face mill is at most a few hundred; a 10⁹ mm cutter took
+/// 13 s).
+pub const MAX_TOOL_DIAMETER: f64 = 1000.0;

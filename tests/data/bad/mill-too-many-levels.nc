@@ -1,0 +1,11 @@
+(5 001 Z levels of 1 um, one circle each: more than mill checks)
+G21 G90 G17
+G0 X23 Y0 Z2
+#1=0
+WHILE[#1LT5001]DO1
+G1 Z-[[#1+1]*0.001] F100
+G3 X-23 Y0 I-23 J0
+G3 X23 Y0 I23 J0
+#1=#1+1
+END1
+M30
