@@ -269,14 +269,14 @@ struct FitArgs {
     #[arg(long, value_name = "FILE", conflicts_with = "bolt_final_x")]
     bolt_program: Option<PathBuf>,
     /// Its dialect: fanuc, haas, sinumerik, linuxcnc or dyna.
-    #[arg(long, default_value = "fanuc")]
-    bolt_dialect: Dialect,
+    #[arg(long)]
+    bolt_dialect: Option<Dialect>,
     /// The nut's program (else a generated plan).
     #[arg(long, value_name = "FILE", conflicts_with = "nut_final_x")]
     nut_program: Option<PathBuf>,
     /// Its dialect.
-    #[arg(long, default_value = "fanuc")]
-    nut_dialect: Dialect,
+    #[arg(long)]
+    nut_dialect: Option<Dialect>,
     /// The bolt plan's last tip diameter (default: mid-tolerance).
     #[arg(long, value_name = "DIA", allow_hyphen_values = true, value_parser = finite)]
     bolt_final_x: Option<f64>,
@@ -301,9 +301,9 @@ struct MillArgs {
     /// The milling program.
     #[arg(long, value_name = "FILE")]
     program: PathBuf,
-    /// fanuc | haas | sinumerik | linuxcnc | dyna
-    #[arg(long, default_value = "fanuc")]
-    dialect: Dialect,
+    /// fanuc | haas | sinumerik | linuxcnc | dyna (default: by the extension, else fanuc)
+    #[arg(long)]
+    dialect: Option<Dialect>,
     /// Run the blocks in the order of their N numbers (a listing whose page break moved blocks).
     #[arg(long)]
     n_order: bool,
@@ -391,9 +391,23 @@ struct PlanArgs {
     /// Lengths in the text and the SVG: mm, or mm with inches beside them.
     #[arg(long, value_enum, default_value = "mm")]
     units: UnitsArg,
-    /// fanuc | haas | sinumerik | linuxcnc | dyna
-    #[arg(long, default_value = "fanuc", requires = "program")]
-    dialect: Dialect,
+    /// fanuc | haas | sinumerik | linuxcnc | dyna (default: the program's extension names it,
+    /// .ngc linuxcnc, .mpf/.spf sinumerik; else fanuc)
+    #[arg(long, requires = "program")]
+    dialect: Option<Dialect>,
+    /// The units of a program that sets neither G20 nor G21 (the control's default).
+    #[arg(long, value_name = "mm|inch", requires = "program")]
+    default_units: Option<threadcheck::ProgramUnits>,
+}
+
+/// The dialect to read `program` in: the one given, else the one its extension names, else
+/// Fanuc; and how it was chosen.
+fn dialect_for(given: Option<Dialect>, program: &std::path::Path) -> (Dialect, threadcheck::DialectFrom) {
+    match (given, Dialect::by_extension(program)) {
+        (Some(d), _) => (d, threadcheck::DialectFrom::Given),
+        (None, Some(d)) => (d, threadcheck::DialectFrom::Extension),
+        (None, None) => (Dialect::Fanuc, threadcheck::DialectFrom::Default),
+    }
 }
 
 impl PlanArgs {
@@ -424,7 +438,12 @@ impl PlanArgs {
             UnitsArg::Mm => Units::Mm,
             UnitsArg::Inch => Units::Inch,
         };
-        s.program = self.program.as_ref().map(|p| (ProgramSource::File(p.clone()), self.dialect));
+        if let Some(p) = &self.program {
+            let (dialect, from) = dialect_for(self.dialect, p);
+            s.program = Some((ProgramSource::File(p.clone()), dialect));
+            s.reading.dialect_from = from;
+        }
+        s.reading.default_units = self.default_units;
         Ok(s)
     }
 
@@ -500,13 +519,15 @@ impl Cli {
             Command::Fit(f) => {
                 use threadcheck::FitSide;
                 let side = |prog: &Option<PathBuf>,
-                            dialect: Dialect,
+                            dialect: Option<Dialect>,
                             final_x: Option<f64>,
                             insert: &InsertChoice| {
                     let program = match prog {
-                        Some(p) => {
-                            Some((threadcheck::read_program_text(p)?, p.display().to_string(), dialect))
-                        }
+                        Some(p) => Some((
+                            threadcheck::read_program_text(p)?,
+                            p.display().to_string(),
+                            dialect_for(dialect, p).0,
+                        )),
                         None => None,
                     };
                     Ok::<_, Error>(FitSide { insert: insert.clone(), final_x, program })
@@ -548,7 +569,7 @@ impl Cli {
                 let text = threadcheck::read_program_text(&m.program)?;
                 let spec = threadcheck::MillSpec {
                     program: (text, m.program.display().to_string()),
-                    dialect: m.dialect,
+                    dialect: dialect_for(m.dialect, &m.program).0,
                     n_order: m.n_order,
                     tool_diameter: m.tool_diameter,
                     target: threadcheck::Target::read(&m.target)?,

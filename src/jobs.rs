@@ -422,7 +422,7 @@ impl PassesJob {
         let (thread, passes, header) = match (&self.spec.program, self.spec.designation.is_empty()) {
             (Some((source, dialect)), no_thread) => {
                 let (shown, text) = source.load()?;
-                let prog = crate::gcode::read_program(&text, &shown, *dialect)?;
+                let prog = crate::gcode::read_program_with(&text, &shown, *dialect, self.spec.reading)?;
                 let thread = if no_thread {
                     None
                 } else {

@@ -78,7 +78,10 @@ pub use standards::{Feature, GrooveForm};
 
 // Toolpaths: generated plans and programs read as a control would.
 pub use gcode::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
-pub use gcode::{read_program, read_program_with, Budget, Dialect, Operation, Program, ReadOptions, Spindle};
+pub use gcode::{
+    read_program, read_program_with, Budget, Dialect, DialectFrom, Operation, Program, ProgramUnits,
+    ReadOptions, Spindle, XWords,
+};
 
 // Geometry: the insert, the sweep, the measurement.
 pub use geometry::boolean::UnionStrategy;
@@ -92,6 +95,7 @@ pub use analysis::catalogue::{cases as catalogue_cases, run as run_catalogue, Ca
 pub use analysis::check::{checks, Check, CheckFeature, CheckKind, Verdict};
 pub use analysis::compare::{compare, Comparison};
 pub use analysis::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};
+pub use analysis::lead::{lead_deviation, LeadDeviation};
 pub use analysis::mill::{mill, MillReport, MillSpec, Target};
 pub use analysis::picture::{Cut, Deviation, Picture};
 pub use analysis::process::MachineProfile;

@@ -17,6 +17,7 @@ mod process;
 mod programs;
 mod properties;
 mod regressions;
+mod shop;
 mod sweep;
 mod util;
 mod verify;

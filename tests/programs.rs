@@ -441,7 +441,7 @@ fn dyna_counted_loops_and_moves() {
 #[test]
 fn seed_cardioid_cam_expands_in_n_order() {
     let text = std::fs::read_to_string(data("programs/milling/seed002-cardioid-cam.nc")).unwrap();
-    let opts = ReadOptions { moves: true, allow_no_threading: true, n_order: true, budget: None };
+    let opts = ReadOptions { moves: true, allow_no_threading: true, n_order: true, ..ReadOptions::default() };
     let p = read_program_with(&text, "cam.nc", Dialect::Dyna, opts).unwrap();
     let last_feed = p.moves.iter().rev().find(|m| !m.rapid).unwrap();
     assert_eq!(p.moves.len(), 92_290, "the first G00 and the final G00 Z2 included");
@@ -569,7 +569,8 @@ fn linuxcnc_profile_subroutine_of_g71_counts_as_called() {
 #[test]
 fn seed_paraboloid_expands_and_names_hash_14() {
     let text = std::fs::read_to_string(data("programs/milling/seed004-paraboloid.nc")).unwrap();
-    let opts = ReadOptions { moves: true, allow_no_threading: true, n_order: false, budget: None };
+    let opts =
+        ReadOptions { moves: true, allow_no_threading: true, n_order: false, ..ReadOptions::default() };
     let p = read_program_with(&text, "dome.nc", Dialect::Dyna, opts).unwrap();
     assert_eq!(p.moves.len(), 1_153_603);
     assert!(p.notes.iter().any(|n| n.to_string().contains("#14 is read before it is set")), "{:?}", p.notes);

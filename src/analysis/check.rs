@@ -69,6 +69,9 @@ pub enum CheckFeature {
     MajorDiameter,
     /// Pitch diameter d2 (D2), mm.
     PitchDiameter,
+    /// The functional (virtual) pitch diameter where the program's lead deviates: d2 with the
+    /// lead error's equivalent, against the maximum-material limit, mm.
+    FunctionalPitchDiameter,
     /// Minor diameter d3 (D1), mm.
     MinorDiameter,
     /// Smallest root radius, mm.
@@ -103,6 +106,7 @@ impl CheckFeature {
         match self {
             CheckFeature::MajorDiameter => "major_diameter",
             CheckFeature::PitchDiameter => "pitch_diameter",
+            CheckFeature::FunctionalPitchDiameter => "functional_pitch_diameter",
             CheckFeature::MinorDiameter => "minor_diameter",
             CheckFeature::RootRadius => "root_radius",
             CheckFeature::FlankAngle => "flank_angle",
@@ -124,6 +128,7 @@ impl CheckFeature {
         match self {
             CheckFeature::MajorDiameter => "major diameter",
             CheckFeature::PitchDiameter => "pitch diameter",
+            CheckFeature::FunctionalPitchDiameter => "functional d2",
             CheckFeature::MinorDiameter => "minor diameter",
             CheckFeature::RootRadius => "root radius",
             CheckFeature::FlankAngle => "flank angle",
@@ -149,6 +154,8 @@ impl CheckFeature {
             CheckFeature::MajorDiameter => "major diameter D",
             CheckFeature::PitchDiameter if ext => "pitch diameter d2",
             CheckFeature::PitchDiameter => "pitch diameter D2",
+            CheckFeature::FunctionalPitchDiameter if ext => "functional pitch diameter d2",
+            CheckFeature::FunctionalPitchDiameter => "functional pitch diameter D2",
             CheckFeature::MinorDiameter if ext => "minor diameter d3",
             CheckFeature::MinorDiameter => "minor diameter D1",
             CheckFeature::RootRadius => "root radius",
@@ -171,6 +178,7 @@ impl CheckFeature {
         match self {
             CheckFeature::MajorDiameter
             | CheckFeature::PitchDiameter
+            | CheckFeature::FunctionalPitchDiameter
             | CheckFeature::MinorDiameter
             | CheckFeature::RootRadius
             | CheckFeature::MaxMaterial
@@ -239,6 +247,36 @@ fn check(
         deviation_um: dev * 1000.0,
         note,
     }
+}
+
+/// The functional pitch diameter `value` (mm) against the maximum-material side of the class
+/// (d2 max for a bolt, D2 min for a nut), as a GO gauge checks it; the note says what the lead
+/// error adds.
+pub fn functional_check(
+    value: f64,
+    limits: &ThreadLimits,
+    kind: ThreadKind,
+    ld: crate::analysis::lead::LeadDeviation,
+) -> Check {
+    let lim = match kind {
+        ThreadKind::External => Limit { min: None, max: limits.pitch_diameter.max },
+        ThreadKind::Internal => Limit { min: limits.pitch_diameter.min, max: None },
+    };
+    let note = format!(
+        "lead {:.6} mm against {:.6} mm: {:+.2} µm over {:.2} mm, {:+.2} µm on the pitch diameter",
+        ld.program_lead,
+        ld.designation_lead,
+        ld.cumulative * 1000.0,
+        ld.length,
+        match kind {
+            ThreadKind::External => 1.0,
+            ThreadKind::Internal => -1.0,
+        } * ld.pitch_diameter_equivalent
+            * 1000.0
+    );
+    check(CheckFeature::FunctionalPitchDiameter, CheckKind::Size, value, lim, Some(note), |v| {
+        limits.resolution.round(v)
+    })
 }
 
 /// A taper thread's cone as measured: where its gauge plane lies against the basic position, in

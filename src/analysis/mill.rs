@@ -837,7 +837,12 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
     }
     let r = 0.5 * d;
     let (text, name) = &spec.program;
-    let opts = ReadOptions { moves: true, allow_no_threading: true, n_order: spec.n_order, budget: None };
+    let opts = ReadOptions {
+        moves: true,
+        allow_no_threading: true,
+        n_order: spec.n_order,
+        ..ReadOptions::default()
+    };
     let prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
     let mut notes = prog.notes.clone();
     if spec.n_order {

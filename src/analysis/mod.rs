@@ -4,6 +4,7 @@ pub mod catalogue;
 pub mod check;
 pub mod compare;
 pub mod fit;
+pub mod lead;
 pub mod mill;
 pub mod picture;
 pub mod process;

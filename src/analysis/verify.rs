@@ -104,6 +104,8 @@ pub struct VerifySpec {
     /// Take the passes from this G-code program (a file, or text held in memory) instead of
     /// generating a plan.
     pub program: Option<(ProgramSource, crate::gcode::Dialect)>,
+    /// How to read the program: its default units, how its dialect was chosen.
+    pub reading: crate::gcode::ReadOptions,
     /// Compute the per-pass chip and edge metrics (polygon booleans; reports need them, a
     /// catalogue sweep does not).
     pub metrics: bool,
@@ -152,6 +154,7 @@ impl VerifySpec {
             blank_diameter: None,
             gauge_only: false,
             program: None,
+            reading: crate::gcode::ReadOptions::default(),
             metrics: true,
             picture: false,
             tolerance: crate::DEFAULT_TOLERANCE,
@@ -234,6 +237,12 @@ pub struct Verification {
     pub helix_angle: f64,
     /// The process checks' findings, for a program's operation.
     pub process: Option<crate::analysis::process::ProcessReport>,
+    /// A program's lead that matches the designation's only after rounding to the program's
+    /// increment: the difference and its pitch-diameter equivalent.
+    pub lead_deviation: Option<crate::analysis::lead::LeadDeviation>,
+    /// The functional (virtual) pitch diameter where the lead deviates: the measured d2 plus
+    /// (external) or less (internal) the lead error's equivalent, mm.
+    pub functional_pitch_diameter: Option<f64>,
     /// What the pictures draw, when the spec asked for it.
     pub picture: Option<crate::analysis::picture::Picture>,
 }
@@ -439,16 +448,27 @@ pub fn program_passes(
     let Some(p0) = op.passes.first().copied() else {
         return Err(Error::Input(format!("{file}: operation {} has no passes", op.index)));
     };
-    if let Some(p) = op.passes.iter().find(|p| (p.lead - lead).abs() > 1e-6) {
-        return Err(Error::Program {
-            file: file.to_string(),
-            line: p.source_line.unwrap_or(1),
-            column: 1,
-            message: format!(
-                "the program cuts a lead of {} mm, the designation {} has {lead} mm",
-                p.lead, des.text
-            ),
-        });
+    for p in &op.passes {
+        if let Err(inc) = crate::analysis::lead::lead_deviation(p.lead, op.units, t, 0.0) {
+            let u = op.units;
+            let in_units = |mm: f64| match u {
+                crate::gcode::ProgramUnits::Mm => format!("{mm:.4} mm"),
+                crate::gcode::ProgramUnits::Inch => format!("{:.4} in ({mm:.4} mm)", mm / u.mm()),
+            };
+            return Err(Error::Program {
+                file: file.to_string(),
+                line: p.source_line.unwrap_or(1),
+                column: 1,
+                message: format!(
+                    "the program cuts a lead of {}, the designation {} has {}: they differ by more than rounding to the program's {} {} increment",
+                    in_units(p.lead),
+                    des.text,
+                    in_units(lead),
+                    crate::ground::fmt::fmt_num(inc),
+                    u.name()
+                ),
+            });
+        }
     }
     let mut passes = op.passes.clone();
     if t.starts > 1 {
@@ -665,7 +685,7 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
             ));
         }
         let (shown, text) = source.load()?;
-        let prog = crate::gcode::read_program(&text, &shown, *dialect)?;
+        let prog = crate::gcode::read_program_with(&text, &shown, *dialect, spec.reading)?;
         if prog.operations.len() != 1 {
             let lines: Vec<String> = prog.operations.iter().map(|o| o.source_line.to_string()).collect();
             return Err(Error::Input(format!(
@@ -685,6 +705,7 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
 /// The passes of one program operation, with what to say about them.
 struct Given {
     passes: Vec<Pass>,
+    lead: Option<crate::analysis::lead::LeadDeviation>,
     label: ProgramLabel,
     notes: Vec<crate::ground::note::Note>,
 }
@@ -769,6 +790,7 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
     };
     let target = target_at(taper.map_or(0.0, |(_, z, _)| z));
     let program_label = given.as_ref().map(|g| g.label.clone());
+    let lead_deviation = given.as_ref().and_then(|g| g.lead);
     let (final_x, solved, cut) = if let Some(g) = given {
         notes.extend(g.notes);
         let passes = g.passes;
@@ -830,7 +852,36 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
             nominal_taper: gp.taper,
         }
     });
-    let cs = checks(m, &limits, &t, kind, m.root_pockets <= 1, cone);
+    // The lead error's equivalent: the functional pitch diameter has more material than the
+    // measured one (larger on a bolt, smaller in a nut); on a taper thread the gauge stands off
+    // by the equivalent over the taper.
+    let functional = lead_deviation.map(|ld| match kind {
+        ThreadKind::External => m.pitch_diameter + ld.pitch_diameter_equivalent,
+        ThreadKind::Internal => m.pitch_diameter - ld.pitch_diameter_equivalent,
+    });
+    let cone = match (cone, lead_deviation) {
+        (Some(c), Some(ld)) => Some(crate::analysis::check::Cone {
+            turns: c.turns - ld.pitch_diameter_equivalent / (c.nominal_taper * t.pitch),
+            ..c
+        }),
+        (c, _) => c,
+    };
+    let mut cs = checks(m, &limits, &t, kind, m.root_pockets <= 1, cone);
+    if let (Some(f), Some(ld), None) = (functional, lead_deviation, taper) {
+        cs.push(crate::analysis::check::functional_check(f, &limits, kind, ld));
+    }
+    if let (Some(ld), Some(c)) = (lead_deviation, cone) {
+        if let Some(gp) =
+            cs.iter_mut().find(|c| c.feature == crate::analysis::check::CheckFeature::GaugePlane)
+        {
+            let share = ld.pitch_diameter_equivalent / (c.nominal_taper * t.pitch);
+            let note = gp.note.take().unwrap_or_default();
+            gp.note = Some(format!(
+                "{note}; functional: the lead {:.6} mm against {:.6} mm stands the gauge off {share:.3} turn",
+                ld.program_lead, ld.designation_lead
+            ));
+        }
+    }
     let pass = verdict(&cs, spec.gauge_only);
     let d2_off = cs.iter().any(|c| {
         matches!(
@@ -867,6 +918,8 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         units: spec.units,
         helix_angle: crate::analysis::process::helix_angle(t.lead(), t.pitch_diameter()),
         process: None,
+        lead_deviation,
+        functional_pitch_diameter: functional,
         picture: None,
     };
     if spec.picture {
@@ -1011,7 +1064,16 @@ fn verify_given(
                 if r.kind == ThreadKind::External { "blank diameter" } else { "bore diameter" },
         )));
     }
-    verify_core(r, Some(Given { passes, label: label.clone(), notes }))
+    // The lead error adds up over the length the finishing pass threads.
+    let last = last_head(&passes);
+    let lead = crate::analysis::lead::lead_deviation(
+        last.lead,
+        op.units,
+        &r.designation.thread,
+        (last.z_end - last.z_start).abs(),
+    )
+    .unwrap_or(None);
+    verify_core(r, Some(Given { passes, lead, label: label.clone(), notes }))
 }
 
 /// Verifies every threading operation of a program held in memory: `threads` gives one
@@ -1035,7 +1097,7 @@ pub fn verify_program(
     threads: &[String],
     insert_for: &dyn Fn(&crate::gcode::Operation) -> Option<(InsertChoice, String)>,
 ) -> Result<ProgramVerification, Error> {
-    let prog = crate::gcode::read_program(text, name, dialect)?;
+    let prog = crate::gcode::read_program_with(text, name, dialect, spec.reading)?;
     let n = prog.operations.len();
     if !(threads.len() == 1 || threads.len() == n) {
         let lines: Vec<String> =

@@ -75,6 +75,25 @@ impl Dialect {
         })
     }
 
+    /// The dialect a program file's extension names, when it names one: `.ngc` is LinuxCNC's,
+    /// `.mpf` (main program) and `.spf` (subprogram) are Sinumerik's; any other (`.nc`, `.tap`,
+    /// none) names no control.
+    ///
+    /// ```
+    /// use threadcheck::Dialect;
+    /// assert_eq!(Dialect::by_extension(std::path::Path::new("shaft.MPF")), Some(Dialect::Sinumerik));
+    /// assert_eq!(Dialect::by_extension(std::path::Path::new("g76.ngc")), Some(Dialect::LinuxCnc));
+    /// assert_eq!(Dialect::by_extension(std::path::Path::new("o1234.nc")), None);
+    /// ```
+    pub fn by_extension(path: &std::path::Path) -> Option<Dialect> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "ngc" => Some(Dialect::LinuxCnc),
+            "mpf" | "spf" => Some(Dialect::Sinumerik),
+            _ => None,
+        }
+    }
+
     /// What threading this dialect reads, for messages.
     fn threading_words(self) -> &'static str {
         match self {
@@ -132,6 +151,81 @@ pub struct Operation {
     pub passes: Vec<Pass>,
     /// Warnings and the defaults the expansion assumed.
     pub notes: Vec<Note>,
+    /// The program's units at the cycle (its words are in these; passes are in mm).
+    pub units: ProgramUnits,
+    /// Whether the program's X words were diameters or radii at the cycle.
+    pub x_words: XWords,
+}
+
+/// The length unit a program writes its words in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ProgramUnits {
+    /// Millimetres (G21, G71 on Sinumerik; the default of every dialect here).
+    #[default]
+    Mm,
+    /// Inches (G20, G70 on Sinumerik, G700).
+    Inch,
+}
+
+impl ProgramUnits {
+    /// Millimetres per program unit.
+    pub fn mm(self) -> f64 {
+        match self {
+            ProgramUnits::Mm => 1.0,
+            ProgramUnits::Inch => 25.4,
+        }
+    }
+
+    /// The control's least input increment in these units: 0.001 mm, 0.0001 in.
+    pub fn least_increment(self) -> f64 {
+        match self {
+            ProgramUnits::Mm => 1e-3,
+            ProgramUnits::Inch => 1e-4,
+        }
+    }
+
+    /// `mm` or `inch`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ProgramUnits::Mm => "mm",
+            ProgramUnits::Inch => "inch",
+        }
+    }
+}
+
+impl std::str::FromStr for ProgramUnits {
+    type Err = Error;
+
+    fn from_str(s: &str) -> Result<ProgramUnits, Error> {
+        match s {
+            "mm" => Ok(ProgramUnits::Mm),
+            "inch" | "in" => Ok(ProgramUnits::Inch),
+            _ => Err(Error::Input(format!("unknown units '{s}': expected mm or inch"))),
+        }
+    }
+}
+
+/// What a program's X words are on a lathe.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum XWords {
+    /// Diameters (Fanuc, Haas, Sinumerik DIAMON, LinuxCNC G7).
+    Diameter,
+    /// Radii (LinuxCNC G8, its default).
+    Radius,
+}
+
+/// How the dialect a program is read in was chosen, for the note that says so.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum DialectFrom {
+    /// Given by the caller (`--dialect`): nothing to say.
+    #[default]
+    Given,
+    /// Named by the file's extension ([`Dialect::by_extension`]).
+    Extension,
+    /// Neither given nor named by the extension: the default, Fanuc.
+    Default,
 }
 
 impl Operation {
@@ -176,6 +270,11 @@ pub struct ReadOptions {
     /// The execution budget: `None` takes the bounds of `limits.rs`; a fuzzer or a caller in a
     /// hurry gives smaller ones.
     pub budget: Option<Budget>,
+    /// The units of a program that sets none before it moves (the machine's default: a
+    /// parameter of the control, not in the program); `None` reads it in mm and says so.
+    pub default_units: Option<ProgramUnits>,
+    /// How the dialect was chosen; anything but [`DialectFrom::Given`] is stated in the notes.
+    pub dialect_from: DialectFrom,
 }
 
 /// How much a program may run before it is taken for a runaway.
@@ -272,6 +371,9 @@ pub fn read_program_with(
         blocks = keyed.into_iter().map(|k| k.2).collect();
     }
     let mut m = motion::Motion::new(dialect, file, opts.moves);
+    if let Some(u) = opts.default_units {
+        m.scale = u.mm();
+    }
     interp::run(
         &blocks,
         dialect::Language::of(dialect),
@@ -280,8 +382,34 @@ pub fn read_program_with(
         file,
         opts.budget.unwrap_or_default(),
     )?;
+    let units_assumed = (!m.units_set).then_some(opts.default_units);
     let (operations, skipped, mut notes, moves) = m.finish();
     notes.extend(order_note.map(Note::from));
+    let extension = std::path::Path::new(file).extension().and_then(|e| e.to_str()).unwrap_or("");
+    let dialect_note = match opts.dialect_from {
+        DialectFrom::Given => None,
+        DialectFrom::Extension => Some(format!(
+            "read as {}, the dialect of its extension .{extension} (--dialect chooses another)",
+            dialect.name()
+        )),
+        DialectFrom::Default => Some(format!(
+            "read as {}: the default dialect, as neither --dialect nor the extension names one",
+            dialect.name()
+        )),
+    };
+    let units_note = match units_assumed {
+        Some(None) if !operations.is_empty() => {
+            Some("the program sets no units (G20/G21) before it threads: read in mm, the default; an inch control's program needs --default-units inch".to_string())
+        }
+        Some(Some(u)) => Some(format!(
+            "the program sets no units (G20/G21) before it threads: read in {}, as --default-units says",
+            u.name()
+        )),
+        _ => None,
+    };
+    for n in [units_note, dialect_note].into_iter().flatten().rev() {
+        notes.insert(0, Note::from(n));
+    }
     if operations.is_empty() && !opts.allow_no_threading {
         let mut why = format!("no threading pass in the program (looked for {})", dialect.threading_words());
         // A subroutine defined and never called is the likely reason: point at it.

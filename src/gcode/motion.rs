@@ -1,7 +1,7 @@
 //! The motion state every dialect moves: position, units and modes, spindle, tool, and the
 //! threading operations with their passes.
 
-use super::{Dialect, Operation, Spindle};
+use super::{Dialect, Operation, ProgramUnits, Spindle, XWords};
 use crate::gcode::passes::Pass;
 use crate::ground::bounds::MAX_PASSES;
 use crate::ground::note::{Note, NoteKind, Notes};
@@ -118,6 +118,9 @@ pub(crate) struct Motion {
     pub absolute: bool,
     /// 25.4 under inch units, else 1.
     pub scale: f64,
+    /// The program set its units (G20/G21, G70/G71, G700/G710) before its first threading
+    /// operation.
+    pub units_set: bool,
     /// X words are diameters.
     pub diameter: bool,
     /// Modal motion code (0, 1, 2, 3, 32, 33, 76, 92, …).
@@ -159,6 +162,7 @@ impl Motion {
             offset: [0.0; 3],
             absolute: true,
             scale: 1.0,
+            units_set: false,
             // LinuxCNC starts in radius mode (G8); lathes with Fanuc, Haas and Sinumerik in
             // diameter; Dyna is a mill (X is X).
             diameter: match dialect {
@@ -348,6 +352,15 @@ impl Motion {
         }
     }
 
+    /// Sets the units (25.4 for inches, 1 for mm); before the first threading operation this
+    /// is the program setting its units.
+    pub fn set_scale(&mut self, scale: f64) {
+        self.scale = scale;
+        if self.ops.is_empty() {
+            self.units_set = true;
+        }
+    }
+
     /// Ends an open synchronised chain.
     pub fn break_chain(&mut self) {
         self.chain = None;
@@ -373,6 +386,8 @@ impl Motion {
             contour: self.contour.clone(),
             passes: Vec::new(),
             notes: Vec::new(),
+            units: if self.scale == 1.0 { ProgramUnits::Mm } else { ProgramUnits::Inch },
+            x_words: if self.diameter { XWords::Diameter } else { XWords::Radius },
         });
         self.ops.len() - 1
     }

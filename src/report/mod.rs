@@ -171,6 +171,8 @@ pub struct MeasuredReport {
     pub three_wire: Option<crate::geometry::measure::ThreeWire>,
     /// Signed clearance to the maximum-material profile, mm.
     pub max_material_clearance: Option<f64>,
+    /// The functional (virtual) pitch diameter, where the program's lead deviates, mm.
+    pub functional_pitch_diameter: Option<f64>,
 }
 
 /// The whole `verify --json` object of a plan, and of each program operation (docs/json.md).
@@ -200,6 +202,8 @@ pub struct VerifyReport<'a> {
     pub process: Option<&'a crate::analysis::process::ProcessReport>,
     /// The X for mid-tolerance d2, mm.
     pub suggested_final_x: Option<f64>,
+    /// A program lead that matches the designation's only after rounding, and its effect.
+    pub lead_deviation: Option<&'a crate::analysis::lead::LeadDeviation>,
     /// Stated assumptions.
     pub notes: &'a [crate::ground::note::Note],
     /// The normal deviation from the basic profile along one pitch, as the picture plots it
@@ -260,7 +264,9 @@ impl<'a> VerifyReport<'a> {
                 crest_width: m.crest_width,
                 three_wire: m.three_wire,
                 max_material_clearance: m.max_material_clearance,
+                functional_pitch_diameter: v.functional_pitch_diameter,
             },
+            lead_deviation: v.lead_deviation.as_ref(),
             limits: &v.limits,
             checks: &v.checks,
             verdict: Verdict::of(v.pass),
@@ -374,6 +380,19 @@ pub fn verify_text(v: &Verification) -> String {
         m.max_material_clearance
             .map_or(String::new(), |c| format!(", GO-gauge clearance {:+.1} µm", c * 1000.0))
     );
+    if let (Some(ld), Some(f)) = (&v.lead_deviation, v.functional_pitch_diameter) {
+        let _ = writeln!(
+            s,
+            "  lead {:.6} mm (the program's, at its {} {} increment) against {:.6} mm: {:+.2} µm over the {:.2} mm the finishing pass threads; functional pitch diameter {f:.4} ({:+.2} µm), what a GO gauge sees",
+            ld.program_lead,
+            crate::ground::fmt::fmt_num(ld.increment),
+            ld.units.name(),
+            ld.designation_lead,
+            ld.cumulative * 1000.0,
+            ld.length,
+            (f - m.pitch_diameter) * 1000.0
+        );
+    }
     let _ = writeln!(s, "  helix angle {:.3}° at d2: incline the insert by it", v.helix_angle);
     if let Some(p) = &v.process {
         if let Some(t) = &p.machining_time {

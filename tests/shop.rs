@@ -1,0 +1,105 @@
+//! Issue 25: every shop's program. Programs written for these tests (never copies of others'),
+//! each with its hand derivation in its comments; the values asserted come from those.
+
+use crate::*;
+
+/// `verify --program shop/FILE --thread T --insert full … --json -`: exit code and report.
+fn verify_json(file: &str, thread: &str, more: &[&str]) -> (i32, serde_json::Value) {
+    let path = data(&format!("programs/shop/{file}"));
+    let mut args =
+        vec!["verify", "--program", path.to_str().unwrap(), "--thread", thread, "--insert", "full"];
+    args.extend_from_slice(more);
+    args.extend(["--json", "-"]);
+    let o = run(&args);
+    let code = o.status.code().unwrap();
+    assert!(code == 0 || code == 1, "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    (code, v["operations"][0].clone())
+}
+
+fn check<'a>(v: &'a serde_json::Value, feature: &str) -> Option<&'a serde_json::Value> {
+    v["checks"].as_array().unwrap().iter().find(|c| c["feature"] == feature)
+}
+
+/// A metric control's F1.814 for 14 tpi is 25.4/14 rounded to its 0.001 mm: it matches, and the
+/// gauge plane moves by the lead error's equivalent, 0.0722 turn (the program's comments).
+#[test]
+fn an_npt_job_at_f1_814_verifies_with_its_lead_error() {
+    let (code, v) = verify_json("npt-1-2-14-metric-f1814.nc", "1/2-14 NPT", &[]);
+    assert_eq!(code, 0, "{v}");
+    let ld = &v["lead_deviation"];
+    assert!((ld["cumulative"].as_f64().unwrap() * 1000.0 + 4.724).abs() < 1e-3, "{ld}");
+    assert!((ld["pitch_diameter_equivalent"].as_f64().unwrap() * 1000.0 - 8.183).abs() < 1e-3, "{ld}");
+    assert_eq!(ld["increment"], 0.001);
+    let gp = check(&v, "gauge_plane").unwrap();
+    assert!(gp["note"].as_str().unwrap().contains("stands the gauge off 0.072 turn"), "{gp}");
+    let f = v["measured"]["functional_pitch_diameter"].as_f64().unwrap();
+    let d2 = v["measured"]["pitch_diameter"].as_f64().unwrap();
+    assert!(((f - d2) * 1000.0 - 8.183).abs() < 1e-3);
+}
+
+/// G1/8 at F0.907: d2 9.119868 by the insert's geometry, functional 9.125918, under d2 max 9.147.
+#[test]
+fn a_28_tpi_pipe_thread_at_f0_907_passes_with_its_functional_diameter() {
+    let (code, v) = verify_json("bsp-g1-8-28tpi-f0907.nc", "G1/8 A", &[]);
+    assert_eq!(code, 0, "{v}");
+    let c = check(&v, "functional_pitch_diameter").unwrap();
+    assert!((c["value"].as_f64().unwrap() - 9.125918).abs() < 1e-6, "{c}");
+    assert_eq!(c["max"], 9.147);
+    assert!(c["ok"].as_bool().unwrap());
+}
+
+/// The same thread 25 µm larger: d2 9.144868 passes, the functional 9.150918 is 3.918 µm over.
+#[test]
+fn a_lead_error_fails_the_go_side_where_the_pitch_diameter_alone_passes() {
+    let (code, v) = verify_json("bsp-g1-8-28tpi-f0907-at-max.nc", "G1/8 A", &[]);
+    assert_eq!(code, 1, "{v}");
+    assert!(check(&v, "pitch_diameter").unwrap()["ok"].as_bool().unwrap());
+    let c = check(&v, "functional_pitch_diameter").unwrap();
+    assert!(!c["ok"].as_bool().unwrap());
+    assert!((c["deviation_um"].as_f64().unwrap() - 3.918).abs() < 1e-3, "{c}");
+}
+
+/// An inch control's F.0714 for 14 tpi: 0.0001 in increment, +20.646 µm on d2 over the
+/// finishing pass's 1.173211 in.
+#[test]
+fn an_inch_program_at_f_0714_matches_14_tpi_at_a_ten_thousandth() {
+    let (code, v) = verify_json("unf-7-8-14-inch-f0714.nc", "7/8-14 UNF-2A", &["--dialect", "haas"]);
+    assert_eq!(code, 0, "{v}");
+    let ld = &v["lead_deviation"];
+    assert_eq!(ld["units"], "inch");
+    assert_eq!(ld["increment"], 0.0001);
+    assert!((ld["length"].as_f64().unwrap() - 29.7996).abs() < 1e-4, "{ld}");
+    assert!((ld["pitch_diameter_equivalent"].as_f64().unwrap() * 1000.0 - 20.646).abs() < 1e-3, "{ld}");
+}
+
+/// A lead further off than the program's increment rounds is refused, both leads to four
+/// decimals (never sixteen digits).
+#[test]
+fn a_lead_beyond_the_rounding_is_refused_with_both_leads_short() {
+    let text = std::fs::read_to_string(data("programs/shop/bsp-g1-8-28tpi-f0907.nc")).unwrap();
+    let dir = tempdir("lead");
+    std::fs::write(dir.join("p.nc"), text.replace("F0.907", "F0.91")).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "p.nc", "--thread", "G1/8 A"]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = one_line_error(&o);
+    assert!(
+        e.contains("p.nc:8:1: the program cuts a lead of 0.9100 mm, the designation G1/8 A has 0.9071 mm"),
+        "{e}"
+    );
+}
+
+/// `.ngc` is read as LinuxCNC and `.mpf` as Sinumerik without `--dialect`, and the output says so.
+#[test]
+fn the_extension_chooses_the_dialect_and_says_so() {
+    let dir = tempdir("ext");
+    // LinuxCNC G76 in G7 diameter mode, M10x1.5 by hand: the drive line X11 and I-1 put the
+    // crest at Ø10; K0.92 is the radial thread depth to the tip.
+    std::fs::write(dir.join("m10.ngc"), "G21 G7 G18\nG0 X12 Z3\nG76 P1.5 Z-15 I-1 J0.2 K0.92 Q29.5 H1\nM2\n")
+        .unwrap();
+    let o = run_in(&dir, &["verify", "--program", "m10.ngc", "--thread", "M10x1.5-6g"]);
+    assert!(o.status.code() == Some(0) || o.status.code() == Some(1), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("m10.ngc (linuxcnc)"), "{out}");
+    assert!(out.contains("read as linuxcnc, the dialect of its extension .ngc"), "{out}");
+}
