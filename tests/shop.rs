@@ -103,3 +103,27 @@ fn the_extension_chooses_the_dialect_and_says_so() {
     assert!(out.contains("m10.ngc (linuxcnc)"), "{out}");
     assert!(out.contains("read as linuxcnc, the dialect of its extension .ngc"), "{out}");
 }
+
+/// An inch shop's program with neither G20 nor G21: read in mm it cuts a 0.05 mm lead (refused
+/// against 1/4-20's 1.27 mm, with the assumption named); `--default-units inch` reads it as the
+/// inch control does, and says so.
+#[test]
+fn default_units_read_a_program_that_sets_none() {
+    let dir = tempdir("units");
+    std::fs::write(dir.join("q.nc"), "O0020\nT0404\nG0 X0.3 Z0.1\nG76 X0.2 Z-0.25 K0.044 D0.01 F0.05\nM30\n")
+        .unwrap();
+    let args = ["verify", "--program", "q.nc", "--thread", "1/4-20 UNC-2A", "--dialect", "haas"];
+    let o = run_in(&dir, &args);
+    assert_eq!(o.status.code(), Some(2));
+    let e = one_line_error(&o);
+    assert!(e.contains("the program cuts a lead of 0.0500 mm"), "{e}");
+    assert!(e.contains("read in inches it is the designation's"), "{e}");
+    let mut with = args.to_vec();
+    with.extend(["--default-units", "inch"]);
+    let o = run_in(&dir, &with);
+    assert!(o.status.code() == Some(0) || o.status.code() == Some(1), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("the program sets no units (G20/G21) before it threads: read in inch"), "{out}");
+    // X0.2 in is the tip's diameter: 5.08 mm.
+    assert!(out.contains("final X5.0800"), "{out}");
+}

@@ -455,12 +455,22 @@ pub fn program_passes(
                 crate::gcode::ProgramUnits::Mm => format!("{mm:.4} mm"),
                 crate::gcode::ProgramUnits::Inch => format!("{:.4} in ({mm:.4} mm)", mm / u.mm()),
             };
+            // A lead that matches once read in inches: the program is an inch control's.
+            let inch = crate::gcode::ProgramUnits::Inch;
+            let hint = if u == crate::gcode::ProgramUnits::Mm
+                && crate::analysis::lead::lead_deviation(p.lead * inch.mm(), inch, t, 0.0).is_ok()
+            {
+                "; read in inches it is the designation's (G20, or --default-units inch if the program sets no units)"
+                    .to_string()
+            } else {
+                String::new()
+            };
             return Err(Error::Program {
                 file: file.to_string(),
                 line: p.source_line.unwrap_or(1),
                 column: 1,
                 message: format!(
-                    "the program cuts a lead of {}, the designation {} has {}: they differ by more than rounding to the program's {} {} increment",
+                    "the program cuts a lead of {}, the designation {} has {}: they differ by more than rounding to the program's {} {} increment{hint}",
                     in_units(p.lead),
                     des.text,
                     in_units(lead),
