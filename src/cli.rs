@@ -95,6 +95,10 @@ enum Command {
         /// Write a self-contained HTML report (picture, checks, passes, notes) to this file.
         #[arg(long, value_name = "FILE")]
         html: Option<PathBuf>,
+        /// Write the program with each operation's correction (the word that sets its final
+        /// depth, put to mid-tolerance d2) to this file; `-` prints it instead of the report.
+        #[arg(long, value_name = "FILE|-", requires = "program")]
+        fix: Option<String>,
         #[command(flatten)]
         json: JsonArg,
     },
@@ -480,7 +484,7 @@ impl Cli {
                 };
                 done(LimitsJob { designation, allow_nonstandard, json }.run()?)
             }
-            Command::Verify { plan, gauge_only, no_pass_metrics, svg, html, json: JsonArg { json } } => {
+            Command::Verify { plan, gauge_only, no_pass_metrics, svg, html, fix, json: JsonArg { json } } => {
                 plan.need_thread("verify")?;
                 let mut spec = plan.spec(gauge_only)?;
                 spec.metrics = !no_pass_metrics;
@@ -494,6 +498,7 @@ impl Cli {
                         svg,
                         html,
                         json,
+                        fix,
                     }
                     .run()?,
                 )

@@ -166,7 +166,7 @@ fn limits_table(des: &Designation, ext: Option<&ThreadLimits>, int: Option<&Thre
 /// use threadcheck::{Outcome, VerifyJob};
 /// use threadcheck::{InsertChoice, VerifySpec};
 /// let spec = VerifySpec { insert: InsertChoice::Full, final_x: Some(8.2), ..VerifySpec::new("M10x1.5-6g") };
-/// let job = VerifyJob { spec, threads: vec!["M10x1.5-6g".into()], insert_given: true, tools: None, svg: None, html: None, json: None };
+/// let job = VerifyJob { spec, threads: vec!["M10x1.5-6g".into()], insert_given: true, tools: None, svg: None, html: None, json: None, fix: None };
 /// let (text, outcome) = job.run()?;
 /// // A full-profile insert with its tip on d3 = d − 1.226869·P = 8.160 cuts the basic d2, 9.026;
 /// // X8.2 is shallower still, so d2 comes out above 6g's 8.994.
@@ -190,6 +190,9 @@ pub struct VerifyJob {
     pub html: Option<std::path::PathBuf>,
     /// Write the JSON report here; `-` prints it on stdout instead of the table.
     pub json: Option<String>,
+    /// Write the program with each operation's correction applied here (`-`: on stdout,
+    /// instead of the text report).
+    pub fix: Option<String>,
 }
 
 impl VerifyJob {
@@ -202,6 +205,9 @@ impl VerifyJob {
         };
         if let Some((source, dialect)) = &spec.program {
             return self.run_program(&spec, source, *dialect);
+        }
+        if self.fix.is_some() {
+            return Err(Error::Input("--fix corrects a program: give it with --program".into()));
         }
         let v = crate::analysis::verify::verify(&spec)?;
         let outcome = if v.pass { Outcome::Pass } else { Outcome::OutOfTolerance };
@@ -226,6 +232,7 @@ impl VerifyJob {
             ));
         }
         let (shown, text) = source.load()?;
+        let text_of_program = text.clone();
         let default = spec.insert.clone();
         let insert_for =
             |op: &crate::gcode::Operation| -> Option<(crate::analysis::verify::InsertChoice, String)> {
@@ -273,7 +280,23 @@ impl VerifyJob {
         let svg_text = self.svg.as_ref().map(|_| crate::report::svg::program_svg(&pv));
         let html_text = self.html.as_ref().map(|_| crate::report::html::program_html(&pv));
         let text = crate::report::program_text(&pv);
-        self.write(json_text, svg_text, html_text, text, outcome)
+        let Some(fix) = &self.fix else {
+            return self.write(json_text, svg_text, html_text, text, outcome);
+        };
+        let fixed = fixed_program(&pv, &text_of_program, &shown)?;
+        if fix == "-" {
+            if self.json.as_deref() == Some("-") {
+                return Err(Error::Input(
+                    "--fix - and --json - both want stdout: write one to a file".into(),
+                ));
+            }
+            self.write(json_text, svg_text, html_text, fixed, outcome)
+        } else {
+            let files = [(&self.svg, svg_text), (&self.html, html_text), (&Some(fix.into()), Some(fixed))];
+            let mut inputs = spec_inputs(&self.spec);
+            inputs.extend(self.tools.iter().map(|t| std::path::PathBuf::from(&t.source)));
+            Ok((write_outputs(&inputs, &files, self.json.as_deref(), json_text, text)?, outcome))
+        }
     }
 
     fn write(
@@ -289,6 +312,37 @@ impl VerifyJob {
         inputs.extend(self.tools.iter().map(|t| std::path::PathBuf::from(&t.source)));
         Ok((write_outputs(&inputs, &files, self.json.as_deref(), json_text, text)?, outcome))
     }
+}
+
+/// The program with every operation's correction written in; an operation whose correction
+/// is not a plain number in place (an expression, an R-parameter set elsewhere) is an error that
+/// says what to change by hand.
+fn fixed_program(
+    pv: &crate::analysis::verify::ProgramVerification,
+    text: &str,
+    shown: &str,
+) -> Result<String, Error> {
+    let mut edits = Vec::new();
+    for o in &pv.operations {
+        let crate::analysis::verify::OperationResult::Verified(v) = &o.result else {
+            continue;
+        };
+        let Some(c) = &v.correction else { continue };
+        if !c.editable {
+            return Err(Error::Program {
+                file: shown.to_string(),
+                line: c.line,
+                column: c.column,
+                message: format!("--fix rewrites plain numbers only: {}", crate::report::correction_text(c)),
+            });
+        }
+        // A one-letter word is rewritten whole (`X19.452`); a call's argument (CYCLE97's TDEP)
+        // is the number alone.
+        let new = crate::report::correction_word(c);
+        let new = if c.word.len() == 1 { new } else { new[c.word.len() + 1..].to_string() };
+        edits.push(crate::gcode::WordEdit { line: c.line, column: c.column, old: c.written.clone(), new });
+    }
+    crate::gcode::rewrite_words(text, shown, &edits)
 }
 
 /// The one output step of the jobs, after everything is rendered: every picture, page and JSON

@@ -79,8 +79,8 @@ pub use standards::{Feature, GrooveForm};
 // Toolpaths: generated plans and programs read as a control would.
 pub use gcode::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
 pub use gcode::{
-    read_program, read_program_with, Budget, Dialect, DialectFrom, Operation, Program, ProgramUnits,
-    ReadOptions, Spindle, XWords,
+    read_program, read_program_with, rewrite_words, Budget, DepthWord, Dialect, DialectFrom, Operation,
+    Program, ProgramUnits, ReadOptions, Spindle, WordEdit, WordMeans, XWords,
 };
 
 // Geometry: the insert, the sweep, the measurement.
@@ -94,6 +94,7 @@ pub use geometry::sweep::{pass_metrics, sweep, PassMetrics, Section, Sweep, Swee
 pub use analysis::catalogue::{cases as catalogue_cases, run as run_catalogue, Case, CatalogueSpec};
 pub use analysis::check::{checks, Check, CheckFeature, CheckKind, Verdict};
 pub use analysis::compare::{compare, Comparison};
+pub use analysis::correction::{correction, Correction};
 pub use analysis::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};
 pub use analysis::lead::{lead_deviation, LeadDeviation};
 pub use analysis::mill::{mill, MillReport, MillSpec, Target};

@@ -127,3 +127,105 @@ fn default_units_read_a_program_that_sets_none() {
     // X0.2 in is the tip's diameter: 5.08 mm.
     assert!(out.contains("final X5.0800"), "{out}");
 }
+
+/// `verify --fix OUT` and the re-verification of OUT: (report before, report after, the two
+/// programs' texts).
+fn fix_and_reverify(
+    file: &str,
+    thread: &str,
+    more: &[&str],
+) -> (serde_json::Value, serde_json::Value, String) {
+    let dir = tempdir("fix");
+    let src = data(&format!("programs/shop/{file}"));
+    let ext = src.extension().unwrap().to_str().unwrap().to_string();
+    let out = dir.join(format!("fixed.{ext}"));
+    let mut args = vec!["verify", "--program", src.to_str().unwrap(), "--thread", thread, "--insert", "full"];
+    args.extend_from_slice(more);
+    let mut fix = args.clone();
+    fix.extend(["--fix", out.to_str().unwrap(), "--json", "-"]);
+    let o = run_in(&dir, &fix);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let before: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let mut again = args.clone();
+    again[2] = out.to_str().unwrap();
+    again.extend(["--json", "-"]);
+    let o = run_in(&dir, &again);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let after: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    (before["operations"][0].clone(), after["operations"][0].clone(), std::fs::read_to_string(out).unwrap())
+}
+
+fn d2(v: &serde_json::Value) -> f64 {
+    v["measured"]["pitch_diameter"].as_f64().unwrap()
+}
+
+/// A G20 Haas G76: the correction is its X in inches (a diameter), and d2 moves one for one with
+/// it: ΔX·25.4. The fixed program's d2 is within the 0.0001 in rounding (1.27 µm on d2) plus the
+/// table's own rounding of the middle of ASME B1.1's 1/2-13 UNC-2A band, 0.4435–0.4485 in.
+#[test]
+fn a_g20_program_is_corrected_in_inches() {
+    let (before, after, text) =
+        fix_and_reverify("haas-g20-1-2-13-unc.nc", "1/2-13 UNC-2A", &["--dialect", "haas"]);
+    let c = &before["correction"];
+    assert_eq!(c["word"], "X");
+    assert_eq!(c["units"], "inch");
+    assert_eq!(c["line"], 6);
+    assert!(
+        c["text"].as_str().unwrap().starts_with("change X0.4069 at line 6:5 to X0.4016 (inch, diameter)"),
+        "{c}"
+    );
+    assert!(text.contains("G76 X0.4016 Z-1.0 K0.0471"), "{text}");
+    let dx = (c["value"].as_f64().unwrap() - c["was"].as_f64().unwrap()) * 25.4;
+    assert!((d2(&after) - d2(&before) - dx).abs() < 1e-6);
+    assert!((d2(&after) - 0.4460 * 25.4).abs() < 0.00127 + 0.00127, "{}", d2(&after));
+}
+
+/// LinuxCNC in G8: the last pass's X is a radius, so d2 moves by twice its change. M10x1.5-6g's
+/// d2 band is 8.862–8.994 (ISO 965-2): the middle 8.928, met to the 0.001 mm rounding (2 µm on d2).
+#[test]
+fn a_linuxcnc_radius_program_is_corrected_as_a_radius() {
+    let (before, after, text) = fix_and_reverify("linuxcnc-g8-m10.ngc", "M10x1.5-6g", &[]);
+    let c = &before["correction"];
+    assert_eq!((c["word"].as_str(), c["line"].as_u64()), (Some("X"), Some(15)));
+    assert_eq!(c["means"], "radius");
+    assert!(text.lines().nth(14) == Some("G0 X4.031"), "{text}");
+    let dx = c["value"].as_f64().unwrap() - c["was"].as_f64().unwrap();
+    assert!((d2(&after) - d2(&before) - 2.0 * dx).abs() < 1e-6);
+    assert!((d2(&after) - 8.928).abs() <= 0.002, "{}", d2(&after));
+}
+
+/// CYCLE97: the correction is TDEP, a radial depth: d2 moves by −2·ΔTDEP. M20x2.5-6g's band is
+/// 18.164–18.334 (ISO 965-2), the middle 18.249.
+#[test]
+fn a_cycle97_program_is_corrected_in_its_depth() {
+    let (before, after, text) = fix_and_reverify("cycle97-m20.mpf", "M20x2.5-6g", &[]);
+    let c = &before["correction"];
+    assert_eq!(c["word"], "TDEP");
+    assert!(c["text"].as_str().unwrap().starts_with("change TDEP 1.400 at line 3:34 to 1.597"), "{c}");
+    assert!(text.contains("CYCLE97(2.5,,0,-30,20,20,3,2,1.597,0.05,"), "{text}");
+    let dt = c["value"].as_f64().unwrap() - c["was"].as_f64().unwrap();
+    assert!((d2(&after) - d2(&before) + 2.0 * dt).abs() < 1e-6);
+    assert!((d2(&after) - 18.249).abs() <= 0.002, "{}", d2(&after));
+}
+
+/// A word that is not a plain number in place is not rewritten: the error says what to change.
+#[test]
+fn fix_refuses_an_expression_and_names_the_word() {
+    let dir = tempdir("fixexpr");
+    std::fs::write(
+        dir.join("e.nc"),
+        "G21 G97 S600 M3\n#1=8.2\nG0 X12 Z3\nG92 X9.4 Z-15 F1.5\nX8.8\nX[#1]\nG0 X30 Z30\nM30\n",
+    )
+    .unwrap();
+    let o = run_in(
+        &dir,
+        &["verify", "--program", "e.nc", "--thread", "M10x1.5-6g", "--insert", "full", "--fix", "out.nc"],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    let e = one_line_error(&o);
+    assert!(
+        e.contains("e.nc:6:1: --fix rewrites plain numbers only: make X (written X[#1] at line 6:1)"),
+        "{e}"
+    );
+    assert!(!dir.join("out.nc").exists());
+}

@@ -121,6 +121,7 @@ fn job_json(
                 svg: None,
                 html: None,
                 json: Some("-".into()),
+                fix: None,
             }
             .run()?
         } else {

@@ -13,9 +13,9 @@ use crate::gcode::ProgramUnits;
 use crate::standards::BasicThread;
 use serde::Serialize;
 
-/// A lead difference whose functional effect on the pitch diameter is below this (mm, 0.05 µm:
-/// the geometry's own accuracy) is no difference.
-pub const NEGLIGIBLE_FUNCTIONAL_MM: f64 = 5e-5;
+/// A lead difference whose functional effect on the pitch diameter is below this (mm, 0.5 µm:
+/// half the standards' 1 µm resolution) changes no size and is not reported.
+pub const NEGLIGIBLE_FUNCTIONAL_MM: f64 = 5e-4;
 
 /// Written digits are looked for up to this many decimals; a computed lead (`F[25.4/14]`)
 /// has more and is compared at this resolution.

@@ -240,6 +240,9 @@ pub struct Verification {
     /// A program's lead that matches the designation's only after rounding to the program's
     /// increment: the difference and its pitch-diameter equivalent.
     pub lead_deviation: Option<crate::analysis::lead::LeadDeviation>,
+    /// The change of the program's own depth word that puts d2 mid-tolerance, when d2 (or the
+    /// gauge plane, or the functional d2) is off and the program has such a word.
+    pub correction: Option<crate::analysis::correction::Correction>,
     /// The functional (virtual) pitch diameter where the lead deviates: the measured d2 plus
     /// (external) or less (internal) the lead error's equivalent, mm.
     pub functional_pitch_diameter: Option<f64>,
@@ -715,6 +718,8 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
 /// The passes of one program operation, with what to say about them.
 struct Given {
     passes: Vec<Pass>,
+    depth_word: Option<crate::gcode::DepthWord>,
+    units: crate::gcode::ProgramUnits,
     lead: Option<crate::analysis::lead::LeadDeviation>,
     label: ProgramLabel,
     notes: Vec<crate::ground::note::Note>,
@@ -801,6 +806,7 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
     let target = target_at(taper.map_or(0.0, |(_, z, _)| z));
     let program_label = given.as_ref().map(|g| g.label.clone());
     let lead_deviation = given.as_ref().and_then(|g| g.lead);
+    let depth_word = given.as_ref().and_then(|g| g.depth_word.clone().map(|w| (w, g.units)));
     let (final_x, solved, cut) = if let Some(g) = given {
         notes.extend(g.notes);
         let passes = g.passes;
@@ -900,7 +906,16 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
                 | crate::analysis::check::CheckFeature::GaugePlane
         ) && !c.ok
     });
-    let suggested = d2_off.then_some(final_x + (target_at(cut.z_ref) - m.pitch_diameter));
+    let functional_off = cs
+        .iter()
+        .any(|c| c.feature == crate::analysis::check::CheckFeature::FunctionalPitchDiameter && !c.ok);
+    let d2_off = d2_off || functional_off;
+    let delta = target_at(cut.z_ref) - m.pitch_diameter;
+    let suggested = d2_off.then_some(final_x + delta);
+    let correction = match (d2_off, depth_word) {
+        (true, Some((w, units))) => Some(crate::analysis::correction::correction(&w, units, kind, delta)),
+        _ => None,
+    };
     if spec.gauge_only {
         notes.push("gauge only: form checks are reported but left out of the verdict".into());
     }
@@ -930,6 +945,7 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         process: None,
         lead_deviation,
         functional_pitch_diameter: functional,
+        correction,
         picture: None,
     };
     if spec.picture {
@@ -1083,7 +1099,17 @@ fn verify_given(
         (last.z_end - last.z_start).abs(),
     )
     .unwrap_or(None);
-    verify_core(r, Some(Given { passes, lead, label: label.clone(), notes }))
+    verify_core(
+        r,
+        Some(Given {
+            passes,
+            depth_word: op.depth_word.clone(),
+            units: op.units,
+            lead,
+            label: label.clone(),
+            notes,
+        }),
+    )
 }
 
 /// Verifies every threading operation of a program held in memory: `threads` gives one

@@ -719,6 +719,7 @@ pub(crate) fn run(
                 }
             }
             let mut cx = Ctx { store: &mut vars, subs: &sub_names, ns: &n_numbers };
+            m.note_x_word(&rb);
             flow = rules.block(m, &rb, &mut cx)?;
         }
         if deferred {

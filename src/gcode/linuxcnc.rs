@@ -159,6 +159,18 @@ fn g76(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
         p.taper_in = tin;
         m.push(op, b.line, p)?;
     }
+    if let Some(kw) = b.get("K") {
+        let literal = kw.text.len() > 1 && kw.text[1..].trim().parse::<f64>().is_ok();
+        m.op_mut(op).depth_word = Some(super::DepthWord {
+            word: "K".into(),
+            value: kw.v,
+            line: b.line,
+            column: kw.col,
+            written: kw.text.to_string(),
+            literal,
+            means: super::WordMeans::Depth { per_radial: if m.diameter { 2.0 } else { 1.0 } },
+        });
+    }
     if let Some(xw) = b.get("X") {
         m.x = Some(m.x_dia(xw));
     } else {

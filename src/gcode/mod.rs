@@ -18,6 +18,7 @@
 mod cycles;
 mod dialect;
 mod dyna;
+mod edit;
 pub(crate) mod expr;
 mod fanuc;
 mod haas;
@@ -33,6 +34,7 @@ use crate::ground::note::{Note, NoteKind};
 use crate::Error;
 use serde::Serialize;
 
+pub use edit::{rewrite_words, WordEdit};
 pub use motion::Move;
 
 /// Which control's G-code.
@@ -155,6 +157,45 @@ pub struct Operation {
     pub units: ProgramUnits,
     /// Whether the program's X words were diameters or radii at the cycle.
     pub x_words: XWords,
+    /// The word that sets the final depth, what a correction edits: the last X of a G76, G92
+    /// run or G32/G33 chain, LinuxCNC G76 K, CYCLE97 TDEP, L97 R24, L96 R15.
+    pub depth_word: Option<DepthWord>,
+}
+
+/// The word of a program that sets an operation's final depth, as the program has it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DepthWord {
+    /// Its address: `X`, `K`, `TDEP`, `R24`, `R15`.
+    pub word: String,
+    /// Its value in the program's units (as evaluated).
+    pub value: f64,
+    /// Where it is written (for R-parameters: the cycle call that reads them).
+    pub line: usize,
+    /// Column of the word (of the argument, in a call).
+    pub column: usize,
+    /// As written there (`X8.539`, `X#1`, `0.92`).
+    pub written: String,
+    /// A plain number in place, which a fix may rewrite; an expression, a variable or a
+    /// parameter set elsewhere is not.
+    pub literal: bool,
+    /// What the word measures.
+    pub means: WordMeans,
+}
+
+/// What a depth word measures, for turning a pitch-diameter change into its change.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WordMeans {
+    /// The tip's diameter (X in diameter programming).
+    Diameter,
+    /// The tip's radius (X in radius programming).
+    Radius,
+    /// The thread's radial depth; `per_radial` words per radial unit (2 for a LinuxCNC K
+    /// written as a diameter under G7). Its sign is kept, its size changes.
+    Depth {
+        /// Word units per radial unit.
+        per_radial: f64,
+    },
 }
 
 /// The length unit a program writes its words in.

@@ -140,6 +140,8 @@ pub(crate) struct Motion {
     pub notes: Notes,
     moves: Option<Vec<Move>>,
     passes_total: usize,
+    /// The last X word read (the tip's position of a G32/G33 chain or a G92 run).
+    pub last_x: Option<super::DepthWord>,
     /// The turned contour so far: feed moves (G1, G2, G3) of the lathe dialects as
     /// (X0, Z0, X1, Z1), diameters, capped at `MAX_CONTOUR` segments.
     contour: Vec<[f64; 4]>,
@@ -188,6 +190,27 @@ impl Motion {
             moves: record_moves.then(Vec::new),
             passes_total: 0,
             contour: Vec::new(),
+            last_x: None,
+        }
+    }
+
+    /// Remembers a block's X word, the depth word of the passes it sets.
+    pub fn note_x_word(&mut self, b: &RBlock<'_>) {
+        if let Some(w) = b.get("X") {
+            let literal = w.text.len() > 1 && w.text[1..].trim().parse::<f64>().is_ok();
+            self.last_x = Some(super::DepthWord {
+                word: "X".into(),
+                value: w.v,
+                line: b.line,
+                column: w.col,
+                written: w.text.to_string(),
+                literal,
+                means: if self.diameter || !self.lathe() {
+                    super::WordMeans::Diameter
+                } else {
+                    super::WordMeans::Radius
+                },
+            });
         }
     }
 
@@ -388,6 +411,7 @@ impl Motion {
             notes: Vec::new(),
             units: if self.scale == 1.0 { ProgramUnits::Mm } else { ProgramUnits::Inch },
             x_words: if self.diameter { XWords::Diameter } else { XWords::Radius },
+            depth_word: None,
         });
         self.ops.len() - 1
     }
@@ -416,9 +440,12 @@ impl Motion {
             }
             return Err(self.err(line, 1, msg));
         }
+        let word = self.last_x.clone();
         let o = &mut self.ops[op];
         p.index = o.passes.len() + 1;
         o.passes.push(p);
+        // The X that set this pass; a cycle whose depth is another word says so after.
+        o.depth_word = word;
         Ok(())
     }
 

@@ -235,6 +235,7 @@ fn l97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>, cx: &mut Ctx<'_>) -> Resul
         let xb = crest(zb) + 2.0 * sx * d;
         m.push(op, b.line, cycles::pass(xa, xb, za, zb, pitch, b.line, 0.0, xb))?;
     }
+    m.op_mut(op).depth_word = Some(r_parameter_word("R24", depth / sc, b, w));
     Ok(())
 }
 
@@ -296,7 +297,22 @@ fn l96(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>, cx: &mut Ctx<'_>) -> Resul
             Pass { ..cycles::pass(xa + 2.0 * sx * d, xe + 2.0 * sx * d, z_a, z_e, pitch, b.line, 0.0, xe) };
         m.push(op, b.line, p)?;
     }
+    m.op_mut(op).depth_word = Some(r_parameter_word("R15", depth / sc, b, w));
     Ok(())
+}
+
+/// The R-parameter that holds a cycle's depth: set somewhere before the call, so a fix cannot
+/// rewrite it in place; the call's place stands for it.
+fn r_parameter_word(name: &str, value: f64, b: &RBlock<'_>, w: &RWord<'_>) -> super::DepthWord {
+    super::DepthWord {
+        word: name.into(),
+        value,
+        line: b.line,
+        column: w.col,
+        written: format!("{name}={value}"),
+        literal: false,
+        means: super::WordMeans::Depth { per_radial: 1.0 },
+    }
 }
 
 /// CYCLE97(PIT, MPIT, SPL, FPL, DM1, DM2, APP, ROP, TDEP, FAL, IANG, NSP, NRC, NID, VARI, NUMT).
@@ -368,6 +384,14 @@ fn cycle97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
     let (d1, d2) = (dm1 * s, dm2 * s);
     let op = m.begin_op("CYCLE97", b.line);
     m.op_mut(op).infeed_angle = Some((iang.abs(), "IANG".into()));
+    let tdep_col = args.get(8).map_or(w.col, |a| a.1);
+    // TDEP as written: the ninth argument of the call's text, when it is a plain number.
+    let tdep_text = w
+        .text
+        .split_once('(')
+        .and_then(|(_, rest)| rest.trim_end_matches(')').split(',').nth(8))
+        .map(|t| t.trim().to_string())
+        .filter(|t| t.parse::<f64>().is_ok());
     for start in 0..numt as u32 {
         let phase = f64::from(start) * pitch + nsp / 360.0 * lead;
         for (d, off) in depths.iter().zip(&offsets) {
@@ -380,6 +404,15 @@ fn cycle97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
             m.push(op, b.line, p)?;
         }
     }
+    m.op_mut(op).depth_word = Some(super::DepthWord {
+        word: "TDEP".into(),
+        value: tdep / s,
+        line: b.line,
+        column: tdep_col,
+        literal: tdep_text.is_some(),
+        written: tdep_text.unwrap_or_else(|| format!("{}", tdep / s)),
+        means: super::WordMeans::Depth { per_radial: 1.0 },
+    });
     Ok(())
 }
 

@@ -204,6 +204,8 @@ pub struct VerifyReport<'a> {
     pub suggested_final_x: Option<f64>,
     /// A program lead that matches the designation's only after rounding, and its effect.
     pub lead_deviation: Option<&'a crate::analysis::lead::LeadDeviation>,
+    /// The correction in the program's own word, when d2 is off.
+    pub correction: Option<CorrectionReport<'a>>,
     /// Stated assumptions.
     pub notes: &'a [crate::ground::note::Note],
     /// The normal deviation from the basic profile along one pitch, as the picture plots it
@@ -267,6 +269,10 @@ impl<'a> VerifyReport<'a> {
                 functional_pitch_diameter: v.functional_pitch_diameter,
             },
             lead_deviation: v.lead_deviation.as_ref(),
+            correction: v
+                .correction
+                .as_ref()
+                .map(|c| CorrectionReport { text: correction_text(c), correction: c }),
             limits: &v.limits,
             checks: &v.checks,
             verdict: Verdict::of(v.pass),
@@ -278,6 +284,64 @@ impl<'a> VerifyReport<'a> {
             deviation: v.picture.as_ref().map(|p| &p.deviation),
         }
     }
+}
+
+/// The correction with its sentence.
+#[derive(Clone, Debug, Serialize)]
+pub struct CorrectionReport<'a> {
+    /// The word, its new value and place.
+    #[serde(flatten)]
+    pub correction: &'a crate::analysis::correction::Correction,
+    /// What to do, in words.
+    pub text: String,
+}
+
+/// A correction's new word as the program would write it: `X0.2948`, `K0.930`, `TDEP=0.930`.
+pub fn correction_word(c: &crate::analysis::correction::Correction) -> String {
+    let v = match c.units {
+        crate::gcode::ProgramUnits::Mm => format!("{:.3}", c.value),
+        crate::gcode::ProgramUnits::Inch => format!("{:.4}", c.value),
+    };
+    if c.word.len() == 1 {
+        format!("{}{v}", c.word)
+    } else {
+        format!("{}={v}", c.word)
+    }
+}
+
+/// The sentence of a correction: `change X19.462 at line 12 to X19.452 (mm, diameter)`.
+pub fn correction_text(c: &crate::analysis::correction::Correction) -> String {
+    let what = match c.means {
+        crate::gcode::WordMeans::Diameter => "diameter",
+        crate::gcode::WordMeans::Radius => "radius",
+        crate::gcode::WordMeans::Depth { .. } => "thread depth",
+    };
+    let place = if c.editable && c.word.len() > 1 {
+        // A call's argument: `change TDEP 1.400 at line 3:34 to 1.597`.
+        let w = correction_word(c);
+        format!(
+            "change {} {} at line {}:{} to {}",
+            c.word,
+            c.written,
+            c.line,
+            c.column,
+            &w[c.word.len() + 1..]
+        )
+    } else if c.editable {
+        format!("change {} at line {}:{} to {}", c.written, c.line, c.column, correction_word(c))
+    } else if c.word.starts_with('R') && c.word.len() > 1 {
+        format!("set {} (read by the call at line {}) to {}", c.word, c.line, correction_word(c))
+    } else {
+        format!(
+            "make {} (written {} at line {}:{}) {}",
+            c.word,
+            c.written,
+            c.line,
+            c.column,
+            correction_word(c)
+        )
+    };
+    format!("{place} ({}, {what})", c.units.name())
 }
 
 /// A value with `prec` decimals, or a dash when there is none.
@@ -418,15 +482,28 @@ pub fn verify_text(v: &Verification) -> String {
         let _ = writeln!(s, "\nverdict: FAIL ({})", failed.join(", "));
     }
     if let Some(x) = v.suggested_final_x {
-        let off = v
-            .checks
-            .iter()
-            .find(|c| c.feature == CheckFeature::PitchDiameter)
-            .map_or(0.0, |c| c.deviation_um);
-        let _ = writeln!(
-            s,
-            "pitch diameter is {off:+.1} µm off: program the last pass at X{x:.4} for mid-tolerance"
-        );
+        let failed = |f: CheckFeature| v.checks.iter().find(|c| c.feature == f && !c.ok);
+        let off = if let Some(gp) = failed(CheckFeature::GaugePlane) {
+            format!("the gauge plane is {:+.3} turn from its basic position", gp.value)
+        } else if let Some(d2) = failed(CheckFeature::PitchDiameter) {
+            format!("pitch diameter is {:+.1} µm off", d2.deviation_um)
+        } else if let Some(f) = failed(CheckFeature::FunctionalPitchDiameter) {
+            format!("the functional pitch diameter is {:+.1} µm off", f.deviation_um)
+        } else {
+            "the pitch diameter is off".to_string()
+        };
+        match &v.correction {
+            Some(c) => {
+                let _ = writeln!(
+                    s,
+                    "{off}: {} for mid-tolerance (the last pass at X{x:.4} mm on the diameter)",
+                    correction_text(c)
+                );
+            }
+            None => {
+                let _ = writeln!(s, "{off}: program the last pass at X{x:.4} for mid-tolerance");
+            }
+        }
     }
     for n in &v.notes {
         let _ = writeln!(s, "note: {n}");

@@ -1,0 +1,85 @@
+//! The correction in the program's own words: the change of the word that sets an operation's
+//! final depth (the last X of a G76, G92 run or G32 chain; LinuxCNC G76 K; CYCLE97 TDEP; L97
+//! R24; L96 R15) that moves the pitch diameter by a given amount, in the program's units and X
+//! mode, rounded to its least increment.
+
+use crate::gcode::{DepthWord, ProgramUnits, WordMeans};
+use crate::standards::ThreadKind;
+use serde::Serialize;
+
+/// A word to change and its new value.
+///
+/// ```
+/// use threadcheck::{correction, DepthWord, ProgramUnits, ThreadKind, WordMeans};
+/// // A G20 program's last pass at X.2953 (diameter, inches) leaves d2 12.7 µm over mid: the
+/// // tip goes 0.0127 mm = 0.0005 in deeper.
+/// let w = DepthWord { word: "X".into(), value: 0.2953, line: 9, column: 1, written: "X.2953".into(),
+///     literal: true, means: WordMeans::Diameter };
+/// let c = correction(&w, ProgramUnits::Inch, ThreadKind::External, -0.0127);
+/// assert_eq!(c.word, "X");
+/// assert!((c.value - 0.2948).abs() < 1e-12);
+/// // LinuxCNC G76 K (radial depth, radius mode): d2 down by 20 µm is K 0.010 mm deeper.
+/// let k = DepthWord { word: "K".into(), value: 0.92, line: 3, column: 30, written: "K0.92".into(),
+///     literal: true, means: WordMeans::Depth { per_radial: 1.0 } };
+/// assert!((correction(&k, ProgramUnits::Mm, ThreadKind::External, -0.020).value - 0.930).abs() < 1e-12);
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Correction {
+    /// The word's address (`X`, `K`, `TDEP`, `R24`, `R15`).
+    pub word: String,
+    /// Its new value, program units, rounded to the program's least increment.
+    pub value: f64,
+    /// Its value now, program units.
+    pub was: f64,
+    /// The program's units.
+    pub units: ProgramUnits,
+    /// Where the word is written (for an R-parameter: the cycle call that reads it).
+    pub line: usize,
+    /// Its column.
+    pub column: usize,
+    /// A plain number in place that `--fix` may rewrite.
+    pub editable: bool,
+    /// The word as written now.
+    pub written: String,
+    /// What the word measures.
+    pub means: WordMeans,
+}
+
+/// The change of `w` that moves the pitch diameter by `delta_d2` mm (+ larger), for a thread of
+/// `kind` in a program written in `units`.
+pub fn correction(w: &DepthWord, units: ProgramUnits, kind: ThreadKind, delta_d2: f64) -> Correction {
+    let per_unit = units.mm();
+    let raw = match w.means {
+        WordMeans::Diameter => w.value + delta_d2 / per_unit,
+        WordMeans::Radius => w.value + 0.5 * delta_d2 / per_unit,
+        WordMeans::Depth { per_radial } => {
+            // Deeper is a smaller bolt and a larger nut.
+            let deeper = match kind {
+                ThreadKind::External => -0.5 * delta_d2,
+                ThreadKind::Internal => 0.5 * delta_d2,
+            };
+            let size = w.value.abs() + deeper * per_radial / per_unit;
+            if w.value < 0.0 {
+                -size
+            } else {
+                size
+            }
+        }
+    };
+    let inc = units.least_increment();
+    let value = (raw / inc).round() * inc;
+    // Rounded to the increment, printed without binary noise.
+    let value = format!("{value:.4}").parse::<f64>().unwrap_or(value);
+    debug_assert!(value.is_finite());
+    Correction {
+        word: w.word.clone(),
+        value,
+        was: w.value,
+        units,
+        line: w.line,
+        column: w.column,
+        editable: w.literal,
+        written: w.written.clone(),
+        means: w.means,
+    }
+}
