@@ -229,3 +229,31 @@ fn fix_refuses_an_expression_and_names_the_word() {
     );
     assert!(!dir.join("out.nc").exists());
 }
+
+/// The picture and the page say the correction too.
+#[test]
+fn the_svg_and_the_page_say_the_correction() {
+    let dir = tempdir("fixsvg");
+    let src = data("programs/shop/cycle97-m20.mpf");
+    let o = run_in(
+        &dir,
+        &[
+            "verify",
+            "--program",
+            src.to_str().unwrap(),
+            "--thread",
+            "M20x2.5-6g",
+            "--insert",
+            "full",
+            "--svg",
+            "c.svg",
+            "--html",
+            "c.html",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    for f in ["c.svg", "c.html"] {
+        let t = std::fs::read_to_string(dir.join(f)).unwrap();
+        assert!(t.contains("change TDEP 1.400 at line 3:34 to 1.597 (mm, thread depth)"), "{f}");
+    }
+}

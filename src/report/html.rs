@@ -62,7 +62,18 @@ fn verification_body(v: &Verification, svg: &str, level: u8) -> String {
     );
     if let Some(x) = v.suggested_final_x {
         if !v.pass {
-            let _ = writeln!(s, "<p>For the middle of the pitch-diameter tolerance, program the last pass at <b>X{x:.4}</b>.</p>");
+            match &v.correction {
+                Some(c) => {
+                    let _ = writeln!(
+                        s,
+                        "<p>For the middle of the pitch-diameter tolerance: <b>{}</b> (the last pass at X{x:.4} mm on the diameter).</p>",
+                        esc(&super::correction_text(c))
+                    );
+                }
+                None => {
+                    let _ = writeln!(s, "<p>For the middle of the pitch-diameter tolerance, program the last pass at <b>X{x:.4}</b>.</p>");
+                }
+            }
         }
     }
     let _ = writeln!(s, "<div class=\"pic\">{svg}</div>");

@@ -769,7 +769,9 @@ fn verdict_words(v: &Verification) -> String {
     if failed.is_empty() {
         format!("IN TOLERANCE{gauge}")
     } else {
-        format!("OUT OF TOLERANCE: {}{gauge}", failed.join(", "))
+        let fix =
+            v.correction.as_ref().map_or(String::new(), |c| format!(" · {}", super::correction_text(c)));
+        format!("OUT OF TOLERANCE: {}{gauge}{fix}", failed.join(", "))
     }
 }
 
