@@ -257,3 +257,27 @@ fn the_svg_and_the_page_say_the_correction() {
         assert!(t.contains("change TDEP 1.400 at line 3:34 to 1.597 (mm, thread depth)"), "{f}");
     }
 }
+
+/// `m10x1.5-6g` is M10x1.5-6g (ISO's series letter in the wrong case); a decimal comma is named
+/// with the designation written right; `--insert Full` is `full`, and a word that is neither a
+/// keyword nor a file is named with the words `--insert` takes.
+#[test]
+fn designations_and_insert_words_are_read_as_a_person_writes_them() {
+    let o = run(&["limits", "m10x1.5-6g", "--json", "-"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    // ISO 965-2: d2 of 6g is 8.862–8.994.
+    assert_eq!(v["external"]["pitch_diameter"]["max"], 8.994, "{v}");
+    let o = run(&["limits", "M10x1,5-6g"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        one_line_error(&o).contains("a decimal comma: write a decimal point, M10x1.5-6g"),
+        "{}",
+        stderr(&o)
+    );
+    let o = run(&["verify", "--thread", "M10x1.5-6g", "--insert", "Full"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let o = run(&["verify", "--thread", "M10x1.5-6g", "--insert", "fulll"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(one_line_error(&o).contains("expected full, partial, partial:TIP_RADIUS or an insert FILE.toml"));
+}

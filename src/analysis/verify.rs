@@ -38,10 +38,15 @@ impl std::str::FromStr for InsertChoice {
     /// # Ok::<(), threadcheck::Error>(())
     /// ```
     fn from_str(s: &str) -> Result<Self, Error> {
-        match s {
+        let lower = s.to_ascii_lowercase();
+        match lower.as_str() {
             "full" => Ok(InsertChoice::Full),
             "partial" => Ok(InsertChoice::Partial { tip_radius: 0.04 }),
-            _ => match s.strip_prefix("partial:") {
+            // A word that is neither a keyword nor a file name (no extension, no folder).
+            _ if !s.is_empty() && !s.contains(['.', '/', '\\', ':']) => Err(Error::Input(format!(
+                "insert '{s}': expected full, partial, partial:TIP_RADIUS or an insert FILE.toml"
+            ))),
+            _ => match lower.strip_prefix("partial:").map(|_| &s[8..]) {
                 Some(r) => {
                     let tip_radius: f64 = r.trim().parse().map_err(|_| {
                         Error::Input(format!("insert '{s}': the tip radius '{r}' is not a number"))

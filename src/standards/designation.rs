@@ -166,6 +166,21 @@ pub fn parse_designation(text: &str, opts: ParseOptions) -> Result<Designation, 
     if text.is_empty() {
         return Err(c.err(0, 0, "empty designation; expected e.g. M10x1.5-6g, BSW 1/2 or G1/2 A").into());
     }
+    // ISO 965 writes the series letter upper case; a lower-case `m` before a digit can only
+    // mean it (the class letters keep their case: 6g and 6H are different sides).
+    if let Some(rest) = text.strip_prefix('m') {
+        if rest.starts_with(|ch: char| ch.is_ascii_digit()) {
+            return parse_designation(&format!("M{rest}"), opts);
+        }
+    }
+    // A decimal comma (`M10x1,5-6g`) is named, not taken for a separator.
+    let b = text.as_bytes();
+    if let Some(i) = (1..b.len().saturating_sub(1))
+        .find(|&i| b[i] == b',' && b[i - 1].is_ascii_digit() && b[i + 1].is_ascii_digit())
+    {
+        let fixed = format!("{}.{}", &text[..i], &text[i + 1..]);
+        return Err(c.err(i, i + 1, format!("a decimal comma: write a decimal point, {fixed}")).into());
+    }
     let upper = text.to_ascii_uppercase();
     if upper.contains("NPT") && upper.starts_with(|ch: char| ch.is_ascii_digit()) {
         parse_npt(&mut c, opts).map_err(Into::into)
