@@ -3,7 +3,7 @@
 //! calls are bounded; a small budget keeps runaway loops quick under the sanitizer).
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use threadcheck::{read_program_with, Budget, Dialect, ReadOptions};
+use threadcheck::{read_program_with, Budget, Dialect, ProgramUnits, ReadOptions};
 
 fuzz_target!(|data: &[u8]| {
     let Some((&first, rest)) = data.split_first() else { return };
@@ -14,6 +14,8 @@ fuzz_target!(|data: &[u8]| {
             allow_no_threading: true,
             n_order: first & 0x80 != 0,
             budget: Some(Budget { blocks: 200_000, backward_jumps: 20_000 }),
+            default_units: (first & 0x40 != 0).then_some(ProgramUnits::Inch),
+            ..ReadOptions::default()
         };
         let _ = read_program_with(text, "fuzz.nc", d, opts);
     }
