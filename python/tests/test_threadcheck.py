@@ -61,7 +61,7 @@ def test_dicts_are_the_cli_json():
         path = os.path.join(d, "m20.nc")
         with open(path, "w") as f:
             f.write(G76_M20)
-        cli = subprocess.run([binary, "verify", "--thread", "M20x1.5-6g", "--program", path,
+        cli = subprocess.run([binary, "verify", "--thread", "M20x1.5-6g", "--program", path, "--dialect", "fanuc",
                               "--insert", "full", "--json", "-"], capture_output=True, text=True)
         assert cli.returncode == 1, cli.stderr
         py = threadcheck.verify("M20x1.5-6g", program=G76_M20, insert="full", program_name=path)
