@@ -328,18 +328,14 @@ fn fixed_program(
             continue;
         };
         let Some(c) = &v.correction else { continue };
-        if !c.editable {
+        let Some(new) = crate::report::correction_replacement(c) else {
             return Err(Error::Program {
                 file: shown.to_string(),
                 line: c.line,
                 column: c.column,
                 message: format!("--fix rewrites plain numbers only: {}", crate::report::correction_text(c)),
             });
-        }
-        // A one-letter word is rewritten whole (`X19.452`); a call's argument (CYCLE97's TDEP)
-        // is the number alone.
-        let new = crate::report::correction_word(c);
-        let new = if c.word.len() == 1 { new } else { new[c.word.len() + 1..].to_string() };
+        };
         edits.push(crate::gcode::WordEdit { line: c.line, column: c.column, old: c.written.clone(), new });
     }
     crate::gcode::rewrite_words(text, shown, &edits)

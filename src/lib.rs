@@ -80,7 +80,7 @@ pub use standards::{Feature, GrooveForm};
 pub use gcode::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
 pub use gcode::{
     read_program, read_program_with, rewrite_words, Budget, DepthWord, Dialect, DialectFrom, Operation,
-    Program, ProgramUnits, ReadOptions, Spindle, WordEdit, WordMeans, XWords,
+    Program, ProgramUnits, ReadOptions, Spindle, WordEdit, WordForm, WordMeans, XWords,
 };
 
 // Geometry: the insert, the sweep, the measurement.

@@ -3,24 +3,24 @@
 //! R24; L96 R15) that moves the pitch diameter by a given amount, in the program's units and X
 //! mode, rounded to its least increment.
 
-use crate::gcode::{DepthWord, ProgramUnits, WordMeans};
+use crate::gcode::{DepthWord, ProgramUnits, WordForm, WordMeans};
 use crate::standards::ThreadKind;
 use serde::Serialize;
 
 /// A word to change and its new value.
 ///
 /// ```
-/// use threadcheck::{correction, DepthWord, ProgramUnits, ThreadKind, WordMeans};
+/// use threadcheck::{correction, DepthWord, ProgramUnits, ThreadKind, WordForm, WordMeans};
 /// // A G20 program's last pass at X.2953 (diameter, inches) leaves d2 12.7 µm over mid: the
 /// // tip goes 0.0127 mm = 0.0005 in deeper.
 /// let w = DepthWord { word: "X".into(), value: 0.2953, line: 9, column: 1, written: "X.2953".into(),
-///     literal: true, means: WordMeans::Diameter };
+///     form: WordForm::Number, means: WordMeans::Diameter };
 /// let c = correction(&w, ProgramUnits::Inch, ThreadKind::External, -0.0127);
 /// assert_eq!(c.word, "X");
 /// assert!((c.value - 0.2948).abs() < 1e-12);
 /// // LinuxCNC G76 K (radial depth, radius mode): d2 down by 20 µm is K 0.010 mm deeper.
 /// let k = DepthWord { word: "K".into(), value: 0.92, line: 3, column: 30, written: "K0.92".into(),
-///     literal: true, means: WordMeans::Depth { per_radial: 1.0 } };
+///     form: WordForm::Number, means: WordMeans::Depth { per_radial: 1.0 } };
 /// assert!((correction(&k, ProgramUnits::Mm, ThreadKind::External, -0.020).value - 0.930).abs() < 1e-12);
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -37,8 +37,9 @@ pub struct Correction {
     pub line: usize,
     /// Its column.
     pub column: usize,
-    /// A plain number in place that `--fix` may rewrite.
-    pub editable: bool,
+    /// How the word is written (in the JSON: `editable`, whether `--fix` rewrites it).
+    #[serde(rename = "editable", serialize_with = "editable")]
+    pub form: WordForm,
     /// The word as written now.
     pub written: String,
     /// What the word measures.
@@ -78,8 +79,13 @@ pub fn correction(w: &DepthWord, units: ProgramUnits, kind: ThreadKind, delta_d2
         units,
         line: w.line,
         column: w.column,
-        editable: w.literal,
+        form: w.form,
         written: w.written.clone(),
         means: w.means,
     }
+}
+
+/// A word form as the JSON gives it: whether `--fix` rewrites it.
+fn editable<S: serde::Serializer>(form: &WordForm, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_bool(form.editable())
 }

@@ -160,16 +160,8 @@ fn g76(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
         m.push(op, b.line, p)?;
     }
     if let Some(kw) = b.get("K") {
-        let literal = kw.text.len() > 1 && kw.text[1..].trim().parse::<f64>().is_ok();
-        m.op_mut(op).depth_word = Some(super::DepthWord {
-            word: "K".into(),
-            value: kw.v,
-            line: b.line,
-            column: kw.col,
-            written: kw.text.to_string(),
-            literal,
-            means: super::WordMeans::Depth { per_radial: if m.diameter { 2.0 } else { 1.0 } },
-        });
+        let means = super::WordMeans::Depth { per_radial: if m.diameter { 2.0 } else { 1.0 } };
+        m.op_mut(op).depth_word = Some(super::motion::address_word(b, kw, means));
     }
     if let Some(xw) = b.get("X") {
         m.x = Some(m.x_dia(xw));

@@ -175,11 +175,36 @@ pub struct DepthWord {
     pub column: usize,
     /// As written there (`X8.539`, `X#1`, `0.92`).
     pub written: String,
-    /// A plain number in place, which a fix may rewrite; an expression, a variable or a
-    /// parameter set elsewhere is not.
-    pub literal: bool,
+    /// How it is written, and so whether a fix can rewrite it in place.
+    pub form: WordForm,
     /// What the word measures.
     pub means: WordMeans,
+}
+
+/// How a depth word is written in the program.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WordForm {
+    /// An address with a plain number (`X8.539`, `K.045`): rewritten whole.
+    Number,
+    /// An address with an expression or a variable (`X[#1]`, `K#5`): not rewritten.
+    Expression,
+    /// A plain number as a call's argument (CYCLE97's TDEP): the number alone is rewritten.
+    Argument,
+    /// A call's argument written as an expression: not rewritten.
+    ArgumentExpression,
+    /// An R-parameter set before the call that reads it (L97 R24): not rewritten in place.
+    Parameter,
+}
+
+impl WordForm {
+    /// Whether a fix can rewrite the word in place.
+    pub fn editable(self) -> bool {
+        match self {
+            WordForm::Number | WordForm::Argument => true,
+            WordForm::Expression | WordForm::ArgumentExpression | WordForm::Parameter => false,
+        }
+    }
 }
 
 /// What a depth word measures, for turning a pitch-diameter change into its change.

@@ -25,6 +25,20 @@ pub(crate) struct RWord<'b> {
     pub args: Option<Vec<(Option<f64>, usize)>>,
 }
 
+/// An address word of block `b` (`X8.539`, `K#5`) as the depth word that means `means`.
+pub(crate) fn address_word(b: &RBlock<'_>, w: &RWord<'_>, means: super::WordMeans) -> super::DepthWord {
+    let plain = w.text.get(w.name.len()..).is_some_and(|v| v.trim().parse::<f64>().is_ok());
+    super::DepthWord {
+        word: w.name.to_string(),
+        value: w.v,
+        line: b.line,
+        column: w.col,
+        written: w.text.to_string(),
+        form: if plain { super::WordForm::Number } else { super::WordForm::Expression },
+        means,
+    }
+}
+
 /// A block with its words evaluated: what a dialect module sees.
 #[derive(Clone, Debug)]
 pub(crate) struct RBlock<'b> {
@@ -197,20 +211,12 @@ impl Motion {
     /// Remembers a block's X word, the depth word of the passes it sets.
     pub fn note_x_word(&mut self, b: &RBlock<'_>) {
         if let Some(w) = b.get("X") {
-            let literal = w.text.len() > 1 && w.text[1..].trim().parse::<f64>().is_ok();
-            self.last_x = Some(super::DepthWord {
-                word: "X".into(),
-                value: w.v,
-                line: b.line,
-                column: w.col,
-                written: w.text.to_string(),
-                literal,
-                means: if self.diameter || !self.lathe() {
-                    super::WordMeans::Diameter
-                } else {
-                    super::WordMeans::Radius
-                },
-            });
+            let means = if self.diameter || !self.lathe() {
+                super::WordMeans::Diameter
+            } else {
+                super::WordMeans::Radius
+            };
+            self.last_x = Some(address_word(b, w, means));
         }
     }
 

@@ -310,7 +310,7 @@ fn r_parameter_word(name: &str, value: f64, b: &RBlock<'_>, w: &RWord<'_>) -> su
         line: b.line,
         column: w.col,
         written: format!("{name}={value}"),
-        literal: false,
+        form: super::WordForm::Parameter,
         means: super::WordMeans::Depth { per_radial: 1.0 },
     }
 }
@@ -409,7 +409,11 @@ fn cycle97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
         value: tdep / s,
         line: b.line,
         column: tdep_col,
-        literal: tdep_text.is_some(),
+        form: if tdep_text.is_some() {
+            super::WordForm::Argument
+        } else {
+            super::WordForm::ArgumentExpression
+        },
         written: tdep_text.unwrap_or_else(|| format!("{}", tdep / s)),
         means: super::WordMeans::Depth { per_radial: 1.0 },
     });

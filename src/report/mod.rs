@@ -296,16 +296,34 @@ pub struct CorrectionReport<'a> {
     pub text: String,
 }
 
-/// A correction's new word as the program would write it: `X0.2948`, `K0.930`, `TDEP=0.930`.
-pub fn correction_word(c: &crate::analysis::correction::Correction) -> String {
-    let v = match c.units {
+/// A correction's new value at the program's increment: `0.2948` (inch), `0.930` (mm).
+fn correction_number(c: &crate::analysis::correction::Correction) -> String {
+    match c.units {
         crate::gcode::ProgramUnits::Mm => format!("{:.3}", c.value),
         crate::gcode::ProgramUnits::Inch => format!("{:.4}", c.value),
-    };
-    if c.word.len() == 1 {
-        format!("{}{v}", c.word)
-    } else {
-        format!("{}={v}", c.word)
+    }
+}
+
+/// A correction's new word as the program would write it: `X0.2948`, `K0.930`, `TDEP=0.930`,
+/// `R24=0.930`.
+pub fn correction_word(c: &crate::analysis::correction::Correction) -> String {
+    use crate::gcode::WordForm;
+    match c.form {
+        WordForm::Number | WordForm::Expression => format!("{}{}", c.word, correction_number(c)),
+        WordForm::Argument | WordForm::ArgumentExpression | WordForm::Parameter => {
+            format!("{}={}", c.word, correction_number(c))
+        }
+    }
+}
+
+/// What replaces the word in place to apply a correction: the whole word (`X19.452`), or a
+/// call's argument alone (`1.597`); `None` where it cannot be rewritten in place.
+pub fn correction_replacement(c: &crate::analysis::correction::Correction) -> Option<String> {
+    use crate::gcode::WordForm;
+    match c.form {
+        WordForm::Number => Some(correction_word(c)),
+        WordForm::Argument => Some(correction_number(c)),
+        WordForm::Expression | WordForm::ArgumentExpression | WordForm::Parameter => None,
     }
 }
 
@@ -316,30 +334,19 @@ pub fn correction_text(c: &crate::analysis::correction::Correction) -> String {
         crate::gcode::WordMeans::Radius => "radius",
         crate::gcode::WordMeans::Depth { .. } => "thread depth",
     };
-    let place = if c.editable && c.word.len() > 1 {
+    let (word, at) = (&c.word, format!("line {}:{}", c.line, c.column));
+    let place = match c.form {
+        crate::gcode::WordForm::Number => format!("change {} at {at} to {}", c.written, correction_word(c)),
         // A call's argument: `change TDEP 1.400 at line 3:34 to 1.597`.
-        let w = correction_word(c);
-        format!(
-            "change {} {} at line {}:{} to {}",
-            c.word,
-            c.written,
-            c.line,
-            c.column,
-            &w[c.word.len() + 1..]
-        )
-    } else if c.editable {
-        format!("change {} at line {}:{} to {}", c.written, c.line, c.column, correction_word(c))
-    } else if c.word.starts_with('R') && c.word.len() > 1 {
-        format!("set {} (read by the call at line {}) to {}", c.word, c.line, correction_word(c))
-    } else {
-        format!(
-            "make {} (written {} at line {}:{}) {}",
-            c.word,
-            c.written,
-            c.line,
-            c.column,
-            correction_word(c)
-        )
+        crate::gcode::WordForm::Argument => {
+            format!("change {word} {} at {at} to {}", c.written, correction_number(c))
+        }
+        crate::gcode::WordForm::Expression | crate::gcode::WordForm::ArgumentExpression => {
+            format!("make {word} (written {} at {at}) {}", c.written, correction_word(c))
+        }
+        crate::gcode::WordForm::Parameter => {
+            format!("set {word} (read by the call at line {}) to {}", c.line, correction_word(c))
+        }
     };
     format!("{place} ({}, {what})", c.units.name())
 }
