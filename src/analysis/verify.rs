@@ -880,22 +880,18 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         ThreadKind::External => m.pitch_diameter + ld.pitch_diameter_equivalent,
         ThreadKind::Internal => m.pitch_diameter - ld.pitch_diameter_equivalent,
     });
-    let cone = match (cone, lead_deviation) {
-        (Some(c), Some(ld)) => Some(crate::analysis::check::Cone {
-            turns: c.turns - ld.pitch_diameter_equivalent / (c.nominal_taper * t.pitch),
-            ..c
-        }),
-        (c, _) => c,
-    };
+    // The gauge's stand-off from the lead error, turns.
+    let lead_turns =
+        cone.zip(lead_deviation).map(|(c, ld)| ld.pitch_diameter_equivalent / (c.nominal_taper * t.pitch));
+    let cone = cone.map(|c| crate::analysis::check::Cone { turns: c.turns - lead_turns.unwrap_or(0.0), ..c });
     let mut cs = checks(m, &limits, &t, kind, m.root_pockets <= 1, cone);
     if let (Some(f), Some(ld), None) = (functional, lead_deviation, taper) {
         cs.push(crate::analysis::check::functional_check(f, &limits, kind, ld));
     }
-    if let (Some(ld), Some(c)) = (lead_deviation, cone) {
+    if let (Some(ld), Some(share)) = (lead_deviation, lead_turns) {
         if let Some(gp) =
             cs.iter_mut().find(|c| c.feature == crate::analysis::check::CheckFeature::GaugePlane)
         {
-            let share = ld.pitch_diameter_equivalent / (c.nominal_taper * t.pitch);
             let note = gp.note.take().unwrap_or_default();
             gp.note = Some(format!(
                 "{note}; functional: the lead {:.6} mm against {:.6} mm stands the gauge off {share:.3} turn",
@@ -909,12 +905,9 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
             c.feature,
             crate::analysis::check::CheckFeature::PitchDiameter
                 | crate::analysis::check::CheckFeature::GaugePlane
+                | crate::analysis::check::CheckFeature::FunctionalPitchDiameter
         ) && !c.ok
     });
-    let functional_off = cs
-        .iter()
-        .any(|c| c.feature == crate::analysis::check::CheckFeature::FunctionalPitchDiameter && !c.ok);
-    let d2_off = d2_off || functional_off;
     let delta = target_at(cut.z_ref) - m.pitch_diameter;
     let suggested = d2_off.then_some(final_x + delta);
     let correction = match (d2_off, depth_word) {
