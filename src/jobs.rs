@@ -217,7 +217,7 @@ impl VerifyJob {
         let svg_text = self.svg.as_ref().map(|_| crate::report::svg::verify_svg(&v));
         let html_text = self.html.as_ref().map(|_| crate::report::html::verify_html(&v));
         let text = crate::report::verify_text(&v);
-        self.write(json_text, svg_text, html_text, text, outcome)
+        self.write(json_text, svg_text, html_text, None, text, outcome)
     }
 
     fn run_program(
@@ -232,7 +232,6 @@ impl VerifyJob {
             ));
         }
         let (shown, text) = source.load()?;
-        let text_of_program = text.clone();
         let default = spec.insert.clone();
         let insert_for =
             |op: &crate::gcode::Operation| -> Option<(crate::analysis::verify::InsertChoice, String)> {
@@ -279,23 +278,19 @@ impl VerifyJob {
             self.json.as_ref().map(|_| pretty(&crate::report::ProgramReport::of(&pv))).transpose()?;
         let svg_text = self.svg.as_ref().map(|_| crate::report::svg::program_svg(&pv));
         let html_text = self.html.as_ref().map(|_| crate::report::html::program_html(&pv));
-        let text = crate::report::program_text(&pv);
-        let Some(fix) = &self.fix else {
-            return self.write(json_text, svg_text, html_text, text, outcome);
-        };
-        let fixed = fixed_program(&pv, &text_of_program, &shown)?;
-        if fix == "-" {
-            if self.json.as_deref() == Some("-") {
-                return Err(Error::Input(
-                    "--fix - and --json - both want stdout: write one to a file".into(),
-                ));
+        let report = crate::report::program_text(&pv);
+        let fixed = self.fix.as_ref().map(|_| fixed_program(&pv, &text, &shown)).transpose()?;
+        match (self.fix.as_deref(), fixed) {
+            // `--fix -`: the corrected program is what stdout shows.
+            (Some("-"), Some(program)) => {
+                if self.json.as_deref() == Some("-") {
+                    return Err(Error::Input(
+                        "--fix - and --json - both want stdout: write one to a file".into(),
+                    ));
+                }
+                self.write(json_text, svg_text, html_text, None, program, outcome)
             }
-            self.write(json_text, svg_text, html_text, fixed, outcome)
-        } else {
-            let files = [(&self.svg, svg_text), (&self.html, html_text), (&Some(fix.into()), Some(fixed))];
-            let mut inputs = spec_inputs(&self.spec);
-            inputs.extend(self.tools.iter().map(|t| std::path::PathBuf::from(&t.source)));
-            Ok((write_outputs(&inputs, &files, self.json.as_deref(), json_text, text)?, outcome))
+            (_, fixed) => self.write(json_text, svg_text, html_text, fixed, report, outcome),
         }
     }
 
@@ -304,10 +299,13 @@ impl VerifyJob {
         json_text: Option<String>,
         svg_text: Option<String>,
         html_text: Option<String>,
+        fixed: Option<String>,
         text: String,
         outcome: Outcome,
     ) -> Result<(String, Outcome), Error> {
-        let files = [(&self.svg, svg_text), (&self.html, html_text)];
+        // The corrected program goes to its file with the others (`--fix -` is shown instead).
+        let fix_path = self.fix.as_deref().filter(|f| *f != "-").map(std::path::PathBuf::from);
+        let files = [(&self.svg, svg_text), (&self.html, html_text), (&fix_path, fixed)];
         let mut inputs = spec_inputs(&self.spec);
         inputs.extend(self.tools.iter().map(|t| std::path::PathBuf::from(&t.source)));
         Ok((write_outputs(&inputs, &files, self.json.as_deref(), json_text, text)?, outcome))

@@ -281,3 +281,28 @@ fn designations_and_insert_words_are_read_as_a_person_writes_them() {
     assert_eq!(o.status.code(), Some(2));
     assert!(one_line_error(&o).contains("expected full, partial, partial:TIP_RADIUS or an insert FILE.toml"));
 }
+
+/// `--fix -` prints the corrected program instead of the report (and will not share stdout with
+/// `--json -`); `--fix` onto the program itself is refused and the program is kept.
+#[test]
+fn fix_to_stdout_and_never_over_the_program() {
+    let dir = tempdir("fixstd");
+    let text = std::fs::read_to_string(data("programs/shop/haas-g20-1-2-13-unc.nc")).unwrap();
+    std::fs::write(dir.join("h.nc"), &text).unwrap();
+    let base =
+        ["verify", "--program", "h.nc", "--dialect", "haas", "--thread", "1/2-13 UNC-2A", "--insert", "full"];
+    let mut args = base.to_vec();
+    args.extend(["--fix", "-"]);
+    let o = run_in(&dir, &args);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert_eq!(stdout(&o), text.replace("G76 X0.4069 ", "G76 X0.4016 "));
+    args.extend(["--json", "-"]);
+    let o = run_in(&dir, &args);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(one_line_error(&o).contains("--fix - and --json - both want stdout"));
+    let mut args = base.to_vec();
+    args.extend(["--fix", "h.nc"]);
+    let o = run_in(&dir, &args);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(dir.join("h.nc")).unwrap(), text);
+}
