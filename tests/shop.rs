@@ -306,3 +306,21 @@ fn fix_to_stdout_and_never_over_the_program() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert_eq!(std::fs::read_to_string(dir.join("h.nc")).unwrap(), text);
 }
+
+/// The units note names the dialect's own codes: G70/G71 on a Sinumerik.
+#[test]
+fn the_units_note_names_the_dialects_codes() {
+    let dir = tempdir("sinunits");
+    std::fs::write(
+        dir.join("s.mpf"),
+        "G0 X25 Z10\nCYCLE97(2.5,,0,-30,20,20,3,2,1.534,0.05,29.5,0,8,2,3,1)\nM30\n",
+    )
+    .unwrap();
+    let o = run_in(&dir, &["passes", "--program", "s.mpf"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("the program sets no units (G70/G71) before it threads: read in mm"),
+        "{}",
+        stdout(&o)
+    );
+}

@@ -33,10 +33,8 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
         Dialect::Fanuc | Dialect::Haas => true,
         Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna => false,
     };
-    let inch_codes = match d {
-        Dialect::Sinumerik => (70.0, 71.0),
-        Dialect::Fanuc | Dialect::Haas | Dialect::LinuxCnc | Dialect::Dyna => (20.0, 21.0),
-    };
+    let inch_codes = d.unit_codes();
+    let inch_codes = (f64::from(inch_codes.0), f64::from(inch_codes.1));
     for (g, col) in b.gs() {
         if g < 0.0 {
             return Err(m.err(b.line, col, "G with no code"));

@@ -96,6 +96,15 @@ impl Dialect {
         }
     }
 
+    /// The G codes that set inch and mm units: G70/G71 on Sinumerik (which also reads
+    /// G700/G710), G20/G21 elsewhere.
+    pub fn unit_codes(self) -> (u32, u32) {
+        match self {
+            Dialect::Sinumerik => (70, 71),
+            Dialect::Fanuc | Dialect::Haas | Dialect::LinuxCnc | Dialect::Dyna => (20, 21),
+        }
+    }
+
     /// What threading this dialect reads, for messages.
     fn threading_words(self) -> &'static str {
         match self {
@@ -463,12 +472,14 @@ pub fn read_program_with(
             dialect.name()
         )),
     };
+    let (inch, mm) = dialect.unit_codes();
+    let codes = format!("G{inch}/G{mm}");
     let units_note = match units_assumed {
         Some(None) if !operations.is_empty() => {
-            Some("the program sets no units (G20/G21) before it threads: read in mm, the default; an inch control's program needs --default-units inch".to_string())
+            Some(format!("the program sets no units ({codes}) before it threads: read in mm, the default; an inch control's program needs --default-units inch"))
         }
         Some(Some(u)) => Some(format!(
-            "the program sets no units (G20/G21) before it threads: read in {}, as --default-units says",
+            "the program sets no units ({codes}) before it threads: read in {}, as --default-units says",
             u.name()
         )),
         _ => None,
