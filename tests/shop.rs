@@ -171,7 +171,7 @@ fn a_g20_program_is_corrected_in_inches() {
     assert_eq!(c["units"], "inch");
     assert_eq!(c["line"], 6);
     assert!(
-        c["text"].as_str().unwrap().starts_with("change X0.4069 at line 6:5 to X0.4016 (inch, diameter)"),
+        c["text"].as_str().unwrap().starts_with("change X0.4072 at line 6:5 to X0.4016 (inch, diameter)"),
         "{c}"
     );
     assert!(text.contains("G76 X0.4016 Z-1.0 K0.0471"), "{text}");
@@ -295,7 +295,7 @@ fn fix_to_stdout_and_never_over_the_program() {
     args.extend(["--fix", "-"]);
     let o = run_in(&dir, &args);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    assert_eq!(stdout(&o), text.replace("G76 X0.4069 ", "G76 X0.4016 "));
+    assert_eq!(stdout(&o), text.replace("G76 X0.4072 ", "G76 X0.4016 "));
     args.extend(["--json", "-"]);
     let o = run_in(&dir, &args);
     assert_eq!(o.status.code(), Some(2));
