@@ -467,6 +467,7 @@ impl PassesJob {
     /// would (solving the final X when it is not given).
     pub fn run(&self) -> Result<(String, Outcome), Error> {
         let mut operations = None;
+        let mut program_notes = None;
         let (thread, passes, header) = match (&self.spec.program, self.spec.designation.is_empty()) {
             (Some((source, dialect)), no_thread) => {
                 let (shown, text) = source.load()?;
@@ -479,18 +480,20 @@ impl PassesJob {
                 };
                 let leads: Vec<String> = prog.operations.iter().map(|o| fmt_num(o.lead())).collect();
                 let mut header = format!(
-                    "{shown} ({}): {} operation{}, {} passes, lead {} mm, {} other blocks read for position\n",
+                    "{shown} ({}): {} operation{}, {} passes, lead {} mm, {} other blocks read for position{}\n",
                     dialect.name(),
                     prog.operations.len(),
                     if prog.operations.len() == 1 { "" } else { "s" },
                     prog.passes.len(),
                     leads.join(" / "),
-                    prog.skipped_blocks
+                    prog.skipped_blocks,
+                    crate::report::read_past_text(prog.read_past_blocks),
                 );
                 for n in &prog.notes {
                     header.push_str(&format!("note: {n}\n"));
                 }
                 operations = Some(prog.operations.clone());
+                program_notes = Some((prog.notes.clone(), prog.read_past_blocks));
                 (thread, prog.passes, header)
             }
             (None, _) if self.spec.final_x.is_some() => {
@@ -522,7 +525,12 @@ impl PassesJob {
         };
         let json_text = if self.json.is_some() {
             let thread = thread.as_ref().map(|(d, k, c)| crate::report::ThreadReport::new(d, *k, c));
-            Some(pretty(&crate::report::PassesReport::new(thread, &passes, operations.as_deref()))?)
+            Some(pretty(&crate::report::PassesReport::new(
+                thread,
+                &passes,
+                operations.as_deref(),
+                program_notes.as_ref().map(|(n, r)| (n.as_slice(), *r)),
+            ))?)
         } else {
             None
         };

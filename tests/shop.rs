@@ -324,3 +324,89 @@ fn the_units_note_names_the_dialects_codes() {
         stdout(&o)
     );
 }
+
+/// `passes --program shop/FILE --json`: the program's passes and notes.
+fn passes_json(file: &str) -> serde_json::Value {
+    let path = data(&format!("programs/shop/{file}"));
+    let o = run(&["passes", "--program", path.to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
+fn notes_of(v: &serde_json::Value) -> Vec<String> {
+    v["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap().to_string()).collect()
+}
+
+/// A Sinumerik turning job: the tool names, messages, CYCLE95 with its contour name and CYCLE83
+/// are read past, each named at its place; the CYCLE97 gives its 8 + 1 + 2 passes, the last at
+/// X16.932 (the program's comments), and the verdict is reached.
+#[test]
+fn a_sinumerik_job_reads_past_what_is_not_threading() {
+    let v = passes_json("cycle97-read-past.mpf");
+    let passes = v["passes"].as_array().unwrap();
+    assert_eq!(passes.len(), 11);
+    assert!((passes[10]["x_end"].as_f64().unwrap() - 16.932).abs() < 1e-9);
+    let notes = notes_of(&v);
+    for (place, what) in [
+        (":7:5:", "T=\"ROUGH_80\" read past"),
+        (":8:5:", "MSG(…) read past (2 times)"),
+        (":10:5:", "CYCLE95(…) read past"),
+        (":12:5:", "CYCLE83(…) read past"),
+        (":14:5:", "T=\"THREAD_60\" read past"),
+    ] {
+        assert!(notes.iter().any(|n| n.contains(place) && n.contains(what)), "{what}: {notes:?}");
+    }
+    let (code, r) = verify_json("cycle97-read-past.mpf", "M20x2.5-6g", &[]);
+    assert!(code == 0 || code == 1);
+    assert!(r["verdict"].is_string());
+    let path = data("programs/shop/cycle97-read-past.mpf");
+    let o =
+        run(&["verify", "--program", path.to_str().unwrap(), "--thread", "M20x2.5-6g", "--insert", "full"]);
+    assert!(stdout(&o).contains("6 blocks read past (named in the notes)"), "{}", stdout(&o));
+}
+
+/// A thread that depends on what was read past is refused, naming it.
+#[test]
+fn a_pass_that_starts_where_a_drilling_cycle_left_the_tool_is_refused() {
+    let path = data("programs/shop/g33-after-cycle83.mpf");
+    let o = run(&["passes", "--program", path.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains(
+            "g33-after-cycle83.mpf:6:5: G33 starts from a position unknown since line 5 (CYCLE83(…), read past)"
+        ),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// Fanuc system A: the G90 box cycles return to X12 Z2, so the G76's first pass (0.4 deep)
+/// starts 0.4·tan 30° before Z2; G92 S is named as a speed clamp, M21 as an unknown M code.
+#[test]
+fn a_fanuc_box_cycle_returns_to_its_start_and_g92_s_is_a_speed_clamp() {
+    let v = passes_json("fanuc-box-cycle-m10.nc");
+    let p0 = &v["passes"][0];
+    assert!((p0["z_start"].as_f64().unwrap() - (2.0 - 0.4 * 30f64.to_radians().tan())).abs() < 1e-9, "{p0}");
+    assert!((v["passes"].as_array().unwrap().last().unwrap()["x_end"].as_f64().unwrap() - 8.16).abs() < 1e-9);
+    let notes = notes_of(&v);
+    assert!(
+        notes.iter().any(|n| n.contains(":10:1: G92 S2200 read past: a spindle speed clamp")),
+        "{notes:?}"
+    );
+    assert!(notes
+        .iter()
+        .any(|n| n.contains(":13:1: G90 read past (2 times): a turning or facing box cycle")));
+    assert!(notes.iter().any(|n| n.contains(":15:1: M21 read past: an M code threadcheck does not know")));
+}
+
+/// LinuxCNC's `(MSG,…)` comment and a user M code are named; the G76 is read as before (G7:
+/// I, J, K are diameters): the last pass at radius 5.1 − 0.05 − 0.46, X9.18.
+#[test]
+fn linuxcnc_messages_and_user_m_codes_are_named() {
+    let v = passes_json("linuxcnc-msg-m10.ngc");
+    let last = v["passes"].as_array().unwrap().last().unwrap().clone();
+    assert!((last["x_end"].as_f64().unwrap() - 9.18).abs() < 1e-9, "{last}");
+    let notes = notes_of(&v);
+    assert!(notes.iter().any(|n| n.contains(":6:1: (MSG,…) read past: a message")), "{notes:?}");
+    assert!(notes.iter().any(|n| n.contains(":7:1: M101 read past")), "{notes:?}");
+}

@@ -1030,6 +1030,8 @@ pub struct ProgramVerification {
     pub notes: Vec<crate::ground::note::Note>,
     /// Blocks read for position only.
     pub skipped_blocks: usize,
+    /// Blocks holding something threadcheck does not model, read past (named in the notes).
+    pub read_past_blocks: usize,
 }
 
 impl ProgramVerification {
@@ -1177,5 +1179,6 @@ pub fn verify_program(
         operations,
         notes: prog.notes.clone(),
         skipped_blocks: prog.skipped_blocks,
+        read_past_blocks: prog.read_past_blocks,
     })
 }

@@ -1,6 +1,7 @@
 //! What the dialects share: the modal G codes, the depth laws of the threading cycles, and the
 //! passes of a cycle laid out from a list of depths.
 
+use super::lexer::{Past, PastKind};
 use super::motion::{Motion, RBlock};
 use super::Dialect;
 use crate::gcode::passes::Pass;
@@ -15,8 +16,104 @@ pub(crate) struct Modal {
     /// Column of the block's own motion word, if it has one.
     pub col: Option<usize>,
     /// A one-shot code that makes the block no move of its own (G4 dwell, G28, turning cycles
-    /// G70–G75, LinuxCNC G92 offsets).
+    /// G70–G75, LinuxCNC G92 offsets, a block read past for a code threadcheck does not know).
     pub one_shot: Option<f64>,
+}
+
+/// What a G code does in the model, for the codes that are not motion and not handled one by
+/// one in [`modal`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum GRole {
+    /// A setting that changes nothing threadcheck models (exact stop, compensation, feed and
+    /// spindle modes, return levels, look-ahead, …).
+    Setting,
+    /// A work offset or coordinate shift: the position in program coordinates becomes unknown.
+    Offset,
+    /// Data setting (Fanuc, LinuxCNC G10): the block's words are data, not a move; offsets
+    /// may change, so the position becomes unknown.
+    Data,
+    /// A canned cycle that is not threading (drilling, tapping, boring): modal, its blocks are
+    /// read past and leave the position unknown.
+    OtherCycle,
+    /// Fanuc and Haas lathes' box cycles G90 (turning) and G94 (facing): modal, read past,
+    /// each returns to its start point.
+    BoxCycle,
+    /// Not a code threadcheck knows in this dialect: read past with a note; the block's axis
+    /// words are read as a move in the modal motion (the named default).
+    Unknown,
+}
+
+/// The role of the whole-number G code `g` in dialect `d` (`lathe` for a turning program).
+fn g_role(d: Dialect, g: u32, lathe: bool) -> GRole {
+    use GRole::*;
+    match d {
+        Dialect::Fanuc | Dialect::Haas => match g {
+            90 | 94 if lathe => BoxCycle,
+            9 | 22 | 23 | 25 | 26 | 40..=44 | 49 | 61..=64 | 67..=69 | 80 | 94 | 95 | 98 | 99 | 103 | 187 => {
+                Setting
+            }
+            52 | 54..=59 | 100 | 101 | 110 | 111 | 154 => Offset,
+            10 | 11 => Data,
+            81..=89 | 184 | 186 | 195 | 196 => OtherCycle,
+            _ => Unknown,
+        },
+        Dialect::Sinumerik => match g {
+            9 | 25 | 26 | 40..=42 | 60 | 64 | 93..=95 | 110..=112 | 450 | 451 | 601..=603 | 641..=645 => {
+                Setting
+            }
+            54..=59 | 153 | 500 | 505..=599 => Offset,
+            63 | 331 | 332 => OtherCycle,
+            _ => Unknown,
+        },
+        Dialect::LinuxCnc => match g {
+            40..=43 | 49 | 61 | 64 | 93..=95 | 98 | 99 => Setting,
+            54..=59 => Offset,
+            10 => Data,
+            73 | 74 | 81..=89 => OtherCycle,
+            _ => Unknown,
+        },
+        Dialect::Dyna => match g {
+            9 | 40..=44 | 49 | 61 | 64 | 94 | 95 | 98 | 99 => Setting,
+            54..=59 | 92 => Offset,
+            73 | 74 | 81..=89 => OtherCycle,
+            _ => Unknown,
+        },
+    }
+}
+
+/// Whether the M code `c` is one threadcheck knows in dialect `d` (the rest are noted as read
+/// past: an M code never moves the axes in the model).
+fn m_known(d: Dialect, c: u32) -> bool {
+    let common = matches!(c, 0..=9 | 19 | 30 | 40..=44);
+    common
+        || match d {
+            Dialect::Fanuc => matches!(c, 10..=11 | 23 | 24 | 29 | 98 | 99),
+            Dialect::Haas => matches!(
+                c,
+                10..=15
+                    | 21..=24
+                    | 31
+                    | 33
+                    | 36
+                    | 51..=59
+                    | 69
+                    | 85
+                    | 86
+                    | 88
+                    | 89
+                    | 95..=99
+                    | 109
+                    | 110
+                    | 119
+                    | 121..=128
+                    | 133..=135
+                    | 143..=145
+                    | 154
+            ),
+            Dialect::Sinumerik => matches!(c, 17 | 45),
+            Dialect::LinuxCnc => matches!(c, 48..=53 | 60..=73),
+            Dialect::Dyna => matches!(c, 73 | 74 | 98 | 99),
+        }
 }
 
 /// Threading codes whose decimal variants are other functions: refused by name, never read as
@@ -29,6 +126,8 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
     let d = m.dialect;
     let mut motion = None;
     let mut one_shot = None;
+    let mut offset = None;
+    let mut unknown: Vec<(f64, usize)> = Vec::new();
     let fanuc_like = match d {
         Dialect::Fanuc | Dialect::Haas => true,
         Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna => false,
@@ -68,6 +167,15 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
         match g as u32 {
             0 | 1 | 2 | 3 | 32 | 33 | 76 => motion = Some((g, col)),
             92 if d == Dialect::LinuxCnc => one_shot = Some(g),
+            92 if fanuc_like && b.has("S") && !["X", "Z", "U", "W", "F", "E", "R"].iter().any(|w| b.has(w)) => {
+                m.read_past(
+                    b.line,
+                    col,
+                    &format!("G92 S{}", b.get("S").map_or(0.0, |w| w.v)),
+                    "a spindle speed clamp, as G-code systems B and C write it (system A, which this dialect reads, writes G50 S); it cuts no thread",
+                );
+                one_shot = Some(g);
+            }
             92 => motion = Some((g, col)),
             78 if fanuc_like || d == Dialect::Sinumerik => {
                 return Err(m.err(
@@ -76,6 +184,9 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                     "G78 (the EMCO training-lathe thread cycle) is not supported: its word format is not published; write G92 or G76",
                 ))
             }
+            50 if fanuc_like && m.lathe() => one_shot = Some(g),
+            90 | 94 if fanuc_like && m.lathe() => motion = Some((g, col)),
+            30 => one_shot = Some(g),
             7 if d == Dialect::LinuxCnc => m.diameter = true,
             8 if d == Dialect::LinuxCnc => m.diameter = false,
             c if f64::from(c) == inch_codes.0 => m.set_scale(25.4),
@@ -92,8 +203,47 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             80 => motion = Some((80.0, col)),
             4 | 28 | 53 => one_shot = Some(g),
             70..=75 if fanuc_like || d == Dialect::LinuxCnc => one_shot = Some(g),
-            _ => {}
+            c => match g_role(d, c, m.lathe()) {
+                GRole::Setting => {}
+                GRole::Offset => offset = Some((g, col)),
+                GRole::Data => {
+                    one_shot = Some(g);
+                    offset = Some((g, col));
+                }
+                GRole::OtherCycle | GRole::BoxCycle => motion = Some((g, col)),
+                GRole::Unknown => unknown.push((g, col)),
+            },
         }
+    }
+    for w in b.words.iter().filter(|w| w.name == "M") {
+        if w.v >= 0.0 && w.v.fract() == 0.0 && w.v < 1e6 && !m_known(d, w.v as u32) {
+            m.read_past(
+                b.line,
+                w.col,
+                &format!("M{}", w.v),
+                "an M code threadcheck does not know (M codes do not move the axes here)",
+            );
+        }
+    }
+    if let Some((g, col)) = unknown.first().copied() {
+        if let Some((t, _)) = motion.filter(|(t, _)| THREADING.contains(t)) {
+            return Err(m.err(
+                b.line,
+                col,
+                format!("G{g} is not a code threadcheck knows in the {} dialect, and this G{t} block depends on it", d.name()),
+            ));
+        }
+        let modal_now = motion.map_or(m.motion, |x| x.0);
+        m.read_past(
+            b.line,
+            col,
+            &format!("G{g}"),
+            &format!("not a code threadcheck knows in this dialect; the block's axis words are read as a move in the modal G{modal_now} (assumed)"),
+        );
+    }
+    if let Some((g, _)) = offset {
+        let what = if g == 10.0 { "G10, data setting".to_string() } else { format!("G{g}, a work offset") };
+        m.lose_position(b.line, &what, true, true);
     }
     if let Some((g, _)) = motion {
         m.motion = g;
@@ -109,6 +259,47 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
         m.tool = Some(if fanuc_like && v >= 100 { v / 100 } else { v });
     }
     Ok(Modal { motion: m.motion, col: motion.map(|x| x.1), one_shot })
+}
+
+/// Sinumerik threading cycles that threadcheck does not read: refused by name, never read past.
+const THREADING_CALLS: [&str; 3] = ["CYCLE98", "CYCLE99", "LCYC97"];
+
+/// Reads past what the lexer set aside in a block: messages and tools called by name leave the
+/// motion as it is; a cycle call leaves the position unknown (a threading operation that starts
+/// from it is refused, naming the cycle); a threading cycle threadcheck does not read refuses.
+pub(crate) fn read_past_item(m: &mut Motion, line: usize, p: &Past) -> Result<(), Error> {
+    match p.kind {
+        PastKind::Message => m.read_past(line, p.col, &p.name, "a message for the operator"),
+        PastKind::ToolName => {
+            m.tool = None;
+            m.read_past(
+                line,
+                p.col,
+                &p.name,
+                "a tool called by name; the insert is the one --insert (or --tools by number) gives",
+            );
+        }
+        PastKind::Call if THREADING_CALLS.iter().any(|t| p.name.strip_suffix("(…)") == Some(t)) => {
+            return Err(m.err(
+                line,
+                p.col,
+                format!(
+                    "{} is a threading cycle threadcheck does not read (CYCLE97 is)",
+                    p.name.trim_end_matches("(…)")
+                ),
+            ))
+        }
+        PastKind::Call => {
+            m.lose_position(line, &p.name, true, true);
+            m.read_past(
+                line,
+                p.col,
+                &p.name,
+                "a cycle that is not threading; where it leaves the tool is not modelled",
+            );
+        }
+    }
+    Ok(())
 }
 
 /// Threading is programmed in the lathe plane G18.
@@ -139,7 +330,21 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
             m.skipped += 1;
             return Ok(());
         }
-        Some(92.0) => {
+        Some(50.0) => {
+            // Fanuc and Haas lathes' G50 X Z: the current point gets the given coordinates
+            // (G50 S alone is the spindle speed clamp).
+            for w in &b.words {
+                match w.name {
+                    "X" => m.x = Some(m.x_dia(w)),
+                    "Z" => m.z = Some(m.len(w)),
+                    "U" | "W" => m.lose_position(b.line, "G50 with U or W, a coordinate shift", true, true),
+                    _ => {}
+                }
+            }
+            m.skipped += 1;
+            return Ok(());
+        }
+        Some(92.0) if m.dialect == Dialect::LinuxCnc => {
             // LinuxCNC G92: the current point gets the given coordinates.
             for w in &b.words {
                 match w.name {
@@ -164,6 +369,40 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
             return Ok(());
         }
         None => {}
+    }
+    if modal.motion.fract() == 0.0 && modal.motion >= 0.0 {
+        match g_role(m.dialect, modal.motion as u32, m.lathe()) {
+            GRole::BoxCycle => {
+                if b.has("X") || b.has("Z") || b.has("U") || b.has("W") {
+                    m.read_past(
+                        b.line,
+                        modal.col.unwrap_or(b.col),
+                        &format!("G{}", modal.motion),
+                        "a turning or facing box cycle; it returns to its start point",
+                    );
+                } else {
+                    m.skipped += 1;
+                }
+                return Ok(());
+            }
+            GRole::OtherCycle => {
+                let (x, _, z) = m.target(b);
+                let what = format!("G{}", modal.motion);
+                if x.is_some() || z.is_some() || modal.col.is_some() {
+                    m.lose_position(b.line, &what, true, true);
+                    m.read_past(
+                        b.line,
+                        modal.col.unwrap_or(b.col),
+                        &what,
+                        "a drilling or tapping cycle; where it leaves the tool is not modelled",
+                    );
+                } else {
+                    m.skipped += 1;
+                }
+                return Ok(());
+            }
+            _ => {}
+        }
     }
     let moved = match modal.motion as u32 {
         2 => m.arc_to(b, -1.0)?,

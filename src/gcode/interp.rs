@@ -705,6 +705,11 @@ pub(crate) fn run(
             do_assigns(&assigns, &mut vars, b, file)?;
         }
         let mut flow = Flow::Next;
+        if !skip_words {
+            for p in &b.past {
+                super::cycles::read_past_item(m, b.line, p)?;
+            }
+        }
         if !skip_words && (!b.words.is_empty()) {
             rules.system_params(m, &mut vars.system);
             let rb = resolve(b, &mut vars, file)?;

@@ -184,6 +184,31 @@ pub struct Block {
     pub words: Vec<Word>,
     /// Macro statements in order.
     pub stmts: Vec<Stmt>,
+    /// What the block holds that threadcheck does not model (a message, a tool called by name,
+    /// a call of a cycle that is not threading): read past with a note, never silently.
+    pub past: Vec<Past>,
+}
+
+/// Something in a block that threadcheck reads past.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Past {
+    /// What it is: `MSG`, `T="ROUGH"`, `CYCLE95`, `(MSG,…)`.
+    pub name: String,
+    /// What kind of thing it is.
+    pub kind: PastKind,
+    /// 1-based column.
+    pub col: usize,
+}
+
+/// The kinds of things read past in the lexer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PastKind {
+    /// A message or display for the operator (`MSG("…")`, LinuxCNC `(MSG,…)`).
+    Message,
+    /// A tool called by name (`T="ROUGH"`).
+    ToolName,
+    /// A call of a named cycle or function with its arguments (`CYCLE95("CONT",…)`).
+    Call,
 }
 
 impl Block {
@@ -196,6 +221,7 @@ impl Block {
     fn compact(mut self) -> Block {
         self.words.shrink_to_fit();
         self.stmts.shrink_to_fit();
+        self.past.shrink_to_fit();
         for w in &mut self.words {
             w.name.shrink_to_fit();
             w.text.shrink_to_fit();
@@ -209,6 +235,7 @@ impl Block {
             && self.header.is_none()
             && self.words.is_empty()
             && self.stmts.is_empty()
+            && self.past.is_empty()
     }
 }
 
@@ -245,6 +272,8 @@ pub fn syntax_of(d: Dialect) -> Syntax {
 struct Squeezed {
     c: Vec<char>,
     col: Vec<usize>,
+    /// LinuxCNC's message comments in the segment: `(MSG,…)`, `(DEBUG,…)`, `(PRINT,…)`.
+    past: Vec<Past>,
 }
 
 impl Squeezed {
@@ -257,7 +286,7 @@ impl Squeezed {
 /// `;` starts a comment.
 fn squeeze(line: &str, ln: usize, dialect: Dialect) -> Result<Vec<Squeezed>, LexError> {
     let chars: Vec<char> = line.chars().collect();
-    let mut out = vec![Squeezed { c: Vec::new(), col: Vec::new() }];
+    let mut out = vec![Squeezed { c: Vec::new(), col: Vec::new(), past: Vec::new() }];
     let mut i = 0;
     while i < chars.len() {
         let c = chars[i];
@@ -269,12 +298,25 @@ fn squeeze(line: &str, ln: usize, dialect: Dialect) -> Result<Vec<Squeezed>, Lex
                     i + 1,
                     "comment '(' is not closed on this line".to_string(),
                 ))?;
+                if dialect == Dialect::LinuxCnc {
+                    let inner: String = chars[i + 1..i + close].iter().collect();
+                    let head = inner.trim_start().to_ascii_uppercase();
+                    if let Some(kw) = ["MSG,", "DEBUG,", "PRINT,"].iter().find(|k| head.starts_with(**k)) {
+                        if let Some(s) = out.last_mut() {
+                            s.past.push(Past {
+                                name: format!("({}…)", kw),
+                                kind: PastKind::Message,
+                                col: i + 1,
+                            });
+                        }
+                    }
+                }
                 i += close + 1;
             }
             // A semicolon is a comment to the line's end in LinuxCNC, the end of a block elsewhere.
             ';' if semicolon_ends_line(dialect) => break,
             ';' => {
-                out.push(Squeezed { c: Vec::new(), col: Vec::new() });
+                out.push(Squeezed { c: Vec::new(), col: Vec::new(), past: Vec::new() });
                 i += 1;
             }
             _ => {
@@ -297,11 +339,12 @@ fn bracket_line(line: &str, ln: usize, dialect: Dialect, out: &mut Vec<Block>) -
         return Ok(());
     }
     for seg in squeeze(line, ln, dialect)? {
-        if seg.c.is_empty() {
+        if seg.c.is_empty() && seg.past.is_empty() {
             continue;
         }
         let mut b = Block::new(ln);
         bracket_block(&seg, ln, dialect, &mut b)?;
+        b.past = seg.past;
         if !b.is_empty() {
             out.push(b.compact());
         }
@@ -783,6 +826,7 @@ fn sinumerik_line(line: &str, ln: usize, out: &mut Vec<Block>) -> Result<(), Lex
                         b.words.push(w);
                     }
                     SinWord::Assign(s) => b.stmts.push(s),
+                    SinWord::Past(p) => b.past.push(p),
                 }
             }
             _ => return Err((ln, col, format!("unexpected character '{c}'"))),
@@ -845,12 +889,33 @@ fn sinumerik_jump(chars: &[char], start: usize, ln: usize, b: &mut Block) -> Res
 enum SinWord {
     Word(Word),
     Assign(Stmt),
+    Past(Past),
+}
+
+/// The index of the `)` that closes the `(` at `open`, strings in double quotes skipped.
+fn closing_paren(chars: &[char], open: usize) -> Option<usize> {
+    let mut depth = 0usize;
+    let mut quoted = false;
+    for (k, &c) in chars.iter().enumerate().skip(open) {
+        match c {
+            '"' => quoted = !quoted,
+            '(' if !quoted => depth += 1,
+            ')' if !quoted => {
+                depth -= 1;
+                if depth == 0 {
+                    return Some(k);
+                }
+            }
+            _ => {}
+        }
+    }
+    None
 }
 
 /// A Sinumerik number at `chars[*i]` (sign allowed), with decimal-comma and exponent checks.
 fn sin_number(chars: &[char], i: &mut usize, ln: usize, name: &str) -> Result<(f64, bool), LexError> {
     let s: String = chars.iter().collect::<String>().to_ascii_uppercase();
-    let sq = Squeezed { c: s.chars().collect(), col: (1..=chars.len()).collect() };
+    let sq = Squeezed { c: s.chars().collect(), col: (1..=chars.len()).collect(), past: Vec::new() };
     let mut j = *i;
     let v = value(&sq, &mut j, ln, name, Syntax::Sinumerik)?;
     *i = j;
@@ -886,12 +951,20 @@ fn sinumerik_word(
     skip_spaces(chars, &mut after);
     let next = chars.get(after).copied();
     let word = |name: String, val: WVal| Ok(SinWord::Word(Word { name, val, col, text: String::new() }));
-    if letters == "T" && next == Some('=') {
-        return Err((
-            ln,
-            col,
-            "Sinumerik tool names (T=\"…\") are not supported: write the tool number, T4".into(),
-        ));
+    if letters == "T" && digits.is_empty() && next == Some('=') {
+        // `T="ROUGH"`: a tool called by name, read past (the insert comes from --insert).
+        let mut q = after + 1;
+        skip_spaces(chars, &mut q);
+        if chars.get(q) == Some(&'"') {
+            let close = chars[q + 1..].iter().position(|&c| c == '"').ok_or((
+                ln,
+                q + 1,
+                "T=\" has no closing '\"'".to_string(),
+            ))?;
+            *i = q + close + 2;
+            let name: String = chars[q..*i].iter().collect();
+            return Ok(SinWord::Past(Past { name: format!("T={name}"), kind: PastKind::ToolName, col }));
+        }
     }
     if letters.len() == 1 && !digits.is_empty() && next != Some('=') {
         // `G33`, `L9`, `M17`, `X10.5`: a one-letter address and its number.
@@ -921,12 +994,15 @@ fn sinumerik_word(
             }
             word(name, WVal::Expr(expr))
         }
+        Some('(') if name != "CYCLE97" => {
+            // Another cycle or function (`CYCLE95("CONT",…)`, `MSG("…")`): read past whole.
+            *i = closing_paren(chars, after).ok_or((ln, after + 1, format!("{name}( is not closed")))? + 1;
+            let kind = if name == "MSG" { PastKind::Message } else { PastKind::Call };
+            Ok(SinWord::Past(Past { name: format!("{name}(…)"), kind, col }))
+        }
         Some('(') => {
-            let close = chars[after..].iter().position(|&c| c == ')').ok_or((
-                ln,
-                after + 1,
-                format!("{name}( is not closed"),
-            ))?;
+            let close =
+                closing_paren(chars, after).ok_or((ln, after + 1, format!("{name}( is not closed")))? - after;
             let mut args = Vec::new();
             let mut c0 = after + 1;
             let inner_end = after + close;

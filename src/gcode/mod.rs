@@ -319,6 +319,9 @@ pub struct Program {
     pub operations: Vec<Operation>,
     /// Blocks read for position only (turning, tool changes, …).
     pub skipped_blocks: usize,
+    /// Blocks holding something threadcheck does not model, read past (each named in a note of
+    /// kind [`NoteKind::ReadPast`]).
+    pub read_past_blocks: usize,
     /// Warnings worth printing, each with its place where it has one.
     pub notes: Vec<Note>,
     /// Every feed and rapid move, when asked for ([`ReadOptions::moves`]).
@@ -458,7 +461,7 @@ pub fn read_program_with(
         opts.budget.unwrap_or_default(),
     )?;
     let units_assumed = (!m.units_set).then_some(opts.default_units);
-    let (operations, skipped, mut notes, moves) = m.finish();
+    let (operations, skipped, mut notes, moves, read_past) = m.finish();
     notes.extend(order_note.map(Note::from));
     let extension = std::path::Path::new(file).extension().and_then(|e| e.to_str()).unwrap_or("");
     let dialect_note = match opts.dialect_from {
@@ -500,7 +503,7 @@ pub fn read_program_with(
         return Err(perr(line, col, why));
     }
     let passes = operations.iter().flat_map(|o| o.passes.iter().copied()).collect();
-    Ok(Program { passes, operations, skipped_blocks: skipped, notes, moves })
+    Ok(Program { passes, operations, skipped_blocks: skipped, read_past_blocks: read_past, notes, moves })
 }
 
 /// The dialect table: the rules each dialect's module implements, with a fresh modal state.

@@ -156,6 +156,14 @@ pub(crate) struct Motion {
     passes_total: usize,
     /// The last X word read (the tip's position of a G32/G33 chain or a G92 run).
     pub last_x: Option<super::DepthWord>,
+    /// What was read past, by what it is, in the order first met.
+    past: Vec<PastEntry>,
+    past_index: std::collections::HashMap<String, usize>,
+    /// Blocks read past (a block with two such things counts once).
+    pub past_blocks: usize,
+    past_last_line: usize,
+    /// Why the position became unknown last: the line and what did it.
+    lost: Option<(usize, String)>,
     /// The turned contour so far: feed moves (G1, G2, G3) of the lathe dialects as
     /// (X0, Z0, X1, Z1), diameters, capped at `MAX_CONTOUR` segments.
     contour: Vec<[f64; 4]>,
@@ -205,6 +213,48 @@ impl Motion {
             passes_total: 0,
             contour: Vec::new(),
             last_x: None,
+            past: Vec::new(),
+            past_index: std::collections::HashMap::new(),
+            past_blocks: 0,
+            past_last_line: 0,
+            lost: None,
+        }
+    }
+
+    /// Records something read past: `what` as the program writes it, `why` what threadcheck
+    /// does with it. Every kind is one note at its first place, with how often it was met.
+    pub fn read_past(&mut self, line: usize, col: usize, what: &str, why: &str) {
+        if self.past_last_line != line {
+            self.past_blocks += 1;
+            self.past_last_line = line;
+        }
+        match self.past_index.get(what) {
+            Some(&k) => self.past[k].count += 1,
+            None => {
+                self.past_index.insert(what.to_string(), self.past.len());
+                self.past.push(PastEntry {
+                    what: what.to_string(),
+                    why: why.to_string(),
+                    line,
+                    col,
+                    count: 1,
+                });
+            }
+        }
+    }
+
+    /// The position becomes unknown (in X, Z or both) because of `what` at `line`: a threading
+    /// operation that starts from it is refused, naming it.
+    pub fn lose_position(&mut self, line: usize, what: &str, x: bool, z: bool) {
+        if x {
+            self.x = None;
+        }
+        if z {
+            self.z = None;
+        }
+        if x || z {
+            self.lost = Some((line, what.to_string()));
+            self.break_chain();
         }
     }
 
@@ -221,7 +271,7 @@ impl Motion {
     }
 
     /// Whether X words are turned into diameters (lathe dialects).
-    fn lathe(&self) -> bool {
+    pub(crate) fn lathe(&self) -> bool {
         if self.mill {
             return false;
         }
@@ -376,7 +426,12 @@ impl Motion {
             _ => Err(self.err(
                 line,
                 col,
-                format!("{what} starts from an unknown position: move to X and Z first"),
+                match &self.lost {
+                    Some((l, why)) => format!(
+                        "{what} starts from a position unknown since line {l} ({why}, read past): move to X and Z first"
+                    ),
+                    None => format!("{what} starts from an unknown position: move to X and Z first"),
+                },
             )),
         }
     }
@@ -538,7 +593,7 @@ impl Motion {
 
     /// The operations, skipped-block count, notes and moves. Each operation gets the warnings
     /// of its own passes (passes that cut nothing, passes beyond the axis).
-    pub fn finish(mut self) -> (Vec<Operation>, usize, Vec<Note>, Vec<Move>) {
+    pub fn finish(mut self) -> (Vec<Operation>, usize, Vec<Note>, Vec<Move>, usize) {
         let file = self.file.clone();
         for o in &mut self.ops {
             shallow_pass_notes(o, &file);
@@ -547,8 +602,25 @@ impl Motion {
         for (i, o) in self.ops.iter_mut().enumerate() {
             o.index = i + 1;
         }
-        (self.ops, self.skipped, self.notes.into_vec(), self.moves.unwrap_or_default())
+        for e in std::mem::take(&mut self.past) {
+            let times = if e.count == 1 { String::new() } else { format!(" ({} times)", e.count) };
+            self.notes.push(
+                Note::at(&file, e.line, e.col, format!("{} read past{times}: {}", e.what, e.why))
+                    .of_kind(NoteKind::ReadPast),
+            );
+        }
+        (self.ops, self.skipped, self.notes.into_vec(), self.moves.unwrap_or_default(), self.past_blocks)
     }
+}
+
+/// One kind of thing read past.
+#[derive(Clone, Debug)]
+struct PastEntry {
+    what: String,
+    why: String,
+    line: usize,
+    col: usize,
+    count: usize,
 }
 
 /// Notes on passes that go deeper than no earlier pass anywhere (by 1 µm, at either end of the

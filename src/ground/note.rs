@@ -25,6 +25,8 @@ pub enum NoteKind {
     UnsetVariable,
     /// A subprogram is defined and never called.
     NeverCalled,
+    /// A block (or part of one) threadcheck does not model, read past.
+    ReadPast,
 }
 
 /// One note.

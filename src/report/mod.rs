@@ -626,6 +626,8 @@ pub struct ProgramReport<'a> {
     pub operations: Vec<OperationReport<'a>>,
     /// Blocks read for position only.
     pub skipped_blocks: usize,
+    /// Blocks read past: something in them threadcheck does not model (each named in a note).
+    pub read_past_blocks: usize,
     /// Program-wide warnings.
     pub notes: &'a [crate::ground::note::Note],
 }
@@ -663,8 +665,18 @@ impl<'a> ProgramReport<'a> {
             verdict: Verdict::of(pv.pass()),
             operations,
             skipped_blocks: pv.skipped_blocks,
+            read_past_blocks: pv.read_past_blocks,
             notes: &pv.notes,
         }
+    }
+}
+
+/// How many blocks were read past, for a header line: empty when none.
+pub fn read_past_text(blocks: usize) -> String {
+    match blocks {
+        0 => String::new(),
+        1 => ", 1 block read past (named in the notes)".into(),
+        n => format!(", {n} blocks read past (named in the notes)"),
     }
 }
 
@@ -672,7 +684,13 @@ impl<'a> ProgramReport<'a> {
 pub fn program_text(pv: &crate::analysis::verify::ProgramVerification) -> String {
     let mut s = String::new();
     let n = pv.operations.len();
-    let _ = writeln!(s, "{}: {n} threading operation{}\n", pv.program, if n == 1 { "" } else { "s" });
+    let _ = writeln!(
+        s,
+        "{}: {n} threading operation{}{}\n",
+        pv.program,
+        if n == 1 { "" } else { "s" },
+        read_past_text(pv.read_past_blocks)
+    );
     for o in &pv.operations {
         let op = &o.operation;
         let _ = writeln!(
@@ -750,6 +768,12 @@ pub struct PassesReport<'a> {
     /// A program's passes by operation.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub operations: Option<Vec<PassesOperation<'a>>>,
+    /// A program's notes (assumptions, what was read past).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub notes: Option<&'a [crate::ground::note::Note]>,
+    /// A program's blocks read past (each kind named in `notes`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub read_past_blocks: Option<usize>,
 }
 
 impl<'a> PassesReport<'a> {
@@ -758,6 +782,7 @@ impl<'a> PassesReport<'a> {
         thread: Option<ThreadReport<'a>>,
         passes: &'a [crate::gcode::passes::Pass],
         operations: Option<&'a [crate::gcode::Operation]>,
+        program: Option<(&'a [crate::ground::note::Note], usize)>,
     ) -> Self {
         let (thread_start, thread_end) =
             passes.iter().fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), p| {
@@ -768,6 +793,8 @@ impl<'a> PassesReport<'a> {
             thread_start,
             thread_end,
             passes,
+            notes: program.map(|p| p.0),
+            read_past_blocks: program.map(|p| p.1),
             operations: operations.map(|ops| {
                 ops.iter()
                     .map(|op| PassesOperation {
