@@ -70,7 +70,22 @@ impl MachineProfile {
             crate::ground::bounds::MAX_DATA_FILE_BYTES,
             "a machine profile",
         )?;
-        let m: MachineProfile = toml::from_str(&text)
+        MachineProfile::from_toml(&text, arg)
+    }
+
+    /// A machine profile from its TOML text; `source` names it in messages.
+    ///
+    /// ```
+    /// let m = threadcheck::MachineProfile::from_toml(
+    ///     "name = \"lathe\"\nrapid_mm_min = 8000\nmax_rpm = 3000",
+    ///     "lathe.toml",
+    /// )?;
+    /// assert_eq!(m.max_rpm, Some(3000.0));
+    /// # Ok::<(), threadcheck::Error>(())
+    /// ```
+    pub fn from_toml(text: &str, source: &str) -> Result<MachineProfile, Error> {
+        let arg = source;
+        let m: MachineProfile = toml::from_str(text)
             .map_err(|e| Error::File { file: arg.to_string(), message: e.to_string().replace('\n', " ") })?;
         let positive = |v: f64| v > 0.0 && v.is_finite();
         if !positive(m.rapid_mm_min)
