@@ -402,6 +402,19 @@ struct PlanArgs {
     /// The units of a program that sets neither G20 nor G21 (the control's default).
     #[arg(long, value_name = "mm|inch", requires = "program")]
     default_units: Option<threadcheck::ProgramUnits>,
+    /// The main program of a file that holds several O-programs (default: the one no other
+    /// calls; the output says which)
+    #[arg(long, value_name = "O-NUMBER", requires = "program", value_parser = o_number)]
+    main: Option<u32>,
+}
+
+/// `O3101` or `3101`: an O-program's number.
+fn o_number(s: &str) -> Result<u32, String> {
+    let digits = s.strip_prefix(['O', 'o']).unwrap_or(s);
+    match digits.parse::<u32>() {
+        Ok(n) if !digits.starts_with('+') => Ok(n),
+        _ => Err(format!("'{s}' is not an O-program number such as O3101")),
+    }
 }
 
 /// The dialect to read `program` in: the one given, else the one its extension names, else
@@ -448,6 +461,7 @@ impl PlanArgs {
             s.reading.dialect_from = from;
         }
         s.reading.default_units = self.default_units;
+        s.reading.main = self.main;
         Ok(s)
     }
 

@@ -410,3 +410,28 @@ fn linuxcnc_messages_and_user_m_codes_are_named() {
     assert!(notes.iter().any(|n| n.contains(":6:1: (MSG,…) read past: a message")), "{notes:?}");
     assert!(notes.iter().any(|n| n.contains(":7:1: M101 read past")), "{notes:?}");
 }
+
+/// Two O-programs, the subprogram written first: the main one is O3101, which no other calls,
+/// and it runs O3102's six G92 passes (the program's comments); the note says so. `--main`
+/// picks one by name, and a name the file lacks is refused naming those it has.
+#[test]
+fn a_file_with_two_programs_runs_the_one_no_other_calls() {
+    let v = passes_json("two-programs-m12.nc");
+    let xs: Vec<f64> = v["passes"].as_array().unwrap().iter().map(|p| p["x_end"].as_f64().unwrap()).collect();
+    assert_eq!(xs, [11.4, 11.0, 10.6, 10.2, 9.9, 9.853]);
+    assert_eq!(v["operations"][0]["tool"], 5, "O3101's T0505 is in effect");
+    let notes = notes_of(&v);
+    assert!(
+        notes.iter().any(|n| n.contains(":13:1: O3101 is the main program: the file holds 2 programs")),
+        "{notes:?}"
+    );
+    assert!(!notes.iter().any(|n| n.contains("never called")), "{notes:?}");
+    let path = data("programs/shop/two-programs-m12.nc");
+    let o = run(&["passes", "--program", path.to_str().unwrap(), "--main", "O3102", "--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["operations"][0]["tool"], serde_json::Value::Null, "O3102 alone sets no tool");
+    let o = run(&["passes", "--program", path.to_str().unwrap(), "--main", "O99"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(stderr(&o).trim(), "threadcheck: error: --main O99: the file's programs are O3102, O3101");
+}

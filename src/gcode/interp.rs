@@ -155,8 +155,11 @@ impl Env for EvalEnv<'_> {
 struct Layout {
     /// Fanuc/Haas/Sinumerik/LinuxCNC subprograms: name → (first block, end block).
     subs: HashMap<String, (usize, usize)>,
-    /// Where the main program ends (exclusive).
+    /// Where the main program starts and ends (exclusive).
+    main_start: usize,
     main_end: usize,
+    /// The main program's name when the file holds several programs.
+    main_name: Option<String>,
     /// Sections (programs) each block belongs to: (start, end).
     section: Vec<(usize, usize)>,
     /// Fanuc WHILE/DO ↔ END, LinuxCNC while ↔ endwhile, do ↔ while, repeat ↔ endrepeat, and
@@ -173,7 +176,103 @@ struct Layout {
     labels: HashMap<String, Vec<usize>>,
 }
 
-fn layout(blocks: &[Block], lang: Language, m: &mut Motion) -> Result<Layout, Error> {
+/// The O-numbers a program section calls by a literal word: `M98 P…` (more than four digits:
+/// the last four) and `G65 P…`.
+fn static_calls(blocks: &[Block]) -> Vec<String> {
+    let num = |w: &super::lexer::Word| match w.val {
+        super::lexer::WVal::Num { v, .. } => Some(v),
+        _ => None,
+    };
+    let mut out = Vec::new();
+    for b in blocks {
+        let has = |name: &str, v: f64| b.words.iter().any(|w| w.name == name && num(w) == Some(v));
+        let Some(p) = b.words.iter().rev().find(|w| w.name == "P") else { continue };
+        let Some(pv) = num(p) else { continue };
+        let pv = pv.round().max(0.0) as u64;
+        if has("M", 98.0) {
+            let prog = if pv >= 10_000 && p.text.len() > 5 && !b.words.iter().any(|w| w.name == "L") {
+                pv % 10_000
+            } else {
+                pv
+            };
+            out.push(format!("O{prog}"));
+        } else if has("G", 65.0) || has("G", 66.0) {
+            out.push(format!("O{pv}"));
+        }
+    }
+    out
+}
+
+/// Chooses the main program of a file: with several O-programs, the one `--main` names, else
+/// the one no other calls (the first such when several are not called), said in a note; with
+/// one, `--main` must name it.
+fn choose_main(
+    blocks: &[Block],
+    headers: &[usize],
+    several: bool,
+    first_is_main: bool,
+    main: Option<u32>,
+    l: &mut Layout,
+    m: &mut Motion,
+) -> Result<(), Error> {
+    let name_at = |h: usize| blocks[h].header.clone().unwrap_or_default();
+    let names: Vec<String> = headers.iter().map(|&h| name_at(h)).collect();
+    if !several {
+        if let Some(o) = main {
+            let want = format!("O{o}");
+            if !(first_is_main && names.first() == Some(&want)) {
+                let has = if first_is_main { names.first().cloned() } else { None };
+                return Err(Error::Input(match has {
+                    Some(n) => format!("--main {want}: the file holds one program, {n}"),
+                    None => format!("--main {want}: the file names no O-program"),
+                }));
+            }
+        }
+        return Ok(());
+    }
+    let range = |k: usize| (headers[k] + 1, headers.get(k + 1).copied().unwrap_or(blocks.len()));
+    let k = match main {
+        Some(o) => {
+            let want = format!("O{o}");
+            names.iter().position(|n| *n == want).ok_or_else(|| {
+                Error::Input(format!("--main {want}: the file's programs are {}", names.join(", ")))
+            })?
+        }
+        None => {
+            let mut called: HashSet<String> = HashSet::new();
+            for k in 0..headers.len() {
+                let (a, b) = range(k);
+                for c in static_calls(&blocks[a..b]) {
+                    if c != names[k] {
+                        called.insert(c);
+                    }
+                }
+            }
+            let roots: Vec<usize> = (0..names.len()).filter(|&k| !called.contains(&names[k])).collect();
+            roots.first().copied().unwrap_or(0)
+        }
+    };
+    let (a, b) = range(k);
+    l.main_start = a;
+    l.main_end = b;
+    l.main_name = Some(names[k].clone());
+    let hb = &blocks[headers[k]];
+    let why = match main {
+        Some(_) => "as --main says".to_string(),
+        None => {
+            let others: Vec<&String> = names.iter().enumerate().filter(|(j, _)| *j != k).map(|(_, n)| n).collect();
+            format!(
+                "the file holds {} programs ({}) and no other calls it (--main picks another)",
+                names.len(),
+                std::iter::once(&names[k]).chain(others).cloned().collect::<Vec<_>>().join(", ")
+            )
+        }
+    };
+    m.note(hb.line, hb.col, format!("{} is the main program: {why}", names[k]));
+    Ok(())
+}
+
+fn layout(blocks: &[Block], lang: Language, m: &mut Motion, main: Option<u32>) -> Result<Layout, Error> {
     let mut l = Layout {
         main_end: blocks.len(),
         section: vec![(0, blocks.len()); blocks.len()],
@@ -194,7 +293,10 @@ fn layout(blocks: &[Block], lang: Language, m: &mut Motion) -> Result<Layout, Er
             // Fanuc: the first O-number program is the main one (a leading header names it).
             // Sinumerik: subprograms follow the main program, each after its name.
             let first_is_main = lang.leading_header_is_main && headers.first() == Some(&0);
-            let sub_headers: &[usize] = if first_is_main { &headers[1..] } else { &headers[..] };
+            // Several O-programs in one file: every one is a program; the main one is chosen
+            // below (the one no other calls, or --main).
+            let several = first_is_main && headers.len() >= 2;
+            let sub_headers: &[usize] = if first_is_main && !several { &headers[1..] } else { &headers[..] };
             l.main_end = sub_headers.first().copied().unwrap_or(blocks.len());
             for i in 0..l.main_end {
                 l.section[i] = (0, l.main_end);
@@ -209,7 +311,13 @@ fn layout(blocks: &[Block], lang: Language, m: &mut Motion) -> Result<Layout, Er
                     l.section[i] = (h + 1, end);
                 }
             }
+            choose_main(blocks, &headers, several, first_is_main, main, &mut l, m)?;
         }
+    } else if let Some(o) = main {
+        return Err(Error::Input(format!(
+            "--main O{o}: the {} dialect has no O-numbered programs to choose from",
+            m.dialect.name()
+        )));
     }
     // Sequence numbers and labels, per section; repeated numbers are warned.
     let mut seen: HashMap<(usize, u64), usize> = HashMap::new();
@@ -426,8 +534,9 @@ pub(crate) fn run(
     m: &mut Motion,
     file: &str,
     budget: super::Budget,
+    main: Option<u32>,
 ) -> Result<(), Error> {
-    let lay = layout(blocks, lang, m)?;
+    let lay = layout(blocks, lang, m, main)?;
     let sub_names: HashSet<String> = lay.subs.keys().cloned().collect();
     let n_numbers: HashSet<u64> = lay.n_index.keys().copied().collect();
     let mut vars = Vars::new(lang);
@@ -437,7 +546,7 @@ pub(crate) fn run(
         column: col,
         message: msg,
     };
-    let mut pc = 0usize;
+    let mut pc = lay.main_start;
     let mut end = lay.main_end;
     let mut frames: Vec<Frame> = Vec::new();
     let mut loops: Vec<DynaLoop> = Vec::new();
@@ -871,7 +980,7 @@ pub(crate) fn run(
     let mut never: Vec<(usize, &String)> = lay
         .subs
         .iter()
-        .filter(|(name, _)| !called.contains(*name))
+        .filter(|(name, _)| !called.contains(*name) && lay.main_name.as_ref() != Some(*name))
         .map(|(name, &(start, _))| (start, name))
         .collect();
     never.sort_unstable();

@@ -353,6 +353,9 @@ pub struct ReadOptions {
     pub default_units: Option<ProgramUnits>,
     /// How the dialect was chosen; anything but [`DialectFrom::Given`] is stated in the notes.
     pub dialect_from: DialectFrom,
+    /// The main program of a file that holds several O-programs (`--main O3101`: 3101); `None`
+    /// takes the one no other program calls, and the notes say which.
+    pub main: Option<u32>,
 }
 
 /// How much a program may run before it is taken for a runaway.
@@ -459,6 +462,7 @@ pub fn read_program_with(
         &mut m,
         file,
         opts.budget.unwrap_or_default(),
+        opts.main,
     )?;
     let units_assumed = (!m.units_set).then_some(opts.default_units);
     let (operations, skipped, mut notes, moves, read_past) = m.finish();
