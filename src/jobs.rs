@@ -234,7 +234,7 @@ impl VerifyJob {
         let (shown, text) = source.load()?;
         let default = spec.insert.clone();
         let insert_for =
-            |op: &crate::gcode::Operation| -> Option<(crate::analysis::verify::InsertChoice, String)> {
+            |op: &crate::gcode::Operation| -> Option<(crate::analysis::verify::InsertChoice, String, bool)> {
                 if self.insert_given {
                     return None;
                 }
@@ -243,6 +243,7 @@ impl VerifyJob {
                         return Some((
                             choice.clone(),
                             format!("insert of tool T{t} from {}: {written}", tt.source),
+                            false,
                         ));
                     }
                 }
@@ -263,6 +264,7 @@ impl VerifyJob {
                 Some((
                     default.clone(),
                     format!("insert assumed: {what} ({why}; choose with --insert or --tools)"),
+                    true,
                 ))
             };
         let pv = crate::analysis::verify::verify_program(

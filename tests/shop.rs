@@ -435,3 +435,52 @@ fn a_file_with_two_programs_runs_the_one_no_other_calls() {
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(stderr(&o).trim(), "threadcheck: error: --main O99: the file's programs are O3102, O3101");
 }
+
+/// With the default partial insert, a program whose sizes pass fails only on its form (the
+/// sharp tip's root, d3 below its minimum): the text ends with the hint to choose the insert.
+#[test]
+fn only_form_failures_with_the_assumed_insert_end_with_a_hint() {
+    let path = data("programs/shop/partial-insert-m12.nc");
+    let o = run(&[
+        "verify",
+        "--program",
+        path.to_str().unwrap(),
+        "--thread",
+        "M12x1.75-6g",
+        "--blank-diameter",
+        "11.9",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let out = stdout(&o);
+    assert!(out.contains("verdict: FAIL (minor diameter d3, root radius)"), "{out}");
+    assert!(out.contains("note: only form checks fail, with the assumed partial-profile insert: --insert full cuts the standard root; --gauge-only gives the gauge verdict"), "{out}");
+    let o = run(&[
+        "verify",
+        "--program",
+        path.to_str().unwrap(),
+        "--thread",
+        "M12x1.75-6g",
+        "--blank-diameter",
+        "11.9",
+        "--gauge-only",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+}
+
+/// G92 passes that move outward (X28.2 to X30.0) cut in a bore: an external class is refused
+/// at the cycle's line, never verified as a bar.
+#[test]
+fn passes_that_contradict_the_designations_side_are_refused() {
+    let path = data("programs/shop/internal-g92-m30.nc");
+    let o = run(&["verify", "--program", path.to_str().unwrap(), "--thread", "M30x2-6g"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr(&o).trim(),
+        format!(
+            "threadcheck: error: {}:5:1: M30x2-6g is an external thread, but the passes of this G92 move outward pass by pass, as in a bore (X28.2000 to X30.0000): give an internal class or check the program",
+            path.display()
+        )
+    );
+    let o = run(&["verify", "--program", path.to_str().unwrap(), "--thread", "M30x2-6H"]);
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+}

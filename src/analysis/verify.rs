@@ -1055,6 +1055,41 @@ pub fn verify_operation(
     }
 }
 
+/// The side the passes cut (inward pass by pass from a bar, outward in a bore) must be the
+/// designation's: a contradiction is refused at the operation's line, never verified as the
+/// other side.
+fn side_agrees(
+    r: &Resolved,
+    op: &crate::gcode::Operation,
+    passes: &[Pass],
+    label: &ProgramLabel,
+) -> Result<(), Error> {
+    let (Some(first), last) = (passes.first(), last_head(passes)) else { return Ok(()) };
+    let dx = last.x_end - first.x_end;
+    if dx.abs() < 1e-6 {
+        return Ok(());
+    }
+    let inward = dx < 0.0;
+    let (cut, other) = match (r.kind, inward) {
+        (ThreadKind::External, false) => ("outward pass by pass, as in a bore", "an internal class"),
+        (ThreadKind::Internal, true) => ("inward pass by pass, as on a bar", "an external class"),
+        _ => return Ok(()),
+    };
+    Err(Error::Program {
+        file: label.file.clone(),
+        line: op.source_line,
+        column: 1,
+        message: format!(
+            "{} is {} thread, but the passes of this {} move {cut} (X{:.4} to X{:.4}): give {other} or check the program",
+            r.designation.text,
+            if r.kind == ThreadKind::External { "an external" } else { "an internal" },
+            op.cycle,
+            first.x_end,
+            last.x_end,
+        ),
+    })
+}
+
 /// One program operation verified; passes that cut nothing are an [`Error::Geometry`].
 fn verify_given(
     r: &Resolved,
@@ -1071,6 +1106,7 @@ fn verify_given(
             )));
         }
     }
+    side_agrees(r, op, &passes, label)?;
     // The passes must reach the material: external below the blank, internal above the bore.
     let deepest = match r.kind {
         ThreadKind::External => passes.iter().map(|p| p.x_end.min(p.x_start)).fold(f64::INFINITY, f64::min),
@@ -1131,7 +1167,7 @@ pub fn verify_program(
     name: &str,
     dialect: crate::gcode::Dialect,
     threads: &[String],
-    insert_for: &dyn Fn(&crate::gcode::Operation) -> Option<(InsertChoice, String)>,
+    insert_for: &dyn Fn(&crate::gcode::Operation) -> Option<(InsertChoice, String, bool)>,
 ) -> Result<ProgramVerification, Error> {
     let prog = crate::gcode::read_program_with(text, name, dialect, spec.reading)?;
     let n = prog.operations.len();
@@ -1152,9 +1188,11 @@ pub fn verify_program(
         let mut s =
             VerifySpec { designation: designation.clone(), program: None, final_x: None, ..spec.clone() };
         let mut extra = Vec::new();
-        if let Some((choice, note)) = insert_for(op) {
+        let mut assumed = false;
+        if let Some((choice, note, default)) = insert_for(op) {
             s.insert = choice;
             extra.push(note);
+            assumed = default;
         }
         let mut result = verify_operation(&s, op, &label)?;
         if let OperationResult::Verified(v) = &mut result {
@@ -1170,6 +1208,13 @@ pub fn verify_program(
             v.checks.extend(checks);
             v.process = Some(report);
             v.pass = verdict(&v.checks, v.gauge_only);
+            let only_form =
+                v.checks.iter().filter(|c| !c.ok).all(|c| c.kind == crate::analysis::check::CheckKind::Form);
+            if assumed && !v.pass && only_form && matches!(s.insert, InsertChoice::Partial { .. }) {
+                v.notes.push(crate::ground::note::Note::from(
+                    "only form checks fail, with the assumed partial-profile insert: --insert full cuts the standard root; --gauge-only gives the gauge verdict (sizes and the GO gauge)",
+                ));
+            }
         }
         operations.push(OperationVerdict { operation: op.clone(), designation, result });
     }

@@ -145,8 +145,10 @@ pub(crate) fn lead(m: &mut Motion, b: &RBlock<'_>, col: usize, what: &str) -> Re
     if let Some(f) = f {
         m.lead = Some(f);
     }
-    m.lead
-        .ok_or_else(|| m.err(b.line, col, format!("{what} without a lead: add F (the lead per revolution)")))
+    m.lead.ok_or_else(|| match b.why_missing("F").or_else(|| b.why_missing("E")) {
+        Some(why) => m.err(b.line, col, format!("{what} without a lead: {why}")),
+        None => m.err(b.line, col, format!("{what} without a lead: add F (the lead per revolution)")),
+    })
 }
 
 /// A start-angle word Q of G32/G92 (0.001° without a decimal point).

@@ -260,7 +260,8 @@ fn choose_main(
     let why = match main {
         Some(_) => "as --main says".to_string(),
         None => {
-            let others: Vec<&String> = names.iter().enumerate().filter(|(j, _)| *j != k).map(|(_, n)| n).collect();
+            let others: Vec<&String> =
+                names.iter().enumerate().filter(|(j, _)| *j != k).map(|(_, n)| n).collect();
             format!(
                 "the file holds {} programs ({}) and no other calls it (--main picks another)",
                 names.len(),
@@ -1080,6 +1081,7 @@ fn flush_pending(vars: &mut Vars, m: &mut Motion) {
 /// address, as the control does.
 fn resolve<'b>(b: &'b Block, vars: &mut Vars, file: &str) -> Result<RBlock<'b>, Error> {
     let mut words = Vec::with_capacity(b.words.len());
+    let mut vacant = Vec::new();
     for w in &b.words {
         vars.here = (b.line, w.col);
         let perr = |msg: String| Error::Program {
@@ -1095,7 +1097,10 @@ fn resolve<'b>(b: &'b Block, vars: &mut Vars, file: &str) -> Result<RBlock<'b>, 
                     expr::eval(e, &mut EvalEnv { vars }, 0).map_err(|m| perr(format!("{}: {m}", w.name)))?;
                 match v {
                     Some(v) => (v, v.fract() != 0.0, None),
-                    None if vars.lang.null_word_omitted => continue,
+                    None if vars.lang.null_word_omitted => {
+                        vacant.push((w.name.as_str(), w.text.as_str(), w.col));
+                        continue;
+                    }
                     None => (0.0, false, None),
                 }
             }
@@ -1121,7 +1126,7 @@ fn resolve<'b>(b: &'b Block, vars: &mut Vars, file: &str) -> Result<RBlock<'b>, 
         };
         words.push(RWord { name: &w.name, v, point, col: w.col, text: &w.text, args });
     }
-    Ok(RBlock { line: b.line, col: b.col, words })
+    Ok(RBlock { line: b.line, col: b.col, words, vacant })
 }
 
 /// Fanuc GOTO n: the block Nn of the current program, searched forward from here, then from the

@@ -503,6 +503,14 @@ pub fn read_program_with(
                 (line, col) = (p.line, p.column);
             }
             why.push_str(&format!("; {}", n.message));
+        } else if let Some(n) =
+            notes.iter().find(|n| n.kind == NoteKind::ReadPast && n.message.starts_with("G92 S"))
+        {
+            // A G92 that sets only S reads as a speed clamp: say so where a thread was expected.
+            if let Some(p) = &n.place {
+                (line, col) = (p.line, p.column);
+            }
+            why.push_str(&format!("; {}", n.message));
         }
         return Err(perr(line, col, why));
     }

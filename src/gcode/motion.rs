@@ -48,12 +48,22 @@ pub(crate) struct RBlock<'b> {
     pub col: usize,
     /// The words.
     pub words: Vec<RWord<'b>>,
+    /// Words dropped because their variable is vacant (Fanuc drops the address): name, the
+    /// word as written, column.
+    pub vacant: Vec<(&'b str, &'b str, usize)>,
 }
 
 impl<'b> RBlock<'b> {
     /// The last word with this address.
     pub fn get(&self, name: &str) -> Option<&RWord<'b>> {
         self.words.iter().rev().find(|w| w.name == name)
+    }
+
+    /// Why the block has no `name` word, when a vacant variable dropped it: for a message.
+    pub fn why_missing(&self, name: &str) -> Option<String> {
+        self.vacant.iter().find(|(n, _, _)| *n == name).map(|(_, text, col)| {
+            format!("{text} (column {col}) reads a variable that is not set, and a vacant variable drops its word")
+        })
     }
 
     /// Whether the block has this address.
