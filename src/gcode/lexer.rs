@@ -853,8 +853,11 @@ fn sinumerik_jump(chars: &[char], start: usize, ln: usize, b: &mut Block) -> Res
     if word_at(i) == "IF" {
         i += 2;
         // The condition runs to GOTOF/GOTOB/GOTO.
-        let rest: String = chars[i..].iter().collect::<String>().to_ascii_uppercase();
-        let at = rest.find("GOTO").ok_or((
+        // A char index, not a byte offset: the line may hold characters of several bytes.
+        let at = chars[i..]
+            .windows(4)
+            .position(|w| w.iter().map(|c| c.to_ascii_uppercase()).eq("GOTO".chars()))
+            .ok_or((
             ln,
             col,
             "Sinumerik IF without GOTOF/GOTOB: only IF … GOTOF label is supported".to_string(),
