@@ -484,3 +484,36 @@ fn passes_that_contradict_the_designations_side_are_refused() {
     let o = run(&["verify", "--program", path.to_str().unwrap(), "--thread", "M30x2-6H"]);
     assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
 }
+
+/// The program turns Ø24.0 (line 8) before an M24x2-6g, whose d max is 24 − 0.038 = 23.962
+/// (ISO 965-1: es = −38 µm for P2 in g): the blank is the program's, named, and the major
+/// diameter fails; --blank-diameter overrides it.
+#[test]
+fn the_programs_own_turned_diameter_is_the_blank() {
+    let (code, v) = verify_json("turned-24-m24.nc", "M24x2-6g", &[]);
+    assert_eq!(code, 1);
+    let d = check(&v, "major_diameter").unwrap();
+    assert_eq!(d["max"], 23.962);
+    assert!(!d["ok"].as_bool().unwrap(), "{d}");
+    assert!(d["value"].as_f64().unwrap() > 23.99, "{d}");
+    let notes: Vec<&str> = v["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap()).collect();
+    assert!(
+        notes.iter().any(|n| n.contains("turned-24-m24.nc:8:1: the blank is the program's own: Ø24.0000")),
+        "{notes:?}"
+    );
+    let (_, v) = verify_json("turned-24-m24.nc", "M24x2-6g", &["--blank-diameter", "23.8"]);
+    let d = check(&v, "major_diameter").unwrap();
+    assert!(d["ok"].as_bool().unwrap(), "{d}");
+    assert!((d["value"].as_f64().unwrap() - 23.8).abs() < 1e-3, "{d}");
+}
+
+/// ASME B1.1 writes `1/2-13 UNC-2A`; a hyphen where the blank stands is read as the blank.
+#[test]
+fn a_unified_designation_with_a_hyphen_before_the_series_is_read() {
+    let o = run(&["limits", "1/2-13-UNC-2A", "--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    // 13 tpi: P = 25.4/13 mm.
+    assert!((v["pitch"].as_f64().unwrap() - 25.4 / 13.0).abs() < 1e-9, "{v}");
+    assert_eq!(v["external"]["class"], "2A");
+}

@@ -276,7 +276,8 @@ fn run_out(op: &Operation, pitch: f64) -> Option<Check> {
     // The contour's extreme diameter over [lo, hi]: external the largest, internal the smallest.
     let extreme = |lo: f64, hi: f64| -> Option<(f64, f64)> {
         let mut worst: Option<(f64, f64)> = None;
-        for &[x0, z0, x1, z1] in &op.contour {
+        for t in &op.contour {
+            let ([x0, z0], [x1, z1]) = (t.from, t.to);
             let (zl, zh) = (z0.min(z1), z0.max(z1));
             if zh < lo || zl > hi {
                 continue;

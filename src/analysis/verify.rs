@@ -1048,7 +1048,23 @@ pub fn verify_operation(
     op: &crate::gcode::Operation,
     label: &ProgramLabel,
 ) -> Result<OperationResult, Error> {
-    match verify_given(&resolve(spec)?, op, label) {
+    let mut r = resolve(spec)?;
+    if spec.blank_diameter.is_none() {
+        if let Some(t) = program_blank(op) {
+            r.blank = t.from[0];
+            r.notes.push(crate::ground::note::Note::at(
+                &label.file,
+                t.line,
+                1,
+                format!(
+                    "the {} is the program's own: Ø{:.4} turned here over the thread's length (--blank-diameter overrides)",
+                    if r.kind == ThreadKind::External { "blank" } else { "bore" },
+                    t.from[0]
+                ),
+            ));
+        }
+    }
+    match verify_given(&r, op, label) {
         Ok(v) => Ok(OperationResult::Verified(Box::new(v))),
         Err(Error::Geometry(m)) => Ok(OperationResult::NoCut { reason: m }),
         Err(e) => Err(e),
@@ -1088,6 +1104,28 @@ fn side_agrees(
             last.x_end,
         ),
     })
+}
+
+/// The diameter the program turned (or bored) for the thread before cutting it: the last
+/// cylindrical feed move (X constant to 1 µm) that covers the middle half of the finishing
+/// pass's Z span, clear of chamfers at either end. `None` when the program turns none there.
+fn program_blank(op: &crate::gcode::Operation) -> Option<crate::gcode::Turned> {
+    let passes = &op.passes;
+    if passes.is_empty() {
+        return None;
+    }
+    let last = last_head(passes);
+    let (t0, t1) = (last.z_start.min(last.z_end), last.z_start.max(last.z_end));
+    let q = 0.25 * (t1 - t0);
+    let (lo, hi) = (t0 + q, t1 - q);
+    op.contour
+        .iter()
+        .rev()
+        .find(|t| {
+            let (zl, zh) = (t.from[1].min(t.to[1]), t.from[1].max(t.to[1]));
+            (t.from[0] - t.to[0]).abs() < 1e-3 && zl <= lo + 1e-9 && zh >= hi - 1e-9
+        })
+        .copied()
 }
 
 /// One program operation verified; passes that cut nothing are an [`Error::Geometry`].

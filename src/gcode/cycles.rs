@@ -374,6 +374,16 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
         match g_role(m.dialect, modal.motion as u32, m.lathe()) {
             GRole::BoxCycle => {
                 if b.has("X") || b.has("Z") || b.has("U") || b.has("W") {
+                    // G90 turns a cylinder (no R taper) at its X from the start point's Z to
+                    // its Z; G94 faces and turns no diameter.
+                    if modal.motion == 90.0 && !b.has("R") {
+                        let (x, _, z) = m.target(b);
+                        let xz = (x.or(m.box_last.map(|l| l.0)), z.or(m.box_last.map(|l| l.1)));
+                        if let (Some(x), Some(z)) = xz {
+                            m.record_box_cut(x, z, b.line);
+                            m.box_last = Some((x, z));
+                        }
+                    }
                     m.read_past(
                         b.line,
                         modal.col.unwrap_or(b.col),

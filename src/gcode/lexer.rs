@@ -858,10 +858,10 @@ fn sinumerik_jump(chars: &[char], start: usize, ln: usize, b: &mut Block) -> Res
             .windows(4)
             .position(|w| w.iter().map(|c| c.to_ascii_uppercase()).eq("GOTO".chars()))
             .ok_or((
-            ln,
-            col,
-            "Sinumerik IF without GOTOF/GOTOB: only IF … GOTOF label is supported".to_string(),
-        ))?;
+                ln,
+                col,
+                "Sinumerik IF without GOTOF/GOTOB: only IF … GOTOF label is supported".to_string(),
+            ))?;
         let text: String = chars[i..i + at].iter().collect::<String>().to_ascii_uppercase();
         let e = super::expr::parse_all(text.trim_end(), Syntax::Sinumerik)
             .map_err(|(o, m)| (ln, i + o + 1 + (text.len() - text.trim_start().len()), m))?;

@@ -154,10 +154,10 @@ pub struct Operation {
     /// Where the tool stood when the cycle was called (X diameter, Z), mm: a cycle returns there
     /// after each pass. `None` for G32/G33 passes written one by one.
     pub start: Option<(f64, f64)>,
-    /// The turned contour the program cut before this operation: its feed moves as
-    /// (X0, Z0, X1, Z1), diameters in mm (arcs as chords).
+    /// The turned contour the program cut before this operation: its feed moves (arcs as
+    /// chords, box cycles as their cut).
     #[serde(skip)]
-    pub contour: Vec<[f64; 4]>,
+    pub contour: Vec<Turned>,
     /// Its passes in cutting order.
     pub passes: Vec<Pass>,
     /// Warnings and the defaults the expansion assumed.
@@ -301,6 +301,18 @@ pub enum DialectFrom {
     Extension,
     /// Neither given nor named by the extension: the default, Fanuc.
     Default,
+}
+
+/// One feed move of the turned contour: from (X0, Z0) to (X1, Z1), diameters in mm, and the
+/// line that cut it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Turned {
+    /// X (diameter) and Z where the move starts, mm.
+    pub from: [f64; 2],
+    /// X (diameter) and Z where it ends, mm.
+    pub to: [f64; 2],
+    /// The program line.
+    pub line: usize,
 }
 
 impl Operation {

@@ -172,11 +172,13 @@ pub(crate) struct Motion {
     /// Blocks read past (a block with two such things counts once).
     pub past_blocks: usize,
     past_last_line: usize,
+    /// The last X and Z of a modal box cycle (its later blocks may give only one).
+    pub box_last: Option<(f64, f64)>,
     /// Why the position became unknown last: the line and what did it.
     lost: Option<(usize, String)>,
     /// The turned contour so far: feed moves (G1, G2, G3) of the lathe dialects as
     /// (X0, Z0, X1, Z1), diameters, capped at `MAX_CONTOUR` segments.
-    contour: Vec<[f64; 4]>,
+    contour: Vec<super::Turned>,
 }
 
 /// Most contour segments kept for the run-out check.
@@ -228,6 +230,7 @@ impl Motion {
             past_blocks: 0,
             past_last_line: 0,
             lost: None,
+            box_last: None,
         }
     }
 
@@ -361,7 +364,7 @@ impl Motion {
                 let to = [x.unwrap_or(from[0]), y.unwrap_or(from[1]), z.unwrap_or(from[2])];
                 mv.push(Move { rapid: self.motion == 0.0, from, to, arc: None, line: b.line });
             }
-            self.record_contour(x, z);
+            self.record_contour(x, z, b.line);
         }
         if let Some(x) = x {
             self.x = Some(x);
@@ -384,7 +387,7 @@ impl Motion {
         }
         self.break_chain();
         // An arc of the turned contour is kept as its chord: enough to see a shoulder.
-        self.record_contour(x, z);
+        self.record_contour(x, z, b.line);
         let from = [self.x.unwrap_or(0.0), self.y.unwrap_or(0.0), self.z.unwrap_or(0.0)];
         let to = [x.unwrap_or(from[0]), y.unwrap_or(from[1]), z.unwrap_or(from[2])];
         if self.moves.is_some() && self.plane == 17 {
@@ -419,13 +422,23 @@ impl Motion {
     }
 
     /// Keeps a feed move of a lathe program as a segment of the turned contour.
-    fn record_contour(&mut self, x: Option<f64>, z: Option<f64>) {
+    fn record_contour(&mut self, x: Option<f64>, z: Option<f64>, line: usize) {
         let feed = matches!(self.motion as u32, 1..=3) && self.motion.fract() == 0.0;
         if !feed || !self.lathe() || self.contour.len() >= MAX_CONTOUR {
             return;
         }
         if let (Some(x0), Some(z0)) = (self.x, self.z) {
-            self.contour.push([x0, z0, x.unwrap_or(x0), z.unwrap_or(z0)]);
+            self.contour.push(super::Turned { from: [x0, z0], to: [x.unwrap_or(x0), z.unwrap_or(z0)], line });
+        }
+    }
+
+    /// A box cycle's cut (Fanuc/Haas G90): the tool feeds along Z at diameter `x` from the
+    /// start point's Z to `z` and returns, so the cylinder turned is that stretch.
+    pub fn record_box_cut(&mut self, x: f64, z: f64, line: usize) {
+        if let Some(z0) = self.z {
+            if self.lathe() && self.contour.len() < MAX_CONTOUR {
+                self.contour.push(super::Turned { from: [x, z0], to: [x, z], line });
+            }
         }
     }
 

@@ -594,8 +594,10 @@ fn size_and_tpi<'t>(
 ) -> Result<(usize, usize, &'t str, &'t str), DesignationError> {
     let upper = c.text.to_ascii_uppercase();
     let at = upper.find(word).unwrap_or(upper.len());
-    let head = &c.text[..at];
-    let dash = head.trim_end().rfind('-').ok_or_else(|| c.err(0, at, missing))?;
+    // `1/2-13-UNC-2A`: a hyphen written where the standard has a blank is read as the blank.
+    let head = c.text[..at].trim_end();
+    let head = head.strip_suffix('-').unwrap_or(head).trim_end();
+    let dash = head.rfind('-').ok_or_else(|| c.err(0, at, missing))?;
     Ok((at, dash, head[..dash].trim(), head[dash + 1..].trim()))
 }
 
