@@ -1186,6 +1186,10 @@ fn verify_given(
     )
 }
 
+/// How a program's operation gets its insert: `None` keeps the spec's; else the insert, the
+/// note that says where it came from, and whether it is the assumed default.
+pub type InsertFor<'a> = dyn Fn(&crate::gcode::Operation) -> Option<(InsertChoice, String, bool)> + 'a;
+
 /// Verifies every threading operation of a program held in memory: `threads` gives one
 /// designation for all operations or one per operation in program order; `insert_for` chooses
 /// each operation's insert (from its tool number, say) and says what it assumed.
@@ -1205,7 +1209,7 @@ pub fn verify_program(
     name: &str,
     dialect: crate::gcode::Dialect,
     threads: &[String],
-    insert_for: &dyn Fn(&crate::gcode::Operation) -> Option<(InsertChoice, String, bool)>,
+    insert_for: &InsertFor<'_>,
 ) -> Result<ProgramVerification, Error> {
     let prog = crate::gcode::read_program_with(text, name, dialect, spec.reading)?;
     let n = prog.operations.len();

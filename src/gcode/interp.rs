@@ -240,10 +240,10 @@ fn choose_main(
         }
         None => {
             let mut called: HashSet<String> = HashSet::new();
-            for k in 0..headers.len() {
+            for (k, name) in names.iter().enumerate() {
                 let (a, b) = range(k);
                 for c in static_calls(&blocks[a..b]) {
-                    if c != names[k] {
+                    if c != *name {
                         called.insert(c);
                     }
                 }
