@@ -336,7 +336,14 @@ fn fixed_program(
                 message: format!("--fix rewrites plain numbers only: {}", crate::report::correction_text(c)),
             });
         };
-        edits.push(crate::gcode::WordEdit { line: c.line, column: c.column, old: c.written.clone(), new });
+        for p in std::iter::once((c.line, c.column)).chain(c.also.iter().map(|p| (p.line, p.column))) {
+            edits.push(crate::gcode::WordEdit {
+                line: p.0,
+                column: p.1,
+                old: c.written.clone(),
+                new: new.clone(),
+            });
+        }
     }
     crate::gcode::rewrite_words(text, shown, &edits)
 }

@@ -517,3 +517,78 @@ fn a_unified_designation_with_a_hyphen_before_the_series_is_read() {
     assert!((v["pitch"].as_f64().unwrap() - 25.4 / 13.0).abs() < 1e-9, "{v}");
     assert_eq!(v["external"]["class"], "2A");
 }
+
+/// M20xPh5P2.5: two G76 cycles 2.5 mm apart along Z (the program's comments) are one thread of
+/// two starts, which passes `starts`; its correction changes both cycles' X alike, and the
+/// corrected program re-verifies mid-tolerance. The same program with one cycle fails
+/// `starts`, naming start 2, and offers no correction.
+#[test]
+fn a_two_start_thread_cut_by_two_shifted_cycles_is_one_operation() {
+    let (_, v) = verify_json("two-start-m20-ph5.nc", "M20xPh5P2.5-6g", &[]);
+    let s = check(&v, "starts").unwrap();
+    assert!(s["ok"].as_bool().unwrap(), "{s}");
+    assert_eq!(s["value"], 2.0);
+    let passes = v["passes"].as_array().unwrap();
+    assert_eq!(passes.iter().filter(|p| p["start"] == 1).count(), passes.len() / 2);
+    let c = &v["correction"];
+    assert_eq!(c["line"], 9);
+    assert_eq!(c["also"][0]["line"], 12, "{c}");
+    let path = data("programs/shop/two-start-m20-ph5.nc");
+    let o = run(&[
+        "verify",
+        "--program",
+        path.to_str().unwrap(),
+        "--thread",
+        "M20xPh5P2.5-6g",
+        "--insert",
+        "full",
+        "--fix",
+        "-",
+    ]);
+    let fixed = stdout(&o);
+    let new = format!("G76 X{} Z-30", c["value"].as_f64().unwrap());
+    assert_eq!(fixed.matches(&new).count(), 2, "{fixed}");
+    let dir = tempdir("two-start-fix");
+    let out = dir.join("fixed.nc");
+    std::fs::write(&out, &fixed).unwrap();
+    let o = run(&[
+        "verify",
+        "--program",
+        out.to_str().unwrap(),
+        "--thread",
+        "M20xPh5P2.5-6g",
+        "--insert",
+        "full",
+        "--json",
+        "-",
+    ]);
+    let v2: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let r = &v2["operations"][0];
+    let d2 = check(r, "pitch_diameter").unwrap();
+    let mid = 0.5 * (d2["min"].as_f64().unwrap() + d2["max"].as_f64().unwrap());
+    assert!((d2["value"].as_f64().unwrap() - mid).abs() < 0.005, "{d2}");
+
+    let (code, v) = verify_json("one-start-m20-ph5.nc", "M20xPh5P2.5-6g", &[]);
+    assert_eq!(code, 1);
+    let s = check(&v, "starts").unwrap();
+    assert!(!s["ok"].as_bool().unwrap());
+    assert_eq!(s["note"], "1 of 2 starts cut; missing: start 2 (2.5000 mm along Z from start 1)");
+    assert!(v["correction"].is_null() && v["suggested_final_x"].is_null(), "{v}");
+}
+
+/// The thesis's three-start G33 passes (Z6, Z8, Z10 for a lead of 6) are starts 1, 2 and 3,
+/// three passes each; none is noted as cutting nothing.
+#[test]
+fn passes_written_one_by_one_show_their_start() {
+    let path = data("programs/source-docs/thesis-g33-three-start.mpf");
+    let o = run(&["passes", "--program", path.to_str().unwrap(), "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let starts: Vec<u64> =
+        v["passes"].as_array().unwrap().iter().map(|p| p["start"].as_u64().unwrap()).collect();
+    assert_eq!(starts, [0, 0, 0, 1, 1, 1, 2, 2, 2]);
+    assert!(v["operations"][0]["notes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|n| !n.as_str().unwrap().contains("cuts nothing")));
+}

@@ -84,6 +84,8 @@ pub enum CheckFeature {
     Crest,
     /// One groove per lead: no second pocket at the root.
     SingleGroove,
+    /// A program's threads: the starts it cuts against the designation's (a count).
+    Starts,
     /// Taper threads: the gauge plane's position, turns.
     GaugePlane,
     /// Taper threads: the taper of the passes, diameter per length.
@@ -113,6 +115,7 @@ impl CheckFeature {
             CheckFeature::MaxMaterial => "max_material",
             CheckFeature::Crest => "crest",
             CheckFeature::SingleGroove => "single_groove",
+            CheckFeature::Starts => "starts",
             CheckFeature::GaugePlane => "gauge_plane",
             CheckFeature::Taper => "taper",
             CheckFeature::ConstantSpindleSpeed => "constant_spindle_speed",
@@ -135,6 +138,7 @@ impl CheckFeature {
             CheckFeature::MaxMaterial => "max material",
             CheckFeature::Crest => "crest",
             CheckFeature::SingleGroove => "one groove",
+            CheckFeature::Starts => "starts",
             CheckFeature::GaugePlane
             | CheckFeature::Taper
             | CheckFeature::ConstantSpindleSpeed
@@ -163,6 +167,7 @@ impl CheckFeature {
             CheckFeature::MaxMaterial => "GO gauge (max. material)",
             CheckFeature::Crest => "crest left standing",
             CheckFeature::SingleGroove => "one groove per pitch",
+            CheckFeature::Starts => "starts cut",
             CheckFeature::GaugePlane => "gauge plane",
             CheckFeature::Taper => "taper",
             CheckFeature::ConstantSpindleSpeed => "constant rpm (G97)",
@@ -186,6 +191,7 @@ impl CheckFeature {
             | CheckFeature::RunOut => true,
             CheckFeature::FlankAngle
             | CheckFeature::SingleGroove
+            | CheckFeature::Starts
             | CheckFeature::GaugePlane
             | CheckFeature::Taper
             | CheckFeature::ConstantSpindleSpeed
@@ -247,6 +253,35 @@ fn check(
         deviation_um: dev * 1000.0,
         note,
     }
+}
+
+/// The starts a program cuts (0-based start indices) against the designation's `wanted`: a
+/// start missing or one too many fails, naming them. A size check: a missing start is a groove
+/// the GO gauge meets.
+pub fn starts_check(cut: &std::collections::BTreeSet<u32>, wanted: u32, pitch: f64) -> Check {
+    let missing: Vec<String> = (0..wanted)
+        .filter(|s| !cut.contains(s))
+        .map(|s| format!("start {} ({:.4} mm along Z from start 1)", s + 1, f64::from(s) * pitch))
+        .collect();
+    let extra = cut.iter().filter(|s| **s >= wanted).count();
+    let note = if !missing.is_empty() {
+        format!("{} of {wanted} starts cut; missing: {}", cut.len(), missing.join(", "))
+    } else if extra > 0 {
+        format!("the passes cut {} starts, the designation has {wanted}", cut.len())
+    } else {
+        format!("{wanted} of {wanted} starts cut")
+    };
+    let w = f64::from(wanted);
+    let c = check(
+        CheckFeature::Starts,
+        CheckKind::Size,
+        cut.len() as f64,
+        Limit { min: Some(w), max: Some(w) },
+        Some(note),
+        |v| v,
+    );
+    // A count has no deviation in µm: the note says what is missing.
+    Check { deviation_um: 0.0, ..c }
 }
 
 /// The functional pitch diameter `value` (mm) against the maximum-material side of the class

@@ -44,6 +44,19 @@ pub struct Correction {
     pub written: String,
     /// What the word measures.
     pub means: WordMeans,
+    /// The same word in the cycles of the thread's other starts (one cycle per start): changed
+    /// the same way. Empty for one cycle.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub also: Vec<Place>,
+}
+
+/// A word's place: line and column.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct Place {
+    /// Line, from 1.
+    pub line: usize,
+    /// Column, from 1.
+    pub column: usize,
 }
 
 /// The change of `w` that moves the pitch diameter by `delta_d2` mm (+ larger), for a thread of
@@ -82,6 +95,7 @@ pub fn correction(w: &DepthWord, units: ProgramUnits, kind: ThreadKind, delta_d2
         form: w.form,
         written: w.written.clone(),
         means: w.means,
+        also: Vec::new(),
     }
 }
 

@@ -1173,7 +1173,13 @@ fn verify_given(
         (last.z_end - last.z_start).abs(),
     )
     .unwrap_or(None);
-    verify_core(
+    // The starts cut: by their phase against the designation's pitch when it has several,
+    // else as the program's reading told them apart.
+    let t = &r.designation.thread;
+    let cut: std::collections::BTreeSet<u32> =
+        if t.starts > 1 { &passes } else { &op.passes }.iter().map(|p| p.start).collect();
+    let starts = crate::analysis::check::starts_check(&cut, t.starts, t.pitch);
+    let mut v = verify_core(
         r,
         Some(Given {
             passes,
@@ -1183,7 +1189,29 @@ fn verify_given(
             label: label.clone(),
             notes,
         }),
-    )
+    )?;
+    // One cycle per start: the correction changes each cycle's word alike, when they are
+    // written alike; otherwise it is said for the first and the others are named.
+    if let Some(c) = v.correction.as_mut() {
+        for w in &op.start_words {
+            c.also.push(crate::analysis::correction::Place { line: w.line, column: w.column });
+            if w.written != c.written || w.form != c.form {
+                c.form = crate::gcode::WordForm::Expression;
+            }
+        }
+    }
+    if !starts.ok {
+        // A start missing (or one too many) is no matter of X: no correction is offered.
+        v.correction = None;
+        v.suggested_final_x = None;
+        v.notes.push(crate::ground::note::Note::from(format!(
+            "no correction is offered while the starts are wrong: {}",
+            starts.note.as_deref().unwrap_or_default()
+        )));
+    }
+    v.checks.push(starts);
+    v.pass = verdict(&v.checks, v.gauge_only);
+    Ok(v)
 }
 
 /// How a program's operation gets its insert: `None` keeps the spec's; else the insert, the

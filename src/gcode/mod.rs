@@ -169,6 +169,10 @@ pub struct Operation {
     /// The word that sets the final depth, what a correction edits: the last X of a G76, G92
     /// run or G32/G33 chain, LinuxCNC G76 K, CYCLE97 TDEP, L97 R24, L96 R15.
     pub depth_word: Option<DepthWord>,
+    /// The depth words of the cycles that cut the thread's other starts (one cycle per start,
+    /// joined into this operation).
+    #[serde(skip)]
+    pub start_words: Vec<DepthWord>,
 }
 
 /// The word of a program that sets an operation's final depth, as the program has it.

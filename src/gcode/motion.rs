@@ -496,6 +496,7 @@ impl Motion {
             units: if self.scale == 1.0 { ProgramUnits::Mm } else { ProgramUnits::Inch },
             x_words: if self.diameter { XWords::Diameter } else { XWords::Radius },
             depth_word: None,
+            start_words: Vec::new(),
         });
         self.ops.len() - 1
     }
@@ -618,10 +619,18 @@ impl Motion {
     /// of its own passes (passes that cut nothing, passes beyond the axis).
     pub fn finish(mut self) -> (Vec<Operation>, usize, Vec<Note>, Vec<Move>, usize) {
         let file = self.file.clone();
+        self.ops.retain(|o| !o.passes.is_empty());
+        for o in &mut self.ops {
+            // Passes written one by one tell their starts by their phase; a cycle lays out its
+            // own starts.
+            if matches!(o.cycle.as_str(), "G32" | "G33" | "G92") {
+                assign_starts(o);
+            }
+        }
+        merge_starts(&mut self.ops, &file);
         for o in &mut self.ops {
             shallow_pass_notes(o, &file);
         }
-        self.ops.retain(|o| !o.passes.is_empty());
         for (i, o) in self.ops.iter_mut().enumerate() {
             o.index = i + 1;
         }
@@ -649,6 +658,85 @@ struct PastEntry {
 /// Notes on passes that go deeper than no earlier pass anywhere (by 1 µm, at either end of the
 /// last pass's stretch) and come out shallower than them somewhere: such a pass cuts nothing. A
 /// spring pass at the same depth is normal and not noted.
+/// The most a flank infeed moves a pass along Z per mm of radial depth: tan 30°, half the
+/// included angle of a 60° thread, the widest of the forms threadcheck cuts.
+const FLANK_SHIFT_PER_DEPTH: f64 = 0.577_350_269_189_625_8;
+
+/// Tells the starts of an operation of passes written one by one (G32, G33, G92) apart, the
+/// named default: a pass belongs to a start when its helix phase (mod the lead) lies within
+/// what a flank infeed explains of one of that start's passes, |Δx|/2 · tan 30° (+1 µm);
+/// otherwise it begins a new start. Passes shifted along Z and start angles (Q, SF) read the
+/// same way.
+fn assign_starts(o: &mut Operation) {
+    let mut starts: Vec<Vec<(f64, f64)>> = Vec::new();
+    for p in &mut o.passes {
+        let lead = p.lead;
+        let circ = |a: f64, b: f64| {
+            let d = (a - b).rem_euclid(lead);
+            d.min(lead - d)
+        };
+        let found = starts.iter().position(|s| {
+            s.iter().any(|&(ph, x)| {
+                circ(p.z_phase, ph) <= 0.5 * (p.x_end - x).abs() * FLANK_SHIFT_PER_DEPTH + 1e-3
+            })
+        });
+        let k = match found {
+            Some(k) => k,
+            None => {
+                starts.push(Vec::new());
+                starts.len() - 1
+            }
+        };
+        starts[k].push((p.z_phase, p.x_end));
+        p.start = k as u32;
+    }
+}
+
+/// Joins an operation to the one before when it cuts another start of the same thread: the
+/// same cycle, lead and pass diameters, every pass shifted along Z by one amount under a lead
+/// and not zero (one cycle per start, shifted by the pitch); the note says so.
+fn merge_starts(ops: &mut Vec<Operation>, file: &str) {
+    let mut out: Vec<Operation> = Vec::with_capacity(ops.len());
+    // Per merged operation: how many passes its first cycle has.
+    let mut first_len: Vec<usize> = Vec::new();
+    for o in ops.drain(..) {
+        if let (Some(a), Some(&k)) = (out.last_mut(), first_len.last()) {
+            let b = &o;
+            let same = a.cycle == b.cycle
+                && k == b.passes.len()
+                && a.passes
+                    .iter()
+                    .zip(&b.passes)
+                    .all(|(p, q)| (p.lead - q.lead).abs() < 1e-12 && (p.x_end - q.x_end).abs() < 1e-6);
+            let shift = b.passes[0].z_phase - a.passes[0].z_phase;
+            let constant =
+                a.passes.iter().zip(&b.passes).all(|(p, q)| (q.z_phase - p.z_phase - shift).abs() < 1e-6);
+            let lead = a.passes[0].lead;
+            let r = shift.rem_euclid(lead);
+            // Another start lies less than a lead away; further along Z it is another thread.
+            if same && constant && shift.abs() < lead - 1e-3 && r.min(lead - r) > 1e-3 {
+                a.notes.push(Note::at(
+                    file,
+                    b.source_line,
+                    1,
+                    format!(
+                        "the {} at line {} cuts another start of this thread, {:.4} mm along Z: one operation",
+                        b.cycle, b.source_line, shift
+                    ),
+                ));
+                let next = a.passes.iter().map(|p| p.start + 1).max().unwrap_or(1);
+                a.passes.extend(b.passes.iter().map(|p| Pass { start: next + p.start, ..*p }));
+                a.notes.extend(b.notes.iter().cloned());
+                a.start_words.extend(b.depth_word.clone());
+                continue;
+            }
+        }
+        first_len.push(o.passes.len());
+        out.push(o);
+    }
+    *ops = out;
+}
+
 fn shallow_pass_notes(o: &mut Operation, file: &str) {
     let n = o.passes.len();
     if n < 2 {
@@ -660,15 +748,21 @@ fn shallow_pass_notes(o: &mut Operation, file: &str) {
     // Inward (external) when the passes end below where they began.
     let inward = last.x_at(zs[0]) + last.x_at(zs[1]) < first.x_at(zs[0]) + first.x_at(zs[1]);
     let depth = |x: f64| if inward { -x } else { x };
-    let mut deepest: Option<([f64; 2], usize)> = None;
+    // Each start is its own groove: a pass is compared with the passes of its start.
+    let mut deepest_of: Vec<Option<([f64; 2], usize)>> = Vec::new();
     let mut notes = Vec::new();
     for p in &o.passes {
         if (p.z_phase - p.z_start).abs() > 1e-12 {
             // A later segment of a chain: its depth is its own.
             continue;
         }
+        let s = p.start as usize;
+        if deepest_of.len() <= s {
+            deepest_of.resize(s + 1, None);
+        }
+        let deepest = &mut deepest_of[s];
         let d = [depth(p.x_at(zs[0])), depth(p.x_at(zs[1]))];
-        if let Some((dd, line)) = deepest {
+        if let Some((dd, line)) = *deepest {
             let deeper = (d[0] - dd[0]).max(d[1] - dd[1]);
             let shallower = (dd[0] - d[0]).max(dd[1] - d[1]);
             if deeper <= 1e-3 && shallower > 1e-3 {
@@ -683,7 +777,7 @@ fn shallow_pass_notes(o: &mut Operation, file: &str) {
                 ));
             }
         }
-        deepest = Some(match deepest {
+        *deepest = Some(match *deepest {
             None => (d, p.source_line.unwrap_or(0)),
             Some((dd, line)) => {
                 let nd = [dd[0].max(d[0]), dd[1].max(d[1])];

@@ -334,7 +334,12 @@ pub fn correction_text(c: &crate::analysis::correction::Correction) -> String {
         crate::gcode::WordMeans::Radius => "radius",
         crate::gcode::WordMeans::Depth { .. } => "thread depth",
     };
-    let (word, at) = (&c.word, format!("line {}:{}", c.line, c.column));
+    let mut at = format!("line {}:{}", c.line, c.column);
+    if !c.also.is_empty() {
+        let more: Vec<String> = c.also.iter().map(|p| format!("{}:{}", p.line, p.column)).collect();
+        at = format!("lines {}:{} and {} (one cycle per start)", c.line, c.column, more.join(", "));
+    }
+    let word = &c.word;
     let place = match c.form {
         crate::gcode::WordForm::Number => format!("change {} at {at} to {}", c.written, correction_word(c)),
         // A call's argument: `change TDEP 1.400 at line 3:34 to 1.597`.
@@ -408,7 +413,11 @@ pub fn verify_text(v: &Verification) -> String {
         } else {
             "·"
         };
-        let prec = if c.feature == CheckFeature::FlankAngle { 3 } else { 4 };
+        let prec = match c.feature {
+            CheckFeature::FlankAngle => 3,
+            CheckFeature::Starts => 0,
+            _ => 4,
+        };
         let name = c.feature.label();
         let value = if c.feature == CheckFeature::SingleGroove {
             if c.ok {
