@@ -69,7 +69,8 @@ def test_dicts_are_the_cli_json():
         cli = subprocess.run([binary, "limits", "M12x1.25-6H", "--json"], capture_output=True, text=True)
         assert cli.returncode == 0, cli.stderr
         assert threadcheck.limits("M12x1.25-6H") == json.loads(cli.stdout)
-        cli = subprocess.run([binary, "passes", "--program", path, "--json"], capture_output=True, text=True)
+        cli = subprocess.run([binary, "passes", "--program", path, "--dialect", "fanuc", "--json"],
+                             capture_output=True, text=True)
         assert cli.returncode == 0, cli.stderr
         assert threadcheck.passes(program=G76_M20, program_name=path) == json.loads(cli.stdout)
 
