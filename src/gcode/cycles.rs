@@ -364,6 +364,17 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
             m.skipped += 1;
             return Ok(());
         }
+        Some(g) if (70.0..=75.0).contains(&g) && m.dialect != Dialect::Sinumerik => {
+            // The turning, facing, pattern and grooving cycles: read past; each returns to its
+            // start point (a profile's blocks that follow run as moves).
+            m.read_past(
+                b.line,
+                modal.col.unwrap_or(b.col),
+                &format!("G{g}"),
+                "a turning or grooving cycle; it returns to its start point",
+            );
+            return Ok(());
+        }
         Some(_) => {
             m.skipped += 1;
             return Ok(());
