@@ -165,3 +165,23 @@ fn a_replaced_output_keeps_its_mode() {
     assert_eq!(std::fs::metadata(&json).unwrap().permissions().mode() & 0o777, 0o600);
     assert!(std::fs::read_to_string(&json).unwrap().contains("\"verdict\""));
 }
+
+/// Issue 26, item 1: after a false `if`, LinuxCNC runs the `else` (or the first true
+/// `elseif`). Here J ends at 0.3, and G76 P1.5 I-1 J0.3 K1.0 cuts at 0.3, 0.6, 0.9 (J·n while
+/// below K) and at K: 4 passes, as LinuxCNC's interpreter lays it out (the issue's own run);
+/// J stayed 0.1 (10 passes) before.
+#[test]
+fn linuxcnc_runs_the_else_after_a_false_if() {
+    let head = "#<j>=0.1\n";
+    let tail = "G7 G21 G18\nG0 X11 Z2\nG8\nG76 P1.5 Z-20 I-1 J#<j> K1.0\nM2\n";
+    for (flow, passes) in [
+        ("o1 if [0]\n#<j>=0.2\no1 else\n#<j>=0.3\no1 endif\n", 4),
+        ("o1 if [1]\n#<j>=0.2\no1 else\n#<j>=0.3\no1 endif\n", 5),
+        ("o1 if [0]\n#<j>=0.2\no1 elseif [0]\n#<j>=0.25\no1 elseif [1]\n#<j>=0.3\no1 else\n#<j>=0.4\no1 endif\n", 4),
+        ("o1 if [0]\n#<j>=0.2\no1 elseif [0]\n#<j>=0.25\no1 endif\n", 10),
+    ] {
+        let p = threadcheck::read_program(&format!("{head}{flow}{tail}"), "if.ngc", threadcheck::Dialect::LinuxCnc)
+            .unwrap();
+        assert_eq!(p.passes.len(), passes, "{flow}");
+    }
+}

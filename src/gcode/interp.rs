@@ -583,6 +583,7 @@ pub(crate) fn run(
         let mut jumped_back = false;
         let mut skip_words = false;
         // Statements.
+        let mut enter_branch = false;
         let mut assigns: Vec<(&VarRef, &Expr, usize, &str)> = Vec::new();
         for s in &b.stmts {
             let ev = |e: &Expr, vars: &mut Vars, col: usize| -> Result<Value, Error> {
@@ -773,11 +774,12 @@ pub(crate) fn run(
                                             .iter()
                                             .any(|s| matches!(s, Stmt::O { kw: OKw::ElseIf | OKw::Else, .. }))
                                     }) {
-                                        entering_branch = true;
-                                        pc = next;
-                                        continue;
+                                        // The next block is run as the branch's head (its
+                                        // condition evaluated, an else entered).
+                                        enter_branch = true;
+                                    } else {
+                                        next += 1;
                                     }
-                                    next += 1;
                                 }
                             }
                         }
@@ -808,7 +810,7 @@ pub(crate) fn run(
                 }
             }
         }
-        entering_branch = false;
+        entering_branch = enter_branch;
         // Words: evaluated (LinuxCNC before its assignments, the others after them).
         let deferred = vars.lang.deferred_assignments;
         if !deferred {
