@@ -185,3 +185,16 @@ fn linuxcnc_runs_the_else_after_a_false_if() {
         assert_eq!(p.passes.len(), passes, "{flow}");
     }
 }
+
+/// Issue 26, item 2: `#<_x>` and `#<_z>` on a line of parameter assignments are the position
+/// the last move left (they were refreshed only before blocks with words: `#<z0>=#<_z>` was
+/// "not defined"). After G1 Z-5 from X20: #<_z> = −5, #<_x> = 10 (a radius, as LinuxCNC's
+/// #5420 is), so the G0 goes to X22 Z3; under G7 I−1 and J0.3 are diameters, and the first
+/// pass is at 22 − 1 − 0.3 = X20.7 from Z3.
+#[test]
+fn linuxcnc_position_parameters_are_current_on_assignment_lines() {
+    let text = "G7 G21 G18 G90\nG0 X20 Z3\nG1 Z-5 F0.1\n#<z0>=#<_z>\n#1=#<_x>\nG0 X[#1*2+2] Z[#<z0>+8]\nG76 P1.5 Z-20 I-1 J0.3 K1.0\nM2\n";
+    let p = threadcheck::read_program(text, "sys.ngc", threadcheck::Dialect::LinuxCnc).unwrap();
+    assert!((p.passes[0].x_start - 20.7).abs() < 1e-9, "{:?}", p.passes[0]);
+    assert!((p.passes[0].z_start - 3.0).abs() < 1e-9, "{:?}", p.passes[0]);
+}

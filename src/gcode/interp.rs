@@ -811,6 +811,9 @@ pub(crate) fn run(
             }
         }
         entering_branch = enter_branch;
+        // The read-only position parameters (#<_x>, #<_z>) as the last move left them, for the
+        // assignments and the words of this block alike.
+        rules.system_params(m, &mut vars.system);
         // Words: evaluated (LinuxCNC before its assignments, the others after them).
         let deferred = vars.lang.deferred_assignments;
         if !deferred {
@@ -823,7 +826,6 @@ pub(crate) fn run(
             }
         }
         if !skip_words && (!b.words.is_empty()) {
-            rules.system_params(m, &mut vars.system);
             let rb = resolve(b, &mut vars, file)?;
             flush_pending(&mut vars, m);
             // LinuxCNC's lathe cycles G70/G71/G72 run the profile subroutine named by Q: it is
