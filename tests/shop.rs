@@ -441,7 +441,7 @@ fn a_file_with_two_programs_runs_the_one_no_other_calls() {
 #[test]
 fn only_form_failures_with_the_assumed_insert_end_with_a_hint() {
     let path = data("programs/shop/partial-insert-m12.nc");
-    let o = run(&[
+    let args = [
         "verify",
         "--program",
         path.to_str().unwrap(),
@@ -449,21 +449,13 @@ fn only_form_failures_with_the_assumed_insert_end_with_a_hint() {
         "M12x1.75-6g",
         "--blank-diameter",
         "11.9",
-    ]);
+    ];
+    let o = run(&args);
     assert_eq!(o.status.code(), Some(1));
     let out = stdout(&o);
     assert!(out.contains("verdict: FAIL (minor diameter d3, root radius)"), "{out}");
     assert!(out.contains("note: only form checks fail, with the assumed partial-profile insert: --insert full cuts the standard root; --gauge-only gives the gauge verdict"), "{out}");
-    let o = run(&[
-        "verify",
-        "--program",
-        path.to_str().unwrap(),
-        "--thread",
-        "M12x1.75-6g",
-        "--blank-diameter",
-        "11.9",
-        "--gauge-only",
-    ]);
+    let o = run(&[&args[..], &["--gauge-only"]].concat());
     assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
 }
 
