@@ -511,36 +511,33 @@ fn a_unified_designation_with_a_hyphen_before_the_series_is_read() {
 }
 
 /// M20xPh5P2.5: two G76 cycles 2.5 mm apart along Z (the program's comments) are one thread of
-/// two starts, which passes `starts`; its correction changes both cycles' X alike, and the
-/// corrected program re-verifies mid-tolerance. The same program with one cycle fails
-/// `starts`, naming start 2, and offers no correction.
+/// two starts, which passes, `starts` included. Written 0.127 mm larger (X16.933), its
+/// correction changes both cycles' X alike, and the corrected program re-verifies
+/// mid-tolerance. The same program with one cycle fails `starts`, naming start 2, and offers no
+/// correction.
 #[test]
 fn a_two_start_thread_cut_by_two_shifted_cycles_is_one_operation() {
-    let (_, v) = verify_json("two-start-m20-ph5.nc", "M20xPh5P2.5-6g", &[]);
+    let (code, v) = verify_json("two-start-m20-ph5.nc", "M20xPh5P2.5-6g", &[]);
+    assert_eq!(code, 0, "{v}");
     let s = check(&v, "starts").unwrap();
     assert!(s["ok"].as_bool().unwrap(), "{s}");
     assert_eq!(s["value"], 2.0);
     let passes = v["passes"].as_array().unwrap();
     assert_eq!(passes.iter().filter(|p| p["start"] == 1).count(), passes.len() / 2);
-    let c = &v["correction"];
-    assert_eq!(c["line"], 9);
-    assert_eq!(c["also"][0]["line"], 12, "{c}");
-    let path = data("programs/shop/two-start-m20-ph5.nc");
-    let o = run(&[
-        "verify",
-        "--program",
-        path.to_str().unwrap(),
-        "--thread",
-        "M20xPh5P2.5-6g",
-        "--insert",
-        "full",
-        "--fix",
-        "-",
-    ]);
-    let fixed = stdout(&o);
+
+    let dir = tempdir("two-start-fix");
+    let off = dir.join("off.nc");
+    let text = std::fs::read_to_string(data("programs/shop/two-start-m20-ph5.nc")).unwrap();
+    std::fs::write(&off, text.replace("G76 X16.806", "G76 X16.933")).unwrap();
+    let args =
+        ["verify", "--program", off.to_str().unwrap(), "--thread", "M20xPh5P2.5-6g", "--insert", "full"];
+    let o = run(&[&args[..], &["--json", "-"]].concat());
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let c = &v["operations"][0]["correction"];
+    assert_eq!((c["line"].as_u64(), c["also"][0]["line"].as_u64()), (Some(15), Some(18)), "{c}");
+    let fixed = stdout(&run(&[&args[..], &["--fix", "-"]].concat()));
     let new = format!("G76 X{} Z-30", c["value"].as_f64().unwrap());
     assert_eq!(fixed.matches(&new).count(), 2, "{fixed}");
-    let dir = tempdir("two-start-fix");
     let out = dir.join("fixed.nc");
     std::fs::write(&out, &fixed).unwrap();
     let o = run(&[
@@ -555,8 +552,7 @@ fn a_two_start_thread_cut_by_two_shifted_cycles_is_one_operation() {
         "-",
     ]);
     let v2: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let r = &v2["operations"][0];
-    let d2 = check(r, "pitch_diameter").unwrap();
+    let d2 = check(&v2["operations"][0], "pitch_diameter").unwrap();
     let mid = 0.5 * (d2["min"].as_f64().unwrap() + d2["max"].as_f64().unwrap());
     assert!((d2["value"].as_f64().unwrap() - mid).abs() < 0.005, "{d2}");
 
