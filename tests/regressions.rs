@@ -198,3 +198,25 @@ fn linuxcnc_position_parameters_are_current_on_assignment_lines() {
     assert!((p.passes[0].x_start - 20.7).abs() < 1e-9, "{:?}", p.passes[0]);
     assert!((p.passes[0].z_start - 3.0).abs() < 1e-9, "{:?}", p.passes[0]);
 }
+
+/// Issue 26, items 3 and 5: LinuxCNC counts G76 passes in program units and its own order
+/// (|I| + |J|·n^(1/R) while below |K| + |I|): `G76 P1.5 Z-20 I-1 J0.3 K0.9` from X11 Z2 cuts 3
+/// passes under LinuxCNC (1 + 0.3·3 rounds to 1.9, not below it), where the mm comparison
+/// 0.3·3 < 0.9 gave 4. Q−1 is no compound angle, L is a bit mask (L5 = entry taper, as L1) and
+/// an F word on the G76 line is accepted, as LinuxCNC reads them.
+#[test]
+fn linuxcnc_g76_counts_passes_and_reads_q_l_f_as_linuxcnc_does() {
+    let read = |g76: &str| {
+        threadcheck::read_program(
+            &format!("G18 G21 G90\nG0 X11 Z2\n{g76}\nM2\n"),
+            "g76.ngc",
+            threadcheck::Dialect::LinuxCnc,
+        )
+        .unwrap()
+        .passes
+    };
+    assert_eq!(read("G76 P1.5 Z-20 I-1 J0.3 K0.9").len(), 3);
+    assert_eq!(read("G76 P1.5 Z-20 I-1 J0.2 K1.0 Q-1"), read("G76 P1.5 Z-20 I-1 J0.2 K1.0 Q0"));
+    assert_eq!(read("G76 P1.5 Z-20 I-1 J0.2 K1.0 L5 E2"), read("G76 P1.5 Z-20 I-1 J0.2 K1.0 L1 E2"));
+    assert_eq!(read("G76 P1.5 Z-20 I-1 J0.2 K1.0 F100"), read("G76 P1.5 Z-20 I-1 J0.2 K1.0"));
+}

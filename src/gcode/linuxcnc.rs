@@ -82,7 +82,7 @@ fn block(_s: &mut State, m: &mut Motion, b: &RBlock<'_>, _cx: &mut Ctx<'_>) -> R
 }
 
 fn g76(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
-    b.allow_only(&m.file, "GPZIJKRQHELNMSX", "G76")?;
+    b.allow_only(&m.file, "GPZIJKRQHELNMSXF", "G76")?;
     cycles::need_lathe_plane(m, b, col, "G76")?;
     let (x0, z0) = m.need_position(b.line, col, "G76")?;
     let need = |n: &str, what: &str| -> Result<f64, Error> {
@@ -98,10 +98,12 @@ fn g76(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
     let k = to_r(need("K", "the full depth")?);
     // R below 1 (or absent) is 1, as LinuxCNC's code does (its documentation calls it an error).
     let r = b.get("R").map_or(1.0, |w| w.v).max(1.0);
-    let q = b.get("Q").map_or(0.0, |w| w.v);
+    // Q−1 is no compound angle, as LinuxCNC reads it.
+    let q = b.get("Q").map_or(0.0, |w| if w.v == -1.0 { 0.0 } else { w.v });
     let h = b.get("H").map_or(0.0, |w| w.v);
     let e = b.get("E").map_or(0.0, |w| w.v).max(0.0) * m.scale;
-    let l = b.get("L").map_or(0.0, |w| w.v);
+    // L is a bit mask (1 entry taper, 2 exit taper) and a negative L is 0, as LinuxCNC reads it.
+    let l = b.get("L").map_or(0.0, |w| w.v.max(0.0));
     if i == 0.0 {
         return Err(m.err(
             b.line,
@@ -113,26 +115,33 @@ fn g76(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
         return Err(m.err(b.line, col, "G76 needs P and J greater than zero and K greater than J"));
     }
     let h_ok = h >= -1.0 && h.fract() == 0.0 && h <= crate::ground::bounds::MAX_REPEATS as f64;
-    if !(h_ok && [0.0, 1.0, 2.0, 3.0].contains(&l)) {
+    if !(h_ok && l.fract() == 0.0 && l <= f64::from(u32::MAX)) {
         return Err(m.err(
             b.line,
             col,
-            "G76 H must be a whole number of spring passes and L one of 0, 1, 2, 3",
+            "G76 H must be a whole number of spring passes and L a whole number (1 entry taper, 2 exit taper, 3 both)",
         ));
     }
+    let l_bits = l as u32;
     if m.css {
         m.note(b.line, col, "G76 under constant surface speed (G96); threading wants G97");
     }
     let external = i < 0.0;
     // Depths beyond the crest; the crest is |I| from the drive line.
     let peak_r = 0.5 * x0 + i;
+    // The depths in program units and LinuxCNC's own order (halved under G7, measured from the
+    // drive line: |I| + |J|·n^(1/R) while below |K| + |I|), so that a depth on a boundary of
+    // floating-point rounding gives LinuxCNC's count.
+    let half = if m.diameter { 0.5 } else { 1.0 };
+    let raw = |n: &str| b.get(n).map_or(0.0, |w| w.v) * half;
+    let (iu, ju, ku) = (raw("I").abs(), raw("J").abs(), raw("K").abs());
     let mut depths = Vec::new();
     let mut n = 1.0f64;
-    let mut d = j;
-    while d < k {
-        depths.push(d);
+    let mut du = iu + ju;
+    while du < ku + iu {
+        depths.push((du - iu) * m.scale);
         n += 1.0;
-        d = j * n.powf(1.0 / r);
+        du = iu + ju * n.powf(1.0 / r);
         if depths.len() > crate::ground::bounds::MAX_PASSES {
             return Err(m.err(b.line, col, "G76 expands to too many passes"));
         }
@@ -143,8 +152,7 @@ fn g76(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
     }
     let dir = if z_end < z0 { -1.0 } else { 1.0 };
     let tq = q.to_radians().tan();
-    let (tin, tout) =
-        (if l == 1.0 || l == 3.0 { e } else { 0.0 }, if l == 2.0 || l == 3.0 { e } else { 0.0 });
+    let (tin, tout) = (if l_bits & 1 != 0 { e } else { 0.0 }, if l_bits & 2 != 0 { e } else { 0.0 });
     let op = m.begin_op("G76", b.line);
     m.op_mut(op).infeed_angle = Some((q.abs(), "Q".into()));
     let inward = if external { -1.0 } else { 1.0 };
