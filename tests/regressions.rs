@@ -220,3 +220,24 @@ fn linuxcnc_g76_counts_passes_and_reads_q_l_f_as_linuxcnc_does() {
     assert_eq!(read("G76 P1.5 Z-20 I-1 J0.2 K1.0 L5 E2"), read("G76 P1.5 Z-20 I-1 J0.2 K1.0 L1 E2"));
     assert_eq!(read("G76 P1.5 Z-20 I-1 J0.2 K1.0 F100"), read("G76 P1.5 Z-20 I-1 J0.2 K1.0"));
 }
+
+/// Issue 26, items 4 and 5: LinuxCNC compares EQ, NE, LE and GE within 1e-6 (its
+/// `TOLERANCE_EQUAL`) and its MOD is never negative (fmod, plus |divisor| when below 0). Each
+/// case sets J to 0.3 only under LinuxCNC's rules; G76 I-1 J0.3 K1.0 then cuts 4 passes (0.3,
+/// 0.6, 0.9, 1.0), J0.1 10.
+#[test]
+fn linuxcnc_comparisons_and_mod_follow_its_interpreter() {
+    let tail = "G7 G21 G18\nG0 X11 Z2\nG8\nG76 P1.5 Z-20 I-1 J#<j> K1.0\nM2\n";
+    for flow in [
+        "#<j>=0.1\no1 if [0.3 EQ 0.3000005]\n#<j>=0.3\no1 endif\n",
+        "#<j>=0.1\no1 if [0.3000005 LE 0.3]\n#<j>=0.3\no1 endif\n",
+        "#<j>=0.1\no1 if [0.3 GE 0.3000005]\n#<j>=0.3\no1 endif\n",
+        "#<j>=0.3\no1 if [0.3 NE 0.3000005]\n#<j>=0.1\no1 endif\n",
+        "#<j>=[[5 MOD -3] / 10 + 0.1]\n",
+    ] {
+        let p =
+            threadcheck::read_program(&format!("{flow}{tail}"), "cmp.ngc", threadcheck::Dialect::LinuxCnc)
+                .unwrap();
+        assert_eq!(p.passes.len(), 4, "{flow}");
+    }
+}

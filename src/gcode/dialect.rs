@@ -41,6 +41,8 @@ pub(crate) struct Language {
     pub sub_word: fn(&str) -> String,
     /// Predefined named parameters, read-only to a program (LinuxCNC's `#<_x>`, `#<_metric>` …).
     pub read_only_names: &'static [&'static str],
+    /// How comparisons and MOD behave (LinuxCNC's tolerance of 1e-6).
+    pub arithmetic: super::expr::Arithmetic,
 }
 
 /// LinuxCNC's predefined named parameters (its manual, "Predefined Named Parameters"): a program
@@ -124,6 +126,7 @@ impl Language {
             lathe_cycles_call_q: false,
             sub_word: |n| format!("subprogram {n}"),
             read_only_names: &[],
+            arithmetic: super::expr::Arithmetic::Exact,
         };
         match dialect {
             Dialect::Fanuc | Dialect::Haas => fanuc,
@@ -150,6 +153,7 @@ impl Language {
                 lathe_cycles_call_q: true,
                 sub_word: |n| format!("o{n} sub"),
                 read_only_names: LINUXCNC_PREDEFINED,
+                arithmetic: super::expr::Arithmetic::LinuxCnc,
                 ..fanuc
             },
             Dialect::Dyna => Language {

@@ -167,7 +167,23 @@ pub enum Expr {
 }
 
 /// Where the evaluator reads variables.
+/// How comparisons and MOD behave: LinuxCNC's interpreter compares EQ, NE, LE and GE with an
+/// absolute tolerance of 1e-6 (`TOLERANCE_EQUAL`) and gives MOD the divisor's magnitude's
+/// sign (never negative); the others compare within a relative 1e-9 and floor MOD.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Arithmetic {
+    /// Relative 1e-9 for EQ/NE, exact LE/GE, MOD by floor division.
+    #[default]
+    Exact,
+    /// LinuxCNC's: absolute 1e-6 for EQ/NE/LE/GE, MOD never negative.
+    LinuxCnc,
+}
+
 pub trait Env {
+    /// The comparison and MOD rules of the language.
+    fn arithmetic(&self) -> Arithmetic {
+        Arithmetic::Exact
+    }
     /// The value of a variable (`None` for null or unset); the environment notes reads of unset
     /// variables itself.
     fn get(&mut self, key: &VarKey) -> Result<Value, String>;
@@ -213,17 +229,23 @@ pub fn key_of(v: &VarRef, env: &mut dyn Env) -> Result<VarKey, String> {
 
 /// One binary operator on two values: EQ and NE tell null from 0 (Fanuc), the other operators
 /// read null as 0.
-fn apply(op: BinOp, x: Value, y: Value) -> Result<f64, String> {
+fn apply(op: BinOp, x: Value, y: Value, arith: Arithmetic) -> Result<f64, String> {
+    // LinuxCNC: two numbers within 1e-6 are equal (its TOLERANCE_EQUAL), for EQ, NE, LE, GE.
+    let near = |x: f64, y: f64| (x - y).abs() < 1e-6;
     if matches!(op, BinOp::Eq | BinOp::Ne) {
         let eq = match (x, y) {
             (None, None) => true,
-            (Some(x), Some(y)) => (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0),
+            (Some(x), Some(y)) => match arith {
+                Arithmetic::Exact => (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0),
+                Arithmetic::LinuxCnc => near(x, y),
+            },
             _ => false,
         };
         return Ok(if eq == (op == BinOp::Eq) { 1.0 } else { 0.0 });
     }
     let (x, y) = (x.unwrap_or(0.0), y.unwrap_or(0.0));
     let b2 = |c: bool| if c { 1.0 } else { 0.0 };
+    let lc = arith == Arithmetic::LinuxCnc;
     Ok(match op {
         BinOp::Add => x + y,
         BinOp::Sub => x - y,
@@ -238,14 +260,25 @@ fn apply(op: BinOp, x: Value, y: Value) -> Result<f64, String> {
             if y == 0.0 {
                 return Err("MOD by zero".into());
             }
-            x - y * (x / y).floor()
+            match arith {
+                Arithmetic::Exact => x - y * (x / y).floor(),
+                // fmod, then the divisor's magnitude added to a negative result.
+                Arithmetic::LinuxCnc => {
+                    let r = x % y;
+                    if r < 0.0 {
+                        r + y.abs()
+                    } else {
+                        r
+                    }
+                }
+            }
         }
         BinOp::Pow => x.powf(y),
         BinOp::Eq | BinOp::Ne => unreachable!("handled above"),
         BinOp::Gt => b2(x > y),
-        BinOp::Ge => b2(x >= y),
+        BinOp::Ge => b2(x >= y || (lc && near(x, y))),
         BinOp::Lt => b2(x < y),
-        BinOp::Le => b2(x <= y),
+        BinOp::Le => b2(x <= y || (lc && near(x, y))),
         BinOp::BitAnd => (bits(x, "AND")? & bits(y, "AND")?) as f64,
         BinOp::BitOr => (bits(x, "OR")? | bits(y, "OR")?) as f64,
         BinOp::BitXor => (bits(x, "XOR")? ^ bits(y, "XOR")?) as f64,
@@ -274,7 +307,7 @@ pub fn eval(e: &Expr, env: &mut dyn Env, depth: usize) -> Result<Value, String> 
             let mut acc = eval(first, env, depth + 1)?;
             for (op, e) in rest {
                 let y = eval(e, env, depth + 1)?;
-                acc = Some(apply(*op, acc, y)?);
+                acc = Some(apply(*op, acc, y, env.arithmetic())?);
             }
             return Ok(acc);
         }

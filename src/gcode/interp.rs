@@ -128,6 +128,10 @@ struct EvalEnv<'a> {
 }
 
 impl Env for EvalEnv<'_> {
+    fn arithmetic(&self) -> expr::Arithmetic {
+        self.vars.lang.arithmetic
+    }
+
     fn get(&mut self, k: &VarKey) -> Result<Value, String> {
         let v = self.vars.read(k);
         if v.is_none() {
