@@ -550,7 +550,7 @@ impl Motion {
         let (x, _, z) = self.target(b);
         let (x1, z1) = (x.unwrap_or(x0), z.unwrap_or(z0));
         if (z1 - z0).abs() < 1e-12 {
-            return Err(self.err(b.line, col, format!("{cycle} has no Z travel: a thread needs Z")));
+            return Err(self.err(b.line, col, format!("{cycle} has no Z travel: a face (scroll) thread, which the control cuts but threadcheck does not measure (it measures threads along Z)")));
         }
         let lead = lead_of(0.5 * (x1 - x0), z1 - z0);
         if !(lead > 0.0 && lead.is_finite()) {
