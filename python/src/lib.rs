@@ -26,6 +26,8 @@ fn spec(
     passes: Option<usize>,
     blank_diameter: Option<f64>,
     allow_nonstandard: bool,
+    default_units: Option<&str>,
+    main: Option<&str>,
 ) -> Result<VerifySpec, threadcheck::Error> {
     let mut s = VerifySpec::new(threads.first().map_or("", String::as_str));
     s.internal = internal;
@@ -46,6 +48,15 @@ fn spec(
     if let Some(text) = program {
         s.program = Some((ProgramSource::text(program_name, text), dialect.parse::<Dialect>()?));
     }
+    s.reading.default_units = default_units.map(str::parse).transpose()?;
+    s.reading.main = main
+        .map(|m| {
+            let digits = m.strip_prefix(['O', 'o']).unwrap_or(m);
+            digits.parse::<u32>().ok().filter(|_| !digits.starts_with('+')).ok_or_else(|| {
+                threadcheck::Error::Input(format!("main = '{m}' is not an O-program number such as O3101"))
+            })
+        })
+        .transpose()?;
     Ok(s)
 }
 
@@ -54,7 +65,7 @@ fn spec(
 #[pyfunction]
 #[pyo3(signature = (command, threads, program=None, dialect="fanuc", insert=None, final_x=None,
     internal=false, infeed=None, passes=None, blank_diameter=None, gauge_only=false,
-    allow_nonstandard=false, program_name="<program>"))]
+    allow_nonstandard=false, program_name="<program>", default_units=None, main=None))]
 #[allow(clippy::too_many_arguments)]
 fn job_json(
     py: Python<'_>,
@@ -71,6 +82,8 @@ fn job_json(
     gauge_only: bool,
     allow_nonstandard: bool,
     program_name: &str,
+    default_units: Option<&str>,
+    main: Option<&str>,
 ) -> PyResult<(String, bool)> {
     let run = || -> Result<(String, bool), threadcheck::Error> {
         let verify = match command {
@@ -110,6 +123,8 @@ fn job_json(
             passes,
             blank_diameter,
             allow_nonstandard,
+            default_units,
+            main,
         )?;
         spec.gauge_only = gauge_only;
         let (text, outcome) = if verify {

@@ -117,3 +117,33 @@ def test_module_docstring_example_runs():
 
     failures, tried = doctest.testmod(threadcheck)
     assert tried >= 2 and failures == 0
+
+
+TWO_PROGRAMS = """O3102
+G0 X14 Z4
+G92 X11.4 Z-20 F1.75
+X10.6
+X9.853
+G0 X50 Z50
+M99
+O3101
+G21 G97 S600 M3
+T0505
+M98 P3102
+M30
+"""
+
+
+def test_main_and_default_units_reach_the_reader():
+    # O3101 calls O3102: it is the main program, and the note says so; --main picks the other.
+    p = threadcheck.passes(program=TWO_PROGRAMS, program_name="two.nc")
+    assert [q["x_end"] for q in p["passes"]] == [11.4, 10.6, 9.853]
+    assert any("O3101 is the main program" in n for n in p["notes"])
+    assert p["operations"][0]["tool"] == 5
+    p = threadcheck.passes(program=TWO_PROGRAMS, program_name="two.nc", main="O3102")
+    assert p["operations"][0]["tool"] is None
+    # A program without G20/G21 read as an inch control's: X0.4 in is 10.16 mm.
+    inch = threadcheck.passes(program="G0 X0.6 Z0.2\nG92 X0.4 Z-1 F0.0769\nM30\n", default_units="inch")
+    assert abs(inch["passes"][0]["x_end"] - 10.16) < 1e-9
+    with pytest.raises(ValueError, match="not an O-program number"):
+        threadcheck.passes(program=TWO_PROGRAMS, main="P12")

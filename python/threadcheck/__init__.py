@@ -19,7 +19,7 @@ __version__ = _threadcheck.__version__
 
 def verify(thread, program=None, dialect="fanuc", insert=None, final_x=None, internal=False,
            infeed=None, passes=None, blank_diameter=None, gauge_only=False,
-           allow_nonstandard=False, program_name="<program>"):
+           allow_nonstandard=False, program_name="<program>", default_units=None, main=None):
     """``threadcheck verify --json -``.
 
     ``thread`` is a designation with its class (``"M20x1.5-6g"``), or a list of them, one per
@@ -29,13 +29,17 @@ def verify(thread, program=None, dialect="fanuc", insert=None, final_x=None, int
     it a program is verified with a partial insert and the report says so. ``infeed`` takes the
     command line's words: ``"radial"``, ``"flank"``, ``"flank:27"``, ``"modified"`` (the default:
     half the thread angle less 0.5°), ``"alternating"``, ``"alternating:ANGLE"``.
+    ``default_units`` (``"mm"``/``"inch"``) reads a program that sets no units as an inch or
+    metric control would; ``main`` (``"O3101"``) picks the main program of a text that holds
+    several O-programs (else the one no other calls, said in ``notes``).
     The dict has ``verdict`` (``"pass"``/``"fail"``); a program's report has ``operations``.
     """
     threads = [thread] if isinstance(thread, str) else list(thread)
     text, _passed = _threadcheck.job_json(
         "verify", threads, program=program, dialect=dialect, insert=insert, final_x=final_x,
         internal=internal, infeed=infeed, passes=passes, blank_diameter=blank_diameter,
-        gauge_only=gauge_only, allow_nonstandard=allow_nonstandard, program_name=program_name)
+        gauge_only=gauge_only, allow_nonstandard=allow_nonstandard, program_name=program_name,
+        default_units=default_units, main=main)
     return _json.loads(text)
 
 
@@ -46,11 +50,11 @@ def limits(designation, allow_nonstandard=False):
 
 def passes(thread=None, program=None, dialect="fanuc", insert=None, final_x=None, internal=False,
            infeed=None, passes=None, blank_diameter=None, allow_nonstandard=False,
-           program_name="<program>"):
+           program_name="<program>", default_units=None, main=None):
     """``threadcheck passes --json``: the passes of a generated plan or of a program's text."""
     text, _ok = _threadcheck.job_json(
         "passes", [] if thread is None else [thread], program=program, dialect=dialect,
         insert=insert, final_x=final_x, internal=internal, infeed=infeed, passes=passes,
         blank_diameter=blank_diameter, allow_nonstandard=allow_nonstandard,
-        program_name=program_name)
+        program_name=program_name, default_units=default_units, main=main)
     return _json.loads(text)
