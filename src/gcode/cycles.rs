@@ -16,7 +16,7 @@ pub(crate) struct Modal {
     /// Column of the block's own motion word, if it has one.
     pub col: Option<usize>,
     /// A one-shot code that makes the block no move of its own (G4 dwell, G28, turning cycles
-    /// G70–G75, LinuxCNC G92 offsets, a block read past for a code threadcheck does not know).
+    /// G70–G75, LinuxCNC G92 offsets, G10 data, a G92 S speed clamp).
     pub one_shot: Option<f64>,
 }
 
@@ -205,10 +205,10 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             70..=75 if fanuc_like || d == Dialect::LinuxCnc => one_shot = Some(g),
             c => match g_role(d, c, m.lathe()) {
                 GRole::Setting => {}
-                GRole::Offset => offset = Some((g, col)),
+                GRole::Offset => offset = Some(format!("G{g}, a work offset")),
                 GRole::Data => {
                     one_shot = Some(g);
-                    offset = Some((g, col));
+                    offset = Some(format!("G{g}, data setting"));
                 }
                 GRole::OtherCycle | GRole::BoxCycle => motion = Some((g, col)),
                 GRole::Unknown => unknown.push((g, col)),
@@ -241,8 +241,7 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             &format!("not a code threadcheck knows in this dialect; the block's axis words are read as a move in the modal G{modal_now} (assumed)"),
         );
     }
-    if let Some((g, _)) = offset {
-        let what = if g == 10.0 { "G10, data setting".to_string() } else { format!("G{g}, a work offset") };
+    if let Some(what) = offset {
         m.lose_position(b.line, &what, true, true);
     }
     if let Some((g, _)) = motion {

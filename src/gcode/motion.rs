@@ -655,9 +655,6 @@ struct PastEntry {
     count: usize,
 }
 
-/// Notes on passes that go deeper than no earlier pass anywhere (by 1 µm, at either end of the
-/// last pass's stretch) and come out shallower than them somewhere: such a pass cuts nothing. A
-/// spring pass at the same depth is normal and not noted.
 /// The most a flank infeed moves a pass along Z per mm of radial depth: tan 30°, half the
 /// included angle of a 60° thread, the widest of the forms threadcheck cuts.
 const FLANK_SHIFT_PER_DEPTH: f64 = 0.577_350_269_189_625_8;
@@ -697,10 +694,11 @@ fn assign_starts(o: &mut Operation) {
 /// and not zero (one cycle per start, shifted by the pitch); the note says so.
 fn merge_starts(ops: &mut Vec<Operation>, file: &str) {
     let mut out: Vec<Operation> = Vec::with_capacity(ops.len());
-    // Per merged operation: how many passes its first cycle has.
-    let mut first_len: Vec<usize> = Vec::new();
+    // How many passes the first cycle of the last operation in `out` has.
+    let mut first_len = 0;
     for o in ops.drain(..) {
-        if let (Some(a), Some(&k)) = (out.last_mut(), first_len.last()) {
+        if let Some(a) = out.last_mut() {
+            let k = first_len;
             let b = &o;
             let same = a.cycle == b.cycle
                 && k == b.passes.len()
@@ -731,12 +729,15 @@ fn merge_starts(ops: &mut Vec<Operation>, file: &str) {
                 continue;
             }
         }
-        first_len.push(o.passes.len());
+        first_len = o.passes.len();
         out.push(o);
     }
     *ops = out;
 }
 
+/// Notes on passes that go deeper than no earlier pass anywhere (by 1 µm, at either end of the
+/// last pass's stretch) and come out shallower than them somewhere: such a pass cuts nothing. A
+/// spring pass at the same depth is normal and not noted.
 fn shallow_pass_notes(o: &mut Operation, file: &str) {
     let n = o.passes.len();
     if n < 2 {
