@@ -241,3 +241,13 @@ fn linuxcnc_comparisons_and_mod_follow_its_interpreter() {
         assert_eq!(p.passes.len(), 4, "{flow}");
     }
 }
+
+/// Issue 26, item 2, in a condition: `o1 if [#<_z> LT -4]` right after `G1 Z-5` reads Z−5 (it
+/// read the Z before the move, 3, when the parameters were refreshed only before blocks with
+/// words): J becomes 0.3, and G76 I-1 J0.3 K1.0 cuts 4 passes (10 with J0.1).
+#[test]
+fn linuxcnc_position_parameters_are_current_in_conditions() {
+    let text = "G7 G21 G18 G90\nG0 X20 Z3\nG1 Z-5 F0.1\n#<j>=0.1\no1 if [#<_z> LT -4]\n#<j>=0.3\no1 endif\nG0 X22 Z3\nG76 P1.5 Z-20 I-1 J#<j> K1.0\nM2\n";
+    let p = threadcheck::read_program(text, "cond.ngc", threadcheck::Dialect::LinuxCnc).unwrap();
+    assert_eq!(p.passes.len(), 4);
+}

@@ -252,8 +252,7 @@ fn choose_main(
                     }
                 }
             }
-            let roots: Vec<usize> = (0..names.len()).filter(|&k| !called.contains(&names[k])).collect();
-            roots.first().copied().unwrap_or(0)
+            names.iter().position(|n| !called.contains(n)).unwrap_or(0)
         }
     };
     let (a, b) = range(k);
@@ -583,6 +582,9 @@ pub(crate) fn run(
             ));
         }
         vars.here = (b.line, b.col);
+        // The read-only position parameters (#<_x>, #<_z>) as the last move left them, for the
+        // block's conditions, assignments and words alike.
+        rules.system_params(m, &mut vars.system);
         let mut next = pc + 1;
         let mut jumped_back = false;
         let mut skip_words = false;
@@ -815,9 +817,6 @@ pub(crate) fn run(
             }
         }
         entering_branch = enter_branch;
-        // The read-only position parameters (#<_x>, #<_z>) as the last move left them, for the
-        // assignments and the words of this block alike.
-        rules.system_params(m, &mut vars.system);
         // Words: evaluated (LinuxCNC before its assignments, the others after them).
         let deferred = vars.lang.deferred_assignments;
         if !deferred {
