@@ -92,10 +92,14 @@ fn g76(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
     let z_end = need("Z", "the end of the thread")? * m.scale;
     let z_end = if m.absolute { z_end + m.offset[2] } else { z0 + z_end };
     // In diameter mode (G7) I, J and K are diameters; work in radius here.
-    let to_r = |v: f64| if m.diameter { 0.5 * v } else { v } * m.scale;
-    let i = to_r(need("I", "the crest offset from the drive line")?);
-    let j = to_r(need("J", "the first depth")?);
-    let k = to_r(need("K", "the full depth")?);
+    // In program units as radii (halved under G7, as LinuxCNC does first), then in mm.
+    let half = if m.diameter { 0.5 } else { 1.0 };
+    let (iu, ju, ku) = (
+        need("I", "the crest offset from the drive line")? * half,
+        need("J", "the first depth")? * half,
+        need("K", "the full depth")? * half,
+    );
+    let (i, j, k) = (iu * m.scale, ju * m.scale, ku * m.scale);
     // R below 1 (or absent) is 1, as LinuxCNC's code does (its documentation calls it an error).
     let r = b.get("R").map_or(1.0, |w| w.v).max(1.0);
     // Q−1 is no compound angle, as LinuxCNC reads it.
@@ -132,9 +136,7 @@ fn g76(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
     // The depths in program units and LinuxCNC's own order (halved under G7, measured from the
     // drive line: |I| + |J|·n^(1/R) while below |K| + |I|), so that a depth on a boundary of
     // floating-point rounding gives LinuxCNC's count.
-    let half = if m.diameter { 0.5 } else { 1.0 };
-    let raw = |n: &str| b.get(n).map_or(0.0, |w| w.v) * half;
-    let (iu, ju, ku) = (raw("I").abs(), raw("J").abs(), raw("K").abs());
+    let (iu, ju, ku) = (iu.abs(), ju.abs(), ku.abs());
     let mut depths = Vec::new();
     let mut n = 1.0f64;
     let mut du = iu + ju;
