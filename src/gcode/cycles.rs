@@ -84,7 +84,8 @@ fn g_role(d: Dialect, g: u32, lathe: bool) -> GRole {
 /// Whether the M code `c` is one threadcheck knows in dialect `d` (the rest are noted as read
 /// past: an M code never moves the axes in the model).
 fn m_known(d: Dialect, c: u32) -> bool {
-    let common = matches!(c, 0..=9 | 19 | 30 | 40..=44);
+    // M13/M14 (spindle on with coolant) are common enough to be known on every control.
+    let common = matches!(c, 0..=9 | 13 | 14 | 19 | 30 | 40..=44);
     common
         || match d {
             Dialect::Fanuc => matches!(c, 10..=11 | 23 | 24 | 29 | 98 | 99),
