@@ -406,6 +406,11 @@ struct PlanArgs {
     /// calls; the output says which)
     #[arg(long, value_name = "O-NUMBER", requires = "program", value_parser = o_number)]
     main: Option<u32>,
+    /// The LinuxCNC release whose comparisons (EQ, NE, LE, GE) a linuxcnc program follows:
+    /// current (2.9.0 and later, within 1e-6) or before-2.9 (EQ and NE within 1e-4, as
+    /// Debian 12's linuxcnc-uspace package does)
+    #[arg(long, value_name = "current|before-2.9", requires = "program", default_value = "current")]
+    linuxcnc_release: threadcheck::LinuxCncRelease,
 }
 
 /// `O3101` or `3101`: an O-program's number.
@@ -462,6 +467,7 @@ impl PlanArgs {
         }
         s.reading.default_units = self.default_units;
         s.reading.main = self.main;
+        s.reading.linuxcnc = self.linuxcnc_release;
         Ok(s)
     }
 

@@ -104,7 +104,7 @@ fn fanuc_g32_sequence() {
 /// stretch after the taper is cut at its own diameter, on the helix of the chain's start.
 #[test]
 fn g33_chain_keeps_the_stretch_after_a_taper() {
-    let text = "G21 G18 G8\nG0 X25 Z2\nG33 K2 X25 Z-10\nG33 K2 X25 Z-20\nG33 X20 Z-30 K2.2360679775\nG33 K2 X20 Z-41\nG0 X30\nM2\n";
+    let text = "G21 G18 G8 S500 M3\nG0 X25 Z2\nG33 K2 X25 Z-10\nG33 K2 X25 Z-20\nG33 X20 Z-30 K2.2360679775\nG33 K2 X20 Z-41\nG0 X30\nM2\n";
     let p = read_program(text, "chain.ngc", Dialect::LinuxCnc).unwrap();
     assert_eq!(p.passes.len(), 4);
     // Radius mode: X25 is Ø50. The taper drops 5 mm of radius over 10 mm of Z: K along the

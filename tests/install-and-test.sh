@@ -5,19 +5,24 @@
 # otherwise switch on in shared crates).
 #
 # Installed when missing, from Debian's archive (sudo when not root):
-#   chromium   the browser tests (tests/browser.rs) open the pictures and the HTML report in it
+#   chromium          the browser tests (tests/browser.rs) open the pictures and the HTML report
+#   linuxcnc-uspace   its rs274, LinuxCNC's own interpreter, which the conformance test
+#                     (tests/linuxcnc.rs) runs side by side with threadcheck
 set -euo pipefail
 cd "$(dirname "$0")/.."
-need=()
-command -v chromium >/dev/null 2>&1 || need+=(chromium)
-if [ ${#need[@]} -gt 0 ]; then
-  echo "installing ${need[*]} (apt-get)" >&2
-  sudo_=""
-  if [ "$(id -u)" != 0 ]; then sudo_="sudo"; fi
-  $sudo_ apt-get install -y -q "${need[@]}" >/dev/null 2>&1 \
-    || { $sudo_ apt-get update -q >/dev/null && $sudo_ apt-get install -y -q "${need[@]}" >/dev/null; }
-fi
+sudo_=""
+if [ "$(id -u)" != 0 ]; then sudo_="sudo"; fi
+# apt-get install, and when the package lists are stale, update them and try again.
+install() {
+  echo "installing $* (apt-get)" >&2
+  $sudo_ apt-get install -y -q "$@" >/dev/null 2>&1 \
+    || { $sudo_ apt-get update -q >/dev/null && $sudo_ apt-get install -y -q "$@" >/dev/null; }
+}
+command -v chromium >/dev/null 2>&1 || install chromium
+# About 180 MB and half a minute to three minutes of dpkg: the interpreter alone is needed.
+command -v rs274 >/dev/null 2>&1 || install --no-install-recommends linuxcnc-uspace
 chromium --version
+command -v rs274
 # --no-fail-fast: a failing test binary does not hide the results of the others (the doc tests
 # run last).
 cargo test --release --locked --no-fail-fast "$@"

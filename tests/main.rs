@@ -12,6 +12,7 @@ mod gcode;
 mod infeed_comparison;
 mod layout;
 mod limits;
+mod linuxcnc;
 mod mill;
 mod process;
 mod programs;

@@ -556,7 +556,7 @@ mod interpreter_agrees_with_plain_programs {
 /// read past), not "defined but never called".
 #[test]
 fn linuxcnc_profile_subroutine_of_g71_counts_as_called() {
-    let text = "G21 G18 G7\no100 sub\nG1 X10 Z0\nG1 X12 Z-1\no100 endsub\nG0 X22 Z2\nG71 Q100 X20 Z2 D1\nG0 X12 Z2\nG33 Z-10 K1.5\nG0 X20\nM2\n";
+    let text = "G21 G18 G7 S500 M3\no100 sub\nG1 X10 Z0\nG1 X12 Z-1\no100 endsub\nG0 X22 Z2\nG71 Q100 X20 Z2 D1\nG0 X12 Z2\nG33 Z-10 K1.5\nG0 X20\nM2\n";
     let p = read_program(text, "g71.ngc", Dialect::LinuxCnc).unwrap();
     assert_eq!(p.passes.len(), 1);
     assert!(p.notes.iter().all(|n| !n.to_string().contains("never called")), "{:?}", p.notes);

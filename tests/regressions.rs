@@ -71,8 +71,9 @@ fn a_long_flat_sum_is_one_level_deep() {
         assert_eq!(p.passes.len(), 1);
         assert_eq!(p.passes[0].lead, 1.5, "{terms} terms");
         // LinuxCNC: the same sum in a named parameter.
-        let text =
-            format!("#<lead>=[{sum}]\nG21 G18 G7\nG0 X12 Z5\nX9.2\nG33 Z-20 K#<lead>\nG0 X12\nZ5\nM2\n");
+        let text = format!(
+            "#<lead>=[{sum}]\nG21 G18 G7 S500 M3\nG0 X12 Z5\nX9.2\nG33 Z-20 K#<lead>\nG0 X12\nZ5\nM2\n"
+        );
         let p = threadcheck::read_program(&text, "sum.ngc", threadcheck::Dialect::LinuxCnc).unwrap();
         assert_eq!(p.passes[0].lead, 1.5, "{terms} terms, LinuxCNC");
     }
@@ -173,7 +174,7 @@ fn a_replaced_output_keeps_its_mode() {
 #[test]
 fn linuxcnc_runs_the_else_after_a_false_if() {
     let head = "#<j>=0.1\n";
-    let tail = "G7 G21 G18\nG0 X11 Z2\nG8\nG76 P1.5 Z-20 I-1 J#<j> K1.0\nM2\n";
+    let tail = "G7 G21 G18 S500 M3\nG0 X11 Z2\nG8\nG76 P1.5 Z-20 I-1 J#<j> K1.0\nM2\n";
     for (flow, passes) in [
         ("o1 if [0]\n#<j>=0.2\no1 else\n#<j>=0.3\no1 endif\n", 4),
         ("o1 if [1]\n#<j>=0.2\no1 else\n#<j>=0.3\no1 endif\n", 5),
@@ -193,7 +194,7 @@ fn linuxcnc_runs_the_else_after_a_false_if() {
 /// pass is at 22 − 1 − 0.3 = X20.7 from Z3.
 #[test]
 fn linuxcnc_position_parameters_are_current_on_assignment_lines() {
-    let text = "G7 G21 G18 G90\nG0 X20 Z3\nG1 Z-5 F0.1\n#<z0>=#<_z>\n#1=#<_x>\nG0 X[#1*2+2] Z[#<z0>+8]\nG76 P1.5 Z-20 I-1 J0.3 K1.0\nM2\n";
+    let text = "G7 G21 G18 G90 S500 M3\nG0 X20 Z3\nG1 Z-5 F0.1\n#<z0>=#<_z>\n#1=#<_x>\nG0 X[#1*2+2] Z[#<z0>+8]\nG76 P1.5 Z-20 I-1 J0.3 K1.0\nM2\n";
     let p = threadcheck::read_program(text, "sys.ngc", threadcheck::Dialect::LinuxCnc).unwrap();
     assert!((p.passes[0].x_start - 20.7).abs() < 1e-9, "{:?}", p.passes[0]);
     assert!((p.passes[0].z_start - 3.0).abs() < 1e-9, "{:?}", p.passes[0]);
@@ -208,7 +209,7 @@ fn linuxcnc_position_parameters_are_current_on_assignment_lines() {
 fn linuxcnc_g76_counts_passes_and_reads_q_l_f_as_linuxcnc_does() {
     let read = |g76: &str| {
         threadcheck::read_program(
-            &format!("G18 G21 G90\nG0 X11 Z2\n{g76}\nM2\n"),
+            &format!("G18 G21 G90 S500 M3\nG0 X11 Z2\n{g76}\nM2\n"),
             "g76.ngc",
             threadcheck::Dialect::LinuxCnc,
         )
@@ -227,7 +228,7 @@ fn linuxcnc_g76_counts_passes_and_reads_q_l_f_as_linuxcnc_does() {
 /// 0.6, 0.9, 1.0), J0.1 10.
 #[test]
 fn linuxcnc_comparisons_and_mod_follow_its_interpreter() {
-    let tail = "G7 G21 G18\nG0 X11 Z2\nG8\nG76 P1.5 Z-20 I-1 J#<j> K1.0\nM2\n";
+    let tail = "G7 G21 G18 S500 M3\nG0 X11 Z2\nG8\nG76 P1.5 Z-20 I-1 J#<j> K1.0\nM2\n";
     for flow in [
         "#<j>=0.1\no1 if [0.3 EQ 0.3000005]\n#<j>=0.3\no1 endif\n",
         "#<j>=0.1\no1 if [0.3000005 LE 0.3]\n#<j>=0.3\no1 endif\n",
@@ -247,7 +248,149 @@ fn linuxcnc_comparisons_and_mod_follow_its_interpreter() {
 /// words): J becomes 0.3, and G76 I-1 J0.3 K1.0 cuts 4 passes (10 with J0.1).
 #[test]
 fn linuxcnc_position_parameters_are_current_in_conditions() {
-    let text = "G7 G21 G18 G90\nG0 X20 Z3\nG1 Z-5 F0.1\n#<j>=0.1\no1 if [#<_z> LT -4]\n#<j>=0.3\no1 endif\nG0 X22 Z3\nG76 P1.5 Z-20 I-1 J#<j> K1.0\nM2\n";
+    let text = "G7 G21 G18 G90 S500 M3\nG0 X20 Z3\nG1 Z-5 F0.1\n#<j>=0.1\no1 if [#<_z> LT -4]\n#<j>=0.3\no1 endif\nG0 X22 Z3\nG76 P1.5 Z-20 I-1 J#<j> K1.0\nM2\n";
     let p = threadcheck::read_program(text, "cond.ngc", threadcheck::Dialect::LinuxCnc).unwrap();
     assert_eq!(p.passes.len(), 4);
+}
+
+/// Reads a LinuxCNC program (current release rules unless `before_29`) and gives its passes'
+/// tip diameter, start Z and end Z.
+fn linuxcnc_passes(text: &str, before_29: bool) -> Result<Vec<(f64, f64, f64)>, String> {
+    let opts = threadcheck::ReadOptions {
+        linuxcnc: if before_29 {
+            threadcheck::LinuxCncRelease::Before29
+        } else {
+            threadcheck::LinuxCncRelease::Current
+        },
+        ..threadcheck::ReadOptions::default()
+    };
+    threadcheck::read_program_with(text, "p.ngc", threadcheck::Dialect::LinuxCnc, opts)
+        .map(|p| p.passes.iter().map(|q| (q.x_start, q.z_start, q.z_end)).collect())
+        .map_err(|e| e.to_string())
+}
+
+/// Issue 26, item 5: work offsets between passes (G10 L2, G55, G92, G92.1, G54) move the
+/// program's coordinates, not the passes already cut; each pass stands where the machine cut
+/// it, in the coordinates the program started in. By hand (G7, X diameters; LinuxCNC's rs274
+/// prints the same with its offsets): G10 L2 P2 X0.4 Z-2 and G55 put X9 Z5…-8 at Ø9.4,
+/// Z3…-10, over the first pass. G92 X10 Z1 at program X12 Z-8 (G55) sets the G92 offset to
+/// Ø2 and Z-9, so X8.8 Z1…-9 is Ø8.8 + 0.4 + 2 = Ø11.2, Z1 − 2 − 9 = -10 … -20. G92.1 and G54
+/// return to the first coordinates: X8.6 Z3…-10 is Ø8.6, Z3…-10.
+#[test]
+fn linuxcnc_work_offsets_between_passes_move_the_program_not_the_passes() {
+    let text = "G18 G21 G90 G7 S500 M3\nG0 X12 Z3\nG1 X9.4 F100\nG33 Z-10 K1.5\nG0 X12\n\
+                G10 L2 P2 X0.4 Z-2\nG55\nG0 Z5\nG1 X9\nG33 Z-8 K1.5\nG0 X12\n\
+                G92 X10 Z1\nG1 X8.8\nG33 Z-9 K1.5\nG0 X12\nG92.1\nG54\nG0 Z3\nG1 X8.6\nG33 Z-10 K1.5\nM5\nM2\n";
+    let got = linuxcnc_passes(text, false).unwrap();
+    let want = [(9.4, 3.0, -10.0), (9.4, 3.0, -10.0), (11.2, -10.0, -20.0), (8.6, 3.0, -10.0)];
+    assert_eq!(got.len(), want.len());
+    for (g, w) in got.iter().zip(want) {
+        assert!((g.0 - w.0).abs() < 1e-9 && (g.1 - w.1).abs() < 1e-9 && (g.2 - w.2).abs() < 1e-9, "{got:?}");
+    }
+}
+
+/// Issue 26, item 5: LinuxCNC refuses G33 and G76 with the spindle stopped ("Spindle not
+/// turning in G33"); a tool change (M6) and M5 stop it, M3 and M4 start it.
+#[test]
+fn linuxcnc_refuses_threading_with_the_spindle_stopped() {
+    let cut = "G0 X12 Z3\nG1 X9.4 F100\nG33 Z-10 K1.5\nM2\n";
+    for (head, ok) in [
+        ("", false),
+        ("S500 M3\n", true),
+        ("S500 M4\n", true),
+        ("S500 M3\nM5\n", false),
+        ("S500 M3\nT1 M6\n", false),
+        ("T1 M6 S500 M3\n", true),
+    ] {
+        let r = linuxcnc_passes(&format!("G18 G21 G90 G7\n{head}{cut}"), false);
+        assert_eq!(r.is_ok(), ok, "{head:?}: {r:?}");
+        if let Err(e) = r {
+            assert!(e.contains("spindle stopped"), "{e}");
+        }
+    }
+}
+
+/// Issue 26: LinuxCNC breaks out of and continues while and do loops only; `o1 break` in a
+/// repeat loop is its error "no matching while/do label".
+#[test]
+fn linuxcnc_break_in_a_repeat_loop_is_refused() {
+    let text =
+        "G18 G21 G90 G7 S500 M3\nG0 X12 Z3\no1 repeat [3]\nG33 Z-10 K1.5\no1 break\no1 endrepeat\nM2\n";
+    let e = linuxcnc_passes(text, false).unwrap_err();
+    assert!(e.contains("repeat loop"), "{e}");
+}
+
+/// Issue 26, found by the conformance test: after `continue`, LinuxCNC skips to the next line
+/// with the loop's name, and a `break` there runs even in a branch not taken. In a do-while
+/// loop the break wins: the continue on turn 2 ends the loop (1 pass). In a while loop the
+/// continue's flag wins at `endwhile` and the loop goes on: passes on turns 1, 3 and 4, the
+/// break of turn 5 ends it (3 passes). And the `break` of a while loop leaves its flag set, so
+/// the next do-while loop runs once instead of three times. (rs274 of Debian's
+/// linuxcnc-uspace cuts 1, 3 and 1 passes; interp_o_word.cc reads the same today.)
+#[test]
+fn linuxcnc_follows_its_interpreter_through_break_and_continue() {
+    let body = "#1 = [#1 + 1]\no2 if [#1 EQ 2]\no1 continue\no2 elseif [#1 GT 4]\no1 break\no2 endif\n\
+                G0 X5\nG33 Z-10 K1.5\nG0 X12\nZ2\n";
+    let head = "G18 G21 G90 G8 S500 M3\nG0 X12 Z2\n#1 = 0\n";
+    let do_loop = format!("{head}o1 do\n{body}o1 while [#1 LT 5]\nM2\n");
+    assert_eq!(linuxcnc_passes(&do_loop, false).unwrap().len(), 1);
+    let while_loop = format!("{head}o1 while [#1 LT 5]\n{body}o1 endwhile\nM2\n");
+    assert_eq!(linuxcnc_passes(&while_loop, false).unwrap().len(), 3);
+    // A while loop left by break, then a do-while loop of three turns: it runs once.
+    let text = "G18 G21 G90 G8 S500 M3\nG0 X12 Z2\n#1 = 0\no1 while [#1 LT 5]\n#1 = [#1 + 1]\no1 break\n\
+                o1 endwhile\n#2 = 0\no3 do\n#2 = [#2 + 1]\nG0 X5\nG33 Z-10 K1.5\nG0 X12\nZ2\n\
+                o3 while [#2 LT 3]\nM2\n";
+    assert_eq!(linuxcnc_passes(text, false).unwrap().len(), 1);
+}
+
+/// Issue 26, found by the conformance test: an `endsub` or `return` without a value sets
+/// `#<_value>` to 0 (LinuxCNC's interp_read.cc), so a test of the value after a plain call
+/// reads 0, not the value an earlier call returned: here the break never comes, 3 passes.
+#[test]
+fn linuxcnc_a_return_without_a_value_zeroes_value() {
+    let text = "G18 G21 G90 G8 S500 M3\no<d> sub\no<d> return [1]\no<d> endsub\n\
+                o<p> sub\nG0 X5\nG33 Z-10 K1.5\nG0 X12\nZ2\no<p> endsub\nG0 X12 Z2\n#1 = 0\n\
+                o1 while [#1 LT 3]\n#1 = [#1 + 1]\no<d> call\no<p> call\n\
+                o2 if [#<_value> EQ 1]\no1 break\no2 endif\no1 endwhile\nM2\n";
+    assert_eq!(linuxcnc_passes(text, false).unwrap().len(), 3);
+}
+
+/// Issue 26, found by the conformance test: spaces mean nothing to LinuxCNC, so `1 EQ ACOS[1]`
+/// is `1EQACOS[1]`, and the operator is EQ followed by ACOS (it was "']' missing").
+#[test]
+fn linuxcnc_an_operator_runs_into_the_word_after_it() {
+    let text = "G18 G21 G90 G8 S500 M3\n#1 = [0 EQ ACOS[1]]\nG0 X12 Z2\nG1 X[5 + #1]\nG33 Z-10 K1.5\nM2\n";
+    assert_eq!(linuxcnc_passes(text, false).unwrap()[0].0, 12.0);
+}
+
+/// Issue 26, found by the conformance test: LinuxCNC turns degrees into radians and back in
+/// long double, rounding once; `ASIN[SIN[3]]` is 3 there (rs274 prints 3 MOD 0.02 =
+/// 0.020000 for it) where two roundings give 3.0000000000000004, whose MOD 0.02 is 0: the
+/// pass below is at radius 5 + 100·0.02 = 7, Ø14, under LinuxCNC.
+#[test]
+fn linuxcnc_degrees_are_rounded_once_as_its_interpreter_does() {
+    let text = "G18 G21 G90 G8 S500 M3\n#1 = [ABS[ASIN[SIN[3]]] MOD 0.02]\nG0 X12 Z2\nG1 X[5 + 100 * #1]\nG33 Z-10 K1.5\nM2\n";
+    assert!((linuxcnc_passes(text, false).unwrap()[0].0 - 14.0).abs() < 1e-9);
+}
+
+/// Issue 26, item 4: LinuxCNC before 2.9.0 (Debian 12's package among them) compares EQ and NE
+/// within 1e-4 and LE, GE exactly; 2.9.0 and later compare all four within 1e-6. Here the
+/// loop `while [#1 LE 0.0375]` after 75 steps of 0.0005 (the sum is 0.0375000000000000x) runs
+/// 75 times before 2.9, 76 from 2.9 on; `--linuxcnc-release before-2.9` chooses the old rules
+/// from the command line.
+#[test]
+fn linuxcnc_release_before_2_9_compares_as_debian_s_interpreter() {
+    let text = "G18 G21 G90 G8 S500 M3\n#1 = 0\no1 while [#1 LE 0.0375]\nG0 X12 Z2\nG1 X[5 - #1]\nG33 Z-10 K1.5\nG0 X12\n#1 = [#1 + 0.0005]\no1 endwhile\nM2\n";
+    assert_eq!(linuxcnc_passes(text, true).unwrap().len(), 75);
+    assert_eq!(linuxcnc_passes(text, false).unwrap().len(), 76);
+    let eq = "G18 G21 G90 G8 S500 M3\nG0 X12 Z2\no1 if [1 EQ 1.00005]\nG1 X5\no1 else\nG1 X6\no1 endif\nG33 Z-10 K1.5\nM2\n";
+    assert_eq!(linuxcnc_passes(eq, true).unwrap()[0].0, 10.0);
+    assert_eq!(linuxcnc_passes(eq, false).unwrap()[0].0, 12.0);
+    let dir = crate::tempdir("release");
+    std::fs::write(dir.join("eq.ngc"), eq).unwrap();
+    let o =
+        crate::run_in(&dir, &["passes", "--program", "eq.ngc", "--linuxcnc-release", "before-2.9", "--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", crate::stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["passes"][0]["x_start"], 10.0);
 }

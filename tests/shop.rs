@@ -95,8 +95,11 @@ fn the_extension_chooses_the_dialect_and_says_so() {
     let dir = tempdir("ext");
     // LinuxCNC G76 in G7 diameter mode, M10x1.5 by hand: the drive line X11 and I-1 put the
     // crest at Ø10; K0.92 is the radial thread depth to the tip.
-    std::fs::write(dir.join("m10.ngc"), "G21 G7 G18\nG0 X12 Z3\nG76 P1.5 Z-15 I-1 J0.2 K0.92 Q29.5 H1\nM2\n")
-        .unwrap();
+    std::fs::write(
+        dir.join("m10.ngc"),
+        "G21 G7 G18 S500 M3\nG0 X12 Z3\nG76 P1.5 Z-15 I-1 J0.2 K0.92 Q29.5 H1\nM2\n",
+    )
+    .unwrap();
     let o = run_in(&dir, &["verify", "--program", "m10.ngc", "--thread", "M10x1.5-6g"]);
     assert!(o.status.code() == Some(0) || o.status.code() == Some(1), "{}", stderr(&o));
     let out = stdout(&o);

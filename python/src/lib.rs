@@ -28,6 +28,7 @@ fn spec(
     allow_nonstandard: bool,
     default_units: Option<&str>,
     main: Option<&str>,
+    linuxcnc_release: &str,
 ) -> Result<VerifySpec, threadcheck::Error> {
     let mut s = VerifySpec::new(threads.first().map_or("", String::as_str));
     s.internal = internal;
@@ -57,6 +58,7 @@ fn spec(
             })
         })
         .transpose()?;
+    s.reading.linuxcnc = linuxcnc_release.parse()?;
     Ok(s)
 }
 
@@ -65,7 +67,8 @@ fn spec(
 #[pyfunction]
 #[pyo3(signature = (command, threads, program=None, dialect="fanuc", insert=None, final_x=None,
     internal=false, infeed=None, passes=None, blank_diameter=None, gauge_only=false,
-    allow_nonstandard=false, program_name="<program>", default_units=None, main=None))]
+    allow_nonstandard=false, program_name="<program>", default_units=None, main=None,
+    linuxcnc_release="current"))]
 #[allow(clippy::too_many_arguments)]
 fn job_json(
     py: Python<'_>,
@@ -84,6 +87,7 @@ fn job_json(
     program_name: &str,
     default_units: Option<&str>,
     main: Option<&str>,
+    linuxcnc_release: &str,
 ) -> PyResult<(String, bool)> {
     let run = || -> Result<(String, bool), threadcheck::Error> {
         let verify = match command {
@@ -125,6 +129,7 @@ fn job_json(
             allow_nonstandard,
             default_units,
             main,
+            linuxcnc_release,
         )?;
         spec.gauge_only = gauge_only;
         let (text, outcome) = if verify {

@@ -147,3 +147,16 @@ def test_main_and_default_units_reach_the_reader():
     assert abs(inch["passes"][0]["x_end"] - 10.16) < 1e-9
     with pytest.raises(ValueError, match="not an O-program number"):
         threadcheck.passes(program=TWO_PROGRAMS, main="P12")
+
+
+def test_linuxcnc_release_reaches_the_reader():
+    # 1 EQ 1.00005: equal within LinuxCNC's 1e-4 before 2.9.0 (X5, Ø10), not within 1e-6 after
+    # (X6, Ø12), as the interpreters compare.
+    eq = ("G18 G21 G90 G8 S500 M3\nG0 X12 Z2\no1 if [1 EQ 1.00005]\nG1 X5\no1 else\nG1 X6\n"
+          "o1 endif\nG33 Z-10 K1.5\nM2\n")
+    old = threadcheck.passes(program=eq, dialect="linuxcnc", linuxcnc_release="before-2.9")
+    new = threadcheck.passes(program=eq, dialect="linuxcnc")
+    assert old["passes"][0]["x_start"] == 10.0
+    assert new["passes"][0]["x_start"] == 12.0
+    with pytest.raises(ValueError, match="unknown LinuxCNC release"):
+        threadcheck.passes(program=eq, dialect="linuxcnc", linuxcnc_release="2.8")

@@ -19,7 +19,8 @@ __version__ = _threadcheck.__version__
 
 def verify(thread, program=None, dialect="fanuc", insert=None, final_x=None, internal=False,
            infeed=None, passes=None, blank_diameter=None, gauge_only=False,
-           allow_nonstandard=False, program_name="<program>", default_units=None, main=None):
+           allow_nonstandard=False, program_name="<program>", default_units=None, main=None,
+           linuxcnc_release="current"):
     """``threadcheck verify --json -``.
 
     ``thread`` is a designation with its class (``"M20x1.5-6g"``), or a list of them, one per
@@ -32,6 +33,9 @@ def verify(thread, program=None, dialect="fanuc", insert=None, final_x=None, int
     ``default_units`` (``"mm"``/``"inch"``) reads a program that sets no units as an inch or
     metric control would; ``main`` (``"O3101"``) picks the main program of a text that holds
     several O-programs (else the one no other calls, said in ``notes``).
+    ``linuxcnc_release`` (``"current"``/``"before-2.9"``) chooses the comparison rules of a
+    ``linuxcnc`` program: EQ, NE, LE, GE within 1e-6 from LinuxCNC 2.9.0 on, EQ and NE within
+    1e-4 and LE, GE exact before (Debian 12's package).
     The dict has ``verdict`` (``"pass"``/``"fail"``); a program's report has ``operations``.
     """
     threads = [thread] if isinstance(thread, str) else list(thread)
@@ -39,7 +43,7 @@ def verify(thread, program=None, dialect="fanuc", insert=None, final_x=None, int
         "verify", threads, program=program, dialect=dialect, insert=insert, final_x=final_x,
         internal=internal, infeed=infeed, passes=passes, blank_diameter=blank_diameter,
         gauge_only=gauge_only, allow_nonstandard=allow_nonstandard, program_name=program_name,
-        default_units=default_units, main=main)
+        default_units=default_units, main=main, linuxcnc_release=linuxcnc_release)
     return _json.loads(text)
 
 
@@ -50,11 +54,12 @@ def limits(designation, allow_nonstandard=False):
 
 def passes(thread=None, program=None, dialect="fanuc", insert=None, final_x=None, internal=False,
            infeed=None, passes=None, blank_diameter=None, allow_nonstandard=False,
-           program_name="<program>", default_units=None, main=None):
+           program_name="<program>", default_units=None, main=None, linuxcnc_release="current"):
     """``threadcheck passes --json``: the passes of a generated plan or of a program's text."""
     text, _ok = _threadcheck.job_json(
         "passes", [] if thread is None else [thread], program=program, dialect=dialect,
         insert=insert, final_x=final_x, internal=internal, infeed=infeed, passes=passes,
         blank_diameter=blank_diameter, allow_nonstandard=allow_nonstandard,
-        program_name=program_name, default_units=default_units, main=main)
+        program_name=program_name, default_units=default_units, main=main,
+        linuxcnc_release=linuxcnc_release)
     return _json.loads(text)

@@ -35,6 +35,9 @@ enum GRole {
     /// A canned cycle that is not threading (drilling, tapping, boring): modal, its blocks are
     /// read past and leave the position unknown.
     OtherCycle,
+    /// A coordinate-system code the dialect applies itself (LinuxCNC's G10 L2/L20, G52,
+    /// G54–G59.3, G92 and its kin): G10 and G52 take the block's words as data, not a move.
+    Coordinates,
     /// Fanuc and Haas lathes' box cycles G90 (turning) and G94 (facing): modal, read past,
     /// each returns to its start point.
     BoxCycle,
@@ -67,8 +70,7 @@ fn g_role(d: Dialect, g: u32, lathe: bool) -> GRole {
         },
         Dialect::LinuxCnc => match g {
             40..=43 | 49 | 61 | 64 | 93..=95 | 98 | 99 => Setting,
-            54..=59 => Offset,
-            10 => Data,
+            10 | 52 | 54..=59 | 92 => Coordinates,
             73 | 74 | 81..=89 => OtherCycle,
             _ => Unknown,
         },
@@ -142,10 +144,9 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
         if g.fract() != 0.0 {
             let base = g.trunc();
             match (d, g) {
-                (Dialect::LinuxCnc, 92.1 | 92.2) => {
-                    m.offset = [0.0; 3];
-                    one_shot = Some(g);
-                }
+                // Applied by the dialect (linuxcnc.rs) after the modal codes.
+                (Dialect::LinuxCnc, 92.1 | 92.2 | 92.3) => one_shot = Some(g),
+                (Dialect::LinuxCnc, 59.1 | 59.2 | 59.3) => {}
                 (Dialect::LinuxCnc, 33.1) => {
                     return Err(m.err(
                         b.line,
@@ -210,6 +211,11 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                 GRole::Data => {
                     one_shot = Some(g);
                     offset = Some(format!("G{g}, data setting"));
+                }
+                GRole::Coordinates => {
+                    if c == 10 || c == 52 {
+                        one_shot = Some(g);
+                    }
                 }
                 GRole::OtherCycle | GRole::BoxCycle => motion = Some((g, col)),
                 GRole::Unknown => unknown.push((g, col)),
@@ -338,26 +344,6 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
                     "X" => m.x = Some(m.x_dia(w)),
                     "Z" => m.z = Some(m.len(w)),
                     "U" | "W" => m.lose_position(b.line, "G50 with U or W, a coordinate shift", true, true),
-                    _ => {}
-                }
-            }
-            m.skipped += 1;
-            return Ok(());
-        }
-        Some(92.0) if m.dialect == Dialect::LinuxCnc => {
-            // LinuxCNC G92: the current point gets the given coordinates.
-            for w in &b.words {
-                match w.name {
-                    "X" => {
-                        if let Some(x) = m.x {
-                            m.offset[0] = x - m.x_dia(w);
-                        }
-                    }
-                    "Z" => {
-                        if let Some(z) = m.z {
-                            m.offset[2] = z - m.len(w);
-                        }
-                    }
                     _ => {}
                 }
             }

@@ -168,15 +168,19 @@ pub enum Expr {
 
 /// Where the evaluator reads variables.
 /// How comparisons and MOD behave: LinuxCNC's interpreter compares EQ, NE, LE and GE with an
-/// absolute tolerance of 1e-6 (`TOLERANCE_EQUAL`) and gives MOD the divisor's magnitude's
-/// sign (never negative); the others compare within a relative 1e-9 and floor MOD.
+/// absolute tolerance of 1e-6 (`TOLERANCE_EQUAL`, from release 2.9.0 on; earlier builds compare
+/// EQ and NE within 1e-4 and LE, GE exactly) and gives MOD the divisor's magnitude's sign
+/// (never negative); the others compare within a relative 1e-9 and floor MOD.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Arithmetic {
     /// Relative 1e-9 for EQ/NE, exact LE/GE, MOD by floor division.
     #[default]
     Exact,
-    /// LinuxCNC's: absolute 1e-6 for EQ/NE/LE/GE, MOD never negative.
+    /// LinuxCNC 2.9.0 and later: absolute 1e-6 for EQ/NE/LE/GE, MOD never negative.
     LinuxCnc,
+    /// LinuxCNC before 2.9.0 (Debian 12's 2.9.0~pre1 package among them): absolute 1e-4 for
+    /// EQ/NE, exact LE/GE, MOD never negative.
+    LinuxCncBefore29,
 }
 
 pub trait Env {
@@ -227,17 +231,44 @@ pub fn key_of(v: &VarRef, env: &mut dyn Env) -> Result<VarKey, String> {
     }
 }
 
+/// The low part of π: `PI + PI_LO` is π to about 107 bits.
+const PI_LO: f64 = 1.2246467991473532e-16;
+
+/// Degrees to radians rounded once, as LinuxCNC's `(x·π)/180` in long double does (its
+/// `M_PIl`); `to_radians` rounds twice and can be an ulp off, which a MOD after it magnifies.
+fn deg_to_rad(x: f64) -> f64 {
+    use std::f64::consts::PI;
+    let p = x * PI;
+    let e = x.mul_add(PI, -p) + x * PI_LO;
+    let q = p / 180.0;
+    let r = (-q).mul_add(180.0, p) + e;
+    q + r / 180.0
+}
+
+/// Radians to degrees rounded once (LinuxCNC's `(a·180)/π` in long double).
+fn rad_to_deg(a: f64) -> f64 {
+    use std::f64::consts::PI;
+    let p = a * 180.0;
+    let e = a.mul_add(180.0, -p);
+    let q = p / PI;
+    let r = (-q).mul_add(PI, p) + e - q * PI_LO;
+    q + r / PI
+}
+
 /// One binary operator on two values: EQ and NE tell null from 0 (Fanuc), the other operators
 /// read null as 0.
 fn apply(op: BinOp, x: Value, y: Value, arith: Arithmetic) -> Result<f64, String> {
-    // LinuxCNC: two numbers within 1e-6 are equal (its TOLERANCE_EQUAL), for EQ, NE, LE, GE.
+    // LinuxCNC: two numbers within 1e-6 are equal (its TOLERANCE_EQUAL), for EQ, NE, LE, GE;
+    // before 2.9.0 within 1e-4, for EQ and NE only.
     let near = |x: f64, y: f64| (x - y).abs() < 1e-6;
+    let near_before_29 = |x: f64, y: f64| (x - y).abs() < 1e-4;
     if matches!(op, BinOp::Eq | BinOp::Ne) {
         let eq = match (x, y) {
             (None, None) => true,
             (Some(x), Some(y)) => match arith {
                 Arithmetic::Exact => (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0),
                 Arithmetic::LinuxCnc => near(x, y),
+                Arithmetic::LinuxCncBefore29 => near_before_29(x, y),
             },
             _ => false,
         };
@@ -263,7 +294,7 @@ fn apply(op: BinOp, x: Value, y: Value, arith: Arithmetic) -> Result<f64, String
             match arith {
                 Arithmetic::Exact => x - y * (x / y).floor(),
                 // fmod, then the divisor's magnitude added to a negative result.
-                Arithmetic::LinuxCnc => {
+                Arithmetic::LinuxCnc | Arithmetic::LinuxCncBefore29 => {
                     let r = x % y;
                     if r < 0.0 {
                         r + y.abs()
@@ -321,25 +352,25 @@ pub fn eval(e: &Expr, env: &mut dyn Env, depth: usize) -> Result<Value, String> 
             }
             let a = num(&args[0], env)?;
             match f {
-                Func::Sin => a.to_radians().sin(),
-                Func::Cos => a.to_radians().cos(),
-                Func::Tan => a.to_radians().tan(),
+                Func::Sin => deg_to_rad(a).sin(),
+                Func::Cos => deg_to_rad(a).cos(),
+                Func::Tan => deg_to_rad(a).tan(),
                 Func::Asin => {
                     if !(-1.0..=1.0).contains(&a) {
                         return Err(format!("ASIN of {a}: outside −1 … 1"));
                     }
-                    a.asin().to_degrees()
+                    rad_to_deg(a.asin())
                 }
                 Func::Acos => {
                     if !(-1.0..=1.0).contains(&a) {
                         return Err(format!("ACOS of {a}: outside −1 … 1"));
                     }
-                    a.acos().to_degrees()
+                    rad_to_deg(a.acos())
                 }
-                Func::Atan => a.atan().to_degrees(),
+                Func::Atan => rad_to_deg(a.atan()),
                 Func::Atan2Full | Func::Atan2Signed => {
                     let x = num(&args[1], env)?;
-                    let d = a.atan2(x).to_degrees();
+                    let d = rad_to_deg(a.atan2(x));
                     if *f == Func::Atan2Full && d < 0.0 {
                         d + 360.0
                     } else {
@@ -483,7 +514,16 @@ impl<'a> Parser<'a> {
             // Formulas have no word operators: a word there is a name, not an operator.
             return None;
         } else if c.is_ascii_alphabetic() {
-            let w = self.letters_at(i);
+            let mut w = self.letters_at(i);
+            // Where spaces mean nothing (all but Sinumerik), an operator runs straight into the
+            // word after it: `1 EQ ACOS[1]` reads as `1EQACOS[1]`, and the operator is the
+            // letters it starts with (LinuxCNC's read_operation).
+            if self.syntax != Syntax::Sinumerik {
+                const WORD_OPS: [&str; 10] = ["MOD", "AND", "XOR", "OR", "EQ", "NE", "GT", "GE", "LT", "LE"];
+                if let Some(op) = WORD_OPS.iter().find(|o| w.starts_with(**o)) {
+                    w = (*op).to_string();
+                }
+            }
             let bitwise = matches!(self.syntax, Syntax::MacroB | Syntax::Dyna);
             let op = match w.as_str() {
                 "EQ" if self.syntax != Syntax::Sinumerik => BinOp::Eq,

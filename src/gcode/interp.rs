@@ -419,7 +419,8 @@ fn layout(blocks: &[Block], lang: Language, m: &mut Motion, main: Option<u32>) -
                         OKw::EndSub => {
                             let (j, _) = close(&[OKw::Sub], &mut ostack)?;
                             l.pair.insert(j, i);
-                            l.subs.insert(name.clone(), (j + 1, i));
+                            // The endsub itself runs (it returns, and sets #<_value>).
+                            l.subs.insert(name.clone(), (j + 1, i + 1));
                         }
                         OKw::EndWhile => {
                             let (j, _) = close(&[OKw::While], &mut ostack)?;
@@ -450,12 +451,19 @@ fn layout(blocks: &[Block], lang: Language, m: &mut Motion, main: Option<u32>) -
                             }
                         }
                         OKw::Break | OKw::Continue => {
+                            // LinuxCNC breaks out of while and do loops only: a repeat loop's
+                            // name is no label for break or continue (interp_o_word.cc).
+                            if ostack.iter().rev().any(|(_, n, k)| n == name && *k == OKw::Repeat) {
+                                return Err(perr(
+                                    b,
+                                    *col,
+                                    format!("o{name} {}: o{name} is a repeat loop, and LinuxCNC breaks out of and continues while and do loops only", okw(*kw)),
+                                ));
+                            }
                             let head = ostack
                                 .iter()
                                 .rev()
-                                .find(|(_, n, k)| {
-                                    n == name && matches!(k, OKw::While | OKw::Do | OKw::Repeat)
-                                })
+                                .find(|(_, n, k)| n == name && matches!(k, OKw::While | OKw::Do))
                                 .map(|(j, _, _)| *j)
                                 .ok_or_else(|| {
                                     perr(
@@ -561,6 +569,14 @@ pub(crate) fn run(
     let mut called: HashSet<String> = HashSet::new();
     // The branch of an if chain being entered by a jump (evaluate it rather than skip it).
     let mut entering_branch = false;
+    // LinuxCNC's loop flags (interp_o_word.cc): after `break` or `continue` the interpreter
+    // skips to the next line that carries the loop's name, so a `break` of that loop further in
+    // the body runs even in a branch not taken; `doing_break` and `doing_continue` are global
+    // and outlive their loop: a loop end reached while skipping loops back when
+    // `doing_continue` is set, and the end of a do-while loop leaves it when `doing_break` is.
+    let (mut doing_break, mut doing_continue) = (false, false);
+    // The loop end is reached by skipping (after break or continue).
+    let mut skipping_to_end = false;
     loop {
         if pc >= end {
             // The end of a subprogram without M99/M17/endsub returns; the main program ends.
@@ -588,6 +604,7 @@ pub(crate) fn run(
         let mut next = pc + 1;
         let mut jumped_back = false;
         let mut skip_words = false;
+        let arrived_skipping = std::mem::take(&mut skipping_to_end);
         // Statements.
         let mut enter_branch = false;
         let mut assigns: Vec<(&VarRef, &Expr, usize, &str)> = Vec::new();
@@ -672,17 +689,20 @@ pub(crate) fn run(
                             skip_words = true;
                         }
                         OKw::EndSub | OKw::Return => {
-                            let value = match (kw, c) {
-                                (OKw::Return, Some(c)) => ev(c, &mut vars, col)?,
-                                _ => None,
+                            // An endsub or return with a value sets #<_value> and
+                            // #<_value_returned> to 1; one without sets both to 0 (LinuxCNC's
+                            // interp_read.cc).
+                            let value = match c {
+                                Some(c) => ev(c, &mut vars, col)?,
+                                None => None,
                             };
                             next = do_return(&mut frames, &mut end, &mut vars, &mut loops, None, &lay, file)?
                                 .ok_or_else(|| {
                                     perr(b, col, format!("o{name} {} outside a subroutine call", okw(*kw)))
                                 })?;
-                            if let Some(v) = value {
-                                vars.named_globals.insert("_value".into(), v);
-                            }
+                            let returned = if value.is_some() { 1.0 } else { 0.0 };
+                            vars.named_globals.insert("_value".into(), value.unwrap_or(0.0));
+                            vars.named_globals.insert("_value_returned".into(), returned);
                         }
                         OKw::Call => {
                             let mut vals = Vec::new();
@@ -731,17 +751,32 @@ pub(crate) fn run(
                                 None => false,
                             };
                             if closes_do {
-                                if t {
+                                if t && !doing_break {
                                     next = lay.pair[&pc] + 1;
                                     jumped_back = true;
+                                } else {
+                                    doing_break = false;
                                 }
                             } else if !t {
-                                next = lay.pair.get(&pc).copied().unwrap_or(pc) + 1;
+                                let tail = lay.pair.get(&pc).copied().unwrap_or(pc);
+                                doing_break |= break_between(blocks, pc, tail, name);
+                                next = tail;
+                                skipping_to_end = true;
                             }
                         }
-                        OKw::EndWhile => {
-                            next = lay.pair[&pc];
-                            jumped_back = true;
+                        OKw::EndWhile | OKw::EndRepeat => {
+                            let head = lay.pair[&pc];
+                            if arrived_skipping && !doing_continue {
+                                // Skipped here (a break, a false head): done.
+                                repeats.remove(&head);
+                            } else {
+                                // Skipped here after a continue: its flag is spent.
+                                if arrived_skipping {
+                                    doing_continue = false;
+                                }
+                                next = head;
+                                jumped_back = true;
+                            }
                         }
                         OKw::Do => {}
                         OKw::Repeat => {
@@ -753,14 +788,13 @@ pub(crate) fn run(
                             };
                             if left <= 0.0 {
                                 repeats.remove(&pc);
-                                next = lay.pair.get(&pc).copied().unwrap_or(pc) + 1;
+                                let tail = lay.pair.get(&pc).copied().unwrap_or(pc);
+                                doing_break |= break_between(blocks, pc, tail, name);
+                                next = tail;
+                                skipping_to_end = true;
                             } else {
                                 repeats.insert(pc, left - 1.0);
                             }
-                        }
-                        OKw::EndRepeat => {
-                            next = lay.pair[&pc];
-                            jumped_back = true;
                         }
                         OKw::If | OKw::ElseIf | OKw::Else => {
                             let head = *kw == OKw::If || entering_branch;
@@ -790,27 +824,18 @@ pub(crate) fn run(
                             }
                         }
                         OKw::EndIf => {}
-                        OKw::Break => {
+                        OKw::Break | OKw::Continue => {
+                            // Skip to the loop's end; a break of this loop on the way runs.
                             let head = lay.loop_of[&pc];
-                            repeats.remove(&head);
-                            let e = lay.pair.get(&head).copied().unwrap_or(head);
-                            next = e.max(head) + 1;
-                        }
-                        OKw::Continue => {
-                            let head = lay.loop_of[&pc];
-                            // Back to the loop's test: the head of while/repeat, the closing while of do.
                             let tail = lay.pair.get(&head).copied().unwrap_or(head);
-                            next = match blocks[head].stmts.iter().find_map(|s| {
-                                if let Stmt::O { kw, .. } = s {
-                                    Some(*kw)
-                                } else {
-                                    None
-                                }
-                            }) {
-                                Some(OKw::Do) => tail,
-                                _ => head,
-                            };
-                            jumped_back = true;
+                            if *kw == OKw::Break {
+                                doing_break = true;
+                            } else {
+                                doing_continue = true;
+                            }
+                            doing_break |= break_between(blocks, pc, tail, name);
+                            next = tail;
+                            skipping_to_end = true;
                         }
                     }
                 }
@@ -1173,4 +1198,15 @@ impl Store for Vars {
         }
         v
     }
+}
+
+/// Whether a `break` of the loop named `name` lies strictly between blocks `from` and `to`:
+/// LinuxCNC's interpreter, skipping to the loop's end, stops at every line with the loop's name
+/// and runs a `break` it finds there (interp_o_word.cc, `O_break` while `skipping_o`).
+fn break_between(blocks: &[Block], from: usize, to: usize, name: &str) -> bool {
+    blocks.get(from + 1..to).is_some_and(|bs| {
+        bs.iter().any(|b| {
+            b.stmts.iter().any(|s| matches!(s, Stmt::O { kw: OKw::Break, name: n, .. } if n == name))
+        })
+    })
 }

@@ -12,9 +12,93 @@ use super::motion::{Motion, RBlock};
 use crate::Error;
 use std::collections::HashMap;
 
-/// LinuxCNC needs no modal state beyond the motion state.
+/// One offset along X (diameter), Y and Z, mm. An offset set from a position threadcheck does
+/// not know is a number relative to an arbitrary frame: `var` names that unknown (0 for none),
+/// so that a change of the total offset is known exactly when its unknowns cancel.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Offset {
+    v: [f64; 3],
+    var: [u32; 3],
+}
+
+/// LinuxCNC's coordinate systems and spindle, beyond the shared motion state.
 #[derive(Default)]
-pub(crate) struct State {}
+pub(crate) struct State {
+    /// The work offsets of G54…G59.3 (index 1–9; LinuxCNC's #5221…#5389), zero at the start
+    /// as in LinuxCNC's standalone interpreter without a parameter file.
+    g5x: [Offset; 10],
+    /// The coordinate system in force less one (0 = G54, … 8 = G59.3; #5220 is this plus 1).
+    system0: usize,
+    /// The G92 (or G52) offset in force, and the stored one G92.3 restores (#5211–#5213).
+    g92: Offset,
+    g92_stored: Offset,
+    /// The last unknown named.
+    vars: u32,
+    /// An X offset change was noted.
+    x_noted: bool,
+    /// The spindle turns (M3, M4): LinuxCNC refuses G33 and G76 with it stopped; M5, M19 and a
+    /// tool change (M6) stop it.
+    spindle_on: bool,
+}
+
+/// The coordinate system a G code selects (G54 … G59, G59.1 … G59.3 are 1 … 9).
+fn system_of(g: f64) -> Option<usize> {
+    match g {
+        54.0..=59.0 if g.fract() == 0.0 => Some(g as usize - 53),
+        59.1 => Some(7),
+        59.2 => Some(8),
+        59.3 => Some(9),
+        _ => None,
+    }
+}
+
+impl State {
+    fn system(&self) -> usize {
+        self.system0 + 1
+    }
+
+    /// A new unknown.
+    fn unknown(&mut self) -> u32 {
+        self.vars += 1;
+        self.vars
+    }
+
+    /// The unknowns of the total offset on each axis, in order.
+    fn unknowns(&self) -> [[u32; 2]; 3] {
+        let (w, g) = (self.g5x[self.system()], self.g92);
+        [0, 1, 2].map(|a| {
+            let mut u = [w.var[a], g.var[a]];
+            u.sort_unstable();
+            u
+        })
+    }
+
+    /// Sets the motion's offset to the work offset plus the G92 offset; where the change of
+    /// the total holds an unknown (`before` are the unknowns before it), the frame is lost
+    /// (`what` at `line` did it).
+    fn apply(&mut self, m: &mut Motion, before: [[u32; 2]; 3], line: usize, what: &str) {
+        let (w, g) = (self.g5x[self.system()], self.g92);
+        let after = self.unknowns();
+        let dx = w.v[0] + g.v[0] - m.offset[0];
+        if dx.abs() > 1e-9 && !self.x_noted {
+            self.x_noted = true;
+            m.note(
+                line,
+                1,
+                format!(
+                    "{what} moves X0 by Ø{}: threadcheck measures diameters from the X0 the program starts with (a lathe's X offsets keep X0 on the spindle axis; assumed)",
+                    crate::ground::fmt::fmt_num(dx)
+                ),
+            );
+        }
+        for a in 0..3 {
+            m.offset[a] = w.v[a] + g.v[a];
+            if before[a] != after[a] {
+                m.lose_frame(line, what);
+            }
+        }
+    }
+}
 
 /// The read-only system parameters, from the motion state, before each block.
 fn system_params(m: &Motion, sys: &mut HashMap<String, f64>) {
@@ -33,14 +117,163 @@ fn system_params(m: &Motion, sys: &mut HashMap<String, f64>) {
     sys.insert("_incremental".into(), if m.absolute { 0.0 } else { 1.0 });
 }
 
+/// M6, then M3/M4/M5/M19, in LinuxCNC's order of execution within a block.
+fn spindle(s: &mut State, b: &RBlock<'_>) {
+    if b.has_m(6.0) {
+        s.spindle_on = false;
+    }
+    if b.has_m(3.0) || b.has_m(4.0) {
+        s.spindle_on = true;
+    }
+    if b.has_m(5.0) || b.has_m(19.0) {
+        s.spindle_on = false;
+    }
+}
+
+/// The machine position along axis `a` (X diameter, Y, Z), mm.
+fn pos(m: &Motion, a: usize) -> Option<f64> {
+    [m.x, m.y, m.z][a]
+}
+
+fn set_pos(m: &mut Motion, a: usize, v: f64) {
+    match a {
+        0 => m.x = Some(v),
+        1 => m.y = Some(v),
+        _ => m.z = Some(v),
+    }
+}
+
+/// The block's X, Y, Z words as offsets in mm (X as a diameter).
+fn axis_words(m: &Motion, b: &RBlock<'_>) -> [Option<f64>; 3] {
+    [b.get("X").map(|w| m.x_dia(w)), b.get("Y").map(|w| m.len(w)), b.get("Z").map(|w| m.len(w))]
+}
+
+/// Applies the block's coordinate-system codes in LinuxCNC's order of execution (the system
+/// selection, then G10, G52 and the G92 series); true when the block is one of those data
+/// blocks and has no move of its own.
+fn coordinates(s: &mut State, m: &mut Motion, b: &RBlock<'_>, md: &cycles::Modal) -> Result<bool, Error> {
+    if let Some((sys, g)) = b.gs().find_map(|(g, _)| system_of(g).map(|k| (k, g))) {
+        if sys != s.system() {
+            let before = s.unknowns();
+            s.system0 = sys - 1;
+            // The machine position stays; the program coordinates move into the new system.
+            s.apply(m, before, b.line, &format!("G{g}"));
+        }
+    }
+    let Some(g) = md.one_shot else { return Ok(false) };
+    let col = b.gs().find(|(c, _)| *c == g).map_or(b.col, |x| x.1);
+    let words = axis_words(m, b);
+    let before = s.unknowns();
+    match g {
+        10.0 => {
+            let l = b.get("L").map(|w| w.v);
+            let (Some(l @ (2.0 | 20.0)), Some(p)) = (l, b.get("P")) else {
+                // G10 L1, L10, L11 (the tool table) and the rest: no coordinate system changes.
+                m.read_past(
+                    b.line,
+                    col,
+                    "G10",
+                    "tool-table data (only G10 L2 and L20 change coordinates here)",
+                );
+                m.skipped += 1;
+                return Ok(true);
+            };
+            let k = (p.v + 0.0001) as usize;
+            if !(p.v > -0.5 && k <= 9) {
+                return Err(b.werr(
+                    &m.file,
+                    p,
+                    "G10 P must be a coordinate system 0 to 9 (0 the one in force)",
+                ));
+            }
+            let k = if k == 0 { s.system() } else { k };
+            if b.get("R").is_some_and(|r| r.v != 0.0) {
+                m.lose_position(b.line, "G10 with R, a rotation of the XY plane", true, true);
+                m.lose_frame(b.line, "G10 with R, a rotation of the XY plane");
+                m.read_past(b.line, col, "G10 R", "a rotation of the XY plane, not modelled");
+            }
+            for (a, v) in words.iter().enumerate() {
+                let Some(v) = *v else { continue };
+                let fresh = s.unknown();
+                let o = &mut s.g5x[k];
+                if l == 2.0 {
+                    o.v[a] = v;
+                    o.var[a] = 0;
+                } else if let Some(p) = pos(m, a) {
+                    // L20: the current point gets the given coordinates in system k.
+                    o.v[a] = p - s.g92.v[a] - v;
+                    o.var[a] = if s.g92.var[a] == 0 { 0 } else { fresh };
+                } else {
+                    // From a position threadcheck does not know: the point gets its
+                    // coordinates, the offset is relative to an arbitrary frame.
+                    if k == s.system0 + 1 {
+                        set_pos(m, a, v + m.offset[a]);
+                        o.v[a] = m.offset[a] - s.g92.v[a];
+                    }
+                    o.var[a] = fresh;
+                }
+            }
+        }
+        52.0 | 92.0 => {
+            for (a, v) in words.iter().enumerate() {
+                let Some(v) = *v else { continue };
+                let fresh = s.unknown();
+                let w = s.g5x[s.system()];
+                if g == 52.0 {
+                    // G52: the offset itself.
+                    s.g92.v[a] = v;
+                    s.g92.var[a] = 0;
+                } else if let Some(p) = pos(m, a) {
+                    // G92: the current point gets the given coordinates.
+                    s.g92.v[a] = p - w.v[a] - v;
+                    s.g92.var[a] = if w.var[a] == 0 { 0 } else { fresh };
+                } else {
+                    set_pos(m, a, v + m.offset[a]);
+                    s.g92.v[a] = m.offset[a] - w.v[a];
+                    s.g92.var[a] = fresh;
+                }
+            }
+            s.g92_stored = s.g92;
+        }
+        92.1 | 92.2 => {
+            s.g92 = Offset::default();
+            if g == 92.1 {
+                s.g92_stored = Offset::default();
+            }
+        }
+        92.3 => s.g92 = s.g92_stored,
+        _ => return Ok(false),
+    }
+    s.apply(m, before, b.line, &format!("G{g}"));
+    m.break_chain();
+    m.skipped += 1;
+    Ok(true)
+}
+
 /// Runs one block.
-fn block(_s: &mut State, m: &mut Motion, b: &RBlock<'_>, _cx: &mut Ctx<'_>) -> Result<Flow, Error> {
+fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, _cx: &mut Ctx<'_>) -> Result<Flow, Error> {
     // G7/G8 with G76 in one block scale I, J, K twice in LinuxCNC (read the interpreter's
     // convert_lathe_diameter_mode and convert_threading_cycle); separate lines are right.
     let mode_and_g76 = b.gs().any(|(g, _)| g == 76.0) && b.gs().any(|(g, _)| g == 7.0 || g == 8.0);
     let md = cycles::modal(m, b)?;
+    spindle(s, b);
+    if coordinates(s, m, b, &md)? {
+        return Ok(Flow::Next);
+    }
     if b.has_m(2.0) || b.has_m(30.0) {
         return Ok(Flow::End);
+    }
+    let threading = md.motion == 76.0 && md.col.is_some() || md.motion == 33.0 && (b.has("X") || b.has("Z"));
+    if threading && !s.spindle_on && md.one_shot.is_none() {
+        let col = md.col.unwrap_or(b.col);
+        return Err(m.err(
+            b.line,
+            col,
+            format!(
+                "G{} with the spindle stopped: LinuxCNC refuses it (start the spindle with M3 or M4 first; M5, M19 and a tool change M6 stop it)",
+                md.motion
+            ),
+        ));
     }
     if md.one_shot.is_some() {
         cycles::other_block(m, b, &md)?;

@@ -285,6 +285,31 @@ impl std::str::FromStr for ProgramUnits {
     }
 }
 
+/// Which LinuxCNC release's comparison rules a `linuxcnc` program is read with: the release
+/// 2.9.0 changed the tolerance of EQ, NE, LE and GE (LinuxCNC commit 014777a816, 2023-06-17).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LinuxCncRelease {
+    /// 2.9.0 and later: EQ, NE, LE and GE within an absolute 1e-6.
+    #[default]
+    Current,
+    /// Before 2.9.0, Debian 12's `linuxcnc-uspace` 2.9.0~pre1 package among them: EQ and NE
+    /// within 1e-4, LE and GE exact.
+    Before29,
+}
+
+impl std::str::FromStr for LinuxCncRelease {
+    type Err = Error;
+
+    fn from_str(s: &str) -> Result<LinuxCncRelease, Error> {
+        match s {
+            "current" | "2.9" => Ok(LinuxCncRelease::Current),
+            "before-2.9" => Ok(LinuxCncRelease::Before29),
+            _ => Err(Error::Input(format!("unknown LinuxCNC release '{s}': expected current or before-2.9"))),
+        }
+    }
+}
+
 /// What a program's X words are on a lathe.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -372,6 +397,9 @@ pub struct ReadOptions {
     /// The main program of a file that holds several O-programs (`--main O3101`: 3101); `None`
     /// takes the one no other program calls, and the notes say which.
     pub main: Option<u32>,
+    /// The LinuxCNC release whose comparison rules a `linuxcnc` program follows (other
+    /// dialects ignore it).
+    pub linuxcnc: LinuxCncRelease,
 }
 
 /// How much a program may run before it is taken for a runaway.
@@ -471,9 +499,16 @@ pub fn read_program_with(
     if let Some(u) = opts.default_units {
         m.scale = u.mm();
     }
+    let mut language = dialect::Language::of(dialect);
+    if dialect == Dialect::LinuxCnc {
+        language.arithmetic = match opts.linuxcnc {
+            LinuxCncRelease::Current => expr::Arithmetic::LinuxCnc,
+            LinuxCncRelease::Before29 => expr::Arithmetic::LinuxCncBefore29,
+        };
+    }
     interp::run(
         &blocks,
-        dialect::Language::of(dialect),
+        language,
         rules(dialect).as_mut(),
         &mut m,
         file,

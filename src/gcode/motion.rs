@@ -137,8 +137,12 @@ pub(crate) struct Motion {
     pub x: Option<f64>,
     pub y: Option<f64>,
     pub z: Option<f64>,
-    /// LinuxCNC G92 offsets (X diameter, Y, Z), mm.
+    /// The offset of program coordinates from machine coordinates (X diameter, Y, Z), mm:
+    /// LinuxCNC's work offset plus its G92 offset.
     pub offset: [f64; 3],
+    /// Why the program's coordinates lost their relation to the earlier passes' (an offset
+    /// set from an unknown position after threading passes): the line and what did it.
+    frame_lost: Option<(usize, String)>,
     pub absolute: bool,
     /// 25.4 under inch units, else 1.
     pub scale: f64,
@@ -196,6 +200,7 @@ impl Motion {
             y: None,
             z: None,
             offset: [0.0; 3],
+            frame_lost: None,
             absolute: true,
             scale: 1.0,
             units_set: false,
@@ -268,6 +273,15 @@ impl Motion {
         if x || z {
             self.lost = Some((line, what.to_string()));
             self.break_chain();
+        }
+    }
+
+    /// The offset of program coordinates changed by an amount threadcheck cannot know
+    /// (`what` at `line`): with threading passes before it, a later threading operation cannot
+    /// be placed against them and is refused, naming it; with none, the frame is arbitrary.
+    pub fn lose_frame(&mut self, line: usize, what: &str) {
+        if self.passes_total > 0 && self.frame_lost.is_none() {
+            self.frame_lost = Some((line, what.to_string()));
         }
     }
 
@@ -444,6 +458,15 @@ impl Motion {
 
     /// The current X and Z, or an error naming what needs them.
     pub fn need_position(&self, line: usize, col: usize, what: &str) -> Result<(f64, f64), Error> {
+        if let Some((l, why)) = &self.frame_lost {
+            return Err(self.err(
+                line,
+                col,
+                format!(
+                    "{what} cannot be placed against the earlier threading passes: line {l} ({why}) set an offset from a position threadcheck does not know"
+                ),
+            ));
+        }
         match (self.x, self.z) {
             (Some(x), Some(z)) => Ok((x, z)),
             _ => Err(self.err(
