@@ -60,6 +60,8 @@ fn numbers(args: &str) -> Vec<f64> {
 /// Reads `rs274 -g`'s canonical output.
 fn parse_canon(out: &str) -> Outcome {
     let (mut unit, mut g5x, mut g92) = (1.0, [0.0f64; 2], [0.0f64; 2]);
+    // How many times each offset was printed (once at the start).
+    let mut offsets = [0u32; 2];
     let mut xz_plane = false;
     let mut pos = [0.0f64; 2];
     let mut sync: Option<Seg> = None;
@@ -85,15 +87,21 @@ fn parse_canon(out: &str) -> Outcome {
         let machine = |p: [f64; 2], unit: f64, g5x: [f64; 2], g92: [f64; 2]| {
             [2.0 * (p[0] + g5x[0] + g92[0]) * unit, (p[1] + g5x[1] + g92[1]) * unit]
         };
-        let tol = |unit: f64, g5x: [f64; 2], g92: [f64; 2]| {
-            let n = |a: usize| 1.0 + f64::from(u8::from(g5x[a] != 0.0)) + f64::from(u8::from(g92[a] != 0.0));
-            [2.0 * 0.00005 * n(0) * unit + 1e-9, 0.00005 * n(1) * unit + 1e-9]
-        };
+        // Each printed number is rounded to 4 decimals: the position, and each offset once the
+        // program has set one (an offset of 0.00004 prints as 0.0000).
+        let n = 1.0 + f64::from(u8::from(offsets[0] > 1)) + f64::from(u8::from(offsets[1] > 1));
+        let tol = [2.0 * 0.00005 * n * unit + 1e-9, 0.00005 * n * unit + 1e-9];
         match name {
             "USE_LENGTH_UNITS" => unit = if args.contains("INCHES") { 25.4 } else { 1.0 },
             "SELECT_PLANE" => xz_plane = args.contains("XZ"),
-            "SET_G5X_OFFSET" => g5x = [v[1], v[3]],
-            "SET_G92_OFFSET" => g92 = [v[0], v[2]],
+            "SET_G5X_OFFSET" => {
+                g5x = [v[1], v[3]];
+                offsets[0] += 1;
+            }
+            "SET_G92_OFFSET" => {
+                g92 = [v[0], v[2]];
+                offsets[1] += 1;
+            }
             "STRAIGHT_TRAVERSE" | "STRAIGHT_FEED" | "ARC_FEED" => {
                 pos = match name {
                     // ARC_FEED(first end, second end, …, axis end): Z, X in the XZ plane.
@@ -103,18 +111,15 @@ fn parse_canon(out: &str) -> Outcome {
                 };
                 if let Some(s) = sync.as_mut() {
                     s.pts.push(machine(pos, unit, g5x, g92));
-                    s.tol.push(tol(unit, g5x, g92));
+                    s.tol.push(tol);
                     s.k.push(k);
                 }
             }
             "START_SPEED_FEED_SYNC" => {
                 k = v[0];
                 if sync.is_none() {
-                    sync = Some(Seg {
-                        pts: vec![machine(pos, unit, g5x, g92)],
-                        k: Vec::new(),
-                        tol: vec![tol(unit, g5x, g92)],
-                    });
+                    sync =
+                        Some(Seg { pts: vec![machine(pos, unit, g5x, g92)], k: Vec::new(), tol: vec![tol] });
                 }
             }
             "STOP_SPEED_FEED_SYNCH" => segs.extend(sync.take()),
@@ -492,10 +497,14 @@ impl Gen {
         }
     }
 
-    /// An expression of the language with a finite value (or one both sides refuse alike).
-    fn expr(&mut self, depth: u32) -> String {
+    /// An expression of the language with a finite value (or one both sides refuse alike), and
+    /// whether SIN, COS or TAN are in it. LinuxCNC on amd64 computes those three in x87 long
+    /// double (`cosl` of its long-double argument), threadcheck in double from that argument:
+    /// the last bit can differ, so such a value never meets MOD, FIX, FUP or ROUND here, which
+    /// would turn an ulp into a jump (docs/dialects.md says so).
+    fn expr(&mut self, depth: u32) -> (String, bool) {
         if depth == 0 || self.chance(0.3) {
-            return match self.i(0, 6) {
+            let leaf = match self.i(0, 6) {
                 0 => "#<n>".into(),
                 6 => self.pick(&["EXISTS[#<_crest>]", "EXISTS[#<nothing>]"]).into(),
                 1 => "#<_z>".into(),
@@ -506,15 +515,21 @@ impl Gen {
                     Gen::n4(v)
                 }
             };
+            return (leaf, false);
         }
-        let a = self.expr(depth - 1);
-        let b = self.expr(depth - 1);
+        let (a, ta) = self.expr(depth - 1);
+        let (b, tb) = self.expr(depth - 1);
         let lit = {
             let v = self.f(0.5, 4.0);
             let v = if self.chance(0.3) { -v } else { v };
             Gen::n4(v)
         };
-        match self.i(0, 25) {
+        let t = ta || tb;
+        let op = self.i(0, 25);
+        // MOD, FIX, FUP, ROUND and the exact comparisons jump: not on a trig value.
+        let op = if ta && matches!(op, 4 | 9 | 15 | 16 | 17 | 18) { 0 } else { op };
+        let op = if t && matches!(op, 21 | 22) { 1 } else { op };
+        let e = match op {
             0 => format!("[{a} + {b}]"),
             1 => format!("[{a} - {b}]"),
             2 => format!("[{a} * {b}]"),
@@ -541,7 +556,9 @@ impl Gen {
             23 => format!("[[{a} GT 0] AND [{b} LT 0]]"),
             24 => format!("[[{a} GT 0] OR [{b} LT 0]]"),
             _ => format!("[[{a} GT 0] XOR [{b} LT 0]]"),
-        }
+        };
+        let trig = matches!(op, 7 | 8 | 9 | 11 | 12);
+        (e, t || trig)
     }
 
     /// A comparison near its tolerance: EQ and NE within 1e-4 before LinuxCNC 2.9.0, 1e-6
@@ -605,9 +622,13 @@ impl Gen {
         self.line("  #<n> = [#<n> + 1]");
         self.line(&format!("  o<tc_depth> call [#<n>] [{}] [{}] [#<law>]", self.len(first), self.len(full)));
         self.line(&format!("  #<x> = [#<_crest> - #<_value> * {per_depth}]"));
-        let e = self.expr(3);
+        let (e, trig) = self.expr(3);
         self.line(&format!("  #<noise> = {e}"));
-        self.line("  #<x> = [#<x> - [ABS[#<noise>] MOD 0.02]]");
+        if trig {
+            self.line("  #<x> = [#<x> - 0.01 * [1 + SIN[#<noise>]]]");
+        } else {
+            self.line("  #<x> = [#<x> - [ABS[#<noise>] MOD 0.02]]");
+        }
         // LinuxCNC refuses break and continue in a repeat loop: now and then.
         let jumps = if kind == 2 { 0.05 } else { 0.4 };
         if self.chance(jumps) {

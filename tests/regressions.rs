@@ -394,3 +394,15 @@ fn linuxcnc_release_before_2_9_compares_as_debian_s_interpreter() {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v["passes"][0]["x_start"], 10.0);
 }
+
+/// Issue 26, found by the conformance test: LinuxCNC keeps the current point in program units,
+/// so after `G0 X0.22` (inch, radius mode) `#<_x>` is 0.22 itself; threadcheck keeps mm, and
+/// 0.22 · 25.4 · 2 / 2 / 25.4 is 0.22000000000000003, whose MOD 0.02 is 0 where 0.22's is
+/// 0.019999999999999997. The G0 below goes to X0.5 + 10 · 0.02 = 0.7 in (rs274 prints
+/// STRAIGHT_TRAVERSE(0.7000, …)): Ø35.56 mm.
+#[test]
+fn linuxcnc_position_parameters_are_the_numbers_written() {
+    let text = "G18 G20 G90 G8 S500 M3\nG0 X0.22 Z0.1\n#1 = [#<_x> MOD 0.02]\nG0 X[0.5 + 10 * #1]\nG33 Z-0.5 K0.05\nM2\n";
+    let x = linuxcnc_passes(text, false).unwrap()[0].0;
+    assert!((x - 35.56).abs() < 1e-9, "{x}");
+}

@@ -231,28 +231,97 @@ pub fn key_of(v: &VarRef, env: &mut dyn Env) -> Result<VarKey, String> {
     }
 }
 
-/// The low part of π: `PI + PI_LO` is π to about 107 bits.
-const PI_LO: f64 = 1.2246467991473532e-16;
+/// π as x87 extended precision holds it (`M_PIl`): a 64-bit mantissa, value `PI_X87 · 2^-62`.
+const PI_X87: u64 = 0xC90F_DAA2_2168_C235;
 
-/// Degrees to radians rounded once, as LinuxCNC's `(x·π)/180` in long double does (its
-/// `M_PIl`); `to_radians` rounds twice and can be an ulp off, which a MOD after it magnifies.
-fn deg_to_rad(x: f64) -> f64 {
-    use std::f64::consts::PI;
-    let p = x * PI;
-    let e = x.mul_add(PI, -p) + x * PI_LO;
-    let q = p / 180.0;
-    let r = (-q).mul_add(180.0, p) + e;
-    q + r / 180.0
+/// A positive value `m · 2^e` rounded to `bits` significant bits, half to even; `sticky` says
+/// that something nonzero lies below `m`.
+fn round_to(m: u128, e: i32, bits: u32, sticky: bool) -> (u128, i32) {
+    let len = 128 - m.leading_zeros();
+    if len <= bits {
+        return (m, e);
+    }
+    let shift = len - bits;
+    let q = m >> shift;
+    let rest = m & ((1u128 << shift) - 1);
+    let half = 1u128 << (shift - 1);
+    let up = rest > half || (rest == half && (sticky || q & 1 == 1));
+    let q = q + u128::from(up);
+    // A carry out of the top bit renormalises.
+    if 128 - q.leading_zeros() > bits {
+        (q >> 1, e + shift as i32 + 1)
+    } else {
+        (q, e + shift as i32)
+    }
 }
 
-/// Radians to degrees rounded once (LinuxCNC's `(a·180)/π` in long double).
+/// `num · 2^e / den` as a quotient of at least 66 bits, its exponent, and whether a remainder
+/// is left (the sticky bit of the rounding after it).
+fn div_ext(num: u128, den: u128, e: i32) -> (u128, i32, bool) {
+    let (mut q, mut r, mut e) = (num / den, num % den, e);
+    while 128 - q.leading_zeros() < 66 {
+        // One more bit of the quotient, by long division.
+        r <<= 1;
+        q = (q << 1) | u128::from(r >= den);
+        if r >= den {
+            r -= den;
+        }
+        e -= 1;
+    }
+    (q, e, r != 0)
+}
+
+/// `x` as a positive mantissa and exponent (`|x| = m · 2^e`), for normal numbers.
+fn split(x: f64) -> (u128, i32) {
+    let bits = x.abs().to_bits();
+    let exp = ((bits >> 52) & 0x7ff) as i32;
+    (u128::from((bits & ((1u64 << 52) - 1)) | (1u64 << 52)), exp - 1075)
+}
+
+/// `m · 2^e` (m below 2^53) as a double.
+fn join(negative: bool, m: u128, e: i32) -> f64 {
+    let v = (m as f64) * 2f64.powi(e);
+    if negative {
+        -v
+    } else {
+        v
+    }
+}
+
+/// Whether `x` is a normal number whose conversion stays far from overflow and underflow.
+fn plain(x: f64) -> bool {
+    x.is_normal() && (1e-280..1e280).contains(&x.abs())
+}
+
+/// Degrees to radians as LinuxCNC computes them, `(x · M_PIl) / 180.0` in x87 long double,
+/// rounded to 64 bits after each step and to a double at the end; `to_radians` rounds
+/// differently, and an ulp off is a jump after MOD.
+fn deg_to_rad(x: f64) -> f64 {
+    if !plain(x) {
+        return x.to_radians();
+    }
+    let (m, e) = split(x);
+    let (p, pe) = round_to(m * u128::from(PI_X87), e - 62, 64, false);
+    let (q, qe, sticky) = div_ext(p << 64, 180, pe - 64);
+    let (q, qe) = round_to(q, qe, 64, sticky);
+    let (d, de) = round_to(q, qe, 53, false);
+    join(x < 0.0, d, de)
+}
+
+/// Radians to degrees as LinuxCNC computes them, `(a · 180.0) / M_PIl`: the product in double,
+/// the quotient in long double.
 fn rad_to_deg(a: f64) -> f64 {
-    use std::f64::consts::PI;
-    let p = a * 180.0;
-    let e = a.mul_add(180.0, -p);
-    let q = p / PI;
-    let r = (-q).mul_add(PI, p) + e - q * PI_LO;
-    q + r / PI
+    if !plain(a) {
+        return a.to_degrees();
+    }
+    // a · 180.0 is a product of two doubles: rounded to a double first.
+    let (p, e) = split(a * 180.0);
+    let shift = p.leading_zeros() - 64;
+    let (p, pe) = (p << shift, e - shift as i32);
+    let (q, qe, sticky) = div_ext(p << 64, u128::from(PI_X87), pe - 64 + 62);
+    let (q, qe) = round_to(q, qe, 64, sticky);
+    let (d, de) = round_to(q, qe, 53, false);
+    join(a < 0.0, d, de)
 }
 
 /// One binary operator on two values: EQ and NE tell null from 0 (Fanuc), the other operators
@@ -915,5 +984,34 @@ mod tests {
         assert!(parse_all(&deep, Syntax::MacroB).is_err());
         let mut m = M(HashMap::new());
         assert!(eval(&parse_all("1/0", Syntax::MacroB).unwrap(), &mut m, 0).is_err());
+    }
+}
+
+#[cfg(test)]
+mod x87 {
+    /// LinuxCNC's conversions, `(x * M_PIl) / 180.0` and `(x * 180.0) / M_PIl`, compiled with
+    /// gcc 12 on x86-64 (long double is the x87's 80 bits) and printed as bits: inputs where
+    /// `to_radians`/`to_degrees` are an ulp off. The same program agreed with `deg_to_rad` and
+    /// `rad_to_deg` on all of 200 000 inputs (4-decimal values, angles, radians, up to 1e6).
+    #[test]
+    fn conversions_round_as_linuxcnc_s_long_double() {
+        let h = |s: &str| f64::from_bits(u64::from_str_radix(s, 16).unwrap());
+        for (x, r) in [
+            ("c074190f94ed321f", "c016731690f15e6b"),
+            ("c0004df11453cf15", "bfa23656700c6da4"),
+            ("3ff852e45230a5ca", "3f9b2b8146f8fd59"),
+            ("407427c73a9f4f8f", "40168387118cc483"),
+        ] {
+            assert_eq!(super::deg_to_rad(h(x)), h(r), "{x}");
+            assert_ne!(h(x).to_radians(), h(r), "{x}");
+        }
+        for (x, d) in [
+            ("40708f198bdc1e33", "40cda61437228d94"),
+            ("3fc5f02949c579e7", "4023a3d95aa48d9a"),
+            ("404ec43c9eecbfb1", "40ab8b2c8222bbed"),
+            ("406c64eef64ac9de", "40c96b7cd4fcc60d"),
+        ] {
+            assert_eq!(super::rad_to_deg(h(x)), h(d), "{x}");
+        }
     }
 }

@@ -36,9 +36,59 @@ pub(crate) struct State {
     vars: u32,
     /// An X offset change was noted.
     x_noted: bool,
+    /// The last X (radius) and Z in program units as LinuxCNC keeps them, each with the
+    /// position in mm, the offset and the units it was set under: `#<_x>` and `#<_z>` are these
+    /// while the three still hold (mm do not always divide back to the number written).
+    written: [Option<Written>; 2],
     /// The spindle turns (M3, M4): LinuxCNC refuses G33 and G76 with it stopped; M5, M19 and a
     /// tool change (M6) stop it.
     spindle_on: bool,
+}
+
+/// A coordinate in program units and what it was set under.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Written {
+    /// X as a radius, or Z, in program units.
+    value: f64,
+    /// The position in mm (X a diameter), the offset and the units scale it was set under.
+    mm: f64,
+    offset: f64,
+    scale: f64,
+}
+
+impl State {
+    /// The coordinate of axis `k` (0 X, 1 Z) in program units, if the motion state still
+    /// stands where it was written.
+    fn written(&self, m: &Motion, k: usize) -> Option<f64> {
+        let w = self.written[k]?;
+        let (pos, off) = if k == 0 { (m.x, m.offset[0]) } else { (m.z, m.offset[2]) };
+        (pos == Some(w.mm) && off == w.offset && m.scale == w.scale).then_some(w.value)
+    }
+
+    /// Remembers the block's X and Z words as LinuxCNC's current point: absolute words as
+    /// written (X halved under G7), incremental ones added to the coordinate before.
+    fn remember(&mut self, m: &Motion, b: &RBlock<'_>, before: [Option<f64>; 2]) {
+        for (k, name) in ["X", "Z"].iter().enumerate() {
+            let (pos, off) = if k == 0 { (m.x, m.offset[0]) } else { (m.z, m.offset[2]) };
+            let Some(mm) = pos else {
+                self.written[k] = None;
+                continue;
+            };
+            match b.get(name) {
+                Some(w) => {
+                    let v = if k == 0 && m.diameter { w.v / 2.0 } else { w.v };
+                    let value = if m.absolute { Some(v) } else { before[k].map(|p| p + v) };
+                    self.written[k] = value.map(|value| Written { value, mm, offset: off, scale: m.scale });
+                }
+                None => {
+                    // Unchanged, or moved by something else (a cycle's end, an offset).
+                    if self.written[k].is_some_and(|w| w.mm != mm || w.offset != off) {
+                        self.written[k] = None;
+                    }
+                }
+            }
+        }
+    }
 }
 
 /// The coordinate system a G code selects (G54 … G59, G59.1 … G59.3 are 1 … 9).
@@ -104,17 +154,42 @@ impl State {
 fn system_params(m: &Motion, sys: &mut HashMap<String, f64>) {
     let unit = m.scale;
     if let Some(x) = m.x {
-        // In program units and as a radius, whatever the diameter mode (LinuxCNC's #5420).
-        sys.insert("_x".into(), 0.5 * (x - m.offset[0]) / unit);
+        // In program units and as a radius, whatever the diameter mode (LinuxCNC's #5420): the
+        // X word as written (a diameter under G7), halved under G7.
+        let off = m.offset[0];
+        let (per, dia) = if m.diameter { (1.0, true) } else { (2.0, false) };
+        let p =
+            as_written(x, (x - off) / unit / per, |p| if dia { p * unit } else { 2.0 * (p * unit) } + off);
+        sys.insert("_x".into(), if dia { 0.5 * p } else { p });
     }
     if let Some(z) = m.z {
-        sys.insert("_z".into(), (z - m.offset[2]) / unit);
+        let off = m.offset[2];
+        sys.insert("_z".into(), as_written(z, (z - off) / unit, |p| p * unit + off));
     }
     let imperial = if m.scale == 1.0 { 0.0 } else { 1.0 };
     sys.insert("_imperial".into(), imperial);
     sys.insert("_metric".into(), 1.0 - imperial);
     sys.insert("_absolute".into(), if m.absolute { 1.0 } else { 0.0 });
     sys.insert("_incremental".into(), if m.absolute { 0.0 } else { 1.0 });
+}
+
+/// The program value whose position (mm) the reader computed as `fwd(value)` to be `mm`: the
+/// unscaled `guess` or a neighbouring double. LinuxCNC keeps positions in program units, and
+/// an inch value times 25.4 does not always divide back to itself; a parameter such as
+/// `#<_x>` must be the number the program wrote, or a MOD after it can jump.
+fn as_written(mm: f64, guess: f64, fwd: impl Fn(f64) -> f64) -> f64 {
+    if fwd(guess) == mm || guess == 0.0 || !guess.is_finite() {
+        return guess;
+    }
+    let bits = guess.to_bits();
+    for d in [1u64, 2] {
+        for c in [f64::from_bits(bits + d), f64::from_bits(bits - d)] {
+            if fwd(c) == mm {
+                return c;
+            }
+        }
+    }
+    guess
 }
 
 /// M6, then M3/M4/M5/M19, in LinuxCNC's order of execution within a block.
@@ -417,10 +492,19 @@ fn g76(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
 
 impl Rules for State {
     fn block(&mut self, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Result<Flow, Error> {
-        block(self, m, b, cx)
+        let before = [self.written(m, 0), self.written(m, 1)];
+        let flow = block(self, m, b, cx)?;
+        self.remember(m, b, before);
+        Ok(flow)
     }
 
     fn system_params(&self, m: &Motion, sys: &mut HashMap<String, f64>) {
         system_params(m, sys);
+        if let Some(x) = self.written(m, 0) {
+            sys.insert("_x".into(), x);
+        }
+        if let Some(z) = self.written(m, 1) {
+            sys.insert("_z".into(), z);
+        }
     }
 }
