@@ -6,7 +6,7 @@ use super::lexer::Block;
 use super::motion::{Motion, RBlock};
 use super::Dialect;
 use crate::Error;
-use std::collections::{HashMap, HashSet};
+use std::collections::HashSet;
 
 /// What the interpreter needs to know of a dialect's macro language, in one table: a new dialect
 /// fails to compile until [`Language::of`] says each of these for it.
@@ -168,15 +168,54 @@ impl Language {
     }
 }
 
+/// A dialect's read-only system parameters (LinuxCNC's `_x`, `_z`, …): a fixed table of
+/// names the dialect declares, each set by its slot before every block, read by name.
+#[derive(Debug, Default)]
+pub(crate) struct SysParams {
+    names: &'static [&'static str],
+    values: Vec<Option<f64>>,
+}
+
+impl SysParams {
+    /// The parameters `names`, none set yet.
+    pub fn new(names: &'static [&'static str]) -> SysParams {
+        SysParams { names, values: vec![None; names.len()] }
+    }
+
+    /// Sets the parameter in slot `k` (its index in the names) to `v`.
+    pub fn set(&mut self, k: usize, v: f64) {
+        debug_assert!(k < self.values.len());
+        if let Some(x) = self.values.get_mut(k) {
+            *x = Some(v);
+        }
+    }
+
+    /// The value of `name`, if the dialect has one by that name and has set it.
+    pub fn get(&self, name: &str) -> Option<f64> {
+        self.names.iter().position(|n| *n == name).and_then(|k| self.values[k])
+    }
+
+    /// Whether the dialect has a parameter by that name.
+    pub fn has(&self, name: &str) -> bool {
+        self.names.contains(&name)
+    }
+}
+
 /// A dialect's rules for the blocks it reads: one value per program read, holding the
 /// dialect's modal state.
 pub(crate) trait Rules {
     /// Runs one resolved block: motion and cycles into `m`, and what the interpreter does next.
     fn block(&mut self, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Result<Flow, Error>;
 
+    /// The names of the dialect's read-only system parameters, in their slots' order; none for
+    /// dialects that have none.
+    fn system_names(&self) -> &'static [&'static str] {
+        &[]
+    }
+
     /// Refreshes the dialect's read-only system parameters (LinuxCNC's `#<_x>`) before a block;
     /// nothing for dialects that have none.
-    fn system_params(&self, _m: &Motion, _sys: &mut HashMap<String, f64>) {}
+    fn system_params(&self, _m: &Motion, _sys: &mut SysParams) {}
 
     /// The block that ends the loop starting at `pc` (Dyna's M73 … M74), for dialects that have
     /// such loops.

@@ -5,7 +5,7 @@
 //! Safety: the blocks executed, the loop iterations and jumps back, the call depth and the
 //! repetitions are bounded (`limits.rs`), so a runaway program is a located error, never a hang.
 
-use super::dialect::{n_key, Ctx, Flow, Language, Rules, Store};
+use super::dialect::{n_key, Ctx, Flow, Language, Rules, Store, SysParams};
 use super::expr::{self, Env, Expr, Value, VarKey, VarRef};
 use super::lexer::{Block, OKw, Stmt, WVal};
 use super::motion::{Motion, RBlock, RWord};
@@ -31,7 +31,7 @@ struct Vars {
     /// Where the block being run stands, for warnings.
     here: (usize, usize),
     /// Values of LinuxCNC's read-only system parameters (`#<_x>`, …), set before each block.
-    system: HashMap<String, f64>,
+    system: SysParams,
 }
 
 impl Vars {
@@ -45,7 +45,7 @@ impl Vars {
             warned: HashSet::new(),
             pending: Vec::new(),
             here: (0, 0),
-            system: HashMap::new(),
+            system: SysParams::default(),
         }
     }
 
@@ -62,7 +62,7 @@ impl Vars {
             VarKey::Num(n) if (0..FAST_VARS as i64).contains(n) => self.globals[*n as usize],
             VarKey::Num(n) => self.other.get(n).copied(),
             VarKey::Named(s) if s.starts_with('_') => {
-                self.system.get(s).or_else(|| self.named_globals.get(s)).copied()
+                self.system.get(s).or_else(|| self.named_globals.get(s).copied())
             }
             VarKey::Named(s) => self.frames.last().and_then(|f| f.1.get(s)).copied(),
         }
@@ -90,7 +90,7 @@ impl Vars {
                 };
             }
             VarKey::Named(s) if s.starts_with('_') => {
-                if self.system.contains_key(s) || self.lang.read_only_names.contains(&s.as_str()) {
+                if self.system.has(s) || self.lang.read_only_names.contains(&s.as_str()) {
                     return Err(format!("#<{s}> is read-only"));
                 }
                 match v {
@@ -552,6 +552,7 @@ pub(crate) fn run(
     let sub_names: HashSet<String> = lay.subs.keys().cloned().collect();
     let n_numbers: HashSet<u64> = lay.n_index.keys().copied().collect();
     let mut vars = Vars::new(lang);
+    vars.system = SysParams::new(rules.system_names());
     let perr = |b: &Block, col: usize, msg: String| Error::Program {
         file: file.to_string(),
         line: b.line,

@@ -7,10 +7,9 @@
 //! `#<_imperial>`, `#<_metric>`.
 
 use super::cycles;
-use super::dialect::{Ctx, Flow, Rules};
+use super::dialect::{Ctx, Flow, Rules, SysParams};
 use super::motion::{Motion, RBlock};
 use crate::Error;
-use std::collections::HashMap;
 
 /// One offset along X (diameter), Y and Z, mm. An offset set from a position threadcheck does
 /// not know is a number relative to an arbitrary frame: `var` names that unknown (0 for none),
@@ -150,27 +149,41 @@ impl State {
     }
 }
 
-/// The read-only system parameters, from the motion state, before each block.
-fn system_params(m: &Motion, sys: &mut HashMap<String, f64>) {
+/// The read-only system parameters, from the motion state, before each block, each set once
+/// and always in the same order.
+/// LinuxCNC's read-only parameters threadcheck keeps, in their slots' order.
+const SYSTEM_NAMES: [&str; 6] = ["_x", "_z", "_imperial", "_metric", "_absolute", "_incremental"];
+
+fn system_params(s: &State, m: &Motion, sys: &mut SysParams) {
     let unit = m.scale;
     if let Some(x) = m.x {
         // In program units and as a radius, whatever the diameter mode (LinuxCNC's #5420): the
-        // X word as written (a diameter under G7), halved under G7.
-        let off = m.offset[0];
-        let (per, dia) = if m.diameter { (1.0, true) } else { (2.0, false) };
-        let p =
-            as_written(x, (x - off) / unit / per, |p| if dia { p * unit } else { 2.0 * (p * unit) } + off);
-        sys.insert("_x".into(), if dia { 0.5 * p } else { p });
+        // number written while the point stands where it was written; else the X word as it
+        // would be written (a diameter under G7), halved under G7.
+        let x = s.written(m, 0).unwrap_or_else(|| {
+            let off = m.offset[0];
+            let (per, dia) = if m.diameter { (1.0, true) } else { (2.0, false) };
+            let p = as_written(x, (x - off) / unit / per, |p| {
+                (if dia { p * unit } else { 2.0 * (p * unit) }) + off
+            });
+            if dia {
+                0.5 * p
+            } else {
+                p
+            }
+        });
+        sys.set(0, x);
     }
     if let Some(z) = m.z {
         let off = m.offset[2];
-        sys.insert("_z".into(), as_written(z, (z - off) / unit, |p| p * unit + off));
+        let z = s.written(m, 1).unwrap_or_else(|| as_written(z, (z - off) / unit, |p| p * unit + off));
+        sys.set(1, z);
     }
     let imperial = if m.scale == 1.0 { 0.0 } else { 1.0 };
-    sys.insert("_imperial".into(), imperial);
-    sys.insert("_metric".into(), 1.0 - imperial);
-    sys.insert("_absolute".into(), if m.absolute { 1.0 } else { 0.0 });
-    sys.insert("_incremental".into(), if m.absolute { 0.0 } else { 1.0 });
+    sys.set(2, imperial);
+    sys.set(3, 1.0 - imperial);
+    sys.set(4, if m.absolute { 1.0 } else { 0.0 });
+    sys.set(5, if m.absolute { 0.0 } else { 1.0 });
 }
 
 /// The program value whose position (mm) the reader computed as `fwd(value)` to be `mm`: the
@@ -498,13 +511,11 @@ impl Rules for State {
         Ok(flow)
     }
 
-    fn system_params(&self, m: &Motion, sys: &mut HashMap<String, f64>) {
-        system_params(m, sys);
-        if let Some(x) = self.written(m, 0) {
-            sys.insert("_x".into(), x);
-        }
-        if let Some(z) = self.written(m, 1) {
-            sys.insert("_z".into(), z);
-        }
+    fn system_names(&self) -> &'static [&'static str] {
+        &SYSTEM_NAMES
+    }
+
+    fn system_params(&self, m: &Motion, sys: &mut SysParams) {
+        system_params(self, m, sys);
     }
 }
