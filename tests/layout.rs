@@ -89,7 +89,7 @@ fn src_has_few_top_level_files() {
 }
 
 /// Each geometry backend behind one door: `geo` only in `geometry/boolean.rs`, `parry2d-f64`
-/// only in `geometry/parry.rs`.
+/// only in `geometry/parry.rs`, `rstar` only in `geometry/index.rs`.
 #[test]
 fn each_backend_has_one_door() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
@@ -99,7 +99,11 @@ fn each_backend_has_one_door() {
     for f in &files {
         let rel = f.strip_prefix(&src).unwrap().to_string_lossy().replace('\\', "/");
         let text = code(&std::fs::read_to_string(f).unwrap());
-        for (krate, door) in [("geo::", "geometry/boolean.rs"), ("parry2d_f64::", "geometry/parry.rs")] {
+        for (krate, door) in [
+            ("geo::", "geometry/boolean.rs"),
+            ("parry2d_f64::", "geometry/parry.rs"),
+            ("rstar::", "geometry/index.rs"),
+        ] {
             let uses = text.match_indices(krate).any(|(i, _)| {
                 !text[..i].ends_with(|c: char| c.is_ascii_alphanumeric() || c == '_' || c == ':')
             });

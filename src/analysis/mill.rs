@@ -38,8 +38,8 @@
 use crate::analysis::check::Verdict;
 use crate::gcode::expr::{parse_all, BinOp, Env, Expr, Syntax, Value, VarKey, VarRef};
 use crate::gcode::{Dialect, Move, ReadOptions};
+use crate::geometry::index::Segments;
 use crate::geometry::measure::golden_min;
-use crate::geometry::parry::Line;
 use crate::ground::bounds::{MAX_MILL_LEVELS, MAX_MILL_SEGMENTS, MAX_TOOL_DIAMETER};
 use crate::ground::plane::Point;
 use crate::Error;
@@ -279,7 +279,7 @@ struct Curve<'a> {
     ey: Expr,
     t: Vec<f64>,
     p: Vec<Point>,
-    poly: Line,
+    poly: Segments,
     ccw: bool,
 }
 
@@ -322,7 +322,7 @@ impl<'a> Curve<'a> {
         let n = ((len / SAMPLE_SPACING).ceil() as usize).clamp(1024, 100_000);
         let (t, p) = if n == 1024 { (t_coarse, coarse) } else { sample(n)? };
         let ccw = crate::geometry::boolean::signed_area(&p[..p.len() - 1]) > 0.0;
-        let poly = Line::through(p.iter().copied());
+        let poly = Segments::through(&p);
         Ok(Some(Curve { target, z, ex, ey, t, p, poly, ccw }))
     }
 
@@ -338,7 +338,7 @@ impl<'a> Curve<'a> {
     /// The nearest curve point to `c`: the sample polyline's nearest segment, then Newton's
     /// method on the exact curve within the neighbouring samples.
     fn nearest(&self, c: Point) -> Near {
-        let (q, i) = self.poly.project(c);
+        let (q, i) = self.poly.project(c).unwrap_or((self.p[0], 0));
         let n = self.t.len() - 1;
         let (a, b) = (self.t[i.saturating_sub(1)], self.t[(i + 2).min(n)]);
         let (pi, pj) = (self.p[i], self.p[(i + 1).min(n)]);
@@ -757,12 +757,12 @@ fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64) -> Measured {
         _ => (0.0, None),
     };
     // The leftover: target samples against the path, the largest refined on the exact curve.
-    let path = {
-        Line::segments(lm.segs.iter().filter(|(a, b, _)| a.distance(*b) > 1e-12).map(|&(a, b, _)| (a, b)))
-    };
+    let path = Segments::separate(
+        lm.segs.iter().filter(|(a, b, _)| a.distance(*b) > 1e-12).map(|&(a, b, _)| (a, b)),
+    );
     let lone: Vec<Point> = lm.segs.iter().filter(|(a, b, _)| a.distance(*b) <= 1e-12).map(|s| s.0).collect();
     let dist_to_path = |p: Point| {
-        let d = path.as_ref().map_or(f64::INFINITY, |pl| pl.distance(p));
+        let d = path.distance(p);
         lone.iter().map(|q| q.distance(p)).fold(d, f64::min)
     };
     let deviation: Vec<f64> = curve.p.iter().map(|&p| dist_to_path(p) - r).collect();

@@ -420,6 +420,14 @@ pub fn eval(e: &Expr, env: &mut dyn Env, depth: usize) -> Result<Value, String> 
                 return Ok(Some(if env.exists(&k) { 1.0 } else { 0.0 }));
             }
             let a = num(&args[0], env)?;
+            // Degrees as LinuxCNC converts them (x87 long double, emulated), elsewhere as Rust
+            // does (the controls' own rounding is not published).
+            let x87 = match env.arithmetic() {
+                Arithmetic::LinuxCnc | Arithmetic::LinuxCncBefore29 => true,
+                Arithmetic::Exact => false,
+            };
+            let deg_to_rad = |a: f64| if x87 { deg_to_rad(a) } else { a.to_radians() };
+            let rad_to_deg = |a: f64| if x87 { rad_to_deg(a) } else { a.to_degrees() };
             match f {
                 Func::Sin => deg_to_rad(a).sin(),
                 Func::Cos => deg_to_rad(a).cos(),

@@ -5,6 +5,7 @@
 
 pub mod boolean;
 pub mod envelope;
+pub mod index;
 pub mod insert;
 pub mod measure;
 pub mod parry;

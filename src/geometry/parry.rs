@@ -28,19 +28,6 @@ impl Line {
         Line(Polyline::new(pts.into_iter().map(pp).collect(), None))
     }
 
-    /// Separate segments, each given by its two ends; `None` when there is none.
-    pub fn segments(segs: impl IntoIterator<Item = (Point, Point)>) -> Option<Line> {
-        let mut v = Vec::new();
-        let mut idx = Vec::new();
-        for (a, b) in segs {
-            let k = v.len() as u32;
-            idx.push([k, k + 1]);
-            v.push(pp(a));
-            v.push(pp(b));
-        }
-        (!idx.is_empty()).then(|| Line(Polyline::new(v, Some(idx))))
-    }
-
     /// Distance from `q` to the line.
     pub fn distance(&self, q: Point) -> f64 {
         self.0.distance_to_local_point(&pp(q), false)
