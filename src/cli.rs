@@ -65,7 +65,8 @@ struct JsonArg {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Limits of size of a designation (ISO 965-1, BS 84, ISO 228-1, ASME B1.1, …).
+    /// Limits of size of a designation (ISO 965-1, BS 84, ISO 228-1, ASME B1.1, ISO 2903, ASME
+    /// B1.5, ASME B1.20.1, ISO 7-1).
     Limits {
         /// Designation, e.g. M10x1.25-6g, M10-6H/6g, "BSF 3/8 medium", "G1/2 A", "1/4-20 UNC-2A".
         #[arg(conflicts_with = "thread")]

@@ -406,3 +406,63 @@ fn linuxcnc_position_parameters_are_the_numbers_written() {
     let x = linuxcnc_passes(text, false).unwrap()[0].0;
     assert!((x - 35.56).abs() < 1e-9, "{x}");
 }
+
+/// Issue 26: a G92 where threadcheck does not know the position (LinuxCNC starts wherever the
+/// tool is) defines the coordinates when no pass was cut before it: `G92 X20 Z2` then X9.4 is
+/// Ø9.4 from Z2. After threading passes, a G92 from an unknown position (here after a G53 move
+/// in machine coordinates) leaves the later passes without a known relation to the earlier
+/// ones: the next threading operation is refused, naming the G92.
+#[test]
+fn linuxcnc_g92_from_an_unknown_position() {
+    let cut = "G1 X9.4 F100\nG33 Z-10 K1.5\nG0 X20\nZ2\n";
+    let first = format!("G18 G21 G90 G7 S500 M3\nG92 X20 Z2\n{cut}M2\n");
+    let got = linuxcnc_passes(&first, false).unwrap();
+    assert_eq!(got, vec![(9.4, 2.0, -10.0)]);
+    let after = format!("G18 G21 G90 G7 S500 M3\nG0 X20 Z2\n{cut}G53 G0 X100\nG92 X20 Z2\n{cut}M2\n");
+    let e = linuxcnc_passes(&after, false).unwrap_err();
+    assert!(e.contains("line 8 (G92)") && e.contains("does not know"), "{e}");
+}
+
+/// Issue 28: a machine profile names only what the machine limits. A file with `max_rpm` and
+/// `max_feed_mm_min` alone (what the README's process section describes) was refused for its
+/// missing `name` and `rapid_mm_min`; now it is the machine named after its file, with the
+/// rapid rate of 5000 mm/min assumed and said. The G97 program's four G92 passes of 25 mm at
+/// S500, lead 1.5, come in from X24 and go back at 5000 mm/min: 120.624 mm of rapid (see
+/// process.rs) in 1.447488 s. A field the profile does not know is still an error, on one line.
+#[test]
+fn a_machine_profile_needs_only_its_limits() {
+    let dir = crate::tempdir("machine");
+    let file = dir.join("small-lathe.toml");
+    std::fs::write(&file, "max_rpm = 3000\nmax_feed_mm_min = 5000\n").unwrap();
+    let prog = crate::data("programs/fanuc-g97-g92.nc");
+    let args = ["verify", "--program", prog.to_str().unwrap(), "--thread", "M20x1.5-6g", "--insert", "full"];
+    let mut a = args.to_vec();
+    a.extend(["--machine", file.to_str().unwrap(), "--no-pass-metrics", "--json", "-"]);
+    let o = crate::run(&a);
+    let v: serde_json::Value =
+        serde_json::from_slice(&o.stdout).unwrap_or_else(|_| panic!("{}", crate::stderr(&o)));
+    let p = &v["operations"][0]["process"];
+    assert_eq!(p["machine"], "small-lathe (rapid 5000 mm/min assumed)");
+    assert!((p["machining_time"]["rapid"].as_f64().unwrap() - 1.447488).abs() < 1e-9, "{p}");
+    std::fs::write(&file, "max_rpm = 3000\nmax_speed = 5\n").unwrap();
+    let mut a = args.to_vec();
+    a.extend(["--machine", file.to_str().unwrap()]);
+    let o = crate::run(&a);
+    assert_eq!(o.status.code(), Some(2));
+    let e = crate::stderr(&o);
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(e.contains("max_speed"), "{e}");
+}
+
+/// Issue 28: the top-level help named ISO 965-1, BS 84 and ISO 228-1 only; it names every
+/// standard threadcheck checks against.
+#[test]
+fn the_help_names_every_standard() {
+    let o = crate::run(&["--help"]);
+    let out = crate::stdout(&o);
+    for s in
+        ["ISO 965-1", "BS 84", "ISO 228-1", "ASME B1.1", "ISO 2903", "ASME B1.5", "ASME B1.20.1", "ISO 7-1"]
+    {
+        assert!(out.contains(s), "{s} missing from --help:\n{out}");
+    }
+}

@@ -19,9 +19,13 @@ use crate::gcode::Operation;
 use crate::Error;
 use serde::Serialize;
 
-/// A machine's limits for threading.
-#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
-#[serde(deny_unknown_fields)]
+/// The rapid traverse rate assumed where a machine profile gives none, mm/min (stated in the
+/// output wherever it is used).
+pub const ASSUMED_RAPID_MM_MIN: f64 = 5000.0;
+
+/// A machine's limits for threading. A profile file names only what it limits: `name` defaults
+/// to the file's name and `rapid_mm_min` to [`ASSUMED_RAPID_MM_MIN`], said in the name.
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct MachineProfile {
     /// Its name, for the report.
     pub name: String,
@@ -84,9 +88,36 @@ impl MachineProfile {
     /// # Ok::<(), threadcheck::Error>(())
     /// ```
     pub fn from_toml(text: &str, source: &str) -> Result<MachineProfile, Error> {
+        /// The file as written: every field optional.
+        #[derive(serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct File {
+            name: Option<String>,
+            max_rpm: Option<f64>,
+            max_feed_mm_min: Option<f64>,
+            rapid_mm_min: Option<f64>,
+            #[serde(default)]
+            rpm_per_pitch: Vec<(f64, f64)>,
+        }
         let arg = source;
-        let m: MachineProfile = toml::from_str(text)
-            .map_err(|e| Error::File { file: arg.to_string(), message: e.to_string().replace('\n', " ") })?;
+        let f: File = toml::from_str(text).map_err(|e| Error::File {
+            file: arg.to_string(),
+            message: crate::ground::error::one_line(&e.to_string()),
+        })?;
+        let stem = std::path::Path::new(source)
+            .file_stem()
+            .map_or(source.to_string(), |s| s.to_string_lossy().into_owned());
+        let mut name = f.name.unwrap_or(stem);
+        if f.rapid_mm_min.is_none() {
+            name.push_str(&format!(" (rapid {ASSUMED_RAPID_MM_MIN} mm/min assumed)"));
+        }
+        let m = MachineProfile {
+            name,
+            max_rpm: f.max_rpm,
+            max_feed_mm_min: f.max_feed_mm_min,
+            rapid_mm_min: f.rapid_mm_min.unwrap_or(ASSUMED_RAPID_MM_MIN),
+            rpm_per_pitch: f.rpm_per_pitch,
+        };
         let positive = |v: f64| v > 0.0 && v.is_finite();
         if !positive(m.rapid_mm_min)
             || m.max_rpm.is_some_and(|r| !positive(r))
@@ -215,7 +246,7 @@ pub fn process_checks(
         }
     }
     let machining_time = rpm.filter(|s| *s > 0.0).map(|s| {
-        let rapid = machine.map_or(5000.0, |m| m.rapid_mm_min);
+        let rapid = machine.map_or(ASSUMED_RAPID_MM_MIN, |m| m.rapid_mm_min);
         let mut cutting = 0.0;
         let mut rapid_t = 0.0;
         let mut per_pass = Vec::with_capacity(op.passes.len());

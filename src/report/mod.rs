@@ -482,7 +482,10 @@ pub fn verify_text(v: &Verification) -> String {
                 t.total,
                 t.cutting,
                 t.rapid,
-                p.machine.as_ref().map_or(", rapid 5000 mm/min assumed".to_string(), |m| format!(", {m}"))
+                p.machine.as_ref().map_or(
+                    format!(", rapid {} mm/min assumed", crate::analysis::process::ASSUMED_RAPID_MM_MIN),
+                    |m| format!(", {m}"),
+                )
             );
         }
     }
