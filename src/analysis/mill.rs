@@ -281,6 +281,10 @@ struct Curve<'a> {
     p: Vec<Point>,
     poly: Segments,
     ccw: bool,
+    /// How far the sample polyline may stray from the exact curve, mm: twice the largest gap
+    /// at the segments' middle parameters (a signed distance to the polyline is within this of
+    /// the one to the curve).
+    sag: f64,
 }
 
 /// The nearest point of the curve to a point.
@@ -323,7 +327,19 @@ impl<'a> Curve<'a> {
         let (t, p) = if n == 1024 { (t_coarse, coarse) } else { sample(n)? };
         let ccw = crate::geometry::boolean::signed_area(&p[..p.len() - 1]) > 0.0;
         let poly = Segments::through(&p);
-        Ok(Some(Curve { target, z, ex, ey, t, p, poly, ccw }))
+        let mut sag = 0.0f64;
+        for (w, tw) in p.windows(2).zip(t.windows(2)) {
+            if let Ok(m) = eval_xy(&ex, &ey, 0.5 * (tw[0] + tw[1]), z) {
+                let (d, ab) = ((w[1].z - w[0].z, w[1].r - w[0].r), w[0].distance(w[1]));
+                let gap = if ab > 0.0 {
+                    ((m.z - w[0].z) * d.1 - (m.r - w[0].r) * d.0).abs() / ab
+                } else {
+                    m.distance(w[0])
+                };
+                sag = sag.max(gap);
+            }
+        }
+        Ok(Some(Curve { target, z, ex, ey, t, p, poly, ccw, sag: 2.0 * sag + 1e-9 }))
     }
 
     fn at(&self, t: f64) -> Point {
@@ -393,6 +409,25 @@ impl<'a> Curve<'a> {
             Material::Outside => !outside,
         };
         Near { t, sd: if free { dist } else { -dist }, foot: p }
+    }
+
+    /// The signed distance from `c` to the sample polyline (positive on the side without
+    /// material): within [`Curve::sag`] of the exact one, without evaluating the formulas.
+    fn approx_sd(&self, c: Point) -> f64 {
+        let Some((q, i)) = self.poly.project(c) else { return f64::INFINITY };
+        let n = self.p.len() - 1;
+        let (a, b) = (self.p[i], self.p[(i + 1).min(n)]);
+        let dist = q.distance(c);
+        let outside = self.outside(c, q, Point::new(b.z - a.z, b.r - a.r), dist);
+        let free = match self.target.material {
+            Material::Inside => outside,
+            Material::Outside => !outside,
+        };
+        if free {
+            dist
+        } else {
+            -dist
+        }
     }
 
     /// Whether `c` lies outside the closed curve, from the normal at its nearest point `p`, or
@@ -692,45 +727,78 @@ struct Measured {
     samples: Vec<Point>,
 }
 
-fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64) -> Measured {
+/// Measures one level. With `detail` every move end is measured on the exact curve (the
+/// profile of the level the report shows); without, the ends are first placed against the
+/// sample polyline and measured exactly only where that could change the level's worst gouge.
+fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64, detail: bool) -> Measured {
     let z = lm.z;
-    // The gouge at every move end, then inside the moves that could beat the worst end.
-    let mut ends: Vec<(Point, Near)> = Vec::with_capacity(lm.segs.len() + 1);
+    // The move ends, each once, with the polyline's signed distance.
+    let mut ends: Vec<(Point, f64)> = Vec::with_capacity(lm.segs.len() + 1);
     let mut seg_ends: Vec<(usize, usize)> = Vec::with_capacity(lm.segs.len());
     for &(a, b, _) in &lm.segs {
         let ia = match ends.last() {
             Some((p, _)) if *p == a => ends.len() - 1,
             _ => {
-                ends.push((a, curve.nearest(a)));
+                ends.push((a, curve.approx_sd(a)));
                 ends.len() - 1
             }
         };
-        ends.push((b, curve.nearest(b)));
+        ends.push((b, curve.approx_sd(b)));
         seg_ends.push((ia, ends.len() - 1));
     }
+    let mut exact: Vec<Option<Near>> = vec![None; ends.len()];
+    let near = |i: usize, exact: &mut Vec<Option<Near>>| -> Near {
+        *exact[i].get_or_insert_with(|| curve.nearest(ends[i].0))
+    };
     let g = |n: &Near| r - n.sd;
+    let e = curve.sag;
+    // The line of each end, for the report (an end shared by two moves takes the first's).
+    let mut line_of = vec![0usize; ends.len()];
+    for (k, &(ia, ib)) in seg_ends.iter().enumerate().rev() {
+        line_of[ia] = lm.segs[k].2;
+        line_of[ib] = lm.segs[k].2;
+    }
     let mut best: Option<(f64, Point, Near, usize)> = None;
-    for (k, &(ia, ib)) in seg_ends.iter().enumerate() {
-        for &i in &[ia, ib] {
-            let v = g(&ends[i].1);
-            if best.is_none_or(|b| v > b.0) {
-                best = Some((v, ends[i].0, ends[i].1, lm.segs[k].2));
-            }
+    // The ends in order of their polyline gouge: measured exactly while one could beat the
+    // worst found (every one with `detail`).
+    let mut by_end: Vec<usize> = (0..ends.len()).collect();
+    by_end.sort_by(|&x, &y| ends[x].1.total_cmp(&ends[y].1));
+    for i in by_end {
+        let top = best.map_or(f64::NEG_INFINITY, |b| b.0);
+        if !detail && r - ends[i].1 + e <= top + GOUGE_SLACK {
+            break;
+        }
+        let n = near(i, &mut exact);
+        if best.is_none_or(|b| g(&n) > b.0) {
+            best = Some((g(&n), ends[i].0, n, line_of[i]));
         }
     }
     // Each move's inside is bounded from its ends, the moves refined in order of their bound
-    // until no bound beats the worst gouge found (see `inside_bound`).
-    let mut order: Vec<(f64, Option<f64>, usize)> = seg_ends
+    // until no bound beats the worst gouge found (see `inside_bound`); a move's loose bound
+    // from the polyline comes first, its ends measured exactly only when it could beat it.
+    let mut order: Vec<(f64, usize)> = seg_ends
         .iter()
         .enumerate()
         .map(|(k, &(ia, ib))| {
             let (a, b, _) = lm.segs[k];
-            let (bound, s) = inside_bound(a, b, &ends[ia].1, &ends[ib].1, r);
-            (bound, s, k)
+            (0.5 * (2.0 * r - ends[ia].1 - ends[ib].1 + a.distance(b)) + e, k)
         })
         .collect();
     order.sort_by(|x, y| y.0.total_cmp(&x.0));
-    for (bound, s_model, k) in order {
+    let mut refine: Vec<(f64, Option<f64>, usize)> = Vec::new();
+    for (loose, k) in order {
+        let top = best.map_or(f64::NEG_INFINITY, |b| b.0);
+        if loose <= top + GOUGE_SLACK {
+            break;
+        }
+        let (ia, ib) = seg_ends[k];
+        let (a, b, _) = lm.segs[k];
+        let (na, nb) = (near(ia, &mut exact), near(ib, &mut exact));
+        let (bound, s) = inside_bound(a, b, &na, &nb, r);
+        refine.push((bound, s, k));
+    }
+    refine.sort_by(|x, y| y.0.total_cmp(&x.0));
+    for (bound, s_model, k) in refine {
         let top = best.map_or(f64::NEG_INFINITY, |b| b.0);
         if bound <= top + GOUGE_SLACK {
             break;
@@ -750,6 +818,11 @@ fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64) -> Measured {
             best = Some((g(&near), c, near, line));
         }
     }
+    let ends: Vec<(Point, Near)> = if detail {
+        ends.iter().enumerate().map(|(i, (p, _))| (*p, near(i, &mut exact))).collect()
+    } else {
+        Vec::new()
+    };
     let profile =
         ends.iter().map(|(p, n)| ProfilePoint { x: p.z, y: p.r, t: n.t, deviation: n.sd - r }).collect();
     let (gouge, gouge_at) = match best {
@@ -906,17 +979,17 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
                 .ok_or_else(|| Error::Input("the target curve has no extent".into()))?,
         )
     };
-    let measure = |lm: &LevelMoves| -> Result<Option<Measured>, Error> {
+    let measure = |lm: &LevelMoves, detail: bool| -> Result<Option<Measured>, Error> {
         match &shared {
-            Some(c) => Ok(Some(measure_level(c, lm, r))),
-            None => Ok(Curve::new(&spec.target, lm.z)?.map(|c| measure_level(&c, lm, r))),
+            Some(c) => Ok(Some(measure_level(c, lm, r, detail))),
+            None => Ok(Curve::new(&spec.target, lm.z)?.map(|c| measure_level(&c, lm, r, detail))),
         }
     };
     // Each level's report only: a level's samples and profile are dropped as soon as it is
     // measured, so memory does not grow with the number of levels; the one level the picture
     // shows is measured again below.
     let reports: Vec<Result<Option<LevelReport>, Error>> =
-        cut.par_iter().map(|lm| Ok(measure(lm)?.map(|m| m.report))).collect();
+        cut.par_iter().map(|lm| Ok(measure(lm, false)?.map(|m| m.report))).collect();
     let mut levels_out = Vec::new();
     let mut kept: Vec<(LevelReport, &LevelMoves)> = Vec::new();
     for (m, lm) in reports.into_iter().zip(&cut) {
@@ -937,7 +1010,7 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
     let leftover_max = worst_l.map_or(0.0, |m| m.0.leftover);
     let shown_level = if gouge_max > 0.0 { worst_g } else { worst_l };
     let shown: Option<(Measured, &LevelMoves)> = match shown_level {
-        Some((_, lm)) => measure(lm)?.map(|m| (m, *lm)),
+        Some((_, lm)) => measure(lm, true)?.map(|m| (m, *lm)),
         None => None,
     };
     let shown = shown.as_ref();
