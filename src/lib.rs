@@ -92,7 +92,7 @@ pub use geometry::sweep::{pass_metrics, sweep, PassMetrics, Section, Sweep, Swee
 
 // The computations.
 pub use analysis::catalogue::{cases as catalogue_cases, run as run_catalogue, Case, CatalogueSpec};
-pub use analysis::check::{checks, Check, CheckFeature, CheckKind, Verdict};
+pub use analysis::check::{checks, Check, CheckFeature, CheckKind, CheckUnit, Verdict};
 pub use analysis::compare::{compare, Comparison};
 pub use analysis::correction::{correction, Correction};
 pub use analysis::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};

@@ -466,3 +466,37 @@ fn the_help_names_every_standard() {
         assert!(out.contains(s), "{s} missing from --help:\n{out}");
     }
 }
+
+/// Issue 28: the process checks read like code (`constant_spindle_speed    1.0000`, an rpm check
+/// with four decimals and a deviation of 0.0 µm). The text table names them in words, shows
+/// each value in its unit, and the deviation in the check's unit: S500 against the training
+/// lathe's 320 rpm for P 1.5 (its Table 2.2) is 180 rpm over; a 1° clearance insert on
+/// M20x1.5 at d2 (helix 1.438°) keeps 1 − 1.438 = −0.438° on the leading flank, 0.438° short
+/// of the 0° it needs.
+#[test]
+fn process_checks_read_in_words_and_units() {
+    let prog = crate::data("programs/fanuc-g97-g92.nc");
+    let o = crate::run(&[
+        "verify",
+        "--program",
+        prog.to_str().unwrap(),
+        "--thread",
+        "M20x1.5-6g",
+        "--insert",
+        "full",
+        "--machine",
+        "training-lathe",
+        "--clearance-angle",
+        "1",
+        "--no-pass-metrics",
+    ]);
+    let out = crate::stdout(&o);
+    let line = |start: &str| {
+        out.lines().find(|l| l.contains(start)).unwrap_or_else(|| panic!("{start}:\n{out}")).to_string()
+    };
+    let rpm = line("✗ spindle speed");
+    assert!(rpm.contains(" 500 ") && rpm.contains(" 320 ") && rpm.contains("+180 rpm"), "{rpm}");
+    assert!(line("constant rpm").contains(" yes "), "{out}");
+    assert!(line("✗ flank clearance").contains("-0.438°"), "{out}");
+    assert!(!out.contains("constant_spindle_speed") && !out.contains("1.0000         —"), "{out}");
+}

@@ -59,6 +59,27 @@ impl CheckKind {
     }
 }
 
+/// What a check's value is measured in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CheckUnit {
+    /// Millimetres (deviations in µm).
+    Mm,
+    /// Degrees.
+    Degree,
+    /// A whole number.
+    Count,
+    /// Turns of the thread (the gauge plane's place).
+    Turn,
+    /// Change of diameter per unit of length (a taper).
+    DiameterPerLength,
+    /// Yes (1) or no (0).
+    YesNo,
+    /// Revolutions per minute.
+    Rpm,
+    /// Millimetres per minute.
+    MmPerMin,
+}
+
 /// What a check measures. The JSON names are the snake-case variant names
 /// (`pitch_diameter`, …); adding one makes every `match` on it say what it does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
@@ -139,13 +160,13 @@ impl CheckFeature {
             CheckFeature::Crest => "crest",
             CheckFeature::SingleGroove => "one groove",
             CheckFeature::Starts => "starts",
-            CheckFeature::GaugePlane
-            | CheckFeature::Taper
-            | CheckFeature::ConstantSpindleSpeed
-            | CheckFeature::SpindleSpeed
-            | CheckFeature::Feed
-            | CheckFeature::FlankClearance
-            | CheckFeature::RunOut => self.name(),
+            CheckFeature::GaugePlane => "gauge plane",
+            CheckFeature::Taper => "taper",
+            CheckFeature::ConstantSpindleSpeed => "constant rpm",
+            CheckFeature::SpindleSpeed => "spindle speed",
+            CheckFeature::Feed => "feed S×lead",
+            CheckFeature::FlankClearance => "flank clearance",
+            CheckFeature::RunOut => "run-out room",
         }
     }
 
@@ -175,6 +196,27 @@ impl CheckFeature {
             CheckFeature::Feed => "feed (S × lead)",
             CheckFeature::FlankClearance => "flank clearance",
             CheckFeature::RunOut => "run-out room",
+        }
+    }
+
+    /// What the check's value, limits and deviation are measured in.
+    pub fn unit(self) -> CheckUnit {
+        match self {
+            CheckFeature::MajorDiameter
+            | CheckFeature::PitchDiameter
+            | CheckFeature::FunctionalPitchDiameter
+            | CheckFeature::MinorDiameter
+            | CheckFeature::RootRadius
+            | CheckFeature::MaxMaterial
+            | CheckFeature::Crest
+            | CheckFeature::RunOut => CheckUnit::Mm,
+            CheckFeature::FlankAngle | CheckFeature::FlankClearance => CheckUnit::Degree,
+            CheckFeature::SingleGroove | CheckFeature::ConstantSpindleSpeed => CheckUnit::YesNo,
+            CheckFeature::Starts => CheckUnit::Count,
+            CheckFeature::GaugePlane => CheckUnit::Turn,
+            CheckFeature::Taper => CheckUnit::DiameterPerLength,
+            CheckFeature::SpindleSpeed => CheckUnit::Rpm,
+            CheckFeature::Feed => CheckUnit::MmPerMin,
         }
     }
 

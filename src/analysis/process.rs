@@ -272,7 +272,7 @@ pub fn process_checks(
     let helix = helix_angle(lead, d2);
     let leading = clearance_angle.map(|c| c - helix);
     if let Some(l) = leading {
-        checks.push(process_check(
+        let mut c = process_check(
             crate::analysis::check::CheckFeature::FlankClearance,
             l,
             None,
@@ -282,7 +282,10 @@ pub fn process_checks(
             } else {
                 format!("the helix angle {helix:.2}° eats the insert's clearance: the leading flank rubs; incline the insert by {helix:.2}° (a shim)")
             },
-        ));
+        );
+        // The leading flank needs some clearance: more than 0°.
+        c.min = Some(0.0);
+        checks.push(c);
     }
     let report = ProcessReport {
         machine: machine.map(|m| m.name.clone()),

@@ -5,7 +5,7 @@
 
 use crate::analysis::compare::Comparison;
 use crate::analysis::verify::{OperationResult, ProgramVerification, Verification};
-use crate::report::{fmt_num, opt};
+use crate::report::opt;
 use crate::standards::ThreadKind;
 use std::fmt::Write as _;
 
@@ -78,9 +78,10 @@ fn verification_body(v: &Verification, svg: &str, level: u8) -> String {
     }
     let _ = writeln!(s, "<div class=\"pic\">{svg}</div>");
     let _ = writeln!(s, "<{0}>Checks</{0}>", h(0));
-    s.push_str("<table><tr><th>feature</th><th>value</th><th>min</th><th>max</th><th>deviation µm</th><th>ok</th><th>note</th></tr>\n");
+    s.push_str("<table><tr><th>feature</th><th>value</th><th>min</th><th>max</th><th>deviation</th><th>ok</th><th>note</th></tr>\n");
     for c in &v.checks {
         let counts = c.kind.counts(v.gauge_only);
+        let cells = super::check_cells(c);
         let (cls, word) = match (c.ok, counts) {
             (true, _) => ("ok", "ok"),
             (false, true) => ("out", "OUT"),
@@ -88,12 +89,12 @@ fn verification_body(v: &Verification, svg: &str, level: u8) -> String {
         };
         let _ = writeln!(
             s,
-            "<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{:+.1}</td><td class=\"{cls}\">{word}</td><td>{}</td></tr>",
+            "<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"{cls}\">{word}</td><td>{}</td></tr>",
             esc(c.feature.words(v.kind)),
-            fmt_num(c.value),
-            c.min.map_or(String::new(), fmt_num),
-            c.max.map_or(String::new(), fmt_num),
-            c.deviation_um,
+            esc(&cells.value),
+            esc(cells.min.trim_start_matches('—')),
+            esc(cells.max.trim_start_matches('—')),
+            esc(&cells.deviation),
             esc(c.note.as_deref().unwrap_or(""))
         );
     }

@@ -361,6 +361,54 @@ pub(crate) fn opt(v: Option<f64>, prec: usize) -> String {
     v.map_or_else(|| "—".to_string(), |x| format!("{x:.prec$}"))
 }
 
+/// A check's value, limits and deviation as the tables show them, each in the check's own
+/// unit: lengths to 0.1 µm with the deviation in µm, angles to 0.001°, speeds and feeds whole,
+/// yes/no checks in words; the deviation is empty inside the limits.
+pub(crate) struct CheckCells {
+    pub value: String,
+    pub min: String,
+    pub max: String,
+    pub deviation: String,
+}
+
+pub(crate) fn check_cells(c: &crate::Check) -> CheckCells {
+    use crate::CheckUnit as U;
+    let unit = c.feature.unit();
+    let prec = match unit {
+        U::Mm => 4,
+        U::Degree | U::Turn => 3,
+        U::DiameterPerLength => 5,
+        U::Count | U::Rpm | U::MmPerMin | U::YesNo => 0,
+    };
+    let lim = |v: Option<f64>| if unit == U::YesNo { String::new() } else { opt(v, prec) };
+    let value = match unit {
+        U::YesNo => (if c.value != 0.0 { "yes" } else { "no" }).to_string(),
+        _ => format!("{:.prec$}", c.value),
+    };
+    // Outside the limits: by how much, in the check's unit (lengths as the analysis measured
+    // them, to the true limit).
+    let over = match (c.min, c.max) {
+        (_, Some(max)) if c.value > max => c.value - max,
+        (Some(min), _) if c.value < min => c.value - min,
+        _ => 0.0,
+    };
+    let deviation = if c.ok {
+        String::new()
+    } else {
+        match unit {
+            U::Mm => format!("{:+.1} µm", c.deviation_um),
+            U::Degree => format!("{over:+.3}°"),
+            U::Turn => format!("{over:+.3} turn"),
+            U::DiameterPerLength => format!("{over:+.5}"),
+            U::Count => format!("{over:+.0}"),
+            U::Rpm => format!("{over:+.0} rpm"),
+            U::MmPerMin => format!("{over:+.0} mm/min"),
+            U::YesNo => String::new(),
+        }
+    };
+    CheckCells { value, min: lim(c.min), max: lim(c.max), deviation }
+}
+
 /// The human report: a compact table of checks with ✓/✗ and deviations in µm.
 pub fn verify_text(v: &Verification) -> String {
     let mut s = String::new();
@@ -398,11 +446,11 @@ pub fn verify_text(v: &Verification) -> String {
     let _ = if inch {
         writeln!(
             s,
-            "\n    {:<16}{:>10}{:>10}{:>10}{:>10}  kind  {:>8}{:>8}{:>8} in",
-            "check", "value", "min", "max", "dev µm", "value", "min", "max"
+            "\n    {:<16}{:>10}{:>10}{:>10}{:>12}  kind  {:>8}{:>8}{:>8} in",
+            "check", "value", "min", "max", "deviation", "value", "min", "max"
         )
     } else {
-        writeln!(s, "\n    {:<16}{:>10}{:>10}{:>10}{:>10}  kind", "check", "value", "min", "max", "dev µm")
+        writeln!(s, "\n    {:<16}{:>10}{:>10}{:>10}{:>12}  kind", "check", "value", "min", "max", "deviation")
     };
     for c in &v.checks {
         let counts = c.kind.counts(v.gauge_only);
@@ -413,29 +461,15 @@ pub fn verify_text(v: &Verification) -> String {
         } else {
             "·"
         };
-        let prec = match c.feature {
-            CheckFeature::FlankAngle => 3,
-            CheckFeature::Starts => 0,
-            _ => 4,
-        };
-        let name = c.feature.label();
-        let value = if c.feature == CheckFeature::SingleGroove {
-            if c.ok {
-                "yes".into()
-            } else {
-                "no".into()
-            }
-        } else {
-            format!("{:.prec$}", c.value)
-        };
+        let cells = check_cells(c);
         let _ = write!(
             s,
-            "  {mark} {:<16}{:>10}{:>10}{:>10}{:>10.1}  {}",
-            name,
-            value,
-            if c.feature == CheckFeature::SingleGroove { String::new() } else { opt(c.min, prec) },
-            if c.feature == CheckFeature::SingleGroove { String::new() } else { opt(c.max, prec) },
-            c.deviation_um,
+            "  {mark} {:<16}{:>10}{:>10}{:>10}{:>12}  {}",
+            c.feature.label(),
+            cells.value,
+            cells.min,
+            cells.max,
+            cells.deviation,
             c.kind.name()
         );
         // Lengths in inches beside the mm (not the angles, the counts or the turns).

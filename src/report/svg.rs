@@ -454,18 +454,24 @@ fn check_table(v: &Verification, x: f64, y: f64) -> (Group, f64) {
         } else {
             "#8a6d00"
         };
-        let unit = if c.feature.is_length() { "" } else { "°" };
-        let value = match c.feature {
-            crate::CheckFeature::FlankAngle => format!("{:.2}°", c.value),
-            f if f.is_length() => format!("{:.4}", c.value),
-            _ => crate::ground::fmt::fmt_num(c.value),
+        // Values, limits and deviations in the check's own unit (the text table's cells).
+        let cells = super::check_cells(c);
+        let unit = match c.feature.unit() {
+            crate::CheckUnit::Degree => "°",
+            crate::CheckUnit::Rpm => " rpm",
+            crate::CheckUnit::MmPerMin => " mm/min",
+            crate::CheckUnit::Turn => " turn",
+            crate::CheckUnit::Mm
+            | crate::CheckUnit::Count
+            | crate::CheckUnit::DiameterPerLength
+            | crate::CheckUnit::YesNo => "",
         };
-        let lim = fmt_limits(c.min, c.max, unit);
-        let off = if c.deviation_um == 0.0 || !c.feature.is_length() {
-            String::new()
-        } else {
-            format!("{:+.1} µm", c.deviation_um)
+        let value = format!("{}{}", cells.value, if unit == "°" { "°" } else { "" });
+        let lim = match c.feature.unit() {
+            crate::CheckUnit::YesNo => String::new(),
+            _ => fmt_limits(c.min, c.max, unit),
         };
+        let off = cells.deviation;
         let verdict = match (c.ok, counts) {
             (true, _) => "ok",
             (false, true) => "OUT",
