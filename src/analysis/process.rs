@@ -24,7 +24,7 @@ use serde::Serialize;
 pub const ASSUMED_RAPID_MM_MIN: f64 = 5000.0;
 
 /// A machine's limits for threading. A profile file names only what it limits: `name` defaults
-/// to the file's name and `rapid_mm_min` to [`ASSUMED_RAPID_MM_MIN`], said in the name.
+/// to the file's name and `rapid_mm_min` to 5000 mm/min, said in the name.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct MachineProfile {
     /// Its name, for the report.
