@@ -500,3 +500,22 @@ fn process_checks_read_in_words_and_units() {
     assert!(line("✗ flank clearance").contains("-0.438°"), "{out}");
     assert!(!out.contains("constant_spindle_speed") && !out.contains("1.0000         —"), "{out}");
 }
+
+/// Issue 28: `compare --program` failed with "a final X and a program exclude each other" though
+/// no X was given, and `compare --taper` spoke of verify and of three standards; each now says
+/// what compare does instead.
+#[test]
+fn compare_says_why_it_takes_no_program_and_no_taper() {
+    let prog = crate::data("programs/fanuc-g97-g92.nc");
+    let o = crate::run(&["compare", "--thread", "M20x1.5-6g", "--program", prog.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = crate::stderr(&o);
+    assert!(
+        e.contains("compare lays out each infeed strategy's own passes") && !e.contains("final X"),
+        "{e}"
+    );
+    let o = crate::run(&["compare", "--thread", "M20x1.5-6g", "--taper", "0.0625"]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = crate::stderr(&o);
+    assert!(e.contains("compare takes a taper thread's taper from its designation"), "{e}");
+}

@@ -735,7 +735,7 @@ struct Given {
 fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error> {
     let spec = &r.spec;
     if spec.taper != 0.0 {
-        return Err(Error::Input("verify checks parallel threads against ISO 965-1, BS 84 and ISO 228-1; a taper plan is laid out by `passes`, not verified".into()));
+        return Err(Error::Input("--taper lays out a tapered pass plan for `passes`; verify takes a taper thread's taper from its designation (NPT, ISO 7-1) or from a program".into()));
     }
     let (des, kind, limits, insert, blank, infeed) =
         (r.designation.clone(), r.kind, r.limits.clone(), r.insert.clone(), r.blank, r.infeed);
