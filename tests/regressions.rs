@@ -519,3 +519,26 @@ fn compare_says_why_it_takes_no_program_and_no_taper() {
     let e = crate::stderr(&o);
     assert!(e.contains("compare takes a taper thread's taper from its designation"), "{e}");
 }
+
+/// Issue 28: `--units inch` added inch columns to the check table only; the header, the measured
+/// line and the correction stayed in mm. The inch program's last pass is X.9 (in): 22.86 mm,
+/// shown as 0.90000 in beside it; the measured line and the correction give inches too.
+#[test]
+fn units_inch_reach_the_header_the_measured_line_and_the_correction() {
+    let prog = crate::data("programs/fanuc-g76-inch.nc");
+    let o = crate::run(&[
+        "verify",
+        "--program",
+        prog.to_str().unwrap(),
+        "--thread",
+        "1-16-UN-2A",
+        "--units",
+        "inch",
+    ]);
+    let out = crate::stdout(&o);
+    assert!(out.contains("final X22.8600 (0.90000 in)"), "{out}");
+    let measured = out.lines().find(|l| l.contains("measured:")).unwrap();
+    assert!(measured.contains("thread depth") && measured.matches(" in)").count() >= 3, "{measured}");
+    let fix = out.lines().find(|l| l.contains("for mid-tolerance")).unwrap();
+    assert!(fix.contains("µm (") && fix.contains(" in, on the diameter"), "{fix}");
+}

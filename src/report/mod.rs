@@ -430,19 +430,24 @@ pub fn verify_text(v: &Verification) -> String {
         },
         v.passes.len()
     );
+    let inch = v.units == crate::analysis::verify::Units::Inch;
+    // With --units inch, a length in inches beside the mm.
+    let also = |mm: f64| if inch { format!(" ({:.5} in)", mm / 25.4) } else { String::new() };
+    let also_um = |um: f64| if inch { format!(" ({:+.5} in)", um / 25_400.0) } else { String::new() };
     let _ = writeln!(
         s,
-        "{} X{:.4}, final X{:.4}{}",
+        "{} X{:.4}{}, final X{:.4}{}{}",
         if v.kind == ThreadKind::External { "blank" } else { "bore" },
         v.blank_diameter,
+        also(v.blank_diameter),
         v.final_x,
+        also(v.final_x),
         if v.final_x_solved {
             " (solved for mid-tolerance pitch diameter: use it as the cycle's X)"
         } else {
             ""
         }
     );
-    let inch = v.units == crate::analysis::verify::Units::Inch;
     let _ = if inch {
         writeln!(
             s,
@@ -486,13 +491,23 @@ pub fn verify_text(v: &Verification) -> String {
     let m = &v.measurement;
     let _ = writeln!(
         s,
-        "\n  measured: thread depth {:.4}, flanks {:.3}°/{:.3}°{}{}",
+        "\n  measured: thread depth {:.4}{}, flanks {:.3}°/{:.3}°{}{}",
         m.thread_depth,
+        also(m.thread_depth),
         m.flank_angles[0],
         m.flank_angles[1],
-        m.three_wire.map_or(String::new(), |w| format!(", M over {:.4} wires {:.4}", w.wire, w.m)),
-        m.max_material_clearance
-            .map_or(String::new(), |c| format!(", GO-gauge clearance {:+.1} µm", c * 1000.0))
+        m.three_wire.map_or(String::new(), |w| format!(
+            ", M over {:.4}{} wires {:.4}{}",
+            w.wire,
+            also(w.wire),
+            w.m,
+            also(w.m)
+        )),
+        m.max_material_clearance.map_or(String::new(), |c| format!(
+            ", GO-gauge clearance {:+.1} µm{}",
+            c * 1000.0,
+            also_um(c * 1000.0)
+        ))
     );
     if let (Some(ld), Some(f)) = (&v.lead_deviation, v.functional_pitch_diameter) {
         let _ = writeln!(
@@ -539,9 +554,13 @@ pub fn verify_text(v: &Verification) -> String {
         let off = if let Some(gp) = failed(CheckFeature::GaugePlane) {
             format!("the gauge plane is {:+.3} turn from its basic position", gp.value)
         } else if let Some(d2) = failed(CheckFeature::PitchDiameter) {
-            format!("pitch diameter is {:+.1} µm off", d2.deviation_um)
+            format!("pitch diameter is {:+.1} µm{} off", d2.deviation_um, also_um(d2.deviation_um))
         } else if let Some(f) = failed(CheckFeature::FunctionalPitchDiameter) {
-            format!("the functional pitch diameter is {:+.1} µm off", f.deviation_um)
+            format!(
+                "the functional pitch diameter is {:+.1} µm{} off",
+                f.deviation_um,
+                also_um(f.deviation_um)
+            )
         } else {
             "the pitch diameter is off".to_string()
         };
@@ -549,12 +568,13 @@ pub fn verify_text(v: &Verification) -> String {
             Some(c) => {
                 let _ = writeln!(
                     s,
-                    "{off}: {} for mid-tolerance (the last pass at X{x:.4} mm on the diameter)",
-                    correction_text(c)
+                    "{off}: {} for mid-tolerance (the last pass at X{x:.4} mm{} on the diameter)",
+                    correction_text(c),
+                    if inch { format!(", {:.5} in,", x / 25.4) } else { String::new() }
                 );
             }
             None => {
-                let _ = writeln!(s, "{off}: program the last pass at X{x:.4} for mid-tolerance");
+                let _ = writeln!(s, "{off}: program the last pass at X{x:.4}{} for mid-tolerance", also(x));
             }
         }
     }
