@@ -393,9 +393,10 @@ struct PlanArgs {
     /// The insert's side clearance angle, degrees: checks the leading flank against the helix.
     #[arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = finite)]
     clearance_angle: Option<f64>,
-    /// Lengths in the text and the SVG: mm, or mm with inches beside them.
-    #[arg(long, value_enum, default_value = "mm")]
-    units: UnitsArg,
+    /// Lengths in the text and the SVG: mm, or mm with inches beside them (default: inch for
+    /// threads of inch sizes (UN, Acme, NPT, BSW, BSP), else mm)
+    #[arg(long, value_enum)]
+    units: Option<UnitsArg>,
     /// fanuc | haas | sinumerik | linuxcnc | dyna (default: the program's extension names it,
     /// .ngc linuxcnc, .mpf/.spf sinumerik; else fanuc)
     #[arg(long, requires = "program")]
@@ -458,8 +459,18 @@ impl PlanArgs {
         s.machine = self.machine.as_deref().map(threadcheck::MachineProfile::read).transpose()?;
         s.clearance_angle = self.clearance_angle;
         s.units = match self.units {
-            UnitsArg::Mm => Units::Mm,
-            UnitsArg::Inch => Units::Inch,
+            Some(UnitsArg::Mm) => Units::Mm,
+            Some(UnitsArg::Inch) => Units::Inch,
+            // An inch thread is read in inches beside the mm; a designation that does not parse
+            // is reported where it is resolved.
+            None => {
+                let opts = threadcheck::ParseOptions { allow_nonstandard: self.allow_nonstandard };
+                let first = self.thread.first().map_or("", String::as_str);
+                match threadcheck::parse_designation(first, opts) {
+                    Ok(d) if d.thread.form.is_inch() => Units::Inch,
+                    _ => Units::Mm,
+                }
+            }
         };
         if let Some(p) = &self.program {
             let (dialect, from) = dialect_for(self.dialect, p);

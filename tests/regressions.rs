@@ -542,3 +542,18 @@ fn units_inch_reach_the_header_the_measured_line_and_the_correction() {
     let fix = out.lines().find(|l| l.contains("for mid-tolerance")).unwrap();
     assert!(fix.contains("µm (") && fix.contains(" in, on the diameter"), "{fix}");
 }
+
+/// Issue 28: an inch thread is read in inches by default (beside the mm); `--units mm` keeps
+/// the mm alone, and a metric thread stays in mm. 1/2-13 UNC: major diameter 0.5 in nominal, so
+/// the table's inch column reads 0.49… in.
+#[test]
+fn inch_threads_default_to_inches() {
+    let table = |args: &[&str]| crate::stdout(&crate::run(args));
+    let unc = table(&["verify", "--thread", "1/2-13-UNC-2A", "--insert", "full"]);
+    let major = unc.lines().find(|l| l.contains("major diameter")).unwrap();
+    assert!(major.trim_end().ends_with(" in") && major.contains(" 0.49"), "{major}");
+    let mm = table(&["verify", "--thread", "1/2-13-UNC-2A", "--insert", "full", "--units", "mm"]);
+    assert!(!mm.lines().any(|l| l.contains("major diameter") && l.trim_end().ends_with(" in")), "{mm}");
+    let metric = table(&["verify", "--thread", "M10x1.5-6g", "--insert", "full"]);
+    assert!(!metric.contains(" in)") && !metric.lines().any(|l| l.trim_end().ends_with(" in")), "{metric}");
+}
