@@ -222,25 +222,7 @@ impl CheckFeature {
 
     /// Whether the value is a length in mm (shown in inches beside it with `--units inch`).
     pub fn is_length(self) -> bool {
-        match self {
-            CheckFeature::MajorDiameter
-            | CheckFeature::PitchDiameter
-            | CheckFeature::FunctionalPitchDiameter
-            | CheckFeature::MinorDiameter
-            | CheckFeature::RootRadius
-            | CheckFeature::MaxMaterial
-            | CheckFeature::Crest
-            | CheckFeature::RunOut => true,
-            CheckFeature::FlankAngle
-            | CheckFeature::SingleGroove
-            | CheckFeature::Starts
-            | CheckFeature::GaugePlane
-            | CheckFeature::Taper
-            | CheckFeature::ConstantSpindleSpeed
-            | CheckFeature::SpindleSpeed
-            | CheckFeature::Feed
-            | CheckFeature::FlankClearance => false,
-        }
+        self.unit() == CheckUnit::Mm
     }
 }
 
