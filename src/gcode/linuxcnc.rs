@@ -275,6 +275,7 @@ fn coordinates(s: &mut State, m: &mut Motion, b: &RBlock<'_>, md: &cycles::Modal
                 ));
             }
             let k = if k == 0 { s.system() } else { k };
+            let active = k == s.system();
             if b.get("R").is_some_and(|r| r.v != 0.0) {
                 m.lose_position(b.line, "G10 with R, a rotation of the XY plane", true, true);
                 m.lose_frame(b.line, "G10 with R, a rotation of the XY plane");
@@ -294,7 +295,7 @@ fn coordinates(s: &mut State, m: &mut Motion, b: &RBlock<'_>, md: &cycles::Modal
                 } else {
                     // From a position threadcheck does not know: the point gets its
                     // coordinates, the offset is relative to an arbitrary frame.
-                    if k == s.system0 + 1 {
+                    if active {
                         set_pos(m, a, v + m.offset[a]);
                         o.v[a] = m.offset[a] - s.g92.v[a];
                     }
