@@ -6,7 +6,8 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use threadcheck::Dialect;
 use threadcheck::{
-    CompareJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob, SweepJob, VerifyJob,
+    CompareJob, CorrectJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob, SweepJob,
+    VerifyJob,
 };
 use threadcheck::{Error, ThreadForm};
 use threadcheck::{InfeedChoice, Schedule};
@@ -79,6 +80,9 @@ enum Command {
         /// Accept a diameter/pitch pair outside the standard series.
         #[arg(long)]
         allow_nonstandard: bool,
+        /// The limits to cut to before a coating of this thickness, mm (plating, anodizing).
+        #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite, default_value = "0")]
+        coating: f64,
     },
     /// Cut the thread in the computer and check it against its class.
     Verify {
@@ -103,6 +107,10 @@ enum Command {
         #[command(flatten)]
         json: JsonArg,
     },
+    /// After measuring the first part: the part's pitch diameter from the measurement and the
+    /// change to make, in the program's words (exit 0 in tolerance, 1 when a correction is
+    /// needed); a pick-up's start angle or Z shift.
+    Correct(CorrectArgs),
     /// The same thread with radial, flank, modified-flank and alternating infeed.
     Compare {
         #[command(flatten)]
@@ -302,6 +310,37 @@ struct FitArgs {
 }
 
 #[derive(Args)]
+struct CorrectArgs {
+    #[command(flatten)]
+    plan: PlanArgs,
+    /// The measurement over three wires, mm (with --wire).
+    #[arg(long, value_name = "MM", value_parser = finite, requires = "wire",
+          conflicts_with_all = ["measured_d2", "gauge"])]
+    measured_m: Option<f64>,
+    /// The wires' diameter, mm.
+    #[arg(long, value_name = "MM", value_parser = finite, requires = "measured_m")]
+    wire: Option<f64>,
+    /// The pitch diameter measured (thread micrometer, optical), mm.
+    #[arg(long, value_name = "MM", value_parser = finite, conflicts_with = "gauge")]
+    measured_d2: Option<f64>,
+    /// What the GO/NO-GO gauges said: go-fails | nogo-enters | ok.
+    #[arg(long, value_name = "RESULT")]
+    gauge: Option<threadcheck::GaugeResult>,
+    /// Pick-up: a groove centre's Z on the re-clamped part (at the pitch line, from the
+    /// program's Z0), mm.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite)]
+    pickup_z: Option<f64>,
+    /// Write a self-contained HTML page to this file.
+    #[arg(long, value_name = "FILE")]
+    html: Option<PathBuf>,
+    /// Write the program with the correction to this file; `-` prints it instead of the report.
+    #[arg(long, value_name = "FILE|-", requires = "program")]
+    fix: Option<String>,
+    #[command(flatten)]
+    json: JsonArg,
+}
+
+#[derive(Args)]
 struct MillArgs {
     /// The milling program.
     #[arg(long, value_name = "FILE")]
@@ -378,6 +417,10 @@ struct PlanArgs {
     /// Run-out chamfer at the thread end, in leads.
     #[arg(long, value_name = "LEADS", value_parser = finite, default_value = "0")]
     chamfer: f64,
+    /// A coating the thread gets after cutting, mm (plating, anodizing): checked against the
+    /// limits before coating.
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite, default_value = "0")]
+    coating: f64,
     /// Tip diameter of the last pass (default: what puts the pitch diameter mid-tolerance).
     #[arg(long, value_name = "DIA", allow_hyphen_values = true, value_parser = finite)]
     final_x: Option<f64>,
@@ -458,6 +501,7 @@ impl PlanArgs {
         s.gauge_only = gauge_only;
         s.machine = self.machine.as_deref().map(threadcheck::MachineProfile::read).transpose()?;
         s.clearance_angle = self.clearance_angle;
+        s.coating = self.coating;
         s.units = match self.units {
             Some(UnitsArg::Mm) => Units::Mm,
             Some(UnitsArg::Inch) => Units::Inch,
@@ -505,7 +549,7 @@ impl Cli {
     pub fn run(self) -> Result<(String, String, Outcome), Error> {
         let done = |(text, outcome): (String, Outcome)| Ok((text, String::new(), outcome));
         match self.command {
-            Command::Limits { designation, thread, json: JsonArg { json }, allow_nonstandard } => {
+            Command::Limits { designation, thread, json: JsonArg { json }, allow_nonstandard, coating } => {
                 let Some(designation) = designation.or(thread) else {
                     return Err(Error::Input(match json.as_deref() {
                         Some(v) if v != "-" => format!(
@@ -514,7 +558,7 @@ impl Cli {
                         _ => "limits needs a designation, e.g. limits M10x1.5-6g".into(),
                     }));
                 };
-                done(LimitsJob { designation, allow_nonstandard, json }.run()?)
+                done(LimitsJob { designation, allow_nonstandard, json, coating }.run()?)
             }
             Command::Verify { plan, gauge_only, no_pass_metrics, svg, html, fix, json: JsonArg { json } } => {
                 plan.need_thread("verify")?;
@@ -534,6 +578,29 @@ impl Cli {
                     }
                     .run()?,
                 )
+            }
+            Command::Correct(c) => {
+                c.plan.need_thread("correct")?;
+                if c.plan.thread.len() > 1 {
+                    return Err(Error::Input("correct takes one thread: --thread once".into()));
+                }
+                if c.plan.tools.is_some() {
+                    return Err(Error::Input(
+                        "correct reads one insert: give it with --insert (a tool table is for verify)".into(),
+                    ));
+                }
+                let measured = match (c.measured_m, c.wire, c.measured_d2, c.gauge) {
+                    (Some(m), Some(wire), _, _) => Some(threadcheck::Measured::OverWires { m, wire }),
+                    (_, _, Some(d2), _) => Some(threadcheck::Measured::PitchDiameter(d2)),
+                    (_, _, _, Some(g)) => Some(threadcheck::Measured::Gauge(g)),
+                    _ => None,
+                };
+                let spec = threadcheck::CorrectSpec {
+                    verify: c.plan.spec(false)?,
+                    measured,
+                    pickup_z: c.pickup_z,
+                };
+                done(CorrectJob { spec, html: c.html, json: c.json.json, fix: c.fix }.run()?)
             }
             Command::Passes { plan, json: JsonArg { json } } => {
                 done(PassesJob { spec: plan.spec(false)?, json }.run()?)

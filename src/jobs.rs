@@ -31,7 +31,7 @@ impl Outcome {
 ///
 /// ```
 /// use threadcheck::{LimitsJob, Outcome};
-/// let job = LimitsJob { designation: "M10x1.5-6g".into(), allow_nonstandard: false, json: Some("-".into()) };
+/// let job = LimitsJob { designation: "M10x1.5-6g".into(), allow_nonstandard: false, json: Some("-".into()), coating: 0.0 };
 /// let (json, outcome) = job.run()?;
 /// let v: serde_json::Value = serde_json::from_str(&json).expect("JSON");
 /// assert_eq!(v["external"]["pitch_diameter"]["max"], 8.994); // ISO 965-2
@@ -46,6 +46,8 @@ pub struct LimitsJob {
     pub allow_nonstandard: bool,
     /// The JSON: `-` prints it on stdout instead of the table, a path writes it there.
     pub json: Option<String>,
+    /// A coating's thickness, mm: the limits before coating (0: the class's own).
+    pub coating: f64,
 }
 
 impl LimitsJob {
@@ -53,8 +55,10 @@ impl LimitsJob {
     pub fn run(&self) -> Result<(String, Outcome), Error> {
         let des =
             parse_designation(&self.designation, ParseOptions { allow_nonstandard: self.allow_nonstandard })?;
-        let ext = limits_for(&des, ThreadKind::External)?;
-        let int = limits_for(&des, ThreadKind::Internal)?;
+        let t = &des.thread;
+        let coat = |l: Option<ThreadLimits>| l.map(|l| crate::analysis::verify::coated(l, t, self.coating)).transpose();
+        let ext = coat(limits_for(&des, ThreadKind::External)?)?;
+        let int = coat(limits_for(&des, ThreadKind::Internal)?)?;
         let json_text = self
             .json
             .as_ref()
@@ -328,22 +332,7 @@ fn fixed_program(
             continue;
         };
         let Some(c) = &v.correction else { continue };
-        let Some(new) = crate::report::correction_replacement(c) else {
-            return Err(Error::Program {
-                file: shown.to_string(),
-                line: c.line,
-                column: c.column,
-                message: format!("--fix rewrites plain numbers only: {}", crate::report::correction_text(c)),
-            });
-        };
-        for p in std::iter::once((c.line, c.column)).chain(c.also.iter().map(|p| (p.line, p.column))) {
-            edits.push(crate::gcode::WordEdit {
-                line: p.0,
-                column: p.1,
-                old: c.written.clone(),
-                new: new.clone(),
-            });
-        }
+        edits.extend(correction_edits(c, shown)?);
     }
     crate::gcode::rewrite_words(text, shown, &edits)
 }
@@ -408,6 +397,93 @@ pub(crate) fn route_json(
 
 fn pretty<T: serde::Serialize>(v: &T) -> Result<String, Error> {
     crate::report::to_json_pretty(v)
+}
+
+/// `threadcheck correct`: what was measured on the part, turned into the change to make.
+///
+/// ```
+/// use threadcheck::{CorrectJob, CorrectSpec, InsertChoice, Measured, Outcome, VerifySpec};
+/// let spec = CorrectSpec {
+///     verify: VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M10x1.5-6g") },
+///     measured: Some(Measured::PitchDiameter(8.950)),
+///     pickup_z: None,
+/// };
+/// let (text, outcome) = CorrectJob { spec, html: None, json: None, fix: None }.run()?;
+/// assert_eq!(outcome, Outcome::Pass); // 8.950 lies within 8.862–8.994
+/// assert!(text.contains("IN TOLERANCE"));
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct CorrectJob {
+    /// The thread, its program or plan, and what was measured.
+    pub spec: crate::analysis::correct::CorrectSpec,
+    /// Write the HTML page here.
+    pub html: Option<std::path::PathBuf>,
+    /// The JSON: `-` on stdout instead of the text, a path writes it there.
+    pub json: Option<String>,
+    /// Write the program with the correction applied here (`-`: on stdout).
+    pub fix: Option<String>,
+}
+
+impl CorrectJob {
+    /// Runs the job: in tolerance passes, a needed correction is out of tolerance.
+    pub fn run(&self) -> Result<(String, Outcome), Error> {
+        let r = crate::analysis::correct::correct(&self.spec)?;
+        let outcome = match r.verdict() {
+            crate::analysis::check::Verdict::Pass => Outcome::Pass,
+            crate::analysis::check::Verdict::Fail => Outcome::OutOfTolerance,
+        };
+        let json_text =
+            self.json.as_ref().map(|_| pretty(&crate::report::correct::CorrectJson::of(&r))).transpose()?;
+        let html_text = self.html.as_ref().map(|_| crate::report::correct::correct_html(&r));
+        let text = crate::report::correct::correct_text(&r);
+        let fixed = match &self.fix {
+            None => None,
+            Some(_) => {
+                let Some((source, _)) = &self.spec.verify.program else {
+                    return Err(Error::Input("--fix corrects a program: give it with --program".into()));
+                };
+                let (shown, program) = source.load()?;
+                let edits = match &r.correction {
+                    None => Vec::new(),
+                    Some(c) => correction_edits(c, &shown)?,
+                };
+                Some(crate::gcode::rewrite_words(&program, &shown, &edits)?)
+            }
+        };
+        let (fixed, text) = match (self.fix.as_deref(), fixed) {
+            (Some("-"), Some(program)) => {
+                if self.json.as_deref() == Some("-") {
+                    return Err(Error::Input("--fix - and --json - both want stdout: write one to a file".into()));
+                }
+                (None, program)
+            }
+            (_, fixed) => (fixed, text),
+        };
+        let fix_path = self.fix.as_deref().filter(|f| *f != "-").map(std::path::PathBuf::from);
+        let files = [(&self.html, html_text), (&fix_path, fixed)];
+        let inputs = spec_inputs(&self.spec.verify);
+        Ok((write_outputs(&inputs, &files, self.json.as_deref(), json_text, text)?, outcome))
+    }
+}
+
+/// The word edits of one correction (its word, and the same in each other start's cycle).
+fn correction_edits(
+    c: &crate::analysis::correction::Correction,
+    shown: &str,
+) -> Result<Vec<crate::gcode::WordEdit>, Error> {
+    let Some(new) = crate::report::correction_replacement(c) else {
+        return Err(Error::Program {
+            file: shown.to_string(),
+            line: c.line,
+            column: c.column,
+            message: format!("--fix rewrites plain numbers only: {}", crate::report::correction_text(c)),
+        });
+    };
+    Ok(std::iter::once((c.line, c.column))
+        .chain(c.also.iter().map(|p| (p.line, p.column)))
+        .map(|(line, column)| crate::gcode::WordEdit { line, column, old: c.written.clone(), new: new.clone() })
+        .collect())
 }
 
 /// `threadcheck fit`: a bolt and a nut assembled.

@@ -86,7 +86,7 @@ pub use gcode::{
 // Geometry: the insert, the sweep, the measurement.
 pub use geometry::boolean::UnionStrategy;
 pub use geometry::insert::{Insert, InsertKind};
-pub use geometry::measure::{measure, DeviationSample, MeasureSetup, Measurement, ProfileRegion, ThreeWire};
+pub use geometry::measure::{measure, over_wires, DeviationSample, MeasureSetup, Measurement, ProfileRegion, ThreeWire};
 pub use geometry::parry::Placement;
 pub use geometry::sweep::{pass_metrics, sweep, PassMetrics, Section, Sweep, SweepSetup, Window};
 
@@ -94,6 +94,10 @@ pub use geometry::sweep::{pass_metrics, sweep, PassMetrics, Section, Sweep, Swee
 pub use analysis::catalogue::{cases as catalogue_cases, run as run_catalogue, Case, CatalogueSpec};
 pub use analysis::check::{checks, Check, CheckFeature, CheckKind, CheckUnit, Verdict};
 pub use analysis::compare::{compare, Comparison};
+pub use analysis::correct::{
+    correct, helix_term, CorrectReport, CorrectSpec, GaugeResult, Measured, MeasuredState, Pickup, WearOffset,
+    WireReading,
+};
 pub use analysis::correction::{correction, Correction};
 pub use analysis::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};
 pub use analysis::lead::{lead_deviation, LeadDeviation};
@@ -109,5 +113,6 @@ pub use analysis::verify::{
 
 // The commands: one job per command, returning what the command prints.
 pub use jobs::{
-    CompareJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob, SweepJob, VerifyJob,
+    CompareJob, CorrectJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob, SweepJob,
+    VerifyJob,
 };

@@ -156,7 +156,7 @@ fn job_json(
 #[pyfunction]
 #[pyo3(signature = (designation, allow_nonstandard=false))]
 fn limits_json(py: Python<'_>, designation: String, allow_nonstandard: bool) -> PyResult<String> {
-    py.detach(|| LimitsJob { designation, allow_nonstandard, json: Some("-".into()) }.run())
+    py.detach(|| LimitsJob { designation, allow_nonstandard, json: Some("-".into()), coating }.run())
         .map(|(text, _)| text)
         .map_err(value_error)
 }

@@ -3,6 +3,7 @@
 pub mod catalogue;
 pub mod check;
 pub mod compare;
+pub mod correct;
 pub mod correction;
 pub mod fit;
 pub mod lead;

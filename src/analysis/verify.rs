@@ -125,6 +125,10 @@ pub struct VerifySpec {
     pub machine: Option<crate::analysis::process::MachineProfile>,
     /// The insert's side clearance angle, degrees, for the flank-clearance check.
     pub clearance_angle: Option<f64>,
+    /// Thickness of a coating the thread gets after cutting (plating, anodizing), mm; 0 for
+    /// none. The thread is checked against the limits before coating
+    /// ([`ThreadLimits::before_coating`]) and the report says what it measures after.
+    pub coating: f64,
 }
 
 /// How the text report and the picture give lengths.
@@ -166,6 +170,7 @@ impl VerifySpec {
             units: Units::Mm,
             machine: None,
             clearance_angle: None,
+            coating: 0.0,
         }
     }
 
@@ -253,6 +258,34 @@ pub struct Verification {
     pub functional_pitch_diameter: Option<f64>,
     /// What the pictures draw, when the spec asked for it.
     pub picture: Option<crate::analysis::picture::Picture>,
+    /// The program's word that sets the final depth, for a correction by any amount
+    /// ([`Verification::correction_for`]).
+    pub(crate) depth: Option<DepthAt>,
+}
+
+/// A program operation's depth word, its units, and the same word in the cycles of its other
+/// starts (with whether they are written alike).
+#[derive(Clone, Debug)]
+pub(crate) struct DepthAt {
+    word: crate::gcode::DepthWord,
+    units: crate::gcode::ProgramUnits,
+    also: Vec<crate::analysis::correction::Place>,
+    alike: bool,
+}
+
+impl Verification {
+    /// The correction in the program's words that moves the pitch diameter by `delta_d2` mm (+
+    /// larger): `None` for a generated plan, or where no correction is offered (the starts are
+    /// wrong, the program sets no depth word).
+    pub fn correction_for(&self, delta_d2: f64) -> Option<crate::analysis::correction::Correction> {
+        let d = self.depth.as_ref()?;
+        let mut c = crate::analysis::correction::correction(&d.word, d.units, self.kind, delta_d2);
+        c.also = d.also.clone();
+        if !d.alike {
+            c.form = crate::gcode::WordForm::Expression;
+        }
+        Some(c)
+    }
 }
 
 /// Usual number of passes for a pitch P (mm): about 3.5 + 2·P, the order of the insert makers'
@@ -653,6 +686,20 @@ impl Resolved {
     }
 }
 
+/// The limits to cut to under a coating of `thickness` mm: the class's own for 0, else the
+/// limits before coating; a thickness that is no coat of a thread (negative, or a tenth of the
+/// pitch and more, which fills the flanks) is refused.
+pub fn coated(limits: ThreadLimits, t: &BasicThread, thickness: f64) -> Result<ThreadLimits, Error> {
+    if !(thickness.is_finite() && thickness >= 0.0 && thickness < 0.1 * t.pitch) {
+        return Err(Error::Input(format!(
+            "coating {} mm: a coat's thickness is from 0 to under a tenth of the pitch ({} mm)",
+            crate::ground::fmt::fmt_num(thickness),
+            crate::ground::fmt::fmt_num(0.1 * t.pitch)
+        )));
+    }
+    Ok(if thickness > 0.0 { limits.before_coating(thickness, t.half_angle()) } else { limits })
+}
+
 /// Resolves a spec: designation, kind, limits, insert, blank and infeed.
 pub fn resolve(spec: &VerifySpec) -> Result<Resolved, Error> {
     if !(spec.tolerance.is_finite()
@@ -666,6 +713,7 @@ pub fn resolve(spec: &VerifySpec) -> Result<Resolved, Error> {
     let kind = resolve_kind(&des, spec.internal)?;
     let limits = limits_for(&des, kind)?.ok_or_else(|| Error::Input("no class".into()))?;
     let t = des.thread;
+    let limits = coated(limits, &t, spec.coating)?;
     let insert = build_insert(&spec.insert, &t, kind, spec.tolerance)?;
     let blank = match spec.blank_diameter {
         Some(b) if !(b.is_finite() && b > 0.0) => {
@@ -846,6 +894,16 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
     };
     let metrics = if spec.metrics { pass_metrics(&setup, &cut.passes, cut.z_ref)? } else { Vec::new() };
     let m = &cut.measurement;
+    if spec.coating > 0.0 {
+        let grow = 2.0 * spec.coating / t.half_angle().sin();
+        let after = match kind {
+            ThreadKind::External => m.pitch_diameter + grow,
+            ThreadKind::Internal => m.pitch_diameter - grow,
+        };
+        notes.push(crate::ground::note::Note::from(format!(
+            "after coating the pitch diameter measured here becomes {after:.4} mm (the class's limits apply to it)"
+        )));
+    }
     if m.pitch_line_extrapolated {
         notes.push(crate::ground::note::Note::from(
             "the pitch line lies outside the cut flanks; the fitted flank lines were extended to find it",
@@ -910,8 +968,8 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
     });
     let delta = target_at(cut.z_ref) - m.pitch_diameter;
     let suggested = d2_off.then_some(final_x + delta);
-    let correction = match (d2_off, depth_word) {
-        (true, Some((w, units))) => Some(crate::analysis::correction::correction(&w, units, kind, delta)),
+    let correction = match (d2_off, &depth_word) {
+        (true, Some((w, units))) => Some(crate::analysis::correction::correction(w, *units, kind, delta)),
         _ => None,
     };
     if spec.gauge_only {
@@ -945,6 +1003,7 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         functional_pitch_diameter: functional,
         correction,
         picture: None,
+        depth: depth_word.map(|(word, units)| DepthAt { word, units, also: Vec::new(), alike: true }),
     };
     if spec.picture {
         v.picture = Some(crate::analysis::picture::picture(&crate::analysis::picture::Cut {
@@ -1192,6 +1251,12 @@ fn verify_given(
     )?;
     // One cycle per start: the correction changes each cycle's word alike, when they are
     // written alike; otherwise it is said for the first and the others are named.
+    if let Some(d) = v.depth.as_mut() {
+        for w in &op.start_words {
+            d.also.push(crate::analysis::correction::Place { line: w.line, column: w.column });
+            d.alike &= w.written == d.word.written && w.form == d.word.form;
+        }
+    }
     if let Some(c) = v.correction.as_mut() {
         for w in &op.start_words {
             c.also.push(crate::analysis::correction::Place { line: w.line, column: w.column });
@@ -1203,6 +1268,7 @@ fn verify_given(
     if !starts.ok {
         // A start missing (or one too many) is no matter of X: no correction is offered.
         v.correction = None;
+        v.depth = None;
         v.suggested_final_x = None;
         v.notes.push(crate::ground::note::Note::from(format!(
             "no correction is offered while the starts are wrong: {}",

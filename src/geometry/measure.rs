@@ -645,6 +645,39 @@ pub fn measure(setup: &MeasureSetup<'_>, profile: &[Point], z_ref: f64) -> Resul
     })
 }
 
+/// The measurement over wires M of an external thread's groove nearest `z_ref` for wires of
+/// diameter `wire`, mm, in the axial section (no helix term): twice the height where a wire of
+/// that size comes to rest on the as-cut profile, plus the wire. The wire rests on the flanks
+/// where they are straight, else wherever the profile holds it (a step, a worn tip's radius).
+///
+/// On straight 60° flanks with the wire touching them, M = d2 + 3w − 0.866025·P:
+///
+/// ```
+/// use threadcheck::{over_wires, BasicThread, MeasureSetup, ProfileKind, ThreadKind};
+/// let m10 = BasicThread::metric(10.0, 1.5);
+/// let one = m10.profile(ProfileKind::Basic, 5e-5);
+/// let profile: Vec<_> = (-2..2).flat_map(|k| one.iter().map(move |p| threadcheck::Point::new(p.z + 1.5 * k as f64, p.r))).collect();
+/// let ms = MeasureSetup { thread: &m10, kind: ThreadKind::External, mmc_pitch_diameter: None, mmc_major_diameter: None, extras: false };
+/// let m = over_wires(&ms, &profile, 0.0, 0.866)?;
+/// let d2 = 10.0 - 0.649519053 * 1.5;
+/// assert!((m - (d2 + 3.0 * 0.866 - 0.866025404 * 1.5)).abs() < 1e-6);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+pub fn over_wires(setup: &MeasureSetup<'_>, profile: &[Point], z_ref: f64, wire: f64) -> Result<f64, Error> {
+    if setup.kind != ThreadKind::External {
+        return Err(Error::Input("a measurement over wires is taken on an external thread".into()));
+    }
+    if !(wire.is_finite() && wire > 0.0) {
+        return Err(Error::Input(format!("wire diameter {wire} mm must be a positive length")));
+    }
+    let g = Groove::find(normalise(profile, setup.kind), z_ref, setup.thread.pitch)?;
+    let flanks =
+        g.fit_flanks().ok_or_else(|| Error::Geometry("the groove flanks could not be traced".into()))?;
+    let (_, yc) = wire_rest(&g, 0.5 * wire, flanks)
+        .ok_or_else(|| Error::Geometry(format!("a wire of {wire} mm finds no rest in the groove")))?;
+    Ok(dia(yc) + wire)
+}
+
 /// Where along a thread profile a point lies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]

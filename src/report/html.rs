@@ -10,7 +10,7 @@ use crate::standards::ThreadKind;
 use std::fmt::Write as _;
 
 /// Text for HTML: `& < > " '` escaped.
-fn esc(s: &str) -> String {
+pub(crate) fn esc(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
         match c {
@@ -33,7 +33,7 @@ th{background:#eef1f5;text-align:left}td.n{text-align:right;font-variant-numeric
 .verdict{font-size:18px;font-weight:bold}.pic{overflow-x:auto}.pic svg{max-width:100%;height:auto}\
 ul.notes li{font-size:13px;margin:2px 0}";
 
-fn page(title: &str, body: &str) -> String {
+pub(crate) fn page(title: &str, body: &str) -> String {
     format!(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n{body}</body>\n</html>\n",
         esc(title)

@@ -1,6 +1,7 @@
 //! The `verify` report: JSON as the CLI contract specifies, and the human table.
 
 pub mod compare;
+pub mod correct;
 pub mod fit;
 pub mod html;
 pub mod mill;

@@ -8,6 +8,7 @@
 
 use crate::standards::data::{catalog, find_pitch, IsoTables};
 use crate::standards::{BasicThread, ClassSpec, Designation, ThreadForm, ThreadKind};
+use crate::ground::fmt::fmt_num;
 use crate::Error;
 use serde::Serialize;
 use std::fmt;
@@ -389,6 +390,54 @@ pub struct ThreadLimits {
     /// compared at it. In JSON, `resolution_mm`.
     #[serde(rename = "resolution_mm")]
     pub resolution: Resolution,
+}
+
+impl ThreadLimits {
+    /// The limits to cut to before a coating of `thickness` mm (plating, anodizing) on a thread
+    /// whose flanks stand `half_angle_rad` from the radial: the class's limits apply after
+    /// coating (ISO 965-1 and ASME B1.1 both say so), and a coat of thickness t grows a bolt's
+    /// major and minor diameters by 2t and its pitch diameter by 2t / sin β (4t for a 60°
+    /// thread, as ASME B1.1 states for coated threads); a nut's shrink by as much. Every limit
+    /// moves by that growth, away from the coating: down for a bolt, up for a nut.
+    ///
+    /// ```
+    /// use threadcheck::{limits_for, parse_designation, ParseOptions, ThreadKind};
+    /// let d = parse_designation("M10x1.5-6g", ParseOptions::default())?;
+    /// let l = limits_for(&d, ThreadKind::External)?.unwrap();
+    /// // A 10 µm coat on a 60° bolt: d2 8.862–8.994 becomes 8.822–8.954 before plating.
+    /// let pre = l.before_coating(0.010, 30f64.to_radians());
+    /// assert!((pre.pitch_diameter.max.unwrap() - 8.954).abs() < 1e-12);
+    /// assert!((pre.pitch_diameter.min.unwrap() - 8.822).abs() < 1e-12);
+    /// # Ok::<(), threadcheck::Error>(())
+    /// ```
+    pub fn before_coating(&self, thickness: f64, half_angle_rad: f64) -> ThreadLimits {
+        debug_assert!(thickness >= 0.0 && half_angle_rad > 0.0);
+        let away = match self.kind {
+            ThreadKind::External => -1.0,
+            ThreadKind::Internal => 1.0,
+        };
+        let (pitch, size) = (away * 2.0 * thickness / half_angle_rad.sin(), away * 2.0 * thickness);
+        // To 1e-9 mm: the limits are µm (or 0.1 mil) values, the shift is no reason for float noise.
+        let nm = |v: f64| (v * 1e9).round() / 1e9;
+        let shift = |l: Limit, by: f64| Limit { max: l.max.map(|v| nm(v + by)), min: l.min.map(|v| nm(v + by)) };
+        let mut notes = self.notes.clone();
+        notes.push(format!(
+            "limits before a coating of {} mm: the class's moved {} µm {} on the pitch diameter (2t / sin {}°) and {} µm on the major and minor diameters (2t); the class's own limits apply after coating (ISO 965-1, ASME B1.1)",
+            fmt_num(thickness),
+            fmt_num((pitch.abs() * 1e9).round() / 1e6),
+            if away < 0.0 { "down" } else { "up" },
+            fmt_num((half_angle_rad.to_degrees() * 1e6).round() / 1e6),
+            fmt_num((size.abs() * 1e9).round() / 1e6),
+        ));
+        ThreadLimits {
+            notes,
+            major_diameter: shift(self.major_diameter, size),
+            pitch_diameter: shift(self.pitch_diameter, pitch),
+            minor_diameter: shift(self.minor_diameter, size),
+            gauge_plane: self.gauge_plane.map(|g| GaugePlane { pitch_diameter: nm(g.pitch_diameter + pitch), ..g }),
+            ..self.clone()
+        }
+    }
 }
 
 /// The resolution a standard prints its limits to, and so the one sizes are compared at: a limit
