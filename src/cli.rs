@@ -6,7 +6,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use threadcheck::Dialect;
 use threadcheck::{
-    CompareJob, CorrectJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob, SweepJob,
+    CapabilityJob, CompareJob, CorrectJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob, SweepJob,
     VerifyJob,
 };
 use threadcheck::{Error, ThreadForm};
@@ -111,6 +111,10 @@ enum Command {
     /// change to make, in the program's words (exit 0 in tolerance, 1 when a correction is
     /// needed); a pick-up's start angle or Z shift.
     Correct(CorrectArgs),
+    /// How many parts a program (or plan) keeps in tolerance: a Monte Carlo over the X
+    /// scatter, the tip radius tolerance and the wear per part (Cp, Cpk, ppm, parts per edge;
+    /// exit 0 when the pitch diameter's Cpk reaches 1.33).
+    Capability(CapabilityArgs),
     /// The same thread with radial, flank, modified-flank and alternating infeed.
     Compare {
         #[command(flatten)]
@@ -305,6 +309,35 @@ struct FitArgs {
     /// Write an SVG of the pair.
     #[arg(long, value_name = "FILE")]
     svg: Option<PathBuf>,
+    #[command(flatten)]
+    json: JsonArg,
+}
+
+#[derive(Args)]
+struct CapabilityArgs {
+    #[command(flatten)]
+    plan: PlanArgs,
+    /// X repeatability, one standard deviation on the diameter, mm.
+    #[arg(long, value_name = "MM", value_parser = finite, default_value = "0")]
+    x_sigma: f64,
+    /// The insert's tip radius tolerance, ± mm (uniform; a partial-profile insert).
+    #[arg(long, value_name = "MM", value_parser = finite, default_value = "0")]
+    tip_radius_tol: f64,
+    /// Radial insert wear per part, mm.
+    #[arg(long, value_name = "MM", value_parser = finite, default_value = "0")]
+    wear_per_part: f64,
+    /// Monte Carlo samples.
+    #[arg(long, value_name = "N", default_value_t = 10_000)]
+    samples: usize,
+    /// The seed (the same seed gives the same report on any number of cores).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Write the pitch diameter's histogram (SVG) to this file.
+    #[arg(long, value_name = "FILE")]
+    svg: Option<PathBuf>,
+    /// Write a self-contained HTML page to this file.
+    #[arg(long, value_name = "FILE")]
+    html: Option<PathBuf>,
     #[command(flatten)]
     json: JsonArg,
 }
@@ -578,6 +611,23 @@ impl Cli {
                     }
                     .run()?,
                 )
+            }
+            Command::Capability(c) => {
+                c.plan.need_thread("capability")?;
+                if c.plan.thread.len() > 1 || c.plan.tools.is_some() {
+                    return Err(Error::Input(
+                        "capability takes one thread and one insert: --thread once, --insert (not --tools)".into(),
+                    ));
+                }
+                let spec = threadcheck::CapabilitySpec {
+                    verify: c.plan.spec(false)?,
+                    x_sigma: c.x_sigma,
+                    tip_radius_tol: c.tip_radius_tol,
+                    wear_per_part: c.wear_per_part,
+                    samples: c.samples,
+                    seed: c.seed,
+                };
+                done(CapabilityJob { spec, svg: c.svg, html: c.html, json: c.json.json }.run()?)
             }
             Command::Correct(c) => {
                 c.plan.need_thread("correct")?;

@@ -486,6 +486,56 @@ fn correction_edits(
         .collect())
 }
 
+/// `threadcheck capability`: a program's (or plan's) parts over the machine's and the insert's
+/// variation.
+///
+/// ```
+/// use threadcheck::{CapabilityJob, CapabilitySpec, InsertChoice, Outcome, VerifySpec};
+/// let mut spec = CapabilitySpec::new(VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M10x1.5-6g") });
+/// spec.x_sigma = 0.005;
+/// spec.samples = 200;
+/// let (text, outcome) = CapabilityJob { spec, svg: None, html: None, json: None }.run()?;
+/// assert_eq!(outcome, Outcome::Pass);
+/// assert!(text.contains("Cpk"));
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct CapabilityJob {
+    /// The thread and the variation.
+    pub spec: crate::analysis::capability::CapabilitySpec,
+    /// Write the histogram here.
+    pub svg: Option<std::path::PathBuf>,
+    /// Write the HTML page here.
+    pub html: Option<std::path::PathBuf>,
+    /// The JSON: `-` on stdout instead of the text, a path writes it there.
+    pub json: Option<String>,
+}
+
+/// The least pitch-diameter Cpk a capable program keeps (ISO 22514's usual requirement).
+pub const CAPABLE_CPK: f64 = 1.33;
+
+impl CapabilityJob {
+    /// Runs the job: pass when the pitch diameter's Cpk reaches [`CAPABLE_CPK`] (or, without
+    /// variation, when every sampled part passes).
+    pub fn run(&self) -> Result<(String, Outcome), Error> {
+        let r = crate::analysis::capability::capability(&self.spec)?;
+        let d2 = r.sizes.iter().find(|s| s.feature == crate::analysis::check::CheckFeature::PitchDiameter);
+        let capable = match d2.and_then(|d| d.cpk) {
+            Some(cpk) => cpk >= CAPABLE_CPK,
+            None => r.pass_share == 1.0,
+        };
+        let outcome = if capable { Outcome::Pass } else { Outcome::OutOfTolerance };
+        let json_text =
+            self.json.as_ref().map(|_| pretty(&crate::report::capability::CapabilityJson::of(&r))).transpose()?;
+        let svg_text = self.svg.as_ref().map(|_| crate::report::capability::capability_svg(&r));
+        let html_text = self.html.as_ref().map(|_| crate::report::capability::capability_html(&r));
+        let text = crate::report::capability::capability_text(&r);
+        let files = [(&self.svg, svg_text), (&self.html, html_text)];
+        let inputs = spec_inputs(&self.spec.verify);
+        Ok((write_outputs(&inputs, &files, self.json.as_deref(), json_text, text)?, outcome))
+    }
+}
+
 /// `threadcheck fit`: a bolt and a nut assembled.
 #[derive(Clone, Debug)]
 pub struct FitJob {

@@ -91,6 +91,7 @@ pub use geometry::parry::Placement;
 pub use geometry::sweep::{pass_metrics, sweep, PassMetrics, Section, Sweep, SweepSetup, Window};
 
 // The computations.
+pub use analysis::capability::{capability, CapabilityReport, CapabilitySpec, Histogram, SizeCapability};
 pub use analysis::catalogue::{cases as catalogue_cases, run as run_catalogue, Case, CatalogueSpec};
 pub use analysis::check::{checks, Check, CheckFeature, CheckKind, CheckUnit, Verdict};
 pub use analysis::compare::{compare, Comparison};
@@ -113,6 +114,6 @@ pub use analysis::verify::{
 
 // The commands: one job per command, returning what the command prints.
 pub use jobs::{
-    CompareJob, CorrectJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob, SweepJob,
+    CapabilityJob, CompareJob, CorrectJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob, SweepJob,
     VerifyJob,
 };

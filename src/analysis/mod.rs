@@ -1,5 +1,6 @@
 //! The computations: plain data in, plain data out, no text for a reader.
 
+pub mod capability;
 pub mod catalogue;
 pub mod check;
 pub mod compare;

@@ -1363,3 +1363,64 @@ pub fn verify_program(
         read_past_blocks: prog.read_past_blocks,
     })
 }
+
+/// One thread re-cut with its passes moved radially and its insert's tip radius changed: the
+/// verify core a Monte Carlo calls once per sampled part.
+#[derive(Clone, Debug)]
+pub(crate) struct Recut {
+    r: Resolved,
+    passes: Vec<Pass>,
+    label: ProgramLabel,
+}
+
+impl Recut {
+    /// The thread of `spec` as `verify` cuts it (plan or program), ready to be re-cut.
+    pub(crate) fn new(spec: &VerifySpec) -> Result<(Recut, Verification), Error> {
+        let quick = VerifySpec { metrics: false, picture: false, ..spec.clone() };
+        let v = verify(&quick)?;
+        // The program's text is read once, by `verify`: the re-cuts take its passes.
+        let r = resolve(&VerifySpec {
+            program: None,
+            final_x: None,
+            blank_diameter: Some(v.blank_diameter),
+            ..quick
+        })?;
+        let label = v
+            .program
+            .clone()
+            .unwrap_or(ProgramLabel { file: "<plan>".into(), dialect: crate::gcode::Dialect::Fanuc });
+        Ok((Recut { r, passes: v.passes.clone(), label }, v))
+    }
+
+    /// The tip radius of a partial-profile insert, mm (`None` for the others).
+    pub(crate) fn tip_radius(&self) -> Option<f64> {
+        match self.r.spec.insert {
+            InsertChoice::Partial { tip_radius } => Some(tip_radius),
+            InsertChoice::Full | InsertChoice::File(_) => None,
+        }
+    }
+
+    /// The thread cut with every pass's X moved by `dx` mm (diameter) and, when given, a
+    /// partial insert of tip radius `tip`.
+    pub(crate) fn cut(&self, dx: f64, tip: Option<f64>) -> Result<Verification, Error> {
+        let mut r = self.r.clone();
+        if let Some(tip) = tip {
+            let t = r.designation.thread;
+            r.insert = build_insert(&InsertChoice::Partial { tip_radius: tip }, &t, r.kind, r.spec.tolerance)?;
+        }
+        let passes = self
+            .passes
+            .iter()
+            .map(|p| Pass { x_start: p.x_start + dx, x_end: p.x_end + dx, x_taper: p.x_taper + dx, ..p.clone() })
+            .collect();
+        let given = Given {
+            passes,
+            depth_word: None,
+            units: crate::gcode::ProgramUnits::Mm,
+            lead: None,
+            label: self.label.clone(),
+            notes: Vec::new(),
+        };
+        verify_core(&r, Some(given))
+    }
+}
