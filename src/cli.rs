@@ -6,8 +6,8 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use threadcheck::Dialect;
 use threadcheck::{
-    CapabilityJob, CompareJob, CorrectJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob, SweepJob,
-    VerifyJob,
+    CapabilityJob, CompareJob, CorrectJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob,
+    SweepJob, VerifyJob,
 };
 use threadcheck::{Error, ThreadForm};
 use threadcheck::{InfeedChoice, Schedule};
@@ -318,13 +318,13 @@ struct CapabilityArgs {
     #[command(flatten)]
     plan: PlanArgs,
     /// X repeatability, one standard deviation on the diameter, mm.
-    #[arg(long, value_name = "MM", value_parser = finite, default_value = "0")]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite, default_value = "0")]
     x_sigma: f64,
     /// The insert's tip radius tolerance, ± mm (uniform; a partial-profile insert).
-    #[arg(long, value_name = "MM", value_parser = finite, default_value = "0")]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite, default_value = "0")]
     tip_radius_tol: f64,
     /// Radial insert wear per part, mm.
-    #[arg(long, value_name = "MM", value_parser = finite, default_value = "0")]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite, default_value = "0")]
     wear_per_part: f64,
     /// Monte Carlo samples.
     #[arg(long, value_name = "N", default_value_t = 10_000)]
@@ -347,14 +347,14 @@ struct CorrectArgs {
     #[command(flatten)]
     plan: PlanArgs,
     /// The measurement over three wires, mm (with --wire).
-    #[arg(long, value_name = "MM", value_parser = finite, requires = "wire",
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite, requires = "wire",
           conflicts_with_all = ["measured_d2", "gauge"])]
     measured_m: Option<f64>,
     /// The wires' diameter, mm.
-    #[arg(long, value_name = "MM", value_parser = finite, requires = "measured_m")]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite, requires = "measured_m")]
     wire: Option<f64>,
     /// The pitch diameter measured (thread micrometer, optical), mm.
-    #[arg(long, value_name = "MM", value_parser = finite, conflicts_with = "gauge")]
+    #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite, conflicts_with = "gauge")]
     measured_d2: Option<f64>,
     /// What the GO/NO-GO gauges said: go-fails | nogo-enters | ok.
     #[arg(long, value_name = "RESULT")]
@@ -616,7 +616,8 @@ impl Cli {
                 c.plan.need_thread("capability")?;
                 if c.plan.thread.len() > 1 || c.plan.tools.is_some() {
                     return Err(Error::Input(
-                        "capability takes one thread and one insert: --thread once, --insert (not --tools)".into(),
+                        "capability takes one thread and one insert: --thread once, --insert (not --tools)"
+                            .into(),
                     ));
                 }
                 let spec = threadcheck::CapabilitySpec {
@@ -645,11 +646,8 @@ impl Cli {
                     (_, _, _, Some(g)) => Some(threadcheck::Measured::Gauge(g)),
                     _ => None,
                 };
-                let spec = threadcheck::CorrectSpec {
-                    verify: c.plan.spec(false)?,
-                    measured,
-                    pickup_z: c.pickup_z,
-                };
+                let spec =
+                    threadcheck::CorrectSpec { verify: c.plan.spec(false)?, measured, pickup_z: c.pickup_z };
                 done(CorrectJob { spec, html: c.html, json: c.json.json, fix: c.fix }.run()?)
             }
             Command::Passes { plan, json: JsonArg { json } } => {

@@ -56,7 +56,9 @@ impl LimitsJob {
         let des =
             parse_designation(&self.designation, ParseOptions { allow_nonstandard: self.allow_nonstandard })?;
         let t = &des.thread;
-        let coat = |l: Option<ThreadLimits>| l.map(|l| crate::analysis::verify::coated(l, t, self.coating)).transpose();
+        let coat = |l: Option<ThreadLimits>| {
+            l.map(|l| crate::analysis::verify::coated(l, t, self.coating)).transpose()
+        };
         let ext = coat(limits_for(&des, ThreadKind::External)?)?;
         let int = coat(limits_for(&des, ThreadKind::Internal)?)?;
         let json_text = self
@@ -454,7 +456,9 @@ impl CorrectJob {
         let (fixed, text) = match (self.fix.as_deref(), fixed) {
             (Some("-"), Some(program)) => {
                 if self.json.as_deref() == Some("-") {
-                    return Err(Error::Input("--fix - and --json - both want stdout: write one to a file".into()));
+                    return Err(Error::Input(
+                        "--fix - and --json - both want stdout: write one to a file".into(),
+                    ));
                 }
                 (None, program)
             }
@@ -482,7 +486,12 @@ fn correction_edits(
     };
     Ok(std::iter::once((c.line, c.column))
         .chain(c.also.iter().map(|p| (p.line, p.column)))
-        .map(|(line, column)| crate::gcode::WordEdit { line, column, old: c.written.clone(), new: new.clone() })
+        .map(|(line, column)| crate::gcode::WordEdit {
+            line,
+            column,
+            old: c.written.clone(),
+            new: new.clone(),
+        })
         .collect())
 }
 
@@ -525,8 +534,11 @@ impl CapabilityJob {
             None => r.pass_share == 1.0,
         };
         let outcome = if capable { Outcome::Pass } else { Outcome::OutOfTolerance };
-        let json_text =
-            self.json.as_ref().map(|_| pretty(&crate::report::capability::CapabilityJson::of(&r))).transpose()?;
+        let json_text = self
+            .json
+            .as_ref()
+            .map(|_| pretty(&crate::report::capability::CapabilityJson::of(&r)))
+            .transpose()?;
         let svg_text = self.svg.as_ref().map(|_| crate::report::capability::capability_svg(&r));
         let html_text = self.html.as_ref().map(|_| crate::report::capability::capability_html(&r));
         let text = crate::report::capability::capability_text(&r);

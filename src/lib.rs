@@ -86,7 +86,9 @@ pub use gcode::{
 // Geometry: the insert, the sweep, the measurement.
 pub use geometry::boolean::UnionStrategy;
 pub use geometry::insert::{Insert, InsertKind};
-pub use geometry::measure::{measure, over_wires, DeviationSample, MeasureSetup, Measurement, ProfileRegion, ThreeWire};
+pub use geometry::measure::{
+    measure, over_wires, DeviationSample, MeasureSetup, Measurement, ProfileRegion, ThreeWire,
+};
 pub use geometry::parry::Placement;
 pub use geometry::sweep::{pass_metrics, sweep, PassMetrics, Section, Sweep, SweepSetup, Window};
 
@@ -96,8 +98,8 @@ pub use analysis::catalogue::{cases as catalogue_cases, run as run_catalogue, Ca
 pub use analysis::check::{checks, Check, CheckFeature, CheckKind, CheckUnit, Verdict};
 pub use analysis::compare::{compare, Comparison};
 pub use analysis::correct::{
-    correct, helix_term, CorrectReport, CorrectSpec, GaugeResult, Measured, MeasuredState, Pickup, WearOffset,
-    WireReading,
+    correct, helix_term, CorrectReport, CorrectSpec, GaugeResult, Measured, MeasuredState, Pickup,
+    WearOffset, WireReading,
 };
 pub use analysis::correction::{correction, Correction};
 pub use analysis::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};
@@ -114,6 +116,6 @@ pub use analysis::verify::{
 
 // The commands: one job per command, returning what the command prints.
 pub use jobs::{
-    CapabilityJob, CompareJob, CorrectJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob, SweepJob,
-    VerifyJob,
+    CapabilityJob, CompareJob, CorrectJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob,
+    SweepJob, VerifyJob,
 };

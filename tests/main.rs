@@ -7,6 +7,7 @@
 
 mod bad_inputs;
 mod browser;
+mod closing;
 mod forms;
 mod gcode;
 mod infeed_comparison;

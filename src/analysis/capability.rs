@@ -46,7 +46,14 @@ pub struct CapabilitySpec {
 impl CapabilitySpec {
     /// A spec with 10 000 samples, seed 1 and no variation.
     pub fn new(verify: VerifySpec) -> CapabilitySpec {
-        CapabilitySpec { verify, x_sigma: 0.0, tip_radius_tol: 0.0, wear_per_part: 0.0, samples: 10_000, seed: 1 }
+        CapabilitySpec {
+            verify,
+            x_sigma: 0.0,
+            tip_radius_tol: 0.0,
+            wear_per_part: 0.0,
+            samples: 10_000,
+            seed: 1,
+        }
     }
 }
 
@@ -175,14 +182,16 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
         }
         (None, _) => {
             return Err(Error::Input(
-                "--tip-radius-tol varies a partial-profile insert's tip radius: give --insert partial:R".into(),
+                "--tip-radius-tol varies a partial-profile insert's tip radius: give --insert partial:R"
+                    .into(),
             ))
         }
     };
     let limits = v.limits.pitch_diameter;
     let (Some(lo_lim), Some(hi_lim)) = (limits.min, limits.max) else {
         return Err(Error::Input(
-            "capability needs two-sided pitch-diameter limits: a taper thread is gauged by its stand-off".into(),
+            "capability needs two-sided pitch-diameter limits: a taper thread is gauged by its stand-off"
+                .into(),
         ));
     };
     let runs: Vec<Result<(Vec<f64>, Vec<bool>, bool), Error>> = (0..spec.samples)
@@ -224,11 +233,14 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
             (Some(a), Some(b)) if spread => Some((b - a) / (6.0 * sigma)),
             _ => None,
         };
-        let sides: Vec<f64> = [c.max.map(|b| b - mean), c.min.map(|a| mean - a)].into_iter().flatten().collect();
-        let cpk = (spread && !sides.is_empty()).then(|| sides.iter().fold(f64::INFINITY, |m, s| m.min(*s)) / (3.0 * sigma));
+        let sides: Vec<f64> =
+            [c.max.map(|b| b - mean), c.min.map(|a| mean - a)].into_iter().flatten().collect();
+        let cpk = (spread && !sides.is_empty())
+            .then(|| sides.iter().fold(f64::INFINITY, |m, s| m.min(*s)) / (3.0 * sigma));
         let out = oks.iter().filter(|o| !o[k]).count() as f64;
         let ppm_normal = spread.then(|| {
-            1e6 * (c.min.map_or(0.0, |a| phi((a - mean) / sigma)) + c.max.map_or(0.0, |b| phi((mean - b) / sigma)))
+            1e6 * (c.min.map_or(0.0, |a| phi((a - mean) / sigma))
+                + c.max.map_or(0.0, |b| phi((mean - b) / sigma)))
         });
         sizes.push(SizeCapability {
             feature: c.feature,
@@ -278,7 +290,8 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
     let shift = best_mu - mu;
     let best_final_x = v.final_x + shift;
     let best_correction = v.correction_for(shift);
-    let (h_lo, h_hi) = values.iter().map(|v| v[d2_index(&nominal)]).fold((lo_lim, hi_lim), |(a, b), x| (a.min(x), b.max(x)));
+    let (h_lo, h_hi) =
+        values.iter().map(|v| v[d2_index(&nominal)]).fold((lo_lim, hi_lim), |(a, b), x| (a.min(x), b.max(x)));
     let bins = 40usize;
     let width = ((h_hi - h_lo) / bins as f64).max(1e-9);
     let mut counts = vec![0usize; bins];
@@ -312,7 +325,10 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
             .into(),
         );
     }
-    notes.push("Cp, Cpk after ISO 22514-2 (normal model); ppm counted among the samples and from the normal model".into());
+    notes.push(
+        "Cp, Cpk after ISO 22514-2 (normal model); ppm counted among the samples and from the normal model"
+            .into(),
+    );
     if nominal.lead_deviation.is_none() && v.lead_deviation.is_some() {
         notes.push("the lead deviation's functional check is not sampled: it does not vary with X".into());
     }

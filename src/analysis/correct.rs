@@ -249,9 +249,8 @@ pub fn correct(spec: &CorrectSpec) -> Result<CorrectReport, Error> {
             // The part's groove is the computed one moved radially: M and d2 move together.
             let d2 = d2_model + (m + helix - m_computed);
             let half = t.half_angle();
-            let formula = (helix != 0.0 || (t.form.flank_angle() - 60.0).abs() < 1e-9).then(|| {
-                m - wire * (1.0 + 1.0 / half.sin()) + 0.5 * t.pitch / half.tan() + helix
-            });
+            let formula = (helix != 0.0 || (t.form.flank_angle() - 60.0).abs() < 1e-9)
+                .then(|| m - wire * (1.0 + 1.0 / half.sin()) + 0.5 * t.pitch / half.tan() + helix);
             notes.push(crate::ground::note::Note::from(
                 "the wires rest on the as-cut flanks the program leaves; the part is taken to differ from them by its depth only (an X offset, insert wear)",
             ));
@@ -276,7 +275,8 @@ pub fn correct(spec: &CorrectSpec) -> Result<CorrectReport, Error> {
             (Some(g), _) => {
                 let too_big = matches!(
                     (g, v.kind),
-                    (GaugeResult::GoFails, ThreadKind::External) | (GaugeResult::NogoEnters, ThreadKind::Internal)
+                    (GaugeResult::GoFails, ThreadKind::External)
+                        | (GaugeResult::NogoEnters, ThreadKind::Internal)
                 );
                 notes.push(crate::ground::note::Note::from(format!(
                     "assumed: the part at the limit its gauge failed ({} mm), the least it can be off; the correction brings such a part to the middle of the tolerance",

@@ -1406,12 +1406,18 @@ impl Recut {
         let mut r = self.r.clone();
         if let Some(tip) = tip {
             let t = r.designation.thread;
-            r.insert = build_insert(&InsertChoice::Partial { tip_radius: tip }, &t, r.kind, r.spec.tolerance)?;
+            r.insert =
+                build_insert(&InsertChoice::Partial { tip_radius: tip }, &t, r.kind, r.spec.tolerance)?;
         }
         let passes = self
             .passes
             .iter()
-            .map(|p| Pass { x_start: p.x_start + dx, x_end: p.x_end + dx, x_taper: p.x_taper + dx, ..p.clone() })
+            .map(|p| Pass {
+                x_start: p.x_start + dx,
+                x_end: p.x_end + dx,
+                x_taper: p.x_taper + dx,
+                ..p.clone()
+            })
             .collect();
         let given = Given {
             passes,

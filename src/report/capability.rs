@@ -130,7 +130,8 @@ pub fn capability_text(r: &CapabilityReport) -> String {
     }
     let _ = writeln!(s, "\n{:.2} % of the parts pass every check", 100.0 * r.pass_share);
     if let Some(u) = r.cpk_uncertainty {
-        let _ = writeln!(s, "pitch diameter's Cpk known to ± {u:.3} (the Monte Carlo's standard uncertainty)");
+        let _ =
+            writeln!(s, "pitch diameter's Cpk known to ± {u:.3} (the Monte Carlo's standard uncertainty)");
     }
     match (r.parts_per_edge, r.best_parts_per_edge) {
         (Some(n), Some(b)) => {

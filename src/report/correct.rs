@@ -73,7 +73,10 @@ impl<'a> CorrectJson<'a> {
             measured: r.measured.as_ref(),
             delta_pitch_diameter: r.delta_pitch_diameter,
             suggested_final_x: r.suggested_final_x,
-            correction: r.correction.as_ref().map(|c| CorrectionReport { correction: c, text: correction_text(c) }),
+            correction: r
+                .correction
+                .as_ref()
+                .map(|c| CorrectionReport { correction: c, text: correction_text(c) }),
             wear_offset: r.wear_offset.as_ref(),
             pickup: r.pickup.as_ref(),
             notes: v.notes.iter().chain(&r.notes).collect(),
@@ -93,8 +96,14 @@ fn lines(r: &CorrectReport) -> (String, Vec<String>) {
         crate::report::opt(lim.min, 3),
         crate::report::opt(lim.max, 3),
         match &v.program {
-            Some(p) => format!(", as {p} cuts it: d2 {:.4} mm (last pass X{:.4})", v.measurement.pitch_diameter, v.final_x),
-            None => format!(", the plan's last pass X{:.4} cuts d2 {:.4} mm", v.final_x, v.measurement.pitch_diameter),
+            Some(p) => format!(
+                ", as {p} cuts it: d2 {:.4} mm (last pass X{:.4})",
+                v.measurement.pitch_diameter, v.final_x
+            ),
+            None => format!(
+                ", the plan's last pass X{:.4} cuts d2 {:.4} mm",
+                v.final_x, v.measurement.pitch_diameter
+            ),
         }
     ));
     if let Some(m) = &r.measured {
@@ -103,7 +112,11 @@ fn lines(r: &CorrectReport) -> (String, Vec<String>) {
                 "measured over {:.4} mm wires: M {:.4} mm{}; the computed thread gives M {:.4} mm over them",
                 w.wire,
                 w.m,
-                if w.helix_term != 0.0 { format!(" (helix term {:+.4})", w.helix_term) } else { String::new() },
+                if w.helix_term != 0.0 {
+                    format!(" (helix term {:+.4})", w.helix_term)
+                } else {
+                    String::new()
+                },
                 w.m_computed
             ));
             if let Some(f) = w.pitch_diameter_formula {
@@ -145,7 +158,9 @@ fn lines(r: &CorrectReport) -> (String, Vec<String>) {
                 crate::gcode::ProgramUnits::Mm => (format!("{:+.3}", w.x), "mm"),
                 crate::gcode::ProgramUnits::Inch => (format!("{:+.4}", w.x), "in"),
             };
-            out.push(format!("or without editing the program: add {n} {unit} to the tool's X wear offset (diameter)"));
+            out.push(format!(
+                "or without editing the program: add {n} {unit} to the tool's X wear offset (diameter)"
+            ));
         }
     }
     if let Some(p) = &r.pickup {

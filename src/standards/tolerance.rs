@@ -6,9 +6,9 @@
 //! Limits are rounded to 0.001 mm after the basic diameters have been rounded to 0.001 mm, as the
 //! tables print them.
 
+use crate::ground::fmt::fmt_num;
 use crate::standards::data::{catalog, find_pitch, IsoTables};
 use crate::standards::{BasicThread, ClassSpec, Designation, ThreadForm, ThreadKind};
-use crate::ground::fmt::fmt_num;
 use crate::Error;
 use serde::Serialize;
 use std::fmt;
@@ -419,7 +419,8 @@ impl ThreadLimits {
         let (pitch, size) = (away * 2.0 * thickness / half_angle_rad.sin(), away * 2.0 * thickness);
         // To 1e-9 mm: the limits are µm (or 0.1 mil) values, the shift is no reason for float noise.
         let nm = |v: f64| (v * 1e9).round() / 1e9;
-        let shift = |l: Limit, by: f64| Limit { max: l.max.map(|v| nm(v + by)), min: l.min.map(|v| nm(v + by)) };
+        let shift =
+            |l: Limit, by: f64| Limit { max: l.max.map(|v| nm(v + by)), min: l.min.map(|v| nm(v + by)) };
         let mut notes = self.notes.clone();
         notes.push(format!(
             "limits before a coating of {} mm: the class's moved {} µm {} on the pitch diameter (2t / sin {}°) and {} µm on the major and minor diameters (2t); the class's own limits apply after coating (ISO 965-1, ASME B1.1)",
@@ -434,7 +435,9 @@ impl ThreadLimits {
             major_diameter: shift(self.major_diameter, size),
             pitch_diameter: shift(self.pitch_diameter, pitch),
             minor_diameter: shift(self.minor_diameter, size),
-            gauge_plane: self.gauge_plane.map(|g| GaugePlane { pitch_diameter: nm(g.pitch_diameter + pitch), ..g }),
+            gauge_plane: self
+                .gauge_plane
+                .map(|g| GaugePlane { pitch_diameter: nm(g.pitch_diameter + pitch), ..g }),
             ..self.clone()
         }
     }

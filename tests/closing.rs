@@ -1,0 +1,401 @@
+//! Closing the loop at the machine: `correct` (wires, measured d2, gauges, pick-up), coatings
+//! and `capability`. Every expected value is derived by hand in the comments from the standard
+//! formulas and ISO 965-1's limits (M10x1.5: 6g d2 8.862–8.994, d 9.732–9.968; 6H D2
+//! 9.026–9.206), never taken from threadcheck's own output.
+
+use crate::util::*;
+
+fn json(o: &Output) -> serde_json::Value {
+    serde_json::from_str(&stdout(o)).unwrap_or_else(|e| panic!("{e}: {}{}", stdout(o), stderr(o)))
+}
+
+/// GOST 8.677-2009's correction C4 for the wires' inclination, written out here from the
+/// standard's formula: −0.1826·Ph²·w / ((d2 − 1.866P + 3.6049w)(d2 − 1.866P + 3.8637w)).
+fn c4(d2: f64, p: f64, ph: f64, w: f64) -> f64 {
+    let a = d2 - 1.866 * p;
+    -0.1826 * ph * ph * w / ((a + 3.6049 * w) * (a + 3.8637 * w))
+}
+
+/// The mid-tolerance final X of a full-profile M10x1.5 insert: its tip cuts d3, and
+/// d2 − d3 = (0.649519 − 1.226869)·P… = 0.577350·P, so X = 8.928 − 0.866025.
+const FULL_X_MID: f64 = 8.928 - 0.577_350_269 * 1.5;
+
+/// A full-profile M10x1.5-6g plan measured over 0.866 mm wires: straight 60° flanks, so the
+/// wires give d2 = M − 3w + 0.866025·P + C4 (C4 at the basic d2 9.026, about −4.0 µm), and the
+/// correction moves the final X by the d2 error to the middle, 8.928.
+#[test]
+fn wires_on_a_full_profile_give_the_standard_formula_and_the_x_moves_by_the_error() {
+    let (m, w) = (10.32, 0.866);
+    let o = run(&[
+        "correct",
+        "--thread",
+        "M10x1.5-6g",
+        "--insert",
+        "full",
+        "--measured-m",
+        "10.32",
+        "--wire",
+        "0.866",
+        "--json",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v = json(&o);
+    let helix = c4(9.026, 1.5, 1.5, w);
+    assert!((helix + 0.003976).abs() < 2e-6, "C4 by hand {helix}");
+    let d2 = m - 3.0 * w + 0.866_025_404 * 1.5 + helix;
+    let got = v["measured"]["pitch_diameter"].as_f64().unwrap();
+    assert!((got - d2).abs() < 1e-6, "d2 {got} against {d2}");
+    assert!(
+        (v["measured"]["over_wires"]["helix_term"].as_f64().unwrap() - helix).abs() < 1e-6,
+        "C4 at the unrounded basic d2 9.025679"
+    );
+    let delta = 8.928 - d2;
+    assert!((v["delta_pitch_diameter"].as_f64().unwrap() - delta).abs() < 1e-6);
+    let x = v["suggested_final_x"].as_f64().unwrap();
+    assert!((x - (FULL_X_MID + delta)).abs() < 1e-6, "final X {x}");
+    assert_eq!(v["verdict"], "fail");
+}
+
+/// A partial-profile insert (r 0.04): its flanks are straight 60° where the wires touch them
+/// (best-size wires touch at the pitch line, far above the tip's radius), so a reading M that
+/// means d2 = 8.950 by the formula, M = 8.950 + 3w − 0.866025·P − C4, gives 8.950 from the
+/// as-cut flanks, the same as `--measured-d2 8.950`.
+#[test]
+fn a_partial_profile_reads_the_same_d2_from_wires_as_measured() {
+    let w = 0.866;
+    let m = 8.950 + 3.0 * w - 0.866_025_404 * 1.5 - c4(9.026, 1.5, 1.5, w);
+    let by_wires = json(&run(&[
+        "correct",
+        "--thread",
+        "M10x1.5-6g",
+        "--insert",
+        "partial:0.04",
+        "--measured-m",
+        &format!("{m:.9}"),
+        "--wire",
+        "0.866",
+        "--json",
+    ]));
+    let by_d2 = json(&run(&[
+        "correct",
+        "--thread",
+        "M10x1.5-6g",
+        "--insert",
+        "partial:0.04",
+        "--measured-d2",
+        "8.950",
+        "--json",
+    ]));
+    let a = by_wires["measured"]["pitch_diameter"].as_f64().unwrap();
+    let b = by_d2["measured"]["pitch_diameter"].as_f64().unwrap();
+    assert!((a - 8.950).abs() < 1e-6 && (b - 8.950).abs() < 1e-12, "{a} {b}");
+    // Within 8.862–8.994: no correction, exit 0.
+    assert_eq!(by_wires["verdict"], "pass");
+    assert!(by_wires["correction"].is_null() && by_wires["delta_pitch_diameter"].is_null());
+}
+
+/// In a program the correction is the program's own X word and a wear offset: the G92 run's
+/// last X8.062 cuts d2 8.062 + 0.866025 = 8.928; the part measured 9.020 must come down
+/// 92 µm: X8.062 → X7.970, or −0.092 mm on the tool's X wear. `--fix -` writes it.
+#[test]
+fn a_measured_program_is_corrected_in_its_own_words_and_by_wear_offset() {
+    let prog = data("programs/m10-g92-radial.nc");
+    let p = prog.to_str().unwrap();
+    let o = run(&[
+        "correct",
+        "--thread",
+        "M10x1.5-6g",
+        "--insert",
+        "full",
+        "--program",
+        p,
+        "--measured-d2",
+        "9.020",
+        "--json",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v = json(&o);
+    assert_eq!(v["correction"]["word"], "X");
+    assert_eq!(v["correction"]["line"], 10);
+    assert!((v["correction"]["value"].as_f64().unwrap() - 7.970).abs() < 1e-9, "{}", v["correction"]);
+    assert!((v["wear_offset"]["x"].as_f64().unwrap() + 0.092).abs() < 1e-9);
+    let fixed = run(&[
+        "correct",
+        "--thread",
+        "M10x1.5-6g",
+        "--insert",
+        "full",
+        "--program",
+        p,
+        "--measured-d2",
+        "9.020",
+        "--fix",
+        "-",
+    ]);
+    assert_eq!(fixed.status.code(), Some(1));
+    let text = stdout(&fixed);
+    assert!(text.lines().any(|l| l.trim() == "X7.970"), "{text}");
+    assert!(!text.contains("X8.062"), "{text}");
+}
+
+/// A gauge tells the side, not the size: GO fails on a bolt means d2 over 8.994 by an unknown
+/// amount; taken at 8.994 (the least it can be), the change to the middle is −66 µm, and the
+/// report says what is unknown. `ok` needs no correction.
+#[test]
+fn a_gauge_result_gives_the_least_correction_and_says_what_is_unknown() {
+    let v = json(&run(&[
+        "correct",
+        "--thread",
+        "M10x1.5-6g",
+        "--insert",
+        "full",
+        "--gauge",
+        "go-fails",
+        "--json",
+    ]));
+    assert!((v["delta_pitch_diameter"].as_f64().unwrap() + 0.066).abs() < 1e-9);
+    assert!(v["measured"]["unknown"].as_str().unwrap().contains("how far"));
+    assert!(v["measured"]["pitch_diameter"].is_null());
+    // A nut's NO-GO entering means D2 over 9.206: the same side of the change, −90 µm.
+    let n = json(&run(&[
+        "correct",
+        "--thread",
+        "M10x1.5-6H",
+        "--insert",
+        "full",
+        "--gauge",
+        "nogo-enters",
+        "--json",
+    ]));
+    assert!((n["delta_pitch_diameter"].as_f64().unwrap() + 0.090).abs() < 1e-9);
+    let ok = run(&["correct", "--thread", "M10x1.5-6g", "--gauge", "ok"]);
+    assert_eq!(ok.status.code(), Some(0));
+}
+
+/// Pick-up: the program's grooves lie at Z3 − k·1.5, centres on Z ≡ 0 (mod 1.5) with radial
+/// passes and a symmetric insert. A groove measured at Z0.25 is 0.25 mm off on a 1.5 mm lead:
+/// 0.25/1.5·360 = 60° of start angle (cutting towards −Z), or a Z shift of 0.25; at Z−0.25,
+/// −60°; at Z1.75 the next groove is again 0.25 off.
+#[test]
+fn a_pickup_quarter_millimetre_off_on_a_one_and_a_half_lead_is_sixty_degrees() {
+    let prog = data("programs/m10-g92-radial.nc");
+    let p = prog.to_str().unwrap();
+    for (z, deg, shift) in [("0.25", 60.0, 0.25), ("-0.25", -60.0, -0.25), ("1.75", 60.0, 0.25)] {
+        let o = run(&[
+            "correct",
+            "--thread",
+            "M10x1.5-6g",
+            "--insert",
+            "full",
+            "--program",
+            p,
+            "--pickup-z",
+            z,
+            "--json",
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let v = json(&o);
+        let pk = &v["pickup"];
+        assert!((pk["start_angle_deg"].as_f64().unwrap() - deg).abs() < 1e-6, "{z}: {pk}");
+        assert!((pk["z_shift"].as_f64().unwrap() - shift).abs() < 1e-6, "{z}: {pk}");
+    }
+}
+
+/// A 10 µm coat on a 60° thread grows d2 by 2t/sin 30° = 40 µm and d by 2t = 20 µm: the
+/// bolt's limits before plating are ISO 965-1's less that (d2 8.822–8.954, d 9.712–9.948), the
+/// nut's more (D2 9.066–9.246).
+#[test]
+fn a_ten_micrometre_coat_moves_sixty_degree_pitch_limits_by_forty() {
+    let v = json(&run(&["limits", "M10x1.5-6H/6g", "--coating", "0.010", "--json"]));
+    let e = &v["external"];
+    assert_eq!(
+        (e["pitch_diameter"]["min"].as_f64(), e["pitch_diameter"]["max"].as_f64()),
+        (Some(8.822), Some(8.954))
+    );
+    assert_eq!(
+        (e["major_diameter"]["min"].as_f64(), e["major_diameter"]["max"].as_f64()),
+        (Some(9.712), Some(9.948))
+    );
+    let i = &v["internal"];
+    assert_eq!(
+        (i["pitch_diameter"]["min"].as_f64(), i["pitch_diameter"]["max"].as_f64()),
+        (Some(9.066), Some(9.246))
+    );
+    // verify aims at the middle of the limits before plating, 8.888, and says what plating
+    // makes of it: 8.888 + 0.040 = 8.928.
+    let o = run(&["verify", "--thread", "M10x1.5-6g", "--insert", "full", "--coating", "0.010", "--json"]);
+    let r = json(&o);
+    assert!((r["measured"]["pitch_diameter"].as_f64().unwrap() - 8.888).abs() < 1e-6);
+    let notes = r["notes"].to_string();
+    assert!(notes.contains("after coating") && notes.contains("8.9280"), "{notes}");
+    // A coat that fills the thread is refused in one line.
+    let bad = run(&["limits", "M10x1.5-6g", "--coating", "0.5"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(one_line_error(&bad).contains("coating 0.5 mm"), "{}", stderr(&bad));
+}
+
+/// X scatter alone on a centred X: d2 moves one for one with X, so σ(d2) = σx and
+/// Cpk = (T/2)/(3σ) = (0.132/2)/(3·0.011) = 2.0. The Monte Carlo's standard uncertainty of a
+/// Cpk estimate from N = 10 000 normal samples is Cpk·√(1/(9N·Cpk²) + 1/(2(N−1))) ≈ 0.0142;
+/// the test allows three of it.
+#[test]
+fn capability_with_x_scatter_alone_has_cpk_half_the_tolerance_over_three_sigma() {
+    let o =
+        run(&["capability", "--thread", "M10x1.5-6g", "--insert", "full", "--x-sigma", "0.011", "--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v = json(&o);
+    let d2 = v["sizes"].as_array().unwrap().iter().find(|s| s["feature"] == "pitch_diameter").unwrap();
+    let u = (1.0f64 / (9.0 * 1e4 * 4.0) + 1.0 / (2.0 * 9999.0)).sqrt() * 2.0;
+    let cpk = d2["cpk"].as_f64().unwrap();
+    assert!((cpk - 2.0).abs() < 3.0 * u, "Cpk {cpk}, u {u}");
+    assert!((v["cpk_uncertainty"].as_f64().unwrap() - u).abs() < 0.002);
+    let sigma = d2["sigma"].as_f64().unwrap();
+    assert!((sigma - 0.011).abs() < 3.0 * 0.011 / (2.0f64 * 1e4).sqrt(), "σ {sigma}");
+    assert_eq!(v["pass_share"].as_f64(), Some(1.0));
+    let hist: usize =
+        v["histogram"]["counts"].as_array().unwrap().iter().map(|c| c.as_u64().unwrap() as usize).sum();
+    assert_eq!(hist, 10_000);
+}
+
+/// Wear alone, w per part: part k carries k parts' wear, d2 = d2(1) + 2(k − 1)w. Started at the
+/// best X (part 1 on the lower limit 8.862), parts stay in while 8.862 + 2(k − 1)w ≤ 8.994:
+/// k ≤ 0.132/(2w) + 1, so ⌊0.132/0.004⌋ + 1 = 34 parts for w = 2 µm, the final X
+/// 8.862 − 0.004 − 8.928 = 70 µm below the centred one. From the centred X (d2 8.928,
+/// part k at 8.928 + 0.004k) ⌊0.066/0.004⌋ = 16 parts. A nut wears the other way:
+/// M10x1.5-6H, T = 0.180: ⌊0.180/0.004⌋ + 1 = 46.
+#[test]
+fn capability_with_wear_alone_counts_parts_per_edge_as_derived() {
+    let v = json(&run(&[
+        "capability",
+        "--thread",
+        "M10x1.5-6g",
+        "--insert",
+        "full",
+        "--wear-per-part",
+        "0.002",
+        "--samples",
+        "100",
+        "--json",
+    ]));
+    assert_eq!(v["best_parts_per_edge"].as_u64(), Some(34));
+    assert_eq!(v["parts_per_edge"].as_u64(), Some(16));
+    assert!((v["best_final_x"].as_f64().unwrap() - (FULL_X_MID - 0.070)).abs() < 1e-6);
+    let n = json(&run(&[
+        "capability",
+        "--thread",
+        "M10x1.5-6H",
+        "--insert",
+        "full",
+        "--wear-per-part",
+        "0.002",
+        "--samples",
+        "100",
+        "--json",
+    ]));
+    assert_eq!(n["best_parts_per_edge"].as_u64(), Some(46));
+}
+
+/// The same seed gives the same report on one core and on two.
+#[test]
+fn capability_is_the_same_for_a_seed_whatever_the_threads() {
+    let args = [
+        "capability",
+        "--thread",
+        "M10x1.5-6g",
+        "--x-sigma",
+        "0.008",
+        "--tip-radius-tol",
+        "0.01",
+        "--samples",
+        "500",
+        "--seed",
+        "7",
+        "--json",
+    ];
+    let dir = tempdir("cap-seed");
+    let one = Command::new(env!("CARGO_BIN_EXE_threadcheck"))
+        .args(args)
+        .env("RAYON_NUM_THREADS", "1")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let two = Command::new(env!("CARGO_BIN_EXE_threadcheck"))
+        .args(args)
+        .env("RAYON_NUM_THREADS", "2")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(one.status.code(), two.status.code());
+    assert_eq!(stdout(&one), stdout(&two));
+    let other = run(&[
+        "capability",
+        "--thread",
+        "M10x1.5-6g",
+        "--x-sigma",
+        "0.008",
+        "--tip-radius-tol",
+        "0.01",
+        "--samples",
+        "500",
+        "--seed",
+        "8",
+        "--json",
+    ]);
+    assert_ne!(stdout(&one), stdout(&other));
+}
+
+/// The pictures: the histogram SVG and the HTML page with it, written together.
+#[test]
+fn capability_and_correct_write_their_pages() {
+    let dir = tempdir("cap-pages");
+    let o = run_in(
+        &dir,
+        &[
+            "capability",
+            "--thread",
+            "M10x1.5-6g",
+            "--x-sigma",
+            "0.01",
+            "--samples",
+            "300",
+            "--svg",
+            "h.svg",
+            "--html",
+            "h.html",
+        ],
+    );
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(dir.join("h.svg")).unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("min 8.8620") && svg.contains("max 8.9940"), "{svg}");
+    let html = std::fs::read_to_string(dir.join("h.html")).unwrap();
+    assert!(html.contains("<svg") && html.contains("Cpk"));
+    let c = run_in(&dir, &["correct", "--thread", "M10x1.5-6g", "--measured-d2", "9.1", "--html", "c.html"]);
+    assert_eq!(c.status.code(), Some(1));
+    let page = std::fs::read_to_string(dir.join("c.html")).unwrap();
+    assert!(page.contains("CORRECT the program"), "{page}");
+}
+
+/// What correct and capability refuse, each in one line.
+#[test]
+fn correct_and_capability_refuse_what_they_cannot_read() {
+    for (args, says) in [
+        (vec!["correct", "--thread", "M10x1.5-6g"], "needs what was measured"),
+        (
+            vec!["correct", "--thread", "M10x1.5-6H", "--measured-m", "10", "--wire", "0.866"],
+            "external thread",
+        ),
+        (vec!["correct", "--thread", "M10x1.5-6g", "--measured-d2", "-1"], "positive length"),
+        (vec!["correct", "--thread", "M10x1.5-6g", "--gauge", "maybe"], "go-fails, nogo-enters or ok"),
+        (
+            vec!["capability", "--thread", "M10x1.5-6g", "--insert", "full", "--tip-radius-tol", "0.01"],
+            "partial-profile",
+        ),
+        (vec!["capability", "--thread", "M10x1.5-6g", "--samples", "0"], "--samples 0"),
+        (vec!["capability", "--thread", "M10x1.5-6g", "--x-sigma", "-0.01"], "--x-sigma"),
+    ] {
+        let o = run(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stdout(&o));
+        let e = one_line_error(&o);
+        assert!(e.contains(says), "{args:?}: {e}");
+    }
+}
