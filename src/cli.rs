@@ -332,6 +332,9 @@ struct CapabilityArgs {
     /// The seed (the same seed gives the same report on any number of cores).
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// Leave form checks out of each part's verdict (the share of good parts).
+    #[arg(long)]
+    gauge_only: bool,
     /// Write the pitch diameter's histogram (SVG) to this file.
     #[arg(long, value_name = "FILE")]
     svg: Option<PathBuf>,
@@ -621,7 +624,7 @@ impl Cli {
                     ));
                 }
                 let spec = threadcheck::CapabilitySpec {
-                    verify: c.plan.spec(false)?,
+                    verify: c.plan.spec(c.gauge_only)?,
                     x_sigma: c.x_sigma,
                     tip_radius_tol: c.tip_radius_tol,
                     wear_per_part: c.wear_per_part,

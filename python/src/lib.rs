@@ -5,7 +5,7 @@
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use threadcheck::Dialect;
-use threadcheck::{LimitsJob, Outcome, PassesJob, VerifyJob};
+use threadcheck::{CapabilityJob, CorrectJob, LimitsJob, Outcome, PassesJob, VerifyJob};
 use threadcheck::{ProgramSource, VerifySpec};
 
 fn value_error(e: threadcheck::Error) -> PyErr {
@@ -62,13 +62,16 @@ fn spec(
     Ok(s)
 }
 
-/// `verify --json -` (`command = "verify"`) or `passes --json` (`command = "passes"`): returns
-/// the JSON text and whether the job passed. The two take the same plan and program arguments.
+/// `verify --json -` (`command = "verify"`), `passes --json`, `correct --json` or
+/// `capability --json`: returns the JSON text and whether the job passed. They take the same
+/// plan and program arguments; `correct` and `capability` their own too.
 #[pyfunction]
 #[pyo3(signature = (command, threads, program=None, dialect="fanuc", insert=None, final_x=None,
     internal=false, infeed=None, passes=None, blank_diameter=None, gauge_only=false,
     allow_nonstandard=false, program_name="<program>", default_units=None, main=None,
-    linuxcnc_release="current"))]
+    linuxcnc_release="current", coating=0.0, measured_m=None, wire=None, measured_d2=None,
+    gauge=None, pickup_z=None, x_sigma=0.0, tip_radius_tol=0.0, wear_per_part=0.0,
+    samples=10000, seed=1))]
 #[allow(clippy::too_many_arguments)]
 fn job_json(
     py: Python<'_>,
@@ -88,14 +91,25 @@ fn job_json(
     default_units: Option<&str>,
     main: Option<&str>,
     linuxcnc_release: &str,
+    coating: f64,
+    measured_m: Option<f64>,
+    wire: Option<f64>,
+    measured_d2: Option<f64>,
+    gauge: Option<&str>,
+    pickup_z: Option<f64>,
+    x_sigma: f64,
+    tip_radius_tol: f64,
+    wear_per_part: f64,
+    samples: usize,
+    seed: u64,
 ) -> PyResult<(String, bool)> {
     let run = || -> Result<(String, bool), threadcheck::Error> {
         let verify = match command {
-            "verify" => true,
+            "verify" | "correct" | "capability" => true,
             "passes" => false,
             other => {
                 return Err(threadcheck::Error::Input(format!(
-                    "unknown job '{other}': expected verify or passes"
+                    "unknown job '{other}': expected verify, passes, correct or capability"
                 )))
             }
         };
@@ -132,7 +146,38 @@ fn job_json(
             linuxcnc_release,
         )?;
         spec.gauge_only = gauge_only;
-        let (text, outcome) = if verify {
+        spec.coating = coating;
+        let one = |what: &str| {
+            if threads.len() > 1 {
+                Err(threadcheck::Error::Input(format!("{what} takes one thread")))
+            } else {
+                Ok(())
+            }
+        };
+        let (text, outcome) = if command == "correct" {
+            one("correct")?;
+            let measured = match (measured_m, wire, measured_d2, gauge) {
+                (Some(m), Some(wire), None, None) => Some(threadcheck::Measured::OverWires { m, wire }),
+                (Some(_), None, _, _) | (None, Some(_), _, _) => {
+                    return Err(threadcheck::Error::Input("measured_m and wire go together".into()))
+                }
+                (None, None, Some(d2), None) => Some(threadcheck::Measured::PitchDiameter(d2)),
+                (None, None, None, Some(g)) => Some(threadcheck::Measured::Gauge(g.parse()?)),
+                (None, None, None, None) => None,
+                _ => {
+                    return Err(threadcheck::Error::Input(
+                        "give one measurement: measured_m with wire, measured_d2 or gauge".into(),
+                    ))
+                }
+            };
+            let spec = threadcheck::CorrectSpec { verify: spec, measured, pickup_z };
+            CorrectJob { spec, html: None, json: Some("-".into()), fix: None }.run()?
+        } else if command == "capability" {
+            one("capability")?;
+            let spec =
+                threadcheck::CapabilitySpec { verify: spec, x_sigma, tip_radius_tol, wear_per_part, samples, seed };
+            CapabilityJob { spec, svg: None, html: None, json: Some("-".into()) }.run()?
+        } else if verify {
             VerifyJob {
                 spec,
                 threads: threads.clone(),
@@ -154,8 +199,8 @@ fn job_json(
 
 /// `threadcheck limits D --json`.
 #[pyfunction]
-#[pyo3(signature = (designation, allow_nonstandard=false))]
-fn limits_json(py: Python<'_>, designation: String, allow_nonstandard: bool) -> PyResult<String> {
+#[pyo3(signature = (designation, allow_nonstandard=false, coating=0.0))]
+fn limits_json(py: Python<'_>, designation: String, allow_nonstandard: bool, coating: f64) -> PyResult<String> {
     py.detach(|| LimitsJob { designation, allow_nonstandard, json: Some("-".into()), coating }.run())
         .map(|(text, _)| text)
         .map_err(value_error)

@@ -107,3 +107,28 @@ def test_python_dicts():
     validate("verify", threadcheck.verify("M10x1.5-6g", final_x=8.2))
     validate("passes", threadcheck.passes(program=g76))
     validate("passes", threadcheck.passes("M10x1.5-6g"))
+
+
+@pytest.mark.parametrize("args", [
+    ["--thread", "M10x1.5-6g", "--insert", "full", "--measured-m", "10.32", "--wire", "0.866"],
+    ["--thread", "M10x1.5-6g", "--measured-d2", "8.95"],
+    ["--thread", "M10x1.5-6H", "--gauge", "go-fails"],
+    ["--thread", "M10x1.5-6g", "--insert", "full", "--program", str(PROGRAMS / "m10-g92-radial.nc"),
+     "--measured-d2", "9.02", "--pickup-z", "0.25"],
+    ["--thread", "1/4-20 UNC-2A", "--coating", "0.005", "--gauge", "ok"],
+])
+def test_correct(args):
+    validate("correct", json.loads(cli("correct", *args, "--json", "-")))
+
+
+@pytest.mark.parametrize("args", [
+    ["--thread", "M10x1.5-6g", "--x-sigma", "0.01", "--samples", "300"],
+    ["--thread", "M10x1.5-6H", "--insert", "partial:0.05", "--tip-radius-tol", "0.01",
+     "--wear-per-part", "0.001", "--samples", "300"],
+    ["--thread", "M10x1.5-6g", "--insert", "full", "--program", str(PROGRAMS / "m10-g92-radial.nc"),
+     "--samples", "50"],
+])
+def test_capability(args):
+    validate("capability", json.loads(cli("capability", *args, "--json", "-")))
+    validate("capability", threadcheck.capability("M10x1.5-6g", x_sigma=0.004, samples=100))
+    validate("correct", threadcheck.correct("M10x1.5-6g", measured_d2=9.0))

@@ -160,3 +160,36 @@ def test_linuxcnc_release_reaches_the_reader():
     assert new["passes"][0]["x_start"] == 12.0
     with pytest.raises(ValueError, match="unknown LinuxCNC release"):
         threadcheck.passes(program=eq, dialect="linuxcnc", linuxcnc_release="2.8")
+
+
+def test_correct_over_wires_follows_the_standard_formula():
+    # A full-profile M10x1.5-6g plan over 0.866 mm wires: straight 60° flanks, so
+    # d2 = M − 3w + 0.866025·P + C4, with GOST 8.677-2009's C4 for the wires' inclination,
+    # −0.1826·P²·w/((d2 − 1.866P + 3.6049w)(d2 − 1.866P + 3.8637w)) at the basic d2.
+    m, w, p, d2b = 10.32, 0.866, 1.5, 9.026
+    a = d2b - 1.866 * p
+    c4 = -0.1826 * p * p * w / ((a + 3.6049 * w) * (a + 3.8637 * w))
+    r = threadcheck.correct("M10x1.5-6g", insert="full", measured_m=m, wire=w)
+    assert r["measured"]["pitch_diameter"] == pytest.approx(m - 3 * w + 0.866025404 * p + c4, abs=1e-6)
+    assert r["verdict"] == "fail"
+    # The correction brings d2 to 8.928, the middle of 8.862–8.994.
+    assert r["delta_pitch_diameter"] == pytest.approx(8.928 - r["measured"]["pitch_diameter"], abs=1e-9)
+    with pytest.raises(ValueError, match="measured_m and wire go together"):
+        threadcheck.correct("M10x1.5-6g", measured_m=10.3)
+
+
+def test_correct_matches_the_cli_and_a_coating_moves_the_limits():
+    out = subprocess.run([os.environ["THREADCHECK_BIN"], "correct", "--thread", "M10x1.5-6g",
+                          "--measured-d2", "9.0", "--json"], capture_output=True, text=True)
+    assert json.loads(out.stdout) == threadcheck.correct("M10x1.5-6g", measured_d2=9.0)
+    # A 10 µm coat on a 60° thread: d2 limits 4t = 40 µm below ISO 965-1's 8.862–8.994.
+    ext = threadcheck.limits("M10x1.5-6g", coating=0.010)["external"]
+    assert ext["pitch_diameter"] == {"max": 8.954, "min": 8.822}
+
+
+def test_capability_wear_alone_gives_the_derived_parts_per_edge():
+    # Part k carries k parts' wear: from the best X (part 1 on d2 min 8.862) parts stay in
+    # while 8.862 + 2(k − 1)w ≤ 8.994: ⌊0.132 / 0.004⌋ + 1 = 34 for w = 2 µm.
+    r = threadcheck.capability("M10x1.5-6g", insert="full", wear_per_part=0.002, samples=50)
+    assert r["best_parts_per_edge"] == 34
+    assert sum(r["histogram"]["counts"]) == 50

@@ -13,14 +13,14 @@ import json as _json
 
 from . import _threadcheck
 
-__all__ = ["verify", "limits", "passes", "__version__"]
+__all__ = ["verify", "limits", "passes", "correct", "capability", "__version__"]
 __version__ = _threadcheck.__version__
 
 
 def verify(thread, program=None, dialect="fanuc", insert=None, final_x=None, internal=False,
            infeed=None, passes=None, blank_diameter=None, gauge_only=False,
            allow_nonstandard=False, program_name="<program>", default_units=None, main=None,
-           linuxcnc_release="current"):
+           linuxcnc_release="current", coating=0.0):
     """``threadcheck verify --json -``.
 
     ``thread`` is a designation with its class (``"M20x1.5-6g"``), or a list of them, one per
@@ -36,6 +36,7 @@ def verify(thread, program=None, dialect="fanuc", insert=None, final_x=None, int
     ``linuxcnc_release`` (``"current"``/``"before-2.9"``) chooses the comparison rules of a
     ``linuxcnc`` program: EQ, NE, LE, GE within 1e-6 from LinuxCNC 2.9.0 on, EQ and NE within
     1e-4 and LE, GE exact before (Debian 12's package).
+    ``coating`` (mm) checks against the limits before a coat of that thickness.
     The dict has ``verdict`` (``"pass"``/``"fail"``); a program's report has ``operations``.
     """
     threads = [thread] if isinstance(thread, str) else list(thread)
@@ -43,13 +44,18 @@ def verify(thread, program=None, dialect="fanuc", insert=None, final_x=None, int
         "verify", threads, program=program, dialect=dialect, insert=insert, final_x=final_x,
         internal=internal, infeed=infeed, passes=passes, blank_diameter=blank_diameter,
         gauge_only=gauge_only, allow_nonstandard=allow_nonstandard, program_name=program_name,
-        default_units=default_units, main=main, linuxcnc_release=linuxcnc_release)
+        default_units=default_units, main=main, linuxcnc_release=linuxcnc_release,
+        coating=coating)
     return _json.loads(text)
 
 
-def limits(designation, allow_nonstandard=False):
-    """``threadcheck limits DESIGNATION --json``: basic sizes and limits of size, mm."""
-    return _json.loads(_threadcheck.limits_json(designation, allow_nonstandard=allow_nonstandard))
+def limits(designation, allow_nonstandard=False, coating=0.0):
+    """``threadcheck limits DESIGNATION --json``: basic sizes and limits of size, mm.
+
+    ``coating`` (mm) gives the limits to cut to before a coat of that thickness.
+    """
+    return _json.loads(_threadcheck.limits_json(designation, allow_nonstandard=allow_nonstandard,
+                                                coating=coating))
 
 
 def passes(thread=None, program=None, dialect="fanuc", insert=None, final_x=None, internal=False,
@@ -62,4 +68,49 @@ def passes(thread=None, program=None, dialect="fanuc", insert=None, final_x=None
         blank_diameter=blank_diameter, allow_nonstandard=allow_nonstandard,
         program_name=program_name, default_units=default_units, main=main,
         linuxcnc_release=linuxcnc_release)
+    return _json.loads(text)
+
+
+def correct(thread, program=None, dialect="fanuc", insert=None, final_x=None, internal=False,
+            infeed=None, passes=None, blank_diameter=None, allow_nonstandard=False,
+            program_name="<program>", default_units=None, main=None, linuxcnc_release="current",
+            coating=0.0, measured_m=None, wire=None, measured_d2=None, gauge=None, pickup_z=None):
+    """``threadcheck correct --json``: what was measured on the part, turned into the change.
+
+    ``thread`` and the plan or ``program`` arguments are ``verify``'s. Give one measurement:
+    ``measured_m`` (mm over three wires) with ``wire`` (their diameter, mm), ``measured_d2``
+    (mm), or ``gauge`` (``"go-fails"``, ``"nogo-enters"``, ``"ok"``); ``pickup_z`` (mm from the
+    program's Z0) adds a pick-up's start angle and Z shift. The dict has ``verdict``
+    (``"pass"`` in tolerance), ``measured``, ``delta_pitch_diameter``, ``suggested_final_x``,
+    ``correction`` (the program's word), ``wear_offset`` and ``pickup``.
+    """
+    text, _ok = _threadcheck.job_json(
+        "correct", [thread], program=program, dialect=dialect, insert=insert, final_x=final_x,
+        internal=internal, infeed=infeed, passes=passes, blank_diameter=blank_diameter,
+        allow_nonstandard=allow_nonstandard, program_name=program_name,
+        default_units=default_units, main=main, linuxcnc_release=linuxcnc_release,
+        coating=coating, measured_m=measured_m, wire=wire, measured_d2=measured_d2, gauge=gauge,
+        pickup_z=pickup_z)
+    return _json.loads(text)
+
+
+def capability(thread, program=None, dialect="fanuc", insert=None, final_x=None, internal=False,
+               infeed=None, passes=None, blank_diameter=None, allow_nonstandard=False,
+               program_name="<program>", default_units=None, main=None,
+               linuxcnc_release="current", coating=0.0, x_sigma=0.0, tip_radius_tol=0.0,
+               wear_per_part=0.0, samples=10000, seed=1, gauge_only=False):
+    """``threadcheck capability --json``: a seeded Monte Carlo of the parts a program cuts.
+
+    ``x_sigma`` is the X repeatability (one sigma on the diameter, mm), ``tip_radius_tol`` a
+    partial insert's tip radius tolerance (± mm, uniform), ``wear_per_part`` the radial wear per
+    part (mm); ``gauge_only`` leaves form checks out of each part's verdict. The dict has ``sizes`` (mean, sigma, Cp, Cpk, ppm per checked size),
+    ``pass_share``, ``parts_per_edge``, ``best_final_x`` and the d2 ``histogram``.
+    """
+    text, _ok = _threadcheck.job_json(
+        "capability", [thread], program=program, dialect=dialect, insert=insert, final_x=final_x,
+        internal=internal, infeed=infeed, passes=passes, blank_diameter=blank_diameter,
+        allow_nonstandard=allow_nonstandard, program_name=program_name,
+        default_units=default_units, main=main, linuxcnc_release=linuxcnc_release,
+        coating=coating, x_sigma=x_sigma, tip_radius_tol=tip_radius_tol,
+        wear_per_part=wear_per_part, samples=samples, seed=seed, gauge_only=gauge_only)
     return _json.loads(text)

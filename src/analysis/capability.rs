@@ -23,6 +23,9 @@ use rand_distr::{Distribution, StandardNormal};
 use rayon::prelude::*;
 use serde::Serialize;
 
+/// One sampled part: each check's value and whether it is within its limits, and the verdict.
+type Sampled = (Vec<f64>, Vec<bool>, bool);
+
 /// The most samples a run takes (about 20 µs each).
 pub const MAX_SAMPLES: usize = 1_000_000;
 
@@ -171,7 +174,7 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
     }
     let (recut, v) = Recut::new(&spec.verify)?;
     let tip = match (recut.tip_radius(), spec.tip_radius_tol) {
-        (_, t) if t == 0.0 => None,
+        (_, 0.0) => None,
         (Some(r), t) if t < r => Some((r, t)),
         (Some(r), t) => {
             return Err(Error::Input(format!(
@@ -194,7 +197,7 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
                 .into(),
         ));
     };
-    let runs: Vec<Result<(Vec<f64>, Vec<bool>, bool), Error>> = (0..spec.samples)
+    let runs: Vec<Result<Sampled, Error>> = (0..spec.samples)
         .into_par_iter()
         .map(|i| {
             // One stream per sample: the draws do not depend on which thread takes it.

@@ -1412,12 +1412,7 @@ impl Recut {
         let passes = self
             .passes
             .iter()
-            .map(|p| Pass {
-                x_start: p.x_start + dx,
-                x_end: p.x_end + dx,
-                x_taper: p.x_taper + dx,
-                ..p.clone()
-            })
+            .map(|p| Pass { x_start: p.x_start + dx, x_end: p.x_end + dx, x_taper: p.x_taper + dx, ..*p })
             .collect();
         let given = Given {
             passes,
