@@ -18,6 +18,21 @@ fn m10() -> BasicThread {
 }
 
 fn plan(n: usize, infeed: Infeed) -> Vec<Pass> {
+    if n > 1000 {
+        // Beyond the plans' 1 000 passes: the same constant-area flank plan laid out by hand
+        // (radial depth 0.875·√(i/n), each pass moved along Z by its depth·tan 29.5°).
+        let flank = match infeed {
+            Infeed::Flank { angle } => angle.to_radians().tan(),
+            _ => 0.0,
+        };
+        return (1..=n)
+            .map(|i| {
+                let d = 0.875 * (i as f64 / n as f64).sqrt();
+                let z = 6.0 - d * flank;
+                Pass::parallel(i, 9.85 - 2.0 * d, z, z - 12.0, 1.5)
+            })
+            .collect();
+    }
     PlanSpec { infeed, z_start: 6.0, length: 12.0, ..PlanSpec::new(ThreadKind::External, 1.5, 9.85, 8.10, n) }
         .generate()
         .unwrap()
@@ -117,5 +132,20 @@ fn measurement(c: &mut Criterion) {
     c.bench_function("measure M10x1.5", |b| b.iter(|| black_box(measure(&ms, &profile, z).unwrap())));
 }
 
-criterion_group!(benches, one_thread, union_strategies, scaling, measurement);
+/// `capability --samples 10000` of M10x1.5-6g (target: under 0.5 s on 2 cores).
+fn capability(c: &mut Criterion) {
+    let mut g = c.benchmark_group("capability");
+    g.sample_size(10);
+    g.bench_function("M10x1.5-6g, 10 000 samples, X scatter and tip radius", |b| {
+        b.iter(|| {
+            let mut spec = threadcheck::CapabilitySpec::new(threadcheck::VerifySpec::new("M10x1.5-6g"));
+            spec.x_sigma = 0.008;
+            spec.tip_radius_tol = 0.01;
+            black_box(threadcheck::capability(&spec).unwrap())
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, one_thread, union_strategies, scaling, measurement, capability);
 criterion_main!(benches);
