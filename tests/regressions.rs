@@ -557,3 +557,18 @@ fn inch_threads_default_to_inches() {
     let metric = table(&["verify", "--thread", "M10x1.5-6g", "--insert", "full"]);
     assert!(!metric.contains(" in)") && !metric.lines().any(|l| l.trim_end().ends_with(" in")), "{metric}");
 }
+
+/// Issue 28: a flat root has no root radius. A full-profile Tr20x4 insert (ISO 2904: a flat
+/// crest) and a 1/2-10 Acme one cut flat roots with sharp corners, which once reported 1.5542
+/// and 1.0658 mm (the circle through a flank point and both corners); now null. The ISO metric
+/// full-profile insert's root is the rounded H/6 = P/(4√3) = 0.216506 mm for P 1.5.
+#[test]
+fn a_flat_root_reports_no_root_radius() {
+    for d in ["Tr20x4-7e", "1/2-10 ACME-2G"] {
+        let v = verify(&VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new(d) }).unwrap();
+        assert_eq!(v.measurement.root_radius, None, "{d}");
+    }
+    let m10 = verify(&VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M10x1.5-6g") }).unwrap();
+    let r = m10.measurement.root_radius.unwrap();
+    assert!((r - 1.5 / (4.0 * 3f64.sqrt())).abs() < 1e-6, "{r}");
+}

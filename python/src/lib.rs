@@ -174,8 +174,14 @@ fn job_json(
             CorrectJob { spec, html: None, json: Some("-".into()), fix: None }.run()?
         } else if command == "capability" {
             one("capability")?;
-            let spec =
-                threadcheck::CapabilitySpec { verify: spec, x_sigma, tip_radius_tol, wear_per_part, samples, seed };
+            let spec = threadcheck::CapabilitySpec {
+                verify: spec,
+                x_sigma,
+                tip_radius_tol,
+                wear_per_part,
+                samples,
+                seed,
+            };
             CapabilityJob { spec, svg: None, html: None, json: Some("-".into()) }.run()?
         } else if verify {
             VerifyJob {
@@ -200,7 +206,12 @@ fn job_json(
 /// `threadcheck limits D --json`.
 #[pyfunction]
 #[pyo3(signature = (designation, allow_nonstandard=false, coating=0.0))]
-fn limits_json(py: Python<'_>, designation: String, allow_nonstandard: bool, coating: f64) -> PyResult<String> {
+fn limits_json(
+    py: Python<'_>,
+    designation: String,
+    allow_nonstandard: bool,
+    coating: f64,
+) -> PyResult<String> {
     py.detach(|| LimitsJob { designation, allow_nonstandard, json: Some("-".into()), coating }.run())
         .map(|(text, _)| text)
         .map_err(value_error)

@@ -36,8 +36,9 @@ pub struct Measurement {
     /// Flank half-angles from the radial, degrees: `[low-Z flank, high-Z flank]` of the groove,
     /// each fitted by least squares on the straight middle half of the flank.
     pub flank_angles: [f64; 2],
-    /// Smallest radius of curvature of the root (concave side), mm; `None` if the root has no
-    /// concave turn.
+    /// Smallest radius of curvature of the root (concave side), mm; `None` where the root has no
+    /// rounded part (a flat root with sharp corners, as a full-profile trapezoidal or Acme
+    /// insert cuts it; a sharp V).
     pub root_radius: Option<f64>,
     /// Width of the narrower of the two crests, mm: its width 1 µm below the top less what two
     /// sharp flanks would span there. Near zero: the grooves meet, no crest is left.
@@ -173,8 +174,17 @@ fn count_pockets(pts: &[Point], ridge: f64) -> usize {
     pockets
 }
 
-/// Smallest circumradius over concave vertex triples (left turns in the normalised frame), after
-/// merging vertices closer than 0.1 µm so that boolean slivers cannot fake a tiny radius.
+/// The largest turn at a vertex that still counts as a step along a rounded contour: a circle
+/// tessellated to threadcheck's chord tolerances turns by under 20° a vertex down to radii of a
+/// few µm, while a sharp corner of a flat root (75° on a trapezoidal thread) or a V (120°) turns
+/// by far more.
+const ARC_TURN_DEG: f64 = 30.0;
+
+/// Smallest circumradius over concave vertex triples (left turns in the normalised frame) that
+/// lie on a rounded stretch (each turning by under [`ARC_TURN_DEG`]), after merging vertices
+/// closer than 0.1 µm so that boolean slivers cannot fake a tiny radius. `None` where the root
+/// has no rounded part: a flat root with sharp corners, a sharp V (whose radius is 0 for the
+/// root-radius check).
 fn min_concave_radius(pts: &[Point]) -> Option<f64> {
     let mut v: Vec<Point> = Vec::with_capacity(pts.len());
     for p in pts {
@@ -187,6 +197,10 @@ fn min_concave_radius(pts: &[Point]) -> Option<f64> {
         let (a, b, c) = (w[0], w[1], w[2]);
         let cross = (b.z - a.z) * (c.r - a.r) - (b.r - a.r) * (c.z - a.z);
         if cross <= 0.0 {
+            continue;
+        }
+        let dot = (b.z - a.z) * (c.z - b.z) + (b.r - a.r) * (c.r - b.r);
+        if cross.atan2(dot).to_degrees() >= ARC_TURN_DEG {
             continue;
         }
         let r = a.distance(b) * b.distance(c) * c.distance(a) / (2.0 * cross);
