@@ -572,3 +572,33 @@ fn a_flat_root_reports_no_root_radius() {
     let r = m10.measurement.root_radius.unwrap();
     assert!((r - 1.5 / (4.0 * 3f64.sqrt())).abs() < 1e-6, "{r}");
 }
+
+/// Issue 28: flank infeed steeper than the flank leaves a fin between passes. Each pass's
+/// trailing edge stands at 30° while the passes step along 40°, so the next pass cuts beside the
+/// last one's tip instead of through it: the last tip's radius rises again before the next
+/// pass's edge falls, a ridge inside the groove, which `one groove` passed. At 29.5° (less than
+/// the flank) each pass recuts the last one's trailing flank and the groove falls cleanly.
+#[test]
+fn a_steep_flank_infeed_fin_fails_one_groove() {
+    let groove = |infeed: &str| {
+        let o = crate::run(&[
+            "verify",
+            "--thread",
+            "M10x1.5-6g",
+            "--infeed",
+            infeed,
+            "--no-pass-metrics",
+            "--json",
+        ]);
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let c =
+            v["checks"].as_array().unwrap().iter().find(|c| c["feature"] == "single_groove").unwrap().clone();
+        (c, v["measured"]["fin_height"].as_f64().unwrap())
+    };
+    let (steep, fin) = groove("flank:40");
+    assert_eq!(steep["ok"], false, "{steep}");
+    assert!(fin > 0.001 && steep["note"].as_str().unwrap().contains("fin or notch"), "{fin} {steep}");
+    let (clean, fin) = groove("flank:29.5");
+    assert_eq!(clean["ok"], true, "{clean}");
+    assert!(fin <= 0.001, "{fin}");
+}

@@ -473,7 +473,7 @@ pub fn checks(
         deviation_um: if crest_ok { 0.0 } else { (m.crest_width - MIN_CREST_WIDTH) * 1000.0 },
         note: (!crest_ok).then(|| "no crest left: the grooves overlap and meet in a sharp edge".to_string()),
     });
-    out.push(single_groove_check(single_groove));
+    out.push(single_groove_check(single_groove, m.fin_height));
     out
 }
 
@@ -516,23 +516,36 @@ fn taper_checks(m: &Measurement, thread: &BasicThread, single_groove: bool, c: C
         )),
     });
     out.extend(flank_checks(m, thread));
-    out.push(single_groove_check(single_groove));
+    out.push(single_groove_check(single_groove, m.fin_height));
     out
 }
 
+/// The highest fin or notch a groove may hold, mm: 1 µm, the resolution sizes are read to.
+pub const FIN_TOLERANCE: f64 = 1e-3;
+
 /// One groove per pitch (a form check, parallel and taper threads alike): the root has at most
-/// one pocket below mid-depth.
-fn single_groove_check(single_groove: bool) -> Check {
+/// one pocket below mid-depth, and no fin or notch over [`FIN_TOLERANCE`] stands anywhere
+/// between the crests.
+fn single_groove_check(single_groove: bool, fin_height: f64) -> Check {
+    let clean = fin_height <= FIN_TOLERANCE;
+    let ok = single_groove && clean;
+    let note = match (single_groove, clean) {
+        (false, _) => Some("the passes do not land in one groove: the root has more than one pocket".to_string()),
+        (true, false) => Some(format!(
+            "a fin or notch {:.1} µm high stands inside the groove: the passes leave a step (flank infeed steeper than the flank?)",
+            fin_height * 1e3
+        )),
+        (true, true) => None,
+    };
     Check {
         feature: CheckFeature::SingleGroove,
         kind: CheckKind::Form,
-        value: if single_groove { 1.0 } else { 0.0 },
+        value: if ok { 1.0 } else { 0.0 },
         min: Some(1.0),
         max: None,
-        ok: single_groove,
+        ok,
         deviation_um: 0.0,
-        note: (!single_groove)
-            .then(|| "the passes do not land in one groove: the root has more than one pocket".to_string()),
+        note,
     }
 }
 

@@ -48,6 +48,10 @@ pub struct Measurement {
     /// Separate pockets in the root (local minima parted by a ridge over 1 µm high); more than
     /// one means the passes did not land in one groove.
     pub root_pockets: usize,
+    /// The highest a fin or notch stands inside the groove, mm: how far the profile rises again
+    /// on its way down from either crest to the root (0 where it falls all the way). Steep flank
+    /// infeed leaves one between passes.
+    pub fin_height: f64,
     /// True when the pitch line lay outside the cut flanks and the fitted flank lines were
     /// extended to find it.
     pub pitch_line_extrapolated: bool,
@@ -172,6 +176,24 @@ fn count_pockets(pts: &[Point], ridge: f64) -> usize {
         }
     }
     pockets
+}
+
+/// How far the groove's profile rises again on its way down from either crest to the root: the
+/// largest height of a point over the lowest before it, walking from the left crest to the root
+/// and from the right crest back to it, among the points below `cap`: P/16 under the lower
+/// crest, so the notch a taper thread's turns leave in a crest (they top it at heights about
+/// P/32 apart) does not count.
+fn fin_height(pts: &[Point], root: usize, cap: f64) -> f64 {
+    let rise = |walk: &mut dyn Iterator<Item = &Point>| {
+        let mut low = f64::INFINITY;
+        let mut worst = 0.0f64;
+        for p in walk.filter(|p| p.r < cap) {
+            low = low.min(p.r);
+            worst = worst.max(p.r - low);
+        }
+        worst
+    };
+    rise(&mut pts[..=root].iter()).max(rise(&mut pts[root..].iter().rev()))
 }
 
 /// The largest turn at a vertex that still counts as a step along a rounded contour: a circle
@@ -653,6 +675,11 @@ pub fn measure(setup: &MeasureSetup<'_>, profile: &[Point], z_ref: f64) -> Resul
             let i1 = (g.root..=g.right).find(|&i| g.pts[i].r >= mid).unwrap_or(g.right);
             count_pockets(&g.pts[i0..=i1], 1e-3)
         },
+        fin_height: fin_height(
+            &g.pts[g.left..=g.right],
+            g.root - g.left,
+            g.pts[g.left].r.min(g.pts[g.right].r) - p / 16.0,
+        ),
         pitch_line_extrapolated: extrapolated,
         three_wire,
         max_material_clearance,

@@ -169,6 +169,9 @@ pub struct MeasuredReport {
     pub engagement_depth: f64,
     /// Crest flat, mm.
     pub crest_width: f64,
+    /// The highest fin or notch inside the groove, mm (0: the profile falls cleanly from each
+    /// crest to the root).
+    pub fin_height: f64,
     /// Best wire and the measurement over three wires, mm.
     pub three_wire: Option<crate::geometry::measure::ThreeWire>,
     /// Signed clearance to the maximum-material profile, mm.
@@ -266,6 +269,7 @@ impl<'a> VerifyReport<'a> {
                 thread_depth: m.thread_depth,
                 engagement_depth: m.engagement_depth,
                 crest_width: m.crest_width,
+                fin_height: m.fin_height,
                 three_wire: m.three_wire,
                 max_material_clearance: m.max_material_clearance,
                 functional_pitch_diameter: v.functional_pitch_diameter,
