@@ -440,9 +440,10 @@ struct PlanArgs {
     /// Spring (idle) passes at full depth.
     #[arg(long, default_value_t = 0)]
     spring: usize,
-    /// constant-area | constant-depth | sandvik
-    #[arg(long, default_value = "constant-area")]
-    schedule: Schedule,
+    /// constant-area | constant-depth | sandvik (default constant-area; compare: both
+    /// constant-area and constant-depth unless one is given)
+    #[arg(long)]
+    schedule: Option<Schedule>,
     /// Explicit cumulative radial depths, mm, e.g. 0.2,0.35,0.45 (instead of a schedule).
     #[arg(long, value_name = "LIST", value_delimiter = ',', value_parser = finite,
           conflicts_with_all = ["passes", "first_depth"])]
@@ -526,7 +527,7 @@ impl PlanArgs {
         s.finish = self.finish;
         s.spring = self.spring;
         s.schedule = if self.depths.is_empty() {
-            self.schedule.clone()
+            self.schedule.clone().unwrap_or(Schedule::ConstantArea)
         } else {
             Schedule::Explicit(self.depths.clone())
         };
@@ -669,7 +670,20 @@ impl Cli {
                 } else {
                     modified
                 };
-                done(CompareJob { spec, modified, json, markdown, html }.run()?)
+                if plan.units.is_some() {
+                    return Err(Error::Input(
+                        "compare's table is in mm: --units gives inches in verify's text and pictures".into(),
+                    ));
+                }
+                let choice = threadcheck::CompareChoice {
+                    infeed: plan.infeed,
+                    schedule: if plan.depths.is_empty() {
+                        plan.schedule.clone()
+                    } else {
+                        Some(Schedule::Explicit(plan.depths.clone()))
+                    },
+                };
+                done(CompareJob { spec, modified, choice, json, markdown, html }.run()?)
             }
             Command::Fit(f) => {
                 use threadcheck::FitSide;

@@ -524,7 +524,7 @@ pub struct CapabilityJob {
 pub const CAPABLE_CPK: f64 = 1.33;
 
 impl CapabilityJob {
-    /// Runs the job: pass when the pitch diameter's Cpk reaches [`CAPABLE_CPK`] (or, without
+    /// Runs the job: pass when the pitch diameter's Cpk reaches `CAPABLE_CPK`, 1.33 (or, without
     /// variation, when every sampled part passes).
     pub fn run(&self) -> Result<(String, Outcome), Error> {
         let r = crate::analysis::capability::capability(&self.spec)?;
@@ -740,6 +740,8 @@ pub struct CompareJob {
     pub spec: crate::analysis::verify::VerifySpec,
     /// Modified-flank angles, degrees.
     pub modified: Vec<f64>,
+    /// The infeed or schedule the user chose to compare alone.
+    pub choice: crate::analysis::compare::CompareChoice,
     /// The JSON: `-` prints it on stdout instead of the table, a path writes it there.
     pub json: Option<String>,
     /// Write the table as Markdown here.
@@ -752,8 +754,8 @@ impl CompareJob {
     /// Runs the job.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
         let spec = crate::analysis::verify::VerifySpec { picture: self.html.is_some(), ..self.spec.clone() };
-        let c = crate::analysis::compare::compare(&spec, &self.modified)?;
-        let md = self.markdown.as_ref().map(|_| crate::report::compare::markdown(&c));
+        let c = crate::analysis::compare::compare(&spec, &self.modified, &self.choice)?;
+        let md = self.markdown.as_ref().map(|_| crate::report::compare::markdown_report(&c));
         let json_text =
             self.json.as_ref().map(|_| pretty(&crate::report::compare::CompareReport::of(&c))).transpose()?;
         let html = self.html.as_ref().map(|_| crate::report::html::compare_html(&c));
@@ -985,7 +987,7 @@ impl InfeedReportJob {
         for d in REPORT_THREADS {
             for (iname, choice) in &inserts {
                 let spec = VerifySpec { insert: choice.clone(), picture: true, ..VerifySpec::new(d) };
-                runs.push((d, *iname, compare(&spec, &[29.5, 27.0])?));
+                runs.push((d, *iname, compare(&spec, &[29.5, 27.0], &Default::default())?));
             }
         }
         let sections: Vec<crate::report::compare::InfeedSection<'_>> = runs

@@ -96,7 +96,7 @@ pub use geometry::sweep::{pass_metrics, sweep, PassMetrics, Section, Sweep, Swee
 pub use analysis::capability::{capability, CapabilityReport, CapabilitySpec, Histogram, SizeCapability};
 pub use analysis::catalogue::{cases as catalogue_cases, run as run_catalogue, Case, CatalogueSpec};
 pub use analysis::check::{checks, Check, CheckFeature, CheckKind, CheckUnit, Verdict};
-pub use analysis::compare::{compare, Comparison};
+pub use analysis::compare::{compare, CompareChoice, Comparison, Ground, Recommendation};
 pub use analysis::correct::{
     correct, helix_term, CorrectReport, CorrectSpec, GaugeResult, Measured, MeasuredState, Pickup,
     WearOffset, WireReading,

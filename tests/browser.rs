@@ -321,10 +321,14 @@ fn html_reports_of_programs_and_comparisons() {
     );
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let html = std::fs::read_to_string(dir.join("c.html")).unwrap();
-    assert_eq!(html.matches("<svg").count(), 8);
-    assert_eq!(
-        html.matches("<tr><td>").count(),
-        8 + 8 * 9,
-        "8 strategy rows, and each report's 9 check rows"
-    );
+    // One picture per infeed (radial, flank 30°, modified 29.5°, alternating 30°), one row per
+    // infeed and schedule, and the recommendation.
+    assert_eq!(html.matches("<svg").count(), 4);
+    assert_eq!(html.matches("<tr><td>").count(), 8, "8 strategy rows");
+    assert!(html.contains("recommended: modified 29.5° infeed, constant-area"), "{}", &html[..2000]);
+    // The default comparison (five infeeds) stays small.
+    let o = run_in(&dir, &["compare", "--thread", "M10x1.5-6g", "--html", "d.html"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let size = std::fs::metadata(dir.join("d.html")).unwrap().len();
+    assert!(size < 300_000, "the default comparison's page is {size} bytes");
 }

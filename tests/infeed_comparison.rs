@@ -180,7 +180,7 @@ fn compare_sharp(schedule_n: usize) -> threadcheck::Comparison {
     let mut spec = VerifySpec::new("M10x1.5-6g");
     spec.insert = InsertChoice::Partial { tip_radius: 0.0 };
     spec.passes = Some(schedule_n);
-    threadcheck::compare(&spec, &[29.5]).unwrap()
+    threadcheck::compare(&spec, &[29.5], &Default::default()).unwrap()
 }
 
 /// Radial passes with a sharp V engage both flanks along their whole length d_i / cos 30° on

@@ -602,3 +602,37 @@ fn a_steep_flank_infeed_fin_fails_one_groove() {
     assert_eq!(clean["ok"], true, "{clean}");
     assert!(fin <= 0.001, "{fin}");
 }
+
+/// Issue 28: compare honours --infeed and --schedule (one row: radial, Sandvik), says why a
+/// strategy fails, and recommends one on stated grounds. The default M10x1.5-6g comparison with
+/// its partial insert fails everywhere on the insert's root (d3 and R: ISO 965-1 wants
+/// R ≥ 0.125·P = 0.1875 mm); flank infeed at exactly 30° rubs, radial and alternating put about
+/// half the chip behind the tip, so modified 29.5° with constant-area depths is recommended.
+#[test]
+fn compare_honours_its_options_and_recommends_a_strategy() {
+    let json = |args: &[&str]| -> serde_json::Value {
+        let o = crate::run(args);
+        assert_eq!(o.status.code(), Some(0), "{}", crate::stderr(&o));
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let one =
+        json(&["compare", "--thread", "M10x1.5-6g", "--infeed", "radial", "--schedule", "sandvik", "--json"]);
+    let rows = one["strategies"].as_array().unwrap();
+    assert_eq!(rows.len(), 1);
+    assert_eq!((rows[0]["infeed"].as_str(), rows[0]["schedule"].as_str()), (Some("radial"), Some("sandvik")));
+    let all = json(&["compare", "--thread", "M10x1.5-6g", "--json"]);
+    assert_eq!(all["strategies"].as_array().unwrap().len(), 10);
+    let r = &all["recommended"];
+    assert_eq!(
+        (r["infeed"].as_str(), r["schedule"].as_str()),
+        (Some("modified 29.5°"), Some("constant-area"))
+    );
+    assert_eq!(r["any_in_tolerance"], false);
+    let why = all["strategies"][0]["failed"].to_string();
+    assert!(why.contains("minor_diameter") && why.contains("root_radius"), "{why}");
+    let text = crate::stdout(&crate::run(&["compare", "--thread", "M10x1.5-6g"]));
+    assert!(text.contains("fail: minor diameter d3, root radius"), "{text}");
+    assert!(text.contains("recommended: modified 29.5° infeed, constant-area"), "{text}");
+    let units = crate::run(&["compare", "--thread", "M10x1.5-6g", "--units", "inch"]);
+    assert_eq!(units.status.code(), Some(2));
+}

@@ -5,8 +5,9 @@
 //! diameter with radial, constant-area passes), so differences in the tooth come from the infeed
 //! alone.
 
+use crate::analysis::check::CheckFeature;
 use crate::analysis::verify::{verify, Verification, VerifySpec};
-use crate::gcode::passes::{Infeed, Schedule};
+use crate::gcode::passes::{Infeed, InfeedChoice, Schedule};
 use crate::ground::plane::deg;
 use crate::Error;
 use serde::Serialize;
@@ -46,6 +47,8 @@ pub struct Summary {
     pub flank_angles: [f64; 2],
     /// Verdict.
     pub pass: bool,
+    /// The checks that fail (in the verdict), why the verdict is `fail`.
+    pub failed: Vec<CheckFeature>,
 }
 
 impl Summary {
@@ -55,6 +58,40 @@ impl Summary {
     }
 }
 
+/// What decided a recommendation, in the order applied.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Ground {
+    /// Only strategies whose thread is in tolerance.
+    InTolerance,
+    /// Not flank infeed at exactly half the thread angle, where the trailing edge rubs the
+    /// finished flank instead of cutting (why the trade takes a modified angle a little less).
+    TrailingEdgeCuts,
+    /// The least chip behind the tip (on the trailing edge), within 5 points of the least:
+    /// the chip flows off the leading edge.
+    LeastChipBehindTheTip,
+    /// The most even chips (largest over smallest chip area, within 5 %).
+    ChipBalance,
+    /// The fewest passes.
+    FewestPasses,
+}
+
+/// The strategy to use, and why.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Recommendation {
+    /// Its row in [`Comparison::runs`].
+    pub index: usize,
+    /// Its infeed label.
+    pub infeed: String,
+    /// Its schedule.
+    pub schedule: String,
+    /// What decided it, in order (empty when one strategy was compared).
+    pub grounds: Vec<Ground>,
+    /// Whether any strategy is in tolerance (if none, the recommendation is the best of the
+    /// failing ones, and their shared failure is not the infeed's doing).
+    pub any_in_tolerance: bool,
+}
+
 /// A comparison of strategies for one thread.
 #[derive(Clone, Debug)]
 pub struct Comparison {
@@ -62,6 +99,69 @@ pub struct Comparison {
     pub final_x: f64,
     /// One verification per strategy, with its summary.
     pub runs: Vec<(Summary, Verification)>,
+    /// The strategy to use.
+    pub recommended: Option<Recommendation>,
+}
+
+/// Which strategies to compare: every infeed and both schedules, or the ones the user chose.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CompareChoice {
+    /// Compare this infeed alone.
+    pub infeed: Option<InfeedChoice>,
+    /// Compare this schedule alone (else constant depth and constant area).
+    pub schedule: Option<Schedule>,
+}
+
+/// The recommendation among `runs`: in tolerance first, then a trailing edge that cuts, the
+/// least chip behind the tip, the most even chips, the fewest passes (see [`Ground`]).
+fn recommend(runs: &[(Summary, Verification)], half_angle: f64) -> Option<Recommendation> {
+    if runs.is_empty() {
+        return None;
+    }
+    let mut left: Vec<usize> = (0..runs.len()).collect();
+    let mut grounds = Vec::new();
+    let any = runs.iter().any(|(m, _)| m.pass);
+    // Keeps what `keep` keeps of the strategies left, unless it would keep none.
+    let mut narrow = |left: &mut Vec<usize>, keep: &dyn Fn(usize, &[usize]) -> bool, g: Ground| {
+        let kept: Vec<usize> = left.iter().copied().filter(|&i| keep(i, left)).collect();
+        if !kept.is_empty() && kept.len() < left.len() {
+            *left = kept;
+            grounds.push(g);
+        }
+    };
+    narrow(&mut left, &|i, _| runs[i].0.pass, Ground::InTolerance);
+    narrow(
+        &mut left,
+        &|i, _| !matches!(runs[i].1.infeed, Infeed::Flank { angle } if (angle - half_angle).abs() < 1e-9),
+        Ground::TrailingEdgeCuts,
+    );
+    let least = |all: &[usize], f: &dyn Fn(&Summary) -> f64| {
+        all.iter().map(|&j| f(&runs[j].0)).fold(f64::INFINITY, f64::min)
+    };
+    narrow(
+        &mut left,
+        &|i, all| runs[i].0.trailing_share <= least(all, &|m| m.trailing_share) + 0.05,
+        Ground::LeastChipBehindTheTip,
+    );
+    narrow(
+        &mut left,
+        &|i, all| runs[i].0.chip_spread <= least(all, &|m| m.chip_spread) * 1.05,
+        Ground::ChipBalance,
+    );
+    narrow(
+        &mut left,
+        &|i, all| runs[i].0.passes as f64 <= least(all, &|m| m.passes as f64),
+        Ground::FewestPasses,
+    );
+    let index = left[0];
+    let m = &runs[index].0;
+    Some(Recommendation {
+        index,
+        infeed: m.infeed.clone(),
+        schedule: m.schedule.clone(),
+        grounds,
+        any_in_tolerance: any,
+    })
 }
 
 impl Comparison {
@@ -123,22 +223,25 @@ fn summarise(label: &str, schedule: &str, v: &Verification) -> Summary {
         minor_diameter: v.measurement.minor_diameter,
         flank_angles: v.measurement.flank_angles,
         pass: v.pass,
+        failed: v.checks.iter().filter(|c| !c.ok && c.kind.counts(v.gauge_only)).map(|c| c.feature).collect(),
     }
 }
 
-/// Runs every strategy × {constant depth, constant area} on `base`, all ending at one final X.
+/// Runs every strategy × {constant depth, constant area} on `base` (or the infeed and schedule
+/// `choice` names), all ending at one final X, and recommends one.
 ///
 /// ```
-/// use threadcheck::compare;
+/// use threadcheck::{compare, CompareChoice};
 /// use threadcheck::{InsertChoice, VerifySpec};
 /// let base = VerifySpec { insert: InsertChoice::Full, final_x: Some(8.2), ..VerifySpec::new("M10x1.5-6g") };
 /// // Radial, flank, one modified angle and alternating, each with two schedules.
-/// let c = compare(&base, &[29.5])?;
+/// let c = compare(&base, &[29.5], &CompareChoice::default())?;
 /// assert_eq!(c.runs.len(), 8);
 /// assert!(c.runs.iter().all(|(_, v)| v.final_x == 8.2));
+/// assert!(c.recommended.is_some());
 /// # Ok::<(), threadcheck::Error>(())
 /// ```
-pub fn compare(base: &VerifySpec, modified: &[f64]) -> Result<Comparison, Error> {
+pub fn compare(base: &VerifySpec, modified: &[f64], choice: &CompareChoice) -> Result<Comparison, Error> {
     if base.program.is_some() {
         return Err(Error::Input(
             "compare lays out each infeed strategy's own passes, and a program fixes its own: verify the program, or compare its thread without --program".into(),
@@ -163,18 +266,28 @@ pub fn compare(base: &VerifySpec, modified: &[f64]) -> Result<Comparison, Error>
         crate::ParseOptions { allow_nonstandard: base.allow_nonstandard },
     )?;
     let half = 0.5 * des.thread.form.flank_angle();
+    let infeeds = match choice.infeed {
+        Some(c) => {
+            let i = c.resolve(des.thread.form.flank_angle());
+            vec![(i.to_string(), i)]
+        }
+        None => strategies(half, modified),
+    };
+    let schedules = match &choice.schedule {
+        Some(s) => vec![s.clone()],
+        None => vec![Schedule::ConstantDepth, Schedule::ConstantArea],
+    };
     let mut runs = Vec::new();
-    for (label, infeed) in strategies(half, modified) {
-        for (sname, schedule) in
-            [("constant-depth", Schedule::ConstantDepth), ("constant-area", Schedule::ConstantArea)]
-        {
+    for (label, infeed) in infeeds {
+        for schedule in &schedules {
             let mut s = base.clone();
             s.infeed = Some(infeed.into());
-            s.schedule = schedule;
+            s.schedule = schedule.clone();
             s.final_x = Some(final_x);
             let v = verify(&s)?;
-            runs.push((summarise(&label, sname, &v), v));
+            runs.push((summarise(&label, schedule.name(), &v), v));
         }
     }
-    Ok(Comparison { final_x, runs })
+    let recommended = recommend(&runs, half);
+    Ok(Comparison { final_x, runs, recommended })
 }

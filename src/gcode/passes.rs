@@ -268,6 +268,19 @@ pub enum Schedule {
     Explicit(Vec<f64>),
 }
 
+impl Schedule {
+    /// The schedule's name as the command line takes it: `constant-depth`, `constant-area`,
+    /// `sandvik`, `explicit`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Schedule::ConstantDepth => "constant-depth",
+            Schedule::ConstantArea => "constant-area",
+            Schedule::Sandvik => "sandvik",
+            Schedule::Explicit(_) => "explicit",
+        }
+    }
+}
+
 impl std::fmt::Display for Infeed {
     /// The infeed as words: `radial`, `flank 29.5°`, `alternating 30°`.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {

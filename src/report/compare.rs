@@ -1,7 +1,8 @@
 //! The comparison of infeed strategies for a reader: the text and Markdown tables, the JSON
 //! report, and the committed infeed-comparison page.
 
-use crate::analysis::compare::{Comparison, Summary};
+use crate::analysis::compare::{Comparison, Ground, Recommendation, Summary};
+use crate::standards::ThreadKind;
 use std::fmt::Write as _;
 
 /// The column headers of the comparison table (Markdown), and the same for the text table.
@@ -21,8 +22,49 @@ const HEADERS: [(&str, &str); 13] = [
     ("verdict", "verdict"),
 ];
 
+/// Why a strategy fails: `fail: root radius R, minor diameter d3`.
+fn verdict_cell(m: &Summary, kind: ThreadKind) -> String {
+    if m.pass {
+        return "pass".into();
+    }
+    let words: Vec<&str> = m.failed.iter().map(|f| f.words(kind)).collect();
+    if words.is_empty() {
+        "fail".into()
+    } else {
+        format!("fail: {}", words.join(", "))
+    }
+}
+
+/// The grounds of a recommendation, in words.
+fn ground_words(g: Ground) -> &'static str {
+    match g {
+        Ground::InTolerance => "in tolerance",
+        Ground::TrailingEdgeCuts => {
+            "the trailing edge cuts rather than rubs (not flank infeed at exactly half the thread angle)"
+        }
+        Ground::LeastChipBehindTheTip => "the least chip behind the tip",
+        Ground::ChipBalance => "the most even chips",
+        Ground::FewestPasses => "fewest passes",
+    }
+}
+
+/// The recommendation as a sentence.
+pub fn recommendation_text(r: &Recommendation) -> String {
+    let mut s = format!("recommended: {} infeed, {}", r.infeed, r.schedule);
+    if !r.grounds.is_empty() {
+        let g: Vec<&str> = r.grounds.iter().map(|g| ground_words(*g)).collect();
+        s.push_str(&format!(" (on these grounds, in order: {})", g.join(", ")));
+    }
+    if !r.any_in_tolerance {
+        s.push_str(
+            "; no strategy is in tolerance: what fails is not the infeed's doing (the insert, the final X)",
+        );
+    }
+    s
+}
+
 /// The cells of one strategy's row, formatted once for both tables.
-fn cells(m: &Summary) -> [String; 13] {
+fn cells(m: &Summary, kind: ThreadKind) -> [String; 13] {
     [
         m.infeed.clone(),
         m.schedule.clone(),
@@ -36,7 +78,7 @@ fn cells(m: &Summary) -> [String; 13] {
         format!("{:.4}", m.pitch_diameter),
         format!("{:.4}", m.minor_diameter),
         format!("{:.2}/{:.2}", m.flank_angles[0], m.flank_angles[1]),
-        (if m.pass { "pass" } else { "fail" }).to_string(),
+        verdict_cell(m, kind),
     ]
 }
 
@@ -46,8 +88,17 @@ pub fn markdown(c: &Comparison) -> String {
     let head: Vec<&str> = HEADERS.iter().map(|h| h.0).collect();
     let _ = writeln!(s, "| {} |", head.join(" | "));
     let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|");
-    for (m, _) in &c.runs {
-        let _ = writeln!(s, "| {} |", cells(m).join(" | "));
+    for (m, v) in &c.runs {
+        let _ = writeln!(s, "| {} |", cells(m, v.kind).join(" | "));
+    }
+    s
+}
+
+/// `compare --markdown`: the table and the recommendation.
+pub fn markdown_report(c: &Comparison) -> String {
+    let mut s = markdown(c);
+    if let Some(r) = &c.recommended {
+        let _ = writeln!(s, "\n{}", recommendation_text(r));
     }
     s
 }
@@ -80,17 +131,23 @@ pub fn text(c: &Comparison) -> String {
         (10, false),
         (10, false),
         (14, false),
-        (9, false),
+        (0, true),
     ];
     let line = |s: &mut String, row: &[String]| {
-        for (cell, (w, left)) in row.iter().zip(W) {
+        for (k, (cell, (w, left))) in row.iter().zip(W).enumerate() {
+            if k > 0 {
+                s.push(' ');
+            }
             let _ = if left { write!(s, "{cell:<w$}") } else { write!(s, "{cell:>w$}") };
         }
         s.push('\n');
     };
     line(&mut s, &HEADERS.iter().map(|h| h.1.to_string()).collect::<Vec<_>>());
-    for (m, _) in &c.runs {
-        line(&mut s, &cells(m));
+    for (m, v) in &c.runs {
+        line(&mut s, &cells(m, v.kind));
+    }
+    if let Some(r) = &c.recommended {
+        let _ = writeln!(s, "\n{}", recommendation_text(r));
     }
     s
 }
@@ -104,6 +161,8 @@ pub struct CompareReport<'a> {
     pub reports: Vec<super::VerifyReport<'a>>,
     /// The per-strategy figures.
     pub strategies: Vec<&'a Summary>,
+    /// The strategy to use and why.
+    pub recommended: Option<&'a Recommendation>,
 }
 
 impl<'a> CompareReport<'a> {
@@ -113,6 +172,7 @@ impl<'a> CompareReport<'a> {
             final_x: c.final_x,
             reports: c.runs.iter().map(|(_, v)| super::VerifyReport::of(v)).collect(),
             strategies: c.runs.iter().map(|(m, _)| m).collect(),
+            recommended: c.recommended.as_ref(),
         }
     }
 }

@@ -216,8 +216,16 @@ pub fn compare_html(c: &Comparison) -> String {
         c.final_x,
         esc(&first.insert.name)
     );
+    if let Some(r) = &c.recommended {
+        let _ = writeln!(
+            body,
+            "<p class=\"verdict\">{}</p>",
+            esc(&crate::report::compare::recommendation_text(r))
+        );
+    }
     body.push_str("<table><tr><th>infeed</th><th>schedule</th><th>passes</th><th>first chip mm²</th><th>largest chip mm²</th><th>last chip mm²</th><th>largest/smallest</th><th>two-flank passes</th><th>chip behind the tip</th><th>d2 mm</th><th>minor mm</th><th>flanks °</th><th>verdict</th></tr>\n");
-    for (m, _) in &c.runs {
+    for (m, v) in &c.runs {
+        let why: Vec<&str> = m.failed.iter().map(|f| f.words(v.kind)).collect();
         let _ = writeln!(
             body,
             "<tr><td>{}</td><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.1}</td><td class=\"n\">{}</td><td class=\"n\">{:.0}%</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.2} / {:.2}</td><td class=\"{}\">{}</td></tr>",
@@ -235,13 +243,22 @@ pub fn compare_html(c: &Comparison) -> String {
             m.flank_angles[0],
             m.flank_angles[1],
             if m.pass { "ok" } else { "out" },
-            if m.pass { "in tolerance" } else { "OUT" }
+            if m.pass { "in tolerance".to_string() } else { esc(&format!("OUT: {}", why.join(", "))) }
         );
     }
     body.push_str("</table>\n");
-    for (m, v) in &c.runs {
+    // One picture per infeed: its run with the recommended schedule (else its first).
+    let schedule = c.recommended.as_ref().map(|r| r.schedule.as_str());
+    let mut shown: Vec<&str> = Vec::new();
+    for run in &c.runs {
+        if shown.contains(&run.0.infeed.as_str()) {
+            continue;
+        }
+        let mut same = c.runs.iter().filter(|(o, _)| o.infeed == run.0.infeed);
+        let (m, v) = same.find(|(o, _)| Some(o.schedule.as_str()) == schedule).unwrap_or(run);
+        shown.push(&m.infeed);
         let _ = writeln!(body, "<h2>{} infeed, {}</h2>", esc(&m.infeed), esc(&m.schedule));
-        body.push_str(&verification_body(v, &crate::report::svg::verify_svg(v), 3));
+        let _ = writeln!(body, "<div class=\"pic\">{}</div>", crate::report::svg::verify_svg(v));
     }
     page(&title, &body)
 }

@@ -19,12 +19,7 @@ use serde::Serialize;
 use std::fmt::Write as _;
 
 fn schedule_text(s: &Schedule) -> &'static str {
-    match s {
-        Schedule::ConstantDepth => "constant-depth",
-        Schedule::ConstantArea => "constant-area",
-        Schedule::Sandvik => "sandvik",
-        Schedule::Explicit(_) => "explicit",
-    }
+    s.name()
 }
 
 /// The `thread` object of the reports.

@@ -44,12 +44,43 @@ impl Frame {
     }
 
     fn points(&self, pts: &[Point]) -> String {
-        pts.iter().map(|p| format!("{:.2},{:.2}", self.x(p.z), self.y(p.r))).collect::<Vec<_>>().join(" ")
+        pixel_points(pts.iter().map(|p| (self.x(p.z), self.y(p.r))))
     }
 
     fn z_range(&self) -> (f64, f64) {
         (self.z_min, self.z_min + self.w / self.scale)
     }
+}
+
+/// A polyline's points in pixels for an SVG `points` attribute, to 0.01 px, leaving out each
+/// point that lies within 0.02 px of the straight line from the last one kept to the next (a
+/// zone's flat stretches, a straight flank sampled every pixel): the same picture in far fewer
+/// bytes.
+fn pixel_points(pts: impl Iterator<Item = (f64, f64)>) -> String {
+    let v: Vec<(f64, f64)> = pts.collect();
+    // On the segment a–b (between its ends) within 0.02 px.
+    let near = |p: (f64, f64), a: (f64, f64), b: (f64, f64)| {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let l2 = dx * dx + dy * dy;
+        let along = (p.0 - a.0) * dx + (p.1 - a.1) * dy;
+        l2 > 0.0
+            && ((p.0 - a.0) * dy - (p.1 - a.1) * dx).abs() <= 0.02 * l2.sqrt()
+            && (0.0..=l2).contains(&along)
+    };
+    let mut kept: Vec<(f64, f64)> = Vec::with_capacity(v.len());
+    let mut last = 0usize;
+    for (i, &p) in v.iter().enumerate() {
+        // Left out while every point since the last kept one lies on the line to the next.
+        if let (false, Some(&b)) = (kept.is_empty(), v.get(i + 1)) {
+            let a = v[last];
+            if (last + 1..=i).all(|j| near(v[j], a, b)) {
+                continue;
+            }
+        }
+        kept.push(p);
+        last = i;
+    }
+    kept.iter().map(|(x, y)| format!("{x:.2},{y:.2}")).collect::<Vec<_>>().join(" ")
 }
 
 fn text(x: f64, y: f64, size: f64, s: impl Into<String>) -> Text {
@@ -553,9 +584,7 @@ fn deviation_plot(pic: &Picture, x: f64, y: f64, w: f64, h: f64) -> Group {
     let span = all * um * 1.15;
     let px = |s: f64| x + 40.0 + (w - 60.0) * s / s_max;
     let py = |d: f64| y + 0.5 * h - (0.5 * h - 12.0) * (d * um) / span;
-    let line = |pts: &[DeviationSample]| {
-        pts.iter().map(|q| format!("{:.2},{:.2}", px(q.s), py(q.deviation))).collect::<Vec<_>>().join(" ")
-    };
+    let line = |pts: &[DeviationSample]| pixel_points(pts.iter().map(|q| (px(q.s), py(q.deviation))));
     if !mmc.is_empty() && mmc.len() == lmc.len() {
         let mut band: Vec<DeviationSample> = mmc.clone();
         band.extend(lmc.iter().rev().copied());
