@@ -636,3 +636,48 @@ fn compare_honours_its_options_and_recommends_a_strategy() {
     let units = crate::run(&["compare", "--thread", "M10x1.5-6g", "--units", "inch"]);
     assert_eq!(units.status.code(), Some(2));
 }
+
+/// Issue 28: the picture says the next step. A program whose d2 is off shows its correction
+/// in the program's words; a partial insert under ISO 965-1's root radius (0.125·P = 0.1875 mm
+/// for P 1.5) shows the hint that no final X fixes it; a program's picture opens with its
+/// verdict and one line per operation.
+#[test]
+fn the_svg_says_the_next_step() {
+    let dir = crate::tempdir("svg-next");
+    let prog = crate::data("programs/source-docs/seed003-two-threads.nc");
+    let o = crate::run_in(
+        &dir,
+        &[
+            "verify",
+            "--thread",
+            "M20x1.5-6g",
+            "--thread",
+            "M10x1.5-6g",
+            "--insert",
+            "full",
+            "--program",
+            prog.to_str().unwrap(),
+            "--svg",
+            "p.svg",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", crate::stderr(&o));
+    let svg = std::fs::read_to_string(dir.join("p.svg")).unwrap();
+    assert!(
+        svg.contains("id=\"program-verdict\"") && svg.contains("OUT OF TOLERANCE: 2 threading operations"),
+        "{}",
+        &svg[..600]
+    );
+    assert!(svg.contains("1. G76 at line 6, M20x1.5-6g") && svg.contains("2. G76 at line 9, M10x1.5-6g"));
+    assert!(svg.contains("next: change X18.2 at line 6:5 to X18.058"), "no correction in the picture");
+    let o = crate::run_in(&dir, &["verify", "--thread", "M10x1.5-6g", "--svg", "h.svg", "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["hints"][0]["hint"], "tip_radius");
+    assert_eq!(v["hints"][0]["root_radius_min"].as_f64(), Some(0.1875));
+    let svg = std::fs::read_to_string(dir.join("h.svg")).unwrap();
+    assert!(
+        svg.contains("hint: the insert&apos;s tip radius 0.04 mm")
+            || svg.contains("hint: the insert's tip radius 0.04 mm"),
+        "no hint in the picture"
+    );
+}

@@ -549,6 +549,54 @@ fn single_groove_check(single_groove: bool, fin_height: f64) -> Check {
     }
 }
 
+/// What a failing form check says about the insert or the infeed: the next step after a form
+/// failure, which a new final X does not fix.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "hint")]
+pub enum Hint {
+    /// The root radius (or the minor diameter it sets) fails with an insert whose tip radius is
+    /// under the standard's smallest root radius: a larger tip or a full-profile insert.
+    TipRadius {
+        /// The insert's tip radius, mm.
+        tip_radius: f64,
+        /// The standard's smallest root radius, mm.
+        root_radius_min: f64,
+    },
+    /// A flank stands steeper than the thread's half angle: the infeed angle (or the insert's
+    /// angle) exceeds it.
+    FlankAngle {
+        /// The thread's half angle, degrees.
+        half_angle: f64,
+    },
+    /// A fin, notch or second pocket in the groove: the passes do not follow one groove.
+    Groove,
+}
+
+/// The hints of a verification's failing form checks, at most one of each kind.
+pub fn hints(
+    checks: &[Check],
+    insert: &crate::geometry::insert::Insert,
+    limits: &ThreadLimits,
+    half_angle: f64,
+) -> Vec<Hint> {
+    let failed = |f: CheckFeature| checks.iter().any(|c| c.feature == f && !c.ok);
+    let mut out = Vec::new();
+    if let Some(rmin) = limits.root_radius_min {
+        if (failed(CheckFeature::RootRadius) || failed(CheckFeature::MinorDiameter))
+            && insert.tip_radius < rmin
+        {
+            out.push(Hint::TipRadius { tip_radius: insert.tip_radius, root_radius_min: rmin });
+        }
+    }
+    if checks.iter().any(|c| c.feature == CheckFeature::FlankAngle && !c.ok && c.value > half_angle) {
+        out.push(Hint::FlankAngle { half_angle });
+    }
+    if failed(CheckFeature::SingleGroove) {
+        out.push(Hint::Groove);
+    }
+    out
+}
+
 /// True when every check that counts passes; with `gauge_only`, only size checks count.
 pub fn verdict(checks: &[Check], gauge_only: bool) -> bool {
     checks.iter().filter(|c| c.kind.counts(gauge_only)).all(|c| c.ok)

@@ -258,6 +258,8 @@ pub struct Verification {
     pub functional_pitch_diameter: Option<f64>,
     /// What the pictures draw, when the spec asked for it.
     pub picture: Option<crate::analysis::picture::Picture>,
+    /// What the failing form checks say about the insert or the infeed.
+    pub hints: Vec<crate::analysis::check::Hint>,
     /// The program's word that sets the final depth, for a correction by any amount
     /// ([`Verification::correction_for`]).
     pub(crate) depth: Option<DepthAt>,
@@ -1003,8 +1005,10 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         functional_pitch_diameter: functional,
         correction,
         picture: None,
+        hints: Vec::new(),
         depth: depth_word.map(|(word, units)| DepthAt { word, units, also: Vec::new(), alike: true }),
     };
+    v.hints = crate::analysis::check::hints(&v.checks, &v.insert, &v.limits, t.half_angle().to_degrees());
     if spec.picture {
         v.picture = Some(crate::analysis::picture::picture(&crate::analysis::picture::Cut {
             thread: &v.designation.thread,
@@ -1277,6 +1281,12 @@ fn verify_given(
     }
     v.checks.push(starts);
     v.pass = verdict(&v.checks, v.gauge_only);
+    v.hints = crate::analysis::check::hints(
+        &v.checks,
+        &v.insert,
+        &v.limits,
+        v.designation.thread.half_angle().to_degrees(),
+    );
     Ok(v)
 }
 

@@ -76,6 +76,9 @@ fn verification_body(v: &Verification, svg: &str, level: u8) -> String {
             }
         }
     }
+    for hint in &v.hints {
+        let _ = writeln!(s, "<p class=\"form\">Hint: {}</p>", esc(&super::hint_text(hint)));
+    }
     let _ = writeln!(s, "<div class=\"pic\">{svg}</div>");
     let _ = writeln!(s, "<{0}>Checks</{0}>", h(0));
     s.push_str("<table><tr><th>feature</th><th>value</th><th>min</th><th>max</th><th>deviation</th><th>ok</th><th>note</th></tr>\n");

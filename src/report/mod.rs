@@ -206,6 +206,8 @@ pub struct VerifyReport<'a> {
     pub lead_deviation: Option<&'a crate::analysis::lead::LeadDeviation>,
     /// The correction in the program's own word, when d2 is off.
     pub correction: Option<CorrectionReport<'a>>,
+    /// What failing form checks say about the insert or the infeed.
+    pub hints: Vec<HintReport<'a>>,
     /// Stated assumptions.
     pub notes: &'a [crate::ground::note::Note],
     /// The normal deviation from the basic profile along one pitch, as the picture plots it
@@ -274,6 +276,7 @@ impl<'a> VerifyReport<'a> {
                 .correction
                 .as_ref()
                 .map(|c| CorrectionReport { text: correction_text(c), correction: c }),
+            hints: v.hints.iter().map(|h| HintReport { hint: h, text: hint_text(h) }).collect(),
             limits: &v.limits,
             checks: &v.checks,
             verdict: Verdict::of(v.pass),
@@ -285,6 +288,16 @@ impl<'a> VerifyReport<'a> {
             deviation: v.picture.as_ref().map(|p| &p.deviation),
         }
     }
+}
+
+/// A hint with its sentence.
+#[derive(Clone, Debug, Serialize)]
+pub struct HintReport<'a> {
+    /// The hint and its figures.
+    #[serde(flatten)]
+    pub hint: &'a crate::analysis::check::Hint,
+    /// What to do, in words.
+    pub text: String,
 }
 
 /// The correction with its sentence.
@@ -325,6 +338,25 @@ pub fn correction_replacement(c: &crate::analysis::correction::Correction) -> Op
         WordForm::Number => Some(correction_word(c)),
         WordForm::Argument => Some(correction_number(c)),
         WordForm::Expression | WordForm::ArgumentExpression | WordForm::Parameter => None,
+    }
+}
+
+/// A form failure's hint as a sentence: what to change, since no final X fixes it.
+pub fn hint_text(h: &crate::analysis::check::Hint) -> String {
+    use crate::analysis::check::Hint;
+    match *h {
+        Hint::TipRadius { tip_radius, root_radius_min } => format!(
+            "the insert's tip radius {} mm is under the standard's root radius {} mm, which no final X changes: use a full-profile insert or a tip of {} mm or more",
+            fmt_num(tip_radius),
+            fmt_num(root_radius_min),
+            fmt_num(root_radius_min)
+        ),
+        Hint::FlankAngle { half_angle } => format!(
+            "a flank stands steeper than {}°: the infeed angle (or the insert's angle) is over the flank's; infeed at {}° or a little less",
+            fmt_num(half_angle),
+            fmt_num(half_angle)
+        ),
+        Hint::Groove => "the passes do not follow one groove (a fin, a notch or a second pocket): check the infeed angle against the flank and every pass's start phase".into(),
     }
 }
 
@@ -578,6 +610,9 @@ pub fn verify_text(v: &Verification) -> String {
                 let _ = writeln!(s, "{off}: program the last pass at X{x:.4}{} for mid-tolerance", also(x));
             }
         }
+    }
+    for h in &v.hints {
+        let _ = writeln!(s, "hint: {}", hint_text(h));
     }
     for n in &v.notes {
         let _ = writeln!(s, "note: {n}");

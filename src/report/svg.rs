@@ -706,8 +706,58 @@ const WIDTH: f64 = 1100.0;
 
 /// The SVG of every operation of a program, one section each, stacked.
 pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String {
-    let mut y = 0.0;
-    let mut doc = Document::new();
+    // The program's verdict first, one line per operation, then each operation's section.
+    let pass = pv.pass();
+    let mut head = Group::new()
+        .set("id", "program-verdict")
+        .add(Rectangle::new().set("width", WIDTH).set("height", 1).set("fill", "white"))
+        .add(
+            text(
+                20.0,
+                30.0,
+                20.0,
+                shorten(
+                    &format!(
+                        "{} — {}: {} threading operation{}",
+                        file_name(&pv.program),
+                        if pass { "IN TOLERANCE" } else { "OUT OF TOLERANCE" },
+                        pv.operations.len(),
+                        if pv.operations.len() == 1 { "" } else { "s" }
+                    ),
+                    90,
+                ),
+            )
+            .set("fill", if pass { "#1d7a36" } else { FAIL })
+            .set("font-weight", "bold"),
+        );
+    let mut y = 56.0;
+    for o in &pv.operations {
+        let what = match &o.result {
+            crate::analysis::verify::OperationResult::Verified(v) => {
+                let mut w = verdict_words(v);
+                if let Some(c) = &v.correction {
+                    w.push_str(&format!(" · next: {}", super::correction_text(c)));
+                }
+                w
+            }
+            crate::analysis::verify::OperationResult::NoCut { reason } => {
+                format!("OUT OF TOLERANCE: {reason}")
+            }
+        };
+        let line = format!(
+            "{}. {} at line {}, {}: {what}",
+            o.operation.index, o.operation.cycle, o.operation.source_line, o.designation
+        );
+        for l in wrap(&line, 125).into_iter().take(2) {
+            head =
+                head.add(text(20.0, y, 13.0, l).set("fill", if o.result.pass() { "#1d7a36" } else { FAIL }));
+            y += 17.0;
+        }
+    }
+    y += 12.0;
+    let mut doc = Document::new()
+        .add(Rectangle::new().set("width", WIDTH).set("height", y).set("fill", "white"))
+        .add(head);
     for o in &pv.operations {
         let head = shorten(
             &format!(
@@ -804,9 +854,7 @@ fn verdict_words(v: &Verification) -> String {
     if failed.is_empty() {
         format!("IN TOLERANCE{gauge}")
     } else {
-        let fix =
-            v.correction.as_ref().map_or(String::new(), |c| format!(" · {}", super::correction_text(c)));
-        format!("OUT OF TOLERANCE: {}{gauge}{fix}", failed.join(", "))
+        format!("OUT OF TOLERANCE: {}{gauge}", failed.join(", "))
     }
 }
 
@@ -819,17 +867,6 @@ fn verification_group(v: &Verification) -> (Group, f64) {
     let lo = m.minor_diameter.min(m.major_diameter);
     let hi = m.major_diameter.max(m.minor_diameter).max(v.blank_diameter);
     let (r0, r1) = (rad(lo) - 0.15 * p, rad(hi) + 0.12 * p);
-    let top = 30.0 + 20.0 * 3.0 + 30.0;
-    let tooth = Frame::new(
-        200.0,
-        top,
-        430.0,
-        400.0,
-        (m.groove_center - 0.75 * p, m.groove_center + 0.75 * p),
-        (r0, r1),
-    );
-    let w = v.section.window;
-    let window = Frame::new(690.0, top, 350.0, 220.0, (w.z_min, w.z_max), (r0 - 0.2 * p, r1 + 0.1 * p));
     let part =
         if v.kind == ThreadKind::External { "bolt (external thread)" } else { "nut (internal thread)" };
     let stock = if v.kind == ThreadKind::External { "blank" } else { "bore" };
@@ -864,6 +901,34 @@ fn verification_group(v: &Verification) -> (Group, f64) {
         );
         yy += 19.0;
     }
+    // The next step: the correction in the program's words (or the plan's X), then what the
+    // form failures say about the insert or the infeed.
+    let mut next: Vec<String> = Vec::new();
+    match (&v.correction, v.suggested_final_x) {
+        (Some(c), _) => next.push(format!("next: {}", super::correction_text(c))),
+        (None, Some(x)) if !v.pass => {
+            next.push(format!("next: program the last pass at X{x:.4} for the middle of the d2 tolerance"))
+        }
+        _ => {}
+    }
+    next.extend(v.hints.iter().map(|h| format!("hint: {}", super::hint_text(h))));
+    for l in next.iter().flat_map(|n| wrap(n, 120)).take(4) {
+        title = title.add(text(20.0, yy + 4.0, 13.0, l).set("fill", "#1d1d1d").set("id", "next"));
+        yy += 17.0;
+    }
+    // The views start below the title, however many lines it took (at least where three
+    // verdict lines end).
+    let top = (yy + 24.0).max(120.0);
+    let tooth = Frame::new(
+        200.0,
+        top,
+        430.0,
+        400.0,
+        (m.groove_center - 0.75 * p, m.groove_center + 0.75 * p),
+        (r0, r1),
+    );
+    let w = v.section.window;
+    let window = Frame::new(690.0, top, 350.0, 220.0, (w.z_min, w.z_max), (r0 - 0.2 * p, r1 + 0.1 * p));
     let (table, table_end) = check_table(v, 690.0, top + 220.0 + 50.0);
     let legend_y = table_end + 16.0;
     let below = (top + 460.0).max(legend_y + 6.0 * 16.0 + 30.0);
