@@ -681,3 +681,41 @@ fn the_svg_says_the_next_step() {
         "no hint in the picture"
     );
 }
+
+/// Issue 28: inches reach the pictures and the page. 1/2-13 UNC-2A cut to X10.2 mm: the title
+/// gives 10.2/25.4 = 0.40157 in, the axes are in inches (`Z in`, `Ø in`), the deviation plot in
+/// ten-thousandths of an inch; the HTML has an inch column. The inch program's picture gives
+/// its correction in the program's own (inch) word.
+#[test]
+fn inches_reach_the_svg_and_the_html() {
+    let dir = crate::tempdir("inch-svg");
+    let o = crate::run_in(
+        &dir,
+        &["verify", "--thread", "1/2-13 UNC-2A", "--final-x", "10.2", "--svg", "i.svg", "--html", "i.html"],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", crate::stderr(&o));
+    let svg = std::fs::read_to_string(dir.join("i.svg")).unwrap();
+    for s in ["last pass X10.2000 (0.40157 in)", "\nZ in\n", "\nØ in\n", "normal to it, 0.0001 in"] {
+        assert!(svg.contains(s), "{s} not in the SVG");
+    }
+    let html = std::fs::read_to_string(dir.join("i.html")).unwrap();
+    assert!(html.contains("<th>value, in</th>") && html.contains("(0.40157 in)"), "no inches in the HTML");
+    // Metric stays metric.
+    let o = crate::run_in(&dir, &["verify", "--thread", "M10x1.5-6g", "--svg", "m.svg"]);
+    assert!(o.status.code().is_some_and(|c| c < 2));
+    let svg = std::fs::read_to_string(dir.join("m.svg")).unwrap();
+    assert!(svg.contains("\nZ mm\n") && !svg.contains(" in)"));
+    let prog = crate::data("programs/fanuc-g76-inch.nc");
+    let o = crate::run_in(
+        &dir,
+        &["verify", "--program", prog.to_str().unwrap(), "--thread", "1-16-UN-2A", "--svg", "p.svg"],
+    );
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", crate::stderr(&o));
+    let svg = std::fs::read_to_string(dir.join("p.svg")).unwrap();
+    // X.9 in leaves d2 48.8 µm under: the correction is an inch word.
+    assert!(
+        svg.contains("next: change X.9 at line 6:5 to X0.9044 (inch, diameter)"),
+        "no inch correction in the picture"
+    );
+    assert!(svg.contains("\nZ in\n"));
+}

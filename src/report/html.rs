@@ -48,16 +48,22 @@ fn verification_body(v: &Verification, svg: &str, level: u8) -> String {
     let gauge = if v.gauge_only { " (gauge-only: form checks are not counted)" } else { "" };
     let _ = writeln!(s, "<p class=\"verdict {cls}\">{words}{}</p>", esc(gauge));
     let stock = if v.kind == ThreadKind::External { "blank" } else { "bore" };
+    let inch = |mm: f64| match v.units {
+        crate::analysis::verify::Units::Mm => String::new(),
+        crate::analysis::verify::Units::Inch => format!(" ({:.5} in)", mm / 25.4),
+    };
     let _ = writeln!(
         s,
-        "<p>{} {}, class {} · insert {} · {} passes · {stock} Ø{:.3} mm · last pass X{:.4}{}</p>",
+        "<p>{} {}, class {} · insert {} · {} passes · {stock} Ø{:.3} mm{} · last pass X{:.4}{}{}</p>",
         esc(&v.designation.text),
         v.kind.name(),
         esc(&v.limits.class),
         esc(&v.insert.name),
         v.passes.len(),
         v.blank_diameter,
+        inch(v.blank_diameter),
         v.final_x,
+        inch(v.final_x),
         v.program.as_ref().map_or(String::new(), |p| format!(" · program {}", esc(&p.to_string())))
     );
     if let Some(x) = v.suggested_final_x {
@@ -71,7 +77,7 @@ fn verification_body(v: &Verification, svg: &str, level: u8) -> String {
                     );
                 }
                 None => {
-                    let _ = writeln!(s, "<p>For the middle of the pitch-diameter tolerance, program the last pass at <b>X{x:.4}</b>.</p>");
+                    let _ = writeln!(s, "<p>For the middle of the pitch-diameter tolerance, program the last pass at <b>X{x:.4}</b>{}.</p>", inch(x));
                 }
             }
         }
@@ -80,8 +86,13 @@ fn verification_body(v: &Verification, svg: &str, level: u8) -> String {
         let _ = writeln!(s, "<p class=\"form\">Hint: {}</p>", esc(&super::hint_text(hint)));
     }
     let _ = writeln!(s, "<div class=\"pic\">{svg}</div>");
+    let inch = v.units == crate::analysis::verify::Units::Inch;
     let _ = writeln!(s, "<{0}>Checks</{0}>", h(0));
-    s.push_str("<table><tr><th>feature</th><th>value</th><th>min</th><th>max</th><th>deviation</th><th>ok</th><th>note</th></tr>\n");
+    s.push_str(if inch {
+        "<table><tr><th>feature</th><th>value</th><th>min</th><th>max</th><th>value, in</th><th>deviation</th><th>ok</th><th>note</th></tr>\n"
+    } else {
+        "<table><tr><th>feature</th><th>value</th><th>min</th><th>max</th><th>deviation</th><th>ok</th><th>note</th></tr>\n"
+    });
     for c in &v.checks {
         let counts = c.kind.counts(v.gauge_only);
         let cells = super::check_cells(c);
@@ -90,9 +101,15 @@ fn verification_body(v: &Verification, svg: &str, level: u8) -> String {
             (false, true) => ("out", "OUT"),
             (false, false) => ("form", "out (not counted)"),
         };
+        // Lengths in inches beside the mm, with --units inch (or an inch thread).
+        let in_cell = match (inch, c.feature.unit()) {
+            (true, crate::CheckUnit::Mm) => format!("<td class=\"n\">{:.5}</td>", c.value / 25.4),
+            (true, _) => "<td></td>".to_string(),
+            (false, _) => String::new(),
+        };
         let _ = writeln!(
             s,
-            "<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"{cls}\">{word}</td><td>{}</td></tr>",
+            "<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>{in_cell}<td class=\"n\">{}</td><td class=\"{cls}\">{word}</td><td>{}</td></tr>",
             esc(c.feature.words(v.kind)),
             esc(&cells.value),
             esc(cells.min.trim_start_matches('—')),

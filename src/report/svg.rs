@@ -127,13 +127,19 @@ fn tick_label(v: f64, step: f64) -> String {
 }
 
 /// Axes of a panel: Z (mm) ticks below it, diameter (mm, twice the radius) ticks on its right.
-fn axes(f: &Frame, diameter_axis: bool) -> Group {
+fn axes(f: &Frame, diameter_axis: bool, units: crate::analysis::verify::Units) -> Group {
+    // Ticks at round numbers of the reader's unit: mm, or inches (the frame stays in mm).
+    let (per, name) = match units {
+        crate::analysis::verify::Units::Mm => (1.0, "mm"),
+        crate::analysis::verify::Units::Inch => (25.4, "in"),
+    };
     let mut g = Group::new().set("class", "axes");
     let (z0, z1) = f.z_range();
-    let step = tick_step(z1 - z0, 6.0);
-    let mut z = (z0 / step).ceil() * step;
-    while z <= z1 + 1e-9 {
-        let x = f.x(z);
+    let (u0, u1) = (z0 / per, z1 / per);
+    let step = tick_step(u1 - u0, 6.0);
+    let mut u = (u0 / step).ceil() * step;
+    while u <= u1 + 1e-9 * step.max(1.0) {
+        let x = f.x(u * per);
         g = g
             .add(
                 Line::new()
@@ -143,17 +149,17 @@ fn axes(f: &Frame, diameter_axis: bool) -> Group {
                     .set("y2", f.y0 + f.h + 4.0)
                     .set("stroke", "#333"),
             )
-            .add(text(x, f.y0 + f.h + 14.0, 9.0, tick_label(z, step)).set("text-anchor", "middle"));
-        z += step;
+            .add(text(x, f.y0 + f.h + 14.0, 9.0, tick_label(u, step)).set("text-anchor", "middle"));
+        u += step;
     }
-    g = g.add(text(f.x0 + f.w, f.y0 + f.h + 26.0, 9.0, "Z mm").set("text-anchor", "end"));
+    g = g.add(text(f.x0 + f.w, f.y0 + f.h + 26.0, 9.0, format!("Z {name}")).set("text-anchor", "end"));
     if diameter_axis {
         let r_lo = f.r_max - f.h / f.scale;
-        let (d0, d1) = (2.0 * r_lo, 2.0 * f.r_max);
+        let (d0, d1) = (2.0 * r_lo / per, 2.0 * f.r_max / per);
         let step = tick_step(d1 - d0, 5.0);
         let mut d = (d0 / step).ceil() * step;
-        while d <= d1 + 1e-9 {
-            let y = f.y(0.5 * d);
+        while d <= d1 + 1e-9 * step.max(1.0) {
+            let y = f.y(0.5 * d * per);
             g = g
                 .add(
                     Line::new()
@@ -166,7 +172,7 @@ fn axes(f: &Frame, diameter_axis: bool) -> Group {
                 .add(text(f.x0 + f.w + 6.0, y + 3.0, 9.0, tick_label(d, step)));
             d += step;
         }
-        g = g.add(text(f.x0 + f.w + 6.0, f.y0 - 5.0, 9.0, "Ø mm"));
+        g = g.add(text(f.x0 + f.w + 6.0, f.y0 - 5.0, 9.0, format!("Ø {name}")));
     }
     g
 }
@@ -310,7 +316,7 @@ fn view(v: &Verification, pic: Option<&Picture>, f: &Frame, id: &str, label: &st
     }
     body = body.add(dims);
     g = g.add(body);
-    g.add(axes(f, true))
+    g.add(axes(f, true, v.units))
 }
 
 /// The diameters dimensioned in the picture: major, pitch and minor, as measured.
@@ -424,7 +430,7 @@ fn full_view(section: &crate::geometry::sweep::Section, f: &Frame, v: &Verificat
             .set("stroke", "#111")
             .set("stroke-width", 1.2),
     );
-    g.add(body).add(axes(f, true))
+    g.add(body).add(axes(f, true, v.units))
 }
 
 fn legend(x: f64, y: f64, kind: ThreadKind) -> Group {
@@ -470,7 +476,7 @@ fn legend(x: f64, y: f64, kind: ThreadKind) -> Group {
 fn check_table(v: &Verification, x: f64, y: f64) -> (Group, f64) {
     let mut g = Group::new().set("id", "check-table");
     g = g.add(text(x, y, 12.0, "checks").set("font-weight", "bold"));
-    let cols = [x, x + 150.0, x + 205.0, x + 300.0, x + 360.0];
+    let cols = [x, x + 145.0, x + 195.0, x + 305.0, x + 365.0];
     let head = ["feature", "value", "limits", "off", ""];
     for (c, h) in cols.iter().zip(head) {
         g = g.add(text(*c, y + 16.0, 10.0, h).set("fill", "#555"));
@@ -570,9 +576,22 @@ fn chip_chart(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Group {
 /// The normal deviation of the as-cut profile, and of the maximum- and minimum-material
 /// profiles, from the basic profile along one pitch (root, flank, crest, flank), magnified, as a
 /// contour-measuring machine reports it, with the values at the flank midpoints.
-fn deviation_plot(pic: &Picture, x: f64, y: f64, w: f64, h: f64) -> Group {
+fn deviation_plot(
+    pic: &Picture,
+    units: crate::analysis::verify::Units,
+    x: f64,
+    y: f64,
+    w: f64,
+    h: f64,
+) -> Group {
     let f = Frame { x0: x, y0: y, w, h, z_min: 0.0, r_max: 0.0, scale: 1.0 };
-    let (mut g, mut body) = panel(&f, "deviation-plot", "deviation from the basic profile, normal to it, µm");
+    // The scale in µm, or in ten-thousandths of an inch (an inch shop's "tenths").
+    let (tick_per_um, unit_label) = match units {
+        crate::analysis::verify::Units::Mm => (1.0, "µm"),
+        crate::analysis::verify::Units::Inch => (1.0 / 2.54, "0.0001 in"),
+    };
+    let title = format!("deviation from the basic profile, normal to it, {unit_label}");
+    let (mut g, mut body) = panel(&f, "deviation-plot", &title);
     let dev = &pic.deviation;
     let (samples, mmc, lmc) = (&dev.as_cut, &dev.max_material, &dev.min_material);
     if samples.is_empty() {
@@ -643,7 +662,10 @@ fn deviation_plot(pic: &Picture, x: f64, y: f64, w: f64, h: f64) -> Group {
                         .set("r", 2.5)
                         .set("fill", "#111"),
                 );
-                labels.push((px(mid.s), format!("flank {:+.1} µm", mid.deviation * um)));
+                labels.push((
+                    px(mid.s),
+                    format!("flank {:+.1} {unit_label}", mid.deviation * um * tick_per_um),
+                ));
             } else {
                 labels.push((cx, name.to_string()));
             }
@@ -663,11 +685,12 @@ fn deviation_plot(pic: &Picture, x: f64, y: f64, w: f64, h: f64) -> Group {
                 .set("fill", "#333"),
         );
     }
-    // The µm scale on the left, outside the panel.
-    let step = tick_step(span, 2.0);
-    let mut d = -(span / step).floor() * step;
-    while d <= span + 1e-9 {
-        let yy = py(d / um);
+    // The scale on the left, outside the panel, in the reader's unit.
+    let span_u = span * tick_per_um;
+    let step = tick_step(span_u, 2.0);
+    let mut d = -(span_u / step).floor() * step;
+    while d <= span_u + 1e-9 {
+        let yy = py(d / tick_per_um / um);
         g = g
             .add(
                 Line::new()
@@ -880,13 +903,19 @@ fn verification_group(v: &Verification) -> (Group, f64) {
         Some(p) => format!("program {}", file_name(p)),
         None => format!("infeed: {}", v.infeed),
     };
+    let inch = |mm: f64| match v.units {
+        crate::analysis::verify::Units::Mm => String::new(),
+        crate::analysis::verify::Units::Inch => format!(" ({:.5} in)", mm / 25.4),
+    };
     let sub = format!(
-        "insert: {} · {} · {} passes · {stock} Ø{:.3} · last pass X{:.4}",
+        "insert: {} · {} · {} passes · {stock} Ø{:.3}{} · last pass X{:.4}{}",
         v.insert.name,
         source,
         v.passes.len(),
         v.blank_diameter,
-        v.final_x
+        inch(v.blank_diameter),
+        v.final_x,
+        inch(v.final_x)
     );
     let mut yy = 50.0;
     for l in wrap(&sub, 150).into_iter().take(2) {
@@ -906,9 +935,10 @@ fn verification_group(v: &Verification) -> (Group, f64) {
     let mut next: Vec<String> = Vec::new();
     match (&v.correction, v.suggested_final_x) {
         (Some(c), _) => next.push(format!("next: {}", super::correction_text(c))),
-        (None, Some(x)) if !v.pass => {
-            next.push(format!("next: program the last pass at X{x:.4} for the middle of the d2 tolerance"))
-        }
+        (None, Some(x)) if !v.pass => next.push(format!(
+            "next: program the last pass at X{x:.4}{} for the middle of the d2 tolerance",
+            inch(x)
+        )),
         _ => {}
     }
     next.extend(v.hints.iter().map(|h| format!("hint: {}", super::hint_text(h))));
@@ -944,7 +974,7 @@ fn verification_group(v: &Verification) -> (Group, f64) {
     // The deviation plot and the whole thread, run-out included, are drawn from the
     // verification's picture (computed when `VerifySpec::picture` asks for it).
     if let Some(pic) = &v.picture {
-        doc = doc.add(deviation_plot(pic, 60.0, below, 570.0, 200.0));
+        doc = doc.add(deviation_plot(pic, v.units, 60.0, below, 570.0, 200.0));
     }
     if !v.metrics.is_empty() {
         doc = doc.add(chip_chart(v, 730.0, below + 20.0, 330.0, 150.0));
