@@ -282,6 +282,108 @@ fn svg_labels_do_not_overlap_each_other_or_the_panels() {
     }
 }
 
+/// Issue 28: the fit picture is laid out as verify's: nothing written leaves the picture, lies
+/// on a panel or crosses another label, and the clearance is dimensioned at the tightest place
+/// (47.0 µm for mid-tolerance M10x1.5-6H/6g: (9.116 − 8.928)/2 · sin 30°), or the interference
+/// in red when the bolt is cut too large.
+#[test]
+fn fit_svg_is_laid_out_and_dimensions_the_clearance() {
+    for (args, says) in [
+        (vec!["--bolt-insert", "full", "--nut-insert", "full"], "clearance 47.0 µm"),
+        (vec!["--bolt-insert", "full", "--nut-insert", "full", "--bolt-final-x", "8.3"], "interference"),
+    ] {
+        let dir = tempdir("fit-layout");
+        let path = dir.join("f.svg");
+        let mut all = vec!["fit", "--thread", "M10x1.5-6H/6g"];
+        all.extend(&args);
+        all.extend(["--svg", path.to_str().unwrap()]);
+        let o = run(&all);
+        assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+        let svg = std::fs::read_to_string(&path).unwrap();
+        assert!(svg.contains("id=\"clearance-dimension\"") && svg.contains(says), "{args:?}: {says}");
+        let (w, h) = svg_size(&svg);
+        let (texts, panels) = layout(&svg);
+        assert_eq!(panels.len(), 2, "{args:?}: the pair and the tightest place");
+        for (i, (ta, a)) in texts.iter().enumerate() {
+            assert!(
+                a[0] >= 0.0 && a[1] >= 0.0 && a[2] <= w as f64 && a[3] <= h as f64,
+                "{args:?}: '{ta}' leaves the picture"
+            );
+            for p in &panels {
+                assert!(!overlap(*a, *p), "{args:?}: '{ta}' lies on a panel");
+            }
+            for (tb, b) in &texts[i + 1..] {
+                assert!(!overlap(*a, *b), "{args:?}: '{ta}' crosses '{tb}'");
+            }
+        }
+    }
+}
+
+/// Issue 28: screenshots of the fit picture, the compare page and an inch picture, looked at as
+/// verify's are: nothing dark at the edges (nothing cut off), no console error; the interfering
+/// fit shows red in the magnified tightest place; the inch picture its axes.
+#[test]
+fn screenshots_of_fit_compare_and_inch_pictures() {
+    let dir = tempdir("shots");
+    let edges_clean = |shot: &Shot, what: &str| {
+        for (x, y) in (0..shot.w)
+            .flat_map(|x| [(x, 0), (x, 1), (x, shot.h - 2), (x, shot.h - 1)])
+            .chain((0..shot.h).flat_map(|y| [(0, y), (1, y), (shot.w - 2, y), (shot.w - 1, y)]))
+        {
+            let [r, g, b] = shot.at(x, y);
+            assert!(
+                u32::from(r) + u32::from(g) + u32::from(b) > 600,
+                "{what}: dark pixel at the edge ({x}, {y})"
+            );
+        }
+    };
+    let fit = dir.join("fit.svg");
+    let o = run(&[
+        "fit",
+        "--thread",
+        "M10x1.5-6H/6g",
+        "--bolt-insert",
+        "full",
+        "--nut-insert",
+        "full",
+        "--bolt-final-x",
+        "8.3",
+        "--svg",
+        fit.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let (w, h) = svg_size(&std::fs::read_to_string(&fit).unwrap());
+    let shot = screenshot(&fit, w, h);
+    edges_clean(&shot, "fit");
+    // The tightest place's panel (x 650…970, y 106…366): the overlap drawn red.
+    let red = (106..366).flat_map(|y| (650..970).map(move |x| (x, y))).filter(|&(x, y)| {
+        let [r, g, b] = shot.at(x, y);
+        r > 120 && u32::from(r) > u32::from(g) + 40 && u32::from(r) > u32::from(b) + 40
+    });
+    assert!(red.count() > 500, "no red overlap in the magnified tightest place");
+    let page = dir.join("c.html");
+    let o = run(&["compare", "--thread", "M10x1.5-6g", "--insert", "full", "--html", page.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let shot = screenshot(&page, 1200, 1600);
+    assert!(console_errors(&shot.log).is_empty(), "{:?}", console_errors(&shot.log));
+    // A page scrolls down: only its sides must stay background.
+    for y in 0..shot.h {
+        for x in [0, 1, shot.w - 2, shot.w - 1] {
+            let [r, g, b] = shot.at(x, y);
+            assert!(
+                u32::from(r) + u32::from(g) + u32::from(b) > 600,
+                "compare page: dark pixel at its side ({x}, {y})"
+            );
+        }
+    }
+    let inch = dir.join("i.svg");
+    let o =
+        run(&["verify", "--thread", "1/2-13 UNC-2A", "--final-x", "10.2", "--svg", inch.to_str().unwrap()]);
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let (w, h) = svg_size(&std::fs::read_to_string(&inch).unwrap());
+    edges_clean(&screenshot(&inch, w, h), "inch picture");
+}
+
 /// `verify --html` for a program cutting two threads: one section per operation, and user text
 /// (here the program's file name) escaped. `compare --html`: one table row and one picture per
 /// strategy (radial, flank, one modified angle, alternating × two schedules = 8).

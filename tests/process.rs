@@ -148,7 +148,7 @@ fn fit_with_a_bolt_program() {
     let want = (9.116 - (10.0 - 0.649_519_052_838_329 * 1.5)) / 2.0 * 0.5 * 1000.0;
     assert!((v["clearance_um"].as_f64().unwrap() - want).abs() < 0.1, "{} vs {want}", v["clearance_um"]);
     let picture = std::fs::read_to_string(&svg).unwrap();
-    assert!(picture.contains("FITS") && picture.contains("id=\"nut\""));
+    assert!(picture.contains("FITS") && picture.contains("class=\"nut\""));
     let e = run(&["fit", "--thread", "M10x1.5-6g"]);
     assert!(one_line_error(&e).contains("names no fit"));
 }

@@ -42,6 +42,10 @@ pub struct FitReport {
     /// Smallest signed distance between the two profiles at the best axial position, µm:
     /// negative where they interfere.
     pub clearance_um: f64,
+    /// The axial shift that puts the nut's profile where it fits best on the bolt's, mm.
+    pub nut_shift: f64,
+    /// Where the fit is tightest: the bolt's point and the nut's facing it (after the shift).
+    pub tightest: (Point, Point),
     /// Real depth of engagement, mm: (bolt major − nut minor)/2, as cut.
     pub engagement_depth: f64,
     /// Length of flank in engagement, mm: the engagement depth along a flank.
@@ -123,13 +127,16 @@ pub fn fit(spec: &FitSpec) -> Result<FitReport, Error> {
     if tooth.len() < 2 || nut_side.len() < 2 {
         return Err(Error::Geometry("the cut sections hold no whole tooth to assemble".into()));
     }
-    let clearance = crate::geometry::measure::fit_clearance(tooth, nut_side, 0.25 * p);
+    let contact = crate::geometry::measure::fit_contact(tooth, nut_side, 0.25 * p);
+    let clearance = contact.clearance;
     let engagement_depth = 0.5 * (bolt.measurement.major_diameter - nut.measurement.minor_diameter);
     let half = 0.5 * des.thread.form.flank_angle().to_radians();
     Ok(FitReport {
         bolt,
         nut,
         clearance_um: clearance * 1000.0,
+        nut_shift: shift + contact.shift,
+        tightest: (contact.bolt, contact.nut),
         engagement_depth,
         flank_overlap: engagement_depth.max(0.0) / half.cos(),
         // The geometry's own accuracy: a pair at exactly basic size fits.

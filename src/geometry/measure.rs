@@ -345,12 +345,17 @@ impl Clearance {
     /// The narrow bracket lets the first pruning keep only the vertices within its width of
     /// touching.
     fn best(&self, reach: f64) -> f64 {
+        self.best_at(reach).1
+    }
+
+    /// [`Clearance::best`] and the shift that reaches it.
+    fn best_at(&self, reach: f64) -> (f64, f64) {
         let near = 0.125 * reach;
         let (x, v) = self.search(-near, near);
         if x.abs() < near * (1.0 - 1e-3) {
-            return v;
+            return (x, v);
         }
-        self.search(-reach, reach).1
+        self.search(-reach, reach)
     }
 
     /// The best clearance over axial shifts in `[a, b]` and the shift that reaches it, as a gauge
@@ -470,11 +475,49 @@ impl Clearance {
 /// often stay within a narrow bracket's width of touching, eight of them on a symmetric cut).
 const FEW: usize = 12;
 
-/// The signed smallest distance between a bolt's profile and a nut's, both `(z, radius)` with
-/// non-decreasing z, the nut moved axially within ±`reach` to where it fits best: positive is
-/// the gap, negative the interference (mm).
-pub(crate) fn fit_clearance(bolt: Vec<Point>, nut: Vec<Point>, reach: f64) -> f64 {
-    Clearance::new(bolt, nut).best(reach)
+/// Where a bolt and a nut are tightest: the signed clearance at the nut's best axial shift
+/// (negative: interference), that shift, and the two points that face each other there (in the
+/// bolt's frame, the nut's point moved by the shift).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Contact {
+    pub(crate) clearance: f64,
+    pub(crate) shift: f64,
+    pub(crate) bolt: Point,
+    pub(crate) nut: Point,
+}
+
+/// The fit of a bolt's tooth and a nut's profile (normal frame, radii), the nut free to move
+/// axially by up to `reach`: where it fits best and where it is tightest there.
+pub(crate) fn fit_contact(bolt: Vec<Point>, nut: Vec<Point>, reach: f64) -> Contact {
+    let c = Clearance::new(bolt, nut);
+    let (shift, clearance) = c.best_at(reach);
+    let n = c.cut.len() + c.mmc.len();
+    let k = (0..n)
+        .filter_map(|k| c.vertex(k, shift).map(|v| (k, v)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(0, |x| x.0);
+    let moved: Vec<Point> = c.mmc.iter().map(|m| Point::new(m.z + shift, m.r)).collect();
+    let nearest = |poly: &[Point], p: Point| -> Point {
+        let mut best = (f64::INFINITY, p);
+        for w in poly.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            let (dz, dr) = (b.z - a.z, b.r - a.r);
+            let l2 = dz * dz + dr * dr;
+            let t = if l2 > 0.0 { (((p.z - a.z) * dz + (p.r - a.r) * dr) / l2).clamp(0.0, 1.0) } else { 0.0 };
+            let q = Point::new(a.z + t * dz, a.r + t * dr);
+            if q.distance(p) < best.0 {
+                best = (q.distance(p), q);
+            }
+        }
+        best.1
+    };
+    let (b, m) = if k < c.cut.len() {
+        (c.cut[k], nearest(&moved, c.cut[k]))
+    } else {
+        let q = moved[k - c.cut.len()];
+        (nearest(&c.cut, q), q)
+    };
+    Contact { clearance, shift, bolt: b, nut: m }
 }
 
 /// What to measure against: the thread, its kind and (optionally) the maximum-material limits.

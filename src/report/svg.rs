@@ -16,7 +16,7 @@ use svg::Document;
 
 /// Maps the axial plane (mm) into a panel (px), radius up.
 #[derive(Clone, Copy)]
-struct Frame {
+pub(super) struct Frame {
     x0: f64,
     y0: f64,
     w: f64,
@@ -27,7 +27,7 @@ struct Frame {
 }
 
 impl Frame {
-    fn new(x0: f64, y0: f64, w: f64, h: f64, z: (f64, f64), r: (f64, f64)) -> Frame {
+    pub(super) fn new(x0: f64, y0: f64, w: f64, h: f64, z: (f64, f64), r: (f64, f64)) -> Frame {
         let scale = (w / (z.1 - z.0)).min(h / (r.1 - r.0));
         // Centre the drawing in the panel.
         let z_min = 0.5 * (z.0 + z.1) - 0.5 * w / scale;
@@ -35,15 +35,15 @@ impl Frame {
         Frame { x0, y0, w, h, z_min, r_max, scale }
     }
 
-    fn x(&self, z: f64) -> f64 {
+    pub(super) fn x(&self, z: f64) -> f64 {
         self.x0 + (z - self.z_min) * self.scale
     }
 
-    fn y(&self, r: f64) -> f64 {
+    pub(super) fn y(&self, r: f64) -> f64 {
         self.y0 + (self.r_max - r) * self.scale
     }
 
-    fn points(&self, pts: &[Point]) -> String {
+    pub(super) fn points(&self, pts: &[Point]) -> String {
         pixel_points(pts.iter().map(|p| (self.x(p.z), self.y(p.r))))
     }
 
@@ -83,7 +83,7 @@ fn pixel_points(pts: impl Iterator<Item = (f64, f64)>) -> String {
     kept.iter().map(|(x, y)| format!("{x:.2},{y:.2}")).collect::<Vec<_>>().join(" ")
 }
 
-fn text(x: f64, y: f64, size: f64, s: impl Into<String>) -> Text {
+pub(super) fn text(x: f64, y: f64, size: f64, s: impl Into<String>) -> Text {
     Text::new(s.into())
         .set("x", format!("{x:.1}"))
         .set("y", format!("{y:.1}"))
@@ -94,7 +94,7 @@ fn text(x: f64, y: f64, size: f64, s: impl Into<String>) -> Text {
 /// A panel: its group (with the clip path, white background, frame and the caption above it)
 /// and the group to draw in, clipped to the panel. The frame carries `class="panel"`: nothing
 /// written in the picture lies inside one (the layout test checks it).
-fn panel(f: &Frame, id: &str, label: &str) -> (Group, Group) {
+pub(super) fn panel(f: &Frame, id: &str, label: &str) -> (Group, Group) {
     let clip_id = format!("clip-{id}");
     let frame = Rectangle::new().set("x", f.x0).set("y", f.y0).set("width", f.w).set("height", f.h);
     let g = Group::new()
@@ -127,7 +127,7 @@ fn tick_label(v: f64, step: f64) -> String {
 }
 
 /// Axes of a panel: Z (mm) ticks below it, diameter (mm, twice the radius) ticks on its right.
-fn axes(f: &Frame, diameter_axis: bool, units: crate::analysis::verify::Units) -> Group {
+pub(super) fn axes(f: &Frame, diameter_axis: bool, units: crate::analysis::verify::Units) -> Group {
     // Ticks at round numbers of the reader's unit: mm, or inches (the frame stays in mm).
     let (per, name) = match units {
         crate::analysis::verify::Units::Mm => (1.0, "mm"),
