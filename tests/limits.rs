@@ -207,3 +207,35 @@ fn bad_designations_exit_2_with_one_line() {
         assert!(line.contains(part), "{d}: {line}");
     }
 }
+
+/// Issue 28: NPT's gauge plane as ASME B1.20.1's Table 2 prints it, size by size: E1 at the hand-
+/// tight plane, L1 from the small end (0.1615 in for 1/8 and 0.2278 in for 1/4, once 0.162 and
+/// 0.228), E0 = E1 − L1/16 within the table's 5-decimal rounding, and ±1 turn of gauging
+/// tolerance (ASME B1.20.1 §4.1.2: "one turn large or small").
+#[test]
+fn npt_gauge_plane_matches_asme_b1_20_1_table_2_for_every_size() {
+    // size, tpi, E0, E1, L1 (inches), ASME B1.20.1 Table 2.
+    let table = [
+        ("1/16-27 NPT", 0.27118, 0.28118, 0.160),
+        ("1/8-27 NPT", 0.36351, 0.37360, 0.1615),
+        ("1/4-18 NPT", 0.47739, 0.49163, 0.2278),
+        ("3/8-18 NPT", 0.61201, 0.62701, 0.240),
+        ("1/2-14 NPT", 0.75843, 0.77843, 0.320),
+        ("3/4-14 NPT", 0.96768, 0.98887, 0.339),
+        ("1-11.5 NPT", 1.21363, 1.23863, 0.400),
+        ("1-1/4-11.5 NPT", 1.55713, 1.58338, 0.420),
+        ("1-1/2-11.5 NPT", 1.79609, 1.82234, 0.420),
+        ("2-11.5 NPT", 2.26902, 2.29627, 0.436),
+    ];
+    for (d, e0, e1, l1) in table {
+        let o = run(&["limits", d, "--json"]);
+        assert_eq!(o.status.code(), Some(0), "{d}: {}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+        let gp = &v["external"]["gauge_plane"];
+        assert!((gp["pitch_diameter"].as_f64().unwrap() - e1 * 25.4).abs() < 1e-9, "{d}: E1 {gp}");
+        assert!((gp["distance"].as_f64().unwrap() - l1 * 25.4).abs() < 1e-9, "{d}: L1 {gp}");
+        assert_eq!(gp["tolerance_turns"].as_f64(), Some(1.0), "{d}");
+        // The table's own consistency: E1 − E0 = L1 · 1/16 to its rounding of E.
+        assert!(((e1 - e0) - l1 / 16.0).abs() <= 1e-5, "{d}: E1 − E0 against L1/16");
+    }
+}

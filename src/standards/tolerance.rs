@@ -490,7 +490,7 @@ pub struct GaugePlane {
     /// Its basic distance from the reference end, mm: from the small end for an external thread
     /// (NPT L1, ISO 7-1 gauge length), 0 (the face) for an internal one.
     pub distance: f64,
-    /// The gauging tolerance, turns either way (±1: widely stated, not sourced here).
+    /// The gauging tolerance, turns either way (±1: ASME B1.20.1 for NPT; applied to ISO 7-1 too).
     pub tolerance_turns: f64,
     /// Taper on the diameter per mm.
     pub taper: f64,
@@ -517,20 +517,25 @@ impl fmt::Display for TaperClass {
 pub fn taper_limits(t: &BasicThread, c: TaperClass) -> Result<ThreadLimits, Error> {
     let cat = catalog()?;
     let inch = crate::standards::MM_PER_INCH;
-    let (e1, l1, label) = match t.form {
+    let (e1, l1, label, gauging) = match t.form {
         ThreadForm::Npt => {
             let n = &cat.pipe.npt;
             let i = (0..n.sizes.len())
                 .find(|&i| ((n.E1[i] + 0.8 / n.tpi[i]) * inch - t.nominal_diameter).abs() < 1e-6)
                 .ok_or_else(|| Error::Input("not an NPT size".into()))?;
-            (n.E1[i] * inch, n.L1[i] * inch, "ASME B1.20.1 E1 and L1")
+            (n.E1[i] * inch, n.L1[i] * inch, "ASME B1.20.1 E1 and L1", "ASME B1.20.1 §4.1.2 and §7: the L1 gauge may stand one turn large or small of its basic notch")
         }
         ThreadForm::Iso7Taper => {
             let n = &cat.pipe.iso7;
             let i = (0..n.sizes.len())
                 .find(|&i| (n.d[i] - t.nominal_diameter).abs() < 1e-6)
                 .ok_or_else(|| Error::Input("not an ISO 7-1 size".into()))?;
-            (n.d2[i], n.gauge_length_basic[i], "ISO 7-1 gauge-plane d2 and gauge length")
+            (
+                n.d2[i],
+                n.gauge_length_basic[i],
+                "ISO 7-1 gauge-plane d2 and gauge length",
+                "one turn applied as for NPT: ISO 7-1's own tolerance on the gauge plane's position is not checked against its table here",
+            )
         }
         ThreadForm::IsoMetric
         | ThreadForm::Whitworth
@@ -553,7 +558,7 @@ pub fn taper_limits(t: &BasicThread, c: TaperClass) -> Result<ThreadLimits, Erro
         fundamental_deviation_um: 0.0,
         crest_deviation_um: 0.0,
         notes: vec![format!(
-            "taper 1:16; the gauge plane ({label}) may lie ±1 turn from its basic position: that gauging tolerance is widely used but not sourced here; diameters are at the gauge plane, for reference"
+            "taper 1:16; the gauge plane ({label}) may lie ±1 turn from its basic position ({gauging}); diameters are at the gauge plane, for reference"
         )],
         gauge_plane: Some(GaugePlane {
             pitch_diameter: e1,
