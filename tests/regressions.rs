@@ -719,3 +719,24 @@ fn inches_reach_the_svg_and_the_html() {
     );
     assert!(svg.contains("\nZ in\n"));
 }
+
+/// Issue 28: a taper thread's numbers in the true axial section. 1/2-14 NPT cut with a
+/// full-profile insert has 30°/30° flanks (reported as 30.454°/29.558°, the sheared section's)
+/// and its pitch diameter is reported at the gauge plane: E1 = 0.77843 in = 19.772122 mm
+/// (within 1 µm: the sheared construction reads E about 0.5 µm off). ISO 7-1's R and Rc: 27.5°.
+#[test]
+fn taper_threads_report_true_flanks_and_d2_at_the_gauge_plane() {
+    for (d, half, e1) in
+        [("1/2-14 NPT", 30.0, 0.77843 * 25.4), ("R 1/2", 27.5, 19.793), ("Rc 1/2", 27.5, 19.793)]
+    {
+        let v =
+            verify(&VerifySpec { insert: InsertChoice::Full, metrics: false, ..VerifySpec::new(d) }).unwrap();
+        let [a, b] = v.measurement.flank_angles;
+        assert!((a - half).abs() < 1e-6 && (b - half).abs() < 1e-6, "{d}: {a} / {b}");
+        assert!(
+            (v.measurement.pitch_diameter - e1).abs() < 1e-3,
+            "{d}: d2 {} against {e1}",
+            v.measurement.pitch_diameter
+        );
+    }
+}

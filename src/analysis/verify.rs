@@ -894,6 +894,16 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
             }
         }
     };
+    // A taper thread is measured on its section sheared so the pitch cone runs level; its flank
+    // angles are turned back into the true axial section before they are checked.
+    let cut = match taper {
+        Some((_, _, slope_r)) => {
+            let mut m = cut.measurement.clone();
+            m.flank_angles = true_flank_angles(m.flank_angles, slope_r, kind);
+            Cut { measurement: m, ..cut }
+        }
+        None => cut,
+    };
     let metrics = if spec.metrics { pass_metrics(&setup, &cut.passes, cut.z_ref)? } else { Vec::new() };
     let m = &cut.measurement;
     if spec.coating > 0.0 {
@@ -977,6 +987,18 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
     if spec.gauge_only {
         notes.push("gauge only: form checks are reported but left out of the verdict".into());
     }
+    // A taper thread's pitch diameter is reported where its gauge checks it, at the gauge
+    // plane: measured on the groove nearest it and carried along the cone.
+    let carry = match taper {
+        Some((gp, _, _)) => {
+            let zc = cut.measurement.groove_center;
+            match kind {
+                ThreadKind::External => (zc + gp.distance) * gp.taper,
+                ThreadKind::Internal => -zc * gp.taper,
+            }
+        }
+        None => 0.0,
+    };
     let mut v = Verification {
         designation: des,
         kind,
@@ -991,7 +1013,10 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         metrics,
         section: cut.section,
         z_ref: cut.z_ref,
-        measurement: cut.measurement,
+        measurement: Measurement {
+            pitch_diameter: cut.measurement.pitch_diameter + carry,
+            ..cut.measurement
+        },
         checks: cs,
         pass,
         suggested_final_x: suggested,
@@ -1002,7 +1027,7 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         helix_angle: crate::analysis::process::helix_angle(t.lead(), t.pitch_diameter()),
         process: None,
         lead_deviation,
-        functional_pitch_diameter: functional,
+        functional_pitch_diameter: functional.map(|f| f + carry),
         correction,
         picture: None,
         hints: Vec::new(),
@@ -1022,6 +1047,23 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         })?);
     }
     Ok(v)
+}
+
+/// Flank half-angles measured on a section sheared by `slope_r` (radius per mm of z) turned
+/// back into the true axial section: a flank with dz/dr' = ±t in the sheared section has
+/// dz/dr = ±t / (1 ± s·t) in the true one. A bolt's low-z flank falls towards its root as z
+/// grows (−t), a nut's rises.
+fn true_flank_angles(sheared: [f64; 2], slope_r: f64, kind: ThreadKind) -> [f64; 2] {
+    let sign = match kind {
+        ThreadKind::External => [-1.0, 1.0],
+        ThreadKind::Internal => [1.0, -1.0],
+    };
+    let mut out = [0.0; 2];
+    for k in 0..2 {
+        let d = sign[k] * sheared[k].to_radians().tan();
+        out[k] = (d / (1.0 + slope_r * d)).abs().atan().to_degrees();
+    }
+    out
 }
 
 /// A program as the reports name it: the file (as given) and the dialect it was read in.
