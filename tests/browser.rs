@@ -264,22 +264,29 @@ fn svg_labels_do_not_overlap_each_other_or_the_panels() {
         let o = run(&all);
         assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
         let svg = std::fs::read_to_string(&path).unwrap();
-        let (w, h) = svg_size(&svg);
-        let (texts, panels) = layout(&svg);
-        assert!(panels.len() >= 4, "{args:?}: {} panels", panels.len());
-        for (i, (ta, a)) in texts.iter().enumerate() {
-            assert!(
-                a[0] >= 0.0 && a[1] >= 0.0 && a[2] <= w as f64 && a[3] <= h as f64,
-                "{args:?}: '{ta}' leaves the picture"
-            );
-            for p in &panels {
-                assert!(!overlap(*a, *p), "{args:?}: '{ta}' lies on a panel");
-            }
-            for (tb, b) in &texts[i + 1..] {
-                assert!(!overlap(*a, *b), "{args:?}: '{ta}' crosses '{tb}'");
-            }
+        let panels = assert_laid_out(&svg, &format!("{args:?}"));
+        assert!(panels >= 4, "{args:?}: {panels} panels");
+    }
+}
+
+/// Nothing written in `svg` leaves the picture, lies on a panel or crosses another label;
+/// returns the number of panels.
+fn assert_laid_out(svg: &str, what: &str) -> usize {
+    let (w, h) = svg_size(svg);
+    let (texts, panels) = layout(svg);
+    for (i, (ta, a)) in texts.iter().enumerate() {
+        assert!(
+            a[0] >= 0.0 && a[1] >= 0.0 && a[2] <= w as f64 && a[3] <= h as f64,
+            "{what}: '{ta}' leaves the picture"
+        );
+        for p in &panels {
+            assert!(!overlap(*a, *p), "{what}: '{ta}' lies on a panel");
+        }
+        for (tb, b) in &texts[i + 1..] {
+            assert!(!overlap(*a, *b), "{what}: '{ta}' crosses '{tb}'");
         }
     }
+    panels.len()
 }
 
 /// Issue 28: the fit picture is laid out as verify's: nothing written leaves the picture, lies
@@ -301,21 +308,8 @@ fn fit_svg_is_laid_out_and_dimensions_the_clearance() {
         assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
         let svg = std::fs::read_to_string(&path).unwrap();
         assert!(svg.contains("id=\"clearance-dimension\"") && svg.contains(says), "{args:?}: {says}");
-        let (w, h) = svg_size(&svg);
-        let (texts, panels) = layout(&svg);
-        assert_eq!(panels.len(), 2, "{args:?}: the pair and the tightest place");
-        for (i, (ta, a)) in texts.iter().enumerate() {
-            assert!(
-                a[0] >= 0.0 && a[1] >= 0.0 && a[2] <= w as f64 && a[3] <= h as f64,
-                "{args:?}: '{ta}' leaves the picture"
-            );
-            for p in &panels {
-                assert!(!overlap(*a, *p), "{args:?}: '{ta}' lies on a panel");
-            }
-            for (tb, b) in &texts[i + 1..] {
-                assert!(!overlap(*a, *b), "{args:?}: '{ta}' crosses '{tb}'");
-            }
-        }
+        let panels = assert_laid_out(&svg, &format!("{args:?}"));
+        assert_eq!(panels, 2, "{args:?}: the pair and the tightest place");
     }
 }
 
