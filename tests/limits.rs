@@ -239,3 +239,17 @@ fn npt_gauge_plane_matches_asme_b1_20_1_table_2_for_every_size() {
         assert!(((e1 - e0) - l1 / 16.0).abs() <= 1e-5, "{d}: E1 − E0 against L1/16");
     }
 }
+
+/// Issue 28: an NPT size is named by its pipe's outside diameter (ASME B1.20.1's D: 0.840 in for
+/// 1/2, 0.405 in for 1/8), not by its thread's major diameter at the gauge plane (E1 + 0.8·P).
+#[test]
+fn npt_nominal_diameter_is_the_pipe_outside_diameter() {
+    for (d, od) in [("1/2-14 NPT", 0.840), ("1/8-27 NPT", 0.405), ("2-11.5 NPT", 2.375)] {
+        let v: serde_json::Value = serde_json::from_str(&stdout(&run(&["limits", d, "--json"]))).unwrap();
+        assert!(
+            (v["nominal_diameter"].as_f64().unwrap() - od * 25.4).abs() < 1e-9,
+            "{d}: {}",
+            v["nominal_diameter"]
+        );
+    }
+}

@@ -31,7 +31,7 @@ pub struct ThreadReport<'a> {
     pub form: &'static str,
     /// `external` or `internal`.
     pub kind: &'static str,
-    /// Nominal diameter, mm.
+    /// The diameter the designation names, mm (NPT: the pipe's outside diameter).
     pub nominal_diameter: f64,
     /// Pitch, mm.
     pub pitch: f64,
@@ -58,7 +58,7 @@ impl<'a> ThreadReport<'a> {
             designation: &designation.text,
             form: t.form.name(),
             kind: kind.name(),
-            nominal_diameter: t.nominal_diameter,
+            nominal_diameter: crate::standards::tolerance::named_diameter(t),
             pitch: t.pitch,
             lead: t.lead(),
             starts: t.starts,
@@ -970,7 +970,7 @@ impl<'a> LimitsReport<'a> {
         LimitsReport {
             designation: &des.text,
             form: t.form.name(),
-            nominal_diameter: t.nominal_diameter,
+            nominal_diameter: crate::standards::tolerance::named_diameter(t),
             pitch: t.pitch,
             lead: t.lead(),
             starts: t.starts,

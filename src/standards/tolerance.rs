@@ -510,6 +510,35 @@ impl fmt::Display for TaperClass {
     }
 }
 
+/// The diameter a thread's designation names, mm: the nominal diameter d, but for NPT the pipe's
+/// outside diameter (ASME B1.20.1's D, from which E0 is reckoned: 0.840 in for 1/2 NPT), where
+/// the thread's own major diameter at the gauge plane (E1 + 0.8·P) is not the size's name.
+/// ISO 7-1 names its sizes by the gauge plane's major diameter, the nominal diameter itself.
+pub fn named_diameter(t: &BasicThread) -> f64 {
+    match t.form {
+        ThreadForm::Npt => catalog()
+            .ok()
+            .and_then(|cat| {
+                let n = &cat.pipe.npt;
+                (0..n.sizes.len())
+                    .find(|&i| {
+                        ((n.E1[i] + 0.8 / n.tpi[i]) * crate::standards::MM_PER_INCH - t.nominal_diameter)
+                            .abs()
+                            < 1e-6
+                    })
+                    .map(|i| n.OD[i] * crate::standards::MM_PER_INCH)
+            })
+            .unwrap_or(t.nominal_diameter),
+        ThreadForm::IsoMetric
+        | ThreadForm::Whitworth
+        | ThreadForm::BspParallel
+        | ThreadForm::Unified
+        | ThreadForm::Trapezoidal
+        | ThreadForm::Acme
+        | ThreadForm::Iso7Taper => t.nominal_diameter,
+    }
+}
+
 /// The gauge-plane limits of a taper pipe thread (`profiles/pipe-taper.toml`): the basic pitch
 /// diameter at the gauge plane (NPT E1; ISO 7-1 d2), its distance (external: L1 or the gauge
 /// length from the small end; internal: at the face), and ±1 turn of gauging tolerance, stated as
