@@ -217,9 +217,147 @@ fn limits_json(
         .map_err(value_error)
 }
 
+/// `threadcheck fit --json`: a bolt and a nut, each from a program's text or a plan.
+#[pyfunction]
+#[pyo3(signature = (thread, allow_nonstandard=false, bolt_program=None, bolt_dialect="fanuc",
+    bolt_final_x=None, bolt_insert="partial", nut_program=None, nut_dialect="fanuc", nut_final_x=None,
+    nut_insert="partial"))]
+#[allow(clippy::too_many_arguments)]
+fn fit_json(
+    py: Python<'_>,
+    thread: String,
+    allow_nonstandard: bool,
+    bolt_program: Option<String>,
+    bolt_dialect: &str,
+    bolt_final_x: Option<f64>,
+    bolt_insert: &str,
+    nut_program: Option<String>,
+    nut_dialect: &str,
+    nut_final_x: Option<f64>,
+    nut_insert: &str,
+) -> PyResult<(String, bool)> {
+    let run = || -> Result<(String, bool), threadcheck::Error> {
+        let side = |program: Option<String>, dialect: &str, final_x: Option<f64>, insert: &str, who: &str| {
+            if program.is_some() && final_x.is_some() {
+                return Err(threadcheck::Error::Input(format!(
+                    "{who}_program and {who}_final_x exclude each other: the program sets the passes"
+                )));
+            }
+            let program = match program {
+                Some(text) => Some((text, format!("<{who} program>"), dialect.parse::<Dialect>()?)),
+                None => None,
+            };
+            Ok(threadcheck::FitSide { insert: insert.parse()?, final_x, program })
+        };
+        let spec = threadcheck::FitSpec {
+            thread,
+            allow_nonstandard,
+            bolt: side(bolt_program, bolt_dialect, bolt_final_x, bolt_insert, "bolt")?,
+            nut: side(nut_program, nut_dialect, nut_final_x, nut_insert, "nut")?,
+        };
+        let (text, outcome) = threadcheck::FitJob { spec, svg: None, json: Some("-".into()) }.run()?;
+        Ok((text, outcome == Outcome::Pass))
+    };
+    py.detach(run).map_err(value_error)
+}
+
+/// `threadcheck compare --json`: every infeed strategy on one thread (or the infeed and schedule
+/// given).
+#[pyfunction]
+#[pyo3(signature = (thread, insert=None, final_x=None, internal=false, allow_nonstandard=false,
+    infeed=None, schedule=None, modified=None))]
+#[allow(clippy::too_many_arguments)]
+fn compare_json(
+    py: Python<'_>,
+    thread: String,
+    insert: Option<&str>,
+    final_x: Option<f64>,
+    internal: bool,
+    allow_nonstandard: bool,
+    infeed: Option<&str>,
+    schedule: Option<&str>,
+    modified: Option<Vec<f64>>,
+) -> PyResult<String> {
+    let run = || -> Result<String, threadcheck::Error> {
+        let threads = [thread.clone()];
+        let spec = spec(
+            &threads,
+            None,
+            "<program>",
+            "fanuc",
+            insert,
+            final_x,
+            internal,
+            None,
+            None,
+            None,
+            allow_nonstandard,
+            None,
+            None,
+            "current",
+        )?;
+        let choice = threadcheck::CompareChoice {
+            infeed: infeed.map(str::parse).transpose()?,
+            schedule: schedule.map(str::parse).transpose()?,
+        };
+        let modified = match modified {
+            Some(m) => m,
+            None => {
+                let des =
+                    threadcheck::parse_designation(&thread, threadcheck::ParseOptions { allow_nonstandard })?;
+                let half = 0.5 * des.thread.form.flank_angle();
+                vec![half - 0.5, half - 3.0]
+            }
+        };
+        let job = threadcheck::CompareJob {
+            spec,
+            modified,
+            choice,
+            json: Some("-".into()),
+            markdown: None,
+            html: None,
+        };
+        Ok(job.run()?.0)
+    };
+    py.detach(run).map_err(value_error)
+}
+
+/// `threadcheck mill --json`: a milling program's text against a target given as TOML text.
+#[pyfunction]
+#[pyo3(signature = (program, target, tool_diameter, dialect="fanuc", tolerance=0.01, n_order=false,
+    program_name="<program>"))]
+#[allow(clippy::too_many_arguments)]
+fn mill_json(
+    py: Python<'_>,
+    program: String,
+    target: String,
+    tool_diameter: f64,
+    dialect: &str,
+    tolerance: f64,
+    n_order: bool,
+    program_name: &str,
+) -> PyResult<(String, bool)> {
+    let run = || -> Result<(String, bool), threadcheck::Error> {
+        let spec = threadcheck::MillSpec {
+            program: (program, program_name.to_string()),
+            dialect: dialect.parse::<Dialect>()?,
+            n_order,
+            tool_diameter,
+            target: threadcheck::Target::from_toml(&target, "<target>")?,
+            tolerance,
+        };
+        let (text, outcome) = threadcheck::MillJob { spec, svg: None, json: Some("-".into()) }.run()?;
+        Ok((text, outcome == Outcome::Pass))
+    };
+    py.detach(run).map_err(value_error)
+}
+
 #[pymodule]
 fn _threadcheck(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(job_json, m)?)?;
+    m.add_function(wrap_pyfunction!(fit_json, m)?)?;
+    m.add_function(wrap_pyfunction!(compare_json, m)?)?;
+    m.add_function(wrap_pyfunction!(mill_json, m)?)?;
     m.add_function(wrap_pyfunction!(limits_json, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

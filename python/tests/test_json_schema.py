@@ -132,3 +132,11 @@ def test_capability(args):
     validate("capability", json.loads(cli("capability", *args, "--json", "-")))
     validate("capability", threadcheck.capability("M10x1.5-6g", x_sigma=0.004, samples=100))
     validate("correct", threadcheck.correct("M10x1.5-6g", measured_d2=9.0))
+
+
+def test_python_fit_compare_mill_match_the_schema():
+    validate("fit", threadcheck.fit("M10x1.5-6H/6g"))
+    validate("compare", threadcheck.compare("M10x1.5-6g", insert="full"))
+    prog = (PROGRAMS / "milling" / "boss-chords.nc").read_text()
+    target = (PROGRAMS.parent / "targets" / "boss.toml").read_text()
+    validate("mill", threadcheck.mill(prog, target, 6.0))

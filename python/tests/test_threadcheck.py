@@ -193,3 +193,25 @@ def test_capability_wear_alone_gives_the_derived_parts_per_edge():
     r = threadcheck.capability("M10x1.5-6g", insert="full", wear_per_part=0.002, samples=50)
     assert r["best_parts_per_edge"] == 34
     assert sum(r["histogram"]["counts"]) == 50
+
+
+def test_fit_compare_and_mill_from_python():
+    # Mid-tolerance M10x1.5-6H/6g, full-profile inserts: the flank clearance is
+    # (D2 mid − d2 mid)/2 · sin 30° = (9.116 − 8.928)/2 · 0.5 = 47.0 µm.
+    f = threadcheck.fit("M10x1.5-6H/6g", bolt_insert="full", nut_insert="full")
+    assert f["verdict"] == "fits"
+    assert f["clearance_um"] == pytest.approx(47.0, abs=0.1)
+    # compare with one infeed and one schedule: one row.
+    c = threadcheck.compare("M10x1.5-6g", infeed="radial", schedule="sandvik")
+    assert [(s["infeed"], s["schedule"]) for s in c["strategies"]] == [("radial", "sandvik")]
+    assert threadcheck.compare("M10x1.5-6g")["recommended"]["infeed"] == "modified 29.5°"
+    # A Ø40 boss cut with a Ø6 cutter along 36 chords of the centre circle R = 23: the worst
+    # gouge is the chord sag 23·(1 − cos 5°).
+    prog = "G0 X23 Y0 Z2\nG1 Z-1\n" + "".join(
+        f"G1 X{23 * math.cos(math.radians(10 * k)):.9f} Y{23 * math.sin(math.radians(10 * k)):.9f}\n"
+        for k in range(1, 37)) + "G0 Z2\nM30\n"
+    target = 'x = "20*cos(t)"\ny = "20*sin(t)"\nt = [0, 360]\nmaterial = "inside"\n'
+    m = threadcheck.mill(prog, target, 6.0)
+    assert m["gouge_max"] == pytest.approx(23 * (1 - math.cos(math.radians(5))), abs=1e-7)
+    with pytest.raises(ValueError, match="exclude each other"):
+        threadcheck.fit("M10x1.5-6H/6g", bolt_program="G0 X10\n", bolt_final_x=8.1)

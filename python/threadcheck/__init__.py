@@ -13,7 +13,7 @@ import json as _json
 
 from . import _threadcheck
 
-__all__ = ["verify", "limits", "passes", "correct", "capability", "__version__"]
+__all__ = ["verify", "limits", "passes", "correct", "capability", "fit", "compare", "mill", "__version__"]
 __version__ = _threadcheck.__version__
 
 
@@ -113,4 +113,49 @@ def capability(thread, program=None, dialect="fanuc", insert=None, final_x=None,
         default_units=default_units, main=main, linuxcnc_release=linuxcnc_release,
         coating=coating, x_sigma=x_sigma, tip_radius_tol=tip_radius_tol,
         wear_per_part=wear_per_part, samples=samples, seed=seed, gauge_only=gauge_only)
+    return _json.loads(text)
+
+
+def fit(thread, bolt_program=None, bolt_dialect="fanuc", bolt_final_x=None, bolt_insert="partial",
+        nut_program=None, nut_dialect="fanuc", nut_final_x=None, nut_insert="partial",
+        allow_nonstandard=False):
+    """``threadcheck fit --json``: a bolt and a nut cut in the computer and assembled.
+
+    ``thread`` is a fit designation (``"M10x1.5-6H/6g"``). Each side is a program's text
+    (``bolt_program``, ``nut_program``, with their dialects) or a plan (``bolt_final_x``,
+    ``nut_final_x``; default mid-tolerance); inserts as ``verify`` takes them. The dict has
+    ``verdict`` (``"fits"``/``"interferes"``), ``clearance_um`` and both sides' reports.
+    """
+    text, _ok = _threadcheck.fit_json(
+        thread, allow_nonstandard=allow_nonstandard, bolt_program=bolt_program,
+        bolt_dialect=bolt_dialect, bolt_final_x=bolt_final_x, bolt_insert=bolt_insert,
+        nut_program=nut_program, nut_dialect=nut_dialect, nut_final_x=nut_final_x,
+        nut_insert=nut_insert)
+    return _json.loads(text)
+
+
+def compare(thread, insert=None, final_x=None, internal=False, allow_nonstandard=False,
+            infeed=None, schedule=None, modified=None):
+    """``threadcheck compare --json``: the thread with every infeed strategy and schedule.
+
+    ``infeed`` (``"radial"``, ``"flank:27"`` …) and ``schedule`` (``"constant-area"`` …)
+    compare that one alone; ``modified`` lists the modified-flank angles (default half the
+    thread angle less 0.5° and 3°). The dict has ``strategies`` and ``recommended``.
+    """
+    return _json.loads(_threadcheck.compare_json(
+        thread, insert=insert, final_x=final_x, internal=internal,
+        allow_nonstandard=allow_nonstandard, infeed=infeed, schedule=schedule, modified=modified))
+
+
+def mill(program, target, tool_diameter, dialect="fanuc", tolerance=0.01, n_order=False,
+         program_name="<program>"):
+    """``threadcheck mill --json``: a milling program's text against a target curve.
+
+    ``target`` is the target's TOML text (``x``, ``y`` in ``t`` and ``z``, ``t``, ``material``,
+    optional ``z``), ``tool_diameter`` and ``tolerance`` in mm. The dict has ``verdict``,
+    ``gouge_max``, ``leftover_max`` and the levels.
+    """
+    text, _ok = _threadcheck.mill_json(program, target, tool_diameter, dialect=dialect,
+                                       tolerance=tolerance, n_order=n_order,
+                                       program_name=program_name)
     return _json.loads(text)
