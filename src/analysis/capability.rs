@@ -222,9 +222,11 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
     }
     let nominal = recut.cut(0.0, None)?;
     let n = spec.samples as f64;
+    // Every sample carries the nominal cut's checks, in its order.
+    let same_checks = values.iter().all(|v| v.len() == nominal.checks.len());
     let mut sizes = Vec::new();
     for (k, c) in nominal.checks.iter().enumerate() {
-        if c.kind != CheckKind::Size || values.iter().any(|v| v.len() != nominal.checks.len()) {
+        if c.kind != CheckKind::Size || !same_checks {
             continue;
         }
         let xs: Vec<f64> = values.iter().map(|v| v[k]).collect();
@@ -263,6 +265,7 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
         .find(|s| s.feature == CheckFeature::PitchDiameter)
         .cloned()
         .ok_or_else(|| Error::Input("no pitch-diameter check to sample".into()))?;
+    let d2k = nominal.checks.iter().position(|c| c.feature == CheckFeature::PitchDiameter).unwrap_or(0);
     let (mu, s) = (d2.mean, d2.sigma);
     let (lo, hi) = (lo_lim + 3.0 * s, hi_lim - 3.0 * s);
     let w = spec.wear_per_part;
@@ -293,13 +296,12 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
     let shift = best_mu - mu;
     let best_final_x = v.final_x + shift;
     let best_correction = v.correction_for(shift);
-    let (h_lo, h_hi) =
-        values.iter().map(|v| v[d2_index(&nominal)]).fold((lo_lim, hi_lim), |(a, b), x| (a.min(x), b.max(x)));
+    let (h_lo, h_hi) = values.iter().map(|v| v[d2k]).fold((lo_lim, hi_lim), |(a, b), x| (a.min(x), b.max(x)));
     let bins = 40usize;
     let width = ((h_hi - h_lo) / bins as f64).max(1e-9);
     let mut counts = vec![0usize; bins];
     for v in &values {
-        let i = (((v[d2_index(&nominal)] - h_lo) / width).floor().max(0.0) as usize).min(bins - 1);
+        let i = (((v[d2k] - h_lo) / width).floor().max(0.0) as usize).min(bins - 1);
         counts[i] += 1;
     }
     let cpk_uncertainty = d2.cpk.map(|c| c * (1.0 / (9.0 * n * c * c) + 1.0 / (2.0 * (n - 1.0))).sqrt());
@@ -352,9 +354,4 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
         cpk_uncertainty,
         notes,
     })
-}
-
-/// Where the pitch-diameter check sits in a verification's checks.
-fn d2_index(v: &Verification) -> usize {
-    v.checks.iter().position(|c| c.feature == CheckFeature::PitchDiameter).unwrap_or(0)
 }

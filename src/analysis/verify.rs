@@ -275,6 +275,17 @@ pub(crate) struct DepthAt {
     alike: bool,
 }
 
+impl DepthAt {
+    /// The same change in the other starts' cycles; a word written otherwise in one of them is
+    /// not rewritten in place.
+    fn apply_to(&self, c: &mut crate::analysis::correction::Correction) {
+        c.also = self.also.clone();
+        if !self.alike {
+            c.form = crate::gcode::WordForm::Expression;
+        }
+    }
+}
+
 impl Verification {
     /// The correction in the program's words that moves the pitch diameter by `delta_d2` mm (+
     /// larger): `None` for a generated plan, or where no correction is offered (the starts are
@@ -282,10 +293,7 @@ impl Verification {
     pub fn correction_for(&self, delta_d2: f64) -> Option<crate::analysis::correction::Correction> {
         let d = self.depth.as_ref()?;
         let mut c = crate::analysis::correction::correction(&d.word, d.units, self.kind, delta_d2);
-        c.also = d.also.clone();
-        if !d.alike {
-            c.form = crate::gcode::WordForm::Expression;
-        }
+        d.apply_to(&mut c);
         Some(c)
     }
 }
@@ -907,7 +915,7 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
     let metrics = if spec.metrics { pass_metrics(&setup, &cut.passes, cut.z_ref)? } else { Vec::new() };
     let m = &cut.measurement;
     if spec.coating > 0.0 {
-        let grow = 2.0 * spec.coating / t.half_angle().sin();
+        let grow = crate::standards::tolerance::coat_pitch_growth(spec.coating, t.half_angle());
         let after = match kind {
             ThreadKind::External => m.pitch_diameter + grow,
             ThreadKind::Internal => m.pitch_diameter - grow,
@@ -1302,13 +1310,8 @@ fn verify_given(
             d.also.push(crate::analysis::correction::Place { line: w.line, column: w.column });
             d.alike &= w.written == d.word.written && w.form == d.word.form;
         }
-    }
-    if let Some(c) = v.correction.as_mut() {
-        for w in &op.start_words {
-            c.also.push(crate::analysis::correction::Place { line: w.line, column: w.column });
-            if w.written != c.written || w.form != c.form {
-                c.form = crate::gcode::WordForm::Expression;
-            }
+        if let Some(c) = v.correction.as_mut() {
+            d.apply_to(c);
         }
     }
     if !starts.ok {

@@ -416,7 +416,7 @@ impl ThreadLimits {
             ThreadKind::External => -1.0,
             ThreadKind::Internal => 1.0,
         };
-        let (pitch, size) = (away * 2.0 * thickness / half_angle_rad.sin(), away * 2.0 * thickness);
+        let (pitch, size) = (away * coat_pitch_growth(thickness, half_angle_rad), away * 2.0 * thickness);
         // To 1e-9 mm: the limits are µm (or 0.1 mil) values, the shift is no reason for float noise.
         let nm = |v: f64| (v * 1e9).round() / 1e9;
         let shift =
@@ -441,6 +441,12 @@ impl ThreadLimits {
             ..self.clone()
         }
     }
+}
+
+/// How much a coat of `thickness` mm grows a bolt's pitch diameter on flanks `half_angle_rad`
+/// from the radial: 2t / sin β (4t on a 60° thread); a nut's shrinks as much.
+pub fn coat_pitch_growth(thickness: f64, half_angle_rad: f64) -> f64 {
+    2.0 * thickness / half_angle_rad.sin()
 }
 
 /// The resolution a standard prints its limits to, and so the one sizes are compared at: a limit
