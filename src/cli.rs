@@ -544,14 +544,10 @@ impl PlanArgs {
             Some(UnitsArg::Inch) => Units::Inch,
             // An inch thread is read in inches beside the mm; a designation that does not parse
             // is reported where it is resolved.
-            None => {
-                let opts = threadcheck::ParseOptions { allow_nonstandard: self.allow_nonstandard };
-                let first = self.thread.first().map_or("", String::as_str);
-                match threadcheck::parse_designation(first, opts) {
-                    Ok(d) if d.thread.form.is_inch() => Units::Inch,
-                    _ => Units::Mm,
-                }
-            }
+            None => VerifySpec::default_units(
+                self.thread.first().map_or("", String::as_str),
+                self.allow_nonstandard,
+            ),
         };
         if let Some(p) = &self.program {
             let (dialect, from) = dialect_for(self.dialect, p);

@@ -204,13 +204,18 @@ pub struct VerifyJob {
 impl VerifyJob {
     /// Runs the job: the report on stdout, files written atomically, pass or out of tolerance.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
+        self.run_to(&mut Sink::Disk)
+    }
+
+    /// Runs the job with its files going to `sink`.
+    pub(crate) fn run_to(&self, sink: &mut Sink) -> Result<(String, Outcome), Error> {
         // The pictures and the JSON's deviation samples are computed with the verification.
         let spec = crate::analysis::verify::VerifySpec {
             picture: self.svg.is_some() || self.html.is_some() || self.json.is_some(),
             ..self.spec.clone()
         };
         if let Some((source, dialect)) = &spec.program {
-            return self.run_program(&spec, source, *dialect);
+            return self.run_program(&spec, source, *dialect, sink);
         }
         if self.fix.is_some() {
             return Err(Error::Input("--fix corrects a program: give it with --program".into()));
@@ -223,7 +228,7 @@ impl VerifyJob {
         let svg_text = self.svg.as_ref().map(|_| crate::report::svg::verify_svg(&v));
         let html_text = self.html.as_ref().map(|_| crate::report::html::verify_html(&v));
         let text = crate::report::verify_text(&v);
-        self.write(json_text, svg_text, html_text, None, text, outcome)
+        self.write(sink, json_text, svg_text, html_text, None, text, outcome)
     }
 
     fn run_program(
@@ -231,6 +236,7 @@ impl VerifyJob {
         spec: &crate::analysis::verify::VerifySpec,
         source: &crate::analysis::verify::ProgramSource,
         dialect: crate::gcode::Dialect,
+        sink: &mut Sink,
     ) -> Result<(String, Outcome), Error> {
         if spec.final_x.is_some() {
             return Err(Error::Input(
@@ -266,6 +272,7 @@ impl VerifyJob {
                         format!("a partial-profile insert with a {} mm tip", fmt_num(*tip_radius))
                     }
                     crate::analysis::verify::InsertChoice::File(p) => format!("the insert {}", p.display()),
+                    crate::analysis::verify::InsertChoice::Toml { name, .. } => format!("the insert {name}"),
                 };
                 Some((
                     default.clone(),
@@ -296,14 +303,16 @@ impl VerifyJob {
                         "--fix - and --json - both want stdout: write one to a file".into(),
                     ));
                 }
-                self.write(json_text, svg_text, html_text, None, program, outcome)
+                self.write(sink, json_text, svg_text, html_text, None, program, outcome)
             }
-            (_, fixed) => self.write(json_text, svg_text, html_text, fixed, report, outcome),
+            (_, fixed) => self.write(sink, json_text, svg_text, html_text, fixed, report, outcome),
         }
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn write(
         &self,
+        sink: &mut Sink,
         json_text: Option<String>,
         svg_text: Option<String>,
         html_text: Option<String>,
@@ -316,7 +325,7 @@ impl VerifyJob {
         let files = [(&self.svg, svg_text), (&self.html, html_text), (&fix_path, fixed)];
         let mut inputs = spec_inputs(&self.spec);
         inputs.extend(self.tools.iter().map(|t| std::path::PathBuf::from(&t.source)));
-        Ok((write_outputs(&inputs, &files, self.json.as_deref(), json_text, text)?, outcome))
+        Ok((write_outputs(sink, &inputs, &files, self.json.as_deref(), json_text, text)?, outcome))
     }
 }
 
@@ -339,10 +348,20 @@ fn fixed_program(
     crate::gcode::rewrite_words(text, shown, &edits)
 }
 
+/// Where a job's files go: to disk (the command line), or kept in memory by their names (the
+/// API and the Python package, which write nothing).
+pub(crate) enum Sink {
+    /// Written atomically, all or none.
+    Disk,
+    /// Kept: each output's path as the job was given it, and its bytes.
+    Memory(Vec<(std::path::PathBuf, Vec<u8>)>),
+}
+
 /// The one output step of the jobs, after everything is rendered: every picture, page and JSON
 /// file of the run written together, all or none (so a failure leaves no file half-done and
 /// every old output in place); the JSON routed as [`route_json`] does. Returns what to print.
 fn write_outputs(
+    sink: &mut Sink,
     inputs: &[std::path::PathBuf],
     files: &[(&Option<std::path::PathBuf>, Option<String>)],
     json: Option<&str>,
@@ -363,8 +382,13 @@ fn write_outputs(
         }
         _ => text,
     };
-    crate::report::output::refuse_inputs(&outputs, inputs)?;
-    crate::report::output::write_all_atomic(&outputs)?;
+    match sink {
+        Sink::Disk => {
+            crate::report::output::refuse_inputs(&outputs, inputs)?;
+            crate::report::output::write_all_atomic(&outputs)?;
+        }
+        Sink::Memory(kept) => kept.extend(outputs),
+    }
     Ok(shown)
 }
 
@@ -430,6 +454,11 @@ pub struct CorrectJob {
 impl CorrectJob {
     /// Runs the job: in tolerance passes, a needed correction is out of tolerance.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
+        self.run_to(&mut Sink::Disk)
+    }
+
+    /// Runs the job with its files going to `sink`.
+    pub(crate) fn run_to(&self, sink: &mut Sink) -> Result<(String, Outcome), Error> {
         let r = crate::analysis::correct::correct(&self.spec)?;
         let outcome = match r.verdict() {
             crate::analysis::check::Verdict::Pass => Outcome::Pass,
@@ -467,7 +496,7 @@ impl CorrectJob {
         let fix_path = self.fix.as_deref().filter(|f| *f != "-").map(std::path::PathBuf::from);
         let files = [(&self.html, html_text), (&fix_path, fixed)];
         let inputs = spec_inputs(&self.spec.verify);
-        Ok((write_outputs(&inputs, &files, self.json.as_deref(), json_text, text)?, outcome))
+        Ok((write_outputs(sink, &inputs, &files, self.json.as_deref(), json_text, text)?, outcome))
     }
 }
 
@@ -527,6 +556,11 @@ impl CapabilityJob {
     /// Runs the job: pass when the pitch diameter's Cpk reaches `CAPABLE_CPK`, 1.33 (or, without
     /// variation, when every sampled part passes).
     pub fn run(&self) -> Result<(String, Outcome), Error> {
+        self.run_to(&mut Sink::Disk)
+    }
+
+    /// Runs the job with its files going to `sink`.
+    pub(crate) fn run_to(&self, sink: &mut Sink) -> Result<(String, Outcome), Error> {
         let r = crate::analysis::capability::capability(&self.spec)?;
         let d2 = r.sizes.iter().find(|s| s.feature == crate::analysis::check::CheckFeature::PitchDiameter);
         let capable = match d2.and_then(|d| d.cpk) {
@@ -544,7 +578,7 @@ impl CapabilityJob {
         let text = crate::report::capability::capability_text(&r);
         let files = [(&self.svg, svg_text), (&self.html, html_text)];
         let inputs = spec_inputs(&self.spec.verify);
-        Ok((write_outputs(&inputs, &files, self.json.as_deref(), json_text, text)?, outcome))
+        Ok((write_outputs(sink, &inputs, &files, self.json.as_deref(), json_text, text)?, outcome))
     }
 }
 
@@ -562,6 +596,11 @@ pub struct FitJob {
 impl FitJob {
     /// Runs the job: exit 0 when the pair screws together, 1 when it does not.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
+        self.run_to(&mut Sink::Disk)
+    }
+
+    /// Runs the job with its files going to `sink`.
+    pub(crate) fn run_to(&self, sink: &mut Sink) -> Result<(String, Outcome), Error> {
         let r = crate::analysis::fit::fit(&self.spec)?;
         let outcome = if r.fits { Outcome::Pass } else { Outcome::OutOfTolerance };
         let json_text =
@@ -575,13 +614,14 @@ impl FitJob {
                 let insert = match &side.insert {
                     crate::analysis::verify::InsertChoice::File(p) => Some(p.clone()),
                     crate::analysis::verify::InsertChoice::Full
-                    | crate::analysis::verify::InsertChoice::Partial { .. } => None,
+                    | crate::analysis::verify::InsertChoice::Partial { .. }
+                    | crate::analysis::verify::InsertChoice::Toml { .. } => None,
                 };
                 program.into_iter().chain(insert)
             })
             .collect();
         Ok((
-            write_outputs(&inputs, &[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?,
+            write_outputs(sink, &inputs, &[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?,
             outcome,
         ))
     }
@@ -613,6 +653,7 @@ impl PassesJob {
     /// Runs the job: a program is read and expanded; a generated plan is laid out as `verify`
     /// would (solving the final X when it is not given).
     pub fn run(&self) -> Result<(String, Outcome), Error> {
+        self.spec.validate()?;
         let mut operations = None;
         let mut program_notes = None;
         let (thread, passes, header) = match (&self.spec.program, self.spec.designation.is_empty()) {
@@ -753,6 +794,11 @@ pub struct CompareJob {
 impl CompareJob {
     /// Runs the job.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
+        self.run_to(&mut Sink::Disk)
+    }
+
+    /// Runs the job with its files going to `sink`.
+    pub(crate) fn run_to(&self, sink: &mut Sink) -> Result<(String, Outcome), Error> {
         let spec = crate::analysis::verify::VerifySpec { picture: self.html.is_some(), ..self.spec.clone() };
         let c = crate::analysis::compare::compare(&spec, &self.modified, &self.choice)?;
         let md = self.markdown.as_ref().map(|_| crate::report::compare::markdown_report(&c));
@@ -762,6 +808,7 @@ impl CompareJob {
         let files = [(&self.markdown, md), (&self.html, html)];
         Ok((
             write_outputs(
+                sink,
                 &spec_inputs(&spec),
                 &files,
                 self.json.as_deref(),
@@ -945,6 +992,11 @@ pub struct MillJob {
 impl MillJob {
     /// Runs the job: pass when the gouge and the leftover are within the tolerance.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
+        self.run_to(&mut Sink::Disk)
+    }
+
+    /// Runs the job with its files going to `sink`.
+    pub(crate) fn run_to(&self, sink: &mut Sink) -> Result<(String, Outcome), Error> {
         let r = crate::analysis::mill::mill(&self.spec)?;
         let svg_text = self.svg.as_ref().map(|_| crate::report::svg::mill_svg(&r));
         let json_text = self.json.as_ref().map(|_| pretty(&r)).transpose()?;
@@ -959,7 +1011,7 @@ impl MillJob {
             std::path::PathBuf::from(&self.spec.target.source),
         ];
         Ok((
-            write_outputs(&inputs, &[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?,
+            write_outputs(sink, &inputs, &[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?,
             outcome,
         ))
     }

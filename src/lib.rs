@@ -58,6 +58,7 @@ mod geometry;
 mod ground;
 mod jobs;
 mod report;
+mod request;
 mod standards;
 
 // Ground: the error, the plane's value types.
@@ -113,6 +114,9 @@ pub use analysis::verify::{
     verify_program, InsertChoice, ProgramLabel, ProgramSource, ProgramVerification, Units, Verification,
     VerifySpec,
 };
+
+// The API's and the Python package's door: a command's arguments as one JSON object.
+pub use request::{run_request, Answer, Command, Document, Files};
 
 // The commands: one job per command, returning what the command prints.
 pub use jobs::{

@@ -64,7 +64,7 @@ def test_dicts_are_the_cli_json():
         cli = subprocess.run([binary, "verify", "--thread", "M20x1.5-6g", "--program", path, "--dialect", "fanuc",
                               "--insert", "full", "--json", "-"], capture_output=True, text=True)
         assert cli.returncode == 1, cli.stderr
-        py = threadcheck.verify("M20x1.5-6g", program=G76_M20, insert="full", program_name=path)
+        py = threadcheck.verify("M20x1.5-6g", program=G76_M20, insert="full", program_name=path, dialect="fanuc")
         assert py == json.loads(cli.stdout)
         cli = subprocess.run([binary, "limits", "M12x1.25-6H", "--json"], capture_output=True, text=True)
         assert cli.returncode == 0, cli.stderr
@@ -72,7 +72,7 @@ def test_dicts_are_the_cli_json():
         cli = subprocess.run([binary, "passes", "--program", path, "--dialect", "fanuc", "--json"],
                              capture_output=True, text=True)
         assert cli.returncode == 0, cli.stderr
-        assert threadcheck.passes(program=G76_M20, program_name=path) == json.loads(cli.stdout)
+        assert threadcheck.passes(program=G76_M20, program_name=path, dialect="fanuc") == json.loads(cli.stdout)
 
 
 def test_passes_of_a_plan_are_constant_area():

@@ -1,80 +1,214 @@
 """threadcheck: what thread a CNC lathe program will cut, and whether it meets its standard.
 
-Each function runs the same job as the command line and returns a plain dict identical to that
-command's JSON (``docs/json.md`` in the repository lists every key and its unit). Errors raise
-``ValueError`` with the command line's one-line message (``file:line:column`` for programs).
+Each function runs the same job as the command line, through the same door as the web API
+(``threadcheck serve``), and returns a plain dict identical to that command's JSON
+(``docs/json.md`` in the repository lists every key and its unit). Errors raise ``ValueError``
+with the command line's one-line message (``file:line:column`` for programs).
+
+Pictures and pages: ``svg=`` and ``html=`` take a path to write (all of a call's files are
+written together, or none); ``render(command, document, **arguments)`` returns a document as a
+string (``"svg"``, ``"html"``, ``"text"``, ``"fix"``: the corrected program).
 
 >>> import threadcheck
 >>> threadcheck.limits("M10x1.5-6g")["external"]["pitch_diameter"]["max"]
 8.994
 """
 
+from __future__ import annotations
+
 import json as _json
+import os as _os
+import tempfile as _tempfile
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 from . import _threadcheck
+from ._types import (
+    CapabilityReport,
+    CompareReport,
+    CorrectReport,
+    FitReport,
+    LimitsReport,
+    MillReport,
+    PassesReport,
+    VerifyReport,
+)
 
-__all__ = ["verify", "limits", "passes", "correct", "capability", "fit", "compare", "mill", "__version__"]
-__version__ = _threadcheck.__version__
+__all__ = [
+    "verify",
+    "limits",
+    "passes",
+    "correct",
+    "capability",
+    "fit",
+    "compare",
+    "mill",
+    "render",
+    "VerifyReport",
+    "LimitsReport",
+    "PassesReport",
+    "CorrectReport",
+    "CapabilityReport",
+    "FitReport",
+    "CompareReport",
+    "MillReport",
+    "__version__",
+]
+__version__: str = _threadcheck.__version__
+
+PathLike = Union[str, "_os.PathLike[str]"]
+Threads = Union[str, Sequence[str]]
 
 
-def verify(thread, program=None, dialect="fanuc", insert=None, final_x=None, internal=False,
-           infeed=None, passes=None, blank_diameter=None, gauge_only=False,
-           allow_nonstandard=False, program_name="<program>", default_units=None, main=None,
-           linuxcnc_release="current", coating=0.0):
-    """``threadcheck verify --json -``.
+def _arguments(values: Dict[str, Any]) -> str:
+    """The JSON object of a call's keyword arguments: ``None`` means not given."""
+    args: Dict[str, Any] = {}
+    for key, value in values.items():
+        if value is None:
+            continue
+        if key == "thread" and not isinstance(value, str):
+            value = list(value)
+        if isinstance(value, tuple):
+            value = list(value)
+        args[key] = value
+    # allow_nan=False: NaN and infinity are refused here with the key's name, as the CLI does.
+    try:
+        return _json.dumps(args, allow_nan=False)
+    except ValueError:
+        bad = [k for k, v in args.items() if isinstance(v, float) and v != v or v in (float("inf"), float("-inf"))]
+        raise ValueError(f"{', '.join(bad) or 'an argument'} is not a finite number") from None
 
-    ``thread`` is a designation with its class (``"M20x1.5-6g"``), or a list of them, one per
-    threading operation of ``program``. ``program`` is the program's text (not a path); without
-    it a plan is generated and ``final_x`` (or the solved middle of the tolerance) is verified.
-    ``insert`` is ``"full"``, ``"partial"``, ``"partial:R"`` or an insert file's path; without
-    it a program is verified with a partial insert and the report says so. ``infeed`` takes the
-    command line's words: ``"radial"``, ``"flank"``, ``"flank:27"``, ``"modified"`` (the default:
-    half the thread angle less 0.5°), ``"alternating"``, ``"alternating:ANGLE"``.
-    ``default_units`` (``"mm"``/``"inch"``) reads a program that sets no units as an inch or
-    metric control would; ``main`` (``"O3101"``) picks the main program of a text that holds
-    several O-programs (else the one no other calls, said in ``notes``).
-    ``linuxcnc_release`` (``"current"``/``"before-2.9"``) chooses the comparison rules of a
-    ``linuxcnc`` program: EQ, NE, LE, GE within 1e-6 from LinuxCNC 2.9.0 on, EQ and NE within
-    1e-4 and LE, GE exact before (Debian 12's package).
-    ``coating`` (mm) checks against the limits before a coat of that thickness.
-    The dict has ``verdict`` (``"pass"``/``"fail"``); a program's report has ``operations``.
-    """
-    threads = [thread] if isinstance(thread, str) else list(thread)
-    text, _passed = _threadcheck.job_json(
-        "verify", threads, program=program, dialect=dialect, insert=insert, final_x=final_x,
-        internal=internal, infeed=infeed, passes=passes, blank_diameter=blank_diameter,
-        gauge_only=gauge_only, allow_nonstandard=allow_nonstandard, program_name=program_name,
-        default_units=default_units, main=main, linuxcnc_release=linuxcnc_release,
-        coating=coating)
+
+def _run(command: str, document: str, values: Dict[str, Any]) -> Tuple[str, bool]:
+    text, passed = _threadcheck.run(command, document, _arguments(values))
+    return text, passed
+
+
+def _json_with_files(command: str, values: Dict[str, Any], files: Dict[str, Optional[PathLike]]) -> Any:
+    """The command's JSON; each document named in ``files`` rendered and written to its path,
+    all of them together once every one rendered (a failure writes none)."""
+    rendered: List[Tuple[str, str]] = []
+    for document, path in files.items():
+        if path is not None:
+            rendered.append((_os.fspath(path), _run(command, document, values)[0]))
+    text, _passed = _run(command, "json", values)
+    temporaries: List[Tuple[str, str]] = []
+    try:
+        for path, body in rendered:
+            folder = _os.path.dirname(_os.path.abspath(path))
+            fd, tmp = _tempfile.mkstemp(dir=folder, prefix=".threadcheck-")
+            temporaries.append((tmp, path))
+            with _os.fdopen(fd, "w", encoding="utf-8") as f:
+                f.write(body)
+        for tmp, path in temporaries:
+            _os.replace(tmp, path)
+    except OSError as e:
+        for tmp, _path in temporaries:
+            if _os.path.exists(tmp):
+                _os.remove(tmp)
+        raise ValueError(f"{e.filename or 'output'}: {e.strerror}") from None
     return _json.loads(text)
 
 
-def limits(designation, allow_nonstandard=False, coating=0.0):
+def render(command: str, document: str, **arguments: Any) -> str:
+    """A command's document as a string: ``render("verify", "svg", thread="M10x1.5-6g")``.
+
+    ``command`` is ``verify``, ``passes``, ``limits``, ``compare``, ``fit``, ``correct``,
+    ``capability`` or ``mill``; ``document`` is ``json``, ``text`` (what the command prints),
+    ``svg``, ``html`` or ``fix`` (the program with its correction written in; ``verify`` and
+    ``correct``); the arguments are the command's function's keyword arguments.
+    """
+    return _run(command, document, arguments)[0]
+
+
+def verify(thread: Threads, program: Optional[str] = None, dialect: Optional[str] = None,
+           insert: Optional[str] = None, final_x: Optional[float] = None, internal: bool = False,
+           infeed: Optional[str] = None, passes: Optional[int] = None,
+           blank_diameter: Optional[float] = None, gauge_only: bool = False,
+           allow_nonstandard: bool = False, program_name: Optional[str] = None,
+           default_units: Optional[str] = None, main: Optional[str] = None,
+           linuxcnc_release: Optional[str] = None, coating: Optional[float] = None,
+           insert_toml: Optional[str] = None, tools: Optional[str] = None,
+           schedule: Optional[str] = None, depths: Optional[Sequence[float]] = None,
+           first_depth: Optional[float] = None, min_depth: Optional[float] = None,
+           finish: Optional[float] = None, spring: Optional[int] = None,
+           taper: Optional[float] = None, chamfer: Optional[float] = None,
+           units: Optional[str] = None, machine: Optional[str] = None,
+           clearance_angle: Optional[float] = None, no_pass_metrics: bool = False,
+           svg: Optional[PathLike] = None, html: Optional[PathLike] = None,
+           fix: Optional[PathLike] = None) -> VerifyReport:
+    """``threadcheck verify --json -``.
+
+    ``thread`` is a designation with its class (``"M20x1.5-6g"``), or a list of them, one per
+    threading operation of ``program``. ``program`` is the program's **text** (a path is refused
+    by name); ``program_name`` is what messages call it and, by its extension, chooses the dialect
+    when ``dialect`` is not given (``.ngc`` linuxcnc, ``.mpf``/``.spf`` sinumerik, else fanuc,
+    stated in ``notes``). Without a program a plan is generated and ``final_x`` (or the solved
+    middle of the tolerance) is verified.
+    ``insert`` is ``"full"``, ``"partial"``, ``"partial:R"`` or an insert file's path;
+    ``insert_toml`` an insert file's text; ``tools`` a tool table's TOML text (T number to
+    insert); without them a program is verified with a partial insert and the report says so.
+    ``infeed`` takes the command line's words: ``"radial"``, ``"flank"``, ``"flank:27"``,
+    ``"modified"`` (the default: half the thread angle less 0.5°), ``"alternating"``,
+    ``"alternating:ANGLE"``; ``schedule`` ``"constant-area"``, ``"constant-depth"``,
+    ``"sandvik"``, or ``depths`` the cumulative radial depths, mm.
+    ``default_units`` (``"mm"``/``"inch"``) reads a program that sets no units as an inch or
+    metric control would; ``main`` (``"O3101"``) picks the main program of a text that holds
+    several O-programs. ``linuxcnc_release`` (``"current"``/``"before-2.9"``) chooses the
+    comparison rules of a ``linuxcnc`` program. ``coating`` (mm) checks against the limits
+    before a coat of that thickness. ``machine`` is a machine profile's TOML text (or
+    ``"training-lathe"``). ``svg``, ``html`` and ``fix`` write the picture, the page and the
+    corrected program to those paths.
+    The dict has ``verdict`` (``"pass"``/``"fail"``); a program's report has ``operations``,
+    each with ``suggested_final_x`` (the last pass's X for mid-tolerance d2, also when nothing
+    is cut) and ``correction`` (the program's own word) when d2 is off.
+    """
+    values = dict(locals())
+    files = {"svg": values.pop("svg"), "html": values.pop("html"), "fix": values.pop("fix")}
+    report: VerifyReport = _json_with_files("verify", values, files)
+    return report
+
+
+def limits(designation: str, allow_nonstandard: bool = False,
+           coating: Optional[float] = None) -> LimitsReport:
     """``threadcheck limits DESIGNATION --json``: basic sizes and limits of size, mm.
 
     ``coating`` (mm) gives the limits to cut to before a coat of that thickness.
     """
-    return _json.loads(_threadcheck.limits_json(designation, allow_nonstandard=allow_nonstandard,
-                                                coating=coating))
+    report: LimitsReport = _json.loads(_run("limits", "json", dict(locals()))[0])
+    return report
 
 
-def passes(thread=None, program=None, dialect="fanuc", insert=None, final_x=None, internal=False,
-           infeed=None, passes=None, blank_diameter=None, allow_nonstandard=False,
-           program_name="<program>", default_units=None, main=None, linuxcnc_release="current"):
-    """``threadcheck passes --json``: the passes of a generated plan or of a program's text."""
-    text, _ok = _threadcheck.job_json(
-        "passes", [] if thread is None else [thread], program=program, dialect=dialect,
-        insert=insert, final_x=final_x, internal=internal, infeed=infeed, passes=passes,
-        blank_diameter=blank_diameter, allow_nonstandard=allow_nonstandard,
-        program_name=program_name, default_units=default_units, main=main,
-        linuxcnc_release=linuxcnc_release)
-    return _json.loads(text)
+def passes(thread: Optional[Threads] = None, program: Optional[str] = None,
+           dialect: Optional[str] = None, insert: Optional[str] = None,
+           final_x: Optional[float] = None, internal: bool = False, infeed: Optional[str] = None,
+           passes: Optional[int] = None, blank_diameter: Optional[float] = None,
+           allow_nonstandard: bool = False, program_name: Optional[str] = None,
+           default_units: Optional[str] = None, main: Optional[str] = None,
+           linuxcnc_release: Optional[str] = None, insert_toml: Optional[str] = None,
+           schedule: Optional[str] = None, depths: Optional[Sequence[float]] = None,
+           first_depth: Optional[float] = None, min_depth: Optional[float] = None,
+           finish: Optional[float] = None, spring: Optional[int] = None,
+           taper: Optional[float] = None, chamfer: Optional[float] = None,
+           coating: Optional[float] = None) -> PassesReport:
+    """``threadcheck passes --json``: the passes of a generated plan or of a program's text.
+
+    The arguments are ``verify``'s; a program needs no thread.
+    """
+    report: PassesReport = _json.loads(_run("passes", "json", dict(locals()))[0])
+    return report
 
 
-def correct(thread, program=None, dialect="fanuc", insert=None, final_x=None, internal=False,
-            infeed=None, passes=None, blank_diameter=None, allow_nonstandard=False,
-            program_name="<program>", default_units=None, main=None, linuxcnc_release="current",
-            coating=0.0, measured_m=None, wire=None, measured_d2=None, gauge=None, pickup_z=None):
+def correct(thread: str, program: Optional[str] = None, dialect: Optional[str] = None,
+            insert: Optional[str] = None, final_x: Optional[float] = None,
+            internal: bool = False, infeed: Optional[str] = None, passes: Optional[int] = None,
+            blank_diameter: Optional[float] = None, allow_nonstandard: bool = False,
+            program_name: Optional[str] = None, default_units: Optional[str] = None,
+            main: Optional[str] = None, linuxcnc_release: Optional[str] = None,
+            coating: Optional[float] = None, measured_m: Optional[float] = None,
+            wire: Optional[float] = None, measured_d2: Optional[float] = None,
+            gauge: Optional[str] = None, pickup_z: Optional[float] = None,
+            insert_toml: Optional[str] = None, html: Optional[PathLike] = None,
+            fix: Optional[PathLike] = None) -> CorrectReport:
     """``threadcheck correct --json``: what was measured on the part, turned into the change.
 
     ``thread`` and the plan or ``program`` arguments are ``verify``'s. Give one measurement:
@@ -82,80 +216,90 @@ def correct(thread, program=None, dialect="fanuc", insert=None, final_x=None, in
     (mm), or ``gauge`` (``"go-fails"``, ``"nogo-enters"``, ``"ok"``); ``pickup_z`` (mm from the
     program's Z0) adds a pick-up's start angle and Z shift. The dict has ``verdict``
     (``"pass"`` in tolerance), ``measured``, ``delta_pitch_diameter``, ``suggested_final_x``,
-    ``correction`` (the program's word), ``wear_offset`` and ``pickup``.
+    ``correction`` (the program's word), ``wear_offset`` and ``pickup``. ``html`` and ``fix``
+    write the page and the corrected program.
     """
-    text, _ok = _threadcheck.job_json(
-        "correct", [thread], program=program, dialect=dialect, insert=insert, final_x=final_x,
-        internal=internal, infeed=infeed, passes=passes, blank_diameter=blank_diameter,
-        allow_nonstandard=allow_nonstandard, program_name=program_name,
-        default_units=default_units, main=main, linuxcnc_release=linuxcnc_release,
-        coating=coating, measured_m=measured_m, wire=wire, measured_d2=measured_d2, gauge=gauge,
-        pickup_z=pickup_z)
-    return _json.loads(text)
+    values = dict(locals())
+    files = {"html": values.pop("html"), "fix": values.pop("fix")}
+    report: CorrectReport = _json_with_files("correct", values, files)
+    return report
 
 
-def capability(thread, program=None, dialect="fanuc", insert=None, final_x=None, internal=False,
-               infeed=None, passes=None, blank_diameter=None, allow_nonstandard=False,
-               program_name="<program>", default_units=None, main=None,
-               linuxcnc_release="current", coating=0.0, x_sigma=0.0, tip_radius_tol=0.0,
-               wear_per_part=0.0, samples=10000, seed=1, gauge_only=False):
+def capability(thread: str, program: Optional[str] = None, dialect: Optional[str] = None,
+               insert: Optional[str] = None, final_x: Optional[float] = None,
+               internal: bool = False, infeed: Optional[str] = None,
+               passes: Optional[int] = None, blank_diameter: Optional[float] = None,
+               allow_nonstandard: bool = False, program_name: Optional[str] = None,
+               default_units: Optional[str] = None, main: Optional[str] = None,
+               linuxcnc_release: Optional[str] = None, coating: Optional[float] = None,
+               x_sigma: Optional[float] = None, tip_radius_tol: Optional[float] = None,
+               wear_per_part: Optional[float] = None, samples: Optional[int] = None,
+               seed: Optional[int] = None, gauge_only: bool = False,
+               insert_toml: Optional[str] = None, svg: Optional[PathLike] = None,
+               html: Optional[PathLike] = None) -> CapabilityReport:
     """``threadcheck capability --json``: a seeded Monte Carlo of the parts a program cuts.
 
     ``x_sigma`` is the X repeatability (one sigma on the diameter, mm), ``tip_radius_tol`` a
     partial insert's tip radius tolerance (± mm, uniform), ``wear_per_part`` the radial wear per
-    part (mm); ``gauge_only`` leaves form checks out of each part's verdict. The dict has ``sizes`` (mean, sigma, Cp, Cpk, ppm per checked size),
-    ``pass_share``, ``parts_per_edge``, ``best_final_x`` and the d2 ``histogram``.
+    part (mm), ``samples`` (10 000) and ``seed`` (1) the Monte Carlo's; ``gauge_only`` leaves
+    form checks out of each part's verdict. The dict has ``sizes`` (mean, sigma, Cp, Cpk, ppm
+    per checked size), ``pass_share``, ``parts_per_edge``, ``best_final_x`` and the d2
+    ``histogram``. ``svg`` and ``html`` write the histogram and the page.
     """
-    text, _ok = _threadcheck.job_json(
-        "capability", [thread], program=program, dialect=dialect, insert=insert, final_x=final_x,
-        internal=internal, infeed=infeed, passes=passes, blank_diameter=blank_diameter,
-        allow_nonstandard=allow_nonstandard, program_name=program_name,
-        default_units=default_units, main=main, linuxcnc_release=linuxcnc_release,
-        coating=coating, x_sigma=x_sigma, tip_radius_tol=tip_radius_tol,
-        wear_per_part=wear_per_part, samples=samples, seed=seed, gauge_only=gauge_only)
-    return _json.loads(text)
+    values = dict(locals())
+    files = {"svg": values.pop("svg"), "html": values.pop("html")}
+    report: CapabilityReport = _json_with_files("capability", values, files)
+    return report
 
 
-def fit(thread, bolt_program=None, bolt_dialect="fanuc", bolt_final_x=None, bolt_insert="partial",
-        nut_program=None, nut_dialect="fanuc", nut_final_x=None, nut_insert="partial",
-        allow_nonstandard=False):
+def fit(thread: str, bolt_program: Optional[str] = None, bolt_dialect: Optional[str] = None,
+        bolt_final_x: Optional[float] = None, bolt_insert: Optional[str] = None,
+        nut_program: Optional[str] = None, nut_dialect: Optional[str] = None,
+        nut_final_x: Optional[float] = None, nut_insert: Optional[str] = None,
+        allow_nonstandard: bool = False, svg: Optional[PathLike] = None) -> FitReport:
     """``threadcheck fit --json``: a bolt and a nut cut in the computer and assembled.
 
     ``thread`` is a fit designation (``"M10x1.5-6H/6g"``). Each side is a program's text
-    (``bolt_program``, ``nut_program``, with their dialects) or a plan (``bolt_final_x``,
-    ``nut_final_x``; default mid-tolerance); inserts as ``verify`` takes them. The dict has
-    ``verdict`` (``"fits"``/``"interferes"``), ``clearance_um`` and both sides' reports.
+    (``bolt_program``, ``nut_program``, with their dialects, default fanuc) or a plan
+    (``bolt_final_x``, ``nut_final_x``; default mid-tolerance); inserts as ``verify`` takes
+    them (default partial). The dict has ``verdict`` (``"fits"``/``"interferes"``),
+    ``clearance_um`` and both sides' reports. ``svg`` writes the pair's picture.
     """
-    text, _ok = _threadcheck.fit_json(
-        thread, allow_nonstandard=allow_nonstandard, bolt_program=bolt_program,
-        bolt_dialect=bolt_dialect, bolt_final_x=bolt_final_x, bolt_insert=bolt_insert,
-        nut_program=nut_program, nut_dialect=nut_dialect, nut_final_x=nut_final_x,
-        nut_insert=nut_insert)
-    return _json.loads(text)
+    values = dict(locals())
+    files = {"svg": values.pop("svg")}
+    report: FitReport = _json_with_files("fit", values, files)
+    return report
 
 
-def compare(thread, insert=None, final_x=None, internal=False, allow_nonstandard=False,
-            infeed=None, schedule=None, modified=None):
+def compare(thread: str, insert: Optional[str] = None, final_x: Optional[float] = None,
+            internal: bool = False, allow_nonstandard: bool = False,
+            infeed: Optional[str] = None, schedule: Optional[str] = None,
+            modified: Optional[Sequence[float]] = None, insert_toml: Optional[str] = None,
+            html: Optional[PathLike] = None) -> CompareReport:
     """``threadcheck compare --json``: the thread with every infeed strategy and schedule.
 
     ``infeed`` (``"radial"``, ``"flank:27"`` …) and ``schedule`` (``"constant-area"`` …)
     compare that one alone; ``modified`` lists the modified-flank angles (default half the
-    thread angle less 0.5° and 3°). The dict has ``strategies`` and ``recommended``.
+    thread angle less 0.5° and 3°). The dict has ``strategies`` and ``recommended``. ``html``
+    writes the page with every strategy's picture.
     """
-    return _json.loads(_threadcheck.compare_json(
-        thread, insert=insert, final_x=final_x, internal=internal,
-        allow_nonstandard=allow_nonstandard, infeed=infeed, schedule=schedule, modified=modified))
+    values = dict(locals())
+    files = {"html": values.pop("html")}
+    report: CompareReport = _json_with_files("compare", values, files)
+    return report
 
 
-def mill(program, target, tool_diameter, dialect="fanuc", tolerance=0.01, n_order=False,
-         program_name="<program>"):
+def mill(program: str, target: str, tool_diameter: float, dialect: Optional[str] = None,
+         tolerance: Optional[float] = None, n_order: bool = False,
+         program_name: Optional[str] = None, svg: Optional[PathLike] = None) -> MillReport:
     """``threadcheck mill --json``: a milling program's text against a target curve.
 
     ``target`` is the target's TOML text (``x``, ``y`` in ``t`` and ``z``, ``t``, ``material``,
-    optional ``z``), ``tool_diameter`` and ``tolerance`` in mm. The dict has ``verdict``,
-    ``gouge_max``, ``leftover_max`` and the levels.
+    optional ``z``), ``tool_diameter`` and ``tolerance`` (0.01) in mm. The dict has
+    ``verdict``, ``gouge_max``, ``leftover_max`` and the levels. ``svg`` writes the worst
+    level's picture.
     """
-    text, _ok = _threadcheck.mill_json(program, target, tool_diameter, dialect=dialect,
-                                       tolerance=tolerance, n_order=n_order,
-                                       program_name=program_name)
-    return _json.loads(text)
+    values = dict(locals())
+    files = {"svg": values.pop("svg")}
+    report: MillReport = _json_with_files("mill", values, files)
+    return report

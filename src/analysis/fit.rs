@@ -75,7 +75,9 @@ fn side(spec: &FitSpec, s: &FitSide, internal: bool) -> Result<Verification, Err
             }
             match pv.operations.into_iter().next().map(|o| o.result) {
                 Some(OperationResult::Verified(v)) => Ok(*v),
-                Some(OperationResult::NoCut { reason }) => Err(Error::Geometry(format!("{name}: {reason}"))),
+                Some(OperationResult::NoCut { reason, .. }) => {
+                    Err(Error::Geometry(format!("{name}: {reason}")))
+                }
                 None => Err(Error::Input(format!("{name} cuts no thread"))),
             }
         }

@@ -67,6 +67,15 @@ impl ToolTable {
         ToolTable::from_toml(&text, &shown, path.parent().unwrap_or(Path::new(".")))
     }
 
+    /// The first tool whose insert is a file, and how the table wrote it (a server reads no
+    /// file).
+    pub fn file_entry(&self) -> Option<(u32, &str)> {
+        self.tools.iter().find_map(|(t, (c, w))| match c {
+            InsertChoice::File(_) => Some((*t, w.as_str())),
+            InsertChoice::Full | InsertChoice::Partial { .. } | InsertChoice::Toml { .. } => None,
+        })
+    }
+
     /// The insert of tool `t` and how the table wrote it.
     pub fn insert(&self, t: u32) -> Option<&(InsertChoice, String)> {
         self.tools.get(&t)

@@ -25,6 +25,14 @@ pub enum InsertChoice {
     },
     /// A TOML insert file.
     File(PathBuf),
+    /// An insert file's TOML text (the API and the Python package, which read no file of the
+    /// server's); `name` stands for the file in messages.
+    Toml {
+        /// What messages call the insert.
+        name: String,
+        /// The insert's TOML.
+        text: String,
+    },
 }
 
 impl std::str::FromStr for InsertChoice {
@@ -143,6 +151,59 @@ pub enum Units {
 }
 
 impl VerifySpec {
+    /// The rules every door shares (the command line, the API, the Python package): numbers
+    /// finite, at least one pass, and a program or a final X, not both. The computation checks
+    /// the ranges that depend on the thread (a tip radius, a coating, a blank) where it resolves
+    /// it.
+    ///
+    /// ```
+    /// use threadcheck::VerifySpec;
+    /// let spec = VerifySpec { passes: Some(0), ..VerifySpec::new("M10x1.5-6g") };
+    /// assert_eq!(spec.validate().map_err(|e| e.to_string()), Err("passes 0: a thread needs at least one pass".into()));
+    /// ```
+    pub fn validate(&self) -> Result<(), Error> {
+        if self.passes == Some(0) {
+            return Err(Error::Input("passes 0: a thread needs at least one pass".into()));
+        }
+        let numbers = [
+            ("first_depth", self.first_depth),
+            ("min_depth", Some(self.min_depth)),
+            ("finish", Some(self.finish)),
+            ("taper", Some(self.taper)),
+            ("chamfer", Some(self.chamfer_leads)),
+            ("coating", Some(self.coating)),
+            ("final_x", self.final_x),
+            ("blank_diameter", self.blank_diameter),
+            ("clearance_angle", self.clearance_angle),
+        ];
+        for (name, v) in numbers {
+            if let Some(v) = v.filter(|v| !v.is_finite()) {
+                return Err(Error::Input(format!("{name} {v} is not a finite number")));
+            }
+        }
+        if let Schedule::Explicit(d) = &self.schedule {
+            if d.iter().any(|x| !x.is_finite()) {
+                return Err(Error::Input("depths: every depth must be a finite number".into()));
+            }
+        }
+        if self.program.is_some() && self.final_x.is_some() {
+            return Err(Error::Input(
+                "a final X and a program exclude each other: the program sets the passes".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The units a designation is reported in by default: inches beside the mm for the inch
+    /// forms (UN, Acme, NPT, BSW, BSP), else mm; a designation that does not parse gets mm (its
+    /// error is reported where it is resolved).
+    pub fn default_units(designation: &str, allow_nonstandard: bool) -> Units {
+        match parse_designation(designation, ParseOptions { allow_nonstandard }) {
+            Ok(d) if d.thread.form.is_inch() => Units::Inch,
+            _ => Units::Mm,
+        }
+    }
+
     /// A spec with the defaults for everything but the designation.
     pub fn new(designation: &str) -> VerifySpec {
         VerifySpec {
@@ -235,6 +296,9 @@ pub struct Verification {
     pub pass: bool,
     /// Final X that would put the pitch diameter mid-tolerance, when it is off, mm.
     pub suggested_final_x: Option<f64>,
+    /// Final X that puts the pitch diameter mid-tolerance, whether it is off or not (what a
+    /// post-processor emits), mm; `None` when no X helps (a start missing).
+    pub middle_final_x: Option<f64>,
     /// Form checks left out of the verdict.
     pub gauge_only: bool,
     /// Assumptions and warnings worth printing.
@@ -372,6 +436,15 @@ fn build_insert(choice: &InsertChoice, t: &BasicThread, kind: ThreadKind, tol: f
         InsertChoice::File(path) => {
             let text = crate::ground::input::read_text_bounded(path, MAX_DATA_FILE_BYTES, "an insert file")?;
             Insert::from_toml(&text, &path.display().to_string(), tol)?
+        }
+        InsertChoice::Toml { name, text } => {
+            if text.len() > MAX_DATA_FILE_BYTES {
+                return Err(Error::File {
+                    file: name.clone(),
+                    message: format!("an insert file is larger than {MAX_DATA_FILE_BYTES} bytes"),
+                });
+            }
+            Insert::from_toml(text, name, tol)?
         }
     };
     if let Some((lo, hi)) = ins.pitch_range {
@@ -712,6 +785,7 @@ pub fn coated(limits: ThreadLimits, t: &BasicThread, thickness: f64) -> Result<T
 
 /// Resolves a spec: designation, kind, limits, insert, blank and infeed.
 pub fn resolve(spec: &VerifySpec) -> Result<Resolved, Error> {
+    spec.validate()?;
     if !(spec.tolerance.is_finite()
         && spec.tolerance >= crate::ground::plane::MIN_TOLERANCE
         && spec.tolerance <= 0.01)
@@ -754,6 +828,7 @@ pub fn resolve(spec: &VerifySpec) -> Result<Resolved, Error> {
 /// # Ok::<(), threadcheck::Error>(())
 /// ```
 pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
+    spec.validate()?;
     if let Some((source, dialect)) = &spec.program {
         if spec.final_x.is_some() {
             return Err(Error::Input(
@@ -1028,6 +1103,7 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         checks: cs,
         pass,
         suggested_final_x: suggested,
+        middle_final_x: Some(final_x + delta),
         gauge_only: spec.gauge_only,
         notes,
         program: program_label,
@@ -1106,6 +1182,10 @@ pub enum OperationResult {
     NoCut {
         /// Why nothing could be measured.
         reason: String,
+        /// The last pass's X that cuts the thread mid-tolerance with this insert from this blank
+        /// (a generated plan's, solved as `verify` without a program solves it), mm; `None` when
+        /// that plan cannot be cut either.
+        suggested_final_x: Option<f64>,
     },
 }
 
@@ -1179,7 +1259,20 @@ pub fn verify_operation(
     }
     match verify_given(&r, op, label) {
         Ok(v) => Ok(OperationResult::Verified(Box::new(v))),
-        Err(Error::Geometry(m)) => Ok(OperationResult::NoCut { reason: m }),
+        Err(Error::Geometry(m)) => {
+            let plan = VerifySpec {
+                program: None,
+                final_x: None,
+                blank_diameter: Some(r.blank),
+                metrics: false,
+                picture: false,
+                machine: None,
+                designation: r.designation.text.clone(),
+                ..spec.clone()
+            };
+            let suggested_final_x = verify(&plan).ok().map(|v| v.final_x);
+            Ok(OperationResult::NoCut { reason: m, suggested_final_x })
+        }
         Err(e) => Err(e),
     }
 }
@@ -1319,6 +1412,7 @@ fn verify_given(
         v.correction = None;
         v.depth = None;
         v.suggested_final_x = None;
+        v.middle_final_x = None;
         v.notes.push(crate::ground::note::Note::from(format!(
             "no correction is offered while the starts are wrong: {}",
             starts.note.as_deref().unwrap_or_default()
@@ -1451,7 +1545,7 @@ impl Recut {
     pub(crate) fn tip_radius(&self) -> Option<f64> {
         match self.r.spec.insert {
             InsertChoice::Partial { tip_radius } => Some(tip_radius),
-            InsertChoice::Full | InsertChoice::File(_) => None,
+            InsertChoice::Full | InsertChoice::File(_) | InsertChoice::Toml { .. } => None,
         }
     }
 

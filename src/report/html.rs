@@ -215,8 +215,11 @@ pub fn program_html(pv: &ProgramVerification) -> String {
             OperationResult::Verified(v) => {
                 body.push_str(&verification_body(v, &crate::report::svg::verify_svg(v), 3))
             }
-            OperationResult::NoCut { reason } => {
+            OperationResult::NoCut { reason, suggested_final_x } => {
                 let _ = writeln!(body, "<p class=\"verdict out\">OUT OF TOLERANCE: {}</p>", esc(reason));
+                if let Some(next) = crate::report::no_cut_next(*suggested_final_x) {
+                    let _ = writeln!(body, "<p class=\"next\">next: {}</p>", esc(&next));
+                }
             }
         }
     }

@@ -200,7 +200,8 @@ pub struct VerifyReport<'a> {
     pub helix_angle: f64,
     /// Process figures of a program's operation.
     pub process: Option<&'a crate::analysis::process::ProcessReport>,
-    /// The X for mid-tolerance d2, mm.
+    /// The last pass's X for mid-tolerance d2, mm, whether d2 is off or not (null only when no
+    /// X helps: a start missing).
     pub suggested_final_x: Option<f64>,
     /// A program lead that matches the designation's only after rounding, and its effect.
     pub lead_deviation: Option<&'a crate::analysis::lead::LeadDeviation>,
@@ -283,7 +284,7 @@ impl<'a> VerifyReport<'a> {
             gauge_only: v.gauge_only,
             helix_angle: v.helix_angle,
             process: v.process.as_ref(),
-            suggested_final_x: v.suggested_final_x,
+            suggested_final_x: v.middle_final_x,
             notes: &v.notes,
             deviation: v.picture.as_ref().map(|p| &p.deviation),
         }
@@ -709,9 +710,19 @@ pub enum OperationReport<'a> {
         verdict: Verdict,
         /// Why.
         reason: &'a str,
+        /// The last pass's X that cuts the thread mid-tolerance with this insert from this
+        /// blank, mm (null when no plan can).
+        suggested_final_x: Option<f64>,
         /// The operation.
         operation: OperationInfo<'a>,
     },
+}
+
+/// The next step of an operation that cuts nothing: the final X that would.
+pub(crate) fn no_cut_next(suggested_final_x: Option<f64>) -> Option<String> {
+    suggested_final_x.map(|x| {
+        format!("a last pass at X{x:.4} (diameter, mm) cuts this thread mid-tolerance with this insert")
+    })
 }
 
 /// `verify --program --json`: the program, its verdict (the worst of its operations) and every
@@ -746,18 +757,21 @@ impl<'a> ProgramReport<'a> {
                     crate::analysis::verify::OperationResult::Verified(v) => {
                         OperationReport::Verified { report: Box::new(VerifyReport::of(v)), operation }
                     }
-                    crate::analysis::verify::OperationResult::NoCut { reason } => OperationReport::NoCut {
-                        thread: DesignationOnly { designation: &o.designation },
-                        checks: [NoCutCheck {
-                            feature: "cut",
-                            kind: crate::analysis::check::CheckKind::Size,
-                            ok: false,
-                            note: reason,
-                        }],
-                        verdict: Verdict::Fail,
-                        reason,
-                        operation,
-                    },
+                    crate::analysis::verify::OperationResult::NoCut { reason, suggested_final_x } => {
+                        OperationReport::NoCut {
+                            suggested_final_x: *suggested_final_x,
+                            thread: DesignationOnly { designation: &o.designation },
+                            checks: [NoCutCheck {
+                                feature: "cut",
+                                kind: crate::analysis::check::CheckKind::Size,
+                                ok: false,
+                                note: reason,
+                            }],
+                            verdict: Verdict::Fail,
+                            reason,
+                            operation,
+                        }
+                    }
                 }
             })
             .collect();
@@ -806,9 +820,12 @@ pub fn program_text(pv: &crate::analysis::verify::ProgramVerification) -> String
         );
         match &o.result {
             crate::analysis::verify::OperationResult::Verified(v) => s.push_str(&verify_text(v)),
-            crate::analysis::verify::OperationResult::NoCut { reason } => {
+            crate::analysis::verify::OperationResult::NoCut { reason, suggested_final_x } => {
                 let _ =
                     writeln!(s, "{}: nothing to measure\n\nverdict: FAIL (no cut: {reason})", o.designation);
+                if let Some(next) = no_cut_next(*suggested_final_x) {
+                    let _ = writeln!(s, "next: {next}");
+                }
                 for note in &op.notes {
                     let _ = writeln!(s, "note: {note}");
                 }

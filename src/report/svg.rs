@@ -763,8 +763,11 @@ pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String 
                 }
                 w
             }
-            crate::analysis::verify::OperationResult::NoCut { reason } => {
-                format!("OUT OF TOLERANCE: {reason}")
+            crate::analysis::verify::OperationResult::NoCut { reason, suggested_final_x } => {
+                match super::no_cut_next(*suggested_final_x) {
+                    Some(next) => format!("OUT OF TOLERANCE: {reason} · next: {next}"),
+                    None => format!("OUT OF TOLERANCE: {reason}"),
+                }
             }
         };
         let line = format!(
@@ -805,9 +808,12 @@ pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String 
                 g = g.add(vg.set("transform", "translate(0,34)"));
                 34.0 + height
             }
-            crate::analysis::verify::OperationResult::NoCut { reason } => {
-                for (i, l) in
-                    wrap(&format!("OUT OF TOLERANCE ({}): {reason}", o.designation), 100).iter().enumerate()
+            crate::analysis::verify::OperationResult::NoCut { reason, suggested_final_x } => {
+                let next =
+                    super::no_cut_next(*suggested_final_x).map_or(String::new(), |n| format!(" · next: {n}"));
+                for (i, l) in wrap(&format!("OUT OF TOLERANCE ({}): {reason}{next}", o.designation), 100)
+                    .iter()
+                    .enumerate()
                 {
                     g = g.add(
                         text(20.0, 64.0 + 20.0 * i as f64, 16.0, l.clone())
