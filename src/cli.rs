@@ -149,6 +149,9 @@ enum Command {
     /// A milling program's cutter swept along each Z level and measured against a target curve:
     /// gouge and material left.
     Mill(MillArgs),
+    /// The shop's page and the JSON API on this computer: open the address it prints in a
+    /// browser (verify, compare, fit, limits); scripts POST to /api/verify and the like.
+    Serve(ServeArgs),
     /// Print the expanded pass plan.
     Passes {
         #[command(flatten)]
@@ -377,6 +380,25 @@ struct CorrectArgs {
 }
 
 #[derive(Args)]
+struct ServeArgs {
+    /// The address to listen on; anything but loopback lets other machines in (said at start).
+    #[arg(long, default_value = "127.0.0.1")]
+    bind: std::net::IpAddr,
+    /// The port (0: any free one, printed at start).
+    #[arg(long, default_value_t = 8080)]
+    port: u16,
+    /// Requests computed at once (default twice the cores); others wait, then get 503.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    max_in_flight: Option<u32>,
+    /// Seconds a request waits for its turn before it is answered 503 (0: at once).
+    #[arg(long, value_name = "SECONDS", default_value_t = 5.0, value_parser = queue_seconds)]
+    queue_wait: f64,
+    /// Seconds one request may compute before it is answered 503.
+    #[arg(long, value_name = "SECONDS", default_value_t = 30, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    time_budget: u64,
+}
+
+#[derive(Args)]
 struct MillArgs {
     /// The milling program.
     #[arg(long, value_name = "FILE")]
@@ -493,6 +515,14 @@ struct PlanArgs {
     /// Debian 12's linuxcnc-uspace package does)
     #[arg(long, value_name = "current|before-2.9", requires = "program", default_value = "current")]
     linuxcnc_release: threadcheck::LinuxCncRelease,
+}
+
+/// Seconds to wait, from 0 to an hour.
+fn queue_seconds(s: &str) -> Result<f64, String> {
+    match finite(s)? {
+        v if (0.0..=3600.0).contains(&v) => Ok(v),
+        _ => Err("from 0 to 3600 seconds".into()),
+    }
 }
 
 /// `O3101` or `3101`: an O-program's number.
@@ -741,6 +771,22 @@ impl Cli {
                     tolerance: m.tolerance,
                 };
                 done(MillJob { spec, svg: m.svg, json: m.json.json }.run()?)
+            }
+            Command::Serve(a) => {
+                let mut options =
+                    threadcheck::ServeOptions { bind: a.bind, port: a.port, ..Default::default() };
+                if let Some(n) = a.max_in_flight {
+                    options.max_in_flight = n as usize;
+                }
+                options.time_budget = std::time::Duration::from_secs(a.time_budget);
+                options.queue_wait = std::time::Duration::from_secs_f64(a.queue_wait);
+                threadcheck::serve(options, |line| {
+                    use std::io::Write;
+                    let mut out = std::io::stdout().lock();
+                    let _ = writeln!(out, "{line}");
+                    let _ = out.flush();
+                })?;
+                done((String::new(), Outcome::Pass))
             }
             Command::Report { name, out } => match name {
                 ReportName::InfeedComparison => {

@@ -59,6 +59,7 @@ mod ground;
 mod jobs;
 mod report;
 mod request;
+mod serve;
 mod standards;
 
 // Ground: the error, the plane's value types.
@@ -117,6 +118,7 @@ pub use analysis::verify::{
 
 // The API's and the Python package's door: a command's arguments as one JSON object.
 pub use request::{run_request, Answer, Command, Document, Files};
+pub use serve::{router, serve, ServeOptions};
 
 // The commands: one job per command, returning what the command prints.
 pub use jobs::{

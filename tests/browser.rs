@@ -428,3 +428,151 @@ fn html_reports_of_programs_and_comparisons() {
     let size = std::fs::metadata(dir.join("d.html")).unwrap().len();
     assert!(size < 300_000, "the default comparison's page is {size} bytes");
 }
+
+/// A PNG file's pixels.
+fn read_png(path: &Path) -> Shot {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let ch = match info.color_type {
+        png::ColorType::Rgba => 4,
+        png::ColorType::Rgb => 3,
+        other => panic!("unexpected PNG colour type {other:?}"),
+    };
+    let rgb = buf[..info.buffer_size()].chunks(ch).map(|c| [c[0], c[1], c[2]]).collect();
+    Shot { w: info.width as usize, h: info.height as usize, rgb, log: String::new() }
+}
+
+/// Node and playwright-core (tests/page's lock file), or a failure that says how to get them.
+fn playwright() -> PathBuf {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/page");
+    let node = std::process::Command::new("node").arg("--version").output();
+    assert!(
+        node.is_ok_and(|o| o.status.success()),
+        "Node.js is not installed: the page tests need it (apt-get install nodejs npm; tests/install-and-test.sh installs it)"
+    );
+    assert!(
+        dir.join("node_modules/playwright-core/package.json").is_file(),
+        "playwright-core is not installed in tests/page: run `npm ci` there (tests/install-and-test.sh does)"
+    );
+    dir.join("page.mjs")
+}
+
+/// Issue 30: the page as a machinist uses it, in Chromium: paste a program, choose the thread
+/// and the insert, verify, read the verdict and the correction, download the corrected program
+/// and the report; upload a LinuxCNC file; a bad designation; compare, fit and limits. The page
+/// shows what the command line says for the same input, the pictures load inside the window,
+/// nothing is wider than the window, and the console stays empty.
+#[test]
+fn page_in_chromium() {
+    let script = playwright();
+    let chromium = chromium();
+    let server = crate::serve::start(&[]);
+    let out = tempdir("page");
+    let program = data("programs/fanuc-g76-timing.nc");
+    let upload = data("programs/linuxcnc-g76.ngc");
+    let o = std::process::Command::new("node")
+        .arg(&script)
+        .arg(&server.url)
+        .arg(&out)
+        .arg(&chromium)
+        .arg(&program)
+        .arg(&upload)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "the page script failed: {}", String::from_utf8_lossy(&o.stderr));
+    let seen: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    // The one message: the browser's own line for the bad designation's 400 answer.
+    assert_eq!(
+        seen["console"],
+        serde_json::json!([
+            "bad-designation: error: Failed to load resource: the server responded with a status of 400 (Bad Request)"
+        ]),
+        "console messages"
+    );
+    assert_eq!(seen["title"], "threadcheck");
+
+    // The verdict and the correction, as the CLI gives them for the same program and insert.
+    let p = program.to_str().unwrap();
+    let cli = run(&["verify", "--thread", "M20x1.5-6g", "--insert", "full", "--program", p, "--json", "-"]);
+    let v: serde_json::Value = serde_json::from_slice(&cli.stdout).unwrap();
+    let correction = v["operations"][0]["correction"]["text"].as_str().unwrap().replace(p, "<program>");
+    assert_eq!(seen["verdict"], "OUT OF TOLERANCE");
+    assert_eq!(seen["correction"].as_str().unwrap(), format!("Next: {correction}"));
+    // The G76 sheet's result: d2 19.066 against 6g's 18.994, 72.0 µm over.
+    let d2 = seen["checks"].as_array().unwrap().iter().find(|r| r[0] == "pitch diameter").unwrap();
+    assert_eq!(d2[2], "19.0660");
+    assert_eq!(d2[5], "72.0 µm");
+    // Every pass shows its program line: G76 X18.2 (the two-block G76's second block).
+    let passes = seen["passes"].as_array().unwrap();
+    assert_eq!(passes.len(), v["operations"][0]["passes"].as_array().unwrap().len());
+    assert!(passes.iter().all(|r| r[5] == "6" && r[6] == "G76 X18.2 Z-20. P900 Q450 F1.5"), "{passes:?}");
+
+    // Downloads: the corrected program is `verify --fix -`; the report is `--html`'s page.
+    let fixed = run(&["verify", "--thread", "M20x1.5-6g", "--insert", "full", "--program", p, "--fix", "-"]);
+    let got = std::fs::read(seen["fixed.nc"]["path"].as_str().unwrap()).unwrap();
+    let expected = String::from_utf8(fixed.stdout).unwrap().replace(p, "<program>");
+    assert_eq!(String::from_utf8(got).unwrap(), expected);
+    assert_eq!(seen["fixed.nc"]["suggested"], "program-fixed.nc");
+    let report = std::fs::read_to_string(seen["report.html"]["path"].as_str().unwrap()).unwrap();
+    assert!(report.starts_with("<!DOCTYPE html>") && report.contains("<svg"), "{}", &report[..200]);
+    let json: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(seen["report.json"]["path"].as_str().unwrap()).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(json["verdict"], "fail");
+
+    // The uploaded .ngc is read as LinuxCNC because of its name, and the page says so.
+    assert!(
+        seen["upload_heading"].as_str().unwrap().starts_with("Operation 1: G76 at line 6"),
+        "{}",
+        seen["upload_heading"]
+    );
+    let notes = seen["upload_notes"].as_array().unwrap();
+    assert!(notes.iter().any(|n| n.as_str().unwrap().contains("linuxcnc")), "{notes:?}");
+
+    // A bad designation: the CLI's line.
+    let bad = run(&["verify", "--thread", "M20x1.5-6q"]);
+    let line = stderr(&bad).trim().strip_prefix("threadcheck: error: ").unwrap().to_string();
+    assert_eq!(seen["error"].as_str().unwrap(), line);
+
+    // Compare: one row per strategy of `compare --json`; fit: the CLI's verdict; limits: ISO 965-2.
+    let c = run(&["compare", "--thread", "M10x1.5-6g", "--json", "-"]);
+    let c: serde_json::Value = serde_json::from_slice(&c.stdout).unwrap();
+    assert_eq!(seen["compare_rows"].as_u64().unwrap() as usize, c["strategies"].as_array().unwrap().len());
+    assert!(seen["compare_recommended"].as_str().unwrap().starts_with("Recommended: "));
+    assert!(seen["fit"].as_str().unwrap().starts_with("FITS: clearance"), "{}", seen["fit"]);
+    let limits = seen["limits"].as_array().unwrap();
+    let d2 = limits.iter().find(|r| r[1] == "pitch diameter").unwrap();
+    assert_eq!((d2[2].as_str().unwrap(), d2[3].as_str().unwrap()), ("8.8620", "8.9940"));
+
+    // Layout: nothing wider than the window, every picture loaded and inside it.
+    for (name, l) in seen["layout"].as_object().unwrap() {
+        assert!(
+            l["scroll_width"].as_f64() <= l["viewport_width"].as_f64(),
+            "{name}: wider than the window: {l}"
+        );
+        for pic in l["pictures"].as_array().unwrap() {
+            assert_eq!(pic["loaded"], true, "{name}: {pic}");
+            assert!(
+                pic["left"].as_f64().unwrap() >= 0.0 && pic["right"].as_f64() <= l["viewport_width"].as_f64(),
+                "{name}: {pic}"
+            );
+            assert!(pic["height"].as_f64().unwrap() > 200.0, "{name}: {pic}");
+        }
+    }
+    // The screenshots: the red verdict banner and the picture's tolerance zone are on screen.
+    let shot = read_png(Path::new(seen["shots"]["verify"].as_str().unwrap()));
+    let near = |p: [u8; 3], q: [u8; 3]| p.iter().zip(q).all(|(a, b)| a.abs_diff(b) <= 3);
+    let banner = (0..shot.h.min(1200))
+        .flat_map(|y| (0..shot.w).map(move |x| (x, y)))
+        .filter(|&(x, y)| near(shot.at(x, y), [0xfd, 0xe7, 0xe7]))
+        .count();
+    assert!(banner > 5000, "no red verdict banner in the verify screenshot ({banner} pixels)");
+    let zone = shot.rgb.iter().filter(|&&p| zone_over_material(p) || zone_over_air(p)).count();
+    assert!(zone > 500, "no tolerance zone in the verify screenshot ({zone} pixels)");
+    let fit = read_png(Path::new(seen["shots"]["fit"].as_str().unwrap()));
+    let green = fit.rgb.iter().filter(|&&p| near(p, [0xe3, 0xf4, 0xe8])).count();
+    assert!(green > 5000, "no green FITS banner in the fit screenshot ({green} pixels)");
+}

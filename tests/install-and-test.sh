@@ -8,6 +8,9 @@
 #   chromium          the browser tests (tests/browser.rs) open the pictures and the HTML report
 #   linuxcnc-uspace   its rs274, LinuxCNC's own interpreter, which the conformance test
 #                     (tests/linuxcnc.rs) runs side by side with threadcheck
+#   nodejs, npm       run tests/page/page.mjs, which drives `threadcheck serve`'s page in
+#                     Chromium through playwright-core (from the npm registry, pinned by
+#                     tests/page/package-lock.json; it uses the system Chromium, downloads none)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 sudo_=""
@@ -21,8 +24,11 @@ install() {
 command -v chromium >/dev/null 2>&1 || install chromium
 # About 180 MB and half a minute to three minutes of dpkg: the interpreter alone is needed.
 command -v rs274 >/dev/null 2>&1 || install --no-install-recommends linuxcnc-uspace
+command -v npm >/dev/null 2>&1 || install --no-install-recommends nodejs npm
 chromium --version
 command -v rs274
+node --version
+(cd tests/page && npm ci --no-audit --no-fund --loglevel=error)
 # --no-fail-fast: a failing test binary does not hide the results of the others (the doc tests
 # run last).
 cargo test --release --locked --no-fail-fast "$@"

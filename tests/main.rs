@@ -19,6 +19,7 @@ mod process;
 mod programs;
 mod properties;
 mod regressions;
+pub mod serve;
 mod shop;
 mod sweep;
 mod util;

@@ -1,0 +1,322 @@
+// threadcheck's page: forms to the JSON API (/api/...), answers shown as tables and pictures.
+// Text from a program or an answer is always set as text, never as markup.
+"use strict";
+
+const $ = (id) => document.getElementById(id);
+
+/** POSTs `args` to /api/`path`; the answer's text, or an Error with the server's one line. */
+async function api(path, args) {
+  const r = await fetch("/api/" + path, {
+    method: "POST",
+    headers: { "Content-Type": "application/json" },
+    body: JSON.stringify(args),
+  });
+  const text = await r.text();
+  if (!r.ok) {
+    let message = text;
+    try { message = JSON.parse(text).error; } catch (_) { /* not JSON: the text itself */ }
+    throw new Error(message);
+  }
+  return text;
+}
+
+function show(id, on) { $(id).hidden = !on; }
+
+function fail(id, err) {
+  $(id).textContent = err.message;
+  show(id, true);
+}
+
+/** A table from a header row and body rows; each cell is text, or [text, class]. */
+function table(el, head, rows) {
+  el.replaceChildren();
+  const thead = el.createTHead().insertRow();
+  for (const h of head) {
+    const th = document.createElement("th");
+    th.textContent = h;
+    thead.appendChild(th);
+  }
+  const body = el.createTBody();
+  for (const row of rows) {
+    const tr = body.insertRow();
+    for (const cell of row) {
+      const td = tr.insertCell();
+      if (Array.isArray(cell)) { td.textContent = cell[0]; td.className = cell[1]; } else { td.textContent = cell; }
+    }
+  }
+  return el;
+}
+
+function fmt(x, digits) {
+  return x === null || x === undefined ? "—" : Number(x).toFixed(digits);
+}
+
+function download(name, type, text) {
+  const a = document.createElement("a");
+  a.href = URL.createObjectURL(new Blob([text], { type }));
+  a.download = name;
+  document.body.appendChild(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(a.href), 10000);
+}
+
+async function svgInto(img, path, args) {
+  const svg = await api(path, args);
+  if (img.dataset.url) URL.revokeObjectURL(img.dataset.url);
+  img.dataset.url = URL.createObjectURL(new Blob([svg], { type: "image/svg+xml" }));
+  img.src = img.dataset.url;
+}
+
+// ---- tabs
+for (const tab of document.querySelectorAll("[role=tab]")) {
+  tab.addEventListener("click", () => {
+    for (const t of document.querySelectorAll("[role=tab]")) {
+      const on = t === tab;
+      t.setAttribute("aria-selected", String(on));
+      $(t.getAttribute("aria-controls")).hidden = !on;
+    }
+  });
+}
+
+// ---- verify
+const state = { programName: "", files: { insert: null, tools: null }, lastArgs: null, lastJson: null };
+
+async function readFile(input) {
+  const f = input.files && input.files[0];
+  return f ? { name: f.name, text: await f.text() } : null;
+}
+
+$("program-file").addEventListener("change", async () => {
+  const f = await readFile($("program-file"));
+  if (f) {
+    $("program").value = f.text;
+    state.programName = f.name;
+  }
+});
+$("program").addEventListener("input", () => { if (!$("program").value) state.programName = ""; });
+$("insert").addEventListener("change", () => {
+  $("tip-radius-label").hidden = $("insert").value !== "partial-r";
+  $("insert-file-label").hidden = $("insert").value !== "file";
+});
+$("insert-file").addEventListener("change", async () => { state.files.insert = await readFile($("insert-file")); });
+$("tools-file").addEventListener("change", async () => { state.files.tools = await readFile($("tools-file")); });
+
+function verifyArgs() {
+  const args = {};
+  const threads = $("thread").value.split(",").map((s) => s.trim()).filter((s) => s);
+  args.thread = threads.length === 1 ? threads[0] : threads;
+  if ($("internal").checked) args.internal = true;
+  const program = $("program").value;
+  if (program.trim()) {
+    args.program = program;
+    args.program_name = state.programName || "<program>";
+    if ($("dialect").value) args.dialect = $("dialect").value;
+    if (state.files.tools) args.tools = state.files.tools.text;
+  } else if ($("final-x").value !== "") {
+    args.final_x = Number($("final-x").value);
+  }
+  switch ($("insert").value) {
+    case "full": args.insert = "full"; break;
+    case "partial-r": args.insert = "partial:" + $("tip-radius").value; break;
+    case "file":
+      if (!state.files.insert) throw new Error("choose the insert file (TOML)");
+      args.insert_toml = state.files.insert.text;
+      break;
+    default: if (!args.tools) args.insert = "partial";
+  }
+  const coating = Number($("coating").value || 0);
+  if (coating) args.coating = coating;
+  return args;
+}
+
+function operationBlock(op, title, programLines) {
+  const div = document.createElement("div");
+  div.className = "operation";
+  const h = document.createElement("h2");
+  h.textContent = title;
+  div.appendChild(h);
+  const line = (cls, text) => {
+    const p = document.createElement("p");
+    p.className = cls;
+    p.textContent = text;
+    div.appendChild(p);
+  };
+  const pass = op.verdict === "pass";
+  line("verdict-small " + (pass ? "ok" : "out"), pass ? "IN TOLERANCE" : "OUT OF TOLERANCE");
+  if (op.reason) line("reason", "Nothing is cut: " + op.reason);
+  if (op.correction) line("correction", "Next: " + op.correction.text);
+  if (!pass && op.suggested_final_x !== null && op.suggested_final_x !== undefined && !op.correction) {
+    line("correction", "Next: a last pass at X" + fmt(op.suggested_final_x, 4) + " puts d2 mid-tolerance");
+  }
+  for (const hint of op.hints || []) line("hint", "Hint: " + (hint.text || hint.message || JSON.stringify(hint)));
+  if (op.checks) {
+    const rows = op.checks.map((c) => [
+      c.feature.replaceAll("_", " "),
+      c.kind,
+      fmt(c.value, 4),
+      fmt(c.min, 4),
+      fmt(c.max, 4),
+      c.ok ? ["ok", "ok"] : [fmt(c.deviation_um, 1) + " µm", "out"],
+      c.note || "",
+    ]);
+    const t = table(document.createElement("table"), ["check", "kind", "value", "min", "max", "result", "note"], rows);
+    t.className = "checks";
+    div.appendChild(t);
+  }
+  if (op.passes && op.passes.length) {
+    const rows = op.passes.map((p) => [
+      String(p.index),
+      String((p.start || 0) + 1),
+      fmt(p.x, 4),
+      fmt(p.z, 4),
+      fmt(p.depth, 4),
+      p.source_line ? String(p.source_line) : "—",
+      p.source_line && programLines ? (programLines[p.source_line - 1] || "").trim() : "",
+    ]);
+    const t = table(document.createElement("table"), ["pass", "start", "X", "Z", "depth", "line", "program"], rows);
+    t.className = "passes";
+    div.appendChild(t);
+  }
+  return div;
+}
+
+$("verify-form").addEventListener("submit", async (ev) => {
+  ev.preventDefault();
+  show("verify-error", false);
+  $("verify-button").disabled = true;
+  try {
+    const args = verifyArgs();
+    const json = await api("verify", args);
+    const report = JSON.parse(json);
+    state.lastArgs = args;
+    state.lastJson = json;
+    const pass = report.verdict === "pass";
+    $("verdict").textContent = pass ? "IN TOLERANCE: every check passes" : "OUT OF TOLERANCE";
+    $("verdict").className = "verdict " + (pass ? "ok" : "out");
+    const ops = $("operations");
+    ops.replaceChildren();
+    const lines = args.program ? args.program.split(/\r?\n/) : null;
+    if (report.operations) {
+      for (const op of report.operations) {
+        const o = op.operation;
+        ops.appendChild(operationBlock(op, `Operation ${o.index}: ${o.cycle} at line ${o.source_line}`, lines));
+      }
+    } else {
+      ops.appendChild(operationBlock(report, `${report.thread.designation}: a generated plan`, null));
+    }
+    const notes = report.notes || [];
+    if (notes.length) {
+      const ul = document.createElement("ul");
+      ul.className = "notes";
+      for (const n of notes) {
+        const li = document.createElement("li");
+        li.textContent = typeof n === "string" ? n : JSON.stringify(n);
+        ul.appendChild(li);
+      }
+      ops.appendChild(ul);
+    }
+    const fixable = (report.operations || []).some((o) => o.correction && o.correction.editable);
+    $("download-fixed").hidden = !fixable;
+    show("verify-result", true);
+    await svgInto($("picture"), "verify/svg", args);
+    // How many answers the result shows (a test waits for the next one).
+    $("verify-result").dataset.run = String(Number($("verify-result").dataset.run || 0) + 1);
+  } catch (err) {
+    fail("verify-error", err);
+  } finally {
+    $("verify-button").disabled = false;
+  }
+});
+
+function fixedName() {
+  const name = state.programName || "program.nc";
+  const dot = name.lastIndexOf(".");
+  return dot > 0 ? name.slice(0, dot) + "-fixed" + name.slice(dot) : name + "-fixed";
+}
+
+$("download-fixed").addEventListener("click", async () => {
+  try { download(fixedName(), "text/plain", await api("verify/fix", state.lastArgs)); } catch (err) { fail("verify-error", err); }
+});
+$("download-html").addEventListener("click", async () => {
+  try { download("threadcheck-report.html", "text/html", await api("verify/html", state.lastArgs)); } catch (err) { fail("verify-error", err); }
+});
+$("download-json").addEventListener("click", () => download("threadcheck-report.json", "application/json", state.lastJson));
+
+// ---- compare
+function compareArgs() {
+  return { thread: $("compare-thread").value.trim(), insert: $("compare-insert").value };
+}
+
+$("compare-form").addEventListener("submit", async (ev) => {
+  ev.preventDefault();
+  show("compare-error", false);
+  try {
+    const c = JSON.parse(await api("compare", compareArgs()));
+    const rows = c.strategies.map((s) => [
+      s.infeed,
+      s.schedule,
+      String(s.passes),
+      fmt(s.chip_first, 3),
+      fmt(s.chip_max, 3),
+      fmt(100 * s.trailing_share, 0) + " %",
+      fmt(s.pitch_diameter, 4),
+      s.pass ? ["in tolerance", "ok"] : [(s.failed || []).join(", ").replaceAll("_", " "), "out"],
+    ]);
+    table($("compare-table"), ["infeed", "schedule", "passes", "first chip mm²", "largest chip mm²", "trailing edge", "d2", "result"], rows);
+    const r = c.recommended;
+    $("compare-recommended").textContent = r
+      ? `Recommended: ${r.infeed}, ${r.schedule} (${r.grounds.join(", ").replaceAll("-", " ")})` +
+        (r.any_in_tolerance === false ? "; none is in tolerance with this insert" : "")
+      : "No strategy is recommended";
+    $("compare-recommended").className = "verdict " + (r && r.any_in_tolerance !== false ? "ok" : "neutral");
+    show("compare-result", true);
+  } catch (err) {
+    fail("compare-error", err);
+  }
+});
+$("compare-download-html").addEventListener("click", async () => {
+  try { download("threadcheck-compare.html", "text/html", await api("compare/html", compareArgs())); } catch (err) { fail("compare-error", err); }
+});
+
+// ---- fit
+$("fit-form").addEventListener("submit", async (ev) => {
+  ev.preventDefault();
+  show("fit-error", false);
+  try {
+    const args = { thread: $("fit-thread").value.trim() };
+    if ($("fit-bolt-x").value !== "") args.bolt_final_x = Number($("fit-bolt-x").value);
+    if ($("fit-nut-x").value !== "") args.nut_final_x = Number($("fit-nut-x").value);
+    const f = JSON.parse(await api("fit", args));
+    const fits = f.verdict === "fits";
+    $("fit-verdict").textContent = (fits ? "FITS" : "INTERFERES") + `: clearance ${fmt(f.clearance_um, 1)} µm on the flanks`;
+    $("fit-verdict").className = "verdict " + (fits ? "ok" : "out");
+    show("fit-result", true);
+    await svgInto($("fit-picture"), "fit/svg", args);
+  } catch (err) {
+    fail("fit-error", err);
+  }
+});
+
+// ---- limits
+$("limits-form").addEventListener("submit", async (ev) => {
+  ev.preventDefault();
+  show("limits-error", false);
+  try {
+    const l = JSON.parse(await api("limits", { thread: $("limits-thread").value.trim() }));
+    const rows = [];
+    for (const side of ["external", "internal"]) {
+      const s = l[side];
+      if (!s) continue;
+      for (const [k, v] of Object.entries(s)) {
+        if (v && typeof v === "object" && "max" in v) {
+          rows.push([side + " " + s.class, k.replaceAll("_", " "), fmt(v.min, 4), fmt(v.max, 4)]);
+        }
+      }
+    }
+    table($("limits-table"), ["thread", "size", "min, mm", "max, mm"], rows);
+    show("limits-table", true);
+  } catch (err) {
+    fail("limits-error", err);
+  }
+});

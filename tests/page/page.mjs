@@ -1,0 +1,128 @@
+// Drives threadcheck serve's page in Debian's Chromium as a machinist would, through
+// playwright-core (no bundled browser): paste a program, choose the thread and the insert, click
+// Verify, read the verdict and the correction, download the corrected program and the report;
+// upload a file; a bad designation; the compare, fit and limits tabs. Screenshots go to OUT.
+// Prints one JSON object of what it saw; tests/page.rs checks it.
+//
+// usage: node page.mjs URL OUT CHROMIUM PROGRAM_FILE UPLOAD_FILE
+import { chromium } from "playwright-core";
+import { readFileSync } from "node:fs";
+import { join } from "node:path";
+
+const [url, out, executablePath, programFile, uploadFile] = process.argv.slice(2);
+const seen = { console: [], shots: {}, layout: {} };
+let step = "load"; // which step a console message came in
+
+const browser = await chromium.launch({ executablePath, headless: true, args: ["--no-sandbox", "--disable-gpu"] });
+try {
+  const context = await browser.newContext({ viewport: { width: 1280, height: 900 }, acceptDownloads: true });
+  const page = await context.newPage();
+  page.on("console", (m) => seen.console.push(`${step}: ${m.type()}: ${m.text()}`));
+  page.on("pageerror", (e) => seen.console.push(`${step}: uncaught: ${e.message}`));
+  page.on("requestfailed", (r) => seen.console.push(`${step}: request failed: ${r.url()}`));
+
+  // What a screenshot should show: nothing wider than the window, every picture loaded and
+  // inside it.
+  const layout = (name) => page.evaluate((name) => {
+    const vw = document.documentElement.clientWidth;
+    const pics = [...document.querySelectorAll("img")].filter((i) => i.offsetParent !== null);
+    return {
+      name,
+      scroll_width: document.documentElement.scrollWidth,
+      viewport_width: vw,
+      pictures: pics.map((i) => {
+        const r = i.getBoundingClientRect();
+        return { id: i.id, loaded: i.complete && i.naturalWidth > 0, left: r.left, right: r.right, width: r.width, height: r.height };
+      }),
+    };
+  }, name);
+  const shot = async (name) => {
+    const path = join(out, name + ".png");
+    await page.screenshot({ path, fullPage: true });
+    seen.shots[name] = path;
+    seen.layout[name] = await layout(name);
+  };
+  const pictureLoaded = (id) => page.waitForFunction((id) => {
+    const i = document.getElementById(id);
+    return i && i.complete && i.naturalWidth > 0;
+  }, id);
+
+  await page.goto(url);
+  seen.title = await page.title();
+
+  step = "verify";
+  // 1. Paste a program, choose the thread and the insert, verify.
+  await page.fill("#program", readFileSync(programFile, "utf8"));
+  await page.fill("#thread", "M20x1.5-6g");
+  await page.selectOption("#insert", "full");
+  await page.click("#verify-button");
+  await page.waitForSelector("#verify-result:not([hidden])");
+  await pictureLoaded("picture");
+  seen.verdict = await page.textContent("#verdict");
+  seen.correction = await page.textContent(".operation .correction");
+  seen.checks = await page.$$eval("table.checks tr", (rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
+  seen.passes = await page.$$eval("table.passes tbody tr", (rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
+  await shot("verify");
+
+  step = "downloads";
+  // 2. Downloads: the corrected program and the HTML report.
+  for (const [button, file] of [["#download-fixed", "fixed.nc"], ["#download-html", "report.html"], ["#download-json", "report.json"]]) {
+    const [download] = await Promise.all([page.waitForEvent("download"), page.click(button)]);
+    const path = join(out, file);
+    await download.saveAs(path);
+    seen[file] = { path, suggested: download.suggestedFilename() };
+  }
+
+  step = "upload";
+  // 3. Upload a LinuxCNC file: the dialect follows its name.
+  await page.setInputFiles("#program-file", uploadFile);
+  await page.waitForFunction(() => document.getElementById("program").value.includes("G76"));
+  await page.fill("#thread", "1/4-20 UNC-2A");
+  await page.selectOption("#insert", "partial");
+  await page.click("#verify-button");
+  await page.waitForFunction(() => document.getElementById("verify-result").dataset.run === "2");
+  seen.upload_notes = await page.$$eval(".notes li", (l) => l.map((x) => x.textContent));
+  seen.upload_heading = await page.textContent(".operation h2");
+
+  step = "bad-designation";
+  // 4. A designation that does not exist: one line, the CLI's.
+  await page.fill("#thread", "M20x1.5-6q");
+  await page.click("#verify-button");
+  await page.waitForSelector("#verify-error:not([hidden])");
+  seen.error = await page.textContent("#verify-error");
+
+  step = "compare";
+  // 5. Compare.
+  await page.click("#tab-compare");
+  await page.click("#compare-button");
+  await page.waitForSelector("#compare-result:not([hidden])");
+  seen.compare_rows = await page.$$eval("#compare-table tbody tr", (rows) => rows.length);
+  seen.compare_recommended = await page.textContent("#compare-recommended");
+  await shot("compare");
+
+  step = "fit";
+  // 6. Fit.
+  await page.click("#tab-fit");
+  await page.click("#fit-button");
+  await page.waitForSelector("#fit-result:not([hidden])");
+  await pictureLoaded("fit-picture");
+  seen.fit = await page.textContent("#fit-verdict");
+  await shot("fit");
+
+  step = "limits";
+  // 7. Limits.
+  await page.click("#tab-limits");
+  await page.click("#limits-button");
+  await page.waitForSelector("#limits-table:not([hidden])");
+  seen.limits = await page.$$eval("#limits-table tbody tr", (rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
+  await shot("limits");
+
+  step = "narrow";
+  // 8. A narrow window (a tablet at the machine): the verify page still fits.
+  await page.setViewportSize({ width: 800, height: 900 });
+  await page.click("#tab-verify");
+  await shot("verify-narrow");
+} finally {
+  await browser.close();
+}
+process.stdout.write(JSON.stringify(seen));

@@ -1,0 +1,322 @@
+//! Issue 30: `threadcheck serve`, the JSON API against the command line, its bounds and its
+//! errors, over real HTTP on loopback (the page itself is driven in Chromium by
+//! `browser::page_in_chromium`).
+
+use crate::*;
+use std::io::{BufRead, BufReader};
+use std::process::{Child, Stdio};
+
+/// A running `threadcheck serve` on a free loopback port, stopped when dropped.
+pub struct Server {
+    child: Child,
+    /// `http://127.0.0.1:PORT/`.
+    pub url: String,
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Starts the server with `extra` options and reads its start-up line for the address.
+pub fn start(extra: &[&str]) -> Server {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_threadcheck"))
+        .args(["serve", "--port", "0"])
+        .args(extra)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().unwrap()).read_line(&mut line).unwrap();
+    let url = line
+        .split_whitespace()
+        .find(|w| w.starts_with("http://"))
+        .unwrap_or_else(|| panic!("no address in the start-up line: {line:?}"))
+        .to_string();
+    assert!(line.contains("loopback"), "{line}");
+    Server { child, url }
+}
+
+/// POSTs `body` to `path`: the status, the outcome header and the body.
+pub fn post(url: &str, path: &str, body: &str) -> (u16, Option<String>, String) {
+    let agent: ureq::Agent = ureq::Agent::config_builder().http_status_as_error(false).build().into();
+    let mut r = agent.post(&format!("{url}{path}")).content_type("application/json").send(body).unwrap();
+    let outcome = r.headers().get("x-threadcheck-outcome").map(|v| v.to_str().unwrap().to_string());
+    let status = r.status().as_u16();
+    let text = r.body_mut().with_config().limit(64 << 20).read_to_string().unwrap();
+    (status, outcome, text)
+}
+
+/// POSTs a body of `len` bytes to `api/verify`: the server answers 413 from the declared length
+/// before taking the body (and closes), so the answer is read before any of it is sent, which
+/// keeps the exchange free of races; the body follows only if no answer came.
+fn post_big(url: &str, len: usize) -> (u16, Option<String>, String) {
+    use std::io::{Read, Write};
+    let addr = url.trim_start_matches("http://").trim_end_matches('/');
+    let mut tcp = std::net::TcpStream::connect(addr).unwrap();
+    let head = format!(
+        "POST /api/verify HTTP/1.1\r\nHost: {addr}\r\nContent-Type: application/json\r\nContent-Length: {len}\r\nConnection: close\r\n\r\n"
+    );
+    tcp.write_all(head.as_bytes()).unwrap();
+    tcp.set_read_timeout(Some(std::time::Duration::from_secs(10))).unwrap();
+    // Read until the answer's head and its declared body are in (the server may keep the
+    // connection open).
+    let mut answer = Vec::new();
+    let mut buf = [0u8; 4096];
+    loop {
+        let text = String::from_utf8_lossy(&answer).into_owned();
+        if let Some(at) = text.find("\r\n\r\n") {
+            let declared = text[..at]
+                .lines()
+                .find_map(|l| {
+                    l.to_ascii_lowercase().strip_prefix("content-length:").map(|v| v.trim().to_string())
+                })
+                .and_then(|v| v.parse::<usize>().ok())
+                .unwrap_or(0);
+            if answer.len() >= at + 4 + declared {
+                break;
+            }
+        }
+        match tcp.read(&mut buf) {
+            Ok(0) | Err(_) => break,
+            Ok(n) => answer.extend_from_slice(&buf[..n]),
+        }
+    }
+    if answer.is_empty() {
+        let chunk = vec![b' '; 1 << 20];
+        for _ in 0..len >> 20 {
+            if tcp.write_all(&chunk).is_err() {
+                break;
+            }
+        }
+        let _ = tcp.read_to_end(&mut answer);
+    }
+    let answer = String::from_utf8_lossy(&answer).into_owned();
+    let status = answer.split_whitespace().nth(1).and_then(|c| c.parse().ok()).unwrap_or(0);
+    let body = answer.split("\r\n\r\n").nth(1).unwrap_or_default().to_string();
+    (status, None, body)
+}
+
+fn get(url: &str, path: &str) -> (u16, String) {
+    let agent: ureq::Agent = ureq::Agent::config_builder().http_status_as_error(false).build().into();
+    let mut r = agent.get(&format!("{url}{path}")).call().unwrap();
+    (r.status().as_u16(), r.body_mut().read_to_string().unwrap())
+}
+
+/// The JSON arguments of a program: its text and the name the CLI is given.
+fn program_args(path: &std::path::Path, extra: &str) -> String {
+    let text = std::fs::read_to_string(path).unwrap();
+    format!(
+        "{{\"program\": {}, \"program_name\": {}{extra}}}",
+        serde_json::to_string(&text).unwrap(),
+        serde_json::to_string(&path.display().to_string()).unwrap()
+    )
+}
+
+/// An error answer: its status, and a JSON object whose `error` is one line.
+fn assert_error(answer: &(u16, Option<String>, String), status: u16, contains: &str) {
+    assert_eq!(answer.0, status, "{}", answer.2);
+    let v: serde_json::Value = serde_json::from_str(&answer.2).unwrap();
+    let e = v["error"].as_str().unwrap();
+    assert!(!e.contains('\n') && e.contains(contains), "{e}");
+    assert_eq!(v["status"], status);
+}
+
+/// The API answers with the bytes `--json -` prints for the same input, for every command, and
+/// its outcome header is the exit code's.
+#[test]
+fn api_json_is_byte_identical_to_the_cli() {
+    let s = start(&[]);
+    let g76 = data("programs/fanuc-g76-timing.nc");
+    let p = g76.to_str().unwrap();
+    let cases: Vec<(&str, String, Vec<&str>)> = vec![
+        (
+            "verify",
+            program_args(&g76, r#", "thread": "M20x1.5-6g", "insert": "full", "dialect": "fanuc""#),
+            vec![
+                "verify",
+                "--thread",
+                "M20x1.5-6g",
+                "--insert",
+                "full",
+                "--program",
+                p,
+                "--dialect",
+                "fanuc",
+            ],
+        ),
+        (
+            "verify",
+            r#"{"thread": "M10x1.5-6g", "final_x": 8.2, "insert": "full"}"#.into(),
+            vec!["verify", "--thread", "M10x1.5-6g", "--final-x", "8.2", "--insert", "full"],
+        ),
+        ("passes", program_args(&g76, ""), vec!["passes", "--program", p]),
+        ("limits", r#"{"thread": "1/4-20 UNC-2A"}"#.into(), vec!["limits", "1/4-20 UNC-2A"]),
+        ("compare", r#"{"thread": "M10x1.5-6g"}"#.into(), vec!["compare", "--thread", "M10x1.5-6g"]),
+        ("fit", r#"{"thread": "M10x1.5-6H/6g"}"#.into(), vec!["fit", "--thread", "M10x1.5-6H/6g"]),
+        (
+            "correct",
+            r#"{"thread": "M10x1.5-6g", "measured_d2": 8.85}"#.into(),
+            vec!["correct", "--thread", "M10x1.5-6g", "--measured-d2", "8.85"],
+        ),
+        (
+            "capability",
+            r#"{"thread": "M10x1.5-6g", "x_sigma": 0.01, "samples": 300}"#.into(),
+            vec!["capability", "--thread", "M10x1.5-6g", "--x-sigma", "0.01", "--samples", "300"],
+        ),
+    ];
+    for (command, body, mut args) in cases {
+        args.extend(["--json", "-"]);
+        let cli = run(&args);
+        let code = cli.status.code().unwrap();
+        assert!(code < 2, "{}", stderr(&cli));
+        let (status, outcome, text) = post(&s.url, &format!("api/{command}"), &body);
+        assert_eq!(status, 200, "{command}: {text}");
+        assert_eq!(text.as_bytes(), &cli.stdout[..], "{command}: the API's JSON is not the CLI's");
+        assert_eq!(
+            outcome.as_deref(),
+            Some(if code == 0 { "pass" } else { "out-of-tolerance" }),
+            "{command}"
+        );
+    }
+}
+
+/// The page, its documents and the corrected program: `/api/verify/fix` is `verify --fix -`, and
+/// the SVG and HTML are what `--svg` and `--html` write.
+#[test]
+fn api_documents_are_the_cli_files() {
+    let s = start(&[]);
+    let g76 = data("programs/fanuc-g76-timing.nc");
+    let p = g76.to_str().unwrap();
+    let body = program_args(&g76, r#", "thread": "M20x1.5-6g", "insert": "full""#);
+    let fixed = run(&["verify", "--thread", "M20x1.5-6g", "--insert", "full", "--program", p, "--fix", "-"]);
+    let (status, _, text) = post(&s.url, "api/verify/fix", &body);
+    assert_eq!(status, 200, "{text}");
+    assert_eq!(text.as_bytes(), &fixed.stdout[..]);
+    // The G76 sheet: X18.2 cuts d2 72 µm over 6g; the fix moves that X and nothing else.
+    assert!(text.contains("G76 X18.058 Z-20. P900 Q450 F1.5"), "{text}");
+    let dir = tempdir("serve-docs");
+    let svg = dir.join("v.svg");
+    let html = dir.join("v.html");
+    let o = run(&[
+        "verify",
+        "--thread",
+        "M20x1.5-6g",
+        "--insert",
+        "full",
+        "--program",
+        p,
+        "--svg",
+        svg.to_str().unwrap(),
+        "--html",
+        html.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    for (doc, file) in [("svg", &svg), ("html", &html)] {
+        let (status, _, text) = post(&s.url, &format!("api/verify/{doc}"), &body);
+        assert_eq!(status, 200);
+        assert_eq!(text, std::fs::read_to_string(file).unwrap(), "{doc}");
+    }
+    let (status, page) = get(&s.url, "");
+    assert_eq!(status, 200);
+    assert!(page.contains("<title>threadcheck</title>") && page.contains("/app.js"));
+    let (status, index) = get(&s.url, "api");
+    assert_eq!(status, 200);
+    let v: serde_json::Value = serde_json::from_str(&index).unwrap();
+    let names: Vec<&str> =
+        v["commands"].as_array().unwrap().iter().map(|c| c["command"].as_str().unwrap()).collect();
+    assert_eq!(names, ["verify", "passes", "limits", "compare", "fit", "correct", "capability", "mill"]);
+}
+
+/// Bad input: a 20 MB body 413, malformed JSON 400, an unknown key 400, a file of the server's
+/// 400, an unknown command 404, the CLI's message for a bad designation: each one JSON line.
+#[test]
+fn api_errors_are_one_json_line_with_their_status() {
+    let s = start(&[]);
+    assert_error(&post_big(&s.url, 20 << 20), 413, "larger than 8388608 bytes");
+    assert_error(&post(&s.url, "api/verify", "{\"thread\": "), 400, "not a JSON object");
+    assert_error(&post(&s.url, "api/verify", "[1]"), 400, "JSON object of keyword arguments");
+    assert_error(
+        &post(&s.url, "api/verify", r#"{"thread": "M10x1.5-6g", "wire": 1}"#),
+        400,
+        "verify takes no argument 'wire'",
+    );
+    assert_error(&post(&s.url, "api/verify", r#"{"thread": 10}"#), 400, "thread must be a designation");
+    assert_error(
+        &post(&s.url, "api/verify", r#"{"thread": "M10x1.5-6g", "insert": "/etc/passwd"}"#),
+        400,
+        "the server reads none",
+    );
+    assert_error(
+        &post(
+            &s.url,
+            "api/verify",
+            r#"{"thread": "M10x1.5-6g", "program": "G0 X1\n", "tools": "[tools]\n1 = \"/etc/passwd\"\n"}"#,
+        ),
+        400,
+        "names an insert file",
+    );
+    assert_error(&post(&s.url, "api/shutdown", "{}"), 404, "unknown command 'shutdown'");
+    assert_error(
+        &post(&s.url, "api/limits/svg", r#"{"thread": "M10x1.5-6g"}"#),
+        400,
+        "limits gives no svg document",
+    );
+    let cli = run(&["verify", "--thread", "M10x1.5-6q"]);
+    let line = stderr(&cli).trim().strip_prefix("threadcheck: error: ").unwrap().to_string();
+    assert_error(&post(&s.url, "api/verify", r#"{"thread": "M10x1.5-6q"}"#), 400, &line);
+    // A program's place, its control characters escaped.
+    let answer = post(
+        &s.url,
+        "api/verify",
+        "{\"thread\": \"M10x1.5-6g\", \"program\": \"G76.1 X\\u001b[31m\\n\", \"program_name\": \"p.nc\"}",
+    );
+    assert_error(&answer, 400, "p.nc:1:");
+    assert!(!answer.2.contains('\u{1b}'), "{}", answer.2);
+}
+
+/// Overload: with one request computed at once and no queue, a second request while a slow one
+/// runs gets 503 and the slow one still gets its answer; a request past the time budget gets
+/// 503; the server answers afterwards.
+#[test]
+fn overload_gives_503_and_loses_no_answer() {
+    let s = start(&["--max-in-flight", "1", "--queue-wait", "0", "--time-budget", "60"]);
+    // 500 000 Monte Carlo parts at some 20 µs each: seconds of work on any core count here.
+    let slow = r#"{"thread": "M10x1.5-6g", "x_sigma": 0.01, "samples": 500000}"#;
+    let url = s.url.clone();
+    let first = std::thread::spawn(move || post(&url, "api/capability", slow));
+    // Until the slow one holds the permit, a quick request may still get through.
+    let mut busy = None;
+    for _ in 0..200 {
+        let a = post(&s.url, "api/limits", r#"{"thread": "M10x1.5-6g"}"#);
+        if a.0 == 503 {
+            busy = Some(a);
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    let busy = busy.expect("no 503 while the slow request ran");
+    assert_error(&busy, 503, "busy: 1 requests are being computed");
+    let (status, outcome, body) = first.join().unwrap();
+    assert_eq!(status, 200, "{body}");
+    assert!(outcome.is_some());
+    let v: serde_json::Value = serde_json::from_str(&body).unwrap();
+    assert_eq!(v["samples"], 500000);
+    assert_eq!(post(&s.url, "api/limits", r#"{"thread": "M10x1.5-6g"}"#).0, 200);
+
+    let s = start(&["--time-budget", "1"]);
+    assert_error(&post(&s.url, "api/capability", slow), 503, "time budget of 1 s");
+}
+
+/// `--bind` other than loopback is said at start; a bad port is a usage error.
+#[test]
+fn serve_options_are_checked() {
+    let o = run(&["serve", "--max-in-flight", "0"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(stderr(&o).lines().count(), 1, "{}", stderr(&o));
+    let o = run(&["serve", "--port", "70000"]);
+    assert_eq!(o.status.code(), Some(2));
+}
