@@ -194,6 +194,11 @@ $("verify-form").addEventListener("submit", async (ev) => {
     const pass = report.verdict === "pass";
     $("verdict").textContent = pass ? "IN TOLERANCE: every check passes" : "OUT OF TOLERANCE";
     $("verdict").className = "verdict " + (pass ? "ok" : "out");
+    const nexts = (report.operations || [report])
+      .filter((o) => o.correction)
+      .map((o) => o.correction.text);
+    $("next").textContent = "Next: " + nexts.join("; ");
+    $("next").hidden = nexts.length === 0;
     const ops = $("operations");
     ops.replaceChildren();
     const lines = args.program ? args.program.split(/\r?\n/) : null;

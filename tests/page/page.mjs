@@ -63,6 +63,10 @@ try {
   seen.checks = await page.$$eval("table.checks tr", (rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
   seen.passes = await page.$$eval("table.passes tbody tr", (rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
   await shot("verify");
+  // The window as the machinist sees it (the README's picture, reports/serve-page.png).
+  await page.evaluate(() => document.getElementById("verdict").scrollIntoView());
+  await page.evaluate(() => window.scrollBy(0, -40));
+  await page.screenshot({ path: join(out, "verify-window.png") });
 
   step = "downloads";
   // 2. Downloads: the corrected program and the HTML report.
