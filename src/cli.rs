@@ -515,6 +515,10 @@ struct PlanArgs {
     /// Debian 12's linuxcnc-uspace package does)
     #[arg(long, value_name = "current|before-2.9", requires = "program", default_value = "current")]
     linuxcnc_release: threadcheck::LinuxCncRelease,
+    /// The G-code system a Fanuc lathe control is set to: a (G92 threading cycle, the default),
+    /// b (G78 threading cycle, G92 coordinates) or c (G21 threading cycle, G78 multiple cycle)
+    #[arg(long, value_name = "a|b|c", requires = "program", default_value = "a")]
+    gcode_system: threadcheck::GCodeSystem,
 }
 
 /// Seconds to wait, from 0 to an hour.
@@ -587,6 +591,7 @@ impl PlanArgs {
         s.reading.default_units = self.default_units;
         s.reading.main = self.main;
         s.reading.linuxcnc = self.linuxcnc_release;
+        s.reading.gcode_system = self.gcode_system;
         Ok(s)
     }
 

@@ -93,6 +93,7 @@ impl Command {
             "default_units",
             "main",
             "linuxcnc_release",
+            "gcode_system",
         ];
         let own: &[&str] = match self {
             Command::Verify => &["tools", "machine", "clearance_angle", "gauge_only", "no_pass_metrics"],
@@ -689,7 +690,7 @@ impl Args {
             s.program = Some((ProgramSource::text(name, text), dialect));
             s.reading.dialect_from = from;
         } else {
-            for key in ["dialect", "default_units", "main", "program_name"] {
+            for key in ["dialect", "default_units", "main", "program_name", "gcode_system"] {
                 if self.has(key) {
                     return Err(Error::Input(format!(
                         "{key} describes a program: give the program's text too"
@@ -709,6 +710,9 @@ impl Args {
             .transpose()?;
         if let Some(r) = self.text("linuxcnc_release")? {
             s.reading.linuxcnc = r.parse()?;
+        }
+        if let Some(g) = self.text("gcode_system")? {
+            s.reading.gcode_system = g.parse()?;
         }
         s.validate()?;
         Ok(s)

@@ -8,6 +8,7 @@
 mod bad_inputs;
 mod browser;
 mod closing;
+mod controls;
 mod forms;
 mod gcode;
 mod infeed_comparison;

@@ -1,9 +1,10 @@
-//! Any bytes, read as a program in every dialect: an error or passes, never a panic or a hang.
+//! Any bytes, read as a program in every dialect (and Fanuc's G-code systems B and C): an error
+//! or passes, never a panic or a hang.
 //! A small execution budget keeps runaway loops quick under the sanitizer; the full bounds of
 //! `limits.rs` are the same code with larger numbers.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use threadcheck::{read_program_with, Budget, Dialect, ReadOptions};
+use threadcheck::{read_program_with, Budget, Dialect, GCodeSystem, ReadOptions};
 
 fuzz_target!(|data: &[u8]| {
     if let Ok(text) = std::str::from_utf8(data) {
@@ -13,6 +14,9 @@ fuzz_target!(|data: &[u8]| {
         };
         for d in Dialect::ALL {
             let _ = read_program_with(text, "fuzz.nc", d, opts);
+        }
+        for gcode_system in [GCodeSystem::B, GCodeSystem::C] {
+            let _ = read_program_with(text, "fuzz.nc", Dialect::Fanuc, ReadOptions { gcode_system, ..opts });
         }
     }
 });

@@ -340,3 +340,13 @@ def test_the_stubs_type_check_the_examples_strictly():
     here = os.path.dirname(os.path.abspath(__file__))
     out, err, status = mypy.run(["--strict", os.path.join(here, "..", "examples")])
     assert status == 0, out + err
+
+
+def test_gcode_system_b_reads_g78_as_the_threading_cycle():
+    # System B: G78 is system A's G92 box cycle, one pass per X word.
+    prog = "G21 G97 S500 M3\nG0 X22.0 Z5.0\nG78 X19.2 Z-20.0 F1.5\nX18.8\nX18.2\n"
+    p = threadcheck.passes(program=prog, dialect="fanuc", gcode_system="b")
+    assert [q["x_end"] for q in p["passes"]] == [19.2, 18.8, 18.2]
+    assert p["operations"][0]["cycle"] == "G78"
+    with pytest.raises(ValueError, match="G78 is not a code of Fanuc G-code system A"):
+        threadcheck.passes(program=prog, dialect="fanuc")

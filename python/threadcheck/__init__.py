@@ -128,6 +128,7 @@ def verify(thread: Threads, program: Optional[str] = None, dialect: Optional[str
            default_units: Optional[str] = None, main: Optional[str] = None,
            linuxcnc_release: Optional[str] = None, coating: Optional[float] = None,
            insert_toml: Optional[str] = None, tools: Optional[str] = None,
+           gcode_system: Optional[str] = None,
            schedule: Optional[str] = None, depths: Optional[Sequence[float]] = None,
            first_depth: Optional[float] = None, min_depth: Optional[float] = None,
            finish: Optional[float] = None, spring: Optional[int] = None,
@@ -154,7 +155,9 @@ def verify(thread: Threads, program: Optional[str] = None, dialect: Optional[str
     ``default_units`` (``"mm"``/``"inch"``) reads a program that sets no units as an inch or
     metric control would; ``main`` (``"O3101"``) picks the main program of a text that holds
     several O-programs. ``linuxcnc_release`` (``"current"``/``"before-2.9"``) chooses the
-    comparison rules of a ``linuxcnc`` program. ``coating`` (mm) checks against the limits
+    comparison rules of a ``linuxcnc`` program; ``gcode_system`` (``"a"``, ``"b"``, ``"c"``) the
+    G-code system a Fanuc control is set to (B: G78 the threading cycle; C: G78 the multiple
+    one). ``coating`` (mm) checks against the limits
     before a coat of that thickness. ``machine`` is a machine profile's TOML text (or
     ``"training-lathe"``). ``svg``, ``html`` and ``fix`` write the picture, the page and the
     corrected program to those paths.
@@ -189,7 +192,7 @@ def passes(thread: Optional[Threads] = None, program: Optional[str] = None,
            first_depth: Optional[float] = None, min_depth: Optional[float] = None,
            finish: Optional[float] = None, spring: Optional[int] = None,
            taper: Optional[float] = None, chamfer: Optional[float] = None,
-           coating: Optional[float] = None) -> PassesReport:
+           coating: Optional[float] = None, gcode_system: Optional[str] = None) -> PassesReport:
     """``threadcheck passes --json``: the passes of a generated plan or of a program's text.
 
     The arguments are ``verify``'s; a program needs no thread.
@@ -207,8 +210,8 @@ def correct(thread: str, program: Optional[str] = None, dialect: Optional[str] =
             coating: Optional[float] = None, measured_m: Optional[float] = None,
             wire: Optional[float] = None, measured_d2: Optional[float] = None,
             gauge: Optional[str] = None, pickup_z: Optional[float] = None,
-            insert_toml: Optional[str] = None, html: Optional[PathLike] = None,
-            fix: Optional[PathLike] = None) -> CorrectReport:
+            insert_toml: Optional[str] = None, gcode_system: Optional[str] = None,
+            html: Optional[PathLike] = None, fix: Optional[PathLike] = None) -> CorrectReport:
     """``threadcheck correct --json``: what was measured on the part, turned into the change.
 
     ``thread`` and the plan or ``program`` arguments are ``verify``'s. Give one measurement:
@@ -235,8 +238,8 @@ def capability(thread: str, program: Optional[str] = None, dialect: Optional[str
                x_sigma: Optional[float] = None, tip_radius_tol: Optional[float] = None,
                wear_per_part: Optional[float] = None, samples: Optional[int] = None,
                seed: Optional[int] = None, gauge_only: bool = False,
-               insert_toml: Optional[str] = None, svg: Optional[PathLike] = None,
-               html: Optional[PathLike] = None) -> CapabilityReport:
+               insert_toml: Optional[str] = None, gcode_system: Optional[str] = None,
+               svg: Optional[PathLike] = None, html: Optional[PathLike] = None) -> CapabilityReport:
     """``threadcheck capability --json``: a seeded Monte Carlo of the parts a program cuts.
 
     ``x_sigma`` is the X repeatability (one sigma on the diameter, mm), ``tip_radius_tol`` a

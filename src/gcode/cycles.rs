@@ -5,6 +5,7 @@ use super::lexer::{Past, PastKind};
 use super::motion::{Motion, RBlock};
 use super::Dialect;
 use crate::gcode::passes::Pass;
+use crate::gcode::SystemCode;
 use crate::ground::bounds::MAX_PASSES;
 use crate::Error;
 
@@ -166,6 +167,24 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             }
             continue;
         }
+        // A program of G-code system B or C: its code in system A's terms.
+        let g = match (d, m.gsystem.to_a(g as u32)) {
+            (Dialect::Fanuc, SystemCode::A(a)) => f64::from(a),
+            (Dialect::Fanuc, SystemCode::Absolute) => {
+                m.absolute = true;
+                continue;
+            }
+            (Dialect::Fanuc, SystemCode::Incremental) => {
+                m.absolute = false;
+                continue;
+            }
+            (Dialect::Fanuc, SystemCode::Setting) => continue,
+            (Dialect::Fanuc, SystemCode::Foreign) => {
+                unknown.push((g, col));
+                continue;
+            }
+            (Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna, _) => g,
+        };
         match g as u32 {
             0 | 1 | 2 | 3 | 32 | 33 | 76 => motion = Some((g, col)),
             92 if d == Dialect::LinuxCnc => one_shot = Some(g),
@@ -179,6 +198,13 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                 one_shot = Some(g);
             }
             92 => motion = Some((g, col)),
+            78 if d == Dialect::Fanuc => {
+                return Err(m.err(
+                    b.line,
+                    col,
+                    "G78 is not a code of Fanuc G-code system A, which this program is read in: a control set to system B reads it as the threading cycle (G92 in A), one set to system C as the multiple threading cycle (G76 in A); give --gcode-system b or c (the EMCO training lathe's G78 box cycle is not supported)",
+                ))
+            }
             78 if fanuc_like || d == Dialect::Sinumerik => {
                 return Err(m.err(
                     b.line,

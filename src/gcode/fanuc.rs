@@ -198,9 +198,10 @@ pub(crate) fn thread_block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, md: &M
     }
     match md.motion as u32 {
         76 if md.col.is_some() => {
-            cycles::need_lathe_plane(m, b, col, "G76")?;
+            let name = m.g_name(76);
+            cycles::need_lathe_plane(m, b, col, &name)?;
             if b.has("K") || b.has("D") {
-                one_block_g76(m, b, col, &Settings::default(), "G76")
+                one_block_g76(m, b, col, &Settings::default(), &name)
             } else {
                 two_block_g76(s, m, b, col)
             }
@@ -211,32 +212,35 @@ pub(crate) fn thread_block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, md: &M
                 m.skipped += 1;
                 return Ok(());
             }
-            cycles::need_lathe_plane(m, b, col, "G32")?;
-            b.allow_only(&m.file, "GXZUWFEQNMST", "G32")?;
-            let f = lead(m, b, col, "G32")?;
-            m.thread_move(b, col, "G32", |dx, dz| cycles::axial_lead_longer_axis(f, dx, dz), start_angle(b))
+            let name = m.g_name(32);
+            cycles::need_lathe_plane(m, b, col, &name)?;
+            b.allow_only(&m.file, "GXZUWFEQNMST", &name)?;
+            let f = lead(m, b, col, &name)?;
+            m.thread_move(b, col, &name, |dx, dz| cycles::axial_lead_longer_axis(f, dx, dz), start_angle(b))
         }
         _ => cycles::other_block(m, b, md),
     }
 }
 
 fn g92(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
-    b.allow_only(&m.file, "GXZUWRFEQNMST", "G92")?;
-    cycles::need_lathe_plane(m, b, col, "G92")?;
+    let name = m.g_name(92);
+    b.allow_only(&m.file, "GXZUWRFEQNMST", &name)?;
+    cycles::need_lathe_plane(m, b, col, &name)?;
     m.break_chain();
-    let lead = lead(m, b, col, "G92")?;
+    let lead = lead(m, b, col, &name)?;
     let (x, _, z) = m.target(b);
-    let (_, z0) = m.need_position(b.line, col, "G92")?;
+    let (_, z0) = m.need_position(b.line, col, &name)?;
     let r = match b.get("R") {
         Some(w) => m.len(w),
         None => s.g92.map_or(0.0, |g| g.2),
     };
     let q = if b.has("Q") { start_angle(b) } else { s.g92.map_or(0.0, |g| g.3) };
-    let z_end =
-        z.or(s.g92.map(|g| g.1)).ok_or_else(|| m.err(b.line, col, "G92 needs Z, the end of the thread"))?;
+    let z_end = z
+        .or(s.g92.map(|g| g.1))
+        .ok_or_else(|| m.err(b.line, col, format!("{name} needs Z, the end of the thread")))?;
     let op = match s.g92 {
         Some((op, ze, _, _)) if (ze - z_end).abs() < 1e-9 && (m.op_mut(op).lead() - lead).abs() < 1e-12 => op,
-        _ => m.begin_op("G92", b.line),
+        _ => m.begin_op(&name, b.line),
     };
     s.g92 = Some((op, z_end, r, q));
     let Some(x_end) = x else {
@@ -244,7 +248,7 @@ fn g92(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), 
         return Ok(());
     };
     if m.css {
-        m.note(b.line, col, "G92 under constant surface speed (G96); threading wants G97");
+        m.note(b.line, col, format!("{name} under constant surface speed (G96); threading wants G97"));
     }
     // The cycle starts and ends at the start point; R is radius(start) − radius(end).
     let x_start = x_end + 2.0 * r;
@@ -273,10 +277,11 @@ fn increments(m: &Motion, b: &RBlock<'_>, w: &RWord<'_>, what: &str) -> Result<f
 }
 
 fn two_block_g76(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
+    let name = m.g_name(76);
     let second = b.has("X") || b.has("U") || b.has("Z") || b.has("W");
     if !second {
         // First block: P(m)(r)(a) Q(Δd min) R(d).
-        b.allow_only(&m.file, "GPQRNMST", "the first G76 block")?;
+        b.allow_only(&m.file, "GPQRNMST", &format!("the first {name} block"))?;
         let p = b
             .get("P")
             .ok_or_else(|| m.err(b.line, col, "the first G76 block needs P(m)(r)(a), e.g. P011060"))?;
@@ -284,7 +289,7 @@ fn two_block_g76(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> R
             return Err(b.werr(
                 &m.file,
                 p,
-                format!("G76 {} has a decimal point: P(m)(r)(a) is six digits, e.g. P011060", p.text),
+                format!("{name} {} has a decimal point: P(m)(r)(a) is six digits, e.g. P011060", p.text),
             ));
         }
         let pv = p.v as u64;
@@ -293,7 +298,7 @@ fn two_block_g76(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> R
             return Err(b.werr(
                 &m.file,
                 p,
-                format!("G76 tool angle {a} is not one of 80, 60, 55, 30, 29, 0"),
+                format!("{name} tool angle {a} is not one of 80, 60, 55, 30, 29, 0"),
             ));
         }
         let q = match b.get("Q") {
@@ -315,39 +320,48 @@ fn two_block_g76(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> R
         return Err(m.err(
             b.line,
             col,
-            "G76 second block (X Z P Q F) without its first block (G76 P(m)(r)(a) Q R) before it",
+            format!(
+                "{name} second block (X Z P Q F) without its first block ({name} P(m)(r)(a) Q R) before it"
+            ),
         ));
     };
-    let lead = lead(m, b, col, "G76")?;
-    let (x0, z0) = m.need_position(b.line, col, "G76")?;
+    let lead = lead(m, b, col, &name)?;
+    let (x0, z0) = m.need_position(b.line, col, &name)?;
     let (x, _, z) = m.target(b);
-    let x_root = x.ok_or_else(|| m.err(b.line, col, "G76 needs X, the root diameter"))?;
-    let z_end = z.ok_or_else(|| m.err(b.line, col, "G76 needs Z, the end of the thread"))?;
+    let x_root = x.ok_or_else(|| m.err(b.line, col, format!("{name} needs X, the root diameter")))?;
+    let z_end = z.ok_or_else(|| m.err(b.line, col, format!("{name} needs Z, the end of the thread")))?;
     let k = increments(
         m,
         b,
-        b.get("P").ok_or_else(|| m.err(b.line, col, "G76 needs P, the thread height"))?,
+        b.get("P").ok_or_else(|| m.err(b.line, col, format!("{name} needs P, the thread height")))?,
         "the thread height P",
     )?;
     let dd = increments(
         m,
         b,
-        b.get("Q").ok_or_else(|| m.err(b.line, col, "G76 needs Q, the first depth"))?,
+        b.get("Q").ok_or_else(|| m.err(b.line, col, format!("{name} needs Q, the first depth")))?,
         "the first depth Q",
     )?;
     let taper = b.get("R").map_or(0.0, |w| m.len(w));
     if !(k > 0.0 && dd > 0.0) {
-        return Err(m.err(b.line, col, "G76 thread height P and first depth Q must be greater than zero"));
+        return Err(m.err(
+            b.line,
+            col,
+            format!("{name} thread height P and first depth Q must be greater than zero"),
+        ));
     }
     if first.finish >= k {
         return Err(m.err(
             b.line,
             col,
-            format!("G76 finishing allowance {} mm is not less than the thread height {k} mm", first.finish),
+            format!(
+                "{name} finishing allowance {} mm is not less than the thread height {k} mm",
+                first.finish
+            ),
         ));
     }
     if m.css {
-        m.note(b.line, col, "G76 under constant surface speed (G96); threading wants G97");
+        m.note(b.line, col, format!("{name} under constant surface speed (G96); threading wants G97"));
     }
     // External when the root lies inside the start point, internal when outside.
     let sign = if x_root < x0 { 1.0 } else { -1.0 };
@@ -360,7 +374,7 @@ fn two_block_g76(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> R
     let half = 0.5 * first.angle;
     let shifts = cycles::shifts(if half > 0.0 { Shift::Flank(half) } else { Shift::Radial }, &depths, dir);
     let chamfer = f64::from(first.chamfer_tenths) / 10.0 * lead;
-    let op = m.begin_op("G76", b.line);
+    let op = m.begin_op(&name, b.line);
     m.op_mut(op).infeed_angle = Some((half, "P(m)(r)(a): a/2".into()));
     for (d, sh) in depths.iter().zip(shifts) {
         // Root X at the end; the taper R (radius start − end) applies to every pass.

@@ -310,6 +310,116 @@ impl std::str::FromStr for LinuxCncRelease {
     }
 }
 
+/// The G-code system a Fanuc lathe control is set to (a parameter of the control, never in the
+/// program): the same function has another code in each. threadcheck reads system A's codes;
+/// a program of system B or C has its codes turned into system A's as it is read, and every
+/// message names the code the program wrote.
+///
+/// The table (turning functions whose codes differ; every other code is the same in all three):
+///
+/// | function | A | B | C |
+/// |---|---|---|---|
+/// | thread cutting | G32 | G33 | G33 |
+/// | outer diameter cycle | G90 | G77 | G20 |
+/// | threading cycle | G92 | G78 | G21 |
+/// | end face cycle | G94 | G79 | G24 |
+/// | inch, metric input | G20, G21 | G20, G21 | G70, G71 |
+/// | coordinate system, spindle clamp | G50 | G92 | G92 |
+/// | finishing, stock removal, pattern, peck, grooving | G70–G75 | G70–G75 | G72–G77 |
+/// | multiple threading cycle | G76 | G76 | G78 |
+/// | absolute, incremental | X Z, U W | G90, G91 | G90, G91 |
+/// | feed per minute, per revolution | G98, G99 | G94, G95 | G94, G95 |
+///
+/// Source: the G-code lists of Fanuc's lathe operator's manuals (Series 0i-TC, B-64114EN,
+/// "G code list", systems A, B, C), as widely reproduced; not read in a primary copy here
+/// (docs/dialects.md says so).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum GCodeSystem {
+    /// System A: G92 the threading cycle, G50 coordinates (the default, and the Fanuc dialect's
+    /// own codes).
+    #[default]
+    A,
+    /// System B: G78 the threading cycle, G92 coordinates, G90/G91 absolute/incremental.
+    B,
+    /// System C: B's codes with G20/G21/G24 the box cycles, G70/G71 the units and the multiple
+    /// repetitive cycles two up (G78 the multiple threading cycle).
+    C,
+}
+
+/// A G code of system B or C in system A's terms.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SystemCode {
+    /// System A's code for the same function.
+    A(u32),
+    /// Absolute programming (B, C G90; system A writes X and Z).
+    Absolute,
+    /// Incremental programming (B, C G91; system A writes U and W).
+    Incremental,
+    /// A setting with nothing to model (B, C G98/G99: the drilling cycles' return level).
+    Setting,
+    /// A code system A has and this system does not (B's G32): what the program means by it is
+    /// not known.
+    Foreign,
+}
+
+impl GCodeSystem {
+    /// `a`, `b` or `c`.
+    pub fn name(self) -> &'static str {
+        match self {
+            GCodeSystem::A => "A",
+            GCodeSystem::B => "B",
+            GCodeSystem::C => "C",
+        }
+    }
+
+    /// What code `g` of this system is in system A.
+    pub(crate) fn to_a(self, g: u32) -> SystemCode {
+        use SystemCode::{Absolute, Foreign, Incremental, Setting, A};
+        match (self, g) {
+            (GCodeSystem::A, g) => A(g),
+            (GCodeSystem::B | GCodeSystem::C, 33) => A(32),
+            (GCodeSystem::B | GCodeSystem::C, 32) => Foreign,
+            (GCodeSystem::B | GCodeSystem::C, 90) => Absolute,
+            (GCodeSystem::B | GCodeSystem::C, 91) => Incremental,
+            (GCodeSystem::B | GCodeSystem::C, 92) => A(50),
+            (GCodeSystem::B | GCodeSystem::C, 94) => A(98),
+            (GCodeSystem::B | GCodeSystem::C, 95) => A(99),
+            (GCodeSystem::B | GCodeSystem::C, 98 | 99) => Setting,
+            (GCodeSystem::B | GCodeSystem::C, 50) => Foreign,
+            (GCodeSystem::B, 77) => A(90),
+            (GCodeSystem::B, 78) => A(92),
+            (GCodeSystem::B, 79) => A(94),
+            (GCodeSystem::B, g) => A(g),
+            (GCodeSystem::C, 20) => A(90),
+            (GCodeSystem::C, 21) => A(92),
+            (GCodeSystem::C, 24) => A(94),
+            (GCodeSystem::C, 70) => A(20),
+            (GCodeSystem::C, 71) => A(21),
+            (GCodeSystem::C, 72..=78) => A(g - 2),
+            (GCodeSystem::C, g) => A(g),
+        }
+    }
+
+    /// The code this system writes for system A's code `a` (for messages).
+    pub(crate) fn written(self, a: u32) -> u32 {
+        (0..1000).find(|&g| self.to_a(g) == SystemCode::A(a)).unwrap_or(a)
+    }
+}
+
+impl std::str::FromStr for GCodeSystem {
+    type Err = Error;
+
+    fn from_str(s: &str) -> Result<GCodeSystem, Error> {
+        match s.to_ascii_lowercase().as_str() {
+            "a" => Ok(GCodeSystem::A),
+            "b" => Ok(GCodeSystem::B),
+            "c" => Ok(GCodeSystem::C),
+            _ => Err(Error::Input(format!("unknown G-code system '{s}': expected a, b or c"))),
+        }
+    }
+}
+
 /// What a program's X words are on a lathe.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -400,6 +510,9 @@ pub struct ReadOptions {
     /// The LinuxCNC release whose comparison rules a `linuxcnc` program follows (other
     /// dialects ignore it).
     pub linuxcnc: LinuxCncRelease,
+    /// The G-code system of a `fanuc` program (system A unless given; the other dialects have
+    /// one G-code list and refuse B and C).
+    pub gcode_system: GCodeSystem,
 }
 
 /// How much a program may run before it is taken for a runaway.
@@ -495,7 +608,19 @@ pub fn read_program_with(
         keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         blocks = keyed.into_iter().map(|k| k.2).collect();
     }
+    let fanuc_family = match dialect {
+        Dialect::Fanuc => true,
+        Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna => false,
+    };
+    if !fanuc_family && opts.gcode_system != GCodeSystem::A {
+        return Err(Error::Input(format!(
+            "G-code system {} is a setting of Fanuc lathe controls: a {} program has one G-code list (read it as --dialect fanuc, or leave --gcode-system out)",
+            opts.gcode_system.name(),
+            dialect.name()
+        )));
+    }
     let mut m = motion::Motion::new(dialect, file, opts.moves);
+    m.gsystem = opts.gcode_system;
     if let Some(u) = opts.default_units {
         m.scale = u.mm();
     }
@@ -542,7 +667,13 @@ pub fn read_program_with(
         )),
         _ => None,
     };
-    for n in [units_note, dialect_note].into_iter().flatten().rev() {
+    // The system is a setting of the control, not in the program: say which one was read.
+    let system_note = (fanuc_family && !operations.is_empty()).then(|| match opts.gcode_system {
+        GCodeSystem::A => "read in Fanuc G-code system A (G92 the threading cycle, G76 the multiple one, G32 thread cutting); a control set to system B or C needs --gcode-system b or c".to_string(),
+        GCodeSystem::B => "read in Fanuc G-code system B, as --gcode-system says: G78 the threading cycle, G76 the multiple one, G33 thread cutting, G92 coordinates, G90/G91 absolute/incremental".to_string(),
+        GCodeSystem::C => "read in Fanuc G-code system C, as --gcode-system says: G21 the threading cycle, G78 the multiple one, G33 thread cutting, G70/G71 inch/metric, G92 coordinates, G90/G91 absolute/incremental".to_string(),
+    });
+    for n in [units_note, dialect_note, system_note].into_iter().flatten().rev() {
         notes.insert(0, Note::from(n));
     }
     if operations.is_empty() && !opts.allow_no_threading {

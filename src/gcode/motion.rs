@@ -130,6 +130,8 @@ struct Chain {
 /// The shared motion state.
 pub(crate) struct Motion {
     pub dialect: Dialect,
+    /// The Fanuc G-code system the program's codes are read in.
+    pub gsystem: super::GCodeSystem,
     /// Read as a milling toolpath (X and Y in the plane, G17).
     mill: bool,
     pub file: String,
@@ -194,6 +196,7 @@ impl Motion {
     pub fn new(dialect: Dialect, file: &str, record_moves: bool) -> Motion {
         Motion {
             dialect,
+            gsystem: super::GCodeSystem::A,
             mill: record_moves,
             file: file.to_string(),
             x: None,
@@ -335,6 +338,12 @@ impl Motion {
         } else {
             2.0 * v
         }
+    }
+
+    /// The code the program writes for system A's G code `a` (`G78` for a system B program's
+    /// threading cycle), for names and messages.
+    pub fn g_name(&self, a: u32) -> String {
+        format!("G{}", self.gsystem.written(a))
     }
 
     /// Target position of a block: X/Y/Z absolute or incremental, U/W incremental
