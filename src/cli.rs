@@ -288,7 +288,7 @@ struct FitArgs {
     /// The bolt's program (else a generated plan).
     #[arg(long, value_name = "FILE", conflicts_with = "bolt_final_x")]
     bolt_program: Option<PathBuf>,
-    /// Its dialect: fanuc, haas, sinumerik, linuxcnc or dyna.
+    /// Its dialect: fanuc, haas, sinumerik, linuxcnc, dyna or okuma.
     #[arg(long)]
     bolt_dialect: Option<Dialect>,
     /// The nut's program (else a generated plan).
@@ -403,7 +403,7 @@ struct MillArgs {
     /// The milling program.
     #[arg(long, value_name = "FILE")]
     program: PathBuf,
-    /// fanuc | haas | sinumerik | linuxcnc | dyna (default: by the extension, else fanuc)
+    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma (default: by the extension, else fanuc)
     #[arg(long)]
     dialect: Option<Dialect>,
     /// Run the blocks in the order of their N numbers (a listing whose page break moved blocks).
@@ -499,8 +499,8 @@ struct PlanArgs {
     /// threads of inch sizes (UN, Acme, NPT, BSW, BSP), else mm)
     #[arg(long, value_enum)]
     units: Option<UnitsArg>,
-    /// fanuc | haas | sinumerik | linuxcnc | dyna (default: the program's extension names it,
-    /// .ngc linuxcnc, .mpf/.spf sinumerik; else fanuc)
+    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma (default: the program's extension names it,
+    /// .ngc linuxcnc, .mpf/.spf sinumerik, .min/.ssb/.sub okuma; else fanuc)
     #[arg(long, requires = "program")]
     dialect: Option<Dialect>,
     /// The units of a program that sets neither G20 nor G21 (the control's default).

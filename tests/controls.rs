@@ -134,3 +134,100 @@ fn g78_is_never_read_without_its_system() {
     assert_eq!(v["operations"][0]["cycle"], "G33");
     assert_eq!(v["passes"][0]["x_end"], 19.0);
 }
+
+/// Okuma OSP G33 is a fixed cycle: one pass per block from the start point, each X-only block
+/// one more pass at its diameter (OSP-P200L p. 97; CIMCO's OSP samples). With a full-profile
+/// insert the last pass at X18.16 cuts d2 = 18.16 + (d2 − d3 basic) = 18.16 + 0.866025 = 19.026:
+/// 32 µm over 6g's 18.994.
+#[test]
+fn okuma_g33_fixed_cycle_repeats_on_x_only_blocks() {
+    let (ops, v) = pass_xs("okuma-g33-repeats.min", &[]);
+    assert!(close(&ops[0], &[19.4, 19.0, 18.6, 18.3, 18.16]), "{ops:?}");
+    assert!(v["passes"].as_array().unwrap().iter().all(|p| p["z_start"] == 5.0 && p["z_end"] == -20.0));
+    assert!(v["notes"].to_string().contains("read as okuma, the dialect of its extension .min"));
+    let p = data("programs/okuma-g33-repeats.min");
+    let o = run(&[
+        "verify",
+        "--thread",
+        "M20x1.5-6g",
+        "--program",
+        p.to_str().unwrap(),
+        "--insert",
+        "full",
+        "--json",
+        "-",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let d2 = v["operations"][0]["checks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["feature"] == "pitch_diameter")
+        .unwrap()
+        .clone();
+    assert!((d2["value"].as_f64().unwrap() - 19.026).abs() < 1e-4, "{d2}");
+    assert!((d2["deviation_um"].as_f64().unwrap() - 32.0).abs() < 0.1, "{d2}");
+    // The correction names the last repeat's X.
+    assert_eq!(v["operations"][0]["correction"]["line"], 9);
+}
+
+/// Okuma G71, the compound threading cycle, for M74x2 (H = 2·0.61343·P = 2.454 on the diameter,
+/// X71.546 the root; D0.4 and U0.1 diameters; B60 with M32: along one flank at 30°).
+/// Pattern 1 (M73, the named default n·D): depths 0.4, 0.8, 1.2, 1.6, 2.0, then H − U = 2.354
+/// and the finishing pass at H; X = 71.546 + (2.454 − depth), the start Z moved back along the
+/// flank by depth/2 · tan 30°. Pattern 3 (M75, Okuma 3277-E): √n·0.4 while under 2.354
+/// (n = 1 … 34, 0.4·√34 = 2.332), then 2.354 and 2.454: 36 passes.
+#[test]
+fn okuma_g71_patterns_1_and_3_with_single_blade_infeed() {
+    let (ops, v) = pass_xs("okuma-g71-m74x2.min", &[]);
+    let depths1 = [0.4, 0.8, 1.2, 1.6, 2.0, 2.354, 2.454];
+    let x1: Vec<f64> = depths1.iter().map(|d| 71.546 + (2.454 - d)).collect();
+    assert!(close(&ops[0], &x1), "{ops:?}");
+    let z1: Vec<f64> = v["operations"][0]["passes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["z_start"].as_f64().unwrap())
+        .collect();
+    let t = 30f64.to_radians().tan();
+    assert!(close(&z1, &depths1.map(|d| 5.0 - 0.5 * d * t)), "{z1:?}");
+    let mut depths3: Vec<f64> = (1..=34).map(|n| 0.4 * f64::from(n).sqrt()).collect();
+    depths3.extend([2.354, 2.454]);
+    let x3: Vec<f64> = depths3.iter().map(|d| 71.546 + (2.454 - d)).collect();
+    assert!(close(&ops[1], &x3), "{} passes: {:?}", ops[1].len(), ops[1]);
+    let notes = v["operations"][0]["notes"].to_string();
+    assert!(
+        notes.contains(
+            "M73 (pattern 1) taken as a constant depth D = 0.4 mm (diameter) per pass: a named default"
+        ),
+        "{notes}"
+    );
+    // Verified: the finishing pass's tip on d3 = 71.546 with a full-profile insert cuts the basic
+    // d2 72.701, 37.7 µm over 6g's 72.663 (es = −38 µm on M74x2).
+    let p = data("programs/okuma-g71-m74x2.min");
+    let o = run(&[
+        "verify",
+        "--thread",
+        "M74x2-6g",
+        "--allow-nonstandard",
+        "--program",
+        p.to_str().unwrap(),
+        "--insert",
+        "full",
+        "--json",
+        "-",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    for op in v["operations"].as_array().unwrap() {
+        let d2 = op["checks"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|c| c["feature"] == "pitch_diameter")
+            .unwrap()
+            .clone();
+        assert!((d2["deviation_um"].as_f64().unwrap() - 37.7).abs() < 0.1, "{d2}");
+    }
+}

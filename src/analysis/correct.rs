@@ -326,7 +326,8 @@ fn wear_offset_in_x(d: crate::gcode::Dialect) -> bool {
         Dialect::Fanuc | Dialect::Haas => true,
         // Sinumerik's wear is a length per tool edge whose diameter or radius meaning depends on
         // machine data; LinuxCNC's and Dyna's tables are not modelled.
-        Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna => false,
+        // Okuma OSP's wear offsets are not modelled here either.
+        Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma => false,
     }
 }
 

@@ -81,6 +81,15 @@ fn g_role(d: Dialect, g: u32, lathe: bool) -> GRole {
             73 | 74 | 81..=89 => OtherCycle,
             _ => Unknown,
         },
+        // OSP: G50 the spindle speed clamp, G94/G95 feed per minute/revolution, G40–G42 nose
+        // radius compensation; G15/G16 work coordinate selection; G73–G75 and G81–G89 turning and
+        // drilling cycles (read past).
+        Dialect::Okuma => match g {
+            9 | 40..=42 | 50 | 61 | 64 | 94 | 95 => Setting,
+            15 | 16 | 92 => Offset,
+            73..=75 | 81..=89 => OtherCycle,
+            _ => Unknown,
+        },
     }
 }
 
@@ -117,6 +126,9 @@ fn m_known(d: Dialect, c: u32) -> bool {
             Dialect::Sinumerik => matches!(c, 17 | 45),
             Dialect::LinuxCnc => matches!(c, 48..=53 | 60..=73),
             Dialect::Dyna => matches!(c, 73 | 74 | 98 | 99),
+            // M23/M24 chamfer on/off; M32–M34 the infeed (single blade, zig-zag, reverse);
+            // M73–M75 the depth pattern of G71/G72.
+            Dialect::Okuma => matches!(c, 23 | 24 | 32..=34 | 73..=75),
         }
 }
 
@@ -134,7 +146,7 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
     let mut unknown: Vec<(f64, usize)> = Vec::new();
     let fanuc_like = match d {
         Dialect::Fanuc | Dialect::Haas => true,
-        Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna => false,
+        Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma => false,
     };
     let inch_codes = d.unit_codes();
     let inch_codes = (f64::from(inch_codes.0), f64::from(inch_codes.1));
@@ -183,7 +195,7 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                 unknown.push((g, col));
                 continue;
             }
-            (Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna, _) => g,
+            (Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma, _) => g,
         };
         match g as u32 {
             0 | 1 | 2 | 3 | 32 | 33 | 76 => motion = Some((g, col)),
@@ -230,6 +242,8 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             19 => m.plane = 19,
             80 => motion = Some((80.0, col)),
             4 | 28 | 53 => one_shot = Some(g),
+            // Okuma's compound threading cycles (okuma.rs).
+            71 | 72 if d == Dialect::Okuma => motion = Some((g, col)),
             70..=75 if fanuc_like || d == Dialect::LinuxCnc => one_shot = Some(g),
             c => match g_role(d, c, m.lathe()) {
                 GRole::Setting => {}

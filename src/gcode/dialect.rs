@@ -129,7 +129,8 @@ impl Language {
             arithmetic: super::expr::Arithmetic::Exact,
         };
         match dialect {
-            Dialect::Fanuc | Dialect::Haas => fanuc,
+            // Okuma's own macro language (VC variables) is not read; its programs lex as Fanuc's.
+            Dialect::Fanuc | Dialect::Haas | Dialect::Okuma => fanuc,
             Dialect::Sinumerik => Language {
                 local_range: 0,
                 fanuc_macro: false,

@@ -250,7 +250,9 @@ pub fn lex(text: &str, dialect: Dialect) -> Result<Vec<Block>, LexError> {
         let line = raw.strip_suffix('\r').unwrap_or(raw);
         match dialect {
             Dialect::Sinumerik => sinumerik_line(line, i + 1, &mut blocks)?,
-            Dialect::Fanuc | Dialect::Haas | Dialect::LinuxCnc | Dialect::Dyna => {
+            // An OSP header line (`$NAME.MIN%`) names the file: nothing to run.
+            Dialect::Okuma if line.trim_start().starts_with('$') => {}
+            Dialect::Fanuc | Dialect::Haas | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma => {
                 bracket_line(line, i + 1, dialect, &mut blocks)?
             }
         }
@@ -261,7 +263,7 @@ pub fn lex(text: &str, dialect: Dialect) -> Result<Vec<Block>, LexError> {
 /// The expression syntax of a dialect.
 pub fn syntax_of(d: Dialect) -> Syntax {
     match d {
-        Dialect::Fanuc | Dialect::Haas => Syntax::MacroB,
+        Dialect::Fanuc | Dialect::Haas | Dialect::Okuma => Syntax::MacroB,
         Dialect::LinuxCnc => Syntax::LinuxCnc,
         Dialect::Dyna => Syntax::Dyna,
         Dialect::Sinumerik => Syntax::Sinumerik,
@@ -577,7 +579,7 @@ fn keyword(
     let syntax = syntax_of(dialect);
     let col = s.col_at(i);
     let macro_b = match dialect {
-        Dialect::Fanuc | Dialect::Haas | Dialect::Dyna => true,
+        Dialect::Fanuc | Dialect::Haas | Dialect::Dyna | Dialect::Okuma => true,
         Dialect::Sinumerik | Dialect::LinuxCnc => false,
     };
     let refuse = |m: String| Err((ln, col, m));
@@ -1045,7 +1047,7 @@ fn sinumerik_word(
 fn semicolon_ends_line(dialect: Dialect) -> bool {
     match dialect {
         Dialect::LinuxCnc => true,
-        Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::Dyna => false,
+        Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::Dyna | Dialect::Okuma => false,
     }
 }
 
@@ -1053,7 +1055,7 @@ fn semicolon_ends_line(dialect: Dialect) -> bool {
 fn o_words_are_flow(dialect: Dialect) -> bool {
     match dialect {
         Dialect::LinuxCnc => true,
-        Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::Dyna => false,
+        Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::Dyna | Dialect::Okuma => false,
     }
 }
 

@@ -26,6 +26,7 @@ mod interp;
 mod lexer;
 mod linuxcnc;
 mod motion;
+mod okuma;
 pub mod passes;
 mod sinumerik;
 
@@ -52,12 +53,15 @@ pub enum Dialect {
     LinuxCnc,
     /// Dyna DM2900/Myte training controls (the seed milling papers' dialect).
     Dyna,
+    /// Okuma OSP lathes: G33 (a fixed cycle whose X-only blocks repeat it) and the G71/G72
+    /// compound threading cycles.
+    Okuma,
 }
 
 impl Dialect {
     /// Every dialect, in the order the CLI lists them.
-    pub const ALL: [Dialect; 5] =
-        [Dialect::Fanuc, Dialect::Haas, Dialect::Sinumerik, Dialect::LinuxCnc, Dialect::Dyna];
+    pub const ALL: [Dialect; 6] =
+        [Dialect::Fanuc, Dialect::Haas, Dialect::Sinumerik, Dialect::LinuxCnc, Dialect::Dyna, Dialect::Okuma];
 
     /// The dialect's command-line name.
     pub fn name(self) -> &'static str {
@@ -67,13 +71,16 @@ impl Dialect {
             Dialect::Sinumerik => "sinumerik",
             Dialect::LinuxCnc => "linuxcnc",
             Dialect::Dyna => "dyna",
+            Dialect::Okuma => "okuma",
         }
     }
 
     /// Reads a dialect name.
     pub fn parse(s: &str) -> Result<Dialect, Error> {
         Dialect::ALL.into_iter().find(|d| d.name() == s).ok_or_else(|| {
-            Error::Input(format!("unknown dialect '{s}': expected fanuc, haas, sinumerik, linuxcnc or dyna"))
+            Error::Input(format!(
+                "unknown dialect '{s}': expected fanuc, haas, sinumerik, linuxcnc, dyna or okuma"
+            ))
         })
     }
 
@@ -92,6 +99,8 @@ impl Dialect {
         match ext.as_str() {
             "ngc" => Some(Dialect::LinuxCnc),
             "mpf" | "spf" => Some(Dialect::Sinumerik),
+            // OSP main programs and subprograms.
+            "min" | "ssb" | "sub" => Some(Dialect::Okuma),
             _ => None,
         }
     }
@@ -101,7 +110,7 @@ impl Dialect {
     pub fn unit_codes(self) -> (u32, u32) {
         match self {
             Dialect::Sinumerik => (70, 71),
-            Dialect::Fanuc | Dialect::Haas | Dialect::LinuxCnc | Dialect::Dyna => (20, 21),
+            Dialect::Fanuc | Dialect::Haas | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma => (20, 21),
         }
     }
 
@@ -113,6 +122,7 @@ impl Dialect {
             Dialect::Sinumerik => "G33, CYCLE97, L96 and L97",
             Dialect::LinuxCnc => "G33 and G76",
             Dialect::Dyna => "none: the Dyna THREAD cycle is not supported",
+            Dialect::Okuma => "G33 and the compound cycles G71 and G72",
         }
     }
 }
@@ -610,7 +620,7 @@ pub fn read_program_with(
     }
     let fanuc_family = match dialect {
         Dialect::Fanuc => true,
-        Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna => false,
+        Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma => false,
     };
     if !fanuc_family && opts.gcode_system != GCodeSystem::A {
         return Err(Error::Input(format!(
@@ -708,5 +718,6 @@ fn rules(dialect: Dialect) -> Box<dyn dialect::Rules> {
         Dialect::Sinumerik => Box::<sinumerik::State>::default(),
         Dialect::LinuxCnc => Box::<linuxcnc::State>::default(),
         Dialect::Dyna => Box::<dyna::State>::default(),
+        Dialect::Okuma => Box::<okuma::State>::default(),
     }
 }

@@ -211,7 +211,7 @@ impl Motion {
             // diameter; Dyna is a mill (X is X).
             diameter: match dialect {
                 _ if record_moves => false,
-                Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik => true,
+                Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::Okuma => true,
                 Dialect::LinuxCnc | Dialect::Dyna => false,
             },
             motion: 0.0,
@@ -222,7 +222,9 @@ impl Motion {
             plane: match dialect {
                 _ if record_moves => 17,
                 Dialect::Dyna => 17,
-                Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc => 18,
+                Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Okuma => {
+                    18
+                }
             },
             ops: Vec::new(),
             loose: None,
@@ -306,7 +308,7 @@ impl Motion {
             return false;
         }
         match self.dialect {
-            Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc => true,
+            Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Okuma => true,
             Dialect::Dyna => false,
         }
     }
@@ -351,7 +353,8 @@ impl Motion {
     pub fn target(&self, b: &RBlock<'_>) -> (Option<f64>, Option<f64>, Option<f64>) {
         let uw = match self.dialect {
             Dialect::Fanuc | Dialect::Haas => true,
-            Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna => false,
+            // OSP programs incremental moves with G91.
+            Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma => false,
         };
         let (mut x, mut y, mut z) = (None, None, None);
         for w in &b.words {
