@@ -149,6 +149,10 @@ enum Command {
     /// A milling program's cutter swept along each Z level and measured against a target curve:
     /// gouge and material left.
     Mill(MillArgs),
+    /// A program's tapping cycles (G84, G74) against their taps and the drills that made the
+    /// holes: the drill against D1 of the tap's class, the feed against the lead, the depth
+    /// left for the tap's chamfer, the spindle's direction (exit 0 all pass, 1 one fails).
+    Tap(TapArgs),
     /// The shop's page and the JSON API on this computer: open the address it prints in a
     /// browser (verify, compare, fit, limits); scripts POST to /api/verify and the like.
     Serve(ServeArgs),
@@ -375,6 +379,31 @@ struct CorrectArgs {
     /// Write the program with the correction to this file; `-` prints it instead of the report.
     #[arg(long, value_name = "FILE|-", requires = "program")]
     fix: Option<String>,
+    #[command(flatten)]
+    json: JsonArg,
+}
+
+#[derive(Args)]
+struct TapArgs {
+    /// The program.
+    #[arg(long, value_name = "FILE")]
+    program: PathBuf,
+    /// fanuc | haas (default: by the extension, else fanuc)
+    #[arg(long)]
+    dialect: Option<Dialect>,
+    /// The tool table: each tap as T = "tap:M10x1.5-6H[:CHAMFER_PITCHES]", each drill as
+    /// T = "drill:8.5".
+    #[arg(long, value_name = "FILE.toml")]
+    tools: PathBuf,
+    /// Accept a diameter/pitch pair outside the standard series.
+    #[arg(long)]
+    allow_nonstandard: bool,
+    /// The units of a program that sets neither G20 nor G21.
+    #[arg(long, value_name = "mm|inch")]
+    default_units: Option<threadcheck::ProgramUnits>,
+    /// The G-code system of a Fanuc control: a, b or c.
+    #[arg(long, value_name = "a|b|c", default_value = "a")]
+    gcode_system: threadcheck::GCodeSystem,
     #[command(flatten)]
     json: JsonArg,
 }
@@ -776,6 +805,20 @@ impl Cli {
                     tolerance: m.tolerance,
                 };
                 done(MillJob { spec, svg: m.svg, json: m.json.json }.run()?)
+            }
+            Command::Tap(a) => {
+                let (dialect, from) = dialect_for(a.dialect, &a.program);
+                let mut reading = threadcheck::ReadOptions { dialect_from: from, ..Default::default() };
+                reading.default_units = a.default_units;
+                reading.gcode_system = a.gcode_system;
+                let spec = threadcheck::TapSpec {
+                    program: (threadcheck::read_program_text(&a.program)?, a.program.display().to_string()),
+                    dialect,
+                    reading,
+                    tools: threadcheck::ToolTable::read(&a.tools)?,
+                    allow_nonstandard: a.allow_nonstandard,
+                };
+                done(threadcheck::TapJob { spec, json: a.json.json }.run()?)
             }
             Command::Serve(a) => {
                 let mut options =

@@ -252,6 +252,7 @@ impl VerifyJob {
                 }
                 if let (Some(tt), Some(t)) = (&self.tools, op.tool) {
                     if let Some((choice, written)) = tt.insert(t) {
+                        let (choice, written) = (choice, written.to_string());
                         return Some((
                             choice.clone(),
                             format!("insert of tool T{t} from {}: {written}", tt.source),
@@ -260,7 +261,12 @@ impl VerifyJob {
                     }
                 }
                 let why = match (op.tool, &self.tools) {
-                    (Some(t), Some(tt)) => format!("tool T{t} is not in {}", tt.source),
+                    (Some(t), Some(tt)) => match tt.tool(t) {
+                        Some((_, written)) => {
+                            format!("tool T{t} is \"{written}\" in {}, not a threading insert", tt.source)
+                        }
+                        None => format!("tool T{t} is not in {}", tt.source),
+                    },
                     (Some(t), None) => {
                         format!("the program names tool T{t} but no tool table was given (--tools)")
                     }
@@ -976,6 +982,25 @@ fn placements_line(
         pitch_diameter: v.measurement.pitch_diameter,
         threadcheck_seconds: best,
     })
+}
+
+/// `threadcheck tap`: a program's tapping cycles against their taps and drills.
+#[derive(Clone, Debug)]
+pub struct TapJob {
+    /// The program and its tool table.
+    pub spec: crate::analysis::tapping::TapSpec,
+    /// The JSON: `-` prints it on stdout instead of the text, a path writes it there.
+    pub json: Option<String>,
+}
+
+impl TapJob {
+    /// Runs the job: pass when every tapping cycle passes every check.
+    pub fn run(&self) -> Result<(String, Outcome), Error> {
+        let r = crate::analysis::tapping::tapping(&self.spec)?;
+        let outcome = if r.pass { Outcome::Pass } else { Outcome::OutOfTolerance };
+        let json_text = self.json.as_ref().map(|_| pretty(&r)).transpose()?;
+        Ok((route_json(self.json.as_deref(), json_text, crate::report::tapping::text(&r))?, outcome))
+    }
 }
 
 /// `threadcheck mill`: a milling program's cutter against a target curve.

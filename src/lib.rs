@@ -82,8 +82,8 @@ pub use standards::{Feature, GrooveForm};
 pub use gcode::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
 pub use gcode::{
     read_program, read_program_with, rewrite_words, Budget, DepthWord, Dialect, DialectFrom, GCodeSystem,
-    LinuxCncRelease, Operation, Program, ProgramUnits, ReadOptions, Spindle, WordEdit, WordForm, WordMeans,
-    XWords,
+    HoleCycle, HoleKind, LinuxCncRelease, Operation, Program, ProgramUnits, ReadOptions, Spindle, SpindleDir,
+    WordEdit, WordForm, WordMeans, XWords,
 };
 
 // Geometry: the insert, the sweep, the measurement.
@@ -110,7 +110,8 @@ pub use analysis::lead::{lead_deviation, LeadDeviation};
 pub use analysis::mill::{mill, MillReport, MillSpec, Target};
 pub use analysis::picture::{Cut, Deviation, Picture};
 pub use analysis::process::MachineProfile;
-pub use analysis::tools::ToolTable;
+pub use analysis::tapping::{tapping, TapCheck, TapFeature, TapReport, TapSpec, TappedHole};
+pub use analysis::tools::{Tool, ToolTable};
 pub use analysis::verify::{
     default_blank, default_pass_count, program_passes, read_program_text, reference_groove, verify,
     verify_program, InsertChoice, ProgramLabel, ProgramSource, ProgramVerification, Units, Verification,
@@ -124,5 +125,5 @@ pub use serve::{router, serve, ServeOptions};
 // The commands: one job per command, returning what the command prints.
 pub use jobs::{
     CapabilityJob, CompareJob, CorrectJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob,
-    SweepJob, VerifyJob,
+    SweepJob, TapJob, VerifyJob,
 };

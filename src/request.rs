@@ -36,11 +36,13 @@ pub enum Command {
     Capability,
     /// `mill`.
     Mill,
+    /// `tap`.
+    Tap,
 }
 
 impl Command {
     /// Every command, in the order the documentation lists them.
-    pub const ALL: [Command; 8] = [
+    pub const ALL: [Command; 9] = [
         Command::Verify,
         Command::Passes,
         Command::Limits,
@@ -49,6 +51,7 @@ impl Command {
         Command::Correct,
         Command::Capability,
         Command::Mill,
+        Command::Tap,
     ];
 
     /// The command's name, as the command line spells it.
@@ -62,6 +65,7 @@ impl Command {
             Command::Correct => "correct",
             Command::Capability => "capability",
             Command::Mill => "mill",
+            Command::Tap => "tap",
         }
     }
 
@@ -131,6 +135,17 @@ impl Command {
                     "n_order",
                 ]
             }
+            Command::Tap => {
+                return vec![
+                    "program",
+                    "program_name",
+                    "dialect",
+                    "tools",
+                    "allow_nonstandard",
+                    "default_units",
+                    "gcode_system",
+                ]
+            }
         };
         PLAN.iter().chain(own).copied().collect()
     }
@@ -144,7 +159,7 @@ impl Command {
             Command::Capability => &[Json, Text, Svg, Html],
             Command::Compare => &[Json, Text, Html],
             Command::Fit | Command::Mill => &[Json, Text, Svg],
-            Command::Passes | Command::Limits => &[Json, Text],
+            Command::Passes | Command::Limits | Command::Tap => &[Json, Text],
         }
     }
 }
@@ -426,6 +441,41 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
             }
             CapabilityJob { spec, svg: want(Document::Svg), html: want(Document::Html), json }
                 .run_to(&mut sink)?
+        }
+        Command::Tap => {
+            let program =
+                a.text("program")?.ok_or_else(|| Error::Input("tap needs program (its text)".into()))?;
+            let name = a.program_name()?;
+            let (dialect, from) = match a.text("dialect")? {
+                Some(d) => (d.parse()?, crate::gcode::DialectFrom::Given),
+                None => match crate::gcode::Dialect::by_extension(std::path::Path::new(&name)) {
+                    Some(d) => (d, crate::gcode::DialectFrom::Extension),
+                    None => (crate::gcode::Dialect::Fanuc, crate::gcode::DialectFrom::Default),
+                },
+            };
+            let mut reading = crate::gcode::ReadOptions { dialect_from: from, ..Default::default() };
+            reading.default_units = a.text("default_units")?.map(|u| u.parse()).transpose()?;
+            if let Some(g) = a.text("gcode_system")? {
+                reading.gcode_system = g.parse()?;
+            }
+            let text = a
+                .text("tools")?
+                .ok_or_else(|| Error::Input("tap needs tools (the tool table's TOML text)".into()))?;
+            let tools =
+                crate::analysis::tools::ToolTable::from_toml(&text, "<tools>", std::path::Path::new("."))?;
+            if let Some((t, written)) = tools.file_entry().filter(|_| a.files == Files::Refused) {
+                return Err(Error::Input(format!(
+                    "tools: T{t} = '{written}' names an insert file, and the server reads none"
+                )));
+            }
+            let spec = crate::analysis::tapping::TapSpec {
+                program: (program, name),
+                dialect,
+                reading,
+                tools,
+                allow_nonstandard: a.flag("allow_nonstandard")?,
+            };
+            crate::jobs::TapJob { spec, json }.run()?
         }
         Command::Mill => {
             let program =

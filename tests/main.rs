@@ -23,6 +23,7 @@ mod regressions;
 pub mod serve;
 mod shop;
 mod sweep;
+mod tapping;
 mod util;
 mod verify;
 

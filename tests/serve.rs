@@ -228,7 +228,10 @@ fn api_documents_are_the_cli_files() {
     let v: serde_json::Value = serde_json::from_str(&index).unwrap();
     let names: Vec<&str> =
         v["commands"].as_array().unwrap().iter().map(|c| c["command"].as_str().unwrap()).collect();
-    assert_eq!(names, ["verify", "passes", "limits", "compare", "fit", "correct", "capability", "mill"]);
+    assert_eq!(
+        names,
+        ["verify", "passes", "limits", "compare", "fit", "correct", "capability", "mill", "tap"]
+    );
 }
 
 /// Bad input: a 20 MB body 413, malformed JSON 400, an unknown key 400, a file of the server's

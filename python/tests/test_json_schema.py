@@ -140,3 +140,11 @@ def test_python_fit_compare_mill_match_the_schema():
     prog = (PROGRAMS / "milling" / "boss-chords.nc").read_text()
     target = (PROGRAMS.parent / "targets" / "boss.toml").read_text()
     validate("mill", threadcheck.mill(prog, target, 6.0))
+
+
+def test_tap():
+    tapping = PROGRAMS / "tapping"
+    validate("tap", json.loads(cli("tap", "--program", str(tapping / "m10-g84.nc"), "--tools",
+                                   str(tapping / "tools-80.toml"), "--json", "-")))
+    text = (tapping / "m10-g84.nc").read_text()
+    validate("tap", threadcheck.tap(text, (tapping / "tools-85.toml").read_text()))

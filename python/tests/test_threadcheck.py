@@ -308,7 +308,7 @@ def test_svg_html_and_fix_outputs_are_the_cli_files(tmp_path):
 def test_every_function_documents_every_argument():
     import inspect
 
-    for name in ("verify", "limits", "passes", "correct", "capability", "fit", "compare", "mill", "render"):
+    for name in ("verify", "limits", "passes", "correct", "capability", "fit", "compare", "mill", "tap", "render"):
         f = getattr(threadcheck, name)
         doc = inspect.getdoc(f)
         assert doc and len(doc) > 60, name
@@ -350,3 +350,27 @@ def test_gcode_system_b_reads_g78_as_the_threading_cycle():
     assert p["operations"][0]["cycle"] == "G78"
     with pytest.raises(ValueError, match="G78 is not a code of Fanuc G-code system A"):
         threadcheck.passes(program=prog, dialect="fanuc")
+
+
+TAP_PROGRAM = """G21 G99 G18
+T0505
+G97 S1200 M3
+G0 X0 Z5.0
+G83 Z-25.0 R2.0 Q5000 F0.12
+G80
+T0606
+G97 S300 M3
+G0 X0 Z8.0
+G84 Z-18.0 R5.0 F1.5
+G80
+M30
+"""
+
+
+def test_tap_checks_the_drill_against_d1():
+    # ISO 965-2, M10x1.5-6H: D1 8.376-8.676. A drill of 8.5 passes, 8.0 fails by 376 µm.
+    ok = threadcheck.tap(TAP_PROGRAM, '[tools]\n5 = "drill:8.5"\n6 = "tap:M10x1.5-6H"\n')
+    assert ok["pass"]
+    bad = threadcheck.tap(TAP_PROGRAM, '[tools]\n5 = "drill:8.0"\n6 = "tap:M10x1.5-6H"\n')
+    d1 = next(c for c in bad["holes"][0]["checks"] if c["feature"] == "drill_diameter")
+    assert not bad["pass"] and d1["deviation"] == pytest.approx(-376.0)

@@ -30,6 +30,7 @@ from ._types import (
     LimitsReport,
     MillReport,
     PassesReport,
+    TapReport,
     VerifyReport,
 )
 
@@ -42,6 +43,7 @@ __all__ = [
     "fit",
     "compare",
     "mill",
+    "tap",
     "render",
     "VerifyReport",
     "LimitsReport",
@@ -51,6 +53,7 @@ __all__ = [
     "FitReport",
     "CompareReport",
     "MillReport",
+    "TapReport",
     "__version__",
 ]
 __version__: str = _threadcheck.__version__
@@ -305,4 +308,20 @@ def mill(program: str, target: str, tool_diameter: float, dialect: Optional[str]
     values = dict(locals())
     files = {"svg": values.pop("svg")}
     report: MillReport = _json_with_files("mill", values, files)
+    return report
+
+
+def tap(program: str, tools: str, dialect: Optional[str] = None, program_name: Optional[str] = None,
+        allow_nonstandard: bool = False, default_units: Optional[str] = None,
+        gcode_system: Optional[str] = None) -> TapReport:
+    """``threadcheck tap --json``: a program's tapping cycles (G84, G74) against their taps and
+    the drills that made the holes.
+
+    ``program`` is the program's text, ``tools`` the tool table's TOML text: each tap as
+    ``6 = "tap:M10x1.5-6H"`` (``:PITCHES`` adds its chamfer length, default 2.5), each drill as
+    ``5 = "drill:8.5"``. Each hole in ``holes`` has its ``cycle``, ``tap``, ``drill`` and
+    ``checks`` (``drill_diameter`` against D1 of the tap's class, ``feed`` against the lead,
+    ``depth`` left for the chamfer, ``spindle``); the dict's ``pass`` is the verdict.
+    """
+    report: TapReport = _json.loads(_run("tap", "json", dict(locals()))[0])
     return report

@@ -180,6 +180,16 @@ class CompareReport(TypedDict):
     recommended: Json
 
 
+class TapReport(TypedDict):
+    """``tap --json``: every tapping cycle with its tap, its drill and its checks."""
+
+    program: str
+    dialect: str
+    holes: List[Json]
+    drills: int
+    notes: List[Json]
+
+
 class MillReport(TypedDict):
     """``mill --json``."""
 

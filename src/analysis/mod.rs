@@ -11,5 +11,6 @@ pub mod lead;
 pub mod mill;
 pub mod picture;
 pub mod process;
+pub mod tapping;
 pub mod tools;
 pub mod verify;

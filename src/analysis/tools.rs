@@ -2,11 +2,14 @@
 //! the insert threadcheck cuts with.
 //!
 //! ```toml
-//! # T number = "full", "partial", "partial:TIP_RADIUS" or an insert TOML file (relative to this file)
+//! # T number = "full", "partial", "partial:TIP_RADIUS" or an insert TOML file (relative to this file);
+//! # a tap "tap:DESIGNATION[:CHAMFER_PITCHES]", a drill "drill:DIAMETER" (the tapping check)
 //! [tools]
 //! 3 = "full"
 //! 4 = "partial:0.05"
 //! 7 = "inserts/tr-30deg.toml"
+//! 5 = "drill:8.5"
+//! 6 = "tap:M10x1.5-6H"
 //! ```
 
 use crate::analysis::verify::InsertChoice;
@@ -14,12 +17,37 @@ use crate::Error;
 use std::collections::BTreeMap;
 use std::path::Path;
 
-/// T numbers and their inserts.
+/// The chamfer length of a tap given without one, in pitches: form C of ISO 8830 / DIN 2197
+/// (2 to 3 threads), taken at its middle; a named default the tapping check states.
+pub const DEFAULT_TAP_CHAMFER_PITCHES: f64 = 2.5;
+
+/// What a tool of the table is.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Tool {
+    /// A threading insert.
+    Insert(InsertChoice),
+    /// A tap: the thread it cuts and its chamfer (lead) length in pitches.
+    Tap {
+        /// The designation with the class, e.g. M10x1.5-6H.
+        designation: String,
+        /// Chamfer length, pitches.
+        chamfer_pitches: f64,
+        /// The chamfer was given (else the default).
+        chamfer_given: bool,
+    },
+    /// A drill of this diameter, mm.
+    Drill {
+        /// Diameter, mm.
+        diameter: f64,
+    },
+}
+
+/// T numbers and their tools.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ToolTable {
     /// Where the table came from, for messages.
     pub source: String,
-    tools: BTreeMap<u32, (InsertChoice, String)>,
+    tools: BTreeMap<u32, (Tool, String)>,
 }
 
 #[derive(serde::Deserialize)]
@@ -35,7 +63,7 @@ impl ToolTable {
     /// use threadcheck::ToolTable;
     /// use threadcheck::InsertChoice;
     /// let t = ToolTable::from_toml("[tools]\n3 = \"full\"\n", "tools.toml", std::path::Path::new("."))?;
-    /// assert_eq!(t.insert(3).map(|x| &x.0), Some(&InsertChoice::Full));
+    /// assert_eq!(t.insert(3).map(|x| x.0), Some(&InsertChoice::Full));
     /// # Ok::<(), threadcheck::Error>(())
     /// ```
     pub fn from_toml(text: &str, source: &str, dir: &Path) -> Result<ToolTable, Error> {
@@ -47,11 +75,39 @@ impl ToolTable {
                 .trim_start_matches(['T', 't'])
                 .parse()
                 .map_err(|_| ferr(format!("tool '{k}' is not a T number (write 3 = \"full\")")))?;
-            let choice = match v.parse::<crate::analysis::verify::InsertChoice>()? {
-                InsertChoice::File(p) if p.is_relative() => InsertChoice::File(dir.join(p)),
-                c => c,
+            let tool = if let Some(rest) = v.strip_prefix("tap:") {
+                let (designation, chamfer) = match rest.rsplit_once(':') {
+                    Some((d, c)) => (d, Some(c)),
+                    None => (rest, None),
+                };
+                let chamfer_pitches = match chamfer {
+                    Some(c) => c.trim().parse::<f64>().ok().filter(|c| c.is_finite() && *c > 0.0 && *c <= 20.0).ok_or_else(|| {
+                        ferr(format!("tool {k} = \"{v}\": the chamfer after the designation is a number of pitches, from over 0 to 20"))
+                    })?,
+                    None => DEFAULT_TAP_CHAMFER_PITCHES,
+                };
+                Tool::Tap {
+                    designation: designation.trim().to_string(),
+                    chamfer_pitches,
+                    chamfer_given: chamfer.is_some(),
+                }
+            } else if let Some(rest) = v.strip_prefix("drill:") {
+                let diameter = rest
+                    .trim()
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|d| d.is_finite() && *d > 0.0 && *d < 1000.0)
+                    .ok_or_else(|| {
+                        ferr(format!("tool {k} = \"{v}\": a drill is drill:DIAMETER in mm, e.g. drill:8.5"))
+                    })?;
+                Tool::Drill { diameter }
+            } else {
+                Tool::Insert(match v.parse::<crate::analysis::verify::InsertChoice>()? {
+                    InsertChoice::File(p) if p.is_relative() => InsertChoice::File(dir.join(p)),
+                    c => c,
+                })
             };
-            tools.insert(t, (choice, v));
+            tools.insert(t, (tool, v));
         }
         Ok(ToolTable { source: source.to_string(), tools })
     }
@@ -71,13 +127,24 @@ impl ToolTable {
     /// file).
     pub fn file_entry(&self) -> Option<(u32, &str)> {
         self.tools.iter().find_map(|(t, (c, w))| match c {
-            InsertChoice::File(_) => Some((*t, w.as_str())),
-            InsertChoice::Full | InsertChoice::Partial { .. } | InsertChoice::Toml { .. } => None,
+            Tool::Insert(InsertChoice::File(_)) => Some((*t, w.as_str())),
+            Tool::Insert(InsertChoice::Full | InsertChoice::Partial { .. } | InsertChoice::Toml { .. })
+            | Tool::Tap { .. }
+            | Tool::Drill { .. } => None,
         })
     }
 
-    /// The insert of tool `t` and how the table wrote it.
-    pub fn insert(&self, t: u32) -> Option<&(InsertChoice, String)> {
-        self.tools.get(&t)
+    /// The insert of tool `t` and how the table wrote it (`None` for a tap, a drill or a tool
+    /// not in the table).
+    pub fn insert(&self, t: u32) -> Option<(&InsertChoice, &str)> {
+        match self.tools.get(&t) {
+            Some((Tool::Insert(c), w)) => Some((c, w.as_str())),
+            Some((Tool::Tap { .. } | Tool::Drill { .. }, _)) | None => None,
+        }
+    }
+
+    /// Tool `t` and how the table wrote it.
+    pub fn tool(&self, t: u32) -> Option<(&Tool, &str)> {
+        self.tools.get(&t).map(|(tool, w)| (tool, w.as_str()))
     }
 }

@@ -225,6 +225,11 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                 ))
             }
             50 if fanuc_like && m.lathe() => one_shot = Some(g),
+            // Feed modes (the tapping check reads them): G98/G99 on a lathe, G94/G95 in G17.
+            98 if fanuc_like => m.feed_per_rev = Some(false),
+            99 if fanuc_like => m.feed_per_rev = Some(true),
+            94 if fanuc_like && m.plane == 17 => m.feed_per_rev = Some(false),
+            95 if fanuc_like && m.plane == 17 => m.feed_per_rev = Some(true),
             90 | 94 if fanuc_like && m.lathe() => motion = Some((g, col)),
             30 => one_shot = Some(g),
             7 if d == Dialect::LinuxCnc => m.diameter = true,
@@ -263,6 +268,13 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
         }
     }
     for w in b.words.iter().filter(|w| w.name == "M") {
+        match w.v {
+            3.0 => m.spindle_dir = Some(super::SpindleDir::Cw),
+            4.0 => m.spindle_dir = Some(super::SpindleDir::Ccw),
+            5.0 => m.spindle_dir = Some(super::SpindleDir::Stopped),
+            29.0 if fanuc_like => m.rigid_next = true,
+            _ => {}
+        }
         if w.v >= 0.0 && w.v.fract() == 0.0 && w.v < 1e6 && !m_known(d, w.v as u32) {
             m.read_past(
                 b.line,
@@ -433,8 +445,9 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
                 return Ok(());
             }
             GRole::OtherCycle => {
-                let (x, _, z) = m.target(b);
+                let (x, y, z) = m.target(b);
                 let what = format!("G{}", modal.motion);
+                record_hole(m, b, modal, (x, y, z));
                 if x.is_some() || z.is_some() || modal.col.is_some() {
                     m.lose_position(b.line, &what, true, true);
                     m.read_past(
@@ -460,6 +473,56 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
         m.skipped += 1;
     }
     Ok(())
+}
+
+/// Records a Fanuc or Haas drilling or tapping cycle's hole (one per block that gives a
+/// position while the cycle is in force).
+fn record_hole(
+    m: &mut Motion,
+    b: &RBlock<'_>,
+    modal: &Modal,
+    (x, y, z): (Option<f64>, Option<f64>, Option<f64>),
+) {
+    let fanuc_like = match m.dialect {
+        Dialect::Fanuc | Dialect::Haas => true,
+        Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma => false,
+    };
+    let code = modal.motion as u32;
+    let kind = match code {
+        74 | 84 => super::HoleKind::Tap,
+        73 | 81..=83 | 85..=89 => super::HoleKind::Drill,
+        _ => return,
+    };
+    if !fanuc_like || !(x.is_some() || y.is_some() || z.is_some() || modal.col.is_some()) {
+        return;
+    }
+    let feed = b.get("F").map(|w| m.len(w)).or(m.hole_modal.1);
+    let bottom = z.or(m.hole_modal.0);
+    m.hole_modal = (bottom, feed);
+    let rigid = std::mem::take(&mut m.rigid_next) || b.words.iter().any(|w| w.name == "M" && w.v == 29.0);
+    let (feed_per_rev, assumed) = match m.feed_per_rev {
+        Some(r) => (r, false),
+        // A lathe's power-on state is feed per revolution (G99), a machining centre's per minute.
+        None => (m.plane != 17, true),
+    };
+    if m.holes.len() < crate::ground::bounds::MAX_PASSES {
+        m.holes.push(super::HoleCycle {
+            code: m.g_name(code),
+            kind,
+            line: b.line,
+            column: modal.col.unwrap_or(b.col),
+            x: x.or(m.x),
+            y: y.or(m.y),
+            bottom,
+            feed,
+            feed_per_rev,
+            feed_mode_assumed: assumed,
+            spindle: m.s,
+            spindle_dir: m.spindle_dir,
+            tool: m.tool,
+            rigid,
+        });
+    }
 }
 
 /// Fanuc two-block G76 depths: pass n at max(Δd·√n, previous + Δd min) while below the rough

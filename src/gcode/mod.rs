@@ -487,6 +487,64 @@ pub struct Program {
     pub notes: Vec<Note>,
     /// Every feed and rapid move, when asked for ([`ReadOptions::moves`]).
     pub moves: Vec<Move>,
+    /// The drilling and tapping cycles (Fanuc and Haas), in program order.
+    pub holes: Vec<HoleCycle>,
+}
+
+/// Which way the spindle turns.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SpindleDir {
+    /// M3, clockwise seen from the spindle: a right-hand tap cuts.
+    Cw,
+    /// M4, counter-clockwise: a left-hand tap cuts.
+    Ccw,
+    /// M5.
+    Stopped,
+}
+
+/// What a drilling or tapping cycle does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum HoleKind {
+    /// G73, G81, G82, G83 (and the boring G85–G89): makes the hole.
+    Drill,
+    /// G84 (right hand) or G74 (left hand): taps it.
+    Tap,
+}
+
+/// A drilling or tapping cycle as the program commands it (Fanuc and Haas G73, G74, G81–G89,
+/// one per hole: a canned cycle's repeat at a new position is another).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct HoleCycle {
+    /// The G code (`G84`).
+    pub code: String,
+    /// Drill or tap.
+    pub kind: HoleKind,
+    /// Where it is written.
+    pub line: usize,
+    /// Its column.
+    pub column: usize,
+    /// The hole's position, mm (X a diameter on a lathe); `None` when not known.
+    pub x: Option<f64>,
+    /// Y, mm.
+    pub y: Option<f64>,
+    /// Z of the hole's bottom, mm.
+    pub bottom: Option<f64>,
+    /// F as written, in mm (per revolution or per minute).
+    pub feed: Option<f64>,
+    /// F per revolution (else per minute).
+    pub feed_per_rev: bool,
+    /// The feed mode was not set by the program (the control's power-on state assumed).
+    pub feed_mode_assumed: bool,
+    /// S in force, rpm.
+    pub spindle: Option<f64>,
+    /// The spindle's direction in force.
+    pub spindle_dir: Option<SpindleDir>,
+    /// The tool in force.
+    pub tool: Option<u32>,
+    /// M29 rigid tapping.
+    pub rigid: bool,
 }
 
 impl Program {
@@ -651,6 +709,7 @@ pub fn read_program_with(
         opts.main,
     )?;
     let units_assumed = (!m.units_set).then_some(opts.default_units);
+    let holes = std::mem::take(&mut m.holes);
     let (operations, skipped, mut notes, moves, read_past) = m.finish();
     notes.extend(order_note.map(Note::from));
     let extension = std::path::Path::new(file).extension().and_then(|e| e.to_str()).unwrap_or("");
@@ -707,7 +766,15 @@ pub fn read_program_with(
         return Err(perr(line, col, why));
     }
     let passes = operations.iter().flat_map(|o| o.passes.iter().copied()).collect();
-    Ok(Program { passes, operations, skipped_blocks: skipped, read_past_blocks: read_past, notes, moves })
+    Ok(Program {
+        passes,
+        operations,
+        skipped_blocks: skipped,
+        read_past_blocks: read_past,
+        notes,
+        moves,
+        holes,
+    })
 }
 
 /// The dialect table: the rules each dialect's module implements, with a fresh modal state.

@@ -160,6 +160,17 @@ pub(crate) struct Motion {
     pub css: bool,
     pub s: Option<f64>,
     pub tool: Option<u32>,
+    /// The spindle's direction as the last M3, M4 or M5 left it.
+    pub spindle_dir: Option<super::SpindleDir>,
+    /// Feed per revolution (G99 on a Fanuc or Haas lathe, G95 in G17), per minute (G98, G94),
+    /// or not set by the program.
+    pub feed_per_rev: Option<bool>,
+    /// M29 (rigid tapping) given for the next tapping cycle.
+    pub rigid_next: bool,
+    /// The drilling and tapping cycles read, in program order.
+    pub holes: Vec<super::HoleCycle>,
+    /// The modal bottom Z and feed of the canned cycle in force.
+    pub hole_modal: (Option<f64>, Option<f64>),
     /// Working plane (17, 18, 19).
     pub plane: u32,
     ops: Vec<Operation>,
@@ -219,6 +230,11 @@ impl Motion {
             css: false,
             s: None,
             tool: None,
+            spindle_dir: None,
+            feed_per_rev: None,
+            rigid_next: false,
+            holes: Vec::new(),
+            hole_modal: (None, None),
             plane: match dialect {
                 _ if record_moves => 17,
                 Dialect::Dyna => 17,

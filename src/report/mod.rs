@@ -8,6 +8,7 @@ pub mod html;
 pub mod mill;
 pub(crate) mod output;
 pub mod svg;
+pub mod tapping;
 
 use crate::analysis::check::{CheckFeature, Verdict};
 use crate::analysis::verify::Verification;

@@ -1,0 +1,402 @@
+//! Tapping cycles checked against their tap and the drill that made the hole (issue 31): a tap
+//! forms the flanks, so the tapped thread's pitch and major diameters are the tap's class, but
+//! its minor diameter D1 is the drill's, and a hole drilled outside the class's D1 limits fails
+//! D1 whatever the tap. Per tapping cycle (Fanuc and Haas `G84`, left-hand `G74`, rigid with
+//! `M29`):
+//!
+//! - **drill diameter** against D1 min and max of the tap's class (compared at the standard's
+//!   resolution): the drill is the preceding drilling cycle's (G73, G81–G83, G85–G89) at the same
+//!   position, its diameter from the tool table (`5 = "drill:8.5"`);
+//! - **feed**: the lead per revolution under G99 (G95 in G17), S × lead per minute under G98
+//!   (G94 in G17), within half the program's least increment (0.0005 mm/rev; 0.5 mm/min);
+//! - **depth**: the tap's bottom must stay its chamfer length above the drill's bottom (the
+//!   chamfer's threads are incomplete and the chips need room): drill bottom − tap bottom ≥
+//!   chamfer, the chamfer `tap:M10x1.5-6H:2.5` pitches (default 2.5, form C of ISO 8830 /
+//!   DIN 2197, stated);
+//! - **spindle**: G84 cuts a right-hand thread with the spindle clockwise (M3), G74 a left-hand
+//!   one counter-clockwise (M4); the cycle reverses the spindle itself at the bottom.
+
+use crate::analysis::tools::{Tool, ToolTable};
+use crate::gcode::{Dialect, HoleCycle, HoleKind, ReadOptions, SpindleDir};
+use crate::standards::tolerance::limits_for;
+use crate::standards::{parse_designation, Hand, ParseOptions, ThreadKind};
+use crate::Error;
+use serde::Serialize;
+
+/// What the tapping check reads.
+#[derive(Clone, Debug)]
+pub struct TapSpec {
+    /// The program's text and the name messages call it.
+    pub program: (String, String),
+    /// Its dialect.
+    pub dialect: Dialect,
+    /// How to read it (units, G-code system, …).
+    pub reading: ReadOptions,
+    /// The tool table naming the taps and drills.
+    pub tools: ToolTable,
+    /// Accept sizes outside the standard series.
+    pub allow_nonstandard: bool,
+}
+
+/// What a tapping check looks at.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TapFeature {
+    /// The drill's diameter against D1.
+    DrillDiameter,
+    /// F against the lead.
+    Feed,
+    /// The depth left below the tap for its chamfer.
+    Depth,
+    /// The spindle's direction against the tap's hand.
+    Spindle,
+}
+
+/// One check of a tapping cycle.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TapCheck {
+    /// What is checked.
+    pub feature: TapFeature,
+    /// Within its limits.
+    pub ok: bool,
+    /// The program's value (mm, mm/rev or mm/min; none for the spindle).
+    pub value: Option<f64>,
+    /// The least allowed value.
+    pub min: Option<f64>,
+    /// The largest allowed value.
+    pub max: Option<f64>,
+    /// The unit of value, min and max.
+    pub unit: &'static str,
+    /// 0 inside, else the signed distance to the nearer limit in µm (mm for a feed per minute).
+    pub deviation: f64,
+    /// Why, in words.
+    pub note: String,
+}
+
+/// The drill that made a tapped hole.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DrillInfo {
+    /// The drilling cycle.
+    pub cycle: HoleCycle,
+    /// Its diameter from the tool table, mm (`None`: its tool is not a drill of the table).
+    pub diameter: Option<f64>,
+}
+
+/// The tap of a tapping cycle.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TapInfo {
+    /// The designation with its class.
+    pub designation: String,
+    /// The lead, mm.
+    pub lead: f64,
+    /// The chamfer length, pitches.
+    pub chamfer_pitches: f64,
+    /// The chamfer was given in the tool table (else the default).
+    pub chamfer_given: bool,
+    /// D1 limits of the class, mm.
+    pub minor_diameter: crate::standards::tolerance::Limit,
+    /// D2 limits of the class, mm (the tap's: stated, not computed).
+    pub pitch_diameter: crate::standards::tolerance::Limit,
+}
+
+/// One tapping cycle and its checks.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TappedHole {
+    /// The tapping cycle.
+    pub cycle: HoleCycle,
+    /// Its tap.
+    pub tap: TapInfo,
+    /// The drill that made the hole, when a drilling cycle precedes it at its position.
+    pub drill: Option<DrillInfo>,
+    /// The checks.
+    pub checks: Vec<TapCheck>,
+    /// Within every check.
+    pub pass: bool,
+    /// What was assumed or could not be checked.
+    pub notes: Vec<String>,
+}
+
+/// Every tapping cycle of a program, checked.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TapReport {
+    /// The program's name.
+    pub program: String,
+    /// Its dialect.
+    pub dialect: Dialect,
+    /// Every tapping cycle in program order.
+    pub holes: Vec<TappedHole>,
+    /// The drilling cycles read.
+    pub drills: usize,
+    /// Every tapping cycle passes.
+    pub pass: bool,
+    /// The program's notes.
+    pub notes: Vec<crate::ground::note::Note>,
+}
+
+/// The same position (within 1 µm; unknown matches unknown).
+fn same(a: Option<f64>, b: Option<f64>) -> bool {
+    match (a, b) {
+        (Some(a), Some(b)) => (a - b).abs() < 1e-3,
+        (None, None) => true,
+        _ => false,
+    }
+}
+
+/// Reads the program's drilling and tapping cycles and checks each tapping cycle.
+///
+/// ```
+/// use threadcheck::{tapping, Dialect, ReadOptions, TapSpec, ToolTable};
+/// let program = "T0505\nG99 M3 S800\nG0 X0 Z5\nG83 Z-25 R2 Q5000 F0.1\nT0606\nG84 Z-18 R5 F1.5\nG80\nM30\n";
+/// let tools = ToolTable::from_toml("[tools]\n5 = \"drill:8.5\"\n6 = \"tap:M10x1.5-6H\"\n", "tools.toml", std::path::Path::new("."))?;
+/// let spec = TapSpec { program: (program.into(), "tap.nc".into()), dialect: Dialect::Fanuc, reading: ReadOptions::default(), tools, allow_nonstandard: false };
+/// let r = tapping(&spec)?;
+/// assert!(r.pass); // Ø8.5 within D1 8.376–8.676; F1.5 = P; 25 − 18 = 7 ≥ 2.5·1.5
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
+    let (text, name) = &spec.program;
+    let opts = ReadOptions { allow_no_threading: true, ..spec.reading };
+    let prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
+    let taps: Vec<&HoleCycle> = prog.holes.iter().filter(|h| h.kind == HoleKind::Tap).collect();
+    if taps.is_empty() {
+        return Err(Error::Program {
+            file: name.clone(),
+            line: 1,
+            column: 1,
+            message: format!(
+                "no tapping cycle in the program (looked for G84 and G74 in the {} dialect)",
+                spec.dialect.name()
+            ),
+        });
+    }
+    let mut holes = Vec::new();
+    for (i, h) in prog.holes.iter().enumerate() {
+        if h.kind != HoleKind::Tap {
+            continue;
+        }
+        let perr =
+            |message: String| Error::Program { file: name.clone(), line: h.line, column: h.column, message };
+        let Some(t) = h.tool else {
+            return Err(perr(format!(
+                "{} names no tool: the tapping check needs the tap (T and the tool table's tap:DESIGNATION)",
+                h.code
+            )));
+        };
+        let (designation, chamfer_pitches, chamfer_given) = match spec.tools.tool(t) {
+            Some((Tool::Tap { designation, chamfer_pitches, chamfer_given }, _)) => {
+                (designation.clone(), *chamfer_pitches, *chamfer_given)
+            }
+            Some((Tool::Insert(_) | Tool::Drill { .. }, written)) => {
+                return Err(perr(format!(
+                "{} with tool T{t}, which {} calls \"{written}\", not a tap (write {t} = \"tap:M10x1.5-6H\")",
+                h.code, spec.tools.source
+            )))
+            }
+            None => {
+                return Err(perr(format!(
+                    "{} with tool T{t}, which is not in {} (write {t} = \"tap:M10x1.5-6H\")",
+                    h.code, spec.tools.source
+                )))
+            }
+        };
+        let des =
+            parse_designation(&designation, ParseOptions { allow_nonstandard: spec.allow_nonstandard })?;
+        let limits = limits_for(&des, ThreadKind::Internal)?.ok_or_else(|| {
+            perr(format!("tap {designation}: give the internal class the tap cuts, e.g. M10x1.5-6H"))
+        })?;
+        let lead = des.thread.lead();
+        let pitch = des.thread.pitch;
+        let res = limits.resolution;
+        let mut checks = Vec::new();
+        let mut notes = Vec::new();
+        // The drill: the last drilling cycle before this tap at its position.
+        let drill = prog.holes[..i]
+            .iter()
+            .rev()
+            .find(|d| d.kind == HoleKind::Drill && same(d.x, h.x) && same(d.y, h.y))
+            .map(|d| {
+                let diameter = d.tool.and_then(|dt| match spec.tools.tool(dt) {
+                    Some((Tool::Drill { diameter }, _)) => Some(*diameter),
+                    Some((Tool::Insert(_) | Tool::Tap { .. }, _)) | None => None,
+                });
+                DrillInfo { cycle: d.clone(), diameter }
+            });
+        match &drill {
+            Some(DrillInfo { diameter: Some(dia), cycle }) => {
+                let (lo, hi) = (limits.minor_diameter.min, limits.minor_diameter.max);
+                let v = res.round(*dia);
+                let below = lo.map_or(0.0, |lo| (v - lo).min(0.0));
+                let above = hi.map_or(0.0, |hi| (v - hi).max(0.0));
+                let dev = if below < 0.0 { below } else { above };
+                checks.push(TapCheck {
+                    feature: TapFeature::DrillDiameter,
+                    ok: dev == 0.0,
+                    value: Some(*dia),
+                    min: lo,
+                    max: hi,
+                    unit: "mm",
+                    deviation: (dev * 10_000.0).round() / 10.0,
+                    note: format!(
+                        "the tapped hole's minor diameter D1 is the drill's (T{}, {} at line {})",
+                        cycle.tool.map_or("?".to_string(), |t| t.to_string()),
+                        cycle.code,
+                        cycle.line
+                    ),
+                });
+            }
+            Some(DrillInfo { diameter: None, cycle }) => notes.push(format!(
+                "the hole is drilled by {} at line {} with {}, which the tool table does not give as a drill (write drill:DIAMETER): D1 is not checked",
+                cycle.code,
+                cycle.line,
+                cycle.tool.map_or("no tool".to_string(), |t| format!("T{t}"))
+            )),
+            None => notes.push(
+                "no drilling cycle precedes this tap at its position: D1 (the drill's diameter) and the depth are not checked"
+                    .to_string(),
+            ),
+        }
+        // The feed.
+        match h.feed {
+            Some(f) => {
+                let mode = if h.feed_per_rev { "per revolution" } else { "per minute" };
+                if h.feed_mode_assumed {
+                    notes.push(format!(
+                        "the program sets no feed mode before {}: feed {mode} assumed, the control's power-on state ({})",
+                        h.code,
+                        if h.feed_per_rev { "a lathe's G99" } else { "a machining centre's G94" }
+                    ));
+                }
+                let expected = if h.feed_per_rev { Some(lead) } else { h.spindle.map(|s| s * lead) };
+                match expected {
+                    Some(e) => {
+                        let (tol, unit) = if h.feed_per_rev { (0.0005, "mm/rev") } else { (0.5, "mm/min") };
+                        let off = f - e;
+                        let ok = off.abs() <= tol + 1e-9;
+                        checks.push(TapCheck {
+                            feature: TapFeature::Feed,
+                            ok,
+                            value: Some(f),
+                            min: Some(e),
+                            max: Some(e),
+                            unit,
+                            deviation: if ok {
+                                0.0
+                            } else if h.feed_per_rev {
+                                off * 1000.0
+                            } else {
+                                off
+                            },
+                            note: if h.feed_per_rev {
+                                format!(
+                                    "feed per revolution: F must be the lead, {} mm",
+                                    crate::ground::fmt::fmt_num(lead)
+                                )
+                            } else {
+                                format!(
+                                    "feed per minute: F must be S × lead = {} × {}",
+                                    crate::ground::fmt::fmt_num(h.spindle.unwrap_or(0.0)),
+                                    crate::ground::fmt::fmt_num(lead)
+                                )
+                            },
+                        });
+                    }
+                    None => notes.push(format!(
+                        "{} feeds per minute with no S in force: the feed is not checked",
+                        h.code
+                    )),
+                }
+            }
+            None => notes.push(format!("{} has no F: the feed is not checked", h.code)),
+        }
+        // The depth.
+        let chamfer = chamfer_pitches * pitch;
+        if !chamfer_given {
+            notes.push(format!(
+                "the tap's chamfer is taken as {} pitches = {} mm (form C, ISO 8830; give tap:{designation}:PITCHES)",
+                crate::ground::fmt::fmt_num(chamfer_pitches),
+                crate::ground::fmt::fmt_num(chamfer)
+            ));
+        }
+        if let (Some(d), Some(tb)) = (&drill, h.bottom) {
+            if let Some(db) = d.cycle.bottom {
+                let room = tb - db;
+                let ok = room >= chamfer - 1e-9;
+                checks.push(TapCheck {
+                    feature: TapFeature::Depth,
+                    ok,
+                    value: Some(room),
+                    min: Some(chamfer),
+                    max: None,
+                    unit: "mm",
+                    deviation: if ok { 0.0 } else { (room - chamfer) * 1000.0 },
+                    note: format!(
+                        "the drill's bottom (Z{}) lies {} mm below the tap's (Z{}); the tap's chamfer needs {} mm",
+                        crate::ground::fmt::fmt_num(db),
+                        crate::ground::fmt::fmt_num(room),
+                        crate::ground::fmt::fmt_num(tb),
+                        crate::ground::fmt::fmt_num(chamfer)
+                    ),
+                });
+            }
+        }
+        // The spindle.
+        let (want, hand) = match h.code.as_str() {
+            "G74" => (SpindleDir::Ccw, Hand::Left),
+            _ => (SpindleDir::Cw, Hand::Right),
+        };
+        let hand_ok = des.thread.hand == hand;
+        match h.spindle_dir {
+            Some(dir) => checks.push(TapCheck {
+                feature: TapFeature::Spindle,
+                ok: dir == want && hand_ok,
+                value: None,
+                min: None,
+                max: None,
+                unit: "",
+                deviation: 0.0,
+                note: format!(
+                    "{} taps a {}-hand thread with the spindle {}; the spindle is {}{}",
+                    h.code,
+                    if hand == Hand::Right { "right" } else { "left" },
+                    if want == SpindleDir::Cw { "clockwise (M3)" } else { "counter-clockwise (M4)" },
+                    match dir {
+                        SpindleDir::Cw => "clockwise (M3)",
+                        SpindleDir::Ccw => "counter-clockwise (M4)",
+                        SpindleDir::Stopped => "stopped (M5)",
+                    },
+                    if hand_ok {
+                        String::new()
+                    } else {
+                        format!(", and the tap {designation} is of the other hand")
+                    }
+                ),
+            }),
+            None => {
+                notes.push(format!("no M3 or M4 before {}: the spindle's direction is not checked", h.code))
+            }
+        }
+        notes.push(format!(
+            "the tapped thread's D2 and D are the tap's class {} (not computed); D1 is the drill's",
+            limits.class
+        ));
+        let pass = checks.iter().all(|c| c.ok);
+        holes.push(TappedHole {
+            cycle: h.clone(),
+            tap: TapInfo {
+                designation: des.text.clone(),
+                lead,
+                chamfer_pitches,
+                chamfer_given,
+                minor_diameter: limits.minor_diameter,
+                pitch_diameter: limits.pitch_diameter,
+            },
+            drill,
+            checks,
+            pass,
+            notes,
+        });
+    }
+    let pass = holes.iter().all(|h| h.pass);
+    let drills = prog.holes.iter().filter(|h| h.kind == HoleKind::Drill).count();
+    Ok(TapReport { program: name.clone(), dialect: spec.dialect, holes, drills, pass, notes: prog.notes })
+}
