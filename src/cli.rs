@@ -153,6 +153,10 @@ enum Command {
     /// holes: the drill against D1 of the tap's class, the feed against the lead, the depth
     /// left for the tap's chamfer, the spindle's direction (exit 0 all pass, 1 one fails).
     Tap(TapArgs),
+    /// The thread a thread-milling program leaves (helical G2/G3 in G17 with a single-form
+    /// cutter): the exact envelope of the cutter in the part's axial section, measured and
+    /// checked, with the profile distortion against the tooth profile and the lead per turn.
+    ThreadMill(ThreadMillArgs),
     /// The shop's page and the JSON API on this computer: open the address it prints in a
     /// browser (verify, compare, fit, limits); scripts POST to /api/verify and the like.
     Serve(ServeArgs),
@@ -379,6 +383,36 @@ struct CorrectArgs {
     /// Write the program with the correction to this file; `-` prints it instead of the report.
     #[arg(long, value_name = "FILE|-", requires = "program")]
     fix: Option<String>,
+    #[command(flatten)]
+    json: JsonArg,
+}
+
+#[derive(Args)]
+struct ThreadMillArgs {
+    /// The program.
+    #[arg(long, value_name = "FILE")]
+    program: PathBuf,
+    /// fanuc | haas | sinumerik | linuxcnc (default: by the extension, else fanuc)
+    #[arg(long)]
+    dialect: Option<Dialect>,
+    /// The thread with its class, e.g. M20x1.5-6H.
+    #[arg(long)]
+    thread: String,
+    /// Accept a diameter/pitch pair outside the standard series.
+    #[arg(long)]
+    allow_nonstandard: bool,
+    /// The cutter's diameter over its tooth's tip, mm.
+    #[arg(long, value_name = "MM", value_parser = finite)]
+    cutter_diameter: f64,
+    /// The tooth's included angle, degrees.
+    #[arg(long, value_name = "DEG", value_parser = finite, default_value = "60")]
+    cutter_angle: f64,
+    /// The tooth's tip radius, mm.
+    #[arg(long, value_name = "MM", value_parser = finite, default_value = "0")]
+    cutter_tip_radius: f64,
+    /// The bore (internal) or blank (external) diameter, mm.
+    #[arg(long, value_name = "MM", value_parser = finite)]
+    blank_diameter: Option<f64>,
     #[command(flatten)]
     json: JsonArg,
 }
@@ -805,6 +839,21 @@ impl Cli {
                     tolerance: m.tolerance,
                 };
                 done(MillJob { spec, svg: m.svg, json: m.json.json }.run()?)
+            }
+            Command::ThreadMill(a) => {
+                let spec = threadcheck::ThreadMillSpec {
+                    program: (threadcheck::read_program_text(&a.program)?, a.program.display().to_string()),
+                    dialect: dialect_for(a.dialect, &a.program).0,
+                    designation: a.thread,
+                    allow_nonstandard: a.allow_nonstandard,
+                    cutter: threadcheck::Cutter {
+                        diameter: a.cutter_diameter,
+                        angle_deg: a.cutter_angle,
+                        tip_radius: a.cutter_tip_radius,
+                    },
+                    blank_diameter: a.blank_diameter,
+                };
+                done(threadcheck::ThreadMillJob { spec, json: a.json.json }.run()?)
             }
             Command::Tap(a) => {
                 let (dialect, from) = dialect_for(a.dialect, &a.program);

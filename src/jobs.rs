@@ -984,6 +984,25 @@ fn placements_line(
     })
 }
 
+/// `threadcheck thread-mill`: the thread a thread-milling program leaves.
+#[derive(Clone, Debug)]
+pub struct ThreadMillJob {
+    /// The program, the thread and the cutter.
+    pub spec: crate::analysis::threadmill::ThreadMillSpec,
+    /// The JSON: `-` prints it on stdout instead of the text, a path writes it there.
+    pub json: Option<String>,
+}
+
+impl ThreadMillJob {
+    /// Runs the job: pass when the milled thread is within every limit and the lead is right.
+    pub fn run(&self) -> Result<(String, Outcome), Error> {
+        let r = crate::analysis::threadmill::thread_mill(&self.spec)?;
+        let outcome = if r.pass { Outcome::Pass } else { Outcome::OutOfTolerance };
+        let json_text = self.json.as_ref().map(|_| pretty(&r)).transpose()?;
+        Ok((route_json(self.json.as_deref(), json_text, crate::report::threadmill::text(&r))?, outcome))
+    }
+}
+
 /// `threadcheck tap`: a program's tapping cycles against their taps and drills.
 #[derive(Clone, Debug)]
 pub struct TapJob {

@@ -111,6 +111,7 @@ pub use analysis::mill::{mill, MillReport, MillSpec, Target};
 pub use analysis::picture::{Cut, Deviation, Picture};
 pub use analysis::process::MachineProfile;
 pub use analysis::tapping::{tapping, TapCheck, TapFeature, TapReport, TapSpec, TappedHole};
+pub use analysis::threadmill::{thread_mill, Cutter, Helix, ThreadMillReport, ThreadMillSpec};
 pub use analysis::tools::{Tool, ToolTable};
 pub use analysis::verify::{
     default_blank, default_pass_count, program_passes, read_program_text, reference_groove, verify,
@@ -125,5 +126,5 @@ pub use serve::{router, serve, ServeOptions};
 // The commands: one job per command, returning what the command prints.
 pub use jobs::{
     CapabilityJob, CompareJob, CorrectJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob,
-    SweepJob, TapJob, VerifyJob,
+    SweepJob, TapJob, ThreadMillJob, VerifyJob,
 };

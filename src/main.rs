@@ -50,7 +50,7 @@ fn usage_error(e: &clap::Error) -> ExitCode {
             ExitCode::SUCCESS
         }
         ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-            eprintln!("threadcheck: error: no command given: limits, verify, correct, capability, passes, compare, fit, mill, tap, sweep, report or serve (threadcheck --help)");
+            eprintln!("threadcheck: error: no command given: limits, verify, correct, capability, passes, compare, fit, mill, tap, thread-mill, sweep, report or serve (threadcheck --help)");
             ExitCode::from(2)
         }
         _ => {

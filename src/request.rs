@@ -38,11 +38,13 @@ pub enum Command {
     Mill,
     /// `tap`.
     Tap,
+    /// `thread-mill`.
+    ThreadMill,
 }
 
 impl Command {
     /// Every command, in the order the documentation lists them.
-    pub const ALL: [Command; 9] = [
+    pub const ALL: [Command; 10] = [
         Command::Verify,
         Command::Passes,
         Command::Limits,
@@ -52,6 +54,7 @@ impl Command {
         Command::Capability,
         Command::Mill,
         Command::Tap,
+        Command::ThreadMill,
     ];
 
     /// The command's name, as the command line spells it.
@@ -66,6 +69,7 @@ impl Command {
             Command::Capability => "capability",
             Command::Mill => "mill",
             Command::Tap => "tap",
+            Command::ThreadMill => "thread-mill",
         }
     }
 
@@ -135,6 +139,19 @@ impl Command {
                     "n_order",
                 ]
             }
+            Command::ThreadMill => {
+                return vec![
+                    "program",
+                    "program_name",
+                    "dialect",
+                    "thread",
+                    "allow_nonstandard",
+                    "cutter_diameter",
+                    "cutter_angle",
+                    "cutter_tip_radius",
+                    "blank_diameter",
+                ]
+            }
             Command::Tap => {
                 return vec![
                     "program",
@@ -159,7 +176,7 @@ impl Command {
             Command::Capability => &[Json, Text, Svg, Html],
             Command::Compare => &[Json, Text, Html],
             Command::Fit | Command::Mill => &[Json, Text, Svg],
-            Command::Passes | Command::Limits | Command::Tap => &[Json, Text],
+            Command::Passes | Command::Limits | Command::Tap | Command::ThreadMill => &[Json, Text],
         }
     }
 }
@@ -441,6 +458,34 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
             }
             CapabilityJob { spec, svg: want(Document::Svg), html: want(Document::Html), json }
                 .run_to(&mut sink)?
+        }
+        Command::ThreadMill => {
+            let program = a
+                .text("program")?
+                .ok_or_else(|| Error::Input("thread-mill needs program (its text)".into()))?;
+            let name = a.program_name()?;
+            let dialect = match a.text("dialect")? {
+                Some(d) => d.parse()?,
+                None => crate::gcode::Dialect::by_extension(std::path::Path::new(&name))
+                    .unwrap_or(crate::gcode::Dialect::Fanuc),
+            };
+            let designation = a.one_thread("thread-mill")?.remove(0);
+            let cutter = crate::analysis::threadmill::Cutter {
+                diameter: a
+                    .num("cutter_diameter")?
+                    .ok_or_else(|| Error::Input("thread-mill needs cutter_diameter (mm)".into()))?,
+                angle_deg: a.num("cutter_angle")?.unwrap_or(60.0),
+                tip_radius: a.num("cutter_tip_radius")?.unwrap_or(0.0),
+            };
+            let spec = crate::analysis::threadmill::ThreadMillSpec {
+                program: (program, name),
+                dialect,
+                designation,
+                allow_nonstandard: a.flag("allow_nonstandard")?,
+                cutter,
+                blank_diameter: a.num("blank_diameter")?,
+            };
+            crate::jobs::ThreadMillJob { spec, json }.run()?
         }
         Command::Tap => {
             let program =

@@ -24,6 +24,7 @@ pub mod serve;
 mod shop;
 mod sweep;
 mod tapping;
+mod threadmill;
 mod util;
 mod verify;
 

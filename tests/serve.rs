@@ -230,7 +230,18 @@ fn api_documents_are_the_cli_files() {
         v["commands"].as_array().unwrap().iter().map(|c| c["command"].as_str().unwrap()).collect();
     assert_eq!(
         names,
-        ["verify", "passes", "limits", "compare", "fit", "correct", "capability", "mill", "tap"]
+        [
+            "verify",
+            "passes",
+            "limits",
+            "compare",
+            "fit",
+            "correct",
+            "capability",
+            "mill",
+            "tap",
+            "thread-mill"
+        ]
     );
 }
 

@@ -308,7 +308,7 @@ def test_svg_html_and_fix_outputs_are_the_cli_files(tmp_path):
 def test_every_function_documents_every_argument():
     import inspect
 
-    for name in ("verify", "limits", "passes", "correct", "capability", "fit", "compare", "mill", "tap", "render"):
+    for name in ("verify", "limits", "passes", "correct", "capability", "fit", "compare", "mill", "tap", "thread_mill", "render"):
         f = getattr(threadcheck, name)
         doc = inspect.getdoc(f)
         assert doc and len(doc) > 60, name
@@ -374,3 +374,13 @@ def test_tap_checks_the_drill_against_d1():
     bad = threadcheck.tap(TAP_PROGRAM, '[tools]\n5 = "drill:8.0"\n6 = "tap:M10x1.5-6H"\n')
     d1 = next(c for c in bad["holes"][0]["checks"] if c["feature"] == "drill_diameter")
     assert not bad["pass"] and d1["deviation"] == pytest.approx(-376.0)
+
+
+def test_thread_mill_major_diameter_and_lead():
+    # Ø6 single-form cutter on a helix of radius 7: the major diameter is 2(7 + 3) = 20.
+    prog = "G17 G21 G90 G40\nG0 X0 Y0 Z5\nG0 Z-16\nG1 X7 Y0 F100\n" + "".join(
+        f"G3 X7 Y0 Z{-16 + 1.5 * k:.4f} I-7 J0 F150\n" for k in range(1, 11)) + "G0 Z50\nM30\n"
+    r = threadcheck.thread_mill(prog, "M20x1.5-6H", 6.0)
+    assert r["measured"]["major_diameter"] == pytest.approx(20.0, abs=1e-4)
+    lead = next(c for c in r["checks"] if c["feature"] == "lead")
+    assert lead["ok"]

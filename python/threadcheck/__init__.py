@@ -44,6 +44,7 @@ __all__ = [
     "compare",
     "mill",
     "tap",
+    "thread_mill",
     "render",
     "VerifyReport",
     "LimitsReport",
@@ -54,6 +55,7 @@ __all__ = [
     "CompareReport",
     "MillReport",
     "TapReport",
+    "ThreadMillReport",
     "__version__",
 ]
 __version__: str = _threadcheck.__version__
@@ -324,4 +326,21 @@ def tap(program: str, tools: str, dialect: Optional[str] = None, program_name: O
     ``depth`` left for the chamfer, ``spindle``); the dict's ``pass`` is the verdict.
     """
     report: TapReport = _json.loads(_run("tap", "json", dict(locals()))[0])
+    return report
+
+
+def thread_mill(program: str, thread: str, cutter_diameter: float, cutter_angle: Optional[float] = None,
+                cutter_tip_radius: Optional[float] = None, blank_diameter: Optional[float] = None,
+                dialect: Optional[str] = None, program_name: Optional[str] = None,
+                allow_nonstandard: bool = False) -> ThreadMillReport:
+    """``threadcheck thread-mill --json``: the thread a thread-milling program leaves.
+
+    ``program`` is the program's text (helical G2/G3 in G17, the cutter centre's path),
+    ``thread`` the designation with its class, ``cutter_diameter`` (mm, over the tooth's tip),
+    ``cutter_angle`` (60°) and ``cutter_tip_radius`` (0) the single-form cutter's tooth;
+    ``blank_diameter`` the bore (default the middle of D1). The dict has ``measured``,
+    ``tooth_profile`` (the cutter's tooth alone), ``distortion_pitch_diameter_um``,
+    ``distortion_flank_angles_deg``, ``helices``, ``checks`` (``lead`` among them) and ``pass``.
+    """
+    report: ThreadMillReport = _json.loads(_run("thread-mill", "json", dict(locals()))[0])
     return report

@@ -190,6 +190,25 @@ class TapReport(TypedDict):
     notes: List[Json]
 
 
+class ThreadMillReport(TypedDict):
+    """``thread-mill --json``: the milled thread, measured and checked."""
+
+    program: str
+    designation: str
+    kind: str
+    cutter: Json
+    cutter_ratio: float
+    helices: List[Json]
+    blank_diameter: float
+    measured: Json
+    tooth_profile: Json
+    distortion_pitch_diameter_um: float
+    distortion_flank_angles_deg: List[float]
+    limits: Json
+    checks: List[Check]
+    notes: List[str]
+
+
 class MillReport(TypedDict):
     """``mill --json``."""
 

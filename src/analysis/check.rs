@@ -121,6 +121,8 @@ pub enum CheckFeature {
     FlankClearance,
     /// Process: room for the insert beyond the last pass, mm.
     RunOut,
+    /// A thread-milling helix's Z travel per revolution against the designation's lead (issue 31).
+    Lead,
 }
 
 impl CheckFeature {
@@ -144,6 +146,7 @@ impl CheckFeature {
             CheckFeature::Feed => "feed",
             CheckFeature::FlankClearance => "flank_clearance",
             CheckFeature::RunOut => "run_out",
+            CheckFeature::Lead => "lead",
         }
     }
 
@@ -167,6 +170,7 @@ impl CheckFeature {
             CheckFeature::Feed => "feed S×lead",
             CheckFeature::FlankClearance => "flank clearance",
             CheckFeature::RunOut => "run-out room",
+            CheckFeature::Lead => "helix lead",
         }
     }
 
@@ -196,6 +200,7 @@ impl CheckFeature {
             CheckFeature::Feed => "feed (S × lead)",
             CheckFeature::FlankClearance => "flank clearance",
             CheckFeature::RunOut => "run-out room",
+            CheckFeature::Lead => "lead per revolution",
         }
     }
 
@@ -209,7 +214,8 @@ impl CheckFeature {
             | CheckFeature::RootRadius
             | CheckFeature::MaxMaterial
             | CheckFeature::Crest
-            | CheckFeature::RunOut => CheckUnit::Mm,
+            | CheckFeature::RunOut
+            | CheckFeature::Lead => CheckUnit::Mm,
             CheckFeature::FlankAngle | CheckFeature::FlankClearance => CheckUnit::Degree,
             CheckFeature::SingleGroove | CheckFeature::ConstantSpindleSpeed => CheckUnit::YesNo,
             CheckFeature::Starts => CheckUnit::Count,

@@ -12,5 +12,6 @@ pub mod mill;
 pub mod picture;
 pub mod process;
 pub mod tapping;
+pub mod threadmill;
 pub mod tools;
 pub mod verify;

@@ -197,6 +197,14 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             }
             (Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma, _) => g,
         };
+        if m.plane == 17 || m.mill_reading() {
+            match g as u32 {
+                40 => m.comp = 0,
+                41 => m.comp = 1,
+                42 => m.comp = 2,
+                _ => {}
+            }
+        }
         match g as u32 {
             0 | 1 | 2 | 3 | 32 | 33 | 76 => motion = Some((g, col)),
             92 if d == Dialect::LinuxCnc => one_shot = Some(g),

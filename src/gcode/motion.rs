@@ -118,6 +118,8 @@ pub struct Move {
     pub arc: Option<([f64; 2], f64)>,
     /// Program line.
     pub line: usize,
+    /// Cutter radius compensation in force: 0 none (G40), 1 left (G41), 2 right (G42).
+    pub comp: u8,
 }
 
 /// An open chain of synchronised moves (G32/G33 blocks one after the other): one helix.
@@ -171,6 +173,8 @@ pub(crate) struct Motion {
     pub holes: Vec<super::HoleCycle>,
     /// The modal bottom Z and feed of the canned cycle in force.
     pub hole_modal: (Option<f64>, Option<f64>),
+    /// Cutter radius compensation: 0 G40, 1 G41, 2 G42.
+    pub comp: u8,
     /// Working plane (17, 18, 19).
     pub plane: u32,
     ops: Vec<Operation>,
@@ -235,6 +239,7 @@ impl Motion {
             rigid_next: false,
             holes: Vec::new(),
             hole_modal: (None, None),
+            comp: 0,
             plane: match dialect {
                 _ if record_moves => 17,
                 Dialect::Dyna => 17,
@@ -316,6 +321,11 @@ impl Motion {
             };
             self.last_x = Some(address_word(b, w, means));
         }
+    }
+
+    /// Whether the program is read as a milling toolpath.
+    pub(crate) fn mill_reading(&self) -> bool {
+        self.mill
     }
 
     /// Whether X words are turned into diameters (lathe dialects).
@@ -404,7 +414,14 @@ impl Motion {
             if let Some(mv) = self.moves.as_mut() {
                 let from = [self.x.unwrap_or(0.0), self.y.unwrap_or(0.0), self.z.unwrap_or(0.0)];
                 let to = [x.unwrap_or(from[0]), y.unwrap_or(from[1]), z.unwrap_or(from[2])];
-                mv.push(Move { rapid: self.motion == 0.0, from, to, arc: None, line: b.line });
+                mv.push(Move {
+                    rapid: self.motion == 0.0,
+                    from,
+                    to,
+                    arc: None,
+                    line: b.line,
+                    comp: self.comp,
+                });
             }
             self.record_contour(x, z, b.line);
         }
@@ -454,7 +471,14 @@ impl Motion {
                 [from[0] + i, from[1] + j]
             };
             if let Some(mv) = self.moves.as_mut() {
-                mv.push(Move { rapid: false, from, to, arc: Some((centre, dir)), line: b.line });
+                mv.push(Move {
+                    rapid: false,
+                    from,
+                    to,
+                    arc: Some((centre, dir)),
+                    line: b.line,
+                    comp: self.comp,
+                });
             }
         }
         self.x = Some(to[0]);

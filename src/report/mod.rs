@@ -9,6 +9,7 @@ pub mod mill;
 pub(crate) mod output;
 pub mod svg;
 pub mod tapping;
+pub mod threadmill;
 
 use crate::analysis::check::{CheckFeature, Verdict};
 use crate::analysis::verify::Verification;

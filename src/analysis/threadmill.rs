@@ -1,0 +1,477 @@
+//! Thread milling (issue 31): a single-form thread mill, a body of revolution about an axis
+//! parallel to the thread's, moves on the helices a program commands (G2/G3 with a Z change in
+//! G17). The thread it leaves is the envelope of the cutter's positions, cut by the part's axial
+//! half-plane: not the cutter's tooth profile, because the cutter meets that plane at many
+//! positions along the helix, each at its own height and its own angle.
+//!
+//! **The envelope, exactly.** Take the part's axis as Z and the half-plane θ = 0 (direction +X
+//! from the hole's centre). With the cutter's axis at distance R from the part's and at angle ψ
+//! from the half-plane, its tooth centre at height zc(ψ) (the helix), the point (r, z) of the
+//! half-plane lies inside the cutter when its distance from the cutter's axis, √(r² + R² −
+//! 2rR·cos ψ), is at most the cutter's radius ρ(z − zc) at that height. So the largest radius an
+//! internal thread's cutter reaches at height z is
+//!
+//!   r(z) = max over the helix of R·cos ψ + √(ρ(z − zc(ψ))² − R²·sin² ψ)
+//!
+//! (an external thread's cutter, outside the bolt, the least: R·cos ψ − √(…)). At ψ = 0 this is
+//! R + ρ(z − zc): the tooth profile moved out by R; every other ψ can only add to it, and adds
+//! more the larger the cutter is against the hole. The maximum over ψ is found on a grid of the
+//! helix parameter and refined by golden section; the profile then goes through the same
+//! measurement and class checks as a turned thread.
+//!
+//! The cutter: `diameter` over the tooth's tip, the tooth's included `angle` and tip radius, a
+//! tooth height of 0.625·P below the tip (deeper than an ISO thread's 0.5413·P, so the neck never
+//! reaches the thread: a named default). Cutter radius compensation (G41/G42) is not modelled:
+//! a helix under it is refused; the program gives the cutter centre's path.
+
+use crate::analysis::check::{checks, Check};
+use crate::gcode::{Dialect, Move, ReadOptions};
+use crate::geometry::measure::{measure, MeasureSetup, Measurement};
+use crate::standards::tolerance::{limits_for, ThreadLimits};
+use crate::standards::{parse_designation, ParseOptions, ThreadKind};
+use crate::{Error, Point};
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// A single-form thread mill.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Cutter {
+    /// Diameter over the tooth's tip, mm.
+    pub diameter: f64,
+    /// The tooth's included angle, degrees.
+    pub angle_deg: f64,
+    /// The tooth's tip radius, mm.
+    pub tip_radius: f64,
+}
+
+impl Cutter {
+    /// The cutter's radius at axial offset `h` from its tooth's centre, down to `neck`.
+    fn rho(&self, h: f64, neck: f64) -> f64 {
+        let half = (0.5 * self.angle_deg).to_radians();
+        let tip = 0.5 * self.diameter;
+        let rr = self.tip_radius;
+        let h = h.abs();
+        let v = if h <= rr * half.cos() {
+            tip - rr + (rr * rr - h * h).max(0.0).sqrt()
+        } else {
+            // The flank, tangent to the tip arc: its sharp apex lies rr(1/sin − 1) above the tip.
+            let apex = tip + rr * (1.0 / half.sin() - 1.0);
+            apex - h / half.tan()
+        };
+        v.max(neck)
+    }
+
+    /// The axial half width of the tooth above `neck`.
+    fn half_width(&self, neck: f64) -> f64 {
+        let half = (0.5 * self.angle_deg).to_radians();
+        let apex = 0.5 * self.diameter + self.tip_radius * (1.0 / half.sin() - 1.0);
+        ((apex - neck) * half.tan()).max(0.0)
+    }
+}
+
+/// What the thread-milling check reads.
+#[derive(Clone, Debug)]
+pub struct ThreadMillSpec {
+    /// The program's text and name.
+    pub program: (String, String),
+    /// Its dialect.
+    pub dialect: Dialect,
+    /// The thread with its class.
+    pub designation: String,
+    /// Accept sizes outside the standard series.
+    pub allow_nonstandard: bool,
+    /// The cutter.
+    pub cutter: Cutter,
+    /// The bore (internal) or blank (external) diameter, mm; default the class's minor (internal)
+    /// or major (external) diameter limit's middle.
+    pub blank_diameter: Option<f64>,
+}
+
+/// One helix of the program.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Helix {
+    /// Its program line.
+    pub line: usize,
+    /// The helix axis (X, Y), mm.
+    pub centre: [f64; 2],
+    /// The cutter centre's distance from it, mm.
+    pub radius: f64,
+    /// Z at its start and end, mm.
+    pub z: [f64; 2],
+    /// Its sweep, degrees (positive counter-clockwise, G3).
+    pub sweep_deg: f64,
+    /// Z travel per revolution, mm (the lead the helix cuts).
+    pub lead: f64,
+    /// Climb milling (else conventional), with the spindle turning clockwise.
+    pub climb: bool,
+    #[serde(skip)]
+    angle_start: f64,
+}
+
+/// The thread a thread mill leaves, measured and checked.
+#[derive(Clone, Debug, Serialize)]
+pub struct ThreadMillReport {
+    /// The program.
+    pub program: String,
+    /// The designation.
+    pub designation: String,
+    /// Internal or external.
+    pub kind: ThreadKind,
+    /// The cutter.
+    pub cutter: Cutter,
+    /// The cutter's diameter over the thread's major (internal) diameter.
+    pub cutter_ratio: f64,
+    /// The helices of the operation, in program order.
+    pub helices: Vec<Helix>,
+    /// The bore or blank diameter, mm.
+    pub blank_diameter: f64,
+    /// The as-cut thread, measured.
+    pub measured: Measurement,
+    /// The thread the tooth profile alone would leave (ψ = 0 only), measured.
+    pub tooth_profile: Measurement,
+    /// The profile distortion: d2 of the milled thread less the tooth profile's, µm.
+    pub distortion_pitch_diameter_um: f64,
+    /// The flank angles' change from the tooth profile's, degrees (low-z, high-z flank).
+    pub distortion_flank_angles_deg: [f64; 2],
+    /// The class's limits.
+    pub limits: ThreadLimits,
+    /// Size and form checks, and the program's (`lead`).
+    pub checks: Vec<Check>,
+    /// Every check passes.
+    pub pass: bool,
+    /// What was assumed.
+    pub notes: Vec<String>,
+    /// The measured axial section (z, r), mm, over four pitches.
+    #[serde(skip)]
+    pub profile: Vec<Point>,
+}
+
+/// The helices (G2/G3 arcs with a Z change in G17) of `moves`.
+fn helices(moves: &[Move], file: &str) -> Result<Vec<Helix>, Error> {
+    let mut out = Vec::new();
+    for mv in moves {
+        let Some((c, dir)) = mv.arc else { continue };
+        let dz = mv.to[2] - mv.from[2];
+        if dz.abs() < 1e-9 {
+            continue;
+        }
+        if mv.comp != 0 {
+            return Err(Error::Program {
+                file: file.to_string(),
+                line: mv.line,
+                column: 1,
+                message: "a helix under cutter radius compensation (G41/G42): threadcheck reads the cutter centre's path; program it with G40".into(),
+            });
+        }
+        let a0 = (mv.from[1] - c[1]).atan2(mv.from[0] - c[0]);
+        let a1 = (mv.to[1] - c[1]).atan2(mv.to[0] - c[0]);
+        let r0 = (mv.from[0] - c[0]).hypot(mv.from[1] - c[1]);
+        let r1 = (mv.to[0] - c[0]).hypot(mv.to[1] - c[1]);
+        if (r0 - r1).abs() > 1e-3 || r0 < 1e-6 {
+            return Err(Error::Program {
+                file: file.to_string(),
+                line: mv.line,
+                column: 1,
+                message: format!("a helix whose start and end radii differ ({r0:.4} and {r1:.4} mm): not a thread-milling helix"),
+            });
+        }
+        let mut sweep = dir * (a1 - a0);
+        while sweep <= 1e-9 {
+            sweep += std::f64::consts::TAU;
+        }
+        let lead = dz * std::f64::consts::TAU / sweep;
+        out.push(Helix {
+            line: mv.line,
+            centre: c,
+            radius: r0,
+            z: [mv.from[2], mv.to[2]],
+            sweep_deg: dir * sweep.to_degrees(),
+            lead,
+            climb: false,
+            angle_start: a0,
+        });
+    }
+    Ok(out)
+}
+
+/// The farthest (internal) or nearest (external) radius the cutter reaches at height `z` in
+/// the half-plane at angle 0 from the helix axis, over every helix; `None` when none reaches it.
+fn reach(hs: &[Helix], cutter: &Cutter, neck: f64, z: f64, internal: bool, only_psi0: bool) -> Option<f64> {
+    let hw = cutter.half_width(neck);
+    let mut best: Option<f64> = None;
+    for h in hs {
+        let sweep = h.sweep_deg.to_radians().abs();
+        let dir = h.sweep_deg.signum();
+        let dz = h.z[1] - h.z[0];
+        let zc = |t: f64| h.z[0] + dz * t / sweep;
+        let eval = |t: f64| -> Option<f64> {
+            let psi = h.angle_start + dir * t;
+            let (s, c) = psi.sin_cos();
+            let rho = cutter.rho(z - zc(t), neck);
+            let q = rho * rho - h.radius * h.radius * s * s;
+            if q < 0.0 {
+                return None;
+            }
+            Some(if internal { h.radius * c + q.sqrt() } else { h.radius * c - q.sqrt() })
+        };
+        let better = |a: f64, b: f64| if internal { a > b } else { a < b };
+        // The helix parameter range whose tooth reaches height z.
+        let (t_a, t_b) = {
+            let ta = (z - hw - h.z[0]) * sweep / dz;
+            let tb = (z + hw - h.z[0]) * sweep / dz;
+            (ta.min(tb).max(0.0), ta.max(tb).min(sweep))
+        };
+        if t_a > t_b {
+            continue;
+        }
+        if only_psi0 {
+            // The tooth profile alone: the cutter where it crosses the half-plane (ψ = 0 mod 2π).
+            let k0 = ((dir * (t_a + h.angle_start * dir)) / std::f64::consts::TAU).floor() as i64 - 1;
+            for k in k0..k0 + 4 {
+                let t = dir * (k as f64 * std::f64::consts::TAU - h.angle_start);
+                if t >= t_a - 1e-12 && t <= t_b + 1e-12 {
+                    if let Some(v) = eval(t.clamp(0.0, sweep)) {
+                        if best.is_none_or(|b| better(v, b)) {
+                            best = Some(v);
+                        }
+                    }
+                }
+            }
+            continue;
+        }
+        let n = (((t_b - t_a) * 800.0).ceil() as usize).clamp(8, 200_000);
+        let step = (t_b - t_a) / n as f64;
+        let mut top: Option<(f64, f64)> = None;
+        for i in 0..=n {
+            let t = t_a + step * i as f64;
+            if let Some(v) = eval(t) {
+                if top.is_none_or(|(_, b)| better(v, b)) {
+                    top = Some((t, v));
+                }
+            }
+        }
+        let Some((t0, mut v0)) = top else { continue };
+        // Golden-section refinement within one step either side.
+        let (mut lo, mut hi) = ((t0 - step).max(t_a), (t0 + step).min(t_b));
+        let g = 0.618_033_988_749_895;
+        let score = |t: f64| eval(t).map(|v| if internal { v } else { -v }).unwrap_or(f64::NEG_INFINITY);
+        for _ in 0..60 {
+            let a = hi - g * (hi - lo);
+            let b = lo + g * (hi - lo);
+            if score(a) > score(b) {
+                hi = b;
+            } else {
+                lo = a;
+            }
+        }
+        if let Some(v) = eval(0.5 * (lo + hi)) {
+            if better(v, v0) {
+                v0 = v;
+            }
+        }
+        if best.is_none_or(|b| better(v0, b)) {
+            best = Some(v0);
+        }
+    }
+    best
+}
+
+/// Mills the thread in the computer and checks it.
+///
+/// ```
+/// use threadcheck::{thread_mill, Cutter, Dialect, ThreadMillSpec};
+/// // M20x1.5-6H with a Ø12 single-form cutter: the helix radius 10 − 6 = 4 puts the tooth's tip on
+/// // D = 20; eight turns climbing 1.5 mm each.
+/// let mut program = String::from("G17 G90 G40\nG0 X4 Y0 Z-14\n");
+/// for k in 1..=8 { program += &format!("G3 X4 Y0 Z{} I-4 J0 F200\n", -14.0 + 1.5 * k as f64); }
+/// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: "M20x1.5-6H".into(), allow_nonstandard: false, cutter: Cutter { diameter: 12.0, angle_deg: 60.0, tip_radius: 0.0 }, blank_diameter: None };
+/// let r = thread_mill(&spec)?;
+/// assert!((r.measured.major_diameter - 20.0).abs() < 1e-4);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
+    let c = spec.cutter;
+    if !(c.diameter.is_finite() && c.diameter > 0.0 && c.diameter < 1000.0) {
+        return Err(Error::Input(format!("cutter diameter {} mm: a positive length under 1 m", c.diameter)));
+    }
+    if !(c.angle_deg.is_finite() && c.angle_deg > 0.0 && c.angle_deg < 180.0) {
+        return Err(Error::Input(format!("cutter angle {}°: from over 0 to under 180", c.angle_deg)));
+    }
+    if !(c.tip_radius.is_finite() && c.tip_radius >= 0.0 && c.tip_radius < 0.5 * c.diameter) {
+        return Err(Error::Input(format!(
+            "cutter tip radius {} mm: from 0 to under the cutter's radius",
+            c.tip_radius
+        )));
+    }
+    let des =
+        parse_designation(&spec.designation, ParseOptions { allow_nonstandard: spec.allow_nonstandard })?;
+    let kind = if des.external.is_none() && des.internal.is_some() {
+        ThreadKind::Internal
+    } else {
+        ThreadKind::External
+    };
+    let internal = kind == ThreadKind::Internal;
+    let limits =
+        limits_for(&des, kind)?.ok_or_else(|| Error::Input("the designation needs its class".into()))?;
+    let t = des.thread;
+    let p = t.pitch;
+    let (text, name) = &spec.program;
+    let opts = ReadOptions { moves: true, allow_no_threading: true, ..ReadOptions::default() };
+    let prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
+    let mut hs = helices(&prog.moves, name)?;
+    let Some(first) = hs.first().cloned() else {
+        return Err(Error::Program {
+            file: name.clone(),
+            line: 1,
+            column: 1,
+            message: "no helix in the program (G2/G3 with a Z change in G17): nothing is thread-milled"
+                .into(),
+        });
+    };
+    let mut notes: Vec<String> = prog.notes.iter().map(|n| n.to_string()).collect();
+    let others = hs
+        .iter()
+        .filter(|h| (h.centre[0] - first.centre[0]).hypot(h.centre[1] - first.centre[1]) > 1e-3)
+        .count();
+    if others > 0 {
+        notes.push(format!(
+            "{others} helices about another axis are left out: this check reads the first hole's"
+        ));
+    }
+    hs.retain(|h| (h.centre[0] - first.centre[0]).hypot(h.centre[1] - first.centre[1]) <= 1e-3);
+    // Climb milling (spindle clockwise): an internal thread's cutter goes counter-clockwise
+    // (G3), an external one's clockwise (G2).
+    for h in &mut hs {
+        h.climb = (h.sweep_deg > 0.0) == internal;
+    }
+    let blank = match spec.blank_diameter {
+        Some(b) if !(b.is_finite() && b > 0.0) => {
+            return Err(Error::Input(format!("blank diameter {b} mm must be positive")))
+        }
+        Some(b) => b,
+        None => {
+            let lim = if internal { limits.minor_diameter } else { limits.major_diameter };
+            let b = match (lim.min, lim.max) {
+                (Some(a), Some(b)) => 0.5 * (a + b),
+                (Some(a), None) | (None, Some(a)) => a,
+                (None, None) => t.nominal_diameter,
+            };
+            notes.push(format!(
+                "the {} is taken as Ø{b:.4}, the middle of the class's {} limits (--blank-diameter sets it)",
+                if internal { "bore" } else { "blank" },
+                if internal { "D1" } else { "d" }
+            ));
+            b
+        }
+    };
+    notes.push("the cutter's tooth is taken 0.625·P deep below its tip (a named default; its neck never reaches the thread)".into());
+    let neck = 0.5 * c.diameter - 0.625 * p;
+    // The section: around the helices' middle height, a whole number of leads from a crossing.
+    let z_lo = hs.iter().map(|h| h.z[0].min(h.z[1])).fold(f64::INFINITY, f64::min);
+    let z_hi = hs.iter().map(|h| h.z[0].max(h.z[1])).fold(f64::NEG_INFINITY, f64::max);
+    if z_hi - z_lo < 4.0 * p {
+        return Err(Error::Program {
+            file: name.clone(),
+            line: first.line,
+            column: 1,
+            message: format!(
+                "the helices span {:.3} mm of Z, under the four pitches ({:.3} mm) a groove is measured in",
+                z_hi - z_lo,
+                4.0 * p
+            ),
+        });
+    }
+    let z_mid = 0.5 * (z_lo + z_hi);
+    let n = 1600usize;
+    let zs: Vec<f64> = (0..=n).map(|i| z_mid - 2.0 * p + 4.0 * p * i as f64 / n as f64).collect();
+    let bound = 0.5 * blank;
+    let section = |only_psi0: bool| -> Vec<Point> {
+        zs.par_iter()
+            .map(|&z| {
+                let r = reach(&hs, &c, neck, z, internal, only_psi0);
+                let v = match (r, internal) {
+                    (Some(r), true) => r.max(bound),
+                    (Some(r), false) => r.min(bound),
+                    (None, _) => bound,
+                };
+                Point::new(z, v)
+            })
+            .collect()
+    };
+    let profile = section(false);
+    let tooth = section(true);
+    let mmc = if internal { limits.pitch_diameter.min } else { limits.pitch_diameter.max };
+    let mmc_major = if internal { None } else { limits.major_diameter.max };
+    let ms = MeasureSetup {
+        thread: &t,
+        kind,
+        mmc_pitch_diameter: mmc,
+        mmc_major_diameter: mmc_major,
+        extras: true,
+    };
+    let measured = measure(&ms, &profile, z_mid)?;
+    let tooth_m = measure(&ms, &tooth, z_mid)?;
+    let mut cs = checks(&measured, &limits, &t, kind, measured.root_pockets <= 1, None);
+    // The lead each helix cuts against the designation's, at the program's resolution.
+    let lead_err =
+        hs.iter().map(|h| h.lead.abs() - t.lead()).fold(0.0f64, |a, e| if e.abs() > a.abs() { e } else { a });
+    let lead_ok = lead_err.abs() <= 0.0005;
+    cs.push(Check {
+        feature: crate::analysis::check::CheckFeature::Lead,
+        kind: crate::analysis::check::CheckKind::Process,
+        value: t.lead() + lead_err,
+        min: Some(t.lead()),
+        max: Some(t.lead()),
+        ok: lead_ok,
+        deviation_um: if lead_ok { 0.0 } else { (lead_err * 1e4).round() / 10.0 },
+        note: Some("the Z travel per revolution of each helix against the designation's lead".into()),
+    });
+    if hs.iter().any(|h| !h.climb) {
+        notes.push("conventional milling on some helices (climb milling wants G3 for a nut, G2 for a bolt, spindle M3)".into());
+    }
+    let radii: Vec<f64> = {
+        let mut r: Vec<f64> = hs.iter().map(|h| h.radius).collect();
+        r.sort_by(f64::total_cmp);
+        r.dedup_by(|a, b| (*a - *b).abs() < 1e-6);
+        r
+    };
+    if radii.len() > 1 {
+        let steps: Vec<String> = radii.windows(2).map(|w| format!("{:.4}", w[1] - w[0])).collect();
+        notes.push(format!(
+            "{} radial passes; radial engagement between them {} mm",
+            radii.len(),
+            steps.join(", ")
+        ));
+    }
+    let ratio = c.diameter / t.nominal_diameter;
+    if ratio > 0.7 {
+        notes.push(format!(
+            "the cutter is {:.0} % of the thread's diameter: tool makers advise under 70 %, above it the profile distortion grows fast",
+            100.0 * ratio
+        ));
+    }
+    let pass = crate::analysis::check::verdict(&cs, false);
+    let dist_d2 = (measured.pitch_diameter - tooth_m.pitch_diameter) * 1000.0;
+    let dist_fl = [
+        measured.flank_angles[0] - tooth_m.flank_angles[0],
+        measured.flank_angles[1] - tooth_m.flank_angles[1],
+    ];
+    Ok(ThreadMillReport {
+        program: name.clone(),
+        designation: des.text.clone(),
+        kind,
+        cutter: c,
+        cutter_ratio: ratio,
+        helices: hs,
+        blank_diameter: blank,
+        measured,
+        tooth_profile: tooth_m,
+        distortion_pitch_diameter_um: dist_d2,
+        distortion_flank_angles_deg: dist_fl,
+        limits,
+        checks: cs,
+        pass,
+        notes,
+        profile,
+    })
+}

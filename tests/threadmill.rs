@@ -1,0 +1,89 @@
+//! Issue 31, thread milling: the exact envelope of a single-form cutter on the program's helices,
+//! against geometry derived by hand.
+//!
+//! The small-angle model used below (derived here, not taken from the code): a cutter of radius
+//! ρ (at the pitch line) whose axis runs at R from the hole's, at helix angle ψ off the axial
+//! half-plane, reaches r = R·cos ψ + √(ρ(h)² − R²·sin² ψ), h the tooth's height offset, which moves
+//! by the lead L·ψ/2π. To second order in ψ, with ρ(h) falling by cot(α/2) per mm of h:
+//! r ≈ R + ρ + (cot(α/2)·L/2π)·ψ − (R + R²/ρ)·ψ²/2, whose maximum over ψ lies
+//! Δr = (cot(α/2)·L/2π)² / (2(R + R²/ρ)) beyond the tooth profile. So the groove is that much
+//! wider at every height: the pitch diameter of a nut grows by 2·Δr, more as ρ grows against R
+//! (the cutter against the hole), and tends to nothing as the cutter shrinks.
+
+use crate::*;
+
+fn mill(program: &str, cutter: f64) -> serde_json::Value {
+    let p = data(&format!("programs/threadmill/{program}"));
+    let o = run(&[
+        "thread-mill",
+        "--program",
+        p.to_str().unwrap(),
+        "--thread",
+        "M20x1.5-6H",
+        "--cutter-diameter",
+        &cutter.to_string(),
+        "--json",
+        "-",
+    ]);
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
+/// Δr of the model at the pitch line of radius `r2`, for a helix of radius `big_r`.
+fn model_gain(big_r: f64, r2: f64) -> f64 {
+    let k = 30f64.to_radians().tan().recip() * 1.5 / std::f64::consts::TAU;
+    let rho = r2 - big_r;
+    k * k / (2.0 * (big_r + big_r * big_r / rho))
+}
+
+/// The helix radius R and the cutter's tip radius put the major diameter at 2(R + tip): 20.0000
+/// for a Ø6 cutter on R = 7 and a Ø14 one on R = 3 (the tooth's tip is the farthest point of
+/// every position: ψ = 0 is the maximum of R·cos ψ + ρ).
+#[test]
+fn the_major_diameter_is_twice_helix_radius_plus_tip() {
+    for (program, cutter, big_r) in [("m20-dc6.nc", 6.0, 7.0), ("m20-dc14.nc", 14.0, 3.0)] {
+        let v = mill(program, cutter);
+        assert_eq!(v["helices"][0]["radius"], big_r);
+        let d = v["measured"]["major_diameter"].as_f64().unwrap();
+        assert!((d - 2.0 * (big_r + 0.5 * cutter)).abs() < 1e-4, "{program}: {d}");
+    }
+}
+
+/// The tooth profile alone (a sharp 60° V with its apex on D = 20) has D2 = D − 2·(P/4)·cot 30°
+/// = 20 − 0.866025·1.5 = 18.70096; the milled thread's D2 exceeds it by the model's 2·Δr, for
+/// the cutter-to-hole ratios 0.3 (Δr ≈ 3.1 µm) and 0.7 (Δr ≈ 19 µm), within 3 %.
+#[test]
+fn the_distortion_follows_the_small_angle_model_at_ratios_0_3_and_0_7() {
+    for (program, cutter, big_r) in [("m20-dc6.nc", 6.0, 7.0), ("m20-dc14.nc", 14.0, 3.0)] {
+        let v = mill(program, cutter);
+        let tooth = v["tooth_profile"]["pitch_diameter"].as_f64().unwrap();
+        assert!((tooth - (20.0 - 0.866_025_4 * 1.5)).abs() < 2e-4, "{tooth}");
+        let d2 = v["measured"]["pitch_diameter"].as_f64().unwrap();
+        let model = 2.0 * model_gain(big_r, 0.5 * d2) * 1000.0;
+        let got = v["distortion_pitch_diameter_um"].as_f64().unwrap();
+        assert!((got - (d2 - tooth) * 1000.0).abs() < 1e-6);
+        assert!((got - model).abs() < 0.03 * model, "{program}: {got} µm against the model's {model} µm");
+    }
+}
+
+/// As the cutter shrinks, the milled thread tends to the tooth profile: the distortion falls
+/// from the Ø14 cutter to the Ø6 and again to a Ø3 one (the model's 2Δr ≈ 1.8 µm).
+#[test]
+fn a_small_cutter_tends_to_the_tooth_profile() {
+    let v3 = mill("m20-dc3.nc", 3.0);
+    let d3 = v3["distortion_pitch_diameter_um"].as_f64().unwrap();
+    let d6 = mill("m20-dc6.nc", 6.0)["distortion_pitch_diameter_um"].as_f64().unwrap();
+    let d14 = mill("m20-dc14.nc", 14.0)["distortion_pitch_diameter_um"].as_f64().unwrap();
+    assert!(0.0 < d3 && d3 < d6 && d6 < d14, "{d3} {d6} {d14}");
+    assert!(d3 < 2.5, "{d3}");
+}
+
+/// 1.45 mm per turn for M20x1.5 fails the lead check by 50 µm per turn.
+#[test]
+fn a_wrong_lead_per_turn_fails() {
+    let v = mill("m20-lead145.nc", 6.0);
+    let lead = v["checks"].as_array().unwrap().iter().find(|c| c["feature"] == "lead").unwrap();
+    assert_eq!(lead["ok"], false);
+    assert!((lead["deviation_um"].as_f64().unwrap() + 50.0).abs() < 1e-9, "{lead}");
+    assert_eq!(v["pass"], false);
+}
