@@ -413,6 +413,13 @@ struct ThreadMillArgs {
     /// The bore (internal) or blank (external) diameter, mm.
     #[arg(long, value_name = "MM", value_parser = finite)]
     blank_diameter: Option<f64>,
+    /// The value G41/G42 compensate by (the D register), mm: the cutter centre runs that far to
+    /// the left (G41) or right (G42) of the programmed helix.
+    #[arg(long, value_name = "MM", value_parser = finite)]
+    comp_radius: Option<f64>,
+    /// Write the milled thread's axial section (SVG) to this file.
+    #[arg(long, value_name = "FILE")]
+    svg: Option<PathBuf>,
     #[command(flatten)]
     json: JsonArg,
 }
@@ -852,8 +859,9 @@ impl Cli {
                         tip_radius: a.cutter_tip_radius,
                     },
                     blank_diameter: a.blank_diameter,
+                    comp_radius: a.comp_radius,
                 };
-                done(threadcheck::ThreadMillJob { spec, json: a.json.json }.run()?)
+                done(threadcheck::ThreadMillJob { spec, svg: a.svg, json: a.json.json }.run()?)
             }
             Command::Tap(a) => {
                 let (dialect, from) = dialect_for(a.dialect, &a.program);

@@ -989,6 +989,8 @@ fn placements_line(
 pub struct ThreadMillJob {
     /// The program, the thread and the cutter.
     pub spec: crate::analysis::threadmill::ThreadMillSpec,
+    /// Write the axial section's SVG here.
+    pub svg: Option<std::path::PathBuf>,
     /// The JSON: `-` prints it on stdout instead of the text, a path writes it there.
     pub json: Option<String>,
 }
@@ -996,10 +998,21 @@ pub struct ThreadMillJob {
 impl ThreadMillJob {
     /// Runs the job: pass when the milled thread is within every limit and the lead is right.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
+        self.run_to(&mut Sink::Disk)
+    }
+
+    /// Runs the job with its files going to `sink`.
+    pub(crate) fn run_to(&self, sink: &mut Sink) -> Result<(String, Outcome), Error> {
         let r = crate::analysis::threadmill::thread_mill(&self.spec)?;
         let outcome = if r.pass { Outcome::Pass } else { Outcome::OutOfTolerance };
         let json_text = self.json.as_ref().map(|_| pretty(&r)).transpose()?;
-        Ok((route_json(self.json.as_deref(), json_text, crate::report::threadmill::text(&r))?, outcome))
+        let svg_text = self.svg.as_ref().map(|_| crate::report::svg::threadmill_svg(&r));
+        let inputs = [std::path::PathBuf::from(&self.spec.program.1)];
+        let text = crate::report::threadmill::text(&r);
+        Ok((
+            write_outputs(sink, &inputs, &[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?,
+            outcome,
+        ))
     }
 }
 

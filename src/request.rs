@@ -150,6 +150,7 @@ impl Command {
                     "cutter_angle",
                     "cutter_tip_radius",
                     "blank_diameter",
+                    "comp_radius",
                 ]
             }
             Command::Tap => {
@@ -176,7 +177,8 @@ impl Command {
             Command::Capability => &[Json, Text, Svg, Html],
             Command::Compare => &[Json, Text, Html],
             Command::Fit | Command::Mill => &[Json, Text, Svg],
-            Command::Passes | Command::Limits | Command::Tap | Command::ThreadMill => &[Json, Text],
+            Command::Passes | Command::Limits | Command::Tap => &[Json, Text],
+            Command::ThreadMill => &[Json, Text, Svg],
         }
     }
 }
@@ -484,8 +486,9 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
                 allow_nonstandard: a.flag("allow_nonstandard")?,
                 cutter,
                 blank_diameter: a.num("blank_diameter")?,
+                comp_radius: a.num("comp_radius")?,
             };
-            crate::jobs::ThreadMillJob { spec, json }.run()?
+            crate::jobs::ThreadMillJob { spec, svg: want(Document::Svg), json }.run_to(&mut sink)?
         }
         Command::Tap => {
             let program =

@@ -576,3 +576,29 @@ fn page_in_chromium() {
     let green = fit.rgb.iter().filter(|&&p| near(p, [0xe3, 0xf4, 0xe8])).count();
     assert!(green > 5000, "no green FITS banner in the fit screenshot ({green} pixels)");
 }
+
+/// Issue 31: the thread-milling picture is laid out (nothing written leaves it or crosses
+/// another label) for a small and a large cutter, and says the distortion.
+#[test]
+fn thread_mill_svg_is_laid_out() {
+    for (program, cutter) in [("m20-dc6.nc", "6"), ("m20-dc14.nc", "14")] {
+        let dir = tempdir("tm-svg");
+        let svg_path = dir.join("t.svg");
+        let p = data(&format!("programs/threadmill/{program}"));
+        let o = run(&[
+            "thread-mill",
+            "--program",
+            p.to_str().unwrap(),
+            "--thread",
+            "M20x1.5-6H",
+            "--cutter-diameter",
+            cutter,
+            "--svg",
+            svg_path.to_str().unwrap(),
+        ]);
+        assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+        let svg = std::fs::read_to_string(&svg_path).unwrap();
+        assert!(svg.contains("the helix widens the groove by"), "{program}");
+        assert_laid_out(&svg, program);
+    }
+}

@@ -87,3 +87,48 @@ fn a_wrong_lead_per_turn_fails() {
     assert!((lead["deviation_um"].as_f64().unwrap() + 50.0).abs() < 1e-9, "{lead}");
     assert_eq!(v["pass"], false);
 }
+
+/// Under G41 on a counter-clockwise helix the cutter centre runs the compensation to the left of
+/// the programmed path, toward the axis: the thread's major circle R = 10 programmed, D = 3, puts
+/// the centre on R = 7, the same thread as the Ø6 cutter's centre path programmed directly.
+/// Without the compensation value the helix is refused by name.
+#[test]
+fn compensation_moves_the_helix_by_the_d_register() {
+    let p = data("programs/threadmill/m20-dc6-g41.nc");
+    let o = run(&[
+        "thread-mill",
+        "--program",
+        p.to_str().unwrap(),
+        "--thread",
+        "M20x1.5-6H",
+        "--cutter-diameter",
+        "6",
+        "--comp-radius",
+        "3",
+        "--json",
+        "-",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(
+        (v["helices"][0]["programmed_radius"].as_f64(), v["helices"][0]["radius"].as_f64()),
+        (Some(10.0), Some(7.0))
+    );
+    let direct = mill("m20-dc6.nc", 6.0);
+    assert_eq!(v["measured"]["pitch_diameter"], direct["measured"]["pitch_diameter"]);
+    let o = run(&[
+        "thread-mill",
+        "--program",
+        p.to_str().unwrap(),
+        "--thread",
+        "M20x1.5-6H",
+        "--cutter-diameter",
+        "6",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o)
+            .contains("9:1: a helix under cutter radius compensation (G41): give the compensation value"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -21,8 +21,8 @@
 //!
 //! The cutter: `diameter` over the tooth's tip, the tooth's included `angle` and tip radius, a
 //! tooth height of 0.625·P below the tip (deeper than an ISO thread's 0.5413·P, so the neck never
-//! reaches the thread: a named default). Cutter radius compensation (G41/G42) is not modelled:
-//! a helix under it is refused; the program gives the cutter centre's path.
+//! reaches the thread: a named default). Under cutter radius compensation (G41/G42) the helix
+//! radius is the programmed one moved by the compensation value given (the D register's).
 
 use crate::analysis::check::{checks, Check};
 use crate::gcode::{Dialect, Move, ReadOptions};
@@ -85,6 +85,9 @@ pub struct ThreadMillSpec {
     /// The bore (internal) or blank (external) diameter, mm; default the class's minor (internal)
     /// or major (external) diameter limit's middle.
     pub blank_diameter: Option<f64>,
+    /// The cutter radius compensation value (the D register) G41/G42 apply, mm; a helix under
+    /// compensation without it is refused.
+    pub comp_radius: Option<f64>,
 }
 
 /// One helix of the program.
@@ -96,6 +99,8 @@ pub struct Helix {
     pub centre: [f64; 2],
     /// The cutter centre's distance from it, mm.
     pub radius: f64,
+    /// The programmed path's distance from it, mm (the centre's, unless G41/G42 moves it).
+    pub programmed_radius: f64,
     /// Z at its start and end, mm.
     pub z: [f64; 2],
     /// Its sweep, degrees (positive counter-clockwise, G3).
@@ -144,10 +149,15 @@ pub struct ThreadMillReport {
     /// The measured axial section (z, r), mm, over four pitches.
     #[serde(skip)]
     pub profile: Vec<Point>,
+    /// The tooth profile's section over the same heights.
+    #[serde(skip)]
+    pub tooth_points: Vec<Point>,
 }
 
-/// The helices (G2/G3 arcs with a Z change in G17) of `moves`.
-fn helices(moves: &[Move], file: &str) -> Result<Vec<Helix>, Error> {
+/// The helices (G2/G3 arcs with a Z change in G17) of `moves`, each at its cutter centre's
+/// radius: the programmed radius, moved by the compensation `comp` under G41/G42 (to the left of
+/// the travel for G41: toward the axis on a counter-clockwise G3, away on a clockwise G2).
+fn helices(moves: &[Move], file: &str, comp: Option<f64>) -> Result<Vec<Helix>, Error> {
     let mut out = Vec::new();
     for mv in moves {
         let Some((c, dir)) = mv.arc else { continue };
@@ -155,14 +165,23 @@ fn helices(moves: &[Move], file: &str) -> Result<Vec<Helix>, Error> {
         if dz.abs() < 1e-9 {
             continue;
         }
-        if mv.comp != 0 {
-            return Err(Error::Program {
-                file: file.to_string(),
-                line: mv.line,
-                column: 1,
-                message: "a helix under cutter radius compensation (G41/G42): threadcheck reads the cutter centre's path; program it with G40".into(),
-            });
-        }
+        let shift = match (mv.comp, comp) {
+            (0, _) => 0.0,
+            (_, None) => {
+                return Err(Error::Program {
+                    file: file.to_string(),
+                    line: mv.line,
+                    column: 1,
+                    message: format!(
+                        "a helix under cutter radius compensation (G4{}): give the compensation value the D register holds (--comp-radius MM)",
+                        mv.comp
+                    ),
+                })
+            }
+            // Left of a counter-clockwise travel is toward the centre.
+            (1, Some(d)) => -dir * d,
+            (_, Some(d)) => dir * d,
+        };
         let a0 = (mv.from[1] - c[1]).atan2(mv.from[0] - c[0]);
         let a1 = (mv.to[1] - c[1]).atan2(mv.to[0] - c[0]);
         let r0 = (mv.from[0] - c[0]).hypot(mv.from[1] - c[1]);
@@ -180,10 +199,20 @@ fn helices(moves: &[Move], file: &str) -> Result<Vec<Helix>, Error> {
             sweep += std::f64::consts::TAU;
         }
         let lead = dz * std::f64::consts::TAU / sweep;
+        let radius = r0 + shift;
+        if radius <= 0.0 {
+            return Err(Error::Program {
+                file: file.to_string(),
+                line: mv.line,
+                column: 1,
+                message: format!("the compensation moves the cutter centre through the helix axis (radius {r0:.4} mm, shift {shift:.4} mm)"),
+            });
+        }
         out.push(Helix {
             line: mv.line,
             centre: c,
-            radius: r0,
+            radius,
+            programmed_radius: r0,
             z: [mv.from[2], mv.to[2]],
             sweep_deg: dir * sweep.to_degrees(),
             lead,
@@ -284,7 +313,7 @@ fn reach(hs: &[Helix], cutter: &Cutter, neck: f64, z: f64, internal: bool, only_
 /// // D = 20; eight turns climbing 1.5 mm each.
 /// let mut program = String::from("G17 G90 G40\nG0 X4 Y0 Z-14\n");
 /// for k in 1..=8 { program += &format!("G3 X4 Y0 Z{} I-4 J0 F200\n", -14.0 + 1.5 * k as f64); }
-/// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: "M20x1.5-6H".into(), allow_nonstandard: false, cutter: Cutter { diameter: 12.0, angle_deg: 60.0, tip_radius: 0.0 }, blank_diameter: None };
+/// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: "M20x1.5-6H".into(), allow_nonstandard: false, cutter: Cutter { diameter: 12.0, angle_deg: 60.0, tip_radius: 0.0 }, blank_diameter: None, comp_radius: None };
 /// let r = thread_mill(&spec)?;
 /// assert!((r.measured.major_diameter - 20.0).abs() < 1e-4);
 /// # Ok::<(), threadcheck::Error>(())
@@ -318,7 +347,21 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     let (text, name) = &spec.program;
     let opts = ReadOptions { moves: true, allow_no_threading: true, ..ReadOptions::default() };
     let prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
-    let mut hs = helices(&prog.moves, name)?;
+    let mut notes: Vec<String> = prog.notes.iter().map(|n| n.to_string()).collect();
+    if let Some(d) = spec.comp_radius.filter(|d| !(d.is_finite() && *d >= 0.0)) {
+        return Err(Error::Input(format!("compensation {d} mm must be a length ≥ 0")));
+    }
+    let mut hs = helices(&prog.moves, name, spec.comp_radius)?;
+    if let Some(d) = spec.comp_radius {
+        if hs.iter().any(|h| (h.radius - h.programmed_radius).abs() > 1e-12)
+            && (d - 0.5 * c.diameter).abs() > 1e-3
+        {
+            notes.push(format!(
+                "the compensation {d} mm is not the cutter's radius {} mm: the helix radius follows the D register, and so does the thread",
+                crate::ground::fmt::fmt_num(0.5 * c.diameter)
+            ));
+        }
+    }
     let Some(first) = hs.first().cloned() else {
         return Err(Error::Program {
             file: name.clone(),
@@ -328,7 +371,6 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
                 .into(),
         });
     };
-    let mut notes: Vec<String> = prog.notes.iter().map(|n| n.to_string()).collect();
     let others = hs
         .iter()
         .filter(|h| (h.centre[0] - first.centre[0]).hypot(h.centre[1] - first.centre[1]) > 1e-3)
@@ -473,5 +515,6 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         pass,
         notes,
         profile,
+        tooth_points: tooth,
     })
 }

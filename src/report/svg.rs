@@ -1146,3 +1146,137 @@ pub fn mill_svg(r: &crate::analysis::mill::MillReport) -> String {
     doc = doc.add(text(40.0, h - 12.0, 12.0, "10 mm"));
     doc.to_string()
 }
+
+/// The milled thread's axial section over four pitches: the material (grey-blue) the cutter's
+/// envelope leaves, the tooth profile alone (dashed), and the class's D, D2 and D1 limits; the
+/// title gives the verdict and the distortion.
+pub fn threadmill_svg(r: &crate::analysis::threadmill::ThreadMillReport) -> String {
+    let (w, h) = (900.0, 640.0);
+    let mut doc = Document::new().set("viewBox", (0, 0, w, h)).set("width", w).set("height", h);
+    doc = doc.add(Rectangle::new().set("width", w).set("height", h).set("fill", "white"));
+    let internal = r.kind == ThreadKind::Internal;
+    let (z0, z1) = (r.profile.first().map_or(0.0, |p| p.z), r.profile.last().map_or(1.0, |p| p.z));
+    let rs = r.profile.iter().chain(&r.tooth_points).map(|p| p.r);
+    let (lo, hi) = rs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let pad = 0.15 * (hi - lo).max(1e-3);
+    let f = Frame::new(70.0, 120.0, w - 190.0, 290.0, (z0, z1), (lo - pad, hi + pad));
+    let edge = if internal { hi + pad } else { lo - pad };
+    let mut material = r.profile.clone();
+    material.push(Point::new(z1, edge));
+    material.push(Point::new(z0, edge));
+    let mut g = Group::new().set("id", "section");
+    g = g.add(Polygon::new().set("points", f.points(&material)).set("fill", "#b8c7d9").set("stroke", "none"));
+    g = g.add(
+        Polyline::new()
+            .set("points", f.points(&r.profile))
+            .set("fill", "none")
+            .set("stroke", "black")
+            .set("stroke-width", 1.4),
+    );
+    g = g.add(
+        Polyline::new()
+            .set("points", f.points(&r.tooth_points))
+            .set("fill", "none")
+            .set("stroke", "#555")
+            .set("stroke-width", 1.0)
+            .set("stroke-dasharray", "5 4"),
+    );
+    let mut labels = Group::new();
+    let mut line = |d: Option<f64>, colour: &str, label: String, g: Group| -> Group {
+        let Some(d) = d else { return g };
+        let y = f.y(0.5 * d);
+        labels = std::mem::take(&mut labels)
+            .add(text(w - 112.0, y + 4.0, 11.0, label).set("fill", colour.to_string()));
+        g.add(
+            Line::new()
+                .set("x1", format!("{:.2}", f.x(z0)))
+                .set("x2", format!("{:.2}", f.x(z1)))
+                .set("y1", format!("{y:.2}"))
+                .set("y2", format!("{y:.2}"))
+                .set("stroke", colour.to_string())
+                .set("stroke-width", 0.8)
+                .set("stroke-dasharray", "2 3"),
+        )
+    };
+    let l = &r.limits;
+    let (dn, d2n, d1n) = if internal { ("D", "D2", "D1") } else { ("d", "d2", "d1") };
+    for (v, c, n) in [
+        (l.pitch_diameter.min, ZONE, format!("{d2n} min")),
+        (l.pitch_diameter.max, ZONE, format!("{d2n} max")),
+        (l.major_diameter.min, "#777", format!("{dn} min")),
+        (l.major_diameter.max, "#777", format!("{dn} max")),
+        (l.minor_diameter.min, "#1f5fa8", format!("{d1n} min")),
+        (l.minor_diameter.max, "#1f5fa8", format!("{d1n} max")),
+    ] {
+        g = line(v.map(|x| x).filter(|x| 0.5 * x > lo - pad && 0.5 * x < hi + pad), c, n, g);
+    }
+    let failed: Vec<&str> = r.checks.iter().filter(|k| !k.ok).map(|k| k.feature.words(r.kind)).collect();
+    let verdict =
+        if r.pass { "IN TOLERANCE".to_string() } else { format!("OUT OF TOLERANCE: {}", failed.join(", ")) };
+    // The groove's widening along Z: the milled radius less the tooth profile's, in µm.
+    let widen: Vec<(f64, f64)> =
+        r.profile.iter().zip(&r.tooth_points).map(|(a, b)| (a.z, (a.r - b.r).abs() * 1000.0)).collect();
+    let top = widen.iter().map(|p| p.1).fold(1e-3f64, f64::max);
+    let (sx, sy, sw, sh) = (f.x(z0), 470.0, f.x(z1) - f.x(z0), 120.0);
+    let sx_of = |z: f64| sx + (z - z0) / (z1 - z0) * sw;
+    let sy_of = |v: f64| sy + sh - v / top * sh;
+    let strip =
+        widen.iter().map(|&(z, v)| format!("{:.1},{:.1}", sx_of(z), sy_of(v))).collect::<Vec<_>>().join(" ");
+    doc = doc
+        .add(
+            Rectangle::new()
+                .set("x", sx)
+                .set("y", sy)
+                .set("width", sw)
+                .set("height", sh)
+                .set("fill", "none")
+                .set("stroke", "#999"),
+        )
+        .add(
+            Polyline::new()
+                .set("points", strip)
+                .set("fill", "none")
+                .set("stroke", FAIL)
+                .set("stroke-width", 1.2),
+        )
+        .add(text(
+            sx,
+            sy - 8.0,
+            12.0,
+            format!("the helix's widening of the groove beyond the tooth profile, radial µm (0 … {top:.1})"),
+        ))
+        .add(text(sx + sw + 8.0, sy + 10.0, 11.0, format!("{top:.1} µm")))
+        .add(text(sx + sw + 8.0, sy + sh, 11.0, "0 µm"));
+    doc = doc
+        .add(
+            text(20.0, 30.0, 17.0, format!("{} thread-milled with a Ø{} cutter", r.designation, crate::ground::fmt::fmt_num(r.cutter.diameter)))
+                .set("font-weight", "bold"),
+        )
+        .add(text(20.0, 52.0, 15.0, verdict).set("font-weight", "bold").set("fill", if r.pass { ZONE } else { FAIL }))
+        .add(text(
+            20.0,
+            76.0,
+            13.0,
+            format!(
+                "{d2n} {:.4} mm as milled, {:.4} mm by the tooth profile alone (dashed): the helix widens the groove by {:+.1} µm",
+                r.measured.pitch_diameter, r.tooth_profile.pitch_diameter, r.distortion_pitch_diameter_um
+            ),
+        ))
+        .add(text(
+            20.0,
+            96.0,
+            13.0,
+            format!(
+                "flanks {:.3}° / {:.3}° ({:+.3}° / {:+.3}°); cutter {:.0} % of the diameter; material in grey-blue",
+                r.measured.flank_angles[0],
+                r.measured.flank_angles[1],
+                r.distortion_flank_angles_deg[0],
+                r.distortion_flank_angles_deg[1],
+                100.0 * r.cutter_ratio
+            ),
+        ))
+        .add(g)
+        .add(labels)
+        .add(text(f.x(z0), 428.0, 12.0, format!("Z {:.3} … {:.3} mm (axial section, radius up)", z0, z1)));
+    doc.to_string()
+}
