@@ -1208,7 +1208,7 @@ pub fn threadmill_svg(r: &crate::analysis::threadmill::ThreadMillReport) -> Stri
         (l.minor_diameter.min, "#1f5fa8", format!("{d1n} min")),
         (l.minor_diameter.max, "#1f5fa8", format!("{d1n} max")),
     ] {
-        g = line(v.map(|x| x).filter(|x| 0.5 * x > lo - pad && 0.5 * x < hi + pad), c, n, g);
+        g = line(v.filter(|x| 0.5 * x > lo - pad && 0.5 * x < hi + pad), c, n, g);
     }
     let failed: Vec<&str> = r.checks.iter().filter(|k| !k.ok).map(|k| k.feature.words(r.kind)).collect();
     let verdict =
