@@ -401,9 +401,14 @@ struct ThreadMillArgs {
     /// Accept a diameter/pitch pair outside the standard series.
     #[arg(long)]
     allow_nonstandard: bool,
-    /// The cutter's diameter over its tooth's tip, mm.
-    #[arg(long, value_name = "MM", value_parser = finite)]
-    cutter_diameter: f64,
+    /// The cutter's diameter over its tooth's tip, mm (else the tool table's thread mill).
+    #[arg(long, value_name = "MM", value_parser = finite, required_unless_present = "tools")]
+    cutter_diameter: Option<f64>,
+    /// The tool table: the helices' T as a thread mill's file (`12 = "thread-mill.toml"`:
+    /// kind = "thread-mill", diameter, angle, tip_radius, rows = 1) and `[offsets]` (12 = 3.0,
+    /// the compensation value G41/G42 apply).
+    #[arg(long, value_name = "FILE.toml", conflicts_with = "cutter_diameter")]
+    tools: Option<PathBuf>,
     /// The tooth's included angle, degrees.
     #[arg(long, value_name = "DEG", value_parser = finite, default_value = "60")]
     cutter_angle: f64,
@@ -853,11 +858,12 @@ impl Cli {
                     dialect: dialect_for(a.dialect, &a.program).0,
                     designation: a.thread,
                     allow_nonstandard: a.allow_nonstandard,
-                    cutter: threadcheck::Cutter {
-                        diameter: a.cutter_diameter,
+                    cutter: a.cutter_diameter.map(|diameter| threadcheck::Cutter {
+                        diameter,
                         angle_deg: a.cutter_angle,
                         tip_radius: a.cutter_tip_radius,
-                    },
+                    }),
+                    tools: a.tools.as_deref().map(threadcheck::ToolTable::read).transpose()?,
                     blank_diameter: a.blank_diameter,
                     comp_radius: a.comp_radius,
                 };

@@ -472,19 +472,20 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
                     .unwrap_or(crate::gcode::Dialect::Fanuc),
             };
             let designation = a.one_thread("thread-mill")?.remove(0);
-            let cutter = crate::analysis::threadmill::Cutter {
+            let cutter = Some(crate::analysis::threadmill::Cutter {
                 diameter: a
                     .num("cutter_diameter")?
                     .ok_or_else(|| Error::Input("thread-mill needs cutter_diameter (mm)".into()))?,
                 angle_deg: a.num("cutter_angle")?.unwrap_or(60.0),
                 tip_radius: a.num("cutter_tip_radius")?.unwrap_or(0.0),
-            };
+            });
             let spec = crate::analysis::threadmill::ThreadMillSpec {
                 program: (program, name),
                 dialect,
                 designation,
                 allow_nonstandard: a.flag("allow_nonstandard")?,
                 cutter,
+                tools: None,
                 blank_diameter: a.num("blank_diameter")?,
                 comp_radius: a.num("comp_radius")?,
             };

@@ -300,21 +300,32 @@ fn overload_gives_503_and_loses_no_answer() {
     let s = start(&["--max-in-flight", "1", "--queue-wait", "0", "--time-budget", "60"]);
     // 500 000 Monte Carlo parts at some 20 µs each: seconds of work on any core count here.
     let slow = r#"{"thread": "M10x1.5-6g", "x_sigma": 0.01, "samples": 500000}"#;
-    let url = s.url.clone();
-    let first = std::thread::spawn(move || post(&url, "api/capability", slow));
-    // Until the slow one holds the permit, a quick request may still get through.
-    let mut busy = None;
-    for _ in 0..200 {
-        let a = post(&s.url, "api/limits", r#"{"thread": "M10x1.5-6g"}"#);
-        if a.0 == 503 {
-            busy = Some(a);
+    // The slow request goes first and the probes wait for it to hold the only slot (a probe
+    // that held the slot at the moment it arrived would turn it away instead: then try again).
+    let mut outcome_of_first = None;
+    for _attempt in 0..5 {
+        let url = s.url.clone();
+        let first = std::thread::spawn(move || post(&url, "api/capability", slow));
+        std::thread::sleep(std::time::Duration::from_millis(300));
+        let mut busy = None;
+        for _ in 0..100 {
+            let a = post(&s.url, "api/limits", r#"{"thread": "M10x1.5-6g"}"#);
+            if a.0 == 503 {
+                busy = Some(a);
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        let answer = first.join().unwrap();
+        if let Some(busy) = busy {
+            assert_error(&busy, 503, "busy: 1 requests are being computed");
+            outcome_of_first = Some(answer);
             break;
         }
-        std::thread::sleep(std::time::Duration::from_millis(10));
+        assert_eq!(answer.0, 503, "the slow request neither held the slot nor was turned away: {}", answer.2);
     }
-    let busy = busy.expect("no 503 while the slow request ran");
-    assert_error(&busy, 503, "busy: 1 requests are being computed");
-    let (status, outcome, body) = first.join().unwrap();
+    let first = outcome_of_first.expect("no 503 while the slow request ran, in five attempts");
+    let (status, outcome, body) = first;
     assert_eq!(status, 200, "{body}");
     assert!(outcome.is_some());
     let v: serde_json::Value = serde_json::from_str(&body).unwrap();

@@ -132,3 +132,27 @@ fn compensation_moves_the_helix_by_the_d_register() {
         stderr(&o)
     );
 }
+
+/// The cutter and its compensation from a tool table: T12 a thread mill's file (Ø6, 60°) and
+/// `[offsets] 12 = 3.0`: the same thread as the cutter given on the command line.
+#[test]
+fn the_tool_table_gives_the_cutter_and_its_offset() {
+    let p = data("programs/threadmill/m20-dc6-g41.nc");
+    let t = data("programs/threadmill/tools.toml");
+    let o = run(&[
+        "thread-mill",
+        "--program",
+        p.to_str().unwrap(),
+        "--thread",
+        "M20x1.5-6H",
+        "--tools",
+        t.to_str().unwrap(),
+        "--json",
+        "-",
+    ]);
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["cutter"]["diameter"], 6.0);
+    assert_eq!(v["helices"][0]["radius"], 7.0);
+    assert_eq!(v["measured"]["pitch_diameter"], mill("m20-dc6.nc", 6.0)["measured"]["pitch_diameter"]);
+}

@@ -44,7 +44,67 @@ pub struct Cutter {
     pub tip_radius: f64,
 }
 
+/// A thread mill's TOML file, as a tool table names it (`[tools] 12 = "thread-mill.toml"`).
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CutterFile {
+    kind: String,
+    diameter: f64,
+    #[serde(default = "sixty")]
+    angle: f64,
+    #[serde(default)]
+    tip_radius: f64,
+    #[serde(default)]
+    flat: f64,
+    #[serde(default = "one")]
+    rows: u32,
+    #[serde(default)]
+    row_pitch: Option<f64>,
+}
+
+fn sixty() -> f64 {
+    60.0
+}
+
+fn one() -> u32 {
+    1
+}
+
 impl Cutter {
+    /// Reads a thread mill's TOML: `kind = "thread-mill"`, `diameter` (mm, over the tooth's tip),
+    /// `angle` (the tooth's included angle, 60 by default), `tip_radius` (0), `rows` (1: a
+    /// single-form cutter; multi-form cutters are refused by name) and `row_pitch`.
+    ///
+    /// ```
+    /// use threadcheck::Cutter;
+    /// let c = Cutter::from_toml("kind = \"thread-mill\"\ndiameter = 14.0\n", "tm.toml")?;
+    /// assert_eq!((c.diameter, c.angle_deg, c.tip_radius), (14.0, 60.0, 0.0));
+    /// # Ok::<(), threadcheck::Error>(())
+    /// ```
+    pub fn from_toml(text: &str, source: &str) -> Result<Cutter, Error> {
+        let ferr = |m: String| Error::File { file: source.to_string(), message: m };
+        let f: CutterFile = toml::from_str(text).map_err(|e| ferr(e.to_string().replace('\n', " ")))?;
+        if f.kind != "thread-mill" {
+            return Err(ferr(format!(
+                "kind = \"{}\": a thread mill's file says kind = \"thread-mill\"",
+                f.kind
+            )));
+        }
+        if f.rows != 1 {
+            return Err(ferr(format!(
+                "rows = {}: multi-form thread mills are not modelled yet (a single-form cutter has rows = 1){}",
+                f.rows,
+                f.row_pitch.map_or(String::new(), |p| format!("; row_pitch {p} mm"))
+            )));
+        }
+        if f.flat != 0.0 {
+            return Err(ferr(
+                "flat: a flat tooth tip is not modelled; give the tip's radius (tip_radius)".into(),
+            ));
+        }
+        Ok(Cutter { diameter: f.diameter, angle_deg: f.angle, tip_radius: f.tip_radius })
+    }
+
     /// The cutter's radius at axial offset `h` from its tooth's centre, down to `neck`.
     fn rho(&self, h: f64, neck: f64) -> f64 {
         let half = (0.5 * self.angle_deg).to_radians();
@@ -80,8 +140,10 @@ pub struct ThreadMillSpec {
     pub designation: String,
     /// Accept sizes outside the standard series.
     pub allow_nonstandard: bool,
-    /// The cutter.
-    pub cutter: Cutter,
+    /// The cutter; `None` takes the helix's tool from `tools`.
+    pub cutter: Option<Cutter>,
+    /// The tool table: the thread mill's file by T number, and `[offsets]`.
+    pub tools: Option<crate::analysis::tools::ToolTable>,
     /// The bore (internal) or blank (external) diameter, mm; default the class's minor (internal)
     /// or major (external) diameter limit's middle.
     pub blank_diameter: Option<f64>,
@@ -313,13 +375,66 @@ fn reach(hs: &[Helix], cutter: &Cutter, neck: f64, z: f64, internal: bool, only_
 /// // D = 20; eight turns climbing 1.5 mm each.
 /// let mut program = String::from("G17 G90 G40\nG0 X4 Y0 Z-14\n");
 /// for k in 1..=8 { program += &format!("G3 X4 Y0 Z{} I-4 J0 F200\n", -14.0 + 1.5 * k as f64); }
-/// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: "M20x1.5-6H".into(), allow_nonstandard: false, cutter: Cutter { diameter: 12.0, angle_deg: 60.0, tip_radius: 0.0 }, blank_diameter: None, comp_radius: None };
+/// let cutter = Some(Cutter { diameter: 12.0, angle_deg: 60.0, tip_radius: 0.0 });
+/// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: "M20x1.5-6H".into(), allow_nonstandard: false, cutter, tools: None, blank_diameter: None, comp_radius: None };
 /// let r = thread_mill(&spec)?;
 /// assert!((r.measured.major_diameter - 20.0).abs() < 1e-4);
 /// # Ok::<(), threadcheck::Error>(())
 /// ```
 pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
-    let c = spec.cutter;
+    let (text, name) = &spec.program;
+    let opts = ReadOptions { moves: true, allow_no_threading: true, ..ReadOptions::default() };
+    let prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
+    let mut notes: Vec<String> = prog.notes.iter().map(|n| n.to_string()).collect();
+    // The tool of the first helix: its cutter and its compensation from the table.
+    let first_tool = prog
+        .moves
+        .iter()
+        .find(|m| m.arc.is_some() && (m.to[2] - m.from[2]).abs() > 1e-9)
+        .and_then(|m| m.tool);
+    let c = match (spec.cutter, &spec.tools) {
+        (Some(c), _) => c,
+        (None, Some(tt)) => {
+            let t = first_tool.ok_or_else(|| {
+                Error::Input(
+                    "the program names no tool before its helices: give the cutter (--cutter-diameter)"
+                        .into(),
+                )
+            })?;
+            match tt.tool(t) {
+                Some((crate::analysis::tools::Tool::Insert(crate::analysis::verify::InsertChoice::File(p)), _)) => {
+                    let text = crate::ground::input::read_text_bounded(p, crate::ground::bounds::MAX_DATA_FILE_BYTES, "a thread mill's file")?;
+                    Cutter::from_toml(&text, &p.display().to_string())?
+                }
+                Some((crate::analysis::tools::Tool::Insert(crate::analysis::verify::InsertChoice::Toml { name, text }), _)) => {
+                    Cutter::from_toml(text, name)?
+                }
+                Some((_, written)) => {
+                    return Err(Error::Input(format!(
+                        "tool T{t} is \"{written}\" in {}, not a thread mill's file (write {t} = \"thread-mill.toml\")",
+                        tt.source
+                    )))
+                }
+                None => return Err(Error::Input(format!("tool T{t} of the helices is not in {}", tt.source))),
+            }
+        }
+        (None, None) => {
+            return Err(Error::Input("give the cutter: --cutter-diameter, or a tool table (--tools)".into()))
+        }
+    };
+    let comp = match (spec.comp_radius, &spec.tools, first_tool) {
+        (Some(d), _, _) => Some(d),
+        (None, Some(tt), Some(t)) => Some(tt.offset(t).unwrap_or_else(|| {
+            if prog.moves.iter().any(|m| m.comp != 0) {
+                notes.push(format!(
+                    "no [offsets] entry for T{t} in {}: the compensation is taken as 0.0 mm",
+                    tt.source
+                ));
+            }
+            0.0
+        })),
+        _ => None,
+    };
     if !(c.diameter.is_finite() && c.diameter > 0.0 && c.diameter < 1000.0) {
         return Err(Error::Input(format!("cutter diameter {} mm: a positive length under 1 m", c.diameter)));
     }
@@ -344,15 +459,11 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         limits_for(&des, kind)?.ok_or_else(|| Error::Input("the designation needs its class".into()))?;
     let t = des.thread;
     let p = t.pitch;
-    let (text, name) = &spec.program;
-    let opts = ReadOptions { moves: true, allow_no_threading: true, ..ReadOptions::default() };
-    let prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
-    let mut notes: Vec<String> = prog.notes.iter().map(|n| n.to_string()).collect();
-    if let Some(d) = spec.comp_radius.filter(|d| !(d.is_finite() && *d >= 0.0)) {
+    if let Some(d) = comp.filter(|d| !(d.is_finite() && *d >= 0.0)) {
         return Err(Error::Input(format!("compensation {d} mm must be a length ≥ 0")));
     }
-    let mut hs = helices(&prog.moves, name, spec.comp_radius)?;
-    if let Some(d) = spec.comp_radius {
+    let mut hs = helices(&prog.moves, name, comp)?;
+    if let Some(d) = comp {
         if hs.iter().any(|h| (h.radius - h.programmed_radius).abs() > 1e-12)
             && (d - 0.5 * c.diameter).abs() > 1e-3
         {

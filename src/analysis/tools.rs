@@ -48,12 +48,16 @@ pub struct ToolTable {
     /// Where the table came from, for messages.
     pub source: String,
     tools: BTreeMap<u32, (Tool, String)>,
+    /// `[offsets]`: the cutter radius compensation value (the D register) of each T, mm.
+    offsets: BTreeMap<u32, f64>,
 }
 
 #[derive(serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 struct Raw {
     tools: BTreeMap<String, String>,
+    #[serde(default)]
+    offsets: BTreeMap<String, f64>,
 }
 
 impl ToolTable {
@@ -109,7 +113,18 @@ impl ToolTable {
             };
             tools.insert(t, (tool, v));
         }
-        Ok(ToolTable { source: source.to_string(), tools })
+        let mut offsets = BTreeMap::new();
+        for (k, v) in raw.offsets {
+            let t: u32 = k
+                .trim_start_matches(['T', 't'])
+                .parse()
+                .map_err(|_| ferr(format!("offset '{k}' is not a T number (write 12 = 3.0)")))?;
+            if !(v.is_finite() && v.abs() < 1000.0) {
+                return Err(ferr(format!("offset {k} = {v}: a compensation value in mm")));
+            }
+            offsets.insert(t, v);
+        }
+        Ok(ToolTable { source: source.to_string(), tools, offsets })
     }
 
     /// Reads a tool table file.
@@ -141,6 +156,11 @@ impl ToolTable {
             Some((Tool::Insert(c), w)) => Some((c, w.as_str())),
             Some((Tool::Tap { .. } | Tool::Drill { .. }, _)) | None => None,
         }
+    }
+
+    /// The compensation value of tool `t` (`[offsets]`), mm.
+    pub fn offset(&self, t: u32) -> Option<f64> {
+        self.offsets.get(&t).copied()
     }
 
     /// Tool `t` and how the table wrote it.

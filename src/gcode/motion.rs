@@ -120,6 +120,8 @@ pub struct Move {
     pub line: usize,
     /// Cutter radius compensation in force: 0 none (G40), 1 left (G41), 2 right (G42).
     pub comp: u8,
+    /// The tool in force.
+    pub tool: Option<u32>,
 }
 
 /// An open chain of synchronised moves (G32/G33 blocks one after the other): one helix.
@@ -421,6 +423,7 @@ impl Motion {
                     arc: None,
                     line: b.line,
                     comp: self.comp,
+                    tool: self.tool,
                 });
             }
             self.record_contour(x, z, b.line);
@@ -478,6 +481,7 @@ impl Motion {
                     arc: Some((centre, dir)),
                     line: b.line,
                     comp: self.comp,
+                    tool: self.tool,
                 });
             }
         }
