@@ -106,3 +106,26 @@ fn a_tap_needs_its_tool() {
     assert_eq!(code, 2);
     assert!(e.contains("no tapping cycle in the program"), "{e}");
 }
+
+/// LinuxCNC's rigid tapping G33.1 Z K (K the distance per revolution) after a G83: the same
+/// checks, K against the lead (K1.4 for M10x1.5 is 0.1 mm/rev short).
+#[test]
+fn linuxcnc_g33_1_is_a_tapping_cycle() {
+    let program = "G21 G18\nT1 M6\nS600 M3\nG0 X0 Z5\nG83 X0 Z-25 R2 Q5 F0.1\nG80\nT2 M6\nS300 M3\nG0 X0 Z8\nG33.1 Z-18 K1.5\nM2\n";
+    let tools = "[tools]\n1 = \"drill:8.5\"\n2 = \"tap:M10x1.5-6H\"\n";
+    let run_tap = |text: &str| {
+        let dir = tempdir("tap-lcnc");
+        std::fs::write(dir.join("p.ngc"), text).unwrap();
+        std::fs::write(dir.join("tools.toml"), tools).unwrap();
+        let o = run_in(&dir, &["tap", "--program", "p.ngc", "--tools", "tools.toml", "--json", "-"]);
+        (o.status.code().unwrap(), serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap_or_default())
+    };
+    let (code, v) = run_tap(program);
+    assert_eq!(code, 0, "{v}");
+    assert_eq!(v["dialect"], "linuxcnc");
+    assert_eq!(v["holes"][0]["cycle"]["code"], "G33.1");
+    assert_eq!(check(&v, "drill_diameter")["ok"], true);
+    let (code, v) = run_tap(&program.replace("K1.5", "K1.4"));
+    assert_eq!(code, 1);
+    assert!((check(&v, "feed")["deviation"].as_f64().unwrap() + 100.0).abs() < 1e-6);
+}

@@ -340,8 +340,10 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             }
         }
         // The spindle.
+        // G84 taps right-hand, G74 left-hand; LinuxCNC's G33.1 taps the way the spindle turns.
         let (want, hand) = match h.code.as_str() {
             "G74" => (SpindleDir::Ccw, Hand::Left),
+            "G33.1" if des.thread.hand == Hand::Left => (SpindleDir::Ccw, Hand::Left),
             _ => (SpindleDir::Cw, Hand::Right),
         };
         let hand_ok = des.thread.hand == hand;

@@ -161,11 +161,34 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                 (Dialect::LinuxCnc, 92.1 | 92.2 | 92.3) => one_shot = Some(g),
                 (Dialect::LinuxCnc, 59.1 | 59.2 | 59.3) => {}
                 (Dialect::LinuxCnc, 33.1) => {
-                    return Err(m.err(
+                    // Rigid tapping: recorded for `threadcheck tap`, read past by the rest.
+                    let (x, y, z) = m.target(b);
+                    let feed = b.get("K").map(|w| m.len(w));
+                    if m.holes.len() < crate::ground::bounds::MAX_PASSES {
+                        m.holes.push(super::HoleCycle {
+                            code: "G33.1".into(),
+                            kind: super::HoleKind::Tap,
+                            line: b.line,
+                            column: col,
+                            x: x.or(m.x),
+                            y: y.or(m.y),
+                            bottom: z,
+                            feed,
+                            feed_per_rev: true,
+                            feed_mode_assumed: false,
+                            spindle: m.s,
+                            spindle_dir: m.spindle_dir,
+                            tool: m.tool,
+                            rigid: true,
+                        });
+                    }
+                    m.read_past(
                         b.line,
                         col,
-                        "G33.1 is rigid tapping, not a turned thread: threadcheck does not read it",
-                    ))
+                        "G33.1",
+                        "rigid tapping (threadcheck tap checks it); it returns to its start",
+                    );
+                    one_shot = Some(g);
                 }
                 _ if THREADING.contains(&base) => {
                     return Err(m.err(
@@ -501,7 +524,8 @@ fn record_hole(
         73 | 81..=83 | 85..=89 => super::HoleKind::Drill,
         _ => return,
     };
-    if !fanuc_like || !(x.is_some() || y.is_some() || z.is_some() || modal.col.is_some()) {
+    let reads = fanuc_like || m.dialect == Dialect::LinuxCnc && kind == super::HoleKind::Drill;
+    if !reads || !(x.is_some() || y.is_some() || z.is_some() || modal.col.is_some()) {
         return;
     }
     let feed = b.get("F").map(|w| m.len(w)).or(m.hole_modal.1);

@@ -762,6 +762,10 @@ pub fn read_program_with(
                 (line, col) = (p.line, p.column);
             }
             why.push_str(&format!("; {}", n.message));
+        } else if let Some(h) = holes.iter().find(|h| h.kind == HoleKind::Tap) {
+            // A tapping program given to a turning check: name the command that reads it.
+            (line, col) = (h.line, h.column);
+            why.push_str(&format!("; {} taps a hole: threadcheck tap checks tapping cycles", h.code));
         }
         return Err(perr(line, col, why));
     }

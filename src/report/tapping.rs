@@ -37,7 +37,7 @@ pub fn text(r: &TapReport) -> String {
             h.tap.designation,
             fmt_num(h.tap.chamfer_pitches),
             if h.tap.chamfer_given { "" } else { ", default" },
-            if c.rigid { ", rigid (M29)" } else { "" }
+            if c.rigid { ", rigid" } else { "" }
         );
         match &h.drill {
             Some(d) => {
