@@ -58,22 +58,7 @@ fn screenshot(file: &Path, w: usize, h: usize) -> Shot {
         .output()
         .unwrap();
     assert!(png.is_file(), "Chromium wrote no screenshot: {}", String::from_utf8_lossy(&out.stderr));
-    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&png).unwrap()));
-    let mut reader = decoder.read_info().unwrap();
-    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    let ch = match info.color_type {
-        png::ColorType::Rgba => 4,
-        png::ColorType::Rgb => 3,
-        other => panic!("unexpected PNG colour type {other:?}"),
-    };
-    let rgb = buf[..info.buffer_size()].chunks(ch).map(|c| [c[0], c[1], c[2]]).collect();
-    Shot {
-        w: info.width as usize,
-        h: info.height as usize,
-        rgb,
-        log: String::from_utf8_lossy(&out.stderr).into_owned(),
-    }
+    Shot { log: String::from_utf8_lossy(&out.stderr).into_owned(), ..read_png(&png) }
 }
 
 /// The console messages Chromium logged for the page (it logs `console.error` at INFO level, so

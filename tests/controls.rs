@@ -43,7 +43,7 @@ fn system_b_g78_is_the_threading_cycle() {
     // 18.2 + 0.866 = 19.066, 72 µm over 6g's 18.994 (the G76 sheet's figure), and the
     // correction names the program's own G78 repeat.
     let p = data("programs/fanuc-system-b-g78.nc");
-    let o = run(&[
+    let (code, v) = run_json(&[
         "verify",
         "--thread",
         "M20x1.5-6g",
@@ -56,15 +56,8 @@ fn system_b_g78_is_the_threading_cycle() {
         "--json",
         "-",
     ]);
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let d2 = v["operations"][0]["checks"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|c| c["feature"] == "pitch_diameter")
-        .unwrap()
-        .clone();
+    assert_eq!(code, 1);
+    let d2 = check_of(&v["operations"][0], "pitch_diameter");
     assert!((d2["deviation_um"].as_f64().unwrap() - 72.0).abs() < 0.05, "{d2}");
     assert_eq!(v["operations"][0]["correction"]["line"], 11);
 }
@@ -146,7 +139,7 @@ fn okuma_g33_fixed_cycle_repeats_on_x_only_blocks() {
     assert!(v["passes"].as_array().unwrap().iter().all(|p| p["z_start"] == 5.0 && p["z_end"] == -20.0));
     assert!(v["notes"].to_string().contains("read as okuma, the dialect of its extension .min"));
     let p = data("programs/okuma-g33-repeats.min");
-    let o = run(&[
+    let (code, v) = run_json(&[
         "verify",
         "--thread",
         "M20x1.5-6g",
@@ -157,15 +150,8 @@ fn okuma_g33_fixed_cycle_repeats_on_x_only_blocks() {
         "--json",
         "-",
     ]);
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let d2 = v["operations"][0]["checks"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|c| c["feature"] == "pitch_diameter")
-        .unwrap()
-        .clone();
+    assert_eq!(code, 1);
+    let d2 = check_of(&v["operations"][0], "pitch_diameter");
     assert!((d2["value"].as_f64().unwrap() - 19.026).abs() < 1e-4, "{d2}");
     assert!((d2["deviation_um"].as_f64().unwrap() - 32.0).abs() < 0.1, "{d2}");
     // The correction names the last repeat's X.
@@ -206,7 +192,7 @@ fn okuma_g71_patterns_1_and_3_with_single_blade_infeed() {
     // Verified: the finishing pass's tip on d3 = 71.546 with a full-profile insert cuts the basic
     // d2 72.701, 37.7 µm over 6g's 72.663 (es = −38 µm on M74x2).
     let p = data("programs/okuma-g71-m74x2.min");
-    let o = run(&[
+    let (code, v) = run_json(&[
         "verify",
         "--thread",
         "M74x2-6g",
@@ -218,16 +204,9 @@ fn okuma_g71_patterns_1_and_3_with_single_blade_infeed() {
         "--json",
         "-",
     ]);
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(code, 1);
     for op in v["operations"].as_array().unwrap() {
-        let d2 = op["checks"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .find(|c| c["feature"] == "pitch_diameter")
-            .unwrap()
-            .clone();
+        let d2 = check_of(op, "pitch_diameter");
         assert!((d2["deviation_um"].as_f64().unwrap() - 37.7).abs() < 0.1, "{d2}");
     }
 }

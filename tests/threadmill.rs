@@ -82,7 +82,7 @@ fn a_small_cutter_tends_to_the_tooth_profile() {
 #[test]
 fn a_wrong_lead_per_turn_fails() {
     let v = mill("m20-lead145.nc", 6.0);
-    let lead = v["checks"].as_array().unwrap().iter().find(|c| c["feature"] == "lead").unwrap();
+    let lead = check_of(&v, "lead");
     assert_eq!(lead["ok"], false);
     assert!((lead["deviation_um"].as_f64().unwrap() + 50.0).abs() < 1e-9, "{lead}");
     assert_eq!(v["pass"], false);

@@ -93,3 +93,20 @@ pub fn hausdorff(a: &[threadcheck::Point], b: &[threadcheck::Point]) -> f64 {
     };
     one(a, &lb).max(one(b, &la))
 }
+
+/// Runs the binary with `args` (a command that ends in `--json -`): its exit code (0 or 1,
+/// asserted) and its JSON.
+pub fn run_json(args: &[&str]) -> (i32, serde_json::Value) {
+    let o = run(args);
+    let code = o.status.code().unwrap_or(-1);
+    assert!(code == 0 || code == 1, "exit {code}: {}", stderr(&o));
+    (code, serde_json::from_slice(&o.stdout).unwrap())
+}
+
+/// The check of `feature` in a report's (or one operation's) `checks`.
+pub fn check_of<'a>(v: &'a serde_json::Value, feature: &str) -> &'a serde_json::Value {
+    v["checks"]
+        .as_array()
+        .and_then(|cs| cs.iter().find(|c| c["feature"] == feature))
+        .unwrap_or_else(|| panic!("no {feature} check in {v}"))
+}

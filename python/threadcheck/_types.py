@@ -38,9 +38,8 @@ class Correction(TypedDict, total=False):
     text: str
 
 
-class OperationReport(TypedDict, total=False):
-    """One operation of a program's verify report: a full report and its ``operation``, or
-    (nothing cut) ``reason`` and ``suggested_final_x``."""
+class _Report(TypedDict, total=False):
+    """The keys a verify report of one thread has (a plan's, or a program operation's)."""
 
     thread: Json
     insert: Json
@@ -59,31 +58,20 @@ class OperationReport(TypedDict, total=False):
     hints: List[Json]
     notes: List[Json]
     deviation: Json
+
+
+class OperationReport(_Report, total=False):
+    """One operation of a program's verify report: a full report and its ``operation``, or
+    (nothing cut) ``reason`` and ``suggested_final_x``."""
+
     operation: Json
     reason: str
 
 
-class VerifyReport(TypedDict, total=False):
+class VerifyReport(_Report, total=False):
     """``verify --json -``: a plan's report (the keys of :class:`OperationReport` but
     ``operation``), or a program's: ``program``, ``dialect``, ``verdict``, ``operations``."""
 
-    thread: Json
-    insert: Json
-    plan: Json
-    passes: List[Json]
-    measured: Json
-    limits: Json
-    checks: List[Check]
-    verdict: str
-    gauge_only: bool
-    helix_angle: float
-    process: Optional[Json]
-    suggested_final_x: Optional[float]
-    lead_deviation: Optional[Json]
-    correction: Optional[Correction]
-    hints: List[Json]
-    notes: List[Json]
-    deviation: Json
     program: str
     dialect: str
     operations: List[OperationReport]
