@@ -156,3 +156,67 @@ fn the_tool_table_gives_the_cutter_and_its_offset() {
     assert_eq!(v["helices"][0]["radius"], 7.0);
     assert_eq!(v["measured"]["pitch_diameter"], mill("m20-dc6.nc", 6.0)["measured"]["pitch_diameter"]);
 }
+
+/// LinuxCNC's P on an arc is its number of turns: one G3 of P10 climbing 15 mm is ten turns of
+/// 1.5 mm, the same thread as ten one-turn blocks.
+#[test]
+fn linuxcnc_p_turns_make_one_block_a_helix_of_several_turns() {
+    let dir = tempdir("tm-lcnc");
+    let text = "G17 G21 G90 G40\nT12 M6\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-16\nG1 X7 Y0 F100\nG3 X7 Y0 Z-1 I-7 J0 P10 F150\nG0 Z50\nM2\n";
+    std::fs::write(dir.join("h.ngc"), text).unwrap();
+    let o = run_in(
+        &dir,
+        &[
+            "thread-mill",
+            "--program",
+            "h.ngc",
+            "--thread",
+            "M20x1.5-6H",
+            "--cutter-diameter",
+            "6",
+            "--json",
+            "-",
+        ],
+    );
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!((v["helices"][0]["lead"].as_f64().unwrap() - 1.5).abs() < 1e-12);
+    assert!((v["helices"][0]["sweep_deg"].as_f64().unwrap() - 3600.0).abs() < 1e-9);
+    let one_by_one = mill("m20-dc6.nc", 6.0)["measured"]["pitch_diameter"].as_f64().unwrap();
+    assert!((v["measured"]["pitch_diameter"].as_f64().unwrap() - one_by_one).abs() < 1e-6);
+}
+
+/// An external thread: the cutter outside the bolt reaches in to R − tip, so the minor diameter
+/// is 2(R − tip): a Ø10 cutter on R = 14.08 cuts d3 = 18.16 (M20x1.5's basic d3).
+#[test]
+fn an_external_thread_has_its_minor_diameter_at_twice_helix_radius_less_tip() {
+    let dir = tempdir("tm-ext");
+    let mut text =
+        String::from("G17 G21 G90 G40\nT12 M6\nS3000 M3\nG0 X20 Y0 Z5\nG0 Z-16\nG1 X14.08 Y0 F100\n");
+    for k in 1..=10 {
+        text += &format!("G2 X14.08 Y0 Z{:.4} I-14.08 J0 F150\n", -16.0 + 1.5 * f64::from(k));
+    }
+    text += "G0 X30\nM30\n";
+    std::fs::write(dir.join("e.nc"), text).unwrap();
+    let o = run_in(
+        &dir,
+        &[
+            "thread-mill",
+            "--program",
+            "e.nc",
+            "--thread",
+            "M20x1.5-6g",
+            "--cutter-diameter",
+            "10",
+            "--json",
+            "-",
+        ],
+    );
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["kind"], "external");
+    let d3 = v["measured"]["minor_diameter"].as_f64().unwrap();
+    assert!((d3 - 18.16).abs() < 1e-4, "{d3}");
+    // G2 around a bolt with the spindle clockwise is climb milling.
+    assert_eq!(v["helices"][0]["climb"], true);
+}

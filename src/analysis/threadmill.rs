@@ -260,6 +260,7 @@ fn helices(moves: &[Move], file: &str, comp: Option<f64>) -> Result<Vec<Helix>, 
         while sweep <= 1e-9 {
             sweep += std::f64::consts::TAU;
         }
+        sweep += std::f64::consts::TAU * f64::from(mv.extra_turns);
         let lead = dz * std::f64::consts::TAU / sweep;
         let radius = r0 + shift;
         if radius <= 0.0 {
@@ -303,7 +304,16 @@ fn reach(hs: &[Helix], cutter: &Cutter, neck: f64, z: f64, internal: bool, only_
             if q < 0.0 {
                 return None;
             }
-            Some(if internal { h.radius * c + q.sqrt() } else { h.radius * c - q.sqrt() })
+            // The cutter covers r from R·cos ψ − √q to R·cos ψ + √q on the half-plane's line; of
+            // a bolt it removes from the outside in, so only a chord reaching r > 0 counts.
+            let (lo, hi) = (h.radius * c - q.sqrt(), h.radius * c + q.sqrt());
+            if internal {
+                Some(hi)
+            } else if hi > 0.0 {
+                Some(lo.max(0.0))
+            } else {
+                None
+            }
         };
         let better = |a: f64, b: f64| if internal { a > b } else { a < b };
         // The helix parameter range whose tooth reaches height z.

@@ -122,6 +122,8 @@ pub struct Move {
     pub comp: u8,
     /// The tool in force.
     pub tool: Option<u32>,
+    /// Full turns an arc makes beyond its first (LinuxCNC's `P`: P3 is two more turns).
+    pub extra_turns: u32,
 }
 
 /// An open chain of synchronised moves (G32/G33 blocks one after the other): one helix.
@@ -424,6 +426,7 @@ impl Motion {
                     line: b.line,
                     comp: self.comp,
                     tool: self.tool,
+                    extra_turns: 0,
                 });
             }
             self.record_contour(x, z, b.line);
@@ -448,6 +451,20 @@ impl Motion {
             return Ok(false);
         }
         self.break_chain();
+        // LinuxCNC's P: the number of turns of the arc (a helix of several turns in one block).
+        let extra_turns = match (self.dialect, b.get("P")) {
+            (Dialect::LinuxCnc, Some(p)) => {
+                if !(p.v >= 1.0 && p.v.fract() == 0.0 && p.v <= 10_000.0) {
+                    return Err(b.werr(
+                        &self.file,
+                        p,
+                        format!("P{}: an arc's number of turns is a whole number from 1", p.v),
+                    ));
+                }
+                p.v as u32 - 1
+            }
+            _ => 0,
+        };
         // An arc of the turned contour is kept as its chord: enough to see a shoulder.
         self.record_contour(x, z, b.line);
         let from = [self.x.unwrap_or(0.0), self.y.unwrap_or(0.0), self.z.unwrap_or(0.0)];
@@ -482,6 +499,7 @@ impl Motion {
                     line: b.line,
                     comp: self.comp,
                     tool: self.tool,
+                    extra_turns,
                 });
             }
         }
