@@ -425,6 +425,9 @@ struct ThreadMillArgs {
     /// Write the milled thread's axial section (SVG) to this file.
     #[arg(long, value_name = "FILE")]
     svg: Option<PathBuf>,
+    /// Write a self-contained HTML page (the section, the checks, the helices) to this file.
+    #[arg(long, value_name = "FILE")]
+    html: Option<PathBuf>,
     #[command(flatten)]
     json: JsonArg,
 }
@@ -867,7 +870,7 @@ impl Cli {
                     blank_diameter: a.blank_diameter,
                     comp_radius: a.comp_radius,
                 };
-                done(threadcheck::ThreadMillJob { spec, svg: a.svg, json: a.json.json }.run()?)
+                done(threadcheck::ThreadMillJob { spec, svg: a.svg, html: a.html, json: a.json.json }.run()?)
             }
             Command::Tap(a) => {
                 let (dialect, from) = dialect_for(a.dialect, &a.program);

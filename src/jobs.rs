@@ -991,6 +991,8 @@ pub struct ThreadMillJob {
     pub spec: crate::analysis::threadmill::ThreadMillSpec,
     /// Write the axial section's SVG here.
     pub svg: Option<std::path::PathBuf>,
+    /// Write the self-contained HTML page here.
+    pub html: Option<std::path::PathBuf>,
     /// The JSON: `-` prints it on stdout instead of the text, a path writes it there.
     pub json: Option<String>,
 }
@@ -1005,14 +1007,17 @@ impl ThreadMillJob {
     pub(crate) fn run_to(&self, sink: &mut Sink) -> Result<(String, Outcome), Error> {
         let r = crate::analysis::threadmill::thread_mill(&self.spec)?;
         let outcome = if r.pass { Outcome::Pass } else { Outcome::OutOfTolerance };
-        let json_text = self.json.as_ref().map(|_| pretty(&r)).transpose()?;
+        let json_text = self
+            .json
+            .as_ref()
+            .map(|_| pretty(&crate::report::threadmill::ThreadMillJson::of(&r)))
+            .transpose()?;
         let svg_text = self.svg.as_ref().map(|_| crate::report::svg::threadmill_svg(&r));
+        let html_text = self.html.as_ref().map(|_| crate::report::html::threadmill_html(&r));
         let inputs = [std::path::PathBuf::from(&self.spec.program.1)];
         let text = crate::report::threadmill::text(&r);
-        Ok((
-            write_outputs(sink, &inputs, &[(&self.svg, svg_text)], self.json.as_deref(), json_text, text)?,
-            outcome,
-        ))
+        let files = [(&self.svg, svg_text), (&self.html, html_text)];
+        Ok((write_outputs(sink, &inputs, &files, self.json.as_deref(), json_text, text)?, outcome))
     }
 }
 

@@ -178,7 +178,7 @@ impl Command {
             Command::Compare => &[Json, Text, Html],
             Command::Fit | Command::Mill => &[Json, Text, Svg],
             Command::Passes | Command::Limits | Command::Tap => &[Json, Text],
-            Command::ThreadMill => &[Json, Text, Svg],
+            Command::ThreadMill => &[Json, Text, Svg, Html],
         }
     }
 }
@@ -489,7 +489,8 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
                 blank_diameter: a.num("blank_diameter")?,
                 comp_radius: a.num("comp_radius")?,
             };
-            crate::jobs::ThreadMillJob { spec, svg: want(Document::Svg), json }.run_to(&mut sink)?
+            crate::jobs::ThreadMillJob { spec, svg: want(Document::Svg), html: want(Document::Html), json }
+                .run_to(&mut sink)?
         }
         Command::Tap => {
             let program =

@@ -85,7 +85,7 @@ fn a_wrong_lead_per_turn_fails() {
     let lead = check_of(&v, "lead");
     assert_eq!(lead["ok"], false);
     assert!((lead["deviation_um"].as_f64().unwrap() + 50.0).abs() < 1e-9, "{lead}");
-    assert_eq!(v["pass"], false);
+    assert_eq!(v["verdict"], "fail");
 }
 
 /// Under G41 on a counter-clockwise helix the cutter centre runs the compensation to the left of
@@ -219,4 +219,28 @@ fn an_external_thread_has_its_minor_diameter_at_twice_helix_radius_less_tip() {
     assert!((d3 - 18.16).abs() < 1e-4, "{d3}");
     // G2 around a bolt with the spindle clockwise is climb milling.
     assert_eq!(v["helices"][0]["climb"], true);
+}
+
+/// `--html` writes one self-contained page: the verdict, the section's picture, the checks and
+/// every helix.
+#[test]
+fn the_html_page_holds_the_picture_the_checks_and_the_helices() {
+    let dir = tempdir("tm-html");
+    let p = data("programs/threadmill/m20-dc14.nc");
+    let page = dir.join("t.html");
+    let o = run(&[
+        "thread-mill",
+        "--program",
+        p.to_str().unwrap(),
+        "--thread",
+        "M20x1.5-6H",
+        "--cutter-diameter",
+        "14",
+        "--html",
+        page.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let html = std::fs::read_to_string(&page).unwrap();
+    assert!(html.starts_with("<!DOCTYPE html>") && html.contains("<svg") && html.contains("<h2>Checks</h2>"));
+    assert_eq!(html.matches("<td>climb</td>").count(), 10);
 }

@@ -148,3 +148,10 @@ def test_tap():
                                    str(tapping / "tools-80.toml"), "--json", "-")))
     text = (tapping / "m10-g84.nc").read_text()
     validate("tap", threadcheck.tap(text, (tapping / "tools-85.toml").read_text()))
+
+
+def test_thread_mill():
+    mill = PROGRAMS / "threadmill"
+    validate("thread_mill", json.loads(cli("thread-mill", "--program", str(mill / "m20-dc14.nc"), "--thread",
+                                           "M20x1.5-6H", "--cutter-diameter", "14", "--json", "-")))
+    validate("thread_mill", threadcheck.thread_mill((mill / "m20-dc6.nc").read_text(), "M20x1.5-6H", 6.0))

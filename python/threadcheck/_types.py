@@ -194,6 +194,7 @@ class ThreadMillReport(TypedDict):
     distortion_flank_angles_deg: List[float]
     limits: Json
     checks: List[Check]
+    verdict: str
     notes: List[str]
 
 

@@ -285,3 +285,59 @@ pub fn compare_html(c: &Comparison) -> String {
     }
     page(&title, &body)
 }
+
+/// The thread-milling page: the verdict, the distortion, the section, the checks, the helices
+/// and the notes.
+pub fn threadmill_html(r: &crate::analysis::threadmill::ThreadMillReport) -> String {
+    let mut s = String::new();
+    let (cls, words) = if r.pass { ("ok", "IN TOLERANCE") } else { ("out", "OUT OF TOLERANCE") };
+    let _ = writeln!(s, "<h1>{} thread-milled</h1>", esc(&r.designation));
+    let _ = writeln!(s, "<p class=\"verdict {cls}\">{words}</p>");
+    let _ = writeln!(
+        s,
+        "<p>{} · Ø{} mm single-form cutter, {}° tooth, tip r{} mm ({:.0} % of the diameter) · profile distortion {:+.1} µm on the pitch diameter, flanks {:+.3}° / {:+.3}°</p>",
+        esc(&r.program),
+        crate::ground::fmt::fmt_num(r.cutter.diameter),
+        crate::ground::fmt::fmt_num(r.cutter.angle_deg),
+        crate::ground::fmt::fmt_num(r.cutter.tip_radius),
+        100.0 * r.cutter_ratio,
+        r.distortion_pitch_diameter_um,
+        r.distortion_flank_angles_deg[0],
+        r.distortion_flank_angles_deg[1]
+    );
+    let _ = writeln!(s, "<div class=\"pic\">{}</div>", crate::report::svg::threadmill_svg(r));
+    s.push_str("<h2>Checks</h2>\n<table><tr><th>feature</th><th>value</th><th>min</th><th>max</th><th>deviation</th><th>ok</th><th>note</th></tr>\n");
+    for c in &r.checks {
+        let cells = super::check_cells(c);
+        let (cls, word) = if c.ok { ("ok", "ok") } else { ("out", "OUT") };
+        let _ = writeln!(
+            s,
+            "<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"{cls}\">{word}</td><td>{}</td></tr>",
+            esc(c.feature.words(r.kind)),
+            esc(&cells.value),
+            esc(cells.min.trim_start_matches('—')),
+            esc(cells.max.trim_start_matches('—')),
+            esc(&cells.deviation),
+            esc(c.note.as_deref().unwrap_or(""))
+        );
+    }
+    s.push_str("</table>\n<h2>Helices</h2>\n<table><tr><th>line</th><th>radius mm</th><th>Z from</th><th>Z to</th><th>sweep °</th><th>lead mm/rev</th><th>milling</th></tr>\n");
+    for h in &r.helices {
+        let _ = writeln!(
+            s,
+            "<tr><td class=\"n\">{}</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.1}</td><td class=\"n\">{:.4}</td><td>{}</td></tr>",
+            h.line,
+            h.radius,
+            h.z[0],
+            h.z[1],
+            h.sweep_deg,
+            h.lead.abs(),
+            if h.climb { "climb" } else { "conventional" }
+        );
+    }
+    s.push_str("</table>\n");
+    for n in &r.notes {
+        let _ = writeln!(s, "<p class=\"form\">{}</p>", esc(n));
+    }
+    page(&format!("threadcheck: {} thread-milled", r.designation), &s)
+}

@@ -177,6 +177,26 @@ pub struct MeasuredReport {
     pub functional_pitch_diameter: Option<f64>,
 }
 
+impl MeasuredReport {
+    /// The `measured` object of a measurement (and the functional d2 where a lead deviates).
+    pub fn of(m: &crate::geometry::measure::Measurement, functional_pitch_diameter: Option<f64>) -> Self {
+        MeasuredReport {
+            major_diameter: m.major_diameter,
+            pitch_diameter: m.pitch_diameter,
+            minor_diameter: m.minor_diameter,
+            root_radius: m.root_radius,
+            flank_angles: m.flank_angles,
+            thread_depth: m.thread_depth,
+            engagement_depth: m.engagement_depth,
+            crest_width: m.crest_width,
+            fin_height: m.fin_height,
+            three_wire: m.three_wire,
+            max_material_clearance: m.max_material_clearance,
+            functional_pitch_diameter,
+        }
+    }
+}
+
 /// The whole `verify --json` object of a plan, and of each program operation (docs/json.md).
 #[derive(Clone, Debug, Serialize)]
 pub struct VerifyReport<'a> {
@@ -260,20 +280,7 @@ impl<'a> VerifyReport<'a> {
                 final_x_solved: v.final_x_solved,
             },
             passes,
-            measured: MeasuredReport {
-                major_diameter: m.major_diameter,
-                pitch_diameter: m.pitch_diameter,
-                minor_diameter: m.minor_diameter,
-                root_radius: m.root_radius,
-                flank_angles: m.flank_angles,
-                thread_depth: m.thread_depth,
-                engagement_depth: m.engagement_depth,
-                crest_width: m.crest_width,
-                fin_height: m.fin_height,
-                three_wire: m.three_wire,
-                max_material_clearance: m.max_material_clearance,
-                functional_pitch_diameter: v.functional_pitch_diameter,
-            },
+            measured: MeasuredReport::of(m, v.functional_pitch_diameter),
             lead_deviation: v.lead_deviation.as_ref(),
             correction: v
                 .correction

@@ -1,7 +1,9 @@
 //! The thread-milling check's text (its JSON is the report itself).
 
-use crate::analysis::threadmill::ThreadMillReport;
+use crate::analysis::threadmill::{Cutter, Helix, ThreadMillReport};
 use crate::ground::fmt::fmt_num;
+use crate::report::MeasuredReport;
+use serde::Serialize;
 use std::fmt::Write as _;
 
 /// The text `threadcheck thread-mill` prints.
@@ -88,4 +90,63 @@ pub fn text(r: &ThreadMillReport) -> String {
         let _ = writeln!(s, "note: {n}");
     }
     s
+}
+
+/// `thread-mill --json` (docs/json.md, schema `command_thread_mill`): the report, its
+/// measurements as `verify`'s `measured`, its verdict as a word.
+#[derive(Clone, Debug, Serialize)]
+pub struct ThreadMillJson<'a> {
+    /// The program.
+    pub program: &'a str,
+    /// The designation.
+    pub designation: &'a str,
+    /// `internal` or `external`.
+    pub kind: crate::standards::ThreadKind,
+    /// The cutter.
+    pub cutter: Cutter,
+    /// The cutter's diameter over the thread's.
+    pub cutter_ratio: f64,
+    /// The helices.
+    pub helices: &'a [Helix],
+    /// The bore or blank, mm.
+    pub blank_diameter: f64,
+    /// The milled thread.
+    pub measured: MeasuredReport,
+    /// The tooth profile alone.
+    pub tooth_profile: MeasuredReport,
+    /// Milled d2 less the tooth profile's, µm.
+    pub distortion_pitch_diameter_um: f64,
+    /// The flank angles' change, degrees.
+    pub distortion_flank_angles_deg: [f64; 2],
+    /// The class's limits.
+    pub limits: &'a crate::standards::tolerance::ThreadLimits,
+    /// The checks.
+    pub checks: &'a [crate::analysis::check::Check],
+    /// `pass` or `fail`.
+    pub verdict: crate::analysis::check::Verdict,
+    /// What was assumed.
+    pub notes: &'a [String],
+}
+
+impl<'a> ThreadMillJson<'a> {
+    /// The JSON view of a report.
+    pub fn of(r: &'a ThreadMillReport) -> Self {
+        ThreadMillJson {
+            program: &r.program,
+            designation: &r.designation,
+            kind: r.kind,
+            cutter: r.cutter,
+            cutter_ratio: r.cutter_ratio,
+            helices: &r.helices,
+            blank_diameter: r.blank_diameter,
+            measured: MeasuredReport::of(&r.measured, None),
+            tooth_profile: MeasuredReport::of(&r.tooth_profile, None),
+            distortion_pitch_diameter_um: r.distortion_pitch_diameter_um,
+            distortion_flank_angles_deg: r.distortion_flank_angles_deg,
+            limits: &r.limits,
+            checks: &r.checks,
+            verdict: crate::analysis::check::Verdict::of(r.pass),
+            notes: &r.notes,
+        }
+    }
 }
