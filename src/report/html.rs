@@ -107,16 +107,7 @@ fn verification_body(v: &Verification, svg: &str, level: u8) -> String {
             (true, _) => "<td></td>".to_string(),
             (false, _) => String::new(),
         };
-        let _ = writeln!(
-            s,
-            "<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>{in_cell}<td class=\"n\">{}</td><td class=\"{cls}\">{word}</td><td>{}</td></tr>",
-            esc(c.feature.words(v.kind)),
-            esc(&cells.value),
-            esc(cells.min.trim_start_matches('—')),
-            esc(cells.max.trim_start_matches('—')),
-            esc(&cells.deviation),
-            esc(c.note.as_deref().unwrap_or(""))
-        );
+        s.push_str(&check_row(c, v.kind, &cells, &in_cell, cls, word));
     }
     s.push_str("</table>\n");
     let _ = writeln!(s, "<{0}>Passes</{0}>", h(0));
@@ -308,18 +299,8 @@ pub fn threadmill_html(r: &crate::analysis::threadmill::ThreadMillReport) -> Str
     let _ = writeln!(s, "<div class=\"pic\">{}</div>", crate::report::svg::threadmill_svg(r));
     s.push_str("<h2>Checks</h2>\n<table><tr><th>feature</th><th>value</th><th>min</th><th>max</th><th>deviation</th><th>ok</th><th>note</th></tr>\n");
     for c in &r.checks {
-        let cells = super::check_cells(c);
         let (cls, word) = if c.ok { ("ok", "ok") } else { ("out", "OUT") };
-        let _ = writeln!(
-            s,
-            "<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"{cls}\">{word}</td><td>{}</td></tr>",
-            esc(c.feature.words(r.kind)),
-            esc(&cells.value),
-            esc(cells.min.trim_start_matches('—')),
-            esc(cells.max.trim_start_matches('—')),
-            esc(&cells.deviation),
-            esc(c.note.as_deref().unwrap_or(""))
-        );
+        s.push_str(&check_row(c, r.kind, &super::check_cells(c), "", cls, word));
     }
     s.push_str("</table>\n<h2>Helices</h2>\n<table><tr><th>line</th><th>radius mm</th><th>Z from</th><th>Z to</th><th>sweep °</th><th>lead mm/rev</th><th>milling</th></tr>\n");
     for h in &r.helices {
@@ -340,4 +321,25 @@ pub fn threadmill_html(r: &crate::analysis::threadmill::ThreadMillReport) -> Str
         let _ = writeln!(s, "<p class=\"form\">{}</p>", esc(n));
     }
     page(&format!("threadcheck: {} thread-milled", r.designation), &s)
+}
+
+/// One row of a check table: the feature, value, limits, (the value in inches), deviation, the
+/// verdict word and the note.
+fn check_row(
+    c: &crate::analysis::check::Check,
+    kind: ThreadKind,
+    cells: &super::CheckCells,
+    in_cell: &str,
+    cls: &str,
+    word: &str,
+) -> String {
+    format!(
+        "<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td>{in_cell}<td class=\"n\">{}</td><td class=\"{cls}\">{word}</td><td>{}</td></tr>\n",
+        esc(c.feature.words(kind)),
+        esc(&cells.value),
+        esc(cells.min.trim_start_matches('—')),
+        esc(cells.max.trim_start_matches('—')),
+        esc(&cells.deviation),
+        esc(c.note.as_deref().unwrap_or(""))
+    )
 }
