@@ -244,3 +244,35 @@ fn the_html_page_holds_the_picture_the_checks_and_the_helices() {
     assert!(html.starts_with("<!DOCTYPE html>") && html.contains("<svg") && html.contains("<h2>Checks</h2>"));
     assert_eq!(html.matches("<td>climb</td>").count(), 10);
 }
+
+/// Entry and exit: a straight feed onto the helix leaves a witness mark (said), an arc in the
+/// plane is a tangential entry or exit (said too).
+#[test]
+fn entry_and_exit_moves_are_named() {
+    let straight = mill("m20-dc6.nc", 6.0);
+    let notes = straight["notes"].to_string();
+    assert!(notes.contains("reaches its helices by a straight feed move (line 8)"), "{notes}");
+    assert!(notes.contains("leaves its helices by a straight feed move (line 19)"), "{notes}");
+    let dir = tempdir("tm-arcs");
+    let mut text =
+        String::from("G17 G21 G90 G40\nT12 M6\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-16\nG3 X7 Y0 I3.5 J0 F100\n");
+    for k in 1..=10 {
+        text += &format!("G3 X7 Y0 Z{:.4} I-7 J0 F150\n", -16.0 + 1.5 * f64::from(k));
+    }
+    text += "G3 X0 Y0 I-3.5 J0\nG0 Z50\nM30\n";
+    std::fs::write(dir.join("a.nc"), text).unwrap();
+    let (_, v) = crate::util::run_json(&[
+        "thread-mill",
+        "--program",
+        dir.join("a.nc").to_str().unwrap(),
+        "--thread",
+        "M20x1.5-6H",
+        "--cutter-diameter",
+        "6",
+        "--json",
+        "-",
+    ]);
+    let notes = v["notes"].to_string();
+    assert!(notes.contains("on an arc in the plane (line 6): a tangential entry"), "{notes}");
+    assert!(notes.contains("on an arc in the plane (line 17): a tangential exit"), "{notes}");
+}

@@ -286,6 +286,31 @@ fn helices(moves: &[Move], file: &str, comp: Option<f64>) -> Result<Vec<Helix>, 
     Ok(out)
 }
 
+/// How the cutter reaches its first helix and leaves its last: by an arc in the plane (a
+/// tangential entry, the usual practice) or by a straight feed move, which meets the thread
+/// square on and leaves a witness mark where it stops.
+fn entry_and_exit(moves: &[Move]) -> Vec<String> {
+    let is_helix = |m: &Move| m.arc.is_some() && (m.to[2] - m.from[2]).abs() > 1e-9;
+    let Some(first) = moves.iter().position(is_helix) else { return Vec::new() };
+    let last = moves.iter().rposition(is_helix).unwrap_or(first);
+    let word = |m: Option<&Move>, what: &str| -> String {
+        match m {
+            Some(m) if m.rapid => format!("the cutter {what} its helices by a rapid move (line {}): it should feed", m.line),
+            Some(m) if m.arc.is_some() => format!("the cutter {what} its helices on an arc in the plane (line {}): a tangential {}", m.line, if what == "reaches" { "entry" } else { "exit" }),
+            Some(m) => format!(
+                "the cutter {what} its helices by a straight feed move (line {}): it meets the thread square on and leaves a witness mark; an arc {} is the usual practice",
+                m.line,
+                if what == "reaches" { "in" } else { "out" }
+            ),
+            None => format!("nothing {} the helices", if what == "reaches" { "comes before" } else { "follows" }),
+        }
+    };
+    vec![
+        word(first.checked_sub(1).and_then(|i| moves.get(i)), "reaches"),
+        word(moves.get(last + 1), "leaves"),
+    ]
+}
+
 /// The farthest (internal) or nearest (external) radius the cutter reaches at height `z` in
 /// the half-plane at angle 0 from the helix axis, over every helix; `None` when none reaches it.
 fn reach(hs: &[Helix], cutter: &Cutter, neck: f64, z: f64, internal: bool, only_psi0: bool) -> Option<f64> {
@@ -473,6 +498,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         return Err(Error::Input(format!("compensation {d} mm must be a length ≥ 0")));
     }
     let mut hs = helices(&prog.moves, name, comp)?;
+    notes.extend(entry_and_exit(&prog.moves));
     if let Some(d) = comp {
         if hs.iter().any(|h| (h.radius - h.programmed_radius).abs() > 1e-12)
             && (d - 0.5 * c.diameter).abs() > 1e-3
