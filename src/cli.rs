@@ -387,14 +387,33 @@ struct CorrectArgs {
     json: JsonArg,
 }
 
+/// The program file of `mill`, `tap` and `thread-mill`, and its dialect.
 #[derive(Args)]
-struct ThreadMillArgs {
+struct ProgramFile {
     /// The program.
     #[arg(long, value_name = "FILE")]
     program: PathBuf,
-    /// fanuc | haas | sinumerik | linuxcnc (default: by the extension, else fanuc)
+    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma (default: by the extension, else fanuc)
     #[arg(long)]
     dialect: Option<Dialect>,
+}
+
+impl ProgramFile {
+    /// The program's text and name, its dialect and how the dialect was chosen.
+    fn read(&self) -> Result<((String, String), Dialect, threadcheck::DialectFrom), Error> {
+        let (dialect, from) = dialect_for(self.dialect, &self.program);
+        Ok((
+            (threadcheck::read_program_text(&self.program)?, self.program.display().to_string()),
+            dialect,
+            from,
+        ))
+    }
+}
+
+#[derive(Args)]
+struct ThreadMillArgs {
+    #[command(flatten)]
+    file: ProgramFile,
     /// The thread with its class, e.g. M20x1.5-6H.
     #[arg(long)]
     thread: String,
@@ -434,12 +453,8 @@ struct ThreadMillArgs {
 
 #[derive(Args)]
 struct TapArgs {
-    /// The program.
-    #[arg(long, value_name = "FILE")]
-    program: PathBuf,
-    /// fanuc | haas (default: by the extension, else fanuc)
-    #[arg(long)]
-    dialect: Option<Dialect>,
+    #[command(flatten)]
+    file: ProgramFile,
     /// The tool table: each tap as T = "tap:M10x1.5-6H[:CHAMFER_PITCHES]", each drill as
     /// T = "drill:8.5".
     #[arg(long, value_name = "FILE.toml")]
@@ -478,12 +493,8 @@ struct ServeArgs {
 
 #[derive(Args)]
 struct MillArgs {
-    /// The milling program.
-    #[arg(long, value_name = "FILE")]
-    program: PathBuf,
-    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma (default: by the extension, else fanuc)
-    #[arg(long)]
-    dialect: Option<Dialect>,
+    #[command(flatten)]
+    file: ProgramFile,
     /// Run the blocks in the order of their N numbers (a listing whose page break moved blocks).
     #[arg(long)]
     n_order: bool,
@@ -844,10 +855,10 @@ impl Cli {
                 SweepJob { spec, json: a.json, export_placements: a.export_placements }.run()
             }
             Command::Mill(m) => {
-                let text = threadcheck::read_program_text(&m.program)?;
+                let (program, dialect, _) = m.file.read()?;
                 let spec = threadcheck::MillSpec {
-                    program: (text, m.program.display().to_string()),
-                    dialect: dialect_for(m.dialect, &m.program).0,
+                    program,
+                    dialect,
                     n_order: m.n_order,
                     tool_diameter: m.tool_diameter,
                     target: threadcheck::Target::read(&m.target)?,
@@ -856,9 +867,10 @@ impl Cli {
                 done(MillJob { spec, svg: m.svg, json: m.json.json }.run()?)
             }
             Command::ThreadMill(a) => {
+                let (program, dialect, _) = a.file.read()?;
                 let spec = threadcheck::ThreadMillSpec {
-                    program: (threadcheck::read_program_text(&a.program)?, a.program.display().to_string()),
-                    dialect: dialect_for(a.dialect, &a.program).0,
+                    program,
+                    dialect,
                     designation: a.thread,
                     allow_nonstandard: a.allow_nonstandard,
                     cutter: a.cutter_diameter.map(|diameter| threadcheck::Cutter {
@@ -873,12 +885,12 @@ impl Cli {
                 done(threadcheck::ThreadMillJob { spec, svg: a.svg, html: a.html, json: a.json.json }.run()?)
             }
             Command::Tap(a) => {
-                let (dialect, from) = dialect_for(a.dialect, &a.program);
+                let (program, dialect, from) = a.file.read()?;
                 let mut reading = threadcheck::ReadOptions { dialect_from: from, ..Default::default() };
                 reading.default_units = a.default_units;
                 reading.gcode_system = a.gcode_system;
                 let spec = threadcheck::TapSpec {
-                    program: (threadcheck::read_program_text(&a.program)?, a.program.display().to_string()),
+                    program,
                     dialect,
                     reading,
                     tools: threadcheck::ToolTable::read(&a.tools)?,

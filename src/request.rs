@@ -466,11 +466,7 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
                 .text("program")?
                 .ok_or_else(|| Error::Input("thread-mill needs program (its text)".into()))?;
             let name = a.program_name()?;
-            let dialect = match a.text("dialect")? {
-                Some(d) => d.parse()?,
-                None => crate::gcode::Dialect::by_extension(std::path::Path::new(&name))
-                    .unwrap_or(crate::gcode::Dialect::Fanuc),
-            };
+            let (dialect, _) = a.dialect(&name)?;
             let designation = a.one_thread("thread-mill")?.remove(0);
             let cutter = Some(crate::analysis::threadmill::Cutter {
                 diameter: a
@@ -496,13 +492,7 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
             let program =
                 a.text("program")?.ok_or_else(|| Error::Input("tap needs program (its text)".into()))?;
             let name = a.program_name()?;
-            let (dialect, from) = match a.text("dialect")? {
-                Some(d) => (d.parse()?, crate::gcode::DialectFrom::Given),
-                None => match crate::gcode::Dialect::by_extension(std::path::Path::new(&name)) {
-                    Some(d) => (d, crate::gcode::DialectFrom::Extension),
-                    None => (crate::gcode::Dialect::Fanuc, crate::gcode::DialectFrom::Default),
-                },
-            };
+            let (dialect, from) = a.dialect(&name)?;
             let mut reading = crate::gcode::ReadOptions { dialect_from: from, ..Default::default() };
             reading.default_units = a.text("default_units")?.map(|u| u.parse()).transpose()?;
             if let Some(g) = a.text("gcode_system")? {
@@ -672,6 +662,18 @@ impl Args {
         }
     }
 
+    /// The dialect given, else the one the program's name's extension names, else Fanuc; and
+    /// how it was chosen (the notes say so when it was not given).
+    fn dialect(&self, name: &str) -> Result<(crate::gcode::Dialect, crate::gcode::DialectFrom), Error> {
+        Ok(match self.text("dialect")? {
+            Some(d) => (d.parse()?, crate::gcode::DialectFrom::Given),
+            None => match crate::gcode::Dialect::by_extension(std::path::Path::new(name)) {
+                Some(d) => (d, crate::gcode::DialectFrom::Extension),
+                None => (crate::gcode::Dialect::Fanuc, crate::gcode::DialectFrom::Default),
+            },
+        })
+    }
+
     fn program_name(&self) -> Result<String, Error> {
         Ok(self.text("program_name")?.unwrap_or_else(|| "<program>".into()))
     }
@@ -780,13 +782,7 @@ impl Args {
                     text
                 )));
             }
-            let (dialect, from) = match self.text("dialect")? {
-                Some(d) => (d.parse()?, crate::gcode::DialectFrom::Given),
-                None => match crate::gcode::Dialect::by_extension(std::path::Path::new(&name)) {
-                    Some(d) => (d, crate::gcode::DialectFrom::Extension),
-                    None => (crate::gcode::Dialect::Fanuc, crate::gcode::DialectFrom::Default),
-                },
-            };
+            let (dialect, from) = self.dialect(&name)?;
             s.program = Some((ProgramSource::text(name, text), dialect));
             s.reading.dialect_from = from;
         } else {

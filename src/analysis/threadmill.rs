@@ -589,15 +589,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     };
     let profile = section(false);
     let tooth = section(true);
-    let mmc = if internal { limits.pitch_diameter.min } else { limits.pitch_diameter.max };
-    let mmc_major = if internal { None } else { limits.major_diameter.max };
-    let ms = MeasureSetup {
-        thread: &t,
-        kind,
-        mmc_pitch_diameter: mmc,
-        mmc_major_diameter: mmc_major,
-        extras: true,
-    };
+    let ms = MeasureSetup::for_class(&t, kind, &limits);
     let measured = measure(&ms, &profile, z_mid)?;
     let tooth_m = measure(&ms, &tooth, z_mid)?;
     let mut cs = checks(&measured, &limits, &t, kind, measured.root_pockets <= 1, None);

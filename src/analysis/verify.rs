@@ -901,21 +901,11 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         }
     };
     let setup = SweepSetup { kind, insert: &insert, blank_diameter: blank, pitch: t.pitch };
-    let mmc = match (kind, taper.is_some()) {
-        (_, true) => None,
-        (ThreadKind::External, false) => limits.pitch_diameter.max,
-        (ThreadKind::Internal, false) => limits.pitch_diameter.min,
-    };
-    let mmc_major = match kind {
-        ThreadKind::External => limits.major_diameter.max,
-        ThreadKind::Internal => None,
-    };
-    let ms = MeasureSetup {
-        thread: &t,
-        kind,
-        mmc_pitch_diameter: mmc,
-        mmc_major_diameter: mmc_major,
-        extras: true,
+    // A taper thread's maximum-material check is its gauge plane's, not a parallel profile's.
+    let parallel = MeasureSetup::for_class(&t, kind, &limits);
+    let ms = match taper {
+        Some(_) => MeasureSetup { mmc_pitch_diameter: None, ..parallel },
+        None => parallel,
     };
     // While solving for the final X only the pitch diameter matters: sizes only.
     let ms_solve = ms.sizes_only();

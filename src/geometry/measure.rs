@@ -539,7 +539,22 @@ pub struct MeasureSetup<'a> {
     pub extras: bool,
 }
 
-impl MeasureSetup<'_> {
+impl<'a> MeasureSetup<'a> {
+    /// The setup of a parallel thread of a class, extras included: its maximum-material pitch
+    /// diameter (an external thread's d2 max, an internal one's D2 min) and an external thread's
+    /// largest major diameter.
+    pub fn for_class(
+        thread: &'a BasicThread,
+        kind: ThreadKind,
+        limits: &crate::standards::tolerance::ThreadLimits,
+    ) -> Self {
+        let (mmc_pitch_diameter, mmc_major_diameter) = match kind {
+            ThreadKind::External => (limits.pitch_diameter.max, limits.major_diameter.max),
+            ThreadKind::Internal => (limits.pitch_diameter.min, None),
+        };
+        MeasureSetup { thread, kind, mmc_pitch_diameter, mmc_major_diameter, extras: true }
+    }
+
     /// The same setup measuring sizes only (no three-wire M, no maximum-material check): what an
     /// iteration on the final X needs.
     pub fn sizes_only(&self) -> Self {
