@@ -29,6 +29,17 @@ fn mill(program: &str, cutter: f64) -> serde_json::Value {
     serde_json::from_slice(&o.stdout).unwrap()
 }
 
+/// `thread-mill --json` on program `text`, written as `name` in a fresh folder.
+fn mill_text(name: &str, text: &str, thread: &str, cutter: &str) -> serde_json::Value {
+    let dir = tempdir("tm-text");
+    std::fs::write(dir.join(name), text).unwrap();
+    let args =
+        ["thread-mill", "--program", name, "--thread", thread, "--cutter-diameter", cutter, "--json", "-"];
+    let o = run_in(&dir, &args);
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
 /// Δr of the model at the pitch line of radius `r2`, for a helix of radius `big_r`.
 fn model_gain(big_r: f64, r2: f64) -> f64 {
     let k = 30f64.to_radians().tan().recip() * 1.5 / std::f64::consts::TAU;
@@ -161,25 +172,8 @@ fn the_tool_table_gives_the_cutter_and_its_offset() {
 /// 1.5 mm, the same thread as ten one-turn blocks.
 #[test]
 fn linuxcnc_p_turns_make_one_block_a_helix_of_several_turns() {
-    let dir = tempdir("tm-lcnc");
     let text = "G17 G21 G90 G40\nT12 M6\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-16\nG1 X7 Y0 F100\nG3 X7 Y0 Z-1 I-7 J0 P10 F150\nG0 Z50\nM2\n";
-    std::fs::write(dir.join("h.ngc"), text).unwrap();
-    let o = run_in(
-        &dir,
-        &[
-            "thread-mill",
-            "--program",
-            "h.ngc",
-            "--thread",
-            "M20x1.5-6H",
-            "--cutter-diameter",
-            "6",
-            "--json",
-            "-",
-        ],
-    );
-    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let v = mill_text("h.ngc", text, "M20x1.5-6H", "6");
     assert!((v["helices"][0]["lead"].as_f64().unwrap() - 1.5).abs() < 1e-12);
     assert!((v["helices"][0]["sweep_deg"].as_f64().unwrap() - 3600.0).abs() < 1e-9);
     let one_by_one = mill("m20-dc6.nc", 6.0)["measured"]["pitch_diameter"].as_f64().unwrap();
@@ -190,30 +184,13 @@ fn linuxcnc_p_turns_make_one_block_a_helix_of_several_turns() {
 /// is 2(R − tip): a Ø10 cutter on R = 14.08 cuts d3 = 18.16 (M20x1.5's basic d3).
 #[test]
 fn an_external_thread_has_its_minor_diameter_at_twice_helix_radius_less_tip() {
-    let dir = tempdir("tm-ext");
     let mut text =
         String::from("G17 G21 G90 G40\nT12 M6\nS3000 M3\nG0 X20 Y0 Z5\nG0 Z-16\nG1 X14.08 Y0 F100\n");
     for k in 1..=10 {
         text += &format!("G2 X14.08 Y0 Z{:.4} I-14.08 J0 F150\n", -16.0 + 1.5 * f64::from(k));
     }
     text += "G0 X30\nM30\n";
-    std::fs::write(dir.join("e.nc"), text).unwrap();
-    let o = run_in(
-        &dir,
-        &[
-            "thread-mill",
-            "--program",
-            "e.nc",
-            "--thread",
-            "M20x1.5-6g",
-            "--cutter-diameter",
-            "10",
-            "--json",
-            "-",
-        ],
-    );
-    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let v = mill_text("e.nc", &text, "M20x1.5-6g", "10");
     assert_eq!(v["kind"], "external");
     let d3 = v["measured"]["minor_diameter"].as_f64().unwrap();
     assert!((d3 - 18.16).abs() < 1e-4, "{d3}");
@@ -253,25 +230,13 @@ fn entry_and_exit_moves_are_named() {
     let notes = straight["notes"].to_string();
     assert!(notes.contains("reaches its helices by a straight feed move (line 8)"), "{notes}");
     assert!(notes.contains("leaves its helices by a straight feed move (line 19)"), "{notes}");
-    let dir = tempdir("tm-arcs");
     let mut text =
         String::from("G17 G21 G90 G40\nT12 M6\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-16\nG3 X7 Y0 I3.5 J0 F100\n");
     for k in 1..=10 {
         text += &format!("G3 X7 Y0 Z{:.4} I-7 J0 F150\n", -16.0 + 1.5 * f64::from(k));
     }
     text += "G3 X0 Y0 I-3.5 J0\nG0 Z50\nM30\n";
-    std::fs::write(dir.join("a.nc"), text).unwrap();
-    let (_, v) = crate::util::run_json(&[
-        "thread-mill",
-        "--program",
-        dir.join("a.nc").to_str().unwrap(),
-        "--thread",
-        "M20x1.5-6H",
-        "--cutter-diameter",
-        "6",
-        "--json",
-        "-",
-    ]);
+    let v = mill_text("a.nc", &text, "M20x1.5-6H", "6");
     let notes = v["notes"].to_string();
     assert!(notes.contains("on an arc in the plane (line 6): a tangential entry"), "{notes}");
     assert!(notes.contains("on an arc in the plane (line 17): a tangential exit"), "{notes}");
