@@ -88,7 +88,8 @@ fn lead(m: &Motion, b: &RBlock<'_>, col: usize, what: &str) -> Result<Option<f64
     Ok(Some(f / j))
 }
 
-fn refuse_words(m: &Motion, b: &RBlock<'_>, col: usize, what: &str) -> Result<(), Error> {
+/// Refuses the words of `what` that set what threadcheck does not model (tapers, a lead change).
+fn refuse_words(m: &Motion, b: &RBlock<'_>, what: &str) -> Result<(), Error> {
     for (w, why) in [
         ("A", "a taper (A, the taper angle) is not modelled for Okuma threads"),
         ("I", "a taper (I, the radius difference) is not modelled for Okuma threads"),
@@ -98,13 +99,12 @@ fn refuse_words(m: &Motion, b: &RBlock<'_>, col: usize, what: &str) -> Result<()
             return Err(b.werr(&m.file, word, format!("{what} {w}{}: {why}", word.v)));
         }
     }
-    let _ = col;
     Ok(())
 }
 
 /// G33: one pass from the start point; an X-only block repeats it.
 fn g33(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
-    refuse_words(m, b, col, "G33")?;
+    refuse_words(m, b, "G33")?;
     b.allow_only(&m.file, "GXZFJCLNMST", "G33")?;
     cycles::need_lathe_plane(m, b, col, "G33")?;
     let (x, _, z) = m.target(b);
@@ -139,7 +139,7 @@ fn g33(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), 
 
 /// G71: the compound threading cycle along Z.
 fn g71(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
-    refuse_words(m, b, col, "G71")?;
+    refuse_words(m, b, "G71")?;
     b.allow_only(&m.file, "GXZBDUHFJQLNMST", "G71")?;
     cycles::need_lathe_plane(m, b, col, "G71")?;
     let (x0, z0) = m.need_position(b.line, col, "G71")?;
