@@ -129,3 +129,121 @@ fn linuxcnc_g33_1_is_a_tapping_cycle() {
     assert_eq!(code, 1);
     assert!((check(&v, "feed")["deviation"].as_f64().unwrap() + 100.0).abs() < 1e-6);
 }
+
+/// Runs `tap --json -` on a Sinumerik program (`.mpf`): exit code and JSON.
+fn tap_mpf(text: &str) -> (i32, serde_json::Value, String) {
+    let dir = tempdir("tap-mpf");
+    std::fs::write(dir.join("p.mpf"), text).unwrap();
+    std::fs::write(dir.join("tools.toml"), TOOLS).unwrap();
+    let o = run_in(&dir, &["tap", "--program", "p.mpf", "--tools", "tools.toml", "--json", "-"]);
+    let code = o.status.code().unwrap();
+    let v = if code < 2 { serde_json::from_slice(&o.stdout).unwrap() } else { serde_json::Value::Null };
+    (code, v, stderr(&o))
+}
+
+fn check_n<'a>(v: &'a serde_json::Value, hole: usize, feature: &str) -> &'a serde_json::Value {
+    v["holes"][hole]["checks"].as_array().unwrap().iter().find(|c| c["feature"] == feature).unwrap()
+}
+
+fn cycle84_program() -> String {
+    std::fs::read_to_string(data("programs/tapping/m10-cycle84.mpf")).unwrap()
+}
+
+/// Sinumerik CYCLE84 (rigid) after an MCALL CYCLE83 (the program's comments derive each value):
+/// two holes at X20 and X40, each drilled to Z-25 (DP) with Ø8.5 and tapped to Z-18, the first
+/// by DP with PIT 1.5, the second by DPR 18 below RFP 0 with MPIT 10 (ISO 261: M10's coarse
+/// pitch 1.5). The cycle makes its feed from the pitch, so the feed check is the pitch's.
+#[test]
+fn sinumerik_cycle84_after_mcall_cycle83() {
+    let (code, v, e) = tap_mpf(&cycle84_program());
+    assert_eq!(code, 0, "{e}");
+    assert_eq!(v["dialect"], "sinumerik");
+    assert_eq!(v["drills"], 2);
+    let holes = v["holes"].as_array().unwrap();
+    assert_eq!(holes.len(), 2);
+    for (k, (x, word)) in [(20.0, "PIT"), (40.0, "MPIT")].into_iter().enumerate() {
+        let c = &holes[k]["cycle"];
+        assert_eq!(
+            (c["code"].as_str(), c["x"].as_f64(), c["y"].as_f64()),
+            (Some("CYCLE84"), Some(x), Some(10.0))
+        );
+        assert_eq!(
+            (c["bottom"].as_f64(), c["feed"].as_f64(), c["feed_word"].as_str()),
+            (Some(-18.0), Some(1.5), Some(word))
+        );
+        assert_eq!(holes[k]["drill"]["cycle"]["bottom"], -25.0);
+        assert_eq!(holes[k]["drill"]["cycle"]["x"], x);
+        assert_eq!(check_n(&v, k, "depth")["value"], 7.0);
+        assert_eq!(check_n(&v, k, "spindle")["ok"], true);
+    }
+}
+
+/// PIT 1.25 for M10x1.5 is 0.25 mm/rev short; PIT −1.5 taps left-hand (the cycle turns the
+/// spindle M4 itself), against a right-hand tap: the spindle check fails.
+#[test]
+fn cycle84_pitch_and_its_sign_are_checked() {
+    let (code, v, _) = tap_mpf(&cycle84_program().replace(", 1.5, 0, 400", ", 1.25, 0, 400"));
+    assert_eq!(code, 1);
+    assert!((check_n(&v, 0, "feed")["deviation"].as_f64().unwrap() + 250.0).abs() < 1e-6);
+    let (code, v, _) = tap_mpf(&cycle84_program().replace(", 1.5, 0, 400", ", -1.5, 0, 400"));
+    assert_eq!(code, 1);
+    let s = check_n(&v, 0, "spindle");
+    assert_eq!(s["ok"], false);
+    assert!(s["note"].as_str().unwrap().contains("left-hand"), "{s}");
+    assert_eq!(check_n(&v, 0, "feed")["ok"], true);
+}
+
+/// CYCLE840 (compensating chuck): ENC 1 taps without the encoder at the feed in force, which
+/// under G94 must be S × P = 400 × 1.5 = 600 mm/min (F500 fails by 100); ENC 0 takes the pitch
+/// (PIT, the eleventh argument). The spindle turns as M3 left it.
+#[test]
+fn cycle840_with_and_without_encoder() {
+    let base = cycle84_program();
+    let without = |f: &str| {
+        base.replace("N110 G0 X20 Y10 Z20", &format!("N110 G0 X20 Y10 Z20 {f}")).replace(
+            "CYCLE84(20, 0, 2, -18, , 0, 3, , 1.5, 0, 400, 400)",
+            "CYCLE840(20, 0, 2, -18, , 0, 0, 3, 1, , )",
+        )
+    };
+    let (code, v, e) = tap_mpf(&without("F600"));
+    assert_eq!(code, 0, "{e}");
+    let f = check_n(&v, 0, "feed");
+    assert_eq!((f["value"].as_f64(), f["unit"].as_str()), (Some(600.0), Some("mm/min")));
+    let (code, v, _) = tap_mpf(&without("F500"));
+    assert_eq!(code, 1);
+    assert_eq!(check_n(&v, 0, "feed")["deviation"], -100.0);
+    let with = base.replace(
+        "CYCLE84(20, 0, 2, -18, , 0, 3, , 1.5, 0, 400, 400)",
+        "CYCLE840(20, 0, 2, -18, , 0, 0, 3, 0, , 1.5)",
+    );
+    let (code, v, e) = tap_mpf(&with);
+    assert_eq!(code, 0, "{e}");
+    assert_eq!(v["holes"][0]["cycle"]["feed_word"], "PIT");
+    let (code, v, _) = tap_mpf(&with.replace("N100 S400 M3", "N100 S400 M4"));
+    assert_eq!(code, 1);
+    assert_eq!(check_n(&v, 0, "spindle")["ok"], false);
+}
+
+/// DP and DPR both given and disagreeing: the cycle takes DPR (Siemens' rule), and says so.
+#[test]
+fn cycle84_dp_and_dpr_disagree() {
+    let text = cycle84_program()
+        .replace("CYCLE84(20, 0, 2, -18, , 0, 3, , 1.5", "CYCLE84(20, 0, 2, -20, 18, 0, 3, , 1.5");
+    let (code, v, e) = tap_mpf(&text);
+    assert_eq!(code, 0, "{e}");
+    assert_eq!(v["holes"][0]["cycle"]["bottom"], -18.0);
+    let notes = v["notes"].to_string();
+    assert!(notes.contains("DP -20 and DPR 18 below RFP 0 disagree; the cycle takes DPR"), "{notes}");
+}
+
+/// Regression: Y was not read on the lathe dialects, so a tap at X20 Y30 found the drill of
+/// X20 Y10. In G17, Y is the hole's position: this tap has no drill.
+#[test]
+fn regression_holes_apart_in_y_are_apart() {
+    let text = "G17 G21 G94\nT0505\nS1200 M3\nG0 X20 Y10 Z5\nG83 Z-25 R2 Q5 F100\nG80\nT0606\nS400 M3\nG0 X20 Y30 Z5\nG84 Z-18 R5 F600\nG80\nM30\n";
+    let (code, v, e) = tap(text, TOOLS);
+    assert_eq!(code, 0, "{e}");
+    assert_eq!(v["holes"][0]["cycle"]["y"], 30.0);
+    assert!(v["holes"][0]["drill"].is_null(), "{v}");
+    assert!(v["holes"][0]["notes"].to_string().contains("no drilling cycle precedes this tap"));
+}

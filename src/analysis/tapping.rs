@@ -164,7 +164,13 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             line: 1,
             column: 1,
             message: format!(
-                "no tapping cycle in the program (looked for G84 and G74 in the {} dialect)",
+                "no tapping cycle in the program (looked for {} in the {} dialect)",
+                match spec.dialect {
+                    Dialect::Sinumerik => "CYCLE84 and CYCLE840",
+                    Dialect::LinuxCnc => "G33.1",
+                    Dialect::Fanuc | Dialect::Haas => "G84 and G74",
+                    Dialect::Okuma | Dialect::Dyna => "a tapping cycle threadcheck reads: none yet",
+                },
                 spec.dialect.name()
             ),
         });
@@ -288,7 +294,11 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                             },
                             note: if h.feed_per_rev {
                                 format!(
-                                    "feed per revolution: F must be the lead, {} mm",
+                                    "feed per revolution: {} must be the lead, {} mm",
+                                    match h.feed_word.as_str() {
+                                        "MPIT" => "MPIT's coarse pitch",
+                                        w => w,
+                                    },
                                     crate::ground::fmt::fmt_num(lead)
                                 )
                             } else {
@@ -340,11 +350,12 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             }
         }
         // The spindle.
-        // G84 taps right-hand, G74 left-hand; LinuxCNC's G33.1 taps the way the spindle turns.
-        let (want, hand) = match h.code.as_str() {
-            "G74" => (SpindleDir::Ccw, Hand::Left),
-            "G33.1" if des.thread.hand == Hand::Left => (SpindleDir::Ccw, Hand::Left),
-            _ => (SpindleDir::Cw, Hand::Right),
+        // G84 taps right-hand, G74 left-hand, CYCLE84 as its pitch's sign says; LinuxCNC's
+        // G33.1 and Sinumerik's CYCLE840 tap the way the spindle turns.
+        let hand = h.hand.unwrap_or(des.thread.hand);
+        let want = match hand {
+            Hand::Right => SpindleDir::Cw,
+            Hand::Left => SpindleDir::Ccw,
         };
         let hand_ok = des.thread.hand == hand;
         match h.spindle_dir {
@@ -357,8 +368,13 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                 unit: "",
                 deviation: 0.0,
                 note: format!(
-                    "{} taps a {}-hand thread with the spindle {}; the spindle is {}{}",
+                    "{}{} taps a {}-hand thread with the spindle {}; the spindle is {}{}",
                     h.code,
+                    if h.code == "CYCLE84" {
+                        format!(" (the sign of {})", h.feed_word)
+                    } else {
+                        String::new()
+                    },
                     if hand == Hand::Right { "right" } else { "left" },
                     if want == SpindleDir::Cw { "clockwise (M3)" } else { "counter-clockwise (M4)" },
                     match dir {

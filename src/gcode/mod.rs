@@ -487,7 +487,7 @@ pub struct Program {
     pub notes: Vec<Note>,
     /// Every feed and rapid move, when asked for ([`ReadOptions::moves`]).
     pub moves: Vec<Move>,
-    /// The drilling and tapping cycles (Fanuc and Haas), in program order.
+    /// The drilling and tapping cycles (Fanuc, Haas, Sinumerik and LinuxCNC), in program order.
     pub holes: Vec<HoleCycle>,
 }
 
@@ -531,8 +531,14 @@ pub struct HoleCycle {
     pub y: Option<f64>,
     /// Z of the hole's bottom, mm.
     pub bottom: Option<f64>,
-    /// F as written, in mm (per revolution or per minute).
+    /// F as written, in mm (per revolution or per minute); a cycle that takes the pitch
+    /// instead (Sinumerik CYCLE84 `PIT`, LinuxCNC G33.1 `K`) gives it here, per revolution.
     pub feed: Option<f64>,
+    /// The word that gives the feed: `F`, `K` (G33.1), `PIT` or `MPIT` (CYCLE84, CYCLE840).
+    pub feed_word: String,
+    /// The hand the cycle taps: G84 right, G74 left, CYCLE84 by its pitch's sign; `None` when
+    /// the spindle's direction decides (G33.1, CYCLE840) and for drills.
+    pub hand: Option<crate::standards::Hand>,
     /// F per revolution (else per minute).
     pub feed_per_rev: bool,
     /// The feed mode was not set by the program (the control's power-on state assumed).

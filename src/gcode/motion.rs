@@ -393,7 +393,9 @@ impl Motion {
                     let v = self.x_dia(w);
                     x = Some(if self.absolute { v + self.offset[0] } else { self.x.unwrap_or(0.0) + v });
                 }
-                "Y" if !self.lathe() || self.dialect == Dialect::LinuxCnc => {
+                // Y on a lathe only in the machining centre's plane G17 (drilling and tapping
+                // positions) and in LinuxCNC, which keeps it everywhere.
+                "Y" if !self.lathe() || self.dialect == Dialect::LinuxCnc || self.plane == 17 => {
                     let v = self.len(w);
                     y = Some(if self.absolute { v + self.offset[1] } else { self.y.unwrap_or(0.0) + v });
                 }

@@ -14,10 +14,23 @@ use super::motion::{Motion, RBlock, RWord};
 use crate::gcode::passes::Pass;
 use crate::Error;
 
-/// Sinumerik state: the start offset SF.
+/// Sinumerik state: the start offset SF, the feed in force and the modal cycle `MCALL` set.
 #[derive(Default)]
 pub(crate) struct State {
     start_offset_deg: f64,
+    /// F in force, mm (per minute or per revolution as G94/G95 say).
+    feed: Option<f64>,
+    /// `MCALL CYCLE8x(…)`: the cycle every later positioning block calls, until `MCALL` alone.
+    mcall: Option<HoleCall>,
+}
+
+/// A drilling or tapping cycle's call as written.
+#[derive(Clone)]
+struct HoleCall {
+    name: String,
+    args: Vec<Option<f64>>,
+    line: usize,
+    col: usize,
 }
 
 /// Runs one block.
@@ -27,6 +40,7 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Res
             "DIAMON" => m.diameter = true,
             "DIAMOF" => m.diameter = false,
             "SF" => s.start_offset_deg = w.v,
+            "F" => s.feed = Some(m.len(w)),
             _ => {}
         }
     }
@@ -39,6 +53,32 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Res
     if let Some(w) = b.get("CYCLE97") {
         cycles::modal(m, b)?;
         return cycle97(m, b, w).map(|_| Flow::Next);
+    }
+    if let Some(w) = b.words.iter().find(|w| hole_kind(w.name).is_some()) {
+        let md = cycles::modal(m, b)?;
+        cycles::other_block(m, b, &md)?;
+        let call = HoleCall {
+            name: w.name.to_string(),
+            args: w.args.iter().flatten().map(|a| a.0).collect(),
+            line: b.line,
+            col: w.col,
+        };
+        if b.get("MCALL").is_some() {
+            // Modal: called at every later position, not here.
+            s.mcall = Some(call);
+            m.read_past(
+                b.line,
+                w.col,
+                &format!("MCALL {}", w.name),
+                "a modal drilling or tapping cycle (threadcheck tap checks it); each later position calls it",
+            );
+        } else {
+            hole(s, m, &call, b.line)?;
+        }
+        return Ok(Flow::Next);
+    }
+    if b.get("MCALL").is_some() {
+        s.mcall = None;
     }
     if let Some(w) = b.words.iter().find(|w| w.name.starts_with("CYCLE") || w.name == "LCYC97") {
         return Err(b.werr(
@@ -117,7 +157,149 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Res
         return Ok(Flow::Next);
     }
     cycles::other_block(m, b, &md)?;
+    if let Some(call) = s.mcall.clone() {
+        if ["X", "Y"].iter().any(|a| b.get(a).is_some()) {
+            hole(s, m, &call, b.line)?;
+        }
+    }
     Ok(Flow::Next)
+}
+
+/// What a Sinumerik drilling or tapping cycle does: CYCLE81–83 and CYCLE85–89 make the hole,
+/// CYCLE84 (rigid) and CYCLE840 (with a compensating chuck) tap it.
+fn hole_kind(name: &str) -> Option<super::HoleKind> {
+    match name {
+        "CYCLE81" | "CYCLE82" | "CYCLE83" | "CYCLE85" | "CYCLE86" | "CYCLE87" | "CYCLE88" | "CYCLE89" => {
+            Some(super::HoleKind::Drill)
+        }
+        "CYCLE84" | "CYCLE840" => Some(super::HoleKind::Tap),
+        _ => None,
+    }
+}
+
+/// Runs a drilling or tapping cycle at the current position: records it for `threadcheck tap`
+/// and leaves Z unknown (the cycle ends at its retraction plane RTP; X and Y stay).
+///
+/// The arguments (Siemens, *SINUMERIK 840D sl / 828D Cycles*, Programming Manual: CYCLE81 to
+/// CYCLE89, CYCLE84, CYCLE840): every cycle begins `RTP, RFP, SDIS, DP, DPR`, DP the final
+/// depth (absolute) and DPR the depth below the reference plane RFP (unsigned); where both are
+/// given the cycle takes DPR. CYCLE84 continues `DTB, SDAC, MPIT, PIT, POSS, SST, SST1`: the
+/// pitch as a value PIT or as a metric size MPIT (3 for M3 … 48 for M48, the coarse pitch),
+/// its sign the hand (positive right, as M3; negative left, as M4); the cycle makes its own
+/// feed from the pitch. CYCLE840 continues `DTB, SDR, SDAC, ENC, MPIT, PIT`: ENC 0 taps with
+/// the encoder (the feed from the pitch), ENC 1 without (the feed F in force, which must then be
+/// the pitch under G95 or S × pitch under G94); the spindle turns as M3/M4 left it.
+fn hole(s: &State, m: &mut Motion, call: &HoleCall, line: usize) -> Result<(), Error> {
+    let Some(kind) = hole_kind(&call.name) else { return Ok(()) };
+    let arg = |k: usize| call.args.get(k).copied().flatten();
+    let sc = m.scale;
+    let (rfp, dp, dpr) = (arg(1).map(|v| v * sc), arg(3).map(|v| v * sc), arg(4).map(|v| v * sc));
+    let bottom = match (dp, dpr.filter(|v| *v != 0.0), rfp) {
+        (Some(dp), Some(dpr), Some(rfp)) => {
+            if (rfp - dpr - dp).abs() > 1e-6 {
+                m.note(
+                    line,
+                    call.col,
+                    format!(
+                        "{}: DP {} and DPR {} below RFP {} disagree; the cycle takes DPR",
+                        call.name,
+                        crate::ground::fmt::fmt_num(dp / sc),
+                        crate::ground::fmt::fmt_num(dpr / sc),
+                        crate::ground::fmt::fmt_num(rfp / sc)
+                    ),
+                );
+            }
+            Some(rfp - dpr)
+        }
+        (_, Some(dpr), Some(rfp)) => Some(rfp - dpr),
+        (Some(dp), _, _) => Some(dp),
+        _ => None,
+    };
+    let mut feed = None;
+    let mut feed_word = "F";
+    let mut hand = None;
+    let mut feed_per_rev = true;
+    let mut spindle_dir = m.spindle_dir;
+    if kind == super::HoleKind::Tap {
+        let (mpit_at, pit_at, encoder) =
+            if call.name == "CYCLE84" { (7, 8, true) } else { (9, 10, arg(8).unwrap_or(0.0) == 0.0) };
+        let enc = arg(8).unwrap_or(0.0);
+        if call.name == "CYCLE840" && enc != 0.0 && enc != 1.0 {
+            m.note(
+                line,
+                call.col,
+                format!("CYCLE840 ENC {enc}: threadcheck reads ENC 0 and 1; the feed is not checked"),
+            );
+        } else if encoder {
+            let pitch = match (arg(pit_at).filter(|v| *v != 0.0), arg(mpit_at).filter(|v| *v != 0.0)) {
+                (Some(pit), _) => {
+                    feed_word = "PIT";
+                    Some(pit * sc)
+                }
+                (None, Some(mpit)) => {
+                    feed_word = "MPIT";
+                    let p = coarse_pitch_for(mpit.abs()).filter(|_| mpit.abs() <= 48.0);
+                    if p.is_none() {
+                        m.note(
+                            line,
+                            call.col,
+                            format!(
+                                "{} MPIT {}: not a metric size M3 to M48 with a coarse pitch; the feed is not checked",
+                                call.name,
+                                crate::ground::fmt::fmt_num(mpit)
+                            ),
+                        );
+                    }
+                    p.map(|p| p.copysign(mpit))
+                }
+                (None, None) => None,
+            };
+            if let Some(p) = pitch {
+                feed = Some(p.abs());
+                if call.name == "CYCLE84" {
+                    let right = p > 0.0;
+                    hand = Some(if right {
+                        crate::standards::Hand::Right
+                    } else {
+                        crate::standards::Hand::Left
+                    });
+                    spindle_dir = Some(if right { super::SpindleDir::Cw } else { super::SpindleDir::Ccw });
+                }
+            }
+        } else {
+            feed = s.feed;
+            feed_per_rev = m.feed_per_rev.unwrap_or(false);
+        }
+    }
+    let assumed = kind == super::HoleKind::Tap && feed_word == "F" && m.feed_per_rev.is_none();
+    if m.holes.len() < crate::ground::bounds::MAX_PASSES {
+        m.holes.push(super::HoleCycle {
+            code: call.name.clone(),
+            kind,
+            line,
+            column: if line == call.line { call.col } else { 1 },
+            x: m.x,
+            y: m.y,
+            bottom,
+            feed,
+            feed_word: feed_word.into(),
+            hand,
+            feed_per_rev,
+            feed_mode_assumed: assumed,
+            spindle: m.s,
+            spindle_dir,
+            tool: m.tool,
+            rigid: call.name == "CYCLE84",
+        });
+    }
+    m.lose_position(line, &format!("{}(…)", call.name), false, true);
+    m.read_past(
+        line,
+        if line == call.line { call.col } else { 1 },
+        &format!("{}(…)", call.name),
+        "a drilling or tapping cycle (threadcheck tap checks it); it ends at its retraction plane RTP",
+    );
+    Ok(())
 }
 
 /// An R-parameter for a cycle: a required one must be set; an optional one reads as 0.
