@@ -424,7 +424,7 @@ struct ThreadMillArgs {
     #[arg(long, value_name = "MM", value_parser = finite, required_unless_present = "tools")]
     cutter_diameter: Option<f64>,
     /// The tool table: the helices' T as a thread mill's file (`12 = "thread-mill.toml"`:
-    /// kind = "thread-mill", diameter, angle, tip_radius, rows = 1) and `[offsets]` (12 = 3.0,
+    /// kind = "thread-mill", diameter, angle, tip_radius, rows, row_pitch) and `[offsets]` (12 = 3.0,
     /// the compensation value G41/G42 apply).
     #[arg(long, value_name = "FILE.toml", conflicts_with = "cutter_diameter")]
     tools: Option<PathBuf>,
@@ -434,6 +434,13 @@ struct ThreadMillArgs {
     /// The tooth's tip radius, mm.
     #[arg(long, value_name = "MM", value_parser = finite, default_value = "0")]
     cutter_tip_radius: f64,
+    /// Rows of teeth: 1 for a single-form cutter, more for a multi-form one (with
+    /// --cutter-row-pitch).
+    #[arg(long, value_name = "N", default_value = "1", value_parser = clap::value_parser!(u32).range(1..=200))]
+    cutter_rows: u32,
+    /// A multi-form cutter's row spacing, mm.
+    #[arg(long, value_name = "MM", value_parser = finite)]
+    cutter_row_pitch: Option<f64>,
     /// The bore (internal) or blank (external) diameter, mm.
     #[arg(long, value_name = "MM", value_parser = finite)]
     blank_diameter: Option<f64>,
@@ -873,11 +880,13 @@ impl Cli {
                     dialect,
                     designation: a.thread,
                     allow_nonstandard: a.allow_nonstandard,
-                    cutter: a.cutter_diameter.map(|diameter| threadcheck::Cutter {
-                        diameter,
-                        angle_deg: a.cutter_angle,
-                        tip_radius: a.cutter_tip_radius,
-                    }),
+                    cutter: a
+                        .cutter_diameter
+                        .map(|diameter| {
+                            threadcheck::Cutter::single_form(diameter, a.cutter_angle, a.cutter_tip_radius)
+                                .with_rows(a.cutter_rows, a.cutter_row_pitch)
+                        })
+                        .transpose()?,
                     tools: a.tools.as_deref().map(threadcheck::ToolTable::read).transpose()?,
                     blank_diameter: a.blank_diameter,
                     comp_radius: a.comp_radius,

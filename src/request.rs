@@ -149,6 +149,8 @@ impl Command {
                     "cutter_diameter",
                     "cutter_angle",
                     "cutter_tip_radius",
+                    "cutter_rows",
+                    "cutter_row_pitch",
                     "blank_diameter",
                     "comp_radius",
                 ]
@@ -468,13 +470,22 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
             let name = a.program_name()?;
             let (dialect, _) = a.dialect(&name)?;
             let designation = a.one_thread("thread-mill")?.remove(0);
-            let cutter = Some(crate::analysis::threadmill::Cutter {
-                diameter: a
-                    .num("cutter_diameter")?
-                    .ok_or_else(|| Error::Input("thread-mill needs cutter_diameter (mm)".into()))?,
-                angle_deg: a.num("cutter_angle")?.unwrap_or(60.0),
-                tip_radius: a.num("cutter_tip_radius")?.unwrap_or(0.0),
-            });
+            let rows = match a.num("cutter_rows")? {
+                None => 1,
+                Some(r) if r.fract() == 0.0 && (1.0..=200.0).contains(&r) => r as u32,
+                Some(r) => {
+                    return Err(Error::Input(format!("cutter_rows {r}: a whole number from 1 to 200")))
+                }
+            };
+            let cutter = Some(
+                crate::analysis::threadmill::Cutter::single_form(
+                    a.num("cutter_diameter")?
+                        .ok_or_else(|| Error::Input("thread-mill needs cutter_diameter (mm)".into()))?,
+                    a.num("cutter_angle")?.unwrap_or(60.0),
+                    a.num("cutter_tip_radius")?.unwrap_or(0.0),
+                )
+                .with_rows(rows, a.num("cutter_row_pitch")?)?,
+            );
             let spec = crate::analysis::threadmill::ThreadMillSpec {
                 program: (program, name),
                 dialect,

@@ -241,3 +241,63 @@ fn entry_and_exit_moves_are_named() {
     assert!(notes.contains("on an arc in the plane (line 6): a tangential entry"), "{notes}");
     assert!(notes.contains("on an arc in the plane (line 17): a tangential exit"), "{notes}");
 }
+
+/// `thread-mill --json` with a multi-form cutter given on the command line.
+fn mill_rows(program: &str, rows: &str, row_pitch: &str) -> serde_json::Value {
+    let p = data(&format!("programs/threadmill/{program}"));
+    let args = [
+        "thread-mill",
+        "--program",
+        p.to_str().unwrap(),
+        "--thread",
+        "M20x1.5-6H",
+        "--cutter-diameter",
+        "14",
+        "--cutter-rows",
+        rows,
+        "--cutter-row-pitch",
+        row_pitch,
+        "--json",
+        "-",
+    ];
+    let o = run(&args);
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
+/// A multi-form cutter of 8 rows one pitch apart on one turn of the helix (Z-16 to Z-14.5)
+/// holds its row k where the single-form cutter's tooth is on turn k of ten turns from Z-16: row
+/// k at height zc + k·P on turn 0 is the tooth at zc + k·L on turn k, L = P. So over the heights
+/// both cover the two threads are one set: the same D, D2 and flanks (to the sampling's 0.1 µm).
+#[test]
+fn a_multi_form_cutter_on_one_turn_cuts_what_a_single_form_one_cuts_in_many() {
+    let multi = mill_rows("m20-dc14-rows8.nc", "8", "1.5");
+    let single = mill("m20-dc14.nc", 14.0);
+    for key in ["major_diameter", "pitch_diameter", "minor_diameter"] {
+        let (a, b) = (multi["measured"][key].as_f64().unwrap(), single["measured"][key].as_f64().unwrap());
+        assert!((a - b).abs() < 1e-4, "{key}: {a} against {b}");
+    }
+    for k in 0..2 {
+        let (a, b) = (
+            multi["measured"]["flank_angles"][k].as_f64().unwrap(),
+            single["measured"]["flank_angles"][k].as_f64().unwrap(),
+        );
+        assert!((a - b).abs() < 1e-3, "flank {k}: {a} against {b}");
+    }
+    assert_eq!(
+        (multi["cutter"]["rows"].as_u64(), multi["cutter"]["row_pitch"].as_f64()),
+        (Some(8), Some(1.5))
+    );
+    let row = multi["checks"].as_array().unwrap().iter().find(|c| c["feature"] == "row_pitch").unwrap();
+    assert_eq!(row["ok"], true);
+}
+
+/// Rows 1.45 mm apart for a 1.5 mm pitch: the row-pitch check fails by −50 µm, and the rows
+/// cut grooves out of phase, so the thread's grooves are no longer one per pitch.
+#[test]
+fn a_multi_form_cutter_of_the_wrong_row_pitch_fails() {
+    let v = mill_rows("m20-dc14-rows8.nc", "8", "1.45");
+    let row = v["checks"].as_array().unwrap().iter().find(|c| c["feature"] == "row_pitch").unwrap();
+    assert_eq!((row["ok"].as_bool(), row["deviation_um"].as_f64()), (Some(false), Some(-50.0)));
+    assert_eq!(v["verdict"], "fail");
+}

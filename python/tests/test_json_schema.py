@@ -155,3 +155,12 @@ def test_thread_mill():
     validate("thread_mill", json.loads(cli("thread-mill", "--program", str(mill / "m20-dc14.nc"), "--thread",
                                            "M20x1.5-6H", "--cutter-diameter", "14", "--json", "-")))
     validate("thread_mill", threadcheck.thread_mill((mill / "m20-dc6.nc").read_text(), "M20x1.5-6H", 6.0))
+    # A multi-form cutter: its rows and row pitch, and the row_pitch check.
+    validate("thread_mill", threadcheck.thread_mill((mill / "m20-dc14-rows8.nc").read_text(), "M20x1.5-6H", 14.0,
+                                                    cutter_rows=8, cutter_row_pitch=1.5))
+
+
+def test_tap_sinumerik():
+    tapping = PROGRAMS / "tapping"
+    validate("tap", threadcheck.tap((tapping / "m10-cycle84.mpf").read_text(), (tapping / "tools-85.toml").read_text(),
+                                    dialect="sinumerik"))

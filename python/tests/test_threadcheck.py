@@ -5,6 +5,7 @@ the dicts are compared with (.ci/run sets it); without it that test fails, it do
 import json
 import math
 import os
+import pathlib
 import subprocess
 import tempfile
 
@@ -384,3 +385,14 @@ def test_thread_mill_major_diameter_and_lead():
     assert r["measured"]["major_diameter"] == pytest.approx(20.0, abs=1e-4)
     lead = next(c for c in r["checks"] if c["feature"] == "lead")
     assert lead["ok"]
+
+
+def test_thread_mill_multi_form_rows_one_pitch_apart():
+    # 8 rows 1.5 apart on one turn cut what one tooth cuts on eight turns (tests/threadmill.rs).
+    mill = pathlib.Path(__file__).resolve().parents[2] / "tests" / "data" / "programs" / "threadmill"
+    multi = threadcheck.thread_mill((mill / "m20-dc14-rows8.nc").read_text(), "M20x1.5-6H", 14.0,
+                                    cutter_rows=8, cutter_row_pitch=1.5)
+    single = threadcheck.thread_mill((mill / "m20-dc14.nc").read_text(), "M20x1.5-6H", 14.0)
+    assert multi["measured"]["pitch_diameter"] == pytest.approx(single["measured"]["pitch_diameter"], abs=1e-4)
+    with pytest.raises(ValueError, match="needs row_pitch"):
+        threadcheck.thread_mill((mill / "m20-dc14-rows8.nc").read_text(), "M20x1.5-6H", 14.0, cutter_rows=8)

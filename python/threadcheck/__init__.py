@@ -330,15 +330,17 @@ def tap(program: str, tools: str, dialect: Optional[str] = None, program_name: O
 
 
 def thread_mill(program: str, thread: str, cutter_diameter: float, cutter_angle: Optional[float] = None,
-                cutter_tip_radius: Optional[float] = None, blank_diameter: Optional[float] = None,
-                dialect: Optional[str] = None, program_name: Optional[str] = None,
-                allow_nonstandard: bool = False) -> ThreadMillReport:
+                cutter_tip_radius: Optional[float] = None, cutter_rows: Optional[int] = None,
+                cutter_row_pitch: Optional[float] = None, blank_diameter: Optional[float] = None,
+                comp_radius: Optional[float] = None, dialect: Optional[str] = None,
+                program_name: Optional[str] = None, allow_nonstandard: bool = False) -> ThreadMillReport:
     """``threadcheck thread-mill --json``: the thread a thread-milling program leaves.
 
     ``program`` is the program's text (helical G2/G3 in G17, the cutter centre's path),
     ``thread`` the designation with its class, ``cutter_diameter`` (mm, over the tooth's tip),
-    ``cutter_angle`` (60°) and ``cutter_tip_radius`` (0) the single-form cutter's tooth;
-    ``blank_diameter`` the bore (default the middle of D1). The dict has ``measured``,
+    ``cutter_angle`` (60°) and ``cutter_tip_radius`` (0) the tooth; ``cutter_rows`` (1) and
+    ``cutter_row_pitch`` (mm) a multi-form cutter's rows; ``blank_diameter`` the bore (default
+    the middle of D1); ``comp_radius`` the D register G41/G42 apply (mm). The dict has ``measured``,
     ``tooth_profile`` (the cutter's tooth alone), ``distortion_pitch_diameter_um``,
     ``distortion_flank_angles_deg``, ``helices``, ``checks`` (``lead`` among them) and ``pass``.
     """

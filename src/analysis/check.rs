@@ -123,6 +123,8 @@ pub enum CheckFeature {
     RunOut,
     /// A thread-milling helix's Z travel per revolution against the designation's lead (issue 31).
     Lead,
+    /// A multi-form thread mill's row pitch against the thread's pitch.
+    RowPitch,
 }
 
 impl CheckFeature {
@@ -147,6 +149,7 @@ impl CheckFeature {
             CheckFeature::FlankClearance => "flank_clearance",
             CheckFeature::RunOut => "run_out",
             CheckFeature::Lead => "lead",
+            CheckFeature::RowPitch => "row_pitch",
         }
     }
 
@@ -171,6 +174,7 @@ impl CheckFeature {
             CheckFeature::FlankClearance => "flank clearance",
             CheckFeature::RunOut => "run-out room",
             CheckFeature::Lead => "helix lead",
+            CheckFeature::RowPitch => "row pitch",
         }
     }
 
@@ -201,6 +205,7 @@ impl CheckFeature {
             CheckFeature::FlankClearance => "flank clearance",
             CheckFeature::RunOut => "run-out room",
             CheckFeature::Lead => "lead per revolution",
+            CheckFeature::RowPitch => "cutter row pitch",
         }
     }
 
@@ -215,7 +220,8 @@ impl CheckFeature {
             | CheckFeature::MaxMaterial
             | CheckFeature::Crest
             | CheckFeature::RunOut
-            | CheckFeature::Lead => CheckUnit::Mm,
+            | CheckFeature::Lead
+            | CheckFeature::RowPitch => CheckUnit::Mm,
             CheckFeature::FlankAngle | CheckFeature::FlankClearance => CheckUnit::Degree,
             CheckFeature::SingleGroove | CheckFeature::ConstantSpindleSpeed => CheckUnit::YesNo,
             CheckFeature::Starts => CheckUnit::Count,

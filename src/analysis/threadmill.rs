@@ -33,7 +33,9 @@ use crate::{Error, Point};
 use rayon::prelude::*;
 use serde::Serialize;
 
-/// A single-form thread mill.
+/// A thread mill: one tooth form (single-form) or `rows` of them `row_pitch` apart along its
+/// axis (multi-form), the first at the programmed point and the others above it, toward the
+/// shank (a named default).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Cutter {
     /// Diameter over the tooth's tip, mm.
@@ -42,6 +44,10 @@ pub struct Cutter {
     pub angle_deg: f64,
     /// The tooth's tip radius, mm.
     pub tip_radius: f64,
+    /// Rows of teeth: 1 for a single-form cutter.
+    pub rows: u32,
+    /// The rows' axial spacing, mm (0 for a single-form cutter).
+    pub row_pitch: f64,
 }
 
 /// A thread mill's TOML file, as a tool table names it (`[tools] 12 = "thread-mill.toml"`).
@@ -71,9 +77,20 @@ fn one() -> u32 {
 }
 
 impl Cutter {
+    /// A single-form cutter.
+    ///
+    /// ```
+    /// use threadcheck::Cutter;
+    /// let c = Cutter::single_form(12.0, 60.0, 0.0);
+    /// assert_eq!((c.rows, c.row_pitch), (1, 0.0));
+    /// ```
+    pub fn single_form(diameter: f64, angle_deg: f64, tip_radius: f64) -> Cutter {
+        Cutter { diameter, angle_deg, tip_radius, rows: 1, row_pitch: 0.0 }
+    }
+
     /// Reads a thread mill's TOML: `kind = "thread-mill"`, `diameter` (mm, over the tooth's tip),
     /// `angle` (the tooth's included angle, 60 by default), `tip_radius` (0), `rows` (1: a
-    /// single-form cutter; multi-form cutters are refused by name) and `row_pitch`.
+    /// single-form cutter) and, for a multi-form cutter (`rows` > 1), `row_pitch` (mm).
     ///
     /// ```
     /// use threadcheck::Cutter;
@@ -90,23 +107,56 @@ impl Cutter {
                 f.kind
             )));
         }
-        if f.rows != 1 {
-            return Err(ferr(format!(
-                "rows = {}: multi-form thread mills are not modelled yet (a single-form cutter has rows = 1){}",
-                f.rows,
-                f.row_pitch.map_or(String::new(), |p| format!("; row_pitch {p} mm"))
-            )));
-        }
+        let row_pitch = row_pitch_of(f.rows, f.row_pitch).map_err(ferr)?;
         if f.flat != 0.0 {
             return Err(ferr(
                 "flat: a flat tooth tip is not modelled; give the tip's radius (tip_radius)".into(),
             ));
         }
-        Ok(Cutter { diameter: f.diameter, angle_deg: f.angle, tip_radius: f.tip_radius })
+        Ok(Cutter {
+            diameter: f.diameter,
+            angle_deg: f.angle,
+            tip_radius: f.tip_radius,
+            rows: f.rows,
+            row_pitch,
+        })
     }
 
-    /// The cutter's radius at axial offset `h` from its tooth's centre, down to `neck`.
+    /// The cutter with `rows` rows of teeth `row_pitch` mm apart (a multi-form cutter; `rows` 1
+    /// and no row pitch: single-form).
+    ///
+    /// ```
+    /// use threadcheck::Cutter;
+    /// let c = Cutter::single_form(14.0, 60.0, 0.0).with_rows(8, Some(1.5))?;
+    /// assert_eq!((c.rows, c.row_pitch), (8, 1.5));
+    /// assert!(Cutter::single_form(14.0, 60.0, 0.0).with_rows(8, None).is_err());
+    /// # Ok::<(), threadcheck::Error>(())
+    /// ```
+    pub fn with_rows(self, rows: u32, row_pitch: Option<f64>) -> Result<Cutter, Error> {
+        let row_pitch = row_pitch_of(rows, row_pitch).map_err(Error::Input)?;
+        Ok(Cutter { rows, row_pitch, ..self })
+    }
+
+    /// The cutter's radius at axial offset `h` from its first tooth's centre, down to `neck`:
+    /// the largest of its rows' (the nearest row and its neighbours).
     fn rho(&self, h: f64, neck: f64) -> f64 {
+        if self.rows <= 1 {
+            return self.tooth_rho(h, neck);
+        }
+        let last = i64::from(self.rows - 1);
+        let k = ((h / self.row_pitch).round() as i64).clamp(0, last);
+        ((k - 1).max(0)..=(k + 1).min(last))
+            .map(|j| self.tooth_rho(h - j as f64 * self.row_pitch, neck))
+            .fold(neck, f64::max)
+    }
+
+    /// The axial length from the first row's centre to the last's, mm.
+    fn span(&self) -> f64 {
+        f64::from(self.rows.saturating_sub(1)) * self.row_pitch
+    }
+
+    /// One tooth's radius at axial offset `h` from its centre, down to `neck`.
+    fn tooth_rho(&self, h: f64, neck: f64) -> f64 {
         let half = (0.5 * self.angle_deg).to_radians();
         let tip = 0.5 * self.diameter;
         let rr = self.tip_radius;
@@ -126,6 +176,25 @@ impl Cutter {
         let half = (0.5 * self.angle_deg).to_radians();
         let apex = 0.5 * self.diameter + self.tip_radius * (1.0 / half.sin() - 1.0);
         ((apex - neck) * half.tan()).max(0.0)
+    }
+}
+
+/// A cutter's row pitch from its rows and the pitch given: 0 for one row; a multi-form cutter
+/// needs one between 0 and 100 mm.
+fn row_pitch_of(rows: u32, row_pitch: Option<f64>) -> Result<f64, String> {
+    if !(1..=200).contains(&rows) {
+        return Err(format!("rows = {rows}: from 1 (a single-form cutter) to 200"));
+    }
+    match (rows, row_pitch) {
+        (1, None) => Ok(0.0),
+        (1, Some(p)) => Err(format!("row_pitch = {p} with rows = 1: a single-form cutter has no row pitch")),
+        (_, None) => {
+            Err(format!("rows = {rows}: a multi-form cutter needs row_pitch, the rows' spacing in mm"))
+        }
+        (_, Some(p)) if !(p.is_finite() && p > 0.0 && p < 100.0) => {
+            Err(format!("row_pitch = {p}: a length over 0 and under 100 mm"))
+        }
+        (_, Some(p)) => Ok(p),
     }
 }
 
@@ -341,9 +410,9 @@ fn reach(hs: &[Helix], cutter: &Cutter, neck: f64, z: f64, internal: bool, only_
             }
         };
         let better = |a: f64, b: f64| if internal { a > b } else { a < b };
-        // The helix parameter range whose tooth reaches height z.
+        // The helix parameter range whose teeth reach height z: z − zc within [−hw, span + hw].
         let (t_a, t_b) = {
-            let ta = (z - hw - h.z[0]) * sweep / dz;
+            let ta = (z - cutter.span() - hw - h.z[0]) * sweep / dz;
             let tb = (z + hw - h.z[0]) * sweep / dz;
             (ta.min(tb).max(0.0), ta.max(tb).min(sweep))
         };
@@ -353,7 +422,8 @@ fn reach(hs: &[Helix], cutter: &Cutter, neck: f64, z: f64, internal: bool, only_
         if only_psi0 {
             // The tooth profile alone: the cutter where it crosses the half-plane (ψ = 0 mod 2π).
             let k0 = ((dir * (t_a + h.angle_start * dir)) / std::f64::consts::TAU).floor() as i64 - 1;
-            for k in k0..k0 + 4 {
+            let turns = ((t_b - t_a) / std::f64::consts::TAU).ceil() as i64;
+            for k in k0..k0 + 4 + turns {
                 let t = dir * (k as f64 * std::f64::consts::TAU - h.angle_start);
                 if t >= t_a - 1e-12 && t <= t_b + 1e-12 {
                     if let Some(v) = eval(t.clamp(0.0, sweep)) {
@@ -410,7 +480,7 @@ fn reach(hs: &[Helix], cutter: &Cutter, neck: f64, z: f64, internal: bool, only_
 /// // D = 20; eight turns climbing 1.5 mm each.
 /// let mut program = String::from("G17 G90 G40\nG0 X4 Y0 Z-14\n");
 /// for k in 1..=8 { program += &format!("G3 X4 Y0 Z{} I-4 J0 F200\n", -14.0 + 1.5 * k as f64); }
-/// let cutter = Some(Cutter { diameter: 12.0, angle_deg: 60.0, tip_radius: 0.0 });
+/// let cutter = Some(Cutter::single_form(12.0, 60.0, 0.0));
 /// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: "M20x1.5-6H".into(), allow_nonstandard: false, cutter, tools: None, blank_diameter: None, comp_radius: None };
 /// let r = thread_mill(&spec)?;
 /// assert!((r.measured.major_diameter - 20.0).abs() < 1e-4);
@@ -556,15 +626,16 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     notes.push("the cutter's tooth is taken 0.625·P deep below its tip (a named default; its neck never reaches the thread)".into());
     let neck = 0.5 * c.diameter - 0.625 * p;
     // The section: around the helices' middle height, a whole number of leads from a crossing.
+    // A multi-form cutter's rows reach `span` above the helices.
     let z_lo = hs.iter().map(|h| h.z[0].min(h.z[1])).fold(f64::INFINITY, f64::min);
-    let z_hi = hs.iter().map(|h| h.z[0].max(h.z[1])).fold(f64::NEG_INFINITY, f64::max);
+    let z_hi = hs.iter().map(|h| h.z[0].max(h.z[1])).fold(f64::NEG_INFINITY, f64::max) + c.span();
     if z_hi - z_lo < 4.0 * p {
         return Err(Error::Program {
             file: name.clone(),
             line: first.line,
             column: 1,
             message: format!(
-                "the helices span {:.3} mm of Z, under the four pitches ({:.3} mm) a groove is measured in",
+                "the helices (and the cutter's rows) span {:.3} mm of Z, under the four pitches ({:.3} mm) a groove is measured in",
                 z_hi - z_lo,
                 4.0 * p
             ),
@@ -607,6 +678,30 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         deviation_um: if lead_ok { 0.0 } else { (lead_err * 1e4).round() / 10.0 },
         note: Some("the Z travel per revolution of each helix against the designation's lead".into()),
     });
+    if c.rows > 1 {
+        // Each row cuts the groove its neighbour cuts one pitch along: the rows must lie a pitch
+        // apart, at the standard's resolution.
+        let off = c.row_pitch - p;
+        let ok = limits.resolution.round(c.row_pitch) == limits.resolution.round(p);
+        cs.push(Check {
+            feature: crate::analysis::check::CheckFeature::RowPitch,
+            kind: crate::analysis::check::CheckKind::Process,
+            value: c.row_pitch,
+            min: Some(p),
+            max: Some(p),
+            ok,
+            deviation_um: if ok { 0.0 } else { (off * 1e4).round() / 10.0 },
+            note: Some(format!(
+                "the {} rows of the multi-form cutter must lie one pitch apart; each cuts its neighbour's groove",
+                c.rows
+            )),
+        });
+        notes.push(format!(
+            "a multi-form cutter of {} rows {} mm apart, the first at the programmed point and the others above it (a named default)",
+            c.rows,
+            crate::ground::fmt::fmt_num(c.row_pitch)
+        ));
+    }
     if hs.iter().any(|h| !h.climb) {
         notes.push("conventional milling on some helices (climb milling wants G3 for a nut, G2 for a bolt, spindle M3)".into());
     }

@@ -286,9 +286,10 @@ pub fn threadmill_html(r: &crate::analysis::threadmill::ThreadMillReport) -> Str
     let _ = writeln!(s, "<p class=\"verdict {cls}\">{words}</p>");
     let _ = writeln!(
         s,
-        "<p>{} · Ø{} mm single-form cutter, {}° tooth, tip r{} mm ({:.0} % of the diameter) · profile distortion {:+.1} µm on the pitch diameter, flanks {:+.3}° / {:+.3}°</p>",
+        "<p>{} · Ø{} mm {} cutter, {}° tooth, tip r{} mm ({:.0} % of the diameter) · profile distortion {:+.1} µm on the pitch diameter, flanks {:+.3}° / {:+.3}°</p>",
         esc(&r.program),
         crate::ground::fmt::fmt_num(r.cutter.diameter),
+        esc(&crate::report::threadmill::cutter_kind(&r.cutter)),
         crate::ground::fmt::fmt_num(r.cutter.angle_deg),
         crate::ground::fmt::fmt_num(r.cutter.tip_radius),
         100.0 * r.cutter_ratio,

@@ -6,17 +6,27 @@ use crate::report::MeasuredReport;
 use serde::Serialize;
 use std::fmt::Write as _;
 
+/// The cutter's kind in words: `single-form`, or `multi-form (8 rows 1.5 mm apart)`.
+pub(crate) fn cutter_kind(c: &Cutter) -> String {
+    if c.rows <= 1 {
+        "single-form".into()
+    } else {
+        format!("multi-form ({} rows {} mm apart)", c.rows, fmt_num(c.row_pitch))
+    }
+}
+
 /// The text `threadcheck thread-mill` prints.
 pub fn text(r: &ThreadMillReport) -> String {
     let mut s = String::new();
     let c = &r.cutter;
     let _ = writeln!(
         s,
-        "{}: {} {} thread-milled by a Ø{} single-form cutter ({}°, tip r{}), {:.0} % of the thread's diameter",
+        "{}: {} {} thread-milled by a Ø{} {} cutter ({}°, tip r{}), {:.0} % of the thread's diameter",
         r.program,
         r.designation,
         r.kind.name(),
         fmt_num(c.diameter),
+        cutter_kind(c),
         fmt_num(c.angle_deg),
         fmt_num(c.tip_radius),
         100.0 * r.cutter_ratio
