@@ -475,6 +475,12 @@ struct TapArgs {
     /// The G-code system of a Fanuc control: a, b or c.
     #[arg(long, value_name = "a|b|c", default_value = "a")]
     gcode_system: threadcheck::GCodeSystem,
+    /// Write the tapped holes' sections (SVG) to this file.
+    #[arg(long, value_name = "FILE")]
+    svg: Option<PathBuf>,
+    /// Write a self-contained HTML page (the sections, the checks, the notes) to this file.
+    #[arg(long, value_name = "FILE")]
+    html: Option<PathBuf>,
     #[command(flatten)]
     json: JsonArg,
 }
@@ -905,7 +911,7 @@ impl Cli {
                     tools: threadcheck::ToolTable::read(&a.tools)?,
                     allow_nonstandard: a.allow_nonstandard,
                 };
-                done(threadcheck::TapJob { spec, json: a.json.json }.run()?)
+                done(threadcheck::TapJob { spec, svg: a.svg, html: a.html, json: a.json.json }.run()?)
             }
             Command::Serve(a) => {
                 let mut options =

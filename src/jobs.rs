@@ -1026,6 +1026,10 @@ impl ThreadMillJob {
 pub struct TapJob {
     /// The program and its tool table.
     pub spec: crate::analysis::tapping::TapSpec,
+    /// Write the tapped holes' sections (SVG) here.
+    pub svg: Option<std::path::PathBuf>,
+    /// Write the self-contained HTML page here.
+    pub html: Option<std::path::PathBuf>,
     /// The JSON: `-` prints it on stdout instead of the text, a path writes it there.
     pub json: Option<String>,
 }
@@ -1033,10 +1037,20 @@ pub struct TapJob {
 impl TapJob {
     /// Runs the job: pass when every tapping cycle passes every check.
     pub fn run(&self) -> Result<(String, Outcome), Error> {
+        self.run_to(&mut Sink::Disk)
+    }
+
+    /// Runs the job with its files going to `sink`.
+    pub(crate) fn run_to(&self, sink: &mut Sink) -> Result<(String, Outcome), Error> {
         let r = crate::analysis::tapping::tapping(&self.spec)?;
         let outcome = if r.pass { Outcome::Pass } else { Outcome::OutOfTolerance };
         let json_text = self.json.as_ref().map(|_| pretty(&r)).transpose()?;
-        Ok((route_json(self.json.as_deref(), json_text, crate::report::tapping::text(&r))?, outcome))
+        let svg_text = self.svg.as_ref().map(|_| crate::report::svg::tap_svg(&r));
+        let html_text = self.html.as_ref().map(|_| crate::report::html::tap_html(&r));
+        let inputs = [std::path::PathBuf::from(&self.spec.program.1)];
+        let text = crate::report::tapping::text(&r);
+        let files = [(&self.svg, svg_text), (&self.html, html_text)];
+        Ok((write_outputs(sink, &inputs, &files, self.json.as_deref(), json_text, text)?, outcome))
     }
 }
 

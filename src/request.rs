@@ -179,8 +179,8 @@ impl Command {
             Command::Capability => &[Json, Text, Svg, Html],
             Command::Compare => &[Json, Text, Html],
             Command::Fit | Command::Mill => &[Json, Text, Svg],
-            Command::Passes | Command::Limits | Command::Tap => &[Json, Text],
-            Command::ThreadMill => &[Json, Text, Svg, Html],
+            Command::Passes | Command::Limits => &[Json, Text],
+            Command::Tap | Command::ThreadMill => &[Json, Text, Svg, Html],
         }
     }
 }
@@ -526,7 +526,8 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
                 tools,
                 allow_nonstandard: a.flag("allow_nonstandard")?,
             };
-            crate::jobs::TapJob { spec, json }.run()?
+            crate::jobs::TapJob { spec, svg: want(Document::Svg), html: want(Document::Html), json }
+                .run_to(&mut sink)?
         }
         Command::Mill => {
             let program =

@@ -587,3 +587,28 @@ fn thread_mill_svg_is_laid_out() {
         assert_laid_out(&svg, program);
     }
 }
+
+/// Issue 31: the tapping picture is laid out (nothing written leaves it or crosses another
+/// label) for one hole drilled too small and for two holes of a Sinumerik program.
+#[test]
+fn tap_svg_is_laid_out() {
+    for (program, tools) in [("m10-g84.nc", "tools-80.toml"), ("m10-cycle84.mpf", "tools-85.toml")] {
+        let dir = tempdir("tap-svg");
+        let svg_path = dir.join("t.svg");
+        let p = data(&format!("programs/tapping/{program}"));
+        let t = data(&format!("programs/tapping/{tools}"));
+        let o = run(&[
+            "tap",
+            "--program",
+            p.to_str().unwrap(),
+            "--tools",
+            t.to_str().unwrap(),
+            "--svg",
+            svg_path.to_str().unwrap(),
+        ]);
+        assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+        let svg = std::fs::read_to_string(&svg_path).unwrap();
+        assert!(svg.contains("drill Z-25"), "{program}");
+        assert_laid_out(&svg, program);
+    }
+}

@@ -247,3 +247,75 @@ fn regression_holes_apart_in_y_are_apart() {
     assert!(v["holes"][0]["drill"].is_null(), "{v}");
     assert!(v["holes"][0]["notes"].to_string().contains("no drilling cycle precedes this tap"));
 }
+
+/// `--svg` and `--html` draw each tapped hole: the tap's bottom Z-18, its full thread from
+/// Z-18 + 2.5 × 1.5 = Z-14.25 up, the drill's bottom Z-25; the page holds the picture and every
+/// check of both holes.
+#[test]
+fn the_picture_and_the_page_show_each_hole() {
+    let dir = tempdir("tap-pic");
+    let p = data("programs/tapping/m10-cycle84.mpf");
+    let t = data("programs/tapping/tools-85.toml");
+    let (svg, html) = (dir.join("t.svg"), dir.join("t.html"));
+    let o = run(&[
+        "tap",
+        "--program",
+        p.to_str().unwrap(),
+        "--tools",
+        t.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+        "--html",
+        html.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(svg).unwrap();
+    for want in [
+        "tap Z-18",
+        "full Z-14.25",
+        "drill Z-25",
+        "CYCLE84 line 17, T6",
+        "CYCLE84 line 19, T6",
+        "IN TOLERANCE",
+    ] {
+        assert!(svg.contains(want), "{want}");
+    }
+    let html = std::fs::read_to_string(html).unwrap();
+    assert!(html.contains("<svg"));
+    assert_eq!(html.matches("<td>drill diameter</td>").count(), 2);
+    assert!(html.contains("coarse pitch must be the lead"));
+}
+
+/// The hole's wall in the section, against its geometry: the full thread reaches D/2 = 5 and
+/// stops at the drill's radius 4.25; below the tap the bore is the drill's; the drill's 118°
+/// point begins 4.25 / tan 59° = 2.5537 mm above its tip at Z-25 and ends on the axis there.
+#[test]
+fn the_hole_wall_follows_the_tap_and_the_drill() {
+    let text = std::fs::read_to_string(data("programs/tapping/m10-cycle84.mpf")).unwrap();
+    let tools = threadcheck::ToolTable::from_toml(
+        "[tools]\n5 = \"drill:8.5\"\n6 = \"tap:M10x1.5-6H\"\n",
+        "tools.toml",
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    let spec = threadcheck::TapSpec {
+        program: (text, "m10-cycle84.mpf".into()),
+        dialect: threadcheck::Dialect::Sinumerik,
+        reading: threadcheck::ReadOptions::default(),
+        tools,
+        allow_nonstandard: false,
+    };
+    let r = threadcheck::tapping(&spec).unwrap();
+    let wall = &r.holes[0].wall;
+    let full: Vec<f64> = wall.iter().filter(|p| p.z > -14.25 && p.z < -1.0).map(|p| p.r).collect();
+    let (lo, hi) = full.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    assert!((hi - 5.0).abs() < 1e-9 && (lo - 4.25).abs() < 1e-9, "{lo} {hi}");
+    assert!(wall.iter().filter(|p| p.z < -18.0 && p.z > -22.4).all(|p| (p.r - 4.25).abs() < 1e-12));
+    let cone_top = -25.0 + 4.25 / 59f64.to_radians().tan();
+    assert!((cone_top + 22.4463).abs() < 1e-4);
+    for p in wall.iter().filter(|p| p.z < cone_top) {
+        assert!((p.r - (p.z + 25.0) * 59f64.to_radians().tan()).abs() < 1e-9);
+    }
+    let tip = wall.last().unwrap();
+    assert_eq!((tip.z, tip.r), (-25.0, 0.0));
+}

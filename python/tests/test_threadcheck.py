@@ -396,3 +396,12 @@ def test_thread_mill_multi_form_rows_one_pitch_apart():
     assert multi["measured"]["pitch_diameter"] == pytest.approx(single["measured"]["pitch_diameter"], abs=1e-4)
     with pytest.raises(ValueError, match="needs row_pitch"):
         threadcheck.thread_mill((mill / "m20-dc14-rows8.nc").read_text(), "M20x1.5-6H", 14.0, cutter_rows=8)
+
+
+def test_tap_render_svg_and_html():
+    # The tapping picture through the same door: the tap's bottom Z-18, the drill's Z-25.
+    tools = '[tools]\n5 = "drill:8.5"\n6 = "tap:M10x1.5-6H"\n'
+    svg = threadcheck.render("tap", "svg", program=TAP_PROGRAM, tools=tools)
+    assert svg.startswith("<svg") and "tap Z-18" in svg and "drill Z-25" in svg
+    html = threadcheck.render("tap", "html", program=TAP_PROGRAM, tools=tools)
+    assert "<td>drill diameter</td>" in html

@@ -93,6 +93,11 @@ pub struct TapInfo {
     pub chamfer_pitches: f64,
     /// The chamfer was given in the tool table (else the default).
     pub chamfer_given: bool,
+    /// The chamfer's length, mm (its pitches times the pitch).
+    pub chamfer_length: f64,
+    /// Z where the tap's full thread begins: its bottom plus the chamfer, mm (`None` when the
+    /// cycle gives no bottom).
+    pub full_thread_z: Option<f64>,
     /// D1 limits of the class, mm.
     pub minor_diameter: crate::standards::tolerance::Limit,
     /// D2 limits of the class, mm (the tap's: stated, not computed).
@@ -114,6 +119,58 @@ pub struct TappedHole {
     pub pass: bool,
     /// What was assumed or could not be checked.
     pub notes: Vec<String>,
+    /// The hole's wall in its axial half-section (z, r), mm, from the top (Z0, or six pitches
+    /// above the tap's bottom when that lies above Z0) down to the drill's point: the tap's
+    /// thread (the basic profile's flanks, cut off at the drill's radius), its chamfer's cone
+    /// from the basic minor diameter, the plain bore below and the drill's 118° point. Empty
+    /// when the drill's diameter or either bottom is not known.
+    #[serde(skip)]
+    pub wall: Vec<crate::Point>,
+}
+
+/// The drill's point angle: a twist drill's 118° (a named default of the picture).
+const DRILL_POINT_DEG: f64 = 118.0;
+
+/// The tapped hole's wall, as [`TappedHole::wall`] says: `t` the tap's thread, `chamfer` its
+/// length (mm), `drill` the drill's diameter, `tap_z` and `drill_z` the bottoms.
+fn hole_wall(
+    t: &crate::standards::BasicThread,
+    chamfer: f64,
+    drill: f64,
+    tap_z: f64,
+    drill_z: f64,
+) -> Vec<crate::Point> {
+    let p = t.pitch;
+    let half = t.half_angle();
+    let h = t.fundamental_height();
+    let (rd, rmaj) = (0.5 * drill, 0.5 * t.nominal_diameter);
+    let rmin = rmaj - 5.0 * h / 8.0;
+    // The tap's tooth: the fundamental triangle's apex H/8 beyond D, flanks at the half angle.
+    let apex = rmaj + h / 8.0;
+    let top = if tap_z < 0.0 { 0.0 } else { tap_z + 6.0 * p };
+    let point_top = drill_z + rd / (0.5 * DRILL_POINT_DEG).to_radians().tan();
+    let mut out = Vec::new();
+    let n = (((top - drill_z.min(tap_z)) / p) * 48.0).ceil().clamp(8.0, 20_000.0) as usize;
+    let bottom = drill_z.min(tap_z);
+    for i in 0..=n {
+        let z = top - (top - bottom) * i as f64 / n as f64;
+        let r = if z >= tap_z {
+            let u = (z / p - (z / p).round()).abs() * p;
+            let tooth = apex - u / half.tan();
+            let cone = if z < tap_z + chamfer {
+                rmin + (apex - rmin) * (z - tap_z) / chamfer
+            } else {
+                f64::INFINITY
+            };
+            rd.max(tooth.min(cone).min(rmaj))
+        } else if z >= point_top {
+            rd
+        } else {
+            (z - drill_z).max(0.0) * (0.5 * DRILL_POINT_DEG).to_radians().tan()
+        };
+        out.push(crate::Point::new(z, r));
+    }
+    out
 }
 
 /// Every tapping cycle of a program, checked.
@@ -398,6 +455,12 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             limits.class
         ));
         let pass = checks.iter().all(|c| c.ok);
+        let wall = match (&drill, h.bottom) {
+            (Some(DrillInfo { diameter: Some(dia), cycle }), Some(tz)) => {
+                cycle.bottom.map_or_else(Vec::new, |dz| hole_wall(&des.thread, chamfer, *dia, tz, dz))
+            }
+            _ => Vec::new(),
+        };
         holes.push(TappedHole {
             cycle: h.clone(),
             tap: TapInfo {
@@ -405,6 +468,8 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                 lead,
                 chamfer_pitches,
                 chamfer_given,
+                chamfer_length: chamfer,
+                full_thread_z: h.bottom.map(|z| z + chamfer),
                 minor_diameter: limits.minor_diameter,
                 pitch_diameter: limits.pitch_diameter,
             },
@@ -412,6 +477,7 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             checks,
             pass,
             notes,
+            wall,
         });
     }
     let pass = holes.iter().all(|h| h.pass);

@@ -324,6 +324,78 @@ pub fn threadmill_html(r: &crate::analysis::threadmill::ThreadMillReport) -> Str
     page(&format!("threadcheck: {} thread-milled", r.designation), &s)
 }
 
+/// `threadcheck tap --html`: one self-contained page: the verdict, the holes' sections, and per
+/// tapping cycle its tap, its drill, its checks and its notes.
+pub fn tap_html(r: &crate::analysis::tapping::TapReport) -> String {
+    use crate::ground::fmt::fmt_num;
+    let mut s = String::new();
+    let (cls, words) = if r.pass { ("ok", "IN TOLERANCE") } else { ("out", "OUT OF TOLERANCE") };
+    let _ = writeln!(s, "<h1>{}: tapped holes</h1>", esc(&r.program));
+    let _ = writeln!(s, "<p class=\"verdict {cls}\">{words}</p>");
+    let _ = writeln!(
+        s,
+        "<p>{} tapping cycles, {} drilling cycles, read as {}</p>",
+        r.holes.len(),
+        r.drills,
+        esc(r.dialect.name())
+    );
+    let _ = writeln!(s, "<div class=\"pic\">{}</div>", crate::report::svg::tap_svg(r));
+    for h in &r.holes {
+        let c = &h.cycle;
+        let _ = writeln!(
+            s,
+            "<h2>{} at line {}{}: tap {}</h2>",
+            esc(&c.code),
+            c.line,
+            c.tool.map_or(String::new(), |t| format!(", T{t}")),
+            esc(&h.tap.designation)
+        );
+        let drill = match &h.drill {
+            Some(d) => format!(
+                "drilled by {} at line {}{}{}",
+                d.cycle.code,
+                d.cycle.line,
+                d.diameter.map_or(String::new(), |v| format!(", Ø{}", fmt_num(v))),
+                d.cycle.bottom.map_or(String::new(), |z| format!(", bottom Z{}", fmt_num(z)))
+            ),
+            None => "no drilling cycle at this position before it".into(),
+        };
+        let _ = writeln!(s, "<p>{}</p>", esc(&drill));
+        s.push_str("<table><tr><th>check</th><th>value</th><th>min</th><th>max</th><th>deviation</th><th>ok</th><th>note</th></tr>\n");
+        for k in &h.checks {
+            let num = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.4}"));
+            let dev = if k.ok {
+                String::new()
+            } else if k.unit == "mm/min" {
+                format!("{:+.1} mm/min", k.deviation)
+            } else if k.unit.is_empty() {
+                "wrong".into()
+            } else {
+                format!("{:+.1} µm", k.deviation)
+            };
+            let (cls, word) = if k.ok { ("ok", "ok") } else { ("out", "OUT") };
+            let _ = writeln!(
+                s,
+                "<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"{cls}\">{word}</td><td>{}</td></tr>",
+                esc(crate::report::tapping::feature_name(k.feature)),
+                num(k.value),
+                num(k.min),
+                num(k.max),
+                esc(&dev),
+                esc(&k.note)
+            );
+        }
+        s.push_str("</table>\n");
+        for n in &h.notes {
+            let _ = writeln!(s, "<p class=\"form\">{}</p>", esc(n));
+        }
+    }
+    for n in &r.notes {
+        let _ = writeln!(s, "<p class=\"form\">{}</p>", esc(&n.to_string()));
+    }
+    page(&format!("threadcheck: {} tapped", r.program), &s)
+}
+
 /// One row of a check table: the feature, value, limits, (the value in inches), deviation, the
 /// verdict word and the note.
 fn check_row(

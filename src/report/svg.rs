@@ -1280,3 +1280,150 @@ pub fn threadmill_svg(r: &crate::analysis::threadmill::ThreadMillReport) -> Stri
         .add(text(f.x(z0), 428.0, 12.0, format!("Z {:.3} … {:.3} mm (axial section, radius up)", z0, z1)));
     doc.to_string()
 }
+
+/// Most tapped holes drawn side by side; the rest are counted under the picture.
+const TAP_PANELS: usize = 4;
+
+/// `threadcheck tap --svg`: each tapped hole's axial section, hole axis up, true to scale: the
+/// part in grey, the hole in white (the tap's thread, its chamfer, the plain bore and the
+/// drill's point), D1's limits dashed, the tap's and the drill's bottoms, and the checks.
+pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
+    use crate::ground::fmt::fmt_num;
+    let shown: Vec<_> = r.holes.iter().take(TAP_PANELS).collect();
+    let panel_w = 300.0;
+    let w = (40.0 + panel_w * shown.len().max(1) as f64).max(760.0);
+    let (box_h, box_w) = (420.0, panel_w - 120.0);
+    // One scale for every panel: the deepest hole's height and the widest drill fit.
+    let span = |hole: &crate::analysis::tapping::TappedHole| {
+        let z = hole.wall.iter().map(|p| p.z);
+        let (lo, hi) = z.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+        (
+            if hole.wall.is_empty() { 0.0 } else { hi - lo },
+            2.0 * hole.wall.iter().map(|p| p.r).fold(0.0, f64::max),
+        )
+    };
+    let (tall, wide) =
+        shown.iter().map(|h| span(h)).fold((1e-3f64, 1e-3f64), |a, b| (a.0.max(b.0), a.1.max(b.1)));
+    let s = (box_h / tall).min(box_w / (1.6 * wide));
+    let h = 120.0 + (tall * s).max(60.0) + 150.0;
+    let mut doc = Document::new().set("viewBox", (0, 0, w, h)).set("width", w).set("height", h);
+    doc = doc.add(Rectangle::new().set("width", w).set("height", h).set("fill", "white"));
+    let verdict = if r.pass {
+        "IN TOLERANCE".to_string()
+    } else {
+        let bad = r.holes.iter().filter(|h| !h.pass).count();
+        format!("OUT OF TOLERANCE: {bad} of {} tapping cycles", r.holes.len())
+    };
+    doc = doc
+        .add(text(20.0, 28.0, 16.0, format!("{}: tapped holes", r.program)).set("font-weight", "bold"))
+        .add(
+            text(20.0, 50.0, 14.0, verdict)
+                .set("font-weight", "bold")
+                .set("fill", if r.pass { ZONE } else { FAIL }),
+        );
+    for (k, hole) in shown.iter().enumerate() {
+        let x0 = 20.0 + panel_w * k as f64;
+        let cx = x0 + 0.5 * box_w + 10.0;
+        let y0 = 120.0;
+        let c = &hole.cycle;
+        let mut g = Group::new();
+        g = g.add(
+            text(
+                x0,
+                80.0,
+                12.0,
+                format!("{} line {}{}", c.code, c.line, c.tool.map_or(String::new(), |t| format!(", T{t}"))),
+            )
+            .set("font-weight", "bold"),
+        );
+        g = g.add(text(x0, 96.0, 12.0, format!("tap {}", hole.tap.designation)));
+        let mut ty = y0 + 70.0;
+        if hole.wall.is_empty() {
+            g = g.add(text(x0, y0 + 20.0, 12.0, "the drill's diameter or a bottom"));
+            g = g.add(text(x0, y0 + 36.0, 12.0, "is not known: not drawn"));
+        } else {
+            let top = hole.wall.first().map_or(0.0, |p| p.z);
+            let bottom = hole.wall.last().map_or(0.0, |p| p.z);
+            let y = |z: f64| y0 + (top - z) * s;
+            let x = |r: f64| cx + r * s;
+            let half_w = 0.8 * wide * s;
+            g = g.add(
+                Rectangle::new()
+                    .set("x", format!("{:.2}", cx - half_w))
+                    .set("y", format!("{y0:.2}"))
+                    .set("width", format!("{:.2}", 2.0 * half_w))
+                    .set("height", format!("{:.2}", y(bottom) - y0 + 12.0))
+                    .set("fill", "#b8c7d9"),
+            );
+            let mut pts: Vec<String> =
+                hole.wall.iter().map(|p| format!("{:.2},{:.2}", x(p.r), y(p.z))).collect();
+            pts.extend(hole.wall.iter().rev().map(|p| format!("{:.2},{:.2}", x(-p.r), y(p.z))));
+            g = g.add(
+                Polygon::new()
+                    .set("points", pts.join(" "))
+                    .set("fill", "white")
+                    .set("stroke", "black")
+                    .set("stroke-width", 0.8),
+            );
+            let d1 = &hole.tap.minor_diameter;
+            for v in [d1.min, d1.max].into_iter().flatten() {
+                for sign in [-1.0, 1.0] {
+                    g = g.add(
+                        Line::new()
+                            .set("x1", format!("{:.2}", x(sign * 0.5 * v)))
+                            .set("x2", format!("{:.2}", x(sign * 0.5 * v)))
+                            .set("y1", format!("{y0:.2}"))
+                            .set("y2", format!("{:.2}", y(bottom)))
+                            .set("stroke", "#1f5fa8")
+                            .set("stroke-width", 0.7)
+                            .set("stroke-dasharray", "3 3"),
+                    );
+                }
+            }
+            let mark = |g: Group, z: f64, colour: &str, label: String| -> Group {
+                g.add(
+                    Line::new()
+                        .set("x1", format!("{:.2}", cx - half_w))
+                        .set("x2", format!("{:.2}", cx + half_w + 6.0))
+                        .set("y1", format!("{:.2}", y(z)))
+                        .set("y2", format!("{:.2}", y(z)))
+                        .set("stroke", colour.to_string())
+                        .set("stroke-width", 0.8)
+                        .set("stroke-dasharray", "5 3"),
+                )
+                .add(text(cx + half_w + 8.0, y(z) + 4.0, 11.0, label).set("fill", colour.to_string()))
+            };
+            if let Some(tz) = c.bottom {
+                g = mark(g, tz, "#333", format!("tap Z{}", fmt_num(tz)));
+                if let Some(f) = hole.tap.full_thread_z {
+                    g = mark(g, f, "#777", format!("full Z{}", fmt_num(f)));
+                }
+            }
+            if let Some(db) = hole.drill.as_ref().and_then(|d| d.cycle.bottom) {
+                g = mark(g, db, "#a35a00", format!("drill Z{}", fmt_num(db)));
+            }
+            g = g.add(
+                text(x0, y(bottom) + 30.0, 11.0, format!("top drawn at Z{}", fmt_num(top)))
+                    .set("fill", "#555"),
+            );
+            ty = y(bottom) + 56.0;
+        }
+        for ck in &hole.checks {
+            let word = crate::report::tapping::feature_name(ck.feature);
+            let val = ck.value.map_or(String::new(), |v| format!(" {}", fmt_num((v * 1e4).round() / 1e4)));
+            g = g.add(
+                text(x0, ty, 12.0, format!("{} {word}{val}", if ck.ok { "✓" } else { "✗" }))
+                    .set("fill", if ck.ok { ZONE } else { FAIL }),
+            );
+            ty += 17.0;
+        }
+        doc = doc.add(g);
+    }
+    let mut foot =
+        String::from("D1 min and max of the tap's class dashed blue; the drill's point drawn at 118°");
+    if r.holes.len() > shown.len() {
+        foot = format!("{foot}; {} more tapping cycles in the text and JSON", r.holes.len() - shown.len());
+    }
+    doc = doc.add(text(20.0, h - 14.0, 11.0, foot).set("fill", "#555"));
+    doc.to_string()
+}

@@ -4,7 +4,7 @@ use crate::analysis::tapping::{TapFeature, TapReport};
 use crate::ground::fmt::fmt_num;
 use std::fmt::Write as _;
 
-fn feature_name(f: TapFeature) -> &'static str {
+pub(crate) fn feature_name(f: TapFeature) -> &'static str {
     match f {
         TapFeature::DrillDiameter => "drill diameter",
         TapFeature::Feed => "feed",
