@@ -457,6 +457,8 @@ fn page_in_chromium() {
     let out = tempdir("page");
     let program = data("programs/fanuc-g76-timing.nc");
     let upload = data("programs/linuxcnc-g76.ngc");
+    let tap_program = data("programs/tapping/m10-cycle84.mpf");
+    let mill_program = data("programs/threadmill/m20-dc14.nc");
     let o = std::process::Command::new("node")
         .arg(&script)
         .arg(&server.url)
@@ -464,6 +466,8 @@ fn page_in_chromium() {
         .arg(&chromium)
         .arg(&program)
         .arg(&upload)
+        .arg(&tap_program)
+        .arg(&mill_program)
         .output()
         .unwrap();
     assert!(o.status.success(), "the page script failed: {}", String::from_utf8_lossy(&o.stderr));
@@ -531,6 +535,33 @@ fn page_in_chromium() {
     let limits = seen["limits"].as_array().unwrap();
     let d2 = limits.iter().find(|r| r[1] == "pitch diameter").unwrap();
     assert_eq!((d2[2].as_str().unwrap(), d2[3].as_str().unwrap()), ("8.8620", "8.9940"));
+
+    // Tap: the uploaded Sinumerik program's two CYCLE84 pass, as `tap` says; eight rows of checks.
+    assert_eq!(seen["tap"], "IN TOLERANCE: 2 tapping cycles, 2 drilling cycles");
+    let tap_rows = seen["tap_rows"].as_array().unwrap();
+    assert_eq!(tap_rows.len(), 8);
+    let d1 = tap_rows.iter().find(|r| r[2] == "drill diameter").unwrap();
+    assert_eq!(
+        (d1[3].as_str(), d1[4].as_str(), d1[5].as_str()),
+        (Some("8.5000"), Some("8.3760"), Some("8.6760"))
+    );
+    // Thread mill: the Ø14 cutter's distortion as the CLI gives it (+38.8 µm, README).
+    let m = run(&[
+        "thread-mill",
+        "--program",
+        mill_program.to_str().unwrap(),
+        "--thread",
+        "M20x1.5-6H",
+        "--cutter-diameter",
+        "14",
+        "--json",
+        "-",
+    ]);
+    let m: serde_json::Value = serde_json::from_slice(&m.stdout).unwrap();
+    assert_eq!(seen["mill"], if m["verdict"] == "pass" { "IN TOLERANCE" } else { "OUT OF TOLERANCE" });
+    let want = format!("profile distortion {:.1} µm", m["distortion_pitch_diameter_um"].as_f64().unwrap());
+    assert!(seen["mill_distortion"].as_str().unwrap().contains(&want), "{}", seen["mill_distortion"]);
+    assert_eq!(seen["mill_rows"].as_array().unwrap().len(), m["checks"].as_array().unwrap().len());
 
     // Layout: nothing wider than the window, every picture loaded and inside it.
     for (name, l) in seen["layout"].as_object().unwrap() {

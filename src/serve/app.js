@@ -325,3 +325,90 @@ $("limits-form").addEventListener("submit", async (ev) => {
     fail("limits-error", err);
   }
 });
+
+// ---- tap and thread mill: a program (pasted or a file) and their own fields
+function programFrom(prefix) {
+  const program = $(prefix + "-program").value;
+  if (!program.trim()) throw new Error("paste the program, or choose its file");
+  const args = { program, program_name: state[prefix + "Name"] || "<program>" };
+  if ($(prefix + "-dialect").value) args.dialect = $(prefix + "-dialect").value;
+  return args;
+}
+for (const prefix of ["tap", "mill"]) {
+  $(prefix + "-program-file").addEventListener("change", async () => {
+    const f = await readFile($(prefix + "-program-file"));
+    if (f) {
+      $(prefix + "-program").value = f.text;
+      state[prefix + "Name"] = f.name;
+    }
+  });
+}
+
+function tapArgs() {
+  const args = programFrom("tap");
+  args.tools = $("tap-tools").value;
+  return args;
+}
+$("tap-form").addEventListener("submit", async (ev) => {
+  ev.preventDefault();
+  show("tap-error", false);
+  try {
+    const args = tapArgs();
+    const r = JSON.parse(await api("tap", args));
+    $("tap-verdict").textContent = (r.pass ? "IN TOLERANCE" : "OUT OF TOLERANCE") + `: ${r.holes.length} tapping cycles, ${r.drills} drilling cycles`;
+    $("tap-verdict").className = "verdict " + (r.pass ? "ok" : "out");
+    const rows = [];
+    for (const h of r.holes) {
+      for (const c of h.checks) {
+        rows.push([`${h.cycle.code} line ${h.cycle.line}`, [h.tap.designation, "t"], [c.feature.replaceAll("_", " "), "t"],
+          fmt(c.value, 4), fmt(c.min, 4), fmt(c.max, 4), c.ok ? ["ok", "ok"] : ["OUT", "out"], [c.note, "t"]]);
+      }
+    }
+    table($("tap-table"), ["cycle", "tap", "check", "value", "min", "max", "", "note"], rows);
+    show("tap-result", true);
+    await svgInto($("tap-picture"), "tap/svg", args);
+  } catch (err) {
+    fail("tap-error", err);
+  }
+});
+$("tap-download-html").addEventListener("click", async () => {
+  try { download("threadcheck-tap.html", "text/html", await api("tap/html", tapArgs())); } catch (err) { fail("tap-error", err); }
+});
+
+function millArgs() {
+  const args = programFrom("mill");
+  args.thread = $("mill-thread").value.trim();
+  args.cutter_diameter = Number($("mill-diameter").value);
+  const num = (id, key) => { if ($(id).value !== "") args[key] = Number($(id).value); };
+  num("mill-angle", "cutter_angle");
+  num("mill-tip", "cutter_tip_radius");
+  num("mill-rows", "cutter_rows");
+  num("mill-row-pitch", "cutter_row_pitch");
+  num("mill-comp", "comp_radius");
+  num("mill-blank", "blank_diameter");
+  return args;
+}
+$("mill-form").addEventListener("submit", async (ev) => {
+  ev.preventDefault();
+  show("mill-error", false);
+  try {
+    const args = millArgs();
+    const r = JSON.parse(await api("thread-mill", args));
+    const ok = r.verdict === "pass";
+    $("mill-verdict").textContent = ok ? "IN TOLERANCE" : "OUT OF TOLERANCE";
+    $("mill-verdict").className = "verdict " + (ok ? "ok" : "out");
+    $("mill-distortion").textContent =
+      `As milled: pitch diameter ${fmt(r.measured.pitch_diameter, 4)} mm; the tooth profile alone ${fmt(r.tooth_profile.pitch_diameter, 4)} mm: ` +
+      `profile distortion ${fmt(r.distortion_pitch_diameter_um, 1)} µm, flanks ${fmt(r.distortion_flank_angles_deg[0], 3)}° / ${fmt(r.distortion_flank_angles_deg[1], 3)}°`;
+    table($("mill-table"), ["check", "value", "min", "max", "deviation µm", ""],
+      r.checks.map((c) => [c.feature.replaceAll("_", " "), fmt(c.value, 4), fmt(c.min, 4), fmt(c.max, 4),
+        c.ok ? "" : fmt(c.deviation_um, 1), c.ok ? ["ok", "ok"] : ["OUT", "out"]]));
+    show("mill-result", true);
+    await svgInto($("mill-picture"), "thread-mill/svg", args);
+  } catch (err) {
+    fail("mill-error", err);
+  }
+});
+$("mill-download-html").addEventListener("click", async () => {
+  try { download("threadcheck-thread-mill.html", "text/html", await api("thread-mill/html", millArgs())); } catch (err) { fail("mill-error", err); }
+});

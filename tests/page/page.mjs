@@ -1,15 +1,16 @@
 // Drives threadcheck serve's page in Debian's Chromium as a machinist would, through
 // playwright-core (no bundled browser): paste a program, choose the thread and the insert, click
 // Verify, read the verdict and the correction, download the corrected program and the report;
-// upload a file; a bad designation; the compare, fit and limits tabs. Screenshots go to OUT.
+// upload a file; a bad designation; the compare, fit, limits, tap and thread-mill tabs.
+// Screenshots go to OUT.
 // Prints one JSON object of what it saw; tests/page.rs checks it.
 //
-// usage: node page.mjs URL OUT CHROMIUM PROGRAM_FILE UPLOAD_FILE
+// usage: node page.mjs URL OUT CHROMIUM PROGRAM_FILE UPLOAD_FILE TAP_FILE MILL_FILE
 import { chromium } from "playwright-core";
 import { readFileSync } from "node:fs";
 import { join } from "node:path";
 
-const [url, out, executablePath, programFile, uploadFile] = process.argv.slice(2);
+const [url, out, executablePath, programFile, uploadFile, tapFile, millFile] = process.argv.slice(2);
 const seen = { console: [], shots: {}, layout: {} };
 let step = "load"; // which step a console message came in
 
@@ -121,8 +122,33 @@ try {
   seen.limits = await page.$$eval("#limits-table tbody tr", (rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
   await shot("limits");
 
+  step = "tap";
+  // 8. Tap: a program with its drilling and tapping cycles, uploaded; the page's tool table.
+  await page.click("#tab-tap");
+  await page.setInputFiles("#tap-program-file", tapFile);
+  await page.waitForFunction(() => document.getElementById("tap-program").value.length > 0);
+  await page.click("#tap-button");
+  await page.waitForSelector("#tap-result:not([hidden])");
+  await pictureLoaded("tap-picture");
+  seen.tap = await page.textContent("#tap-verdict");
+  seen.tap_rows = await page.$$eval("#tap-table tbody tr", (rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
+  await shot("tap");
+
+  step = "mill";
+  // 9. Thread mill: a program pasted, an Ø14 cutter.
+  await page.click("#tab-mill");
+  await page.fill("#mill-program", readFileSync(millFile, "utf8"));
+  await page.fill("#mill-diameter", "14");
+  await page.click("#mill-button");
+  await page.waitForSelector("#mill-result:not([hidden])");
+  await pictureLoaded("mill-picture");
+  seen.mill = await page.textContent("#mill-verdict");
+  seen.mill_distortion = await page.textContent("#mill-distortion");
+  seen.mill_rows = await page.$$eval("#mill-table tbody tr", (rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
+  await shot("mill");
+
   step = "narrow";
-  // 8. A narrow window (a tablet at the machine): the verify page still fits.
+  // 10. A narrow window (a tablet at the machine): the verify page still fits.
   await page.setViewportSize({ width: 800, height: 900 });
   await page.click("#tab-verify");
   await shot("verify-narrow");
