@@ -180,6 +180,18 @@ fn linuxcnc_p_turns_make_one_block_a_helix_of_several_turns() {
     assert!((v["measured"]["pitch_diameter"].as_f64().unwrap() - one_by_one).abs() < 1e-6);
 }
 
+/// Sinumerik's TURN=9 adds nine full circles to the arc: one block of ten turns climbing 15 mm,
+/// the same thread as ten one-turn blocks.
+#[test]
+fn sinumerik_turn_makes_one_block_a_helix_of_several_turns() {
+    let text = "G17 G90 G71 G94\nT12 D1\nM6\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-16\nG1 X7 Y0 F100\nG3 X7 Y0 Z-1 I-7 J0 TURN=9 F150\nG0 Z50\nM30\n";
+    let v = mill_text("h.mpf", text, "M20x1.5-6H", "6");
+    assert!((v["helices"][0]["lead"].as_f64().unwrap() - 1.5).abs() < 1e-12);
+    assert!((v["helices"][0]["sweep_deg"].as_f64().unwrap() - 3600.0).abs() < 1e-9);
+    let one_by_one = mill("m20-dc6.nc", 6.0)["measured"]["pitch_diameter"].as_f64().unwrap();
+    assert!((v["measured"]["pitch_diameter"].as_f64().unwrap() - one_by_one).abs() < 1e-6);
+}
+
 /// An external thread: the cutter outside the bolt reaches in to R − tip, so the minor diameter
 /// is 2(R − tip): a Ø10 cutter on R = 14.08 cuts d3 = 18.16 (M20x1.5's basic d3).
 #[test]

@@ -453,7 +453,8 @@ impl Motion {
             return Ok(false);
         }
         self.break_chain();
-        // LinuxCNC's P: the number of turns of the arc (a helix of several turns in one block).
+        // LinuxCNC's P: the number of turns of the arc (a helix of several turns in one block);
+        // Sinumerik's TURN: the full circles added to it.
         let extra_turns = match (self.dialect, b.get("P")) {
             (Dialect::LinuxCnc, Some(p)) => {
                 if !(p.v >= 1.0 && p.v.fract() == 0.0 && p.v <= 10_000.0) {
@@ -465,6 +466,18 @@ impl Motion {
                 }
                 p.v as u32 - 1
             }
+            // Sinumerik's TURN=n: n full circles more than the programmed arc (a helix).
+            (Dialect::Sinumerik, _) => match b.get("TURN") {
+                Some(t) if !(t.v >= 0.0 && t.v.fract() == 0.0 && t.v <= 10_000.0) => {
+                    return Err(b.werr(
+                        &self.file,
+                        t,
+                        format!("TURN={}: the added full circles are a whole number from 0", t.v),
+                    ))
+                }
+                Some(t) => t.v as u32,
+                None => 0,
+            },
             _ => 0,
         };
         // An arc of the turned contour is kept as its chord: enough to see a shoulder.
