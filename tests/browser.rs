@@ -620,13 +620,17 @@ fn thread_mill_svg_is_laid_out() {
 }
 
 /// Issue 31: the tapping picture is laid out (nothing written leaves it or crosses another
-/// label) for one hole drilled too small and for two holes of a Sinumerik program.
+/// label) for one hole drilled too small and for two holes of a Sinumerik program, named by a
+/// long absolute path (regression: the path was written whole in the title and left the picture).
 #[test]
 fn tap_svg_is_laid_out() {
     for (program, tools) in [("m10-g84.nc", "tools-80.toml"), ("m10-cycle84.mpf", "tools-85.toml")] {
         let dir = tempdir("tap-svg");
         let svg_path = dir.join("t.svg");
-        let p = data(&format!("programs/tapping/{program}"));
+        let deep = dir.join("a-folder-with-a-long-name-for-the-shop-programs/and-another-one-below-it");
+        std::fs::create_dir_all(&deep).unwrap();
+        let p = deep.join(program);
+        std::fs::copy(data(&format!("programs/tapping/{program}")), &p).unwrap();
         let t = data(&format!("programs/tapping/{tools}"));
         let o = run(&[
             "tap",

@@ -38,7 +38,7 @@
 use crate::analysis::check::Verdict;
 use crate::gcode::expr::{parse_all, BinOp, Env, Expr, Syntax, Value, VarKey, VarRef};
 use crate::gcode::{Dialect, Move, ReadOptions};
-use crate::geometry::index::Segments;
+use crate::geometry::index::{PathSegments, Segments};
 use crate::geometry::measure::golden_min;
 use crate::ground::bounds::{MAX_MILL_LEVELS, MAX_MILL_SEGMENTS, MAX_TOOL_DIAMETER};
 use crate::ground::plane::Point;
@@ -48,6 +48,10 @@ use serde::{Deserialize, Serialize};
 
 /// Arcs become chords no farther than this from the arc, mm (0.01 µm).
 const ARC_TOLERANCE: f64 = 1e-5;
+/// Moves either side of the last answer a target sample is first tried against (the leftover
+/// scan): consecutive samples are reached by neighbouring moves.
+const PATH_WINDOW: usize = 4;
+
 /// Spacing of the target's sample polyline, mm: it only finds the nearest point's basin.
 const SAMPLE_SPACING: f64 = 0.05;
 /// A limit met to within this passes, mm (0.1 µm, the resolution the gouge is computed to).
@@ -830,15 +834,33 @@ fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64, detail: bool) -> Me
         _ => (0.0, None),
     };
     // The leftover: target samples against the path, the largest refined on the exact curve.
-    let path = Segments::separate(
-        lm.segs.iter().filter(|(a, b, _)| a.distance(*b) > 1e-12).map(|&(a, b, _)| (a, b)),
+    let path = PathSegments::new(
+        lm.segs.iter().filter(|(a, b, _)| a.distance(*b) > 1e-12).map(|&(a, b, _)| (a, b)).collect(),
     );
     let lone: Vec<Point> = lm.segs.iter().filter(|(a, b, _)| a.distance(*b) <= 1e-12).map(|s| s.0).collect();
     let dist_to_path = |p: Point| {
-        let d = path.distance(p);
+        let d = path.nearest(p).map_or(f64::INFINITY, |n| n.0);
         lone.iter().map(|q| q.distance(p)).fold(d, f64::min)
     };
-    let deviation: Vec<f64> = curve.p.iter().map(|&p| dist_to_path(p) - r).collect();
+    // Each sample's distance to the path less r. A sample some move reaches needs no exact
+    // distance (it is no leftover): the moves around the last sample's nearest are tried first,
+    // and a reached sample keeps that upper bound (≤ 0); with `detail` every one is exact.
+    let mut hint = 0usize;
+    let deviation: Vec<f64> = curve
+        .p
+        .iter()
+        .map(|&p| {
+            if !detail {
+                if let Some((d, i)) = path.within_near(p, r, hint, PATH_WINDOW) {
+                    hint = i;
+                    return d - r;
+                }
+            }
+            let (d, i) = path.nearest(p).unwrap_or((f64::INFINITY, hint));
+            hint = i;
+            lone.iter().map(|q| q.distance(p)).fold(d, f64::min) - r
+        })
+        .collect();
     let reach = |d: f64| d > 0.0 && d <= r;
     let mut left: Option<(f64, f64)> = None;
     let n = curve.t.len() - 1;

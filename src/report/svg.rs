@@ -742,7 +742,7 @@ pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String 
                 shorten(
                     &format!(
                         "{} — {}: {} threading operation{}",
-                        file_name(&pv.program),
+                        label_name(&pv.program),
                         if pass { "IN TOLERANCE" } else { "OUT OF TOLERANCE" },
                         pv.operations.len(),
                         if pv.operations.len() == 1 { "" } else { "s" }
@@ -792,7 +792,7 @@ pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String 
                 pv.operations.len(),
                 o.operation.cycle,
                 o.operation.source_line,
-                file_name(&pv.program),
+                label_name(&pv.program),
                 o.operation.tool.map_or(String::new(), |t| format!(", tool T{t}"))
             ),
             120,
@@ -831,10 +831,8 @@ pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String 
 }
 
 /// The file name of a program label, with its dialect (`dir/p.nc (fanuc)` → `p.nc (fanuc)`).
-fn file_name(label: &crate::analysis::verify::ProgramLabel) -> String {
-    let path = std::path::Path::new(&label.file);
-    let name = path.file_name().map_or(label.file.clone(), |n| n.to_string_lossy().into_owned());
-    format!("{name} ({})", label.dialect.name())
+fn label_name(label: &crate::analysis::verify::ProgramLabel) -> String {
+    format!("{} ({})", file_name(&label.file), label.dialect.name())
 }
 
 /// `s` cut to `n` characters with an ellipsis.
@@ -906,7 +904,7 @@ fn verification_group(v: &Verification) -> (Group, f64) {
         shorten(&format!("{} — {part}, class {}", v.designation.text, v.limits.class), 80),
     ));
     let source = match &v.program {
-        Some(p) => format!("program {}", file_name(p)),
+        Some(p) => format!("program {}", label_name(p)),
         None => format!("infeed: {}", v.infeed),
     };
     let inch = |mm: f64| match v.units {
@@ -1021,9 +1019,7 @@ pub fn mill_svg(r: &crate::analysis::mill::MillReport) -> String {
         y0 = y0.min(p.r);
         y1 = y1.max(p.r);
     }
-    let name = std::path::Path::new(&r.program)
-        .file_name()
-        .map_or(r.program.clone(), |n| n.to_string_lossy().into_owned());
+    let name = file_name(&r.program);
     let pad = 0.5 * r.tool_diameter + 0.08 * (x1 - x0).max(y1 - y0);
     let f = Frame::new(40.0, 90.0, w - 80.0, h - 150.0, (x0 - pad, x1 + pad), (y0 - pad, y1 + pad));
     let mut g = Group::new().set("id", "level");
@@ -1281,6 +1277,14 @@ pub fn threadmill_svg(r: &crate::analysis::threadmill::ThreadMillReport) -> Stri
     doc.to_string()
 }
 
+/// A program's file name without its folders: a picture's title has no room for a long path
+/// (the HTML page and the text keep it whole).
+fn file_name(program: &str) -> String {
+    std::path::Path::new(program)
+        .file_name()
+        .map_or(program.to_string(), |n| n.to_string_lossy().into_owned())
+}
+
 /// Most tapped holes drawn side by side; the rest are counted under the picture.
 const TAP_PANELS: usize = 4;
 
@@ -1315,7 +1319,10 @@ pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
         format!("OUT OF TOLERANCE: {bad} of {} tapping cycles", r.holes.len())
     };
     doc = doc
-        .add(text(20.0, 28.0, 16.0, format!("{}: tapped holes", r.program)).set("font-weight", "bold"))
+        .add(
+            text(20.0, 28.0, 16.0, format!("{}: tapped holes", file_name(&r.program)))
+                .set("font-weight", "bold"),
+        )
         .add(
             text(20.0, 50.0, 14.0, verdict)
                 .set("font-weight", "bold")
