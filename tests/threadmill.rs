@@ -168,28 +168,21 @@ fn the_tool_table_gives_the_cutter_and_its_offset() {
     assert_eq!(v["measured"]["pitch_diameter"], mill("m20-dc6.nc", 6.0)["measured"]["pitch_diameter"]);
 }
 
-/// LinuxCNC's P on an arc is its number of turns: one G3 of P10 climbing 15 mm is ten turns of
-/// 1.5 mm, the same thread as ten one-turn blocks.
+/// LinuxCNC's P on an arc is its number of turns, Sinumerik's TURN= the full circles added to
+/// it: one G3 of P10 (or TURN=9) climbing 15 mm is ten turns of 1.5 mm, the same thread as ten
+/// one-turn blocks.
 #[test]
-fn linuxcnc_p_turns_make_one_block_a_helix_of_several_turns() {
-    let text = "G17 G21 G90 G40\nT12 M6\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-16\nG1 X7 Y0 F100\nG3 X7 Y0 Z-1 I-7 J0 P10 F150\nG0 Z50\nM2\n";
-    let v = mill_text("h.ngc", text, "M20x1.5-6H", "6");
-    assert!((v["helices"][0]["lead"].as_f64().unwrap() - 1.5).abs() < 1e-12);
-    assert!((v["helices"][0]["sweep_deg"].as_f64().unwrap() - 3600.0).abs() < 1e-9);
+fn one_block_of_several_turns_is_a_helix_of_several_turns() {
     let one_by_one = mill("m20-dc6.nc", 6.0)["measured"]["pitch_diameter"].as_f64().unwrap();
-    assert!((v["measured"]["pitch_diameter"].as_f64().unwrap() - one_by_one).abs() < 1e-6);
-}
-
-/// Sinumerik's TURN=9 adds nine full circles to the arc: one block of ten turns climbing 15 mm,
-/// the same thread as ten one-turn blocks.
-#[test]
-fn sinumerik_turn_makes_one_block_a_helix_of_several_turns() {
-    let text = "G17 G90 G71 G94\nT12 D1\nM6\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-16\nG1 X7 Y0 F100\nG3 X7 Y0 Z-1 I-7 J0 TURN=9 F150\nG0 Z50\nM30\n";
-    let v = mill_text("h.mpf", text, "M20x1.5-6H", "6");
-    assert!((v["helices"][0]["lead"].as_f64().unwrap() - 1.5).abs() < 1e-12);
-    assert!((v["helices"][0]["sweep_deg"].as_f64().unwrap() - 3600.0).abs() < 1e-9);
-    let one_by_one = mill("m20-dc6.nc", 6.0)["measured"]["pitch_diameter"].as_f64().unwrap();
-    assert!((v["measured"]["pitch_diameter"].as_f64().unwrap() - one_by_one).abs() < 1e-6);
+    for (name, head, turns) in
+        [("h.ngc", "G17 G21 G90 G40\nT12 M6", "P10"), ("h.mpf", "G17 G90 G71 G94\nT12 D1\nM6", "TURN=9")]
+    {
+        let text = format!("{head}\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-16\nG1 X7 Y0 F100\nG3 X7 Y0 Z-1 I-7 J0 {turns} F150\nG0 Z50\nM30\n");
+        let v = mill_text(name, &text, "M20x1.5-6H", "6");
+        assert!((v["helices"][0]["lead"].as_f64().unwrap() - 1.5).abs() < 1e-12, "{name}");
+        assert!((v["helices"][0]["sweep_deg"].as_f64().unwrap() - 3600.0).abs() < 1e-9, "{name}");
+        assert!((v["measured"]["pitch_diameter"].as_f64().unwrap() - one_by_one).abs() < 1e-6, "{name}");
+    }
 }
 
 /// An external thread: the cutter outside the bolt reaches in to R − tip, so the minor diameter

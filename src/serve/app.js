@@ -335,6 +335,8 @@ function programFrom(prefix) {
   return args;
 }
 for (const prefix of ["tap", "mill"]) {
+  // One list of dialects: the Verify tab's (our own markup).
+  $(prefix + "-dialect").innerHTML = $("dialect").innerHTML;
   $(prefix + "-program-file").addEventListener("change", async () => {
     const f = await readFile($(prefix + "-program-file"));
     if (f) {
