@@ -81,9 +81,9 @@ pub use standards::{Feature, GrooveForm};
 // Toolpaths: generated plans and programs read as a control would.
 pub use gcode::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
 pub use gcode::{
-    read_program, read_program_with, rewrite_words, Budget, DepthWord, Dialect, DialectFrom, GCodeSystem,
-    HoleCycle, HoleKind, LinuxCncRelease, Operation, Program, ProgramUnits, ReadOptions, Spindle, SpindleDir,
-    WordEdit, WordForm, WordMeans, XWords,
+    read_program, read_program_streaming, read_program_with, rewrite_words, Budget, DepthWord, Dialect,
+    DialectFrom, GCodeSystem, HoleCycle, HoleKind, LinuxCncRelease, Operation, Program, ProgramUnits,
+    ReadOptions, Spindle, SpindleDir, WordEdit, WordForm, WordMeans, XWords,
 };
 
 // Geometry: the insert, the sweep, the measurement.

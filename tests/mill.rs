@@ -237,3 +237,42 @@ fn boss_cut_by_arcs_leaves_the_offset() {
         assert!(at(z)["gouge"].as_f64().unwrap() <= 1e-5, "{}", at(z));
     }
 }
+
+/// The toolpath is measured while it is read, each level once the cutter has moved on through
+/// two other levels; a level the cutter comes back to is measured again with all its moves.
+/// The Ø40 boss cut at Z−1, Z−2 and Z−3 by 3600 chords of R = 23 (each gouging by the sag
+/// 23(1 − cos 0.05°) mm; more moves than the reader sends at once), then back at Z−1 one
+/// straight move from (23, 0) to (0, 23): its middle lies 23/√2 from the centre, 3 + 20 − 23/√2
+/// = 6.7365 mm into the boss. That gouge, at Z−1, is the worst.
+#[test]
+fn a_level_the_cutter_comes_back_to_is_measured_with_all_its_moves() {
+    let chords = "#2=1\nWHILE [#2 LE 3600] DO1\nG1 X[23*COS[#2/10]] Y[23*SIN[#2/10]]\n#2=#2+1\nEND1\n";
+    let text = format!(
+        "G21 G90 G17\nG0 X23 Y0 Z2\nG1 Z-1 F100\n{chords}G1 Z-2\n{chords}G1 Z-3\n{chords}G1 Z-1\nG1 X0 Y23\nG0 Z2\nM30\n"
+    );
+    let dir = tempdir("mill-back");
+    std::fs::write(dir.join("back.nc"), text).unwrap();
+    let target = data("targets/boss.toml");
+    let args = [
+        "mill",
+        "--program",
+        "back.nc",
+        "--tool-diameter",
+        "6",
+        "--target",
+        target.to_str().unwrap(),
+        "--json",
+    ];
+    let o = run_in(&dir, &args);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap_or_else(|_| panic!("{}", stderr(&o)));
+    let want = 3.0 + 20.0 - 23.0 / 2f64.sqrt();
+    let g = v["gouge_max"].as_f64().unwrap();
+    assert!((g - want).abs() < 1e-7, "gouge {g} against {want}");
+    assert_eq!(v["gouge_at"]["z"], -1.0);
+    let levels = v["levels"].as_array().unwrap();
+    assert_eq!(levels.len(), 3);
+    let sag = 23.0 * (1.0 - 0.05f64.to_radians().cos());
+    for l in &levels[1..] {
+        assert!((l["gouge"].as_f64().unwrap() - sag).abs() < 1e-7, "{l}");
+    }
+}

@@ -43,7 +43,6 @@ use crate::geometry::measure::golden_min;
 use crate::ground::bounds::{MAX_MILL_LEVELS, MAX_MILL_SEGMENTS, MAX_TOOL_DIAMETER};
 use crate::ground::plane::Point;
 use crate::Error;
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// Arcs become chords no farther than this from the arc, mm (0.01 µm).
@@ -579,6 +578,7 @@ pub struct MillSpec {
 }
 
 /// One level's moves: (from, to, line), centres in the XY plane.
+#[derive(Clone)]
 struct LevelMoves {
     z: f64,
     segs: Vec<(Point, Point, usize)>,
@@ -589,57 +589,149 @@ fn level_key(m: &Move) -> f64 {
     (m.from[2].min(m.to[2]) * 1e6).round() / 1e6
 }
 
-/// Groups the feed moves by level (the deeper end's Z, to 1 nm), arcs as chords.
-fn levels(moves: &[Move], name: &str) -> Result<Vec<LevelMoves>, Error> {
-    let mut out: Vec<LevelMoves> = Vec::new();
-    let mut count = 0usize;
-    // Level by key, found in constant time (a linear search made many levels quadratic).
-    let mut index: std::collections::HashMap<u64, usize> = std::collections::HashMap::new();
-    for m in moves.iter().filter(|m| !m.rapid) {
-        let key = level_key(m);
-        let (a, b) = (Point::new(m.from[0], m.from[1]), Point::new(m.to[0], m.to[1]));
-        let pts: Vec<Point> = match m.arc {
-            Some((c, dir)) => {
-                let c = Point::new(c[0], c[1]);
-                let r = c.distance(a);
-                let s = (a.r - c.r).atan2(a.z - c.z);
-                let mut e = (b.r - c.r).atan2(b.z - c.z);
-                if dir > 0.0 {
-                    while e <= s {
-                        e += std::f64::consts::TAU;
-                    }
-                } else {
-                    while e >= s {
-                        e -= std::f64::consts::TAU;
-                    }
+/// A feed move's points in the XY plane: its ends, an arc as chords within [`ARC_TOLERANCE`].
+fn chords(m: &Move) -> Vec<Point> {
+    let (a, b) = (Point::new(m.from[0], m.from[1]), Point::new(m.to[0], m.to[1]));
+    match m.arc {
+        Some((c, dir)) => {
+            let c = Point::new(c[0], c[1]);
+            let r = c.distance(a);
+            let s = (a.r - c.r).atan2(a.z - c.z);
+            let mut e = (b.r - c.r).atan2(b.z - c.z);
+            if dir > 0.0 {
+                while e <= s {
+                    e += std::f64::consts::TAU;
                 }
-                let mut pts = crate::ground::plane::Arc { center: c, radius: r, start: s, end: e }
-                    .tessellate(ARC_TOLERANCE);
-                if let Some(last) = pts.last_mut() {
-                    *last = b;
+            } else {
+                while e >= s {
+                    e -= std::f64::consts::TAU;
                 }
-                pts
             }
-            None => vec![a, b],
-        };
-        let n = *index.entry(key.to_bits()).or_insert_with(|| {
-            out.push(LevelMoves { z: key, segs: Vec::new() });
-            out.len() - 1
-        });
-        count += pts.len() - 1;
-        if count > MAX_MILL_SEGMENTS {
+            let mut pts = crate::ground::plane::Arc { center: c, radius: r, start: s, end: e }
+                .tessellate(ARC_TOLERANCE);
+            if let Some(last) = pts.last_mut() {
+                *last = b;
+            }
+            pts
+        }
+        None => vec![a, b],
+    }
+}
+
+/// One level as the moves stream in: its moves so far, shared with a measurement under way,
+/// and how many times moves joined it after it was sent to be measured.
+struct Level {
+    moves: std::sync::Arc<LevelMoves>,
+    /// Bumped when a move joins the level: a measurement of an older generation is stale.
+    generation: u32,
+    /// The generation last sent to be measured.
+    sent: Option<u32>,
+}
+
+/// Groups the feed moves by level (the deeper end's Z, to 1 nm), arcs as chords, as they
+/// stream in. A level is ready to measure once the toolpath has moved on through two other
+/// levels since its last move (a finished level's moves rarely come back; when they do, the
+/// level is measured again with all of them).
+struct Assembler {
+    levels: Vec<Level>,
+    /// Level by key, found in constant time (a linear search made many levels quadratic).
+    index: std::collections::HashMap<u64, usize>,
+    /// Levels not yet sent, in order of their last move.
+    open: std::collections::VecDeque<usize>,
+    current: Option<usize>,
+    segments: usize,
+    /// The first bound a move broke (too many pieces): the rest is only counted, not kept.
+    overflow: Option<Error>,
+}
+
+impl Assembler {
+    fn new() -> Assembler {
+        Assembler {
+            levels: Vec::new(),
+            index: std::collections::HashMap::new(),
+            open: std::collections::VecDeque::new(),
+            current: None,
+            segments: 0,
+            overflow: None,
+        }
+    }
+
+    /// Whether the toolpath broke a bound: nothing more is kept or measured.
+    fn broken(&self) -> bool {
+        self.overflow.is_some() || self.index.len() > MAX_MILL_LEVELS
+    }
+
+    /// The bound the toolpath broke, the number of levels first (as when it was read whole).
+    fn check(self, name: &str) -> Result<Assembler, Error> {
+        if self.index.len() > MAX_MILL_LEVELS {
             return Err(Error::Input(format!(
+                "{name}: {} Z levels, more than the {MAX_MILL_LEVELS} threadcheck checks",
+                self.index.len()
+            )));
+        }
+        match self.overflow {
+            Some(e) => Err(e),
+            None => Ok(self),
+        }
+    }
+
+    /// Adds a move; the levels it makes ready go to `ready`. Past a bound, moves are only
+    /// counted by level (the error names how many there are).
+    fn push(&mut self, m: &Move, name: &str, ready: &mut Vec<usize>) {
+        if m.rapid {
+            return;
+        }
+        let key = level_key(m);
+        let fresh = self.levels.len();
+        let n = *self.index.entry(key.to_bits()).or_insert(fresh);
+        if self.broken() {
+            return;
+        }
+        if n == fresh {
+            self.levels.push(Level {
+                moves: std::sync::Arc::new(LevelMoves { z: key, segs: Vec::new() }),
+                generation: 0,
+                sent: None,
+            });
+        }
+        let pts = chords(m);
+        self.segments += pts.len() - 1;
+        if self.segments > MAX_MILL_SEGMENTS {
+            self.overflow = Some(Error::Input(format!(
                 "{name}:{}: more than {MAX_MILL_SEGMENTS} straight pieces to check (arcs count as chords within 0.01 µm)",
                 m.line
             )));
+            // What was kept is no longer needed.
+            self.levels.clear();
+            self.open.clear();
+            return;
         }
-        let level = &mut out[n];
+        let level = &mut self.levels[n];
+        level.generation += 1;
+        let lm = std::sync::Arc::make_mut(&mut level.moves);
         for w in pts.windows(2) {
-            level.segs.push((w[0], w[1], m.line));
+            lm.segs.push((w[0], w[1], m.line));
+        }
+        if self.current != Some(n) {
+            self.current = Some(n);
+            if let Some(k) = self.open.iter().position(|&o| o == n) {
+                self.open.remove(k);
+            }
+            self.open.push_back(n);
+            while self.open.len() > 2 {
+                ready.extend(self.open.pop_front());
+            }
         }
     }
-    out.sort_by(|a, b| b.z.total_cmp(&a.z));
-    Ok(out)
+
+    /// Every level not yet measured with all its moves.
+    fn rest(&mut self) -> Vec<usize> {
+        self.open.clear();
+        if self.broken() {
+            return Vec::new();
+        }
+        (0..self.levels.len()).filter(|&n| self.levels[n].sent != Some(self.levels[n].generation)).collect()
+    }
 }
 
 /// A move's inside is refined only when its bound beats the worst gouge found by more than
@@ -938,68 +1030,18 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
         n_order: spec.n_order,
         ..ReadOptions::default()
     };
-    let prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
-    let mut notes = prog.notes.clone();
-    if spec.n_order {
-        notes.push("the blocks run in the order of their N numbers, not as printed".into());
-    }
     let top = spec.target.top();
-    // The levels counted before any arc is cut into chords.
-    let keys: std::collections::HashSet<u64> =
-        prog.moves.iter().filter(|m| !m.rapid).map(|m| level_key(m).to_bits()).collect();
-    if keys.len() > MAX_MILL_LEVELS {
-        return Err(Error::Input(format!(
-            "{name}: {} Z levels, more than the {MAX_MILL_LEVELS} threadcheck checks",
-            keys.len()
-        )));
-    }
-    let all = levels(&prog.moves, name)?;
-    if all.is_empty() {
-        return Err(Error::Input(format!("{name}: no feed move (G1, G2, G3) to check")));
-    }
-    let (cut, air): (Vec<LevelMoves>, Vec<LevelMoves>) = all.into_iter().partition(|l| l.z < top - 1e-9);
-    if !air.is_empty() {
-        notes.push(crate::ground::note::Note::from(format!(
-            "{} level{} at or above the part's top Z{} cut air and {} left out (Z{} … Z{})",
-            air.len(),
-            if air.len() == 1 { "" } else { "s" },
-            crate::ground::fmt::fmt_num(top),
-            if air.len() == 1 { "is" } else { "are" },
-            crate::ground::fmt::fmt_num(air[air.len() - 1].z),
-            crate::ground::fmt::fmt_num(air[0].z),
-        )));
-    }
-    let (cut, below): (Vec<LevelMoves>, Vec<LevelMoves>) =
-        cut.into_iter().partition(|l| spec.target.z.is_none_or(|z| l.z >= z[0] - 1e-9));
-    if !below.is_empty() {
-        notes.push(crate::ground::note::Note::from(format!(
-            "{} level{} below the part's bottom Z{} left out",
-            below.len(),
-            if below.len() == 1 { "" } else { "s" },
-            crate::ground::fmt::fmt_num(spec.target.z.map_or(0.0, |z| z[0]))
-        )));
-    }
-    if let (Some([bottom, _]), Some(deepest)) = (spec.target.z, cut.last()) {
-        if deepest.z > bottom + 1e-9 {
-            notes.push(crate::ground::note::Note::from(format!(
-                "the target reaches down to Z{} but the deepest level cut is Z{}: {} mm of it is never machined",
-                crate::ground::fmt::fmt_num(bottom),
-                crate::ground::fmt::fmt_num(deepest.z),
-                crate::ground::fmt::fmt_num(deepest.z - bottom)
-            )));
-        }
-    }
-    notes.push(crate::ground::note::Note::from(
-        "each level is checked against the target at its own Z (the section its tool bottom cuts); the tool's flank also passes the sections above it",
-    ));
+    let bottom = spec.target.z.map(|z| z[0]);
+    // Levels above the part cut air, levels below its bottom are left out: neither is measured.
+    let cuts = |z: f64| z < top - 1e-9 && bottom.is_none_or(|b| z >= b - 1e-9);
     // A target that does not depend on z is sampled once.
-    let shared = if spec.target.uses_z {
-        None
-    } else {
-        Some(
-            Curve::new(&spec.target, 0.0)?
-                .ok_or_else(|| Error::Input("the target curve has no extent".into()))?,
-        )
+    let (shared, shared_err) = match spec.target.uses_z {
+        true => (None, None),
+        false => match Curve::new(&spec.target, 0.0) {
+            Ok(Some(c)) => (Some(c), None),
+            Ok(None) => (None, Some(Error::Input("the target curve has no extent".into()))),
+            Err(e) => (None, Some(e)),
+        },
     };
     let measure = |lm: &LevelMoves, detail: bool| -> Result<Option<Measured>, Error> {
         match &shared {
@@ -1007,14 +1049,110 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
             None => Ok(Curve::new(&spec.target, lm.z)?.map(|c| measure_level(&c, lm, r, detail))),
         }
     };
-    // Each level's report only: a level's samples and profile are dropped as soon as it is
-    // measured, so memory does not grow with the number of levels; the one level the picture
-    // shows is measured again below.
-    let reports: Vec<Result<Option<LevelReport>, Error>> =
-        cut.par_iter().map(|lm| Ok(measure(lm, false)?.map(|m| m.report))).collect();
+    // The program is read on one thread while the levels it has finished are measured on the
+    // others: each level's report only (its samples and profile are dropped as soon as it is
+    // measured; the one level the picture shows is measured again below), the moves themselves
+    // kept only as each level's chords.
+    type Measurement = (usize, u32, Result<Option<LevelReport>, Error>);
+    let results: std::sync::Mutex<Vec<Measurement>> = std::sync::Mutex::new(Vec::new());
+    let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<Move>>(8);
+    let (read, assembled) = std::thread::scope(|threads| {
+        let reader =
+            threads.spawn(move || crate::gcode::read_program_streaming(text, name, spec.dialect, opts, tx));
+        let assembled = rayon::scope(|jobs| -> Result<Assembler, Error> {
+            let mut asm = Assembler::new();
+            let send = |asm: &mut Assembler, ready: Vec<usize>| {
+                if asm.broken() {
+                    return;
+                }
+                for n in ready {
+                    let level = &mut asm.levels[n];
+                    if !cuts(level.moves.z) || shared_err.is_some() {
+                        continue;
+                    }
+                    level.sent = Some(level.generation);
+                    let (lm, generation) = (level.moves.clone(), level.generation);
+                    let (measure, results) = (&measure, &results);
+                    jobs.spawn(move |_| {
+                        let report = measure(&lm, false).map(|m| m.map(|m| m.report));
+                        results.lock().unwrap_or_else(|p| p.into_inner()).push((n, generation, report));
+                    });
+                }
+            };
+            let mut ready = Vec::new();
+            for chunk in rx {
+                for m in &chunk {
+                    asm.push(m, name, &mut ready);
+                }
+                send(&mut asm, std::mem::take(&mut ready));
+            }
+            let rest = asm.rest();
+            send(&mut asm, rest);
+            asm.check(name)
+        });
+        (reader.join().unwrap_or_else(|p| std::panic::resume_unwind(p)), assembled)
+    });
+    // The program's own errors first, then the toolpath's, as when it was read whole.
+    let prog = read?;
+    let asm = assembled?;
+    let mut notes = prog.notes.clone();
+    if spec.n_order {
+        notes.push("the blocks run in the order of their N numbers, not as printed".into());
+    }
+    let mut results = results.into_inner().unwrap_or_else(|p| p.into_inner());
+    let mut all: Vec<(usize, std::sync::Arc<LevelMoves>)> =
+        asm.levels.iter().enumerate().map(|(n, l)| (n, l.moves.clone())).collect();
+    all.sort_by(|a, b| b.1.z.total_cmp(&a.1.z));
+    if all.is_empty() {
+        return Err(Error::Input(format!("{name}: no feed move (G1, G2, G3) to check")));
+    }
+    let air: Vec<f64> = all.iter().map(|l| l.1.z).filter(|&z| z >= top - 1e-9).collect();
+    if !air.is_empty() {
+        notes.push(crate::ground::note::Note::from(format!(
+            "{} level{} at or above the part's top Z{} cut air and {} left out (Z{} … Z{})",
+            air.len(),
+            if air.len() == 1 { "" } else { "s" },
+            crate::ground::fmt::fmt_num(top),
+            if air.len() == 1 { "is" } else { "are" },
+            crate::ground::fmt::fmt_num(air[air.len() - 1]),
+            crate::ground::fmt::fmt_num(air[0]),
+        )));
+    }
+    let below = all.iter().filter(|l| l.1.z < top - 1e-9 && !cuts(l.1.z)).count();
+    if below > 0 {
+        notes.push(crate::ground::note::Note::from(format!(
+            "{below} level{} below the part's bottom Z{} left out",
+            if below == 1 { "" } else { "s" },
+            crate::ground::fmt::fmt_num(bottom.unwrap_or(0.0))
+        )));
+    }
+    let cut: Vec<(usize, std::sync::Arc<LevelMoves>)> = all.into_iter().filter(|l| cuts(l.1.z)).collect();
+    if let (Some(bottom), Some(deepest)) = (bottom, cut.last()) {
+        if deepest.1.z > bottom + 1e-9 {
+            notes.push(crate::ground::note::Note::from(format!(
+                "the target reaches down to Z{} but the deepest level cut is Z{}: {} mm of it is never machined",
+                crate::ground::fmt::fmt_num(bottom),
+                crate::ground::fmt::fmt_num(deepest.1.z),
+                crate::ground::fmt::fmt_num(deepest.1.z - bottom)
+            )));
+        }
+    }
+    notes.push(crate::ground::note::Note::from(
+        "each level is checked against the target at its own Z (the section its tool bottom cuts); the tool's flank also passes the sections above it",
+    ));
+    if let Some(e) = shared_err {
+        return Err(e);
+    }
+    // Each level's measurement of its last generation, in the order of the levels.
+    results.retain(|(n, generation, _)| asm.levels[*n].generation == *generation);
+    let mut by_level: std::collections::HashMap<usize, Result<Option<LevelReport>, Error>> =
+        results.into_iter().map(|(n, _, r)| (n, r)).collect();
     let mut levels_out = Vec::new();
     let mut kept: Vec<(LevelReport, &LevelMoves)> = Vec::new();
-    for (m, lm) in reports.into_iter().zip(&cut) {
+    for (n, lm) in &cut {
+        let m = by_level
+            .remove(n)
+            .unwrap_or_else(|| Err(Error::Input(format!("level Z{} was not measured", lm.z))));
         match m? {
             Some(report) => {
                 levels_out.push(report.clone());

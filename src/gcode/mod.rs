@@ -637,6 +637,40 @@ pub fn read_program_with(
     dialect: Dialect,
     opts: ReadOptions,
 ) -> Result<Program, Error> {
+    read(text, file, dialect, opts, None)
+}
+
+/// [`read_program_with`] for a milling toolpath read while it is checked: the moves
+/// ([`ReadOptions::moves`]) go to `out` in chunks as the program makes them, and the
+/// [`Program`] returned holds none. A receiver that hangs up stops the recording; the program is
+/// still read to its end (its errors are still found).
+///
+/// ```
+/// use threadcheck::{read_program_streaming, Dialect, ReadOptions};
+/// let opts = ReadOptions { moves: true, allow_no_threading: true, ..ReadOptions::default() };
+/// let (tx, rx) = std::sync::mpsc::sync_channel(4);
+/// let p = read_program_streaming("G0 X20 Z2\nG1 Z-10 F0.2\nG0 X25\n", "turn.nc", Dialect::Fanuc, opts, tx)?;
+/// assert!(p.moves.is_empty());
+/// assert_eq!(rx.iter().flatten().count(), 3);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+pub fn read_program_streaming(
+    text: &str,
+    file: &str,
+    dialect: Dialect,
+    opts: ReadOptions,
+    out: std::sync::mpsc::SyncSender<Vec<Move>>,
+) -> Result<Program, Error> {
+    read(text, file, dialect, opts, Some(out))
+}
+
+fn read(
+    text: &str,
+    file: &str,
+    dialect: Dialect,
+    opts: ReadOptions,
+    out: Option<std::sync::mpsc::SyncSender<Vec<Move>>>,
+) -> Result<Program, Error> {
     let perr = |line: usize, column: usize, message: String| Error::Program {
         file: file.to_string(),
         line,
@@ -694,6 +728,9 @@ pub fn read_program_with(
         )));
     }
     let mut m = motion::Motion::new(dialect, file, opts.moves);
+    if let Some(out) = out {
+        m.stream_to(out);
+    }
     m.gsystem = opts.gcode_system;
     if let Some(u) = opts.default_units {
         m.scale = u.mm();

@@ -188,6 +188,9 @@ pub(crate) struct Motion {
     pub skipped: usize,
     pub notes: Notes,
     moves: Option<Vec<Move>>,
+    /// Where recorded moves go as they are made, in chunks (a reader streaming a milling
+    /// toolpath); `None` keeps them all for [`Motion::finish`].
+    moves_out: Option<std::sync::mpsc::SyncSender<Vec<Move>>>,
     passes_total: usize,
     /// The last X word read (the tip's position of a G32/G33 chain or a G92 run).
     pub last_x: Option<super::DepthWord>,
@@ -205,6 +208,9 @@ pub(crate) struct Motion {
     /// (X0, Z0, X1, Z1), diameters, capped at `MAX_CONTOUR` segments.
     contour: Vec<super::Turned>,
 }
+
+/// Moves sent at once to a streaming reader's receiver.
+const MOVE_CHUNK: usize = 4096;
 
 /// Most contour segments kept for the run-out check.
 const MAX_CONTOUR: usize = 100_000;
@@ -257,6 +263,7 @@ impl Motion {
             skipped: 0,
             notes: Notes::default(),
             moves: record_moves.then(Vec::new),
+            moves_out: None,
             passes_total: 0,
             contour: Vec::new(),
             last_x: None,
@@ -430,6 +437,7 @@ impl Motion {
                     tool: self.tool,
                     extra_turns: 0,
                 });
+                self.stream_moves(false);
             }
             self.record_contour(x, z, b.line);
         }
@@ -516,6 +524,7 @@ impl Motion {
                     tool: self.tool,
                     extra_turns,
                 });
+                self.stream_moves(false);
             }
         }
         self.x = Some(to[0]);
@@ -727,9 +736,31 @@ impl Motion {
         same_lead && overlap
     }
 
+    /// Sends the moves recorded so far to [`Motion::moves_out`] once there are a chunk of them
+    /// (all of them when `all`). A receiver that has hung up (its check stopped) stops the
+    /// recording: nothing more is kept.
+    fn stream_moves(&mut self, all: bool) {
+        let Some(tx) = &self.moves_out else { return };
+        let Some(mv) = self.moves.as_mut() else { return };
+        if mv.is_empty() || !all && mv.len() < MOVE_CHUNK {
+            return;
+        }
+        if tx.send(std::mem::take(mv)).is_err() {
+            self.moves = None;
+            self.moves_out = None;
+        }
+    }
+
+    /// Streams the recorded moves to `out` as they are made instead of keeping them.
+    pub fn stream_to(&mut self, out: std::sync::mpsc::SyncSender<Vec<Move>>) {
+        self.moves_out = Some(out);
+    }
+
     /// The operations, skipped-block count, notes and moves. Each operation gets the warnings
     /// of its own passes (passes that cut nothing, passes beyond the axis).
     pub fn finish(mut self) -> (Vec<Operation>, usize, Vec<Note>, Vec<Move>, usize) {
+        self.stream_moves(true);
+        self.moves_out = None;
         let file = self.file.clone();
         self.ops.retain(|o| !o.passes.is_empty());
         for o in &mut self.ops {
