@@ -38,7 +38,7 @@
 use crate::analysis::check::Verdict;
 use crate::gcode::expr::{parse_all, BinOp, Env, Expr, Syntax, Value, VarKey, VarRef};
 use crate::gcode::{Dialect, Move, ReadOptions};
-use crate::geometry::index::{PathSegments, Segments};
+use crate::geometry::index::{PathSegments, Polyline};
 use crate::geometry::measure::golden_min;
 use crate::ground::bounds::{MAX_MILL_LEVELS, MAX_MILL_SEGMENTS, MAX_TOOL_DIAMETER};
 use crate::ground::plane::Point;
@@ -282,7 +282,7 @@ struct Curve<'a> {
     ey: Expr,
     t: Vec<f64>,
     p: Vec<Point>,
-    poly: Segments,
+    poly: Polyline,
     ccw: bool,
     /// How far the sample polyline may stray from the exact curve, mm: twice the largest gap
     /// at the segments' middle parameters (a signed distance to the polyline is within this of
@@ -329,7 +329,7 @@ impl<'a> Curve<'a> {
         let n = ((len / SAMPLE_SPACING).ceil() as usize).clamp(1024, 100_000);
         let (t, p) = if n == 1024 { (t_coarse, coarse) } else { sample(n)? };
         let ccw = crate::geometry::boolean::signed_area(&p[..p.len() - 1]) > 0.0;
-        let poly = Segments::through(&p);
+        let poly = Polyline::through(&p);
         let mut sag = 0.0f64;
         for (w, tw) in p.windows(2).zip(t.windows(2)) {
             if let Ok(m) = eval_xy(&ex, &ey, 0.5 * (tw[0] + tw[1]), z) {
@@ -354,10 +354,16 @@ impl<'a> Curve<'a> {
         })
     }
 
-    /// The nearest curve point to `c`: the sample polyline's nearest segment, then Newton's
-    /// method on the exact curve within the neighbouring samples.
-    fn nearest(&self, c: Point) -> Near {
-        let (q, i) = self.poly.project(c).unwrap_or((self.p[0], 0));
+    /// The nearest curve point to `c`: the sample polyline's nearest segment (searched first
+    /// around segment `guess`), then Newton's method on the exact curve within the neighbouring
+    /// samples.
+    fn nearest(&self, c: Point, guess: usize) -> Near {
+        let projection = self.poly.project(c, guess).unwrap_or((self.p[0], 0));
+        self.nearest_from(c, projection)
+    }
+
+    /// [`Curve::nearest`] from the polyline's nearest point `q` to `c`, on segment `i`.
+    fn nearest_from(&self, c: Point, (q, i): (Point, usize)) -> Near {
         let n = self.t.len() - 1;
         let (a, b) = (self.t[i.saturating_sub(1)], self.t[(i + 2).min(n)]);
         let (pi, pj) = (self.p[i], self.p[(i + 1).min(n)]);
@@ -415,9 +421,10 @@ impl<'a> Curve<'a> {
     }
 
     /// The signed distance from `c` to the sample polyline (positive on the side without
-    /// material): within [`Curve::sag`] of the exact one, without evaluating the formulas.
-    fn approx_sd(&self, c: Point) -> f64 {
-        let Some((q, i)) = self.poly.project(c) else { return f64::INFINITY };
+    /// material): within [`Curve::sag`] of the exact one, without evaluating the formulas; and
+    /// the nearest segment's index (searched first around `guess`).
+    fn approx_sd(&self, c: Point, guess: usize) -> (f64, (Point, usize)) {
+        let Some((q, i)) = self.poly.project(c, guess) else { return (f64::INFINITY, (self.p[0], 0)) };
         let n = self.p.len() - 1;
         let (a, b) = (self.p[i], self.p[(i + 1).min(n)]);
         let dist = q.distance(c);
@@ -426,11 +433,7 @@ impl<'a> Curve<'a> {
             Material::Inside => outside,
             Material::Outside => !outside,
         };
-        if free {
-            dist
-        } else {
-            -dist
-        }
+        (if free { dist } else { -dist }, (q, i))
     }
 
     /// Whether `c` lies outside the closed curve, from the normal at its nearest point `p`, or
@@ -828,23 +831,33 @@ struct Measured {
 /// sample polyline and measured exactly only where that could change the level's worst gouge.
 fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64, detail: bool) -> Measured {
     let z = lm.z;
-    // The move ends, each once, with the polyline's signed distance.
+    // The move ends, each once, with the polyline's signed distance and nearest point and
+    // segment (each end's search starts from the one before it: the path follows the curve).
     let mut ends: Vec<(Point, f64)> = Vec::with_capacity(lm.segs.len() + 1);
+    let mut guesses: Vec<(Point, usize)> = Vec::with_capacity(lm.segs.len() + 1);
     let mut seg_ends: Vec<(usize, usize)> = Vec::with_capacity(lm.segs.len());
+    let mut guess = 0usize;
     for &(a, b, _) in &lm.segs {
         let ia = match ends.last() {
             Some((p, _)) if *p == a => ends.len() - 1,
             _ => {
-                ends.push((a, curve.approx_sd(a)));
+                let (sd, proj) = curve.approx_sd(a, guess);
+                guess = proj.1;
+                ends.push((a, sd));
+                guesses.push(proj);
                 ends.len() - 1
             }
         };
-        ends.push((b, curve.approx_sd(b)));
+        let (sd, proj) = curve.approx_sd(b, guess);
+        guess = proj.1;
+        ends.push((b, sd));
+        guesses.push(proj);
         seg_ends.push((ia, ends.len() - 1));
     }
     let mut exact: Vec<Option<Near>> = vec![None; ends.len()];
     let near = |i: usize, exact: &mut Vec<Option<Near>>| -> Near {
-        *exact[i].get_or_insert_with(|| curve.nearest(ends[i].0))
+        // The polyline's nearest point is the one its signed distance came from.
+        *exact[i].get_or_insert_with(|| curve.nearest_from(ends[i].0, guesses[i]))
     };
     let g = |n: &Near| r - n.sd;
     let e = curve.sag;
@@ -905,11 +918,11 @@ fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64, detail: bool) -> Me
             Some(s) => s,
             None => {
                 let iters = golden_iterations(a.distance(b));
-                golden_min(&|s| -g(&curve.nearest(at(s))), 0.0, 1.0, iters).0
+                golden_min(&|s| -g(&curve.nearest(at(s), guesses[seg_ends[k].0].1)), 0.0, 1.0, iters).0
             }
         };
         let c = at(s);
-        let near = curve.nearest(c);
+        let near = curve.nearest(c, guesses[seg_ends[k].0].1);
         if g(&near) > top {
             best = Some((g(&near), c, near, line));
         }
@@ -1059,7 +1072,7 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
     let (read, assembled) = std::thread::scope(|threads| {
         let reader =
             threads.spawn(move || crate::gcode::read_program_streaming(text, name, spec.dialect, opts, tx));
-        let assembled = rayon::scope(|jobs| -> Result<Assembler, Error> {
+        let assembled = rayon::in_place_scope(|jobs| -> Result<Assembler, Error> {
             let mut asm = Assembler::new();
             let send = |asm: &mut Assembler, ready: Vec<usize>| {
                 if asm.broken() {
