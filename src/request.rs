@@ -537,9 +537,12 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
             let tool_diameter = a
                 .num("tool_diameter")?
                 .ok_or_else(|| Error::Input("mill needs tool_diameter (mm)".into()))?;
+            let name = a.program_name()?;
+            // As every command: the dialect given, else the program name's extension's.
+            let (dialect, _) = a.dialect(&name)?;
             let spec = crate::analysis::mill::MillSpec {
-                program: (program, a.program_name()?),
-                dialect: a.text("dialect")?.unwrap_or_else(|| "fanuc".into()).parse()?,
+                program: (program, name),
+                dialect,
                 n_order: a.flag("n_order")?,
                 tool_diameter,
                 target: crate::analysis::mill::Target::from_toml(&target, "<target>")?,

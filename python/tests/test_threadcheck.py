@@ -405,3 +405,13 @@ def test_tap_render_svg_and_html():
     assert svg.startswith("<svg") and "tap Z-18" in svg and "drill Z-25" in svg
     html = threadcheck.render("tap", "html", program=TAP_PROGRAM, tools=tools)
     assert "<td>drill diameter</td>" in html
+
+
+def test_mill_reads_the_dialect_of_the_program_name():
+    # Regression: the API's mill took Fanuc whatever the name; a .ngc is LinuxCNC's (its
+    # o-word loop). The boss of 36 chords of R23 gouges by the chord sag 23(1 - cos 5°).
+    prog = ("G21 G90 G17\nG0 X23 Y0 Z2\nG1 Z-1 F100\n#1=10\no100 while [#1 LE 360]\n"
+            "G1 X[23*COS[#1]] Y[23*SIN[#1]]\n#1=[#1+10]\no100 endwhile\nG0 Z2\nM2\n")
+    target = 'x = "20*cos(t)"\ny = "20*sin(t)"\nt = [0, 360]\nmaterial = "inside"\n'
+    r = threadcheck.mill(prog, target, 6.0, program_name="boss.ngc")
+    assert r["gouge_max"] == pytest.approx(23 * (1 - math.cos(math.radians(5))), abs=1e-7)
