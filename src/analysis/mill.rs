@@ -47,6 +47,10 @@ use serde::{Deserialize, Serialize};
 
 /// Arcs become chords no farther than this from the arc, mm (0.01 µm).
 const ARC_TOLERANCE: f64 = 1e-5;
+/// Every how many move ends the target's polyline is searched for the signed distance before
+/// anything else (the ends between are bounded from these).
+const ANCHOR: usize = 8;
+
 /// Moves either side of the last answer a target sample is first tried against (the leftover
 /// scan): consecutive samples are reached by neighbouring moves.
 const PATH_WINDOW: usize = 4;
@@ -831,34 +835,67 @@ struct Measured {
 /// sample polyline and measured exactly only where that could change the level's worst gouge.
 fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64, detail: bool) -> Measured {
     let z = lm.z;
-    // The move ends, each once, with the polyline's signed distance and nearest point and
-    // segment (each end's search starts from the one before it: the path follows the curve).
-    let mut ends: Vec<(Point, f64)> = Vec::with_capacity(lm.segs.len() + 1);
-    let mut guesses: Vec<(Point, usize)> = Vec::with_capacity(lm.segs.len() + 1);
+    // The move ends, each once.
+    let mut ends: Vec<Point> = Vec::with_capacity(lm.segs.len() + 1);
     let mut seg_ends: Vec<(usize, usize)> = Vec::with_capacity(lm.segs.len());
-    let mut guess = 0usize;
     for &(a, b, _) in &lm.segs {
         let ia = match ends.last() {
-            Some((p, _)) if *p == a => ends.len() - 1,
+            Some(p) if *p == a => ends.len() - 1,
             _ => {
-                let (sd, proj) = curve.approx_sd(a, guess);
-                guess = proj.1;
-                ends.push((a, sd));
-                guesses.push(proj);
+                ends.push(a);
                 ends.len() - 1
             }
         };
-        let (sd, proj) = curve.approx_sd(b, guess);
-        guess = proj.1;
-        ends.push((b, sd));
-        guesses.push(proj);
+        ends.push(b);
         seg_ends.push((ia, ends.len() - 1));
     }
-    let mut exact: Vec<Option<Near>> = vec![None; ends.len()];
-    let near = |i: usize, exact: &mut Vec<Option<Near>>| -> Near {
-        // The polyline's nearest point is the one its signed distance came from.
-        *exact[i].get_or_insert_with(|| curve.nearest_from(ends[i].0, guesses[i]))
+    // The polyline's signed distance and nearest point of every ANCHOR-th end (and the last),
+    // each search starting from the last answer (the path follows the curve). Any other end's
+    // signed distance is at least its anchor's less the distance between them (a distance
+    // moves no faster than the point), and is computed only when that bound cannot rule the end
+    // out.
+    let mut approx: Vec<Option<(f64, (Point, usize))>> = vec![None; ends.len()];
+    let mut guess = 0usize;
+    for i in (0..ends.len()).step_by(ANCHOR).chain(ends.len().checked_sub(1)) {
+        if approx[i].is_none() {
+            let a = curve.approx_sd(ends[i], guess);
+            guess = a.1 .1;
+            approx[i] = Some(a);
+        }
+    }
+    let anchor = |i: usize| -> usize {
+        let lo = i / ANCHOR * ANCHOR;
+        let hi = (lo + ANCHOR).min(ends.len() - 1);
+        if i - lo <= hi.saturating_sub(i) {
+            lo
+        } else {
+            hi
+        }
     };
+    let sd_low: Vec<f64> = (0..ends.len())
+        .map(|i| {
+            let a = anchor(i);
+            approx[a].map_or(f64::NEG_INFINITY, |x| x.0) - ends[i].distance(ends[a])
+        })
+        .collect();
+    let approx_of = |i: usize, approx: &mut Vec<Option<(f64, (Point, usize))>>| -> (f64, (Point, usize)) {
+        if approx[i].is_none() {
+            let guess = approx[anchor(i)].map_or(0, |x| x.1 .1);
+            approx[i] = Some(curve.approx_sd(ends[i], guess));
+        }
+        approx[i].unwrap_or((f64::INFINITY, (ends[i], 0)))
+    };
+    let mut exact: Vec<Option<Near>> = vec![None; ends.len()];
+    let near =
+        |i: usize, exact: &mut Vec<Option<Near>>, approx: &mut Vec<Option<(f64, (Point, usize))>>| -> Near {
+            if let Some(n) = exact[i] {
+                return n;
+            }
+            // The polyline's nearest point is the one its signed distance came from.
+            let n = curve.nearest_from(ends[i], approx_of(i, approx).1);
+            exact[i] = Some(n);
+            n
+        };
     let g = |n: &Near| r - n.sd;
     let e = curve.sag;
     // The line of each end, for the report (an end shared by two moves takes the first's).
@@ -868,41 +905,45 @@ fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64, detail: bool) -> Me
         line_of[ib] = lm.segs[k].2;
     }
     let mut best: Option<(f64, Point, Near, usize)> = None;
-    // The ends in order of their polyline gouge: measured exactly while one could beat the
-    // worst found (every one with `detail`).
+    // The ends in order of their bound on the gouge: measured exactly while one could beat the
+    // worst found (every one with `detail`), the polyline's distance first.
     let mut by_end: Vec<usize> = (0..ends.len()).collect();
-    by_end.sort_by(|&x, &y| ends[x].1.total_cmp(&ends[y].1));
+    by_end.sort_by(|&x, &y| sd_low[x].total_cmp(&sd_low[y]));
     for i in by_end {
         let top = best.map_or(f64::NEG_INFINITY, |b| b.0);
-        if !detail && r - ends[i].1 + e <= top + GOUGE_SLACK {
+        if !detail && r - sd_low[i] + e <= top + GOUGE_SLACK {
             break;
         }
-        let n = near(i, &mut exact);
+        if !detail && r - approx_of(i, &mut approx).0 + e <= top + GOUGE_SLACK {
+            continue;
+        }
+        let n = near(i, &mut exact, &mut approx);
         if best.is_none_or(|b| g(&n) > b.0) {
-            best = Some((g(&n), ends[i].0, n, line_of[i]));
+            best = Some((g(&n), ends[i], n, line_of[i]));
         }
     }
     // Each move's inside is bounded from its ends, the moves refined in order of their bound
     // until no bound beats the worst gouge found (see `inside_bound`); a move's loose bound
     // from the polyline comes first, its ends measured exactly only when it could beat it.
-    let mut order: Vec<(f64, usize)> = seg_ends
-        .iter()
-        .enumerate()
-        .map(|(k, &(ia, ib))| {
-            let (a, b, _) = lm.segs[k];
-            (0.5 * (2.0 * r - ends[ia].1 - ends[ib].1 + a.distance(b)) + e, k)
-        })
-        .collect();
+    let loose = |k: usize, sda: f64, sdb: f64| {
+        let (a, b, _) = lm.segs[k];
+        0.5 * (2.0 * r - sda - sdb + a.distance(b)) + e
+    };
+    let mut order: Vec<(f64, usize)> =
+        seg_ends.iter().enumerate().map(|(k, &(ia, ib))| (loose(k, sd_low[ia], sd_low[ib]), k)).collect();
     order.sort_by(|x, y| y.0.total_cmp(&x.0));
     let mut refine: Vec<(f64, Option<f64>, usize)> = Vec::new();
-    for (loose, k) in order {
+    for (bound, k) in order {
         let top = best.map_or(f64::NEG_INFINITY, |b| b.0);
-        if loose <= top + GOUGE_SLACK {
+        if bound <= top + GOUGE_SLACK {
             break;
         }
         let (ia, ib) = seg_ends[k];
+        if loose(k, approx_of(ia, &mut approx).0, approx_of(ib, &mut approx).0) <= top + GOUGE_SLACK {
+            continue;
+        }
         let (a, b, _) = lm.segs[k];
-        let (na, nb) = (near(ia, &mut exact), near(ib, &mut exact));
+        let (na, nb) = (near(ia, &mut exact, &mut approx), near(ib, &mut exact, &mut approx));
         let (bound, s) = inside_bound(a, b, &na, &nb, r);
         refine.push((bound, s, k));
     }
@@ -918,17 +959,18 @@ fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64, detail: bool) -> Me
             Some(s) => s,
             None => {
                 let iters = golden_iterations(a.distance(b));
-                golden_min(&|s| -g(&curve.nearest(at(s), guesses[seg_ends[k].0].1)), 0.0, 1.0, iters).0
+                let guess = approx[seg_ends[k].0].map_or(0, |x| x.1 .1);
+                golden_min(&|s| -g(&curve.nearest(at(s), guess)), 0.0, 1.0, iters).0
             }
         };
         let c = at(s);
-        let near = curve.nearest(c, guesses[seg_ends[k].0].1);
+        let near = curve.nearest(c, approx[seg_ends[k].0].map_or(0, |x| x.1 .1));
         if g(&near) > top {
             best = Some((g(&near), c, near, line));
         }
     }
     let ends: Vec<(Point, Near)> = if detail {
-        ends.iter().enumerate().map(|(i, (p, _))| (*p, near(i, &mut exact))).collect()
+        (0..ends.len()).map(|i| (ends[i], near(i, &mut exact, &mut approx))).collect()
     } else {
         Vec::new()
     };
