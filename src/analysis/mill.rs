@@ -36,7 +36,7 @@
 //! else Z0) cut air and are left out.
 
 use crate::analysis::check::Verdict;
-use crate::gcode::expr::{parse_all, BinOp, Env, Expr, Syntax, Value, VarKey, VarRef};
+use crate::gcode::expr::{parse_all, Arithmetic, BinOp, Compiled, Env, Expr, Syntax, Value, VarKey, VarRef};
 use crate::gcode::{Dialect, Move, ReadOptions};
 use crate::geometry::index::{PathSegments, Polyline};
 use crate::geometry::measure::golden_min;
@@ -259,6 +259,31 @@ impl Target {
     }
 }
 
+/// A target's two formulas at one level, compiled where they can be: the point at t, as
+/// [`eval_xy`] gives it (which answers wherever the compiled form cannot, with its error).
+struct Formulas {
+    ex: Expr,
+    ey: Expr,
+    compiled: Option<(Compiled, Compiled)>,
+}
+
+impl Formulas {
+    fn new(ex: Expr, ey: Expr) -> Formulas {
+        let c = |e: &Expr| Compiled::new(e, &["t", "z"], Arithmetic::Exact);
+        let compiled = c(&ex).zip(c(&ey));
+        Formulas { ex, ey, compiled }
+    }
+
+    fn at(&self, t: f64, z: f64) -> Result<Point, Error> {
+        if let Some((cx, cy)) = &self.compiled {
+            if let (Some(x), Some(y)) = (cx.run(&[t, z]), cy.run(&[t, z])) {
+                return Ok(Point::new(x, y));
+            }
+        }
+        eval_xy(&self.ex, &self.ey, t, z)
+    }
+}
+
 fn eval_xy(ex: &Expr, ey: &Expr, t: f64, z: f64) -> Result<Point, Error> {
     {
         let mut env = TZ { t, z };
@@ -282,8 +307,7 @@ struct Curve<'a> {
     target: &'a Target,
     z: f64,
     /// The formulas folded at this level.
-    ex: Expr,
-    ey: Expr,
+    formulas: Formulas,
     t: Vec<f64>,
     p: Vec<Point>,
     poly: Polyline,
@@ -308,10 +332,10 @@ impl<'a> Curve<'a> {
     /// Samples the target at level `z`; `None` when the curve has no extent there (a dome's apex).
     fn new(target: &'a Target, z: f64) -> Result<Option<Curve<'a>>, Error> {
         let [t0, t1] = target.t;
-        let (ex, ey) = (fold(&target.ex, z), fold(&target.ey, z));
+        let formulas = Formulas::new(fold(&target.ex, z), fold(&target.ey, z));
         let sample = |n: usize| -> Result<(Vec<f64>, Vec<Point>), Error> {
             let t: Vec<f64> = (0..=n).map(|i| t0 + (t1 - t0) * i as f64 / n as f64).collect();
-            let p = t.iter().map(|&t| eval_xy(&ex, &ey, t, z)).collect::<Result<Vec<_>, _>>()?;
+            let p = t.iter().map(|&t| formulas.at(t, z)).collect::<Result<Vec<_>, _>>()?;
             Ok((t, p))
         };
         let length = |p: &[Point]| p.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>();
@@ -336,7 +360,7 @@ impl<'a> Curve<'a> {
         let poly = Polyline::through(&p);
         let mut sag = 0.0f64;
         for (w, tw) in p.windows(2).zip(t.windows(2)) {
-            if let Ok(m) = eval_xy(&ex, &ey, 0.5 * (tw[0] + tw[1]), z) {
+            if let Ok(m) = formulas.at(0.5 * (tw[0] + tw[1]), z) {
                 let (d, ab) = ((w[1].z - w[0].z, w[1].r - w[0].r), w[0].distance(w[1]));
                 let gap = if ab > 0.0 {
                     ((m.z - w[0].z) * d.1 - (m.r - w[0].r) * d.0).abs() / ab
@@ -346,13 +370,13 @@ impl<'a> Curve<'a> {
                 sag = sag.max(gap);
             }
         }
-        Ok(Some(Curve { target, z, ex, ey, t, p, poly, ccw, sag: 2.0 * sag + 1e-9 }))
+        Ok(Some(Curve { target, z, formulas, t, p, poly, ccw, sag: 2.0 * sag + 1e-9 }))
     }
 
     fn at(&self, t: f64) -> Point {
         // Every t in range evaluated once already when sampling; a failure here is a formula
         // that fails between samples, which the sampled neighbours stand in for.
-        eval_xy(&self.ex, &self.ey, t, self.z).unwrap_or_else(|_| {
+        self.formulas.at(t, self.z).unwrap_or_else(|_| {
             let i = self.t.partition_point(|&s| s < t).min(self.p.len() - 1);
             self.p[i]
         })

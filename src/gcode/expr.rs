@@ -420,74 +420,187 @@ pub fn eval(e: &Expr, env: &mut dyn Env, depth: usize) -> Result<Value, String> 
                 return Ok(Some(if env.exists(&k) { 1.0 } else { 0.0 }));
             }
             let a = num(&args[0], env)?;
-            // Degrees as LinuxCNC converts them (x87 long double, emulated), elsewhere as Rust
-            // does (the controls' own rounding is not published).
-            let x87 = match env.arithmetic() {
-                Arithmetic::LinuxCnc | Arithmetic::LinuxCncBefore29 => true,
-                Arithmetic::Exact => false,
+            let b = match f {
+                Func::Atan2Full | Func::Atan2Signed => Some(num(&args[1], env)?),
+                _ => None,
             };
-            let deg_to_rad = |a: f64| if x87 { deg_to_rad(a) } else { a.to_radians() };
-            let rad_to_deg = |a: f64| if x87 { rad_to_deg(a) } else { a.to_degrees() };
-            match f {
-                Func::Sin => deg_to_rad(a).sin(),
-                Func::Cos => deg_to_rad(a).cos(),
-                Func::Tan => deg_to_rad(a).tan(),
-                Func::Asin => {
-                    if !(-1.0..=1.0).contains(&a) {
-                        return Err(format!("ASIN of {a}: outside −1 … 1"));
-                    }
-                    rad_to_deg(a.asin())
-                }
-                Func::Acos => {
-                    if !(-1.0..=1.0).contains(&a) {
-                        return Err(format!("ACOS of {a}: outside −1 … 1"));
-                    }
-                    rad_to_deg(a.acos())
-                }
-                Func::Atan => rad_to_deg(a.atan()),
-                Func::Atan2Full | Func::Atan2Signed => {
-                    let x = num(&args[1], env)?;
-                    let d = rad_to_deg(a.atan2(x));
-                    if *f == Func::Atan2Full && d < 0.0 {
-                        d + 360.0
-                    } else {
-                        d
-                    }
-                }
-                Func::Sqrt => {
-                    if a < 0.0 {
-                        return Err(format!("square root of {a}"));
-                    }
-                    a.sqrt()
-                }
-                Func::Abs => a.abs(),
-                Func::Round => a.round(),
-                Func::Fix => a.trunc(),
-                Func::Fup => {
-                    if a >= 0.0 {
-                        a.ceil()
-                    } else {
-                        a.floor()
-                    }
-                }
-                Func::Ceil => a.ceil(),
-                Func::Floor => a.floor(),
-                Func::Ln => {
-                    if a <= 0.0 {
-                        return Err(format!("LN of {a}"));
-                    }
-                    a.ln()
-                }
-                Func::Exp => a.exp(),
-                Func::Not => b2n(!truthy(a)),
-                Func::Exists => unreachable!("handled above"),
-            }
+            call_fn(*f, a, b, env.arithmetic())?
         }
     };
     if !v.is_finite() {
         return Err("the expression is not a finite number".into());
     }
     Ok(Some(v))
+}
+
+/// A function of one argument (`b`, the second, for the two-argument arc tangents) as the
+/// evaluator computes it: degrees as LinuxCNC converts them (x87 long double, emulated) under
+/// its arithmetic, elsewhere as Rust does (the controls' own rounding is not published).
+fn call_fn(f: Func, a: f64, b: Option<f64>, arith: Arithmetic) -> Result<f64, String> {
+    let x87 = match arith {
+        Arithmetic::LinuxCnc | Arithmetic::LinuxCncBefore29 => true,
+        Arithmetic::Exact => false,
+    };
+    let deg_to_rad = |a: f64| if x87 { deg_to_rad(a) } else { a.to_radians() };
+    let rad_to_deg = |a: f64| if x87 { rad_to_deg(a) } else { a.to_degrees() };
+    Ok(match f {
+        Func::Sin => deg_to_rad(a).sin(),
+        Func::Cos => deg_to_rad(a).cos(),
+        Func::Tan => deg_to_rad(a).tan(),
+        Func::Asin => {
+            if !(-1.0..=1.0).contains(&a) {
+                return Err(format!("ASIN of {a}: outside −1 … 1"));
+            }
+            rad_to_deg(a.asin())
+        }
+        Func::Acos => {
+            if !(-1.0..=1.0).contains(&a) {
+                return Err(format!("ACOS of {a}: outside −1 … 1"));
+            }
+            rad_to_deg(a.acos())
+        }
+        Func::Atan => rad_to_deg(a.atan()),
+        Func::Atan2Full | Func::Atan2Signed => {
+            let x = b.unwrap_or(0.0);
+            let d = rad_to_deg(a.atan2(x));
+            if f == Func::Atan2Full && d < 0.0 {
+                d + 360.0
+            } else {
+                d
+            }
+        }
+        Func::Sqrt => {
+            if a < 0.0 {
+                return Err(format!("square root of {a}"));
+            }
+            a.sqrt()
+        }
+        Func::Abs => a.abs(),
+        Func::Round => a.round(),
+        Func::Fix => a.trunc(),
+        Func::Fup => {
+            if a >= 0.0 {
+                a.ceil()
+            } else {
+                a.floor()
+            }
+        }
+        Func::Ceil => a.ceil(),
+        Func::Floor => a.floor(),
+        Func::Ln => {
+            if a <= 0.0 {
+                return Err(format!("LN of {a}"));
+            }
+            a.ln()
+        }
+        Func::Exp => a.exp(),
+        Func::Not => b2n(!truthy(a)),
+        Func::Exists => return Err("EXISTS takes a named parameter".into()),
+    })
+}
+
+/// One step of a [`Compiled`] expression, on a stack of numbers.
+#[derive(Clone, Copy, Debug)]
+enum Op {
+    Num(f64),
+    /// The value of the name at this index of the names compiled for.
+    Name(usize),
+    Neg,
+    Bin(BinOp),
+    Call(Func, bool),
+}
+
+/// An expression over a few named numbers (a target formula's t and z) turned into a flat list
+/// of steps: what [`eval`] computes for it, without walking the tree or asking an [`Env`]. Any
+/// step [`eval`] would refuse (a division by zero, a root of a negative, a value not finite)
+/// makes [`Compiled::run`] answer `None`, for [`eval`] to give its error.
+#[derive(Clone, Debug)]
+pub(crate) struct Compiled {
+    ops: Vec<Op>,
+    arith: Arithmetic,
+}
+
+/// Most numbers a [`Compiled`] expression holds at once: deeper ones are not compiled.
+const COMPILED_STACK: usize = 32;
+
+impl Compiled {
+    /// `e` compiled for the named numbers `names` (in that order, as [`Compiled::run`] takes
+    /// them); `None` when it reads anything else (`#` variables, other names, EXISTS) or nests
+    /// deeper than the evaluator allows.
+    pub(crate) fn new(e: &Expr, names: &[&str], arith: Arithmetic) -> Option<Compiled> {
+        /// Emits the steps of `e`, which leave one number on a stack already `height` high.
+        fn emit(e: &Expr, names: &[&str], ops: &mut Vec<Op>, depth: usize, height: usize) -> Option<()> {
+            if depth > MAX_EXPR_DEPTH || height >= COMPILED_STACK {
+                return None;
+            }
+            match e {
+                Expr::Num(v) => ops.push(Op::Num(*v)),
+                Expr::Var(VarRef::Named(n)) => ops.push(Op::Name(names.iter().position(|m| m == n)?)),
+                Expr::Var(_) | Expr::Call(Func::Exists, _) => return None,
+                Expr::Neg(a) => {
+                    emit(a, names, ops, depth + 1, height)?;
+                    ops.push(Op::Neg);
+                }
+                Expr::Chain(first, rest) => {
+                    emit(first, names, ops, depth + 1, height)?;
+                    for (op, e) in rest {
+                        emit(e, names, ops, depth + 1, height + 1)?;
+                        ops.push(Op::Bin(*op));
+                    }
+                }
+                Expr::Call(f, args) => {
+                    let two = matches!(f, Func::Atan2Full | Func::Atan2Signed);
+                    emit(args.first()?, names, ops, depth + 1, height)?;
+                    if two {
+                        emit(args.get(1)?, names, ops, depth + 1, height + 1)?;
+                    }
+                    ops.push(Op::Call(*f, two));
+                }
+            }
+            Some(())
+        }
+        let mut ops = Vec::new();
+        emit(e, names, &mut ops, 0, 0)?;
+        Some(Compiled { ops, arith })
+    }
+
+    /// The value for the named numbers `values` (in the order compiled for); `None` where
+    /// [`eval`] would give an error.
+    pub(crate) fn run(&self, values: &[f64]) -> Option<f64> {
+        let mut stack = [0.0f64; COMPILED_STACK];
+        let mut sp = 0usize;
+        for op in &self.ops {
+            let v = match *op {
+                Op::Num(v) => v,
+                Op::Name(i) => *values.get(i)?,
+                Op::Neg => {
+                    sp -= 1;
+                    -stack[sp]
+                }
+                Op::Bin(b) => {
+                    sp -= 2;
+                    apply(b, Some(stack[sp]), Some(stack[sp + 1]), self.arith).ok()?
+                }
+                Op::Call(f, two) => {
+                    let (a, b) = if two {
+                        sp -= 2;
+                        (stack[sp], Some(stack[sp + 1]))
+                    } else {
+                        sp -= 1;
+                        (stack[sp], None)
+                    };
+                    call_fn(f, a, b, self.arith).ok()?
+                }
+            };
+            if !v.is_finite() {
+                return None;
+            }
+            stack[sp] = v;
+            sp += 1;
+        }
+        debug_assert_eq!(sp, 1, "a compiled expression leaves one number");
+        (sp == 1).then_some(stack[0])
+    }
 }
 
 fn b2n(c: bool) -> f64 {
@@ -992,6 +1105,63 @@ mod tests {
         assert!(parse_all(&deep, Syntax::MacroB).is_err());
         let mut m = M(HashMap::new());
         assert!(eval(&parse_all("1/0", Syntax::MacroB).unwrap(), &mut m, 0).is_err());
+    }
+}
+
+#[cfg(test)]
+mod compiled {
+    use super::*;
+
+    struct TZ(f64, f64);
+    impl Env for TZ {
+        fn get(&mut self, _: &VarKey) -> Result<Value, String> {
+            Err("no numbered variables".into())
+        }
+        fn exists(&mut self, _: &VarKey) -> bool {
+            false
+        }
+        fn get_named(&mut self, n: &str) -> Result<Value, String> {
+            match n {
+                "t" => Ok(Some(self.0)),
+                "z" => Ok(Some(self.1)),
+                _ => Err(format!("unknown name {n}")),
+            }
+        }
+    }
+
+    /// The compiled form gives the tree's value bit for bit wherever the tree gives one, and
+    /// `None` wherever it gives an error: every operator and function a target formula may use,
+    /// over t from −400 to 400 and z from −50 to 10.
+    #[test]
+    fn compiled_formulas_agree_with_the_tree() {
+        let formulas = [
+            "20*cos(t)",
+            "sqrt(-90*z/4)*sin(t) - 3",
+            "(2 + cos(t))^2 / (1 + z*z) - pi",
+            "-abs(t - 7) + round(t/3) + exp(z/20) + ln(t*t + 1)",
+            "asin(sin(t)/2) + acos(cos(t)/3) + atan(t/100) + tan(t/5)",
+            "1/(t - 90) + sqrt(z)",
+            "t**2 - z",
+        ];
+        for f in formulas {
+            let e = parse_all(f, Syntax::Formula).unwrap_or_else(|err| panic!("{f}: {err:?}"));
+            let c = Compiled::new(&e, &["t", "z"], Arithmetic::Exact).unwrap_or_else(|| panic!("{f}"));
+            for i in 0..=160 {
+                for j in 0..=12 {
+                    let (t, z) = (-400.0 + 5.0 * i as f64, -50.0 + 5.0 * j as f64);
+                    let tree = eval(&e, &mut TZ(t, z), 0);
+                    match (tree, c.run(&[t, z])) {
+                        (Ok(Some(a)), Some(b)) => assert_eq!(a.to_bits(), b.to_bits(), "{f} at t {t}, z {z}"),
+                        (Err(_), None) => {}
+                        (tree, run) => panic!("{f} at t {t}, z {z}: tree {tree:?}, compiled {run:?}"),
+                    }
+                }
+            }
+        }
+        // What the compiled form does not read: numbered variables, other names.
+        for e in [parse_all("#1+2", Syntax::MacroB).unwrap(), parse_all("t + q", Syntax::Formula).unwrap()] {
+            assert!(Compiled::new(&e, &["t", "z"], Arithmetic::Exact).is_none(), "{e:?}");
+        }
     }
 }
 
