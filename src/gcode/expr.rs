@@ -500,11 +500,13 @@ fn call_fn(f: Func, a: f64, b: Option<f64>, arith: Arithmetic) -> Result<f64, St
 }
 
 /// One step of a [`Compiled`] expression, on a stack of numbers.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 enum Op {
     Num(f64),
     /// The value of the name at this index of the names compiled for.
     Name(usize),
+    /// A variable read from the environment ([`Compiled::for_env`]).
+    Var(VarKey),
     Neg,
     Bin(BinOp),
     Call(Func, bool),
@@ -528,14 +530,35 @@ impl Compiled {
     /// them); `None` when it reads anything else (`#` variables, other names, EXISTS) or nests
     /// deeper than the evaluator allows.
     pub(crate) fn new(e: &Expr, names: &[&str], arith: Arithmetic) -> Option<Compiled> {
+        Compiled::build(e, Some(names), arith)
+    }
+
+    /// `e` compiled to read its variables (`#1`, `#<name>`, named words) from an [`Env`] when
+    /// run ([`Compiled::run_in`]); `None` for an indirect variable (`#[#1]`), EXISTS, or a nesting
+    /// deeper than the evaluator allows.
+    pub(crate) fn for_env(e: &Expr, arith: Arithmetic) -> Option<Compiled> {
+        Compiled::build(e, None, arith)
+    }
+
+    fn build(e: &Expr, names: Option<&[&str]>, arith: Arithmetic) -> Option<Compiled> {
         /// Emits the steps of `e`, which leave one number on a stack already `height` high.
-        fn emit(e: &Expr, names: &[&str], ops: &mut Vec<Op>, depth: usize, height: usize) -> Option<()> {
+        fn emit(
+            e: &Expr,
+            names: Option<&[&str]>,
+            ops: &mut Vec<Op>,
+            depth: usize,
+            height: usize,
+        ) -> Option<()> {
             if depth > MAX_EXPR_DEPTH || height >= COMPILED_STACK {
                 return None;
             }
             match e {
                 Expr::Num(v) => ops.push(Op::Num(*v)),
-                Expr::Var(VarRef::Named(n)) => ops.push(Op::Name(names.iter().position(|m| m == n)?)),
+                Expr::Var(VarRef::Named(n)) => match names {
+                    Some(names) => ops.push(Op::Name(names.iter().position(|m| m == n)?)),
+                    None => ops.push(Op::Var(VarKey::Named(n.clone()))),
+                },
+                Expr::Var(VarRef::Num(n)) if names.is_none() => ops.push(Op::Var(VarKey::Num(*n))),
                 Expr::Var(_) | Expr::Call(Func::Exists, _) => return None,
                 Expr::Neg(a) => {
                     emit(a, names, ops, depth + 1, height)?;
@@ -564,6 +587,54 @@ impl Compiled {
         Some(Compiled { ops, arith })
     }
 
+    /// What [`eval`] gives for the expression compiled by [`Compiled::for_env`], its variables
+    /// read from `env` (null as the evaluator has it: a bare variable's null is the value, an
+    /// operand's reads as 0; a chain's result is not checked for finiteness, every other
+    /// step's is); `None` where [`eval`] would give an error.
+    pub(crate) fn run_in(&self, env: &mut dyn Env) -> Option<Value> {
+        let mut stack = [None; COMPILED_STACK];
+        let mut sp = 0usize;
+        for op in &self.ops {
+            let v: Value = match op {
+                Op::Num(v) => Some(*v),
+                Op::Name(_) => return None,
+                Op::Var(k) => env.get(k).ok()?,
+                Op::Neg => {
+                    sp -= 1;
+                    Some(-stack[sp].unwrap_or(0.0))
+                }
+                Op::Bin(b) => {
+                    sp -= 2;
+                    let v = apply(*b, stack[sp], stack[sp + 1], self.arith).ok()?;
+                    stack[sp] = Some(v);
+                    sp += 1;
+                    continue;
+                }
+                Op::Call(f, two) => {
+                    let (a, b) = if *two {
+                        sp -= 2;
+                        (stack[sp].unwrap_or(0.0), Some(stack[sp + 1].unwrap_or(0.0)))
+                    } else {
+                        sp -= 1;
+                        (stack[sp].unwrap_or(0.0), None)
+                    };
+                    Some(call_fn(*f, a, b, self.arith).ok()?)
+                }
+            };
+            if !matches!(op, Op::Var(_)) && !v.is_some_and(f64::is_finite) {
+                return None;
+            }
+            stack[sp] = v;
+            sp += 1;
+        }
+        debug_assert_eq!(sp, 1, "a compiled expression leaves one number");
+        if sp == 1 {
+            Some(stack[0])
+        } else {
+            None
+        }
+    }
+
     /// The value for the named numbers `values` (in the order compiled for); `None` where
     /// [`eval`] would give an error.
     pub(crate) fn run(&self, values: &[f64]) -> Option<f64> {
@@ -573,6 +644,7 @@ impl Compiled {
             let v = match *op {
                 Op::Num(v) => v,
                 Op::Name(i) => *values.get(i)?,
+                Op::Var(_) => return None,
                 Op::Neg => {
                     sp -= 1;
                     -stack[sp]
@@ -1162,6 +1234,80 @@ mod compiled {
         for e in [parse_all("#1+2", Syntax::MacroB).unwrap(), parse_all("t + q", Syntax::Formula).unwrap()] {
             assert!(Compiled::new(&e, &["t", "z"], Arithmetic::Exact).is_none(), "{e:?}");
         }
+    }
+
+    struct V(std::collections::HashMap<VarKey, f64>);
+    impl Env for V {
+        fn get(&mut self, k: &VarKey) -> Result<Value, String> {
+            Ok(self.0.get(k).copied())
+        }
+        fn exists(&mut self, k: &VarKey) -> bool {
+            self.0.contains_key(k)
+        }
+    }
+
+    /// Compiled for an environment, an expression gives the tree's value wherever the tree
+    /// gives one, null included (a bare null variable is null, a null operand reads 0), and
+    /// `None` wherever the tree gives an error: macro expressions over variables set, unset and
+    /// zero, in Fanuc's and LinuxCNC's arithmetic.
+    #[test]
+    fn compiled_macro_expressions_agree_with_the_tree() {
+        let cases = [
+            ("#1+#2*3-#3", Syntax::MacroB),
+            ("-#3", Syntax::MacroB),
+            ("#4", Syntax::MacroB),
+            ("[#1+#5]/2", Syntax::MacroB),
+            ("SQRT[#1]+ABS[#2]", Syntax::MacroB),
+            ("#1/#6", Syntax::MacroB),
+            ("ATAN[#1]/[#2]", Syntax::MacroB),
+            ("[#1EQ#5]+[#2LT#1]+[#1MOD#2]", Syntax::MacroB),
+            ("COS[#1]*SIN[#2]-TAN[#3]", Syntax::MacroB),
+            ("[#1**2+#2]/[#6+1]", Syntax::LinuxCnc),
+            ("[#1EQ#2]OR[#5LT1]", Syntax::LinuxCnc),
+        ];
+        for (text, syntax) in cases {
+            let e = parse_all(text, syntax).unwrap_or_else(|err| panic!("{text}: {err:?}"));
+            for arith in [Arithmetic::Exact, Arithmetic::LinuxCnc] {
+                let c = Compiled::for_env(&e, arith).unwrap_or_else(|| panic!("{text}"));
+                for (a, b) in [(2.0, 3.0), (-4.5, 0.5), (0.0, -1.0), (1e300, 1e300), (90.0, 0.0)] {
+                    for set3 in [false, true] {
+                        let mut vars = std::collections::HashMap::new();
+                        vars.insert(VarKey::Num(1), a);
+                        vars.insert(VarKey::Num(2), b);
+                        vars.insert(VarKey::Num(6), 0.0);
+                        if set3 {
+                            vars.insert(VarKey::Num(3), a - b);
+                        }
+                        struct A(V, Arithmetic);
+                        impl Env for A {
+                            fn arithmetic(&self) -> Arithmetic {
+                                self.1
+                            }
+                            fn get(&mut self, k: &VarKey) -> Result<Value, String> {
+                                self.0.get(k)
+                            }
+                            fn exists(&mut self, k: &VarKey) -> bool {
+                                self.0.exists(k)
+                            }
+                        }
+                        let tree = eval(&e, &mut A(V(vars.clone()), arith), 0);
+                        match (tree, c.run_in(&mut V(vars))) {
+                            (Ok(x), Some(y)) => {
+                                assert_eq!(x.map(f64::to_bits), y.map(f64::to_bits), "{text} at {a}, {b}")
+                            }
+                            (Err(_), None) => {}
+                            (tree, run) => {
+                                panic!("{text} at {a}, {b}, {set3}: tree {tree:?}, compiled {run:?}")
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // An indirect variable is not compiled: the tree reads it.
+        assert!(
+            Compiled::for_env(&parse_all("#[#1+1]", Syntax::MacroB).unwrap(), Arithmetic::Exact).is_none()
+        );
     }
 }
 

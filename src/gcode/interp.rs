@@ -32,6 +32,55 @@ struct Vars {
     here: (usize, usize),
     /// Values of LinuxCNC's read-only system parameters (`#<_x>`, …), set before each block.
     system: SysParams,
+    /// The expressions met so far, compiled ([`expr::Compiled`]), by their address in the
+    /// program's blocks (which live as long as the run): a loop's blocks are walked as trees
+    /// once, then run as flat steps.
+    compiled:
+        HashMap<usize, Option<std::rc::Rc<expr::Compiled>>, std::hash::BuildHasherDefault<AddressHasher>>,
+}
+
+/// A condition that is not written: false (a static, so that its address is its own).
+static ZERO: Expr = Expr::Num(0.0);
+
+/// Most expressions kept compiled in one run: a long program without loops runs the rest as
+/// trees, in bounded memory.
+const MAX_COMPILED: usize = 4096;
+
+/// A hasher for addresses: they are distinct already, and spread by a multiplication.
+#[derive(Default)]
+struct AddressHasher(u64);
+
+impl std::hash::Hasher for AddressHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for b in bytes {
+            self.0 = (self.0 ^ u64::from(*b)).wrapping_mul(0x100_0000_01b3);
+        }
+    }
+    fn write_usize(&mut self, n: usize) {
+        self.0 = (n as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    }
+}
+
+/// What [`expr::eval`] gives for `e` with the variables of `vars`, by its compiled form where
+/// it has one (the tree answers wherever a step would fail, with the error).
+fn fast_eval(e: &Expr, vars: &mut Vars) -> Result<Value, String> {
+    let key = e as *const Expr as usize;
+    let compiled = match vars.compiled.get(&key) {
+        Some(c) => c.clone(),
+        None if vars.compiled.len() < MAX_COMPILED => {
+            let c = expr::Compiled::for_env(e, vars.lang.arithmetic).map(std::rc::Rc::new);
+            vars.compiled.insert(key, c.clone());
+            c
+        }
+        None => None,
+    };
+    if let Some(v) = compiled.and_then(|c| c.run_in(&mut EvalEnv { vars })) {
+        return Ok(v);
+    }
+    expr::eval(e, &mut EvalEnv { vars }, 0)
 }
 
 impl Vars {
@@ -46,6 +95,7 @@ impl Vars {
             pending: Vec::new(),
             here: (0, 0),
             system: SysParams::default(),
+            compiled: HashMap::default(),
         }
     }
 
@@ -612,7 +662,7 @@ pub(crate) fn run(
         for s in &b.stmts {
             let ev = |e: &Expr, vars: &mut Vars, col: usize| -> Result<Value, Error> {
                 vars.here = (b.line, col);
-                expr::eval(e, &mut EvalEnv { vars }, 0).map_err(|msg| perr(b, col, msg))
+                fast_eval(e, vars).map_err(|msg| perr(b, col, msg))
             };
             let cond = |v: Value| v.unwrap_or(0.0) != 0.0;
             match s {
@@ -783,9 +833,9 @@ pub(crate) fn run(
                         OKw::Repeat => {
                             let left = match repeats.get(&pc) {
                                 Some(l) => *l,
-                                None => ev(c.as_ref().unwrap_or(&Expr::Num(0.0)), &mut vars, col)?
-                                    .unwrap_or(0.0)
-                                    .floor(),
+                                None => {
+                                    ev(c.as_ref().unwrap_or(&ZERO), &mut vars, col)?.unwrap_or(0.0).floor()
+                                }
                             };
                             if left <= 0.0 {
                                 repeats.remove(&pc);
@@ -1088,7 +1138,7 @@ fn do_assigns(
     let mut vals = Vec::new();
     for (var, e, col, text) in assigns {
         vars.here = (b.line, *col);
-        let v = expr::eval(e, &mut EvalEnv { vars }, 0).map_err(|m| perr(*col, text, m))?;
+        let v = fast_eval(e, vars).map_err(|m| perr(*col, text, m))?;
         let k = expr::key_of(var, &mut EvalEnv { vars }).map_err(|m| perr(*col, text, m))?;
         let v = if deferred { v.or(Some(0.0)) } else { v };
         if deferred {
@@ -1126,8 +1176,7 @@ fn resolve<'b>(b: &'b Block, vars: &mut Vars, file: &str) -> Result<RBlock<'b>, 
         let (v, point, args) = match &w.val {
             WVal::Num { v, point } => (*v, *point, None),
             WVal::Expr(e) => {
-                let v =
-                    expr::eval(e, &mut EvalEnv { vars }, 0).map_err(|m| perr(format!("{}: {m}", w.name)))?;
+                let v = fast_eval(e, vars).map_err(|m| perr(format!("{}: {m}", w.name)))?;
                 match v {
                     Some(v) => (v, v.fract() != 0.0, None),
                     None if vars.lang.null_word_omitted => {
@@ -1141,7 +1190,7 @@ fn resolve<'b>(b: &'b Block, vars: &mut Vars, file: &str) -> Result<RBlock<'b>, 
                 let mut out = Vec::with_capacity(a.len());
                 for (e, col) in a {
                     let v = match e {
-                        Some(e) => expr::eval(e, &mut EvalEnv { vars }, 0)
+                        Some(e) => fast_eval(e, vars)
                             .map_err(|m| Error::Program {
                                 file: file.to_string(),
                                 line: b.line,
