@@ -13,18 +13,16 @@
 use crate::*;
 
 fn mill(program: &str, cutter: f64) -> serde_json::Value {
+    mill_with(program, &["--cutter-diameter", &cutter.to_string()])
+}
+
+/// `thread-mill --json` on tests/data's program for M20x1.5-6H with the cutter's options `more`.
+fn mill_with(program: &str, more: &[&str]) -> serde_json::Value {
     let p = data(&format!("programs/threadmill/{program}"));
-    let o = run(&[
-        "thread-mill",
-        "--program",
-        p.to_str().unwrap(),
-        "--thread",
-        "M20x1.5-6H",
-        "--cutter-diameter",
-        &cutter.to_string(),
-        "--json",
-        "-",
-    ]);
+    let mut args =
+        vec!["thread-mill", "--program", p.to_str().unwrap(), "--thread", "M20x1.5-6H", "--json", "-"];
+    args.extend_from_slice(more);
+    let o = run(&args);
     assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
     serde_json::from_slice(&o.stdout).unwrap()
 }
@@ -247,27 +245,9 @@ fn entry_and_exit_moves_are_named() {
     assert!(notes.contains("on an arc in the plane (line 17): a tangential exit"), "{notes}");
 }
 
-/// `thread-mill --json` with a multi-form cutter given on the command line.
+/// `thread-mill --json` with a multi-form Ø14 cutter given on the command line.
 fn mill_rows(program: &str, rows: &str, row_pitch: &str) -> serde_json::Value {
-    let p = data(&format!("programs/threadmill/{program}"));
-    let args = [
-        "thread-mill",
-        "--program",
-        p.to_str().unwrap(),
-        "--thread",
-        "M20x1.5-6H",
-        "--cutter-diameter",
-        "14",
-        "--cutter-rows",
-        rows,
-        "--cutter-row-pitch",
-        row_pitch,
-        "--json",
-        "-",
-    ];
-    let o = run(&args);
-    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
-    serde_json::from_slice(&o.stdout).unwrap()
+    mill_with(program, &["--cutter-diameter", "14", "--cutter-rows", rows, "--cutter-row-pitch", row_pitch])
 }
 
 /// A multi-form cutter of 8 rows one pitch apart on one turn of the helix (Z-16 to Z-14.5)
