@@ -104,20 +104,7 @@ fn a_wrong_lead_per_turn_fails() {
 #[test]
 fn compensation_moves_the_helix_by_the_d_register() {
     let p = data("programs/threadmill/m20-dc6-g41.nc");
-    let o = run(&[
-        "thread-mill",
-        "--program",
-        p.to_str().unwrap(),
-        "--thread",
-        "M20x1.5-6H",
-        "--cutter-diameter",
-        "6",
-        "--comp-radius",
-        "3",
-        "--json",
-        "-",
-    ]);
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let v = mill_with("m20-dc6-g41.nc", &["--cutter-diameter", "6", "--comp-radius", "3"]);
     assert_eq!(
         (v["helices"][0]["programmed_radius"].as_f64(), v["helices"][0]["radius"].as_f64()),
         (Some(10.0), Some(7.0))

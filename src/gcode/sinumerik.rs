@@ -221,10 +221,11 @@ fn hole(s: &State, m: &mut Motion, call: &HoleCall, line: usize) -> Result<(), E
     let mut feed_per_rev = true;
     let mut spindle_dir = m.spindle_dir;
     if kind == super::HoleKind::Tap {
-        let (mpit_at, pit_at, encoder) =
-            if call.name == "CYCLE84" { (7, 8, true) } else { (9, 10, arg(8).unwrap_or(0.0) == 0.0) };
-        let enc = arg(8).unwrap_or(0.0);
-        if call.name == "CYCLE840" && enc != 0.0 && enc != 1.0 {
+        // CYCLE840's ENC (its ninth argument); CYCLE84 always taps from the pitch.
+        let (mpit_at, pit_at, enc) =
+            if call.name == "CYCLE84" { (7, 8, None) } else { (9, 10, Some(arg(8).unwrap_or(0.0))) };
+        let encoder = enc.is_none_or(|e| e == 0.0);
+        if let Some(enc) = enc.filter(|e| *e != 0.0 && *e != 1.0) {
             m.note(
                 line,
                 call.col,
