@@ -740,3 +740,16 @@ fn taper_threads_report_true_flanks_and_d2_at_the_gauge_plane() {
         );
     }
 }
+
+/// Issue 27 (found writing Heidenhain's chained G33): a straight pass chained with its run-out
+/// taper up and out of the thread made the last segment (the taper, climbing to X22) decide
+/// whether the thread was cut inward; the outside thread was taken as an inside one and its
+/// deeper passes (X18.8, X18.16 after X19.4) were noted as "cutting nothing".
+#[test]
+fn regression_a_chained_run_out_does_not_turn_an_outside_thread_inside() {
+    let text = "G21 G97 S800 M3\nG0 X19.4 Z5\nG32 Z-18 F1.5\nG32 X22 Z-20\nG0 X24\nG0 Z5\nX18.8\nG32 Z-18 F1.5\nG32 X22 Z-20\nG0 X24\nG0 Z5\nX18.16\nG32 Z-18 F1.5\nG32 X22 Z-20\nG0 X24\nM30\n";
+    let p = threadcheck::read_program(text, "runout.nc", threadcheck::Dialect::Fanuc).unwrap();
+    assert_eq!(p.passes.len(), 6);
+    let notes: Vec<String> = p.operations[0].notes.iter().map(|n| n.message.clone()).collect();
+    assert!(notes.iter().all(|n| !n.contains("cuts nothing")), "{notes:?}");
+}

@@ -236,7 +236,13 @@ impl Motion {
             // diameter; Dyna is a mill (X is X).
             diameter: match dialect {
                 _ if record_moves => false,
-                Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::Okuma => true,
+                Dialect::Fanuc
+                | Dialect::Haas
+                | Dialect::Sinumerik
+                | Dialect::Okuma
+                | Dialect::Mitsubishi
+                | Dialect::Mazak
+                | Dialect::Heidenhain => true,
                 Dialect::LinuxCnc | Dialect::Dyna => false,
             },
             motion: 0.0,
@@ -253,9 +259,14 @@ impl Motion {
             plane: match dialect {
                 _ if record_moves => 17,
                 Dialect::Dyna => 17,
-                Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Okuma => {
-                    18
-                }
+                Dialect::Fanuc
+                | Dialect::Haas
+                | Dialect::Sinumerik
+                | Dialect::LinuxCnc
+                | Dialect::Okuma
+                | Dialect::Mitsubishi
+                | Dialect::Mazak
+                | Dialect::Heidenhain => 18,
             },
             ops: Vec::new(),
             loose: None,
@@ -345,7 +356,14 @@ impl Motion {
             return false;
         }
         match self.dialect {
-            Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Okuma => true,
+            Dialect::Fanuc
+            | Dialect::Haas
+            | Dialect::Sinumerik
+            | Dialect::LinuxCnc
+            | Dialect::Okuma
+            | Dialect::Mitsubishi
+            | Dialect::Mazak
+            | Dialect::Heidenhain => true,
             Dialect::Dyna => false,
         }
     }
@@ -389,9 +407,11 @@ impl Motion {
     /// (Fanuc, Haas). Program coordinates are machine coordinates less the G92 offset.
     pub fn target(&self, b: &RBlock<'_>) -> (Option<f64>, Option<f64>, Option<f64>) {
         let uw = match self.dialect {
-            Dialect::Fanuc | Dialect::Haas => true,
-            // OSP programs incremental moves with G91.
-            Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma => false,
+            Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => true,
+            // OSP programs incremental moves with G91; Heidenhain's U is G31's thread depth.
+            Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma | Dialect::Heidenhain => {
+                false
+            }
         };
         let (mut x, mut y, mut z) = (None, None, None);
         for w in &b.words {
@@ -882,12 +902,13 @@ fn merge_starts(ops: &mut Vec<Operation>, file: &str) {
 /// last pass's stretch) and come out shallower than them somewhere: such a pass cuts nothing. A
 /// spring pass at the same depth is normal and not noted.
 fn shallow_pass_notes(o: &mut Operation, file: &str) {
-    let n = o.passes.len();
-    if n < 2 {
-        return;
-    }
-    let first = o.passes[0];
-    let last = o.passes[n - 1];
+    // The passes that begin a cut (a chain's later segments, a run-out taper, keep the phase of
+    // its first): the first and the last of them tell inward from outward.
+    let heads: Vec<&Pass> = o.passes.iter().filter(|p| (p.z_phase - p.z_start).abs() <= 1e-12).collect();
+    let (first, last) = match heads.as_slice() {
+        [first, .., last] => (**first, **last),
+        _ => return,
+    };
     let zs = [last.z_start, last.z_end];
     // Inward (external) when the passes end below where they began.
     let inward = last.x_at(zs[0]) + last.x_at(zs[1]) < first.x_at(zs[0]) + first.x_at(zs[1]);
