@@ -296,7 +296,7 @@ struct FitArgs {
     /// The bolt's program (else a generated plan).
     #[arg(long, value_name = "FILE", conflicts_with = "bolt_final_x")]
     bolt_program: Option<PathBuf>,
-    /// Its dialect: fanuc, haas, sinumerik, linuxcnc, dyna or okuma.
+    /// Its dialect: fanuc, haas, sinumerik, linuxcnc, dyna, okuma, mitsubishi, mazak or heidenhain.
     #[arg(long)]
     bolt_dialect: Option<Dialect>,
     /// The nut's program (else a generated plan).
@@ -393,7 +393,8 @@ struct ProgramFile {
     /// The program.
     #[arg(long, value_name = "FILE")]
     program: PathBuf,
-    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma (default: by the extension, else fanuc)
+    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma | mitsubishi | mazak | heidenhain (default: by
+    /// the extension, else fanuc)
     #[arg(long)]
     dialect: Option<Dialect>,
 }
@@ -472,7 +473,7 @@ struct TapArgs {
     /// The units of a program that sets neither G20 nor G21.
     #[arg(long, value_name = "mm|inch")]
     default_units: Option<threadcheck::ProgramUnits>,
-    /// The G-code system of a Fanuc control: a, b or c.
+    /// The G-code system of a Fanuc-family control (fanuc, mitsubishi, mazak): a, b or c.
     #[arg(long, value_name = "a|b|c", default_value = "a")]
     gcode_system: threadcheck::GCodeSystem,
     /// Write the tapped holes' sections (SVG) to this file.
@@ -601,7 +602,8 @@ struct PlanArgs {
     /// threads of inch sizes (UN, Acme, NPT, BSW, BSP), else mm)
     #[arg(long, value_enum)]
     units: Option<UnitsArg>,
-    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma (default: the program's extension names it,
+    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma | mitsubishi | mazak | heidenhain (default: the
+    /// program's extension names it,
     /// .ngc linuxcnc, .mpf/.spf sinumerik, .min/.ssb/.sub okuma; else fanuc)
     #[arg(long, requires = "program")]
     dialect: Option<Dialect>,
@@ -617,7 +619,8 @@ struct PlanArgs {
     /// Debian 12's linuxcnc-uspace package does)
     #[arg(long, value_name = "current|before-2.9", requires = "program", default_value = "current")]
     linuxcnc_release: threadcheck::LinuxCncRelease,
-    /// The G-code system a Fanuc lathe control is set to: a (G92 threading cycle, the default),
+    /// The G-code system a Fanuc-family lathe control (fanuc, mitsubishi, mazak) is set to: a (G92
+    /// threading cycle, the default),
     /// b (G78 threading cycle, G92 coordinates) or c (G21 threading cycle, G78 multiple cycle)
     #[arg(long, value_name = "a|b|c", requires = "program", default_value = "a")]
     gcode_system: threadcheck::GCodeSystem,

@@ -103,7 +103,7 @@ fn g78_is_never_read_without_its_system() {
         (
             "haas-g76-metric.nc",
             vec!["--dialect", "haas", "--gcode-system", "b"],
-            "G-code system B is a setting of Fanuc lathe controls: a haas program has one G-code list (read it as --dialect fanuc, or leave --gcode-system out)",
+            "G-code system B is a setting of Fanuc-family lathe controls (fanuc, mitsubishi, mazak): a haas program has one G-code list (leave --gcode-system out)",
         ),
     ] {
         let p = data(&format!("programs/{program}"));
@@ -208,5 +208,133 @@ fn okuma_g71_patterns_1_and_3_with_single_blade_infeed() {
     for op in v["operations"].as_array().unwrap() {
         let d2 = check_of(op, "pitch_diameter");
         assert!((d2["deviation_um"].as_f64().unwrap() - 37.7).abs() < 0.1, "{d2}");
+    }
+}
+
+/// The `z_start` of every pass of operation `op`.
+fn z_starts(v: &serde_json::Value, op: usize) -> Vec<f64> {
+    v["operations"][op]["passes"].as_array().unwrap().iter().map(|p| p["z_start"].as_f64().unwrap()).collect()
+}
+
+/// Each operation's pitch-diameter deviation (µm) in `verify --json` for `program`.
+fn d2_deviations(program: &str, thread: &str, args: &[&str]) -> Vec<f64> {
+    let p = data(&format!("programs/{program}"));
+    let mut all = vec![
+        "verify",
+        "--thread",
+        thread,
+        "--program",
+        p.to_str().unwrap(),
+        "--insert",
+        "full",
+        "--json",
+        "-",
+    ];
+    all.extend(args);
+    let (code, v) = run_json(&all);
+    assert_eq!(code, 1, "{v}");
+    v["operations"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|op| check_of(op, "pitch_diameter")["deviation_um"].as_f64().unwrap())
+        .collect()
+}
+
+/// Heidenhain MANUALplus G31 (4110 Pilot p. 74, User Manual p. 336) for M20x1.5, X20 the major
+/// diameter, U−0.92 (outside), I0.3, from the tool at X22 Z5 to Z−20:
+/// - V0 (constant cross-section): the nth cut to 0.3·√n while under 0.92 (n = 1 … 9, 0.3·√9 =
+///   0.9), then 0.92: X = 20 − 2·depth; without B and P the run-in and overrun are F·S/1000 =
+///   1.5·800/1000 = 1.2 mm: Z from 6.2 to −21.2.
+/// - V1 (constant infeed ≤ I): ⌈0.92/0.3⌉ = 4 cuts of 0.23: X 19.54, 19.08, 18.62, 18.16; H3
+///   with A30 alternates, first toward −Z: the shifts −0.23·tan 30°, 0, −0.23·tan 30°, 0.
+/// - G33 single paths at X19.4, 18.8, 18.16 to Z−18, each chained with its taper run-out to
+///   X22 Z−20 (one phase, no pass read as cutting nothing).
+///
+/// Every last cut reaches 18.16 (on the final flank lines, H3's offsets included): with a
+/// full-profile insert d2 = 18.16 + 0.866025 = 19.026, 32.0 µm over 6g's 18.994.
+#[test]
+fn heidenhain_g31_v0_v1_h3_and_chained_g33() {
+    let (ops, v) = pass_xs("heidenhain-g31-g33.nc", &["--dialect", "heidenhain"]);
+    let mut v0: Vec<f64> = (1..=9).map(|n| 20.0 - 2.0 * 0.3 * f64::from(n).sqrt()).collect();
+    v0.push(18.16);
+    assert!(close(&ops[0], &v0), "{ops:?}");
+    assert!(close(&z_starts(&v, 0), &[6.2; 10]), "{:?}", z_starts(&v, 0));
+    assert!(v["operations"][0]["passes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|p| (p["z_end"].as_f64().unwrap() + 21.2).abs() < 1e-9));
+    assert!(close(&ops[1], &[19.54, 19.08, 18.62, 18.16]), "{ops:?}");
+    let s = 0.23 * 30f64.to_radians().tan();
+    assert!(close(&z_starts(&v, 1), &[5.0 - s, 5.0, 5.0 - s, 5.0]), "{:?}", z_starts(&v, 1));
+    assert_eq!(v["operations"][2]["cycle"], "G33");
+    assert!(close(&ops[2], &[19.4, 22.0, 18.8, 22.0, 18.16, 22.0]), "{ops:?}");
+    let notes = v.to_string();
+    assert!(notes.contains("FINISHED read past: a DIN PLUS section"), "{notes}");
+    assert!(notes.contains("F·S/1000 = 1.2 mm with S800 rpm"), "{notes}");
+    assert!(!notes.contains("cuts nothing"), "{notes}");
+    for dev in d2_deviations("heidenhain-g31-g33.nc", "M20x1.5-6g", &["--dialect", "heidenhain"]) {
+        assert!((dev - 32.0).abs() < 0.1, "{dev}");
+    }
+}
+
+/// Fanuc's two-block G76 as Mitsubishi (M20x1.5) and Mazak (M30x2) programs write it: depth
+/// after pass n = max(Δd·√n, previous + Δd min) up to the rough end k − d, then m finishing
+/// passes at k; X = root + 2·(k − depth).
+/// - Mitsubishi: k 0.92, Δd 0.3, Δd min 0.1, d 0.05, m 1: 0.3, 0.424264 (√2·0.3), then the
+///   minimum step rules: 0.524264, 0.624264, 0.724264, 0.824264; 0.924264 passes 0.87: cut at
+///   0.87; 0.92. The last at X18.16: d2 19.026, 32.0 µm over 6g.
+/// - Mazak: k 1.227, Δd 0.4, Δd min 0.15, d 0.02, m 2: 0.4, 0.565685 (√2·0.4), 0.715685,
+///   0.865685, 1.015685, 1.165685; 1.315685 passes 1.207: cut there; 1.227 twice. The last at
+///   X27.546 (d3 basic of M30x2): d2 = 27.546 + 1.154701 (d2 − d3 = 0.57735·P) = 28.7007, 37.7 µm
+///   over 6g's 28.663 (es −38 µm).
+#[test]
+fn mitsubishi_and_mazak_g76_read_as_the_fanuc_model() {
+    let (ops, v) = pass_xs("mitsubishi-g76.nc", &["--dialect", "mitsubishi"]);
+    let depths = [0.3, 0.3 * 2f64.sqrt(), 0.524264, 0.624264, 0.724264, 0.824264, 0.87, 0.92];
+    let want: Vec<f64> = depths.iter().map(|d| 18.16 + 2.0 * (0.92 - d)).collect();
+    assert!(ops[0].iter().zip(&want).all(|(a, b)| (a - b).abs() < 2e-6) && ops[0].len() == 8, "{ops:?}");
+    assert!(v["notes"].to_string().contains("mitsubishi read as the Fanuc model"), "{}", v["notes"]);
+    let (ops, v) = pass_xs("mazak-g76.nc", &["--dialect", "mazak"]);
+    let depths = [0.4, 0.4 * 2f64.sqrt(), 0.715685, 0.865685, 1.015685, 1.165685, 1.207, 1.227, 1.227];
+    let want: Vec<f64> = depths.iter().map(|d| 27.546 + 2.0 * (1.227 - d)).collect();
+    assert!(ops[0].iter().zip(&want).all(|(a, b)| (a - b).abs() < 2e-6) && ops[0].len() == 9, "{ops:?}");
+    assert!(v["notes"].to_string().contains("mazak read as the Fanuc model"), "{}", v["notes"]);
+    let dev = d2_deviations("mitsubishi-g76.nc", "M20x1.5-6g", &["--dialect", "mitsubishi"]);
+    assert!((dev[0] - 32.0).abs() < 0.1, "{dev:?}");
+    let dev = d2_deviations("mazak-g76.nc", "M30x2-6g", &["--dialect", "mazak"]);
+    assert!((dev[0] - 37.7).abs() < 0.1, "{dev:?}");
+    // The G-code systems are theirs too: G78 needs one, system B reads it.
+    let p = data("programs/fanuc-system-b-g78.nc");
+    let (ops_b, _) = pass_xs("fanuc-system-b-g78.nc", &["--gcode-system", "b"]);
+    let o = run(&[
+        "passes",
+        "--program",
+        p.to_str().unwrap(),
+        "--dialect",
+        "mazak",
+        "--gcode-system",
+        "b",
+        "--json",
+        "-",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["operations"].as_array().unwrap().len(), ops_b.len());
+}
+
+/// Every dialect is in the JSON schema's dialect enums (okuma was missing from them).
+#[test]
+fn regression_the_schema_lists_every_dialect() {
+    let schema =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/json-schema.json")).unwrap();
+    for d in threadcheck::Dialect::ALL {
+        assert_eq!(
+            schema.matches(&format!("\"{}\"", d.name())).count(),
+            2,
+            "{} in the schema's two dialect enums",
+            d.name()
+        );
     }
 }

@@ -50,6 +50,9 @@ def test_the_schema_is_a_valid_schema():
      "--machine", "training-lathe", "--clearance-angle", "1"],
     ["--thread", "M10x1.5-6g", "--program", str(PROGRAMS / "fanuc-g92-above-blank.nc")],
     ["--thread", "1/2-14 NPT", "--program", str(PROGRAMS / "fanuc-g92-npt-1-2.nc"), "--insert", "full"],
+    ["--thread", "M20x1.5-6g", "--program", str(PROGRAMS / "heidenhain-g31-g33.nc"), "--dialect", "heidenhain"],
+    ["--thread", "M20x1.5-6g", "--program", str(PROGRAMS / "mitsubishi-g76.nc"), "--dialect", "mitsubishi"],
+    ["--thread", "M20x1.5-6g", "--program", str(PROGRAMS / "okuma-g33-repeats.min")],
 ])
 def test_verify(args):
     validate("verify", json.loads(cli("verify", *args, "--json", "-")))

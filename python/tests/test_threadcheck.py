@@ -109,8 +109,27 @@ def test_errors_are_value_errors_with_the_place():
         threadcheck.limits("M10x1.5-6q")
     with pytest.raises(ValueError, match="at least one pass"):
         threadcheck.passes("M10x1.5-6g", passes=0)
-    with pytest.raises(ValueError, match="dialect"):
-        threadcheck.verify("M20x1.5-6g", program=G76_M20, dialect="heidenhain")
+    with pytest.raises(ValueError, match="dialect 'hurco' is not supported"):
+        threadcheck.verify("M20x1.5-6g", program=G76_M20, dialect="hurco")
+
+
+HEIDENHAIN_G31 = """MACHINING
+N1 G95 F0.2 G97 S800 M3
+N2 G0 X22 Z5
+[V1: four equal infeeds of 0.23 to U 0.92; the last at X20 - 2*0.92 = 18.16]
+N3 G31 X20 Z-20 F1.5 U-0.92 I0.3 V1 B0 P0
+END
+"""
+
+
+def test_heidenhain_g31_from_python():
+    # The last cut at X18.16 with a full-profile insert: d2 = 18.16 + 0.866025 = 19.026, 32.0 µm
+    # over 6g's 18.994 (ISO 965-2).
+    passes = threadcheck.passes(program=HEIDENHAIN_G31, dialect="heidenhain")
+    assert [p["x_end"] for p in passes["passes"]] == pytest.approx([19.54, 19.08, 18.62, 18.16])
+    v = threadcheck.verify("M20x1.5-6g", program=HEIDENHAIN_G31, dialect="heidenhain", insert="full")
+    d2 = next(c for c in v["operations"][0]["checks"] if c["feature"] == "pitch_diameter")
+    assert d2["deviation_um"] == pytest.approx(32.0, abs=0.1)
 
 
 def test_module_docstring_example_runs():

@@ -323,11 +323,14 @@ pub fn correct(spec: &CorrectSpec) -> Result<CorrectReport, Error> {
 fn wear_offset_in_x(d: crate::gcode::Dialect) -> bool {
     use crate::gcode::Dialect;
     match d {
-        Dialect::Fanuc | Dialect::Haas => true,
+        // Mitsubishi and Mazak are read as the Fanuc model, their wear offsets with it.
+        Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => true,
         // Sinumerik's wear is a length per tool edge whose diameter or radius meaning depends on
         // machine data; LinuxCNC's and Dyna's tables are not modelled.
-        // Okuma OSP's wear offsets are not modelled here either.
-        Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma => false,
+        // Okuma OSP's and Heidenhain's wear offsets are not modelled here either.
+        Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma | Dialect::Heidenhain => {
+            false
+        }
     }
 }
 

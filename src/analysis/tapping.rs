@@ -225,8 +225,10 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                 match spec.dialect {
                     Dialect::Sinumerik => "CYCLE84 and CYCLE840",
                     Dialect::LinuxCnc => "G33.1",
-                    Dialect::Fanuc | Dialect::Haas => "G84 and G74",
-                    Dialect::Okuma | Dialect::Dyna => "a tapping cycle threadcheck reads: none yet",
+                    Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => "G84 and G74",
+                    Dialect::Okuma | Dialect::Dyna | Dialect::Heidenhain => {
+                        "a tapping cycle threadcheck reads: none yet"
+                    }
                 },
                 spec.dialect.name()
             ),

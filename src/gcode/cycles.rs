@@ -51,7 +51,7 @@ enum GRole {
 fn g_role(d: Dialect, g: u32, lathe: bool) -> GRole {
     use GRole::*;
     match d {
-        Dialect::Fanuc | Dialect::Haas => match g {
+        Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => match g {
             90 | 94 if lathe => BoxCycle,
             9 | 22 | 23 | 25 | 26 | 40..=44 | 49 | 61..=64 | 67..=69 | 80 | 94 | 95 | 98 | 99 | 103 | 187 => {
                 Setting
@@ -90,6 +90,17 @@ fn g_role(d: Dialect, g: u32, lathe: bool) -> GRole {
             73..=75 | 81..=89 => OtherCycle,
             _ => Unknown,
         },
+        // MANUALplus / CNC PILOT DIN: G14 the tool change point, G26 the speed limit, G40–G42
+        // nose radius compensation, G47 the safety clearance, G57/G58 oversizes, G59 the datum
+        // shift; G20/G21 define the blank (read past where they stand outside their section);
+        // G36 tapping, G71–G74 drilling and G81–G87 turning cycles (read past).
+        Dialect::Heidenhain => match g {
+            // G14 (heidenhain.rs) leaves the position unknown.
+            9 | 14 | 20 | 21 | 26 | 40..=42 | 47 | 48 | 50 | 57 | 58 | 60 | 94 | 95 => Setting,
+            59 => Offset,
+            36 | 71..=74 | 81..=87 => OtherCycle,
+            _ => Unknown,
+        },
     }
 }
 
@@ -100,7 +111,11 @@ fn m_known(d: Dialect, c: u32) -> bool {
     let common = matches!(c, 0..=9 | 13 | 14 | 19 | 30 | 40..=44);
     common
         || match d {
-            Dialect::Fanuc => matches!(c, 10..=11 | 23 | 24 | 29 | 98 | 99),
+            Dialect::Fanuc | Dialect::Mitsubishi | Dialect::Mazak => {
+                matches!(c, 10..=11 | 23 | 24 | 29 | 98 | 99)
+            }
+            // Heidenhain's lathe M codes beyond the common ones are not modelled.
+            Dialect::Heidenhain => false,
             Dialect::Haas => matches!(
                 c,
                 10..=15
@@ -145,11 +160,13 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
     let mut offset = None;
     let mut unknown: Vec<(f64, usize)> = Vec::new();
     let fanuc_like = match d {
-        Dialect::Fanuc | Dialect::Haas => true,
-        Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma => false,
+        Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => true,
+        Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma | Dialect::Heidenhain => {
+            false
+        }
     };
-    let inch_codes = d.unit_codes();
-    let inch_codes = (f64::from(inch_codes.0), f64::from(inch_codes.1));
+    // A dialect without unit codes (Heidenhain) matches none (no G code is negative).
+    let inch_codes = d.unit_codes().map_or((-1.0, -1.0), |(i, mm)| (f64::from(i), f64::from(mm)));
     for (g, col) in b.gs() {
         if g < 0.0 {
             return Err(m.err(b.line, col, "G with no code"));
@@ -205,22 +222,25 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             continue;
         }
         // A program of G-code system B or C: its code in system A's terms.
-        let g = match (d, m.gsystem.to_a(g as u32)) {
-            (Dialect::Fanuc, SystemCode::A(a)) => f64::from(a),
-            (Dialect::Fanuc, SystemCode::Absolute) => {
-                m.absolute = true;
-                continue;
+        let g = if d.fanuc_family() {
+            match m.gsystem.to_a(g as u32) {
+                SystemCode::A(a) => f64::from(a),
+                SystemCode::Absolute => {
+                    m.absolute = true;
+                    continue;
+                }
+                SystemCode::Incremental => {
+                    m.absolute = false;
+                    continue;
+                }
+                SystemCode::Setting => continue,
+                SystemCode::Foreign => {
+                    unknown.push((g, col));
+                    continue;
+                }
             }
-            (Dialect::Fanuc, SystemCode::Incremental) => {
-                m.absolute = false;
-                continue;
-            }
-            (Dialect::Fanuc, SystemCode::Setting) => continue,
-            (Dialect::Fanuc, SystemCode::Foreign) => {
-                unknown.push((g, col));
-                continue;
-            }
-            (Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma, _) => g,
+        } else {
+            g
         };
         if m.plane == 17 || m.mill_reading() {
             match g as u32 {
@@ -231,6 +251,17 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             }
         }
         match g as u32 {
+            // Heidenhain's thread cycle G31 (heidenhain.rs); its G32, the simple thread cycle,
+            // is refused by name; its G76 is no threading code.
+            31 if d == Dialect::Heidenhain => motion = Some((g, col)),
+            32 if d == Dialect::Heidenhain => {
+                return Err(m.err(
+                    b.line,
+                    col,
+                    "G32 (Heidenhain's simple thread cycle) is not supported: its word list is not in the pages read; write G31 (the thread cycle) or G33 (single thread paths)",
+                ))
+            }
+            76 if d == Dialect::Heidenhain => unknown.push((g, col)),
             0 | 1 | 2 | 3 | 32 | 33 | 76 => motion = Some((g, col)),
             92 if d == Dialect::LinuxCnc => one_shot = Some(g),
             92 if fanuc_like && b.has("S") && !["X", "Z", "U", "W", "F", "E", "R"].iter().any(|w| b.has(w)) => {
@@ -243,7 +274,7 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                 one_shot = Some(g);
             }
             92 => motion = Some((g, col)),
-            78 if d == Dialect::Fanuc => {
+            78 if d.fanuc_family() => {
                 return Err(m.err(
                     b.line,
                     col,
@@ -264,8 +295,8 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             94 if fanuc_like && m.plane == 17 => m.feed_per_rev = Some(false),
             95 if fanuc_like && m.plane == 17 => m.feed_per_rev = Some(true),
             // Sinumerik's feed modes hold in every plane.
-            94 if d == Dialect::Sinumerik => m.feed_per_rev = Some(false),
-            95 if d == Dialect::Sinumerik => m.feed_per_rev = Some(true),
+            94 if matches!(d, Dialect::Sinumerik | Dialect::Heidenhain) => m.feed_per_rev = Some(false),
+            95 if matches!(d, Dialect::Sinumerik | Dialect::Heidenhain) => m.feed_per_rev = Some(true),
             90 | 94 if fanuc_like && m.lathe() => motion = Some((g, col)),
             30 => one_shot = Some(g),
             7 if d == Dialect::LinuxCnc => m.diameter = true,
@@ -383,6 +414,12 @@ pub(crate) fn read_past_item(m: &mut Motion, line: usize, p: &Past) -> Result<()
                 ),
             ))
         }
+        PastKind::Section => m.read_past(
+            line,
+            p.col,
+            &p.name,
+            "a DIN PLUS section of set-up or contour data: its blocks are geometry and data, not moves, and are read past up to the next MACHINING",
+        ),
         PastKind::Call => {
             m.lose_position(line, &p.name, true, true);
             m.read_past(
@@ -520,8 +557,10 @@ fn record_hole(
     (x, y, z): (Option<f64>, Option<f64>, Option<f64>),
 ) {
     let fanuc_like = match m.dialect {
-        Dialect::Fanuc | Dialect::Haas => true,
-        Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma => false,
+        Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => true,
+        Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma | Dialect::Heidenhain => {
+            false
+        }
     };
     let code = modal.motion as u32;
     let kind = match code {

@@ -130,7 +130,14 @@ impl Language {
         };
         match dialect {
             // Okuma's own macro language (VC variables) is not read; its programs lex as Fanuc's.
-            Dialect::Fanuc | Dialect::Haas | Dialect::Okuma => fanuc,
+            // Okuma's own macro language (VC variables) and Heidenhain's DIN PLUS variables are
+            // not read; their programs lex as Fanuc's (Heidenhain's `[ ]` comments taken out).
+            Dialect::Fanuc
+            | Dialect::Haas
+            | Dialect::Okuma
+            | Dialect::Mitsubishi
+            | Dialect::Mazak
+            | Dialect::Heidenhain => fanuc,
             Dialect::Sinumerik => Language {
                 local_range: 0,
                 fanuc_macro: false,

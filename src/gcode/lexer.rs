@@ -209,6 +209,9 @@ pub enum PastKind {
     ToolName,
     /// A call of a named cycle or function with its arguments (`CYCLE95("CONT",…)`).
     Call,
+    /// A Heidenhain DIN PLUS section of set-up or contour data (`BLANK`, `FINISHED`, …): its
+    /// blocks are geometry and data, not moves.
+    Section,
 }
 
 impl Block {
@@ -246,24 +249,124 @@ pub type LexError = (usize, usize, String);
 pub fn lex(text: &str, dialect: Dialect) -> Result<Vec<Block>, LexError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut blocks = Vec::new();
+    let mut section = Section::Moves;
     for (i, raw) in text.split('\n').enumerate() {
         let line = raw.strip_suffix('\r').unwrap_or(raw);
         match dialect {
             Dialect::Sinumerik => sinumerik_line(line, i + 1, &mut blocks)?,
             // An OSP header line (`$NAME.MIN%`) names the file: nothing to run.
             Dialect::Okuma if line.trim_start().starts_with('$') => {}
-            Dialect::Fanuc | Dialect::Haas | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma => {
-                bracket_line(line, i + 1, dialect, &mut blocks)?
-            }
+            Dialect::Heidenhain => heidenhain_line(line, i + 1, &mut section, &mut blocks)?,
+            Dialect::Fanuc
+            | Dialect::Haas
+            | Dialect::LinuxCnc
+            | Dialect::Dyna
+            | Dialect::Okuma
+            | Dialect::Mitsubishi
+            | Dialect::Mazak => bracket_line(line, i + 1, dialect, &mut blocks)?,
         }
     }
     Ok(blocks)
 }
 
+/// Where a Heidenhain DIN PLUS program's line stands: among moves (the `MACHINING` section, or
+/// a program without sections) or in a section of data read past.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Section {
+    Moves,
+    Data,
+}
+
+/// The DIN PLUS section codes (English and German, as the MANUALplus 620 / CNC PILOT 640
+/// manuals write them) and whether their blocks are moves.
+const HEIDENHAIN_SECTIONS: [(&str, Section); 26] = [
+    ("MACHINING", Section::Moves),
+    ("BEARBEITUNG", Section::Moves),
+    ("SUBPROGRAM", Section::Moves),
+    ("UNTERPROGRAMM", Section::Moves),
+    ("HEADER", Section::Data),
+    ("PROGRAMMKOPF", Section::Data),
+    ("TURRET", Section::Data),
+    ("REVOLVER", Section::Data),
+    ("CHUCKING", Section::Data),
+    ("SPANNMITTEL", Section::Data),
+    ("BLANK", Section::Data),
+    ("ROHTEIL", Section::Data),
+    ("FINISHED", Section::Data),
+    ("FERTIGTEIL", Section::Data),
+    ("AUXIL_BLANK", Section::Data),
+    ("HILFSROHTEIL", Section::Data),
+    ("AUXIL_CONTOUR", Section::Data),
+    ("HILFSKONTUR", Section::Data),
+    ("FRONT", Section::Data),
+    ("STIRN", Section::Data),
+    ("LATERAL", Section::Data),
+    ("MANTEL", Section::Data),
+    ("REAR_SIDE", Section::Data),
+    ("RUECKSEITE", Section::Data),
+    ("END", Section::Data),
+    ("ENDE", Section::Data),
+];
+
+/// One line of a Heidenhain MANUALplus / CNC PILOT DIN program: `%name` names the file, `[ … ]`
+/// is a comment, a section code alone on its line (`FINISHED`, `MACHINING`, …) switches between
+/// data read past (one note for the section) and moves; the rest lexes as Fanuc's.
+fn heidenhain_line(
+    line: &str,
+    ln: usize,
+    section: &mut Section,
+    out: &mut Vec<Block>,
+) -> Result<(), LexError> {
+    let trimmed = line.trim();
+    if trimmed.starts_with('%') {
+        return Ok(());
+    }
+    let first = trimmed.split_whitespace().next().unwrap_or("");
+    if let Some(&(name, s)) = HEIDENHAIN_SECTIONS.iter().find(|(n, _)| first.eq_ignore_ascii_case(n)) {
+        *section = s;
+        if s == Section::Data {
+            let col = line.len() - line.trim_start().len() + 1;
+            let mut b = Block::new(ln);
+            b.past.push(Past { name: name.to_string(), kind: PastKind::Section, col });
+            out.push(b);
+        }
+        return Ok(());
+    }
+    if *section == Section::Data {
+        return Ok(());
+    }
+    // `[ … ]` comments become blanks, keeping every other character's column.
+    let mut kept = String::with_capacity(line.len());
+    let mut open: Option<usize> = None;
+    for (i, c) in line.chars().enumerate() {
+        match (c, open) {
+            ('[', None) => {
+                open = Some(i + 1);
+                kept.push(' ');
+            }
+            (']', Some(_)) => {
+                open = None;
+                kept.push(' ');
+            }
+            (_, Some(_)) => kept.push(' '),
+            (c, None) => kept.push(c),
+        }
+    }
+    if let Some(col) = open {
+        return Err((ln, col, "a comment opened with [ is not closed with ] on its line".to_string()));
+    }
+    bracket_line(&kept, ln, Dialect::Heidenhain, out)
+}
+
 /// The expression syntax of a dialect.
 pub fn syntax_of(d: Dialect) -> Syntax {
     match d {
-        Dialect::Fanuc | Dialect::Haas | Dialect::Okuma => Syntax::MacroB,
+        Dialect::Fanuc
+        | Dialect::Haas
+        | Dialect::Okuma
+        | Dialect::Mitsubishi
+        | Dialect::Mazak
+        | Dialect::Heidenhain => Syntax::MacroB,
         Dialect::LinuxCnc => Syntax::LinuxCnc,
         Dialect::Dyna => Syntax::Dyna,
         Dialect::Sinumerik => Syntax::Sinumerik,
@@ -579,7 +682,13 @@ fn keyword(
     let syntax = syntax_of(dialect);
     let col = s.col_at(i);
     let macro_b = match dialect {
-        Dialect::Fanuc | Dialect::Haas | Dialect::Dyna | Dialect::Okuma => true,
+        Dialect::Fanuc
+        | Dialect::Haas
+        | Dialect::Dyna
+        | Dialect::Okuma
+        | Dialect::Mitsubishi
+        | Dialect::Mazak
+        | Dialect::Heidenhain => true,
         Dialect::Sinumerik | Dialect::LinuxCnc => false,
     };
     let refuse = |m: String| Err((ln, col, m));
@@ -1063,7 +1172,14 @@ fn sinumerik_word(
 fn semicolon_ends_line(dialect: Dialect) -> bool {
     match dialect {
         Dialect::LinuxCnc => true,
-        Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::Dyna | Dialect::Okuma => false,
+        Dialect::Fanuc
+        | Dialect::Haas
+        | Dialect::Sinumerik
+        | Dialect::Dyna
+        | Dialect::Okuma
+        | Dialect::Mitsubishi
+        | Dialect::Mazak
+        | Dialect::Heidenhain => false,
     }
 }
 
@@ -1071,7 +1187,14 @@ fn semicolon_ends_line(dialect: Dialect) -> bool {
 fn o_words_are_flow(dialect: Dialect) -> bool {
     match dialect {
         Dialect::LinuxCnc => true,
-        Dialect::Fanuc | Dialect::Haas | Dialect::Sinumerik | Dialect::Dyna | Dialect::Okuma => false,
+        Dialect::Fanuc
+        | Dialect::Haas
+        | Dialect::Sinumerik
+        | Dialect::Dyna
+        | Dialect::Okuma
+        | Dialect::Mitsubishi
+        | Dialect::Mazak
+        | Dialect::Heidenhain => false,
     }
 }
 

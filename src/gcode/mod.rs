@@ -22,6 +22,7 @@ mod edit;
 pub(crate) mod expr;
 mod fanuc;
 mod haas;
+mod heidenhain;
 mod interp;
 mod lexer;
 mod linuxcnc;
@@ -56,12 +57,29 @@ pub enum Dialect {
     /// Okuma OSP lathes: G33 (a fixed cycle whose X-only blocks repeat it) and the G71/G72
     /// compound threading cycles.
     Okuma,
+    /// Mitsubishi M70/M80 lathes: read as the Fanuc model (G32, G92, the two-block G76, macro
+    /// B), G-code lists by `--gcode-system`.
+    Mitsubishi,
+    /// Mazak EIA/ISO programs: read as the Fanuc model, G-code lists by `--gcode-system`.
+    Mazak,
+    /// Heidenhain MANUALplus / CNC PILOT DIN programs: the G31 thread cycle and G33 single
+    /// thread paths, `[ ]` comments.
+    Heidenhain,
 }
 
 impl Dialect {
     /// Every dialect, in the order the CLI lists them.
-    pub const ALL: [Dialect; 6] =
-        [Dialect::Fanuc, Dialect::Haas, Dialect::Sinumerik, Dialect::LinuxCnc, Dialect::Dyna, Dialect::Okuma];
+    pub const ALL: [Dialect; 9] = [
+        Dialect::Fanuc,
+        Dialect::Haas,
+        Dialect::Sinumerik,
+        Dialect::LinuxCnc,
+        Dialect::Dyna,
+        Dialect::Okuma,
+        Dialect::Mitsubishi,
+        Dialect::Mazak,
+        Dialect::Heidenhain,
+    ];
 
     /// The dialect's command-line name.
     pub fn name(self) -> &'static str {
@@ -72,14 +90,23 @@ impl Dialect {
             Dialect::LinuxCnc => "linuxcnc",
             Dialect::Dyna => "dyna",
             Dialect::Okuma => "okuma",
+            Dialect::Mitsubishi => "mitsubishi",
+            Dialect::Mazak => "mazak",
+            Dialect::Heidenhain => "heidenhain",
         }
     }
 
     /// Reads a dialect name.
     pub fn parse(s: &str) -> Result<Dialect, Error> {
+        if s == "hurco" {
+            // Issue 27: a dialect only where its pass law can be sourced.
+            return Err(Error::Input(
+                "dialect 'hurco' is not supported: the WinMax lathe threading cycle's words are published (programming manual 704-0115-307, p. 2-25) but not how the depth goes from the first rough depth D to the last E, so its passes cannot be derived".to_string(),
+            ));
+        }
         Dialect::ALL.into_iter().find(|d| d.name() == s).ok_or_else(|| {
             Error::Input(format!(
-                "unknown dialect '{s}': expected fanuc, haas, sinumerik, linuxcnc, dyna or okuma"
+                "unknown dialect '{s}': expected fanuc, haas, sinumerik, linuxcnc, dyna, okuma, mitsubishi, mazak or heidenhain"
             ))
         })
     }
@@ -106,11 +133,33 @@ impl Dialect {
     }
 
     /// The G codes that set inch and mm units: G70/G71 on Sinumerik (which also reads
-    /// G700/G710), G20/G21 elsewhere.
-    pub fn unit_codes(self) -> (u32, u32) {
+    /// G700/G710), G20/G21 elsewhere; none on Heidenhain's lathe controls, whose unit is a
+    /// machine setting (G20 and G21 define the blank there).
+    pub fn unit_codes(self) -> Option<(u32, u32)> {
         match self {
-            Dialect::Sinumerik => (70, 71),
-            Dialect::Fanuc | Dialect::Haas | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma => (20, 21),
+            Dialect::Sinumerik => Some((70, 71)),
+            Dialect::Fanuc
+            | Dialect::Haas
+            | Dialect::LinuxCnc
+            | Dialect::Dyna
+            | Dialect::Okuma
+            | Dialect::Mitsubishi
+            | Dialect::Mazak => Some((20, 21)),
+            Dialect::Heidenhain => None,
+        }
+    }
+
+    /// Whether the dialect is read as the Fanuc model with its G-code systems A, B and C
+    /// (`--gcode-system`): Fanuc itself, and the controls reported compatible with it.
+    pub fn fanuc_family(self) -> bool {
+        match self {
+            Dialect::Fanuc | Dialect::Mitsubishi | Dialect::Mazak => true,
+            Dialect::Haas
+            | Dialect::Sinumerik
+            | Dialect::LinuxCnc
+            | Dialect::Dyna
+            | Dialect::Okuma
+            | Dialect::Heidenhain => false,
         }
     }
 
@@ -123,6 +172,8 @@ impl Dialect {
             Dialect::LinuxCnc => "G33 and G76",
             Dialect::Dyna => "none: the Dyna THREAD cycle is not supported",
             Dialect::Okuma => "G33 and the compound cycles G71 and G72",
+            Dialect::Mitsubishi | Dialect::Mazak => "G32, G92 and G76 (the Fanuc model)",
+            Dialect::Heidenhain => "G31 and G33",
         }
     }
 }
@@ -716,13 +767,10 @@ fn read(
         keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         blocks = keyed.into_iter().map(|k| k.2).collect();
     }
-    let fanuc_family = match dialect {
-        Dialect::Fanuc => true,
-        Dialect::Haas | Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma => false,
-    };
+    let fanuc_family = dialect.fanuc_family();
     if !fanuc_family && opts.gcode_system != GCodeSystem::A {
         return Err(Error::Input(format!(
-            "G-code system {} is a setting of Fanuc lathe controls: a {} program has one G-code list (read it as --dialect fanuc, or leave --gcode-system out)",
+            "G-code system {} is a setting of Fanuc-family lathe controls (fanuc, mitsubishi, mazak): a {} program has one G-code list (leave --gcode-system out)",
             opts.gcode_system.name(),
             dialect.name()
         )));
@@ -767,16 +815,17 @@ fn read(
             dialect.name()
         )),
     };
-    let (inch, mm) = dialect.unit_codes();
-    let codes = format!("G{inch}/G{mm}");
-    let units_note = match units_assumed {
-        Some(None) if !operations.is_empty() => {
-            Some(format!("the program sets no units ({codes}) before it threads: read in mm, the default; an inch control's program needs --default-units inch"))
+    let codes = match dialect.unit_codes() {
+        Some((inch, mm)) => format!("the program sets no units (G{inch}/G{mm}) before it threads"),
+        None => {
+            format!("a {} program sets no units (the control's unit is a machine setting)", dialect.name())
         }
-        Some(Some(u)) => Some(format!(
-            "the program sets no units ({codes}) before it threads: read in {}, as --default-units says",
-            u.name()
+    };
+    let units_note = match units_assumed {
+        Some(None) if !operations.is_empty() => Some(format!(
+            "{codes}: read in mm, the default; an inch control's program needs --default-units inch"
         )),
+        Some(Some(u)) => Some(format!("{codes}: read in {}, as --default-units says", u.name())),
         _ => None,
     };
     // The system is a setting of the control, not in the program: say which one was read.
@@ -785,7 +834,15 @@ fn read(
         GCodeSystem::B => "read in Fanuc G-code system B, as --gcode-system says: G78 the threading cycle, G76 the multiple one, G33 thread cutting, G92 coordinates, G90/G91 absolute/incremental".to_string(),
         GCodeSystem::C => "read in Fanuc G-code system C, as --gcode-system says: G21 the threading cycle, G78 the multiple one, G33 thread cutting, G70/G71 inch/metric, G92 coordinates, G90/G91 absolute/incremental".to_string(),
     });
-    for n in [units_note, dialect_note, system_note].into_iter().flatten().rev() {
+    // Mitsubishi and Mazak are read as the Fanuc model: say so wherever they thread.
+    let model_note = match dialect {
+        Dialect::Mitsubishi | Dialect::Mazak if !operations.is_empty() => Some(format!(
+            "{} read as the Fanuc model (G32, G92, the two-block G76, macro B), the format this control is reported to accept; its own extensions are not read (a named default: its threading pages were not read)",
+            dialect.name()
+        )),
+        _ => None,
+    };
+    for n in [units_note, dialect_note, system_note, model_note].into_iter().flatten().rev() {
         notes.insert(0, Note::from(n));
     }
     if operations.is_empty() && !opts.allow_no_threading {
@@ -833,5 +890,8 @@ fn rules(dialect: Dialect) -> Box<dyn dialect::Rules> {
         Dialect::LinuxCnc => Box::<linuxcnc::State>::default(),
         Dialect::Dyna => Box::<dyna::State>::default(),
         Dialect::Okuma => Box::<okuma::State>::default(),
+        // Reported Fanuc-compatible: the Fanuc model, its rules and G-code systems.
+        Dialect::Mitsubishi | Dialect::Mazak => Box::<fanuc::State>::default(),
+        Dialect::Heidenhain => Box::<heidenhain::State>::default(),
     }
 }
