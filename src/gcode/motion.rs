@@ -256,18 +256,7 @@ impl Motion {
             holes: Vec::new(),
             hole_modal: (None, None),
             comp: 0,
-            plane: match dialect {
-                _ if record_moves => 17,
-                Dialect::Dyna => 17,
-                Dialect::Fanuc
-                | Dialect::Haas
-                | Dialect::Sinumerik
-                | Dialect::LinuxCnc
-                | Dialect::Okuma
-                | Dialect::Mitsubishi
-                | Dialect::Mazak
-                | Dialect::Heidenhain => 18,
-            },
+            plane: if !record_moves && lathe_dialect(dialect) { 18 } else { 17 },
             ops: Vec::new(),
             loose: None,
             chain: None,
@@ -352,20 +341,7 @@ impl Motion {
 
     /// Whether X words are turned into diameters (lathe dialects).
     pub(crate) fn lathe(&self) -> bool {
-        if self.mill {
-            return false;
-        }
-        match self.dialect {
-            Dialect::Fanuc
-            | Dialect::Haas
-            | Dialect::Sinumerik
-            | Dialect::LinuxCnc
-            | Dialect::Okuma
-            | Dialect::Mitsubishi
-            | Dialect::Mazak
-            | Dialect::Heidenhain => true,
-            Dialect::Dyna => false,
-        }
+        !self.mill && lathe_dialect(self.dialect)
     }
 
     pub fn err(&self, line: usize, column: usize, message: impl Into<String>) -> Error {
@@ -956,4 +932,20 @@ fn shallow_pass_notes(o: &mut Operation, file: &str) {
         });
     }
     o.notes.extend(notes);
+}
+
+/// Whether the dialect's programs turn (X a diameter, the lathe plane G18 at the start): every
+/// control's but Dyna's, a mill.
+fn lathe_dialect(d: Dialect) -> bool {
+    match d {
+        Dialect::Fanuc
+        | Dialect::Haas
+        | Dialect::Sinumerik
+        | Dialect::LinuxCnc
+        | Dialect::Okuma
+        | Dialect::Mitsubishi
+        | Dialect::Mazak
+        | Dialect::Heidenhain => true,
+        Dialect::Dyna => false,
+    }
 }
