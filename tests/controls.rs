@@ -326,3 +326,58 @@ fn regression_the_schema_lists_every_dialect() {
         );
     }
 }
+
+/// Sinumerik CYCLE99 read in the named order (SPL, DM1, FPL, DM2, APP, ROP, TDEP, FAL, IANG,
+/// NSP, NRC, NID, PIT, VARI, NUMTH) with the thread chain CYCLE98's published VARI code
+/// (docs/dialects.md, "Sinumerik CYCLE99"); the law is the Sinumerik thread cycles' (TDEP − FAL
+/// in rough cuts, one finishing cut at TDEP, NID idle passes).
+/// - M20x1.5, VARI 300103 (outside, degressive, one flank, NRC, roughing and finishing):
+///   0.92 − 0.05 = 0.87 in NRC 6 cuts of constant cross-section, depth 0.87·√(i/6); the
+///   finishing cut at 0.92 and NID 1 idle pass: X = 20 − 2·depth. IANG 30 > 0: each start
+///   shifted depth·tan 30° along the feed (−Z) from SPL 0 brought forward by APP 3, so Z starts
+///   3 − depth·tan 30°; every pass ends ROP 2 past FPL −25, at −27. The last at X18.16: d2 =
+///   18.16 + 0.866025 = 19.026, +32.0 µm over 6g's 18.994 (ISO 965-2).
+/// - Two starts of pitch 1.5 on Ø24 (lead 3), VARI 1310201 (outside, linear, alternating, MID,
+///   both, every start at each depth): 0.92 − 0.1 = 0.82 in ⌈0.82/0.3⌉ = 3 cuts of 0.273333;
+///   0.92; start 2 one pitch (1.5) behind start 1 at each depth. Alternating flanks, each
+///   increment toward the other flank: shifts −0.273333·t, 0, −0.273333·t, −0.173333·t (t =
+///   tan 30°). d2 = 22.16 + 0.866025 = 23.026, +32.0 µm over M24 6g's 22.994.
+#[test]
+fn sinumerik_cycle99_degressive_flank_and_two_starts() {
+    let (ops, v) = pass_xs("sinumerik-cycle99.mpf", &[]);
+    let mut depths: Vec<f64> = (1..=6).map(|i| 0.87 * (f64::from(i) / 6.0).sqrt()).collect();
+    depths.extend([0.92, 0.92]);
+    let t = 30f64.to_radians().tan();
+    assert!(close(&ops[0], &depths.iter().map(|d| 20.0 - 2.0 * d).collect::<Vec<_>>()), "{ops:?}");
+    assert!(close(&z_starts(&v, 0), &depths.iter().map(|d| 3.0 - d * t).collect::<Vec<_>>()), "{v}");
+    let passes = v["operations"][0]["passes"].as_array().unwrap();
+    assert!(passes.iter().all(|p| p["z_end"] == -27.0 && p["lead"] == 1.5), "{v}");
+    let notes = v["notes"].to_string();
+    assert!(notes.contains("CYCLE99 read as (SPL, DM1, FPL, DM2, APP, ROP, TDEP"), "{notes}");
+    assert!(notes.contains("a named default"), "{notes}");
+    assert!(
+        notes.contains("outside, degressive (constant cross-section) infeed, one flank at IANG"),
+        "{notes}"
+    );
+
+    let (ops, v) = pass_xs("sinumerik-cycle99-two-start.mpf", &[]);
+    let xs: Vec<f64> =
+        [0.82 / 3.0, 2.0 * 0.82 / 3.0, 0.82, 0.92].iter().flat_map(|d| [24.0 - 2.0 * d; 2]).collect();
+    assert!(close(&ops[0], &xs), "{ops:?}");
+    let shifts = [-0.82 / 3.0 * t, 0.0, -0.82 / 3.0 * t, (-0.82 / 3.0 + 0.1) * t];
+    let zs: Vec<f64> = shifts.iter().flat_map(|s| [3.0 + s, 4.5 + s]).collect();
+    assert!(close(&z_starts(&v, 0), &zs), "{:?}", z_starts(&v, 0));
+    let passes = v["operations"][0]["passes"].as_array().unwrap();
+    assert!(passes.iter().all(|p| p["z_end"] == -22.0 && p["lead"] == 3.0), "{v}");
+    let starts: Vec<u64> = passes.iter().map(|p| p["start"].as_u64().unwrap()).collect();
+    assert_eq!(starts, [0, 1, 0, 1, 0, 1, 0, 1]);
+    assert!(v["notes"].to_string().contains("arguments 16 to 19 are zero or empty"), "{}", v["notes"]);
+
+    for (program, thread) in
+        [("sinumerik-cycle99.mpf", "M20x1.5-6g"), ("sinumerik-cycle99-two-start.mpf", "M24xPh3P1.5-6g")]
+    {
+        for dev in d2_deviations(program, thread, &[]) {
+            assert!((dev - 32.0).abs() < 0.1, "{program}: {dev}");
+        }
+    }
+}

@@ -211,6 +211,19 @@ fn a_cycle97_program_is_corrected_in_its_depth() {
     assert!((d2(&after) - 18.249).abs() <= 0.002, "{}", d2(&after));
 }
 
+/// CYCLE99 (read in its named order, docs/dialects.md): the correction is TDEP, its 7th
+/// argument, a radial depth. The program cuts 18.16 at 0.92: d2 19.026; M20x1.5-6g's band is
+/// 18.854–18.994 (ISO 965-2), the middle 18.924: TDEP 0.92 + (19.026 − 18.924)/2 = 0.971.
+#[test]
+fn a_cycle99_program_is_corrected_in_its_depth() {
+    let (before, after, text) = fix_and_reverify("../sinumerik-cycle99.mpf", "M20x1.5-6g", &[]);
+    let c = &before["correction"];
+    assert_eq!(c["word"], "TDEP");
+    assert!(c["text"].as_str().unwrap().starts_with("change TDEP 0.92 at line 7:29 to 0.971"), "{c}");
+    assert!(text.contains("CYCLE99(0,20,-25,20,3,2,0.971,0.05,30,"), "{text}");
+    assert!((d2(&after) - 18.924).abs() <= 0.002, "{}", d2(&after));
+}
+
 /// A word that is not a plain number in place is not rewritten: the error says what to change.
 #[test]
 fn fix_refuses_an_expression_and_names_the_word() {

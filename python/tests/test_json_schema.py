@@ -53,6 +53,7 @@ def test_the_schema_is_a_valid_schema():
     ["--thread", "M20x1.5-6g", "--program", str(PROGRAMS / "heidenhain-g31-g33.nc"), "--dialect", "heidenhain"],
     ["--thread", "M20x1.5-6g", "--program", str(PROGRAMS / "mitsubishi-g76.nc"), "--dialect", "mitsubishi"],
     ["--thread", "M20x1.5-6g", "--program", str(PROGRAMS / "okuma-g33-repeats.min")],
+    ["--thread", "M24xPh3P1.5-6g", "--program", str(PROGRAMS / "sinumerik-cycle99-two-start.mpf")],
 ])
 def test_verify(args):
     validate("verify", json.loads(cli("verify", *args, "--json", "-")))

@@ -132,6 +132,29 @@ def test_heidenhain_g31_from_python():
     assert d2["deviation_um"] == pytest.approx(32.0, abs=0.1)
 
 
+SINUMERIK_CYCLE99 = """G18 G90 G71 DIAMON
+G97 S800 M3
+G0 X24 Z5
+CYCLE99(0,20,-25,20,3,2,0.92,0.05,30,0,3,0,1.5,100101,1)
+M30
+"""
+
+
+def test_sinumerik_cycle99_from_python():
+    # The named order (docs/dialects.md): TDEP 0.92 - FAL 0.05 = 0.87 in NRC 3 linear cuts (VARI
+    # units 1), then 0.92: X = 20 - 2 * depth; roughing and finishing (hundred-thousands 1 is
+    # roughing only: the cuts stop at 0.87).
+    passes = threadcheck.passes(program=SINUMERIK_CYCLE99, dialect="sinumerik")
+    assert [p["x_end"] for p in passes["passes"]] == pytest.approx([19.42, 18.84, 18.26])
+    both = SINUMERIK_CYCLE99.replace("100101", "300101")
+    passes = threadcheck.passes(program=both, dialect="sinumerik")
+    assert [p["x_end"] for p in passes["passes"]] == pytest.approx([19.42, 18.84, 18.26, 18.16])
+    v = threadcheck.verify("M20x1.5-6g", program=both, dialect="sinumerik", insert="full")
+    d2 = next(c for c in v["operations"][0]["checks"] if c["feature"] == "pitch_diameter")
+    assert d2["deviation_um"] == pytest.approx(32.0, abs=0.1)
+    assert "CYCLE99 read as (SPL, DM1, FPL" in str(v["notes"])
+
+
 def test_module_docstring_example_runs():
     import doctest
 

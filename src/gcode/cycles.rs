@@ -387,7 +387,7 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
 }
 
 /// Sinumerik threading cycles that threadcheck does not read: refused by name, never read past.
-const THREADING_CALLS: [&str; 3] = ["CYCLE98", "CYCLE99", "LCYC97"];
+const THREADING_CALLS: [&str; 2] = ["CYCLE98", "LCYC97"];
 
 /// Reads past what the lexer set aside in a block: messages and tools called by name leave the
 /// motion as it is; a cycle call leaves the position unknown (a threading operation that starts
@@ -409,7 +409,7 @@ pub(crate) fn read_past_item(m: &mut Motion, line: usize, p: &Past) -> Result<()
                 line,
                 p.col,
                 format!(
-                    "{} is a threading cycle threadcheck does not read (CYCLE97 is)",
+                    "{} is a threading cycle threadcheck does not read (CYCLE97 and CYCLE99 are)",
                     p.name.trim_end_matches("(…)")
                 ),
             ))

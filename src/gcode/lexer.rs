@@ -1047,11 +1047,11 @@ fn sin_expr(chars: &[char], i: &mut usize, ln: usize, name: &str) -> Result<Expr
     Ok(e)
 }
 
-/// Sinumerik calls whose arguments are read: the threading cycle CYCLE97 and the drilling and
-/// tapping cycles `threadcheck tap` checks (every other call is read past whole).
-pub(crate) const ARGUMENT_CALLS: [&str; 11] = [
-    "CYCLE97", "CYCLE81", "CYCLE82", "CYCLE83", "CYCLE84", "CYCLE840", "CYCLE85", "CYCLE86", "CYCLE87",
-    "CYCLE88", "CYCLE89",
+/// Sinumerik calls whose arguments are read: the threading cycles CYCLE97 and CYCLE99 and the
+/// drilling and tapping cycles `threadcheck tap` checks (every other call is read past whole).
+pub(crate) const ARGUMENT_CALLS: [&str; 12] = [
+    "CYCLE97", "CYCLE99", "CYCLE81", "CYCLE82", "CYCLE83", "CYCLE84", "CYCLE840", "CYCLE85", "CYCLE86",
+    "CYCLE87", "CYCLE88", "CYCLE89",
 ];
 
 /// A Sinumerik word: `X-20`, `G33`, `R3=R3-0.05`, `X=R3`, `SF=90`, `CYCLE97(…)`, `DIAMON`, `L9`,
@@ -1140,7 +1140,7 @@ fn sinumerik_word(
                         Ok(e) => Some(e),
                         // A drilling or tapping cycle with an argument the expression reader
                         // does not take (a string of a later cycle version): read past whole.
-                        Err(_) if name != "CYCLE97" && t.starts_with('"') => {
+                        Err(_) if !matches!(name.as_str(), "CYCLE97" | "CYCLE99") && t.starts_with('"') => {
                             return Ok(SinWord::Past(Past {
                                 name: format!("{name}(…)"),
                                 kind: PastKind::Call,

@@ -642,6 +642,20 @@ impl Motion {
             }
             return Err(self.err(line, 1, msg));
         }
+        let far = [("X", p.x_start), ("X", p.x_end), ("Z", p.z_start), ("Z", p.z_end), ("Z", p.z_phase)]
+            .into_iter()
+            .find(|(_, v)| !(v.abs() <= crate::ground::bounds::MAX_COORDINATE));
+        if let Some((axis, v)) = far {
+            return Err(self.err(
+                line,
+                1,
+                format!(
+                    "{} pass at {axis}{v}: beyond the {} mm from the origin threadcheck reads",
+                    self.ops[op].cycle,
+                    crate::ground::bounds::MAX_COORDINATE
+                ),
+            ));
+        }
         let word = self.last_x.clone();
         let o = &mut self.ops[op];
         p.index = o.passes.len() + 1;

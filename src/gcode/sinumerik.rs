@@ -1,4 +1,4 @@
-//! Sinumerik: `G33 Z K` (`I` for steep tapers, `SF=` start offset), `CYCLE97`, the old 810T/3T
+//! Sinumerik: `G33 Z K` (`I` for steep tapers, `SF=` start offset), `CYCLE97`, `CYCLE99`, the old 810T/3T
 //! cycles `L96` and `L97` (R-parameters, from the 1994 thesis), subprograms `L9 P33` in the
 //! same listing (ending at `M17`), `DIAMON`/`DIAMOF`, `G70`/`G71`.
 //!
@@ -54,6 +54,10 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Res
         cycles::modal(m, b)?;
         return cycle97(m, b, w).map(|_| Flow::Next);
     }
+    if let Some(w) = b.get("CYCLE99") {
+        cycles::modal(m, b)?;
+        return cycle99(m, b, w).map(|_| Flow::Next);
+    }
     if let Some(w) = b.words.iter().find(|w| hole_kind(w.name).is_some()) {
         let md = cycles::modal(m, b)?;
         cycles::other_block(m, b, &md)?;
@@ -84,7 +88,7 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Res
         return Err(b.werr(
             &m.file,
             w,
-            format!("{} is not a threading cycle threadcheck reads (CYCLE97 is)", w.name),
+            format!("{} is not a threading cycle threadcheck reads (CYCLE97 and CYCLE99 are)", w.name),
         ));
     }
     // Subprogram call: L9 P33, or the old thread cycles L96/L97 when the file does not define them.
@@ -498,6 +502,64 @@ fn r_parameter_word(name: &str, value: f64, b: &RBlock<'_>, w: &RWord<'_>) -> su
     }
 }
 
+/// A Sinumerik turning thread cycle (CYCLE97, CYCLE99) read into the words its law needs, mm.
+struct ThreadCall {
+    name: &'static str,
+    /// The pitch; with `starts` starts the lead is `starts`·pitch, the starts one pitch apart.
+    pitch: f64,
+    starts: u32,
+    /// Every start at each depth before the next depth (CYCLE99 VARI millions 1), or one
+    /// start's every depth after the other's.
+    starts_interleaved: bool,
+    spl: f64,
+    fpl: f64,
+    dm1: f64,
+    dm2: f64,
+    app: f64,
+    rop: f64,
+    nsp_deg: f64,
+    external: bool,
+    /// Each pass's depth (radial, from the crest), in cutting order.
+    depths: Vec<f64>,
+    shift: Shift,
+    iang: f64,
+    tdep: f64,
+    /// TDEP's place among the call's arguments (0-based).
+    tdep_arg: usize,
+}
+
+/// Depths of the Sinumerik law (the thread-cutting and thread-chain cycles' pages, see
+/// docs/dialects.md): FAL is taken off TDEP and the rest divided into `cuts` rough cuts,
+/// constant depth (`degressive` false) or constant cross-section (depth ∝ √i); a finishing cut at
+/// TDEP when FAL > 0; then `idle` passes at TDEP.
+fn sinumerik_depths(
+    tdep: f64,
+    fal: f64,
+    cuts: usize,
+    degressive: bool,
+    rough: bool,
+    finish: bool,
+    idle: usize,
+) -> Vec<f64> {
+    let rough_end = tdep - fal;
+    let n = cuts as f64;
+    let mut depths: Vec<f64> = if rough {
+        (1..=cuts)
+            .map(|i| if degressive { rough_end * (i as f64 / n).sqrt() } else { rough_end * i as f64 / n })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    if finish {
+        if fal > 0.0 || !rough {
+            depths.push(tdep);
+        }
+        depths.extend(std::iter::repeat_n(tdep, idle));
+    }
+    debug_assert!(depths.iter().all(|d| *d > 0.0 && *d <= tdep + 1e-12));
+    depths
+}
+
 /// CYCLE97(PIT, MPIT, SPL, FPL, DM1, DM2, APP, ROP, TDEP, FAL, IANG, NSP, NRC, NID, VARI, NUMT).
 ///
 /// PIT is the pitch; with NUMT starts the lead is NUMT·PIT and the starts are one pitch
@@ -534,25 +596,10 @@ fn cycle97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
     }
     let nrc = if nrc == 0.0 { 1.0 } else { nrc };
     let numt = if numt == 0.0 { 1.0 } else { numt };
-    let whole = |v: f64, lo: f64, hi: f64| v >= lo && v <= hi && v.fract() == 0.0;
     let max = crate::ground::bounds::MAX_REPEATS as f64;
     if !whole(nrc, 1.0, max) || !whole(nid, 0.0, max) || !whole(numt, 1.0, 64.0) {
         return Err(b.werr(&m.file, w, "CYCLE97 NRC, NID and NUMT must be whole numbers in range"));
     }
-    if m.css {
-        m.note(b.line, w.col, "CYCLE97 under constant surface speed (G96); threading wants G97");
-    }
-    let external = vari == 1.0 || vari == 3.0;
-    let area = vari >= 3.0;
-    let rough = tdep - fal;
-    let n = nrc as usize;
-    let mut depths: Vec<f64> = (1..=n)
-        .map(|i| if area { rough * (i as f64 / nrc).sqrt() } else { rough * i as f64 / nrc })
-        .collect();
-    if fal > 0.0 {
-        depths.push(tdep);
-    }
-    depths.extend(std::iter::repeat_n(tdep, nid as usize));
     let shift = if iang > 0.0 {
         Shift::Flank(iang)
     } else if iang < 0.0 {
@@ -560,36 +607,306 @@ fn cycle97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
     } else {
         Shift::Radial
     };
-    let (spl, fpl) = (spl * s, fpl * s);
-    let dir = if fpl < spl { -1.0 } else { 1.0 };
-    let offsets = cycles::shifts(shift, &depths, dir);
-    let lead = pitch * numt;
-    let (d1, d2) = (dm1 * s, dm2 * s);
-    let op = m.begin_op("CYCLE97", b.line);
-    m.op_mut(op).infeed_angle = Some((iang.abs(), "IANG".into()));
-    let tdep_col = args.get(8).map_or(w.col, |a| a.1);
-    // TDEP as written: the ninth argument of the call's text, when it is a plain number.
+    let call = ThreadCall {
+        name: "CYCLE97",
+        pitch,
+        starts: numt as u32,
+        starts_interleaved: false,
+        spl: spl * s,
+        fpl: fpl * s,
+        dm1: dm1 * s,
+        dm2: dm2 * s,
+        app: app * s,
+        rop: rop * s,
+        nsp_deg: nsp,
+        external: vari == 1.0 || vari == 3.0,
+        depths: sinumerik_depths(tdep, fal, nrc as usize, vari >= 3.0, true, true, nid as usize),
+        shift,
+        iang,
+        tdep,
+        tdep_arg: 8,
+    };
+    cut_thread_call(m, b, w, &call)
+}
+
+/// `v` is a whole number from `lo` to `hi`.
+fn whole(v: f64, lo: f64, hi: f64) -> bool {
+    v >= lo && v <= hi && v.fract() == 0.0
+}
+
+/// The arguments CYCLE99 is read by (a named default: docs/dialects.md, "Sinumerik CYCLE99").
+const CYCLE99_ORDER: [&str; 15] = [
+    "SPL", "DM1", "FPL", "DM2", "APP", "ROP", "TDEP", "FAL", "IANG", "NSP", "NRC", "NID", "PIT", "VARI",
+    "NUMTH",
+];
+
+/// CYCLE99(SPL, DM1, FPL, DM2, APP, ROP, TDEP, FAL, IANG, NSP, NRC, NID, PIT, VARI, NUMTH, …).
+///
+/// The order is the thread-chain cycle CYCLE98's published list for one segment (a named
+/// default: Siemens' CYCLE99 page was not read here); VARI is CYCLE98's published digit code:
+/// units 1–4 outside/inside with linear/degressive infeed, hundreds 1 one flank / 2 alternating,
+/// ten-thousands NRC or MID (the 11th argument as the largest infeed), hundred-thousands
+/// roughing / finishing / both, millions the order of the starts. The later arguments must be
+/// zero or empty (read as the cycle's defaults); any other is refused by its place.
+fn cycle99(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
+    let args = w.args.clone().unwrap_or_default();
+    let col = |k: usize| args.get(k).map_or(w.col, |a| a.1);
+    let err = |k: usize, msg: String| Error::Program {
+        file: m.file.clone(),
+        line: b.line,
+        column: col(k),
+        message: msg,
+    };
+    if args.len() > 64 {
+        return Err(b.werr(
+            &m.file,
+            w,
+            format!("CYCLE99 with {} arguments: threadcheck reads at most 64", args.len()),
+        ));
+    }
+    for (k, (x, _)) in args.iter().enumerate().skip(CYCLE99_ORDER.len()) {
+        if let Some(x) = x.filter(|x| *x != 0.0) {
+            return Err(err(
+                k,
+                format!(
+                    "CYCLE99 argument {} = {x}: threadcheck reads the first 15 (SPL … NUMTH, a named order); \
+                     the later ones (pitch unit, pitch change, …) have no published place here: leave them 0 or empty",
+                    k + 1
+                ),
+            ));
+        }
+    }
+    let mut v = [0.0f64; 15];
+    for (k, (x, _)) in args.iter().enumerate().take(15) {
+        if let Some(x) = x {
+            v[k] = *x;
+        }
+    }
+    let [spl, dm1, fpl, dm2, app, rop, tdep, fal, iang, nsp, nrc, nid, pit, vari, numth] = v;
+    let s = m.scale;
+    if !(pit > 0.0) {
+        return Err(err(12, "CYCLE99 PIT (argument 13) must be a pitch greater than zero".into()));
+    }
+    if !(dm1 > 0.0 && dm2 > 0.0) {
+        return Err(err(
+            1,
+            format!(
+                "CYCLE99 DM1 {dm1} and DM2 {dm2} (arguments 2 and 4) must be diameters greater than zero"
+            ),
+        ));
+    }
+    if spl == fpl {
+        return Err(err(
+            2,
+            "CYCLE99 SPL = FPL: a face thread; threadcheck reads longitudinal and taper threads".into(),
+        ));
+    }
+    let (tdep, fal) = (tdep * s, fal * s);
+    if !(tdep > 0.0 && fal >= 0.0 && fal < tdep) {
+        return Err(err(6, "CYCLE99 needs TDEP > 0 and 0 ≤ FAL < TDEP (arguments 7 and 8)".into()));
+    }
+    let digits = Vari99::parse(vari).map_err(|msg| err(13, msg))?;
+    let max = crate::ground::bounds::MAX_REPEATS as f64;
+    let numth = if numth == 0.0 { 1.0 } else { numth };
+    if !whole(nid, 0.0, max) || !whole(numth, 1.0, 64.0) {
+        return Err(err(11, "CYCLE99 NID and NUMTH must be whole numbers in range".into()));
+    }
+    let rough_end = tdep - fal;
+    let cuts = if digits.max_infeed {
+        let mid = nrc * s;
+        if !(mid > 0.0) {
+            return Err(err(
+                10,
+                "CYCLE99 VARI ten-thousands 1: MID (argument 11) is the largest infeed and must be > 0"
+                    .into(),
+            ));
+        }
+        // The fewest cuts whose largest (the first, degressive) is at most MID.
+        let q = rough_end / mid;
+        let n = if digits.degressive { (q * q - 1e-9).ceil() } else { (q - 1e-9).ceil() };
+        n.max(1.0)
+    } else if nrc == 0.0 {
+        1.0
+    } else {
+        nrc
+    };
+    if !whole(cuts, 1.0, max) {
+        return Err(err(10, format!("CYCLE99 NRC/MID gives {cuts} cuts: at most {max}")));
+    }
+    let a = iang.abs();
+    let shift = match digits.flank {
+        // The form before the digit: the sign of IANG chooses (as CYCLE97).
+        0 if iang > 0.0 => Shift::Flank(iang),
+        0 if iang < 0.0 => Shift::Alternating(a),
+        0 => Shift::Radial,
+        // One flank: IANG > 0 the rear flank, < 0 the front (the operating manual's α).
+        1 => Shift::Flank(iang),
+        _ => Shift::Alternating(a),
+    };
+    m.note(
+        b.line,
+        w.col,
+        format!(
+            "CYCLE99 read as ({}): a named default, CYCLE98's published list for one segment (Siemens' CYCLE99 page was not read); VARI {vari} read by CYCLE98's digit code: {}",
+            CYCLE99_ORDER.join(", "),
+            digits.describe()
+        ),
+    );
+    if args.len() > CYCLE99_ORDER.len() {
+        m.note(
+            b.line,
+            col(CYCLE99_ORDER.len()),
+            format!(
+                "CYCLE99 arguments 16 to {} are zero or empty: read as the cycle's defaults (pitch in mm/rev or in/rev as G71/G70, no pitch change)",
+                args.len()
+            ),
+        );
+    }
+    let call = ThreadCall {
+        name: "CYCLE99",
+        pitch: pit * s,
+        starts: numth as u32,
+        starts_interleaved: digits.starts_interleaved,
+        spl: spl * s,
+        fpl: fpl * s,
+        dm1: dm1 * s,
+        dm2: dm2 * s,
+        app: app * s,
+        rop: rop * s,
+        nsp_deg: nsp,
+        external: digits.external,
+        depths: sinumerik_depths(
+            tdep,
+            fal,
+            cuts as usize,
+            digits.degressive,
+            digits.rough,
+            digits.finish,
+            nid as usize,
+        ),
+        shift,
+        iang,
+        tdep,
+        tdep_arg: 6,
+    };
+    cut_thread_call(m, b, w, &call)
+}
+
+/// CYCLE99's VARI read by CYCLE98's published digit code.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Vari99 {
+    external: bool,
+    degressive: bool,
+    /// Hundreds: 0 the sign of IANG chooses, 1 one flank, 2 alternating.
+    flank: u8,
+    /// Ten-thousands 1: the 11th argument is MID, the largest infeed, not NRC.
+    max_infeed: bool,
+    rough: bool,
+    finish: bool,
+    starts_interleaved: bool,
+}
+
+impl Vari99 {
+    fn parse(vari: f64) -> Result<Vari99, String> {
+        if !(vari.fract() == 0.0 && (1.0..2_000_000.0).contains(&vari)) {
+            return Err(format!("CYCLE99 VARI {vari} (argument 14): a whole number of up to seven digits"));
+        }
+        let v = vari as u32;
+        let d = |k: u32| (v / 10u32.pow(k)) % 10;
+        let bad = |place: &str, digit: u32, what: &str| {
+            Err(format!("CYCLE99 VARI {v} (argument 14): {place} digit {digit}; threadcheck reads {what} (CYCLE98's code)"))
+        };
+        if !(1..=4).contains(&d(0)) {
+            return bad("units", d(0), "1–4 (outside/inside, linear/degressive)");
+        }
+        if d(1) != 0 {
+            return bad("tens", d(1), "0");
+        }
+        if d(2) > 2 {
+            return bad("hundreds", d(2), "0–2 (by IANG's sign, one flank, alternating)");
+        }
+        if d(3) != 0 {
+            return bad("thousands", d(3), "0");
+        }
+        if d(4) > 1 {
+            return bad("ten-thousands", d(4), "0 (NRC) or 1 (MID)");
+        }
+        if d(5) > 3 {
+            return bad("hundred-thousands", d(5), "0–3 (both, roughing, finishing, both)");
+        }
+        let h = d(5);
+        Ok(Vari99 {
+            external: d(0) % 2 == 1,
+            degressive: d(0) >= 3,
+            flank: d(2) as u8,
+            max_infeed: d(4) == 1,
+            rough: h != 2,
+            finish: h != 1,
+            starts_interleaved: d(6) == 1,
+        })
+    }
+
+    /// In words, for the note.
+    fn describe(&self) -> String {
+        format!(
+            "{}, {} infeed, {}, the 11th argument {}, {}, {}",
+            if self.external { "outside" } else { "inside" },
+            if self.degressive { "degressive (constant cross-section)" } else { "linear (constant depth)" },
+            match self.flank {
+                0 => "flank by the sign of IANG",
+                1 => "one flank at IANG",
+                _ => "alternating flanks",
+            },
+            if self.max_infeed { "MID, the largest infeed" } else { "NRC, the number of rough cuts" },
+            match (self.rough, self.finish) {
+                (true, true) => "roughing and finishing",
+                (true, false) => "roughing only",
+                _ => "finishing only",
+            },
+            if self.starts_interleaved { "every start at each depth" } else { "one start after the other" },
+        )
+    }
+}
+
+/// The passes of a Sinumerik turning thread cycle.
+fn cut_thread_call(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>, c: &ThreadCall) -> Result<(), Error> {
+    if m.css {
+        m.note(b.line, w.col, format!("{} under constant surface speed (G96); threading wants G97", c.name));
+    }
+    let dir = if c.fpl < c.spl { -1.0 } else { 1.0 };
+    let offsets = cycles::shifts(c.shift, &c.depths, dir);
+    let lead = c.pitch * f64::from(c.starts);
+    let op = m.begin_op(c.name, b.line);
+    m.op_mut(op).infeed_angle = Some((c.iang.abs(), "IANG".into()));
+    let args = w.args.as_deref().unwrap_or_default();
+    let tdep_col = args.get(c.tdep_arg).map_or(w.col, |a| a.1);
+    // TDEP as written: its argument of the call's text, when it is a plain number.
     let tdep_text = w
         .text
         .split_once('(')
-        .and_then(|(_, rest)| rest.trim_end_matches(')').split(',').nth(8))
+        .and_then(|(_, rest)| rest.trim_end_matches(')').split(',').nth(c.tdep_arg))
         .map(|t| t.trim().to_string())
         .filter(|t| t.parse::<f64>().is_ok());
-    for start in 0..numt as u32 {
-        let phase = f64::from(start) * pitch + nsp / 360.0 * lead;
-        for (d, off) in depths.iter().zip(&offsets) {
-            // External: DM is the major diameter, cut inwards. Internal: DM is the tap-hole
-            // diameter, cut outwards (Sinumerik cycle documentation).
-            let xd = |dm: f64| if external { dm - 2.0 * d } else { dm + 2.0 * d };
-            let zs = spl - dir * app * s + off - dir * phase;
-            let mut p = cycles::pass(xd(d1), xd(d2), zs, fpl + dir * rop * s, lead, b.line, 0.0, xd(d2));
-            p.start = start;
-            m.push(op, b.line, p)?;
-        }
+    let order: Vec<(u32, usize)> = if c.starts_interleaved {
+        (0..c.depths.len()).flat_map(|k| (0..c.starts).map(move |s| (s, k))).collect()
+    } else {
+        (0..c.starts).flat_map(|s| (0..c.depths.len()).map(move |k| (s, k))).collect()
+    };
+    for (start, k) in order {
+        let (d, off) = (c.depths[k], offsets[k]);
+        let phase = f64::from(start) * c.pitch + c.nsp_deg / 360.0 * lead;
+        // External: DM is the major diameter, cut inwards. Internal: DM is the tap-hole
+        // diameter, cut outwards (Sinumerik cycle documentation).
+        let xd = |dm: f64| if c.external { dm - 2.0 * d } else { dm + 2.0 * d };
+        let zs = c.spl - dir * c.app + off - dir * phase;
+        let mut p = cycles::pass(xd(c.dm1), xd(c.dm2), zs, c.fpl + dir * c.rop, lead, b.line, 0.0, xd(c.dm2));
+        p.start = start;
+        m.push(op, b.line, p)?;
     }
+    let s = m.scale;
     m.op_mut(op).depth_word = Some(super::DepthWord {
         word: "TDEP".into(),
-        value: tdep / s,
+        value: c.tdep / s,
         line: b.line,
         column: tdep_col,
         form: if tdep_text.is_some() {
@@ -597,7 +914,7 @@ fn cycle97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
         } else {
             super::WordForm::ArgumentExpression
         },
-        written: tdep_text.unwrap_or_else(|| format!("{}", tdep / s)),
+        written: tdep_text.unwrap_or_else(|| format!("{}", c.tdep / s)),
         means: super::WordMeans::Depth { per_radial: 1.0 },
     });
     Ok(())
@@ -617,5 +934,49 @@ fn coarse_pitch_for(size: f64) -> Option<f64> {
 impl Rules for State {
     fn block(&mut self, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Result<Flow, Error> {
         block(self, m, b, cx)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// CYCLE98's published VARI code (Siemens, Job planning 02/2011, p. 811), digit by digit.
+    #[test]
+    fn cycle99_vari_reads_the_cycle98_digit_code() {
+        let v = Vari99::parse(1300101.0).unwrap();
+        assert_eq!(
+            v,
+            Vari99 {
+                external: true,
+                degressive: false,
+                flank: 1,
+                max_infeed: false,
+                rough: true,
+                finish: true,
+                starts_interleaved: true
+            }
+        );
+        let v = Vari99::parse(210204.0).unwrap();
+        assert!(!v.external && v.degressive && v.flank == 2 && v.max_infeed && !v.rough && v.finish);
+        assert!(!v.starts_interleaved);
+        let v = Vari99::parse(100003.0).unwrap();
+        assert!(v.external && v.degressive && v.flank == 0 && v.rough && !v.finish);
+        for bad in [0.0, 5.0, 11.0, 301.0, 1001.0, 20001.0, 400001.0, 2000001.0, 1.5, -1.0] {
+            assert!(Vari99::parse(bad).is_err(), "{bad}");
+        }
+    }
+
+    /// The law's depths: 0.87 in 3 linear cuts, the finishing cut and 2 idle passes; finishing
+    /// only is one cut at TDEP and the idle passes; roughing only stops at TDEP − FAL.
+    #[test]
+    fn sinumerik_depths_follow_the_machining_choice() {
+        let d = sinumerik_depths(0.92, 0.05, 3, false, true, true, 2);
+        let want = [0.29, 0.58, 0.87, 0.92, 0.92, 0.92];
+        assert!(d.len() == want.len() && d.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-12), "{d:?}");
+        assert_eq!(sinumerik_depths(0.92, 0.05, 3, false, false, true, 1), [0.92, 0.92]);
+        let d = sinumerik_depths(0.92, 0.05, 3, false, true, false, 1);
+        assert!(d.len() == 3 && (d[2] - 0.87).abs() < 1e-12, "{d:?}");
+        assert_eq!(sinumerik_depths(0.92, 0.0, 1, true, true, true, 0), [0.92]);
     }
 }

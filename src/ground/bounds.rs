@@ -51,3 +51,9 @@ pub const MAX_MILL_SEGMENTS: usize = 2_000_000;
 /// Largest cutter `mill` checks, mm (a face mill is at most a few hundred; a 10⁹ mm cutter took
 /// 13 s).
 pub const MAX_TOOL_DIAMETER: f64 = 1000.0;
+
+/// Farthest from the origin a threading pass may lie, mm (X as a diameter, Z, the phase): a
+/// lathe's travel is a few metres. Beyond 10⁶ mm an f64's spacing nears 10⁻¹⁰ mm; at 10¹⁴ mm
+/// it is 0.016 mm and the helix's phase is lost (found reading a G92 to Z−10¹⁴, which gave a
+/// d2 1.2 mm off, and a CYCLE97 whose start offset NSP of 10²¹ degrees left no section window).
+pub const MAX_COORDINATE: f64 = 1.0e6;
