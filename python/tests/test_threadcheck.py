@@ -135,7 +135,7 @@ def test_heidenhain_g31_from_python():
 SINUMERIK_CYCLE99 = """G18 G90 G71 DIAMON
 G97 S800 M3
 G0 X24 Z5
-CYCLE99(0,20,-25,20,3,2,0.92,0.05,30,0,3,0,1.5,100101,1)
+CYCLE99(0,20,-25,,3,2,0.92,0.05,30,0,3,0,1.5,100101,1)
 M30
 """
 
@@ -153,6 +153,8 @@ def test_sinumerik_cycle99_from_python():
     d2 = next(c for c in v["operations"][0]["checks"] if c["feature"] == "pitch_diameter")
     assert d2["deviation_um"] == pytest.approx(32.0, abs=0.1)
     assert "CYCLE99 read as (SPL, DM1, FPL" in str(v["notes"])
+    # DM2 left empty: a cylindrical thread, DM2 = DM1 (a named default, said).
+    assert "CYCLE99 DM2 empty: read as DM1" in str(v["notes"])
 
 
 def test_module_docstring_example_runs():

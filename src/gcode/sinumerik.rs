@@ -651,8 +651,9 @@ const CYCLE99_ORDER: [&str; 15] = [
 fn cycle99(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
     let args = w.args.clone().unwrap_or_default();
     let col = |k: usize| args.get(k).map_or(w.col, |a| a.1);
+    let file = m.file.clone();
     let err = |k: usize, msg: String| Error::Program {
-        file: m.file.clone(),
+        file: file.clone(),
         line: b.line,
         column: col(k),
         message: msg,
@@ -683,6 +684,12 @@ fn cycle99(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
         }
     }
     let [spl, dm1, fpl, dm2, app, rop, tdep, fal, iang, nsp, nrc, nid, pit, vari, numth] = v;
+    // An empty DM2: the thread is cylindrical, DM2 = DM1 (a named default, noted).
+    let dm2_empty = args.get(3).is_none_or(|a| a.0.is_none());
+    let dm2 = if dm2_empty { dm1 } else { dm2 };
+    if dm2_empty {
+        m.note(b.line, col(3), "CYCLE99 DM2 empty: read as DM1, a cylindrical thread (a named default)");
+    }
     let s = m.scale;
     if !(pit > 0.0) {
         return Err(err(12, "CYCLE99 PIT (argument 13) must be a pitch greater than zero".into()));
