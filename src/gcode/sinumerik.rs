@@ -511,12 +511,8 @@ struct ThreadCall {
     /// Every start at each depth before the next depth (CYCLE99 VARI millions 1), or one
     /// start's every depth after the other's.
     starts_interleaved: bool,
-    spl: f64,
-    fpl: f64,
-    dm1: f64,
-    dm2: f64,
-    app: f64,
-    rop: f64,
+    /// Where the thread lies, mm.
+    at: Span,
     nsp_deg: f64,
     external: bool,
     /// Each pass's depth (radial, from the crest), in cutting order.
@@ -526,6 +522,43 @@ struct ThreadCall {
     tdep: f64,
     /// TDEP's place among the call's arguments (0-based).
     tdep_arg: usize,
+}
+
+/// Where a Sinumerik thread cycle cuts, mm: the start SPL on diameter DM1, the end FPL on DM2,
+/// the run-in APP before the start and the run-out ROP past the end.
+#[derive(Clone, Copy, Debug)]
+struct Span {
+    spl: f64,
+    dm1: f64,
+    fpl: f64,
+    dm2: f64,
+    app: f64,
+    rop: f64,
+}
+
+impl Span {
+    /// The words as written, in program units, times `scale`.
+    fn scaled([spl, dm1, fpl, dm2, app, rop]: [f64; 6], scale: f64) -> Span {
+        Span {
+            spl: spl * scale,
+            dm1: dm1 * scale,
+            fpl: fpl * scale,
+            dm2: dm2 * scale,
+            app: app * scale,
+            rop: rop * scale,
+        }
+    }
+}
+
+/// The flank infeed CYCLE97 reads from IANG's sign: > 0 one flank, < 0 alternating, 0 radial.
+fn shift_by_sign(iang: f64) -> Shift {
+    if iang > 0.0 {
+        Shift::Flank(iang)
+    } else if iang < 0.0 {
+        Shift::Alternating(-iang)
+    } else {
+        Shift::Radial
+    }
 }
 
 /// Depths of the Sinumerik law (the thread-cutting and thread-chain cycles' pages, see
@@ -600,28 +633,16 @@ fn cycle97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
     if !whole(nrc, 1.0, max) || !whole(nid, 0.0, max) || !whole(numt, 1.0, 64.0) {
         return Err(b.werr(&m.file, w, "CYCLE97 NRC, NID and NUMT must be whole numbers in range"));
     }
-    let shift = if iang > 0.0 {
-        Shift::Flank(iang)
-    } else if iang < 0.0 {
-        Shift::Alternating(-iang)
-    } else {
-        Shift::Radial
-    };
     let call = ThreadCall {
         name: "CYCLE97",
         pitch,
         starts: numt as u32,
         starts_interleaved: false,
-        spl: spl * s,
-        fpl: fpl * s,
-        dm1: dm1 * s,
-        dm2: dm2 * s,
-        app: app * s,
-        rop: rop * s,
+        at: Span::scaled([spl, dm1, fpl, dm2, app, rop], s),
         nsp_deg: nsp,
         external: vari == 1.0 || vari == 3.0,
         depths: sinumerik_depths(tdep, fal, nrc as usize, vari >= 3.0, true, true, nid as usize),
-        shift,
+        shift: shift_by_sign(iang),
         iang,
         tdep,
         tdep_arg: 8,
@@ -740,15 +761,12 @@ fn cycle99(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
     if !whole(cuts, 1.0, max) {
         return Err(err(10, format!("CYCLE99 NRC/MID gives {cuts} cuts: at most {max}")));
     }
-    let a = iang.abs();
     let shift = match digits.flank {
         // The form before the digit: the sign of IANG chooses (as CYCLE97).
-        0 if iang > 0.0 => Shift::Flank(iang),
-        0 if iang < 0.0 => Shift::Alternating(a),
-        0 => Shift::Radial,
+        0 => shift_by_sign(iang),
         // One flank: IANG > 0 the rear flank, < 0 the front (the operating manual's α).
         1 => Shift::Flank(iang),
-        _ => Shift::Alternating(a),
+        _ => Shift::Alternating(iang.abs()),
     };
     m.note(
         b.line,
@@ -774,12 +792,7 @@ fn cycle99(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
         pitch: pit * s,
         starts: numth as u32,
         starts_interleaved: digits.starts_interleaved,
-        spl: spl * s,
-        fpl: fpl * s,
-        dm1: dm1 * s,
-        dm2: dm2 * s,
-        app: app * s,
-        rop: rop * s,
+        at: Span::scaled([spl, dm1, fpl, dm2, app, rop], s),
         nsp_deg: nsp,
         external: digits.external,
         depths: sinumerik_depths(
@@ -880,7 +893,7 @@ fn cut_thread_call(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>, c: &ThreadCall
     if m.css {
         m.note(b.line, w.col, format!("{} under constant surface speed (G96); threading wants G97", c.name));
     }
-    let dir = if c.fpl < c.spl { -1.0 } else { 1.0 };
+    let dir = if c.at.fpl < c.at.spl { -1.0 } else { 1.0 };
     let offsets = cycles::shifts(c.shift, &c.depths, dir);
     let lead = c.pitch * f64::from(c.starts);
     let op = m.begin_op(c.name, b.line);
@@ -905,8 +918,17 @@ fn cut_thread_call(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>, c: &ThreadCall
         // External: DM is the major diameter, cut inwards. Internal: DM is the tap-hole
         // diameter, cut outwards (Sinumerik cycle documentation).
         let xd = |dm: f64| if c.external { dm - 2.0 * d } else { dm + 2.0 * d };
-        let zs = c.spl - dir * c.app + off - dir * phase;
-        let mut p = cycles::pass(xd(c.dm1), xd(c.dm2), zs, c.fpl + dir * c.rop, lead, b.line, 0.0, xd(c.dm2));
+        let zs = c.at.spl - dir * c.at.app + off - dir * phase;
+        let mut p = cycles::pass(
+            xd(c.at.dm1),
+            xd(c.at.dm2),
+            zs,
+            c.at.fpl + dir * c.at.rop,
+            lead,
+            b.line,
+            0.0,
+            xd(c.at.dm2),
+        );
         p.start = start;
         m.push(op, b.line, p)?;
     }
