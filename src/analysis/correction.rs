@@ -1,5 +1,5 @@
 //! The correction in the program's own words: the change of the word that sets an operation's
-//! final depth (the last X of a G76, G92 run or G32 chain; LinuxCNC G76 K; CYCLE97 TDEP; L97
+//! final depth (the last X of a G76, G92 run or G32 chain; LinuxCNC G76 K; CYCLE97 and CYCLE99 TDEP; L97
 //! R24; L96 R15) that moves the pitch diameter by a given amount, in the program's units and X
 //! mode, rounded to its least increment.
 
