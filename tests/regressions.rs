@@ -753,3 +753,67 @@ fn regression_a_chained_run_out_does_not_turn_an_outside_thread_inside() {
     let notes: Vec<String> = p.operations[0].notes.iter().map(|n| n.message.clone()).collect();
     assert!(notes.iter().all(|n| !n.contains("cuts nothing")), "{notes:?}");
 }
+
+/// Found reviewing the Heidenhain corrections: in a pass chained with its run-out (a straight
+/// G32 to Z−18, then G32 X22 Z−20 climbing out), the correction named the run-out's X22 (the
+/// last X of the chain), whose change leaves the thread as it was. The chain's longest segment
+/// sets the word: the X18.16 that put the last pass at its depth. M20x1.5-6g's d2 band is
+/// 18.854–18.994 (ISO 965-2), the middle 18.924; the last pass cuts d2 18.16 + 0.866025 = 19.026
+/// with a full-profile insert, so X18.16 − 2·0.051 = X18.058, and the fixed program lands on
+/// mid-tolerance.
+#[test]
+fn regression_a_chained_run_out_is_not_the_word_corrected() {
+    let dir = crate::tempdir("runout-fix");
+    let text = "G21 G97 S800 M3\nG0 X24 Z5\nX19.4\nG32 Z-18 F1.5\nG32 X22 Z-20\nG0 X24\nZ5\nX18.16\nG32 Z-18\nG32 X22 Z-20\nG0 X24\nZ5\nM30\n";
+    std::fs::write(dir.join("chain.nc"), text).unwrap();
+    let spec = ["--thread", "M20x1.5-6g", "--insert", "full", "--json", "-"];
+    let mut args = vec!["verify", "--program", "chain.nc", "--fix", "fixed.nc"];
+    args.extend(spec);
+    let o = crate::run_in(&dir, &args);
+    assert_eq!(o.status.code(), Some(1), "{}", crate::stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let c = &v["operations"][0]["correction"];
+    assert_eq!(
+        (c["line"].as_u64(), c["was"].as_f64(), c["value"].as_f64()),
+        (Some(8), Some(18.16), Some(18.058)),
+        "{c}"
+    );
+    let fixed = std::fs::read_to_string(dir.join("fixed.nc")).unwrap();
+    assert_eq!(fixed, text.replace("X18.16\n", "X18.058\n"));
+    let mut again = vec!["verify", "--program", "fixed.nc"];
+    again.extend(spec);
+    let o = crate::run_in(&dir, &again);
+    assert_eq!(o.status.code(), Some(0), "{}", crate::stderr(&o));
+}
+
+/// Found reviewing the Heidenhain corrections: G31's correction named its end point X20 (moving
+/// the whole thread) instead of its depth U. Our M20x1.5 DIN program's G31s cut to U−0.92 (d2
+/// 18.16 + 0.866025 = 19.026, ISO 965-2's 6g band 18.854–18.994): U−0.92 − 0.051 = U−0.971, and
+/// the chained G33's X18.16 (not its run-out's X22) to X18.058; the fixed program passes.
+#[test]
+fn regression_heidenhain_g31_is_corrected_in_its_depth_u() {
+    let dir = crate::tempdir("g31-fix");
+    let src = crate::data("programs/heidenhain-g31-g33.nc");
+    let spec = ["--thread", "M20x1.5-6g", "--dialect", "heidenhain", "--insert", "full", "--json", "-"];
+    let mut args = vec!["verify", "--program", src.to_str().unwrap(), "--fix", "fixed.nc"];
+    args.extend(spec);
+    let o = crate::run_in(&dir, &args);
+    assert_eq!(o.status.code(), Some(1), "{}", crate::stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let words: Vec<(String, f64)> = v["operations"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|op| {
+            (
+                op["correction"]["written"].as_str().unwrap().to_string(),
+                op["correction"]["value"].as_f64().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(words, [("U-0.92".into(), -0.971), ("U-0.92".into(), -0.971), ("X18.16".into(), 18.058)]);
+    let mut again = vec!["verify", "--program", "fixed.nc"];
+    again.extend(spec);
+    let o = crate::run_in(&dir, &again);
+    assert_eq!(o.status.code(), Some(0), "{}", crate::stderr(&o));
+}

@@ -290,6 +290,11 @@ fn g31(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
             m.push(op, b.line, p)?;
         }
     }
+    // The depth is U's (the last cut is at U): the word to correct, not the end point X.
+    if let Some(w) = b.get("U") {
+        m.op_mut(op).depth_word =
+            Some(super::motion::address_word(b, w, super::WordMeans::Depth { per_radial: 1.0 }));
+    }
     m.x = Some(x0);
     m.z = Some(z0);
     Ok(())

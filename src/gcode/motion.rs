@@ -127,10 +127,14 @@ pub struct Move {
 }
 
 /// An open chain of synchronised moves (G32/G33 blocks one after the other): one helix.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 struct Chain {
     op: usize,
     z_phase: f64,
+    /// The Z travel of the chain's longest segment, and the X word that set its depth: the
+    /// chain's depth word (a run-out or run-in segment is never the word to correct).
+    longest: f64,
+    word: Option<super::DepthWord>,
 }
 
 /// The shared motion state.
@@ -695,7 +699,7 @@ impl Motion {
             );
         }
         let dir = if z1 < z0 { -1.0 } else { 1.0 };
-        let chain = match self.chain {
+        let mut chain = match self.chain.take() {
             Some(c) => c,
             None => {
                 let z_phase = z0 + dir * start_offset_deg / 360.0 * lead;
@@ -711,7 +715,7 @@ impl Motion {
                         op
                     }
                 };
-                Chain { op, z_phase }
+                Chain { op, z_phase, longest: 0.0, word: None }
             }
         };
         let p = Pass {
@@ -729,6 +733,13 @@ impl Motion {
             x_taper: x1,
         };
         self.push(chain.op, b.line, p)?;
+        let travel = (z1 - z0).abs();
+        if travel > chain.longest {
+            chain.longest = travel;
+            chain.word = self.ops[chain.op].depth_word.clone();
+        } else {
+            self.ops[chain.op].depth_word = chain.word.clone();
+        }
         self.chain = Some(chain);
         self.x = Some(x1);
         self.z = Some(z1);
