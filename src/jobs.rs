@@ -519,7 +519,7 @@ fn correction_edits(
             message: format!("--fix rewrites plain numbers only: {}", crate::report::correction_text(c)),
         });
     };
-    Ok(std::iter::once((c.line, c.column))
+    let mut edits: Vec<crate::gcode::WordEdit> = std::iter::once((c.line, c.column))
         .chain(c.also.iter().map(|p| (p.line, p.column)))
         .map(|(line, column)| crate::gcode::WordEdit {
             line,
@@ -527,7 +527,25 @@ fn correction_edits(
             old: c.written.clone(),
             new: new.clone(),
         })
-        .collect())
+        .collect();
+    // The earlier passes that cut deeper than the new value take it too.
+    for d in &c.deeper {
+        if d.form != crate::gcode::WordForm::Number {
+            return Err(Error::Program {
+                file: shown.to_string(),
+                line: d.line,
+                column: d.column,
+                message: format!("--fix rewrites plain numbers only: {}", crate::report::correction_text(c)),
+            });
+        }
+        edits.push(crate::gcode::WordEdit {
+            line: d.line,
+            column: d.column,
+            old: d.written.clone(),
+            new: new.clone(),
+        });
+    }
+    Ok(edits)
 }
 
 /// `threadcheck capability`: a program's (or plan's) parts over the machine's and the insert's

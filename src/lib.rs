@@ -104,7 +104,7 @@ pub use analysis::correct::{
     correct, helix_term, CorrectReport, CorrectSpec, GaugeResult, Measured, MeasuredState, Pickup,
     WearOffset, WireReading,
 };
-pub use analysis::correction::{correction, Correction};
+pub use analysis::correction::{correction, deeper_words, Correction, Deeper};
 pub use analysis::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};
 pub use analysis::lead::{lead_deviation, LeadDeviation};
 pub use analysis::mill::{mill, MillReport, MillSpec, Target};

@@ -817,3 +817,89 @@ fn regression_heidenhain_g31_is_corrected_in_its_depth_u() {
     let o = crate::run_in(&dir, &again);
     assert_eq!(o.status.code(), Some(0), "{}", crate::stderr(&o));
 }
+
+/// Found checking that every test program's `--fix` lands on mid-tolerance: a correction that
+/// makes a G92 run shallower changed only its last X, and an earlier pass deeper than the new
+/// value still cut the thread too small. M12x1.75-6g (ISO 965-2: d2 10.679–10.829, middle 10.754)
+/// with a full-profile insert: d2 = X + 0.57735·1.75 = X + 1.010363. The run ends at X9.6 (d2
+/// 10.6104, −68.6 µm); the correction is X10.754 − 1.010363 = X9.744 (at 0.001), and the X9.7 before
+/// it cuts deeper than that, so it is named and set to X9.744 too; X10.0 is not. The fixed program
+/// passes with d2 10.754.
+#[test]
+fn regression_a_shallower_correction_moves_the_deeper_passes_too() {
+    let dir = crate::tempdir("deeper-fix");
+    let text =
+        "G21 G97 S600 M3\nG0 X14 Z4\nG92 X11.4 Z-20 F1.75\nX10.6\nX10.0\nX9.7\nX9.6\nG0 X50 Z50\nM30\n";
+    std::fs::write(dir.join("run.nc"), text).unwrap();
+    let spec = ["--thread", "M12x1.75-6g", "--insert", "full", "--json", "-"];
+    let mut args = vec!["verify", "--program", "run.nc", "--fix", "fixed.nc"];
+    args.extend(spec);
+    let o = crate::run_in(&dir, &args);
+    assert_eq!(o.status.code(), Some(1), "{}", crate::stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let c = &v["operations"][0]["correction"];
+    assert_eq!((c["line"].as_u64(), c["value"].as_f64()), (Some(7), Some(9.744)), "{c}");
+    assert_eq!(
+        c["deeper"],
+        serde_json::json!([{"line": 6, "column": 1, "written": "X9.7", "editable": true}])
+    );
+    assert!(
+        c["text"].as_str().unwrap().contains("X9.7 at line 6:1 cuts deeper than that: set it to X9.744 too"),
+        "{c}"
+    );
+    let fixed = std::fs::read_to_string(dir.join("fixed.nc")).unwrap();
+    assert_eq!(fixed, text.replace("X9.7\nX9.6\n", "X9.744\nX9.744\n"));
+    let mut again = vec!["verify", "--program", "fixed.nc"];
+    again.extend(spec);
+    let (code, v) = {
+        let o = crate::run_in(&dir, &again);
+        (o.status.code(), serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap())
+    };
+    assert_eq!(code, Some(0), "{v}");
+    let d2 = v["operations"][0]["checks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["feature"] == "pitch_diameter")
+        .unwrap();
+    assert!((d2["value"].as_f64().unwrap() - 10.754).abs() < 0.001, "{d2}");
+}
+
+/// Found checking `--fix` on every test program: a pass chained with a run-out that climbs
+/// steeper than 45° was refused as a wrong lead, though the program is sound. Fanuc takes a G32
+/// taper's F along the longer axis: from X18.16 Z−18 to X24 Z−20 the radial travel 2.92 exceeds
+/// the axial 2, so the axial lead is 1.5·2/2.92 = 1.027397 mm. LinuxCNC's G33 K runs along the
+/// path: to X22 Z−20, 1.5·2/√(1.92² + 2²) = 1.082081 mm. Both segments are swept as they move, a
+/// note names them, and the thread's d2 is the straight pass's: 18.16 + 0.866025 = 19.026.
+#[test]
+fn regression_a_steep_chained_run_out_is_not_a_wrong_lead() {
+    let dir = crate::tempdir("steep-runout");
+    let cases = [
+        (
+            "st.nc",
+            "G21 G97 S800 M3\nG0 X24 Z5\nX18.16\nG32 Z-18 F1.5\nG32 X24 Z-20\nG0 X26\nM30\n",
+            5,
+            1.027397,
+        ),
+        (
+            "lc.ngc",
+            "G21 G7 G90\nS800 M3\nG0 X24 Z5\nX18.16\nG33 Z-18 K1.5\nG33 X22 Z-20 K1.5\nG0 X24\nM2\n",
+            6,
+            1.082081,
+        ),
+    ];
+    for (name, text, line, lead) in cases {
+        std::fs::write(dir.join(name), text).unwrap();
+        let o = crate::run_in(
+            &dir,
+            &["verify", "--program", name, "--thread", "M20x1.5-6g", "--insert", "full", "--json", "-"],
+        );
+        assert_eq!(o.status.code(), Some(1), "{name}: {}", crate::stderr(&o));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let op = &v["operations"][0];
+        let d2 = op["checks"].as_array().unwrap().iter().find(|c| c["feature"] == "pitch_diameter").unwrap();
+        assert!((d2["value"].as_f64().unwrap() - 19.026).abs() < 0.0005, "{name}: {d2}");
+        let want = format!("the taper segment at line {line} moves {lead} mm along Z per turn");
+        assert!(op["notes"].to_string().contains(&want), "{name}: {}", op["notes"]);
+    }
+}

@@ -48,6 +48,61 @@ pub struct Correction {
     /// the same way. Empty for one cycle.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub also: Vec<Place>,
+    /// Earlier passes' X words that cut deeper than the new value (a correction that makes the
+    /// thread shallower): each set to the new value too, or the thread stays as they cut it.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub deeper: Vec<Deeper>,
+}
+
+/// An earlier pass's X word that cuts deeper than a correction's new value.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Deeper {
+    /// Line, from 1.
+    pub line: usize,
+    /// Column, from 1.
+    pub column: usize,
+    /// The word as written now.
+    pub written: String,
+    /// Whether `--fix` rewrites it (a plain number in place).
+    #[serde(rename = "editable", serialize_with = "editable")]
+    pub form: WordForm,
+}
+
+/// The words of `words` (the X words that set an operation's passes) that cut deeper than the
+/// new value of `c`, an X correction of a thread of `kind`: beyond it toward the axis (external)
+/// or away from it (internal). None for a correction of a depth word (G76 K, TDEP, …): its cycle
+/// lays the passes out anew.
+///
+/// ```
+/// use threadcheck::{correction, deeper_words, DepthWord, ProgramUnits, ThreadKind, WordForm, WordMeans};
+/// let w = |x: f64, line| DepthWord { word: "X".into(), value: x, line, column: 1, written: format!("X{x}"),
+///     form: WordForm::Number, means: WordMeans::Diameter };
+/// // A G92 run X9.9, X9.5, X9.32 whose d2 is 0.3486 mm small: the last becomes X9.669, and the
+/// // X9.5 before it cuts deeper than that.
+/// let c = correction(&w(9.32, 12), ProgramUnits::Mm, ThreadKind::External, 0.3486);
+/// let d = deeper_words(&c, &[w(9.9, 10), w(9.5, 11), w(9.32, 12)], ThreadKind::External);
+/// assert_eq!(d.iter().map(|d| d.line).collect::<Vec<_>>(), [11]);
+/// ```
+pub fn deeper_words(c: &Correction, words: &[DepthWord], kind: ThreadKind) -> Vec<Deeper> {
+    let diameter = |v: f64, m: WordMeans| match m {
+        WordMeans::Diameter => Some(v),
+        WordMeans::Radius => Some(2.0 * v),
+        WordMeans::Depth { .. } => None,
+    };
+    let Some(new) = diameter(c.value, c.means) else { return Vec::new() };
+    // Compared at a tenth of the program's increment: a word equal to the new value is not deeper.
+    let tol = 0.1 * c.units.least_increment();
+    words
+        .iter()
+        .filter(|w| w.word == c.word && !(w.line == c.line && w.column == c.column))
+        .filter(|w| {
+            diameter(w.value, w.means).is_some_and(|x| match kind {
+                ThreadKind::External => x < new - tol,
+                ThreadKind::Internal => x > new + tol,
+            })
+        })
+        .map(|w| Deeper { line: w.line, column: w.column, written: w.written.clone(), form: w.form })
+        .collect()
 }
 
 /// A word's place: line and column.
@@ -96,6 +151,7 @@ pub fn correction(w: &DepthWord, units: ProgramUnits, kind: ThreadKind, delta_d2
         written: w.written.clone(),
         means: w.means,
         also: Vec::new(),
+        deeper: Vec::new(),
     }
 }
 

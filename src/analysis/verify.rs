@@ -337,16 +337,19 @@ pub(crate) struct DepthAt {
     units: crate::gcode::ProgramUnits,
     also: Vec<crate::analysis::correction::Place>,
     alike: bool,
+    /// The X words that set the operation's passes.
+    pass_x_words: Vec<crate::gcode::DepthWord>,
 }
 
 impl DepthAt {
-    /// The same change in the other starts' cycles; a word written otherwise in one of them is
-    /// not rewritten in place.
-    fn apply_to(&self, c: &mut crate::analysis::correction::Correction) {
+    /// The same change in the other starts' cycles (a word written otherwise in one of them is
+    /// not rewritten in place), and the earlier passes that cut deeper than the new value.
+    fn apply_to(&self, c: &mut crate::analysis::correction::Correction, kind: ThreadKind) {
         c.also = self.also.clone();
         if !self.alike {
             c.form = crate::gcode::WordForm::Expression;
         }
+        c.deeper = crate::analysis::correction::deeper_words(c, &self.pass_x_words, kind);
     }
 }
 
@@ -357,7 +360,7 @@ impl Verification {
     pub fn correction_for(&self, delta_d2: f64) -> Option<crate::analysis::correction::Correction> {
         let d = self.depth.as_ref()?;
         let mut c = crate::analysis::correction::correction(&d.word, d.units, self.kind, delta_d2);
-        d.apply_to(&mut c);
+        d.apply_to(&mut c, self.kind);
         Some(c)
     }
 }
@@ -573,6 +576,9 @@ pub fn program_passes(
         return Err(Error::Input(format!("{file}: operation {} has no passes", op.index)));
     };
     for p in &op.passes {
+        if off_helix_segment(op, p, t) {
+            continue;
+        }
         if let Err(inc) = crate::analysis::lead::lead_deviation(p.lead, op.units, t, 0.0) {
             let u = op.units;
             let in_units = |mm: f64| match u {
@@ -594,12 +600,16 @@ pub fn program_passes(
                 line: p.source_line.unwrap_or(1),
                 column: 1,
                 message: format!(
-                    "the program cuts a lead of {}, the designation {} has {}: they differ by more than rounding to the program's {} {} increment{hint}",
+                    "the program cuts a lead of {}, the designation {} has {}: they differ by more than rounding{}{hint}",
                     in_units(p.lead),
                     des.text,
                     in_units(lead),
-                    crate::ground::fmt::fmt_num(inc),
-                    u.name()
+                    // A lead computed from a taper (not written) has no increment of its own.
+                    if inc >= 1e-6 {
+                        format!(" to the program's {} {} increment", crate::ground::fmt::fmt_num(inc), u.name())
+                    } else {
+                        String::new()
+                    }
                 ),
             });
         }
@@ -613,6 +623,15 @@ pub fn program_passes(
         }
     }
     Ok(passes)
+}
+
+/// Whether pass `p` of `op` is a run-in or run-out segment off the thread's helix: a taper
+/// segment whose axial lead is not the designation's while another pass of the operation cuts at
+/// it (a chained run-out steeper than 45° whose F the control takes along X, a LinuxCNC G33
+/// taper whose K runs along the path). It is swept as it moves; a note says so.
+fn off_helix_segment(op: &crate::gcode::Operation, p: &Pass, t: &crate::standards::BasicThread) -> bool {
+    let off = |q: &Pass| crate::analysis::lead::lead_deviation(q.lead, op.units, t, 0.0).is_err();
+    (p.x_end - p.x_start).abs() > 1e-9 && off(p) && op.passes.iter().any(|q| !off(q))
 }
 
 struct Cut {
@@ -1105,7 +1124,13 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         correction,
         picture: None,
         hints: Vec::new(),
-        depth: depth_word.map(|(word, units)| DepthAt { word, units, also: Vec::new(), alike: true }),
+        depth: depth_word.map(|(word, units)| DepthAt {
+            word,
+            units,
+            also: Vec::new(),
+            alike: true,
+            pass_x_words: Vec::new(),
+        }),
     };
     v.hints = crate::analysis::check::hints(&v.checks, &v.insert, &v.limits, t.half_angle().to_degrees());
     if spec.picture {
@@ -1332,6 +1357,17 @@ fn verify_given(
 ) -> Result<Verification, Error> {
     let passes = program_passes(op, &r.designation, &label.file)?;
     let mut notes: Vec<crate::ground::note::Note> = op.notes.clone();
+    let mut lines = std::collections::BTreeMap::new();
+    for p in op.passes.iter().filter(|p| off_helix_segment(op, p, &r.designation.thread)) {
+        lines.entry(p.source_line.unwrap_or(0)).or_insert(p.lead);
+    }
+    for (line, lead) in lines {
+        notes.push(crate::ground::note::Note::from(format!(
+            "the taper segment at line {line} moves {} mm along Z per turn, not the thread's {} mm (a run-in or run-out steeper than 45° takes its F along X; a LinuxCNC G33 its K along the path): it leaves the helix, and where it still cuts, it cuts off the thread's last turns",
+            crate::ground::fmt::fmt_num(lead),
+            crate::ground::fmt::fmt_num(r.designation.thread.lead())
+        )));
+    }
     if let Some((angle, word)) = &op.infeed_angle {
         let half = 0.5 * r.insert.angle;
         if *angle > half + 1e-9 {
@@ -1393,8 +1429,9 @@ fn verify_given(
             d.also.push(crate::analysis::correction::Place { line: w.line, column: w.column });
             d.alike &= w.written == d.word.written && w.form == d.word.form;
         }
+        d.pass_x_words = op.pass_x_words.clone();
         if let Some(c) = v.correction.as_mut() {
-            d.apply_to(c);
+            d.apply_to(c, v.kind);
         }
     }
     if !starts.ok {

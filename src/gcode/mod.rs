@@ -234,6 +234,10 @@ pub struct Operation {
     /// joined into this operation).
     #[serde(skip)]
     pub start_words: Vec<DepthWord>,
+    /// Every X word that set a pass of this operation, once each: a correction that makes the
+    /// thread shallower names those of them that cut deeper than its new value.
+    #[serde(skip)]
+    pub pass_x_words: Vec<DepthWord>,
 }
 
 /// The word of a program that sets an operation's final depth, as the program has it.

@@ -618,6 +618,7 @@ impl Motion {
             x_words: if self.diameter { XWords::Diameter } else { XWords::Radius },
             depth_word: None,
             start_words: Vec::new(),
+            pass_x_words: Vec::new(),
         });
         self.ops.len() - 1
     }
@@ -664,6 +665,11 @@ impl Motion {
         let o = &mut self.ops[op];
         p.index = o.passes.len() + 1;
         o.passes.push(p);
+        if let Some(w) = &word {
+            if !o.pass_x_words.iter().any(|k| k.line == w.line && k.column == w.column) {
+                o.pass_x_words.push(w.clone());
+            }
+        }
         // The X that set this pass; a cycle whose depth is another word says so after.
         o.depth_word = word;
         Ok(())
@@ -890,6 +896,7 @@ fn merge_starts(ops: &mut Vec<Operation>, file: &str) {
                 a.passes.extend(b.passes.iter().map(|p| Pass { start: next + p.start, ..*p }));
                 a.notes.extend(b.notes.iter().cloned());
                 a.start_words.extend(b.depth_word.clone());
+                a.pass_x_words.extend(b.pass_x_words.iter().cloned());
                 continue;
             }
         }

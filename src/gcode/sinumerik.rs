@@ -829,7 +829,9 @@ struct Vari99 {
 impl Vari99 {
     fn parse(vari: f64) -> Result<Vari99, String> {
         if !(vari.fract() == 0.0 && (1.0..2_000_000.0).contains(&vari)) {
-            return Err(format!("CYCLE99 VARI {vari} (argument 14): the machining code is a whole number from 1 to 1999999"));
+            return Err(format!(
+                "CYCLE99 VARI {vari} (argument 14): the machining code is a whole number from 1 to 1999999"
+            ));
         }
         let v = vari as u32;
         let d = |k: u32| (v / 10u32.pow(k)) % 10;

@@ -396,7 +396,18 @@ pub fn correction_text(c: &crate::analysis::correction::Correction) -> String {
             format!("set {word} (read by the call at line {}) to {}", c.line, correction_word(c))
         }
     };
-    format!("{place} ({}, {what})", c.units.name())
+    let mut text = format!("{place} ({}, {what})", c.units.name());
+    if !c.deeper.is_empty() {
+        let words: Vec<String> =
+            c.deeper.iter().map(|d| format!("{} at line {}:{}", d.written, d.line, d.column)).collect();
+        let (verb, them) = if words.len() == 1 { ("cuts", "it") } else { ("cut", "them") };
+        text.push_str(&format!(
+            "; {} {verb} deeper than that: set {them} to {} too",
+            words.join(" and "),
+            correction_word(c)
+        ));
+    }
+    text
 }
 
 /// A value with `prec` decimals, or a dash when there is none.
