@@ -903,3 +903,21 @@ fn regression_a_steep_chained_run_out_is_not_a_wrong_lead() {
         assert!(op["notes"].to_string().contains(&want), "{name}: {}", op["notes"]);
     }
 }
+
+/// Found with the steep run-outs: a chained segment with another lead kept the phase of the
+/// chain's first segment, so its helix jumped at the seam. The straight G32 from Z5 (lead 1.5)
+/// reaches Z−18 after 23/1.5 = 15⅓ turns, its last crossing at Z−17.5; the run-out to X24 Z−20
+/// (axial lead 1.5·2/2.92, F along X) must cross next after the remaining ⅔ turn: at
+/// −18 − ⅔·1.027397 = −18.684932, not on the first segment's grid.
+#[test]
+fn regression_a_chained_segment_with_another_lead_continues_the_helix() {
+    let text = "G21 G97 S800 M3\nG0 X24 Z5\nX18.16\nG32 Z-18 F1.5\nG32 X24 Z-20\nG0 X26\nM30\n";
+    let p = threadcheck::read_program(text, "st.nc", threadcheck::Dialect::Fanuc).unwrap();
+    let (a, b) = (&p.passes[0], &p.passes[1]);
+    assert!((a.crossings(-18.0, -17.0).last().unwrap() + 17.5).abs() < 1e-9);
+    let lead = 1.5 * 2.0 / 2.92;
+    assert!((b.lead - lead).abs() < 1e-12);
+    let c = b.crossings(-20.0, -18.0);
+    assert_eq!(c.len(), 2, "{c:?}");
+    assert!((c[0] - (-18.0 - 2.0 / 3.0 * lead)).abs() < 1e-9, "{c:?}");
+}

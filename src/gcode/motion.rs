@@ -135,6 +135,9 @@ struct Chain {
     /// chain's depth word (a run-out or run-in segment is never the word to correct).
     longest: f64,
     word: Option<super::DepthWord>,
+    /// The last segment's lead and phase: a segment with another lead (a run-out steeper than
+    /// 45°) continues the helix where the last one left it.
+    last: Option<(f64, f64)>,
 }
 
 /// The shared motion state.
@@ -721,16 +724,23 @@ impl Motion {
                         op
                     }
                 };
-                Chain { op, z_phase, longest: 0.0, word: None }
+                Chain { op, z_phase, longest: 0.0, word: None, last: None }
             }
         };
+        // The turns made up to z0 on the last segment's helix go on at this segment's lead.
+        let z_phase = match chain.last {
+            Some((l, ph)) if (l - lead).abs() > 1e-12 => z0 - lead * (z0 - ph) / l,
+            Some((_, ph)) => ph,
+            None => chain.z_phase,
+        };
+        chain.last = Some((lead, z_phase));
         let p = Pass {
             index: 0,
             x_start: x0,
             x_end: x1,
             z_start: z0,
             z_end: z1,
-            z_phase: chain.z_phase,
+            z_phase,
             lead,
             start: 0,
             source_line: Some(b.line),

@@ -27,8 +27,8 @@ pub struct Pass {
     pub z_end: f64,
     /// Z of one crossing of the helix with the half-plane, mm: the pass crosses at
     /// `z_phase + k·lead` for whole k. It is `z_start` for a single move; a later segment of a
-    /// synchronised chain (G32/G33 blocks one after the other) keeps the phase of the chain's
-    /// first segment.
+    /// synchronised chain (G32/G33 blocks one after the other) continues the chain's helix: the
+    /// first segment's phase at the same lead, the turns made so far carried on at another.
     pub z_phase: f64,
     /// Lead (axial advance per revolution), mm.
     pub lead: f64,
