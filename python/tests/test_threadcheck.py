@@ -157,6 +157,17 @@ def test_sinumerik_cycle99_from_python():
     assert "CYCLE99 DM2 empty: read as DM1" in str(v["notes"])
 
 
+def test_a_shallower_correction_names_the_deeper_passes():
+    # M12x1.75-6g (ISO 965-2: d2 10.679-10.829) with a full-profile insert: d2 = X + 1.010363.
+    # The run ends at X9.6: the correction is X9.744 (d2 10.754, the middle), and the X9.7 before
+    # it cuts deeper than that, so it is named to be set to X9.744 too.
+    run = "G21 G97 S600 M3\nG0 X14 Z4\nG92 X11.4 Z-20 F1.75\nX10.6\nX10.0\nX9.7\nX9.6\nG0 X50 Z50\nM30\n"
+    v = threadcheck.verify("M12x1.75-6g", program=run, dialect="fanuc", insert="full")
+    c = v["operations"][0]["correction"]
+    assert (c["line"], c["value"]) == (7, pytest.approx(9.744))
+    assert [(d["line"], d["written"]) for d in c["deeper"]] == [(6, "X9.7")]
+
+
 def test_module_docstring_example_runs():
     import doctest
 

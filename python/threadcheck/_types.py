@@ -36,6 +36,8 @@ class Correction(TypedDict, total=False):
     written: str
     means: Any
     text: str
+    also: List[Json]
+    deeper: List[Json]
 
 
 class _Report(TypedDict, total=False):
