@@ -82,8 +82,8 @@ pub use standards::{Feature, GrooveForm};
 pub use gcode::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
 pub use gcode::{
     read_program, read_program_streaming, read_program_with, rewrite_words, Budget, DepthWord, Dialect,
-    DialectFrom, GCodeSystem, HoleCycle, HoleKind, LinuxCncRelease, Operation, Program, ProgramUnits,
-    ReadOptions, Spindle, SpindleDir, WordEdit, WordForm, WordMeans, XWords,
+    DialectFrom, GCodeSystem, HoleCycle, HoleKind, LinuxCncRelease, Operation, PassXWord, Program,
+    ProgramUnits, ReadOptions, Spindle, SpindleDir, WordEdit, WordForm, WordMeans, XWords,
 };
 
 // Geometry: the insert, the sweep, the measurement.

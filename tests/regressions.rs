@@ -921,3 +921,24 @@ fn regression_a_chained_segment_with_another_lead_continues_the_helix() {
     assert_eq!(c.len(), 2, "{c:?}");
     assert!((c[0] - (-18.0 - 2.0 / 3.0 * lead)).abs() < 1e-9, "{c:?}");
 }
+
+/// Found right after the deeper-pass correction: on one G33 chain that steps down a taper
+/// (X18.16 from Z0 to −10, a taper to X17.16 at −20, on to −30), the taper's X17.16 was named as
+/// a pass "deeper" than the corrected X18.058, though it cuts another stretch of the thread.
+/// Only words whose passes share Z with the corrected word's are compared.
+#[test]
+fn regression_a_taper_elsewhere_on_the_chain_is_not_a_deeper_pass() {
+    let dir = crate::tempdir("chain-deeper");
+    let text =
+        "G90 G71 G0 X24 Z5\nG0 X18.16\nG33 Z-10 K1.5\nG33 X17.16 Z-20 K1.5\nG33 Z-30 K1.5\nG0 X24\nM30\n";
+    std::fs::write(dir.join("chain.mpf"), text).unwrap();
+    let o = crate::run_in(
+        &dir,
+        &["verify", "--program", "chain.mpf", "--thread", "M20x1.5-6g", "--insert", "full", "--json", "-"],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", crate::stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let c = &v["operations"][0]["correction"];
+    assert_eq!((c["written"].as_str(), c["value"].as_f64()), (Some("X18.16"), Some(18.058)), "{c}");
+    assert!(c.get("deeper").is_none(), "{c}");
+}

@@ -3,7 +3,7 @@
 //! R24; L96 R15) that moves the pitch diameter by a given amount, in the program's units and X
 //! mode, rounded to its least increment.
 
-use crate::gcode::{DepthWord, ProgramUnits, WordForm, WordMeans};
+use crate::gcode::{DepthWord, PassXWord, ProgramUnits, WordForm, WordMeans};
 use crate::standards::ThreadKind;
 use serde::Serialize;
 
@@ -69,39 +69,50 @@ pub struct Deeper {
 }
 
 /// The words of `words` (the X words that set an operation's passes) that cut deeper than the
-/// new value of `c`, an X correction of a thread of `kind`: beyond it toward the axis (external)
-/// or away from it (internal). None for a correction of a depth word (G76 K, TDEP, …): its cycle
-/// lays the passes out anew.
+/// new value of `c`, an X correction of a thread of `kind`, over the stretch of Z the corrected
+/// word's passes span: beyond it toward the axis (external) or away from it (internal). A taper
+/// segment elsewhere on the thread is not one of them. None for a correction of a depth word
+/// (G76 K, TDEP, …): its cycle lays the passes out anew.
 ///
 /// ```
-/// use threadcheck::{correction, deeper_words, DepthWord, ProgramUnits, ThreadKind, WordForm, WordMeans};
-/// let w = |x: f64, line| DepthWord { word: "X".into(), value: x, line, column: 1, written: format!("X{x}"),
-///     form: WordForm::Number, means: WordMeans::Diameter };
+/// use threadcheck::{correction, deeper_words, DepthWord, PassXWord, ProgramUnits, ThreadKind, WordForm, WordMeans};
+/// let w = |x: f64, line| PassXWord {
+///     word: DepthWord { word: "X".into(), value: x, line, column: 1, written: format!("X{x}"),
+///         form: WordForm::Number, means: WordMeans::Diameter },
+///     z_min: -20.0, z_max: 4.0 };
 /// // A G92 run X9.9, X9.5, X9.32 whose d2 is 0.3486 mm small: the last becomes X9.669, and the
 /// // X9.5 before it cuts deeper than that.
-/// let c = correction(&w(9.32, 12), ProgramUnits::Mm, ThreadKind::External, 0.3486);
+/// let c = correction(&w(9.32, 12).word, ProgramUnits::Mm, ThreadKind::External, 0.3486);
 /// let d = deeper_words(&c, &[w(9.9, 10), w(9.5, 11), w(9.32, 12)], ThreadKind::External);
 /// assert_eq!(d.iter().map(|d| d.line).collect::<Vec<_>>(), [11]);
 /// ```
-pub fn deeper_words(c: &Correction, words: &[DepthWord], kind: ThreadKind) -> Vec<Deeper> {
+pub fn deeper_words(c: &Correction, words: &[PassXWord], kind: ThreadKind) -> Vec<Deeper> {
     let diameter = |v: f64, m: WordMeans| match m {
         WordMeans::Diameter => Some(v),
         WordMeans::Radius => Some(2.0 * v),
         WordMeans::Depth { .. } => None,
     };
     let Some(new) = diameter(c.value, c.means) else { return Vec::new() };
+    let at = |w: &DepthWord| w.line == c.line && w.column == c.column;
+    let Some(own) = words.iter().find(|w| at(&w.word)) else { return Vec::new() };
     // Compared at a tenth of the program's increment: a word equal to the new value is not deeper.
     let tol = 0.1 * c.units.least_increment();
     words
         .iter()
-        .filter(|w| w.word == c.word && !(w.line == c.line && w.column == c.column))
+        .filter(|w| w.word.word == c.word && !at(&w.word))
+        .filter(|w| w.z_min.max(own.z_min) < w.z_max.min(own.z_max))
         .filter(|w| {
-            diameter(w.value, w.means).is_some_and(|x| match kind {
+            diameter(w.word.value, w.word.means).is_some_and(|x| match kind {
                 ThreadKind::External => x < new - tol,
                 ThreadKind::Internal => x > new + tol,
             })
         })
-        .map(|w| Deeper { line: w.line, column: w.column, written: w.written.clone(), form: w.form })
+        .map(|w| Deeper {
+            line: w.word.line,
+            column: w.word.column,
+            written: w.word.written.clone(),
+            form: w.word.form,
+        })
         .collect()
 }
 

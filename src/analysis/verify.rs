@@ -338,7 +338,7 @@ pub(crate) struct DepthAt {
     also: Vec<crate::analysis::correction::Place>,
     alike: bool,
     /// The X words that set the operation's passes.
-    pass_x_words: Vec<crate::gcode::DepthWord>,
+    pass_x_words: Vec<crate::gcode::PassXWord>,
 }
 
 impl DepthAt {

@@ -234,10 +234,22 @@ pub struct Operation {
     /// joined into this operation).
     #[serde(skip)]
     pub start_words: Vec<DepthWord>,
-    /// Every X word that set a pass of this operation, once each: a correction that makes the
-    /// thread shallower names those of them that cut deeper than its new value.
+    /// Every X word that set a pass of this operation, once each, with the Z its passes span: a
+    /// correction that makes the thread shallower names those of them that cut deeper than its
+    /// new value over the same stretch.
     #[serde(skip)]
-    pub pass_x_words: Vec<DepthWord>,
+    pub pass_x_words: Vec<PassXWord>,
+}
+
+/// An X word of a program and the stretch of Z the passes it set span.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PassXWord {
+    /// The word.
+    pub word: DepthWord,
+    /// The smallest Z of its passes, mm.
+    pub z_min: f64,
+    /// The largest Z of its passes, mm.
+    pub z_max: f64,
 }
 
 /// The word of a program that sets an operation's final depth, as the program has it.

@@ -669,8 +669,13 @@ impl Motion {
         p.index = o.passes.len() + 1;
         o.passes.push(p);
         if let Some(w) = &word {
-            if !o.pass_x_words.iter().any(|k| k.line == w.line && k.column == w.column) {
-                o.pass_x_words.push(w.clone());
+            let (lo, hi) = (p.z_start.min(p.z_end), p.z_start.max(p.z_end));
+            match o.pass_x_words.iter_mut().find(|k| k.word.line == w.line && k.word.column == w.column) {
+                Some(k) => {
+                    k.z_min = k.z_min.min(lo);
+                    k.z_max = k.z_max.max(hi);
+                }
+                None => o.pass_x_words.push(super::PassXWord { word: w.clone(), z_min: lo, z_max: hi }),
             }
         }
         // The X that set this pass; a cycle whose depth is another word says so after.
