@@ -766,24 +766,15 @@ fn regression_a_chained_run_out_is_not_the_word_corrected() {
     let dir = crate::tempdir("runout-fix");
     let text = "G21 G97 S800 M3\nG0 X24 Z5\nX19.4\nG32 Z-18 F1.5\nG32 X22 Z-20\nG0 X24\nZ5\nX18.16\nG32 Z-18\nG32 X22 Z-20\nG0 X24\nZ5\nM30\n";
     std::fs::write(dir.join("chain.nc"), text).unwrap();
-    let spec = ["--thread", "M20x1.5-6g", "--insert", "full", "--json", "-"];
-    let mut args = vec!["verify", "--program", "chain.nc", "--fix", "fixed.nc"];
-    args.extend(spec);
-    let o = crate::run_in(&dir, &args);
-    assert_eq!(o.status.code(), Some(1), "{}", crate::stderr(&o));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let (v, _, fixed) =
+        crate::fix_then_verify(&dir.join("chain.nc"), &["--thread", "M20x1.5-6g", "--insert", "full"]);
     let c = &v["operations"][0]["correction"];
     assert_eq!(
         (c["line"].as_u64(), c["was"].as_f64(), c["value"].as_f64()),
         (Some(8), Some(18.16), Some(18.058)),
         "{c}"
     );
-    let fixed = std::fs::read_to_string(dir.join("fixed.nc")).unwrap();
     assert_eq!(fixed, text.replace("X18.16\n", "X18.058\n"));
-    let mut again = vec!["verify", "--program", "fixed.nc"];
-    again.extend(spec);
-    let o = crate::run_in(&dir, &again);
-    assert_eq!(o.status.code(), Some(0), "{}", crate::stderr(&o));
 }
 
 /// Found reviewing the Heidenhain corrections: G31's correction named its end point X20 (moving
@@ -792,14 +783,9 @@ fn regression_a_chained_run_out_is_not_the_word_corrected() {
 /// the chained G33's X18.16 (not its run-out's X22) to X18.058; the fixed program passes.
 #[test]
 fn regression_heidenhain_g31_is_corrected_in_its_depth_u() {
-    let dir = crate::tempdir("g31-fix");
     let src = crate::data("programs/heidenhain-g31-g33.nc");
-    let spec = ["--thread", "M20x1.5-6g", "--dialect", "heidenhain", "--insert", "full", "--json", "-"];
-    let mut args = vec!["verify", "--program", src.to_str().unwrap(), "--fix", "fixed.nc"];
-    args.extend(spec);
-    let o = crate::run_in(&dir, &args);
-    assert_eq!(o.status.code(), Some(1), "{}", crate::stderr(&o));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let spec = ["--thread", "M20x1.5-6g", "--dialect", "heidenhain", "--insert", "full"];
+    let (v, _, _) = crate::fix_then_verify(&src, &spec);
     let words: Vec<(String, f64)> = v["operations"]
         .as_array()
         .unwrap()
@@ -812,10 +798,6 @@ fn regression_heidenhain_g31_is_corrected_in_its_depth_u() {
         })
         .collect();
     assert_eq!(words, [("U-0.92".into(), -0.971), ("U-0.92".into(), -0.971), ("X18.16".into(), 18.058)]);
-    let mut again = vec!["verify", "--program", "fixed.nc"];
-    again.extend(spec);
-    let o = crate::run_in(&dir, &again);
-    assert_eq!(o.status.code(), Some(0), "{}", crate::stderr(&o));
 }
 
 /// Found checking that every test program's `--fix` lands on mid-tolerance: a correction that
@@ -831,12 +813,8 @@ fn regression_a_shallower_correction_moves_the_deeper_passes_too() {
     let text =
         "G21 G97 S600 M3\nG0 X14 Z4\nG92 X11.4 Z-20 F1.75\nX10.6\nX10.0\nX9.7\nX9.6\nG0 X50 Z50\nM30\n";
     std::fs::write(dir.join("run.nc"), text).unwrap();
-    let spec = ["--thread", "M12x1.75-6g", "--insert", "full", "--json", "-"];
-    let mut args = vec!["verify", "--program", "run.nc", "--fix", "fixed.nc"];
-    args.extend(spec);
-    let o = crate::run_in(&dir, &args);
-    assert_eq!(o.status.code(), Some(1), "{}", crate::stderr(&o));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let (v, after, fixed) =
+        crate::fix_then_verify(&dir.join("run.nc"), &["--thread", "M12x1.75-6g", "--insert", "full"]);
     let c = &v["operations"][0]["correction"];
     assert_eq!((c["line"].as_u64(), c["value"].as_f64()), (Some(7), Some(9.744)), "{c}");
     assert_eq!(
@@ -847,21 +825,8 @@ fn regression_a_shallower_correction_moves_the_deeper_passes_too() {
         c["text"].as_str().unwrap().contains("X9.7 at line 6:1 cuts deeper than that: set it to X9.744 too"),
         "{c}"
     );
-    let fixed = std::fs::read_to_string(dir.join("fixed.nc")).unwrap();
     assert_eq!(fixed, text.replace("X9.7\nX9.6\n", "X9.744\nX9.744\n"));
-    let mut again = vec!["verify", "--program", "fixed.nc"];
-    again.extend(spec);
-    let (code, v) = {
-        let o = crate::run_in(&dir, &again);
-        (o.status.code(), serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap())
-    };
-    assert_eq!(code, Some(0), "{v}");
-    let d2 = v["operations"][0]["checks"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|c| c["feature"] == "pitch_diameter")
-        .unwrap();
+    let d2 = crate::check_of(&after["operations"][0], "pitch_diameter");
     assert!((d2["value"].as_f64().unwrap() - 10.754).abs() < 0.001, "{d2}");
 }
 

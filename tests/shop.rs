@@ -131,31 +131,17 @@ fn default_units_read_a_program_that_sets_none() {
     assert!(out.contains("final X5.0800"), "{out}");
 }
 
-/// `verify --fix OUT` and the re-verification of OUT: (report before, report after, the two
-/// programs' texts).
+/// `verify --fix OUT` and the re-verification of OUT: (report before, report after, the fixed
+/// program's text).
 fn fix_and_reverify(
     file: &str,
     thread: &str,
     more: &[&str],
 ) -> (serde_json::Value, serde_json::Value, String) {
-    let dir = tempdir("fix");
-    let src = data(&format!("programs/shop/{file}"));
-    let ext = src.extension().unwrap().to_str().unwrap().to_string();
-    let out = dir.join(format!("fixed.{ext}"));
-    let mut args = vec!["verify", "--program", src.to_str().unwrap(), "--thread", thread, "--insert", "full"];
-    args.extend_from_slice(more);
-    let mut fix = args.clone();
-    fix.extend(["--fix", out.to_str().unwrap(), "--json", "-"]);
-    let o = run_in(&dir, &fix);
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    let before: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let mut again = args.clone();
-    again[2] = out.to_str().unwrap();
-    again.extend(["--json", "-"]);
-    let o = run_in(&dir, &again);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    let after: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    (before["operations"][0].clone(), after["operations"][0].clone(), std::fs::read_to_string(out).unwrap())
+    let mut spec = vec!["--thread", thread, "--insert", "full"];
+    spec.extend_from_slice(more);
+    let (before, after, text) = fix_then_verify(&data(&format!("programs/shop/{file}")), &spec);
+    (before["operations"][0].clone(), after["operations"][0].clone(), text)
 }
 
 fn d2(v: &serde_json::Value) -> f64 {

@@ -110,3 +110,25 @@ pub fn check_of<'a>(v: &'a serde_json::Value, feature: &str) -> &'a serde_json::
         .and_then(|cs| cs.iter().find(|c| c["feature"] == feature))
         .unwrap_or_else(|| panic!("no {feature} check in {v}"))
 }
+
+/// `verify --program PROGRAM --fix OUT --json -` with `spec` (exit 1: a correction is needed),
+/// then `verify` of OUT (exit 0: it lands): the first report, the second, and OUT's text.
+pub fn fix_then_verify(program: &Path, spec: &[&str]) -> (serde_json::Value, serde_json::Value, String) {
+    let dir = tempdir("fix");
+    let ext = program.extension().and_then(|e| e.to_str()).unwrap_or("nc");
+    let out = dir.join(format!("fixed.{ext}"));
+    let verify = |p: &Path, more: &[&str]| {
+        let mut args = vec!["verify", "--program", p.to_str().unwrap()];
+        args.extend_from_slice(spec);
+        args.extend_from_slice(more);
+        args.extend(["--json", "-"]);
+        run_in(&dir, &args)
+    };
+    let o = verify(program, &["--fix", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let before: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let o = verify(&out, &[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let after: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    (before, after, std::fs::read_to_string(out).unwrap())
+}
