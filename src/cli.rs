@@ -64,6 +64,23 @@ struct JsonArg {
     json: Option<String>,
 }
 
+/// Which operation of a program that cuts several threads `correct` and `capability` take.
+#[derive(Args)]
+struct OperationArg {
+    /// Of a program that cuts several threads, the one measured (1-based, in program order, as
+    /// `verify` and `passes` number them).
+    #[arg(long, value_name = "N", requires = "program", value_parser = operation_number)]
+    operation: Option<usize>,
+}
+
+/// An operation's number: 1 or more.
+fn operation_number(s: &str) -> Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err("an operation's number, from 1".into()),
+    }
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Limits of size of a designation (ISO 965-1, BS 84, ISO 228-1, ASME B1.1, ISO 2903, ASME
@@ -328,6 +345,8 @@ struct FitArgs {
 struct CapabilityArgs {
     #[command(flatten)]
     plan: PlanArgs,
+    #[command(flatten)]
+    operation: OperationArg,
     /// X repeatability, one standard deviation on the diameter, mm.
     #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite, default_value = "0")]
     x_sigma: f64,
@@ -360,6 +379,8 @@ struct CapabilityArgs {
 struct CorrectArgs {
     #[command(flatten)]
     plan: PlanArgs,
+    #[command(flatten)]
+    operation: OperationArg,
     /// The measurement over three wires, mm (with --wire).
     #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite, requires = "wire",
           conflicts_with_all = ["measured_d2", "gauge"])]
@@ -761,7 +782,10 @@ impl Cli {
                     ));
                 }
                 let spec = threadcheck::CapabilitySpec {
-                    verify: c.plan.spec(c.gauge_only)?,
+                    verify: threadcheck::VerifySpec {
+                        operation: c.operation.operation,
+                        ..c.plan.spec(c.gauge_only)?
+                    },
                     x_sigma: c.x_sigma,
                     tip_radius_tol: c.tip_radius_tol,
                     wear_per_part: c.wear_per_part,
@@ -786,8 +810,9 @@ impl Cli {
                     (_, _, _, Some(g)) => Some(threadcheck::Measured::Gauge(g)),
                     _ => None,
                 };
-                let spec =
-                    threadcheck::CorrectSpec { verify: c.plan.spec(false)?, measured, pickup_z: c.pickup_z };
+                let verify =
+                    threadcheck::VerifySpec { operation: c.operation.operation, ..c.plan.spec(false)? };
+                let spec = threadcheck::CorrectSpec { verify, measured, pickup_z: c.pickup_z };
                 done(CorrectJob { spec, html: c.html, json: c.json.json, fix: c.fix }.run()?)
             }
             Command::Passes { plan, json: JsonArg { json } } => {

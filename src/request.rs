@@ -107,11 +107,18 @@ impl Command {
             Command::Verify => &["tools", "machine", "clearance_angle", "gauge_only", "no_pass_metrics"],
             Command::Passes => &[],
             Command::Compare => &["modified"],
-            Command::Correct => {
-                &["machine", "clearance_angle", "measured_m", "wire", "measured_d2", "gauge", "pickup_z"]
-            }
+            Command::Correct => &[
+                "machine",
+                "clearance_angle",
+                "measured_m",
+                "wire",
+                "measured_d2",
+                "gauge",
+                "pickup_z",
+                "operation",
+            ],
             Command::Capability => {
-                &["gauge_only", "x_sigma", "tip_radius_tol", "wear_per_part", "samples", "seed"]
+                &["gauge_only", "x_sigma", "tip_radius_tol", "wear_per_part", "samples", "seed", "operation"]
             }
             Command::Limits => return vec!["thread", "designation", "allow_nonstandard", "coating"],
             Command::Fit => {
@@ -441,6 +448,7 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
             if document == Document::Fix && verify.program.is_none() {
                 return Err(Error::Input("fix corrects a program: give its text as program".into()));
             }
+            let verify = crate::analysis::verify::VerifySpec { operation: a.operation()?, ..verify };
             let spec =
                 crate::analysis::correct::CorrectSpec { verify, measured, pickup_z: a.num("pickup_z")? };
             let fix = (document == Document::Fix).then(|| "fix".to_string());
@@ -450,6 +458,7 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
             let threads = a.one_thread("capability")?;
             let mut verify = a.plan(&threads)?;
             verify.gauge_only = a.flag("gauge_only")?;
+            verify.operation = a.operation()?;
             let mut spec = crate::analysis::capability::CapabilitySpec::new(verify);
             spec.x_sigma = a.num("x_sigma")?.unwrap_or(0.0);
             spec.tip_radius_tol = a.num("tip_radius_tol")?.unwrap_or(0.0);
@@ -631,6 +640,14 @@ impl Args {
                 Error::Input(format!("{}: {key} must be a whole number from 0", self.command.name()))
             }),
             Some(v) => Err(self.wrong(key, "a whole number", v)),
+        }
+    }
+
+    /// `operation`: the number (from 1) of the program's operation to take.
+    fn operation(&self) -> Result<Option<usize>, Error> {
+        match self.whole("operation")? {
+            Some(0) => Err(Error::Input("operation is an operation's number, from 1".into())),
+            n => Ok(n.map(|n| n as usize)),
         }
     }
 

@@ -138,6 +138,48 @@ fn a_measured_program_is_corrected_in_its_own_words_and_by_wear_offset() {
     assert!(!text.contains("X8.062"), "{text}");
 }
 
+/// A program that cuts several threads: `correct` takes the one measured, `--operation N` (the
+/// Heidenhain DIN test program's three M20x1.5 operations, each cutting to 18.16, d2 19.026 with
+/// a full-profile insert). The part of operation 2 measures d2 19.066: to 6g's middle 18.924 is
+/// −142 µm, 71 µm deeper radially, so its G31 depth U−0.92 becomes U−0.991 at line 18, and
+/// `--fix` changes that word alone. Without `--operation` the error lists the three.
+#[test]
+fn correct_takes_the_measured_operation_of_a_program_of_several() {
+    let prog = data("programs/heidenhain-g31-g33.nc");
+    let p = prog.to_str().unwrap();
+    let args =
+        ["correct", "--thread", "M20x1.5-6g", "--insert", "full", "--program", p, "--dialect", "heidenhain"];
+    let o = run(&[&args[..], &["--measured-d2", "19.066"]].concat());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        one_line_error(&o).ends_with(
+            "cuts 3 threads (G31 at line 15, G31 at line 18, G33 at line 21): say which one with --operation 1 to 3 (operation in the API and Python)"
+        ),
+        "{}",
+        stderr(&o)
+    );
+    let o = run(&[&args[..], &["--measured-d2", "19.066", "--operation", "2", "--json"]].concat());
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v = json(&o);
+    assert_eq!(
+        (v["correction"]["written"].as_str(), v["correction"]["line"].as_u64()),
+        (Some("U-0.92"), Some(18))
+    );
+    assert!((v["correction"]["value"].as_f64().unwrap() + 0.991).abs() < 1e-9, "{}", v["correction"]);
+    let o = run(&[&args[..], &["--measured-d2", "19.066", "--operation", "2", "--fix", "-"]].concat());
+    let text = stdout(&o);
+    let changed: Vec<&str> = text
+        .lines()
+        .zip(std::fs::read_to_string(&prog).unwrap().lines().collect::<Vec<_>>())
+        .filter(|(a, b)| a != b)
+        .map(|(a, _)| a)
+        .collect();
+    assert_eq!(changed, ["N15 G31 X20 Z-20 F1.5 U-0.991 I0.3 V1 H3 A30 B0 P0"]);
+    let o = run(&[&args[..], &["--measured-d2", "19.066", "--operation", "4"]].concat());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(one_line_error(&o).ends_with("there is no operation 4"), "{}", stderr(&o));
+}
+
 /// A gauge tells the side, not the size: GO fails on a bolt means d2 over 8.994 by an unknown
 /// amount; taken at 8.994 (the least it can be), the change to the middle is −66 µm, and the
 /// report says what is unknown. `ok` needs no correction.

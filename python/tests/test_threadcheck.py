@@ -168,6 +168,17 @@ def test_a_shallower_correction_names_the_deeper_passes():
     assert [(d["line"], d["written"]) for d in c["deeper"]] == [(6, "X9.7")]
 
 
+def test_correct_takes_one_operation_of_a_program_of_several():
+    # Our DIN program's three M20x1.5 operations each cut d2 19.026 (full-profile insert); the
+    # part of operation 2 measures 19.066: to 6g's middle 18.924 its depth U-0.92 goes to U-0.991.
+    program = (pathlib.Path(__file__).resolve().parents[2] / "tests" / "data" / "programs" / "heidenhain-g31-g33.nc").read_text()
+    with pytest.raises(ValueError, match="say which one with --operation 1 to 3"):
+        threadcheck.correct("M20x1.5-6g", program=program, dialect="heidenhain", insert="full", measured_d2=19.066)
+    r = threadcheck.correct("M20x1.5-6g", program=program, dialect="heidenhain", insert="full",
+                            measured_d2=19.066, operation=2)
+    assert (r["correction"]["line"], r["correction"]["value"]) == (18, pytest.approx(-0.991))
+
+
 def test_module_docstring_example_runs():
     import doctest
 

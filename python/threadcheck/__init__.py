@@ -216,13 +216,15 @@ def correct(thread: str, program: Optional[str] = None, dialect: Optional[str] =
             wire: Optional[float] = None, measured_d2: Optional[float] = None,
             gauge: Optional[str] = None, pickup_z: Optional[float] = None,
             insert_toml: Optional[str] = None, gcode_system: Optional[str] = None,
+            operation: Optional[int] = None,
             html: Optional[PathLike] = None, fix: Optional[PathLike] = None) -> CorrectReport:
     """``threadcheck correct --json``: what was measured on the part, turned into the change.
 
     ``thread`` and the plan or ``program`` arguments are ``verify``'s. Give one measurement:
     ``measured_m`` (mm over three wires) with ``wire`` (their diameter, mm), ``measured_d2``
     (mm), or ``gauge`` (``"go-fails"``, ``"nogo-enters"``, ``"ok"``); ``pickup_z`` (mm from the
-    program's Z0) adds a pick-up's start angle and Z shift. The dict has ``verdict``
+    program's Z0) adds a pick-up's start angle and Z shift; ``operation`` (from 1) says which
+    thread was measured when the program cuts several. The dict has ``verdict``
     (``"pass"`` in tolerance), ``measured``, ``delta_pitch_diameter``, ``suggested_final_x``,
     ``correction`` (the program's word), ``wear_offset`` and ``pickup``. ``html`` and ``fix``
     write the page and the corrected program.
@@ -244,13 +246,15 @@ def capability(thread: str, program: Optional[str] = None, dialect: Optional[str
                wear_per_part: Optional[float] = None, samples: Optional[int] = None,
                seed: Optional[int] = None, gauge_only: bool = False,
                insert_toml: Optional[str] = None, gcode_system: Optional[str] = None,
+               operation: Optional[int] = None,
                svg: Optional[PathLike] = None, html: Optional[PathLike] = None) -> CapabilityReport:
     """``threadcheck capability --json``: a seeded Monte Carlo of the parts a program cuts.
 
     ``x_sigma`` is the X repeatability (one sigma on the diameter, mm), ``tip_radius_tol`` a
     partial insert's tip radius tolerance (± mm, uniform), ``wear_per_part`` the radial wear per
     part (mm), ``samples`` (10 000) and ``seed`` (1) the Monte Carlo's; ``gauge_only`` leaves
-    form checks out of each part's verdict. The dict has ``sizes`` (mean, sigma, Cp, Cpk, ppm
+    form checks out of each part's verdict; ``operation`` (from 1) picks one thread of a program
+    that cuts several. The dict has ``sizes`` (mean, sigma, Cp, Cpk, ppm
     per checked size), ``pass_share``, ``parts_per_edge``, ``best_final_x`` and the d2
     ``histogram``. ``svg`` and ``html`` write the histogram and the page.
     """

@@ -137,6 +137,9 @@ pub struct VerifySpec {
     /// none. The thread is checked against the limits before coating
     /// ([`ThreadLimits::before_coating`]) and the report says what it measures after.
     pub coating: f64,
+    /// Of a program that cuts several threads, the one operation to check (1-based, in program
+    /// order): `correct` and `capability` take one, a program of one needs none.
+    pub operation: Option<usize>,
 }
 
 /// How the text report and the picture give lengths.
@@ -164,6 +167,13 @@ impl VerifySpec {
     pub fn validate(&self) -> Result<(), Error> {
         if self.passes == Some(0) {
             return Err(Error::Input("passes 0: a thread needs at least one pass".into()));
+        }
+        match (self.operation, &self.program) {
+            (Some(0), _) => return Err(Error::Input("operation 0: operations are numbered from 1".into())),
+            (Some(_), None) => {
+                return Err(Error::Input("an operation is a program's: give the program it is one of".into()))
+            }
+            _ => {}
         }
         let numbers = [
             ("first_depth", self.first_depth),
@@ -232,6 +242,7 @@ impl VerifySpec {
             machine: None,
             clearance_angle: None,
             coating: 0.0,
+            operation: None,
         }
     }
 
@@ -856,20 +867,42 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
         }
         let (shown, text) = source.load()?;
         let prog = crate::gcode::read_program_with(&text, &shown, *dialect, spec.reading)?;
-        if prog.operations.len() != 1 {
-            let lines: Vec<String> = prog.operations.iter().map(|o| o.source_line.to_string()).collect();
-            return Err(Error::Input(format!(
-                "{shown} cuts {} threads (lines {}): verify each operation with verify_program",
-                prog.operations.len(),
-                lines.join(", ")
-            )));
-        }
+        let index = operation_index(&prog, &shown, spec.operation)?;
         let label = ProgramLabel { file: shown, dialect: *dialect };
-        let mut v = verify_given(&resolve(spec)?, &prog.operations[0], &label)?;
+        let mut v = verify_given(&resolve(spec)?, &prog.operations[index], &label)?;
         v.notes.extend(prog.notes.iter().cloned());
         return Ok(v);
     }
     verify_core(&resolve(spec)?, None)
+}
+
+/// The index of the operation `operation` (1-based) names in `prog`, or of its only one.
+fn operation_index(
+    prog: &crate::gcode::Program,
+    shown: &str,
+    operation: Option<usize>,
+) -> Result<usize, Error> {
+    let n = prog.operations.len();
+    let list = || {
+        prog.operations
+            .iter()
+            .map(|o| format!("{} at line {}", o.cycle, o.source_line))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    match operation {
+        Some(k) if (1..=n).contains(&k) => Ok(k - 1),
+        Some(k) => Err(Error::Input(format!(
+            "{shown} cuts {n} thread{} ({}): there is no operation {k}",
+            if n == 1 { "" } else { "s" },
+            list()
+        ))),
+        None if n == 1 => Ok(0),
+        None => Err(Error::Input(format!(
+            "{shown} cuts {n} threads ({}): say which one with --operation 1 to {n} (operation in the API and Python)",
+            list()
+        ))),
+    }
 }
 
 /// The passes of one program operation, with what to say about them.
@@ -1495,7 +1528,12 @@ pub fn verify_program(
     }
     let label = ProgramLabel { file: name.to_string(), dialect };
     let mut operations = Vec::with_capacity(n);
+    // One operation when the spec names it, else every one.
+    let only = spec.operation.map(|k| operation_index(&prog, name, Some(k))).transpose()?;
     for (i, op) in prog.operations.iter().enumerate() {
+        if only.is_some_and(|k| k != i) {
+            continue;
+        }
         let designation = threads[if threads.len() == 1 { 0 } else { i }].clone();
         let mut s =
             VerifySpec { designation: designation.clone(), program: None, final_x: None, ..spec.clone() };
