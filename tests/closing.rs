@@ -178,6 +178,16 @@ fn correct_takes_the_measured_operation_of_a_program_of_several() {
     let o = run(&[&args[..], &["--measured-d2", "19.066", "--operation", "4"]].concat());
     assert_eq!(o.status.code(), Some(2));
     assert!(one_line_error(&o).ends_with("there is no operation 4"), "{}", stderr(&o));
+    // capability of operation 3 (the chained G33): X σ 5 µm on the diameter moves d2 one for one,
+    // around 19.026 (its mean within 4σ/√500 = 0.9 µm).
+    let mut cap = vec!["capability"];
+    cap.extend(&args[1..]);
+    cap.extend(["--x-sigma", "0.005", "--samples", "500", "--operation", "3", "--json"]);
+    let o = run(&cap);
+    let v = json(&o);
+    let d2 = v["sizes"].as_array().unwrap().iter().find(|s| s["feature"] == "pitch_diameter").unwrap();
+    assert!((d2["mean"].as_f64().unwrap() - 19.026025).abs() < 0.0009, "{d2}");
+    assert!((d2["sigma"].as_f64().unwrap() - 0.005).abs() < 0.0005, "{d2}");
 }
 
 /// A gauge tells the side, not the size: GO fails on a bolt means d2 over 8.994 by an unknown

@@ -1310,6 +1310,7 @@ pub fn verify_operation(
         Err(Error::Geometry(m)) => {
             let plan = VerifySpec {
                 program: None,
+                operation: None,
                 final_x: None,
                 blank_diameter: Some(r.blank),
                 metrics: false,
@@ -1535,8 +1536,13 @@ pub fn verify_program(
             continue;
         }
         let designation = threads[if threads.len() == 1 { 0 } else { i }].clone();
-        let mut s =
-            VerifySpec { designation: designation.clone(), program: None, final_x: None, ..spec.clone() };
+        let mut s = VerifySpec {
+            designation: designation.clone(),
+            program: None,
+            operation: None,
+            final_x: None,
+            ..spec.clone()
+        };
         let mut extra = Vec::new();
         let mut assumed = false;
         if let Some((choice, note, default)) = insert_for(op) {
@@ -1595,6 +1601,7 @@ impl Recut {
         // The program's text is read once, by `verify`: the re-cuts take its passes.
         let r = resolve(&VerifySpec {
             program: None,
+            operation: None,
             final_x: None,
             blank_diameter: Some(v.blank_diameter),
             ..quick
