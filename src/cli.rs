@@ -64,11 +64,12 @@ struct JsonArg {
     json: Option<String>,
 }
 
-/// Which operation of a program that cuts several threads `correct` and `capability` take.
+/// Which operation of a program that cuts several threads `verify`, `correct` and `capability`
+/// take.
 #[derive(Args)]
 struct OperationArg {
-    /// Of a program that cuts several threads, the one measured (1-based, in program order, as
-    /// `verify` and `passes` number them).
+    /// Of a program that cuts several threads, the one to take (1-based, in program order, as
+    /// `verify` and `passes` number them); `verify` checks every one without it.
     #[arg(long, value_name = "N", requires = "program", value_parser = operation_number)]
     operation: Option<usize>,
 }
@@ -105,6 +106,8 @@ enum Command {
     Verify {
         #[command(flatten)]
         plan: PlanArgs,
+        #[command(flatten)]
+        operation: OperationArg,
         /// Leave form checks (root radius, minor-diameter zone, flank angles) out of the verdict.
         #[arg(long)]
         gauge_only: bool,
@@ -754,10 +757,20 @@ impl Cli {
                 };
                 done(LimitsJob { designation, allow_nonstandard, json, coating }.run()?)
             }
-            Command::Verify { plan, gauge_only, no_pass_metrics, svg, html, fix, json: JsonArg { json } } => {
+            Command::Verify {
+                plan,
+                operation,
+                gauge_only,
+                no_pass_metrics,
+                svg,
+                html,
+                fix,
+                json: JsonArg { json },
+            } => {
                 plan.need_thread("verify")?;
                 let mut spec = plan.spec(gauge_only)?;
                 spec.metrics = !no_pass_metrics;
+                spec.operation = operation.operation;
                 let tools = plan.tools.as_deref().map(threadcheck::ToolTable::read).transpose()?;
                 done(
                     VerifyJob {

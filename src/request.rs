@@ -104,7 +104,9 @@ impl Command {
             "gcode_system",
         ];
         let own: &[&str] = match self {
-            Command::Verify => &["tools", "machine", "clearance_angle", "gauge_only", "no_pass_metrics"],
+            Command::Verify => {
+                &["tools", "machine", "clearance_angle", "gauge_only", "no_pass_metrics", "operation"]
+            }
             Command::Passes => &[],
             Command::Compare => &["modified"],
             Command::Correct => &[
@@ -324,6 +326,7 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
             spec.metrics = !a.flag("no_pass_metrics")?;
             spec.machine = a.machine()?;
             spec.clearance_angle = a.num("clearance_angle")?;
+            spec.operation = a.operation()?;
             let tools = a.tools()?;
             if document == Document::Fix && spec.program.is_none() {
                 return Err(Error::Input("fix corrects a program: give its text as program".into()));

@@ -178,6 +178,16 @@ fn correct_takes_the_measured_operation_of_a_program_of_several() {
     let o = run(&[&args[..], &["--measured-d2", "19.066", "--operation", "4"]].concat());
     assert_eq!(o.status.code(), Some(2));
     assert!(one_line_error(&o).ends_with("there is no operation 4"), "{}", stderr(&o));
+    // verify of operation 2 alone: the program's three are counted, that one checked.
+    let mut ver = vec!["verify"];
+    ver.extend(&args[1..]);
+    ver.extend(["--operation", "2"]);
+    let o = run(&ver);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(text.contains("3 threading operations (operation 2 checked)"), "{text}");
+    assert!(text.contains("== operation 2 of 3: G31 at line 18"), "{text}");
+    assert!(!text.contains("== operation 1") && !text.contains("== operation 3"), "{text}");
     // capability of operation 3 (the chained G33): X σ 5 µm on the diameter moves d2 one for one,
     // around 19.026 (its mean within 4σ/√500 = 0.9 µm).
     let mut cap = vec!["capability"];

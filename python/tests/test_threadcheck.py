@@ -177,6 +177,8 @@ def test_correct_takes_one_operation_of_a_program_of_several():
     r = threadcheck.correct("M20x1.5-6g", program=program, dialect="heidenhain", insert="full",
                             measured_d2=19.066, operation=2)
     assert (r["correction"]["line"], r["correction"]["value"]) == (18, pytest.approx(-0.991))
+    v = threadcheck.verify("M20x1.5-6g", program=program, dialect="heidenhain", insert="full", operation=3)
+    assert [op["operation"]["index"] for op in v["operations"]] == [3]
 
 
 def test_module_docstring_example_runs():

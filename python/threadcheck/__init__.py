@@ -140,12 +140,14 @@ def verify(thread: Threads, program: Optional[str] = None, dialect: Optional[str
            taper: Optional[float] = None, chamfer: Optional[float] = None,
            units: Optional[str] = None, machine: Optional[str] = None,
            clearance_angle: Optional[float] = None, no_pass_metrics: bool = False,
+           operation: Optional[int] = None,
            svg: Optional[PathLike] = None, html: Optional[PathLike] = None,
            fix: Optional[PathLike] = None) -> VerifyReport:
     """``threadcheck verify --json -``.
 
     ``thread`` is a designation with its class (``"M20x1.5-6g"``), or a list of them, one per
-    threading operation of ``program``. ``program`` is the program's **text** (a path is refused
+    threading operation of ``program`` (``operation``, from 1, checks that one alone).
+    ``program`` is the program's **text** (a path is refused
     by name); ``program_name`` is what messages call it and, by its extension, chooses the dialect
     when ``dialect`` is not given (``.ngc`` linuxcnc, ``.mpf``/``.spf`` sinumerik, else fanuc,
     stated in ``notes``). Without a program a plan is generated and ``final_x`` (or the solved

@@ -1265,8 +1265,12 @@ pub struct ProgramVerification {
     pub program: ProgramLabel,
     /// The dialect.
     pub dialect: crate::gcode::Dialect,
-    /// Each threading operation in program order.
+    /// Each threading operation in program order (the one `VerifySpec::operation` names, when
+    /// it names one).
     pub operations: Vec<OperationVerdict>,
+    /// How many threading operations the program has (more than `operations` holds when one
+    /// was named).
+    pub operations_in_program: usize,
     /// Program-wide warnings (variables read before set, repeated sequence numbers, …).
     pub notes: Vec<crate::ground::note::Note>,
     /// Blocks read for position only.
@@ -1578,6 +1582,7 @@ pub fn verify_program(
         program: label,
         dialect,
         operations,
+        operations_in_program: n,
         notes: prog.notes.clone(),
         skipped_blocks: prog.skipped_blocks,
         read_past_blocks: prog.read_past_blocks,

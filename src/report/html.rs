@@ -193,7 +193,7 @@ pub fn program_html(pv: &ProgramVerification) -> String {
             body,
             "<h2>Operation {} of {}: {} at line {}{} — {}</h2>",
             op.index,
-            pv.operations.len(),
+            pv.operations_in_program,
             esc(&op.cycle),
             op.source_line,
             op.tool.map_or(String::new(), |t| format!(", tool T{t}")),

@@ -819,10 +819,14 @@ pub fn read_past_text(blocks: usize) -> String {
 /// The human report of a program: one section per operation, then the program's verdict.
 pub fn program_text(pv: &crate::analysis::verify::ProgramVerification) -> String {
     let mut s = String::new();
-    let n = pv.operations.len();
+    let n = pv.operations_in_program;
+    let named = match pv.operations.as_slice() {
+        [o] if n > 1 => format!(" (operation {} checked)", o.operation.index),
+        _ => String::new(),
+    };
     let _ = writeln!(
         s,
-        "{}: {n} threading operation{}{}\n",
+        "{}: {n} threading operation{}{named}{}\n",
         pv.program,
         if n == 1 { "" } else { "s" },
         read_past_text(pv.read_past_blocks)

@@ -789,7 +789,7 @@ pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String 
             &format!(
                 "operation {} of {}: {} at line {} of {}{}",
                 o.operation.index,
-                pv.operations.len(),
+                pv.operations_in_program,
                 o.operation.cycle,
                 o.operation.source_line,
                 label_name(&pv.program),
