@@ -326,7 +326,6 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
             spec.metrics = !a.flag("no_pass_metrics")?;
             spec.machine = a.machine()?;
             spec.clearance_angle = a.num("clearance_angle")?;
-            spec.operation = a.operation()?;
             let tools = a.tools()?;
             if document == Document::Fix && spec.program.is_none() {
                 return Err(Error::Input("fix corrects a program: give its text as program".into()));
@@ -451,7 +450,6 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
             if document == Document::Fix && verify.program.is_none() {
                 return Err(Error::Input("fix corrects a program: give its text as program".into()));
             }
-            let verify = crate::analysis::verify::VerifySpec { operation: a.operation()?, ..verify };
             let spec =
                 crate::analysis::correct::CorrectSpec { verify, measured, pickup_z: a.num("pickup_z")? };
             let fix = (document == Document::Fix).then(|| "fix".to_string());
@@ -461,7 +459,6 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
             let threads = a.one_thread("capability")?;
             let mut verify = a.plan(&threads)?;
             verify.gauge_only = a.flag("gauge_only")?;
-            verify.operation = a.operation()?;
             let mut spec = crate::analysis::capability::CapabilitySpec::new(verify);
             spec.x_sigma = a.num("x_sigma")?.unwrap_or(0.0);
             spec.tip_radius_tol = a.num("tip_radius_tol")?.unwrap_or(0.0);
@@ -803,6 +800,8 @@ impl Args {
         s.coating = self.num("coating")?.unwrap_or(0.0);
         s.final_x = self.num("final_x")?;
         s.blank_diameter = self.num("blank_diameter")?;
+        // Only the commands whose keys list `operation` take it.
+        s.operation = self.operation()?;
         s.units = match self.text("units")?.as_deref() {
             None => VerifySpec::default_units(first, s.allow_nonstandard),
             Some("mm") => crate::analysis::verify::Units::Mm,
