@@ -586,10 +586,8 @@ pub fn program_passes(
     let Some(p0) = op.passes.first().copied() else {
         return Err(Error::Input(format!("{file}: operation {} has no passes", op.index)));
     };
-    for p in &op.passes {
-        if off_helix_segment(op, p, t) {
-            continue;
-        }
+    let off_helix = off_helix_segments(op, t);
+    for (p, _) in op.passes.iter().zip(&off_helix).filter(|(_, off)| !**off) {
         if let Err(inc) = crate::analysis::lead::lead_deviation(p.lead, op.units, t, 0.0) {
             let u = op.units;
             let in_units = |mm: f64| match u {
@@ -636,13 +634,18 @@ pub fn program_passes(
     Ok(passes)
 }
 
-/// Whether pass `p` of `op` is a run-in or run-out segment off the thread's helix: a taper
-/// segment whose axial lead is not the designation's while another pass of the operation cuts at
-/// it (a chained run-out steeper than 45° whose F the control takes along X, a LinuxCNC G33
-/// taper whose K runs along the path). It is swept as it moves; a note says so.
-fn off_helix_segment(op: &crate::gcode::Operation, p: &Pass, t: &crate::standards::BasicThread) -> bool {
-    let off = |q: &Pass| crate::analysis::lead::lead_deviation(q.lead, op.units, t, 0.0).is_err();
-    (p.x_end - p.x_start).abs() > 1e-9 && off(p) && op.passes.iter().any(|q| !off(q))
+/// For each pass of `op`, whether it is a run-in or run-out segment off the thread's helix: a
+/// taper segment whose axial lead is not the designation's while another pass of the operation
+/// cuts at it (a chained run-out steeper than 45° whose F the control takes along X, a LinuxCNC
+/// G33 taper whose K runs along the path). It is swept as it moves; a note says so.
+fn off_helix_segments(op: &crate::gcode::Operation, t: &crate::standards::BasicThread) -> Vec<bool> {
+    let off: Vec<bool> = op
+        .passes
+        .iter()
+        .map(|q| crate::analysis::lead::lead_deviation(q.lead, op.units, t, 0.0).is_err())
+        .collect();
+    let some_on = off.iter().any(|o| !o);
+    op.passes.iter().zip(off).map(|(p, o)| o && some_on && (p.x_end - p.x_start).abs() > 1e-9).collect()
 }
 
 struct Cut {
@@ -1396,7 +1399,8 @@ fn verify_given(
     let passes = program_passes(op, &r.designation, &label.file)?;
     let mut notes: Vec<crate::ground::note::Note> = op.notes.clone();
     let mut lines = std::collections::BTreeMap::new();
-    for p in op.passes.iter().filter(|p| off_helix_segment(op, p, &r.designation.thread)) {
+    let off_helix = off_helix_segments(op, &r.designation.thread);
+    for (p, _) in op.passes.iter().zip(off_helix).filter(|(_, off)| *off) {
         lines.entry(p.source_line.unwrap_or(0)).or_insert(p.lead);
     }
     for (line, lead) in lines {
