@@ -506,46 +506,34 @@ impl CorrectJob {
     }
 }
 
-/// The word edits of one correction (its word, and the same in each other start's cycle).
+/// The word edits of one correction (its word, the same in each other start's cycle, and the
+/// earlier passes deeper than its new value).
 fn correction_edits(
     c: &crate::analysis::correction::Correction,
     shown: &str,
 ) -> Result<Vec<crate::gcode::WordEdit>, Error> {
-    let Some(new) = crate::report::correction_replacement(c) else {
-        return Err(Error::Program {
-            file: shown.to_string(),
-            line: c.line,
-            column: c.column,
-            message: format!("--fix rewrites plain numbers only: {}", crate::report::correction_text(c)),
-        });
+    let not_plain = |line, column| Error::Program {
+        file: shown.to_string(),
+        line,
+        column,
+        message: format!("--fix rewrites plain numbers only: {}", crate::report::correction_text(c)),
     };
-    let mut edits: Vec<crate::gcode::WordEdit> = std::iter::once((c.line, c.column))
-        .chain(c.also.iter().map(|p| (p.line, p.column)))
-        .map(|(line, column)| crate::gcode::WordEdit {
-            line,
-            column,
-            old: c.written.clone(),
-            new: new.clone(),
+    let Some(new) = crate::report::correction_replacement(c) else {
+        return Err(not_plain(c.line, c.column));
+    };
+    // The word, the same word in the other starts' cycles, and the earlier passes that cut
+    // deeper than the new value: each takes it.
+    std::iter::once((c.line, c.column, &c.written, true))
+        .chain(c.also.iter().map(|p| (p.line, p.column, &c.written, true)))
+        .chain(c.deeper.iter().map(|d| (d.line, d.column, &d.written, d.form.editable())))
+        .map(|(line, column, old, editable)| {
+            if editable {
+                Ok(crate::gcode::WordEdit { line, column, old: old.clone(), new: new.clone() })
+            } else {
+                Err(not_plain(line, column))
+            }
         })
-        .collect();
-    // The earlier passes that cut deeper than the new value take it too.
-    for d in &c.deeper {
-        if d.form != crate::gcode::WordForm::Number {
-            return Err(Error::Program {
-                file: shown.to_string(),
-                line: d.line,
-                column: d.column,
-                message: format!("--fix rewrites plain numbers only: {}", crate::report::correction_text(c)),
-            });
-        }
-        edits.push(crate::gcode::WordEdit {
-            line: d.line,
-            column: d.column,
-            old: d.written.clone(),
-            new: new.clone(),
-        });
-    }
-    Ok(edits)
+        .collect()
 }
 
 /// `threadcheck capability`: a program's (or plan's) parts over the machine's and the insert's
