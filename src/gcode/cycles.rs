@@ -657,6 +657,11 @@ pub(crate) fn shifts(shift: Shift, depths: &[f64], dir: f64) -> Vec<f64> {
     }
 }
 
+/// `v` is a whole number from `lo` to `hi` (a count or code word of a cycle).
+pub(crate) fn whole_in(v: f64, lo: f64, hi: f64) -> bool {
+    v >= lo && v <= hi && v.fract() == 0.0
+}
+
 /// A straight threading pass with an optional run-out.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn pass(

@@ -88,7 +88,7 @@ fn whole(
     what: &str,
 ) -> Result<f64, Error> {
     let Some(w) = b.get(name) else { return Ok(default) };
-    if !(w.v >= lo && w.v <= hi && w.v.fract() == 0.0) {
+    if !cycles::whole_in(w.v, lo, hi) {
         return Err(b.werr(
             &m.file,
             w,

@@ -630,7 +630,10 @@ fn cycle97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
     let nrc = if nrc == 0.0 { 1.0 } else { nrc };
     let numt = if numt == 0.0 { 1.0 } else { numt };
     let max = crate::ground::bounds::MAX_REPEATS as f64;
-    if !whole(nrc, 1.0, max) || !whole(nid, 0.0, max) || !whole(numt, 1.0, 64.0) {
+    if !cycles::whole_in(nrc, 1.0, max)
+        || !cycles::whole_in(nid, 0.0, max)
+        || !cycles::whole_in(numt, 1.0, 64.0)
+    {
         return Err(b.werr(&m.file, w, "CYCLE97 NRC, NID and NUMT must be whole numbers in range"));
     }
     let call = ThreadCall {
@@ -648,11 +651,6 @@ fn cycle97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
         tdep_arg: 8,
     };
     cut_thread_call(m, b, w, &call)
-}
-
-/// `v` is a whole number from `lo` to `hi`.
-fn whole(v: f64, lo: f64, hi: f64) -> bool {
-    v >= lo && v <= hi && v.fract() == 0.0
 }
 
 /// The arguments CYCLE99 is read by (a named default: docs/dialects.md, "Sinumerik CYCLE99").
@@ -736,7 +734,7 @@ fn cycle99(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
     let digits = Vari99::parse(vari).map_err(|msg| err(13, msg))?;
     let max = crate::ground::bounds::MAX_REPEATS as f64;
     let numth = if numth == 0.0 { 1.0 } else { numth };
-    if !whole(nid, 0.0, max) || !whole(numth, 1.0, 64.0) {
+    if !cycles::whole_in(nid, 0.0, max) || !cycles::whole_in(numth, 1.0, 64.0) {
         return Err(err(11, "CYCLE99 NID and NUMTH must be whole numbers in range".into()));
     }
     let rough_end = tdep - fal;
@@ -758,7 +756,7 @@ fn cycle99(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
     } else {
         nrc
     };
-    if !whole(cuts, 1.0, max) {
+    if !cycles::whole_in(cuts, 1.0, max) {
         return Err(err(10, format!("CYCLE99 NRC/MID gives {cuts} cuts: at most {max}")));
     }
     let shift = match digits.flank {
