@@ -63,6 +63,7 @@ mod serve;
 mod standards;
 
 // Ground: the error, the plane's value types.
+pub use ground::cancel::{check as check_cancelled, Cancel};
 pub use ground::error::{one_line, Error, Result};
 pub use ground::note::{Note, NoteKind, Place};
 pub use ground::plane::{Arc, Point, DEFAULT_TOLERANCE, MIN_TOLERANCE};

@@ -26,8 +26,20 @@ use serde::Serialize;
 /// One sampled part: each check's value and whether it is within its limits, and the verdict.
 type Sampled = (Vec<f64>, Vec<bool>, bool);
 
-/// The most samples a run takes (about 20 µs each).
+/// The most samples a run takes (about 20 µs each); [`MAX_SAMPLE_WORK`] bounds them further.
 pub const MAX_SAMPLES: usize = 1_000_000;
+
+/// The work one run may do, counted as samples × (passes + [`SAMPLE_OVERHEAD_PASSES`]): a sample
+/// costs about 20 µs plus 0.5 µs per pass on the 2-core machine of reports/bounds.md, so the
+/// largest run takes about a second (42 553 samples of a 7-pass thread, 1 923 of 1 000 passes).
+pub const MAX_SAMPLE_WORK: usize = 2_000_000;
+
+/// The least wear per part taken (1 nm): the parts an edge lasts stay countable (at most
+/// 1 mm of room / 2 nm = 500 000).
+pub const MIN_WEAR_PER_PART: f64 = 1e-6;
+
+/// A sample's fixed cost in passes' worth of work (the measurement and checks of the part).
+pub const SAMPLE_OVERHEAD_PASSES: usize = 40;
 
 /// Everything `capability` needs.
 #[derive(Clone, Debug)]
@@ -169,10 +181,31 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
     nonneg(spec.x_sigma, "--x-sigma", 1.0)?;
     nonneg(spec.tip_radius_tol, "--tip-radius-tol", 1.0)?;
     nonneg(spec.wear_per_part, "--wear-per-part", 1.0)?;
+    // Under a nanometre a part the edge would last beyond any count (1e-300 printed
+    // 18446744073709551615 parts, a saturated integer).
+    if spec.wear_per_part > 0.0 && spec.wear_per_part < MIN_WEAR_PER_PART {
+        return Err(Error::Input(format!(
+            "--wear-per-part {} mm: a wear is 0 or at least {} mm (1 nm) a part",
+            crate::ground::fmt::fmt_shown(spec.wear_per_part),
+            crate::ground::fmt::fmt_shown(MIN_WEAR_PER_PART)
+        )));
+    }
     if !(2..=MAX_SAMPLES).contains(&spec.samples) {
         return Err(Error::Input(format!("--samples {}: must be from 2 to {MAX_SAMPLES}", spec.samples)));
     }
     let (recut, v) = Recut::new(&spec.verify)?;
+    // The work is bounded before it starts: each sample costs a fixed part and a part per pass.
+    let work = spec.samples.saturating_mul(recut.pass_count() + SAMPLE_OVERHEAD_PASSES);
+    if work > MAX_SAMPLE_WORK {
+        return Err(Error::Input(format!(
+            "{} samples of a thread cut in {} passes: samples × (passes + {SAMPLE_OVERHEAD_PASSES}) is {}, over the budget of {} (about a second on 2 cores); take at most {} samples",
+            spec.samples,
+            recut.pass_count(),
+            crate::ground::fmt::fmt_shown(work as f64),
+            crate::ground::fmt::fmt_shown(MAX_SAMPLE_WORK as f64),
+            MAX_SAMPLE_WORK / (recut.pass_count() + SAMPLE_OVERHEAD_PASSES)
+        )));
+    }
     let tip = match (recut.tip_radius(), spec.tip_radius_tol) {
         (_, 0.0) => None,
         (Some(r), t) if t < r => Some((r, t)),
@@ -197,9 +230,13 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
                 .into(),
         ));
     };
+    let stop = crate::ground::cancel::current();
     let runs: Vec<Result<Sampled, Error>> = (0..spec.samples)
         .into_par_iter()
         .map(|i| {
+            if let Some(stop) = &stop {
+                stop.check()?;
+            }
             // One stream per sample: the draws do not depend on which thread takes it.
             let mut rng = ChaCha8Rng::seed_from_u64(spec.seed);
             rng.set_stream(i as u64);

@@ -266,6 +266,26 @@ pub fn correct(spec: &CorrectSpec) -> Result<CorrectReport, Error> {
         }
         Some(Measured::Gauge(g)) => Some(gauged(g, v.kind)),
     };
+    // A size beyond one pitch of the tolerance's middle is not a measurement of this thread
+    // (a typing slip, another thread, another unit): 1e308 once wrote X-inf into the program.
+    if let Some(d2) = measured.as_ref().and_then(|s| s.pitch_diameter) {
+        if !((d2 - mid).abs() <= t.pitch) {
+            let what = match spec.measured {
+                Some(Measured::OverWires { m, .. }) => format!(
+                    "the measurement over wires M {} mm gives a pitch diameter of {} mm, which is",
+                    crate::ground::fmt::fmt_shown(m),
+                    crate::ground::fmt::fmt_shown(d2)
+                ),
+                _ => format!("the measured pitch diameter {} mm is", crate::ground::fmt::fmt_shown(d2)),
+            };
+            return Err(Error::Input(format!(
+                "{what} more than one pitch ({} mm) from the middle of {}'s pitch-diameter tolerance ({} mm): not a measurement of this thread (check the value and its unit)",
+                crate::ground::fmt::fmt_num(t.pitch),
+                v.designation.text,
+                crate::ground::fmt::fmt_num(mid)
+            )));
+        }
+    }
     // The change to make: to the middle of the tolerance; after a gauge, from the limit it
     // failed (the least the part can be off).
     let (in_tol, delta) = match &measured {
@@ -293,6 +313,18 @@ pub fn correct(spec: &CorrectSpec) -> Result<CorrectReport, Error> {
     };
     let suggested_final_x = delta.map(|d| v.final_x + d);
     let correction = delta.and_then(|d| v.correction_for(d));
+    // --fix never writes a number the control could not take.
+    if let Some(c) = correction.as_ref().filter(|c| !(c.value.abs() <= crate::ground::bounds::MAX_COORDINATE))
+    {
+        return Err(Error::Input(format!(
+            "the correction would write {}{} at line {}:{}, beyond the {} mm a coordinate may reach",
+            c.word,
+            crate::ground::fmt::fmt_shown(c.value),
+            c.line,
+            c.column,
+            crate::ground::fmt::fmt_shown(crate::ground::bounds::MAX_COORDINATE)
+        )));
+    }
     let wear_offset = match (&v.program, delta, &correction) {
         (Some(p), Some(d), Some(c)) if wear_offset_in_x(p.dialect) => {
             Some(WearOffset { x: round_to(d / c.units.mm(), c.units.least_increment()), units: c.units })
@@ -404,8 +436,12 @@ fn over_wires_of(v: &Verification, wire: f64) -> Result<f64, Error> {
 
 /// The pick-up: the program's groove against the measured one.
 fn pickup(v: &Verification, measured_z: f64) -> Result<Pickup, Error> {
-    if !measured_z.is_finite() {
-        return Err(Error::Input("--pickup-z must be a finite number".into()));
+    if !(measured_z.abs() <= crate::ground::bounds::MAX_COORDINATE) {
+        return Err(Error::Input(format!(
+            "--pickup-z {}: a groove's position is a finite number within {} mm of the program's Z0",
+            crate::ground::fmt::fmt_shown(measured_z),
+            crate::ground::fmt::fmt_shown(crate::ground::bounds::MAX_COORDINATE)
+        )));
     }
     let t = v.designation.thread;
     let (p, lead) = (t.pitch, t.lead());

@@ -1622,6 +1622,11 @@ impl Recut {
         Ok((Recut { r, passes: v.passes.clone(), label }, v))
     }
 
+    /// How many passes each re-cut sweeps.
+    pub(crate) fn pass_count(&self) -> usize {
+        self.passes.len()
+    }
+
     /// The tip radius of a partial-profile insert, mm (`None` for the others).
     pub(crate) fn tip_radius(&self) -> Option<f64> {
         match self.r.spec.insert {

@@ -181,26 +181,24 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                     // Rigid tapping: recorded for `threadcheck tap`, read past by the rest.
                     let (x, y, z) = m.target(b);
                     let feed = b.get("K").map(|w| m.len(w));
-                    if m.holes.len() < crate::ground::bounds::MAX_PASSES {
-                        m.holes.push(super::HoleCycle {
-                            code: "G33.1".into(),
-                            kind: super::HoleKind::Tap,
-                            line: b.line,
-                            column: col,
-                            x: x.or(m.x),
-                            y: y.or(m.y),
-                            bottom: z,
-                            feed,
-                            feed_word: "K".into(),
-                            hand: None,
-                            feed_per_rev: true,
-                            feed_mode_assumed: false,
-                            spindle: m.s,
-                            spindle_dir: m.spindle_dir,
-                            tool: m.tool,
-                            rigid: true,
-                        });
-                    }
+                    m.push_hole(super::HoleCycle {
+                        code: "G33.1".into(),
+                        kind: super::HoleKind::Tap,
+                        line: b.line,
+                        column: col,
+                        x: x.or(m.x),
+                        y: y.or(m.y),
+                        bottom: z,
+                        feed,
+                        feed_word: "K".into(),
+                        hand: None,
+                        feed_per_rev: true,
+                        feed_mode_assumed: false,
+                        spindle: m.s,
+                        spindle_dir: m.spindle_dir,
+                        tool: m.tool,
+                        rigid: true,
+                    })?;
                     m.read_past(
                         b.line,
                         col,
@@ -520,7 +518,7 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
             GRole::OtherCycle => {
                 let (x, y, z) = m.target(b);
                 let what = format!("G{}", modal.motion);
-                record_hole(m, b, modal, (x, y, z));
+                record_hole(m, b, modal, (x, y, z))?;
                 if x.is_some() || z.is_some() || modal.col.is_some() {
                     m.lose_position(b.line, &what, true, true);
                     m.read_past(
@@ -555,7 +553,7 @@ fn record_hole(
     b: &RBlock<'_>,
     modal: &Modal,
     (x, y, z): (Option<f64>, Option<f64>, Option<f64>),
-) {
+) -> Result<(), Error> {
     let fanuc_like = match m.dialect {
         Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => true,
         Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma | Dialect::Heidenhain => {
@@ -566,11 +564,11 @@ fn record_hole(
     let kind = match code {
         74 | 84 => super::HoleKind::Tap,
         73 | 81..=83 | 85..=89 => super::HoleKind::Drill,
-        _ => return,
+        _ => return Ok(()),
     };
     let reads = fanuc_like || m.dialect == Dialect::LinuxCnc && kind == super::HoleKind::Drill;
     if !reads || !(x.is_some() || y.is_some() || z.is_some() || modal.col.is_some()) {
-        return;
+        return Ok(());
     }
     let feed = b.get("F").map(|w| m.len(w)).or(m.hole_modal.1);
     let bottom = z.or(m.hole_modal.0);
@@ -581,30 +579,28 @@ fn record_hole(
         // A lathe's power-on state is feed per revolution (G99), a machining centre's per minute.
         None => (m.plane != 17, true),
     };
-    if m.holes.len() < crate::ground::bounds::MAX_PASSES {
-        m.holes.push(super::HoleCycle {
-            code: m.g_name(code),
-            kind,
-            line: b.line,
-            column: modal.col.unwrap_or(b.col),
-            x: x.or(m.x),
-            y: y.or(m.y),
-            bottom,
-            feed,
-            feed_word: "F".into(),
-            hand: match code {
-                84 => Some(crate::standards::Hand::Right),
-                74 => Some(crate::standards::Hand::Left),
-                _ => None,
-            },
-            feed_per_rev,
-            feed_mode_assumed: assumed,
-            spindle: m.s,
-            spindle_dir: m.spindle_dir,
-            tool: m.tool,
-            rigid,
-        });
-    }
+    m.push_hole(super::HoleCycle {
+        code: m.g_name(code),
+        kind,
+        line: b.line,
+        column: modal.col.unwrap_or(b.col),
+        x: x.or(m.x),
+        y: y.or(m.y),
+        bottom,
+        feed,
+        feed_word: "F".into(),
+        hand: match code {
+            84 => Some(crate::standards::Hand::Right),
+            74 => Some(crate::standards::Hand::Left),
+            _ => None,
+        },
+        feed_per_rev,
+        feed_mode_assumed: assumed,
+        spindle: m.s,
+        spindle_dir: m.spindle_dir,
+        tool: m.tool,
+        rigid,
+    })
 }
 
 /// Fanuc two-block G76 depths: pass n at max(Δd·√n, previous + Δd min) while below the rough

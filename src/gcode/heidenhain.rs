@@ -25,7 +25,7 @@
 use super::cycles::{self, Shift};
 use super::dialect::{Ctx, Flow, Rules};
 use super::motion::{Motion, RBlock};
-use crate::ground::fmt::fmt_num;
+use crate::ground::fmt::{fmt_num, fmt_shown};
 use crate::Error;
 
 /// Heidenhain state: none beyond the interpreter's (G31 is a one-block cycle).
@@ -98,8 +98,20 @@ fn whole(
     Ok(w.v)
 }
 
-/// The depths (radial, from the thread's surface) of the cuts for the infeed law `v`.
+/// How many cuts the infeed law `v` makes for the depth `u` in infeeds of at most `i`, counted
+/// before any is made: V1 to V3 take ⌈U/I⌉ (V2 three more), V0 the n with I·√n ≥ U.
+fn cut_count(v: u32, u: f64, i: f64) -> f64 {
+    match v {
+        0 => (u / i).powi(2).ceil(),
+        2 => (u / i).ceil() + 3.0,
+        _ => (u / i).ceil(),
+    }
+}
+
+/// The depths (radial, from the thread's surface) of the cuts for the infeed law `v`; the caller
+/// has bounded their count ([`cut_count`]).
 fn depths(v: u32, u: f64, i: f64) -> Vec<f64> {
+    debug_assert!(cut_count(v, u, i) <= crate::ground::bounds::MAX_PASSES as f64 + 1.0);
     let mut out = Vec::new();
     match v {
         // Constant cross-section: the nth cut reaches I·√n, the last U.
@@ -234,6 +246,21 @@ fn g31(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
     };
     let run_in = run("B", "the run-in length");
     let overrun = run("P", "the overrun length");
+    // The cuts are counted before any is made (an I of 10⁻¹² asked for 9·10¹¹ of them).
+    let cuts = cut_count(v, depth, i) + q;
+    if !(cuts <= crate::ground::bounds::MAX_PASSES as f64) {
+        return Err(m.err(
+            b.line,
+            col,
+            format!(
+                "G31 U{} I{} V{v}: {} cuts, more than the {} passes threadcheck accepts (the infeed I is too small for the depth U)",
+                fmt_num(u),
+                fmt_shown(i),
+                fmt_shown(cuts),
+                crate::ground::bounds::MAX_PASSES
+            ),
+        ));
+    }
     let mut radial = depths(v, depth, i);
     radial.extend(std::iter::repeat_n(depth, q as usize));
     let shifts = match h {

@@ -631,6 +631,24 @@ impl Motion {
         &mut self.ops[op]
     }
 
+    /// Records a drilling or tapping cycle; past [`MAX_HOLES`](crate::ground::bounds::MAX_HOLES)
+    /// the program is refused at the cycle's place, never cut short.
+    pub fn push_hole(&mut self, h: super::HoleCycle) -> Result<(), Error> {
+        if self.holes.len() >= crate::ground::bounds::MAX_HOLES {
+            return Err(self.err(
+                h.line,
+                h.column,
+                format!(
+                    "{}: more than {} drilling and tapping cycles in one program",
+                    h.code,
+                    crate::ground::bounds::MAX_HOLES
+                ),
+            ));
+        }
+        self.holes.push(h);
+        Ok(())
+    }
+
     /// Adds a pass to an operation.
     pub fn push(&mut self, op: usize, line: usize, mut p: Pass) -> Result<(), Error> {
         self.passes_total += 1;

@@ -243,21 +243,33 @@ fn hole(s: &State, m: &mut Motion, call: &HoleCall, line: usize) -> Result<(), E
                 }
                 (None, Some(mpit)) => {
                     feed_word = "MPIT";
-                    let p = coarse_pitch_for(mpit.abs()).filter(|_| mpit.abs() <= 48.0);
-                    if p.is_none() {
-                        m.note(
+                    // The control taps with MPIT's pitch or alarms: a size it has no pitch for
+                    // refuses the program (MPIT 99 once passed without a feed check).
+                    let p = coarse_pitch_for(mpit.abs()).filter(|_| mpit.abs() <= 48.0).ok_or_else(|| {
+                        m.err(
                             line,
                             call.col,
                             format!(
-                                "{} MPIT {}: not a metric size M3 to M48 with a coarse pitch; the feed is not checked",
+                                "{} MPIT {}: not a metric size M3 to M48 with a coarse pitch (ISO 261): the cycle has no pitch to tap with",
                                 call.name,
                                 crate::ground::fmt::fmt_num(mpit)
                             ),
-                        );
-                    }
-                    p.map(|p| p.copysign(mpit))
+                        )
+                    })?;
+                    Some(p.copysign(mpit))
                 }
-                (None, None) => None,
+                (None, None) => {
+                    return Err(m.err(
+                        line,
+                        call.col,
+                        format!(
+                            "{} without PIT or MPIT: the cycle taps from the pitch and has none (give PIT, argument {}, or MPIT, argument {})",
+                            call.name,
+                            pit_at + 1,
+                            mpit_at + 1
+                        ),
+                    ))
+                }
             };
             if let Some(p) = pitch {
                 feed = Some(p.abs());
@@ -277,26 +289,24 @@ fn hole(s: &State, m: &mut Motion, call: &HoleCall, line: usize) -> Result<(), E
         }
     }
     let assumed = kind == super::HoleKind::Tap && feed_word == "F" && m.feed_per_rev.is_none();
-    if m.holes.len() < crate::ground::bounds::MAX_PASSES {
-        m.holes.push(super::HoleCycle {
-            code: call.name.clone(),
-            kind,
-            line,
-            column: if line == call.line { call.col } else { 1 },
-            x: m.x,
-            y: m.y,
-            bottom,
-            feed,
-            feed_word: feed_word.into(),
-            hand,
-            feed_per_rev,
-            feed_mode_assumed: assumed,
-            spindle: m.s,
-            spindle_dir,
-            tool: m.tool,
-            rigid: call.name == "CYCLE84",
-        });
-    }
+    m.push_hole(super::HoleCycle {
+        code: call.name.clone(),
+        kind,
+        line,
+        column: if line == call.line { call.col } else { 1 },
+        x: m.x,
+        y: m.y,
+        bottom,
+        feed,
+        feed_word: feed_word.into(),
+        hand,
+        feed_per_rev,
+        feed_mode_assumed: assumed,
+        spindle: m.s,
+        spindle_dir,
+        tool: m.tool,
+        rigid: call.name == "CYCLE84",
+    })?;
     m.lose_position(line, &format!("{}(…)", call.name), false, true);
     m.read_past(
         line,

@@ -9,6 +9,11 @@ pub const MAX_PASSES: usize = 1_000;
 /// Most imprints one sweep may place (passes × crossings of the window).
 pub const MAX_IMPRINTS: usize = 2_000_000;
 
+/// Most drilling and tapping cycles one program may make (holes, repeats included): a plate of
+/// a few hundred tapped holes is large; past the bound the program is refused at the cycle that
+/// crosses it (the first 1 000 were once kept without a word, and a failing 1 001st tap passed).
+pub const MAX_HOLES: usize = 10_000;
+
 /// Deepest nesting of subprogram calls in a G-code program.
 pub const MAX_CALL_DEPTH: usize = 16;
 
@@ -47,6 +52,29 @@ pub const MAX_MILL_LEVELS: usize = 5_000;
 /// Most straight pieces (moves, arcs as chords) `mill` checks over all levels (the source
 /// documents' dome has 1 153 603): about 40 bytes each while the levels are held.
 pub const MAX_MILL_SEGMENTS: usize = 2_000_000;
+
+/// Most terms (numbers, variables and functions) one target formula of `mill` may hold: the
+/// check evaluates it some hundred thousand times per level, so 500 terms take about a second
+/// (3 000 took 6 s; the source documents' curves have under 20).
+pub const MAX_FORMULA_TERMS: usize = 500;
+
+/// Most target-formula terms `mill` evaluates in one run (samples of every level and the
+/// nearest-point searches, each evaluation counting its formulas' terms): about a second on
+/// the 2-core machine of reports/bounds.md (about 12 ns a term).
+pub const MAX_FORMULA_WORK: u64 = 80_000_000;
+
+/// Most helical turns one thread-milling operation may make (all its helices, a LinuxCNC P
+/// or Sinumerik TURN counted in full): a thread mill makes a few to a few hundred; 10 000 turns
+/// in one window measure in about half a second (1.9 million took 14 s).
+pub const MAX_HELIX_TURNS: usize = 10_000;
+
+/// Most evaluations of the cutter's reach one thread-milling section may take (its 1 601
+/// heights, each searching every helix piece whose teeth reach it, 800 samples a radian and a
+/// 60-step refinement), estimated from 33 of the heights before the section is cut: about
+/// 25 ns each on the 2-core machine of reports/bounds.md, so the largest allowed takes about
+/// a second. A single-form cutter's ten helices take 6·10⁶, a comb of 8 rows cutting three
+/// turns in quarter arcs 2.6·10⁷; 10 000 one-turn helices stacked 0.0006 mm apart took 372 s.
+pub const MAX_SECTION_EVALS: u64 = 40_000_000;
 
 /// Largest cutter `mill` checks, mm (a face mill is at most a few hundred; a 10⁹ mm cutter took
 /// 13 s).

@@ -37,6 +37,12 @@ pub enum Error {
     /// The embedded data is broken (a build defect, never the user's input).
     #[error("embedded data: {0}")]
     Data(String),
+    /// The computation was stopped before it ended (the server's time budget ran out, or the
+    /// server is stopping): see [`Cancel`](crate::Cancel).
+    #[error(
+        "the computation was stopped before it ended (its time budget ran out, or the server is stopping)"
+    )]
+    Cancelled,
     /// Reading or writing a file failed.
     #[error("{path}: {source}")]
     Io {
@@ -60,8 +66,31 @@ impl Error {
     /// let e = threadcheck::Error::Input("a\nb \u{1b}[31m".into());
     /// assert_eq!(e.one_line(), "a b \\u{1b}[31m");
     /// ```
+    ///
+    /// The place (`file:line:column:`, `file:`, `path:`) is kept whole, escaped only, so that
+    /// an editor or CI can jump to it however deep the folder; the untrusted text after it is
+    /// shortened as [`one_line`] does.
     pub fn one_line(&self) -> String {
-        one_line(&self.to_string())
+        let mut out = String::new();
+        match self {
+            Error::Program { file, line, column, message } => {
+                escape_into(&mut out, file.chars());
+                out.push_str(&format!(":{line}:{column}: "));
+                out.push_str(&one_line(message));
+            }
+            Error::File { file, message } => {
+                escape_into(&mut out, file.chars());
+                out.push_str(": ");
+                out.push_str(&one_line(message));
+            }
+            Error::Io { path, source } => {
+                escape_into(&mut out, path.chars());
+                out.push_str(": ");
+                out.push_str(&one_line(&source.to_string()));
+            }
+            _ => out = one_line(&self.to_string()),
+        }
+        out
     }
 }
 

@@ -2,6 +2,7 @@
 //! points and arcs, and number formatting. Nothing here imports another wing.
 
 pub mod bounds;
+pub mod cancel;
 pub mod error;
 pub mod fmt;
 pub mod input;
