@@ -524,9 +524,23 @@ struct ServeArgs {
     /// Seconds a request waits for its turn before it is answered 503 (0: at once).
     #[arg(long, value_name = "SECONDS", default_value_t = 5.0, value_parser = queue_seconds)]
     queue_wait: f64,
-    /// Seconds one request may compute before it is answered 503.
-    #[arg(long, value_name = "SECONDS", default_value_t = 30, value_parser = clap::value_parser!(u64).range(1..=3600))]
-    time_budget: u64,
+    /// Seconds one request may compute before it is stopped and answered 503.
+    #[arg(long, value_name = "SECONDS", default_value_t = 10.0, value_parser = positive_seconds)]
+    time_budget: f64,
+    /// Seconds a connection may take to send a request's head, or stay idle between requests.
+    #[arg(long, value_name = "SECONDS", default_value_t = 5.0, value_parser = positive_seconds)]
+    header_timeout: f64,
+    /// Seconds a request's body may take to arrive once its turn has come (else 408).
+    #[arg(long, value_name = "SECONDS", default_value_t = 10.0, value_parser = positive_seconds)]
+    body_timeout: f64,
+    /// Connections open at once; past it the server accepts no more until one closes.
+    #[arg(long, value_name = "N", default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    max_connections: u32,
+    /// A host name to answer besides the bound address and localhost (repeat for more): the
+    /// Host header of every other request is refused (403), so that a web page cannot reach
+    /// the server through a name of its own.
+    #[arg(long, value_name = "NAME")]
+    allow_host: Vec<String>,
 }
 
 #[derive(Args)]
@@ -651,6 +665,13 @@ struct PlanArgs {
 }
 
 /// Seconds to wait, from 0 to an hour.
+fn positive_seconds(s: &str) -> Result<f64, String> {
+    match finite(s)? {
+        v if (0.01..=3600.0).contains(&v) => Ok(v),
+        _ => Err("from 0.01 to 3600 seconds".into()),
+    }
+}
+
 fn queue_seconds(s: &str) -> Result<f64, String> {
     match finite(s)? {
         v if (0.0..=3600.0).contains(&v) => Ok(v),
@@ -960,8 +981,12 @@ impl Cli {
                 if let Some(n) = a.max_in_flight {
                     options.max_in_flight = n as usize;
                 }
-                options.time_budget = std::time::Duration::from_secs(a.time_budget);
+                options.time_budget = std::time::Duration::from_secs_f64(a.time_budget);
                 options.queue_wait = std::time::Duration::from_secs_f64(a.queue_wait);
+                options.header_timeout = std::time::Duration::from_secs_f64(a.header_timeout);
+                options.body_timeout = std::time::Duration::from_secs_f64(a.body_timeout);
+                options.max_connections = a.max_connections as usize;
+                options.allow_hosts = a.allow_host.clone();
                 threadcheck::serve(options, |line| {
                     use std::io::Write;
                     let mut out = std::io::stdout().lock();

@@ -641,6 +641,10 @@ pub(crate) fn run(
         }
         let b = &blocks[pc];
         executed += 1;
+        // A request no longer wanted (the server's time budget) stops here within microseconds.
+        if executed % 4096 == 0 {
+            crate::ground::cancel::check()?;
+        }
         if executed > budget.blocks {
             return Err(perr(
                 b,

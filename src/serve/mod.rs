@@ -5,17 +5,38 @@
 //! the same input, `POST /api/{command}/{document}` with the command's `text`, `svg`, `html` or
 //! `fix` document; the body is a JSON object of the Python function's keyword arguments
 //! ([`run_request`](crate::run_request) with files refused: the server reads no file of its own
-//! for a request). Errors are JSON, `{"error": "<the command line's one line>", "status": N}`:
-//! 400 bad input, 404 no such command, 413 a body over [`ServeOptions::body_limit`], 503 when
-//! the requests in flight are at their bound for longer than the queue wait, or one ran past the
-//! time budget. Nothing is written to disk.
+//! for a request). Nothing is written to disk.
+//!
+//! Every error of every layer is JSON, `{"error": "<one line>", "status": N}`: 400 bad input,
+//! 403 a Host that is not this server's name, 404 no such command or page, 405 a method the
+//! path does not take, 408 a body not sent within [`ServeOptions::body_timeout`], 413 a body
+//! over [`ServeOptions::body_limit`] (answered from `Content-Length` before any of the body is
+//! read), 414 a path over 2 KiB, 415 a body that is not `application/json`, 431 headers over
+//! 16 KiB, 503 when the requests in flight are at their bound for longer than the queue wait or
+//! one ran past the time budget. (A request hyper cannot parse as HTTP at all, or with a head
+//! over 64 KiB, gets hyper's own bare 400 or 431 and the connection is closed.)
+//!
+//! What the server holds, and for how long:
+//! - a request's body is read only once its computation has a slot, so at most
+//!   `max_in_flight` bodies are in memory, each at most `body_limit`; a waiting request holds
+//!   its connection's read buffer only;
+//! - at most `max_connections` connections are open; past that the server stops accepting until
+//!   one closes (the operating system queues the rest); an accept error (too many open files)
+//!   waits 50 ms and serving goes on;
+//! - a connection that has not sent a whole request head within `header_timeout` (idle
+//!   keep-alive connections included) is closed; when more than half the connections are open,
+//!   new ones get a tenth of it;
+//! - a computation past `time_budget`, or whose client went away, is stopped at its next check
+//!   ([`Cancel`](crate::Cancel)) and frees its slot;
+//! - Ctrl-C stops every computation and the server within a second.
 
+use crate::ground::cancel::Cancel;
 use crate::request::{run_request, Command, Document, Files};
 use crate::Error;
-use axum::body::Bytes;
-use axum::extract::rejection::BytesRejection;
-use axum::extract::{DefaultBodyLimit, Path, State};
-use axum::http::{header, HeaderValue, StatusCode};
+use axum::body::Body;
+use axum::extract::{Path, Request, State};
+use axum::http::{header, HeaderValue, Method, StatusCode};
+use axum::middleware::Next;
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use axum::Router;
@@ -32,6 +53,16 @@ const STYLE: &str = include_str!("style.css");
 /// The largest request body the server takes by default, bytes (8 MiB).
 pub const MAX_BODY_BYTES: usize = 8 << 20;
 
+/// The longest request target (path and query) answered, bytes.
+pub const MAX_URI_BYTES: usize = 2 << 10;
+
+/// The most header bytes (names and values) a request may carry.
+pub const MAX_HEADER_BYTES: usize = 16 << 10;
+
+/// hyper's read buffer per connection, bytes: a request head longer than this is refused by
+/// hyper itself.
+const READ_BUFFER_BYTES: usize = 64 << 10;
+
 /// How the server listens and what it bounds.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ServeOptions {
@@ -46,8 +77,18 @@ pub struct ServeOptions {
     pub max_in_flight: usize,
     /// How long a request waits for its turn.
     pub queue_wait: Duration,
-    /// How long one request may compute before it is answered 503.
+    /// How long one request may compute before it is stopped and answered 503.
     pub time_budget: Duration,
+    /// How long a connection may take to send a request head, or stay idle between requests.
+    pub header_timeout: Duration,
+    /// How long a request's body may take to arrive once its turn has come.
+    pub body_timeout: Duration,
+    /// Connections open at once.
+    pub max_connections: usize,
+    /// Host names the server answers besides its own address and `localhost` (`--allow-host`):
+    /// a page on another site that a shop's browser opens cannot reach the server through a
+    /// name of its own (DNS rebinding).
+    pub allow_hosts: Vec<String>,
 }
 
 impl Default for ServeOptions {
@@ -59,7 +100,11 @@ impl Default for ServeOptions {
             body_limit: MAX_BODY_BYTES,
             max_in_flight: 2 * cores,
             queue_wait: Duration::from_secs(5),
-            time_budget: Duration::from_secs(30),
+            time_budget: Duration::from_secs(10),
+            header_timeout: Duration::from_secs(5),
+            body_timeout: Duration::from_secs(10),
+            max_connections: 256,
+            allow_hosts: Vec::new(),
         }
     }
 }
@@ -68,13 +113,22 @@ impl Default for ServeOptions {
 struct Shared {
     options: ServeOptions,
     permits: Arc<Semaphore>,
+    /// Raised when the server stops: every computation in flight stops with it.
+    stopping: Cancel,
 }
 
 /// The application: the page and the API, ready to be served (by [`serve`], or by a test on
 /// its own listener).
 pub fn router(options: ServeOptions) -> Router {
-    let shared =
-        Arc::new(Shared { permits: Arc::new(Semaphore::new(options.max_in_flight.max(1))), options });
+    router_with(options, Cancel::new())
+}
+
+fn router_with(options: ServeOptions, stopping: Cancel) -> Router {
+    let shared = Arc::new(Shared {
+        permits: Arc::new(Semaphore::new(options.max_in_flight.max(1))),
+        options,
+        stopping,
+    });
     Router::new()
         .route("/", get(|| async { with_type("text/html; charset=utf-8", PAGE) }))
         .route("/app.js", get(|| async { with_type("text/javascript; charset=utf-8", SCRIPT) }))
@@ -83,7 +137,7 @@ pub fn router(options: ServeOptions) -> Router {
         .route("/api/{command}", post(api_json))
         .route("/api/{command}/{document}", post(api_document))
         .fallback(|| async { error(StatusCode::NOT_FOUND, "no such page: the API is under /api/".into()) })
-        .layer(DefaultBodyLimit::max(shared.options.body_limit))
+        .layer(axum::middleware::from_fn_with_state(Arc::clone(&shared), guard))
         .with_state(shared)
 }
 
@@ -94,26 +148,75 @@ pub fn serve(options: ServeOptions, started: impl FnOnce(&str)) -> Result<(), Er
         .enable_all()
         .build()
         .map_err(|e| Error::io("the server's runtime", e))?;
-    runtime.block_on(async move {
-        let addr = SocketAddr::new(options.bind, options.port);
-        let listener = tokio::net::TcpListener::bind(addr).await.map_err(|e| Error::io(addr, e))?;
-        let local = listener.local_addr().map_err(|e| Error::io(addr, e))?;
-        let reach = if options.bind.is_loopback() {
-            "this computer only (loopback)".to_string()
-        } else {
-            format!("every machine that can reach {} (--bind {}: your choice)", options.bind, options.bind)
+    let result = runtime.block_on(run(options, started));
+    // A computation that has not seen the stop yet is not waited for.
+    runtime.shutdown_timeout(Duration::from_millis(200));
+    result
+}
+
+async fn run(options: ServeOptions, started: impl FnOnce(&str)) -> Result<(), Error> {
+    let addr = SocketAddr::new(options.bind, options.port);
+    let listener = tokio::net::TcpListener::bind(addr).await.map_err(|e| Error::io(addr, e))?;
+    let local = listener.local_addr().map_err(|e| Error::io(addr, e))?;
+    let reach = if options.bind.is_loopback() {
+        "this computer only (loopback)".to_string()
+    } else {
+        format!("every machine that can reach {} (--bind {}: your choice)", options.bind, options.bind)
+    };
+    started(&format!(
+        "threadcheck serve: http://{local}/ for {reach}; {} requests at once, bodies up to {} bytes; Ctrl-C stops",
+        options.max_in_flight, options.body_limit
+    ));
+    let stopping = Cancel::new();
+    let mut options = options;
+    // The port the server really has (0 asks for any): the Host check compares with it.
+    options.port = local.port();
+    let (header_timeout, max_connections) = (options.header_timeout, options.max_connections.max(1));
+    let app = router_with(options, stopping.clone());
+    let connections = Arc::new(Semaphore::new(max_connections));
+    let stop = tokio::signal::ctrl_c();
+    tokio::pin!(stop);
+    loop {
+        let permit = tokio::select! {
+            _ = &mut stop => break,
+            p = Arc::clone(&connections).acquire_owned() => match p {
+                Ok(p) => p,
+                Err(_) => break,
+            },
         };
-        started(&format!(
-            "threadcheck serve: http://{local}/ for {reach}; {} requests at once, bodies up to {} bytes; Ctrl-C stops",
-            options.max_in_flight, options.body_limit
-        ));
-        axum::serve(listener, router(options))
-            .with_graceful_shutdown(async {
-                let _ = tokio::signal::ctrl_c().await;
-            })
-            .await
-            .map_err(|e| Error::io(local, e))
-    })
+        let stream = tokio::select! {
+            _ = &mut stop => break,
+            a = listener.accept() => match a {
+                Ok((stream, _)) => stream,
+                // Out of file descriptors, a connection reset before it was taken: wait a moment
+                // and go on serving.
+                Err(_) => {
+                    tokio::time::sleep(Duration::from_millis(50)).await;
+                    continue;
+                }
+            },
+        };
+        // Crowded: a newcomer gets a tenth of the head timeout, so idle connections cannot hold
+        // the server.
+        let crowded = connections.available_permits() < max_connections / 2;
+        let timeout = if crowded { header_timeout / 10 } else { header_timeout };
+        let app = app.clone();
+        tokio::spawn(async move {
+            let service =
+                hyper::service::service_fn(move |req: axum::http::Request<hyper::body::Incoming>| {
+                    let mut app = app.clone();
+                    async move { tower_service::Service::call(&mut app, req.map(Body::new)).await }
+                });
+            let mut http = hyper::server::conn::http1::Builder::new();
+            http.timer(hyper_util::rt::TokioTimer::new())
+                .header_read_timeout(timeout)
+                .max_buf_size(READ_BUFFER_BYTES);
+            let _ = http.serve_connection(hyper_util::rt::TokioIo::new(stream), service).await;
+            drop(permit);
+        });
+    }
+    stopping.raise();
+    Ok(())
 }
 
 fn with_type(media: &'static str, body: &'static str) -> Response {
@@ -124,6 +227,93 @@ fn with_type(media: &'static str, body: &'static str) -> Response {
 fn error(status: StatusCode, message: String) -> Response {
     let body = serde_json::json!({ "error": crate::one_line(&message), "status": status.as_u16() });
     (status, [(header::CONTENT_TYPE, "application/json")], body.to_string()).into_response()
+}
+
+/// Every request passes here first: its Host, its size, and (for the API) its media type; every
+/// error answer that comes back without a JSON body (axum's 405, an extractor's rejection) gets
+/// the documented one.
+async fn guard(State(shared): State<Arc<Shared>>, req: Request, next: Next) -> Response {
+    if req.uri().to_string().len() > MAX_URI_BYTES {
+        return error(
+            StatusCode::URI_TOO_LONG,
+            format!("the request's path is longer than {MAX_URI_BYTES} bytes"),
+        );
+    }
+    let header_bytes: usize = req.headers().iter().map(|(k, v)| k.as_str().len() + v.len() + 4).sum();
+    if header_bytes > MAX_HEADER_BYTES {
+        return error(
+            StatusCode::REQUEST_HEADER_FIELDS_TOO_LARGE,
+            format!("the request's headers are larger than {MAX_HEADER_BYTES} bytes"),
+        );
+    }
+    if let Err(host) = host_allowed(&shared.options, req.headers().get(header::HOST)) {
+        return error(StatusCode::FORBIDDEN, host);
+    }
+    let (method, path) = (req.method().clone(), req.uri().path().to_string());
+    if method == Method::POST && path.starts_with("/api/") {
+        let media = req
+            .headers()
+            .get(header::CONTENT_TYPE)
+            .and_then(|v| v.to_str().ok())
+            .map(|v| v.split(';').next().unwrap_or("").trim().to_ascii_lowercase());
+        if media.as_deref() != Some("application/json") {
+            return error(
+                StatusCode::UNSUPPORTED_MEDIA_TYPE,
+                format!(
+                    "the request body must be JSON, sent as Content-Type: application/json (it came as {})",
+                    media.map_or("nothing".to_string(), |m| format!("'{m}'"))
+                ),
+            );
+        }
+    }
+    let response = next.run(req).await;
+    let is_json = response
+        .headers()
+        .get(header::CONTENT_TYPE)
+        .is_some_and(|v| v.as_bytes().starts_with(b"application/json"));
+    let status = response.status();
+    if (status.is_client_error() || status.is_server_error()) && !is_json {
+        let message = match status {
+            StatusCode::METHOD_NOT_ALLOWED => format!(
+                "{method} {path}: not taken here (the page and GET /api are read with GET, the API's commands are POST /api/COMMAND)"
+            ),
+            s => format!("{method} {path}: {}", s.canonical_reason().unwrap_or("error")),
+        };
+        return error(status, message);
+    }
+    response
+}
+
+/// Whether the Host header names this server: its own address, a loopback name when it listens
+/// on loopback (or every address), `localhost`, or a name `--allow-host` gave.
+fn host_allowed(options: &ServeOptions, host: Option<&HeaderValue>) -> Result<(), String> {
+    let Some(host) = host.and_then(|h| h.to_str().ok()) else {
+        return Err("the request names no Host: HTTP/1.1 requests must".into());
+    };
+    let name = match host.strip_prefix('[') {
+        // [::1]:8080
+        Some(v6) => v6.split(']').next().unwrap_or("").to_string(),
+        None => host.rsplit_once(':').map_or(host, |(n, _)| n).to_string(),
+    };
+    let name = name.to_ascii_lowercase();
+    let mut allowed = vec!["localhost".to_string()];
+    if !options.bind.is_unspecified() {
+        allowed.push(options.bind.to_string());
+    }
+    if options.bind.is_loopback() || options.bind.is_unspecified() {
+        allowed.extend(["127.0.0.1".to_string(), "::1".to_string()]);
+    }
+    allowed.extend(options.allow_hosts.iter().map(|h| h.to_ascii_lowercase()));
+    let mut seen = std::collections::HashSet::new();
+    allowed.retain(|h| seen.insert(h.clone()));
+    if allowed.contains(&name) {
+        Ok(())
+    } else {
+        Err(format!(
+            "Host '{host}' is not a name of this server ({}): a web page of another site may be trying to reach it; start the server with --allow-host {name} to answer that name",
+            allowed.join(", ")
+        ))
+    }
 }
 
 /// `GET /api`: the commands, their keys and documents.
@@ -142,30 +332,31 @@ async fn api_index() -> Response {
     ([(header::CONTENT_TYPE, "application/json")], body.to_string()).into_response()
 }
 
-async fn api_json(
-    State(shared): State<Arc<Shared>>,
-    Path(command): Path<String>,
-    body: Result<Bytes, BytesRejection>,
-) -> Response {
-    answer(shared, &command, "json", body).await
+async fn api_json(State(shared): State<Arc<Shared>>, Path(command): Path<String>, req: Request) -> Response {
+    answer(shared, &command, "json", req).await
 }
 
 async fn api_document(
     State(shared): State<Arc<Shared>>,
     Path((command, document)): Path<(String, String)>,
-    body: Result<Bytes, BytesRejection>,
+    req: Request,
 ) -> Response {
-    answer(shared, &command, &document, body).await
+    answer(shared, &command, &document, req).await
 }
 
-/// One API request: parsed, queued for a permit, computed on the blocking pool within the
-/// time budget, answered.
-async fn answer(
-    shared: Arc<Shared>,
-    command: &str,
-    document: &str,
-    body: Result<Bytes, BytesRejection>,
-) -> Response {
+/// Raises its flag when dropped: a request whose client went away (its future dropped) stops
+/// its computation.
+struct RaiseOnDrop(Cancel);
+
+impl Drop for RaiseOnDrop {
+    fn drop(&mut self) {
+        self.0.raise();
+    }
+}
+
+/// One API request: checked, queued for a permit, its body read, computed on the blocking pool
+/// within the time budget, answered.
+async fn answer(shared: Arc<Shared>, command: &str, document: &str, req: Request) -> Response {
     let command: Command = match command.parse() {
         Ok(c) => c,
         Err(e) => return error(StatusCode::NOT_FOUND, e.to_string()),
@@ -174,21 +365,18 @@ async fn answer(
         Ok(d) => d,
         Err(e) => return error(StatusCode::NOT_FOUND, e.to_string()),
     };
-    let body = match body {
-        Ok(b) => b,
-        Err(rejection) => {
-            let status = rejection.status();
-            let message = if status == StatusCode::PAYLOAD_TOO_LARGE {
-                format!("the request body is larger than {} bytes", shared.options.body_limit)
-            } else {
-                rejection.body_text()
-            };
-            return error(status, message);
-        }
-    };
-    let Ok(args) = String::from_utf8(body.to_vec()) else {
-        return error(StatusCode::BAD_REQUEST, "the request body is not UTF-8 text".into());
-    };
+    let limit = shared.options.body_limit;
+    let too_large =
+        || error(StatusCode::PAYLOAD_TOO_LARGE, format!("the request body is larger than {limit} bytes"));
+    // Announced over the limit: answered before a byte of it is read.
+    let declared = req
+        .headers()
+        .get(header::CONTENT_LENGTH)
+        .and_then(|v| v.to_str().ok())
+        .and_then(|v| v.trim().parse::<u64>().ok());
+    if declared.is_some_and(|n| n > limit as u64) {
+        return too_large();
+    }
     let permit =
         match tokio::time::timeout(shared.options.queue_wait, Arc::clone(&shared.permits).acquire_owned())
             .await
@@ -205,25 +393,66 @@ async fn answer(
                 )
             }
         };
+    // The body is read only now, with a slot: the bodies in memory are bounded by the slots.
+    let body =
+        match tokio::time::timeout(shared.options.body_timeout, axum::body::to_bytes(req.into_body(), limit))
+            .await
+        {
+            Err(_) => {
+                return error(
+                    StatusCode::REQUEST_TIMEOUT,
+                    format!(
+                        "the request body did not arrive within {} s",
+                        shared.options.body_timeout.as_secs_f64()
+                    ),
+                )
+            }
+            Ok(Err(e)) => {
+                // http-body-util's LengthLimitError, as axum's to_bytes words it.
+                let over = e.to_string().contains("length limit exceeded");
+                return if over {
+                    too_large()
+                } else {
+                    error(StatusCode::BAD_REQUEST, format!("the request body could not be read: {e}"))
+                };
+            }
+            Ok(Ok(b)) => b,
+        };
+    let Ok(args) = String::from_utf8(body.to_vec()) else {
+        return error(StatusCode::BAD_REQUEST, "the request body is not UTF-8 text".into());
+    };
+    let stop = Cancel::new();
+    // Dropped with this future: a client gone stops the computation.
+    let _stop_on_drop = RaiseOnDrop(stop.clone());
+    let (work_stop, stopping) = (stop.clone(), shared.stopping.clone());
     // The permit goes with the computation: a request answered 503 for its time budget keeps
-    // its permit until its computation really ends, so the bound holds.
+    // its permit until its computation really ends (at its next check of the flag), so the
+    // bound holds.
     let work = tokio::task::spawn_blocking(move || {
-        let r = run_request(command, document, &args, Files::Refused);
+        let r = if stopping.is_raised() {
+            Err(Error::Cancelled)
+        } else {
+            work_stop.run(|| run_request(command, document, &args, Files::Refused))
+        };
         drop(permit);
         r
     });
     match tokio::time::timeout(shared.options.time_budget, work).await {
-        Err(_) => error(
-            StatusCode::SERVICE_UNAVAILABLE,
-            format!(
-                "the request took longer than the time budget of {} s",
-                shared.options.time_budget.as_secs_f64()
-            ),
-        ),
+        Err(_) => {
+            stop.raise();
+            error(
+                StatusCode::SERVICE_UNAVAILABLE,
+                format!(
+                    "the request took longer than the time budget of {} s; it was stopped",
+                    shared.options.time_budget.as_secs_f64()
+                ),
+            )
+        }
         Ok(Err(_)) => error(StatusCode::INTERNAL_SERVER_ERROR, "the computation stopped unexpectedly".into()),
         Ok(Ok(Err(e))) => {
             let status = match e {
                 Error::Data(_) | Error::Io { .. } => StatusCode::INTERNAL_SERVER_ERROR,
+                Error::Cancelled => StatusCode::SERVICE_UNAVAILABLE,
                 _ => StatusCode::BAD_REQUEST,
             };
             error(status, e.one_line())
