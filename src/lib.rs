@@ -124,6 +124,10 @@ pub use analysis::verify::{
 pub use request::{run_request, Answer, Command, Document, Files};
 pub use serve::{router, serve, ServeOptions};
 
+// The one output writer of the command line and the Python package.
+pub use ground::input::forget_reads;
+pub use report::output::write_files;
+
 // The commands: one job per command, returning what the command prints.
 pub use jobs::{
     CapabilityJob, CompareJob, CorrectJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob,

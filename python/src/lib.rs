@@ -1,8 +1,9 @@
-//! The compiled half of the Python package `threadcheck`: one function, `run`, that hands a
-//! command's keyword arguments (as a JSON object) to the library's request door, the same one
-//! `threadcheck serve` answers through, so the command line, the API and Python share one
-//! validation. `threadcheck/__init__.py` builds the arguments and turns the JSON into dicts.
-//! Every error is a `ValueError` with the command line's one-line message.
+//! The compiled half of the Python package `threadcheck`: `run`, that hands a command's keyword
+//! arguments (as a JSON object) to the library's request door, the same one `threadcheck serve`
+//! answers through, so the command line, the API and Python share one validation; and
+//! `write_files`, the command line's own output writer. `threadcheck/__init__.py` builds the
+//! arguments and turns the JSON into dicts. Every error is a `ValueError` with the command
+//! line's one-line message.
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -21,14 +22,27 @@ fn run(py: Python<'_>, command: &str, document: &str, args: &str) -> PyResult<(S
     let command: Command = command.parse().map_err(value_error)?;
     let document: Document = document.parse().map_err(value_error)?;
     let args = args.to_string();
+    // The files this run reads are the ones `write_files` will not replace.
+    threadcheck::forget_reads();
     py.detach(move || run_request(command, document, &args, Files::Allowed))
         .map(|a| (a.body, a.outcome == Outcome::Pass))
         .map_err(value_error)
 }
 
+/// Writes `files` (path, text) as the command line writes its outputs: none that the last
+/// `run` read (a program, an insert, a tool table and what it names) or that shares a file with
+/// another, all or none, atomically; devices and FIFOs in place, links followed, modes kept.
+#[pyfunction]
+fn write_files(py: Python<'_>, files: Vec<(String, String)>) -> PyResult<()> {
+    let outputs: Vec<(std::path::PathBuf, Vec<u8>)> =
+        files.into_iter().map(|(p, t)| (std::path::PathBuf::from(p), t.into_bytes())).collect();
+    py.detach(move || threadcheck::write_files(&outputs)).map_err(value_error)
+}
+
 #[pymodule]
 fn _threadcheck(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(write_files, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

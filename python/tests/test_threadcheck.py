@@ -483,3 +483,53 @@ def test_mill_reads_the_dialect_of_the_program_name():
     target = 'x = "20*cos(t)"\ny = "20*sin(t)"\nt = [0, 360]\nmaterial = "inside"\n'
     r = threadcheck.mill(prog, target, 6.0, program_name="boss.ngc")
     assert r["gouge_max"] == pytest.approx(23 * (1 - math.cos(math.radians(5))), abs=1e-7)
+
+
+def test_a_two_line_heidenhain_program_with_a_tiny_infeed_is_a_value_error():
+    # Issue 42: I = 1e-12 mm asked V1 for 0.92 / 1e-12 = 9.2e11 cuts and aborted the
+    # interpreter (an allocation of 7.36 TB); the cuts are counted first now.
+    with pytest.raises(ValueError, match=r"9\.2e11 cuts, more than the 1000 passes"):
+        threadcheck.verify("M20x1.5-6g", program="G0 X22 Z5\nG31 X20 Z-20 F1.5 U-0.92 I0.000000000001 V1\n",
+                           program_name="tiny.nc", dialect="heidenhain")
+
+
+def test_outputs_never_replace_inputs_and_follow_the_cli_writer(tmp_path):
+    # Issue 42: Python writes through the command line's writer.
+    insert = tmp_path / "i.toml"
+    insert.write_text((pathlib.Path(__file__).parents[2] / "tests" / "data" / "insert-clearance-1deg.toml").read_text())
+    before = insert.read_text()
+    with pytest.raises(ValueError, match="is an input of this run; an output must not replace it"):
+        threadcheck.verify("M10x1.5-6g", insert=str(insert), svg=str(insert))
+    assert insert.read_text() == before
+    # Two outputs on one file: refused, nothing written.
+    both = tmp_path / "o.svg"
+    with pytest.raises(ValueError, match="two outputs of this run name this file"):
+        threadcheck.verify("M10x1.5-6g", insert="full", svg=both, html=both)
+    assert not both.exists()
+    # A kept mode, a followed link, a FIFO written in place.
+    out = tmp_path / "kept.svg"
+    out.write_text("old")
+    os.chmod(out, 0o640)
+    threadcheck.verify("M10x1.5-6g", insert="full", svg=out)
+    assert out.read_text().startswith("<svg") or "<svg" in out.read_text()[:200]
+    assert os.stat(out).st_mode & 0o777 == 0o640
+    link = tmp_path / "link.svg"
+    os.symlink(out, link)
+    threadcheck.verify("M10x1.5-6g", insert="full", svg=link)
+    assert link.is_symlink()
+    fifo = tmp_path / "pipe.svg"
+    os.mkfifo(fifo)
+    got = []
+    import threading
+
+    reader = threading.Thread(target=lambda: got.append(open(fifo, "rb").read()))
+    reader.start()
+    threadcheck.verify("M10x1.5-6g", insert="full", svg=fifo)
+    reader.join(10)
+    assert stat_is_fifo(fifo) and got and b"<svg" in got[0][:400]
+
+
+def stat_is_fifo(path):
+    import stat
+
+    return stat.S_ISFIFO(os.stat(path).st_mode)

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import json as _json
 import os as _os
-import tempfile as _tempfile
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 from . import _threadcheck
@@ -96,21 +95,8 @@ def _json_with_files(command: str, values: Dict[str, Any], files: Dict[str, Opti
         if path is not None:
             rendered.append((_os.fspath(path), _run(command, document, values)[0]))
     text, _passed = _run(command, "json", values)
-    temporaries: List[Tuple[str, str]] = []
-    try:
-        for path, body in rendered:
-            folder = _os.path.dirname(_os.path.abspath(path))
-            fd, tmp = _tempfile.mkstemp(dir=folder, prefix=".threadcheck-")
-            temporaries.append((tmp, path))
-            with _os.fdopen(fd, "w", encoding="utf-8") as f:
-                f.write(body)
-        for tmp, path in temporaries:
-            _os.replace(tmp, path)
-    except OSError as e:
-        for tmp, _path in temporaries:
-            if _os.path.exists(tmp):
-                _os.remove(tmp)
-        raise ValueError(f"{e.filename or 'output'}: {e.strerror}") from None
+    # The command line's writer: no input replaced, no two outputs on one file, all or none.
+    _threadcheck.write_files(rendered)
     return _json.loads(text)
 
 

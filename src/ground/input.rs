@@ -49,7 +49,30 @@ pub fn read_bounded(path: &Path, limit: usize, what: &str) -> Result<Vec<u8>, Er
     if bytes.len() > limit {
         return Err(too_large());
     }
+    if regular {
+        if let Ok(real) = std::fs::canonicalize(path) {
+            READ.with(|r| r.borrow_mut().push(real));
+        }
+    }
     Ok(bytes)
+}
+
+thread_local! {
+    /// The regular files read on this thread since [`forget_reads`] last emptied it.
+    static READ: std::cell::RefCell<Vec<std::path::PathBuf>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// The regular files read on this thread (their real paths) since [`forget_reads`]: the output
+/// writer refuses to replace any of them, whether the run named it directly or a tool table or
+/// a thread mill's file did.
+pub fn reads() -> Vec<std::path::PathBuf> {
+    READ.with(|r| r.borrow().clone())
+}
+
+/// Empties the list of files read on this thread: a long-lived caller (the Python package)
+/// calls it as a new run begins.
+pub fn forget_reads() {
+    READ.with(|r| r.borrow_mut().clear());
 }
 
 /// The text of the file at `path`, bounded as [`read_bounded`] reads it; not UTF-8 is refused.

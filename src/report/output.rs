@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 /// left untouched and the temporary file is removed. A symbolic link is followed, so the file it
 /// points to is replaced, not the link; a device or FIFO is written directly.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
-    write_all_atomic(&[(path.to_path_buf(), bytes.to_vec())])
+    write_files(&[(path.to_path_buf(), bytes.to_vec())])
 }
 
 /// Where one output goes: a regular file replaced by renaming a temporary over it, or a device
@@ -47,21 +47,72 @@ pub fn write_all_atomic(outputs: &[(PathBuf, Vec<u8>)]) -> Result<(), Error> {
     Ok(())
 }
 
-/// Refuses an output that is one of the run's inputs (the same file, by any path): writing it
-/// would replace the program or the insert being checked.
+/// Refuses an output that is one of the run's inputs (the same file, by any path): the files
+/// named in `inputs` and every regular file read on this thread since the last
+/// [`forget_reads`](crate::ground::input::forget_reads) (a tool table, the insert or thread mill
+/// it names, a machine profile): writing it would replace what is being checked. Refuses two
+/// outputs on one file too (one would be lost).
 pub fn refuse_inputs(outputs: &[(PathBuf, Vec<u8>)], inputs: &[PathBuf]) -> Result<(), Error> {
-    let inputs: Vec<PathBuf> = inputs.iter().filter_map(|p| std::fs::canonicalize(p).ok()).collect();
+    let mut inputs: Vec<PathBuf> = inputs.iter().filter_map(|p| std::fs::canonicalize(p).ok()).collect();
+    inputs.extend(crate::ground::input::reads());
+    let mut seen: Vec<PathBuf> = Vec::new();
     for (path, _) in outputs {
-        if let Ok(real) = std::fs::canonicalize(path) {
-            if inputs.contains(&real) {
+        let real = real_target(path);
+        if let Some(real) = &real {
+            if inputs.contains(real) {
                 return Err(Error::Input(format!(
                     "{}: is an input of this run; an output must not replace it",
                     path.display()
                 )));
             }
         }
+        // Devices (/dev/null, /dev/stdout) may take several outputs.
+        let device = std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir());
+        if let Some(real) = real.filter(|_| !device) {
+            if seen.contains(&real) {
+                return Err(Error::Input(format!(
+                    "{}: two outputs of this run name this file; each needs its own",
+                    path.display()
+                )));
+            }
+            seen.push(real);
+        }
     }
     Ok(())
+}
+
+/// Where a write to `path` lands: the real path of an existing file (links followed), or the
+/// real folder joined with the name of a new one.
+fn real_target(path: &Path) -> Option<PathBuf> {
+    if let Ok(real) = std::fs::canonicalize(path) {
+        return Some(real);
+    }
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    Some(std::fs::canonicalize(dir).ok()?.join(path.file_name()?))
+}
+
+/// Writes the outputs of one run as the command line does: none that is an input of the run
+/// or shares a file with another ([`refuse_inputs`]), all or none, atomically, devices and
+/// FIFOs in place, links followed, modes kept ([`write_all_atomic`]). The Python package writes
+/// its files through this.
+///
+/// ```
+/// let dir = std::env::temp_dir().join(format!("tc-doc-write-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir)?;
+/// let a = dir.join("a.svg");
+/// threadcheck::write_files(&[(a.clone(), b"<svg/>".to_vec())])?;
+/// // Two outputs on one file are refused, and nothing is written.
+/// assert!(threadcheck::write_files(&[(a.clone(), b"1".to_vec()), (a.clone(), b"2".to_vec())]).is_err());
+/// assert_eq!(std::fs::read(&a)?, b"<svg/>");
+/// # std::fs::remove_dir_all(&dir)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_files(outputs: &[(PathBuf, Vec<u8>)]) -> Result<(), Error> {
+    refuse_inputs(outputs, &[])?;
+    write_all_atomic(outputs)
 }
 
 /// Resolves a target (following a symbolic link, refusing a folder) and, for a regular file,

@@ -1,0 +1,232 @@
+//! The largest input each bounded computation allows (issue 42), run through the release binary
+//! as a user would: wall time and the process's peak memory (the children's maximum resident
+//! set, read by Python's `resource.getrusage`), each the best of three runs. Writes
+//! `reports/bounds.md`; every figure should be about a second or less on 2 cores.
+//!
+//! `cargo bench --bench bounds`
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// One case: what it is, its bound, and the command line (run in the case folder).
+struct Case {
+    what: &'static str,
+    bound: &'static str,
+    args: Vec<String>,
+    /// The exit code the run must end with (0 pass, 1 out of tolerance).
+    exit: i32,
+}
+
+/// Runs `args` three times under a Python helper that reports the child's peak memory; the best
+/// wall time (s), the largest peak (MiB) and the exit code.
+fn measure(dir: &Path, args: &[String]) -> (f64, f64, i32) {
+    let helper = r#"
+import resource, subprocess, sys, time
+t = time.perf_counter()
+r = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+dt = time.perf_counter() - t
+sys.stderr.write(r.stderr.decode(errors="replace")[-300:])
+print(dt, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024.0, r.returncode)
+"#;
+    let mut best = (f64::INFINITY, 0.0f64, 0);
+    for _ in 0..3 {
+        let out = Command::new("python3")
+            .arg("-c")
+            .arg(helper)
+            .arg(env!("CARGO_BIN_EXE_threadcheck"))
+            .args(args)
+            .current_dir(dir)
+            .output()
+            .expect("python3 runs the measuring helper");
+        let text = String::from_utf8_lossy(&out.stdout);
+        let v: Vec<&str> = text.split_whitespace().collect();
+        assert_eq!(v.len(), 3, "{text} {}", String::from_utf8_lossy(&out.stderr));
+        let (t, m, code) = (v[0].parse().unwrap(), v[1].parse::<f64>().unwrap(), v[2].parse().unwrap());
+        best = (best.0.min(t), best.1.max(m), code);
+    }
+    best
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    std::fs::write(dir.join(name), text).unwrap();
+    name.to_string()
+}
+
+fn main() {
+    let dir: PathBuf = std::env::temp_dir().join(format!("threadcheck-bounds-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let data = root.join("tests/data");
+    let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+
+    // Heidenhain G31 V1 at the pass bound: U 0.92 in infeeds of 0.00092 = 1 000 cuts.
+    let g31 = write(&dir, "g31-1000.nc", "G0 X22 Z5\nG31 X20 Z-20 F1.5 U-0.92 I0.00092 V1\n");
+    // 1 000 passes of a plan.
+    // The Monte Carlo at its work bound: 42 553 samples of 7 passes; 1 923 of 1 000 passes.
+    // thread-mill: 30 one-turn helices 0.25 mm apart, all reaching the section (3.6e7 of the
+    // 4e7 evaluations allowed).
+    let mut tm = String::from("G17 G21 G90 G40 G94\nT12 M6\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-16\nG1 X7 Y0 F100\n");
+    let mut z = -16.0;
+    for _ in 0..30 {
+        z += 0.25;
+        writeln!(tm, "G3 X7 Y0 Z{z:.4} I-7 J0 F150").unwrap();
+    }
+    tm.push_str("G1 X0 Y0\nG0 Z50\nM30\n");
+    let tm = write(&dir, "thread-mill-crowded.nc", &tm);
+    // tap: 10 000 tapped holes (the hole bound), each after nothing drilled.
+    let mut tap = String::from("G90 G54 G17 G94\nT1 M6\nS600 M3\nG0 X0 Y0 Z5\nG99 G84 X0 Y0 Z-10 R2 F750\n");
+    for i in 1..10_000 {
+        writeln!(tap, "X{i}").unwrap();
+    }
+    tap.push_str("G80\nM30\n");
+    let tap = write(&dir, "tap-10000.nc", &tap);
+    let tools = write(&dir, "tap-tools.toml", "[tools]\n1 = \"tap:M8x1.25-6H\"\n");
+    // mill: the boss with formulas of 203 terms each for x and y, near the largest this
+    // program's levels allow within the 8·10⁷ term evaluations (about 260 each are refused).
+    let zeros = vec!["0*t"; 100].join("+");
+    let target = write(
+        &dir,
+        "long-formula.toml",
+        &format!(
+            "x = \"20*cos(t)+{zeros}\"\ny = \"20*sin(t)+{zeros}\"\nt = [0, 360]\nmaterial = \"inside\"\n"
+        ),
+    );
+    // The interpreter at its block bound: a macro B loop that never ends (10 million blocks).
+    let runaway = write(&dir, "runaway.nc", "#1=0\nWHILE[#1GE0]DO1\n#1=#1+1\nEND1\nM30\n");
+    let cases = vec![
+        Case {
+            what: "Heidenhain G31 V1 of 1 000 cuts (verify)",
+            bound: "1 000 passes",
+            args: s(&["verify", "--thread", "M20x1.5-6g", "--dialect", "heidenhain", "--program", &g31]),
+            exit: 1,
+        },
+        Case {
+            what: "a plan of 1 000 passes (verify, with its picture)",
+            bound: "1 000 passes",
+            args: s(&[
+                "verify",
+                "--thread",
+                "M10x1.5-6g",
+                "--insert",
+                "full",
+                "--passes",
+                "1000",
+                "--svg",
+                "p.svg",
+            ]),
+            exit: 0,
+        },
+        Case {
+            what: "capability, 42 553 samples of 7 passes",
+            bound: "samples × (passes + 40) ≤ 2·10⁶",
+            args: s(&[
+                "capability",
+                "--thread",
+                "M10x1.5-6g",
+                "--insert",
+                "full",
+                "--samples",
+                "42553",
+                "--x-sigma",
+                "0.01",
+            ]),
+            exit: 0,
+        },
+        Case {
+            what: "capability, 1 923 samples of 1 000 passes",
+            bound: "samples × (passes + 40) ≤ 2·10⁶",
+            args: s(&[
+                "capability",
+                "--thread",
+                "M10x1.5-6g",
+                "--insert",
+                "full",
+                "--passes",
+                "1000",
+                "--samples",
+                "1923",
+                "--x-sigma",
+                "0.01",
+            ]),
+            exit: 0,
+        },
+        Case {
+            what: "thread-mill, 30 one-turn helices 0.25 mm apart",
+            bound: "4·10⁷ reach evaluations a section; 10 000 turns",
+            args: s(&["thread-mill", "--thread", "M20x1.5-6H", "--cutter-diameter", "6", "--program", &tm]),
+            exit: 1,
+        },
+        Case {
+            what: "tap, 10 000 tapped holes (with SVG and HTML)",
+            bound: "10 000 holes",
+            args: s(&["tap", "--program", &tap, "--tools", &tools, "--svg", "t.svg", "--html", "t.html"]),
+            exit: 1,
+        },
+        Case {
+            what: "mill, the Ø40 boss with 203-term formulas",
+            bound: "500 terms a formula; 8·10⁷ term evaluations",
+            args: s(&[
+                "mill",
+                "--program",
+                data.join("programs/milling/boss-arcs.nc").to_str().unwrap(),
+                "--tool-diameter",
+                "6",
+                "--target",
+                &target,
+            ]),
+            exit: 1,
+        },
+        Case {
+            what: "mill, the dome of 799 levels (1.15 million pieces)",
+            bound: "2·10⁶ pieces; 8·10⁷ term evaluations",
+            args: s(&[
+                "mill",
+                "--program",
+                data.join("programs/milling/seed004-paraboloid.nc").to_str().unwrap(),
+                "--dialect",
+                "dyna",
+                "--tool-diameter",
+                "12",
+                "--target",
+                data.join("targets/paraboloid.toml").to_str().unwrap(),
+            ]),
+            exit: 1,
+        },
+        Case {
+            what: "a runaway macro loop (passes)",
+            bound: "10⁷ blocks executed",
+            args: s(&["passes", "--program", &runaway]),
+            exit: 2,
+        },
+    ];
+    let mut md = String::from(
+        "# The bounded computations at their largest allowed input\n\n\
+         Written by `cargo bench --bench bounds` (issue 42): each case runs the release binary three\n\
+         times; the best wall time and the largest peak resident memory of the process. The bounds\n\
+         are in `src/ground/bounds.rs` and `src/analysis/capability.rs`; each is checked before the\n\
+         work starts (or, for the interpreter and the mill's formulas, counted as it goes), and\n\
+         reaching it is a one-line refusal with its place.\n\n",
+    );
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|c| {
+            c.lines()
+                .find(|l| l.starts_with("model name"))
+                .map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string())
+        })
+        .unwrap_or_default();
+    let cores = std::thread::available_parallelism().map_or(0, usize::from);
+    writeln!(md, "Machine: {cores} cores ({cpu}).\n").unwrap();
+    md.push_str("| input | bound | time, s | peak memory, MiB | exit |\n|---|---|---:|---:|---:|\n");
+    for c in &cases {
+        let (t, m, code) = measure(&dir, &c.args);
+        assert_eq!(code, c.exit, "{}: exit {code}", c.what);
+        println!("{:<55} {t:>6.2} s {m:>7.1} MiB", c.what);
+        writeln!(md, "| {} | {} | {t:.2} | {m:.0} | {code} |", c.what, c.bound).unwrap();
+    }
+    std::fs::write(root.join("reports/bounds.md"), md).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+}
