@@ -286,8 +286,10 @@ impl VerifyJob {
                     true,
                 ))
             };
+        // `spec`, not `self.spec`: the pictures are computed only when the spec asks (the
+        // program's picture once lost its zone, basic profile, deviation plot and full length).
         let pv = crate::analysis::verify::verify_program(
-            &self.spec,
+            spec,
             &text,
             &shown,
             dialect,

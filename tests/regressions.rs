@@ -1,5 +1,6 @@
 //! One test per bug, named after it: each failed on the code before its fix.
 
+use crate::*;
 use threadcheck::{verify, CheckFeature, InsertChoice, VerifySpec};
 
 /// Issue 23: sizes were compared at 1 µm for every standard, though ASME B1.1 prints its limits
@@ -906,4 +907,87 @@ fn regression_a_taper_elsewhere_on_the_chain_is_not_a_deeper_pass() {
     let c = &v["operations"][0]["correction"];
     assert_eq!((c["written"].as_str(), c["value"].as_f64()), (Some("X18.16"), Some(18.058)), "{c}");
     assert!(c.get("deeper").is_none(), "{c}");
+}
+
+/// The points of the first `<polygon>` or `<polyline>` after `id="{id}"` in `svg` (pixels).
+fn first_points(svg: &str, id: &str) -> Vec<(f64, f64)> {
+    let at = svg.find(&format!("id=\"{id}\"")).unwrap_or_else(|| panic!("no {id}"));
+    // Within the group itself: an empty group's `points` would be the next element's.
+    let rest = &svg[at..];
+    let rest = &rest[..rest.find("</g>").unwrap_or(rest.len())];
+    let p = rest.find("points=\"").unwrap_or_else(|| panic!("{id} draws nothing"));
+    let pts = &rest[p + 8..p + 8 + rest[p + 8..].find('"').unwrap()];
+    pts.split_whitespace()
+        .map(|xy| {
+            let (x, y) = xy.split_once(',').unwrap();
+            (x.parse().unwrap(), y.parse().unwrap())
+        })
+        .collect()
+}
+
+/// Issue 43: `verify --program P --svg` drew no tolerance zone, basic profile, deviation plot
+/// or full-length strip (the program's operations were verified without the spec that asks for
+/// the picture). For a program of each dialect family, and for each of three operations in one
+/// program: every element is drawn, and the zone's polygon brackets the measured d2's line in
+/// the tooth panel (x 200–630).
+#[test]
+fn regression_the_program_picture_has_its_zone_plot_and_strip() {
+    let cases: [(&str, &str, &str, usize); 7] = [
+        ("programs/fanuc-g76-timing.nc", "M20x1.5-6g", "fanuc", 1),
+        ("programs/haas-g76-metric.nc", "M20x2-6g", "haas", 1),
+        ("programs/sinumerik-cycle97.mpf", "M20x2.5-6g", "sinumerik", 1),
+        ("programs/shop/linuxcnc-g8-m10.ngc", "M10x1.5-6g", "linuxcnc", 1),
+        ("programs/okuma-g33-repeats.min", "M20x1.5-6g", "okuma", 1),
+        ("programs/mazak-g76.nc", "M30x2-6g", "mazak", 1),
+        ("programs/heidenhain-g31-g33.nc", "M20x1.5-6g", "heidenhain", 3),
+    ];
+    for (program, thread, dialect, ops) in cases {
+        let dir = tempdir("program-picture");
+        let svg_path = dir.join("p.svg");
+        let p = data(program);
+        let o = run(&[
+            "verify",
+            "--thread",
+            thread,
+            "--program",
+            p.to_str().unwrap(),
+            "--dialect",
+            dialect,
+            "--insert",
+            "full",
+            "--svg",
+            svg_path.to_str().unwrap(),
+        ]);
+        assert!(o.status.code().is_some_and(|c| c < 2), "{program}: {}", stderr(&o));
+        let svg = std::fs::read_to_string(&svg_path).unwrap();
+        let sections: Vec<&str> = svg.split("id=\"operation-").skip(1).collect();
+        assert_eq!(sections.len(), ops, "{program}");
+        for (k, op) in sections.iter().enumerate() {
+            for id in [
+                "tooth-tolerance-zone",
+                "tooth-basic-profile",
+                "window-tolerance-zone",
+                "deviation-plot",
+                "full-length",
+            ] {
+                assert!(op.contains(&format!("id=\"{id}\"")), "{program} operation {}: no {id}", k + 1);
+            }
+            let zone = first_points(op, "tooth-tolerance-zone");
+            assert!(zone.len() >= 4, "{program} operation {}: the zone has {} points", k + 1, zone.len());
+            assert!(
+                zone.iter().all(|&(x, _)| (199.0..=631.0).contains(&x)),
+                "{program}: zone outside the tooth panel"
+            );
+            assert!(first_points(op, "tooth-basic-profile").len() >= 4, "{program}: no basic profile");
+            // The measured d2's dimension line lies within the zone's height.
+            let at = op
+                .find("id=\"tooth-dim-pitch_diameter\"")
+                .unwrap_or_else(|| panic!("{program}: no d2 label"));
+            let tag = &op[op[..at].rfind('<').unwrap()..at + op[at..].find('>').unwrap()];
+            let y: f64 = tag.split("y1=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
+            let (lo, hi) =
+                zone.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &(_, y)| (a.min(y), b.max(y)));
+            assert!(lo < y && y < hi, "{program} operation {}: d2 at y {y}, the zone spans {lo}–{hi}", k + 1);
+        }
+    }
 }
