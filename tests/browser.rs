@@ -476,7 +476,8 @@ fn page_in_chromium() {
     assert_eq!(
         seen["console"],
         serde_json::json!([
-            "bad-designation: error: Failed to load resource: the server responded with a status of 400 (Bad Request)"
+            "bad-designation: error: Failed to load resource: the server responded with a status of 400 (Bad Request)",
+            "nonstandard: error: Failed to load resource: the server responded with a status of 400 (Bad Request)"
         ]),
         "console messages"
     );
@@ -486,13 +487,20 @@ fn page_in_chromium() {
     let p = program.to_str().unwrap();
     let cli = run(&["verify", "--thread", "M20x1.5-6g", "--insert", "full", "--program", p, "--json", "-"]);
     let v: serde_json::Value = serde_json::from_slice(&cli.stdout).unwrap();
-    let correction = v["operations"][0]["correction"]["text"].as_str().unwrap().replace(p, "<program>");
+    let correction = v["operations"][0]["correction"]["text"].as_str().unwrap().replace(p, "pasted program");
     assert_eq!(seen["verdict"], "OUT OF TOLERANCE");
     assert_eq!(seen["correction"].as_str().unwrap(), format!("Next: {correction}"));
     // The G76 sheet's result: d2 19.066 against 6g's 18.994, 72.0 µm over.
     let d2 = seen["checks"].as_array().unwrap().iter().find(|r| r[0] == "pitch diameter").unwrap();
     assert_eq!(d2[2], "19.0660");
-    assert_eq!(d2[5], "72.0 µm");
+    // Issue 43: the page's table reads like the SVG's: a signed deviation, OUT, yes/no in words.
+    assert_eq!(d2[5], "+72.0 µm");
+    assert_eq!(d2[6], "OUT");
+    let groove = seen["checks"].as_array().unwrap().iter().find(|r| r[0] == "single groove").unwrap();
+    assert_eq!(
+        (groove[2].as_str(), groove[3].as_str(), groove[6].as_str()),
+        (Some("yes"), Some(""), Some("ok"))
+    );
     // Every pass shows its program line: G76 X18.2 (the two-block G76's second block).
     let passes = seen["passes"].as_array().unwrap();
     assert_eq!(passes.len(), v["operations"][0]["passes"].as_array().unwrap().len());
@@ -501,7 +509,7 @@ fn page_in_chromium() {
     // Downloads: the corrected program is `verify --fix -`; the report is `--html`'s page.
     let fixed = run(&["verify", "--thread", "M20x1.5-6g", "--insert", "full", "--program", p, "--fix", "-"]);
     let got = std::fs::read(seen["fixed.nc"]["path"].as_str().unwrap()).unwrap();
-    let expected = String::from_utf8(fixed.stdout).unwrap().replace(p, "<program>");
+    let expected = String::from_utf8(fixed.stdout).unwrap().replace(p, "pasted program");
     assert_eq!(String::from_utf8(got).unwrap(), expected);
     assert_eq!(seen["fixed.nc"]["suggested"], "program-fixed.nc");
     let report = std::fs::read_to_string(seen["report.html"]["path"].as_str().unwrap()).unwrap();
@@ -525,6 +533,33 @@ fn page_in_chromium() {
     let bad = run(&["verify", "--thread", "M20x1.5-6q"]);
     let line = stderr(&bad).trim().strip_prefix("threadcheck: error: ").unwrap().to_string();
     assert_eq!(seen["error"].as_str().unwrap(), line);
+    // Issue 43: after the error nothing of the previous answer remains: no result, verdict,
+    // next step, download, operation or picture (the screenshot after-error.png shows it).
+    assert_eq!(
+        seen["after_error"],
+        serde_json::json!({
+            "result_visible": false, "verdict": "", "next_visible": false, "fixed_visible": false,
+            "operations": 0, "picture": null
+        }),
+        "what the page shows after an error"
+    );
+    let after = read_png(Path::new(seen["shots"]["after-error"].as_str().unwrap()));
+    let zone = after.rgb.iter().filter(|&&p| zone_over_material(p) || zone_over_air(p)).count();
+    assert!(zone < 50, "a tolerance zone ({zone} pixels) is on screen after the error");
+    // A pasted program is called so; the error of a size outside the series names the page's
+    // control, and ticking it verifies the thread.
+    let heading = seen["pasted_heading"].as_str().unwrap();
+    assert!(heading.contains("pasted program") && !heading.contains("<program>"), "{heading}");
+    let nonstandard = seen["nonstandard_error"].as_str().unwrap();
+    assert!(
+        nonstandard.contains("(tick 'non-standard size')") && !nonstandard.contains("allow_nonstandard"),
+        "{nonstandard}"
+    );
+    assert!(
+        seen["nonstandard_verdict"].as_str().unwrap().contains("TOLERANCE"),
+        "{}",
+        seen["nonstandard_verdict"]
+    );
 
     // Compare: one row per strategy of `compare --json`; fit: the CLI's verdict; limits: ISO 965-2.
     let c = run(&["compare", "--thread", "M10x1.5-6g", "--json", "-"]);

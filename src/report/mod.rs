@@ -212,8 +212,8 @@ pub struct VerifyReport<'a> {
     pub measured: MeasuredReport,
     /// The class's limits.
     pub limits: &'a crate::standards::tolerance::ThreadLimits,
-    /// The checks.
-    pub checks: &'a [crate::analysis::check::Check],
+    /// The checks, each with its cells as the text, SVG and HTML tables show them.
+    pub checks: Vec<CheckReport<'a>>,
     /// The verdict.
     pub verdict: Verdict,
     /// Form checks left out of the verdict.
@@ -288,7 +288,7 @@ impl<'a> VerifyReport<'a> {
                 .map(|c| CorrectionReport { text: correction_text(c), correction: c }),
             hints: v.hints.iter().map(|h| HintReport { hint: h, text: hint_text(h) }).collect(),
             limits: &v.limits,
-            checks: &v.checks,
+            checks: v.checks.iter().map(|c| CheckReport { check: c, shown: check_cells(c) }).collect(),
             verdict: Verdict::of(v.pass),
             gauge_only: v.gauge_only,
             helix_angle: v.helix_angle,
@@ -418,11 +418,25 @@ pub(crate) fn opt(v: Option<f64>, prec: usize) -> String {
 /// A check's value, limits and deviation as the tables show them, each in the check's own
 /// unit: lengths to 0.1 µm with the deviation in µm, angles to 0.001°, speeds and feeds whole,
 /// yes/no checks in words; the deviation is empty inside the limits.
+#[derive(Clone, Debug, Serialize)]
 pub(crate) struct CheckCells {
     pub value: String,
     pub min: String,
     pub max: String,
     pub deviation: String,
+    /// The value's and limits' unit (`mm`, `°`, `turn`, `rpm`, `mm/min`; empty for counts,
+    /// tapers and yes/no).
+    pub unit: &'static str,
+}
+
+/// A check as the JSON gives it: its numbers, and (`shown`) its cells as every table shows
+/// them, so that the page reads like the SVG's table (yes/no in words, signed deviations in the
+/// check's unit).
+#[derive(Clone, Debug, Serialize)]
+pub struct CheckReport<'a> {
+    #[serde(flatten)]
+    check: &'a crate::analysis::check::Check,
+    shown: CheckCells,
 }
 
 pub(crate) fn check_cells(c: &crate::Check) -> CheckCells {
@@ -460,7 +474,15 @@ pub(crate) fn check_cells(c: &crate::Check) -> CheckCells {
             U::YesNo => String::new(),
         }
     };
-    CheckCells { value, min: lim(c.min), max: lim(c.max), deviation }
+    let unit = match unit {
+        U::Mm => "mm",
+        U::Degree => "°",
+        U::Turn => "turn",
+        U::Rpm => "rpm",
+        U::MmPerMin => "mm/min",
+        U::Count | U::DiameterPerLength | U::YesNo => "",
+    };
+    CheckCells { value, min: lim(c.min), max: lim(c.max), deviation, unit }
 }
 
 /// The human report: a compact table of checks with ✓/✗ and deviations in µm.

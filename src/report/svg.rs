@@ -493,20 +493,16 @@ fn check_table(v: &Verification, x: f64, y: f64) -> (Group, f64) {
         };
         // Values, limits and deviations in the check's own unit (the text table's cells).
         let cells = super::check_cells(c);
-        let unit = match c.feature.unit() {
-            crate::CheckUnit::Degree => "°",
-            crate::CheckUnit::Rpm => " rpm",
-            crate::CheckUnit::MmPerMin => " mm/min",
-            crate::CheckUnit::Turn => " turn",
-            crate::CheckUnit::Mm
-            | crate::CheckUnit::Count
-            | crate::CheckUnit::DiameterPerLength
-            | crate::CheckUnit::YesNo => "",
+        // Lengths carry their unit in the column's head; degrees stick to the number.
+        let unit = match cells.unit {
+            "mm" | "" => String::new(),
+            "°" => "°".to_string(),
+            u => format!(" {u}"),
         };
         let value = format!("{}{}", cells.value, if unit == "°" { "°" } else { "" });
         let lim = match c.feature.unit() {
             crate::CheckUnit::YesNo => String::new(),
-            _ => fmt_limits(c.min, c.max, unit),
+            _ => fmt_limits(c.min, c.max, &unit),
         };
         let off = cells.deviation;
         let verdict = match (c.ok, counts) {

@@ -22,9 +22,34 @@ async function api(path, args) {
 
 function show(id, on) { $(id).hidden = !on; }
 
+/** The API's keys that an error may name, as the page's own controls. */
+const CONTROLS = [
+  [/\(allow_nonstandard\)/g, "(tick 'non-standard size')"],
+  [/\ballow_nonstandard\b/g, "the 'non-standard size' box"],
+];
+
 function fail(id, err) {
-  $(id).textContent = err.message;
+  let message = err.message;
+  for (const [key, control] of CONTROLS) message = message.replace(key, control);
+  $(id).textContent = message;
   show(id, true);
+}
+
+/** Before a new request: the last answer of `tab` is gone, so an error never stands above a
+ *  verdict, a next step or a download that belonged to another thread. */
+function clearResult(tab) {
+  show(tab + "-error", false);
+  show(tab === "limits" ? "limits-table" : tab + "-result", false);
+  if (tab === "verify") {
+    state.lastArgs = null;
+    state.lastJson = null;
+    $("verdict").textContent = "";
+    $("next").textContent = "";
+    $("next").hidden = true;
+    $("operations").replaceChildren();
+    $("download-fixed").hidden = true;
+    $("picture").removeAttribute("src");
+  }
 }
 
 /** A table from a header row and body rows; each cell is text, or [text, class]. */
@@ -107,10 +132,11 @@ function verifyArgs() {
   const threads = $("thread").value.split(",").map((s) => s.trim()).filter((s) => s);
   args.thread = threads.length === 1 ? threads[0] : threads;
   if ($("internal").checked) args.internal = true;
+  if ($("allow-nonstandard").checked) args.allow_nonstandard = true;
   const program = $("program").value;
   if (program.trim()) {
     args.program = program;
-    args.program_name = state.programName || "<program>";
+    args.program_name = state.programName || "pasted program";
     if ($("dialect").value) args.dialect = $("dialect").value;
     if (state.files.tools) args.tools = state.files.tools.text;
   } else if ($("final-x").value !== "") {
@@ -151,16 +177,24 @@ function operationBlock(op, title, programLines) {
   }
   for (const hint of op.hints || []) line("hint", "Hint: " + (hint.text || hint.message || JSON.stringify(hint)));
   if (op.checks) {
-    const rows = op.checks.map((c) => [
-      c.feature.replaceAll("_", " "),
-      c.kind,
-      fmt(c.value, 4),
-      fmt(c.min, 4),
-      fmt(c.max, 4),
-      c.ok ? ["ok", "ok"] : [fmt(c.deviation_um, 1) + " µm", "out"],
-      c.note || "",
-    ]);
-    const t = table(document.createElement("table"), ["check", "kind", "value", "min", "max", "result", "note"], rows);
+    // The cells every table shows (the JSON's `shown`): yes/no in words, signed deviations,
+    // each in its unit; a failing size is OUT, a failing form check "form".
+    const rows = op.checks.map((c) => {
+      const s = c.shown || { value: fmt(c.value, 4), min: fmt(c.min, 4), max: fmt(c.max, 4), deviation: "", unit: "" };
+      const unit = s.unit ? " " + s.unit : "";
+      const failed = c.kind === "size" || !op.gauge_only ? "OUT" : "form";
+      return [
+        c.feature.replaceAll("_", " "),
+        c.kind,
+        s.value + (s.value && s.unit && s.unit !== "mm" ? unit : ""),
+        s.min,
+        s.max,
+        s.deviation,
+        c.ok ? ["ok", "ok"] : [failed, "out"],
+        c.note || "",
+      ];
+    });
+    const t = table(document.createElement("table"), ["check", "kind", "value", "min", "max", "deviation", "result", "note"], rows);
     t.className = "checks";
     div.appendChild(t);
   }
@@ -183,7 +217,7 @@ function operationBlock(op, title, programLines) {
 
 $("verify-form").addEventListener("submit", async (ev) => {
   ev.preventDefault();
-  show("verify-error", false);
+  clearResult("verify");
   $("verify-button").disabled = true;
   try {
     const args = verifyArgs();
@@ -255,7 +289,7 @@ function compareArgs() {
 
 $("compare-form").addEventListener("submit", async (ev) => {
   ev.preventDefault();
-  show("compare-error", false);
+  clearResult("compare");
   try {
     const c = JSON.parse(await api("compare", compareArgs()));
     const rows = c.strategies.map((s) => [
@@ -287,7 +321,7 @@ $("compare-download-html").addEventListener("click", async () => {
 // ---- fit
 $("fit-form").addEventListener("submit", async (ev) => {
   ev.preventDefault();
-  show("fit-error", false);
+  clearResult("fit");
   try {
     const args = { thread: $("fit-thread").value.trim() };
     if ($("fit-bolt-x").value !== "") args.bolt_final_x = Number($("fit-bolt-x").value);
@@ -306,7 +340,7 @@ $("fit-form").addEventListener("submit", async (ev) => {
 // ---- limits
 $("limits-form").addEventListener("submit", async (ev) => {
   ev.preventDefault();
-  show("limits-error", false);
+  clearResult("limits");
   try {
     const l = JSON.parse(await api("limits", { thread: $("limits-thread").value.trim() }));
     const rows = [];
@@ -330,7 +364,7 @@ $("limits-form").addEventListener("submit", async (ev) => {
 function programFrom(prefix) {
   const program = $(prefix + "-program").value;
   if (!program.trim()) throw new Error("paste the program, or choose its file");
-  const args = { program, program_name: state[prefix + "Name"] || "<program>" };
+  const args = { program, program_name: state[prefix + "Name"] || "pasted program" };
   if ($(prefix + "-dialect").value) args.dialect = $(prefix + "-dialect").value;
   return args;
 }
@@ -353,7 +387,7 @@ function tapArgs() {
 }
 $("tap-form").addEventListener("submit", async (ev) => {
   ev.preventDefault();
-  show("tap-error", false);
+  clearResult("tap");
   try {
     const args = tapArgs();
     const r = JSON.parse(await api("tap", args));
@@ -392,7 +426,7 @@ function millArgs() {
 }
 $("mill-form").addEventListener("submit", async (ev) => {
   ev.preventDefault();
-  show("mill-error", false);
+  clearResult("mill");
   try {
     const args = millArgs();
     const r = JSON.parse(await api("thread-mill", args));

@@ -60,6 +60,11 @@ try {
   await page.waitForSelector("#verify-result:not([hidden])");
   await pictureLoaded("picture");
   seen.verdict = await page.textContent("#verdict");
+  // The picture's own title names the pasted program.
+  seen.pasted_heading = await page.evaluate(async () => {
+    const svg = await (await fetch(document.getElementById("picture").src)).text();
+    return svg.slice(0, 2000);
+  });
   seen.correction = await page.textContent(".operation .correction");
   seen.checks = await page.$$eval("table.checks tr", (rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
   seen.passes = await page.$$eval("table.passes tbody tr", (rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
@@ -95,6 +100,32 @@ try {
   await page.click("#verify-button");
   await page.waitForSelector("#verify-error:not([hidden])");
   seen.error = await page.textContent("#verify-error");
+  // Nothing of the last answer may stand beside the error (issue 43).
+  seen.after_error = await page.evaluate(() => {
+    const visible = (id) => { const e = document.getElementById(id); return !!e && !e.hidden && e.offsetParent !== null; };
+    return {
+      result_visible: visible("verify-result"),
+      verdict: document.getElementById("verdict").textContent,
+      next_visible: visible("next"),
+      fixed_visible: visible("download-fixed"),
+      operations: document.querySelectorAll("#operations .operation").length,
+      picture: document.getElementById("picture").getAttribute("src"),
+    };
+  });
+  await shot("after-error");
+  // A size outside the series: the error names the page's own control, which accepts it (a
+  // generated plan: the program field emptied).
+  step = "nonstandard";
+  await page.fill("#program", "");
+  await page.fill("#thread", "M20x1.25-6g");
+  await page.click("#verify-button");
+  await page.waitForSelector("#verify-error:not([hidden])");
+  seen.nonstandard_error = await page.textContent("#verify-error");
+  await page.check("#allow-nonstandard");
+  await page.click("#verify-button");
+  await page.waitForFunction(() => document.getElementById("verify-result").dataset.run === "3");
+  seen.nonstandard_verdict = await page.textContent("#verdict");
+  await page.uncheck("#allow-nonstandard");
 
   step = "compare";
   // 5. Compare.
