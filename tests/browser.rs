@@ -555,10 +555,16 @@ fn page_in_chromium() {
         nonstandard.contains("(tick 'non-standard size')") && !nonstandard.contains("allow_nonstandard"),
         "{nonstandard}"
     );
+    // The plan with the partial insert fails on form alone: the banner says so, and the hint
+    // names the page's controls (issue 43's first run).
+    let banner = seen["nonstandard_verdict"].as_str().unwrap();
+    assert!(banner.starts_with("OUT OF TOLERANCE — form only: the insert's tip"), "{banner}");
+    let hint = seen["nonstandard_hint"].as_str().unwrap();
     assert!(
-        seen["nonstandard_verdict"].as_str().unwrap().contains("TOLERANCE"),
-        "{}",
-        seen["nonstandard_verdict"]
+        hint.contains("(Insert: full profile)")
+            && hint.contains("the 'gauge only' box")
+            && !hint.contains("--"),
+        "{hint}"
     );
 
     // Compare: one row per strategy of `compare --json`; fit: the CLI's verdict; limits: ISO 965-2.

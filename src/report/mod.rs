@@ -356,7 +356,7 @@ pub fn hint_text(h: &crate::analysis::check::Hint) -> String {
     use crate::analysis::check::Hint;
     match *h {
         Hint::TipRadius { tip_radius, root_radius_min } => format!(
-            "the insert's tip radius {} mm is under the standard's root radius {} mm, which no final X changes: use a full-profile insert or a tip of {} mm or more",
+            "the insert's tip radius {} mm is under the standard's root radius {} mm, which no final X changes: use a full-profile insert (--insert full) or a tip of {} mm or more; --gauge-only judges the sizes and the GO gauge alone",
             fmt_num(tip_radius),
             fmt_num(root_radius_min),
             fmt_num(root_radius_min)
@@ -368,6 +368,21 @@ pub fn hint_text(h: &crate::analysis::check::Hint) -> String {
         ),
         Hint::Groove => "the passes do not follow one groove (a fin, a notch or a second pocket): check the infeed angle against the flank and every pass's start phase".into(),
     }
+}
+
+/// The tip radius of an insert whose tip alone fails a verification: every failing check that
+/// counts is a form check and the tip-radius hint stands (the first run of a newcomer, with the
+/// assumed partial-profile insert). `None` otherwise.
+pub(crate) fn form_only_from_tip(v: &Verification) -> Option<f64> {
+    let mut failing = v.checks.iter().filter(|c| !c.ok && c.kind.counts(v.gauge_only)).peekable();
+    failing.peek()?;
+    if !failing.all(|c| c.kind == crate::analysis::check::CheckKind::Form) {
+        return None;
+    }
+    v.hints.iter().find_map(|h| match *h {
+        crate::analysis::check::Hint::TipRadius { tip_radius, .. } => Some(tip_radius),
+        _ => None,
+    })
 }
 
 /// The sentence of a correction: `change X19.462 at line 12 to X19.452 (mm, diameter)`.
@@ -623,7 +638,13 @@ pub fn verify_text(v: &Verification) -> String {
     if v.pass {
         let _ = writeln!(s, "\nverdict: PASS");
     } else {
-        let _ = writeln!(s, "\nverdict: FAIL ({})", failed.join(", "));
+        let form = form_only_from_tip(v).map_or(String::new(), |tip| {
+            format!(
+                " — form only, from the insert's {} mm tip: --insert full cuts the standard root; --gauge-only judges the sizes and the GO gauge alone",
+                fmt_num(tip)
+            )
+        });
+        let _ = writeln!(s, "\nverdict: FAIL ({}){form}", failed.join(", "));
     }
     if let Some(x) = v.suggested_final_x {
         let failed = |f: CheckFeature| v.checks.iter().find(|c| c.feature == f && !c.ok);

@@ -874,10 +874,13 @@ fn verdict_words(v: &Verification) -> String {
         })
         .collect();
     let gauge = if v.gauge_only { " (gauge-only: form checks are not counted)" } else { "" };
+    let form = super::form_only_from_tip(v).map_or(String::new(), |tip| {
+        format!(" (form only: the insert's {} mm tip)", crate::ground::fmt::fmt_num(tip))
+    });
     if failed.is_empty() {
         format!("IN TOLERANCE{gauge}")
     } else {
-        format!("OUT OF TOLERANCE: {}{gauge}", failed.join(", "))
+        format!("OUT OF TOLERANCE{form}: {}{gauge}", failed.join(", "))
     }
 }
 

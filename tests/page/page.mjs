@@ -125,6 +125,8 @@ try {
   await page.click("#verify-button");
   await page.waitForFunction(() => document.getElementById("verify-result").dataset.run === "3");
   seen.nonstandard_verdict = await page.textContent("#verdict");
+  seen.nonstandard_hint = await page.textContent(".operation .hint");
+  await shot("form-only");
   await page.uncheck("#allow-nonstandard");
 
   step = "compare";
