@@ -972,6 +972,12 @@ fn regression_the_program_picture_has_its_zone_plot_and_strip() {
             ] {
                 assert!(op.contains(&format!("id=\"{id}\"")), "{program} operation {}: no {id}", k + 1);
             }
+            // The chip chart gives each bar's value (the G76 sheet's five passes: five values).
+            let values = op.matches("class=\"chip-value\"").count();
+            assert!(values >= 1, "{program}: the chip chart has no values");
+            if program.ends_with("fanuc-g76-timing.nc") {
+                assert_eq!(values, 5, "{program}");
+            }
             let zone = first_points(op, "tooth-tolerance-zone");
             assert!(zone.len() >= 4, "{program} operation {}: the zone has {} points", k + 1, zone.len());
             assert!(

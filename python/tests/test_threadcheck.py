@@ -57,7 +57,7 @@ def test_verify_program_text_reads_72_um_over_6g():
 
 def test_dicts_are_the_cli_json():
     binary = os.environ.get("THREADCHECK_BIN")
-    assert binary, "THREADCHECK_BIN must name the threadcheck binary to compare with"
+    assert binary, "no threadcheck binary: build it (cargo build --release), put it on the PATH, or name it in THREADCHECK_BIN"
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "m20.nc")
         with open(path, "w") as f:
@@ -345,7 +345,7 @@ def test_messages_are_one_line():
 
 def test_svg_html_and_fix_outputs_are_the_cli_files(tmp_path):
     binary = os.environ.get("THREADCHECK_BIN")
-    assert binary, "THREADCHECK_BIN must name the threadcheck binary to compare with"
+    assert binary, "no threadcheck binary: build it (cargo build --release), put it on the PATH, or name it in THREADCHECK_BIN"
     prog = tmp_path / "m20.nc"
     prog.write_text(G76_M20)
     cli = {k: tmp_path / f"cli.{k}" for k in ("svg", "html", "fix")}

@@ -537,9 +537,12 @@ fn chip_chart(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Group {
         )
         .add(Line::new().set("x1", x).set("x2", x).set("y1", y).set("y2", y + h).set("stroke", "#333"));
     let step = tick_step(max, 3.0);
+    // The scale's top: the tick above the tallest bar with room for its value (the tallest bar
+    // once touched the frame's top and had no value).
+    let top = if max > 0.0 { (max * 1.15 / step).ceil() * step } else { 1.0 };
     let mut a = 0.0;
-    while a <= max * (1.0 + 1e-9) && max > 0.0 {
-        let yy = y + h - h * a / max;
+    while a <= top * (1.0 + 1e-9) && max > 0.0 {
+        let yy = y + h - h * a / top;
         g = g
             .add(
                 Line::new().set("x1", x - 4.0).set("x2", x).set("y1", yy).set("y2", yy).set("stroke", "#333"),
@@ -547,10 +550,12 @@ fn chip_chart(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Group {
             .add(text(x - 6.0, yy + 3.0, 9.0, tick_label(a, step)).set("text-anchor", "end"));
         a += step;
     }
-    g = g.add(text(x - 36.0, y + h + 28.0, 9.0, "mm² (bars) by pass number"));
+    g = g.add(text(x - 36.0, y + h + 28.0, 9.0, "mm² (bars) by pass number; each bar's value above it"));
     let label_every = ((n as f64 * 18.0 / w).ceil() as usize).max(1);
+    // A value needs about 26 px: narrower bars show every k-th value.
+    let value_every = ((n as f64 * 26.0 / w).ceil() as usize).max(1);
     for (i, m) in v.metrics.iter().enumerate() {
-        let bh = if max > 0.0 { h * m.chip_area / max } else { 0.0 };
+        let bh = if max > 0.0 { h * m.chip_area / top } else { 0.0 };
         g = g.add(
             Rectangle::new()
                 .set("x", format!("{:.2}", x + i as f64 * bw + 0.1 * bw))
@@ -563,6 +568,13 @@ fn chip_chart(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Group {
             g = g.add(
                 text(x + (i as f64 + 0.5) * bw, y + h + 12.0, 9.0, (i + 1).to_string())
                     .set("text-anchor", "middle"),
+            );
+        }
+        if (i + 1) % value_every == 0 || i == 0 {
+            g = g.add(
+                text(x + (i as f64 + 0.5) * bw, y + h - bh - 3.0, 8.0, format!("{:.3}", m.chip_area))
+                    .set("text-anchor", "middle")
+                    .set("class", "chip-value"),
             );
         }
     }
