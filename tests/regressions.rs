@@ -997,3 +997,18 @@ fn regression_the_program_picture_has_its_zone_plot_and_strip() {
         }
     }
 }
+
+/// Issue 43: `compare` printed one table of 13 columns, 180 characters a row; the chips and
+/// the thread are two tables now, and the prose is wrapped: no line over 100 characters.
+#[test]
+fn regression_compare_text_fits_100_columns() {
+    for thread in ["M10x1.5-6g", "Tr40x7-7e", "1/2-13 UNC-2A"] {
+        let o = run(&["compare", "--thread", thread]);
+        assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+        let text = stdout(&o);
+        for line in text.lines() {
+            assert!(line.chars().count() <= 100, "{thread}: {} characters: {line}", line.chars().count());
+        }
+        assert!(text.contains("chip 1st") && text.contains("verdict"), "{text}");
+    }
+}

@@ -107,47 +107,65 @@ pub fn markdown_report(c: &Comparison) -> String {
 pub fn text(c: &Comparison) -> String {
     let mut s = String::new();
     if let Some((_, v)) = c.runs.first() {
-        let _ = writeln!(
-            s,
-            "{} {}, insert '{}', blank X{:.4}, all strategies ending at X{:.4}\n",
+        let head = format!(
+            "{} {}, insert '{}', blank X{:.4}, all strategies ending at X{:.4}",
             v.designation.text,
             v.kind.name(),
             v.insert.name,
             v.blank_diameter,
             c.final_x
         );
-    }
-    // Widths per column: left-aligned words, right-aligned numbers.
-    const W: [(usize, bool); 13] = [
-        (18, true),
-        (16, true),
-        (6, false),
-        (10, false),
-        (10, false),
-        (10, false),
-        (8, false),
-        (6, false),
-        (7, false),
-        (10, false),
-        (10, false),
-        (14, false),
-        (0, true),
-    ];
-    let line = |s: &mut String, row: &[String]| {
-        for (k, (cell, (w, left))) in row.iter().zip(W).enumerate() {
-            if k > 0 {
-                s.push(' ');
-            }
-            let _ = if left { write!(s, "{cell:<w$}") } else { write!(s, "{cell:>w$}") };
+        for l in super::svg::wrap(&head, 100) {
+            let _ = writeln!(s, "{l}");
         }
         s.push('\n');
+    }
+    // Two tables of at most 100 columns (one row of all thirteen was 180): the chips, then the
+    // thread each strategy leaves. Widths: left-aligned words, right-aligned numbers.
+    const W: [(usize, bool); 13] = [
+        (15, true),
+        (14, true),
+        (6, false),
+        (8, false),
+        (8, false),
+        (8, false),
+        (7, false),
+        (4, false),
+        (6, false),
+        (8, false),
+        (8, false),
+        (11, false),
+        (0, true),
+    ];
+    let line = |s: &mut String, row: &[String], columns: &[usize]| {
+        let mut out = String::new();
+        for (n, &k) in columns.iter().enumerate() {
+            let (w, left) = W[k];
+            if n > 0 {
+                out.push(' ');
+            }
+            let cell = &row[k];
+            let _ = if left { write!(out, "{cell:<w$}") } else { write!(out, "{cell:>w$}") };
+        }
+        let _ = writeln!(s, "{}", out.trim_end());
     };
-    line(&mut s, &HEADERS.iter().map(|h| h.1.to_string()).collect::<Vec<_>>());
-    for (m, v) in &c.runs {
-        line(&mut s, &cells(m, v.kind));
+    let head: Vec<String> = HEADERS.iter().map(|h| h.1.to_string()).collect();
+    let rows: Vec<[String; 13]> = c.runs.iter().map(|(m, v)| cells(m, v.kind)).collect();
+    for (n, columns) in [&[0, 1, 2, 3, 4, 5, 6, 7, 8][..], &[0, 1, 9, 10, 11, 12][..]].into_iter().enumerate()
+    {
+        if n > 0 {
+            s.push('\n');
+        }
+        line(&mut s, &head, columns);
+        for row in &rows {
+            line(&mut s, row, columns);
+        }
     }
     if let Some(r) = &c.recommended {
-        let _ = writeln!(s, "\n{}", recommendation_text(r));
+        s.push('\n');
+        for l in super::svg::wrap(&recommendation_text(r), 100) {
+            let _ = writeln!(s, "{l}");
+        }
     }
     s
 }

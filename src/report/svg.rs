@@ -852,8 +852,9 @@ fn shorten(s: &str, n: usize) -> String {
     }
 }
 
-/// `s` in lines of at most `n` characters, broken at spaces.
-fn wrap(s: &str, n: usize) -> Vec<String> {
+/// `s` in lines of at most `n` characters, broken at spaces (the text reports wrap their prose
+/// with it too).
+pub(crate) fn wrap(s: &str, n: usize) -> Vec<String> {
     let mut lines = vec![String::new()];
     for word in s.split(' ') {
         let last = lines.last_mut().map_or(0, |l| l.chars().count());
