@@ -23,13 +23,14 @@ impl Drop for Server {
 
 /// Starts the server with `extra` options and reads its start-up line for the address.
 pub fn start(extra: &[&str]) -> Server {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_threadcheck"))
-        .args(["serve", "--port", "0"])
-        .args(extra)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
+    let mut command = Command::new(env!("CARGO_BIN_EXE_threadcheck"));
+    command.args(["serve", "--port", "0"]).args(extra);
+    start_command(command)
+}
+
+/// Runs `command` (a `threadcheck serve` however it is started) and reads its start-up line.
+fn start_command(mut command: Command) -> Server {
+    let mut child = command.stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
     let mut line = String::new();
     BufReader::new(child.stdout.take().unwrap()).read_line(&mut line).unwrap();
     let url = line
@@ -63,8 +64,26 @@ fn post_big(url: &str, len: usize) -> (u16, Option<String>, String) {
     );
     tcp.write_all(head.as_bytes()).unwrap();
     tcp.set_read_timeout(Some(std::time::Duration::from_secs(10))).unwrap();
-    // Read until the answer's head and its declared body are in (the server may keep the
-    // connection open).
+    let mut answer = read_answer(&mut tcp);
+    if answer.is_empty() {
+        let chunk = vec![b' '; 1 << 20];
+        for _ in 0..len >> 20 {
+            if tcp.write_all(&chunk).is_err() {
+                break;
+            }
+        }
+        let _ = tcp.read_to_end(&mut answer);
+    }
+    let answer = String::from_utf8_lossy(&answer).into_owned();
+    let status = answer.split_whitespace().nth(1).and_then(|c| c.parse().ok()).unwrap_or(0);
+    let body = answer.split("\r\n\r\n").nth(1).unwrap_or_default().to_string();
+    (status, None, body)
+}
+
+/// Reads an answer until its head and its declared body are in (the server may keep the
+/// connection open), the server closes, or the read times out.
+fn read_answer(tcp: &mut std::net::TcpStream) -> Vec<u8> {
+    use std::io::Read;
     let mut answer = Vec::new();
     let mut buf = [0u8; 4096];
     loop {
@@ -86,19 +105,7 @@ fn post_big(url: &str, len: usize) -> (u16, Option<String>, String) {
             Ok(n) => answer.extend_from_slice(&buf[..n]),
         }
     }
-    if answer.is_empty() {
-        let chunk = vec![b' '; 1 << 20];
-        for _ in 0..len >> 20 {
-            if tcp.write_all(&chunk).is_err() {
-                break;
-            }
-        }
-        let _ = tcp.read_to_end(&mut answer);
-    }
-    let answer = String::from_utf8_lossy(&answer).into_owned();
-    let status = answer.split_whitespace().nth(1).and_then(|c| c.parse().ok()).unwrap_or(0);
-    let body = answer.split("\r\n\r\n").nth(1).unwrap_or_default().to_string();
-    (status, None, body)
+    answer
 }
 
 fn get(url: &str, path: &str) -> (u16, String) {
@@ -360,32 +367,12 @@ fn a_request_past_its_budget_is_stopped_and_frees_its_slot() {
 /// A raw HTTP exchange on a new connection: `request` sent whole, the answer read until the
 /// server closes or `wait` passes. Returns the status (0: none) and the body.
 fn raw(url: &str, request: &str, wait: std::time::Duration) -> (u16, String) {
-    use std::io::{Read, Write};
+    use std::io::Write;
     let addr = url.trim_start_matches("http://").trim_end_matches('/');
     let mut tcp = std::net::TcpStream::connect(addr).unwrap();
     tcp.write_all(request.as_bytes()).unwrap();
     tcp.set_read_timeout(Some(wait)).unwrap();
-    let mut answer = Vec::new();
-    let mut buf = [0u8; 4096];
-    loop {
-        match tcp.read(&mut buf) {
-            Ok(0) | Err(_) => break,
-            Ok(n) => answer.extend_from_slice(&buf[..n]),
-        }
-        let text = String::from_utf8_lossy(&answer);
-        if let Some(at) = text.find("\r\n\r\n") {
-            let declared = text[..at]
-                .lines()
-                .find_map(|l| {
-                    l.to_ascii_lowercase().strip_prefix("content-length:").map(|v| v.trim().to_string())
-                })
-                .and_then(|v| v.parse::<usize>().ok())
-                .unwrap_or(0);
-            if answer.len() >= at + 4 + declared {
-                break;
-            }
-        }
-    }
+    let answer = read_answer(&mut tcp);
     let text = String::from_utf8_lossy(&answer).into_owned();
     let status = text.split_whitespace().nth(1).and_then(|c| c.parse().ok()).unwrap_or(0);
     (status, text.split("\r\n\r\n").nth(1).unwrap_or_default().to_string())
@@ -565,21 +552,15 @@ fn post_or_gone(url: &str, path: &str, body: &str) -> u16 {
 /// timeout, and a request is answered within a few seconds.
 #[test]
 fn out_of_file_descriptors_the_server_goes_on() {
-    let mut child = Command::new("sh")
-        .args([
-            "-c",
-            &format!(
-                "ulimit -n 64 && exec {} serve --port 0 --header-timeout 1",
-                env!("CARGO_BIN_EXE_threadcheck")
-            ),
-        ])
-        .stdout(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut line = String::new();
-    BufReader::new(child.stdout.take().unwrap()).read_line(&mut line).unwrap();
-    let url = line.split_whitespace().find(|w| w.starts_with("http://")).unwrap().to_string();
-    let s = Server { child, url };
+    let mut command = Command::new("sh");
+    command.args([
+        "-c",
+        &format!(
+            "ulimit -n 64 && exec {} serve --port 0 --header-timeout 1",
+            env!("CARGO_BIN_EXE_threadcheck")
+        ),
+    ]);
+    let s = start_command(command);
     let addr = s.url.trim_start_matches("http://").trim_end_matches('/').to_string();
     let idle: Vec<_> = (0..100).filter_map(|_| std::net::TcpStream::connect(&addr).ok()).collect();
     assert!(idle.len() >= 64, "only {} connections", idle.len());
