@@ -95,8 +95,8 @@ fn real_target(path: &Path) -> Option<PathBuf> {
 }
 
 /// Writes the outputs of one run as the command line does: none that is an input of the run
-/// or shares a file with another ([`refuse_inputs`]), all or none, atomically, devices and
-/// FIFOs in place, links followed, modes kept ([`write_all_atomic`]). The Python package writes
+/// or shares a file with another, all or none, atomically, devices and FIFOs in place, links
+/// followed, modes kept. The Python package writes
 /// its files through this.
 ///
 /// ```
