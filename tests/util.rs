@@ -132,3 +132,53 @@ pub fn fix_then_verify(program: &Path, spec: &[&str]) -> (serde_json::Value, ser
     let after: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     (before, after, std::fs::read_to_string(out).unwrap())
 }
+
+/// An attribute of a tag's text.
+pub fn attr(tag: &str, k: &str) -> Option<String> {
+    let v = tag.split(&format!(" {k}=\"")).nth(1)?;
+    Some(v[..v.find('"')?].to_string())
+}
+
+/// The whole tag of the element whose `id` is `id`.
+pub fn tag_of<'a>(svg: &'a str, id: &str) -> &'a str {
+    let at = svg.find(&format!("id=\"{id}\"")).unwrap_or_else(|| panic!("no {id} in the SVG"));
+    let start = svg[..at].rfind('<').unwrap();
+    &svg[start..start + svg[start..].find('>').unwrap()]
+}
+
+/// The numeric text labels of the first `<g class="axes">` after `after`: (x, y, value).
+pub fn tick_labels(svg: &str, after: &str) -> Vec<(f64, f64, f64)> {
+    let from = svg.find(after).unwrap_or_else(|| panic!("no {after} in the SVG"));
+    let g = &svg[from..];
+    let g = &g[g.find("class=\"axes\"").expect("no axes")..];
+    let g = &g[..g.find("</g>").unwrap()];
+    g.split("<text")
+        .skip(1)
+        .filter_map(|part| {
+            let tag = &part[..part.find('>')?];
+            let content = part[part.find('>')? + 1..part.find("</text>")?].trim();
+            let v = content.parse::<f64>().ok()?;
+            Some((attr(tag, "x")?.parse().ok()?, attr(tag, "y")?.parse().ok()?, v))
+        })
+        .collect()
+}
+
+/// Where the horizontal line `y` crosses the closed polygon `points` (SVG `x,y x,y …`), sorted.
+pub fn crossings(points: &str, y: f64) -> Vec<f64> {
+    let p: Vec<(f64, f64)> = points
+        .split_whitespace()
+        .map(|xy| {
+            let (a, b) = xy.split_once(',').unwrap();
+            (a.parse().unwrap(), b.parse().unwrap())
+        })
+        .collect();
+    let mut xs = Vec::new();
+    for i in 0..p.len() {
+        let (a, b) = (p[i], p[(i + 1) % p.len()]);
+        if (a.1 - y) * (b.1 - y) < 0.0 {
+            xs.push(a.0 + (y - a.1) / (b.1 - a.1) * (b.0 - a.0));
+        }
+    }
+    xs.sort_by(f64::total_cmp);
+    xs
+}

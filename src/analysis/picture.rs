@@ -82,7 +82,7 @@ impl Picture {
 /// at `zc` over `z_range` (a pitch beyond it each way, so that clipping any range inside it gives
 /// the same points), its crest cut at radius `crest` when given.
 fn shifted_profile(
-    v: &Cut<'_>,
+    v: &Zone<'_>,
     variant: ProfileKind,
     d2: f64,
     zc: f64,
@@ -95,27 +95,78 @@ fn shifted_profile(
     let p = t.pitch;
     let k0 = ((z_range.0 - zc) / p).floor() as i64 - 1;
     let k1 = ((z_range.1 - zc) / p).ceil() as i64 + 1;
-    let mut out: Vec<Point> = Vec::new();
+    let mut raw: Vec<Point> = Vec::new();
     for k in k0..=k1 {
         for q in &one {
-            let mut r = q.r + shift;
-            if let Some(c) = crest {
-                r = match v.kind {
-                    ThreadKind::External => r.min(c),
-                    ThreadKind::Internal => r.max(c),
-                };
-            }
-            let z = q.z + zc + k as f64 * p;
-            if out.last().is_none_or(|l| (l.z - z).abs() > 1e-12 || (l.r - r).abs() > 1e-12) {
-                out.push(Point::new(z, r));
+            raw.push(Point::new(q.z + zc + k as f64 * p, q.r + shift));
+        }
+    }
+    // The crest cut at radius `crest`: each segment that crosses it gets the crossing as a
+    // vertex, so the flanks keep their angle up to the cut (clamping the vertices alone tilted
+    // the flank from its last vertex to the clamped one).
+    let clamp = |r: f64| match (crest, v.kind) {
+        (Some(c), ThreadKind::External) => r.min(c),
+        (Some(c), ThreadKind::Internal) => r.max(c),
+        (None, _) => r,
+    };
+    let mut out: Vec<Point> = Vec::new();
+    let mut push = |q: Point| {
+        if out.last().is_none_or(|l| (l.z - q.z).abs() > 1e-12 || (l.r - q.r).abs() > 1e-12) {
+            out.push(q);
+        }
+    };
+    for (i, a) in raw.iter().enumerate() {
+        push(Point::new(a.z, clamp(a.r)));
+        if let (Some(c), Some(b)) = (crest, raw.get(i + 1)) {
+            if (a.r - c) * (b.r - c) < 0.0 {
+                let t = (c - a.r) / (b.r - a.r);
+                push(Point::new(a.z + t * (b.z - a.z), c));
             }
         }
     }
     Picture::clip(&out, z_range)
 }
 
+/// A tolerance zone's maximum- and minimum-material sides.
+pub type ZoneSides = (Vec<Point>, Vec<Point>);
+
+/// What the basic profile and the tolerance zone are drawn from: the thread, its kind and
+/// limits, and the measured groove's centre (mm) they are placed on.
+#[derive(Clone, Copy, Debug)]
+pub struct Zone<'a> {
+    /// The basic thread.
+    pub thread: &'a BasicThread,
+    /// External or internal.
+    pub kind: ThreadKind,
+    /// Its limits of size.
+    pub limits: &'a ThreadLimits,
+    /// The measured groove's centre, mm.
+    pub groove_center: f64,
+}
+
+impl Zone<'_> {
+    /// The basic profile (the nut's for an internal thread) at the basic pitch diameter over
+    /// `span`, and the maximum- and minimum-material profiles over it when the class has both
+    /// pitch-diameter limits.
+    pub fn profiles(&self, span: (f64, f64)) -> (Vec<Point>, Option<ZoneSides>) {
+        let basic_variant = match self.kind {
+            ThreadKind::External => ProfileKind::Basic,
+            ThreadKind::Internal => ProfileKind::Nut,
+        };
+        let basic = shifted_profile(
+            self,
+            basic_variant,
+            self.thread.pitch_diameter(),
+            self.groove_center,
+            span,
+            None,
+        );
+        (basic, zone_profiles(self, span))
+    }
+}
+
 /// The maximum- and minimum-material profiles over `zr`.
-fn zone_profiles(v: &Cut<'_>, zr: (f64, f64)) -> Option<(Vec<Point>, Vec<Point>)> {
+fn zone_profiles(v: &Zone<'_>, zr: (f64, f64)) -> Option<(Vec<Point>, Vec<Point>)> {
     let l = v.limits;
     let (mmc_d2, lmc_d2) = match v.kind {
         ThreadKind::External => (l.pitch_diameter.max, l.pitch_diameter.min),
@@ -138,16 +189,11 @@ pub fn picture(v: &Cut<'_>) -> Result<Picture, Error> {
     let t = v.thread;
     let p = t.pitch;
     let zc = v.groove_center;
-    let basic_variant = match v.kind {
-        ThreadKind::External => ProfileKind::Basic,
-        ThreadKind::Internal => ProfileKind::Nut,
-    };
     // Every span a picture shows: the measured window and one tooth (± 0.75 P), and a pitch
     // each way beyond the deviation plot's.
     let w = v.section.window;
     let span = (w.z_min.min(zc - 3.0 * p) - p, w.z_max.max(zc + 3.0 * p) + p);
-    let basic = shifted_profile(v, basic_variant, t.pitch_diameter(), zc, span, None);
-    let zone = zone_profiles(v, span);
+    let (basic, zone) = Zone { thread: t, kind: v.kind, limits: v.limits, groove_center: zc }.profiles(span);
     // The deviation along one pitch of the basic profile centred on the groove.
     let one = Picture::clip(&basic, (zc - 0.5 * p, zc + 0.5 * p));
     let air_up = v.kind == ThreadKind::External;
