@@ -69,6 +69,8 @@ pub use ground::note::{Note, NoteKind, Place};
 pub use ground::plane::{Arc, Point, DEFAULT_TOLERANCE, MIN_TOLERANCE};
 
 // Standards: designations, forms, classes and their limits of size.
+pub use standards::drills::{drill_that_passes, DrillSource, PassingDrill};
+pub use standards::tolerance::Resolution;
 pub use standards::tolerance::{
     iso_limits, limits_for, AcmeClass, Bs84Class, GaugePlane, Iso228Class, IsoClass, Limit, TaperClass,
     ThreadLimits, TrClass, UnifiedClass, UnifiedSeries,

@@ -185,12 +185,6 @@ fn html_report_renders_without_console_errors() {
     assert!(coloured.count() > 50, "no verdict drawn");
 }
 
-/// An attribute of a tag's text.
-fn attr(tag: &str, k: &str) -> Option<String> {
-    let v = tag.split(&format!(" {k}=\"")).nth(1)?;
-    Some(v[..v.find('"')?].to_string())
-}
-
 /// A box: x0, y0, x1, y1 in px.
 type Boxed = [f64; 4];
 
@@ -687,4 +681,111 @@ fn tap_svg_is_laid_out() {
         assert!(svg.contains("drill Z-25"), "{program}");
         assert_laid_out(&svg, program);
     }
+}
+
+/// Issue 43: the thread-mill picture as verify's: scales on Z and the diameter (read back from
+/// its tick labels), the class's tolerance zone over the milled section, and the measured
+/// diameters labelled with ISO 965-2's limits. For M20x1.5-6H the zone is TD2 = 0.190 mm wide on
+/// the diameter (D2 19.026–19.216), so at the basic pitch diameter each flank's band is
+/// 0.095 · tan 30° = 0.054848 mm wide along Z (the flanks stand 30° from the radial); the
+/// maximum-material side is the basic profile (EI = 0 for H). Chromium shows the band in green
+/// on that row, and the widening plot has its own µm and Z scales.
+#[test]
+fn thread_mill_picture_has_zone_scales_and_limits() {
+    let dir = tempdir("tm-zone");
+    let svg_path = dir.join("t.svg");
+    let p = data("programs/threadmill/m20-dc6.nc");
+    let o = run(&[
+        "thread-mill",
+        "--program",
+        p.to_str().unwrap(),
+        "--thread",
+        "M20x1.5-6H",
+        "--cutter-diameter",
+        "6",
+        "--svg",
+        svg_path.to_str().unwrap(),
+    ]);
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(&svg_path).unwrap();
+    // The scales, from the section's tick labels: Z below (one y), Ø at the right (one x).
+    let ticks = tick_labels(&svg, "id=\"section\"");
+    let z_row = ticks.iter().map(|t| t.1).fold(f64::NEG_INFINITY, f64::max);
+    let z: Vec<_> = ticks.iter().filter(|t| t.1 == z_row).collect();
+    let d: Vec<_> = ticks.iter().filter(|t| t.1 != z_row).collect();
+    assert!(z.len() >= 4 && d.len() >= 2, "ticks: {ticks:?}");
+    let px_per_mm = (z[1].0 - z[0].0) / (z[1].2 - z[0].2);
+    let px_per_mm_d = (d[0].1 - d[1].1) / (d[1].2 - d[0].2);
+    // True to scale: one mm of Z is one mm of radius (two of diameter).
+    assert!((px_per_mm - 2.0 * px_per_mm_d).abs() < 0.05 * px_per_mm, "{px_per_mm} vs {px_per_mm_d}");
+    let y_of_d = |dia: f64| d[0].1 - 3.0 - (dia - d[0].2) * px_per_mm_d;
+    let zone = tag_of(&svg, "section-tolerance-zone");
+    let after = &svg[svg.find(zone).unwrap()..];
+    let poly = &after[after.find("<polygon").unwrap()..];
+    let points = attr(&poly[..poly.find('>').unwrap()], "points").unwrap();
+    let y = y_of_d(19.026 + 0.001);
+    let xs = crossings(&points, y);
+    assert!(xs.len() >= 6 && xs.len() % 2 == 0, "{} crossings at D2", xs.len());
+    let want = 0.095 * 30f64.to_radians().tan() * px_per_mm;
+    for pair in xs.chunks(2) {
+        assert!((pair[1] - pair[0] - want).abs() < 0.35, "band {:.2} px, want {want:.2}", pair[1] - pair[0]);
+    }
+    // The measured diameters with their limits; D2 out of them in red with its deviation.
+    assert!(svg.contains("[19.026 – 19.216]") && svg.contains("[18.376 – 18.676]"), "limits");
+    assert!(svg.contains("D2 18.7071 mm"), "D2's value");
+    // The widening plot: µm and Z scales of its own.
+    assert!(!tick_labels(&svg, "id=\"widening\"").is_empty() && svg.contains("µm, radial"));
+    assert_laid_out(&svg, "thread-mill");
+    let (w, h) = svg_size(&svg);
+    let shot = screenshot(&svg_path, w, h);
+    let row = y.round() as usize;
+    let green: Vec<usize> = (0..shot.w)
+        .filter(|&x| zone_over_material(shot.at(x, row)) || zone_over_air(shot.at(x, row)))
+        .collect();
+    let runs = green.windows(2).filter(|w| w[1] > w[0] + 1).count() + usize::from(!green.is_empty());
+    assert!(runs >= 6, "the zone shows {runs} times on the D2 row");
+}
+
+/// Issue 43: the tap picture dimensions the drill and D1 true to its scale bar: the Ø8 drill's
+/// dimension is 8 mm long and red (it lies under D1 min 8.376, ISO 965-2), D1's limits are
+/// 8.376 and 8.676 mm apart, and it names the drill that passes, ISO 2306's 8.5.
+#[test]
+fn tap_picture_dimensions_the_drill_and_d1() {
+    let dir = tempdir("tap-dims");
+    let svg_path = dir.join("t.svg");
+    let o = run(&[
+        "tap",
+        "--program",
+        data("programs/tapping/m10-g84.nc").to_str().unwrap(),
+        "--tools",
+        data("programs/tapping/tools-80.toml").to_str().unwrap(),
+        "--svg",
+        svg_path.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(&svg_path).unwrap();
+    let n = |id: &str, k: &str| attr(tag_of(&svg, id), k).unwrap().parse::<f64>().unwrap();
+    let s = (n("scale-bar", "x2") - n("scale-bar", "x1")) / n("scale-bar", "data-mm");
+    let len = n("hole-0-drill-dimension", "x2") - n("hole-0-drill-dimension", "x1");
+    assert!((len - 8.0 * s).abs() < 0.01, "the drill's dimension {len} px at {s} px/mm");
+    for (which, d1) in [("min", 8.376), ("max", 8.676)] {
+        let apart =
+            n(&format!("hole-0-d1-{which}-right"), "x1") - n(&format!("hole-0-d1-{which}-left"), "x1");
+        assert!((apart - d1 * s).abs() < 0.01, "D1 {which}: {apart} px");
+    }
+    assert_eq!(attr(tag_of(&svg, "hole-0-drill-dimension"), "stroke").as_deref(), Some("#c62828"));
+    let passing = &svg[svg.find("id=\"hole-0-passing-drill\"").unwrap()..];
+    assert!(passing[..passing.find("</text>").unwrap()].contains("a drill that passes: Ø8.5 mm"));
+    assert!(svg.contains("D1 of M10x1.5-6H: 8.376 – 8.676 mm"));
+    assert_laid_out(&svg, "tap");
+    // Chromium draws the dimension in red.
+    let (w, h) = svg_size(&svg);
+    let shot = screenshot(&svg_path, w, h);
+    let y = n("hole-0-drill-dimension", "y1").round() as usize;
+    let xm = (0.5 * (n("hole-0-drill-dimension", "x1") + n("hole-0-drill-dimension", "x2"))) as usize;
+    let red = (y - 1..=y + 1).flat_map(|y| (xm - 20..xm + 20).map(move |x| (x, y))).filter(|&(x, y)| {
+        let [r, g, b] = shot.at(x, y);
+        r > 150 && g < 110 && b < 110
+    });
+    assert!(red.count() >= 20, "the drill's dimension is not drawn red");
 }

@@ -319,3 +319,54 @@ fn the_hole_wall_follows_the_tap_and_the_drill() {
     let tip = wall.last().unwrap();
     assert_eq!((tip.z, tip.r), (-25.0, 0.0));
 }
+
+/// Issue 43: the drill that would pass, against the published tap-drill charts: ISO 2306's
+/// coarse-series table (M10 8.5, M12 10.2, M6 5.0), its fine series D − P (M20x1.5 18.5,
+/// M12x1.25 10.8), and the inch tap-drill chart's 75 % drills, each the gauge drill nearest the
+/// middle of ASME B1.1's 2B minor-diameter limits (1/4-20 #7 0.2010, 5/16-18 F 0.2570, 3/8-16
+/// 5/16, 1/2-13 27/64). (For 10-32 the charts' #21 lies within D1 0.1562–0.1641 too, but #20 is
+/// nearer its middle: threadcheck names #20.)
+#[test]
+fn the_drill_that_passes_is_the_charts_tap_drill() {
+    for (which, name, dia, source) in [
+        ("M10x1.5-6H", "8.5", 8.5, "iso2306-coarse"),
+        ("M12x1.75-6H", "10.2", 10.2, "iso2306-coarse"),
+        ("M6x1-6H", "5", 5.0, "iso2306-coarse"),
+        ("M20x1.5-6H", "18.5", 18.5, "iso2306-fine"),
+        ("M12x1.25-6H", "10.8", 10.8, "iso2306-fine"),
+        ("1/4-20 UNC-2B", "#7", 0.2010 * 25.4, "inch-gauge"),
+        ("5/16-18 UNC-2B", "F", 0.2570 * 25.4, "inch-gauge"),
+        ("3/8-16 UNC-2B", "5/16", 0.3125 * 25.4, "inch-gauge"),
+        ("1/2-13 UNC-2B", "27/64", 27.0 / 64.0 * 25.4, "inch-gauge"),
+    ] {
+        let tools = format!("[tools]\n5 = \"drill:3\"\n6 = \"tap:{which}\"\n");
+        let (code, v, e) = tap(&program(), &tools);
+        assert_eq!(code, 1, "{which}: {e}");
+        let d = &v["holes"][0]["drill_that_passes"];
+        assert_eq!(d["name"], name, "{which}: {d}");
+        assert!((d["diameter"].as_f64().unwrap() - dia).abs() < 1e-9, "{which}: {d}");
+        assert_eq!(d["source"], source, "{which}");
+        let d1 = check(&v, "drill_diameter");
+        let (lo, hi) = (d1["min"].as_f64().unwrap(), d1["max"].as_f64().unwrap());
+        assert!((d["middle"].as_f64().unwrap() - 0.5 * (lo + hi)).abs() < 0.0006, "{which}");
+        assert!(dia >= lo - 1e-9 && dia <= hi + 1e-9, "{which}: {dia} outside {lo} … {hi}");
+    }
+}
+
+/// Issue 43: a failing drill's text names the drill that would pass and where it comes from.
+#[test]
+fn a_failing_drill_names_the_drill_that_passes() {
+    let o = run(&[
+        "tap",
+        "--program",
+        data("programs/tapping/m10-g84.nc").to_str().unwrap(),
+        "--tools",
+        data("programs/tapping/tools-80.toml").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(
+        out.contains("a drill that passes: Ø8.5 mm (ISO 2306's tap drill); D1's middle 8.526 mm"),
+        "{out}"
+    );
+}

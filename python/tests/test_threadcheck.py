@@ -443,6 +443,10 @@ def test_tap_checks_the_drill_against_d1():
     bad = threadcheck.tap(TAP_PROGRAM, '[tools]\n5 = "drill:8.0"\n6 = "tap:M10x1.5-6H"\n')
     d1 = next(c for c in bad["holes"][0]["checks"] if c["feature"] == "drill_diameter")
     assert not bad["pass"] and d1["deviation"] == pytest.approx(-376.0)
+    # The drill that passes: ISO 2306's 8.5 for M10x1.5, the middle of D1 8.526.
+    better = bad["holes"][0]["drill_that_passes"]
+    assert (better["name"], better["source"]) == ("8.5", "iso2306-coarse")
+    assert better["middle"] == pytest.approx(8.526)
 
 
 def test_thread_mill_major_diameter_and_lead():

@@ -315,7 +315,9 @@ def tap(program: str, tools: str, dialect: Optional[str] = None, program_name: O
     ``6 = "tap:M10x1.5-6H"`` (``:PITCHES`` adds its chamfer length, default 2.5), each drill as
     ``5 = "drill:8.5"``. Each hole in ``holes`` has its ``cycle``, ``tap``, ``drill`` and
     ``checks`` (``drill_diameter`` against D1 of the tap's class, ``feed`` against the lead,
-    ``depth`` left for the chamfer, ``spindle``); the dict's ``pass`` is the verdict.
+    ``depth`` left for the chamfer, ``spindle``) and ``drill_that_passes`` (the middle of D1 and
+    the nearest stocked drill within it: ISO 2306's tap drill for ISO metric taps); the dict's
+    ``pass`` is the verdict.
     """
     report: TapReport = _json.loads(_run("tap", "json", dict(locals()))[0])
     return report

@@ -113,6 +113,10 @@ pub struct TappedHole {
     pub tap: TapInfo,
     /// The drill that made the hole, when a drilling cycle precedes it at its position.
     pub drill: Option<DrillInfo>,
+    /// A drill that leaves D1 within the class's limits: the middle of D1 and the nearest
+    /// stocked drill (ISO 2306's tap drill, or the metric or inch drill nearest the middle);
+    /// `None` for a taper pipe tap.
+    pub drill_that_passes: Option<crate::standards::drills::PassingDrill>,
     /// The checks.
     pub checks: Vec<TapCheck>,
     /// Within every check.
@@ -476,6 +480,11 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                 pitch_diameter: limits.pitch_diameter,
             },
             drill,
+            drill_that_passes: crate::standards::drills::drill_that_passes(
+                &des.thread,
+                limits.minor_diameter,
+                res,
+            )?,
             checks,
             pass,
             notes,

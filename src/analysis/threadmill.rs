@@ -283,6 +283,13 @@ pub struct ThreadMillReport {
     /// The tooth profile's section over the same heights.
     #[serde(skip)]
     pub tooth_points: Vec<Point>,
+    /// The basic profile placed on the measured groove, over the same heights.
+    #[serde(skip)]
+    pub basic: Vec<Point>,
+    /// The tolerance zone's maximum- and minimum-material sides over them (`None` when the
+    /// class lacks a pitch-diameter limit).
+    #[serde(skip)]
+    pub zone: Option<crate::analysis::picture::ZoneSides>,
 }
 
 /// The helices (G2/G3 arcs with a Z change in G17) of `moves`, each at its cutter centre's
@@ -785,6 +792,14 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         ));
     }
     let pass = crate::analysis::check::verdict(&cs, false);
+    let span = (zs[0], zs[zs.len() - 1]);
+    let (basic, zone) = crate::analysis::picture::Zone {
+        thread: &t,
+        kind,
+        limits: &limits,
+        groove_center: measured.groove_center,
+    }
+    .profiles(span);
     let dist_d2 = (measured.pitch_diameter - tooth_m.pitch_diameter) * 1000.0;
     let dist_fl = [
         measured.flank_angles[0] - tooth_m.flank_angles[0],
@@ -808,5 +823,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         notes,
         profile,
         tooth_points: tooth,
+        basic,
+        zone,
     })
 }

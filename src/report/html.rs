@@ -386,6 +386,9 @@ pub fn tap_html(r: &crate::analysis::tapping::TapReport) -> String {
             );
         }
         s.push_str("</table>\n");
+        if let Some(line) = crate::report::tapping::passing_drill_line(h) {
+            let _ = writeln!(s, "<p class=\"next\">{}</p>", esc(&line));
+        }
         for n in &h.notes {
             let _ = writeln!(s, "<p class=\"form\">{}</p>", esc(n));
         }

@@ -227,36 +227,7 @@ fn view(v: &Verification, pic: Option<&Picture>, f: &Frame, id: &str, label: &st
     }
     // The tolerance zone between the maximum- and minimum-material profiles, over the material
     // and translucent: both its sides show, in material and in air.
-    let mut zone = Group::new().set("id", format!("{id}-tolerance-zone"));
-    if let Some((mmc, mut lmc)) = pic.and_then(|p| p.zone(zr)) {
-        let mut poly = mmc.clone();
-        let lmc_line = lmc.clone();
-        lmc.reverse();
-        poly.extend(lmc);
-        zone = zone
-            .add(
-                Polygon::new()
-                    .set("points", f.points(&poly))
-                    .set("fill", ZONE)
-                    .set("fill-opacity", 0.35)
-                    .set("stroke", "none"),
-            )
-            .add(
-                Polyline::new()
-                    .set("points", f.points(&mmc))
-                    .set("fill", "none")
-                    .set("stroke", ZONE)
-                    .set("stroke-width", 1.0),
-            )
-            .add(
-                Polyline::new()
-                    .set("points", f.points(&lmc_line))
-                    .set("fill", "none")
-                    .set("stroke", ZONE)
-                    .set("stroke-width", 1.0)
-                    .set("stroke-dasharray", "4 2"),
-            );
-    }
+    let zone = zone_group(pic.and_then(|p| p.zone(zr)), f, id);
     let profile = Polyline::new()
         .set("points", f.points(&v.section.profile()))
         .set("fill", "none")
@@ -294,14 +265,26 @@ fn view(v: &Verification, pic: Option<&Picture>, f: &Frame, id: &str, label: &st
         .add(basic_g)
         .add(passes)
         .add(Group::new().set("id", format!("{id}-profile")).add(profile));
-    // Dimension lines of the measured diameters, red when out of their limits.
+    body = body.add(dimension_lines(&dimension_features(v), &v.checks, f, id));
+    g = g.add(body);
+    g.add(axes(f, true, v.units))
+}
+
+/// Dimension lines of the measured diameters across a panel, red when out of their limits;
+/// each `{id}-dim-{feature}`.
+fn dimension_lines(
+    items: &[(crate::CheckFeature, f64)],
+    checks: &[crate::Check],
+    f: &Frame,
+    id: &str,
+) -> Group {
     let mut dims = Group::new().set("id", format!("{id}-dimensions"));
-    for (feature, d) in dimension_features(v) {
+    for &(feature, d) in items {
         let y = f.y(rad(d));
         if y < f.y0 || y > f.y0 + f.h {
             continue;
         }
-        let ok = v.checks.iter().find(|c| c.feature == feature).is_none_or(|c| c.ok);
+        let ok = checks.iter().find(|c| c.feature == feature).is_none_or(|c| c.ok);
         dims = dims.add(
             Line::new()
                 .set("id", format!("{id}-dim-{}", feature.name()))
@@ -314,9 +297,44 @@ fn view(v: &Verification, pic: Option<&Picture>, f: &Frame, id: &str, label: &st
                 .set("stroke-dasharray", "2 3"),
         );
     }
-    body = body.add(dims);
-    g = g.add(body);
-    g.add(axes(f, true, v.units))
+    dims
+}
+
+/// The tolerance zone between its maximum- and minimum-material sides, translucent over the
+/// material and the air (`{id}-tolerance-zone`): the maximum-material side solid, the other
+/// dashed.
+fn zone_group(sides: Option<(Vec<Point>, Vec<Point>)>, f: &Frame, id: &str) -> Group {
+    let mut zone = Group::new().set("id", format!("{id}-tolerance-zone"));
+    if let Some((mmc, mut lmc)) = sides {
+        let mut poly = mmc.clone();
+        let lmc_line = lmc.clone();
+        lmc.reverse();
+        poly.extend(lmc);
+        zone = zone
+            .add(
+                Polygon::new()
+                    .set("points", f.points(&poly))
+                    .set("fill", ZONE)
+                    .set("fill-opacity", 0.35)
+                    .set("stroke", "none"),
+            )
+            .add(
+                Polyline::new()
+                    .set("points", f.points(&mmc))
+                    .set("fill", "none")
+                    .set("stroke", ZONE)
+                    .set("stroke-width", 1.0),
+            )
+            .add(
+                Polyline::new()
+                    .set("points", f.points(&lmc_line))
+                    .set("fill", "none")
+                    .set("stroke", ZONE)
+                    .set("stroke-width", 1.0)
+                    .set("stroke-dasharray", "4 2"),
+            );
+    }
+    zone
 }
 
 /// The diameters dimensioned in the picture: major, pitch and minor, as measured.
@@ -353,17 +371,30 @@ fn fmt_limits(min: Option<f64>, max: Option<f64>, unit: &str) -> String {
 /// right edge): value, limits and unit, each joined to its line by a leader, spread so that
 /// no two overlap, red when out of limits.
 fn dimension_labels(v: &Verification, f: &Frame, right: f64) -> Group {
+    labels_of_dimensions(&dimension_features(v), &v.checks, v.kind, v.units, f, right)
+}
+
+/// The dimension labels of `items` (measured diameters) beside panel `f`, as
+/// [`dimension_labels`] places them.
+fn labels_of_dimensions(
+    items_in: &[(crate::CheckFeature, f64)],
+    checks: &[crate::Check],
+    kind: ThreadKind,
+    units: crate::analysis::verify::Units,
+    f: &Frame,
+    right: f64,
+) -> Group {
     let mut g = Group::new().set("id", "dimension-labels");
     let mut items: Vec<(f64, String, String, bool)> = Vec::new();
-    for (feature, d) in dimension_features(v) {
+    for &(feature, d) in items_in {
         let y = f.y(rad(d));
         if y < f.y0 || y > f.y0 + f.h {
             continue;
         }
-        let check = v.checks.iter().find(|c| c.feature == feature);
+        let check = checks.iter().find(|c| c.feature == feature);
         let ok = check.is_none_or(|c| c.ok);
-        let name = feature.words(v.kind).rsplit(' ').next().unwrap_or("");
-        let line1 = if v.units == crate::analysis::verify::Units::Inch {
+        let name = feature.words(kind).rsplit(' ').next().unwrap_or("");
+        let line1 = if units == crate::analysis::verify::Units::Inch {
             format!("{name} {d:.4} mm ({:.5} in)", d / 25.4)
         } else {
             format!("{name} {d:.4} mm")
@@ -1155,118 +1186,200 @@ pub fn mill_svg(r: &crate::analysis::mill::MillReport) -> String {
     doc.to_string()
 }
 
-/// The milled thread's axial section over four pitches: the material (grey-blue) the cutter's
-/// envelope leaves, the tooth profile alone (dashed), and the class's D, D2 and D1 limits; the
-/// title gives the verdict and the distortion.
+/// `threadcheck thread-mill --svg`: the milled thread's axial section over four pitches, true
+/// to scale with Z (mm) and diameter ticks: the material (grey-blue) the cutter's envelope
+/// leaves, the class's tolerance zone over it (green), the basic profile (grey dashed), the
+/// tooth profile alone (brown dashed), D1's limits (blue dotted), and the measured D, D2 and D1
+/// dimensioned with their values and limits (red with the deviation when out); below it, the
+/// helix's widening of the groove (radial µm) against the same Z.
 pub fn threadmill_svg(r: &crate::analysis::threadmill::ThreadMillReport) -> String {
-    let (w, h) = (900.0, 640.0);
-    let mut doc = Document::new().set("viewBox", (0, 0, w, h)).set("width", w).set("height", h);
-    doc = doc.add(Rectangle::new().set("width", w).set("height", h).set("fill", "white"));
+    use crate::ground::fmt::fmt_num;
+    let w = 900.0;
     let internal = r.kind == ThreadKind::Internal;
     let (z0, z1) = (r.profile.first().map_or(0.0, |p| p.z), r.profile.last().map_or(1.0, |p| p.z));
     let rs = r.profile.iter().chain(&r.tooth_points).map(|p| p.r);
     let (lo, hi) = rs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
-    let pad = 0.15 * (hi - lo).max(1e-3);
-    let f = Frame::new(70.0, 120.0, w - 190.0, 290.0, (z0, z1), (lo - pad, hi + pad));
-    let edge = if internal { hi + pad } else { lo - pad };
+    let pad = 0.2 * (hi - lo).max(1e-3);
+    // The section: true to scale, as wide as the column allows, as tall as its radii need.
+    let (px0, pw) = (230.0, 580.0);
+    let scale = pw / (z1 - z0).max(1e-6);
+    let ph = ((hi - lo + 2.0 * pad) * scale).clamp(140.0, 320.0);
+    let f = Frame::new(px0, 140.0, pw, ph, (z0, z1), (lo - pad, hi + pad));
+    let edge = if internal { hi + 10.0 * pad } else { lo - 10.0 * pad };
     let mut material = r.profile.clone();
     material.push(Point::new(z1, edge));
     material.push(Point::new(z0, edge));
-    let mut g = Group::new().set("id", "section");
-    g = g.add(Polygon::new().set("points", f.points(&material)).set("fill", "#b8c7d9").set("stroke", "none"));
-    g = g.add(
-        Polyline::new()
-            .set("points", f.points(&r.profile))
-            .set("fill", "none")
-            .set("stroke", "black")
-            .set("stroke-width", 1.4),
-    );
-    g = g.add(
-        Polyline::new()
-            .set("points", f.points(&r.tooth_points))
-            .set("fill", "none")
-            .set("stroke", "#555")
-            .set("stroke-width", 1.0)
-            .set("stroke-dasharray", "5 4"),
-    );
-    let mut labels = Group::new();
-    let mut line = |d: Option<f64>, colour: &str, label: String, g: Group| -> Group {
-        let Some(d) = d else { return g };
-        let y = f.y(0.5 * d);
-        labels = std::mem::take(&mut labels)
-            .add(text(w - 112.0, y + 4.0, 11.0, label).set("fill", colour.to_string()));
-        g.add(
+    let (mut sec, mut body) =
+        panel(&f, "section", "the milled section over four pitches (axial, true to scale)");
+    body = body
+        .add(Group::new().set("id", "section-material").add(
+            Polygon::new().set("points", f.points(&material)).set("fill", "#b8c7d9").set("stroke", "none"),
+        ))
+        .add(zone_group(r.zone.clone(), &f, "section"))
+        .add(
+            Group::new().set("id", "section-basic-profile").add(
+                Polyline::new()
+                    .set("points", f.points(&r.basic))
+                    .set("fill", "none")
+                    .set("stroke", "#555")
+                    .set("stroke-dasharray", "6 4")
+                    .set("stroke-width", 1.0),
+            ),
+        )
+        .add(
+            Group::new().set("id", "section-tooth-profile").add(
+                Polyline::new()
+                    .set("points", f.points(&r.tooth_points))
+                    .set("fill", "none")
+                    .set("stroke", "#a35a00")
+                    .set("stroke-width", 1.0)
+                    .set("stroke-dasharray", "3 3"),
+            ),
+        )
+        .add(
+            Group::new().set("id", "section-profile").add(
+                Polyline::new()
+                    .set("points", f.points(&r.profile))
+                    .set("fill", "none")
+                    .set("stroke", "#111")
+                    .set("stroke-width", 1.6),
+            ),
+        );
+    // D1's limits, the bore's: dotted blue across the section.
+    let mut d1 = Group::new().set("id", "section-d1-limits");
+    for v in [r.limits.minor_diameter.min, r.limits.minor_diameter.max].into_iter().flatten() {
+        let y = f.y(rad(v));
+        d1 = d1.add(
             Line::new()
-                .set("x1", format!("{:.2}", f.x(z0)))
-                .set("x2", format!("{:.2}", f.x(z1)))
+                .set("x1", f.x0)
+                .set("x2", f.x0 + f.w)
                 .set("y1", format!("{y:.2}"))
                 .set("y2", format!("{y:.2}"))
-                .set("stroke", colour.to_string())
-                .set("stroke-width", 0.8)
-                .set("stroke-dasharray", "2 3"),
-        )
-    };
-    let l = &r.limits;
-    let (dn, d2n, d1n) = if internal { ("D", "D2", "D1") } else { ("d", "d2", "d1") };
-    for (v, c, n) in [
-        (l.pitch_diameter.min, ZONE, format!("{d2n} min")),
-        (l.pitch_diameter.max, ZONE, format!("{d2n} max")),
-        (l.major_diameter.min, "#777", format!("{dn} min")),
-        (l.major_diameter.max, "#777", format!("{dn} max")),
-        (l.minor_diameter.min, "#1f5fa8", format!("{d1n} min")),
-        (l.minor_diameter.max, "#1f5fa8", format!("{d1n} max")),
-    ] {
-        g = line(v.filter(|x| 0.5 * x > lo - pad && 0.5 * x < hi + pad), c, n, g);
+                .set("stroke", "#1f5fa8")
+                .set("stroke-width", 0.6)
+                .set("stroke-dasharray", "1 3"),
+        );
     }
+    let m = &r.measured;
+    let items = [
+        (crate::CheckFeature::MajorDiameter, m.major_diameter),
+        (crate::CheckFeature::PitchDiameter, m.pitch_diameter),
+        (crate::CheckFeature::MinorDiameter, m.minor_diameter),
+    ];
+    body = body.add(d1).add(dimension_lines(&items, &r.checks, &f, "section"));
+    sec = sec.add(body).add(axes(&f, true, crate::analysis::verify::Units::Mm));
+    let labels =
+        labels_of_dimensions(&items, &r.checks, r.kind, crate::analysis::verify::Units::Mm, &f, px0 - 14.0);
+    // The legend under the section.
+    let ly = f.y0 + f.h + 46.0;
+    let mut legend = Group::new().set("id", "legend");
+    let mut lx = 20.0;
+    for (name, colour, dash, fill) in [
+        ("as milled", "#111", "", false),
+        ("tooth profile alone", "#a35a00", "3 3", false),
+        ("basic profile", "#555", "6 4", false),
+        ("tolerance zone (D2)", ZONE, "", true),
+        ("D1 limits", "#1f5fa8", "1 3", false),
+    ] {
+        legend = if fill {
+            legend.add(
+                Rectangle::new()
+                    .set("x", lx)
+                    .set("y", ly - 8.0)
+                    .set("width", 24)
+                    .set("height", 9)
+                    .set("fill", colour)
+                    .set("fill-opacity", 0.35),
+            )
+        } else {
+            legend.add(
+                Line::new()
+                    .set("x1", lx)
+                    .set("x2", lx + 24.0)
+                    .set("y1", ly - 4.0)
+                    .set("y2", ly - 4.0)
+                    .set("stroke", colour)
+                    .set("stroke-width", 1.4)
+                    .set("stroke-dasharray", dash),
+            )
+        };
+        legend = legend.add(text(lx + 30.0, ly, 11.0, name));
+        lx += 30.0 + 6.6 * name.chars().count() as f64 + 22.0;
+    }
+    // The groove's widening along Z: the milled radius less the tooth profile's, in µm, on the
+    // section's own Z scale.
+    let widen: Vec<(f64, f64)> =
+        r.profile.iter().zip(&r.tooth_points).map(|(a, b)| (a.z, (a.r - b.r).abs() * 1000.0)).collect();
+    let peak = widen.iter().map(|p| p.1).fold(0.0f64, f64::max);
+    let step = tick_step(peak.max(1e-3), 4.0);
+    let top = (peak / step).ceil().max(1.0) * step;
+    let (sy, sh) = (ly + 56.0, 120.0);
+    let fs = Frame::new(px0, sy, pw, sh, (z0, z1), (0.0, 1e-9));
+    let sy_of = |v: f64| sy + sh - v / top * sh;
+    let strip = pixel_points(widen.iter().map(|&(z, v)| (f.x(z), sy_of(v))));
+    let (mut wid, mut wbody) =
+        panel(&fs, "widening", "the helix's widening of the groove beyond the tooth profile alone");
+    wbody = wbody.add(
+        Polyline::new().set("points", strip).set("fill", "none").set("stroke", FAIL).set("stroke-width", 1.2),
+    );
+    wid = wid.add(wbody).add(axes(&fs, false, crate::analysis::verify::Units::Mm));
+    let mut v = 0.0;
+    while v <= top + 1e-9 * step {
+        let y = sy_of(v);
+        wid = wid
+            .add(
+                Line::new()
+                    .set("x1", px0 - 4.0)
+                    .set("x2", px0)
+                    .set("y1", y)
+                    .set("y2", y)
+                    .set("stroke", "#333"),
+            )
+            .add(text(px0 - 6.0, y + 3.0, 9.0, tick_label(v, step)).set("text-anchor", "end"));
+        v += step;
+    }
+    wid = wid
+        .add(text(px0 - 6.0, sy - 6.0, 9.0, "µm, radial").set("text-anchor", "end"))
+        .add(text(20.0, sy + 0.5 * sh - 6.0, 11.0, "0 on crests and roots,"))
+        .add(text(20.0, sy + 0.5 * sh + 8.0, 11.0, "which the tooth alone"))
+        .add(text(20.0, sy + 0.5 * sh + 22.0, 11.0, "shapes; the flanks widen"));
+    let h = sy + sh + 50.0;
     let failed: Vec<&str> = r.checks.iter().filter(|k| !k.ok).map(|k| k.feature.words(r.kind)).collect();
     let verdict =
         if r.pass { "IN TOLERANCE".to_string() } else { format!("OUT OF TOLERANCE: {}", failed.join(", ")) };
-    // The groove's widening along Z: the milled radius less the tooth profile's, in µm.
-    let widen: Vec<(f64, f64)> =
-        r.profile.iter().zip(&r.tooth_points).map(|(a, b)| (a.z, (a.r - b.r).abs() * 1000.0)).collect();
-    let top = widen.iter().map(|p| p.1).fold(1e-3f64, f64::max);
-    let (sx, sy, sw, sh) = (f.x(z0), 470.0, f.x(z1) - f.x(z0), 120.0);
-    let sx_of = |z: f64| sx + (z - z0) / (z1 - z0) * sw;
-    let sy_of = |v: f64| sy + sh - v / top * sh;
-    let strip =
-        widen.iter().map(|&(z, v)| format!("{:.1},{:.1}", sx_of(z), sy_of(v))).collect::<Vec<_>>().join(" ");
+    let d2n = if internal { "D2" } else { "d2" };
+    let mut doc = Document::new().set("viewBox", (0, 0, w, h)).set("width", w).set("height", h);
     doc = doc
+        .add(Rectangle::new().set("width", w).set("height", h).set("fill", "white"))
         .add(
-            Rectangle::new()
-                .set("x", sx)
-                .set("y", sy)
-                .set("width", sw)
-                .set("height", sh)
-                .set("fill", "none")
-                .set("stroke", "#999"),
+            text(
+                20.0,
+                30.0,
+                17.0,
+                shorten(
+                    &format!(
+                        "{}: {} thread-milled with a Ø{} {} cutter",
+                        file_name(&r.program),
+                        r.designation,
+                        fmt_num(r.cutter.diameter),
+                        crate::report::threadmill::cutter_kind(&r.cutter)
+                    ),
+                    80,
+                ),
+            )
+            .set("font-weight", "bold"),
         )
         .add(
-            Polyline::new()
-                .set("points", strip)
-                .set("fill", "none")
-                .set("stroke", FAIL)
-                .set("stroke-width", 1.2),
+            text(20.0, 52.0, 15.0, shorten(&verdict, 95))
+                .set("font-weight", "bold")
+                .set("fill", if r.pass { ZONE } else { FAIL }),
         )
-        .add(text(
-            sx,
-            sy - 8.0,
-            12.0,
-            format!("the helix's widening of the groove beyond the tooth profile, radial µm (0 … {top:.1})"),
-        ))
-        .add(text(sx + sw + 8.0, sy + 10.0, 11.0, format!("{top:.1} µm")))
-        .add(text(sx + sw + 8.0, sy + sh, 11.0, "0 µm"));
-    doc = doc
-        .add(
-            text(20.0, 30.0, 17.0, format!("{} thread-milled with a Ø{} cutter", r.designation, crate::ground::fmt::fmt_num(r.cutter.diameter)))
-                .set("font-weight", "bold"),
-        )
-        .add(text(20.0, 52.0, 15.0, verdict).set("font-weight", "bold").set("fill", if r.pass { ZONE } else { FAIL }))
         .add(text(
             20.0,
             76.0,
             13.0,
             format!(
-                "{d2n} {:.4} mm as milled, {:.4} mm by the tooth profile alone (dashed): the helix widens the groove by {:+.1} µm",
+                "{d2n} {:.4} mm as milled, {:.4} mm by the tooth profile alone: the helix widens the groove by {:+.1} µm",
                 r.measured.pitch_diameter, r.tooth_profile.pitch_diameter, r.distortion_pitch_diameter_um
             ),
         ))
@@ -1275,7 +1388,7 @@ pub fn threadmill_svg(r: &crate::analysis::threadmill::ThreadMillReport) -> Stri
             96.0,
             13.0,
             format!(
-                "flanks {:.3}° / {:.3}° ({:+.3}° / {:+.3}°); cutter {:.0} % of the diameter; material in grey-blue",
+                "flanks {:.3}° / {:.3}° ({:+.3}° / {:+.3}°); the cutter is {:.0} % of the thread's diameter",
                 r.measured.flank_angles[0],
                 r.measured.flank_angles[1],
                 r.distortion_flank_angles_deg[0],
@@ -1283,9 +1396,10 @@ pub fn threadmill_svg(r: &crate::analysis::threadmill::ThreadMillReport) -> Stri
                 100.0 * r.cutter_ratio
             ),
         ))
-        .add(g)
+        .add(sec)
         .add(labels)
-        .add(text(f.x(z0), 428.0, 12.0, format!("Z {:.3} … {:.3} mm (axial section, radius up)", z0, z1)));
+        .add(legend)
+        .add(wid);
     doc.to_string()
 }
 
@@ -1300,10 +1414,18 @@ fn file_name(program: &str) -> String {
 /// Most tapped holes drawn side by side; the rest are counted under the picture.
 const TAP_PANELS: usize = 4;
 
-/// `threadcheck tap --svg`: each tapped hole's axial section, hole axis up, true to scale: the
-/// part in grey, the hole in white (the tap's thread, its chamfer, the plain bore and the
-/// drill's point), D1's limits dashed, the tap's and the drill's bottoms, and the checks.
+/// A scale bar's length, mm: a round number about `px` pixels long at `s` px/mm.
+fn scale_bar_mm(s: f64, px: f64) -> f64 {
+    tick_step(px / s, 1.0)
+}
+
+/// `threadcheck tap --svg`: each tapped hole's axial section, hole axis up, true to scale (a
+/// scale bar under the holes): the part in grey, the hole in white (the tap's thread, its
+/// chamfer, the plain bore and the drill's point), D1's limits dashed blue, the drill's diameter
+/// dimensioned across the plain bore (red when out of D1), the tap's and the drill's bottoms,
+/// the checks with their limits, and the drill that would pass.
 pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
+    use crate::analysis::tapping::TapFeature;
     use crate::ground::fmt::fmt_num;
     let shown: Vec<_> = r.holes.iter().take(TAP_PANELS).collect();
     let panel_w = 300.0;
@@ -1321,31 +1443,23 @@ pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
     let (tall, wide) =
         shown.iter().map(|h| span(h)).fold((1e-3f64, 1e-3f64), |a, b| (a.0.max(b.0), a.1.max(b.1)));
     let s = (box_h / tall).min(box_w / (1.6 * wide));
-    let h = 120.0 + (tall * s).max(60.0) + 150.0;
-    let mut doc = Document::new().set("viewBox", (0, 0, w, h)).set("width", w).set("height", h);
-    doc = doc.add(Rectangle::new().set("width", w).set("height", h).set("fill", "white"));
+    let y0 = 120.0;
+    // Below the holes: D1, the checks with their limits, the drill that passes; the picture
+    // ends under the longest of these.
+    let text_top = y0 + (tall * s).max(60.0) + 30.0;
+    let mut text_bottom = text_top;
+    let mut holes = Vec::new();
     let verdict = if r.pass {
         "IN TOLERANCE".to_string()
     } else {
         let bad = r.holes.iter().filter(|h| !h.pass).count();
         format!("OUT OF TOLERANCE: {bad} of {} tapping cycles", r.holes.len())
     };
-    doc = doc
-        .add(
-            text(20.0, 28.0, 16.0, format!("{}: tapped holes", file_name(&r.program)))
-                .set("font-weight", "bold"),
-        )
-        .add(
-            text(20.0, 50.0, 14.0, verdict)
-                .set("font-weight", "bold")
-                .set("fill", if r.pass { ZONE } else { FAIL }),
-        );
     for (k, hole) in shown.iter().enumerate() {
         let x0 = 20.0 + panel_w * k as f64;
         let cx = x0 + 0.5 * box_w + 10.0;
-        let y0 = 120.0;
         let c = &hole.cycle;
-        let mut g = Group::new();
+        let mut g = Group::new().set("id", format!("hole-{k}"));
         g = g.add(
             text(
                 x0,
@@ -1356,7 +1470,9 @@ pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
             .set("font-weight", "bold"),
         );
         g = g.add(text(x0, 96.0, 12.0, format!("tap {}", hole.tap.designation)));
-        let mut ty = y0 + 70.0;
+        let drill_check = hole.checks.iter().find(|k| k.feature == TapFeature::DrillDiameter);
+        let drill_ok = drill_check.is_none_or(|k| k.ok);
+        let d1 = &hole.tap.minor_diameter;
         if hole.wall.is_empty() {
             g = g.add(text(x0, y0 + 20.0, 12.0, "the drill's diameter or a bottom"));
             g = g.add(text(x0, y0 + 36.0, 12.0, "is not known: not drawn"));
@@ -1379,18 +1495,20 @@ pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
             pts.extend(hole.wall.iter().rev().map(|p| format!("{:.2},{:.2}", x(-p.r), y(p.z))));
             g = g.add(
                 Polygon::new()
+                    .set("id", format!("hole-{k}-wall"))
                     .set("points", pts.join(" "))
                     .set("fill", "white")
                     .set("stroke", "black")
                     .set("stroke-width", 0.8),
             );
-            let d1 = &hole.tap.minor_diameter;
-            for v in [d1.min, d1.max].into_iter().flatten() {
-                for sign in [-1.0, 1.0] {
+            for (v, which) in [(d1.min, "min"), (d1.max, "max")] {
+                let Some(v) = v else { continue };
+                for (sign, side) in [(-1.0, "left"), (1.0, "right")] {
                     g = g.add(
                         Line::new()
-                            .set("x1", format!("{:.2}", x(sign * 0.5 * v)))
-                            .set("x2", format!("{:.2}", x(sign * 0.5 * v)))
+                            .set("id", format!("hole-{k}-d1-{which}-{side}"))
+                            .set("x1", format!("{:.3}", x(sign * 0.5 * v)))
+                            .set("x2", format!("{:.3}", x(sign * 0.5 * v)))
                             .set("y1", format!("{y0:.2}"))
                             .set("y2", format!("{:.2}", y(bottom)))
                             .set("stroke", "#1f5fa8")
@@ -1421,23 +1539,185 @@ pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
             if let Some(db) = hole.drill.as_ref().and_then(|d| d.cycle.bottom) {
                 g = mark(g, db, "#a35a00", format!("drill Z{}", fmt_num(db)));
             }
+            // The drill's diameter across the plain bore, between the tap's bottom and the
+            // drill's point, with arrowheads.
+            if let (Some(dia), Some(tz), Some(db)) = (
+                hole.drill.as_ref().and_then(|d| d.diameter),
+                c.bottom,
+                hole.drill.as_ref().and_then(|d| d.cycle.bottom),
+            ) {
+                let point = db + 0.5 * dia / (59f64).to_radians().tan();
+                let yd = y(0.5 * (tz.min(top) + point.max(db)));
+                let colour = if drill_ok { "#1f5fbf" } else { FAIL };
+                let (xa, xb) = (x(-0.5 * dia), x(0.5 * dia));
+                let head = |tip: f64, dir: f64| {
+                    Polygon::new()
+                        .set(
+                            "points",
+                            format!(
+                                "{tip:.2},{yd:.2} {:.2},{:.2} {:.2},{:.2}",
+                                tip + 7.0 * dir,
+                                yd - 3.0,
+                                tip + 7.0 * dir,
+                                yd + 3.0
+                            ),
+                        )
+                        .set("fill", colour)
+                };
+                g = g
+                    .add(
+                        Line::new()
+                            .set("id", format!("hole-{k}-drill-dimension"))
+                            .set("x1", format!("{xa:.3}"))
+                            .set("x2", format!("{xb:.3}"))
+                            .set("y1", format!("{yd:.2}"))
+                            .set("y2", format!("{yd:.2}"))
+                            .set("stroke", colour)
+                            .set("stroke-width", 1.0),
+                    )
+                    .add(head(xa, 1.0))
+                    .add(head(xb, -1.0))
+                    .add(
+                        text(cx, yd - 5.0, 11.0, format!("Ø{}", fmt_num(dia)))
+                            .set("text-anchor", "middle")
+                            .set("fill", colour)
+                            .set("font-weight", "bold"),
+                    );
+            }
             g = g.add(
-                text(x0, y(bottom) + 30.0, 11.0, format!("top drawn at Z{}", fmt_num(top)))
+                text(cx + half_w + 8.0, y0 + 10.0, 11.0, format!("top Z{}", fmt_num(top)))
                     .set("fill", "#555"),
             );
-            ty = y(bottom) + 56.0;
         }
+        // Under the hole: the drill against D1, the checks with their limits, a drill that passes.
+        let mut ty = text_top;
+        let line = |g: Group, ty: &mut f64, size: f64, colour: &str, bold: bool, s: String| -> Group {
+            let t = text(x0, *ty, size, s).set("fill", colour.to_string());
+            *ty += if size >= 12.0 { 15.0 } else { 19.0 };
+            g.add(if bold { t.set("font-weight", "bold") } else { t })
+        };
+        g = line(
+            g,
+            &mut ty,
+            11.0,
+            "#1f5fa8",
+            false,
+            format!("D1 of {}: {}", hole.tap.designation, fmt_limits(d1.min, d1.max, " mm")),
+        );
+        ty += 4.0;
         for ck in &hole.checks {
             let word = crate::report::tapping::feature_name(ck.feature);
             let val = ck.value.map_or(String::new(), |v| format!(" {}", fmt_num((v * 1e4).round() / 1e4)));
-            g = g.add(
-                text(x0, ty, 12.0, format!("{} {word}{val}", if ck.ok { "✓" } else { "✗" }))
-                    .set("fill", if ck.ok { ZONE } else { FAIL }),
+            let unit = if ck.value.is_some() && !ck.unit.is_empty() {
+                format!(" {}", ck.unit)
+            } else {
+                String::new()
+            };
+            let colour = if ck.ok { ZONE } else { FAIL };
+            g = line(
+                g,
+                &mut ty,
+                12.0,
+                colour,
+                !ck.ok,
+                format!("{} {word}{val}{unit}", if ck.ok { "✓" } else { "✗" }),
             );
-            ty += 17.0;
+            let lim = if ck.min == ck.max {
+                ck.min.map_or(String::new(), |v| format!("must be {}", fmt_num(v)))
+            } else {
+                match (ck.min, ck.max) {
+                    (Some(a), Some(b)) => format!("limits {} – {}", fmt_limit(a), fmt_limit(b)),
+                    (Some(a), None) => format!("at least {}", fmt_num(a)),
+                    (None, Some(b)) => format!("at most {}", fmt_num(b)),
+                    (None, None) => String::new(),
+                }
+            };
+            let off = if ck.ok || ck.value.is_none() {
+                String::new()
+            } else if ck.unit == "mm/min" {
+                format!(", {:+.1} mm/min", ck.deviation)
+            } else {
+                format!(", {:+.1} µm", ck.deviation)
+            };
+            let lim = if lim.is_empty() || ck.unit.is_empty() { lim } else { format!("{lim} {}", ck.unit) };
+            if !lim.is_empty() || !off.is_empty() {
+                g = line(
+                    g,
+                    &mut ty,
+                    10.0,
+                    if ck.ok { "#555" } else { FAIL },
+                    false,
+                    format!("    {lim}{off}"),
+                );
+            }
         }
+        let drill_unknown = hole.drill.as_ref().is_none_or(|d| d.diameter.is_none());
+        if let Some(pd) = hole.drill_that_passes.as_ref() {
+            ty += 6.0;
+            let head = if drill_ok && !drill_unknown { "the drill for D1" } else { "a drill that passes" };
+            let (what, why) = match (&pd.name, pd.diameter, pd.source) {
+                (Some(name), Some(dia), Some(src)) => (
+                    if src == crate::standards::drills::DrillSource::InchGauge {
+                        format!("{head}: {name} ({:.4} in)", dia / crate::MM_PER_INCH)
+                    } else {
+                        format!("{head}: Ø{name} mm")
+                    },
+                    format!(
+                        "{}; D1's middle {:.3}",
+                        crate::report::tapping::drill_source_words(src),
+                        pd.middle
+                    ),
+                ),
+                _ => (
+                    format!("{head}: Ø{:.3} mm", pd.middle),
+                    "D1's middle; no stocked drill lies within D1".into(),
+                ),
+            };
+            let colour = if drill_ok && !drill_unknown { "#333" } else { ZONE };
+            g = g.add(
+                text(x0, ty, 12.0, what)
+                    .set("fill", colour)
+                    .set("font-weight", "bold")
+                    .set("id", format!("hole-{k}-passing-drill")),
+            );
+            ty += 14.0;
+            g = g.add(text(x0, ty, 10.0, why).set("fill", "#555"));
+        }
+        text_bottom = text_bottom.max(ty);
+        holes.push(g);
+    }
+    let h = text_bottom + 70.0;
+    let mut doc = Document::new().set("viewBox", (0, 0, w, h)).set("width", w).set("height", h);
+    doc = doc
+        .add(Rectangle::new().set("width", w).set("height", h).set("fill", "white"))
+        .add(
+            text(20.0, 28.0, 16.0, format!("{}: tapped holes", file_name(&r.program)))
+                .set("font-weight", "bold"),
+        )
+        .add(
+            text(20.0, 50.0, 14.0, verdict)
+                .set("font-weight", "bold")
+                .set("fill", if r.pass { ZONE } else { FAIL }),
+        );
+    for g in holes {
         doc = doc.add(g);
     }
+    // The scale bar: one scale for every hole.
+    let bar = scale_bar_mm(s, 80.0);
+    let (bx, by) = (20.0, h - 40.0);
+    doc = doc
+        .add(
+            Line::new()
+                .set("id", "scale-bar")
+                .set("data-mm", bar)
+                .set("x1", bx)
+                .set("x2", format!("{:.3}", bx + bar * s))
+                .set("y1", by)
+                .set("y2", by)
+                .set("stroke", "black")
+                .set("stroke-width", 2),
+        )
+        .add(text(bx + bar * s + 8.0, by + 4.0, 11.0, format!("{} mm", fmt_num(bar))));
     let mut foot =
         String::from("D1 min and max of the tap's class dashed blue; the drill's point drawn at 118°");
     if r.holes.len() > shown.len() {

@@ -2,6 +2,7 @@
 
 use crate::analysis::tapping::{TapFeature, TapReport};
 use crate::ground::fmt::fmt_num;
+use crate::standards::drills::{DrillSource, PassingDrill};
 use std::fmt::Write as _;
 
 pub(crate) fn feature_name(f: TapFeature) -> &'static str {
@@ -11,6 +12,46 @@ pub(crate) fn feature_name(f: TapFeature) -> &'static str {
         TapFeature::Depth => "depth below",
         TapFeature::Spindle => "spindle",
     }
+}
+
+/// Where a suggested drill comes from, in words.
+pub(crate) fn drill_source_words(s: DrillSource) -> &'static str {
+    match s {
+        DrillSource::Iso2306Coarse => "ISO 2306's tap drill",
+        DrillSource::Iso2306Fine => "ISO 2306's fine-series tap drill",
+        DrillSource::MetricSeries => "the 0.1 mm drill nearest D1's middle",
+        DrillSource::InchGauge => "the inch drill nearest D1's middle",
+    }
+}
+
+/// The drill that would pass, in words: `Ø8.5 mm (ISO 2306's tap drill); D1's middle 8.526 mm`.
+pub(crate) fn passing_drill_words(d: &PassingDrill) -> String {
+    match (&d.name, d.diameter, d.source) {
+        (Some(name), Some(dia), Some(src)) => {
+            let inch = src == DrillSource::InchGauge;
+            format!(
+                "{} ({}{}); D1's middle {:.3} mm",
+                if inch {
+                    format!("{name}, {:.4} in", dia / crate::MM_PER_INCH)
+                } else {
+                    format!("Ø{name} mm")
+                },
+                drill_source_words(src),
+                if inch { format!(", {:.3} mm", dia) } else { String::new() },
+                d.middle
+            )
+        }
+        _ => format!("Ø{:.3} mm, D1's middle (no stocked drill lies within D1)", d.middle),
+    }
+}
+
+/// `a drill that passes: …` for a hole whose drill fails D1 or is not known; `None` when the
+/// drill passes (or the tap is a taper pipe tap).
+pub(crate) fn passing_drill_line(h: &crate::analysis::tapping::TappedHole) -> Option<String> {
+    let drill_bad = h.checks.iter().any(|k| k.feature == TapFeature::DrillDiameter && !k.ok);
+    let drill_unknown = h.drill.as_ref().is_none_or(|d| d.diameter.is_none());
+    let pd = h.drill_that_passes.as_ref().filter(|_| drill_bad || drill_unknown)?;
+    Some(format!("a drill that passes: {}", passing_drill_words(pd)))
 }
 
 /// The text `threadcheck tap` prints.
@@ -78,6 +119,9 @@ pub fn text(r: &TapReport) -> String {
                 if k.unit.is_empty() { String::new() } else { format!("{}; ", k.unit) },
                 k.note
             );
+        }
+        if let Some(line) = passing_drill_line(h) {
+            let _ = writeln!(s, "{line}");
         }
         let _ = writeln!(
             s,

@@ -412,8 +412,13 @@ $("tap-form").addEventListener("submit", async (ev) => {
     const rows = [];
     for (const h of r.holes) {
       for (const c of h.checks) {
+        // A failing drill: the drill that passes (its name and where it comes from).
+        const pass = h.drill_that_passes;
+        const better = c.feature === "drill_diameter" && !c.ok && pass && pass.name
+          ? ` — a drill that passes: ${pass.source === "inch-gauge" ? pass.name : "Ø" + pass.name + " mm"} (${pass.source}; D1's middle ${pass.middle.toFixed(3)} mm)`
+          : "";
         rows.push([`${h.cycle.code} line ${h.cycle.line}`, [h.tap.designation, "t"], [c.feature.replaceAll("_", " "), "t"],
-          fmt(c.value, 4), fmt(c.min, 4), fmt(c.max, 4), c.ok ? ["ok", "ok"] : ["OUT", "out"], [c.note, "t"]]);
+          fmt(c.value, 4), fmt(c.min, 4), fmt(c.max, 4), c.ok ? ["ok", "ok"] : ["OUT", "out"], [c.note + better, "t"]]);
       }
     }
     table($("tap-table"), ["cycle", "tap", "check", "value", "min", "max", "", "note"], rows);

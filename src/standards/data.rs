@@ -11,6 +11,7 @@ const BSP: &str = include_str!("../../profiles/bsp.toml");
 const UNIFIED: &str = include_str!("../../profiles/unified.toml");
 const TRAPEZOIDAL: &str = include_str!("../../profiles/trapezoidal.toml");
 const PIPE_TAPER: &str = include_str!("../../profiles/pipe-taper.toml");
+const DRILLS: &str = include_str!("../../profiles/drills.toml");
 
 /// Everything the standards module knows, from the embedded TOML files.
 #[derive(Debug)]
@@ -29,6 +30,35 @@ pub struct Catalog {
     pub tr: TrapezoidalTables,
     /// NPT (ASME B1.20.1, inches) and ISO 7-1 (mm) taper pipe sizes.
     pub pipe: PipeTables,
+    /// Tap drills (ISO 2306) and the inch drill gauge (`profiles/drills.toml`).
+    pub drills: DrillTables,
+}
+
+/// Drills for tapped holes (`profiles/drills.toml`).
+#[derive(Debug, Clone, Deserialize)]
+pub struct DrillTables {
+    /// ISO 2306's tap drills for the ISO metric coarse series.
+    pub iso2306_coarse: Iso2306Coarse,
+    /// The number and letter drill gauge, inches.
+    pub inch_drills: InchDrills,
+}
+
+/// ISO 2306's coarse-series tap drills, mm.
+#[derive(Debug, Clone, Deserialize)]
+pub struct Iso2306Coarse {
+    /// Nominal diameters.
+    pub d: Vec<f64>,
+    /// Their tap drills.
+    pub drill: Vec<f64>,
+}
+
+/// The number (#1 first) and letter (A first) drills, inches.
+#[derive(Debug, Clone, Deserialize)]
+pub struct InchDrills {
+    /// #1 to #60.
+    pub number: Vec<f64>,
+    /// A to Z.
+    pub letter: Vec<f64>,
 }
 
 /// Taper pipe thread sizes (`profiles/pipe-taper.toml`).
@@ -314,7 +344,8 @@ fn load() -> Result<Catalog, String> {
         toml::from_str(TRAPEZOIDAL).map_err(|e| format!("profiles/trapezoidal.toml: {e}"))?;
     let pipe: PipeTables =
         toml::from_str(PIPE_TAPER).map_err(|e| format!("profiles/pipe-taper.toml: {e}"))?;
-    Ok(Catalog { iso, bsw: w.bsw, bsf: w.bsf, bsp: b.size, unified: u.size, tr, pipe })
+    let drills: DrillTables = toml::from_str(DRILLS).map_err(|e| format!("profiles/drills.toml: {e}"))?;
+    Ok(Catalog { iso, bsw: w.bsw, bsf: w.bsf, bsp: b.size, unified: u.size, tr, pipe, drills })
 }
 
 /// The embedded catalogue. Parsing happens once; the files are part of the binary, and a unit
@@ -357,5 +388,10 @@ mod tests {
         assert!(c.iso.series.sizes.iter().any(|s| s.d == 68.0));
         assert_eq!(c.bsw.len(), 25);
         assert_eq!(c.bsp.len(), 20);
+        assert_eq!(c.drills.iso2306_coarse.d.len(), c.drills.iso2306_coarse.drill.len());
+        assert_eq!((c.drills.inch_drills.number.len(), c.drills.inch_drills.letter.len()), (60, 26));
+        // Each gauge runs one way: number drills shrink, letters grow.
+        assert!(c.drills.inch_drills.number.windows(2).all(|w| w[0] > w[1]));
+        assert!(c.drills.inch_drills.letter.windows(2).all(|w| w[0] < w[1]));
     }
 }

@@ -8,6 +8,7 @@
 
 pub mod data;
 pub mod designation;
+pub mod drills;
 pub mod tolerance;
 
 pub use data::{catalog, Catalog, UnifiedSize};
