@@ -738,7 +738,7 @@ impl PassesJob {
         };
         let text = {
             let mut s = header;
-            let row = |s: &mut String, p: &crate::gcode::passes::Pass| {
+            let row = |s: &mut String, p: &crate::toolpath::passes::Pass| {
                 let _ = writeln!(
                     s,
                     "  {:>4}  {:>5}  {:>9.4}  {:>9.4}  {:>9.4}  {:>9.4}  {:>5}",

@@ -61,6 +61,7 @@ mod report;
 mod request;
 mod serve;
 mod standards;
+mod toolpath;
 
 // Ground: the error, the plane's value types.
 pub use ground::cancel::{check as check_cancelled, Cancel};
@@ -81,13 +82,15 @@ pub use standards::{
 };
 pub use standards::{Feature, GrooveForm};
 
-// Toolpaths: generated plans and programs read as a control would.
-pub use gcode::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
+// Programs read as a control would.
 pub use gcode::{
     read_program, read_program_streaming, read_program_with, rewrite_words, Budget, DepthWord, Dialect,
     DialectFrom, GCodeSystem, HoleCycle, HoleKind, LinuxCncRelease, Operation, PassXWord, Program,
     ProgramUnits, ReadOptions, Spindle, SpindleDir, WordEdit, WordForm, WordMeans, XWords,
 };
+
+// Toolpaths: passes, generated plans, infeeds and depth schedules.
+pub use toolpath::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
 
 // Geometry: the insert, the sweep, the measurement.
 pub use geometry::boolean::UnionStrategy;

@@ -731,11 +731,11 @@ impl Args {
         }
     }
 
-    fn schedule(&self) -> Result<Option<crate::gcode::passes::Schedule>, Error> {
+    fn schedule(&self) -> Result<Option<crate::toolpath::passes::Schedule>, Error> {
         match (self.text("schedule")?, self.numbers("depths")?) {
             (Some(_), Some(_)) => Err(Error::Input("schedule and depths exclude each other".into())),
             (Some(s), None) => Ok(Some(s.parse()?)),
-            (None, Some(d)) => Ok(Some(crate::gcode::passes::Schedule::Explicit(d))),
+            (None, Some(d)) => Ok(Some(crate::toolpath::passes::Schedule::Explicit(d))),
             (None, None) => Ok(None),
         }
     }

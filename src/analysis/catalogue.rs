@@ -3,8 +3,8 @@
 //! insert, infeed and schedule asked for, in parallel.
 
 use crate::analysis::verify::{verify, InsertChoice, Verification, VerifySpec};
-use crate::gcode::passes::{InfeedChoice, Schedule};
 use crate::standards::{catalog, ThreadForm};
+use crate::toolpath::passes::{InfeedChoice, Schedule};
 use crate::Error;
 use rayon::prelude::*;
 

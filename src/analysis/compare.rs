@@ -7,8 +7,8 @@
 
 use crate::analysis::check::CheckFeature;
 use crate::analysis::verify::{verify, Verification, VerifySpec};
-use crate::gcode::passes::{Infeed, InfeedChoice, Schedule};
 use crate::ground::plane::deg;
+use crate::toolpath::passes::{Infeed, InfeedChoice, Schedule};
 use crate::Error;
 use serde::Serialize;
 
@@ -256,7 +256,7 @@ pub fn compare(base: &VerifySpec, modified: &[f64], choice: &CompareChoice) -> R
         Some(x) => x,
         None => {
             let mut s = base.clone();
-            s.infeed = Some(crate::gcode::passes::InfeedChoice::Radial);
+            s.infeed = Some(crate::toolpath::passes::InfeedChoice::Radial);
             s.schedule = Schedule::ConstantArea;
             verify(&s)?.final_x
         }

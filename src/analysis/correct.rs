@@ -7,8 +7,8 @@
 use crate::analysis::check::Verdict;
 use crate::analysis::correction::Correction;
 use crate::analysis::verify::{verify, Verification, VerifySpec};
-use crate::gcode::passes::Pass;
 use crate::standards::{ThreadForm, ThreadKind};
+use crate::toolpath::passes::Pass;
 use crate::Error;
 use serde::Serialize;
 

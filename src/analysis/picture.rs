@@ -4,7 +4,6 @@
 //! thread's full length, run-out included. `report/` draws these and computes nothing; the JSON
 //! carries the deviation samples.
 
-use crate::gcode::passes::Pass;
 use crate::geometry::boolean::UnionStrategy;
 use crate::geometry::insert::Insert;
 use crate::geometry::measure::{deviation_along, DeviationSample};
@@ -12,6 +11,7 @@ use crate::geometry::sweep::{full_length_window, sweep, Section, SweepSetup};
 use crate::ground::plane::{rad, Point};
 use crate::standards::tolerance::ThreadLimits;
 use crate::standards::{BasicThread, ProfileKind, ThreadKind};
+use crate::toolpath::passes::Pass;
 use crate::Error;
 use serde::Serialize;
 

@@ -2,7 +2,6 @@
 //! the as-cut thread, its measurement, the checks and the verdict.
 
 use crate::analysis::check::{checks, verdict, Check};
-use crate::gcode::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
 use crate::geometry::boolean::UnionStrategy;
 use crate::geometry::insert::{Insert, InsertKind};
 use crate::geometry::measure::{measure, MeasureSetup, Measurement};
@@ -10,6 +9,7 @@ use crate::geometry::sweep::{pass_metrics, sweep, PassMetrics, Section, SweepSet
 use crate::ground::bounds::MAX_DATA_FILE_BYTES;
 use crate::standards::tolerance::{limits_for, ThreadLimits};
 use crate::standards::{parse_designation, Designation, ParseOptions, ProfileKind, ThreadKind};
+use crate::toolpath::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
 use crate::{BasicThread, Error};
 use std::path::PathBuf;
 

@@ -4,9 +4,9 @@
 use super::lexer::{Past, PastKind};
 use super::motion::{Motion, RBlock};
 use super::Dialect;
-use crate::gcode::passes::Pass;
 use crate::gcode::SystemCode;
 use crate::ground::bounds::MAX_PASSES;
+use crate::toolpath::passes::Pass;
 use crate::Error;
 
 /// The motion G code of a block, after the modal codes were applied.
@@ -647,8 +647,8 @@ pub(crate) fn shifts(shift: Shift, depths: &[f64], dir: f64) -> Vec<f64> {
             depths.iter().map(|d| dir * d * t).collect()
         }
         Shift::Alternating(a) => {
-            let infeed = crate::gcode::passes::Infeed::Alternating { angle: a };
-            crate::gcode::passes::infeed_offsets(infeed, depths, dir)
+            let infeed = crate::toolpath::passes::Infeed::Alternating { angle: a };
+            crate::toolpath::passes::infeed_offsets(infeed, depths, dir)
         }
     }
 }

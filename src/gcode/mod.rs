@@ -28,11 +28,11 @@ mod lexer;
 mod linuxcnc;
 mod motion;
 mod okuma;
-pub mod passes;
+
 mod sinumerik;
 
-use crate::gcode::passes::Pass;
 use crate::ground::note::{Note, NoteKind};
+use crate::toolpath::passes::Pass;
 use crate::Error;
 use serde::Serialize;
 

@@ -2,9 +2,9 @@
 //! threading operations with their passes.
 
 use super::{Dialect, Operation, ProgramUnits, Spindle, XWords};
-use crate::gcode::passes::Pass;
 use crate::ground::bounds::MAX_PASSES;
 use crate::ground::note::{Note, NoteKind, Notes};
+use crate::toolpath::passes::Pass;
 use crate::Error;
 use serde::Serialize;
 

@@ -11,7 +11,7 @@
 use super::cycles::{self, Shift};
 use super::dialect::{Ctx, Flow, Rules};
 use super::motion::{Motion, RBlock, RWord};
-use crate::gcode::passes::Pass;
+use crate::toolpath::passes::Pass;
 use crate::Error;
 
 /// Sinumerik state: the start offset SF, the feed in force and the modal cycle `MCALL` set.

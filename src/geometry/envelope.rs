@@ -641,28 +641,38 @@ mod tests {
     #[test]
     fn runs_meeting_in_concave_arcs_leave_no_gap() {
         use crate::ground::plane::rad;
-        let mut spec = crate::analysis::verify::VerifySpec::new("BSW 7/16 medium");
-        spec.internal = true;
-        spec.insert = crate::analysis::verify::InsertChoice::Full;
-        spec.infeed = Some("alternating:27.5".parse().unwrap());
-        spec.schedule = crate::gcode::passes::Schedule::ConstantDepth;
-        let v = crate::analysis::verify::verify(&spec).unwrap();
+        use crate::standards::{parse_designation, ParseOptions, ThreadKind};
+        use crate::toolpath::passes::{PlanSpec, Schedule};
+        // BSW 7/16 (14 tpi): a full-profile nut insert, twelve alternating constant-depth passes
+        // from the basic minor diameter to the major.
+        let t = parse_designation("BSW 7/16 medium", ParseOptions::default()).unwrap().thread;
+        let kind = ThreadKind::Internal;
+        let insert =
+            crate::geometry::insert::Insert::full_profile(&t, kind, crate::ground::plane::DEFAULT_TOLERANCE);
+        let bore = t.nominal_diameter - 1.280654 * t.pitch;
+        let passes = PlanSpec {
+            infeed: crate::toolpath::passes::Infeed::Alternating { angle: 27.5 },
+            schedule: Schedule::ConstantDepth,
+            ..PlanSpec::new(kind, t.pitch, bore, t.nominal_diameter, 12)
+        }
+        .generate()
+        .unwrap();
         let chain: Vec<Point> =
-            bottom_chain(&v.insert.outline).unwrap().iter().rev().map(|p| Point::new(-p.z, p.r)).collect();
+            bottom_chain(&insert.outline).unwrap().iter().rev().map(|p| Point::new(-p.z, p.r)).collect();
         assert!(convex_runs(&chain).len() > MAX_RUNS);
         let setup = crate::geometry::sweep::SweepSetup {
-            kind: v.kind,
-            insert: &v.insert,
-            blank_diameter: v.blank_diameter,
-            pitch: v.designation.thread.pitch,
+            kind,
+            insert: &insert,
+            blank_diameter: bore,
+            pitch: t.pitch,
         };
-        let w = v.section.window;
-        let tips: Vec<(f64, f64)> = crate::geometry::sweep::imprints(&setup, &v.passes, w)
+        let w = crate::geometry::sweep::Window::around(-5.0 * t.pitch, t.pitch, 4.0);
+        let tips: Vec<(f64, f64)> = crate::geometry::sweep::imprints(&setup, &passes, w)
             .unwrap()
             .iter()
             .map(|im| (im.z, -rad(im.x)))
             .collect();
-        let surface = -rad(v.blank_diameter);
+        let surface = -rad(bore);
         let one = lower_envelope_runs(&chain, &tips, (w.z_min, w.z_max), surface, usize::MAX);
         assert_same(&one, &merge_each(&chain, &tips, w.z_min, w.z_max, surface), "BSW 7/16 nut");
     }

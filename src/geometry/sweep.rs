@@ -5,13 +5,13 @@
 //! the cut and the window only a few pitches wide, which keeps the backend's snapping grid in the
 //! nanometres (see the private `boolean` module).
 
-use crate::gcode::passes::Pass;
 use crate::geometry::boolean::{union_all, Region, UnionStrategy};
 use crate::geometry::insert::Insert;
 use crate::geometry::parry::Line;
 use crate::ground::bounds::MAX_IMPRINTS;
 use crate::ground::plane::{rad, Point};
 use crate::standards::ThreadKind;
+use crate::toolpath::passes::Pass;
 use crate::Error;
 use serde::Serialize;
 
@@ -759,7 +759,7 @@ pub(crate) fn swept_disk(moves: &[(Point, Point)], radius: f64, tolerance: f64) 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gcode::passes::{Infeed, PlanSpec};
+    use crate::toolpath::passes::{Infeed, PlanSpec};
 
     /// The envelope metrics and the polygon-boolean metrics measure the same chips: the areas to
     /// the booleans' snapping (1e-8 mm²), the engaged edge in total and the thickness to 1 nm,

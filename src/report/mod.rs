@@ -13,10 +13,10 @@ pub mod threadmill;
 
 use crate::analysis::check::{CheckFeature, Verdict};
 use crate::analysis::verify::Verification;
-use crate::gcode::passes::{Infeed, Schedule};
 pub(crate) use crate::ground::fmt::fmt_num;
 use crate::ground::plane::rad;
 use crate::standards::{Hand, ThreadKind};
+use crate::toolpath::passes::{Infeed, Schedule};
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -937,7 +937,7 @@ pub struct PassesOperation<'a> {
     /// Warnings and assumed defaults.
     pub notes: &'a [crate::ground::note::Note],
     /// Its passes.
-    pub passes: &'a [crate::gcode::passes::Pass],
+    pub passes: &'a [crate::toolpath::passes::Pass],
 }
 
 /// `passes --json` (docs/json.md).
@@ -950,7 +950,7 @@ pub struct PassesReport<'a> {
     /// Smallest Z any pass reaches, mm.
     pub thread_end: f64,
     /// Every pass in cutting order.
-    pub passes: &'a [crate::gcode::passes::Pass],
+    pub passes: &'a [crate::toolpath::passes::Pass],
     /// A program's passes by operation.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub operations: Option<Vec<PassesOperation<'a>>>,
@@ -966,7 +966,7 @@ impl<'a> PassesReport<'a> {
     /// The report of `passes`, grouped by `operations` when they come from a program.
     pub fn new(
         thread: Option<ThreadReport<'a>>,
-        passes: &'a [crate::gcode::passes::Pass],
+        passes: &'a [crate::toolpath::passes::Pass],
         operations: Option<&'a [crate::gcode::Operation]>,
         program: Option<(&'a [crate::ground::note::Note], usize)>,
     ) -> Self {
