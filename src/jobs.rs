@@ -225,8 +225,8 @@ impl VerifyJob {
         // Render everything before writing anything, so a failure leaves no file half-done.
         let json_text =
             self.json.as_ref().map(|_| pretty(&crate::report::VerifyReport::of(&v))).transpose()?;
-        let svg_text = self.svg.as_ref().map(|_| crate::report::svg::verify_svg(&v));
-        let html_text = self.html.as_ref().map(|_| crate::report::html::verify_html(&v));
+        let svg_text = self.svg.as_ref().map(|_| crate::report::verify::verify_svg(&v));
+        let html_text = self.html.as_ref().map(|_| crate::report::verify::verify_html(&v));
         let text = crate::report::verify_text(&v);
         self.write(sink, json_text, svg_text, html_text, None, text, outcome)
     }
@@ -299,8 +299,8 @@ impl VerifyJob {
         let outcome = if pv.pass() { Outcome::Pass } else { Outcome::OutOfTolerance };
         let json_text =
             self.json.as_ref().map(|_| pretty(&crate::report::ProgramReport::of(&pv))).transpose()?;
-        let svg_text = self.svg.as_ref().map(|_| crate::report::svg::program_svg(&pv));
-        let html_text = self.html.as_ref().map(|_| crate::report::html::program_html(&pv));
+        let svg_text = self.svg.as_ref().map(|_| crate::report::verify::program_svg(&pv));
+        let html_text = self.html.as_ref().map(|_| crate::report::verify::program_html(&pv));
         let report = crate::report::program_text(&pv);
         let fixed = self.fix.as_ref().map(|_| fixed_program(&pv, &text, &shown)).transpose()?;
         match (self.fix.as_deref(), fixed) {
@@ -818,7 +818,7 @@ impl CompareJob {
         let md = self.markdown.as_ref().map(|_| crate::report::compare::markdown_report(&c));
         let json_text =
             self.json.as_ref().map(|_| pretty(&crate::report::compare::CompareReport::of(&c))).transpose()?;
-        let html = self.html.as_ref().map(|_| crate::report::html::compare_html(&c));
+        let html = self.html.as_ref().map(|_| crate::report::compare::compare_html(&c));
         let files = [(&self.markdown, md), (&self.html, html)];
         Ok((
             write_outputs(
@@ -1020,8 +1020,8 @@ impl ThreadMillJob {
             .as_ref()
             .map(|_| pretty(&crate::report::threadmill::ThreadMillJson::of(&r)))
             .transpose()?;
-        let svg_text = self.svg.as_ref().map(|_| crate::report::svg::threadmill_svg(&r));
-        let html_text = self.html.as_ref().map(|_| crate::report::html::threadmill_html(&r));
+        let svg_text = self.svg.as_ref().map(|_| crate::report::threadmill::threadmill_svg(&r));
+        let html_text = self.html.as_ref().map(|_| crate::report::threadmill::threadmill_html(&r));
         let inputs = [std::path::PathBuf::from(&self.spec.program.1)];
         let text = crate::report::threadmill::text(&r);
         let files = [(&self.svg, svg_text), (&self.html, html_text)];
@@ -1053,8 +1053,8 @@ impl TapJob {
         let r = crate::analysis::tapping::tapping(&self.spec)?;
         let outcome = if r.pass { Outcome::Pass } else { Outcome::OutOfTolerance };
         let json_text = self.json.as_ref().map(|_| pretty(&r)).transpose()?;
-        let svg_text = self.svg.as_ref().map(|_| crate::report::svg::tap_svg(&r));
-        let html_text = self.html.as_ref().map(|_| crate::report::html::tap_html(&r));
+        let svg_text = self.svg.as_ref().map(|_| crate::report::tapping::tap_svg(&r));
+        let html_text = self.html.as_ref().map(|_| crate::report::tapping::tap_html(&r));
         let inputs = [std::path::PathBuf::from(&self.spec.program.1)];
         let text = crate::report::tapping::text(&r);
         let files = [(&self.svg, svg_text), (&self.html, html_text)];
@@ -1082,7 +1082,7 @@ impl MillJob {
     /// Runs the job with its files going to `sink`.
     pub(crate) fn run_to(&self, sink: &mut Sink) -> Result<(String, Outcome), Error> {
         let r = crate::analysis::mill::mill(&self.spec)?;
-        let svg_text = self.svg.as_ref().map(|_| crate::report::svg::mill_svg(&r));
+        let svg_text = self.svg.as_ref().map(|_| crate::report::mill::mill_svg(&r));
         let json_text = self.json.as_ref().map(|_| pretty(&r)).transpose()?;
         let outcome = if r.verdict == crate::analysis::check::Verdict::Pass {
             Outcome::Pass

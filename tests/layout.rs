@@ -182,3 +182,18 @@ fn each_backend_has_one_door() {
     }
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
 }
+
+/// `report/` is cut one way, by command: no file named after a medium, and the shared drawing
+/// kit in `kit.rs`.
+#[test]
+fn report_is_cut_by_command() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/report");
+    let names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    for medium in ["svg.rs", "html.rs", "text.rs", "json.rs", "markdown.rs"] {
+        assert!(!names.iter().any(|n| n == medium), "report/{medium}: a file named after a medium");
+    }
+    assert!(names.iter().any(|n| n == "kit.rs"), "report/kit.rs, the shared drawing kit, is missing");
+}

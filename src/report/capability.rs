@@ -3,7 +3,7 @@
 
 use crate::analysis::capability::{CapabilityReport, Histogram, SizeCapability};
 use crate::analysis::check::CheckFeature;
-use crate::report::html::{esc, page};
+use crate::report::kit::{esc, page};
 use crate::report::{correction_text, CorrectionReport};
 use serde::Serialize;
 use std::fmt::Write as _;

@@ -1,6 +1,7 @@
 //! The comparison of infeed strategies for a reader: the text and Markdown tables, the JSON
 //! report, and the committed infeed-comparison page.
 
+use super::kit::*;
 use crate::analysis::compare::{Comparison, Ground, Recommendation, Summary};
 use crate::standards::ThreadKind;
 use std::fmt::Write as _;
@@ -115,7 +116,7 @@ pub fn text(c: &Comparison) -> String {
             v.blank_diameter,
             c.final_x
         );
-        for l in super::svg::wrap(&head, 100) {
+        for l in super::kit::wrap(&head, 100) {
             let _ = writeln!(s, "{l}");
         }
         s.push('\n');
@@ -163,7 +164,7 @@ pub fn text(c: &Comparison) -> String {
     }
     if let Some(r) = &c.recommended {
         s.push('\n');
-        for l in super::svg::wrap(&recommendation_text(r), 100) {
+        for l in super::kit::wrap(&recommendation_text(r), 100) {
             let _ = writeln!(s, "{l}");
         }
     }
@@ -261,7 +262,7 @@ pub fn infeed_comparison_page(sections: &[InfeedSection<'_>]) -> (String, Vec<(S
                         "infeed-{slug}-{islug}-{}.svg",
                         if label == "radial" { "radial" } else { "flank" }
                     );
-                    pictures.push((name.clone(), super::svg::verify_svg(v)));
+                    pictures.push((name.clone(), super::verify::verify_svg(v)));
                     let _ = writeln!(md, "![{d} {iname}, {label} infeed, {sched}]({name})");
                 }
             }
@@ -327,4 +328,64 @@ pub fn infeed_comparison_page(sections: &[InfeedSection<'_>]) -> (String, Vec<(S
          requirements (R min = 0.125·P, d3 min); where those matter, use a full-profile insert.\n",
     );
     (md, pictures)
+}
+
+/// The HTML report of a comparison: the table of strategies and each one's picture.
+pub fn compare_html(c: &Comparison) -> String {
+    let Some((_, first)) = c.runs.first() else {
+        return page("threadcheck: comparison", "<p>no strategy</p>\n");
+    };
+    let title = format!("threadcheck: infeed comparison, {} {}", first.designation.text, first.kind.name());
+    let mut body = format!("<h1>{}</h1>\n", esc(&title));
+    let _ = writeln!(
+        body,
+        "<p>Every strategy ends at X{:.4} with insert {}.</p>",
+        c.final_x,
+        esc(&first.insert.name)
+    );
+    if let Some(r) = &c.recommended {
+        let _ = writeln!(
+            body,
+            "<p class=\"verdict\">{}</p>",
+            esc(&crate::report::compare::recommendation_text(r))
+        );
+    }
+    body.push_str("<table><tr><th>infeed</th><th>schedule</th><th>passes</th><th>first chip mm²</th><th>largest chip mm²</th><th>last chip mm²</th><th>largest/smallest</th><th>two-flank passes</th><th>chip behind the tip</th><th>d2 mm</th><th>minor mm</th><th>flanks °</th><th>verdict</th></tr>\n");
+    for (m, v) in &c.runs {
+        let why: Vec<&str> = m.failed.iter().map(|f| f.words(v.kind)).collect();
+        let _ = writeln!(
+            body,
+            "<tr><td>{}</td><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.1}</td><td class=\"n\">{}</td><td class=\"n\">{:.0}%</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.2} / {:.2}</td><td class=\"{}\">{}</td></tr>",
+            esc(&m.infeed),
+            esc(&m.schedule),
+            m.passes,
+            m.chip_first,
+            m.chip_max,
+            m.chip_last,
+            m.chip_spread,
+            m.two_flank_passes,
+            100.0 * m.trailing_share,
+            m.pitch_diameter,
+            m.minor_diameter,
+            m.flank_angles[0],
+            m.flank_angles[1],
+            if m.pass { "ok" } else { "out" },
+            if m.pass { "in tolerance".to_string() } else { esc(&format!("OUT: {}", why.join(", "))) }
+        );
+    }
+    body.push_str("</table>\n");
+    // One picture per infeed: its run with the recommended schedule (else its first).
+    let schedule = c.recommended.as_ref().map(|r| r.schedule.as_str());
+    let mut shown: Vec<&str> = Vec::new();
+    for run in &c.runs {
+        if shown.contains(&run.0.infeed.as_str()) {
+            continue;
+        }
+        let mut same = c.runs.iter().filter(|(o, _)| o.infeed == run.0.infeed);
+        let (m, v) = same.find(|(o, _)| Some(o.schedule.as_str()) == schedule).unwrap_or(run);
+        shown.push(&m.infeed);
+        let _ = writeln!(body, "<h2>{} infeed, {}</h2>", esc(&m.infeed), esc(&m.schedule));
+        let _ = writeln!(body, "<div class=\"pic\">{}</div>", crate::report::verify::verify_svg(v));
+    }
+    page(&title, &body)
 }

@@ -3,7 +3,7 @@
 
 use crate::analysis::check::Verdict;
 use crate::analysis::correct::{CorrectReport, MeasuredState, Pickup, WearOffset};
-use crate::report::html::{esc, page};
+use crate::report::kit::{esc, page};
 use crate::report::{correction_text, CorrectionReport};
 use crate::standards::tolerance::Limit;
 use serde::Serialize;

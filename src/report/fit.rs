@@ -61,7 +61,7 @@ pub fn text(r: &FitReport) -> String {
 /// µm (red where they interfere); both parts' diameters against their limits; the verdict in
 /// words.
 pub fn svg(r: &FitReport) -> String {
-    use super::svg::{axes, panel, text, Frame};
+    use super::kit::{axes, panel, text, Frame};
     use svg::node::element::{Circle, Line, Polygon, Rectangle};
     const GOOD: &str = "#1d7a36";
     const BAD: &str = "#c62828";

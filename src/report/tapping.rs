@@ -1,9 +1,12 @@
 //! The tapping check's text (its JSON is the report itself, `TapReport` derives `Serialize`).
 
+use super::kit::*;
 use crate::analysis::tapping::{TapFeature, TapReport};
 use crate::ground::fmt::fmt_num;
 use crate::standards::drills::{DrillSource, PassingDrill};
 use std::fmt::Write as _;
+use svg::node::element::{Group, Line, Polygon, Rectangle};
+use svg::Document;
 
 pub(crate) fn feature_name(f: TapFeature) -> &'static str {
     match f {
@@ -145,4 +148,391 @@ pub fn text(r: &TapReport) -> String {
         let _ = writeln!(s, "note: {n}");
     }
     s
+}
+
+/// Most tapped holes drawn side by side; the rest are counted under the picture.
+const TAP_PANELS: usize = 4;
+
+/// `threadcheck tap --svg`: each tapped hole's axial section, hole axis up, true to scale (a
+/// scale bar under the holes): the part in grey, the hole in white (the tap's thread, its
+/// chamfer, the plain bore and the drill's point), D1's limits dashed blue, the drill's diameter
+/// dimensioned across the plain bore (red when out of D1), the tap's and the drill's bottoms,
+/// the checks with their limits, and the drill that would pass.
+pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
+    use super::kit::text;
+    use crate::analysis::tapping::TapFeature;
+    use crate::ground::fmt::fmt_num;
+    let shown: Vec<_> = r.holes.iter().take(TAP_PANELS).collect();
+    let panel_w = 300.0;
+    let w = (40.0 + panel_w * shown.len().max(1) as f64).max(760.0);
+    let (box_h, box_w) = (420.0, panel_w - 120.0);
+    // One scale for every panel: the deepest hole's height and the widest drill fit.
+    let span = |hole: &crate::analysis::tapping::TappedHole| {
+        let z = hole.wall.iter().map(|p| p.z);
+        let (lo, hi) = z.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+        (
+            if hole.wall.is_empty() { 0.0 } else { hi - lo },
+            2.0 * hole.wall.iter().map(|p| p.r).fold(0.0, f64::max),
+        )
+    };
+    let (tall, wide) =
+        shown.iter().map(|h| span(h)).fold((1e-3f64, 1e-3f64), |a, b| (a.0.max(b.0), a.1.max(b.1)));
+    let s = (box_h / tall).min(box_w / (1.6 * wide));
+    let y0 = 120.0;
+    // Below the holes: D1, the checks with their limits, the drill that passes; the picture
+    // ends under the longest of these.
+    let text_top = y0 + (tall * s).max(60.0) + 30.0;
+    let mut text_bottom = text_top;
+    let mut holes = Vec::new();
+    let verdict = if r.pass {
+        "IN TOLERANCE".to_string()
+    } else {
+        let bad = r.holes.iter().filter(|h| !h.pass).count();
+        format!("OUT OF TOLERANCE: {bad} of {} tapping cycles", r.holes.len())
+    };
+    for (k, hole) in shown.iter().enumerate() {
+        let x0 = 20.0 + panel_w * k as f64;
+        let cx = x0 + 0.5 * box_w + 10.0;
+        let c = &hole.cycle;
+        let mut g = Group::new().set("id", format!("hole-{k}"));
+        g = g.add(
+            text(
+                x0,
+                80.0,
+                12.0,
+                format!("{} line {}{}", c.code, c.line, c.tool.map_or(String::new(), |t| format!(", T{t}"))),
+            )
+            .set("font-weight", "bold"),
+        );
+        g = g.add(text(x0, 96.0, 12.0, format!("tap {}", hole.tap.designation)));
+        let drill_check = hole.checks.iter().find(|k| k.feature == TapFeature::DrillDiameter);
+        let drill_ok = drill_check.is_none_or(|k| k.ok);
+        let d1 = &hole.tap.minor_diameter;
+        if hole.wall.is_empty() {
+            g = g.add(text(x0, y0 + 20.0, 12.0, "the drill's diameter or a bottom"));
+            g = g.add(text(x0, y0 + 36.0, 12.0, "is not known: not drawn"));
+        } else {
+            let top = hole.wall.first().map_or(0.0, |p| p.z);
+            let bottom = hole.wall.last().map_or(0.0, |p| p.z);
+            let y = |z: f64| y0 + (top - z) * s;
+            let x = |r: f64| cx + r * s;
+            let half_w = 0.8 * wide * s;
+            g = g.add(
+                Rectangle::new()
+                    .set("x", format!("{:.2}", cx - half_w))
+                    .set("y", format!("{y0:.2}"))
+                    .set("width", format!("{:.2}", 2.0 * half_w))
+                    .set("height", format!("{:.2}", y(bottom) - y0 + 12.0))
+                    .set("fill", "#b8c7d9"),
+            );
+            let mut pts: Vec<String> =
+                hole.wall.iter().map(|p| format!("{:.2},{:.2}", x(p.r), y(p.z))).collect();
+            pts.extend(hole.wall.iter().rev().map(|p| format!("{:.2},{:.2}", x(-p.r), y(p.z))));
+            g = g.add(
+                Polygon::new()
+                    .set("id", format!("hole-{k}-wall"))
+                    .set("points", pts.join(" "))
+                    .set("fill", "white")
+                    .set("stroke", "black")
+                    .set("stroke-width", 0.8),
+            );
+            for (v, which) in [(d1.min, "min"), (d1.max, "max")] {
+                let Some(v) = v else { continue };
+                for (sign, side) in [(-1.0, "left"), (1.0, "right")] {
+                    g = g.add(
+                        Line::new()
+                            .set("id", format!("hole-{k}-d1-{which}-{side}"))
+                            .set("x1", format!("{:.3}", x(sign * 0.5 * v)))
+                            .set("x2", format!("{:.3}", x(sign * 0.5 * v)))
+                            .set("y1", format!("{y0:.2}"))
+                            .set("y2", format!("{:.2}", y(bottom)))
+                            .set("stroke", "#1f5fa8")
+                            .set("stroke-width", 0.7)
+                            .set("stroke-dasharray", "3 3"),
+                    );
+                }
+            }
+            let mark = |g: Group, z: f64, colour: &str, label: String| -> Group {
+                g.add(
+                    Line::new()
+                        .set("x1", format!("{:.2}", cx - half_w))
+                        .set("x2", format!("{:.2}", cx + half_w + 6.0))
+                        .set("y1", format!("{:.2}", y(z)))
+                        .set("y2", format!("{:.2}", y(z)))
+                        .set("stroke", colour.to_string())
+                        .set("stroke-width", 0.8)
+                        .set("stroke-dasharray", "5 3"),
+                )
+                .add(text(cx + half_w + 8.0, y(z) + 4.0, 11.0, label).set("fill", colour.to_string()))
+            };
+            if let Some(tz) = c.bottom {
+                g = mark(g, tz, "#333", format!("tap Z{}", fmt_num(tz)));
+                if let Some(f) = hole.tap.full_thread_z {
+                    g = mark(g, f, "#777", format!("full Z{}", fmt_num(f)));
+                }
+            }
+            if let Some(db) = hole.drill.as_ref().and_then(|d| d.cycle.bottom) {
+                g = mark(g, db, "#a35a00", format!("drill Z{}", fmt_num(db)));
+            }
+            // The drill's diameter across the plain bore, between the tap's bottom and the
+            // drill's point, with arrowheads.
+            if let (Some(dia), Some(tz), Some(db)) = (
+                hole.drill.as_ref().and_then(|d| d.diameter),
+                c.bottom,
+                hole.drill.as_ref().and_then(|d| d.cycle.bottom),
+            ) {
+                let point = db + 0.5 * dia / (59f64).to_radians().tan();
+                let yd = y(0.5 * (tz.min(top) + point.max(db)));
+                let colour = if drill_ok { "#1f5fbf" } else { FAIL };
+                let (xa, xb) = (x(-0.5 * dia), x(0.5 * dia));
+                let head = |tip: f64, dir: f64| {
+                    Polygon::new()
+                        .set(
+                            "points",
+                            format!(
+                                "{tip:.2},{yd:.2} {:.2},{:.2} {:.2},{:.2}",
+                                tip + 7.0 * dir,
+                                yd - 3.0,
+                                tip + 7.0 * dir,
+                                yd + 3.0
+                            ),
+                        )
+                        .set("fill", colour)
+                };
+                g = g
+                    .add(
+                        Line::new()
+                            .set("id", format!("hole-{k}-drill-dimension"))
+                            .set("x1", format!("{xa:.3}"))
+                            .set("x2", format!("{xb:.3}"))
+                            .set("y1", format!("{yd:.2}"))
+                            .set("y2", format!("{yd:.2}"))
+                            .set("stroke", colour)
+                            .set("stroke-width", 1.0),
+                    )
+                    .add(head(xa, 1.0))
+                    .add(head(xb, -1.0))
+                    .add(
+                        text(cx, yd - 5.0, 11.0, format!("Ø{}", fmt_num(dia)))
+                            .set("text-anchor", "middle")
+                            .set("fill", colour)
+                            .set("font-weight", "bold"),
+                    );
+            }
+            g = g.add(
+                text(cx + half_w + 8.0, y0 + 10.0, 11.0, format!("top Z{}", fmt_num(top)))
+                    .set("fill", "#555"),
+            );
+        }
+        // Under the hole: the drill against D1, the checks with their limits, a drill that passes.
+        let mut ty = text_top;
+        let line = |g: Group, ty: &mut f64, size: f64, colour: &str, bold: bool, s: String| -> Group {
+            let t = text(x0, *ty, size, s).set("fill", colour.to_string());
+            *ty += if size >= 12.0 { 15.0 } else { 19.0 };
+            g.add(if bold { t.set("font-weight", "bold") } else { t })
+        };
+        g = line(
+            g,
+            &mut ty,
+            11.0,
+            "#1f5fa8",
+            false,
+            format!("D1 of {}: {}", hole.tap.designation, fmt_limits(d1.min, d1.max, " mm")),
+        );
+        ty += 4.0;
+        for ck in &hole.checks {
+            let word = crate::report::tapping::feature_name(ck.feature);
+            let val = ck.value.map_or(String::new(), |v| format!(" {}", fmt_num((v * 1e4).round() / 1e4)));
+            let unit = if ck.value.is_some() && !ck.unit.is_empty() {
+                format!(" {}", ck.unit)
+            } else {
+                String::new()
+            };
+            let colour = if ck.ok { ZONE } else { FAIL };
+            g = line(
+                g,
+                &mut ty,
+                12.0,
+                colour,
+                !ck.ok,
+                format!("{} {word}{val}{unit}", if ck.ok { "✓" } else { "✗" }),
+            );
+            let lim = if ck.min == ck.max {
+                ck.min.map_or(String::new(), |v| format!("must be {}", fmt_num(v)))
+            } else {
+                match (ck.min, ck.max) {
+                    (Some(a), Some(b)) => format!("limits {} – {}", fmt_limit(a), fmt_limit(b)),
+                    (Some(a), None) => format!("at least {}", fmt_num(a)),
+                    (None, Some(b)) => format!("at most {}", fmt_num(b)),
+                    (None, None) => String::new(),
+                }
+            };
+            let off = if ck.ok || ck.value.is_none() {
+                String::new()
+            } else if ck.unit == "mm/min" {
+                format!(", {:+.1} mm/min", ck.deviation)
+            } else {
+                format!(", {:+.1} µm", ck.deviation)
+            };
+            let lim = if lim.is_empty() || ck.unit.is_empty() { lim } else { format!("{lim} {}", ck.unit) };
+            if !lim.is_empty() || !off.is_empty() {
+                g = line(
+                    g,
+                    &mut ty,
+                    10.0,
+                    if ck.ok { "#555" } else { FAIL },
+                    false,
+                    format!("    {lim}{off}"),
+                );
+            }
+        }
+        let drill_unknown = hole.drill.as_ref().is_none_or(|d| d.diameter.is_none());
+        if let Some(pd) = hole.drill_that_passes.as_ref() {
+            ty += 6.0;
+            let head = if drill_ok && !drill_unknown { "the drill for D1" } else { "a drill that passes" };
+            let (what, why) = match (&pd.name, pd.diameter, pd.source) {
+                (Some(name), Some(dia), Some(src)) => (
+                    if src == crate::standards::drills::DrillSource::InchGauge {
+                        format!("{head}: {name} ({:.4} in)", dia / crate::MM_PER_INCH)
+                    } else {
+                        format!("{head}: Ø{name} mm")
+                    },
+                    format!(
+                        "{}; D1's middle {:.3}",
+                        crate::report::tapping::drill_source_words(src),
+                        pd.middle
+                    ),
+                ),
+                _ => (
+                    format!("{head}: Ø{:.3} mm", pd.middle),
+                    "D1's middle; no stocked drill lies within D1".into(),
+                ),
+            };
+            let colour = if drill_ok && !drill_unknown { "#333" } else { ZONE };
+            g = g.add(
+                text(x0, ty, 12.0, what)
+                    .set("fill", colour)
+                    .set("font-weight", "bold")
+                    .set("id", format!("hole-{k}-passing-drill")),
+            );
+            ty += 14.0;
+            g = g.add(text(x0, ty, 10.0, why).set("fill", "#555"));
+        }
+        text_bottom = text_bottom.max(ty);
+        holes.push(g);
+    }
+    let h = text_bottom + 70.0;
+    let mut doc = Document::new().set("viewBox", (0, 0, w, h)).set("width", w).set("height", h);
+    doc = doc
+        .add(Rectangle::new().set("width", w).set("height", h).set("fill", "white"))
+        .add(
+            text(20.0, 28.0, 16.0, format!("{}: tapped holes", file_name(&r.program)))
+                .set("font-weight", "bold"),
+        )
+        .add(
+            text(20.0, 50.0, 14.0, verdict)
+                .set("font-weight", "bold")
+                .set("fill", if r.pass { ZONE } else { FAIL }),
+        );
+    for g in holes {
+        doc = doc.add(g);
+    }
+    // The scale bar: one scale for every hole.
+    let bar = scale_bar_mm(s, 80.0);
+    let (bx, by) = (20.0, h - 40.0);
+    doc = doc
+        .add(
+            Line::new()
+                .set("id", "scale-bar")
+                .set("data-mm", bar)
+                .set("x1", bx)
+                .set("x2", format!("{:.3}", bx + bar * s))
+                .set("y1", by)
+                .set("y2", by)
+                .set("stroke", "black")
+                .set("stroke-width", 2),
+        )
+        .add(text(bx + bar * s + 8.0, by + 4.0, 11.0, format!("{} mm", fmt_num(bar))));
+    let mut foot =
+        String::from("D1 min and max of the tap's class dashed blue; the drill's point drawn at 118°");
+    if r.holes.len() > shown.len() {
+        foot = format!("{foot}; {} more tapping cycles in the text and JSON", r.holes.len() - shown.len());
+    }
+    doc = doc.add(text(20.0, h - 14.0, 11.0, foot).set("fill", "#555"));
+    doc.to_string()
+}
+
+/// `threadcheck tap --html`: one self-contained page: the verdict, the holes' sections, and per
+/// tapping cycle its tap, its drill, its checks and its notes.
+pub fn tap_html(r: &crate::analysis::tapping::TapReport) -> String {
+    use crate::ground::fmt::fmt_num;
+    let mut s = String::new();
+    let (cls, words) = if r.pass { ("ok", "IN TOLERANCE") } else { ("out", "OUT OF TOLERANCE") };
+    let _ = writeln!(s, "<h1>{}: tapped holes</h1>", esc(&r.program));
+    let _ = writeln!(s, "<p class=\"verdict {cls}\">{words}</p>");
+    let _ = writeln!(
+        s,
+        "<p>{} tapping cycles, {} drilling cycles, read as {}</p>",
+        r.holes.len(),
+        r.drills,
+        esc(r.dialect.name())
+    );
+    let _ = writeln!(s, "<div class=\"pic\">{}</div>", tap_svg(r));
+    for h in &r.holes {
+        let c = &h.cycle;
+        let _ = writeln!(
+            s,
+            "<h2>{} at line {}{}: tap {}</h2>",
+            esc(&c.code),
+            c.line,
+            c.tool.map_or(String::new(), |t| format!(", T{t}")),
+            esc(&h.tap.designation)
+        );
+        let drill = match &h.drill {
+            Some(d) => format!(
+                "drilled by {} at line {}{}{}",
+                d.cycle.code,
+                d.cycle.line,
+                d.diameter.map_or(String::new(), |v| format!(", Ø{}", fmt_num(v))),
+                d.cycle.bottom.map_or(String::new(), |z| format!(", bottom Z{}", fmt_num(z)))
+            ),
+            None => "no drilling cycle at this position before it".into(),
+        };
+        let _ = writeln!(s, "<p>{}</p>", esc(&drill));
+        s.push_str("<table><tr><th>check</th><th>value</th><th>min</th><th>max</th><th>deviation</th><th>ok</th><th>note</th></tr>\n");
+        for k in &h.checks {
+            let num = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.4}"));
+            let dev = if k.ok {
+                String::new()
+            } else if k.unit == "mm/min" {
+                format!("{:+.1} mm/min", k.deviation)
+            } else if k.unit.is_empty() {
+                "wrong".into()
+            } else {
+                format!("{:+.1} µm", k.deviation)
+            };
+            let (cls, word) = if k.ok { ("ok", "ok") } else { ("out", "OUT") };
+            let _ = writeln!(
+                s,
+                "<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"{cls}\">{word}</td><td>{}</td></tr>",
+                esc(crate::report::tapping::feature_name(k.feature)),
+                num(k.value),
+                num(k.min),
+                num(k.max),
+                esc(&dev),
+                esc(&k.note)
+            );
+        }
+        s.push_str("</table>\n");
+        if let Some(line) = crate::report::tapping::passing_drill_line(h) {
+            let _ = writeln!(s, "<p class=\"next\">{}</p>", esc(&line));
+        }
+        for n in &h.notes {
+            let _ = writeln!(s, "<p class=\"form\">{}</p>", esc(n));
+        }
+    }
+    for n in &r.notes {
+        let _ = writeln!(s, "<p class=\"form\">{}</p>", esc(&n.to_string()));
+    }
+    page(&format!("threadcheck: {} tapped", r.program), &s)
 }

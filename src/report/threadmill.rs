@@ -1,10 +1,15 @@
 //! The thread-milling check's text (its JSON is the report itself).
 
+use super::kit::*;
 use crate::analysis::threadmill::{Cutter, Helix, ThreadMillReport};
 use crate::ground::fmt::fmt_num;
+use crate::ground::plane::{rad, Point};
 use crate::report::MeasuredReport;
+use crate::standards::ThreadKind;
 use serde::Serialize;
 use std::fmt::Write as _;
+use svg::node::element::{Group, Line, Polygon, Polyline, Rectangle};
+use svg::Document;
 
 /// The cutter's kind in words: `single-form`, or `multi-form (8 rows 1.5 mm apart)`.
 pub(crate) fn cutter_kind(c: &Cutter) -> String {
@@ -159,4 +164,269 @@ impl<'a> ThreadMillJson<'a> {
             notes: &r.notes,
         }
     }
+}
+
+/// `threadcheck thread-mill --svg`: the milled thread's axial section over four pitches, true
+/// to scale with Z (mm) and diameter ticks: the material (grey-blue) the cutter's envelope
+/// leaves, the class's tolerance zone over it (green), the basic profile (grey dashed), the
+/// tooth profile alone (brown dashed), D1's limits (blue dotted), and the measured D, D2 and D1
+/// dimensioned with their values and limits (red with the deviation when out); below it, the
+/// helix's widening of the groove (radial µm) against the same Z.
+pub fn threadmill_svg(r: &crate::analysis::threadmill::ThreadMillReport) -> String {
+    use super::kit::text;
+    use crate::ground::fmt::fmt_num;
+    let w = 900.0;
+    let internal = r.kind == ThreadKind::Internal;
+    let (z0, z1) = (r.profile.first().map_or(0.0, |p| p.z), r.profile.last().map_or(1.0, |p| p.z));
+    let rs = r.profile.iter().chain(&r.tooth_points).map(|p| p.r);
+    let (lo, hi) = rs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let pad = 0.2 * (hi - lo).max(1e-3);
+    // The section: true to scale, as wide as the column allows, as tall as its radii need.
+    let (px0, pw) = (230.0, 580.0);
+    let scale = pw / (z1 - z0).max(1e-6);
+    let ph = ((hi - lo + 2.0 * pad) * scale).clamp(140.0, 320.0);
+    let f = Frame::new(px0, 140.0, pw, ph, (z0, z1), (lo - pad, hi + pad));
+    let edge = if internal { hi + 10.0 * pad } else { lo - 10.0 * pad };
+    let mut material = r.profile.clone();
+    material.push(Point::new(z1, edge));
+    material.push(Point::new(z0, edge));
+    let (mut sec, mut body) =
+        panel(&f, "section", "the milled section over four pitches (axial, true to scale)");
+    body = body
+        .add(Group::new().set("id", "section-material").add(
+            Polygon::new().set("points", f.points(&material)).set("fill", "#b8c7d9").set("stroke", "none"),
+        ))
+        .add(zone_group(r.zone.clone(), &f, "section"))
+        .add(
+            Group::new().set("id", "section-basic-profile").add(
+                Polyline::new()
+                    .set("points", f.points(&r.basic))
+                    .set("fill", "none")
+                    .set("stroke", "#555")
+                    .set("stroke-dasharray", "6 4")
+                    .set("stroke-width", 1.0),
+            ),
+        )
+        .add(
+            Group::new().set("id", "section-tooth-profile").add(
+                Polyline::new()
+                    .set("points", f.points(&r.tooth_points))
+                    .set("fill", "none")
+                    .set("stroke", "#a35a00")
+                    .set("stroke-width", 1.0)
+                    .set("stroke-dasharray", "3 3"),
+            ),
+        )
+        .add(
+            Group::new().set("id", "section-profile").add(
+                Polyline::new()
+                    .set("points", f.points(&r.profile))
+                    .set("fill", "none")
+                    .set("stroke", "#111")
+                    .set("stroke-width", 1.6),
+            ),
+        );
+    // D1's limits, the bore's: dotted blue across the section.
+    let mut d1 = Group::new().set("id", "section-d1-limits");
+    for v in [r.limits.minor_diameter.min, r.limits.minor_diameter.max].into_iter().flatten() {
+        let y = f.y(rad(v));
+        d1 = d1.add(
+            Line::new()
+                .set("x1", f.x0)
+                .set("x2", f.x0 + f.w)
+                .set("y1", format!("{y:.2}"))
+                .set("y2", format!("{y:.2}"))
+                .set("stroke", "#1f5fa8")
+                .set("stroke-width", 0.6)
+                .set("stroke-dasharray", "1 3"),
+        );
+    }
+    let m = &r.measured;
+    let items = [
+        (crate::CheckFeature::MajorDiameter, m.major_diameter),
+        (crate::CheckFeature::PitchDiameter, m.pitch_diameter),
+        (crate::CheckFeature::MinorDiameter, m.minor_diameter),
+    ];
+    body = body.add(d1).add(dimension_lines(&items, &r.checks, &f, "section"));
+    sec = sec.add(body).add(axes(&f, true, crate::analysis::verify::Units::Mm));
+    let labels =
+        labels_of_dimensions(&items, &r.checks, r.kind, crate::analysis::verify::Units::Mm, &f, px0 - 14.0);
+    // The legend under the section.
+    let ly = f.y0 + f.h + 46.0;
+    let mut legend = Group::new().set("id", "legend");
+    let mut lx = 20.0;
+    for (name, colour, dash, fill) in [
+        ("as milled", "#111", "", false),
+        ("tooth profile alone", "#a35a00", "3 3", false),
+        ("basic profile", "#555", "6 4", false),
+        ("tolerance zone (D2)", ZONE, "", true),
+        ("D1 limits", "#1f5fa8", "1 3", false),
+    ] {
+        legend = if fill {
+            legend.add(
+                Rectangle::new()
+                    .set("x", lx)
+                    .set("y", ly - 8.0)
+                    .set("width", 24)
+                    .set("height", 9)
+                    .set("fill", colour)
+                    .set("fill-opacity", 0.35),
+            )
+        } else {
+            legend.add(
+                Line::new()
+                    .set("x1", lx)
+                    .set("x2", lx + 24.0)
+                    .set("y1", ly - 4.0)
+                    .set("y2", ly - 4.0)
+                    .set("stroke", colour)
+                    .set("stroke-width", 1.4)
+                    .set("stroke-dasharray", dash),
+            )
+        };
+        legend = legend.add(text(lx + 30.0, ly, 11.0, name));
+        lx += 30.0 + 6.6 * name.chars().count() as f64 + 22.0;
+    }
+    // The groove's widening along Z: the milled radius less the tooth profile's, in µm, on the
+    // section's own Z scale.
+    let widen: Vec<(f64, f64)> =
+        r.profile.iter().zip(&r.tooth_points).map(|(a, b)| (a.z, (a.r - b.r).abs() * 1000.0)).collect();
+    let peak = widen.iter().map(|p| p.1).fold(0.0f64, f64::max);
+    let step = tick_step(peak.max(1e-3), 4.0);
+    let top = (peak / step).ceil().max(1.0) * step;
+    let (sy, sh) = (ly + 56.0, 120.0);
+    let fs = Frame::new(px0, sy, pw, sh, (z0, z1), (0.0, 1e-9));
+    let sy_of = |v: f64| sy + sh - v / top * sh;
+    let strip = pixel_points(widen.iter().map(|&(z, v)| (f.x(z), sy_of(v))));
+    let (mut wid, mut wbody) =
+        panel(&fs, "widening", "the helix's widening of the groove beyond the tooth profile alone");
+    wbody = wbody.add(
+        Polyline::new().set("points", strip).set("fill", "none").set("stroke", FAIL).set("stroke-width", 1.2),
+    );
+    wid = wid.add(wbody).add(axes(&fs, false, crate::analysis::verify::Units::Mm));
+    let mut v = 0.0;
+    while v <= top + 1e-9 * step {
+        let y = sy_of(v);
+        wid = wid
+            .add(
+                Line::new()
+                    .set("x1", px0 - 4.0)
+                    .set("x2", px0)
+                    .set("y1", y)
+                    .set("y2", y)
+                    .set("stroke", "#333"),
+            )
+            .add(text(px0 - 6.0, y + 3.0, 9.0, tick_label(v, step)).set("text-anchor", "end"));
+        v += step;
+    }
+    wid = wid
+        .add(text(px0 - 6.0, sy - 6.0, 9.0, "µm, radial").set("text-anchor", "end"))
+        .add(text(20.0, sy + 0.5 * sh - 6.0, 11.0, "0 on crests and roots,"))
+        .add(text(20.0, sy + 0.5 * sh + 8.0, 11.0, "which the tooth alone"))
+        .add(text(20.0, sy + 0.5 * sh + 22.0, 11.0, "shapes; the flanks widen"));
+    let h = sy + sh + 50.0;
+    let failed: Vec<&str> = r.checks.iter().filter(|k| !k.ok).map(|k| k.feature.words(r.kind)).collect();
+    let verdict =
+        if r.pass { "IN TOLERANCE".to_string() } else { format!("OUT OF TOLERANCE: {}", failed.join(", ")) };
+    let d2n = if internal { "D2" } else { "d2" };
+    let mut doc = Document::new().set("viewBox", (0, 0, w, h)).set("width", w).set("height", h);
+    doc = doc
+        .add(Rectangle::new().set("width", w).set("height", h).set("fill", "white"))
+        .add(
+            text(
+                20.0,
+                30.0,
+                17.0,
+                shorten(
+                    &format!(
+                        "{}: {} thread-milled with a Ø{} {} cutter",
+                        file_name(&r.program),
+                        r.designation,
+                        fmt_num(r.cutter.diameter),
+                        crate::report::threadmill::cutter_kind(&r.cutter)
+                    ),
+                    80,
+                ),
+            )
+            .set("font-weight", "bold"),
+        )
+        .add(
+            text(20.0, 52.0, 15.0, shorten(&verdict, 95))
+                .set("font-weight", "bold")
+                .set("fill", if r.pass { ZONE } else { FAIL }),
+        )
+        .add(text(
+            20.0,
+            76.0,
+            13.0,
+            format!(
+                "{d2n} {:.4} mm as milled, {:.4} mm by the tooth profile alone: the helix widens the groove by {:+.1} µm",
+                r.measured.pitch_diameter, r.tooth_profile.pitch_diameter, r.distortion_pitch_diameter_um
+            ),
+        ))
+        .add(text(
+            20.0,
+            96.0,
+            13.0,
+            format!(
+                "flanks {:.3}° / {:.3}° ({:+.3}° / {:+.3}°); the cutter is {:.0} % of the thread's diameter",
+                r.measured.flank_angles[0],
+                r.measured.flank_angles[1],
+                r.distortion_flank_angles_deg[0],
+                r.distortion_flank_angles_deg[1],
+                100.0 * r.cutter_ratio
+            ),
+        ))
+        .add(sec)
+        .add(labels)
+        .add(legend)
+        .add(wid);
+    doc.to_string()
+}
+
+/// The thread-milling page: the verdict, the distortion, the section, the checks, the helices
+/// and the notes.
+pub fn threadmill_html(r: &crate::analysis::threadmill::ThreadMillReport) -> String {
+    let mut s = String::new();
+    let (cls, words) = if r.pass { ("ok", "IN TOLERANCE") } else { ("out", "OUT OF TOLERANCE") };
+    let _ = writeln!(s, "<h1>{} thread-milled</h1>", esc(&r.designation));
+    let _ = writeln!(s, "<p class=\"verdict {cls}\">{words}</p>");
+    let _ = writeln!(
+        s,
+        "<p>{} · Ø{} mm {} cutter, {}° tooth, tip r{} mm ({:.0} % of the diameter) · profile distortion {:+.1} µm on the pitch diameter, flanks {:+.3}° / {:+.3}°</p>",
+        esc(&r.program),
+        crate::ground::fmt::fmt_num(r.cutter.diameter),
+        esc(&crate::report::threadmill::cutter_kind(&r.cutter)),
+        crate::ground::fmt::fmt_num(r.cutter.angle_deg),
+        crate::ground::fmt::fmt_num(r.cutter.tip_radius),
+        100.0 * r.cutter_ratio,
+        r.distortion_pitch_diameter_um,
+        r.distortion_flank_angles_deg[0],
+        r.distortion_flank_angles_deg[1]
+    );
+    let _ = writeln!(s, "<div class=\"pic\">{}</div>", threadmill_svg(r));
+    s.push_str("<h2>Checks</h2>\n<table><tr><th>feature</th><th>value</th><th>min</th><th>max</th><th>deviation</th><th>ok</th><th>note</th></tr>\n");
+    for c in &r.checks {
+        let (cls, word) = if c.ok { ("ok", "ok") } else { ("out", "OUT") };
+        s.push_str(&check_row(c, r.kind, &super::check_cells(c), "", cls, word));
+    }
+    s.push_str("</table>\n<h2>Helices</h2>\n<table><tr><th>line</th><th>radius mm</th><th>Z from</th><th>Z to</th><th>sweep °</th><th>lead mm/rev</th><th>milling</th></tr>\n");
+    for h in &r.helices {
+        let _ = writeln!(
+            s,
+            "<tr><td class=\"n\">{}</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.4}</td><td class=\"n\">{:.1}</td><td class=\"n\">{:.4}</td><td>{}</td></tr>",
+            h.line,
+            h.radius,
+            h.z[0],
+            h.z[1],
+            h.sweep_deg,
+            h.lead.abs(),
+            if h.climb { "climb" } else { "conventional" }
+        );
+    }
+    s.push_str("</table>\n");
+    for n in &r.notes {
+        let _ = writeln!(s, "<p class=\"form\">{}</p>", esc(n));
+    }
+    page(&format!("threadcheck: {} thread-milled", r.designation), &s)
 }
