@@ -253,3 +253,24 @@ fn sinumerik_cycle97_internal_cuts_outwards_from_the_tap_hole() {
         assert_eq!(pass.z_end, -21.0);
     }
 }
+
+/// Issue 44: an empty VARI, NRC and NUMT of CYCLE97 are taken as 1 (outside with constant depth,
+/// one rough cut, a single start) and the program says so: TDEP 1.534 less FAL 0.05 in one rough
+/// cut to 1.484, the finishing cut at 1.534 and NID 1 idle pass.
+#[test]
+fn cycle97_empty_vari_nrc_numt_are_stated_defaults() {
+    let text = "G0 X25 Z10\nCYCLE97(2.5,,0,-30,20,20,3,2,1.534,0.05,0,0,,1,,)\nM30\n";
+    let p = read_program(text, "d.mpf", Dialect::Sinumerik).unwrap();
+    let depths: Vec<f64> = p.passes.iter().map(|q| (20.0 - q.x_start) / 2.0).collect();
+    assert_eq!(depths.len(), 3, "{depths:?}");
+    for (d, want) in depths.iter().zip([1.484, 1.534, 1.534]) {
+        assert!((d - want).abs() < 1e-9, "{depths:?}");
+    }
+    let said: Vec<String> = p
+        .notes
+        .iter()
+        .chain(p.operations.iter().flat_map(|o| o.notes.iter()))
+        .map(|n| n.to_string())
+        .collect();
+    assert!(said.iter().any(|n| n.contains("CYCLE97 VARI, NRC, NUMT empty or 0: taken as 1")), "{said:#?}");
+}

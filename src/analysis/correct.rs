@@ -408,7 +408,9 @@ fn gauged(g: GaugeResult, kind: ThreadKind) -> MeasuredState {
         (GaugeResult::GoFails, ThreadKind::External) | (GaugeResult::NogoEnters, ThreadKind::Internal) => {
             "how far the pitch diameter lies over its largest limit, and whether lead or flank errors (which a GO gauge also feels) take part: measure it over wires to know"
         }
-        _ => "how far the pitch diameter lies under its smallest limit: measure it to know",
+        (GaugeResult::GoFails, ThreadKind::Internal) | (GaugeResult::NogoEnters, ThreadKind::External) => {
+            "how far the pitch diameter lies under its smallest limit: measure it to know"
+        }
     };
     MeasuredState {
         method: "gauge",

@@ -1351,7 +1351,8 @@ fn side_agrees(
     let (cut, other) = match (r.kind, inward) {
         (ThreadKind::External, false) => ("outward pass by pass, as in a bore", "an internal class"),
         (ThreadKind::Internal, true) => ("inward pass by pass, as on a bar", "an external class"),
-        _ => return Ok(()),
+        // Passes that move the way the class's side cuts.
+        (ThreadKind::External, true) | (ThreadKind::Internal, false) => return Ok(()),
     };
     Err(Error::Program {
         file: label.file.clone(),

@@ -98,24 +98,56 @@ fn whole(
     Ok(w.v)
 }
 
+/// G31's infeed law V.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Law {
+    /// V0: constant cross-section, the nth cut at I·√n.
+    CrossSection,
+    /// V1: constant infeeds of at most I.
+    Constant,
+    /// V2: infeeds of I, the first reduced by the remainder, the last divided in four.
+    LastDivided,
+    /// V3: infeeds of I, the first reduced by the remainder.
+    RemainderFirst,
+}
+
+/// V0 to V3 in order: a V the block gives indexes it (bounded by `whole` before).
+const LAWS: [Law; 4] = [Law::CrossSection, Law::Constant, Law::LastDivided, Law::RemainderFirst];
+
+/// G31's offset type H.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Offset {
+    /// H0: every cut on the thread's axis line (radial infeed).
+    Radial,
+    /// H1: each cut offset toward −Z (left).
+    Left,
+    /// H2: each cut offset toward +Z (right).
+    Right,
+    /// H3: alternating, the first toward −Z.
+    Alternating,
+}
+
+/// H0 to H3 in order.
+const OFFSETS: [Offset; 4] = [Offset::Radial, Offset::Left, Offset::Right, Offset::Alternating];
+
 /// How many cuts the infeed law `v` makes for the depth `u` in infeeds of at most `i`, counted
 /// before any is made: V1 to V3 take ⌈U/I⌉ (V2 three more), V0 the n with I·√n ≥ U.
-fn cut_count(v: u32, u: f64, i: f64) -> f64 {
+fn cut_count(v: Law, u: f64, i: f64) -> f64 {
     match v {
-        0 => (u / i).powi(2).ceil(),
-        2 => (u / i).ceil() + 3.0,
-        _ => (u / i).ceil(),
+        Law::CrossSection => (u / i).powi(2).ceil(),
+        Law::LastDivided => (u / i).ceil() + 3.0,
+        Law::Constant | Law::RemainderFirst => (u / i).ceil(),
     }
 }
 
 /// The depths (radial, from the thread's surface) of the cuts for the infeed law `v`; the caller
 /// has bounded their count ([`cut_count`]).
-fn depths(v: u32, u: f64, i: f64) -> Vec<f64> {
+fn depths(v: Law, u: f64, i: f64) -> Vec<f64> {
     debug_assert!(cut_count(v, u, i) <= crate::ground::bounds::MAX_PASSES as f64 + 1.0);
     let mut out = Vec::new();
     match v {
         // Constant cross-section: the nth cut reaches I·√n, the last U.
-        0 => {
+        Law::CrossSection => {
             let mut n = 1.0f64;
             loop {
                 let d = i * n.sqrt();
@@ -128,12 +160,12 @@ fn depths(v: u32, u: f64, i: f64) -> Vec<f64> {
             }
         }
         // Constant infeeds of at most I.
-        1 => {
+        Law::Constant => {
             let n = (u / i - 1e-9).ceil().max(1.0);
             out.extend((1..=n as usize).map(|k| u * k as f64 / n));
         }
         // Infeeds of I, the first reduced by the remainder of U/I; V2 divides the last.
-        _ => {
+        Law::LastDivided | Law::RemainderFirst => {
             let full = (u / i + 1e-9).floor();
             let rest = u - full * i;
             let mut d = 0.0;
@@ -145,7 +177,7 @@ fn depths(v: u32, u: f64, i: f64) -> Vec<f64> {
                 d += i;
                 out.push(d.min(u));
             }
-            if v == 2 {
+            if v == Law::LastDivided {
                 let last = out.pop().unwrap_or(u);
                 let before = out.last().copied().unwrap_or(0.0);
                 let cut = last - before;
@@ -194,8 +226,11 @@ fn g31(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
     let depth = u.abs();
     let inside = u > 0.0;
     let r = b.get("R").map_or(0.0, |w| m.len(w));
-    let v = whole(m, b, "V", 0.0, 3.0, 0.0, "the infeed type V")? as u32;
-    let h = whole(m, b, "H", 0.0, 3.0, 0.0, "the offset type H")? as u32;
+    let v_number = whole(m, b, "V", 0.0, 3.0, 0.0, "the infeed type V")? as usize;
+    let h_number = whole(m, b, "H", 0.0, 3.0, 0.0, "the offset type H")? as usize;
+    let range = |w: &str| m.err(b.line, col, format!("G31 {w}: from 0 to 3"));
+    let law = *LAWS.get(v_number).ok_or_else(|| range("V"))?;
+    let offset = *OFFSETS.get(h_number).ok_or_else(|| range("H"))?;
     let q = whole(m, b, "Q", 0.0, 100.0, 0.0, "the number of air cuts Q")?;
     let starts = whole(m, b, "D", 1.0, 100.0, 1.0, "the number of starts D")?;
     let c = b.get("C").map_or(0.0, |w| w.v);
@@ -211,7 +246,7 @@ fn g31(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
         }
         None => {
             let a = (0.5 * f / depth).atan().to_degrees();
-            if h != 0 {
+            if offset != Offset::Radial {
                 notes.push(format!(
                     "G31 without A: the infeed angle is arctan(F/2U) = {a:.2}°, the MANUALplus 4110's default (the 620 and 640 take 30°)"
                 ));
@@ -247,13 +282,13 @@ fn g31(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
     let run_in = run("B", "the run-in length");
     let overrun = run("P", "the overrun length");
     // The cuts are counted before any is made (an I of 10⁻¹² asked for 9·10¹¹ of them).
-    let cuts = cut_count(v, depth, i) + q;
+    let cuts = cut_count(law, depth, i) + q;
     if !(cuts <= crate::ground::bounds::MAX_PASSES as f64) {
         return Err(m.err(
             b.line,
             col,
             format!(
-                "G31 U{} I{} V{v}: {} cuts, more than the {} passes threadcheck accepts (the infeed I is too small for the depth U)",
+                "G31 U{} I{} V{v_number}: {} cuts, more than the {} passes threadcheck accepts (the infeed I is too small for the depth U)",
                 fmt_num(u),
                 fmt_shown(i),
                 fmt_shown(cuts),
@@ -261,20 +296,20 @@ fn g31(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
             ),
         ));
     }
-    let mut radial = depths(v, depth, i);
+    let mut radial = depths(law, depth, i);
     radial.extend(std::iter::repeat_n(depth, q as usize));
-    let shifts = match h {
-        0 => vec![0.0; radial.len()],
+    let shifts = match offset {
+        Offset::Radial => vec![0.0; radial.len()],
         // H1 moves the cuts to the left (−Z), H2 to the right.
-        1 => cycles::shifts(Shift::Flank(angle), &radial, -1.0),
-        2 => cycles::shifts(Shift::Flank(angle), &radial, 1.0),
-        _ => cycles::shifts(Shift::Alternating(angle), &radial, -1.0),
+        Offset::Left => cycles::shifts(Shift::Flank(angle), &radial, -1.0),
+        Offset::Right => cycles::shifts(Shift::Flank(angle), &radial, 1.0),
+        Offset::Alternating => cycles::shifts(Shift::Alternating(angle), &radial, -1.0),
     };
-    if h != 0 {
+    if offset != Offset::Radial {
         notes.push(format!(
-            "G31 H{h}: {} taken toward {} (a named default: the manuals say left and right)",
-            if h == 3 { "the first offset is" } else { "each cut's offset is" },
-            if h == 2 { "+Z" } else { "−Z" }
+            "G31 H{h_number}: {} taken toward {} (a named default: the manuals say left and right)",
+            if offset == Offset::Alternating { "the first offset is" } else { "each cut's offset is" },
+            if offset == Offset::Right { "+Z" } else { "−Z" }
         ));
     }
     if starts > 1.0 {
@@ -291,8 +326,8 @@ fn g31(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
     let sign = if inside { 1.0 } else { -1.0 };
     m.break_chain();
     let op = m.begin_op("G31", b.line);
-    if h == 1 || h == 2 {
-        m.op_mut(op).infeed_angle = Some((angle, format!("A (H{h})")));
+    if matches!(offset, Offset::Left | Offset::Right) {
+        m.op_mut(op).infeed_angle = Some((angle, format!("A (H{h_number})")));
     }
     for note in notes {
         m.op_mut(op).notes.push(crate::ground::note::Note::from(note));
@@ -335,7 +370,7 @@ impl Rules for State {
 
 #[cfg(test)]
 mod tests {
-    use super::depths;
+    use super::{depths, Law};
 
     fn close(a: &[f64], b: &[f64]) -> bool {
         a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12)
@@ -345,14 +380,14 @@ mod tests {
     fn infeed_laws_as_the_4110_manual_states_them() {
         // U 0.92, I 0.3. V0: 0.3·√n below 0.92 (n = 1..9: 0.3·√9 = 0.9), then 0.92.
         let v0: Vec<f64> = (1..=9).map(|n| 0.3 * f64::from(n).sqrt()).chain([0.92]).collect();
-        assert!(close(&depths(0, 0.92, 0.3), &v0));
+        assert!(close(&depths(Law::CrossSection, 0.92, 0.3), &v0));
         // V1: ceil(0.92/0.3) = 4 equal infeeds of 0.23.
-        assert!(close(&depths(1, 0.92, 0.3), &[0.23, 0.46, 0.69, 0.92]));
+        assert!(close(&depths(Law::Constant, 0.92, 0.3), &[0.23, 0.46, 0.69, 0.92]));
         // V3: 0.92 = 3·0.3 + 0.02: the first infeed 0.02, then 0.3 each.
-        assert!(close(&depths(3, 0.92, 0.3), &[0.02, 0.32, 0.62, 0.92]));
+        assert!(close(&depths(Law::RemainderFirst, 0.92, 0.3), &[0.02, 0.32, 0.62, 0.92]));
         // V2: as V3 up to 0.62, the last 0.3 in 1/2, 1/4, 1/8, 1/8: 0.15, 0.075, 0.0375, 0.0375.
-        assert!(close(&depths(2, 0.92, 0.3), &[0.02, 0.32, 0.62, 0.77, 0.845, 0.8825, 0.92]));
+        assert!(close(&depths(Law::LastDivided, 0.92, 0.3), &[0.02, 0.32, 0.62, 0.77, 0.845, 0.8825, 0.92]));
         // An exact division has no reduced first infeed.
-        assert!(close(&depths(3, 0.9, 0.3), &[0.3, 0.6, 0.9]));
+        assert!(close(&depths(Law::RemainderFirst, 0.9, 0.3), &[0.3, 0.6, 0.9]));
     }
 }

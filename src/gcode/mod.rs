@@ -852,11 +852,18 @@ fn read(
     });
     // Mitsubishi and Mazak are read as the Fanuc model: say so wherever they thread.
     let model_note = match dialect {
-        Dialect::Mitsubishi | Dialect::Mazak if !operations.is_empty() => Some(format!(
+        Dialect::Mitsubishi | Dialect::Mazak => (!operations.is_empty()).then(|| format!(
             "{} read as the Fanuc model (G32, G92, the two-block G76, macro B), the format this control is reported to accept; its own extensions are not read (a named default: its threading pages were not read)",
             dialect.name()
         )),
-        _ => None,
+        // Read by their own published formats.
+        Dialect::Fanuc
+        | Dialect::Haas
+        | Dialect::Sinumerik
+        | Dialect::LinuxCnc
+        | Dialect::Dyna
+        | Dialect::Okuma
+        | Dialect::Heidenhain => None,
     };
     for n in [units_note, dialect_note, system_note, model_note].into_iter().flatten().rev() {
         notes.insert(0, Note::from(n));

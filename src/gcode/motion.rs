@@ -489,7 +489,18 @@ impl Motion {
                 Some(t) => t.v as u32,
                 None => 0,
             },
-            _ => 0,
+            // One turn: LinuxCNC without P, and the dialects whose arcs have no turns word.
+            (Dialect::LinuxCnc, None)
+            | (
+                Dialect::Fanuc
+                | Dialect::Haas
+                | Dialect::Okuma
+                | Dialect::Mitsubishi
+                | Dialect::Mazak
+                | Dialect::Dyna
+                | Dialect::Heidenhain,
+                _,
+            ) => 0,
         };
         // An arc of the turned contour is kept as its chord: enough to see a shoulder.
         self.record_contour(x, z, b.line);

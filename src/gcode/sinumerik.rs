@@ -629,6 +629,30 @@ fn cycle97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
         coarse_pitch_for(mpit)
             .ok_or_else(|| b.werr(&m.file, w, "CYCLE97 needs PIT, or MPIT the metric size 3 to 60"))?
     };
+    // An empty or zero VARI, NRC or NUMT: the cycle's own default, stated (a named default:
+    // Siemens' screen form offers 1 for each; the Job planning manual does not print it).
+    let defaulted: Vec<(&str, &str)> = [
+        ("VARI", vari, "VARI 1, outside with constant depth"),
+        ("NRC", nrc, "NRC 1, one rough cut"),
+        ("NUMT", numt, "NUMT 1, a single start"),
+    ]
+    .into_iter()
+    .filter(|(_, v, _)| *v == 0.0)
+    .map(|(n, _, means)| (n, means))
+    .collect();
+    if !defaulted.is_empty() {
+        let names: Vec<&str> = defaulted.iter().map(|d| d.0).collect();
+        let means: Vec<&str> = defaulted.iter().map(|d| d.1).collect();
+        m.note(
+            b.line,
+            w.col,
+            format!(
+                "CYCLE97 {} empty or 0: taken as 1 (a named default: {})",
+                names.join(", "),
+                means.join("; ")
+            ),
+        );
+    }
     let vari = if vari == 0.0 { 1.0 } else { vari };
     if ![1.0, 2.0, 3.0, 4.0].contains(&vari) {
         return Err(b.werr(&m.file, w, format!("CYCLE97 VARI {vari} must be 1, 2, 3 or 4")));
@@ -743,6 +767,13 @@ fn cycle99(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
     }
     let digits = Vari99::parse(vari).map_err(|msg| err(13, msg))?;
     let max = crate::ground::bounds::MAX_REPEATS as f64;
+    if numth == 0.0 {
+        m.note(
+            b.line,
+            w.col,
+            "CYCLE99 NUMTH empty or 0: taken as 1, a single start (a named default)".to_string(),
+        );
+    }
     let numth = if numth == 0.0 { 1.0 } else { numth };
     if !cycles::whole_in(nid, 0.0, max) || !cycles::whole_in(numth, 1.0, 64.0) {
         return Err(err(11, "CYCLE99 NID and NUMTH must be whole numbers in range".into()));
@@ -762,6 +793,11 @@ fn cycle99(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
         let n = if digits.degressive { (q * q - 1e-9).ceil() } else { (q - 1e-9).ceil() };
         n.max(1.0)
     } else if nrc == 0.0 {
+        m.note(
+            b.line,
+            w.col,
+            "CYCLE99 NRC empty or 0: taken as 1, one rough cut (a named default)".to_string(),
+        );
         1.0
     } else {
         nrc
@@ -771,10 +807,10 @@ fn cycle99(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
     }
     let shift = match digits.flank {
         // The form before the digit: the sign of IANG chooses (as CYCLE97).
-        0 => shift_by_sign(iang),
+        FlankDigit::BySign => shift_by_sign(iang),
         // One flank: IANG > 0 the rear flank, < 0 the front (the operating manual's α).
-        1 => Shift::Flank(iang),
-        _ => Shift::Alternating(iang.abs()),
+        FlankDigit::One => Shift::Flank(iang),
+        FlankDigit::Alternating => Shift::Alternating(iang.abs()),
     };
     m.note(
         b.line,
@@ -820,13 +856,24 @@ fn cycle99(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
     cut_thread_call(m, b, w, &call)
 }
 
+/// CYCLE99's VARI hundreds digit: how the cuts move along the flanks.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum FlankDigit {
+    /// 0: the sign of IANG chooses, as CYCLE97.
+    BySign,
+    /// 1: one flank at IANG.
+    One,
+    /// 2: alternating flanks.
+    Alternating,
+}
+
 /// CYCLE99's VARI read by CYCLE98's published digit code.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Vari99 {
     external: bool,
     degressive: bool,
     /// Hundreds: 0 the sign of IANG chooses, 1 one flank, 2 alternating.
-    flank: u8,
+    flank: FlankDigit,
     /// Ten-thousands 1: the 11th argument is MID, the largest infeed, not NRC.
     max_infeed: bool,
     rough: bool,
@@ -868,7 +915,12 @@ impl Vari99 {
         Ok(Vari99 {
             external: d(0) % 2 == 1,
             degressive: d(0) >= 3,
-            flank: d(2) as u8,
+            flank: match d(2) {
+                0 => FlankDigit::BySign,
+                1 => FlankDigit::One,
+                2 => FlankDigit::Alternating,
+                other => return bad("hundreds", other, "0–2 (by IANG's sign, one flank, alternating)"),
+            },
             max_infeed: d(4) == 1,
             rough: h != 2,
             finish: h != 1,
@@ -883,15 +935,17 @@ impl Vari99 {
             if self.external { "outside" } else { "inside" },
             if self.degressive { "degressive (constant cross-section)" } else { "linear (constant depth)" },
             match self.flank {
-                0 => "flank by the sign of IANG",
-                1 => "one flank at IANG",
-                _ => "alternating flanks",
+                FlankDigit::BySign => "flank by the sign of IANG",
+                FlankDigit::One => "one flank at IANG",
+                FlankDigit::Alternating => "alternating flanks",
             },
             if self.max_infeed { "MID, the largest infeed" } else { "NRC, the number of rough cuts" },
             match (self.rough, self.finish) {
                 (true, true) => "roughing and finishing",
                 (true, false) => "roughing only",
-                _ => "finishing only",
+                (false, true) => "finishing only",
+                // parse() never gives neither: hundred-thousands 1 is roughing, 2 finishing.
+                (false, false) => "no cut",
             },
             if self.starts_interleaved { "every start at each depth" } else { "one start after the other" },
         )
@@ -989,7 +1043,7 @@ mod tests {
             Vari99 {
                 external: true,
                 degressive: false,
-                flank: 1,
+                flank: FlankDigit::One,
                 max_infeed: false,
                 rough: true,
                 finish: true,
@@ -997,10 +1051,17 @@ mod tests {
             }
         );
         let v = Vari99::parse(210204.0).unwrap();
-        assert!(!v.external && v.degressive && v.flank == 2 && v.max_infeed && !v.rough && v.finish);
+        assert!(
+            !v.external
+                && v.degressive
+                && v.flank == FlankDigit::Alternating
+                && v.max_infeed
+                && !v.rough
+                && v.finish
+        );
         assert!(!v.starts_interleaved);
         let v = Vari99::parse(100003.0).unwrap();
-        assert!(v.external && v.degressive && v.flank == 0 && v.rough && !v.finish);
+        assert!(v.external && v.degressive && v.flank == FlankDigit::BySign && v.rough && !v.finish);
         for bad in [0.0, 5.0, 11.0, 301.0, 1001.0, 20001.0, 400001.0, 2000001.0, 1.5, -1.0] {
             assert!(Vari99::parse(bad).is_err(), "{bad}");
         }
