@@ -9,6 +9,7 @@ mod bad_inputs;
 mod browser;
 mod closing;
 mod controls;
+mod docs;
 mod forms;
 mod gcode;
 mod infeed_comparison;

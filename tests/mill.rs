@@ -187,7 +187,7 @@ fn mill_svg_shows_the_worst_level() {
     assert!(text.starts_with("<svg") && text.contains("level Z-1") && text.contains("worst gouge 0.0875"));
 }
 
-/// The README's picture is what the README's command writes (deterministic bytes).
+/// The guide's picture is what the guide's command writes (deterministic bytes).
 #[test]
 fn committed_cam_picture_is_current() {
     let dir = tempdir("mill-readme");
@@ -213,7 +213,10 @@ fn committed_cam_picture_is_current() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let fresh = std::fs::read(&svg).unwrap();
     let committed = std::fs::read(repo.join("reports/mill-cardioid-cam.svg")).unwrap();
-    assert!(fresh == committed, "reports/mill-cardioid-cam.svg is stale: rerun the README's mill command");
+    assert!(
+        fresh == committed,
+        "reports/mill-cardioid-cam.svg is stale: rerun the mill command of docs/guide/tap-and-thread-mill.md"
+    );
 }
 
 /// G3 arcs (I J and R): the centre circle R23.05 leaves 0.05 mm on the Ø40 boss all round (the

@@ -425,7 +425,7 @@ fn linuxcnc_g92_from_an_unknown_position() {
 }
 
 /// Issue 28: a machine profile names only what the machine limits. A file with `max_rpm` and
-/// `max_feed_mm_min` alone (what the README's process section describes) was refused for its
+/// `max_feed_mm_min` alone (what the verify guide's process section describes) was refused for its
 /// missing `name` and `rapid_mm_min`; now it is the machine named after its file, with the
 /// rapid rate of 5000 mm/min assumed and said. The G97 program's four G92 passes of 25 mm at
 /// S500, lead 1.5, come in from X24 and go back at 5000 mm/min: 120.624 mm of rapid (see

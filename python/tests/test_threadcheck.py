@@ -288,7 +288,7 @@ def test_fit_compare_and_mill_from_python():
 
 # ---- issue 30: the complete package
 
-# The README's post pattern, unchanged.
+# The post-processor guide's pattern, unchanged.
 def checked_g76(designation, x_final, program_for):
     report = threadcheck.verify(designation, program=program_for(x_final), insert="full",
                                 program_name="post.nc")
@@ -320,7 +320,7 @@ def test_readme_post_pattern_runs_on_a_form_failing_and_a_no_cut_program():
     assert "reason" in op and isinstance(op["suggested_final_x"], float)
     # Mid 6g d2 is 18.928; a full-profile insert cuts d2 = X + 0.866 (d2 − d3 basic): X ≈ 18.06.
     assert op["suggested_final_x"] == pytest.approx(18.062, abs=0.01)
-    # The README's pattern, on both.
+    # The post-processor guide's pattern, on both.
     for x in (x_mid, 20.2):
         out = checked_g76("M20x1.5-6g", x, g76)
         assert "G76 X" in out

@@ -920,138 +920,99 @@ struct Given {
 
 /// The verification of a resolved spec, with the passes of a program operation or its own plan.
 /// A cut that leaves nothing to measure is an [`Error::Geometry`].
-fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error> {
-    let spec = &r.spec;
-    if spec.taper != 0.0 {
-        return Err(Error::Input("--taper lays out a tapered pass plan for `passes`; verify takes a taper thread's taper from its designation (NPT, ISO 7-1) or from a program".into()));
+/// A taper thread's cone where it is measured: its gauge plane, the measuring height (the gauge
+/// plane on an external thread, four pitches in on an internal one) and the cone's radial slope.
+type Taper = (crate::standards::tolerance::GaugePlane, f64, f64);
+
+/// What measuring a cut needs: the sweep's setup, the measurement's, and a taper thread's cone
+/// (measured along it: the section sheared so the cone's pitch line runs level).
+struct Measurer<'a> {
+    r: &'a Resolved,
+    t: &'a crate::standards::BasicThread,
+    setup: SweepSetup<'a>,
+    ms: MeasureSetup<'a>,
+    taper: Option<Taper>,
+    mid: Option<f64>,
+}
+
+impl Measurer<'_> {
+    /// The groove measured: near the taper's measuring height, or the reference groove.
+    fn z_of(&self, passes: &[Pass]) -> f64 {
+        match self.taper {
+            Some((_, z, _)) => groove_near(passes, z),
+            None => reference_groove(passes),
+        }
     }
-    let (des, kind, limits, insert, blank, infeed) =
-        (r.designation.clone(), r.kind, r.limits.clone(), r.insert.clone(), r.blank, r.infeed);
-    let mut notes = r.notes.clone();
-    let t = des.thread;
-    let plan = |final_x: f64| r.plan(final_x);
-    // A taper thread is measured along its cone: at the gauge plane (external, the face at Z0)
-    // or four pitches in (internal), the section sheared so the cone's pitch line runs level.
-    let taper = limits.gauge_plane.map(|gp| {
-        let (z_meas, slope_r) = match kind {
-            ThreadKind::External => (-gp.distance, -0.5 * gp.taper),
-            ThreadKind::Internal => (-4.0 * t.pitch, 0.5 * gp.taper),
-        };
-        (gp, z_meas, slope_r)
-    });
-    if taper.is_some() {
-        notes.push("taper thread: the face (the small end of an external thread, the opening of a fitting) is taken at Z0".into());
-    }
-    let z_of = |passes: &[Pass]| match taper {
-        Some((_, z, _)) => groove_near(passes, z),
-        None => reference_groove(passes),
-    };
-    let profile_of = |section: &Section, z_ref: f64| -> Vec<crate::Point> {
+
+    /// The section's profile, sheared level along a taper's cone.
+    fn profile_of(&self, section: &Section, z_ref: f64) -> Vec<crate::Point> {
         let p = section.profile();
-        match taper {
+        match self.taper {
             Some((_, _, slope)) => {
                 p.into_iter().map(|q| crate::Point::new(q.z, q.r - slope * (q.z - z_ref))).collect()
             }
             None => p,
         }
-    };
-    let setup = SweepSetup { kind, insert: &insert, blank_diameter: blank, pitch: t.pitch };
-    // A taper thread's maximum-material check is its gauge plane's, not a parallel profile's.
-    let parallel = MeasureSetup::for_class(&t, kind, &limits);
-    let ms = match taper {
-        Some(_) => MeasureSetup { mmc_pitch_diameter: None, ..parallel },
-        None => parallel,
-    };
-    // While solving for the final X only the pitch diameter matters: sizes only.
-    let ms_solve = ms.sizes_only();
-    let run_with = |final_x: f64, ms: &MeasureSetup<'_>| -> Result<Cut, Error> {
-        let passes = plan(final_x).generate()?;
-        let z_ref = z_of(&passes);
-        let window = Window::around(z_ref, t.pitch, 4.0);
-        let s = sweep(&setup, &passes, window, UnionStrategy::Envelope)?;
-        let measurement = measure(ms, &profile_of(&s.section, z_ref), z_ref)?;
+    }
+
+    /// The pitch diameter to aim at where the thread is measured: the middle of the tolerance,
+    /// or on a taper thread the basic cone's pitch diameter there.
+    fn target_at(&self, z_ref: f64) -> f64 {
+        match self.taper {
+            Some((gp, _, _)) => match self.setup.kind {
+                ThreadKind::External => gp.pitch_diameter + (-z_ref - gp.distance) * gp.taper,
+                ThreadKind::Internal => gp.pitch_diameter - (-z_ref - gp.distance) * gp.taper,
+            },
+            None => self.mid.unwrap_or_default(),
+        }
+    }
+
+    /// Sweeps `passes` and measures the groove, by `ms`.
+    fn measure_passes(&self, passes: Vec<Pass>, ms: &MeasureSetup<'_>) -> Result<Cut, Error> {
+        let z_ref = self.z_of(&passes);
+        let window = Window::around(z_ref, self.t.pitch, 4.0);
+        let s = sweep(&self.setup, &passes, window, UnionStrategy::Envelope)?;
+        let measurement = measure(ms, &self.profile_of(&s.section, z_ref), z_ref)?;
         Ok(Cut { passes, section: s.section, z_ref, measurement })
-    };
-    let run = |final_x: f64| run_with(final_x, &ms);
-    let mid = limits.pitch_diameter.mid();
-    if taper.is_none() && mid.is_none() {
-        return Err(Error::Input("the class has no two-sided pitch-diameter tolerance".into()));
     }
-    // The pitch diameter to aim at where the thread is measured: the middle of the tolerance, or
-    // on a taper thread the basic cone's pitch diameter there.
-    let target_at = |z_ref: f64| match taper {
-        Some((gp, _, _)) => match kind {
-            ThreadKind::External => gp.pitch_diameter + (-z_ref - gp.distance) * gp.taper,
-            ThreadKind::Internal => gp.pitch_diameter - (-z_ref - gp.distance) * gp.taper,
-        },
-        None => mid.unwrap_or_default(),
-    };
-    let target = target_at(taper.map_or(0.0, |(_, z, _)| z));
-    let program_label = given.as_ref().map(|g| g.label.clone());
-    let lead_deviation = given.as_ref().and_then(|g| g.lead);
-    let depth_word = given.as_ref().and_then(|g| g.depth_word.clone().map(|w| (w, g.units)));
-    let (final_x, solved, cut) = if let Some(g) = given {
-        notes.extend(g.notes);
-        let passes = g.passes;
-        let z_ref = z_of(&passes);
-        let last = last_head(&passes);
-        let s = sweep(&setup, &passes, Window::around(z_ref, t.pitch, 4.0), UnionStrategy::Envelope)?;
-        let measurement = measure(&ms, &profile_of(&s.section, z_ref), z_ref)?;
-        (last.x_at(z_ref), false, Cut { passes, section: s.section, z_ref, measurement })
-    } else {
-        match spec.final_x {
-            Some(x) if !x.is_finite() => {
-                return Err(Error::Input(format!("final X {x} is not a finite number")))
+
+    /// The plan to `final_x`, cut and measured by `ms`.
+    fn run_with(&self, final_x: f64, ms: &MeasureSetup<'_>) -> Result<Cut, Error> {
+        self.measure_passes(self.r.plan(final_x).generate()?, ms)
+    }
+
+    /// The final X that lands the pitch diameter on its target, and its cut fully measured. X and
+    /// d2 move one for one, so a few corrections converge to well below 0.01 µm; while solving
+    /// only the pitch diameter matters (sizes only).
+    fn solve(&self, insert: &Insert) -> Result<(f64, Cut), Error> {
+        let ms_solve = self.ms.sizes_only();
+        let target = self.target_at(self.taper.map_or(0.0, |(_, z, _)| z));
+        let mut x = initial_final_x(self.t, self.setup.kind, insert, target);
+        let mut cut = self.run_with(x, &ms_solve)?;
+        for _ in 0..6 {
+            let err = self.target_at(cut.z_ref) - cut.measurement.pitch_diameter;
+            if err.abs() < 1e-8 {
+                break;
             }
-            Some(x) => (x, false, run(x)?),
-            None => {
-                // X and d2 move one for one, so a few corrections converge to well below 0.01 µm.
-                let mut x = initial_final_x(&t, kind, &insert, target);
-                let mut cut = run_with(x, &ms_solve)?;
-                for _ in 0..6 {
-                    let err = target_at(cut.z_ref) - cut.measurement.pitch_diameter;
-                    if err.abs() < 1e-8 {
-                        break;
-                    }
-                    x += err;
-                    cut = run_with(x, &ms_solve)?;
-                }
-                // The full measurement, maximum-material check included, on the solved cut.
-                let measurement = measure(&ms, &profile_of(&cut.section, cut.z_ref), cut.z_ref)?;
-                (x, true, Cut { measurement, ..cut })
-            }
+            x += err;
+            cut = self.run_with(x, &ms_solve)?;
         }
-    };
-    // A taper thread is measured on its section sheared so the pitch cone runs level; its flank
-    // angles are turned back into the true axial section before they are checked.
-    let cut = match taper {
-        Some((_, _, slope_r)) => {
-            let mut m = cut.measurement.clone();
-            m.flank_angles = true_flank_angles(m.flank_angles, slope_r, kind);
-            Cut { measurement: m, ..cut }
-        }
-        None => cut,
-    };
-    let metrics = if spec.metrics { pass_metrics(&setup, &cut.passes, cut.z_ref)? } else { Vec::new() };
+        // The full measurement, maximum-material check included, on the solved cut.
+        let measurement = measure(&self.ms, &self.profile_of(&cut.section, cut.z_ref), cut.z_ref)?;
+        Ok((x, Cut { measurement, ..cut }))
+    }
+}
+
+/// The gauge plane of a taper thread: where the pitch cone reaches the basic gauge diameter, from
+/// the pitch diameter measured at the cut's groove and the taper, against its basic distance.
+fn gauge_cone(
+    taper: Option<Taper>,
+    kind: ThreadKind,
+    cut: &Cut,
+    t: &crate::standards::BasicThread,
+) -> Option<crate::analysis::check::Cone> {
     let m = &cut.measurement;
-    if spec.coating > 0.0 {
-        let grow = crate::standards::tolerance::coat_pitch_growth(spec.coating, t.half_angle());
-        let after = match kind {
-            ThreadKind::External => m.pitch_diameter + grow,
-            ThreadKind::Internal => m.pitch_diameter - grow,
-        };
-        notes.push(crate::ground::note::Note::from(format!(
-            "after coating the pitch diameter measured here becomes {after:.4} mm (the class's limits apply to it)"
-        )));
-    }
-    if m.pitch_line_extrapolated {
-        notes.push(crate::ground::note::Note::from(
-            "the pitch line lies outside the cut flanks; the fitted flank lines were extended to find it",
-        ));
-    }
-    // The gauge plane of a taper thread: where the pitch cone reaches the basic gauge diameter,
-    // from the pitch diameter measured at z_ref and the taper, against its basic distance.
-    let cone = taper.map(|(gp, _, _)| {
+    taper.map(|(gp, _, _)| {
         let s_ref = -cut.z_ref;
         let s_gp = match kind {
             ThreadKind::External => s_ref + (gp.pitch_diameter - m.pitch_diameter) / gp.taper,
@@ -1070,7 +1031,21 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
             taper: measured_taper,
             nominal_taper: gp.taper,
         }
-    });
+    })
+}
+
+/// The checks of a measured cut: sizes and form, a taper's gauge plane (stood off by the lead
+/// error's share), and the functional pitch diameter when the program's lead is off; with the
+/// functional pitch diameter.
+fn judge(
+    m: &Measurement,
+    limits: &ThreadLimits,
+    t: &crate::standards::BasicThread,
+    kind: ThreadKind,
+    cone: Option<crate::analysis::check::Cone>,
+    taper: bool,
+    lead_deviation: Option<crate::analysis::lead::LeadDeviation>,
+) -> (Vec<crate::analysis::check::Check>, Option<f64>) {
     // The lead error's equivalent: the functional pitch diameter has more material than the
     // measured one (larger on a bolt, smaller in a nut); on a taper thread the gauge stands off
     // by the equivalent over the taper.
@@ -1082,9 +1057,9 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
     let lead_turns =
         cone.zip(lead_deviation).map(|(c, ld)| ld.pitch_diameter_equivalent / (c.nominal_taper * t.pitch));
     let cone = cone.map(|c| crate::analysis::check::Cone { turns: c.turns - lead_turns.unwrap_or(0.0), ..c });
-    let mut cs = checks(m, &limits, &t, kind, m.root_pockets <= 1, cone);
-    if let (Some(f), Some(ld), None) = (functional, lead_deviation, taper) {
-        cs.push(crate::analysis::check::functional_check(f, &limits, kind, ld));
+    let mut cs = checks(m, limits, t, kind, m.root_pockets <= 1, cone);
+    if let (Some(f), Some(ld), false) = (functional, lead_deviation, taper) {
+        cs.push(crate::analysis::check::functional_check(f, limits, kind, ld));
     }
     if let (Some(ld), Some(share)) = (lead_deviation, lead_turns) {
         if let Some(gp) =
@@ -1097,6 +1072,81 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
             ));
         }
     }
+    (cs, functional)
+}
+
+fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error> {
+    let spec = &r.spec;
+    if spec.taper != 0.0 {
+        return Err(Error::Input("--taper lays out a tapered pass plan for `passes`; verify takes a taper thread's taper from its designation (NPT, ISO 7-1) or from a program".into()));
+    }
+    let (des, kind, limits, insert, blank, infeed) =
+        (r.designation.clone(), r.kind, r.limits.clone(), r.insert.clone(), r.blank, r.infeed);
+    let mut notes = r.notes.clone();
+    let t = des.thread;
+    // A taper thread is measured along its cone: at the gauge plane (external, the face at Z0)
+    // or four pitches in (internal), the section sheared so the cone's pitch line runs level.
+    let taper = limits.gauge_plane.map(|gp| {
+        let (z_meas, slope_r) = match kind {
+            ThreadKind::External => (-gp.distance, -0.5 * gp.taper),
+            ThreadKind::Internal => (-4.0 * t.pitch, 0.5 * gp.taper),
+        };
+        (gp, z_meas, slope_r)
+    });
+    if taper.is_some() {
+        notes.push("taper thread: the face (the small end of an external thread, the opening of a fitting) is taken at Z0".into());
+    }
+    // A taper thread's maximum-material check is its gauge plane's, not a parallel profile's.
+    let parallel = MeasureSetup::for_class(&t, kind, &limits);
+    let mid = limits.pitch_diameter.mid();
+    if taper.is_none() && mid.is_none() {
+        return Err(Error::Input("the class has no two-sided pitch-diameter tolerance".into()));
+    }
+    let mr = Measurer {
+        r,
+        t: &t,
+        setup: SweepSetup { kind, insert: &insert, blank_diameter: blank, pitch: t.pitch },
+        ms: match taper {
+            Some(_) => MeasureSetup { mmc_pitch_diameter: None, ..parallel },
+            None => parallel,
+        },
+        taper,
+        mid,
+    };
+    let program_label = given.as_ref().map(|g| g.label.clone());
+    let lead_deviation = given.as_ref().and_then(|g| g.lead);
+    let depth_word = given.as_ref().and_then(|g| g.depth_word.clone().map(|w| (w, g.units)));
+    let (final_x, solved, cut) = if let Some(g) = given {
+        notes.extend(g.notes);
+        let final_x = last_head(&g.passes).x_at(mr.z_of(&g.passes));
+        (final_x, false, mr.measure_passes(g.passes, &mr.ms)?)
+    } else {
+        match spec.final_x {
+            Some(x) if !x.is_finite() => {
+                return Err(Error::Input(format!("final X {x} is not a finite number")))
+            }
+            Some(x) => (x, false, mr.run_with(x, &mr.ms)?),
+            None => {
+                let (x, cut) = mr.solve(&insert)?;
+                (x, true, cut)
+            }
+        }
+    };
+    // A taper thread is measured on its section sheared so the pitch cone runs level; its flank
+    // angles are turned back into the true axial section before they are checked.
+    let cut = match taper {
+        Some((_, _, slope_r)) => {
+            let mut m = cut.measurement.clone();
+            m.flank_angles = true_flank_angles(m.flank_angles, slope_r, kind);
+            Cut { measurement: m, ..cut }
+        }
+        None => cut,
+    };
+    let metrics = if spec.metrics { pass_metrics(&mr.setup, &cut.passes, cut.z_ref)? } else { Vec::new() };
+    let m = &cut.measurement;
+    notes.extend(measured_notes(m, spec.coating, &t, kind));
+    let cone = gauge_cone(taper, kind, &cut, &t);
+    let (cs, functional) = judge(m, &limits, &t, kind, cone, taper.is_some(), lead_deviation);
     let pass = verdict(&cs, spec.gauge_only);
     let d2_off = cs.iter().any(|c| {
         matches!(
@@ -1106,7 +1156,7 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
                 | crate::analysis::check::CheckFeature::FunctionalPitchDiameter
         ) && !c.ok
     });
-    let delta = target_at(cut.z_ref) - m.pitch_diameter;
+    let delta = mr.target_at(cut.z_ref) - m.pitch_diameter;
     let suggested = d2_off.then_some(final_x + delta);
     let correction = match (d2_off, &depth_word) {
         (true, Some((w, units))) => Some(crate::analysis::correction::correction(w, *units, kind, delta)),
@@ -1127,6 +1177,7 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         }
         None => 0.0,
     };
+    drop(mr);
     let mut v = Verification {
         designation: des,
         kind,
@@ -1170,18 +1221,50 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
     };
     v.hints = crate::analysis::check::hints(&v.checks, &v.insert, &v.limits, t.half_angle().to_degrees());
     if spec.picture {
-        v.picture = Some(crate::analysis::picture::picture(&crate::analysis::picture::Cut {
-            thread: &v.designation.thread,
-            kind: v.kind,
-            limits: &v.limits,
-            groove_center: v.measurement.groove_center,
-            section: &v.section,
-            insert: &v.insert,
-            blank_diameter: v.blank_diameter,
-            passes: &v.passes,
-        })?);
+        v.picture = Some(picture_of(&v)?);
     }
     Ok(v)
+}
+
+/// What a verification's pictures draw, computed from it.
+fn picture_of(v: &Verification) -> Result<crate::analysis::picture::Picture, Error> {
+    crate::analysis::picture::picture(&crate::analysis::picture::Cut {
+        thread: &v.designation.thread,
+        kind: v.kind,
+        limits: &v.limits,
+        groove_center: v.measurement.groove_center,
+        section: &v.section,
+        insert: &v.insert,
+        blank_diameter: v.blank_diameter,
+        passes: &v.passes,
+    })
+}
+
+/// The notes a measurement adds: the pitch diameter after a coating of `coating` mm, and a
+/// pitch line found on the flank lines extended.
+fn measured_notes(
+    m: &Measurement,
+    coating: f64,
+    t: &crate::standards::BasicThread,
+    kind: ThreadKind,
+) -> Vec<crate::ground::note::Note> {
+    let mut notes = Vec::new();
+    if coating > 0.0 {
+        let grow = crate::standards::tolerance::coat_pitch_growth(coating, t.half_angle());
+        let after = match kind {
+            ThreadKind::External => m.pitch_diameter + grow,
+            ThreadKind::Internal => m.pitch_diameter - grow,
+        };
+        notes.push(crate::ground::note::Note::from(format!(
+            "after coating the pitch diameter measured here becomes {after:.4} mm (the class's limits apply to it)"
+        )));
+    }
+    if m.pitch_line_extrapolated {
+        notes.push(crate::ground::note::Note::from(
+            "the pitch line lies outside the cut flanks; the fitted flank lines were extended to find it",
+        ));
+    }
+    notes
 }
 
 /// Flank half-angles measured on a section sheared by `slope_r` (radius per mm of z) turned

@@ -98,7 +98,7 @@ pub enum Func {
     Acos,
     /// Arc tangent of one argument, degrees (−90 … 90).
     Atan,
-    /// Fanuc `ATAN[y]/[x]`: 0 … 360 degrees (the Fanuc range, unsourced here: see the README).
+    /// Fanuc `ATAN[y]/[x]`: 0 … 360 degrees (the Fanuc range, unsourced here: see docs/guide/verify-a-lathe-program.md, macro languages).
     Atan2Full,
     /// LinuxCNC `ATAN[y]/[x]`: −180 … 180 degrees.
     Atan2Signed,
