@@ -1177,7 +1177,6 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         }
         None => 0.0,
     };
-    drop(mr);
     let mut v = Verification {
         designation: des,
         kind,

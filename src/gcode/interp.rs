@@ -588,6 +588,528 @@ struct DynaLoop {
     left: u64,
 }
 
+/// The interpreter's state while it runs a program: where it is, the calls and loops open.
+struct Exec<'a> {
+    blocks: &'a [Block],
+    lay: Layout,
+    file: &'a str,
+    vars: Vars,
+    /// The block being run and the end of the (sub)program it is in.
+    pc: usize,
+    end: usize,
+    frames: Vec<Frame>,
+    loops: Vec<DynaLoop>,
+    /// LinuxCNC repeat counters by block.
+    repeats: HashMap<usize, f64>,
+    called: HashSet<String>,
+    /// The branch of an if chain being entered by a jump (evaluate it rather than skip it).
+    entering_branch: bool,
+    /// LinuxCNC's loop flags (interp_o_word.cc): after `break` or `continue` the interpreter
+    /// skips to the next line that carries the loop's name, so a `break` of that loop further in
+    /// the body runs even in a branch not taken; `doing_break` and `doing_continue` are global
+    /// and outlive their loop: a loop end reached while skipping loops back when
+    /// `doing_continue` is set, and the end of a do-while loop leaves it when `doing_break` is.
+    doing_break: bool,
+    doing_continue: bool,
+    /// The loop end is reached by skipping (after break or continue).
+    skipping_to_end: bool,
+}
+
+/// What a block's statements decided: the block to run next, and its assignments.
+struct Step<'a> {
+    next: usize,
+    jumped_back: bool,
+    skip_words: bool,
+    enter_branch: bool,
+    assigns: Vec<(&'a VarRef, &'a Expr, usize, &'a str)>,
+}
+
+/// After a block's flow: go on, start the next block now (no jump counted), or end.
+enum Then {
+    Go,
+    Skip(usize),
+    Stop,
+}
+
+/// An error at a block's column.
+fn perr(file: &str, b: &Block, col: usize, msg: String) -> Error {
+    Error::Program { file: file.to_string(), line: b.line, column: col, message: msg }
+}
+
+/// A condition's truth: non-zero.
+fn truth(v: Value) -> bool {
+    v.unwrap_or(0.0) != 0.0
+}
+
+/// An O-word statement: its name, keyword, condition, arguments and column.
+type OWord<'a> = (&'a String, OKw, Option<&'a Expr>, &'a [Expr], usize);
+
+impl<'a> Exec<'a> {
+    /// `e` evaluated at column `col` of block `b`.
+    fn ev(&mut self, b: &Block, e: &Expr, col: usize) -> Result<Value, Error> {
+        self.vars.here = (b.line, col);
+        fast_eval(e, &mut self.vars).map_err(|msg| perr(self.file, b, col, msg))
+    }
+
+    /// Returns from the innermost call ([`do_return`]).
+    fn ret(&mut self, to_n: Option<f64>) -> Result<Option<usize>, Error> {
+        do_return(
+            &mut self.frames,
+            &mut self.end,
+            &mut self.vars,
+            &mut self.loops,
+            to_n,
+            &self.lay,
+            self.file,
+        )
+    }
+
+    /// Block `pc`'s statements: jumps, conditions, loops and calls, and the assignments to make.
+    fn statements(&mut self, b: &'a Block, pc: usize, arrived_skipping: bool) -> Result<Step<'a>, Error> {
+        let mut st = Step {
+            next: pc + 1,
+            jumped_back: false,
+            skip_words: false,
+            enter_branch: false,
+            assigns: Vec::new(),
+        };
+        for s in &b.stmts {
+            match s {
+                Stmt::Assign { var, expr, col, text } => st.assigns.push((var, expr, *col, text)),
+                Stmt::Goto { target, col } => {
+                    let n = self.ev(b, target, *col)?.unwrap_or(0.0);
+                    st.next = goto_n(&self.lay, pc, n).ok_or_else(|| {
+                        perr(self.file, b, *col, format!("GOTO {n}: no block N{n} in this program"))
+                    })?;
+                    st.jumped_back = st.next <= pc;
+                }
+                Stmt::IfGoto { cond: c, target, col } => {
+                    if truth(self.ev(b, c, *col)?) {
+                        let n = self.ev(b, target, *col)?.unwrap_or(0.0);
+                        st.next = goto_n(&self.lay, pc, n).ok_or_else(|| {
+                            perr(self.file, b, *col, format!("GOTO {n}: no block N{n} in this program"))
+                        })?;
+                        st.jumped_back = st.next <= pc;
+                    }
+                }
+                Stmt::IfThen { cond: c, then, col } => {
+                    if truth(self.ev(b, c, *col)?) {
+                        if let Stmt::Assign { var, expr, col, text } = then.as_ref() {
+                            st.assigns.push((var, expr, *col, text));
+                        }
+                    }
+                }
+                Stmt::While { cond: c, id, col } => {
+                    if !truth(self.ev(b, c, *col)?) {
+                        let e = self
+                            .lay
+                            .pair
+                            .get(&pc)
+                            .copied()
+                            .ok_or_else(|| perr(self.file, b, *col, format!("DO{id} has no END{id}")))?;
+                        st.next = e + 1;
+                    }
+                }
+                Stmt::Do { .. } => {}
+                Stmt::End { id, col } => {
+                    st.next = self
+                        .lay
+                        .pair
+                        .get(&pc)
+                        .copied()
+                        .ok_or_else(|| perr(self.file, b, *col, format!("END{id} without DO{id}")))?;
+                    st.jumped_back = true;
+                }
+                Stmt::Jump { forward, label, cond: c, col } => {
+                    let take = match c {
+                        Some(c) => truth(self.ev(b, c, *col)?),
+                        None => true,
+                    };
+                    if take {
+                        st.next = jump_label(&self.lay, pc, label, *forward, self.end).ok_or_else(|| {
+                            perr(
+                                self.file,
+                                b,
+                                *col,
+                                format!(
+                                    "no label or block {label} {} in this program",
+                                    match forward {
+                                        Some(true) => "after this block",
+                                        Some(false) => "before this block",
+                                        None => "",
+                                    }
+                                ),
+                            )
+                        })?;
+                        st.jumped_back = st.next <= pc;
+                    }
+                }
+                Stmt::O { name, kw, cond: c, args, col } => {
+                    self.o_word(b, pc, (name, *kw, c.as_ref(), args, *col), arrived_skipping, &mut st)?;
+                }
+            }
+        }
+        Ok(st)
+    }
+
+    /// An O-word (LinuxCNC's subroutines, loops and conditionals) of block `pc`.
+    fn o_word(
+        &mut self,
+        b: &'a Block,
+        pc: usize,
+        (name, kw, c, args, col): OWord<'a>,
+        arrived_skipping: bool,
+        st: &mut Step<'a>,
+    ) -> Result<(), Error> {
+        match kw {
+            OKw::Sub => {
+                // A definition met in the program's flow: read past it.
+                st.next = self.lay.pair.get(&pc).copied().unwrap_or(pc) + 1;
+                st.skip_words = true;
+            }
+            OKw::EndSub | OKw::Return => {
+                // An endsub or return with a value sets #<_value> and
+                // #<_value_returned> to 1; one without sets both to 0 (LinuxCNC's
+                // interp_read.cc).
+                let value = match c {
+                    Some(c) => self.ev(b, c, col)?,
+                    None => None,
+                };
+                st.next = do_return(
+                    &mut self.frames,
+                    &mut self.end,
+                    &mut self.vars,
+                    &mut self.loops,
+                    None,
+                    &self.lay,
+                    self.file,
+                )?
+                .ok_or_else(|| {
+                    perr(self.file, b, col, format!("o{name} {} outside a subroutine call", okw(kw)))
+                })?;
+                let returned = if value.is_some() { 1.0 } else { 0.0 };
+                self.vars.named_globals.insert("_value".into(), value.unwrap_or(0.0));
+                self.vars.named_globals.insert("_value_returned".into(), returned);
+            }
+            OKw::Call => {
+                let mut vals = Vec::new();
+                for a in args {
+                    vals.push(self.ev(b, a, col)?.unwrap_or(0.0));
+                }
+                let Some(&(start, send)) = self.lay.subs.get(name.as_str()) else {
+                    return Err(perr(self.file, b, col, format!("o{name} call: no o{name} sub in this file (threadcheck reads subroutines defined in the same file)")));
+                };
+                if self.frames.len() + 1 > MAX_CALL_DEPTH {
+                    return Err(perr(
+                        self.file,
+                        b,
+                        col,
+                        format!("calls nest deeper than {MAX_CALL_DEPTH}: does o{name} call itself?"),
+                    ));
+                }
+                self.called.insert(name.clone());
+                self.vars.frames.push((vec![None; 34], HashMap::new()));
+                if let Some(f) = self.vars.frames.last_mut() {
+                    for (k, v) in vals.iter().enumerate().take(30) {
+                        f.0[k + 1] = Some(*v);
+                    }
+                }
+                self.frames.push(Frame {
+                    ret: pc + 1,
+                    start,
+                    end: send,
+                    repeats_left: 0,
+                    own_locals: true,
+                    caller_section: self.lay.section[pc],
+                    line: b.line,
+                    col,
+                    name: format!("o{name}"),
+                    loops: self.loops.len(),
+                });
+                self.end = send;
+                st.next = start;
+            }
+            OKw::While => {
+                // The closing `while` of a do-loop, or a loop head.
+                let closes_do = self.lay.pair.get(&pc).is_some_and(|&j| j < pc);
+                let t = match c {
+                    Some(c) => truth(self.ev(b, c, col)?),
+                    None => false,
+                };
+                if closes_do {
+                    if t && !self.doing_break {
+                        st.next = self.lay.pair[&pc] + 1;
+                        st.jumped_back = true;
+                    } else {
+                        self.doing_break = false;
+                    }
+                } else if !t {
+                    let tail = self.lay.pair.get(&pc).copied().unwrap_or(pc);
+                    self.doing_break |= break_between(self.blocks, pc, tail, name);
+                    st.next = tail;
+                    self.skipping_to_end = true;
+                }
+            }
+            OKw::EndWhile | OKw::EndRepeat => {
+                let head = self.lay.pair[&pc];
+                if arrived_skipping && !self.doing_continue {
+                    // Skipped here (a break, a false head): done.
+                    self.repeats.remove(&head);
+                } else {
+                    // Skipped here after a continue: its flag is spent.
+                    if arrived_skipping {
+                        self.doing_continue = false;
+                    }
+                    st.next = head;
+                    st.jumped_back = true;
+                }
+            }
+            OKw::Do => {}
+            OKw::Repeat => {
+                let left = match self.repeats.get(&pc) {
+                    Some(l) => *l,
+                    None => self.ev(b, c.unwrap_or(&ZERO), col)?.unwrap_or(0.0).floor(),
+                };
+                if left <= 0.0 {
+                    self.repeats.remove(&pc);
+                    let tail = self.lay.pair.get(&pc).copied().unwrap_or(pc);
+                    self.doing_break |= break_between(self.blocks, pc, tail, name);
+                    st.next = tail;
+                    self.skipping_to_end = true;
+                } else {
+                    self.repeats.insert(pc, left - 1.0);
+                }
+            }
+            OKw::If | OKw::ElseIf | OKw::Else => {
+                let head = kw == OKw::If || self.entering_branch;
+                if !head {
+                    // Reached from the end of the branch before: done.
+                    st.next = self.lay.endif.get(&pc).copied().unwrap_or(pc) + 1;
+                } else {
+                    let t = match c {
+                        Some(c) => truth(self.ev(b, c, col)?),
+                        None => true, // else
+                    };
+                    if !t {
+                        st.next = self.lay.next_branch.get(&pc).copied().unwrap_or(pc + 1);
+                        // Land on the next branch head and evaluate it.
+                        if self.blocks.get(st.next).is_some_and(|nb| {
+                            nb.stmts.iter().any(|s| matches!(s, Stmt::O { kw: OKw::ElseIf | OKw::Else, .. }))
+                        }) {
+                            // The next block is run as the branch's head (its
+                            // condition evaluated, an else entered).
+                            st.enter_branch = true;
+                        } else {
+                            st.next += 1;
+                        }
+                    }
+                }
+            }
+            OKw::EndIf => {}
+            OKw::Break | OKw::Continue => {
+                // Skip to the loop's end; a break of this loop on the way runs.
+                let head = self.lay.loop_of[&pc];
+                let tail = self.lay.pair.get(&head).copied().unwrap_or(head);
+                if kw == OKw::Break {
+                    self.doing_break = true;
+                } else {
+                    self.doing_continue = true;
+                }
+                self.doing_break |= break_between(self.blocks, pc, tail, name);
+                st.next = tail;
+                self.skipping_to_end = true;
+            }
+        }
+        Ok(())
+    }
+
+    /// What the block's words asked of the flow: calls, returns, the end, Dyna's loops.
+    fn flow(
+        &mut self,
+        flow: Flow,
+        b: &Block,
+        pc: usize,
+        st: &mut Step<'a>,
+        m: &mut Motion,
+        rules: &mut dyn Rules,
+    ) -> Result<Then, Error> {
+        match flow {
+            Flow::Next => {}
+            Flow::End => {
+                if !self.frames.is_empty() {
+                    let f = &self.frames[self.frames.len() - 1];
+                    m.note(
+                        b.line,
+                        b.col,
+                        format!("the program ends inside {} (called from line {})", f.name, f.line),
+                    );
+                }
+                return Ok(Then::Stop);
+            }
+            Flow::Call { name, repeats: reps, locals, col } => {
+                let Some(&(start, send)) = self.lay.subs.get(&name) else {
+                    return Err(perr(self.file, b, col, format!("subprogram {name} is not in this file")));
+                };
+                if reps as usize > MAX_REPEATS {
+                    return Err(perr(
+                        self.file,
+                        b,
+                        col,
+                        format!("{name}: {reps} repetitions, more than {MAX_REPEATS}"),
+                    ));
+                }
+                if self.frames.len() + 1 > MAX_CALL_DEPTH {
+                    return Err(perr(
+                        self.file,
+                        b,
+                        col,
+                        format!(
+                            "subprogram calls nest deeper than {MAX_CALL_DEPTH}: does {name} call itself?"
+                        ),
+                    ));
+                }
+                if reps == 0 {
+                    return Ok(Then::Skip(st.next));
+                }
+                self.called.insert(name.clone());
+                let own = locals.is_some();
+                if let Some(ls) = locals {
+                    self.vars.frames.push((vec![None; 34], HashMap::new()));
+                    if let Some(f) = self.vars.frames.last_mut() {
+                        for (k, v) in ls {
+                            if (1..=33).contains(&k) {
+                                f.0[k as usize] = Some(v);
+                            }
+                        }
+                    }
+                }
+                self.frames.push(Frame {
+                    ret: st.next,
+                    start,
+                    end: send,
+                    repeats_left: reps - 1,
+                    own_locals: own,
+                    caller_section: self.lay.section[pc],
+                    line: b.line,
+                    col,
+                    name,
+                    loops: self.loops.len(),
+                });
+                self.end = send;
+                st.next = start;
+            }
+            Flow::LocalCall { n, repeats: reps, col } => {
+                let sec = self.lay.section[pc];
+                let target = self
+                    .lay
+                    .n_index
+                    .get(&n_key(n))
+                    .and_then(|v| v.iter().copied().find(|&i| i >= sec.0 && i < sec.1))
+                    .ok_or_else(|| {
+                        perr(self.file, b, col, format!("M97 P{n}: no block N{n} in this program"))
+                    })?;
+                if self.frames.len() + 1 > MAX_CALL_DEPTH {
+                    return Err(perr(
+                        self.file,
+                        b,
+                        col,
+                        format!("subprogram calls nest deeper than {MAX_CALL_DEPTH}"),
+                    ));
+                }
+                if reps > 0 {
+                    self.frames.push(Frame {
+                        ret: st.next,
+                        start: target,
+                        end: self.end,
+                        repeats_left: reps - 1,
+                        own_locals: false,
+                        caller_section: sec,
+                        line: b.line,
+                        col,
+                        name: format!("N{n}"),
+                        loops: self.loops.len(),
+                    });
+                    st.next = target;
+                }
+            }
+            Flow::Return { to_n, col } => {
+                match do_return(
+                    &mut self.frames,
+                    &mut self.end,
+                    &mut self.vars,
+                    &mut self.loops,
+                    to_n,
+                    &self.lay,
+                    self.file,
+                )? {
+                    Some(n) => st.next = n,
+                    None => {
+                        m.note(b.line, col, "M99 in the main program would run it again from the start; threadcheck ends it here");
+                        return Ok(Then::Stop);
+                    }
+                }
+            }
+            Flow::LoopStart { count, col } => {
+                if !(0.0..=1e9).contains(&count) {
+                    return Err(perr(
+                        self.file,
+                        b,
+                        col,
+                        format!("loop count {count} must be a whole number from 0"),
+                    ));
+                }
+                let k = count.round() as u64;
+                if k == 0 {
+                    // Skip to the matching M74.
+                    st.next = rules
+                        .loop_end(self.blocks, pc)
+                        .ok_or_else(|| perr(self.file, b, col, "M73 without its M74".into()))?
+                        + 1;
+                } else {
+                    self.loops.push(DynaLoop { body: st.next, left: k });
+                }
+            }
+            Flow::LoopEnd { col } => {
+                let Some(l) = self.loops.last_mut() else {
+                    return Err(perr(self.file, b, col, "M74 without an open M73 loop".into()));
+                };
+                l.left -= 1;
+                if l.left > 0 {
+                    st.next = l.body;
+                    st.jumped_back = true;
+                } else {
+                    self.loops.pop();
+                }
+            }
+        }
+        Ok(Then::Go)
+    }
+
+    /// Subroutines defined and never called are read past; say so, in the order they stand.
+    fn never_called(&self, m: &mut Motion) {
+        let mut never: Vec<(usize, &String)> = self
+            .lay
+            .subs
+            .iter()
+            .filter(|(name, _)| !self.called.contains(*name) && self.lay.main_name.as_ref() != Some(*name))
+            .map(|(name, &(start, _))| (start, name))
+            .collect();
+        never.sort_unstable();
+        for (start, name) in never {
+            if start > 0 {
+                let hb = &self.blocks[start - 1];
+                let what = (self.vars.lang.sub_word)(name);
+                m.note_of(
+                    NoteKind::NeverCalled,
+                    hb.line,
+                    hb.col,
+                    format!("{what} is defined but never called"),
+                );
+            }
+        }
+    }
+}
+
 /// Runs the program.
 pub(crate) fn run(
     blocks: &[Block],
@@ -603,42 +1125,36 @@ pub(crate) fn run(
     let n_numbers: HashSet<u64> = lay.n_index.keys().copied().collect();
     let mut vars = Vars::new(lang);
     vars.system = SysParams::new(rules.system_names());
-    let perr = |b: &Block, col: usize, msg: String| Error::Program {
-        file: file.to_string(),
-        line: b.line,
-        column: col,
-        message: msg,
+    let mut x = Exec {
+        blocks,
+        pc: lay.main_start,
+        end: lay.main_end,
+        lay,
+        file,
+        vars,
+        frames: Vec::new(),
+        loops: Vec::new(),
+        repeats: HashMap::new(),
+        called: HashSet::new(),
+        entering_branch: false,
+        doing_break: false,
+        doing_continue: false,
+        skipping_to_end: false,
     };
-    let mut pc = lay.main_start;
-    let mut end = lay.main_end;
-    let mut frames: Vec<Frame> = Vec::new();
-    let mut loops: Vec<DynaLoop> = Vec::new();
-    // LinuxCNC repeat counters by block.
-    let mut repeats: HashMap<usize, f64> = HashMap::new();
     let mut executed = 0usize;
     let mut back = 0usize;
-    let mut called: HashSet<String> = HashSet::new();
-    // The branch of an if chain being entered by a jump (evaluate it rather than skip it).
-    let mut entering_branch = false;
-    // LinuxCNC's loop flags (interp_o_word.cc): after `break` or `continue` the interpreter
-    // skips to the next line that carries the loop's name, so a `break` of that loop further in
-    // the body runs even in a branch not taken; `doing_break` and `doing_continue` are global
-    // and outlive their loop: a loop end reached while skipping loops back when
-    // `doing_continue` is set, and the end of a do-while loop leaves it when `doing_break` is.
-    let (mut doing_break, mut doing_continue) = (false, false);
-    // The loop end is reached by skipping (after break or continue).
-    let mut skipping_to_end = false;
     loop {
-        if pc >= end {
+        if x.pc >= x.end {
             // The end of a subprogram without M99/M17/endsub returns; the main program ends.
-            match do_return(&mut frames, &mut end, &mut vars, &mut loops, None, &lay, file)? {
+            match x.ret(None)? {
                 Some(next) => {
-                    pc = next;
+                    x.pc = next;
                     continue;
                 }
                 None => break,
             }
         }
+        let pc = x.pc;
         let b = &blocks[pc];
         executed += 1;
         // A request no longer wanted (the server's time budget) stops here within microseconds.
@@ -647,438 +1163,73 @@ pub(crate) fn run(
         }
         if executed > budget.blocks {
             return Err(perr(
+                file,
                 b,
                 b.col,
                 format!("more than {} blocks executed: the program loops", budget.blocks),
             ));
         }
-        vars.here = (b.line, b.col);
+        x.vars.here = (b.line, b.col);
         // The read-only position parameters (#<_x>, #<_z>) as the last move left them, for the
         // block's conditions, assignments and words alike.
-        rules.system_params(m, &mut vars.system);
-        let mut next = pc + 1;
-        let mut jumped_back = false;
-        let mut skip_words = false;
-        let arrived_skipping = std::mem::take(&mut skipping_to_end);
-        // Statements.
-        let mut enter_branch = false;
-        let mut assigns: Vec<(&VarRef, &Expr, usize, &str)> = Vec::new();
-        for s in &b.stmts {
-            let ev = |e: &Expr, vars: &mut Vars, col: usize| -> Result<Value, Error> {
-                vars.here = (b.line, col);
-                fast_eval(e, vars).map_err(|msg| perr(b, col, msg))
-            };
-            let cond = |v: Value| v.unwrap_or(0.0) != 0.0;
-            match s {
-                Stmt::Assign { var, expr, col, text } => assigns.push((var, expr, *col, text)),
-                Stmt::Goto { target, col } => {
-                    let n = ev(target, &mut vars, *col)?.unwrap_or(0.0);
-                    next = goto_n(&lay, pc, n)
-                        .ok_or_else(|| perr(b, *col, format!("GOTO {n}: no block N{n} in this program")))?;
-                    jumped_back = next <= pc;
-                }
-                Stmt::IfGoto { cond: c, target, col } => {
-                    if cond(ev(c, &mut vars, *col)?) {
-                        let n = ev(target, &mut vars, *col)?.unwrap_or(0.0);
-                        next = goto_n(&lay, pc, n).ok_or_else(|| {
-                            perr(b, *col, format!("GOTO {n}: no block N{n} in this program"))
-                        })?;
-                        jumped_back = next <= pc;
-                    }
-                }
-                Stmt::IfThen { cond: c, then, col } => {
-                    if cond(ev(c, &mut vars, *col)?) {
-                        if let Stmt::Assign { var, expr, col, text } = then.as_ref() {
-                            assigns.push((var, expr, *col, text));
-                        }
-                    }
-                }
-                Stmt::While { cond: c, id, col } => {
-                    if !cond(ev(c, &mut vars, *col)?) {
-                        let e = lay
-                            .pair
-                            .get(&pc)
-                            .copied()
-                            .ok_or_else(|| perr(b, *col, format!("DO{id} has no END{id}")))?;
-                        next = e + 1;
-                    }
-                }
-                Stmt::Do { .. } => {}
-                Stmt::End { id, col } => {
-                    next = lay
-                        .pair
-                        .get(&pc)
-                        .copied()
-                        .ok_or_else(|| perr(b, *col, format!("END{id} without DO{id}")))?;
-                    jumped_back = true;
-                }
-                Stmt::Jump { forward, label, cond: c, col } => {
-                    let take = match c {
-                        Some(c) => cond(ev(c, &mut vars, *col)?),
-                        None => true,
-                    };
-                    if take {
-                        next = jump_label(&lay, pc, label, *forward, end).ok_or_else(|| {
-                            perr(
-                                b,
-                                *col,
-                                format!(
-                                    "no label or block {label} {} in this program",
-                                    match forward {
-                                        Some(true) => "after this block",
-                                        Some(false) => "before this block",
-                                        None => "",
-                                    }
-                                ),
-                            )
-                        })?;
-                        jumped_back = next <= pc;
-                    }
-                }
-                Stmt::O { name, kw, cond: c, args, col } => {
-                    let col = *col;
-                    match kw {
-                        OKw::Sub => {
-                            // A definition met in the program's flow: read past it.
-                            next = lay.pair.get(&pc).copied().unwrap_or(pc) + 1;
-                            skip_words = true;
-                        }
-                        OKw::EndSub | OKw::Return => {
-                            // An endsub or return with a value sets #<_value> and
-                            // #<_value_returned> to 1; one without sets both to 0 (LinuxCNC's
-                            // interp_read.cc).
-                            let value = match c {
-                                Some(c) => ev(c, &mut vars, col)?,
-                                None => None,
-                            };
-                            next = do_return(&mut frames, &mut end, &mut vars, &mut loops, None, &lay, file)?
-                                .ok_or_else(|| {
-                                    perr(b, col, format!("o{name} {} outside a subroutine call", okw(*kw)))
-                                })?;
-                            let returned = if value.is_some() { 1.0 } else { 0.0 };
-                            vars.named_globals.insert("_value".into(), value.unwrap_or(0.0));
-                            vars.named_globals.insert("_value_returned".into(), returned);
-                        }
-                        OKw::Call => {
-                            let mut vals = Vec::new();
-                            for a in args {
-                                vals.push(ev(a, &mut vars, col)?.unwrap_or(0.0));
-                            }
-                            let Some(&(start, send)) = lay.subs.get(name.as_str()) else {
-                                return Err(perr(b, col, format!("o{name} call: no o{name} sub in this file (threadcheck reads subroutines defined in the same file)")));
-                            };
-                            if frames.len() + 1 > MAX_CALL_DEPTH {
-                                return Err(perr(
-                                    b,
-                                    col,
-                                    format!(
-                                        "calls nest deeper than {MAX_CALL_DEPTH}: does o{name} call itself?"
-                                    ),
-                                ));
-                            }
-                            called.insert(name.clone());
-                            vars.frames.push((vec![None; 34], HashMap::new()));
-                            if let Some(f) = vars.frames.last_mut() {
-                                for (k, v) in vals.iter().enumerate().take(30) {
-                                    f.0[k + 1] = Some(*v);
-                                }
-                            }
-                            frames.push(Frame {
-                                ret: pc + 1,
-                                start,
-                                end: send,
-                                repeats_left: 0,
-                                own_locals: true,
-                                caller_section: lay.section[pc],
-                                line: b.line,
-                                col,
-                                name: format!("o{name}"),
-                                loops: loops.len(),
-                            });
-                            end = send;
-                            next = start;
-                        }
-                        OKw::While => {
-                            // The closing `while` of a do-loop, or a loop head.
-                            let closes_do = lay.pair.get(&pc).is_some_and(|&j| j < pc);
-                            let t = match c {
-                                Some(c) => cond(ev(c, &mut vars, col)?),
-                                None => false,
-                            };
-                            if closes_do {
-                                if t && !doing_break {
-                                    next = lay.pair[&pc] + 1;
-                                    jumped_back = true;
-                                } else {
-                                    doing_break = false;
-                                }
-                            } else if !t {
-                                let tail = lay.pair.get(&pc).copied().unwrap_or(pc);
-                                doing_break |= break_between(blocks, pc, tail, name);
-                                next = tail;
-                                skipping_to_end = true;
-                            }
-                        }
-                        OKw::EndWhile | OKw::EndRepeat => {
-                            let head = lay.pair[&pc];
-                            if arrived_skipping && !doing_continue {
-                                // Skipped here (a break, a false head): done.
-                                repeats.remove(&head);
-                            } else {
-                                // Skipped here after a continue: its flag is spent.
-                                if arrived_skipping {
-                                    doing_continue = false;
-                                }
-                                next = head;
-                                jumped_back = true;
-                            }
-                        }
-                        OKw::Do => {}
-                        OKw::Repeat => {
-                            let left = match repeats.get(&pc) {
-                                Some(l) => *l,
-                                None => {
-                                    ev(c.as_ref().unwrap_or(&ZERO), &mut vars, col)?.unwrap_or(0.0).floor()
-                                }
-                            };
-                            if left <= 0.0 {
-                                repeats.remove(&pc);
-                                let tail = lay.pair.get(&pc).copied().unwrap_or(pc);
-                                doing_break |= break_between(blocks, pc, tail, name);
-                                next = tail;
-                                skipping_to_end = true;
-                            } else {
-                                repeats.insert(pc, left - 1.0);
-                            }
-                        }
-                        OKw::If | OKw::ElseIf | OKw::Else => {
-                            let head = *kw == OKw::If || entering_branch;
-                            if !head {
-                                // Reached from the end of the branch before: done.
-                                next = lay.endif.get(&pc).copied().unwrap_or(pc) + 1;
-                            } else {
-                                let t = match c {
-                                    Some(c) => cond(ev(c, &mut vars, col)?),
-                                    None => true, // else
-                                };
-                                if !t {
-                                    next = lay.next_branch.get(&pc).copied().unwrap_or(pc + 1);
-                                    // Land on the next branch head and evaluate it.
-                                    if blocks.get(next).is_some_and(|nb| {
-                                        nb.stmts
-                                            .iter()
-                                            .any(|s| matches!(s, Stmt::O { kw: OKw::ElseIf | OKw::Else, .. }))
-                                    }) {
-                                        // The next block is run as the branch's head (its
-                                        // condition evaluated, an else entered).
-                                        enter_branch = true;
-                                    } else {
-                                        next += 1;
-                                    }
-                                }
-                            }
-                        }
-                        OKw::EndIf => {}
-                        OKw::Break | OKw::Continue => {
-                            // Skip to the loop's end; a break of this loop on the way runs.
-                            let head = lay.loop_of[&pc];
-                            let tail = lay.pair.get(&head).copied().unwrap_or(head);
-                            if *kw == OKw::Break {
-                                doing_break = true;
-                            } else {
-                                doing_continue = true;
-                            }
-                            doing_break |= break_between(blocks, pc, tail, name);
-                            next = tail;
-                            skipping_to_end = true;
-                        }
-                    }
-                }
-            }
-        }
-        entering_branch = enter_branch;
+        rules.system_params(m, &mut x.vars.system);
+        let arrived_skipping = std::mem::take(&mut x.skipping_to_end);
+        let mut st = x.statements(b, pc, arrived_skipping)?;
+        x.entering_branch = st.enter_branch;
         // Words: evaluated (LinuxCNC before its assignments, the others after them).
-        let deferred = vars.lang.deferred_assignments;
+        let deferred = x.vars.lang.deferred_assignments;
         if !deferred {
-            do_assigns(&assigns, &mut vars, b, file)?;
+            do_assigns(&st.assigns, &mut x.vars, b, file)?;
         }
         let mut flow = Flow::Next;
-        if !skip_words {
+        if !st.skip_words {
             for p in &b.past {
                 super::cycles::read_past_item(m, b.line, p)?;
             }
         }
-        if !skip_words && (!b.words.is_empty()) {
-            let rb = resolve(b, &mut vars, file)?;
-            flush_pending(&mut vars, m);
+        if !st.skip_words && (!b.words.is_empty()) {
+            let rb = resolve(b, &mut x.vars, file)?;
+            flush_pending(&mut x.vars, m);
             // LinuxCNC's lathe cycles G70/G71/G72 run the profile subroutine named by Q: it is
             // called, for turning.
-            if vars.lang.lathe_cycles_call_q
+            if x.vars.lang.lathe_cycles_call_q
                 && rb.gs().any(|(g, _)| matches!(g as u32, 70..=72) && g.fract() == 0.0)
             {
                 if let Some(q) = rb.get("Q") {
-                    called.insert(format!("{}", q.v.round() as i64));
+                    x.called.insert(format!("{}", q.v.round() as i64));
                 }
             }
-            let mut cx = Ctx { store: &mut vars, subs: &sub_names, ns: &n_numbers };
+            let mut cx = Ctx { store: &mut x.vars, subs: &sub_names, ns: &n_numbers };
             m.note_x_word(&rb);
             flow = rules.block(m, &rb, &mut cx)?;
         }
         if deferred {
-            do_assigns(&assigns, &mut vars, b, file)?;
+            do_assigns(&st.assigns, &mut x.vars, b, file)?;
         }
-        flush_pending(&mut vars, m);
-        match flow {
-            Flow::Next => {}
-            Flow::End => {
-                if !frames.is_empty() {
-                    let f = &frames[frames.len() - 1];
-                    m.note(
-                        b.line,
-                        b.col,
-                        format!("the program ends inside {} (called from line {})", f.name, f.line),
-                    );
-                }
-                break;
+        flush_pending(&mut x.vars, m);
+        match x.flow(flow, b, pc, &mut st, m, rules)? {
+            Then::Go => {}
+            Then::Skip(next) => {
+                x.pc = next;
+                continue;
             }
-            Flow::Call { name, repeats: reps, locals, col } => {
-                let Some(&(start, send)) = lay.subs.get(&name) else {
-                    return Err(perr(b, col, format!("subprogram {name} is not in this file")));
-                };
-                if reps as usize > MAX_REPEATS {
-                    return Err(perr(b, col, format!("{name}: {reps} repetitions, more than {MAX_REPEATS}")));
-                }
-                if frames.len() + 1 > MAX_CALL_DEPTH {
-                    return Err(perr(
-                        b,
-                        col,
-                        format!(
-                            "subprogram calls nest deeper than {MAX_CALL_DEPTH}: does {name} call itself?"
-                        ),
-                    ));
-                }
-                if reps == 0 {
-                    pc = next;
-                    continue;
-                }
-                called.insert(name.clone());
-                let own = locals.is_some();
-                if let Some(ls) = locals {
-                    vars.frames.push((vec![None; 34], HashMap::new()));
-                    if let Some(f) = vars.frames.last_mut() {
-                        for (k, v) in ls {
-                            if (1..=33).contains(&k) {
-                                f.0[k as usize] = Some(v);
-                            }
-                        }
-                    }
-                }
-                frames.push(Frame {
-                    ret: next,
-                    start,
-                    end: send,
-                    repeats_left: reps - 1,
-                    own_locals: own,
-                    caller_section: lay.section[pc],
-                    line: b.line,
-                    col,
-                    name,
-                    loops: loops.len(),
-                });
-                end = send;
-                next = start;
-            }
-            Flow::LocalCall { n, repeats: reps, col } => {
-                let sec = lay.section[pc];
-                let target = lay
-                    .n_index
-                    .get(&n_key(n))
-                    .and_then(|v| v.iter().copied().find(|&i| i >= sec.0 && i < sec.1))
-                    .ok_or_else(|| perr(b, col, format!("M97 P{n}: no block N{n} in this program")))?;
-                if frames.len() + 1 > MAX_CALL_DEPTH {
-                    return Err(perr(b, col, format!("subprogram calls nest deeper than {MAX_CALL_DEPTH}")));
-                }
-                if reps > 0 {
-                    frames.push(Frame {
-                        ret: next,
-                        start: target,
-                        end,
-                        repeats_left: reps - 1,
-                        own_locals: false,
-                        caller_section: sec,
-                        line: b.line,
-                        col,
-                        name: format!("N{n}"),
-                        loops: loops.len(),
-                    });
-                    next = target;
-                }
-            }
-            Flow::Return { to_n, col } => {
-                match do_return(&mut frames, &mut end, &mut vars, &mut loops, to_n, &lay, file)? {
-                    Some(n) => next = n,
-                    None => {
-                        m.note(b.line, col, "M99 in the main program would run it again from the start; threadcheck ends it here");
-                        break;
-                    }
-                }
-            }
-            Flow::LoopStart { count, col } => {
-                if !(0.0..=1e9).contains(&count) {
-                    return Err(perr(b, col, format!("loop count {count} must be a whole number from 0")));
-                }
-                let k = count.round() as u64;
-                if k == 0 {
-                    // Skip to the matching M74.
-                    next = rules
-                        .loop_end(blocks, pc)
-                        .ok_or_else(|| perr(b, col, "M73 without its M74".into()))?
-                        + 1;
-                } else {
-                    loops.push(DynaLoop { body: next, left: k });
-                }
-            }
-            Flow::LoopEnd { col } => {
-                let Some(l) = loops.last_mut() else {
-                    return Err(perr(b, col, "M74 without an open M73 loop".into()));
-                };
-                l.left -= 1;
-                if l.left > 0 {
-                    next = l.body;
-                    jumped_back = true;
-                } else {
-                    loops.pop();
-                }
-            }
+            Then::Stop => break,
         }
         // Every jump back (loops, GOTO, subprogram returns and repetitions) counts.
-        if jumped_back || next <= pc {
+        if st.jumped_back || st.next <= pc {
             back += 1;
             if back > budget.backward_jumps {
                 return Err(perr(
+                    file,
                     b,
                     b.col,
                     format!("more than {} loop iterations: the program loops", budget.backward_jumps),
                 ));
             }
         }
-        pc = next;
+        x.pc = st.next;
     }
-    // Subroutines defined and never called are read past; say so, in the order they stand.
-    let mut never: Vec<(usize, &String)> = lay
-        .subs
-        .iter()
-        .filter(|(name, _)| !called.contains(*name) && lay.main_name.as_ref() != Some(*name))
-        .map(|(name, &(start, _))| (start, name))
-        .collect();
-    never.sort_unstable();
-    for (start, name) in never {
-        if start > 0 {
-            let hb = &blocks[start - 1];
-            let what = (vars.lang.sub_word)(name);
-            m.note_of(NoteKind::NeverCalled, hb.line, hb.col, format!("{what} is defined but never called"));
-        }
-    }
+    x.never_called(m);
     Ok(())
 }
 
