@@ -94,6 +94,7 @@ pub use toolpath::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
 
 // Geometry: the insert, the sweep, the measurement.
 pub use geometry::boolean::UnionStrategy;
+pub use geometry::helix::{Cutter, Helix};
 pub use geometry::insert::{Insert, InsertKind};
 pub use geometry::measure::{
     measure, over_wires, DeviationSample, MeasureSetup, Measurement, ProfileRegion, ThreeWire,
@@ -117,7 +118,7 @@ pub use analysis::mill::{mill, MillReport, MillSpec, Target};
 pub use analysis::picture::{Cut, Deviation, Picture};
 pub use analysis::process::MachineProfile;
 pub use analysis::tapping::{tapping, TapCheck, TapFeature, TapReport, TapSpec, TappedHole};
-pub use analysis::threadmill::{thread_mill, Cutter, Helix, ThreadMillReport, ThreadMillSpec};
+pub use analysis::threadmill::{thread_mill, ThreadMillReport, ThreadMillSpec};
 pub use analysis::tools::{Tool, ToolTable};
 pub use analysis::verify::{
     default_blank, default_pass_count, program_passes, read_program_text, reference_groove, verify,

@@ -487,7 +487,7 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
                 }
             };
             let cutter = Some(
-                crate::analysis::threadmill::Cutter::single_form(
+                crate::geometry::helix::Cutter::single_form(
                     a.num("cutter_diameter")?
                         .ok_or_else(|| Error::Input("thread-mill needs cutter_diameter (mm)".into()))?,
                     a.num("cutter_angle")?.unwrap_or(60.0),

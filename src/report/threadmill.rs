@@ -1,7 +1,8 @@
 //! The thread-milling check's text (its JSON is the report itself).
 
 use super::kit::*;
-use crate::analysis::threadmill::{Cutter, Helix, ThreadMillReport};
+use crate::analysis::threadmill::ThreadMillReport;
+use crate::geometry::helix::{Cutter, Helix};
 use crate::ground::fmt::fmt_num;
 use crate::ground::plane::{rad, Point};
 use crate::report::MeasuredReport;
