@@ -635,18 +635,7 @@ fn thread_mill_svg_is_laid_out() {
     for (program, cutter) in [("m20-dc6.nc", "6"), ("m20-dc14.nc", "14")] {
         let dir = tempdir("tm-svg");
         let svg_path = dir.join("t.svg");
-        let p = data(&format!("programs/threadmill/{program}"));
-        let o = run(&[
-            "thread-mill",
-            "--program",
-            p.to_str().unwrap(),
-            "--thread",
-            "M20x1.5-6H",
-            "--cutter-diameter",
-            cutter,
-            "--svg",
-            svg_path.to_str().unwrap(),
-        ]);
+        let o = run_thread_mill(program, cutter, &["--svg", svg_path.to_str().unwrap()]);
         assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
         let svg = std::fs::read_to_string(&svg_path).unwrap();
         assert!(svg.contains("the helix widens the groove by"), "{program}");
@@ -667,15 +656,7 @@ fn tap_svg_is_laid_out() {
         let p = deep.join(program);
         std::fs::copy(data(&format!("programs/tapping/{program}")), &p).unwrap();
         let t = data(&format!("programs/tapping/{tools}"));
-        let o = run(&[
-            "tap",
-            "--program",
-            p.to_str().unwrap(),
-            "--tools",
-            t.to_str().unwrap(),
-            "--svg",
-            svg_path.to_str().unwrap(),
-        ]);
+        let o = run_tap(&p, &t, &["--svg", svg_path.to_str().unwrap()]);
         assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
         let svg = std::fs::read_to_string(&svg_path).unwrap();
         assert!(svg.contains("drill Z-25"), "{program}");
@@ -694,41 +675,24 @@ fn tap_svg_is_laid_out() {
 fn thread_mill_picture_has_zone_scales_and_limits() {
     let dir = tempdir("tm-zone");
     let svg_path = dir.join("t.svg");
-    let p = data("programs/threadmill/m20-dc6.nc");
-    let o = run(&[
-        "thread-mill",
-        "--program",
-        p.to_str().unwrap(),
-        "--thread",
-        "M20x1.5-6H",
-        "--cutter-diameter",
-        "6",
-        "--svg",
-        svg_path.to_str().unwrap(),
-    ]);
+    let o = run_thread_mill("m20-dc6.nc", "6", &["--svg", svg_path.to_str().unwrap()]);
     assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
     let svg = std::fs::read_to_string(&svg_path).unwrap();
-    // The scales, from the section's tick labels: Z below (one y), Ø at the right (one x).
-    let ticks = tick_labels(&svg, "id=\"section\"");
-    let z_row = ticks.iter().map(|t| t.1).fold(f64::NEG_INFINITY, f64::max);
-    let z: Vec<_> = ticks.iter().filter(|t| t.1 == z_row).collect();
-    let d: Vec<_> = ticks.iter().filter(|t| t.1 != z_row).collect();
-    assert!(z.len() >= 4 && d.len() >= 2, "ticks: {ticks:?}");
-    let px_per_mm = (z[1].0 - z[0].0) / (z[1].2 - z[0].2);
-    let px_per_mm_d = (d[0].1 - d[1].1) / (d[1].2 - d[0].2);
+    // The scales, from the section's tick labels: Z below, Ø at the right.
+    let sc = Scales::of(&svg, "section");
     // True to scale: one mm of Z is one mm of radius (two of diameter).
-    assert!((px_per_mm - 2.0 * px_per_mm_d).abs() < 0.05 * px_per_mm, "{px_per_mm} vs {px_per_mm_d}");
-    let y_of_d = |dia: f64| d[0].1 - 3.0 - (dia - d[0].2) * px_per_mm_d;
-    let zone = tag_of(&svg, "section-tolerance-zone");
-    let after = &svg[svg.find(zone).unwrap()..];
-    let poly = &after[after.find("<polygon").unwrap()..];
-    let points = attr(&poly[..poly.find('>').unwrap()], "points").unwrap();
-    let y = y_of_d(19.026 + 0.001);
-    let xs = crossings(&points, y);
-    assert!(xs.len() >= 6 && xs.len() % 2 == 0, "{} crossings at D2", xs.len());
-    let want = 0.095 * 30f64.to_radians().tan() * px_per_mm;
-    for pair in xs.chunks(2) {
-        assert!((pair[1] - pair[0] - want).abs() < 0.35, "band {:.2} px, want {want:.2}", pair[1] - pair[0]);
+    assert!(
+        (sc.px_per_mm - 2.0 * sc.px_per_mm_d).abs() < 0.05 * sc.px_per_mm,
+        "{} vs {}",
+        sc.px_per_mm,
+        sc.px_per_mm_d
+    );
+    let y = sc.y_of_d(19.026 + 0.001);
+    let bands = zone_bands(&svg, "section-tolerance-zone", y);
+    assert!(bands.len() >= 3, "{} bands at D2", bands.len());
+    let want = 0.095 * 30f64.to_radians().tan() * sc.px_per_mm;
+    for band in bands {
+        assert!((band - want).abs() < 0.35, "band {band:.2} px, want {want:.2}");
     }
     // The measured diameters with their limits; D2 out of them in red with its deviation.
     assert!(svg.contains("[19.026 – 19.216]") && svg.contains("[18.376 – 18.676]"), "limits");
@@ -753,15 +717,11 @@ fn thread_mill_picture_has_zone_scales_and_limits() {
 fn tap_picture_dimensions_the_drill_and_d1() {
     let dir = tempdir("tap-dims");
     let svg_path = dir.join("t.svg");
-    let o = run(&[
-        "tap",
-        "--program",
-        data("programs/tapping/m10-g84.nc").to_str().unwrap(),
-        "--tools",
-        data("programs/tapping/tools-80.toml").to_str().unwrap(),
-        "--svg",
-        svg_path.to_str().unwrap(),
-    ]);
+    let o = run_tap(
+        &data("programs/tapping/m10-g84.nc"),
+        &data("programs/tapping/tools-80.toml"),
+        &["--svg", svg_path.to_str().unwrap()],
+    );
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let svg = std::fs::read_to_string(&svg_path).unwrap();
     let n = |id: &str, k: &str| attr(tag_of(&svg, id), k).unwrap().parse::<f64>().unwrap();

@@ -1026,28 +1026,12 @@ fn regression_the_zone_keeps_its_flank_angle_up_to_the_crest_cut() {
     let o = run(&["verify", "--thread", "M10x1.5-6g", "--insert", "full", "--svg", path.to_str().unwrap()]);
     assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
     let svg = std::fs::read_to_string(&path).unwrap();
-    let ticks = tick_labels(&svg, "id=\"tooth\"");
-    let z_row = ticks.iter().map(|t| t.1).fold(f64::NEG_INFINITY, f64::max);
-    let z: Vec<_> = ticks.iter().filter(|t| t.1 == z_row).collect();
-    let d: Vec<_> = ticks.iter().filter(|t| t.1 != z_row).collect();
-    let px_per_mm = (z[1].0 - z[0].0) / (z[1].2 - z[0].2);
-    let px_per_mm_d = (d[0].1 - d[1].1) / (d[1].2 - d[0].2);
-    let y_of_d = |dia: f64| d[0].1 - 3.0 - (dia - d[0].2) * px_per_mm_d;
-    let zone = tag_of(&svg, "tooth-tolerance-zone");
-    let after = &svg[svg.find(zone).unwrap()..];
-    let poly = &after[after.find("<polygon").unwrap()..];
-    let points = attr(&poly[..poly.find('>').unwrap()], "points").unwrap();
-    let want = 0.5 * (8.994 - 8.862) * 30f64.to_radians().tan() * px_per_mm;
+    let sc = Scales::of(&svg, "tooth");
+    let want = 0.5 * (8.994 - 8.862) * 30f64.to_radians().tan() * sc.px_per_mm;
     // At d2 max, and halfway from it to d min 9.732 where the minimum-material crest is cut.
     for dia in [8.994 - 0.001, 0.5 * (8.994 + 9.732)] {
-        let xs = crossings(&points, y_of_d(dia));
-        assert!(xs.len() >= 2 && xs.len() % 2 == 0, "{} crossings at Ø{dia}", xs.len());
-        for pair in xs.chunks(2) {
-            assert!(
-                (pair[1] - pair[0] - want).abs() < 0.3,
-                "Ø{dia}: band {:.2} px, want {want:.2}",
-                pair[1] - pair[0]
-            );
+        for band in zone_bands(&svg, "tooth-tolerance-zone", sc.y_of_d(dia)) {
+            assert!((band - want).abs() < 0.3, "Ø{dia}: band {band:.2} px, want {want:.2}");
         }
     }
 }

@@ -356,13 +356,7 @@ fn the_drill_that_passes_is_the_charts_tap_drill() {
 /// Issue 43: a failing drill's text names the drill that would pass and where it comes from.
 #[test]
 fn a_failing_drill_names_the_drill_that_passes() {
-    let o = run(&[
-        "tap",
-        "--program",
-        data("programs/tapping/m10-g84.nc").to_str().unwrap(),
-        "--tools",
-        data("programs/tapping/tools-80.toml").to_str().unwrap(),
-    ]);
+    let o = run_tap(&data("programs/tapping/m10-g84.nc"), &data("programs/tapping/tools-80.toml"), &[]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let out = stdout(&o);
     assert!(

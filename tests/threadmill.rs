@@ -103,7 +103,6 @@ fn a_wrong_lead_per_turn_fails() {
 /// Without the compensation value the helix is refused by name.
 #[test]
 fn compensation_moves_the_helix_by_the_d_register() {
-    let p = data("programs/threadmill/m20-dc6-g41.nc");
     let v = mill_with("m20-dc6-g41.nc", &["--cutter-diameter", "6", "--comp-radius", "3"]);
     assert_eq!(
         (v["helices"][0]["programmed_radius"].as_f64(), v["helices"][0]["radius"].as_f64()),
@@ -111,15 +110,7 @@ fn compensation_moves_the_helix_by_the_d_register() {
     );
     let direct = mill("m20-dc6.nc", 6.0);
     assert_eq!(v["measured"]["pitch_diameter"], direct["measured"]["pitch_diameter"]);
-    let o = run(&[
-        "thread-mill",
-        "--program",
-        p.to_str().unwrap(),
-        "--thread",
-        "M20x1.5-6H",
-        "--cutter-diameter",
-        "6",
-    ]);
+    let o = run_thread_mill("m20-dc6-g41.nc", "6", &[]);
     assert_eq!(o.status.code(), Some(2));
     assert!(
         stderr(&o)

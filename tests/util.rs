@@ -182,3 +182,71 @@ pub fn crossings(points: &str, y: f64) -> Vec<f64> {
     xs.sort_by(f64::total_cmp);
     xs
 }
+
+/// A panel's scales read back from its tick labels: Z (mm) below it, the diameter (mm) at its
+/// right.
+pub struct Scales {
+    /// Pixels per mm along Z.
+    pub px_per_mm: f64,
+    /// Pixels per mm of diameter.
+    pub px_per_mm_d: f64,
+    /// A diameter tick: its label's baseline y and its value.
+    d_tick: (f64, f64),
+}
+
+impl Scales {
+    /// The scales of the panel whose group is `id`.
+    pub fn of(svg: &str, id: &str) -> Scales {
+        let ticks = tick_labels(svg, &format!("id=\"{id}\""));
+        let z_row = ticks.iter().map(|t| t.1).fold(f64::NEG_INFINITY, f64::max);
+        let z: Vec<_> = ticks.iter().filter(|t| t.1 == z_row).collect();
+        let d: Vec<_> = ticks.iter().filter(|t| t.1 != z_row).collect();
+        assert!(z.len() >= 2 && d.len() >= 2, "{id}: ticks {ticks:?}");
+        Scales {
+            px_per_mm: (z[1].0 - z[0].0) / (z[1].2 - z[0].2),
+            px_per_mm_d: (d[0].1 - d[1].1) / (d[1].2 - d[0].2),
+            d_tick: (d[0].1, d[0].2),
+        }
+    }
+
+    /// The y of diameter `dia` (a label's baseline sits 3 px under its tick).
+    pub fn y_of_d(&self, dia: f64) -> f64 {
+        self.d_tick.0 - 3.0 - (dia - self.d_tick.1) * self.px_per_mm_d
+    }
+}
+
+/// The widths along Z (px) of the tolerance zone's bands `zone_id` where the row `y` crosses
+/// them: one a flank, each between its two sides.
+pub fn zone_bands(svg: &str, zone_id: &str, y: f64) -> Vec<f64> {
+    let zone = tag_of(svg, zone_id);
+    let after = &svg[svg.find(zone).unwrap()..];
+    let poly = &after[after.find("<polygon").unwrap()..];
+    let points = attr(&poly[..poly.find('>').unwrap()], "points").unwrap();
+    let xs = crossings(&points, y);
+    assert!(xs.len() >= 2 && xs.len() % 2 == 0, "{} crossings of {zone_id} at y {y}", xs.len());
+    xs.chunks(2).map(|p| p[1] - p[0]).collect()
+}
+
+/// `threadcheck tap --program P --tools T` with `extra` arguments.
+pub fn run_tap(program: &Path, tools: &Path, extra: &[&str]) -> Output {
+    let mut args = vec!["tap", "--program", program.to_str().unwrap(), "--tools", tools.to_str().unwrap()];
+    args.extend(extra);
+    run(&args)
+}
+
+/// `threadcheck thread-mill` of `tests/data/programs/threadmill/NAME` for M20x1.5-6H with a
+/// cutter of `diameter`, with `extra` arguments.
+pub fn run_thread_mill(name: &str, diameter: &str, extra: &[&str]) -> Output {
+    let p = data(&format!("programs/threadmill/{name}"));
+    let mut args = vec![
+        "thread-mill",
+        "--program",
+        p.to_str().unwrap(),
+        "--thread",
+        "M20x1.5-6H",
+        "--cutter-diameter",
+        diameter,
+    ];
+    args.extend(extra);
+    run(&args)
+}

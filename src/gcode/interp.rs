@@ -1033,15 +1033,7 @@ impl<'a> Exec<'a> {
                 }
             }
             Flow::Return { to_n, col } => {
-                match do_return(
-                    &mut self.frames,
-                    &mut self.end,
-                    &mut self.vars,
-                    &mut self.loops,
-                    to_n,
-                    &self.lay,
-                    self.file,
-                )? {
+                match self.ret(to_n)? {
                     Some(n) => st.next = n,
                     None => {
                         m.note(b.line, col, "M99 in the main program would run it again from the start; threadcheck ends it here");
