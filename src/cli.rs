@@ -101,6 +101,10 @@ enum Command {
         /// The limits to cut to before a coating of this thickness, mm (plating, anodizing).
         #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite, default_value = "0")]
         coating: f64,
+        /// Under a coating, the class applies before it (the standards' default) or after it
+        /// (when the drawing says so).
+        #[arg(long, value_enum, default_value = "before")]
+        coating_limits: CoatingLimitsArg,
     },
     /// Cut the thread in the computer and check it against its class.
     Verify {
@@ -187,6 +191,24 @@ enum Command {
         #[command(flatten)]
         json: JsonArg,
     },
+}
+
+/// `--coating-limits`.
+#[derive(Clone, Copy, ValueEnum)]
+enum CoatingLimitsArg {
+    /// The class applies before coating; after it the thread stays within the basic profile.
+    Before,
+    /// The class applies after coating.
+    After,
+}
+
+impl CoatingLimitsArg {
+    fn rule(self) -> threadcheck::CoatingLimits {
+        match self {
+            CoatingLimitsArg::Before => threadcheck::CoatingLimits::Before,
+            CoatingLimitsArg::After => threadcheck::CoatingLimits::After,
+        }
+    }
 }
 
 /// The committed reports `report` regenerates.
@@ -621,6 +643,10 @@ struct PlanArgs {
     /// limits before coating.
     #[arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = finite, default_value = "0")]
     coating: f64,
+    /// Under a coating, the class applies before it (the standards' default: ISO 965-1 §8.5,
+    /// ASME B1.1 §7) or after it (when the drawing says so).
+    #[arg(long, value_enum, default_value = "before")]
+    coating_limits: CoatingLimitsArg,
     /// Tip diameter of the last pass (default: what puts the pitch diameter mid-tolerance).
     #[arg(long, value_name = "DIA", allow_hyphen_values = true, value_parser = finite)]
     final_x: Option<f64>,
@@ -723,6 +749,7 @@ impl PlanArgs {
         s.machine = self.machine.as_deref().map(threadcheck::MachineProfile::read).transpose()?;
         s.clearance_angle = self.clearance_angle;
         s.coating = self.coating;
+        s.coating_limits = self.coating_limits.rule();
         s.units = match self.units {
             Some(UnitsArg::Mm) => Units::Mm,
             Some(UnitsArg::Inch) => Units::Inch,
@@ -767,7 +794,14 @@ impl Cli {
     pub fn run(self) -> Result<(String, String, Outcome), Error> {
         let done = |(text, outcome): (String, Outcome)| Ok((text, String::new(), outcome));
         match self.command {
-            Command::Limits { designation, thread, json: JsonArg { json }, allow_nonstandard, coating } => {
+            Command::Limits {
+                designation,
+                thread,
+                json: JsonArg { json },
+                allow_nonstandard,
+                coating,
+                coating_limits,
+            } => {
                 let Some(designation) = designation.or(thread) else {
                     return Err(Error::Input(match json.as_deref() {
                         Some(v) if v != "-" => format!(
@@ -776,7 +810,16 @@ impl Cli {
                         _ => "limits needs a designation, e.g. limits M10x1.5-6g".into(),
                     }));
                 };
-                done(LimitsJob { designation, allow_nonstandard, json, coating }.run()?)
+                done(
+                    LimitsJob {
+                        designation,
+                        allow_nonstandard,
+                        json,
+                        coating,
+                        coating_limits: coating_limits.rule(),
+                    }
+                    .run()?,
+                )
             }
             Command::Verify {
                 plan,

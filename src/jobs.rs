@@ -31,7 +31,7 @@ impl Outcome {
 ///
 /// ```
 /// use threadcheck::{LimitsJob, Outcome};
-/// let job = LimitsJob { designation: "M10x1.5-6g".into(), allow_nonstandard: false, json: Some("-".into()), coating: 0.0 };
+/// let job = LimitsJob { designation: "M10x1.5-6g".into(), allow_nonstandard: false, json: Some("-".into()), coating: 0.0, coating_limits: Default::default() };
 /// let (json, outcome) = job.run()?;
 /// let v: serde_json::Value = serde_json::from_str(&json).expect("JSON");
 /// assert_eq!(v["external"]["pitch_diameter"]["max"], 8.994); // ISO 965-2
@@ -48,6 +48,8 @@ pub struct LimitsJob {
     pub json: Option<String>,
     /// A coating's thickness, mm: the limits before coating (0: the class's own).
     pub coating: f64,
+    /// Which limits the class applies to under the coating.
+    pub coating_limits: crate::standards::tolerance::CoatingLimits,
 }
 
 impl LimitsJob {
@@ -57,7 +59,7 @@ impl LimitsJob {
             parse_designation(&self.designation, ParseOptions { allow_nonstandard: self.allow_nonstandard })?;
         let t = &des.thread;
         let coat = |l: Option<ThreadLimits>| {
-            l.map(|l| crate::analysis::verify::coated(l, t, self.coating)).transpose()
+            l.map(|l| crate::analysis::verify::coated(l, t, self.coating, self.coating_limits)).transpose()
         };
         let ext = coat(limits_for(&des, ThreadKind::External)?)?;
         let int = coat(limits_for(&des, ThreadKind::Internal)?)?;

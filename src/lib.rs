@@ -73,8 +73,8 @@ pub use ground::plane::{Arc, Point, DEFAULT_TOLERANCE, MIN_TOLERANCE};
 pub use standards::drills::{drill_that_passes, DrillSource, PassingDrill};
 pub use standards::tolerance::Resolution;
 pub use standards::tolerance::{
-    iso_limits, limits_for, AcmeClass, Bs84Class, GaugePlane, Iso228Class, IsoClass, Limit, TaperClass,
-    ThreadLimits, TrClass, UnifiedClass, UnifiedSeries,
+    iso_limits, limits_for, AcmeClass, Bs84Class, CoatingLimits, GaugePlane, Iso228Class, IsoClass, Limit,
+    TaperClass, ThreadLimits, TrClass, UnifiedClass, UnifiedSeries,
 };
 pub use standards::{
     catalog, parse_designation, BasicThread, Catalog, ClassSpec, Designation, DesignationError, Hand,

@@ -95,6 +95,7 @@ impl Command {
             "taper",
             "chamfer",
             "coating",
+            "coating_limits",
             "final_x",
             "blank_diameter",
             "units",
@@ -122,7 +123,9 @@ impl Command {
             Command::Capability => {
                 &["gauge_only", "x_sigma", "tip_radius_tol", "wear_per_part", "samples", "seed", "operation"]
             }
-            Command::Limits => return vec!["thread", "designation", "allow_nonstandard", "coating"],
+            Command::Limits => {
+                return vec!["thread", "designation", "allow_nonstandard", "coating", "coating_limits"]
+            }
             Command::Fit => {
                 return vec![
                     "thread",
@@ -364,6 +367,7 @@ pub fn run_request(command: Command, document: Document, args: &str, files: File
                 allow_nonstandard: a.flag("allow_nonstandard")?,
                 json,
                 coating: a.num("coating")?.unwrap_or(0.0),
+                coating_limits: a.coating_limits()?,
             }
             .run()?
         }
@@ -606,6 +610,11 @@ impl Args {
         Error::Input(format!("{}: {key} must be {expected}, not {got}", self.command.name()))
     }
 
+    /// `coating_limits`: `before` (the default) or `after`.
+    fn coating_limits(&self) -> Result<crate::standards::tolerance::CoatingLimits, Error> {
+        self.text("coating_limits")?.map_or(Ok(Default::default()), |t| t.parse())
+    }
+
     fn text(&self, key: &str) -> Result<Option<String>, Error> {
         match self.get(key) {
             None => Ok(None),
@@ -798,6 +807,7 @@ impl Args {
         s.taper = self.num("taper")?.unwrap_or(0.0);
         s.chamfer_leads = self.num("chamfer")?.unwrap_or(0.0);
         s.coating = self.num("coating")?.unwrap_or(0.0);
+        s.coating_limits = self.coating_limits()?;
         s.final_x = self.num("final_x")?;
         s.blank_diameter = self.num("blank_diameter")?;
         // Only the commands whose keys list `operation` take it.

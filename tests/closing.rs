@@ -263,37 +263,100 @@ fn a_pickup_quarter_millimetre_off_on_a_one_and_a_half_lead_is_sixty_degrees() {
     }
 }
 
-/// A 10 µm coat on a 60° thread grows d2 by 2t/sin 30° = 40 µm and d by 2t = 20 µm: the
-/// bolt's limits before plating are ISO 965-1's less that (d2 8.822–8.954, d 9.712–9.948), the
-/// nut's more (D2 9.066–9.246).
+/// `limits --coating T [--coating-limits RULE] --json`: (min, max) of each diameter, external
+/// and internal, as (major, pitch, minor).
+fn coated_limits(designation: &str, t: &str, rule: &str) -> serde_json::Value {
+    json(&run(&["limits", designation, "--coating", t, "--coating-limits", rule, "--json"]))
+}
+
+fn pair(v: &serde_json::Value, side: &str, size: &str) -> (Option<f64>, Option<f64>) {
+    (v[side][size]["min"].as_f64(), v[side][size]["max"].as_f64())
+}
+
+const IN: f64 = 25.4;
+
+/// Issue 48: a coat of t grows a 60° bolt's d2 by 2t/sin 30° = 4t and its d by 2t (a nut's shrink
+/// as much). **The standards' rule** (the default): the class applies before coating (ISO 965-1
+/// §8.5, ASME B1.1 §7) and after coating the thread stays within the basic profile (h/H), so the
+/// maximum-material side is capped at basic ∓ growth, rounded inward:
+/// - M10x1.5-6g, t = 10 µm: d2 8.862–min(8.994, 9.026 − 0.040 = 8.986); d max 9.968 < 10 − 0.020
+///   stays. t = 5 µm: 9.026 − 0.020 = 9.006 > 8.994: unchanged.
+/// - M10x1.5-6H, t = 10 µm: D2 max(9.026, 9.026 + 0.040)–9.206 = 9.066–9.206; D1 min 8.376 + 0.020
+///   = 8.396; D min 10.020. t = 5 µm: D2 9.046, D1 8.386, D 10.010.
+/// - 1/2-13 UNC-2A: d2 max 0.4485 in; t = 5 µm: 0.4500 − 0.000787 = 0.449213 > 0.4485, unchanged;
+///   t = 10 µm: 0.4500 − 0.001575 = 0.448425 → 0.4484 in (inward to 0.0001 in).
+/// - 1/2-13 UNC-3A (no allowance): t = 5 µm: d2 max 0.4492 in, d max 0.5 − 0.000394 → 0.4996 in;
+///   t = 10 µm: d2 0.4484 in, d 0.4992 in.
+/// - Tr40x7-7e (30°: d2 grows 2t/sin 15° = 7.727t): d2 max 36.375 < 36.5 − 0.077 stays; d max
+///   40 → 39.980 (t = 10 µm), 39.990 (t = 5 µm).
+///
+/// **After** (`--coating-limits after`, a drawing that says so): every limit moves by the growth:
+/// 6g d2 8.822–8.954 and d 9.712–9.948 (t = 10 µm), 6H D2 9.066–9.246.
 #[test]
-fn a_ten_micrometre_coat_moves_sixty_degree_pitch_limits_by_forty() {
-    let v = json(&run(&["limits", "M10x1.5-6H/6g", "--coating", "0.010", "--json"]));
-    let e = &v["external"];
-    assert_eq!(
-        (e["pitch_diameter"]["min"].as_f64(), e["pitch_diameter"]["max"].as_f64()),
-        (Some(8.822), Some(8.954))
-    );
-    assert_eq!(
-        (e["major_diameter"]["min"].as_f64(), e["major_diameter"]["max"].as_f64()),
-        (Some(9.712), Some(9.948))
-    );
-    let i = &v["internal"];
-    assert_eq!(
-        (i["pitch_diameter"]["min"].as_f64(), i["pitch_diameter"]["max"].as_f64()),
-        (Some(9.066), Some(9.246))
-    );
-    // verify aims at the middle of the limits before plating, 8.888, and says what plating
-    // makes of it: 8.888 + 0.040 = 8.928.
-    let o = run(&["verify", "--thread", "M10x1.5-6g", "--insert", "full", "--coating", "0.010", "--json"]);
-    let r = json(&o);
-    assert!((r["measured"]["pitch_diameter"].as_f64().unwrap() - 8.888).abs() < 1e-6);
-    let notes = r["notes"].to_string();
-    assert!(notes.contains("after coating") && notes.contains("8.9280"), "{notes}");
-    // A coat that fills the thread is refused in one line.
+fn coats_of_five_and_ten_micrometres_under_both_rules() {
+    let g = coated_limits("M10x1.5-6H/6g", "0.010", "before");
+    assert_eq!(pair(&g, "external", "pitch_diameter"), (Some(8.862), Some(8.986)));
+    assert_eq!(pair(&g, "external", "major_diameter"), (Some(9.732), Some(9.968)));
+    assert_eq!(pair(&g, "internal", "pitch_diameter"), (Some(9.066), Some(9.206)));
+    assert_eq!(pair(&g, "internal", "minor_diameter"), (Some(8.396), Some(8.676)));
+    assert_eq!(pair(&g, "internal", "major_diameter").0, Some(10.020));
+    let g5 = coated_limits("M10x1.5-6H/6g", "0.005", "before");
+    assert_eq!(pair(&g5, "external", "pitch_diameter"), (Some(8.862), Some(8.994)));
+    assert_eq!(pair(&g5, "internal", "pitch_diameter"), (Some(9.046), Some(9.206)));
+    assert_eq!(pair(&g5, "internal", "minor_diameter").0, Some(8.386));
+    assert_eq!(pair(&g5, "internal", "major_diameter").0, Some(10.010));
+    let inch = |v: Option<f64>| v.map(|x| (x / IN * 1e4).round() / 1e4);
+    for (class, t, d2_max, d_max) in [
+        ("2A", "0.005", 0.4485, 0.4985),
+        ("2A", "0.010", 0.4484, 0.4985),
+        ("3A", "0.005", 0.4492, 0.4996),
+        ("3A", "0.010", 0.4484, 0.4992),
+    ] {
+        let u = coated_limits(&format!("1/2-13 UNC-{class}"), t, "before");
+        assert_eq!(inch(pair(&u, "external", "pitch_diameter").1), Some(d2_max), "{class} {t}");
+        assert_eq!(inch(pair(&u, "external", "major_diameter").1), Some(d_max), "{class} {t}");
+    }
+    for (t, d_max) in [("0.010", 39.980), ("0.005", 39.990)] {
+        let tr = coated_limits("Tr40x7-7e", t, "before");
+        assert_eq!(pair(&tr, "external", "pitch_diameter").1, Some(36.375), "{t}");
+        assert_eq!(pair(&tr, "external", "major_diameter").1, Some(d_max), "{t}");
+    }
+    let a = coated_limits("M10x1.5-6H/6g", "0.010", "after");
+    assert_eq!(pair(&a, "external", "pitch_diameter"), (Some(8.822), Some(8.954)));
+    assert_eq!(pair(&a, "external", "major_diameter"), (Some(9.712), Some(9.948)));
+    assert_eq!(pair(&a, "internal", "pitch_diameter"), (Some(9.066), Some(9.246)));
+    // verify aims at the middle of the limits before plating and says what plating makes of it:
+    // by the standards' rule (8.862 + 8.986)/2 = 8.924, coated 8.964 (at most basic 9.026);
+    // after, (8.822 + 8.954)/2 = 8.888, coated 8.928.
+    for (rule, mid, coated) in [("before", 8.924, "8.9640"), ("after", 8.888, "8.9280")] {
+        let o = run(&[
+            "verify",
+            "--thread",
+            "M10x1.5-6g",
+            "--insert",
+            "full",
+            "--coating",
+            "0.010",
+            "--coating-limits",
+            rule,
+            "--json",
+        ]);
+        let r = json(&o);
+        assert!((r["measured"]["pitch_diameter"].as_f64().unwrap() - mid).abs() < 1e-6, "{rule}");
+        let notes = r["notes"].to_string();
+        assert!(notes.contains("after coating") && notes.contains(coated), "{rule}: {notes}");
+    }
+    // A coat that fills the thread is refused in one line; so is one that leaves no tolerance.
     let bad = run(&["limits", "M10x1.5-6g", "--coating", "0.5"]);
     assert_eq!(bad.status.code(), Some(2));
     assert!(one_line_error(&bad).contains("coating 0.5 mm"), "{}", stderr(&bad));
+    let thick = run(&["limits", "M10x1.5-4h", "--coating", "0.05"]);
+    assert_eq!(thick.status.code(), Some(2));
+    assert!(
+        one_line_error(&thick).contains("leaves no tolerance on the pitch diameter"),
+        "{}",
+        stderr(&thick)
+    );
 }
 
 /// X scatter alone on a centred X: d2 moves one for one with X, so σ(d2) = σx and

@@ -251,9 +251,13 @@ def test_correct_matches_the_cli_and_a_coating_moves_the_limits():
     out = subprocess.run([os.environ["THREADCHECK_BIN"], "correct", "--thread", "M10x1.5-6g",
                           "--measured-d2", "9.0", "--json"], capture_output=True, text=True)
     assert json.loads(out.stdout) == threadcheck.correct("M10x1.5-6g", measured_d2=9.0)
-    # A 10 µm coat on a 60° thread: d2 limits 4t = 40 µm below ISO 965-1's 8.862–8.994.
+    # A 10 µm coat on a 60° thread grows d2 by 4t = 40 µm. The standards' rule (the default):
+    # ISO 965-1's 8.862–8.994 before coating, the maximum capped at basic 9.026 − 0.040 = 8.986.
     ext = threadcheck.limits("M10x1.5-6g", coating=0.010)["external"]
-    assert ext["pitch_diameter"] == {"max": 8.954, "min": 8.822}
+    assert ext["pitch_diameter"] == {"max": 8.986, "min": 8.862}
+    # The class after coating (a drawing that says so): every limit 40 µm down.
+    after = threadcheck.limits("M10x1.5-6g", coating=0.010, coating_limits="after")["external"]
+    assert after["pitch_diameter"] == {"max": 8.954, "min": 8.822}
 
 
 def test_capability_wear_alone_gives_the_derived_parts_per_edge():

@@ -117,7 +117,7 @@ def verify(thread: Threads, program: Optional[str] = None, dialect: Optional[str
            blank_diameter: Optional[float] = None, gauge_only: bool = False,
            allow_nonstandard: bool = False, program_name: Optional[str] = None,
            default_units: Optional[str] = None, main: Optional[str] = None,
-           linuxcnc_release: Optional[str] = None, coating: Optional[float] = None,
+           linuxcnc_release: Optional[str] = None, coating: Optional[float] = None, coating_limits: Optional[str] = None,
            insert_toml: Optional[str] = None, tools: Optional[str] = None,
            gcode_system: Optional[str] = None,
            schedule: Optional[str] = None, depths: Optional[Sequence[float]] = None,
@@ -151,7 +151,8 @@ def verify(thread: Threads, program: Optional[str] = None, dialect: Optional[str
     comparison rules of a ``linuxcnc`` program; ``gcode_system`` (``"a"``, ``"b"``, ``"c"``) the
     G-code system a Fanuc control is set to (B: G78 the threading cycle; C: G78 the multiple
     one). ``coating`` (mm) checks against the limits
-    before a coat of that thickness. ``machine`` is a machine profile's TOML text (or
+    before a coat of that thickness; ``coating_limits`` is ``"before"`` (the standards' default:
+    the class applies before coating, the coated thread within the basic profile) or ``"after"``. ``machine`` is a machine profile's TOML text (or
     ``"training-lathe"``). ``svg``, ``html`` and ``fix`` write the picture, the page and the
     corrected program to those paths.
     The dict has ``verdict`` (``"pass"``/``"fail"``); a program's report has ``operations``,
@@ -165,10 +166,12 @@ def verify(thread: Threads, program: Optional[str] = None, dialect: Optional[str
 
 
 def limits(designation: str, allow_nonstandard: bool = False,
-           coating: Optional[float] = None) -> LimitsReport:
+           coating: Optional[float] = None, coating_limits: Optional[str] = None) -> LimitsReport:
     """``threadcheck limits DESIGNATION --json``: basic sizes and limits of size, mm.
 
-    ``coating`` (mm) gives the limits to cut to before a coat of that thickness.
+    ``coating`` (mm) gives the limits to cut to before a coat of that thickness;
+    ``coating_limits`` (``"before"``, the standards' default, or ``"after"``) which limits the
+    class applies to.
     """
     report: LimitsReport = _json.loads(_run("limits", "json", dict(locals()))[0])
     return report
@@ -185,7 +188,7 @@ def passes(thread: Optional[Threads] = None, program: Optional[str] = None,
            first_depth: Optional[float] = None, min_depth: Optional[float] = None,
            finish: Optional[float] = None, spring: Optional[int] = None,
            taper: Optional[float] = None, chamfer: Optional[float] = None,
-           coating: Optional[float] = None, gcode_system: Optional[str] = None) -> PassesReport:
+           coating: Optional[float] = None, coating_limits: Optional[str] = None, gcode_system: Optional[str] = None) -> PassesReport:
     """``threadcheck passes --json``: the passes of a generated plan or of a program's text.
 
     The arguments are ``verify``'s; a program needs no thread.
@@ -200,7 +203,7 @@ def correct(thread: str, program: Optional[str] = None, dialect: Optional[str] =
             blank_diameter: Optional[float] = None, allow_nonstandard: bool = False,
             program_name: Optional[str] = None, default_units: Optional[str] = None,
             main: Optional[str] = None, linuxcnc_release: Optional[str] = None,
-            coating: Optional[float] = None, measured_m: Optional[float] = None,
+            coating: Optional[float] = None, coating_limits: Optional[str] = None, measured_m: Optional[float] = None,
             wire: Optional[float] = None, measured_d2: Optional[float] = None,
             gauge: Optional[str] = None, pickup_z: Optional[float] = None,
             insert_toml: Optional[str] = None, gcode_system: Optional[str] = None,
@@ -229,7 +232,7 @@ def capability(thread: str, program: Optional[str] = None, dialect: Optional[str
                passes: Optional[int] = None, blank_diameter: Optional[float] = None,
                allow_nonstandard: bool = False, program_name: Optional[str] = None,
                default_units: Optional[str] = None, main: Optional[str] = None,
-               linuxcnc_release: Optional[str] = None, coating: Optional[float] = None,
+               linuxcnc_release: Optional[str] = None, coating: Optional[float] = None, coating_limits: Optional[str] = None,
                x_sigma: Optional[float] = None, tip_radius_tol: Optional[float] = None,
                wear_per_part: Optional[float] = None, samples: Optional[int] = None,
                seed: Optional[int] = None, gauge_only: bool = False,

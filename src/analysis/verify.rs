@@ -135,8 +135,11 @@ pub struct VerifySpec {
     pub clearance_angle: Option<f64>,
     /// Thickness of a coating the thread gets after cutting (plating, anodizing), mm; 0 for
     /// none. The thread is checked against the limits before coating
-    /// ([`ThreadLimits::before_coating`]) and the report says what it measures after.
+    /// ([`ThreadLimits::for_coating`]) and the report says what it measures after.
     pub coating: f64,
+    /// Which limits the class applies to under a coating: before it (the standards' default)
+    /// or after it (when the drawing says so).
+    pub coating_limits: crate::standards::tolerance::CoatingLimits,
     /// Of a program that cuts several threads, the one operation to check (1-based, in program
     /// order): `correct` and `capability` take one, a program of one needs none.
     pub operation: Option<usize>,
@@ -242,6 +245,7 @@ impl VerifySpec {
             machine: None,
             clearance_angle: None,
             coating: 0.0,
+            coating_limits: crate::standards::tolerance::CoatingLimits::Before,
             operation: None,
         }
     }
@@ -805,7 +809,12 @@ impl Resolved {
 /// The limits to cut to under a coating of `thickness` mm: the class's own for 0, else the
 /// limits before coating; a thickness that is no coat of a thread (negative, or a tenth of the
 /// pitch and more, which fills the flanks) is refused.
-pub fn coated(limits: ThreadLimits, t: &BasicThread, thickness: f64) -> Result<ThreadLimits, Error> {
+pub fn coated(
+    limits: ThreadLimits,
+    t: &BasicThread,
+    thickness: f64,
+    rule: crate::standards::tolerance::CoatingLimits,
+) -> Result<ThreadLimits, Error> {
     if !(thickness.is_finite() && thickness >= 0.0 && thickness < 0.1 * t.pitch) {
         return Err(Error::Input(format!(
             "coating {} mm: a coat's thickness is from 0 to under a tenth of the pitch ({} mm)",
@@ -813,7 +822,26 @@ pub fn coated(limits: ThreadLimits, t: &BasicThread, thickness: f64) -> Result<T
             crate::ground::fmt::fmt_num(0.1 * t.pitch)
         )));
     }
-    Ok(if thickness > 0.0 { limits.before_coating(thickness, t.half_angle()) } else { limits })
+    if thickness == 0.0 {
+        return Ok(limits);
+    }
+    let pre = limits.for_coating(thickness, t, rule);
+    // A coat as thick as the tolerance leaves nothing to cut to.
+    for (name, l) in
+        [("major", pre.major_diameter), ("pitch", pre.pitch_diameter), ("minor", pre.minor_diameter)]
+    {
+        if let (Some(lo), Some(hi)) = (l.min, l.max) {
+            if lo > hi + 1e-9 {
+                return Err(Error::Input(format!(
+                    "coating {} mm: it leaves no tolerance on the {name} diameter before coating ({} over {}): a thinner coat, another class, or --coating-limits after if the drawing says the class applies after coating",
+                    crate::ground::fmt::fmt_num(thickness),
+                    crate::ground::fmt::fmt_num(lo),
+                    crate::ground::fmt::fmt_num(hi)
+                )));
+            }
+        }
+    }
+    Ok(pre)
 }
 
 /// Resolves a spec: designation, kind, limits, insert, blank and infeed.
@@ -830,7 +858,7 @@ pub fn resolve(spec: &VerifySpec) -> Result<Resolved, Error> {
     let kind = resolve_kind(&des, spec.internal)?;
     let limits = limits_for(&des, kind)?.ok_or_else(|| Error::Input("no class".into()))?;
     let t = des.thread;
-    let limits = coated(limits, &t, spec.coating)?;
+    let limits = coated(limits, &t, spec.coating, spec.coating_limits)?;
     let insert = build_insert(&spec.insert, &t, kind, spec.tolerance)?;
     let blank = match spec.blank_diameter {
         Some(b) if !(b.is_finite() && b > 0.0) => {
@@ -1144,7 +1172,7 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
     };
     let metrics = if spec.metrics { pass_metrics(&mr.setup, &cut.passes, cut.z_ref)? } else { Vec::new() };
     let m = &cut.measurement;
-    notes.extend(measured_notes(m, spec.coating, &t, kind));
+    notes.extend(measured_notes(m, (spec.coating, spec.coating_limits), &t, kind));
     let cone = gauge_cone(taper, kind, &cut, &t);
     let (cs, functional) = judge(m, &limits, &t, kind, cone, taper.is_some(), lead_deviation);
     let pass = verdict(&cs, spec.gauge_only);
@@ -1243,7 +1271,7 @@ fn picture_of(v: &Verification) -> Result<crate::analysis::picture::Picture, Err
 /// pitch line found on the flank lines extended.
 fn measured_notes(
     m: &Measurement,
-    coating: f64,
+    (coating, rule): (f64, crate::standards::tolerance::CoatingLimits),
     t: &crate::standards::BasicThread,
     kind: ThreadKind,
 ) -> Vec<crate::ground::note::Note> {
@@ -1254,8 +1282,19 @@ fn measured_notes(
             ThreadKind::External => m.pitch_diameter + grow,
             ThreadKind::Internal => m.pitch_diameter - grow,
         };
+        let bound = match (rule, kind) {
+            (crate::standards::tolerance::CoatingLimits::After, _) => {
+                "the class's limits apply to it".to_string()
+            }
+            (crate::standards::tolerance::CoatingLimits::Before, ThreadKind::External) => {
+                format!("at most the basic {:.3} mm, h", t.pitch_diameter())
+            }
+            (crate::standards::tolerance::CoatingLimits::Before, ThreadKind::Internal) => {
+                format!("at least the basic {:.3} mm, H", t.pitch_diameter())
+            }
+        };
         notes.push(crate::ground::note::Note::from(format!(
-            "after coating the pitch diameter measured here becomes {after:.4} mm (the class's limits apply to it)"
+            "after coating the pitch diameter measured here becomes {after:.4} mm ({bound})"
         )));
     }
     if m.pitch_line_extrapolated {

@@ -26,6 +26,7 @@ function show(id, on) { $(id).hidden = !on; }
 const CONTROLS = [
   [/--insert full/g, "Insert: full profile"],
   [/--gauge-only/g, "the 'gauge only' box"],
+  [/--coating-limits after/g, "'The class applies: after coating'"],
   [/\(allow_nonstandard\)/g, "(tick 'non-standard size')"],
   [/\ballow_nonstandard\b/g, "the 'non-standard size' box"],
 ];
@@ -155,7 +156,10 @@ function verifyArgs() {
     default: if (!args.tools) args.insert = "partial";
   }
   const coating = Number($("coating").value || 0);
-  if (coating) args.coating = coating;
+  if (coating) {
+    args.coating = coating;
+    args.coating_limits = $("coating-limits").value;
+  }
   return args;
 }
 

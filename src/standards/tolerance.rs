@@ -392,25 +392,62 @@ pub struct ThreadLimits {
     pub resolution: Resolution,
 }
 
+/// Which limits a coated thread's class applies to.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CoatingLimits {
+    /// The standards' default: the class's limits apply to the part before coating (ISO 965-1
+    /// §8.5 and ISO 965-3 §4: "unless otherwise stated"; ASME B1.1 §7: the limits of 1A and 2A
+    /// apply before coating, the allowance taking the coat), and after coating the thread shall
+    /// not pass the maximum-material limits of position h/H (a basic GO gauge accepts it): the
+    /// maximum-material side is capped at the basic size less the coat's growth (d2 ≤ basic −
+    /// 4t on a 60° bolt, D2 ≥ basic + 4t in a nut), rounded inward to the standard's resolution.
+    #[default]
+    Before,
+    /// The drawing says the class applies after coating: every limit moves by the coat's growth,
+    /// away from the coating.
+    After,
+}
+
+impl std::str::FromStr for CoatingLimits {
+    type Err = crate::Error;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.to_ascii_lowercase().as_str() {
+            "before" => Ok(CoatingLimits::Before),
+            "after" => Ok(CoatingLimits::After),
+            _ => Err(crate::Error::Input(format!(
+                "coating limits '{s}': before (the standards' default: the class applies before coating) or after (the drawing says after)"
+            ))),
+        }
+    }
+}
+
 impl ThreadLimits {
-    /// The limits to cut to before a coating of `thickness` mm (plating, anodizing) on a thread
-    /// whose flanks stand `half_angle_rad` from the radial: the class's limits apply after
-    /// coating (ISO 965-1 and ASME B1.1 both say so), and a coat of thickness t grows a bolt's
-    /// major and minor diameters by 2t and its pitch diameter by 2t / sin β (4t for a 60°
-    /// thread, as ASME B1.1 states for coated threads); a nut's shrink by as much. Every limit
-    /// moves by that growth, away from the coating: down for a bolt, up for a nut.
+    /// The limits to cut to before a coating of `thickness` mm (plating, anodizing) on thread
+    /// `t`, by `rule`. A coat of thickness t grows a bolt's major and minor diameters by 2t and
+    /// its pitch diameter by 2t / sin β (4t for a 60° thread, as ASME B1.1 states for coated
+    /// threads); a nut's shrink by as much.
     ///
     /// ```
-    /// use threadcheck::{limits_for, parse_designation, ParseOptions, ThreadKind};
+    /// use threadcheck::{limits_for, parse_designation, CoatingLimits, ParseOptions, ThreadKind};
     /// let d = parse_designation("M10x1.5-6g", ParseOptions::default())?;
     /// let l = limits_for(&d, ThreadKind::External)?.unwrap();
-    /// // A 10 µm coat on a 60° bolt: d2 8.862–8.994 becomes 8.822–8.954 before plating.
-    /// let pre = l.before_coating(0.010, 30f64.to_radians());
-    /// assert!((pre.pitch_diameter.max.unwrap() - 8.954).abs() < 1e-12);
-    /// assert!((pre.pitch_diameter.min.unwrap() - 8.822).abs() < 1e-12);
+    /// // A 10 µm coat on a 60° bolt. The standards' rule: d2 8.862–8.994 of 6g, its maximum capped
+    /// // at basic 9.026 − 4t = 8.986 so that the coated bolt stays within h.
+    /// let pre = l.for_coating(0.010, &d.thread, CoatingLimits::Before);
+    /// assert_eq!((pre.pitch_diameter.min, pre.pitch_diameter.max), (Some(8.862), Some(8.986)));
+    /// // The class after coating (a drawing that says so): 8.822–8.954.
+    /// let after = l.for_coating(0.010, &d.thread, CoatingLimits::After);
+    /// assert!((after.pitch_diameter.max.unwrap() - 8.954).abs() < 1e-12);
     /// # Ok::<(), threadcheck::Error>(())
     /// ```
-    pub fn before_coating(&self, thickness: f64, half_angle_rad: f64) -> ThreadLimits {
+    pub fn for_coating(
+        &self,
+        thickness: f64,
+        t: &crate::standards::BasicThread,
+        rule: CoatingLimits,
+    ) -> ThreadLimits {
+        let half_angle_rad = t.half_angle();
         debug_assert!(thickness >= 0.0 && half_angle_rad > 0.0);
         let away = match self.kind {
             ThreadKind::External => -1.0,
@@ -419,26 +456,109 @@ impl ThreadLimits {
         let (pitch, size) = (away * coat_pitch_growth(thickness, half_angle_rad), away * 2.0 * thickness);
         // To 1e-9 mm: the limits are µm (or 0.1 mil) values, the shift is no reason for float noise.
         let nm = |v: f64| (v * 1e9).round() / 1e9;
-        let shift =
-            |l: Limit, by: f64| Limit { max: l.max.map(|v| nm(v + by)), min: l.min.map(|v| nm(v + by)) };
         let mut notes = self.notes.clone();
-        notes.push(format!(
-            "limits before a coating of {} mm: the class's moved {} µm {} on the pitch diameter (2t / sin {}°) and {} µm on the major and minor diameters (2t); the class's own limits apply after coating (ISO 965-1, ASME B1.1)",
-            fmt_num(thickness),
-            fmt_num((pitch.abs() * 1e9).round() / 1e6),
-            if away < 0.0 { "down" } else { "up" },
-            fmt_num((half_angle_rad.to_degrees() * 1e6).round() / 1e6),
-            fmt_num((size.abs() * 1e9).round() / 1e6),
-        ));
-        ThreadLimits {
-            notes,
-            major_diameter: shift(self.major_diameter, size),
-            pitch_diameter: shift(self.pitch_diameter, pitch),
-            minor_diameter: shift(self.minor_diameter, size),
-            gauge_plane: self
-                .gauge_plane
-                .map(|g| GaugePlane { pitch_diameter: nm(g.pitch_diameter + pitch), ..g }),
-            ..self.clone()
+        let um = |v: f64| fmt_num((v.abs() * 1e4).round() / 10.0);
+        match rule {
+            CoatingLimits::After => {
+                let shift = |l: Limit, by: f64| Limit {
+                    max: l.max.map(|v| nm(v + by)),
+                    min: l.min.map(|v| nm(v + by)),
+                };
+                notes.push(format!(
+                    "limits before a coating of {} mm, the class applying after coating (--coating-limits after, as the drawing says): the class's moved {} µm {} on the pitch diameter (2t / sin {}°) and {} µm on the major and minor diameters (2t)",
+                    fmt_num(thickness),
+                    um(pitch),
+                    if away < 0.0 { "down" } else { "up" },
+                    fmt_num((half_angle_rad.to_degrees() * 1e4).round() / 1e4),
+                    um(size),
+                ));
+                ThreadLimits {
+                    notes,
+                    major_diameter: shift(self.major_diameter, size),
+                    pitch_diameter: shift(self.pitch_diameter, pitch),
+                    minor_diameter: shift(self.minor_diameter, size),
+                    gauge_plane: self
+                        .gauge_plane
+                        .map(|g| GaugePlane { pitch_diameter: nm(g.pitch_diameter + pitch), ..g }),
+                    ..self.clone()
+                }
+            }
+            CoatingLimits::Before => {
+                // The maximum-material side capped at the basic size less the growth, rounded
+                // inward to the standard's step.
+                let step = self.resolution_step_mm();
+                let inward = |v: f64| match self.kind {
+                    ThreadKind::External => nm(((v / step) + 1e-9).floor() * step),
+                    ThreadKind::Internal => nm(((v / step) - 1e-9).ceil() * step),
+                };
+                // A size as the standard prints it: mm to 1 µm, or inches to 0.0001 in.
+                let shown = |v: f64| match self.resolution {
+                    Resolution::Micrometre => format!("{v:.3}"),
+                    Resolution::TenThousandthInch => format!("{:.4} in", v / crate::standards::MM_PER_INCH),
+                };
+                let mut capped = Vec::new();
+                let mut cap = |l: Limit, basic: f64, growth: f64, name: &str| -> Limit {
+                    // The basic size as the tables print it (9.026 for M10x1.5's d2).
+                    let basic = self.resolution.round(basic);
+                    let bound = inward(basic + growth);
+                    match self.kind {
+                        ThreadKind::External => match l.max {
+                            Some(m) if m > bound + 1e-9 => {
+                                capped.push(format!(
+                                    "{name} max {} → {} (basic {} − {} µm)",
+                                    shown(m),
+                                    shown(bound),
+                                    shown(basic),
+                                    um(growth)
+                                ));
+                                Limit { max: Some(bound), ..l }
+                            }
+                            _ => l,
+                        },
+                        ThreadKind::Internal => match l.min {
+                            Some(m) if m < bound - 1e-9 => {
+                                capped.push(format!(
+                                    "{name} min {} → {} (basic {} + {} µm)",
+                                    shown(m),
+                                    shown(bound),
+                                    shown(basic),
+                                    um(growth)
+                                ));
+                                Limit { min: Some(bound), ..l }
+                            }
+                            _ => l,
+                        },
+                    }
+                };
+                // The bolt's major and pitch diameters, the nut's every diameter (its major, the
+                // root the coat fills, included).
+                let (major_diameter, pitch_diameter, minor_diameter) = match self.kind {
+                    ThreadKind::External => (
+                        cap(self.major_diameter, t.nominal_diameter, size, "d"),
+                        cap(self.pitch_diameter, t.pitch_diameter(), pitch, "d2"),
+                        self.minor_diameter,
+                    ),
+                    ThreadKind::Internal => (
+                        cap(self.major_diameter, t.nominal_diameter, size, "D"),
+                        cap(self.pitch_diameter, t.pitch_diameter(), pitch, "D2"),
+                        cap(self.minor_diameter, t.minor_diameter_internal(), size, "D1"),
+                    ),
+                };
+                notes.push(format!(
+                    "limits before a coating of {} mm: the class's own, which the standards apply before coating (ISO 965-1 §8.5, ASME B1.1 §7; --coating-limits after when the drawing says otherwise); after coating the thread must stay within the basic profile (h/H): {}",
+                    fmt_num(thickness),
+                    if capped.is_empty() { "no limit needs moving".to_string() } else { capped.join(", ") }
+                ));
+                ThreadLimits { notes, major_diameter, pitch_diameter, minor_diameter, ..self.clone() }
+            }
+        }
+    }
+
+    /// The standard's step, mm.
+    fn resolution_step_mm(&self) -> f64 {
+        match self.resolution {
+            Resolution::Micrometre => 0.001,
+            Resolution::TenThousandthInch => 0.0001 * crate::standards::MM_PER_INCH,
         }
     }
 }
