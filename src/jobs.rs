@@ -162,8 +162,10 @@ fn limits_table(des: &Designation, ext: Option<&ThreadLimits>, int: Option<&Thre
         }
     }
     if ext.is_none() && int.is_none() {
-        let _ =
-            writeln!(s, "\nno class given: add one for limits, e.g. {}-6g or {}-6H/6g", des.text, des.text);
+        let (e, i) =
+            (des.with_example_class(ThreadKind::External), des.with_example_class(ThreadKind::Internal));
+        let example = if e == i { e } else { format!("{e} or {i}") };
+        let _ = writeln!(s, "\nno class given: add one for limits, e.g. {example}");
     }
     s
 }

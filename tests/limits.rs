@@ -253,3 +253,20 @@ fn npt_nominal_diameter_is_the_pipe_outside_diameter() {
         );
     }
 }
+
+/// Issue 48: a designation without a class is told the classes its own standard has: BS 84's
+/// close/medium/free, ISO 2903's 7e/7H, ASME B1.1's 2A/2B, ASME B1.5's 2G, ISO 965's 6g/6H (it
+/// suggested 6g/6H for every form).
+#[test]
+fn a_missing_class_is_suggested_in_the_standards_own_words() {
+    for (d, says) in [
+        ("BSW 1/2", "e.g. BSW 1/2 medium"),
+        ("Tr40x7", "e.g. Tr40x7-7e or Tr40x7-7H"),
+        ("1/2-13 UNC", "e.g. 1/2-13 UNC-2A or 1/2-13 UNC-2B"),
+        ("1/2-10 ACME", "e.g. 1/2-10 ACME-2G"),
+        ("M10x1.5", "e.g. M10x1.5-6g or M10x1.5-6H"),
+    ] {
+        let o = run(&["limits", d]);
+        assert!(stdout(&o).contains(says), "{d}: {}", stdout(&o));
+    }
+}

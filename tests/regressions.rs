@@ -1035,3 +1035,16 @@ fn regression_the_zone_keeps_its_flank_angle_up_to_the_crest_cut() {
         }
     }
 }
+
+/// Issue 48: `correct` rounded an inch thread's measured d2 to 0.0001 in before taking its
+/// deviation: 1/2-13 UNC-2A measured at 11.4000 mm, 8.1 µm over d2 max 0.4485 in = 11.3919 mm
+/// (ASME B1.1), was reported +7.6 µm (0.4488 in − 0.4485 in). In or out is decided at the
+/// standard's resolution; the deviation is the true distance, as `verify` gives it.
+#[test]
+fn regression_correct_reports_an_inch_threads_true_deviation() {
+    let o =
+        run(&["correct", "--thread", "1/2-13 UNC-2A", "--insert", "full", "--measured-d2", "11.4", "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let dev = v["measured"]["deviation_um"].as_f64().unwrap();
+    assert!((dev - 8.1).abs() < 1e-6, "{dev}");
+}

@@ -387,7 +387,9 @@ fn known(
     res: crate::standards::tolerance::Resolution,
     over_wires: Option<WireReading>,
 ) -> MeasuredState {
-    let dev = lim.deviation(res.round(d2));
+    // Inside or out at the standard's resolution (a limit exactly met passes); outside, the true
+    // distance to the limit, as verify reports it.
+    let dev = if lim.deviation(res.round(d2)) == 0.0 { 0.0 } else { lim.deviation(d2) };
     MeasuredState {
         method,
         pitch_diameter: Some(d2),

@@ -414,24 +414,7 @@ fn resolve_kind(des: &Designation, internal: bool) -> Result<ThreadKind, Error> 
             "'{}' names no {} class to verify against; add one, e.g. {}",
             des.text,
             kind.name(),
-            match (des.thread.form, kind) {
-                (crate::ThreadForm::IsoMetric, ThreadKind::External) => format!("{}-6g", des.text),
-                (crate::ThreadForm::IsoMetric, ThreadKind::Internal) => format!("{}-6H", des.text),
-                (crate::ThreadForm::Whitworth, _) => format!("{} medium", des.text),
-                (crate::ThreadForm::BspParallel, ThreadKind::External) => format!("{} A", des.text),
-                (crate::ThreadForm::BspParallel, ThreadKind::Internal) => des.text.clone(),
-                (crate::ThreadForm::Unified, ThreadKind::External) => format!("{}-2A", des.text),
-                (crate::ThreadForm::Unified, ThreadKind::Internal) => format!("{}-2B", des.text),
-                (crate::ThreadForm::Trapezoidal, ThreadKind::External) => format!("{}-7e", des.text),
-                (crate::ThreadForm::Trapezoidal, ThreadKind::Internal) => format!("{}-7H", des.text),
-                (crate::ThreadForm::Acme, ThreadKind::External | ThreadKind::Internal) =>
-                    format!("{}-2G", des.text),
-                (crate::ThreadForm::Npt, ThreadKind::External | ThreadKind::Internal) => des.text.clone(),
-                (crate::ThreadForm::Iso7Taper, ThreadKind::External) => des.text.replace("Rc", "R"),
-                (crate::ThreadForm::Iso7Taper, ThreadKind::Internal) => {
-                    format!("Rc{}", des.text.trim_start_matches(['R', 'r']))
-                }
-            }
+            des.with_example_class(kind)
         )));
     }
     Ok(kind)

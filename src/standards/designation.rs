@@ -27,6 +27,29 @@ pub struct Designation {
 }
 
 impl Designation {
+    /// The designation with an example class of `kind` in its standard's own vocabulary, for a
+    /// designation that names none: `M10x1.5-6g`, `BSW 1/2 medium`, `G1/2 A`, `1/2-13 UNC-2A`,
+    /// `Tr40x7-7e`, `1/2-10 ACME-2G`.
+    pub fn with_example_class(&self, kind: ThreadKind) -> String {
+        match (self.thread.form, kind) {
+            (ThreadForm::IsoMetric, ThreadKind::External) => format!("{}-6g", self.text),
+            (ThreadForm::IsoMetric, ThreadKind::Internal) => format!("{}-6H", self.text),
+            (ThreadForm::Whitworth, _) => format!("{} medium", self.text),
+            (ThreadForm::BspParallel, ThreadKind::External) => format!("{} A", self.text),
+            (ThreadForm::BspParallel, ThreadKind::Internal) => self.text.clone(),
+            (ThreadForm::Unified, ThreadKind::External) => format!("{}-2A", self.text),
+            (ThreadForm::Unified, ThreadKind::Internal) => format!("{}-2B", self.text),
+            (ThreadForm::Trapezoidal, ThreadKind::External) => format!("{}-7e", self.text),
+            (ThreadForm::Trapezoidal, ThreadKind::Internal) => format!("{}-7H", self.text),
+            (ThreadForm::Acme, ThreadKind::External | ThreadKind::Internal) => format!("{}-2G", self.text),
+            (ThreadForm::Npt, ThreadKind::External | ThreadKind::Internal) => self.text.clone(),
+            (ThreadForm::Iso7Taper, ThreadKind::External) => self.text.replace("Rc", "R"),
+            (ThreadForm::Iso7Taper, ThreadKind::Internal) => {
+                format!("Rc{}", self.text.trim_start_matches(['R', 'r']))
+            }
+        }
+    }
+
     /// The class for `kind`, if the designation names one.
     pub fn class(&self, kind: ThreadKind) -> Option<&ClassSpec> {
         match kind {
