@@ -647,6 +647,10 @@ struct PlanArgs {
     /// ASME B1.1 §7) or after it (when the drawing says so).
     #[arg(long, value_enum, default_value = "before")]
     coating_limits: CoatingLimitsArg,
+    /// The length of engagement a gauge feels, mm, over which a program's lead error adds up
+    /// (default: the nominal diameter, ASME B1.1's LE = D; a taper thread's L1).
+    #[arg(long, value_name = "MM", value_parser = finite)]
+    engagement: Option<f64>,
     /// Tip diameter of the last pass (default: what puts the pitch diameter mid-tolerance).
     #[arg(long, value_name = "DIA", allow_hyphen_values = true, value_parser = finite)]
     final_x: Option<f64>,
@@ -750,6 +754,7 @@ impl PlanArgs {
         s.clearance_angle = self.clearance_angle;
         s.coating = self.coating;
         s.coating_limits = self.coating_limits.rule();
+        s.engagement = self.engagement;
         s.units = match self.units {
             Some(UnitsArg::Mm) => Units::Mm,
             Some(UnitsArg::Inch) => Units::Inch,

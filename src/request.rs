@@ -96,6 +96,7 @@ impl Command {
             "chamfer",
             "coating",
             "coating_limits",
+            "engagement",
             "final_x",
             "blank_diameter",
             "units",
@@ -808,6 +809,7 @@ impl Args {
         s.chamfer_leads = self.num("chamfer")?.unwrap_or(0.0);
         s.coating = self.num("coating")?.unwrap_or(0.0);
         s.coating_limits = self.coating_limits()?;
+        s.engagement = self.num("engagement")?;
         s.final_x = self.num("final_x")?;
         s.blank_diameter = self.num("blank_diameter")?;
         // Only the commands whose keys list `operation` take it.

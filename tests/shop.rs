@@ -21,35 +21,44 @@ fn check<'a>(v: &'a serde_json::Value, feature: &str) -> Option<&'a serde_json::
     v["checks"].as_array().unwrap().iter().find(|c| c["feature"] == feature)
 }
 
-/// A metric control's F1.814 for 14 tpi is 25.4/14 rounded to its 0.001 mm: it matches, and the
-/// gauge plane moves by the lead error's equivalent, 0.0722 turn (the program's comments).
+/// A metric control's F1.814 for 14 tpi is 25.4/14 rounded to its 0.001 mm: it matches. Issue 48:
+/// the lead error adds up over the thread the gauge engages, NPT's L1 = 0.320 in = 8.128 mm (ASME
+/// B1.20.1), not the whole 30 mm pass: −0.2857 µm a turn × 8.128/1.8142857 turns = −1.280 µm,
+/// × cot 30° = 2.217 µm on the pitch diameter, the gauge off 2.217e-3 / 0.0625 / 1.8142857 =
+/// 0.020 turn (it said 0.072 over the whole pass).
 #[test]
 fn an_npt_job_at_f1_814_verifies_with_its_lead_error() {
     let (code, v) = verify_json("npt-1-2-14-metric-f1814.nc", "1/2-14 NPT", &[]);
     assert_eq!(code, 0, "{v}");
     let ld = &v["lead_deviation"];
-    assert!((ld["cumulative"].as_f64().unwrap() * 1000.0 + 4.724).abs() < 1e-3, "{ld}");
-    assert!((ld["pitch_diameter_equivalent"].as_f64().unwrap() * 1000.0 - 8.183).abs() < 1e-3, "{ld}");
+    assert!((ld["cumulative"].as_f64().unwrap() * 1000.0 + 1.280).abs() < 1e-3, "{ld}");
+    assert!((ld["pitch_diameter_equivalent"].as_f64().unwrap() * 1000.0 - 2.217).abs() < 1e-3, "{ld}");
+    assert_eq!(
+        (ld["length"].as_f64(), ld["engagement"].as_f64(), ld["pass_length"].as_f64()),
+        (Some(8.128), Some(8.128), Some(30.0))
+    );
     assert_eq!(ld["increment"], 0.001);
     let gp = check(&v, "gauge_plane").unwrap();
-    assert!(gp["note"].as_str().unwrap().contains("stands the gauge off 0.072 turn"), "{gp}");
+    assert!(gp["note"].as_str().unwrap().contains("stands the gauge off 0.020 turn"), "{gp}");
     let f = v["measured"]["functional_pitch_diameter"].as_f64().unwrap();
     let d2 = v["measured"]["pitch_diameter"].as_f64().unwrap();
-    assert!(((f - d2) * 1000.0 - 8.183).abs() < 1e-3);
+    assert!(((f - d2) * 1000.0 - 2.217).abs() < 1e-3);
 }
 
-/// G1/8 at F0.907: d2 9.119868 by the insert's geometry, functional 9.125918, under d2 max 9.147.
+/// G1/8 at F0.907: d2 9.119868 by the insert's geometry. The lead error over LE = D = 9.728 mm
+/// (ISO 228-1's major diameter; issue 48): −0.1429 µm a turn × 10.724 turns = −1.532 µm, × cot
+/// 27.5° = 2.943 µm: functional 9.122811, under d2 max 9.147.
 #[test]
 fn a_28_tpi_pipe_thread_at_f0_907_passes_with_its_functional_diameter() {
     let (code, v) = verify_json("bsp-g1-8-28tpi-f0907.nc", "G1/8 A", &[]);
     assert_eq!(code, 0, "{v}");
     let c = check(&v, "functional_pitch_diameter").unwrap();
-    assert!((c["value"].as_f64().unwrap() - 9.125918).abs() < 1e-6, "{c}");
+    assert!((c["value"].as_f64().unwrap() - 9.122811).abs() < 1e-6, "{c}");
     assert_eq!(c["max"], 9.147);
     assert!(c["ok"].as_bool().unwrap());
 }
 
-/// The same thread 25 µm larger: d2 9.144868 passes, the functional 9.150918 is 3.918 µm over.
+/// The same thread 25 µm larger: d2 9.144868 passes, the functional 9.147811 is 0.811 µm over.
 #[test]
 fn a_lead_error_fails_the_go_side_where_the_pitch_diameter_alone_passes() {
     let (code, v) = verify_json("bsp-g1-8-28tpi-f0907-at-max.nc", "G1/8 A", &[]);
@@ -57,11 +66,12 @@ fn a_lead_error_fails_the_go_side_where_the_pitch_diameter_alone_passes() {
     assert!(check(&v, "pitch_diameter").unwrap()["ok"].as_bool().unwrap());
     let c = check(&v, "functional_pitch_diameter").unwrap();
     assert!(!c["ok"].as_bool().unwrap());
-    assert!((c["deviation_um"].as_f64().unwrap() - 3.918).abs() < 1e-3, "{c}");
+    assert!((c["deviation_um"].as_f64().unwrap() - 0.811).abs() < 1e-3, "{c}");
 }
 
-/// An inch control's F.0714 for 14 tpi: 0.0001 in increment, +20.646 µm on d2 over the
-/// finishing pass's 1.173211 in.
+/// An inch control's F.0714 for 14 tpi: 0.0001 in increment. Over LE = D = 0.875 in = 22.225 mm
+/// (ASME B1.1; the finishing pass threads 1.173211 in): −0.0000286 in a turn × 12.25 turns =
+/// −8.890 µm, × cot 30° = +15.398 µm on d2. `--engagement` sets another length.
 #[test]
 fn an_inch_program_at_f_0714_matches_14_tpi_at_a_ten_thousandth() {
     let (code, v) = verify_json("unf-7-8-14-inch-f0714.nc", "7/8-14 UNF-2A", &["--dialect", "haas"]);
@@ -69,8 +79,40 @@ fn an_inch_program_at_f_0714_matches_14_tpi_at_a_ten_thousandth() {
     let ld = &v["lead_deviation"];
     assert_eq!(ld["units"], "inch");
     assert_eq!(ld["increment"], 0.0001);
-    assert!((ld["length"].as_f64().unwrap() - 29.7996).abs() < 1e-4, "{ld}");
-    assert!((ld["pitch_diameter_equivalent"].as_f64().unwrap() * 1000.0 - 20.646).abs() < 1e-3, "{ld}");
+    assert!((ld["length"].as_f64().unwrap() - 22.225).abs() < 1e-9, "{ld}");
+    assert!((ld["pass_length"].as_f64().unwrap() - 29.7996).abs() < 1e-4, "{ld}");
+    assert!((ld["pitch_diameter_equivalent"].as_f64().unwrap() * 1000.0 - 15.398).abs() < 1e-3, "{ld}");
+    // 11.1125 mm of engagement given: half of it.
+    let (_, h) = verify_json(
+        "unf-7-8-14-inch-f0714.nc",
+        "7/8-14 UNF-2A",
+        &["--dialect", "haas", "--engagement", "11.1125"],
+    );
+    assert!(
+        (h["lead_deviation"]["pitch_diameter_equivalent"].as_f64().unwrap() * 1000.0 - 7.699).abs() < 1e-3
+    );
+}
+
+/// Issue 48: a program with 3 mm of run-in in air (the pass from Z3 to Z−12, the part's face at
+/// Z0) adds its lead error up over the 12 mm on the part, capped at LE = D = 11.1125 mm for
+/// 7/16-14 UNC (ASME B1.1), not over the 15 mm pass: −0.2857 µm a turn × 11.1125/1.8142857 turns
+/// = −1.750 µm, × cot 30° = 3.031 µm (the whole pass would give 4.091 µm).
+#[test]
+fn run_in_in_air_adds_no_lead_error() {
+    let text =
+        "G21 G97 S500 M3\nG0 X13 Z3\nG92 X10.9 Z-12 F1.814\nX10.5\nX10.2\nX9.95\nX9.8\nG0 X20 Z20\nM30\n";
+    let dir = tempdir("run-in");
+    std::fs::write(dir.join("p.nc"), text).unwrap();
+    let o = run_in(
+        &dir,
+        &["verify", "--program", "p.nc", "--thread", "7/16-14 UNC-2A", "--insert", "full", "--json"],
+    );
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let ld = &v["operations"][0]["lead_deviation"];
+    assert!((ld["length"].as_f64().unwrap() - 11.1125).abs() < 1e-9, "{ld}");
+    assert_eq!(ld["pass_length"].as_f64(), Some(15.0));
+    assert!((ld["pitch_diameter_equivalent"].as_f64().unwrap() * 1000.0 - 3.031).abs() < 1e-3, "{ld}");
 }
 
 /// A lead further off than the program's increment rounds is refused, both leads to four

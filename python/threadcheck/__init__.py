@@ -118,6 +118,7 @@ def verify(thread: Threads, program: Optional[str] = None, dialect: Optional[str
            allow_nonstandard: bool = False, program_name: Optional[str] = None,
            default_units: Optional[str] = None, main: Optional[str] = None,
            linuxcnc_release: Optional[str] = None, coating: Optional[float] = None, coating_limits: Optional[str] = None,
+           engagement: Optional[float] = None,
            insert_toml: Optional[str] = None, tools: Optional[str] = None,
            gcode_system: Optional[str] = None,
            schedule: Optional[str] = None, depths: Optional[Sequence[float]] = None,
@@ -188,7 +189,7 @@ def passes(thread: Optional[Threads] = None, program: Optional[str] = None,
            first_depth: Optional[float] = None, min_depth: Optional[float] = None,
            finish: Optional[float] = None, spring: Optional[int] = None,
            taper: Optional[float] = None, chamfer: Optional[float] = None,
-           coating: Optional[float] = None, coating_limits: Optional[str] = None, gcode_system: Optional[str] = None) -> PassesReport:
+           coating: Optional[float] = None, coating_limits: Optional[str] = None, engagement: Optional[float] = None, gcode_system: Optional[str] = None) -> PassesReport:
     """``threadcheck passes --json``: the passes of a generated plan or of a program's text.
 
     The arguments are ``verify``'s; a program needs no thread.
@@ -203,7 +204,7 @@ def correct(thread: str, program: Optional[str] = None, dialect: Optional[str] =
             blank_diameter: Optional[float] = None, allow_nonstandard: bool = False,
             program_name: Optional[str] = None, default_units: Optional[str] = None,
             main: Optional[str] = None, linuxcnc_release: Optional[str] = None,
-            coating: Optional[float] = None, coating_limits: Optional[str] = None, measured_m: Optional[float] = None,
+            coating: Optional[float] = None, coating_limits: Optional[str] = None, engagement: Optional[float] = None, measured_m: Optional[float] = None,
             wire: Optional[float] = None, measured_d2: Optional[float] = None,
             gauge: Optional[str] = None, pickup_z: Optional[float] = None,
             insert_toml: Optional[str] = None, gcode_system: Optional[str] = None,
@@ -233,6 +234,7 @@ def capability(thread: str, program: Optional[str] = None, dialect: Optional[str
                allow_nonstandard: bool = False, program_name: Optional[str] = None,
                default_units: Optional[str] = None, main: Optional[str] = None,
                linuxcnc_release: Optional[str] = None, coating: Optional[float] = None, coating_limits: Optional[str] = None,
+           engagement: Optional[float] = None,
                x_sigma: Optional[float] = None, tip_radius_tol: Optional[float] = None,
                wear_per_part: Optional[float] = None, samples: Optional[int] = None,
                seed: Optional[int] = None, gauge_only: bool = False,

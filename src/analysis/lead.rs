@@ -47,8 +47,14 @@ pub struct LeadDeviation {
     pub units: ProgramUnits,
     /// The least increment the lead was compared at, in the program's units.
     pub increment: f64,
-    /// The length of engagement it adds up over, mm: the length the finishing pass threads.
+    /// The length it adds up over, mm: the thread on the part, capped at the length of
+    /// engagement ([`LeadDeviation::engagement`]).
     pub length: f64,
+    /// The length the finishing pass threads, run-in in air included, mm.
+    pub pass_length: f64,
+    /// The length of engagement a gauge feels, mm: the thread's nominal diameter (ASME B1.1's
+    /// LE = D, BS 84's L = D), NPT's L1, or the one given.
+    pub engagement: f64,
     /// The cumulative lead error over that length, mm (program − designation).
     pub cumulative: f64,
     /// Its pitch-diameter equivalent, |δP|·cot(α/2), mm: what the functional pitch diameter
@@ -89,6 +95,8 @@ pub fn lead_deviation(
         units,
         increment,
         length: length.abs(),
+        pass_length: length.abs(),
+        engagement: length.abs(),
         cumulative,
         pitch_diameter_equivalent: equivalent,
     }))

@@ -140,6 +140,9 @@ pub struct VerifySpec {
     /// Which limits the class applies to under a coating: before it (the standards' default)
     /// or after it (when the drawing says so).
     pub coating_limits: crate::standards::tolerance::CoatingLimits,
+    /// The length of engagement a gauge feels, mm, over which a program's lead error adds up
+    /// (`None`: the nominal diameter, or a taper thread's L1).
+    pub engagement: Option<f64>,
     /// Of a program that cuts several threads, the one operation to check (1-based, in program
     /// order): `correct` and `capability` take one, a program of one needs none.
     pub operation: Option<usize>,
@@ -188,11 +191,18 @@ impl VerifySpec {
             ("final_x", self.final_x),
             ("blank_diameter", self.blank_diameter),
             ("clearance_angle", self.clearance_angle),
+            ("engagement", self.engagement),
         ];
         for (name, v) in numbers {
             if let Some(v) = v.filter(|v| !v.is_finite()) {
                 return Err(Error::Input(format!("{name} {v} is not a finite number")));
             }
+        }
+        if let Some(le) = self.engagement.filter(|le| !(*le > 0.0 && *le <= 10_000.0)) {
+            return Err(Error::Input(format!(
+                "engagement {} mm: a length of engagement is above 0 and at most 10 000 mm",
+                crate::ground::fmt::fmt_num(le)
+            )));
         }
         if let Schedule::Explicit(d) = &self.schedule {
             if d.iter().any(|x| !x.is_finite()) {
@@ -246,6 +256,7 @@ impl VerifySpec {
             clearance_angle: None,
             coating: 0.0,
             coating_limits: crate::standards::tolerance::CoatingLimits::Before,
+            engagement: None,
             operation: None,
         }
     }
@@ -1543,15 +1554,38 @@ fn verify_given(
                 if r.kind == ThreadKind::External { "blank diameter" } else { "bore diameter" },
         )));
     }
-    // The lead error adds up over the length the finishing pass threads.
+    // The lead error adds up over the thread a gauge engages: the thread on the part (its face
+    // taken at Z0, the part at Z ≤ 0: a named default), capped at the length of engagement.
     let last = last_head(&passes);
-    let lead = crate::analysis::lead::lead_deviation(
-        last.lead,
-        op.units,
-        &r.designation.thread,
-        (last.z_end - last.z_start).abs(),
-    )
-    .unwrap_or(None);
+    let pass_length = (last.z_end - last.z_start).abs();
+    let (za, zb) = (last.z_start.min(last.z_end), last.z_start.max(last.z_end));
+    let on_part = if za < 0.0 { zb.min(0.0) - za } else { pass_length };
+    let (engagement, basis) = match (r.spec.engagement, r.limits.gauge_plane) {
+        (Some(le), _) => (le, "as given".to_string()),
+        (None, Some(gp)) => (gp.distance, "the gauge's L1".to_string()),
+        (None, None) => (
+            r.designation.thread.nominal_diameter,
+            format!(
+                "LE = D = {:.3} mm, the length ASME B1.1 and BS 84 base their tolerances on",
+                r.designation.thread.nominal_diameter
+            ),
+        ),
+    };
+    let used = on_part.min(engagement);
+    let lead = crate::analysis::lead::lead_deviation(last.lead, op.units, &r.designation.thread, used)
+        .unwrap_or(None)
+        .map(|d| crate::analysis::lead::LeadDeviation { pass_length, engagement, ..d });
+    if let Some(d) = &lead {
+        let whole = d.pitch_diameter_equivalent * pass_length / used.max(1e-9);
+        notes.push(crate::ground::note::Note::from(format!(
+            "the lead error adds up over {:.3} mm: the thread on the part from its face at Z0 ({:.3} mm of the finishing pass's {:.3} mm) up to the length of engagement ({basis}; --engagement sets it); {:.1} µm on the pitch diameter, {:.1} µm over the whole pass",
+            used,
+            on_part,
+            pass_length,
+            d.pitch_diameter_equivalent * 1e3,
+            whole * 1e3
+        )));
+    }
     // The starts cut: by their phase against the designation's pitch when it has several,
     // else as the program's reading told them apart.
     let t = &r.designation.thread;

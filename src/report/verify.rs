@@ -385,7 +385,7 @@ pub fn verify_text(v: &Verification) -> String {
     if let (Some(ld), Some(f)) = (&v.lead_deviation, v.functional_pitch_diameter) {
         let _ = writeln!(
             s,
-            "  lead {:.6} mm (the program's, at its {} {} increment) against {:.6} mm: {:+.2} µm over the {:.2} mm the finishing pass threads; functional pitch diameter {f:.4} ({:+.2} µm), what a GO gauge sees",
+            "  lead {:.6} mm (the program's, at its {} {} increment) against {:.6} mm: {:+.2} µm over the {:.2} mm a gauge engages; functional pitch diameter {f:.4} ({:+.2} µm), what a GO gauge sees",
             ld.program_lead,
             crate::ground::fmt::fmt_num(ld.increment),
             ld.units.name(),

@@ -1,7 +1,7 @@
 (G1/8 A, 28 tpi, on a metric control: the lead 25.4/28 = 0.9071429 mm is written F0.907)
 (full-profile insert, radial G92: d2 = tip X + 0.640327 P = X8.539 + 0.580868 = 9.119868, class A: 9.040..9.147)
-(lead error per turn 0.907 - 0.9071429 = -0.1429 um; over the 20 mm pass -3.150 um; cot 27.5 = 1.92098)
-(functional d2 = 9.119868 + 0.006050 = 9.125918 <= 9.147: passes)
+(lead error per turn 0.907 - 0.9071429 = -0.1429 um; over LE = D = 9.728 mm, 10.724 turns, -1.532 um; cot 27.5 = 1.92098)
+(functional d2 = 9.119868 + 0.002943 = 9.122811 <= 9.147: passes)
 G21 G97 S900 M3
 T0202
 G0 X12 Z2
