@@ -101,6 +101,7 @@ pub use geometry::measure::{
 };
 pub use geometry::parry::Placement;
 pub use geometry::sweep::{pass_metrics, sweep, PassMetrics, Section, Sweep, SweepSetup, Window};
+pub use geometry::wire::{classical_wire_helix_term, wire_helix_term};
 
 // The computations.
 pub use analysis::capability::{capability, CapabilityReport, CapabilitySpec, Histogram, SizeCapability};
@@ -108,8 +109,8 @@ pub use analysis::catalogue::{cases as catalogue_cases, run as run_catalogue, Ca
 pub use analysis::check::{checks, Check, CheckFeature, CheckKind, CheckUnit, Verdict};
 pub use analysis::compare::{compare, CompareChoice, Comparison, Ground, Recommendation};
 pub use analysis::correct::{
-    correct, helix_term, CorrectReport, CorrectSpec, GaugeResult, Measured, MeasuredState, Pickup,
-    WearOffset, WireReading,
+    correct, CorrectReport, CorrectSpec, GaugeResult, Measured, MeasuredState, Pickup, WearOffset,
+    WireReading,
 };
 pub use analysis::correction::{correction, deeper_words, Correction, Deeper};
 pub use analysis::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};

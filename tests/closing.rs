@@ -9,11 +9,13 @@ fn json(o: &Output) -> serde_json::Value {
     serde_json::from_str(&stdout(o)).unwrap_or_else(|e| panic!("{e}: {}{}", stdout(o), stderr(o)))
 }
 
-/// GOST 8.677-2009's correction C4 for the wires' inclination, written out here from the
-/// standard's formula: −0.1826·Ph²·w / ((d2 − 1.866P + 3.6049w)(d2 − 1.866P + 3.8637w)).
-fn c4(d2: f64, p: f64, ph: f64, w: f64) -> f64 {
-    let a = d2 - 1.866 * p;
-    -0.1826 * ph * ph * w / ((a + 3.6049 * w) * (a + 3.8637 * w))
+/// The helix term of M10x1.5 over 0.866 mm wires, mm: the exact contact (held to a sampled
+/// helicoid by `geometry::wire`'s test), −1.733 µm as the audit of issue 48 computed it with an
+/// independent 3-D model (the classical −0.75·w·tan² λ gives −1.817 µm).
+fn helix_m10() -> f64 {
+    let c = threadcheck::wire_helix_term(9.025_721, 1.5, 1.5, 30f64.to_radians(), 0.866);
+    assert!((c * 1000.0 + 1.733).abs() < 0.005, "{c}");
+    c
 }
 
 /// The mid-tolerance final X of a full-profile M10x1.5 insert: its tip cuts d3, and
@@ -21,7 +23,7 @@ fn c4(d2: f64, p: f64, ph: f64, w: f64) -> f64 {
 const FULL_X_MID: f64 = 8.928 - 0.577_350_269 * 1.5;
 
 /// A full-profile M10x1.5-6g plan measured over 0.866 mm wires: straight 60° flanks, so the
-/// wires give d2 = M − 3w + 0.866025·P + C4 (C4 at the basic d2 9.026, about −4.0 µm), and the
+/// wires give d2 = M − 3w + 0.866025·P + the helix term (−1.733 µm), and the
 /// correction moves the final X by the d2 error to the middle, 8.928.
 #[test]
 fn wires_on_a_full_profile_give_the_standard_formula_and_the_x_moves_by_the_error() {
@@ -40,14 +42,13 @@ fn wires_on_a_full_profile_give_the_standard_formula_and_the_x_moves_by_the_erro
     ]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let v = json(&o);
-    let helix = c4(9.026, 1.5, 1.5, w);
-    assert!((helix + 0.003976).abs() < 2e-6, "C4 by hand {helix}");
+    let helix = helix_m10();
     let d2 = m - 3.0 * w + 0.866_025_404 * 1.5 + helix;
     let got = v["measured"]["pitch_diameter"].as_f64().unwrap();
     assert!((got - d2).abs() < 1e-6, "d2 {got} against {d2}");
     assert!(
         (v["measured"]["over_wires"]["helix_term"].as_f64().unwrap() - helix).abs() < 1e-6,
-        "C4 at the unrounded basic d2 9.025679"
+        "the helix term at the unrounded basic d2 9.025721"
     );
     let delta = 8.928 - d2;
     assert!((v["delta_pitch_diameter"].as_f64().unwrap() - delta).abs() < 1e-6);
@@ -58,12 +59,12 @@ fn wires_on_a_full_profile_give_the_standard_formula_and_the_x_moves_by_the_erro
 
 /// A partial-profile insert (r 0.04): its flanks are straight 60° where the wires touch them
 /// (best-size wires touch at the pitch line, far above the tip's radius), so a reading M that
-/// means d2 = 8.950 by the formula, M = 8.950 + 3w − 0.866025·P − C4, gives 8.950 from the
+/// means d2 = 8.950 by the formula, M = 8.950 + 3w − 0.866025·P − the helix term, gives 8.950 from the
 /// as-cut flanks, the same as `--measured-d2 8.950`.
 #[test]
 fn a_partial_profile_reads_the_same_d2_from_wires_as_measured() {
     let w = 0.866;
-    let m = 8.950 + 3.0 * w - 0.866_025_404 * 1.5 - c4(9.026, 1.5, 1.5, w);
+    let m = 8.950 + 3.0 * w - 0.866_025_404 * 1.5 - helix_m10();
     let by_wires = json(&run(&[
         "correct",
         "--thread",

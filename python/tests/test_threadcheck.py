@@ -233,13 +233,15 @@ def test_linuxcnc_release_reaches_the_reader():
 
 def test_correct_over_wires_follows_the_standard_formula():
     # A full-profile M10x1.5-6g plan over 0.866 mm wires: straight 60° flanks, so
-    # d2 = M − 3w + 0.866025·P + C4, with GOST 8.677-2009's C4 for the wires' inclination,
-    # −0.1826·P²·w/((d2 − 1.866P + 3.6049w)(d2 − 1.866P + 3.8637w)) at the basic d2.
-    m, w, p, d2b = 10.32, 0.866, 1.5, 9.026
-    a = d2b - 1.866 * p
-    c4 = -0.1826 * p * p * w / ((a + 3.6049 * w) * (a + 3.8637 * w))
+    # d2 = M − 3w + 0.866025·P + the helix term: the wires ride 1.733 µm higher across the
+    # helix than in the axial section (an independent 3-D model's figure, issue 48; the classical
+    # −0.75·w·tan² λ gives −1.817 µm).
+    m, w, p = 10.32, 0.866, 1.5
     r = threadcheck.correct("M10x1.5-6g", insert="full", measured_m=m, wire=w)
-    assert r["measured"]["pitch_diameter"] == pytest.approx(m - 3 * w + 0.866025404 * p + c4, abs=1e-6)
+    wires = r["measured"]["over_wires"]
+    assert wires["helix_term"] == pytest.approx(-0.001733, abs=5e-6)
+    assert wires["helix_term_classical"] == pytest.approx(-0.75 * w * (p / (math.pi * 9.025721)) ** 2, abs=1e-7)
+    assert r["measured"]["pitch_diameter"] == pytest.approx(m - 3 * w + 0.866025404 * p + wires["helix_term"], abs=1e-6)
     assert r["verdict"] == "fail"
     # The correction brings d2 to 8.928, the middle of 8.862–8.994.
     assert r["delta_pitch_diameter"] == pytest.approx(8.928 - r["measured"]["pitch_diameter"], abs=1e-9)

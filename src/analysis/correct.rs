@@ -7,7 +7,7 @@
 use crate::analysis::check::Verdict;
 use crate::analysis::correction::Correction;
 use crate::analysis::verify::{verify, Verification, VerifySpec};
-use crate::standards::{ThreadForm, ThreadKind};
+use crate::standards::ThreadKind;
 use crate::toolpath::passes::Pass;
 use crate::Error;
 use serde::Serialize;
@@ -74,16 +74,17 @@ pub struct WireReading {
     pub m: f64,
     /// The wires, mm.
     pub wire: f64,
-    /// The helix term added to M before it is compared with the axial section, mm (GOST
-    /// 8.677-2009's correction C4 for the wires lying across the helix; 0 where it does not
-    /// apply, said in the notes).
+    /// The helix term added to M before it is compared with the axial section, mm: the wire's
+    /// exact contact with the helicoidal flanks ([`crate::wire_helix_term`]).
     pub helix_term: f64,
+    /// The classical first-order term −(w/2)·cos β·cot β·tan² λ, mm, for comparison.
+    pub helix_term_classical: f64,
     /// M the computed thread gives over the same wires in its axial section, mm.
     pub m_computed: f64,
     /// The computed thread's pitch diameter, mm.
     pub pitch_diameter_computed: f64,
-    /// What the standard formula gives on a perfect profile (60° threads: M − 3w + 0.866025·P
-    /// plus the helix term), mm, for comparison.
+    /// What the standard formula gives on a perfect profile (M − w(1 + 1/sin β) + P/(2 tan β)
+    /// plus the helix term; 60° threads: M − 3w + 0.866025·P), mm, for comparison.
     pub pitch_diameter_formula: Option<f64>,
 }
 
@@ -166,21 +167,6 @@ impl CorrectReport {
     }
 }
 
-/// GOST 8.677-2009's correction C4 of a three-wire pitch diameter for the wires' inclination
-/// to the thread's axis, mm, for a 60° thread of pitch `p`, lead `lead` and basic pitch
-/// diameter `d2` over wires `w`, where the lead angle is under 7°; `None` elsewhere:
-///
-/// C4 = −0.1826·Ph²·w / ((d2 − 1.866·P + 3.6049·w)·(d2 − 1.866·P + 3.8637·w)).
-pub fn helix_term(form: ThreadForm, d2: f64, p: f64, lead: f64, w: f64) -> Option<f64> {
-    let sixty = (form.flank_angle() - 60.0).abs() < 1e-9;
-    let lead_angle = (lead / (std::f64::consts::PI * d2)).atan().to_degrees();
-    if !sixty || lead_angle >= 7.0 {
-        return None;
-    }
-    let a = d2 - 1.866 * p;
-    Some(-0.1826 * lead * lead * w / ((a + 3.6049 * w) * (a + 3.8637 * w)))
-}
-
 /// Turns a measurement into the correction: see the module's documentation.
 ///
 /// ```
@@ -235,22 +221,20 @@ pub fn correct(spec: &CorrectSpec) -> Result<CorrectReport, Error> {
                 ));
             }
             let m_computed = over_wires_of(&v, wire)?;
-            let helix = helix_term(t.form, t.pitch_diameter(), t.pitch, t.lead(), wire);
-            match helix {
-                Some(c) => notes.push(crate::ground::note::Note::from(format!(
-                    "helix term {:+.4} mm added to M: GOST 8.677-2009 correction C4 for the wires lying across the helix (60° threads, lead angle under 7°)",
-                    c
-                ))),
-                None => notes.push(crate::ground::note::Note::from(
-                    "no helix term: GOST 8.677-2009 gives the wires' inclination correction for 60° threads with a lead angle under 7° only; M is taken as the axial section's",
-                )),
-            }
-            let helix = helix.unwrap_or(0.0);
+            // The wires ride higher across the helix than in the axial section: the exact contact
+            // with the helicoidal flanks, the classical first-order term beside it.
+            let (d2b, half) = (t.pitch_diameter(), t.half_angle());
+            let helix = crate::geometry::wire::wire_helix_term(d2b, t.pitch, t.lead(), half, wire);
+            let classical = crate::geometry::wire::classical_wire_helix_term(d2b, t.lead(), half, wire);
+            notes.push(crate::ground::note::Note::from(format!(
+                "helix term {:+.4} mm added to M: the wire's exact contact with the helicoidal flanks, settled at its lowest inclination; the classical −(w/2)·cos β·cot β·tan² λ gives {:+.4} mm ({:+.2} µm apart)",
+                helix,
+                classical,
+                (classical - helix) * 1e3
+            )));
             // The part's groove is the computed one moved radially: M and d2 move together.
             let d2 = d2_model + (m + helix - m_computed);
-            let half = t.half_angle();
-            let formula = (helix != 0.0 || (t.form.flank_angle() - 60.0).abs() < 1e-9)
-                .then(|| m - wire * (1.0 + 1.0 / half.sin()) + 0.5 * t.pitch / half.tan() + helix);
+            let formula = Some(m - wire * (1.0 + 1.0 / half.sin()) + 0.5 * t.pitch / half.tan() + helix);
             notes.push(crate::ground::note::Note::from(
                 "the wires rest on the as-cut flanks the program leaves; the part is taken to differ from them by its depth only (an X offset, insert wear)",
             ));
@@ -258,6 +242,7 @@ pub fn correct(spec: &CorrectSpec) -> Result<CorrectReport, Error> {
                 m,
                 wire,
                 helix_term: helix,
+                helix_term_classical: classical,
                 m_computed,
                 pitch_diameter_computed: d2_model,
                 pitch_diameter_formula: formula,

@@ -12,3 +12,4 @@ pub mod insert;
 pub mod measure;
 pub mod parry;
 pub mod sweep;
+pub mod wire;
