@@ -186,7 +186,8 @@ fn okuma_g71_patterns_1_and_3_with_single_blade_infeed() {
     assert!(
         notes.contains(
             "M73 (pattern 1) taken as a constant depth D = 0.4 mm (diameter) per pass: a named default"
-        ),
+        ) && notes.contains("G71 D, U and H read as diameters")
+            && notes.contains("inferred from that figure"),
         "{notes}"
     );
     // Verified: the finishing pass's tip on d3 = 71.546 with a full-profile insert cuts the basic

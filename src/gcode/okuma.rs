@@ -236,6 +236,10 @@ fn g71(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), 
             crate::ground::fmt::fmt_num(d)
         ));
     }
+    notes.push(
+        "G71 D, U and H read as diameters: Okuma's threading manual 3277-E shows them halved (D/2, H/2, U/2) in one figure, its text does not say (inferred from that figure)"
+            .to_string(),
+    );
     if b.has("L") {
         notes.push(
             "G71 L (the overrun at the last pass with M23) is not modelled: the passes end at Z".to_string(),
