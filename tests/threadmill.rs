@@ -264,3 +264,20 @@ fn a_multi_form_cutter_of_the_wrong_row_pitch_fails() {
     assert_eq!((row["ok"].as_bool(), row["deviation_um"].as_f64()), (Some(false), Some(-50.0)));
     assert_eq!(v["verdict"], "fail");
 }
+
+/// Issue 48: the milled root radius is the envelope's own curvature at its deepest point, not a
+/// circle fitted to the 3.75 µm samples (which printed 15.8 µm for the Ø6 cutter). Checked where
+/// it is known exactly: the tooth profile alone (ψ = 0) of a cutter with a 0.1 mm tip radius has
+/// a root of 0.1 mm; a sharp tooth's is a corner, 0; the helix rounds the sharp tooth's root to a
+/// few µm and widens the round tip's.
+#[test]
+fn the_milled_root_radius_is_the_envelopes_curvature() {
+    let round = mill_with("m20-dc6.nc", &["--cutter-diameter", "6", "--cutter-tip-radius", "0.1"]);
+    let tooth = round["tooth_profile"]["root_radius"].as_f64().unwrap();
+    assert!((tooth - 0.1).abs() < 1e-4, "{tooth}");
+    assert!(round["measured"]["root_radius"].as_f64().unwrap() > 0.1);
+    let sharp = mill("m20-dc6.nc", 6.0);
+    assert_eq!(sharp["tooth_profile"]["root_radius"].as_f64(), Some(0.0));
+    let milled = sharp["measured"]["root_radius"].as_f64().unwrap();
+    assert!(milled > 0.0 && milled < 0.005, "{milled}");
+}

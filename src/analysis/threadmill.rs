@@ -422,8 +422,32 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     let profile = section(false);
     let tooth = section(true);
     let ms = MeasureSetup::for_class(&t, kind, &limits);
-    let measured = measure(&ms, &profile, z_mid)?;
-    let tooth_m = measure(&ms, &tooth, z_mid)?;
+    let mut measured = measure(&ms, &profile, z_mid)?;
+    let mut tooth_m = measure(&ms, &tooth, z_mid)?;
+    // The root radius is the envelope's own curvature at its deepest point, from the exact reach
+    // (the sampled section's 3.75 µm spacing cannot resolve a root of a few µm).
+    let root_of = |pts: &[Point], only_psi0: bool| -> Option<f64> {
+        let deepest = |p: &&Point| if internal { p.r } else { -p.r };
+        let near: Vec<&Point> = pts.iter().filter(|p| (p.z - z_mid).abs() <= 0.5 * t.pitch).collect();
+        let at = near.iter().copied().max_by(|a, b| deepest(a).total_cmp(&deepest(b)))?;
+        let r_at =
+            |z: f64| reach(&hs, &c, neck, z, internal, only_psi0).map(|r| if internal { r } else { -r });
+        let dz = 4.0 * t.pitch / 1600.0;
+        let z0 = crate::geometry::helix::golden_max(at.z - dz, at.z + dz, 80, |z| {
+            r_at(z).unwrap_or(f64::NEG_INFINITY)
+        });
+        let radius = |h: f64| -> Option<f64> {
+            let (r0, rp, rm) = (r_at(z0)?, r_at(z0 + h)?, r_at(z0 - h)?);
+            let second = (rp + rm - 2.0 * r0) / (h * h);
+            (second < 0.0).then(|| 1.0 / -second)
+        };
+        // A corner (a sharp tooth's tip alone) gives a "radius" that halves with the step: 0.
+        let (a, b) = (radius(2e-4)?, radius(1e-4)?);
+        Some(if b < 0.75 * a { 0.0 } else { b })
+    };
+    measured.root_radius = root_of(&profile, false).or(measured.root_radius);
+    tooth_m.root_radius = root_of(&tooth, true).or(tooth_m.root_radius);
+    notes.push("the root radius is the envelope's curvature at its deepest point, from the cutter's exact reach (0.1 µm either side; 0 where it is a corner)".into());
     let mut cs = checks(&measured, &limits, &t, kind, measured.root_pockets <= 1, None);
     // The lead each helix cuts against the designation's, at the program's resolution.
     let lead_err =
