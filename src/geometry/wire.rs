@@ -65,9 +65,15 @@ fn contact_radius(g: &Groove, rho: f64, lambda: f64) -> f64 {
         let phi = golden_min(-1.0, 1.0, PHI_STEPS, |phi| generator_distance(g, phi, r, u));
         generator_distance(g, phi, r, u)
     };
-    // From the flank's line at φ = 0 (distance 0) outward: the distance grows with R.
+    touching_radius(g, rho, RADIUS_STEPS, nearest)
+}
+
+/// The radius where `nearest` (the wire axis's least distance to the flank at radius R) is the
+/// wire's radius `rho`, by bisection from the flank's line at φ = 0 (distance 0) outward, where
+/// the distance grows with R.
+fn touching_radius(g: &Groove, rho: f64, steps: usize, nearest: impl Fn(f64) -> f64) -> f64 {
     let (mut lo, mut hi) = (g.r2 - 0.25 * g.pitch / g.tan_beta, g.r2 + 2.0 * g.pitch + 4.0 * rho);
-    for _ in 0..RADIUS_STEPS {
+    for _ in 0..steps {
         let mid = 0.5 * (lo + hi);
         if nearest(mid) < rho {
             lo = mid;
@@ -149,16 +155,7 @@ mod tests {
             }
             fine
         };
-        let (mut lo, mut hi) = (g.r2 - 0.25 * g.pitch / g.tan_beta, g.r2 + 2.0 * g.pitch + 4.0 * rho);
-        for _ in 0..40 {
-            let mid = 0.5 * (lo + hi);
-            if nearest(mid) < rho {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        0.5 * (lo + hi)
+        touching_radius(g, rho, 40, nearest)
     }
 
     /// M10x1.5, M20xPh6P2 (three starts), 1/2-13 UNC and Tr20x4, each over its best-size wire:
