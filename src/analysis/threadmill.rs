@@ -433,9 +433,12 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         let r_at =
             |z: f64| reach(&hs, &c, neck, z, internal, only_psi0).map(|r| if internal { r } else { -r });
         let dz = 4.0 * t.pitch / 1600.0;
-        let z0 = crate::geometry::helix::golden_max(at.z - dz, at.z + dz, 80, |z| {
-            r_at(z).unwrap_or(f64::NEG_INFINITY)
-        });
+        let (z0, _) = crate::geometry::measure::golden_min(
+            &|z| r_at(z).map_or(f64::INFINITY, |r| -r),
+            at.z - dz,
+            at.z + dz,
+            80,
+        );
         let radius = |h: f64| -> Option<f64> {
             let (r0, rp, rm) = (r_at(z0)?, r_at(z0 + h)?, r_at(z0 - h)?);
             let second = (rp + rm - 2.0 * r0) / (h * h);

@@ -338,17 +338,3 @@ pub(crate) fn reach(
     }
     best
 }
-
-/// The golden-section maximum of `f` over [a, b].
-pub(crate) fn golden_max(mut a: f64, mut b: f64, steps: usize, f: impl Fn(f64) -> f64) -> f64 {
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..steps {
-        let (x, y) = (b - g * (b - a), a + g * (b - a));
-        if f(x) > f(y) {
-            b = y;
-        } else {
-            a = x;
-        }
-    }
-    0.5 * (a + b)
-}

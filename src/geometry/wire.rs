@@ -19,6 +19,8 @@
 //! M10x1.5 with 0.866 mm wires −1.733 µm (classical −1.817), M20xPh6P2 with 1.155 mm wires −8.74 µm.
 //! GOST 8.677-2009's C4, used before, gave 2.2–2.4 times more.
 
+use crate::geometry::measure::golden_min;
+
 /// Golden-section steps over the wire's inclination and over φ; bisection steps over R.
 const INCLINATION_STEPS: usize = 48;
 const PHI_STEPS: usize = 80;
@@ -44,26 +46,12 @@ struct Groove {
     tan_beta: f64,
 }
 
-/// The golden-section minimum of `f` over [a, b].
-fn golden_min(mut a: f64, mut b: f64, steps: usize, f: impl Fn(f64) -> f64) -> f64 {
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..steps {
-        let (x, y) = (b - g * (b - a), a + g * (b - a));
-        if f(x) < f(y) {
-            b = y;
-        } else {
-            a = x;
-        }
-    }
-    0.5 * (a + b)
-}
-
 /// The radius of the wire's axis where it touches the flanks at inclination `lambda`.
 fn contact_radius(g: &Groove, rho: f64, lambda: f64) -> f64 {
     let u = [0.0, lambda.cos(), lambda.sin()];
     let nearest = |r: f64| {
-        let phi = golden_min(-1.0, 1.0, PHI_STEPS, |phi| generator_distance(g, phi, r, u));
-        generator_distance(g, phi, r, u)
+        let (_, d) = golden_min(&|phi| generator_distance(g, phi, r, u), -1.0, 1.0, PHI_STEPS);
+        d
     };
     touching_radius(g, rho, RADIUS_STEPS, nearest)
 }
@@ -102,8 +90,8 @@ pub fn wire_helix_term(d2: f64, pitch: f64, lead: f64, half_angle_rad: f64, wire
     let g = Groove { r2: 0.5 * d2, pitch, lead: lead.abs(), tan_beta: half_angle_rad.tan() };
     let rho = 0.5 * wire;
     let lambda0 = (g.lead / (std::f64::consts::PI * d2)).atan();
-    let lambda = golden_min(0.5 * lambda0, 1.5 * lambda0, INCLINATION_STEPS, |l| contact_radius(&g, rho, l));
-    let helical = contact_radius(&g, rho, lambda);
+    let (_, helical) =
+        golden_min(&|l| contact_radius(&g, rho, l), 0.5 * lambda0, 1.5 * lambda0, INCLINATION_STEPS);
     let axial = g.r2 - 0.25 * pitch / g.tan_beta + rho / half_angle_rad.sin();
     2.0 * (axial - helical)
 }
