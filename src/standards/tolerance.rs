@@ -486,7 +486,7 @@ impl ThreadLimits {
             CoatingLimits::Before => {
                 // The maximum-material side capped at the basic size less the growth, rounded
                 // inward to the standard's step.
-                let step = self.resolution_step_mm();
+                let step = self.resolution.mm();
                 let inward = |v: f64| match self.kind {
                     ThreadKind::External => nm(((v / step) + 1e-9).floor() * step),
                     ThreadKind::Internal => nm(((v / step) - 1e-9).ceil() * step),
@@ -551,14 +551,6 @@ impl ThreadLimits {
                 ));
                 ThreadLimits { notes, major_diameter, pitch_diameter, minor_diameter, ..self.clone() }
             }
-        }
-    }
-
-    /// The standard's step, mm.
-    fn resolution_step_mm(&self) -> f64 {
-        match self.resolution {
-            Resolution::Micrometre => 0.001,
-            Resolution::TenThousandthInch => 0.0001 * crate::standards::MM_PER_INCH,
         }
     }
 }
