@@ -17,8 +17,10 @@
 //! 4. analysis: the measurements against the limits ([`checks`]) and the verdict, the whole
 //!    path as one call ([`verify`], [`verify_program`]), and the studies built on it
 //!    ([`compare`], [`fit`], [`mill`], [`run_catalogue`]);
-//! 5. report: text, JSON, SVG and HTML of those results, written by the jobs behind the command
-//!    line ([`VerifyJob`], [`PassesJob`], [`LimitsJob`], …).
+//! 5. report: text, JSON, SVG and HTML of those results;
+//! 6. commands: each command's arguments, read by the command line and by the API and Python
+//!    ([`Command`], [`VerifyArgs`], …), its job, and the one writer of its documents
+//!    ([`deliver`]).
 //!
 //! ```
 //! use threadcheck::Insert;
@@ -53,19 +55,18 @@
 
 // The wings, in the order the data flows; each imports only the wings above it in this list.
 mod analysis;
+mod commands;
 mod gcode;
 mod geometry;
 mod ground;
-mod jobs;
 mod report;
-mod request;
 mod serve;
 mod standards;
 mod toolpath;
 
 // Ground: the error, the plane's value types.
 pub use ground::cancel::{check as check_cancelled, Cancel};
-pub use ground::error::{one_line, Error, Result};
+pub use ground::error::{one_line, Audience, Error, Result};
 pub use ground::note::{Note, NoteKind, Place};
 pub use ground::plane::{Arc, Point, DEFAULT_TOLERANCE, MIN_TOLERANCE};
 
@@ -127,16 +128,17 @@ pub use analysis::verify::{
     VerifySpec,
 };
 
-// The API's and the Python package's door: a command's arguments as one JSON object.
-pub use request::{run_request, Answer, Command, Document, Files};
-pub use serve::{router, serve, ServeOptions};
+pub use serve::{router, serve, ServeArgs, ServeOptions};
 
 // The one output writer of the command line and the Python package.
 pub use ground::input::forget_reads;
 pub use report::output::write_files;
 
-// The commands: one job per command, returning what the command prints.
-pub use jobs::{
-    CapabilityJob, CompareJob, CorrectJob, FitJob, InfeedReportJob, LimitsJob, MillJob, Outcome, PassesJob,
-    SweepJob, TapJob, ThreadMillJob, VerifyJob,
+// The commands: each one's arguments (the command line's flags, the API's keys, Python's
+// keywords), its job and the one writer of its documents.
+pub use commands::{
+    deliver, run_request, ApiArgs, CapabilityArgs, Command, CompareArgs, CorrectArgs, Dest, Document, Files,
+    FitArgs, FormSet, InsertSet, Job, JsonArg, LimitsArgs, MillArgs, NoShared, ONumber, Outcome, Outputs,
+    PassesArgs, PlanArgs, ProgramArgs, ReportArgs, ReportName, Request, SeriesSet, Shown, Source, SweepArgs,
+    TapArgs, ThreadMillArgs, VerifyArgs, CAPABLE_CPK,
 };

@@ -1,5 +1,5 @@
-//! The `threadcheck` command line: parses typed arguments ([`cli`]) into a job of the library,
-//! runs it, and decides the exit code in one place: 0 pass, 1 out of tolerance, 2 error (one
+//! The `threadcheck` command line: parses typed arguments ([`cli`]) into a command of the
+//! library, runs it, and decides the exit code in one place: 0 pass, 1 out of tolerance, 2 error (one
 //! line on stderr, clap's own usage errors included).
 
 mod cli;
@@ -14,12 +14,12 @@ fn main() -> ExitCode {
         Err(e) => return usage_error(&e),
     };
     match cli.run() {
-        Ok((stdout, stderr, outcome)) => {
+        Ok((shown, outcome)) => {
             let written = std::io::stdout()
                 .lock()
-                .write_all(stdout.as_bytes())
+                .write_all(shown.stdout.as_bytes())
                 .and_then(|()| std::io::stdout().flush());
-            let _ = std::io::stderr().lock().write_all(stderr.as_bytes());
+            let _ = std::io::stderr().lock().write_all(shown.stderr.as_bytes());
             match written {
                 // A closed pipe (`| head`) is the reader's choice, not an error worth a message.
                 Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
@@ -34,7 +34,7 @@ fn main() -> ExitCode {
         }
         Err(e) => {
             // One line, whatever the message carried.
-            eprintln!("threadcheck: error: {}", e.one_line());
+            eprintln!("threadcheck: error: {}", e.one_line_for(threadcheck::Audience::Cli));
             ExitCode::from(2)
         }
     }
@@ -50,7 +50,10 @@ fn usage_error(e: &clap::Error) -> ExitCode {
             ExitCode::SUCCESS
         }
         ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-            eprintln!("threadcheck: error: no command given: limits, verify, correct, capability, passes, compare, fit, mill, tap, thread-mill, sweep, report or serve (threadcheck --help)");
+            eprintln!(
+                "threadcheck: error: no command given: {}, serve (threadcheck --help)",
+                threadcheck::Command::NAMES.join(", ")
+            );
             ExitCode::from(2)
         }
         _ => {

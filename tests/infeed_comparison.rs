@@ -245,7 +245,14 @@ fn constant_depth_grows_the_chip_constant_area_holds_it() {
 #[test]
 fn the_committed_report_regenerates_byte_for_byte() {
     let dir = crate::tempdir("report");
-    threadcheck::InfeedReportJob { out: dir.clone() }.run().unwrap();
+    let report =
+        threadcheck::ReportArgs { name: threadcheck::ReportName::InfeedComparison, out: dir.clone() };
+    let out = threadcheck::Job::run(
+        &report,
+        &threadcheck::Request::api(threadcheck::Document::Text, threadcheck::Files::Allowed),
+    )
+    .unwrap();
+    threadcheck::deliver(&out, &[], threadcheck::Audience::Cli).unwrap();
     let committed = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("reports");
     let mut n = 0;
     for e in std::fs::read_dir(&dir).unwrap() {

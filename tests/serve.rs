@@ -266,7 +266,11 @@ fn api_errors_are_one_json_line_with_their_status() {
         400,
         "verify takes no argument 'wire'",
     );
-    assert_error(&post(&s.url, "api/verify", r#"{"thread": 10}"#), 400, "thread must be a designation");
+    assert_error(
+        &post(&s.url, "api/verify", r#"{"thread": 10}"#),
+        400,
+        "verify: thread: a designation or a list of them",
+    );
     assert_error(
         &post(&s.url, "api/verify", r#"{"thread": "M10x1.5-6g", "insert": "/etc/passwd"}"#),
         400,

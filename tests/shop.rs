@@ -343,7 +343,7 @@ fn fix_to_stdout_and_never_over_the_program() {
     args.extend(["--json", "-"]);
     let o = run_in(&dir, &args);
     assert_eq!(o.status.code(), Some(2));
-    assert!(one_line_error(&o).contains("--fix - and --json - both want stdout"));
+    assert!(one_line_error(&o).contains("--json - and --fix - both want standard output"));
     let mut args = base.to_vec();
     args.extend(["--fix", "h.nc"]);
     let o = run_in(&dir, &args);

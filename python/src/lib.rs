@@ -7,26 +7,32 @@
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use threadcheck::{run_request, Command, Document, Files, Outcome};
+use threadcheck::{run_request, Audience, Command, Document, Files, Outcome};
 
 fn value_error(e: threadcheck::Error) -> PyErr {
-    PyValueError::new_err(e.one_line())
+    PyValueError::new_err(e.one_line_for(Audience::Api))
 }
 
 /// Runs `command` (`verify`, `passes`, `limits`, `compare`, `fit`, `correct`, `capability`,
-/// `mill`) on `args`, a JSON object of its keyword arguments, and returns `document` (`json`,
+/// `mill`, `tap`, `thread-mill`) on `args`, a JSON object of its keyword arguments, and returns `document` (`json`,
 /// `text`, `svg`, `html`, `fix`) and whether the job passed. Files named in the arguments (an
 /// insert, a tool table's inserts) are the caller's own and may be read.
 #[pyfunction]
 fn run(py: Python<'_>, command: &str, document: &str, args: &str) -> PyResult<(String, bool)> {
-    let command: Command = command.parse().map_err(value_error)?;
     let document: Document = document.parse().map_err(value_error)?;
-    let args = args.to_string();
+    let (command, args) = (command.to_string(), args.to_string());
     // The files this run reads are the ones `write_files` will not replace.
     threadcheck::forget_reads();
-    py.detach(move || run_request(command, document, &args, Files::Allowed))
-        .map(|a| (a.body, a.outcome == Outcome::Pass))
+    py.detach(move || run_request(&command, document, &args, Files::Allowed))
+        .map(|(body, outcome)| (body, outcome == Outcome::Pass))
         .map_err(value_error)
+}
+
+/// The keyword arguments `command` takes: the same fields the command line's flags and the
+/// API's keys are read into (the package's functions are checked against them).
+#[pyfunction]
+fn keys(command: &str) -> PyResult<Vec<&'static str>> {
+    Command::keys(command).map_err(value_error)
 }
 
 /// Writes `files` (path, text) as the command line writes its outputs: none that the last
@@ -43,6 +49,7 @@ fn write_files(py: Python<'_>, files: Vec<(String, String)>) -> PyResult<()> {
 fn _threadcheck(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(write_files, m)?)?;
+    m.add_function(wrap_pyfunction!(keys, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -417,6 +417,15 @@ def test_the_stubs_type_check_the_examples_strictly():
     assert status == 0, out + err
 
 
+def test_the_package_type_checks_strictly():
+    # Regression: `thread_mill` returned a ThreadMillReport the module never imported.
+    from mypy import api as mypy
+
+    here = os.path.dirname(os.path.abspath(__file__))
+    out, err, status = mypy.run(["--strict", os.path.join(here, "..", "threadcheck")])
+    assert status == 0, out + err
+
+
 def test_gcode_system_b_reads_g78_as_the_threading_cycle():
     # System B: G78 is system A's G92 box cycle, one pass per X word.
     prog = "G21 G97 S500 M3\nG0 X22.0 Z5.0\nG78 X19.2 Z-20.0 F1.5\nX18.8\nX18.2\n"
@@ -543,3 +552,28 @@ def stat_is_fifo(path):
     import stat
 
     return stat.S_ISFIFO(os.stat(path).st_mode)
+
+
+def test_every_function_takes_exactly_its_commands_keys():
+    """Each function's keyword arguments are the keys its command's argument struct reads (the
+    struct clap reads the command line's flags into), besides the paths it writes documents to."""
+    import inspect
+    from threadcheck import _threadcheck
+
+    functions = {
+        "verify": threadcheck.verify,
+        "passes": threadcheck.passes,
+        "limits": threadcheck.limits,
+        "compare": threadcheck.compare,
+        "fit": threadcheck.fit,
+        "correct": threadcheck.correct,
+        "capability": threadcheck.capability,
+        "mill": threadcheck.mill,
+        "tap": threadcheck.tap,
+        "thread-mill": threadcheck.thread_mill,
+    }
+    documents = {"svg", "html", "fix", "markdown"}
+    for command, function in functions.items():
+        params = set(inspect.signature(function).parameters) - documents
+        keys = set(_threadcheck.keys(command))
+        assert params == keys, (command, sorted(keys - params), sorted(params - keys))

@@ -30,6 +30,7 @@ from ._types import (
     MillReport,
     PassesReport,
     TapReport,
+    ThreadMillReport,
     VerifyReport,
 )
 
@@ -117,7 +118,8 @@ def verify(thread: Threads, program: Optional[str] = None, dialect: Optional[str
            blank_diameter: Optional[float] = None, gauge_only: bool = False,
            allow_nonstandard: bool = False, program_name: Optional[str] = None,
            default_units: Optional[str] = None, main: Optional[str] = None,
-           linuxcnc_release: Optional[str] = None, coating: Optional[float] = None, coating_limits: Optional[str] = None,
+        linuxcnc_release: Optional[str] = None, coating: Optional[float] = None,
+        coating_limits: Optional[str] = None,
            engagement: Optional[float] = None,
            insert_toml: Optional[str] = None, tools: Optional[str] = None,
            gcode_system: Optional[str] = None,
@@ -166,10 +168,12 @@ def verify(thread: Threads, program: Optional[str] = None, dialect: Optional[str
     return report
 
 
-def limits(designation: str, allow_nonstandard: bool = False,
-           coating: Optional[float] = None, coating_limits: Optional[str] = None) -> LimitsReport:
+def limits(designation: Optional[str] = None, allow_nonstandard: bool = False,
+           coating: Optional[float] = None, coating_limits: Optional[str] = None,
+        thread: Optional[str] = None) -> LimitsReport:
     """``threadcheck limits DESIGNATION --json``: basic sizes and limits of size, mm.
 
+    The designation is given as ``designation`` or as ``thread``, as the other functions take it.
     ``coating`` (mm) gives the limits to cut to before a coat of that thickness;
     ``coating_limits`` (``"before"``, the standards' default, or ``"after"``) which limits the
     class applies to.
@@ -189,7 +193,10 @@ def passes(thread: Optional[Threads] = None, program: Optional[str] = None,
            first_depth: Optional[float] = None, min_depth: Optional[float] = None,
            finish: Optional[float] = None, spring: Optional[int] = None,
            taper: Optional[float] = None, chamfer: Optional[float] = None,
-           coating: Optional[float] = None, coating_limits: Optional[str] = None, engagement: Optional[float] = None, gcode_system: Optional[str] = None) -> PassesReport:
+        coating: Optional[float] = None, coating_limits: Optional[str] = None,
+        engagement: Optional[float] = None, gcode_system: Optional[str] = None,
+        clearance_angle: Optional[float] = None, machine: Optional[str] = None,
+        units: Optional[str] = None) -> PassesReport:
     """``threadcheck passes --json``: the passes of a generated plan or of a program's text.
 
     The arguments are ``verify``'s; a program needs no thread.
@@ -204,11 +211,17 @@ def correct(thread: str, program: Optional[str] = None, dialect: Optional[str] =
             blank_diameter: Optional[float] = None, allow_nonstandard: bool = False,
             program_name: Optional[str] = None, default_units: Optional[str] = None,
             main: Optional[str] = None, linuxcnc_release: Optional[str] = None,
-            coating: Optional[float] = None, coating_limits: Optional[str] = None, engagement: Optional[float] = None, measured_m: Optional[float] = None,
+        coating: Optional[float] = None, coating_limits: Optional[str] = None,
+        engagement: Optional[float] = None, measured_m: Optional[float] = None,
             wire: Optional[float] = None, measured_d2: Optional[float] = None,
             gauge: Optional[str] = None, pickup_z: Optional[float] = None,
             insert_toml: Optional[str] = None, gcode_system: Optional[str] = None,
             operation: Optional[int] = None,
+        chamfer: Optional[float] = None, clearance_angle: Optional[float] = None,
+        depths: Optional[Sequence[float]] = None, finish: Optional[float] = None,
+        first_depth: Optional[float] = None, machine: Optional[str] = None,
+        min_depth: Optional[float] = None, schedule: Optional[str] = None,
+        spring: Optional[int] = None, taper: Optional[float] = None, units: Optional[str] = None,
             html: Optional[PathLike] = None, fix: Optional[PathLike] = None) -> CorrectReport:
     """``threadcheck correct --json``: what was measured on the part, turned into the change.
 
@@ -233,15 +246,23 @@ def capability(thread: str, program: Optional[str] = None, dialect: Optional[str
                passes: Optional[int] = None, blank_diameter: Optional[float] = None,
                allow_nonstandard: bool = False, program_name: Optional[str] = None,
                default_units: Optional[str] = None, main: Optional[str] = None,
-               linuxcnc_release: Optional[str] = None, coating: Optional[float] = None, coating_limits: Optional[str] = None,
+        linuxcnc_release: Optional[str] = None, coating: Optional[float] = None,
+        coating_limits: Optional[str] = None,
            engagement: Optional[float] = None,
                x_sigma: Optional[float] = None, tip_radius_tol: Optional[float] = None,
                wear_per_part: Optional[float] = None, samples: Optional[int] = None,
                seed: Optional[int] = None, gauge_only: bool = False,
                insert_toml: Optional[str] = None, gcode_system: Optional[str] = None,
                operation: Optional[int] = None,
+        chamfer: Optional[float] = None, clearance_angle: Optional[float] = None,
+        depths: Optional[Sequence[float]] = None, finish: Optional[float] = None,
+        first_depth: Optional[float] = None, machine: Optional[str] = None,
+        min_depth: Optional[float] = None, schedule: Optional[str] = None,
+        spring: Optional[int] = None, taper: Optional[float] = None, units: Optional[str] = None,
                svg: Optional[PathLike] = None, html: Optional[PathLike] = None) -> CapabilityReport:
     """``threadcheck capability --json``: a seeded Monte Carlo of the parts a program cuts.
+
+    The thread, plan and program arguments are ``verify``'s.
 
     ``x_sigma`` is the X repeatability (one sigma on the diameter, mm), ``tip_radius_tol`` a
     partial insert's tip radius tolerance (± mm, uniform), ``wear_per_part`` the radial wear per
@@ -280,9 +301,21 @@ def compare(thread: str, insert: Optional[str] = None, final_x: Optional[float] 
             internal: bool = False, allow_nonstandard: bool = False,
             infeed: Optional[str] = None, schedule: Optional[str] = None,
             modified: Optional[Sequence[float]] = None, insert_toml: Optional[str] = None,
+        blank_diameter: Optional[float] = None, chamfer: Optional[float] = None,
+        clearance_angle: Optional[float] = None, coating: Optional[float] = None,
+        coating_limits: Optional[str] = None, default_units: Optional[str] = None,
+        depths: Optional[Sequence[float]] = None, dialect: Optional[str] = None,
+        engagement: Optional[float] = None, finish: Optional[float] = None,
+        first_depth: Optional[float] = None, gcode_system: Optional[str] = None,
+        linuxcnc_release: Optional[str] = None, machine: Optional[str] = None,
+        main: Optional[str] = None, min_depth: Optional[float] = None,
+        passes: Optional[int] = None, program: Optional[str] = None,
+        program_name: Optional[str] = None, spring: Optional[int] = None,
+        taper: Optional[float] = None, units: Optional[str] = None,
             html: Optional[PathLike] = None) -> CompareReport:
     """``threadcheck compare --json``: the thread with every infeed strategy and schedule.
 
+    The plan's arguments are ``verify``'s (a program is refused: it fixes its own passes).
     ``infeed`` (``"radial"``, ``"flank:27"`` …) and ``schedule`` (``"constant-area"`` …)
     compare that one alone; ``modified`` lists the modified-flank angles (default half the
     thread angle less 0.5° and 3°). The dict has ``strategies`` and ``recommended``. ``html``
@@ -328,16 +361,18 @@ def tap(program: str, tools: str, dialect: Optional[str] = None, program_name: O
     return report
 
 
-def thread_mill(program: str, thread: str, cutter_diameter: float, cutter_angle: Optional[float] = None,
+def thread_mill(program: str, thread: str, cutter_diameter: Optional[float] = None, cutter_angle: Optional[float] = None,
                 cutter_tip_radius: Optional[float] = None, cutter_rows: Optional[int] = None,
                 cutter_row_pitch: Optional[float] = None, blank_diameter: Optional[float] = None,
                 comp_radius: Optional[float] = None, dialect: Optional[str] = None,
-                program_name: Optional[str] = None, allow_nonstandard: bool = False) -> ThreadMillReport:
+                program_name: Optional[str] = None, allow_nonstandard: bool = False,
+        tools: Optional[str] = None) -> ThreadMillReport:
     """``threadcheck thread-mill --json``: the thread a thread-milling program leaves.
 
     ``program`` is the program's text (helical G2/G3 in G17, the cutter centre's path),
     ``thread`` the designation with its class, ``cutter_diameter`` (mm, over the tooth's tip),
-    ``cutter_angle`` (60°) and ``cutter_tip_radius`` (0) the tooth; ``cutter_rows`` (1) and
+    ``cutter_angle`` (60°) and ``cutter_tip_radius`` (0) the tooth, or ``tools`` a tool table's
+    TOML text naming the helices' T as a thread mill; ``cutter_rows`` (1) and
     ``cutter_row_pitch`` (mm) a multi-form cutter's rows; ``blank_diameter`` the bore (default
     the middle of D1); ``comp_radius`` the D register G41/G42 apply (mm). The dict has ``measured``,
     ``tooth_profile`` (the cutter's tooth alone), ``distortion_pitch_diameter_um``,

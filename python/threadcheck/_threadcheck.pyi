@@ -14,3 +14,8 @@ def write_files(files: List[Tuple[str, str]]) -> None:
     ``run`` read or that shares a file with another, all or none, atomically; devices and FIFOs
     in place, links followed, modes kept. Raises ``ValueError`` with the one-line message."""
     ...
+
+def keys(command: str) -> List[str]:
+    """The keyword arguments ``command`` takes: the fields the command line's flags and the
+    API's keys are read into. Raises ``ValueError`` for a command the API does not run."""
+    ...

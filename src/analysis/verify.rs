@@ -159,6 +159,19 @@ pub enum Units {
     Inch,
 }
 
+impl std::str::FromStr for Units {
+    type Err = Error;
+
+    /// `mm` or `inch`.
+    fn from_str(s: &str) -> Result<Units, Error> {
+        match s {
+            "mm" => Ok(Units::Mm),
+            "inch" => Ok(Units::Inch),
+            _ => Err(Error::Input(format!("units '{s}': expected mm or inch"))),
+        }
+    }
+}
+
 impl VerifySpec {
     /// The rules every door shares (the command line, the API, the Python package): numbers
     /// finite, at least one pass, and a program or a final X, not both. The computation checks

@@ -92,6 +92,68 @@ impl Error {
         }
         out
     }
+
+    /// [`one_line`](Error::one_line) with its arguments named for `reader` (see [`Audience`]).
+    pub fn one_line_for(&self, reader: Audience) -> String {
+        reader.words(&self.one_line())
+    }
+}
+
+/// Who reads a message, and so how it names an argument.
+///
+/// Below the commands a message names an argument by its key between single guillemets,
+/// `‹min_depth›`, the fact it sets rather than a flag; the command line shows it as the flag its
+/// user typed (`--min-depth`), the API and Python as the key their user passed (`min_depth`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Audience {
+    /// The command line: `--min-depth`.
+    Cli,
+    /// The JSON API and Python: `min_depth`.
+    Api,
+}
+
+impl Audience {
+    /// `text` with every `‹key›` (a lower-case key of letters, digits and `_`) named for this
+    /// reader; anything else between guillemets is left as it is.
+    ///
+    /// ```
+    /// use threadcheck::Audience;
+    /// let m = "‹min_depth› must not exceed the depth ‹x›";
+    /// assert_eq!(Audience::Cli.words(m), "--min-depth must not exceed the depth --x");
+    /// assert_eq!(Audience::Api.words(m), "min_depth must not exceed the depth x");
+    /// assert_eq!(Audience::Api.words("‹Not a key›"), "‹Not a key›");
+    /// ```
+    pub fn words(self, text: &str) -> String {
+        let mut out = String::with_capacity(text.len());
+        let mut rest = text;
+        while let Some(open) = rest.find('‹') {
+            out.push_str(&rest[..open]);
+            let after = &rest[open + '‹'.len_utf8()..];
+            let key_len = after.find('›').filter(|&n| {
+                n > 0
+                    && after[..n].starts_with(|c: char| c.is_ascii_lowercase())
+                    && after[..n].chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+            });
+            match key_len {
+                Some(n) => {
+                    match self {
+                        Audience::Cli => {
+                            out.push_str("--");
+                            out.push_str(&after[..n].replace('_', "-"));
+                        }
+                        Audience::Api => out.push_str(&after[..n]),
+                    }
+                    rest = &after[n + '›'.len_utf8()..];
+                }
+                None => {
+                    out.push('‹');
+                    rest = after;
+                }
+            }
+        }
+        out.push_str(rest);
+        out
+    }
 }
 
 /// Longest run of text without a space that an error line shows whole; a longer one (a

@@ -79,3 +79,104 @@ impl<'a> LimitsReport<'a> {
         }
     }
 }
+
+/// The text `limits` prints: the basic sizes and each class's limits (inches beside the mm for
+/// the inch forms).
+pub fn text(
+    des: &crate::standards::Designation,
+    ext: Option<&crate::standards::tolerance::ThreadLimits>,
+    int: Option<&crate::standards::tolerance::ThreadLimits>,
+) -> String {
+    use crate::standards::tolerance::{basic_rounded, Limit};
+    use crate::standards::ThreadKind;
+    use std::fmt::Write as _;
+    let t = &des.thread;
+    let (d, d2, d3, d1, h) = basic_rounded(t);
+    let mut s = String::new();
+    let hand = if t.hand == crate::Hand::Left { "left-hand" } else { "right-hand" };
+    let _ = writeln!(
+        s,
+        "{}  {}, P = {} mm{}, lead {} mm, {} start{}, {}{}",
+        des.text,
+        t.form.name(),
+        crate::standards::tolerance::round_um(t.pitch),
+        if t.form.is_inch() {
+            format!(" ({} tpi)", crate::standards::tolerance::round_um(25.4 / t.pitch))
+        } else {
+            String::new()
+        },
+        crate::standards::tolerance::round_um(t.lead()),
+        t.starts,
+        if t.starts == 1 { "" } else { "s" },
+        hand,
+        if des.nonstandard { " (non-standard size)" } else { "" }
+    );
+    let _ = writeln!(s, "\nbasic (mm)");
+    let _ = writeln!(s, "  {:<34}{d:>9.3}", "major diameter d = D");
+    let _ = writeln!(s, "  {:<34}{d2:>9.3}", "pitch diameter d2 = D2");
+    let _ = writeln!(s, "  {:<34}{d3:>9.3}", "minor diameter of the bolt d3");
+    let _ = writeln!(s, "  {:<34}{d1:>9.3}", "minor diameter of the nut D1");
+    let _ = writeln!(s, "  {:<34}{h:>9.4}", "fundamental triangle height H");
+    for l in [ext, int].into_iter().flatten() {
+        let dev_name = if l.kind == ThreadKind::External { "es" } else { "EI" };
+        let head = format!(
+            "{} {} ({dev_name} = {} µm)",
+            l.kind.name(),
+            l.class,
+            fmt_num((l.fundamental_deviation_um * 10.0).round() / 10.0)
+        );
+        let _ = writeln!(s, "\n{head:<36}{:>9} {:>9}", "max", "min");
+        // Inch tables (ASME B1.1) print inches: show them beside the mm.
+        let inch = matches!(t.form, crate::ThreadForm::Unified | crate::ThreadForm::Acme);
+        let row = |s: &mut String, name: &str, lim: &Limit| {
+            let _ = write!(s, "  {name:<34}{:>9} {:>9}", super::opt(lim.max, 3), super::opt(lim.min, 3));
+            if inch {
+                let i = |v: Option<f64>| v.map_or_else(|| "—".to_string(), |x| format!("{:.4}", x / 25.4));
+                let _ = write!(s, "   {:>7} {:>7} in", i(lim.max), i(lim.min));
+            }
+            s.push('\n');
+        };
+        let (maj, minor) = if l.kind == ThreadKind::External {
+            ("major diameter d", "minor: d1+es (max) / d3 min (min)")
+        } else {
+            ("major diameter D", "minor diameter D1")
+        };
+        if let Some(gp) = &l.gauge_plane {
+            let _ = writeln!(
+                s,
+                "  {:<34}{:>9.3}   at {:.3} mm {}, ±{} turn (±{:.3} mm); taper 1:{}",
+                "gauge plane: pitch diameter",
+                gp.pitch_diameter,
+                gp.distance,
+                if l.kind == ThreadKind::External { "from the small end" } else { "(the face)" },
+                gp.tolerance_turns,
+                gp.tolerance_turns * t.pitch,
+                fmt_num(1.0 / gp.taper)
+            );
+            for n in &l.notes {
+                let _ = writeln!(s, "  note: {n}");
+            }
+            continue;
+        }
+        row(&mut s, maj, &l.major_diameter);
+        row(
+            &mut s,
+            if l.kind == ThreadKind::External { "pitch diameter d2" } else { "pitch diameter D2" },
+            &l.pitch_diameter,
+        );
+        row(&mut s, minor, &l.minor_diameter);
+        if let Some(r) = l.root_radius_min {
+            let _ = writeln!(s, "  {:<34}{:>9} {:>9.3}", "root radius R", "", r);
+        }
+        for n in &l.notes {
+            let _ = writeln!(s, "  note: {n}");
+        }
+    }
+    if ext.is_none() && int.is_none() {
+        let (e, i) =
+            (des.with_example_class(ThreadKind::External), des.with_example_class(ThreadKind::Internal));
+        let example = if e == i { e } else { format!("{e} or {i}") };
+        let _ = writeln!(s, "\nno class given: add one for limits, e.g. {example}");
+    }
+    s
+}

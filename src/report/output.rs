@@ -8,13 +8,6 @@ use crate::Error;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// Writes `bytes` to `path` atomically. On any error the existing file at `path`, if any, is
-/// left untouched and the temporary file is removed. A symbolic link is followed, so the file it
-/// points to is replaced, not the link; a device or FIFO is written directly.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
-    write_files(&[(path.to_path_buf(), bytes.to_vec())])
-}
-
 /// Where one output goes: a regular file replaced by renaming a temporary over it, or a device
 /// (or FIFO) written in place.
 enum Target {
@@ -167,6 +160,10 @@ fn prepare(path: &Path, bytes: &[u8]) -> Result<Target, Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+        write_files(&[(path.to_path_buf(), bytes.to_vec())])
+    }
 
     #[test]
     fn replaces_and_leaves_no_temporary() {

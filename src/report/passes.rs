@@ -82,3 +82,107 @@ impl<'a> PassesReport<'a> {
         }
     }
 }
+
+/// Where `passes` took its passes from, for its text's header.
+#[derive(Clone, Copy, Debug)]
+pub enum PassesSource<'a> {
+    /// A program, read in `dialect`.
+    Program {
+        /// What messages call it.
+        shown: &'a str,
+        /// Its dialect.
+        dialect: crate::gcode::Dialect,
+        /// The program read.
+        program: &'a crate::gcode::Program,
+    },
+    /// A generated plan.
+    Plan {
+        /// The designation as written.
+        designation: &'a str,
+        /// External or internal.
+        kind: crate::standards::ThreadKind,
+        /// The blank's diameter, mm.
+        blank: f64,
+        /// The last pass's X, mm.
+        final_x: f64,
+    },
+}
+
+/// The text `passes` prints: a header line, a program's notes, and a row per pass (by operation
+/// for a program).
+pub fn text(source: PassesSource<'_>, passes: &[crate::toolpath::passes::Pass]) -> String {
+    use std::fmt::Write as _;
+    let mut s = String::new();
+    match source {
+        PassesSource::Program { shown, dialect, program: prog } => {
+            let leads: Vec<String> = prog.operations.iter().map(|o| fmt_num(o.lead())).collect();
+            let _ = writeln!(
+                s,
+                "{shown} ({}): {} operation{}, {} passes, lead {} mm, {} other blocks read for position{}",
+                dialect.name(),
+                prog.operations.len(),
+                if prog.operations.len() == 1 { "" } else { "s" },
+                prog.passes.len(),
+                leads.join(" / "),
+                prog.skipped_blocks,
+                read_past_text(prog.read_past_blocks),
+            );
+            for n in &prog.notes {
+                let _ = writeln!(s, "note: {n}");
+            }
+        }
+        PassesSource::Plan { designation, kind, blank, final_x } => {
+            let _ = writeln!(
+                s,
+                "{designation} {}: {} passes, blank X{blank:.4}, final X{final_x:.4}",
+                kind.name(),
+                passes.len()
+            );
+        }
+    }
+    let row = |s: &mut String, p: &crate::toolpath::passes::Pass| {
+        let _ = writeln!(
+            s,
+            "  {:>4}  {:>5}  {:>9.4}  {:>9.4}  {:>9.4}  {:>9.4}  {:>5}",
+            p.index,
+            p.start + 1,
+            p.x_start,
+            p.x_end,
+            p.z_start,
+            p.z_end,
+            p.source_line.map_or("—".to_string(), |l| l.to_string())
+        );
+    };
+    let head = "  pass  start    X start      X end    Z start      Z end   line\n";
+    match source {
+        PassesSource::Program { program, .. } => {
+            for op in &program.operations {
+                let _ = writeln!(
+                    s,
+                    "\noperation {}: {} at line {}{}, lead {} mm, {} passes",
+                    op.index,
+                    op.cycle,
+                    op.source_line,
+                    op.tool.map_or(String::new(), |t| format!(", tool T{t}")),
+                    fmt_num(op.lead()),
+                    op.passes.len()
+                );
+                for n in &op.notes {
+                    let _ = writeln!(s, "  note: {n}");
+                }
+                s.push_str(head);
+                for p in &op.passes {
+                    row(&mut s, p);
+                }
+            }
+        }
+        PassesSource::Plan { .. } => {
+            s.push('\n');
+            s.push_str(head);
+            for p in passes {
+                row(&mut s, p);
+            }
+        }
+    }
+    s
+}

@@ -31,7 +31,10 @@
 //! - Ctrl-C stops every computation and the server within a second.
 
 use crate::ground::cancel::Cancel;
-use crate::request::{run_request, Command, Document, Files};
+mod args;
+pub use args::ServeArgs;
+
+use crate::commands::{run_request, Command, Document, Files};
 use crate::Error;
 use axum::body::Body;
 use axum::extract::{Path, Request, State};
@@ -318,13 +321,13 @@ fn host_allowed(options: &ServeOptions, host: Option<&HeaderValue>) -> Result<()
 
 /// `GET /api`: the commands, their keys and documents.
 async fn api_index() -> Response {
-    let commands: Vec<serde_json::Value> = Command::ALL
+    let commands: Vec<serde_json::Value> = Command::API
         .iter()
-        .map(|c| {
+        .map(|name| {
             serde_json::json!({
-                "command": c.name(),
-                "keys": c.keys(),
-                "documents": c.documents().iter().map(|d| d.name()).collect::<Vec<_>>(),
+                "command": name,
+                "keys": Command::keys(name).unwrap_or_default(),
+                "documents": Command::documents_of(name).iter().map(|d| d.name()).collect::<Vec<_>>(),
             })
         })
         .collect();
@@ -357,10 +360,10 @@ impl Drop for RaiseOnDrop {
 /// One API request: checked, queued for a permit, its body read, computed on the blocking pool
 /// within the time budget, answered.
 async fn answer(shared: Arc<Shared>, command: &str, document: &str, req: Request) -> Response {
-    let command: Command = match command.parse() {
-        Ok(c) => c,
-        Err(e) => return error(StatusCode::NOT_FOUND, e.to_string()),
-    };
+    if let Err(e) = Command::keys(command) {
+        return error(StatusCode::NOT_FOUND, e.to_string());
+    }
+    let command = command.to_string();
     let document: Document = match document.parse() {
         Ok(d) => d,
         Err(e) => return error(StatusCode::NOT_FOUND, e.to_string()),
@@ -432,7 +435,7 @@ async fn answer(shared: Arc<Shared>, command: &str, document: &str, req: Request
         let r = if stopping.is_raised() {
             Err(Error::Cancelled)
         } else {
-            work_stop.run(|| run_request(command, document, &args, Files::Refused))
+            work_stop.run(|| run_request(&command, document, &args, Files::Refused))
         };
         drop(permit);
         r
@@ -455,10 +458,10 @@ async fn answer(shared: Arc<Shared>, command: &str, document: &str, req: Request
                 Error::Cancelled => StatusCode::SERVICE_UNAVAILABLE,
                 _ => StatusCode::BAD_REQUEST,
             };
-            error(status, e.one_line())
+            error(status, e.one_line_for(crate::Audience::Api))
         }
-        Ok(Ok(Ok(a))) => {
-            let outcome = match a.outcome {
+        Ok(Ok(Ok((body, outcome)))) => {
+            let outcome = match outcome {
                 crate::Outcome::Pass => "pass",
                 crate::Outcome::OutOfTolerance => "out-of-tolerance",
             };
@@ -470,7 +473,7 @@ async fn answer(shared: Arc<Shared>, command: &str, document: &str, req: Request
                         HeaderValue::from_static(outcome),
                     ),
                 ],
-                a.body,
+                body,
             )
                 .into_response()
         }

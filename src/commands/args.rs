@@ -1,0 +1,477 @@
+//! The arguments several commands share, typed once for clap and serde: the thread and its plan
+//! or program ([`PlanArgs`]), a file given by path on the command line and as text through the
+//! API ([`Source`]), and the readers both sides use.
+
+use crate::analysis::verify::{InsertChoice, ProgramSource, Units, VerifySpec};
+use crate::gcode::{Dialect, DialectFrom, GCodeSystem, LinuxCncRelease, ProgramUnits};
+use crate::standards::tolerance::CoatingLimits;
+use crate::toolpath::passes::{InfeedChoice, Schedule};
+use crate::Error;
+use serde::Deserialize;
+use serde_with::{serde_as, DisplayFromStr};
+use std::path::{Path, PathBuf};
+
+/// A file an argument names: a path on the command line, its text through the API and Python.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Source {
+    /// A file to read.
+    Path(PathBuf),
+    /// The file's text.
+    Text(String),
+}
+
+impl Source {
+    /// A path (clap's reader).
+    pub fn path(s: &str) -> Result<Source, String> {
+        Ok(Source::Path(PathBuf::from(s)))
+    }
+
+    /// The path, when it is one (a file no output may replace).
+    pub fn file(&self) -> Option<PathBuf> {
+        match self {
+            Source::Path(p) => Some(p.clone()),
+            Source::Text(_) => None,
+        }
+    }
+
+    /// The name messages use (the path, else `text_name`) and the text, read when it is a path.
+    pub fn load(&self, text_name: &str) -> Result<(String, String), Error> {
+        self.program(text_name).load()
+    }
+
+    /// As a program's source, called `text_name` when it is text.
+    pub fn program(&self, text_name: &str) -> ProgramSource {
+        match self {
+            Source::Path(p) => ProgramSource::File(p.clone()),
+            Source::Text(t) => ProgramSource::text(text_name, t.clone()),
+        }
+    }
+}
+
+/// Reads an optional [`Source`] from a JSON string: the file's text.
+pub(crate) fn source_text<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<Source>, D::Error> {
+    Ok(Option::<String>::deserialize(d)?.map(Source::Text))
+}
+
+/// Reads one designation or a list of them.
+pub(crate) fn one_or_many<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<String>, D::Error> {
+    #[derive(Deserialize)]
+    #[serde(untagged, expecting = "a designation or a list of them")]
+    enum OneOrMany {
+        One(String),
+        Many(Vec<String>),
+    }
+    Ok(match Option::<OneOrMany>::deserialize(d)? {
+        None => Vec::new(),
+        Some(OneOrMany::One(s)) => vec![s],
+        Some(OneOrMany::Many(v)) => v,
+    })
+}
+
+/// A finite number (clap's own `f64` reader takes `inf` and `NaN`).
+#[cfg_attr(not(feature = "cli"), allow(dead_code))]
+pub(crate) fn finite(s: &str) -> Result<f64, String> {
+    let v: f64 = s.trim().parse().map_err(|_| "not a number".to_string())?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err("not a finite number".into())
+    }
+}
+
+/// A pass count of at least one.
+#[cfg_attr(not(feature = "cli"), allow(dead_code))]
+pub(crate) fn pass_count(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(0) => Err("a thread needs at least one pass".into()),
+        Ok(n) => Ok(n),
+        Err(_) => Err("not a whole number".into()),
+    }
+}
+
+/// An operation's number: 1 or more.
+#[cfg_attr(not(feature = "cli"), allow(dead_code))]
+pub(crate) fn operation_number(s: &str) -> Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err("an operation's number, from 1".into()),
+    }
+}
+
+/// An O-program's number, written `O3101` or `3101`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ONumber(pub u32);
+
+impl std::str::FromStr for ONumber {
+    type Err = Error;
+
+    fn from_str(s: &str) -> Result<ONumber, Error> {
+        let digits = s.strip_prefix(['O', 'o']).unwrap_or(s);
+        match digits.parse::<u32>() {
+            Ok(n) if !digits.starts_with('+') => Ok(ONumber(n)),
+            _ => Err(Error::Input(format!("'{s}' is not an O-program number such as O3101"))),
+        }
+    }
+}
+
+/// The dialect to read a program called `name` in: the one given, else the one its extension
+/// names, else Fanuc; and how it was chosen.
+pub fn dialect_for(given: Option<Dialect>, name: &Path) -> (Dialect, DialectFrom) {
+    match (given, Dialect::by_extension(name)) {
+        (Some(d), _) => (d, DialectFrom::Given),
+        (None, Some(d)) => (d, DialectFrom::Extension),
+        (None, None) => (Dialect::Fanuc, DialectFrom::Default),
+    }
+}
+
+/// The JSON's destination on the command line: `--json` or `--json -` for standard output,
+/// `--json FILE` for a file.
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+#[derive(Clone, Debug, Default)]
+pub struct JsonArg {
+    /// JSON: on stdout instead of the text (`--json` or `--json -`), or written to FILE.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE|-", num_args = 0..=1, default_missing_value = "-"))]
+    pub json: Option<String>,
+}
+
+/// The thread and its plan, or its program: the arguments of verify, passes, compare, correct
+/// and capability.
+#[serde_as]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PlanArgs {
+    /// Thread with its class, e.g. M10x1.5-6g. With a program that cuts several threads, give it
+    /// once for all or once per operation, in program order.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "THREAD", required_unless_present = "program"))]
+    #[serde(deserialize_with = "one_or_many")]
+    pub thread: Vec<String>,
+    /// The internal thread (else external; implied by an upper-case class alone).
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub internal: bool,
+    /// Accept a diameter/pitch pair outside the standard series.
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub allow_nonstandard: bool,
+    /// full | partial[:TIP_RADIUS] | FILE.toml (default partial, r0.04 mm)
+    #[cfg_attr(feature = "cli", arg(long))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub insert: Option<InsertChoice>,
+    /// An insert file's text (the API and Python; the command line takes its path as --insert).
+    #[cfg_attr(feature = "cli", arg(skip))]
+    pub insert_toml: Option<String>,
+    /// radial | flank[:ANGLE] | modified | alternating[:ANGLE] (default modified: half the thread
+    /// angle less 0.5°)
+    #[cfg_attr(feature = "cli", arg(long))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub infeed: Option<InfeedChoice>,
+    /// Number of cutting passes (default about 3.5 + 2·P).
+    #[cfg_attr(feature = "cli", arg(long, conflicts_with = "first_depth", value_parser = crate::commands::args::pass_count))]
+    pub passes: Option<usize>,
+    /// Depth of the first pass, mm (sets the pass count).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
+    pub first_depth: Option<f64>,
+    /// Smallest radial step, mm (default 0).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
+    pub min_depth: Option<f64>,
+    /// Finishing allowance, mm (default 0).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
+    pub finish: Option<f64>,
+    /// Spring (idle) passes at full depth (default 0).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "N"))]
+    pub spring: Option<usize>,
+    /// constant-area | constant-depth | sandvik (default constant-area; compare: both
+    /// constant-area and constant-depth unless one is given)
+    #[cfg_attr(feature = "cli", arg(long))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub schedule: Option<Schedule>,
+    /// Explicit cumulative radial depths, mm, e.g. 0.2,0.35,0.45 (instead of a schedule).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "LIST", value_delimiter = ',', value_parser = crate::commands::args::finite,
+          conflicts_with_all = ["passes", "first_depth", "schedule"]))]
+    pub depths: Vec<f64>,
+    /// Taper: diameter change per mm of travel, e.g. 0.0625 for 1:16 (passes only; default 0).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "RATIO", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
+    pub taper: Option<f64>,
+    /// Run-out chamfer at the thread end, in leads (default 0).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "LEADS", value_parser = crate::commands::args::finite))]
+    pub chamfer: Option<f64>,
+    /// A coating the thread gets after cutting, mm (plating, anodizing): checked against the
+    /// limits before coating (default 0).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
+    pub coating: Option<f64>,
+    /// Under a coating, the class applies before it (the standards' default: ISO 965-1 §8.5,
+    /// ASME B1.1 §7) or after it (when the drawing says so): before | after
+    #[cfg_attr(feature = "cli", arg(long, value_name = "before|after"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub coating_limits: Option<CoatingLimits>,
+    /// The length of engagement a gauge feels, mm, over which a program's lead error adds up
+    /// (default: the nominal diameter, ASME B1.1's LE = D; a taper thread's L1).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
+    pub engagement: Option<f64>,
+    /// Tip diameter of the last pass (default: what puts the pitch diameter mid-tolerance).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "DIA", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
+    pub final_x: Option<f64>,
+    /// Blank (external) or bore (internal) diameter, mm.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
+    pub blank_diameter: Option<f64>,
+    /// Take the passes from this G-code program (a file on the command line, its text through
+    /// the API and Python).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE", value_parser = Source::path))]
+    #[serde(deserialize_with = "source_text")]
+    pub program: Option<Source>,
+    /// What messages call a program given as text; its extension chooses the dialect.
+    #[cfg_attr(feature = "cli", arg(skip))]
+    pub program_name: Option<String>,
+    /// A machine profile for the process checks of a program: FILE.toml (its text through the
+    /// API) or training-lathe.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.toml|training-lathe", requires = "program", value_parser = Source::path))]
+    #[serde(deserialize_with = "source_text")]
+    pub machine: Option<Source>,
+    /// The insert's side clearance angle, degrees: checks the leading flank against the helix.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
+    pub clearance_angle: Option<f64>,
+    /// Lengths in the text and the SVG: mm, or mm with inches beside them (default: inch for
+    /// threads of inch sizes (UN, Acme, NPT, BSW, BSP), else mm)
+    #[cfg_attr(feature = "cli", arg(long, value_name = "mm|inch"))]
+    pub units: Option<Units>,
+    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma | mitsubishi | mazak | heidenhain (default:
+    /// the program's extension names it, .ngc linuxcnc, .mpf/.spf sinumerik, .min/.ssb/.sub okuma;
+    /// else fanuc)
+    #[cfg_attr(feature = "cli", arg(long, requires = "program"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub dialect: Option<Dialect>,
+    /// The units of a program that sets neither G20 nor G21 (the control's default).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "mm|inch", requires = "program"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub default_units: Option<ProgramUnits>,
+    /// The main program of a file that holds several O-programs (default: the one no other
+    /// calls; the output says which)
+    #[cfg_attr(feature = "cli", arg(long, value_name = "O-NUMBER", requires = "program"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub main: Option<ONumber>,
+    /// The LinuxCNC release whose comparisons (EQ, NE, LE, GE) a linuxcnc program follows:
+    /// current (2.9.0 and later, within 1e-6; the default) or before-2.9 (EQ and NE within 1e-4,
+    /// as Debian 12's linuxcnc-uspace package does)
+    #[cfg_attr(feature = "cli", arg(long, value_name = "current|before-2.9", requires = "program"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub linuxcnc_release: Option<LinuxCncRelease>,
+    /// The G-code system a Fanuc-family lathe control (fanuc, mitsubishi, mazak) is set to: a (G92
+    /// threading cycle, the default), b (G78 threading cycle, G92 coordinates) or c (G21
+    /// threading cycle, G78 multiple cycle)
+    #[cfg_attr(feature = "cli", arg(long, value_name = "a|b|c", requires = "program"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub gcode_system: Option<GCodeSystem>,
+}
+
+impl PlanArgs {
+    /// The first designation, or none.
+    pub fn first_thread(&self) -> &str {
+        self.thread.first().map_or("", String::as_str)
+    }
+
+    /// Whether the insert was chosen (else a tool table's, else the default).
+    pub fn insert_given(&self) -> bool {
+        self.insert.is_some() || self.insert_toml.is_some()
+    }
+
+    /// The checks a command that cuts a thread needs before it runs.
+    pub fn need_thread(&self, command: &str) -> Result<(), Error> {
+        if self.thread.is_empty() {
+            return Err(Error::Input(format!("{command} needs ‹thread› with a class, e.g. M10x1.5-6g")));
+        }
+        if self.thread.len() > 1 && self.program.is_none() {
+            return Err(Error::Input(
+                "‹thread› is given more than once: only a program with several threads takes one per operation"
+                    .into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// One designation alone (correct, capability, compare).
+    pub fn one_thread(&self, command: &str) -> Result<(), Error> {
+        self.need_thread(command)?;
+        if self.thread.len() > 1 {
+            return Err(Error::Input(format!("{command} takes one thread: ‹thread› once")));
+        }
+        Ok(())
+    }
+
+    /// The files this plan reads.
+    pub fn inputs(&self) -> Vec<PathBuf> {
+        let insert = match &self.insert {
+            Some(InsertChoice::File(p)) => Some(p.clone()),
+            _ => None,
+        };
+        [self.program.as_ref().and_then(Source::file), self.machine.as_ref().and_then(Source::file), insert]
+            .into_iter()
+            .flatten()
+            .collect()
+    }
+
+    /// The verification the arguments describe; `files` says whether an insert may be a path.
+    pub fn spec(&self, files: super::Files) -> Result<VerifySpec, Error> {
+        let first = self.first_thread();
+        let mut s = VerifySpec::new(first);
+        s.internal = self.internal;
+        s.allow_nonstandard = self.allow_nonstandard;
+        s.insert = self.insert_choice(files)?.unwrap_or(InsertChoice::Partial { tip_radius: 0.04 });
+        s.infeed = self.infeed;
+        s.passes = self.passes;
+        s.first_depth = self.first_depth;
+        if s.passes.is_some() && s.first_depth.is_some() {
+            return Err(Error::Input("‹passes› and ‹first_depth› exclude each other".into()));
+        }
+        s.min_depth = self.min_depth.unwrap_or(0.0);
+        s.finish = self.finish.unwrap_or(0.0);
+        s.spring = self.spring.unwrap_or(0);
+        s.schedule = match (&self.schedule, self.depths.is_empty()) {
+            (Some(_), false) => {
+                return Err(Error::Input("‹schedule› and ‹depths› exclude each other".into()))
+            }
+            (_, false) => Schedule::Explicit(self.depths.clone()),
+            (Some(sch), true) => sch.clone(),
+            (None, true) => Schedule::ConstantArea,
+        };
+        s.taper = self.taper.unwrap_or(0.0);
+        s.chamfer_leads = self.chamfer.unwrap_or(0.0);
+        s.coating = self.coating.unwrap_or(0.0);
+        s.coating_limits = self.coating_limits.unwrap_or_default();
+        s.engagement = self.engagement;
+        s.final_x = self.final_x;
+        s.blank_diameter = self.blank_diameter;
+        s.clearance_angle = self.clearance_angle;
+        // An inch thread is read in inches beside the mm; a designation that does not parse is
+        // reported where it is resolved.
+        s.units = self.units.unwrap_or_else(|| VerifySpec::default_units(first, self.allow_nonstandard));
+        match &self.program {
+            Some(source) => {
+                if let Source::Text(text) = source {
+                    if files == super::Files::Allowed && !text.contains('\n') && Path::new(text).is_file() {
+                        return Err(Error::Input(format!(
+                            "‹program› '{text}' is a file's path: pass the program's text (for example open(path).read())"
+                        )));
+                    }
+                }
+                let name = self.program_name.clone().unwrap_or_else(|| "<program>".into());
+                let shown = match source {
+                    Source::Path(p) => p.clone(),
+                    Source::Text(_) => PathBuf::from(&name),
+                };
+                let (dialect, from) = dialect_for(self.dialect, &shown);
+                s.program = Some((source.program(&name), dialect));
+                s.reading.dialect_from = from;
+            }
+            None => {
+                let given = [
+                    ("dialect", self.dialect.is_some()),
+                    ("default_units", self.default_units.is_some()),
+                    ("main", self.main.is_some()),
+                    ("program_name", self.program_name.is_some()),
+                    ("gcode_system", self.gcode_system.is_some()),
+                    ("linuxcnc_release", self.linuxcnc_release.is_some()),
+                    ("machine", self.machine.is_some()),
+                ];
+                if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
+                    return Err(Error::Input(format!(
+                        "‹{key}› describes a program: give the program with ‹program› too"
+                    )));
+                }
+            }
+        }
+        s.machine = self.machine_profile()?;
+        s.reading.default_units = self.default_units;
+        s.reading.main = self.main.map(|o| o.0);
+        s.reading.linuxcnc = self.linuxcnc_release.unwrap_or_default();
+        s.reading.gcode_system = self.gcode_system.unwrap_or_default();
+        s.validate()?;
+        Ok(s)
+    }
+
+    /// The insert chosen: `insert` (a path where files may be read) or `insert_toml`.
+    fn insert_choice(&self, files: super::Files) -> Result<Option<InsertChoice>, Error> {
+        match (&self.insert, &self.insert_toml) {
+            (Some(_), Some(_)) => Err(Error::Input("‹insert› and ‹insert_toml› exclude each other".into())),
+            (Some(InsertChoice::File(p)), None) if files == super::Files::Refused => {
+                Err(Error::Input(format!(
+                "‹insert› '{}' names a file, and the server reads none: send its TOML text as ‹insert_toml›",
+                p.display()
+            )))
+            }
+            (Some(i), None) => Ok(Some(i.clone())),
+            (None, Some(text)) => {
+                Ok(Some(InsertChoice::Toml { name: "<insert>".into(), text: text.clone() }))
+            }
+            (None, None) => Ok(None),
+        }
+    }
+
+    /// The machine profile: a file, `training-lathe`, or a profile's TOML text.
+    fn machine_profile(&self) -> Result<Option<crate::analysis::process::MachineProfile>, Error> {
+        use crate::analysis::process::MachineProfile;
+        match &self.machine {
+            None => Ok(None),
+            Some(Source::Path(p)) => MachineProfile::read(&p.display().to_string()).map(Some),
+            Some(Source::Text(t)) if t == "training-lathe" => MachineProfile::read(t).map(Some),
+            Some(Source::Text(t)) => MachineProfile::from_toml(t, "<machine>").map(Some),
+        }
+    }
+}
+
+/// A tool table: read from its file, or from its text (whose inserts must not be files when
+/// files are refused).
+pub(crate) fn tool_table(
+    source: &Source,
+    files: super::Files,
+) -> Result<crate::analysis::tools::ToolTable, Error> {
+    use crate::analysis::tools::ToolTable;
+    match source {
+        Source::Path(p) => ToolTable::read(p),
+        Source::Text(text) => {
+            let table = ToolTable::from_toml(text, "<tools>", Path::new("."))?;
+            if files == super::Files::Refused {
+                if let Some((t, written)) = table.file_entry() {
+                    return Err(Error::Input(format!(
+                        "‹tools›: T{t} = '{written}' names an insert file, and the server reads none: use full, partial or partial:R"
+                    )));
+                }
+            }
+            Ok(table)
+        }
+    }
+}
+
+/// The program of `mill`, `tap` and `thread-mill`, and its dialect.
+#[serde_as]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ProgramArgs {
+    /// The program (a file on the command line, its text through the API and Python).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE", required = true, value_parser = Source::path))]
+    #[serde(deserialize_with = "source_text")]
+    pub program: Option<Source>,
+    /// What messages call a program given as text; its extension chooses the dialect.
+    #[cfg_attr(feature = "cli", arg(skip))]
+    pub program_name: Option<String>,
+    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma | mitsubishi | mazak | heidenhain (default: by
+    /// the extension, else fanuc)
+    #[cfg_attr(feature = "cli", arg(long))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub dialect: Option<Dialect>,
+}
+
+impl ProgramArgs {
+    /// The program's text and name, its dialect and how the dialect was chosen.
+    pub fn read(&self, command: &str) -> Result<((String, String), Dialect, DialectFrom), Error> {
+        let source =
+            self.program.as_ref().ok_or_else(|| Error::Input(format!("{command} needs ‹program›")))?;
+        let (shown, text) = source.load(self.program_name.as_deref().unwrap_or("<program>"))?;
+        let (dialect, from) = dialect_for(self.dialect, Path::new(&shown));
+        Ok(((text, shown), dialect, from))
+    }
+
+    /// The program's file, when it is one.
+    pub fn inputs(&self) -> Vec<PathBuf> {
+        self.program.as_ref().and_then(Source::file).into_iter().collect()
+    }
+}

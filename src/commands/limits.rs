@@ -1,0 +1,103 @@
+//! `threadcheck limits`: the limits of size of a designation.
+
+use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
+use crate::standards::tolerance::{limits_for, CoatingLimits, ThreadLimits};
+use crate::standards::{parse_designation, ParseOptions, ThreadKind};
+use crate::Error;
+use serde::Deserialize;
+use serde_with::{serde_as, DisplayFromStr};
+
+/// The arguments of `limits`.
+///
+/// ```
+/// use threadcheck::{Command, Document, Files, Request};
+/// let c = Command::from_api("limits", r#"{"thread": "1/4-20 UNC-2A"}"#)?;
+/// let out = c.run(&Request::api(Document::Text, Files::Refused))?;
+/// assert!(out.document(Document::Text).unwrap_or("").contains("(20 tpi)"));
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+#[serde_as]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LimitsArgs {
+    /// Designation, e.g. M10x1.5-6g, M10-6H/6g, "BSF 3/8 medium", "G1/2 A", "1/4-20 UNC-2A".
+    #[cfg_attr(feature = "cli", arg(conflicts_with = "thread"))]
+    pub designation: Option<String>,
+    /// The designation as an option, as the other commands take it.
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub thread: Option<String>,
+    /// Accept a diameter/pitch pair outside the standard series.
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub allow_nonstandard: bool,
+    /// The limits to cut to before a coating of this thickness, mm (plating, anodizing;
+    /// default 0).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = super::args::finite))]
+    pub coating: Option<f64>,
+    /// Under a coating, the class applies before it (the standards' default) or after it
+    /// (when the drawing says so): before | after
+    #[cfg_attr(feature = "cli", arg(long, value_name = "before|after"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub coating_limits: Option<CoatingLimits>,
+    #[cfg_attr(feature = "cli", command(flatten))]
+    #[serde(skip)]
+    #[allow(missing_docs)]
+    pub out: super::args::JsonArg,
+}
+
+impl Job for LimitsArgs {
+    const NAME: &'static str = "limits";
+    const DOCUMENTS: &'static [Document] = &[Document::Json, Document::Text];
+
+    fn run(&self, request: &Request) -> Result<Outputs, Error> {
+        let designation = match (&self.designation, &self.thread) {
+            (Some(d), None) | (None, Some(d)) => d,
+            (Some(_), Some(_)) => {
+                return Err(Error::Input("give the designation once: ‹designation› or ‹thread›".into()))
+            }
+            (None, None) => {
+                return Err(Error::Input(match self.out.json.as_deref() {
+                    Some(v) if v != "-" => format!(
+                        "limits needs a designation: ‹json› took '{v}' as its file; write `limits {v} --json`"
+                    ),
+                    _ => "limits needs a designation, e.g. limits M10x1.5-6g".into(),
+                }))
+            }
+        };
+        let des = parse_designation(designation, ParseOptions { allow_nonstandard: self.allow_nonstandard })?;
+        let t = &des.thread;
+        let coat = |l: Option<ThreadLimits>| {
+            l.map(|l| {
+                crate::analysis::verify::coated(
+                    l,
+                    t,
+                    self.coating.unwrap_or(0.0),
+                    self.coating_limits.unwrap_or_default(),
+                )
+            })
+            .transpose()
+        };
+        let ext = coat(limits_for(&des, ThreadKind::External)?)?;
+        let int = coat(limits_for(&des, ThreadKind::Internal)?)?;
+        Ok(Outputs::new(
+            Outcome::Pass,
+            [
+                request.render(Document::Json, || {
+                    pretty(&crate::report::LimitsReport::new(&des, ext.as_ref(), int.as_ref()))
+                })?,
+                Some((Document::Text, crate::report::limits::text(&des, ext.as_ref(), int.as_ref()))),
+            ],
+        ))
+    }
+
+    fn destinations(&self) -> Vec<(Document, Dest)> {
+        Dest::list([(Document::Json, &self.out.json)], [])
+    }
+}
+
+impl super::ApiArgs for LimitsArgs {
+    type Shared = super::NoShared;
+    fn shared_mut(&mut self) -> Option<&mut super::NoShared> {
+        None
+    }
+}

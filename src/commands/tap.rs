@@ -1,0 +1,103 @@
+//! `threadcheck tap`: a program's tapping cycles against their taps and drills.
+
+use super::args::{tool_table, JsonArg, ProgramArgs, Source};
+use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
+use crate::analysis::tapping::TapSpec;
+use crate::gcode::{GCodeSystem, ProgramUnits, ReadOptions};
+use crate::Error;
+use serde::Deserialize;
+use serde_with::{serde_as, DisplayFromStr};
+use std::path::PathBuf;
+
+/// The arguments of `tap`.
+#[serde_as]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TapArgs {
+    #[cfg_attr(feature = "cli", command(flatten))]
+    #[serde(skip)]
+    #[allow(missing_docs)]
+    pub file: ProgramArgs,
+    /// The tool table: each tap as T = "tap:M10x1.5-6H[:CHAMFER_PITCHES]", each drill as
+    /// T = "drill:8.5" (a file on the command line, its text through the API).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.toml", required = true, value_parser = Source::path))]
+    #[serde(deserialize_with = "super::args::source_text")]
+    pub tools: Option<Source>,
+    /// Accept a diameter/pitch pair outside the standard series.
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub allow_nonstandard: bool,
+    /// The units of a program that sets neither G20 nor G21.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "mm|inch"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub default_units: Option<ProgramUnits>,
+    /// The G-code system of a Fanuc-family control (fanuc, mitsubishi, mazak): a (the default),
+    /// b or c.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "a|b|c"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub gcode_system: Option<GCodeSystem>,
+    /// Write the tapped holes' sections (SVG) to this file.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
+    #[serde(skip)]
+    pub svg: Option<PathBuf>,
+    /// Write a self-contained HTML page (the sections, the checks, the notes) to this file.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
+    #[serde(skip)]
+    pub html: Option<PathBuf>,
+    #[cfg_attr(feature = "cli", command(flatten))]
+    #[serde(skip)]
+    #[allow(missing_docs)]
+    pub out: JsonArg,
+}
+
+impl super::ApiArgs for TapArgs {
+    type Shared = ProgramArgs;
+    fn shared_mut(&mut self) -> Option<&mut ProgramArgs> {
+        Some(&mut self.file)
+    }
+}
+
+impl Job for TapArgs {
+    const NAME: &'static str = "tap";
+    const DOCUMENTS: &'static [Document] = &[Document::Json, Document::Text, Document::Svg, Document::Html];
+
+    /// Pass when every tapping cycle passes every check.
+    fn run(&self, request: &Request) -> Result<Outputs, Error> {
+        let (program, dialect, from) = self.file.read("tap")?;
+        let reading = ReadOptions {
+            dialect_from: from,
+            default_units: self.default_units,
+            gcode_system: self.gcode_system.unwrap_or_default(),
+            ..Default::default()
+        };
+        let tools = self.tools.as_ref().ok_or_else(|| {
+            Error::Input("tap needs ‹tools›, the tool table naming the taps and drills".into())
+        })?;
+        let spec = TapSpec {
+            program,
+            dialect,
+            reading,
+            tools: tool_table(tools, request.files)?,
+            allow_nonstandard: self.allow_nonstandard,
+        };
+        let r = crate::analysis::tapping::tapping(&spec)?;
+        let inputs = self.file.inputs().into_iter().chain(tools.file());
+        Ok(Outputs::new(
+            Outcome::of(r.pass),
+            [
+                request.render(Document::Json, || pretty(&r))?,
+                request.render(Document::Svg, || Ok(crate::report::tapping::tap_svg(&r)))?,
+                request.render(Document::Html, || Ok(crate::report::tapping::tap_html(&r)))?,
+                Some((Document::Text, crate::report::tapping::text(&r))),
+            ],
+        )
+        .reading(inputs))
+    }
+
+    fn destinations(&self) -> Vec<(Document, Dest)> {
+        Dest::list(
+            [(Document::Json, &self.out.json)],
+            [(Document::Svg, &self.svg), (Document::Html, &self.html)],
+        )
+    }
+}

@@ -1,0 +1,133 @@
+//! `threadcheck thread-mill`: the thread a thread-milling program leaves.
+
+use super::args::{tool_table, JsonArg, ProgramArgs, Source};
+use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
+use crate::analysis::threadmill::ThreadMillSpec;
+use crate::geometry::helix::Cutter;
+use crate::Error;
+use serde::Deserialize;
+use std::path::PathBuf;
+
+/// The arguments of `thread-mill`.
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ThreadMillArgs {
+    #[cfg_attr(feature = "cli", command(flatten))]
+    #[serde(skip)]
+    #[allow(missing_docs)]
+    pub file: ProgramArgs,
+    /// The thread with its class, e.g. M20x1.5-6H.
+    #[cfg_attr(feature = "cli", arg(long, required = true))]
+    pub thread: Option<String>,
+    /// Accept a diameter/pitch pair outside the standard series.
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub allow_nonstandard: bool,
+    /// The cutter's diameter over its tooth's tip, mm (else the tool table's thread mill).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite, required_unless_present = "tools"))]
+    pub cutter_diameter: Option<f64>,
+    /// The tool table: the helices' T as a thread mill's file (`12 = "thread-mill.toml"`:
+    /// kind = "thread-mill", diameter, angle, tip_radius, rows, row_pitch) and `[offsets]` (12 = 3.0,
+    /// the compensation value G41/G42 apply).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.toml", conflicts_with = "cutter_diameter", value_parser = Source::path))]
+    #[serde(deserialize_with = "super::args::source_text")]
+    pub tools: Option<Source>,
+    /// The tooth's included angle, degrees (default 60).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "DEG", value_parser = crate::commands::args::finite))]
+    pub cutter_angle: Option<f64>,
+    /// The tooth's tip radius, mm (default 0).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
+    pub cutter_tip_radius: Option<f64>,
+    /// Rows of teeth: 1 for a single-form cutter (the default), more for a multi-form one (with
+    /// --cutter-row-pitch).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "N"))]
+    pub cutter_rows: Option<u32>,
+    /// A multi-form cutter's row spacing, mm.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
+    pub cutter_row_pitch: Option<f64>,
+    /// The bore (internal) or blank (external) diameter, mm.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
+    pub blank_diameter: Option<f64>,
+    /// The value G41/G42 compensate by (the D register), mm: the cutter centre runs that far to
+    /// the left (G41) or right (G42) of the programmed helix.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
+    pub comp_radius: Option<f64>,
+    /// Write the milled thread's axial section (SVG) to this file.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
+    #[serde(skip)]
+    pub svg: Option<PathBuf>,
+    /// Write a self-contained HTML page (the section, the checks, the helices) to this file.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
+    #[serde(skip)]
+    pub html: Option<PathBuf>,
+    #[cfg_attr(feature = "cli", command(flatten))]
+    #[serde(skip)]
+    #[allow(missing_docs)]
+    pub out: JsonArg,
+}
+
+impl super::ApiArgs for ThreadMillArgs {
+    type Shared = ProgramArgs;
+    fn shared_mut(&mut self) -> Option<&mut ProgramArgs> {
+        Some(&mut self.file)
+    }
+}
+
+impl Job for ThreadMillArgs {
+    const NAME: &'static str = "thread-mill";
+    const DOCUMENTS: &'static [Document] = &[Document::Json, Document::Text, Document::Svg, Document::Html];
+
+    /// Pass when the milled thread is within every limit and the lead is right.
+    fn run(&self, request: &Request) -> Result<Outputs, Error> {
+        let (program, dialect, _) = self.file.read("thread-mill")?;
+        let designation = self
+            .thread
+            .clone()
+            .ok_or_else(|| Error::Input("thread-mill needs ‹thread› with a class, e.g. M20x1.5-6H".into()))?;
+        let rows = self.cutter_rows.unwrap_or(1);
+        if !(1..=200).contains(&rows) {
+            return Err(Error::Input(format!("‹cutter_rows› {rows}: a whole number from 1 to 200")));
+        }
+        let cutter = self
+            .cutter_diameter
+            .map(|diameter| {
+                Cutter::single_form(
+                    diameter,
+                    self.cutter_angle.unwrap_or(60.0),
+                    self.cutter_tip_radius.unwrap_or(0.0),
+                )
+                .with_rows(rows, self.cutter_row_pitch)
+            })
+            .transpose()?;
+        let spec = ThreadMillSpec {
+            program,
+            dialect,
+            designation,
+            allow_nonstandard: self.allow_nonstandard,
+            cutter,
+            tools: self.tools.as_ref().map(|t| tool_table(t, request.files)).transpose()?,
+            blank_diameter: self.blank_diameter,
+            comp_radius: self.comp_radius,
+        };
+        let r = crate::analysis::threadmill::thread_mill(&spec)?;
+        let inputs = self.file.inputs().into_iter().chain(self.tools.as_ref().and_then(Source::file));
+        Ok(Outputs::new(
+            Outcome::of(r.pass),
+            [
+                request
+                    .render(Document::Json, || pretty(&crate::report::threadmill::ThreadMillJson::of(&r)))?,
+                request.render(Document::Svg, || Ok(crate::report::threadmill::threadmill_svg(&r)))?,
+                request.render(Document::Html, || Ok(crate::report::threadmill::threadmill_html(&r)))?,
+                Some((Document::Text, crate::report::threadmill::text(&r))),
+            ],
+        )
+        .reading(inputs))
+    }
+
+    fn destinations(&self) -> Vec<(Document, Dest)> {
+        Dest::list(
+            [(Document::Json, &self.out.json)],
+            [(Document::Svg, &self.svg), (Document::Html, &self.html)],
+        )
+    }
+}

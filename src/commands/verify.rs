@@ -1,0 +1,241 @@
+//! `threadcheck verify`: the thread cut in the computer and checked against its class.
+
+use super::args::{tool_table, JsonArg, PlanArgs, Source};
+use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
+use crate::analysis::verify::{InsertChoice, ProgramSource, VerifySpec};
+use crate::report::fmt_num;
+use crate::Error;
+use serde::Deserialize;
+use std::path::PathBuf;
+
+/// The arguments of `verify`.
+///
+/// ```
+/// use threadcheck::{Command, Document, Files, Outcome, Request};
+/// // A full-profile insert with its tip on d3 = d − 1.226869·P = 8.160 cuts the basic d2, 9.026;
+/// // X8.2 is shallower still, so d2 comes out above 6g's 8.994.
+/// let c = Command::from_api("verify", r#"{"thread": "M10x1.5-6g", "insert": "full", "final_x": 8.2}"#)?;
+/// let out = c.run(&Request::api(Document::Text, Files::Refused))?;
+/// assert_eq!(out.outcome, Outcome::OutOfTolerance);
+/// assert!(out.document(Document::Text).unwrap_or("").contains("verdict: FAIL"));
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct VerifyArgs {
+    #[cfg_attr(feature = "cli", command(flatten))]
+    #[serde(skip)]
+    #[allow(missing_docs)]
+    pub plan: PlanArgs,
+    /// Tool table: which insert each T number of the program holds (TOML: a file on the command
+    /// line, its text through the API).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.toml", requires = "program", value_parser = Source::path))]
+    #[serde(deserialize_with = "super::args::source_text")]
+    pub tools: Option<Source>,
+    /// Of a program that cuts several threads, the one to take (1-based, in program order, as
+    /// `verify` and `passes` number them); `verify` checks every one without it.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "N", requires = "program", value_parser = crate::commands::args::operation_number))]
+    pub operation: Option<usize>,
+    /// Leave form checks (root radius, minor-diameter zone, flank angles) out of the verdict.
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub gauge_only: bool,
+    /// Skip the per-pass chip and edge metrics: a faster verdict.
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub no_pass_metrics: bool,
+    /// Write an SVG cross-section to this file.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
+    #[serde(skip)]
+    pub svg: Option<PathBuf>,
+    /// Write a self-contained HTML report (picture, checks, passes, notes) to this file.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
+    #[serde(skip)]
+    pub html: Option<PathBuf>,
+    /// Write the program with each operation's correction (the word that sets its final
+    /// depth, put to mid-tolerance d2) to this file; `-` prints it instead of the report.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE|-", requires = "program"))]
+    #[serde(skip)]
+    pub fix: Option<String>,
+    #[cfg_attr(feature = "cli", command(flatten))]
+    #[serde(skip)]
+    #[allow(missing_docs)]
+    pub out: JsonArg,
+}
+
+impl super::ApiArgs for VerifyArgs {
+    type Shared = PlanArgs;
+    fn shared_mut(&mut self) -> Option<&mut PlanArgs> {
+        Some(&mut self.plan)
+    }
+}
+
+impl Job for VerifyArgs {
+    const NAME: &'static str = "verify";
+    const DOCUMENTS: &'static [Document] =
+        &[Document::Json, Document::Text, Document::Svg, Document::Html, Document::Fix];
+
+    fn run(&self, request: &Request) -> Result<Outputs, Error> {
+        self.plan.need_thread("verify")?;
+        let mut spec = self.plan.spec(request.files)?;
+        spec.gauge_only = self.gauge_only;
+        spec.metrics = !self.no_pass_metrics;
+        spec.operation = self.operation;
+        // The pictures and the JSON's deviation samples are computed with the verification.
+        spec.picture = [Document::Svg, Document::Html, Document::Json].into_iter().any(|d| request.wants(d));
+        let tools = self.tools.as_ref().map(|t| tool_table(t, request.files)).transpose()?;
+        let mut inputs = self.plan.inputs();
+        inputs.extend(self.tools.as_ref().and_then(Source::file));
+        if let Some((source, dialect)) = &spec.program {
+            return Ok(self.run_program(&spec, source, *dialect, tools.as_ref(), request)?.reading(inputs));
+        }
+        if request.wants(Document::Fix) {
+            return Err(Error::Input("‹fix› corrects a program: give it with ‹program›".into()));
+        }
+        let v = crate::analysis::verify::verify(&spec)?;
+        Ok(Outputs::new(
+            Outcome::of(v.pass),
+            [
+                request.render(Document::Json, || pretty(&crate::report::VerifyReport::of(&v)))?,
+                request.render(Document::Svg, || Ok(crate::report::verify::verify_svg(&v)))?,
+                request.render(Document::Html, || Ok(crate::report::verify::verify_html(&v)))?,
+                Some((Document::Text, crate::report::verify_text(&v))),
+            ],
+        )
+        .reading(inputs))
+    }
+
+    fn destinations(&self) -> Vec<(Document, Dest)> {
+        Dest::list(
+            [(Document::Json, &self.out.json), (Document::Fix, &self.fix)],
+            [(Document::Svg, &self.svg), (Document::Html, &self.html)],
+        )
+    }
+}
+
+impl VerifyArgs {
+    fn run_program(
+        &self,
+        spec: &VerifySpec,
+        source: &ProgramSource,
+        dialect: crate::gcode::Dialect,
+        tools: Option<&crate::analysis::tools::ToolTable>,
+        request: &Request,
+    ) -> Result<Outputs, Error> {
+        if spec.final_x.is_some() {
+            return Err(Error::Input(
+                "‹final_x› and ‹program› exclude each other: the program sets the passes".into(),
+            ));
+        }
+        let (shown, text) = source.load()?;
+        let default = spec.insert.clone();
+        let insert_given = self.plan.insert_given();
+        let insert_for = |op: &crate::gcode::Operation| -> Option<(InsertChoice, String, bool)> {
+            if insert_given {
+                return None;
+            }
+            if let (Some(tt), Some(t)) = (tools, op.tool) {
+                if let Some((choice, written)) = tt.insert(t) {
+                    return Some((
+                        choice.clone(),
+                        format!("insert of tool T{t} from {}: {written}", tt.source),
+                        false,
+                    ));
+                }
+            }
+            let why = match (op.tool, tools) {
+                (Some(t), Some(tt)) => match tt.tool(t) {
+                    Some((_, written)) => {
+                        format!("tool T{t} is \"{written}\" in {}, not a threading insert", tt.source)
+                    }
+                    None => format!("tool T{t} is not in {}", tt.source),
+                },
+                (Some(t), None) => {
+                    format!("the program names tool T{t} but no tool table was given (‹tools›)")
+                }
+                (None, _) => "the program names no tool".to_string(),
+            };
+            let what = match &default {
+                InsertChoice::Full => "a full-profile insert".to_string(),
+                InsertChoice::Partial { tip_radius } => {
+                    format!("a partial-profile insert with a {} mm tip", fmt_num(*tip_radius))
+                }
+                InsertChoice::File(p) => format!("the insert {}", p.display()),
+                InsertChoice::Toml { name, .. } => format!("the insert {name}"),
+            };
+            Some((
+                default.clone(),
+                format!("insert assumed: {what} ({why}; choose with ‹insert› or ‹tools›)"),
+                true,
+            ))
+        };
+        // `spec` asks for the pictures only when a document draws them (the program's picture
+        // once lost its zone, basic profile, deviation plot and full length).
+        let pv = crate::analysis::verify::verify_program(
+            spec,
+            &text,
+            &shown,
+            dialect,
+            &self.plan.thread,
+            &insert_for,
+        )?;
+        Ok(Outputs::new(
+            Outcome::of(pv.pass()),
+            [
+                request.render(Document::Json, || pretty(&crate::report::ProgramReport::of(&pv)))?,
+                request.render(Document::Svg, || Ok(crate::report::verify::program_svg(&pv)))?,
+                request.render(Document::Html, || Ok(crate::report::verify::program_html(&pv)))?,
+                request.render(Document::Fix, || fixed_program(&pv, &text, &shown))?,
+                Some((Document::Text, crate::report::program_text(&pv))),
+            ],
+        ))
+    }
+}
+
+/// The program with every operation's correction written in; an operation whose correction
+/// is not a plain number in place (an expression, an R-parameter set elsewhere) is an error that
+/// says what to change by hand.
+fn fixed_program(
+    pv: &crate::analysis::verify::ProgramVerification,
+    text: &str,
+    shown: &str,
+) -> Result<String, Error> {
+    let mut edits = Vec::new();
+    for o in &pv.operations {
+        let crate::analysis::verify::OperationResult::Verified(v) = &o.result else {
+            continue;
+        };
+        let Some(c) = &v.correction else { continue };
+        edits.extend(correction_edits(c, shown)?);
+    }
+    crate::gcode::rewrite_words(text, shown, &edits)
+}
+
+/// The word edits of one correction (its word, the same in each other start's cycle, and the
+/// earlier passes deeper than its new value).
+pub(super) fn correction_edits(
+    c: &crate::analysis::correction::Correction,
+    shown: &str,
+) -> Result<Vec<crate::gcode::WordEdit>, Error> {
+    let not_plain = |line, column| Error::Program {
+        file: shown.to_string(),
+        line,
+        column,
+        message: format!("‹fix› rewrites plain numbers only: {}", crate::report::correction_text(c)),
+    };
+    let Some(new) = crate::report::correction_replacement(c) else {
+        return Err(not_plain(c.line, c.column));
+    };
+    // The word, the same word in the other starts' cycles, and the earlier passes that cut
+    // deeper than the new value: each takes it.
+    std::iter::once((c.line, c.column, &c.written, true))
+        .chain(c.also.iter().map(|p| (p.line, p.column, &c.written, true)))
+        .chain(c.deeper.iter().map(|d| (d.line, d.column, &d.written, d.form.editable())))
+        .map(|(line, column, old, editable)| {
+            if editable {
+                Ok(crate::gcode::WordEdit { line, column, old: old.clone(), new: new.clone() })
+            } else {
+                Err(not_plain(line, column))
+            }
+        })
+        .collect()
+}
