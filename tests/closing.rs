@@ -154,7 +154,7 @@ fn correct_takes_the_measured_operation_of_a_program_of_several() {
     assert_eq!(o.status.code(), Some(2));
     assert!(
         one_line_error(&o).ends_with(
-            "cuts 3 threads (G31 at line 15, G31 at line 18, G33 at line 21): say which one with --operation 1 to 3 (operation in the API and Python)"
+            "cuts 3 threads (G31 at line 15, G31 at line 18, G33 at line 21): say which one with --operation 1 to 3"
         ),
         "{}",
         stderr(&o)

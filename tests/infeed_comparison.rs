@@ -247,11 +247,13 @@ fn the_committed_report_regenerates_byte_for_byte() {
     let dir = crate::tempdir("report");
     let report =
         threadcheck::ReportArgs { name: threadcheck::ReportName::InfeedComparison, out: dir.clone() };
-    let out = threadcheck::Job::run(
-        &report,
-        &threadcheck::Request::api(threadcheck::Document::Text, threadcheck::Files::Allowed),
-    )
-    .unwrap();
+    // The command line's report: its words name flags (`--insert full`).
+    let request = threadcheck::Request {
+        wanted: vec![threadcheck::Document::Text],
+        files: threadcheck::Files::Allowed,
+        reader: threadcheck::Audience::Cli,
+    };
+    let out = threadcheck::Job::run(&report, &request).unwrap();
     threadcheck::deliver(&out, &[], threadcheck::Audience::Cli).unwrap();
     let committed = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("reports");
     let mut n = 0;

@@ -178,20 +178,20 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
             )))
         }
     };
-    nonneg(spec.x_sigma, "--x-sigma", 1.0)?;
-    nonneg(spec.tip_radius_tol, "--tip-radius-tol", 1.0)?;
-    nonneg(spec.wear_per_part, "--wear-per-part", 1.0)?;
+    nonneg(spec.x_sigma, "‹x_sigma›", 1.0)?;
+    nonneg(spec.tip_radius_tol, "‹tip_radius_tol›", 1.0)?;
+    nonneg(spec.wear_per_part, "‹wear_per_part›", 1.0)?;
     // Under a nanometre a part the edge would last beyond any count (1e-300 printed
     // 18446744073709551615 parts, a saturated integer).
     if spec.wear_per_part > 0.0 && spec.wear_per_part < MIN_WEAR_PER_PART {
         return Err(Error::Input(format!(
-            "--wear-per-part {} mm: a wear is 0 or at least {} mm (1 nm) a part",
+            "‹wear_per_part› {} mm: a wear is 0 or at least {} mm (1 nm) a part",
             crate::ground::fmt::fmt_shown(spec.wear_per_part),
             crate::ground::fmt::fmt_shown(MIN_WEAR_PER_PART)
         )));
     }
     if !(2..=MAX_SAMPLES).contains(&spec.samples) {
-        return Err(Error::Input(format!("--samples {}: must be from 2 to {MAX_SAMPLES}", spec.samples)));
+        return Err(Error::Input(format!("‹samples› {}: must be from 2 to {MAX_SAMPLES}", spec.samples)));
     }
     let (recut, v) = Recut::new(&spec.verify)?;
     // The work is bounded before it starts: each sample costs a fixed part and a part per pass.
@@ -211,14 +211,14 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
         (Some(r), t) if t < r => Some((r, t)),
         (Some(r), t) => {
             return Err(Error::Input(format!(
-                "--tip-radius-tol {} mm: must be under the tip radius {} mm",
+                "‹tip_radius_tol› {} mm: must be under the tip radius {} mm",
                 crate::ground::fmt::fmt_num(t),
                 crate::ground::fmt::fmt_num(r)
             )))
         }
         (None, _) => {
             return Err(Error::Input(
-                "--tip-radius-tol varies a partial-profile insert's tip radius: give --insert partial:R"
+                "‹tip_radius_tol› varies a partial-profile insert's tip radius: give ‹insert› partial:R"
                     .into(),
             ))
         }

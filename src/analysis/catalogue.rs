@@ -221,7 +221,7 @@ fn threads(spec: &CatalogueSpec, form: ThreadForm) -> Result<Vec<(String, f64, b
 pub fn cases(spec: &CatalogueSpec) -> Result<Vec<Case>, Error> {
     // The metric class is checked once, as a usage error, not once per case.
     crate::standards::tolerance::IsoClass::parse(&spec.class)
-        .map_err(|m| Error::Input(format!("--class {}: {m}", spec.class)))?;
+        .map_err(|m| Error::Input(format!("‹class› {}: {m}", spec.class)))?;
     let mut out = Vec::new();
     for &form in &spec.forms {
         for (designation, p, internal) in threads(spec, form)? {

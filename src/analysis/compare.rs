@@ -244,12 +244,12 @@ fn summarise(label: &str, schedule: &str, v: &Verification) -> Summary {
 pub fn compare(base: &VerifySpec, modified: &[f64], choice: &CompareChoice) -> Result<Comparison, Error> {
     if base.program.is_some() {
         return Err(Error::Input(
-            "compare lays out each infeed strategy's own passes, and a program fixes its own: verify the program, or compare its thread without --program".into(),
+            "compare lays out each infeed strategy's own passes, and a program fixes its own: verify the program, or compare its thread without ‹program›".into(),
         ));
     }
     if base.taper != 0.0 {
         return Err(Error::Input(
-            "--taper lays out a tapered pass plan for `passes`; compare takes a taper thread's taper from its designation (NPT, ISO 7-1)".into(),
+            "‹taper› lays out a tapered pass plan for `passes`; compare takes a taper thread's taper from its designation (NPT, ISO 7-1)".into(),
         ));
     }
     let final_x = match base.final_x {

@@ -186,7 +186,7 @@ impl CorrectReport {
 pub fn correct(spec: &CorrectSpec) -> Result<CorrectReport, Error> {
     if spec.measured.is_none() && spec.pickup_z.is_none() {
         return Err(Error::Input(
-            "correct needs what was measured: --measured-m with --wire, --measured-d2 or --gauge (or --pickup-z)"
+            "correct needs what was measured: ‹measured_m› with ‹wire›, ‹measured_d2› or ‹gauge› (or ‹pickup_z›)"
                 .into(),
         ));
     }
@@ -217,7 +217,7 @@ pub fn correct(spec: &CorrectSpec) -> Result<CorrectReport, Error> {
             positive(wire, "wire diameter")?;
             if v.kind != ThreadKind::External {
                 return Err(Error::Input(
-                    "--measured-m is a measurement over wires of an external thread: measure a nut's pitch diameter (--measured-d2) or gauge it".into(),
+                    "‹measured_m› is a measurement over wires of an external thread: measure a nut's pitch diameter (‹measured_d2›) or gauge it".into(),
                 ));
             }
             let m_computed = over_wires_of(&v, wire)?;
@@ -427,7 +427,7 @@ fn over_wires_of(v: &Verification, wire: f64) -> Result<f64, Error> {
 fn pickup(v: &Verification, measured_z: f64) -> Result<Pickup, Error> {
     if !(measured_z.abs() <= crate::ground::bounds::MAX_COORDINATE) {
         return Err(Error::Input(format!(
-            "--pickup-z {}: a groove's position is a finite number within {} mm of the program's Z0",
+            "‹pickup_z› {}: a groove's position is a finite number within {} mm of the program's Z0",
             crate::ground::fmt::fmt_shown(measured_z),
             crate::ground::fmt::fmt_shown(crate::ground::bounds::MAX_COORDINATE)
         )));

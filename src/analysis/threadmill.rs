@@ -127,7 +127,7 @@ fn helices(moves: &[Move], file: &str, comp: Option<f64>) -> Result<Vec<Helix>, 
                     line: mv.line,
                     column: 1,
                     message: format!(
-                        "a helix under cutter radius compensation (G4{}): give the compensation value the D register holds (--comp-radius MM)",
+                        "a helix under cutter radius compensation (G4{}): give the compensation value the D register holds (‹comp_radius› MM)",
                         mv.comp
                     ),
                 })
@@ -246,7 +246,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         (None, Some(tt)) => {
             let t = first_tool.ok_or_else(|| {
                 Error::Input(
-                    "the program names no tool before its helices: give the cutter (--cutter-diameter)"
+                    "the program names no tool before its helices: give the cutter (‹cutter_diameter›)"
                         .into(),
                 )
             })?;
@@ -268,7 +268,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
             }
         }
         (None, None) => {
-            return Err(Error::Input("give the cutter: --cutter-diameter, or a tool table (--tools)".into()))
+            return Err(Error::Input("give the cutter: ‹cutter_diameter›, or a tool table (‹tools›)".into()))
         }
     };
     let comp = match (spec.comp_radius, &spec.tools, first_tool) {
@@ -360,7 +360,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
                 (None, None) => t.nominal_diameter,
             };
             notes.push(format!(
-                "the {} is taken as Ø{b:.4}, the middle of the class's {} limits (--blank-diameter sets it)",
+                "the {} is taken as Ø{b:.4}, the middle of the class's {} limits (‹blank_diameter› sets it)",
                 if internal { "bore" } else { "blank" },
                 if internal { "D1" } else { "d" }
             ));

@@ -610,7 +610,7 @@ pub fn program_passes(
             let hint = if u == crate::gcode::ProgramUnits::Mm
                 && crate::analysis::lead::lead_deviation(p.lead * inch.mm(), inch, t, 0.0).is_ok()
             {
-                "; read in inches it is the designation's (G20, or --default-units inch if the program sets no units)"
+                "; read in inches it is the designation's (G20, or ‹default_units› inch if the program sets no units)"
                     .to_string()
             } else {
                 String::new()
@@ -840,7 +840,7 @@ pub fn coated(
         if let (Some(lo), Some(hi)) = (l.min, l.max) {
             if lo > hi + 1e-9 {
                 return Err(Error::Input(format!(
-                    "coating {} mm: it leaves no tolerance on the {name} diameter before coating ({} over {}): a thinner coat, another class, or --coating-limits after if the drawing says the class applies after coating",
+                    "coating {} mm: it leaves no tolerance on the {name} diameter before coating ({} over {}): a thinner coat, another class, or ‹coating_limits› after if the drawing says the class applies after coating",
                     crate::ground::fmt::fmt_num(thickness),
                     crate::ground::fmt::fmt_num(lo),
                     crate::ground::fmt::fmt_num(hi)
@@ -937,7 +937,7 @@ fn operation_index(
         ))),
         None if n == 1 => Ok(0),
         None => Err(Error::Input(format!(
-            "{shown} cuts {n} threads ({}): say which one with --operation 1 to {n} (operation in the API and Python)",
+            "{shown} cuts {n} threads ({}): say which one with ‹operation› 1 to {n}",
             list()
         ))),
     }
@@ -1113,7 +1113,7 @@ fn judge(
 fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error> {
     let spec = &r.spec;
     if spec.taper != 0.0 {
-        return Err(Error::Input("--taper lays out a tapered pass plan for `passes`; verify takes a taper thread's taper from its designation (NPT, ISO 7-1) or from a program".into()));
+        return Err(Error::Input("‹taper› lays out a tapered pass plan for `passes`; verify takes a taper thread's taper from its designation (NPT, ISO 7-1) or from a program".into()));
     }
     let (des, kind, limits, insert, blank, infeed) =
         (r.designation.clone(), r.kind, r.limits.clone(), r.insert.clone(), r.blank, r.infeed);
@@ -1433,7 +1433,7 @@ pub fn verify_operation(
                 t.line,
                 1,
                 format!(
-                    "the {} is the program's own: Ø{:.4} turned here over the thread's length (--blank-diameter overrides)",
+                    "the {} is the program's own: Ø{:.4} turned here over the thread's length (‹blank_diameter› overrides)",
                     if r.kind == ThreadKind::External { "blank" } else { "bore" },
                     t.from[0]
                 ),
@@ -1591,7 +1591,7 @@ fn verify_given(
     if let Some(d) = &lead {
         let whole = d.pitch_diameter_equivalent * pass_length / used.max(1e-9);
         notes.push(crate::ground::note::Note::from(format!(
-            "the lead error adds up over {:.3} mm: the thread on the part from its face at Z0 ({:.3} mm of the finishing pass's {:.3} mm) up to the length of engagement ({basis}; --engagement sets it); {:.1} µm on the pitch diameter, {:.1} µm over the whole pass",
+            "the lead error adds up over {:.3} mm: the thread on the part from its face at Z0 ({:.3} mm of the finishing pass's {:.3} mm) up to the length of engagement ({basis}; ‹engagement› sets it); {:.1} µm on the pitch diameter, {:.1} µm over the whole pass",
             used,
             on_part,
             pass_length,
@@ -1728,7 +1728,7 @@ pub fn verify_program(
                 v.checks.iter().filter(|c| !c.ok).all(|c| c.kind == crate::analysis::check::CheckKind::Form);
             if assumed && !v.pass && only_form && matches!(s.insert, InsertChoice::Partial { .. }) {
                 v.notes.push(crate::ground::note::Note::from(
-                    "only form checks fail, with the assumed partial-profile insert: --insert full cuts the standard root; --gauge-only gives the gauge verdict (sizes and the GO gauge)",
+                    "only form checks fail, with the assumed partial-profile insert: ‹insert› full cuts the standard root; ‹gauge_only› gives the gauge verdict (sizes and the GO gauge)",
                 ));
             }
         }

@@ -30,7 +30,7 @@ impl Job for ReportArgs {
 
     /// `infeed-comparison`: every strategy compared on the report's threads with a full- and a
     /// partial-profile insert; the page and its pictures are the run's files.
-    fn run(&self, _request: &Request) -> Result<Outputs, Error> {
+    fn run(&self, request: &Request) -> Result<Outputs, Error> {
         use crate::analysis::compare::{compare, REPORT_THREADS};
         use crate::analysis::verify::{InsertChoice, VerifySpec};
         match self.name {
@@ -60,9 +60,10 @@ impl Job for ReportArgs {
                     Outcome::Pass,
                     [Some((Document::Text, format!("wrote {}\n", page.display())))],
                 );
-                o.files =
-                    pictures.into_iter().map(|(name, svg)| (self.out.join(name), svg.into_bytes())).collect();
-                o.files.push((page, md.into_bytes()));
+                // The page is the command line's: its words name flags as `request.reader` does.
+                let words = |t: String| request.reader.words(&t).into_bytes();
+                o.files = pictures.into_iter().map(|(name, svg)| (self.out.join(name), words(svg))).collect();
+                o.files.push((page, words(md)));
                 Ok(o)
             }
         }

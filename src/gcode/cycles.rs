@@ -276,7 +276,7 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                 return Err(m.err(
                     b.line,
                     col,
-                    "G78 is not a code of Fanuc G-code system A, which this program is read in: a control set to system B reads it as the threading cycle (G92 in A), one set to system C as the multiple threading cycle (G76 in A); give --gcode-system b or c (the EMCO training lathe's G78 box cycle is not supported)",
+                    "G78 is not a code of Fanuc G-code system A, which this program is read in: a control set to system B reads it as the threading cycle (G92 in A), one set to system C as the multiple threading cycle (G76 in A); give ‹gcode_system› b or c (the EMCO training lathe's G78 box cycle is not supported)",
                 ))
             }
             78 if fanuc_like || d == Dialect::Sinumerik => {
@@ -399,7 +399,7 @@ pub(crate) fn read_past_item(m: &mut Motion, line: usize, p: &Past) -> Result<()
                 line,
                 p.col,
                 &p.name,
-                "a tool called by name; the insert is the one --insert (or --tools by number) gives",
+                "a tool called by name; the insert is the one ‹insert› (or ‹tools› by number) gives",
             );
         }
         PastKind::Call if THREADING_CALLS.iter().any(|t| p.name.strip_suffix("(…)") == Some(t)) => {

@@ -277,8 +277,8 @@ fn choose_main(
             if !(first_is_main && names.first() == Some(&want)) {
                 let has = if first_is_main { names.first().cloned() } else { None };
                 return Err(Error::Input(match has {
-                    Some(n) => format!("--main {want}: the file holds one program, {n}"),
-                    None => format!("--main {want}: the file names no O-program"),
+                    Some(n) => format!("‹main› {want}: the file holds one program, {n}"),
+                    None => format!("‹main› {want}: the file names no O-program"),
                 }));
             }
         }
@@ -289,7 +289,7 @@ fn choose_main(
         Some(o) => {
             let want = format!("O{o}");
             names.iter().position(|n| *n == want).ok_or_else(|| {
-                Error::Input(format!("--main {want}: the file's programs are {}", names.join(", ")))
+                Error::Input(format!("‹main› {want}: the file's programs are {}", names.join(", ")))
             })?
         }
         None => {
@@ -311,12 +311,12 @@ fn choose_main(
     l.main_name = Some(names[k].clone());
     let hb = &blocks[headers[k]];
     let why = match main {
-        Some(_) => "as --main says".to_string(),
+        Some(_) => "as ‹main› says".to_string(),
         None => {
             let others: Vec<&String> =
                 names.iter().enumerate().filter(|(j, _)| *j != k).map(|(_, n)| n).collect();
             format!(
-                "the file holds {} programs ({}) and no other calls it (--main picks another)",
+                "the file holds {} programs ({}) and no other calls it (‹main› picks another)",
                 names.len(),
                 std::iter::once(&names[k]).chain(others).cloned().collect::<Vec<_>>().join(", ")
             )
@@ -369,7 +369,7 @@ fn layout(blocks: &[Block], lang: Language, m: &mut Motion, main: Option<u32>) -
         }
     } else if let Some(o) = main {
         return Err(Error::Input(format!(
-            "--main O{o}: the {} dialect has no O-numbered programs to choose from",
+            "‹main› O{o}: the {} dialect has no O-numbered programs to choose from",
             m.dialect.name()
         )));
     }

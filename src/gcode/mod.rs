@@ -786,7 +786,7 @@ fn read(
     let fanuc_family = dialect.fanuc_family();
     if !fanuc_family && opts.gcode_system != GCodeSystem::A {
         return Err(Error::Input(format!(
-            "G-code system {} is a setting of Fanuc-family lathe controls (fanuc, mitsubishi, mazak): a {} program has one G-code list (leave --gcode-system out)",
+            "G-code system {} is a setting of Fanuc-family lathe controls (fanuc, mitsubishi, mazak): a {} program has one G-code list (leave ‹gcode_system› out)",
             opts.gcode_system.name(),
             dialect.name()
         )));
@@ -823,11 +823,11 @@ fn read(
     let dialect_note = match opts.dialect_from {
         DialectFrom::Given => None,
         DialectFrom::Extension => Some(format!(
-            "read as {}, the dialect of its extension .{extension} (--dialect chooses another)",
+            "read as {}, the dialect of its extension .{extension} (‹dialect› chooses another)",
             dialect.name()
         )),
         DialectFrom::Default => Some(format!(
-            "read as {}: the default dialect, as neither --dialect nor the extension names one",
+            "read as {}: the default dialect, as neither ‹dialect› nor the extension names one",
             dialect.name()
         )),
     };
@@ -839,16 +839,16 @@ fn read(
     };
     let units_note = match units_assumed {
         Some(None) if !operations.is_empty() => Some(format!(
-            "{codes}: read in mm, the default; an inch control's program needs --default-units inch"
+            "{codes}: read in mm, the default; an inch control's program needs ‹default_units› inch"
         )),
-        Some(Some(u)) => Some(format!("{codes}: read in {}, as --default-units says", u.name())),
+        Some(Some(u)) => Some(format!("{codes}: read in {}, as ‹default_units› says", u.name())),
         _ => None,
     };
     // The system is a setting of the control, not in the program: say which one was read.
     let system_note = (fanuc_family && !operations.is_empty()).then(|| match opts.gcode_system {
-        GCodeSystem::A => "read in Fanuc G-code system A (G92 the threading cycle, G76 the multiple one, G32 thread cutting); a control set to system B or C needs --gcode-system b or c".to_string(),
-        GCodeSystem::B => "read in Fanuc G-code system B, as --gcode-system says: G78 the threading cycle, G76 the multiple one, G33 thread cutting, G92 coordinates, G90/G91 absolute/incremental".to_string(),
-        GCodeSystem::C => "read in Fanuc G-code system C, as --gcode-system says: G21 the threading cycle, G78 the multiple one, G33 thread cutting, G70/G71 inch/metric, G92 coordinates, G90/G91 absolute/incremental".to_string(),
+        GCodeSystem::A => "read in Fanuc G-code system A (G92 the threading cycle, G76 the multiple one, G32 thread cutting); a control set to system B or C needs ‹gcode_system› b or c".to_string(),
+        GCodeSystem::B => "read in Fanuc G-code system B, as ‹gcode_system› says: G78 the threading cycle, G76 the multiple one, G33 thread cutting, G92 coordinates, G90/G91 absolute/incremental".to_string(),
+        GCodeSystem::C => "read in Fanuc G-code system C, as ‹gcode_system› says: G21 the threading cycle, G78 the multiple one, G33 thread cutting, G70/G71 inch/metric, G92 coordinates, G90/G91 absolute/incremental".to_string(),
     });
     // Mitsubishi and Mazak are read as the Fanuc model: say so wherever they thread.
     let model_note = match dialect {

@@ -116,7 +116,7 @@ pub fn hint_text(h: &crate::analysis::check::Hint) -> String {
     use crate::analysis::check::Hint;
     match *h {
         Hint::TipRadius { tip_radius, root_radius_min } => format!(
-            "the insert's tip radius {} mm is under the standard's root radius {} mm, which no final X changes: use a full-profile insert (--insert full) or a tip of {} mm or more; --gauge-only judges the sizes and the GO gauge alone",
+            "the insert's tip radius {} mm is under the standard's root radius {} mm, which no final X changes: use a full-profile insert (‹insert› full) or a tip of {} mm or more; ‹gauge_only› judges the sizes and the GO gauge alone",
             fmt_num(tip_radius),
             fmt_num(root_radius_min),
             fmt_num(root_radius_min)

@@ -422,7 +422,7 @@ pub fn verify_text(v: &Verification) -> String {
     } else {
         let form = form_only_from_tip(v).map_or(String::new(), |tip| {
             format!(
-                " — form only, from the insert's {} mm tip: --insert full cuts the standard root; --gauge-only judges the sizes and the GO gauge alone",
+                " — form only, from the insert's {} mm tip: ‹insert› full cuts the standard root; ‹gauge_only› judges the sizes and the GO gauge alone",
                 fmt_num(tip)
             )
         });

@@ -24,9 +24,9 @@ function show(id, on) { $(id).hidden = !on; }
 
 /** The API's keys that an error may name, as the page's own controls. */
 const CONTROLS = [
-  [/--insert full/g, "Insert: full profile"],
-  [/--gauge-only/g, "the 'gauge only' box"],
-  [/--coating-limits after/g, "'The class applies: after coating'"],
+  [/\binsert full\b/g, "Insert: full profile"],
+  [/\bgauge_only\b/g, "the 'gauge only' box"],
+  [/\bcoating_limits after\b/g, "'The class applies: after coating'"],
   [/\(allow_nonstandard\)/g, "(tick 'non-standard size')"],
   [/\ballow_nonstandard\b/g, "the 'non-standard size' box"],
 ];

@@ -465,7 +465,7 @@ impl ThreadLimits {
                     min: l.min.map(|v| nm(v + by)),
                 };
                 notes.push(format!(
-                    "limits before a coating of {} mm, the class applying after coating (--coating-limits after, as the drawing says): the class's moved {} µm {} on the pitch diameter (2t / sin {}°) and {} µm on the major and minor diameters (2t)",
+                    "limits before a coating of {} mm, the class applying after coating (‹coating_limits› after, as the drawing says): the class's moved {} µm {} on the pitch diameter (2t / sin {}°) and {} µm on the major and minor diameters (2t)",
                     fmt_num(thickness),
                     um(pitch),
                     if away < 0.0 { "down" } else { "up" },
@@ -545,7 +545,7 @@ impl ThreadLimits {
                     ),
                 };
                 notes.push(format!(
-                    "limits before a coating of {} mm: the class's own, which the standards apply before coating (ISO 965-1 §8.5, ASME B1.1 §7; --coating-limits after when the drawing says otherwise); after coating the thread must stay within the basic profile (h/H): {}",
+                    "limits before a coating of {} mm: the class's own, which the standards apply before coating (ISO 965-1 §8.5, ASME B1.1 §7; ‹coating_limits› after when the drawing says otherwise); after coating the thread must stay within the basic profile (h/H): {}",
                     fmt_num(thickness),
                     if capped.is_empty() { "no limit needs moving".to_string() } else { capped.join(", ") }
                 ));
