@@ -1,5 +1,5 @@
 //! The house rule, held by a test: the wings along the data path import only the wings above
-//! them (ground, standards, toolpath, gcode, geometry, analysis, report, jobs, request, serve),
+//! them (ground, standards, toolpath, gcode, geometry, analysis, report, commands, serve),
 //! so nothing below `report/` reaches presentation; `geometry/` never imports `gcode/` (the cut
 //! knows passes, not programs); an import is seen whether it names the wing's path or a name
 //! `lib.rs` re-exports from it, in a module's code and in its unit tests alike; and `src/` keeps
@@ -7,18 +7,8 @@
 
 use std::path::{Path, PathBuf};
 
-const WINGS: [&str; 10] = [
-    "ground",
-    "standards",
-    "toolpath",
-    "gcode",
-    "geometry",
-    "analysis",
-    "report",
-    "jobs",
-    "request",
-    "serve",
-];
+const WINGS: [&str; 9] =
+    ["ground", "standards", "toolpath", "gcode", "geometry", "analysis", "report", "commands", "serve"];
 
 /// Pairs (importer, imported) forbidden though the imported wing lies above: the cut needs
 /// passes, never a program.
@@ -196,4 +186,83 @@ fn report_is_cut_by_command() {
         assert!(!names.iter().any(|n| n == medium), "report/{medium}: a file named after a medium");
     }
     assert!(names.iter().any(|n| n == "kit.rs"), "report/kit.rs, the shared drawing kit, is missing");
+}
+
+/// A command lives in one place: `commands/` holds a file per command, named as the command
+/// line spells it, and no other wing defines a command's arguments (no clap attribute outside
+/// `commands/`, `serve/args.rs` and the binary's `cli.rs` and `main.rs`).
+#[test]
+fn a_command_lives_in_one_file() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    for name in threadcheck::Command::NAMES {
+        let file = src.join("commands").join(format!("{}.rs", name.replace('-', "_")));
+        assert!(file.is_file(), "{name}: no {}", file.display());
+    }
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    for f in &files {
+        let rel = f.strip_prefix(&src).unwrap().to_string_lossy().replace('\\', "/");
+        if rel.starts_with("commands/") || rel == "serve/args.rs" || rel == "cli.rs" || rel == "main.rs" {
+            continue;
+        }
+        let text = code(&std::fs::read_to_string(f).unwrap());
+        assert!(!text.contains("clap::"), "{rel} names clap: a command's arguments belong in commands/");
+    }
+}
+
+/// Below `commands/` a message names an argument by its key (`‹min_depth›`), never as a flag
+/// (`--min-depth`): the command line and the API each show it as their user typed it.
+#[test]
+fn no_wing_below_the_commands_names_a_flag() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut wrong = Vec::new();
+    for f in &files {
+        let rel = f.strip_prefix(&src).unwrap().to_string_lossy().replace('\\', "/");
+        let Some(wing) =
+            rel.split('/').next().filter(|w| rel.contains('/') && *w != "commands" && *w != "serve")
+        else {
+            continue;
+        };
+        assert!(WINGS.contains(&wing), "{rel}");
+        for (n, line) in code(&std::fs::read_to_string(f).unwrap()).lines().enumerate() {
+            // Strings only: `--` between quotes, followed by a flag's letter.
+            let mut quoted = false;
+            let chars: Vec<char> = line.chars().collect();
+            for (i, c) in chars.iter().enumerate() {
+                if *c == '"' && (i == 0 || chars[i - 1] != '\\') {
+                    quoted = !quoted;
+                }
+                if quoted
+                    && *c == '-'
+                    && chars.get(i + 1) == Some(&'-')
+                    && chars.get(i + 2).is_some_and(|c| c.is_ascii_lowercase())
+                    && !line.contains("cargo run --release")
+                {
+                    wrong.push(format!("{rel}:{}: {}", n + 1, line.trim()));
+                    break;
+                }
+            }
+        }
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
+
+/// Every key the API and Python take is a flag of the same command (read into the same field),
+/// besides the two that only text input needs: a program's name and an insert file's text.
+#[test]
+fn every_api_key_is_a_flag_of_its_command() {
+    use clap::Subcommand;
+    let cli = threadcheck::Command::augment_subcommands(clap::Command::new("threadcheck"));
+    for name in threadcheck::Command::API {
+        let sub = cli.find_subcommand(name).unwrap_or_else(|| panic!("{name} is not a command line command"));
+        let ids: Vec<&str> = sub.get_arguments().map(|a| a.get_id().as_str()).collect();
+        for key in threadcheck::Command::keys(name).unwrap() {
+            if key == "program_name" || key == "insert_toml" {
+                continue;
+            }
+            assert!(ids.contains(&key), "{name}: the API's key {key} is no flag of the command line");
+        }
+    }
 }
