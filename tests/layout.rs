@@ -25,6 +25,20 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
+/// Every file of `src/`: its path below `src/` (with `/`) and its code (see [`code`]).
+fn src_code() -> Vec<(String, String)> {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    files
+        .iter()
+        .map(|f| {
+            let rel = f.strip_prefix(&src).unwrap().to_string_lossy().replace('\\', "/");
+            (rel, code(&std::fs::read_to_string(f).unwrap()))
+        })
+        .collect()
+}
+
 /// The code of a file without comments and without its unit-test modules (`#[cfg(test)]` and
 /// the braced item after it).
 fn code(text: &str) -> String {
@@ -148,13 +162,8 @@ fn src_has_few_top_level_files() {
 /// only in `serve/mod.rs`.
 #[test]
 fn each_backend_has_one_door() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut files = Vec::new();
-    rust_files(&src, &mut files);
     let mut wrong = Vec::new();
-    for f in &files {
-        let rel = f.strip_prefix(&src).unwrap().to_string_lossy().replace('\\', "/");
-        let text = code(&std::fs::read_to_string(f).unwrap());
+    for (rel, text) in src_code() {
         for (krate, door) in [
             ("geo::", "geometry/boolean.rs"),
             ("parry2d_f64::", "geometry/parry.rs"),
@@ -198,14 +207,10 @@ fn a_command_lives_in_one_file() {
         let file = src.join("commands").join(format!("{}.rs", name.replace('-', "_")));
         assert!(file.is_file(), "{name}: no {}", file.display());
     }
-    let mut files = Vec::new();
-    rust_files(&src, &mut files);
-    for f in &files {
-        let rel = f.strip_prefix(&src).unwrap().to_string_lossy().replace('\\', "/");
+    for (rel, text) in src_code() {
         if rel.starts_with("commands/") || rel == "serve/args.rs" || rel == "cli.rs" || rel == "main.rs" {
             continue;
         }
-        let text = code(&std::fs::read_to_string(f).unwrap());
         assert!(!text.contains("clap::"), "{rel} names clap: a command's arguments belong in commands/");
     }
 }
@@ -214,19 +219,15 @@ fn a_command_lives_in_one_file() {
 /// (`--min-depth`): the command line and the API each show it as their user typed it.
 #[test]
 fn no_wing_below_the_commands_names_a_flag() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut files = Vec::new();
-    rust_files(&src, &mut files);
     let mut wrong = Vec::new();
-    for f in &files {
-        let rel = f.strip_prefix(&src).unwrap().to_string_lossy().replace('\\', "/");
+    for (rel, text) in src_code() {
         let Some(wing) =
             rel.split('/').next().filter(|w| rel.contains('/') && *w != "commands" && *w != "serve")
         else {
             continue;
         };
         assert!(WINGS.contains(&wing), "{rel}");
-        for (n, line) in code(&std::fs::read_to_string(f).unwrap()).lines().enumerate() {
+        for (n, line) in text.lines().enumerate() {
             // Strings only: `--` between quotes, followed by a flag's letter.
             let mut quoted = false;
             let chars: Vec<char> = line.chars().collect();

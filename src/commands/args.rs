@@ -475,3 +475,52 @@ impl ProgramArgs {
         self.program.as_ref().and_then(Source::file).into_iter().collect()
     }
 }
+
+/// Where the command line sends a command's picture, page and JSON.
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+#[derive(Clone, Debug, Default)]
+pub struct PictureArgs {
+    /// Write the picture (SVG) to this file.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
+    pub svg: Option<PathBuf>,
+    /// Write a self-contained HTML page (the picture, the checks, the notes) to this file.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
+    pub html: Option<PathBuf>,
+    /// JSON: on stdout instead of the text (`--json` or `--json -`), or written to FILE.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE|-", num_args = 0..=1, default_missing_value = "-"))]
+    pub json: Option<String>,
+}
+
+impl PictureArgs {
+    /// The destinations, with a corrected program's (`fix`) where the command writes one.
+    pub(crate) fn destinations(&self, fix: Option<&Option<String>>) -> Vec<(super::Document, super::Dest)> {
+        use super::Document;
+        let fix = fix.into_iter().map(|f| (Document::Fix, f));
+        super::Dest::list(
+            std::iter::once((Document::Json, &self.json)).chain(fix),
+            [(Document::Svg, &self.svg), (Document::Html, &self.html)],
+        )
+    }
+}
+
+/// Implements [`ApiArgs`](super::ApiArgs) for a command's arguments: `shares field: Type` for a
+/// command that flattens shared arguments into its own, `shares nothing` for one that does not.
+macro_rules! api_args {
+    ($args:ty, shares $field:ident: $shared:ty) => {
+        impl $crate::commands::ApiArgs for $args {
+            type Shared = $shared;
+            fn shared_mut(&mut self) -> Option<&mut $shared> {
+                Some(&mut self.$field)
+            }
+        }
+    };
+    ($args:ty, shares nothing) => {
+        impl $crate::commands::ApiArgs for $args {
+            type Shared = $crate::commands::NoShared;
+            fn shared_mut(&mut self) -> Option<&mut $crate::commands::NoShared> {
+                None
+            }
+        }
+    };
+}
+pub(crate) use api_args;

@@ -1,12 +1,11 @@
 //! `threadcheck capability`: a program's (or plan's) parts over the machine's and the insert's
 //! variation.
 
-use super::args::{JsonArg, PlanArgs};
+use super::args::PlanArgs;
 use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
 use crate::analysis::capability::CapabilitySpec;
 use crate::Error;
 use serde::Deserialize;
-use std::path::PathBuf;
 
 /// The least pitch-diameter Cpk a capable program keeps (ISO 22514's usual requirement).
 pub const CAPABLE_CPK: f64 = 1.33;
@@ -50,26 +49,13 @@ pub struct CapabilityArgs {
     /// Leave form checks out of each part's verdict (the share of good parts).
     #[cfg_attr(feature = "cli", arg(long))]
     pub gauge_only: bool,
-    /// Write the pitch diameter's histogram (SVG) to this file.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
-    #[serde(skip)]
-    pub svg: Option<PathBuf>,
-    /// Write a self-contained HTML page to this file.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
-    #[serde(skip)]
-    pub html: Option<PathBuf>,
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
     #[allow(missing_docs)]
-    pub out: JsonArg,
+    pub out: super::args::PictureArgs,
 }
 
-impl super::ApiArgs for CapabilityArgs {
-    type Shared = PlanArgs;
-    fn shared_mut(&mut self) -> Option<&mut PlanArgs> {
-        Some(&mut self.plan)
-    }
-}
+super::args::api_args!(CapabilityArgs, shares plan: PlanArgs);
 
 impl Job for CapabilityArgs {
     const NAME: &'static str = "capability";
@@ -110,9 +96,6 @@ impl Job for CapabilityArgs {
     }
 
     fn destinations(&self) -> Vec<(Document, Dest)> {
-        Dest::list(
-            [(Document::Json, &self.out.json)],
-            [(Document::Svg, &self.svg), (Document::Html, &self.html)],
-        )
+        self.out.destinations(None)
     }
 }

@@ -35,12 +35,7 @@ pub struct CompareArgs {
     pub out: JsonArg,
 }
 
-impl super::ApiArgs for CompareArgs {
-    type Shared = PlanArgs;
-    fn shared_mut(&mut self) -> Option<&mut PlanArgs> {
-        Some(&mut self.plan)
-    }
-}
+super::args::api_args!(CompareArgs, shares plan: PlanArgs);
 
 impl Job for CompareArgs {
     const NAME: &'static str = "compare";

@@ -62,12 +62,7 @@ pub struct CorrectArgs {
     pub out: JsonArg,
 }
 
-impl super::ApiArgs for CorrectArgs {
-    type Shared = PlanArgs;
-    fn shared_mut(&mut self) -> Option<&mut PlanArgs> {
-        Some(&mut self.plan)
-    }
-}
+super::args::api_args!(CorrectArgs, shares plan: PlanArgs);
 
 impl CorrectArgs {
     /// The one measurement given, if any.

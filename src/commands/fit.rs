@@ -62,12 +62,7 @@ pub struct FitArgs {
     pub out: JsonArg,
 }
 
-impl super::ApiArgs for FitArgs {
-    type Shared = super::NoShared;
-    fn shared_mut(&mut self) -> Option<&mut super::NoShared> {
-        None
-    }
-}
+super::args::api_args!(FitArgs, shares nothing);
 
 /// One side of the pair: its program (read), or its plan's final X, and its insert.
 fn side(

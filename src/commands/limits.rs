@@ -95,9 +95,4 @@ impl Job for LimitsArgs {
     }
 }
 
-impl super::ApiArgs for LimitsArgs {
-    type Shared = super::NoShared;
-    fn shared_mut(&mut self) -> Option<&mut super::NoShared> {
-        None
-    }
-}
+super::args::api_args!(LimitsArgs, shares nothing);

@@ -40,12 +40,7 @@ pub struct MillArgs {
     pub out: JsonArg,
 }
 
-impl super::ApiArgs for MillArgs {
-    type Shared = ProgramArgs;
-    fn shared_mut(&mut self) -> Option<&mut ProgramArgs> {
-        Some(&mut self.file)
-    }
-}
+super::args::api_args!(MillArgs, shares file: ProgramArgs);
 
 impl Job for MillArgs {
     const NAME: &'static str = "mill";

@@ -32,12 +32,7 @@ pub struct PassesArgs {
     pub out: JsonArg,
 }
 
-impl super::ApiArgs for PassesArgs {
-    type Shared = PlanArgs;
-    fn shared_mut(&mut self) -> Option<&mut PlanArgs> {
-        Some(&mut self.plan)
-    }
-}
+super::args::api_args!(PassesArgs, shares plan: PlanArgs);
 
 impl Job for PassesArgs {
     const NAME: &'static str = "passes";

@@ -1,13 +1,12 @@
 //! `threadcheck tap`: a program's tapping cycles against their taps and drills.
 
-use super::args::{tool_table, JsonArg, ProgramArgs, Source};
+use super::args::{tool_table, ProgramArgs, Source};
 use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
 use crate::analysis::tapping::TapSpec;
 use crate::gcode::{GCodeSystem, ProgramUnits, ReadOptions};
 use crate::Error;
 use serde::Deserialize;
 use serde_with::{serde_as, DisplayFromStr};
-use std::path::PathBuf;
 
 /// The arguments of `tap`.
 #[serde_as]
@@ -36,26 +35,13 @@ pub struct TapArgs {
     #[cfg_attr(feature = "cli", arg(long, value_name = "a|b|c"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub gcode_system: Option<GCodeSystem>,
-    /// Write the tapped holes' sections (SVG) to this file.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
-    #[serde(skip)]
-    pub svg: Option<PathBuf>,
-    /// Write a self-contained HTML page (the sections, the checks, the notes) to this file.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
-    #[serde(skip)]
-    pub html: Option<PathBuf>,
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
     #[allow(missing_docs)]
-    pub out: JsonArg,
+    pub out: super::args::PictureArgs,
 }
 
-impl super::ApiArgs for TapArgs {
-    type Shared = ProgramArgs;
-    fn shared_mut(&mut self) -> Option<&mut ProgramArgs> {
-        Some(&mut self.file)
-    }
-}
+super::args::api_args!(TapArgs, shares file: ProgramArgs);
 
 impl Job for TapArgs {
     const NAME: &'static str = "tap";
@@ -95,9 +81,6 @@ impl Job for TapArgs {
     }
 
     fn destinations(&self) -> Vec<(Document, Dest)> {
-        Dest::list(
-            [(Document::Json, &self.out.json)],
-            [(Document::Svg, &self.svg), (Document::Html, &self.html)],
-        )
+        self.out.destinations(None)
     }
 }

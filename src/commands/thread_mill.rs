@@ -1,12 +1,11 @@
 //! `threadcheck thread-mill`: the thread a thread-milling program leaves.
 
-use super::args::{tool_table, JsonArg, ProgramArgs, Source};
+use super::args::{tool_table, ProgramArgs, Source};
 use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
 use crate::analysis::threadmill::ThreadMillSpec;
 use crate::geometry::helix::Cutter;
 use crate::Error;
 use serde::Deserialize;
-use std::path::PathBuf;
 
 /// The arguments of `thread-mill`.
 #[cfg_attr(feature = "cli", derive(clap::Args))]
@@ -52,26 +51,13 @@ pub struct ThreadMillArgs {
     /// the left (G41) or right (G42) of the programmed helix.
     #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
     pub comp_radius: Option<f64>,
-    /// Write the milled thread's axial section (SVG) to this file.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
-    #[serde(skip)]
-    pub svg: Option<PathBuf>,
-    /// Write a self-contained HTML page (the section, the checks, the helices) to this file.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
-    #[serde(skip)]
-    pub html: Option<PathBuf>,
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
     #[allow(missing_docs)]
-    pub out: JsonArg,
+    pub out: super::args::PictureArgs,
 }
 
-impl super::ApiArgs for ThreadMillArgs {
-    type Shared = ProgramArgs;
-    fn shared_mut(&mut self) -> Option<&mut ProgramArgs> {
-        Some(&mut self.file)
-    }
-}
+super::args::api_args!(ThreadMillArgs, shares file: ProgramArgs);
 
 impl Job for ThreadMillArgs {
     const NAME: &'static str = "thread-mill";
@@ -125,9 +111,6 @@ impl Job for ThreadMillArgs {
     }
 
     fn destinations(&self) -> Vec<(Document, Dest)> {
-        Dest::list(
-            [(Document::Json, &self.out.json)],
-            [(Document::Svg, &self.svg), (Document::Html, &self.html)],
-        )
+        self.out.destinations(None)
     }
 }

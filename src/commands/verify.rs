@@ -1,12 +1,11 @@
 //! `threadcheck verify`: the thread cut in the computer and checked against its class.
 
-use super::args::{tool_table, JsonArg, PlanArgs, Source};
+use super::args::{tool_table, PlanArgs, Source};
 use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
 use crate::analysis::verify::{InsertChoice, ProgramSource, VerifySpec};
 use crate::report::fmt_num;
 use crate::Error;
 use serde::Deserialize;
-use std::path::PathBuf;
 
 /// The arguments of `verify`.
 ///
@@ -43,14 +42,6 @@ pub struct VerifyArgs {
     /// Skip the per-pass chip and edge metrics: a faster verdict.
     #[cfg_attr(feature = "cli", arg(long))]
     pub no_pass_metrics: bool,
-    /// Write an SVG cross-section to this file.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
-    #[serde(skip)]
-    pub svg: Option<PathBuf>,
-    /// Write a self-contained HTML report (picture, checks, passes, notes) to this file.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE"))]
-    #[serde(skip)]
-    pub html: Option<PathBuf>,
     /// Write the program with each operation's correction (the word that sets its final
     /// depth, put to mid-tolerance d2) to this file; `-` prints it instead of the report.
     #[cfg_attr(feature = "cli", arg(long, value_name = "FILE|-", requires = "program"))]
@@ -59,15 +50,10 @@ pub struct VerifyArgs {
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
     #[allow(missing_docs)]
-    pub out: JsonArg,
+    pub out: super::args::PictureArgs,
 }
 
-impl super::ApiArgs for VerifyArgs {
-    type Shared = PlanArgs;
-    fn shared_mut(&mut self) -> Option<&mut PlanArgs> {
-        Some(&mut self.plan)
-    }
-}
+super::args::api_args!(VerifyArgs, shares plan: PlanArgs);
 
 impl Job for VerifyArgs {
     const NAME: &'static str = "verify";
@@ -105,10 +91,7 @@ impl Job for VerifyArgs {
     }
 
     fn destinations(&self) -> Vec<(Document, Dest)> {
-        Dest::list(
-            [(Document::Json, &self.out.json), (Document::Fix, &self.fix)],
-            [(Document::Svg, &self.svg), (Document::Html, &self.html)],
-        )
+        self.out.destinations(Some(&self.fix))
     }
 }
 
