@@ -86,8 +86,9 @@ pub use standards::{Feature, GrooveForm};
 // Programs read as a control would.
 pub use gcode::{
     read_program, read_program_streaming, read_program_with, rewrite_words, Budget, DepthWord, Dialect,
-    DialectFrom, GCodeSystem, HoleCycle, HoleKind, LinuxCncRelease, Operation, PassXWord, Program,
-    ProgramUnits, ReadOptions, Spindle, SpindleDir, WordEdit, WordForm, WordMeans, XWords,
+    DialectFrom, GCodeSystem, HoleCycle, HoleKind, LinuxCncRelease, MachineReading, MachineType, Operation,
+    PassXWord, Program, ProgramUnits, ReadOptions, Spindle, SpindleDir, WordEdit, WordForm, WordMeans,
+    XWords,
 };
 
 // Toolpaths: passes, generated plans, infeeds and depth schedules.

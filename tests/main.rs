@@ -16,6 +16,7 @@ mod infeed_comparison;
 mod layout;
 mod limits;
 mod linuxcnc;
+mod machining;
 mod mill;
 mod process;
 mod programs;

@@ -13,8 +13,8 @@ use threadcheck::{run_request, Command, Files};
 fuzz_target!(|data: &[u8]| {
     let Some((&pick, rest)) = data.split_first() else { return };
     let Ok(text) = std::str::from_utf8(rest) else { return };
-    let command = Command::ALL[usize::from(pick) % Command::ALL.len()];
-    let documents = command.documents();
+    let command = Command::API[usize::from(pick) % Command::API.len()];
+    let documents = Command::documents_of(command);
     let document = documents[usize::from(pick / 16) % documents.len()];
     let body = match text.split_once('\0') {
         Some((args, program)) => {

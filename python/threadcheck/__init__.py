@@ -130,6 +130,7 @@ def verify(thread: Threads, program: Optional[str] = None, dialect: Optional[str
            units: Optional[str] = None, machine: Optional[str] = None,
            clearance_angle: Optional[float] = None, no_pass_metrics: bool = False,
            operation: Optional[int] = None,
+        machine_type: Optional[str] = None,
            svg: Optional[PathLike] = None, html: Optional[PathLike] = None,
            fix: Optional[PathLike] = None) -> VerifyReport:
     """``threadcheck verify --json -``.
@@ -153,7 +154,8 @@ def verify(thread: Threads, program: Optional[str] = None, dialect: Optional[str
     several O-programs. ``linuxcnc_release`` (``"current"``/``"before-2.9"``) chooses the
     comparison rules of a ``linuxcnc`` program; ``gcode_system`` (``"a"``, ``"b"``, ``"c"``) the
     G-code system a Fanuc control is set to (B: G78 the threading cycle; C: G78 the multiple
-    one). ``coating`` (mm) checks against the limits
+    one); ``machine_type`` (``"lathe"``/``"mill"``) the machine the program runs on (default: the
+    program's own evidence, else a lathe; the report's ``machine`` says which and why). ``coating`` (mm) checks against the limits
     before a coat of that thickness; ``coating_limits`` is ``"before"`` (the standards' default:
     the class applies before coating, the coated thread within the basic profile) or ``"after"``. ``machine`` is a machine profile's TOML text (or
     ``"training-lathe"``). ``svg``, ``html`` and ``fix`` write the picture, the page and the
@@ -196,7 +198,8 @@ def passes(thread: Optional[Threads] = None, program: Optional[str] = None,
         coating: Optional[float] = None, coating_limits: Optional[str] = None,
         engagement: Optional[float] = None, gcode_system: Optional[str] = None,
         clearance_angle: Optional[float] = None, machine: Optional[str] = None,
-        units: Optional[str] = None) -> PassesReport:
+        units: Optional[str] = None,
+        machine_type: Optional[str] = None) -> PassesReport:
     """``threadcheck passes --json``: the passes of a generated plan or of a program's text.
 
     The arguments are ``verify``'s; a program needs no thread.
@@ -222,6 +225,7 @@ def correct(thread: str, program: Optional[str] = None, dialect: Optional[str] =
         first_depth: Optional[float] = None, machine: Optional[str] = None,
         min_depth: Optional[float] = None, schedule: Optional[str] = None,
         spring: Optional[int] = None, taper: Optional[float] = None, units: Optional[str] = None,
+        machine_type: Optional[str] = None,
             html: Optional[PathLike] = None, fix: Optional[PathLike] = None) -> CorrectReport:
     """``threadcheck correct --json``: what was measured on the part, turned into the change.
 
@@ -259,6 +263,7 @@ def capability(thread: str, program: Optional[str] = None, dialect: Optional[str
         first_depth: Optional[float] = None, machine: Optional[str] = None,
         min_depth: Optional[float] = None, schedule: Optional[str] = None,
         spring: Optional[int] = None, taper: Optional[float] = None, units: Optional[str] = None,
+        machine_type: Optional[str] = None,
                svg: Optional[PathLike] = None, html: Optional[PathLike] = None) -> CapabilityReport:
     """``threadcheck capability --json``: a seeded Monte Carlo of the parts a program cuts.
 
@@ -312,6 +317,7 @@ def compare(thread: str, insert: Optional[str] = None, final_x: Optional[float] 
         passes: Optional[int] = None, program: Optional[str] = None,
         program_name: Optional[str] = None, spring: Optional[int] = None,
         taper: Optional[float] = None, units: Optional[str] = None,
+        machine_type: Optional[str] = None,
             html: Optional[PathLike] = None) -> CompareReport:
     """``threadcheck compare --json``: the thread with every infeed strategy and schedule.
 
@@ -345,7 +351,8 @@ def mill(program: str, target: str, tool_diameter: float, dialect: Optional[str]
 
 def tap(program: str, tools: str, dialect: Optional[str] = None, program_name: Optional[str] = None,
         allow_nonstandard: bool = False, default_units: Optional[str] = None,
-        gcode_system: Optional[str] = None) -> TapReport:
+        gcode_system: Optional[str] = None,
+        machine_type: Optional[str] = None) -> TapReport:
     """``threadcheck tap --json``: a program's tapping cycles (G84, G74) against their taps and
     the drills that made the holes.
 

@@ -79,6 +79,7 @@ class VerifyReport(_Report, total=False):
     operations: List[OperationReport]
     skipped_blocks: int
     read_past_blocks: int
+    machine: Json
 
 
 class LimitsReport(TypedDict):
@@ -107,6 +108,7 @@ class PassesReport(TypedDict, total=False):
     operations: List[Json]
     notes: List[Json]
     read_past_blocks: int
+    machine: Json
 
 
 class CorrectReport(TypedDict):
@@ -178,6 +180,7 @@ class TapReport(TypedDict):
     holes: List[Json]
     drills: int
     notes: List[Json]
+    machine: Json
 
 
 class ThreadMillReport(TypedDict):

@@ -192,6 +192,8 @@ pub struct TapReport {
     pub pass: bool,
     /// The program's notes.
     pub notes: Vec<crate::ground::note::Note>,
+    /// The machine the program was read for, and why.
+    pub machine: crate::gcode::MachineReading,
 }
 
 /// The same position (within 1 µm; unknown matches unknown).
@@ -493,5 +495,13 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
     }
     let pass = holes.iter().all(|h| h.pass);
     let drills = prog.holes.iter().filter(|h| h.kind == HoleKind::Drill).count();
-    Ok(TapReport { program: name.clone(), dialect: spec.dialect, holes, drills, pass, notes: prog.notes })
+    Ok(TapReport {
+        program: name.clone(),
+        dialect: spec.dialect,
+        holes,
+        drills,
+        pass,
+        notes: prog.notes,
+        machine: prog.machine,
+    })
 }

@@ -1408,6 +1408,8 @@ pub struct ProgramVerification {
     pub skipped_blocks: usize,
     /// Blocks holding something threadcheck does not model, read past (named in the notes).
     pub read_past_blocks: usize,
+    /// The machine the program was read for, and why.
+    pub machine: crate::gcode::MachineReading,
 }
 
 impl ProgramVerification {
@@ -1742,6 +1744,7 @@ pub fn verify_program(
         notes: prog.notes.clone(),
         skipped_blocks: prog.skipped_blocks,
         read_past_blocks: prog.read_past_blocks,
+        machine: prog.machine.clone(),
     })
 }
 

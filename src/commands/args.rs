@@ -260,6 +260,13 @@ pub struct PlanArgs {
     #[cfg_attr(feature = "cli", arg(long, value_name = "a|b|c", requires = "program"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub gcode_system: Option<GCodeSystem>,
+    /// The machine the program runs on: lathe or mill (a machining centre; G90/G91 absolute and
+    /// incremental, G98/G99 return levels, G73/G74/G76 drilling, left-hand tapping, fine
+    /// boring). Default: the program's own evidence (G17/G18, T12 M6 or T0101, a drilling
+    /// cycle's return level, U/W), else a lathe; the notes say which and why.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "lathe|mill", requires = "program"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub machine_type: Option<crate::gcode::MachineType>,
 }
 
 impl PlanArgs {
@@ -369,6 +376,7 @@ impl PlanArgs {
                     ("program_name", self.program_name.is_some()),
                     ("gcode_system", self.gcode_system.is_some()),
                     ("linuxcnc_release", self.linuxcnc_release.is_some()),
+                    ("machine_type", self.machine_type.is_some()),
                     ("machine", self.machine.is_some()),
                 ];
                 if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
@@ -383,6 +391,7 @@ impl PlanArgs {
         s.reading.main = self.main.map(|o| o.0);
         s.reading.linuxcnc = self.linuxcnc_release.unwrap_or_default();
         s.reading.gcode_system = self.gcode_system.unwrap_or_default();
+        s.reading.machine_type = self.machine_type;
         s.validate()?;
         Ok(s)
     }

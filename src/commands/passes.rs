@@ -62,7 +62,7 @@ impl Job for PassesArgs {
                         thread,
                         passes,
                         program.map(|p| p.operations.as_slice()),
-                        program.map(|p| (p.notes.as_slice(), p.read_past_blocks)),
+                        program.map(|p| (p.notes.as_slice(), p.read_past_blocks, &p.machine)),
                     ))
                 })
             };

@@ -35,6 +35,11 @@ pub struct TapArgs {
     #[cfg_attr(feature = "cli", arg(long, value_name = "a|b|c"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub gcode_system: Option<GCodeSystem>,
+    /// The machine the program runs on: lathe or mill (default: the program's evidence, else a
+    /// lathe; the notes say which and why).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "lathe|mill"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub machine_type: Option<crate::gcode::MachineType>,
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
     #[allow(missing_docs)]
@@ -54,6 +59,7 @@ impl Job for TapArgs {
             dialect_from: from,
             default_units: self.default_units,
             gcode_system: self.gcode_system.unwrap_or_default(),
+            machine_type: self.machine_type,
             ..Default::default()
         };
         let tools = self.tools.as_ref().ok_or_else(|| {

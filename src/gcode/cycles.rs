@@ -53,6 +53,7 @@ fn g_role(d: Dialect, g: u32, lathe: bool) -> GRole {
     match d {
         Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => match g {
             90 | 94 if lathe => BoxCycle,
+            73 | 74 | 76 if !lathe => OtherCycle,
             9 | 22 | 23 | 25 | 26 | 40..=44 | 49 | 61..=64 | 67..=69 | 80 | 94 | 95 | 98 | 99 | 103 | 187 => {
                 Setting
             }
@@ -260,6 +261,8 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                 ))
             }
             76 if d == Dialect::Heidenhain => unknown.push((g, col)),
+            // A machining centre's peck drilling, left-hand tapping and fine boring.
+            73 | 74 | 76 if fanuc_like && !m.lathe() => motion = Some((g, col)),
             0 | 1 | 2 | 3 | 32 | 33 | 76 => motion = Some((g, col)),
             92 if d == Dialect::LinuxCnc => one_shot = Some(g),
             92 if fanuc_like && b.has("S") && !["X", "Z", "U", "W", "F", "E", "R"].iter().any(|w| b.has(w)) => {
@@ -270,6 +273,11 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                     "a spindle speed clamp, as G-code systems B and C write it (system A, which this dialect reads, writes G50 S); it cuts no thread",
                 );
                 one_shot = Some(g);
+            }
+            // A machining centre's G92: the current point gets the given coordinates.
+            92 if fanuc_like && !m.lathe() => {
+                one_shot = Some(g);
+                offset = Some("G92, a coordinate system set at the current point".to_string());
             }
             92 => motion = Some((g, col)),
             78 if d.fanuc_family() => {
@@ -288,10 +296,13 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             }
             50 if fanuc_like && m.lathe() => one_shot = Some(g),
             // Feed modes (the tapping check reads them): G98/G99 on a lathe, G94/G95 in G17.
-            98 if fanuc_like => m.feed_per_rev = Some(false),
-            99 if fanuc_like => m.feed_per_rev = Some(true),
-            94 if fanuc_like && m.plane == 17 => m.feed_per_rev = Some(false),
-            95 if fanuc_like && m.plane == 17 => m.feed_per_rev = Some(true),
+            98 if fanuc_like && m.lathe() => m.feed_per_rev = Some(false),
+            99 if fanuc_like && m.lathe() => m.feed_per_rev = Some(true),
+            // A machining centre's G98/G99: the canned cycles' return level.
+            98 if fanuc_like => m.return_to_r = false,
+            99 if fanuc_like => m.return_to_r = true,
+            94 if fanuc_like && (m.plane == 17 || !m.lathe()) => m.feed_per_rev = Some(false),
+            95 if fanuc_like && (m.plane == 17 || !m.lathe()) => m.feed_per_rev = Some(true),
             // Sinumerik's feed modes hold in every plane.
             94 if matches!(d, Dialect::Sinumerik | Dialect::Heidenhain) => m.feed_per_rev = Some(false),
             95 if matches!(d, Dialect::Sinumerik | Dialect::Heidenhain) => m.feed_per_rev = Some(true),
@@ -370,6 +381,9 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
     }
     if let Some((g, _)) = motion {
         m.motion = g;
+        if !is_hole_cycle(g) {
+            m.cycle_levels = (None, None);
+        }
     }
     if let Some(s) = b.get("S") {
         if !(one_shot == Some(4.0)) {
@@ -515,6 +529,11 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
                 }
                 return Ok(());
             }
+            GRole::OtherCycle
+                if !m.lathe() && m.dialect.fanuc_family() || m.dialect == Dialect::Haas && !m.lathe() =>
+            {
+                return mill_holes(m, b, modal);
+            }
             GRole::OtherCycle => {
                 let (x, y, z) = m.target(b);
                 let what = format!("G{}", modal.motion);
@@ -570,22 +589,41 @@ fn record_hole(
     if !reads || !(x.is_some() || y.is_some() || z.is_some() || modal.col.is_some()) {
         return Ok(());
     }
-    let feed = b.get("F").map(|w| m.len(w)).or(m.hole_modal.1);
     let bottom = z.or(m.hole_modal.0);
+    push_hole_at(m, b, modal, kind, (x.or(m.x), y.or(m.y)), bottom)
+}
+
+/// Whether `g` is a drilling, tapping or boring cycle's code.
+fn is_hole_cycle(g: f64) -> bool {
+    g.fract() == 0.0 && matches!(g as u32, 73 | 74 | 76 | 81..=89)
+}
+
+/// Records one hole of the cycle in force at `(x, y)` down to `bottom`, with the feed, spindle,
+/// tool and rigid-tapping state in force.
+fn push_hole_at(
+    m: &mut Motion,
+    b: &RBlock<'_>,
+    modal: &Modal,
+    kind: super::HoleKind,
+    (x, y): (Option<f64>, Option<f64>),
+    bottom: Option<f64>,
+) -> Result<(), Error> {
+    let code = modal.motion as u32;
+    let feed = b.get("F").map(|w| m.len(w)).or(m.hole_modal.1);
     m.hole_modal = (bottom, feed);
     let rigid = std::mem::take(&mut m.rigid_next) || b.words.iter().any(|w| w.name == "M" && w.v == 29.0);
     let (feed_per_rev, assumed) = match m.feed_per_rev {
         Some(r) => (r, false),
         // A lathe's power-on state is feed per revolution (G99), a machining centre's per minute.
-        None => (m.plane != 17, true),
+        None => (m.lathe() && m.plane != 17, true),
     };
     m.push_hole(super::HoleCycle {
         code: m.g_name(code),
         kind,
         line: b.line,
         column: modal.col.unwrap_or(b.col),
-        x: x.or(m.x),
-        y: y.or(m.y),
+        x,
+        y,
         bottom,
         feed,
         feed_word: "F".into(),
@@ -601,6 +639,84 @@ fn record_hole(
         tool: m.tool,
         rigid,
     })
+}
+
+/// A machining centre's drilling, tapping or boring cycle block (Fanuc, Haas, Mitsubishi,
+/// Mazak; ../shared/notes/machining-centres.md §1.2): in G90 X, Y, Z and R are positions; in G91
+/// X and Y are increments from the current point, R the distance from the initial level (Z where
+/// the cycle began) to the R level and Z the distance from the R level to the bottom. K (or L)
+/// repeats the hole, each time moved by the increment in G91 (in place in G90). The tool
+/// returns to the initial level (G98) or the R level (G99), at the last hole.
+fn mill_holes(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Result<(), Error> {
+    let code = modal.motion as u32;
+    let kind = match code {
+        74 | 84 => super::HoleKind::Tap,
+        // G76 fine-bores the hole: its size is the boring tool's, as a drill's is the drill's.
+        73 | 76 | 81..=83 | 85..=89 => super::HoleKind::Drill,
+        _ => return Ok(()),
+    };
+    let at = |name: &str| b.get(name).map(|w| m.len(w));
+    let (xw, yw, zw, rw) = (at("X"), at("Y"), at("Z"), at("R"));
+    let positioned = xw.is_some() || yw.is_some() || modal.col.is_some();
+    if m.cycle_levels.0.is_none() {
+        m.cycle_levels.0 = m.z;
+    }
+    let initial = m.cycle_levels.0;
+    let r_level = match (rw, m.absolute) {
+        (Some(r), true) => Some(r + m.offset[2]),
+        (Some(r), false) => initial.map(|i| i + r),
+        (None, _) => m.cycle_levels.1,
+    };
+    m.cycle_levels.1 = r_level;
+    let bottom = match (zw, m.absolute) {
+        (Some(z), true) => Some(z + m.offset[2]),
+        (Some(z), false) => r_level.map(|r| r + z),
+        (None, _) => m.hole_modal.0,
+    };
+    let repeats = match b.get("K").or_else(|| b.get("L")) {
+        None => 1,
+        Some(w) if w.v >= 0.0 && w.v.fract() == 0.0 && w.v <= 9999.0 => w.v as usize,
+        Some(w) => {
+            return Err(m.err(
+                b.line,
+                w.col,
+                format!("{}{}: a cycle's repeat count is a whole number from 0 to 9999", w.name, w.v),
+            ))
+        }
+    };
+    if !positioned {
+        m.skipped += 1;
+        return Ok(());
+    }
+    let (dx, dy) = (xw.unwrap_or(0.0), yw.unwrap_or(0.0));
+    let (mut x, mut y) = (m.x, m.y);
+    if m.absolute {
+        x = xw.map(|v| v + m.offset[0]).or(x);
+        y = yw.map(|v| v + m.offset[1]).or(y);
+    }
+    let holes = if m.absolute { repeats.min(1) } else { repeats };
+    for _ in 0..holes {
+        if !m.absolute {
+            x = x.map(|v| v + dx);
+            y = y.map(|v| v + dy);
+        }
+        push_hole_at(m, b, modal, kind, (x, y), bottom)?;
+    }
+    if repeats == 0 {
+        // K0: the cycle is stored for the positions that follow (Haas's L0 at a bolt pattern's
+        // centre).
+        m.hole_modal.0 = bottom;
+    }
+    m.x = x;
+    m.y = y;
+    m.z = if m.return_to_r { r_level } else { initial };
+    m.read_past(
+        b.line,
+        modal.col.unwrap_or(b.col),
+        &format!("G{}", modal.motion),
+        "a drilling, tapping or boring cycle (threadcheck tap checks its holes); the tool ends at the return level",
+    );
+    Ok(())
 }
 
 /// Fanuc two-block G76 depths: pass n at max(Δd·√n, previous + Δd min) while below the rough

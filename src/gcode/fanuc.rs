@@ -197,7 +197,8 @@ pub(crate) fn thread_block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, md: &M
         s.g92 = None;
     }
     match md.motion as u32 {
-        76 if md.col.is_some() => {
+        // On a machining centre G76 is fine boring (cycles.rs).
+        76 if md.col.is_some() && m.lathe() => {
             let name = m.g_name(76);
             cycles::need_lathe_plane(m, b, col, &name)?;
             if b.has("K") || b.has("D") {
@@ -206,7 +207,7 @@ pub(crate) fn thread_block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, md: &M
                 two_block_g76(s, m, b, col)
             }
         }
-        92 => g92(s, m, b, col),
+        92 if m.lathe() => g92(s, m, b, col),
         32 | 33 => {
             if b.get("X").is_none() && b.get("Z").is_none() && b.get("U").is_none() && b.get("W").is_none() {
                 m.skipped += 1;

@@ -26,6 +26,7 @@ mod heidenhain;
 mod interp;
 mod lexer;
 mod linuxcnc;
+mod machine;
 mod motion;
 mod okuma;
 
@@ -37,6 +38,7 @@ use crate::Error;
 use serde::Serialize;
 
 pub use edit::{rewrite_words, WordEdit};
+pub use machine::{MachineReading, MachineType};
 pub use motion::Move;
 
 /// Which control's G-code.
@@ -556,6 +558,8 @@ pub struct Program {
     pub moves: Vec<Move>,
     /// The drilling and tapping cycles (Fanuc, Haas, Sinumerik and LinuxCNC), in program order.
     pub holes: Vec<HoleCycle>,
+    /// The machine the program was read for, and why.
+    pub machine: MachineReading,
 }
 
 /// Which way the spindle turns.
@@ -654,6 +658,9 @@ pub struct ReadOptions {
     /// The G-code system of a `fanuc` program (system A unless given; the other dialects have
     /// one G-code list and refuse B and C).
     pub gcode_system: GCodeSystem,
+    /// The machine the program runs on; `None` takes it from the program's own evidence, else
+    /// the dialect's default (a lathe), and the notes say which.
+    pub machine_type: Option<MachineType>,
 }
 
 /// How much a program may run before it is taken for a runaway.
@@ -791,7 +798,8 @@ fn read(
             dialect.name()
         )));
     }
-    let mut m = motion::Motion::new(dialect, file, opts.moves);
+    let machine = machine::decide(&blocks, dialect, opts.machine_type, opts.moves);
+    let mut m = motion::Motion::new(dialect, file, opts.moves, machine.machine_type == MachineType::Mill);
     if let Some(out) = out {
         m.stream_to(out);
     }
@@ -865,7 +873,14 @@ fn read(
         | Dialect::Okuma
         | Dialect::Heidenhain => None,
     };
-    for n in [units_note, dialect_note, system_note, model_note].into_iter().flatten().rev() {
+    // Where the machine changes what codes mean, say which was read and why.
+    let machine_note = (!opts.moves
+        && matches!(
+            dialect,
+            Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak | Dialect::LinuxCnc
+        ))
+    .then(|| machine.reason.clone());
+    for n in [machine_note, units_note, dialect_note, system_note, model_note].into_iter().flatten().rev() {
         notes.insert(0, Note::from(n));
     }
     if operations.is_empty() && !opts.allow_no_threading {
@@ -901,6 +916,7 @@ fn read(
         notes,
         moves,
         holes,
+        machine,
     })
 }
 

@@ -184,6 +184,11 @@ pub(crate) struct Motion {
     pub holes: Vec<super::HoleCycle>,
     /// The modal bottom Z and feed of the canned cycle in force.
     pub hole_modal: (Option<f64>, Option<f64>),
+    /// A machining centre's canned cycle: the initial level (Z where the cycle began), the R
+    /// level, and whether G99 returns to R (else G98, to the initial level).
+    pub cycle_levels: (Option<f64>, Option<f64>),
+    /// G99 (return to the R level) in force on a machining centre.
+    pub return_to_r: bool,
     /// Cutter radius compensation: 0 G40, 1 G41, 2 G42.
     pub comp: u8,
     /// Working plane (17, 18, 19).
@@ -223,13 +228,15 @@ const MOVE_CHUNK: usize = 4096;
 const MAX_CONTOUR: usize = 100_000;
 
 impl Motion {
-    /// A motion state at the program start. `record_moves` reads the program as a milling
-    /// toolpath: X and Y are plane coordinates in every dialect, G17 the plane.
-    pub fn new(dialect: Dialect, file: &str, record_moves: bool) -> Motion {
+    /// A motion state at the program start. `record_moves` records a milling toolpath's moves;
+    /// `mill` reads the program for a machining centre: X and Y are plane coordinates in every
+    /// dialect, G17 the plane.
+    pub fn new(dialect: Dialect, file: &str, record_moves: bool, mill: bool) -> Motion {
+        let mill = mill || record_moves;
         Motion {
             dialect,
             gsystem: super::GCodeSystem::A,
-            mill: record_moves,
+            mill,
             file: file.to_string(),
             x: None,
             y: None,
@@ -242,7 +249,7 @@ impl Motion {
             // LinuxCNC starts in radius mode (G8); lathes with Fanuc, Haas and Sinumerik in
             // diameter; Dyna is a mill (X is X).
             diameter: match dialect {
-                _ if record_moves => false,
+                _ if mill => false,
                 Dialect::Fanuc
                 | Dialect::Haas
                 | Dialect::Sinumerik
@@ -262,8 +269,10 @@ impl Motion {
             rigid_next: false,
             holes: Vec::new(),
             hole_modal: (None, None),
+            cycle_levels: (None, None),
+            return_to_r: false,
             comp: 0,
-            plane: if !record_moves && lathe_dialect(dialect) { 18 } else { 17 },
+            plane: if !mill && lathe_dialect(dialect) { 18 } else { 17 },
             ops: Vec::new(),
             loose: None,
             chain: None,
@@ -390,7 +399,8 @@ impl Motion {
     /// (Fanuc, Haas). Program coordinates are machine coordinates less the G92 offset.
     pub fn target(&self, b: &RBlock<'_>) -> (Option<f64>, Option<f64>, Option<f64>) {
         let uw = match self.dialect {
-            Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => true,
+            // U and W are incremental X and Z on a lathe only.
+            Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => self.lathe(),
             // OSP programs incremental moves with G91; Heidenhain's U is G31's thread depth.
             Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma | Dialect::Heidenhain => {
                 false

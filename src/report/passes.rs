@@ -44,6 +44,9 @@ pub struct PassesReport<'a> {
     /// A program's blocks read past (each kind named in `notes`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub read_past_blocks: Option<usize>,
+    /// The machine a program was read for, and why.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub machine: Option<&'a crate::gcode::MachineReading>,
 }
 
 impl<'a> PassesReport<'a> {
@@ -52,7 +55,7 @@ impl<'a> PassesReport<'a> {
         thread: Option<ThreadReport<'a>>,
         passes: &'a [crate::toolpath::passes::Pass],
         operations: Option<&'a [crate::gcode::Operation]>,
-        program: Option<(&'a [crate::ground::note::Note], usize)>,
+        program: Option<(&'a [crate::ground::note::Note], usize, &'a crate::gcode::MachineReading)>,
     ) -> Self {
         let (thread_start, thread_end) =
             passes.iter().fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), p| {
@@ -65,6 +68,7 @@ impl<'a> PassesReport<'a> {
             passes,
             notes: program.map(|p| p.0),
             read_past_blocks: program.map(|p| p.1),
+            machine: program.map(|p| p.2),
             operations: operations.map(|ops| {
                 ops.iter()
                     .map(|op| PassesOperation {

@@ -588,6 +588,8 @@ pub struct ProgramReport<'a> {
     pub read_past_blocks: usize,
     /// Program-wide warnings.
     pub notes: &'a [crate::ground::note::Note],
+    /// The machine the program was read for, and why.
+    pub machine: &'a crate::gcode::MachineReading,
 }
 
 impl<'a> ProgramReport<'a> {
@@ -628,6 +630,7 @@ impl<'a> ProgramReport<'a> {
             skipped_blocks: pv.skipped_blocks,
             read_past_blocks: pv.read_past_blocks,
             notes: &pv.notes,
+            machine: &pv.machine,
         }
     }
 }

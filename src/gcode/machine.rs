@@ -1,0 +1,153 @@
+//! Lathe or machining centre: the machine a program is read for, given or found in the
+//! program's own evidence (../shared/notes/machining-centres.md §6), before any code whose
+//! meaning flips between the two is read (G90/G91, G94/G95, G98/G99, G73, G74, G76).
+
+use super::lexer::{Block, WVal};
+use super::Dialect;
+use serde::Serialize;
+
+/// The kind of machine a program runs on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MachineType {
+    /// A lathe: X a diameter, G18; on Fanuc's G-code system A, G90 the box cycle, G98/G99 feed
+    /// per minute/revolution, G76 threading.
+    Lathe,
+    /// A machining centre: X is X, G17; G90/G91 absolute/incremental, G94/G95 feed modes,
+    /// G98/G99 the canned cycles' return level, G73/G74/G76 drilling, left-hand tapping and
+    /// fine boring.
+    Mill,
+}
+
+impl MachineType {
+    /// `lathe` or `mill`.
+    pub fn name(self) -> &'static str {
+        match self {
+            MachineType::Lathe => "lathe",
+            MachineType::Mill => "mill",
+        }
+    }
+}
+
+impl std::str::FromStr for MachineType {
+    type Err = crate::Error;
+
+    fn from_str(s: &str) -> Result<MachineType, crate::Error> {
+        match s {
+            "lathe" => Ok(MachineType::Lathe),
+            "mill" | "machining-centre" | "machining-center" => Ok(MachineType::Mill),
+            _ => Err(crate::Error::Input(format!("machine type '{s}': expected lathe or mill"))),
+        }
+    }
+}
+
+/// The machine a program was read for, and why.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MachineReading {
+    /// Lathe or mill.
+    pub machine_type: MachineType,
+    /// Why: given, the block that shows it, or the dialect's default.
+    pub reason: String,
+}
+
+/// What decides the machine: `given` (the caller's choice), a milling toolpath (`moves`), the
+/// first block whose words only one kind of machine writes, else the dialect's default.
+pub(crate) fn decide(
+    blocks: &[Block],
+    dialect: Dialect,
+    given: Option<MachineType>,
+    moves: bool,
+) -> MachineReading {
+    let read = |machine_type, reason: String| MachineReading { machine_type, reason };
+    if moves {
+        return read(MachineType::Mill, "read as a milling toolpath (G17, X and Y in the plane)".into());
+    }
+    if let Some(t) = given {
+        return read(t, format!("read as a {}, as ‹machine_type› says", t.name()));
+    }
+    match dialect {
+        // Okuma OSP lathes and Heidenhain's DIN lathe controls are the dialects read here.
+        Dialect::Okuma | Dialect::Heidenhain => {
+            return read(
+                MachineType::Lathe,
+                format!("read as a lathe: the {} dialect is its lathe control's", dialect.name()),
+            )
+        }
+        Dialect::Dyna => {
+            return read(MachineType::Mill, "read as a machining centre: Dyna controls are mills".into())
+        }
+        Dialect::Fanuc
+        | Dialect::Haas
+        | Dialect::Mitsubishi
+        | Dialect::Mazak
+        | Dialect::Sinumerik
+        | Dialect::LinuxCnc => {}
+    }
+    for b in blocks {
+        if let Some((t, what)) = evidence(b, dialect) {
+            return read(
+                t,
+                format!(
+                    "read as a {}: line {} writes {what} (‹machine_type› chooses otherwise)",
+                    match t {
+                        MachineType::Lathe => "lathe",
+                        MachineType::Mill => "machining centre",
+                    },
+                    b.line
+                ),
+            );
+        }
+    }
+    read(
+        MachineType::Lathe,
+        "read as a lathe, the default: no block shows the machine (G17 or G18, a tool change, a drilling cycle's return level, …; ‹machine_type› chooses)".into(),
+    )
+}
+
+/// The machine a block shows, if any, and the words that show it.
+fn evidence(b: &Block, dialect: Dialect) -> Option<(MachineType, String)> {
+    let num = |name: &'static str| {
+        b.words.iter().filter(move |w| w.name == name).filter_map(|w| match w.val {
+            WVal::Num { v, .. } => Some(v),
+            _ => None,
+        })
+    };
+    let has = |name: &str| b.words.iter().any(|w| w.name == name);
+    let gs: Vec<f64> = num("G").collect();
+    let g = |c: f64| gs.contains(&c);
+    let fanuc = dialect.fanuc_family();
+    if g(17.0) {
+        return Some((MachineType::Mill, "G17, the milling plane".into()));
+    }
+    if g(18.0) {
+        return Some((MachineType::Lathe, "G18, the turning plane".into()));
+    }
+    if g(43.0) && has("H") {
+        return Some((MachineType::Mill, "G43 H, a tool length offset".into()));
+    }
+    if dialect == Dialect::LinuxCnc && g(7.0) {
+        return Some((MachineType::Lathe, "G7, diameter mode".into()));
+    }
+    if fanuc {
+        let drilling = gs.iter().any(|c| matches!(*c as u32, 73 | 74 | 76 | 81..=89) && c.fract() == 0.0);
+        if drilling && (g(98.0) || g(99.0)) && has("R") {
+            return Some((
+                MachineType::Mill,
+                "a drilling cycle with its return level (G98/G99) and R in one block".into(),
+            ));
+        }
+        let tool_change = num("M").any(|m| m == 6.0);
+        if let Some(t) = num("T").next() {
+            if tool_change {
+                return Some((MachineType::Mill, format!("T{t} M6, a tool change")));
+            }
+            if t >= 100.0 {
+                return Some((MachineType::Lathe, format!("T{t:04}, a tool and its offset")));
+            }
+        }
+        if has("U") || has("W") {
+            return Some((MachineType::Lathe, "U or W, incremental X and Z".into()));
+        }
+    }
+    None
+}

@@ -1,0 +1,173 @@
+//! Issue 45, machining centres: a program is read for the machine it runs on (lathe or mill),
+//! given or found in its own words, and a machining centre's codes mean what they mean there
+//! (G90/G91 absolute and incremental, G98/G99 return levels, G73/G74/G76 drilling, left-hand
+//! tapping and fine boring, K repeats). Positions and levels are derived by hand in the
+//! comments from the rules of ../shared/notes/machining-centres.md §1.2 (G91: X, Y increments;
+//! R from the initial level; Z from the R level).
+
+use crate::*;
+
+/// `tap --json -` on a file of `tests/data/machining/` with its tool table; extra arguments
+/// after.
+fn tap_file(name: &str, extra: &[&str]) -> (i32, serde_json::Value, String) {
+    let program = data(&format!("machining/{name}.nc"));
+    let tools = data(&format!("machining/{name}.toml"));
+    let mut args = vec!["tap", "--program", program.to_str().unwrap(), "--tools", tools.to_str().unwrap()];
+    args.extend(extra);
+    args.extend(["--json", "-"]);
+    let o = run(&args);
+    let code = o.status.code().unwrap();
+    let v = if code < 2 { serde_json::from_slice(&o.stdout).unwrap() } else { serde_json::Value::Null };
+    (code, v, stderr(&o))
+}
+
+/// A hole: x, y, bottom (mm) and its cycle's line.
+type Hole = (Option<f64>, Option<f64>, Option<f64>, u64);
+
+/// Every hole's (x, y, bottom) and the line of its cycle.
+fn holes(v: &serde_json::Value) -> Vec<Hole> {
+    v["holes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|h| {
+            let c = &h["cycle"];
+            (c["x"].as_f64(), c["y"].as_f64(), c["bottom"].as_f64(), c["line"].as_u64().unwrap())
+        })
+        .collect()
+}
+
+/// A Fanuc machining-centre program with the usual header (`G28 G91 Z0.` then `G90 G54`):
+/// G99 drilling at X20 and X40 Y15 (G90: positions), then `G91 X20. Z-22. R-22. K2` from X40:
+/// holes at X60 and X80, R = the initial level Z25 − 22 = Z3, bottom Z3 − 22 = Z−19; a G98 G76
+/// fine boring at X20 (a hole-making cycle on a mill, no thread); then M29 rigid tapping G99 G84
+/// at X20 and X40 to Z−15 (R5), and `G91 G98 X20. Z-20. R-20. K2`: R = 25 − 20 = Z5, bottom
+/// Z5 − 20 = Z−15 at X60 and X80. G99 is the return level, not feed per revolution: F750 at
+/// S600 is 600 × 1.25, the M8x1.25 tap's lead, per minute (the mill's power-on G94). Each tap
+/// finds its hole's drill (Ø6.9 bore at X20, Ø6.8 drill elsewhere, both within 6H's D1
+/// 6.647–6.912, ISO 965-2) 4 mm below its bottom, more than the 2.5-pitch chamfer's 3.125 mm.
+#[test]
+fn a_machining_centre_program_with_the_g91_header_drills_bores_and_taps_where_it_says() {
+    let (code, v, e) = tap_file("fanuc-mill-plate", &[]);
+    assert_eq!(code, 0, "{e}");
+    assert_eq!(v["machine"]["machine_type"], "mill");
+    assert!(v["machine"]["reason"].as_str().unwrap().contains("line 5 writes G17"), "{}", v["machine"]);
+    assert_eq!(
+        holes(&v),
+        [
+            (Some(20.0), Some(15.0), Some(-15.0), 26),
+            (Some(40.0), Some(15.0), Some(-15.0), 27),
+            (Some(60.0), Some(15.0), Some(-15.0), 28),
+            (Some(80.0), Some(15.0), Some(-15.0), 28),
+        ]
+    );
+    // Four drilled holes and the bore: five hole-making cycles.
+    assert_eq!(v["drills"], 5);
+    let drills: Vec<(String, u64)> = v["holes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|h| {
+            let c = &h["drill"]["cycle"];
+            (c["code"].as_str().unwrap_or("").to_string(), c["line"].as_u64().unwrap_or(0))
+        })
+        .collect();
+    assert_eq!(drills[0], ("G76".into(), 18));
+    assert_eq!(drills[1], ("G81".into(), 10));
+    assert_eq!(drills[2], ("G81".into(), 11));
+    let bore = &v["holes"][0]["drill"];
+    assert_eq!((bore["diameter"].as_f64(), bore["cycle"]["bottom"].as_f64()), (Some(6.9), Some(-19.0)));
+    for h in v["holes"].as_array().unwrap() {
+        let feed = h["checks"].as_array().unwrap().iter().find(|c| c["feature"] == "feed").unwrap();
+        assert_eq!(feed["value"].as_f64(), Some(750.0), "{feed}");
+        assert_eq!(feed["ok"], true);
+        assert_eq!(h["pass"], true, "{h}");
+    }
+}
+
+/// The same program read as a lathe (`--machine-type lathe`): its G76 is then the lathe's
+/// threading cycle, which the G17 of line 5 refuses; the type given wins over the evidence.
+#[test]
+fn the_machine_type_given_wins() {
+    let (code, _, e) = tap_file("fanuc-mill-plate", &["--machine-type", "lathe"]);
+    assert_eq!(code, 2);
+    assert!(
+        e.ends_with(
+            "fanuc-mill-plate.nc:18:5: G76 under G17: threading is programmed in the lathe plane G18\n"
+        ),
+        "{e}"
+    );
+    let (code, v, e) = tap_file("fanuc-mill-plate", &["--machine-type", "mill"]);
+    assert_eq!(code, 0, "{e}");
+    assert_eq!(v["machine"]["reason"], "read as a mill, as --machine-type says");
+}
+
+/// A machining centre's G74 is a left-hand tapping cycle (with the spindle counter-clockwise),
+/// and a G76 between the drill and the tap is no threading cycle.
+#[test]
+fn g74_taps_left_hand_on_a_mill() {
+    let dir = tempdir("g74");
+    let program = "G17 G21 G90 G54\nT5 M6\nG0 X0 Y0 S800 M3\nG43 H5 Z20.\nG98 G81 Z-20. R2. F120\nG80\nT6 M6\nG0 X0 Y0 S300 M4\nG43 H6 Z20.\nG94 G98 G74 Z-14. R3. F450.\nG80\nM30\n";
+    std::fs::write(dir.join("lh.nc"), program).unwrap();
+    std::fs::write(dir.join("t.toml"), "[tools]\n5 = \"drill:8.5\"\n6 = \"tap:M10x1.5-LH-6H\"\n").unwrap();
+    let o = run_in(&dir, &["tap", "--program", "lh.nc", "--tools", "t.toml", "--json", "-"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let c = &v["holes"][0]["cycle"];
+    // 300 rpm × 1.5 mm = 450 mm/min; the hole at X0 Y0 to Z−14.
+    assert_eq!(
+        (c["code"].as_str(), c["hand"].as_str(), c["bottom"].as_f64()),
+        (Some("G74"), Some("left"), Some(-14.0))
+    );
+    assert_eq!(c["x"].as_f64(), Some(0.0));
+}
+
+/// LinuxCNC on a mill (G17 shows it): X is X, not a diameter; G33.1 taps at X12.5 Y8.
+#[test]
+fn linuxcnc_on_a_mill_reads_x_as_x() {
+    let dir = tempdir("lcnc-mill");
+    let program = "G17 G21 G90\nT1 M6\nG0 X12.5 Y8 Z5\nS500 M3\nG33.1 Z-15 K1.5\nM2\n";
+    std::fs::write(dir.join("tap.ngc"), program).unwrap();
+    std::fs::write(dir.join("t.toml"), "[tools]\n1 = \"tap:M10x1.5-6H\"\n").unwrap();
+    let o = run_in(&dir, &["tap", "--program", "tap.ngc", "--tools", "t.toml", "--json", "-"]);
+    assert!(o.status.code().unwrap() < 2, "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["machine"]["machine_type"], "mill");
+    let c = &v["holes"][0]["cycle"];
+    assert_eq!(
+        (c["x"].as_f64(), c["y"].as_f64(), c["bottom"].as_f64()),
+        (Some(12.5), Some(8.0), Some(-15.0))
+    );
+}
+
+/// A lathe program stays a lathe's: its T0101 shows it, and the notes say so.
+#[test]
+fn a_lathe_program_shows_its_lathe() {
+    let dir = tempdir("lathe-evidence");
+    let program = "T0101\nG97 S800 M3\nG0 X22 Z5\nG92 X19.2 Z-20 F1.5\nX18.8\nX18.376\nG0 X50\nM30\n";
+    std::fs::write(dir.join("l.nc"), program).unwrap();
+    let o = run_in(&dir, &["passes", "--program", "l.nc", "--json", "-"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["machine"]["machine_type"], "lathe");
+    assert!(v["machine"]["reason"].as_str().unwrap().contains("line 1 writes T0101"), "{}", v["machine"]);
+    assert_eq!(v["passes"].as_array().unwrap().len(), 3);
+}
+
+/// A repeat count that is no whole number is one located line.
+#[test]
+fn a_repeat_count_must_be_whole() {
+    let dir = tempdir("k-bad");
+    std::fs::write(
+        dir.join("k.nc"),
+        "G17 G21 G90\nT1 M6\nG0 X0 Y0 Z10\nG91 G99 G81 X10. Z-5. R-8. K2.5 F100\nM30\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("t.toml"), "[tools]\n1 = \"drill:8.5\"\n").unwrap();
+    let o = run_in(&dir, &["tap", "--program", "k.nc", "--tools", "t.toml"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: k.nc:4:28: K2.5: a cycle's repeat count is a whole number from 0 to 9999"
+    );
+}
