@@ -171,3 +171,65 @@ fn a_repeat_count_must_be_whole() {
         "threadcheck: error: k.nc:4:28: K2.5: a cycle's repeat count is a whole number from 0 to 9999"
     );
 }
+
+/// G68 rotates the tap's programmed X0 Y75 about X0 Y0 by 0°, 90°, 180° and 270°: the holes at
+/// (0, 75), (−75, 0), (0, −75) and (75, 0), where the drill made them (each matched to its own
+/// G81 position at lines 6–9); G52 X100 Y50 moves the tap at X10 Y10 to (110, 60), line 10's
+/// hole. Every position in the G54 frame.
+#[test]
+fn g68_rotation_and_g52_local_system_place_the_holes() {
+    let (code, v, e) = tap_file("fanuc-g68-g52", &[]);
+    assert_eq!(code, 0, "{e}");
+    assert_eq!(
+        holes(&v),
+        [
+            (Some(0.0), Some(75.0), Some(-18.0), 17),
+            (Some(-75.0), Some(0.0), Some(-18.0), 21),
+            (Some(0.0), Some(-75.0), Some(-18.0), 25),
+            (Some(75.0), Some(0.0), Some(-18.0), 29),
+            (Some(110.0), Some(60.0), Some(-18.0), 33),
+        ]
+    );
+    let drill_lines: Vec<u64> = v["holes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|h| h["drill"]["cycle"]["line"].as_u64().unwrap())
+        .collect();
+    assert_eq!(drill_lines, [6, 7, 8, 9, 10]);
+}
+
+/// Haas G70 I40 J0 L6 in an M97 local subroutine, after a cycle stored with L0: six holes 60°
+/// apart on a 40 mm radius about X0 Y0 from 0°, so (40, 0), (20, 34.641), (−20, 34.641),
+/// (−40, 0), (−20, −34.641), (20, −34.641) (40·cos 60° = 20, 40·sin 60° = 34.641), drilled to
+/// Z−20 and tapped to Z−16 at each; F750 = S600 × 1.25 per minute.
+#[test]
+fn a_haas_bolt_circle_in_an_m97_subroutine_drills_and_taps_six_holes() {
+    let (code, v, e) = tap_file("haas-g70-m97", &["--dialect", "haas"]);
+    assert_eq!(code, 0, "{e}");
+    assert_eq!(v["drills"], 6);
+    let s = 40.0 * 60f64.to_radians().sin();
+    let want = [(40.0, 0.0), (20.0, s), (-20.0, s), (-40.0, 0.0), (-20.0, -s), (20.0, -s)];
+    let got = holes(&v);
+    assert_eq!(got.len(), 6);
+    for ((x, y, bottom, line), (wx, wy)) in got.into_iter().zip(want) {
+        assert!((x.unwrap() - wx).abs() < 1e-9 && (y.unwrap() - wy).abs() < 1e-9, "({x:?}, {y:?})");
+        assert_eq!((bottom, line), (Some(-16.0), 17));
+    }
+    assert!(v["holes"].as_array().unwrap().iter().all(|h| h["pass"] == true));
+}
+
+/// A bolt pattern with no drilling or tapping cycle in force has nothing to place: one located
+/// line.
+#[test]
+fn a_bolt_pattern_needs_a_cycle() {
+    let dir = tempdir("g70-alone");
+    std::fs::write(dir.join("b.nc"), "G17 G21 G90\nT1 M06\nG0 X0 Y0 Z10\nG70 I40. J0 L6\nM30\n").unwrap();
+    std::fs::write(dir.join("t.toml"), "[tools]\n1 = \"drill:8.5\"\n").unwrap();
+    let o = run_in(&dir, &["tap", "--program", "b.nc", "--dialect", "haas", "--tools", "t.toml"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: b.nc:4:1: G70 places the holes of a drilling or tapping cycle, and none is in force"
+    );
+}

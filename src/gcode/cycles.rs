@@ -274,6 +274,32 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                 );
                 one_shot = Some(g);
             }
+            // A machining centre's local coordinate system, kept per axis until changed; G52 X0 Y0
+            // Z0 cancels it.
+            52 if fanuc_like && !m.lathe() => {
+                one_shot = Some(g);
+                for (i, axis) in ["X", "Y", "Z"].iter().enumerate() {
+                    if let Some(w) = b.get(axis) {
+                        m.local[i] = m.len(w);
+                    }
+                }
+            }
+            // A machining centre's coordinate rotation in G17: about X Y (the current point when
+            // not given) by R degrees counter-clockwise; G69 ends it.
+            68 if fanuc_like && !m.lathe() => {
+                one_shot = Some(g);
+                let centre = |axis: &str, now: Option<f64>| b.get(axis).map(|w| m.len(w)).or(now);
+                let (Some(cx), Some(cy)) = (centre("X", m.x), centre("Y", m.y)) else {
+                    return Err(m.err(b.line, col, "G68 without X and Y rotates about the current point, which is not known here: give the centre"));
+                };
+                if m.plane != 17 {
+                    return Err(m.err(b.line, col, format!("G68 under G{}: threadcheck reads rotation in the plane G17", m.plane)));
+                }
+                m.rotation = Some((cx, cy, b.get("R").map_or(0.0, |w| w.v)));
+            }
+            69 if fanuc_like && !m.lathe() => m.rotation = None,
+            // Haas's bolt-hole patterns on a mill (../shared/notes/machining-centres.md §2).
+            70 | 71 if d == Dialect::Haas && !m.lathe() => one_shot = Some(g),
             // A machining centre's G92: the current point gets the given coordinates.
             92 if fanuc_like && !m.lathe() => {
                 one_shot = Some(g);
@@ -487,6 +513,9 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
             m.skipped += 1;
             return Ok(());
         }
+        Some(g) if (g == 70.0 || g == 71.0) && m.dialect == Dialect::Haas && !m.lathe() => {
+            return bolt_pattern(m, b, modal, g);
+        }
         Some(g) if (70.0..=75.0).contains(&g) && m.dialect != Dialect::Sinumerik => {
             // The turning, facing, pattern and grooving cycles: read past; each returns to its
             // start point (a profile's blocks that follow run as moves).
@@ -593,6 +622,65 @@ fn record_hole(
     push_hole_at(m, b, modal, kind, (x.or(m.x), y.or(m.y)), bottom)
 }
 
+/// Haas's bolt-hole circle `G70 I J L` and arc `G71 I J K L` on a mill: L holes on a circle of
+/// radius I about the current point (or the block's X Y), from J degrees counter-clockwise of
+/// +X, every 360°/L (G70; L's sign the direction) or every K degrees (G71), each made by the
+/// drilling or tapping cycle in force (YASNAC PCNC pp.4-33; helmancnc for G71; Haas inherits
+/// the Yasnac format, a named reading).
+fn bolt_pattern(m: &mut Motion, b: &RBlock<'_>, modal: &Modal, g: f64) -> Result<(), Error> {
+    let col = modal.col.unwrap_or(b.col);
+    let name = format!("G{g}");
+    if !is_hole_cycle(m.motion) {
+        return Err(m.err(
+            b.line,
+            col,
+            format!("{name} places the holes of a drilling or tapping cycle, and none is in force"),
+        ));
+    }
+    let need = |w: &str, what: &str| {
+        b.get(w).map(|v| v.v).ok_or_else(|| m.err(b.line, col, format!("{name} needs {w}, {what}")))
+    };
+    let radius = need("I", "the circle's radius")?;
+    let start = need("J", "the first hole's angle")?;
+    let count = need("L", "the number of holes")?;
+    if count.fract() != 0.0 || count == 0.0 || count.abs() > 9999.0 {
+        return Err(m.err(
+            b.line,
+            col,
+            format!("{name} L{count}: the number of holes is a whole number from 1 to 9999"),
+        ));
+    }
+    let step = if g == 70.0 { 360.0 / count } else { need("K", "the angle between holes")? };
+    let centre = |axis: &str, now: Option<f64>| {
+        b.get(axis).map(|w| m.len(w) + if axis == "X" { m.offset[0] } else { m.offset[1] }).or(now)
+    };
+    let (Some(cx), Some(cy)) = (centre("X", m.x), centre("Y", m.y)) else {
+        return Err(m.err(
+            b.line,
+            col,
+            format!("{name}: the circle's centre (the current point) is not known here"),
+        ));
+    };
+    let r = radius * m.scale;
+    let kind = if matches!(m.motion as u32, 74 | 84) { super::HoleKind::Tap } else { super::HoleKind::Drill };
+    let bottom = m.hole_modal.0;
+    let mut last = (cx, cy);
+    for i in 0..count.abs() as usize {
+        let a = (start + step * i as f64).to_radians();
+        last = (cx + r * a.cos(), cy + r * a.sin());
+        push_hole_at(m, b, modal, kind, (Some(last.0), Some(last.1)), bottom)?;
+    }
+    m.x = Some(last.0);
+    m.y = Some(last.1);
+    m.read_past(
+        b.line,
+        col,
+        &name,
+        "a bolt-hole pattern: its holes are made by the cycle in force (threadcheck tap checks them)",
+    );
+    Ok(())
+}
+
 /// Whether `g` is a drilling, tapping or boring cycle's code.
 fn is_hole_cycle(g: f64) -> bool {
     g.fract() == 0.0 && matches!(g as u32, 73 | 74 | 76 | 81..=89)
@@ -611,6 +699,9 @@ fn push_hole_at(
     let code = modal.motion as u32;
     let feed = b.get("F").map(|w| m.len(w)).or(m.hole_modal.1);
     m.hole_modal = (bottom, feed);
+    // Reported in the workpiece coordinates of the work offset: G68's rotation and G52's shift
+    // applied (none on a lathe).
+    let (x, y, bottom) = m.work_point(x, y, bottom);
     let rigid = std::mem::take(&mut m.rigid_next) || b.words.iter().any(|w| w.name == "M" && w.v == 29.0);
     let (feed_per_rev, assumed) = match m.feed_per_rev {
         Some(r) => (r, false),

@@ -189,6 +189,11 @@ pub(crate) struct Motion {
     pub cycle_levels: (Option<f64>, Option<f64>),
     /// G99 (return to the R level) in force on a machining centre.
     pub return_to_r: bool,
+    /// A machining centre's local coordinate system (Fanuc G52 X Y Z), mm.
+    pub local: [f64; 3],
+    /// A machining centre's coordinate rotation (Fanuc G68): centre X, Y (mm) and angle
+    /// (degrees, counter-clockwise).
+    pub rotation: Option<(f64, f64, f64)>,
     /// Cutter radius compensation: 0 G40, 1 G41, 2 G42.
     pub comp: u8,
     /// Working plane (17, 18, 19).
@@ -271,6 +276,8 @@ impl Motion {
             hole_modal: (None, None),
             cycle_levels: (None, None),
             return_to_r: false,
+            local: [0.0; 3],
+            rotation: None,
             comp: 0,
             plane: if !mill && lathe_dialect(dialect) { 18 } else { 17 },
             ops: Vec::new(),
@@ -429,6 +436,29 @@ impl Motion {
             }
         }
         (x, y, z)
+    }
+
+    /// A point of the program (X, Y, Z in its coordinates) in the workpiece coordinates of the
+    /// work offset in force: rotated about the G68 centre, then shifted by the G52 local system.
+    pub fn work_point(
+        &self,
+        x: Option<f64>,
+        y: Option<f64>,
+        z: Option<f64>,
+    ) -> (Option<f64>, Option<f64>, Option<f64>) {
+        let (x, y) = match (self.rotation, x, y) {
+            (Some((cx, cy, deg)), Some(x), Some(y)) => {
+                let (s, c) = deg.to_radians().sin_cos();
+                let (dx, dy) = (x - cx, y - cy);
+                // A rounding's leftover (cos 90° = 6e-17) is no position: zero it below 1 pm.
+                let tidy = |v: f64| if v.abs() < 1e-9 { 0.0 } else { v };
+                (Some(tidy(cx + c * dx - s * dy)), Some(tidy(cy + s * dx + c * dy)))
+            }
+            // A rotated point with one coordinate unknown is unknown.
+            (Some(_), _, _) => (None, None),
+            (None, x, y) => (x, y),
+        };
+        (x.map(|v| v + self.local[0]), y.map(|v| v + self.local[1]), z.map(|v| v + self.local[2]))
     }
 
     /// Moves to the block's target; true if it moved. Records the move when asked.
