@@ -124,7 +124,7 @@ pub use analysis::tapping::{tapping, TapCheck, TapFeature, TapReport, TapSpec, T
 pub use analysis::threadmill::{thread_mill, ThreadMillReport, ThreadMillSpec};
 pub use analysis::tools::{Tool, ToolTable};
 pub use analysis::verify::{
-    default_blank, default_pass_count, program_passes, read_program_text, reference_groove, verify,
+    default_blank, default_pass_count, program_passes, read_program_text, reference_groove, text_of, verify,
     verify_program, InsertChoice, ProgramLabel, ProgramSource, ProgramVerification, Units, Verification,
     VerifySpec,
 };

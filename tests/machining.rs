@@ -233,3 +233,21 @@ fn a_bolt_pattern_needs_a_cycle() {
         "threadcheck: error: b.nc:4:1: G70 places the holes of a drilling or tapping cycle, and none is in force"
     );
 }
+
+/// A file as a shop's software writes it: a comment in Latin-1/CP1251 (not UTF-8), CR LF line
+/// ends and a DOS end-of-file byte (^Z) after M30. Read: the G92's three passes at X19.2, X18.8
+/// and X18.376, and a note naming the comment's line.
+#[test]
+fn comments_in_another_encoding_and_a_dos_eof_are_read() {
+    let p = data("machining/latin1-comment-dos-eof.nc");
+    let o = run(&["passes", "--program", p.to_str().unwrap(), "--json", "-"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let xs: Vec<f64> = v["passes"].as_array().unwrap().iter().map(|p| p["x_end"].as_f64().unwrap()).collect();
+    assert_eq!(xs, [19.2, 18.8, 18.376]);
+    let notes = v["notes"].to_string();
+    assert!(
+        notes.contains("latin1-comment-dos-eof.nc:1: a comment holds bytes that are not UTF-8"),
+        "{notes}"
+    );
+}

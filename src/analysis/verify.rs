@@ -732,7 +732,18 @@ pub fn read_program_text(path: &std::path::Path) -> Result<String, Error> {
     text_of(&bytes, &shown)
 }
 
-/// The text of a program file: UTF-8 (a byte-order mark is fine), no NUL bytes.
+/// The text of a program file: UTF-8 (a byte-order mark is fine), no NUL bytes. A DOS
+/// end-of-file byte (^Z, 0x1A), which training-lathe software still writes, ends the text.
+/// Bytes that are not UTF-8 are refused, unless every one lies in a comment (`(…)` or after
+/// `;`: shops' files carry CP1251, GBK and Latin-1 comments), where each becomes U+FFFD and the
+/// program's notes say so.
+///
+/// ```
+/// let t = threadcheck::text_of(b"G0 X10 (\xc4\xe5\xf2\xe0\xeb\xfc)\nM30\n\x1a", "p.nc")?;
+/// assert_eq!(t, "G0 X10 (\u{fffd}\u{fffd}\u{fffd}\u{fffd}\u{fffd}\u{fffd})\nM30\n");
+/// assert!(threadcheck::text_of(b"G0 X1\xe5\n", "p.nc").is_err());
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
 pub fn text_of(bytes: &[u8], file: &str) -> Result<String, Error> {
     let at = |offset: usize, message: String| {
         let before = &bytes[..offset];
@@ -740,15 +751,37 @@ pub fn text_of(bytes: &[u8], file: &str) -> Result<String, Error> {
         let column = offset - before.iter().rposition(|&b| b == b'\n').map_or(0, |p| p + 1) + 1;
         Error::Program { file: file.to_string(), line, column, message }
     };
+    let bytes = match bytes.iter().position(|&b| b == 0x1a) {
+        Some(end) => &bytes[..end],
+        None => bytes,
+    };
     if bytes.is_empty() {
         return Err(at(0, "the program is empty".into()));
     }
     if let Some(i) = bytes.iter().position(|&b| b == 0) {
         return Err(at(i, "a NUL byte: this is a binary file, not a program".into()));
     }
-    String::from_utf8(bytes.to_vec()).map_err(|e| {
-        at(e.utf8_error().valid_up_to(), "not UTF-8 text: a binary file or another encoding".into())
-    })
+    if let Ok(text) = std::str::from_utf8(bytes) {
+        return Ok(text.to_string());
+    }
+    // Line by line: the bytes that are not UTF-8 must all sit in comments.
+    let mut out = String::with_capacity(bytes.len());
+    let mut offset = 0;
+    for line in bytes.split_inclusive(|&b| b == b'\n') {
+        let decoded = String::from_utf8_lossy(line);
+        if let std::borrow::Cow::Owned(_) = decoded {
+            let code_end = line.iter().position(|&b| b == b'(' || b == b';').unwrap_or(line.len());
+            if let Err(e) = std::str::from_utf8(&line[..code_end]) {
+                return Err(at(
+                    offset + e.valid_up_to(),
+                    "not UTF-8 text outside a comment: a binary file or another encoding".into(),
+                ));
+            }
+        }
+        out.push_str(&decoded);
+        offset += line.len();
+    }
+    Ok(out)
 }
 
 /// A spec resolved against the standards: everything but the passes.

@@ -17,6 +17,10 @@
 //! # Ok::<(), threadcheck::Error>(())
 //! ```
 
+// The fields' doc comments are the command line's help, where `partial[:TIP_RADIUS]` is the
+// usage's own notation, not a link.
+#![allow(rustdoc::broken_intra_doc_links)]
+
 pub(crate) mod args;
 mod capability;
 mod compare;

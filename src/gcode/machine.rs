@@ -151,3 +151,44 @@ fn evidence(b: &Block, dialect: Dialect) -> Option<(MachineType, String)> {
     }
     None
 }
+
+/// A control whose programs threadcheck does not read, named at the first line that shows it:
+/// (line, column, message). Heidenhain's Klartext (`BEGIN PGM`), Beckhoff TwinCAT's `#`
+/// commands and cycle calls (`#TURN[…]`, `L CYCLE [NAME=…]`); a Fanuc macro's `#100=`, a
+/// LinuxCNC `#<name>` and a Sinumerik `L100` call are their own dialects' and pass.
+pub(crate) fn foreign_control(text: &str) -> Option<(usize, usize, String)> {
+    for (i, line) in text.lines().enumerate().take(200_000) {
+        let code = line.split(['(', ';']).next().unwrap_or("");
+        let trimmed = code.trim_start();
+        let col = code.len() - trimmed.len() + 1;
+        // A block number before the words (Klartext numbers every block: `0 BEGIN PGM`).
+        let words = trimmed.trim_start_matches(|c: char| c.is_ascii_digit() || c == 'N').trim_start();
+        let wcol = col + (trimmed.len() - words.len());
+        if words.starts_with("BEGIN PGM") {
+            return Some((
+                i + 1,
+                wcol,
+                "BEGIN PGM opens a Heidenhain Klartext (conversational) program, which threadcheck does not read yet: its machining-centre cycles are not modelled (‹dialect› heidenhain reads the DIN/ISO programs of Heidenhain's lathe controls)".into(),
+            ));
+        }
+        let hash_word = words.strip_prefix('#').is_some_and(|r| {
+            let name: String = r.chars().take_while(|c| c.is_ascii_uppercase()).collect();
+            name.len() >= 2 && r[name.len()..].trim_start().starts_with(['[', '('])
+        });
+        let cycle_call = words.starts_with("L CYCLE") && words.contains("NAME=");
+        if hash_word || cycle_call {
+            let what = if cycle_call {
+                "L CYCLE [NAME=…] is a Beckhoff TwinCAT CNC cycle call".to_string()
+            } else {
+                let name: String = words.chars().skip(1).take_while(|c| c.is_ascii_uppercase()).collect();
+                format!("#{name} is a Beckhoff TwinCAT CNC command")
+            };
+            return Some((
+                i + 1,
+                wcol,
+                format!("{what}, which threadcheck does not read: TwinCAT's cycles and # commands are not modelled (write the threading as G-code blocks, or check it on the control)"),
+            ));
+        }
+    }
+    None
+}

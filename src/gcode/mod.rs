@@ -751,6 +751,9 @@ fn read(
         column,
         message,
     };
+    if let Some((line, column, message)) = machine::foreign_control(text) {
+        return Err(perr(line, column, message));
+    }
     if dialect == Dialect::Dyna {
         dyna::prescan(text).map_err(|(l, c, m)| perr(l, c, m))?;
     }
@@ -873,6 +876,13 @@ fn read(
         | Dialect::Okuma
         | Dialect::Heidenhain => None,
     };
+    // Comments in another encoding were read as U+FFFD (text_of): say where.
+    let encoding_note = text.lines().position(|l| l.contains('\u{fffd}')).map(|i| {
+        format!(
+            "{file}:{}: a comment holds bytes that are not UTF-8 (another encoding: CP1251, GBK, Latin-1, …), read as U+FFFD; comments are read past as ever",
+            i + 1
+        )
+    });
     // Where the machine changes what codes mean, say which was read and why.
     let machine_note = (!opts.moves
         && matches!(
@@ -880,7 +890,11 @@ fn read(
             Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak | Dialect::LinuxCnc
         ))
     .then(|| machine.reason.clone());
-    for n in [machine_note, units_note, dialect_note, system_note, model_note].into_iter().flatten().rev() {
+    for n in [machine_note, units_note, dialect_note, system_note, model_note, encoding_note]
+        .into_iter()
+        .flatten()
+        .rev()
+    {
         notes.insert(0, Note::from(n));
     }
     if operations.is_empty() && !opts.allow_no_threading {
