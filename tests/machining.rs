@@ -251,3 +251,23 @@ fn comments_in_another_encoding_and_a_dos_eof_are_read() {
         "{notes}"
     );
 }
+
+/// A lathe taps on the centre line with thread-cutting moves: `G32 Z-20 F1.5` in at X0, M4, `G32
+/// Z5` out. That is a tap of lead 1.5 (M10x1.5) to Z−20 with the spindle clockwise going in (a
+/// right-hand thread), after the G83 Ø8.5 drill to Z−25: D1 8.376–8.676 holds 8.5 (ISO 965-2),
+/// 5 mm below the tap's bottom holds the 3.75 mm chamfer. It was refused ("reaches or crosses
+/// the axis").
+#[test]
+fn a_lathe_taps_on_the_centre_line_with_g32() {
+    let (code, v, e) = tap_file("lathe-centre-g32-tap", &[]);
+    assert_eq!(code, 0, "{e}");
+    assert_eq!(v["machine"]["machine_type"], "lathe");
+    // Line 12: the first G32, one line below the program's comment.
+    assert_eq!(holes(&v), [(Some(0.0), None, Some(-20.0), 12)]);
+    let c = &v["holes"][0]["cycle"];
+    assert_eq!(
+        (c["code"].as_str(), c["feed"].as_f64(), c["feed_per_rev"].as_bool()),
+        (Some("G32"), Some(1.5), Some(true))
+    );
+    assert_eq!(v["holes"][0]["pass"], true);
+}

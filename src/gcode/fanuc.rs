@@ -214,6 +214,11 @@ pub(crate) fn thread_block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, md: &M
                 return Ok(());
             }
             let name = m.g_name(32);
+            // Along Z on the centre line: a tap, not a thread turned (../shared/notes/
+            // machining-centres.md §7).
+            if m.lathe() && m.x.is_some_and(|x| x.abs() < 1e-9) && !b.has("X") && !b.has("U") {
+                return centre_tap(m, b, col, &name);
+            }
             cycles::need_lathe_plane(m, b, col, &name)?;
             b.allow_only(&m.file, "GXZUWFEQNMST", &name)?;
             let f = lead(m, b, col, &name)?;
@@ -221,6 +226,53 @@ pub(crate) fn thread_block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, md: &M
         }
         _ => cycles::other_block(m, b, md),
     }
+}
+
+/// A lathe's tap on the centre line written as thread-cutting moves (`G32 Z-20 F1.5`, the
+/// spindle reversed, `G32 Z5`): the move into the part (toward −Z) is a tapping cycle of lead F,
+/// its bottom the move's end, its hand the spindle's going in (a named reading: Haas documents
+/// G32 as a synchronized move, and the note §7 reads the pair as a tap); the move out is its
+/// return.
+fn centre_tap(m: &mut Motion, b: &RBlock<'_>, col: usize, name: &str) -> Result<(), Error> {
+    let (_, _, z) = m.target(b);
+    let Some(z) = z else {
+        m.skipped += 1;
+        return Ok(());
+    };
+    let f = lead(m, b, col, name)?;
+    let into = m.z.is_some_and(|from| z < from);
+    if into {
+        m.push_hole(super::HoleCycle {
+            code: name.to_string(),
+            kind: super::HoleKind::Tap,
+            line: b.line,
+            column: col,
+            x: Some(0.0),
+            y: None,
+            bottom: Some(z),
+            feed: Some(f),
+            feed_word: "F".into(),
+            hand: None,
+            feed_per_rev: true,
+            feed_mode_assumed: false,
+            spindle: m.s,
+            spindle_dir: m.spindle_dir,
+            tool: m.tool,
+            rigid: true,
+        })?;
+    }
+    m.z = Some(z);
+    m.read_past(
+        b.line,
+        col,
+        name,
+        if into {
+            "a tap on the centre line (thread cutting along Z at X0; threadcheck tap checks it)"
+        } else {
+            "a tap's return along Z at X0"
+        },
+    );
+    Ok(())
 }
 
 fn g92(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
