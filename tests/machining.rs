@@ -271,3 +271,38 @@ fn a_lathe_taps_on_the_centre_line_with_g32() {
     );
     assert_eq!(v["holes"][0]["pass"], true);
 }
+
+/// Issue 47: a lead written truncated to the program's increment matches as a rounded one does.
+/// 11.5 tpi is 1/11.5 = 0.0869565 in: F0.0870 is its rounding, F0.0869 its truncation to the
+/// inch control's 0.0001 in; both are 1-11.5 NPT's lead, and F0.0868 (0.00016 in short, more
+/// than one increment) is not. The functional size still counts the remaining error
+/// (0.0869565 − 0.0869 = 0.0000565 in a turn).
+#[test]
+fn a_lead_truncated_to_the_increment_matches() {
+    use threadcheck::{lead_deviation, parse_designation, ParseOptions, ProgramUnits};
+    let npt = parse_designation("1-11.5 NPT", ParseOptions::default()).unwrap().thread;
+    for f in [0.0870, 0.0869] {
+        assert!(lead_deviation(f * 25.4, ProgramUnits::Inch, &npt, 25.4).is_ok(), "F{f}");
+    }
+    assert_eq!(lead_deviation(0.0868 * 25.4, ProgramUnits::Inch, &npt, 25.4), Err(0.0001));
+    let d = lead_deviation(0.0869 * 25.4, ProgramUnits::Inch, &npt, 25.4).unwrap().unwrap();
+    assert!((d.program_lead - d.designation_lead - (0.0869 - 1.0 / 11.5) * 25.4).abs() < 1e-12);
+}
+
+/// Issue 47: a Haas lathe's G84 after M05 passes the spindle check: the control starts the
+/// spindle clockwise itself (Haas's G84 page), and the notes say so.
+#[test]
+fn haas_g84_starts_its_own_spindle() {
+    let dir = tempdir("haas-g84");
+    let program = "G18 G21 G99\nT0505\nG97 S800 M3\nG0 X0 Z5\nG83 Z-25 R2 Q5000 F0.1\nG80\nM05\nT0606\nG97 S300\nG0 X0 Z5\nG84 Z-18 R5 F1.5\nG80\nM30\n";
+    std::fs::write(dir.join("h.nc"), program).unwrap();
+    std::fs::write(dir.join("t.toml"), "[tools]\n5 = \"drill:8.5\"\n6 = \"tap:M10x1.5-6H\"\n").unwrap();
+    let o =
+        run_in(&dir, &["tap", "--program", "h.nc", "--dialect", "haas", "--tools", "t.toml", "--json", "-"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let spindle =
+        v["holes"][0]["checks"].as_array().unwrap().iter().find(|c| c["feature"] == "spindle").unwrap();
+    assert_eq!(spindle["ok"], true);
+    assert!(v["holes"][0]["notes"].to_string().contains("starts the spindle clockwise for G84 itself"));
+}

@@ -64,8 +64,8 @@ pub struct LeadDeviation {
 
 /// Whether a program's lead (mm, written in `units`) is the designation's at the program's
 /// resolution: `Ok(None)` when it is exact (its functional effect negligible), `Ok(Some(_))`
-/// with the deviation when it matches after rounding, `Err(increment)` when it differs by more
-/// than the rounding (the increment in program units, for the message).
+/// with the deviation when it matches after rounding or truncation to the increment,
+/// `Err(increment)` when it differs by more than that (the increment in program units, for the message).
 pub fn lead_deviation(
     program_lead: f64,
     units: ProgramUnits,
@@ -76,9 +76,16 @@ pub fn lead_deviation(
     let written = program_lead / units.mm();
     let wanted = designation_lead / units.mm();
     let increment = units.least_increment().min(written_increment(written));
-    // Half an increment either way rounds to the written value; a whisker more absorbs the
-    // binary representation of both.
-    if (written - wanted).abs() > 0.5 * increment * (1.0 + 1e-9) + 1e-12 {
+    // Half an increment either way rounds to the written value; a lead truncated to the
+    // increment (F0.0869 in for 11.5 tpi, whose rounding is 0.0870) lies up to one increment
+    // short of it; a whisker more absorbs the binary representation of both. The functional
+    // size counts the remaining error either way.
+    let whisker = 1e-9 * increment + 1e-12;
+    let rounded = (written - wanted).abs() <= 0.5 * increment + whisker;
+    let truncated = wanted.abs() >= written.abs()
+        && wanted.abs() - written.abs() < increment + whisker
+        && wanted.signum() == written.signum();
+    if !(rounded || truncated) {
         return Err(increment);
     }
     let per_turn = program_lead - designation_lead;

@@ -423,7 +423,20 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             Hand::Left => SpindleDir::Ccw,
         };
         let hand_ok = des.thread.hand == hand;
-        match h.spindle_dir {
+        // A Haas control starts the spindle clockwise for G84 itself ("It is not necessary to
+        // start the spindle CW before this canned cycle", the lathe's G84 page; the mill's the
+        // same, a named reading): a stopped or unset spindle is taken as clockwise.
+        let spindle_dir = match (spec.dialect, h.code.as_str(), h.spindle_dir) {
+            (Dialect::Haas, "G84", Some(SpindleDir::Stopped) | None) => {
+                notes.push(
+                    "the Haas control starts the spindle clockwise for G84 itself: the spindle is taken as clockwise (M3)"
+                        .to_string(),
+                );
+                Some(SpindleDir::Cw)
+            }
+            (_, _, d) => d,
+        };
+        match spindle_dir {
             Some(dir) => checks.push(TapCheck {
                 feature: TapFeature::Spindle,
                 ok: dir == want && hand_ok,
