@@ -306,3 +306,32 @@ fn haas_g84_starts_its_own_spindle() {
     assert_eq!(spindle["ok"], true);
     assert!(v["holes"][0]["notes"].to_string().contains("starts the spindle clockwise for G84 itself"));
 }
+
+/// Okuma as shops write it: sequence names (`NSTRT`, `NAT06`) label their blocks, `SB=1200`
+/// (the rotary tool's speed) is read past with a note, and M33 (zig-zag) is read as alternating
+/// flanks (a named default). G71 with M75 (pattern 3, 3277-E): the nth pass to √n·D (D 0.4 on
+/// the diameter) until H − U = 1.524, then H = 1.624: 16 passes, X = 27.546 + 1.624 − depth.
+/// Alternating at B/2 = 30°: each pass moves along Z by its radial depth increment · tan 30°,
+/// one way and then the other, toward −Z first (the cycle threads toward −Z from Z5).
+#[test]
+fn okuma_labels_rotary_speed_and_zig_zag() {
+    let p = data("machining/okuma-labels-m33.min");
+    let o = run(&["passes", "--program", p.to_str().unwrap(), "--json", "-"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let passes = v["passes"].as_array().unwrap();
+    let mut dia: Vec<f64> = (1..=14).map(|n| 0.4 * f64::from(n).sqrt()).collect();
+    dia.extend([1.524, 1.624]);
+    assert_eq!(passes.len(), dia.len());
+    let (t, mut z, mut prev) = (30f64.to_radians().tan(), 0.0, 0.0);
+    for (i, (p, d)) in passes.iter().zip(&dia).enumerate() {
+        let r = 0.5 * d;
+        z += if i % 2 == 0 { -1.0 } else { 1.0 } * (r - prev) * t;
+        prev = r;
+        assert!((p["x_end"].as_f64().unwrap() - (27.546 + 1.624 - d)).abs() < 1e-9, "pass {}: {p}", i + 1);
+        assert!((p["z_start"].as_f64().unwrap() - (5.0 + z)).abs() < 1e-9, "pass {}: {p}", i + 1);
+    }
+    let notes = v["notes"].to_string() + &v["operations"][0]["notes"].to_string();
+    assert!(notes.contains("SB=1200 read past"), "{notes}");
+    assert!(notes.contains("M33 (zig-zag) read as alternating flanks"), "{notes}");
+}

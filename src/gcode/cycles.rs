@@ -452,6 +452,7 @@ pub(crate) fn read_past_item(m: &mut Motion, line: usize, p: &Past) -> Result<()
                 ),
             ))
         }
+        PastKind::RotarySpeed => m.read_past(line, p.col, &p.name, "a rotary (live) tool's spindle speed, not modelled"),
         PastKind::Section => m.read_past(
             line,
             p.col,

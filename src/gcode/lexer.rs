@@ -212,6 +212,8 @@ pub enum PastKind {
     /// A Heidenhain DIN PLUS section of set-up or contour data (`BLANK`, `FINISHED`, …): its
     /// blocks are geometry and data, not moves.
     Section,
+    /// An Okuma rotary (live) tool's spindle speed `SB=…`: a setting threadcheck does not model.
+    RotarySpeed,
 }
 
 impl Block {
@@ -257,16 +259,69 @@ pub fn lex(text: &str, dialect: Dialect) -> Result<Vec<Block>, LexError> {
             // An OSP header line (`$NAME.MIN%`) names the file: nothing to run.
             Dialect::Okuma if line.trim_start().starts_with('$') => {}
             Dialect::Heidenhain => heidenhain_line(line, i + 1, &mut section, &mut blocks)?,
+            Dialect::Okuma => okuma_line(line, i + 1, &mut blocks)?,
             Dialect::Fanuc
             | Dialect::Haas
             | Dialect::LinuxCnc
             | Dialect::Dyna
-            | Dialect::Okuma
             | Dialect::Mitsubishi
             | Dialect::Mazak => bracket_line(line, i + 1, dialect, &mut blocks)?,
         }
     }
     Ok(blocks)
+}
+
+/// An OSP line as shops write it (Okuma 5238-E): a sequence name (`NAT06`, `NSTRT`: N and a
+/// letter) labels the block; `SB=1200`, a rotary tool's speed, is read past; `CALL O…`, a
+/// subprogram call, is read past as a call whose end position is not modelled (its threading,
+/// if any, is not read: the note says so). The rest is read as ever, at its own columns.
+fn okuma_line(line: &str, ln: usize, blocks: &mut Vec<Block>) -> Result<(), LexError> {
+    let mut chars: Vec<char> = line.chars().collect();
+    let mut label = None;
+    let mut past = Vec::new();
+    let start = chars.iter().position(|c| !c.is_whitespace()).unwrap_or(chars.len());
+    let code_end = chars.iter().position(|&c| c == '(').unwrap_or(chars.len());
+    if chars.get(start) == Some(&'N') && chars.get(start + 1).is_some_and(|c| c.is_ascii_uppercase()) {
+        let end = (start + 1..code_end).find(|&k| !chars[k].is_ascii_alphanumeric()).unwrap_or(code_end);
+        label = Some(chars[start..end].iter().collect::<String>());
+        chars[start..end].iter_mut().for_each(|c| *c = ' ');
+    }
+    let mut k = 0;
+    while k + 3 <= code_end {
+        let word_start = k == 0 || !chars[k - 1].is_ascii_alphanumeric();
+        if word_start && chars[k..].starts_with(&['S', 'B', '=']) {
+            let end = (k + 3..code_end)
+                .find(|&e| !(chars[e].is_ascii_digit() || matches!(chars[e], '.' | '-' | '+')))
+                .unwrap_or(code_end);
+            past.push(Past { name: chars[k..end].iter().collect(), kind: PastKind::RotarySpeed, col: k + 1 });
+            chars[k..end].iter_mut().for_each(|c| *c = ' ');
+            k = end;
+        } else if word_start
+            && chars[k..].starts_with(&['C', 'A', 'L', 'L'])
+            && chars.get(k + 4) == Some(&' ')
+        {
+            let end = (k + 5..code_end).find(|&e| chars[e].is_whitespace() && e > k + 5).unwrap_or(code_end);
+            let name: String = chars[k..end].iter().collect();
+            past.push(Past { name: name.trim_end().to_string(), kind: PastKind::Call, col: k + 1 });
+            chars[k..end].iter_mut().for_each(|c| *c = ' ');
+            k = end;
+        } else {
+            k += 1;
+        }
+    }
+    let before = blocks.len();
+    let cleaned: String = chars.into_iter().collect();
+    bracket_line(&cleaned, ln, Dialect::Okuma, blocks)?;
+    if label.is_some() || !past.is_empty() {
+        if blocks.len() == before {
+            blocks.push(Block::new(ln));
+        }
+        if let Some(b) = blocks.last_mut() {
+            b.label = b.label.take().or(label);
+            b.past.extend(past);
+        }
+    }
+    Ok(())
 }
 
 /// Where a Heidenhain DIN PLUS program's line stands: among moves (the `MACHINING` section, or

@@ -11,7 +11,8 @@
 //!   depth and `U` the finishing allowance, all three **diameters**; `B` the included angle of
 //!   the cut (0: straight in); `Q` the number of starts. The infeed is set by M32 (single
 //!   blade: along one flank at B/2), M34 (reverse single blade: along the other) or M33
-//!   (zig-zag); the depth pattern by M73, M74 or M75.
+//!   (zig-zag: read as alternating flanks, a named default, its odd passes' law being lost in
+//!   the source's page image); the depth pattern by M73, M74 or M75.
 //!
 //! Pattern 3 (M75 with M32 or M34), sourced (3277-E): the nth pass cuts to √n·D until the path
 //! reaches H − U, then the tool is fed by U for the finishing pass.
@@ -19,7 +20,7 @@
 //! depth per pass; recalled, not read in a source); without M32–M34 and M73–M75 in force the
 //! control's power-on states M32 and M73 are taken; F is the lead and Q starts lie lead/Q apart,
 //! cut depth by depth. Refused by
-//! name: M33 (zig-zag: its odd passes' law is lost in the source's page image), M74 (pattern
+//! name: M74 (pattern
 //! 2: not in the pages read), G72, tapers (A, I), a lead change (E) and the multi-start phase of
 //! G71 beyond Q.
 
@@ -196,11 +197,10 @@ fn g71(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), 
         }
     };
     if infeed == 33 {
-        return Err(m.err(
-            b.line,
-            col,
-            "G71 with M33 (zig-zag infeed) is not supported: the law of its odd passes is not legible in the source read (Okuma OSP-P200L p. 114); use M32 or M34",
-        ));
+        notes.push(
+            "G71 M33 (zig-zag) read as alternating flanks: each pass moves along the flank at B/2 by its depth increment, to one side and then the other (threadcheck's alternating infeed); a named default, the law of its odd passes not being legible in the source read (Okuma OSP-P200L p. 114)"
+                .to_string(),
+        );
     }
     let rough_to = h - u;
     let mut depths = Vec::new();
@@ -251,7 +251,11 @@ fn g71(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), 
     let sign = if external { 1.0 } else { -1.0 };
     let dir = if z_end < z0 { -1.0 } else { 1.0 };
     let half = 0.5 * angle;
-    let shift = if half > 0.0 { Shift::Flank(half) } else { Shift::Radial };
+    let shift = match (half > 0.0, infeed) {
+        (true, 33) => Shift::Alternating(half),
+        (true, _) => Shift::Flank(half),
+        (false, _) => Shift::Radial,
+    };
     // M34 (reverse single blade) feeds along the other flank.
     let flank_dir = if infeed == 34 { -dir } else { dir };
     let shifts = cycles::shifts(shift, &radial, flank_dir);
@@ -261,8 +265,7 @@ fn g71(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), 
     m.break_chain();
     let op = m.begin_op("G71", b.line);
     if half > 0.0 {
-        m.op_mut(op).infeed_angle =
-            Some((half, if infeed == 34 { "B/2 (M34)".into() } else { "B/2 (M32)".into() }));
+        m.op_mut(op).infeed_angle = Some((half, format!("B/2 (M{infeed})")));
     }
     for note in notes {
         m.op_mut(op).notes.push(crate::ground::note::Note::from(note));
