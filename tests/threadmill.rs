@@ -281,3 +281,30 @@ fn the_milled_root_radius_is_the_envelopes_curvature() {
     let milled = sharp["measured"]["root_radius"].as_f64().unwrap();
     assert!(milled > 0.0 && milled < 0.005, "{milled}");
 }
+
+/// Issue 46: the helix's hand is checked. In G17, looking down the tool axis, a right-hand
+/// helix turns counter-clockwise (G3) rising or clockwise (G2) falling (Heidenhain's helix table,
+/// ../shared/notes/machining-centres.md §3.2). m20-dc14.nc climbs with G3 from Z−16 to Z−1: a
+/// right-hand thread, which passes M20x1.5-6H's hand and fails M20x1.5-LH-6H's; the same
+/// program with G2 (a left-hand helix) passes the left-hand designation and fails the
+/// right-hand one, the note naming the helix's line and its turn.
+#[test]
+fn the_helix_hand_is_checked_against_the_designation() {
+    let hand = |v: &serde_json::Value| {
+        let c = v["checks"].as_array().unwrap().iter().find(|c| c["feature"] == "hand").unwrap().clone();
+        (c["ok"].as_bool().unwrap(), c["note"].as_str().unwrap().to_string())
+    };
+    let rh = std::fs::read_to_string(data("programs/threadmill/m20-dc14.nc")).unwrap();
+    let lh = rh.replace("G3 ", "G2 ");
+    assert!(hand(&mill_text("rh.nc", &rh, "M20x1.5-6H", "14")).0);
+    let (ok, note) = hand(&mill_text("rh.nc", &rh, "M20x1.5-LH-6H", "14"));
+    assert!(!ok);
+    assert_eq!(
+        note,
+        "the helix at line 9 turns counter-clockwise (G3) going up in Z: a right-hand thread, the designation M20x1.5-LH-6H is left-hand"
+    );
+    assert!(hand(&mill_text("lh.nc", &lh, "M20x1.5-LH-6H", "14")).0);
+    let v = mill_text("lh.nc", &lh, "M20x1.5-6H", "14");
+    assert!(!hand(&v).0);
+    assert_eq!(v["verdict"], "fail");
+}

@@ -125,6 +125,9 @@ pub enum CheckFeature {
     Lead,
     /// A multi-form thread mill's row pitch against the thread's pitch.
     RowPitch,
+    /// A thread-milling helix's hand (its turning direction × its Z direction) against the
+    /// designation's (issue 46).
+    Hand,
 }
 
 impl CheckFeature {
@@ -150,6 +153,7 @@ impl CheckFeature {
             CheckFeature::RunOut => "run_out",
             CheckFeature::Lead => "lead",
             CheckFeature::RowPitch => "row_pitch",
+            CheckFeature::Hand => "hand",
         }
     }
 
@@ -175,6 +179,7 @@ impl CheckFeature {
             CheckFeature::RunOut => "run-out room",
             CheckFeature::Lead => "helix lead",
             CheckFeature::RowPitch => "row pitch",
+            CheckFeature::Hand => "hand",
         }
     }
 
@@ -206,6 +211,7 @@ impl CheckFeature {
             CheckFeature::RunOut => "run-out room",
             CheckFeature::Lead => "lead per revolution",
             CheckFeature::RowPitch => "cutter row pitch",
+            CheckFeature::Hand => "hand of the helix",
         }
     }
 
@@ -223,7 +229,9 @@ impl CheckFeature {
             | CheckFeature::Lead
             | CheckFeature::RowPitch => CheckUnit::Mm,
             CheckFeature::FlankAngle | CheckFeature::FlankClearance => CheckUnit::Degree,
-            CheckFeature::SingleGroove | CheckFeature::ConstantSpindleSpeed => CheckUnit::YesNo,
+            CheckFeature::SingleGroove | CheckFeature::ConstantSpindleSpeed | CheckFeature::Hand => {
+                CheckUnit::YesNo
+            }
             CheckFeature::Starts => CheckUnit::Count,
             CheckFeature::GaugePlane => CheckUnit::Turn,
             CheckFeature::Taper => CheckUnit::DiameterPerLength,

@@ -466,6 +466,45 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         deviation_um: if lead_ok { 0.0 } else { (lead_err * 1e4).round() / 10.0 },
         note: Some("the Z travel per revolution of each helix against the designation's lead".into()),
     });
+    // The hand: in G17, looking down the tool axis, a right-hand helix turns counter-clockwise
+    // (G3) rising or clockwise (G2) falling, inside a bore or outside a blank alike
+    // (../shared/notes/machining-centres.md §3.2, after Heidenhain's helix table).
+    let hand_of = |h: &crate::geometry::helix::Helix| {
+        if (h.z[1] > h.z[0]) == (h.sweep_deg > 0.0) {
+            crate::standards::Hand::Right
+        } else {
+            crate::standards::Hand::Left
+        }
+    };
+    let other_hand = hs.iter().find(|h| hand_of(h) != t.hand);
+    let hand_name = |h: crate::standards::Hand| match h {
+        crate::standards::Hand::Right => "right",
+        crate::standards::Hand::Left => "left",
+    };
+    cs.push(Check {
+        feature: crate::analysis::check::CheckFeature::Hand,
+        kind: crate::analysis::check::CheckKind::Size,
+        value: if other_hand.is_none() { 1.0 } else { 0.0 },
+        min: None,
+        max: None,
+        ok: other_hand.is_none(),
+        deviation_um: 0.0,
+        note: Some(match other_hand {
+            None => format!(
+                "every helix cuts a {}-hand thread, the designation's",
+                hand_name(t.hand)
+            ),
+            Some(h) => format!(
+                "the helix at line {} turns {} going {} in Z: a {}-hand thread, the designation {} is {}-hand",
+                h.line,
+                if h.sweep_deg > 0.0 { "counter-clockwise (G3)" } else { "clockwise (G2)" },
+                if h.z[1] > h.z[0] { "up" } else { "down" },
+                hand_name(hand_of(h)),
+                des.text,
+                hand_name(t.hand)
+            ),
+        }),
+    });
     if c.rows > 1 {
         // Each row cuts the groove its neighbour cuts one pitch along: the rows must lie a pitch
         // apart, at the standard's resolution.

@@ -84,16 +84,17 @@ pub fn text(r: &ThreadMillReport) -> String {
     );
     let _ = writeln!(s, "    check                         value       min       max   deviation");
     for k in &r.checks {
-        let num = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.4}"));
+        // Every table's cells: yes/no in words, deviations in the check's own unit.
+        let c = super::check_cells(k);
         let _ = writeln!(
             s,
-            "  {} {:<28} {:>8.4} {:>9} {:>9}   {}",
+            "  {} {:<28} {:>8} {:>9} {:>9}   {}",
             if k.ok { "✓" } else { "✗" },
             k.feature.words(r.kind),
-            k.value,
-            num(k.min),
-            num(k.max),
-            if k.ok { String::new() } else { format!("{:+.1} µm", k.deviation_um) }
+            c.value,
+            c.min,
+            c.max,
+            c.deviation
         );
     }
     let failed: Vec<&str> = r.checks.iter().filter(|k| !k.ok).map(|k| k.feature.words(r.kind)).collect();
