@@ -308,3 +308,31 @@ fn the_helix_hand_is_checked_against_the_designation() {
     assert!(!hand(&v).0);
     assert_eq!(v["verdict"], "fail");
 }
+
+/// Issue 46: compensation on the wrong side. m20-dc6-g41.nc programs the major circle (radius 10)
+/// with G41 on G3: the Ø6 cutter's centre runs 3 mm inside it, at radius 7. With G42 instead, the
+/// centre would run 3 mm outside the path, at radius 13, into the bore's wall: refused at the
+/// first helix (line 9), where it was "measured" as a thread before.
+#[test]
+fn compensation_on_the_wrong_side_is_refused() {
+    let g41 = std::fs::read_to_string(data("programs/threadmill/m20-dc6-g41.nc")).unwrap();
+    let dir = tempdir("tm-g42");
+    std::fs::write(dir.join("g42.nc"), g41.replace("G41 D12", "G42 D12")).unwrap();
+    let args = [
+        "thread-mill",
+        "--program",
+        "g42.nc",
+        "--thread",
+        "M20x1.5-6H",
+        "--cutter-diameter",
+        "6",
+        "--comp-radius",
+        "3",
+    ];
+    let o = run_in(&dir, &args);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: g42.nc:9:1: the compensation puts the cutter's centre 3 mm outside the programmed helix (radius 10 mm), into the bore's wall: an internal thread is milled with the cutter inside its path (G41 with G3, G42 with G2)"
+    );
+}

@@ -323,6 +323,34 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
             ));
         }
     }
+    // Compensation on the wrong side: an internal thread is milled with the cutter's centre
+    // inside its programmed path (G41 with G3, G42 with G2), an external one outside it.
+    if let Some(h) = hs.iter().find(|h| {
+        let out = h.radius - h.programmed_radius;
+        if internal {
+            out > 1e-9
+        } else {
+            out < -1e-9
+        }
+    }) {
+        return Err(Error::Program {
+            file: name.clone(),
+            line: h.line,
+            column: 1,
+            message: format!(
+                "the compensation puts the cutter's centre {} mm {} the programmed helix (radius {} mm), {}: {}",
+                crate::ground::fmt::fmt_num((h.radius - h.programmed_radius).abs()),
+                if internal { "outside" } else { "inside" },
+                crate::ground::fmt::fmt_num(h.programmed_radius),
+                if internal { "into the bore's wall" } else { "into the blank" },
+                if internal {
+                    "an internal thread is milled with the cutter inside its path (G41 with G3, G42 with G2)"
+                } else {
+                    "an external thread is milled with the cutter outside its path (G42 with G3, G41 with G2)"
+                }
+            ),
+        });
+    }
     let Some(first) = hs.first().cloned() else {
         return Err(Error::Program {
             file: name.clone(),
