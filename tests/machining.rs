@@ -45,7 +45,8 @@ fn holes(v: &serde_json::Value) -> Vec<Hole> {
 /// Z5 − 20 = Z−15 at X60 and X80. G99 is the return level, not feed per revolution: F750 at
 /// S600 is 600 × 1.25, the M8x1.25 tap's lead, per minute (the mill's power-on G94). Each tap
 /// finds its hole's drill (Ø6.9 bore at X20, Ø6.8 drill elsewhere, both within 6H's D1
-/// 6.647–6.912, ISO 965-2) 4 mm below its bottom, more than the 2.5-pitch chamfer's 3.125 mm.
+/// 6.647–6.912, ISO 965-2) 4 mm below its bottom, more than the 1.997 mm at which the tap's
+/// point (D1 basic 6.647) meets the drill's 118° point (6.647/2 / tan 59°).
 #[test]
 fn a_machining_centre_program_with_the_g91_header_drills_bores_and_taps_where_it_says() {
     let (code, v, e) = tap_file("fanuc-mill-plate", &[]);
@@ -255,7 +256,8 @@ fn comments_in_another_encoding_and_a_dos_eof_are_read() {
 /// A lathe taps on the centre line with thread-cutting moves: `G32 Z-20 F1.5` in at X0, M4, `G32
 /// Z5` out. That is a tap of lead 1.5 (M10x1.5) to Z−20 with the spindle clockwise going in (a
 /// right-hand thread), after the G83 Ø8.5 drill to Z−25: D1 8.376–8.676 holds 8.5 (ISO 965-2),
-/// 5 mm below the tap's bottom holds the 3.75 mm chamfer. It was refused ("reaches or crosses
+/// 5 mm below the tap's bottom clears the drill's point for the tap's point (Ø8.376, D1 basic):
+/// 4.188 / tan 59° = 2.516 mm. It was refused ("reaches or crosses
 /// the axis").
 #[test]
 fn a_lathe_taps_on_the_centre_line_with_g32() {

@@ -67,22 +67,51 @@ fn the_feed_is_checked_against_the_lead() {
     assert!((check(&v, "feed")["deviation"].as_f64().unwrap() + 50.0).abs() < 1e-9);
 }
 
-/// The tap's bottom must stay its chamfer above the drill's: 2.5 pitches = 3.75 mm by default.
-/// Tapped to Z−22 in a hole drilled to Z−25 leaves 3 mm: fails; with a 1.5-pitch (2.25 mm)
-/// chamfer tap it passes.
+/// Issue 46: the tap's point must clear the drill's point cone. The tap's point is its chamfer's
+/// start at the basic minor diameter D1 = D − 5H/4 = 10 − 1.25·0.866025·1.5 = 8.376202 (smaller
+/// than the Ø8.5 drill), which meets the drill's 118° cone 8.376202/2 / tan 59° = 2.5165 mm
+/// above the drill's bottom. Tapped to Z−22 in a hole drilled to Z−25 leaves 3 mm: passes (the
+/// old rule, the 2.5-pitch chamfer's 3.75 mm, failed it); to Z−23, 2 mm: fails by 0.5165 mm.
 #[test]
-fn the_depth_leaves_room_for_the_chamfer() {
-    let deep = program().replace("G84 Z-18.0", "G84 Z-22.0");
-    let (code, v, _) = tap(&deep, TOOLS);
+fn the_depth_leaves_room_for_the_drill_point() {
+    let need = 0.5 * (10.0 - 1.25 * 0.75f64.sqrt() * 1.5) / 59f64.to_radians().tan();
+    let (code, v, e) = tap(&program().replace("G84 Z-18.0", "G84 Z-22.0"), TOOLS);
+    assert_eq!(code, 0, "{e}");
+    let d = check(&v, "depth");
+    assert_eq!((d["value"].as_f64(), d["ok"].as_bool()), (Some(3.0), Some(true)));
+    assert!((d["min"].as_f64().unwrap() - need).abs() < 1e-4, "{d}");
+    let (code, v, _) = tap(&program().replace("G84 Z-18.0", "G84 Z-23.0"), TOOLS);
     assert_eq!(code, 1);
     let d = check(&v, "depth");
-    assert_eq!(
-        (d["value"].as_f64(), d["min"].as_f64(), d["ok"].as_bool()),
-        (Some(3.0), Some(3.75), Some(false))
+    assert_eq!((d["value"].as_f64(), d["ok"].as_bool()), (Some(2.0), Some(false)));
+    assert!((d["deviation"].as_f64().unwrap() - (2.0 - need) * 1000.0).abs() < 0.1, "{d}");
+}
+
+/// The issue's two cases: M20x1 with a Ø19 drill 2.5 mm below the tap fails (its point, Ø18.917
+/// = 20 − 1.25·0.866025, meets the cone 18.917/2 / tan 59° = 5.683 mm above the drill's bottom,
+/// 3.18 mm above the tap's); M6x1 with Ø4.9 at 2.4 mm passes the depth (the point is the drill's Ø4.9,
+/// under D1 4.917: 2.45 / tan 59° = 1.472 mm).
+#[test]
+fn the_drill_point_cases_of_issue_46() {
+    let prog = |drill_z: &str, tap_z: &str| {
+        format!("T0505\nG99 M3 S800\nG0 X0 Z5\nG83 Z{drill_z} R2 Q5000 F0.1\nT0606\nG0 X0 Z5\nG84 Z{tap_z} R5 F1\nG80\nM30\n")
+    };
+    let (code, v, _) = tap(&prog("-22.5", "-20"), "[tools]\n5 = \"drill:19\"\n6 = \"tap:M20x1-6H\"\n");
+    assert_eq!(code, 1);
+    let d = check(&v, "depth");
+    assert!(
+        (d["min"].as_f64().unwrap() - 0.5 * (20.0 - 1.25 * 0.75f64.sqrt()) / 59f64.to_radians().tan()).abs()
+            < 1e-4,
+        "{d}"
     );
-    let (code, v, _) = tap(&deep, &TOOLS.replace("tap:M10x1.5-6H", "tap:M10x1.5-6H:1.5"));
-    assert_eq!(code, 0);
-    assert_eq!(check(&v, "depth")["min"], 2.25);
+    assert_eq!(d["ok"], false);
+    // (Ø4.9 itself lies 17 µm under 6H's D1 min 4.917, ISO 965-2: that check fails, not the depth.)
+    let (code, v, e) = tap(&prog("-14.4", "-12"), "[tools]\n5 = \"drill:4.9\"\n6 = \"tap:M6x1-6H\"\n");
+    assert_eq!(code, 1, "{e}");
+    assert_eq!(check(&v, "drill_diameter")["ok"], false);
+    let d = check(&v, "depth");
+    assert!((d["min"].as_f64().unwrap() - 2.45 / 59f64.to_radians().tan()).abs() < 1e-4, "{d}");
+    assert_eq!(d["ok"], true);
 }
 
 /// G84 cuts a right-hand thread with the spindle clockwise: M4 before it fails.

@@ -132,8 +132,15 @@ pub struct TappedHole {
     pub wall: Vec<crate::Point>,
 }
 
-/// The drill's point angle: a twist drill's 118° (a named default of the picture).
+/// The drill's point angle: a twist drill's 118° (a named default of the picture and the depth
+/// check).
 const DRILL_POINT_DEG: f64 = 118.0;
+
+/// The basic minor diameter D1 of `t` (the fundamental triangle's 5H/8 below D), where the
+/// picture's tap chamfer starts.
+fn t_minor_basic(t: &crate::standards::BasicThread) -> f64 {
+    t.nominal_diameter - 2.0 * 5.0 * t.fundamental_height() / 8.0
+}
 
 /// The tapped hole's wall, as [`TappedHole::wall`] says: `t` the tap's thread, `chamfer` its
 /// length (mm), `drill` the drill's diameter, `tap_z` and `drill_z` the bottoms.
@@ -148,7 +155,7 @@ fn hole_wall(
     let half = t.half_angle();
     let h = t.fundamental_height();
     let (rd, rmaj) = (0.5 * drill, 0.5 * t.nominal_diameter);
-    let rmin = rmaj - 5.0 * h / 8.0;
+    let rmin = 0.5 * t_minor_basic(t);
     // The tap's tooth: the fundamental triangle's apex H/8 beyond D, flanks at the half angle.
     let apex = rmaj + h / 8.0;
     let top = if tap_z < 0.0 { 0.0 } else { tap_z + 6.0 * p };
@@ -394,24 +401,41 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
         }
         if let (Some(d), Some(tb)) = (&drill, h.bottom) {
             if let Some(db) = d.cycle.bottom {
+                // The tap's point, where its chamfer starts at the basic minor diameter (or the
+                // drill's, when the drill is smaller), meets the drill's point cone that far above
+                // the drill's bottom (issue 46: the chamfer's length is not the room it needs).
+                let basic_minor = t_minor_basic(&des.thread);
+                let point = d.diameter.map_or(basic_minor, |dia| dia.min(basic_minor));
+                let need = 0.5 * point / (0.5 * DRILL_POINT_DEG).to_radians().tan();
                 let room = tb - db;
-                let ok = room >= chamfer - 1e-9;
+                let ok = room >= need - 1e-9;
                 checks.push(TapCheck {
                     feature: TapFeature::Depth,
                     ok,
                     value: Some(room),
-                    min: Some(chamfer),
+                    min: Some((need * 1e4).round() / 1e4),
                     max: None,
                     unit: "mm",
-                    deviation: if ok { 0.0 } else { (room - chamfer) * 1000.0 },
+                    deviation: if ok { 0.0 } else { ((room - need) * 1e4).round() / 10.0 },
                     note: format!(
-                        "the drill's bottom (Z{}) lies {} mm below the tap's (Z{}); the tap's chamfer needs {} mm",
+                        "the drill's bottom (Z{}) lies {} mm below the tap's (Z{}); the tap's point (Ø{}) meets the drill's {}° point {} mm above its bottom{}",
                         crate::ground::fmt::fmt_num(db),
                         crate::ground::fmt::fmt_num(room),
                         crate::ground::fmt::fmt_num(tb),
-                        crate::ground::fmt::fmt_num(chamfer)
+                        crate::ground::fmt::fmt_num((point * 1e4).round() / 1e4),
+                        crate::ground::fmt::fmt_num(DRILL_POINT_DEG),
+                        crate::ground::fmt::fmt_num((need * 1e4).round() / 1e4),
+                        if ok {
+                            String::new()
+                        } else {
+                            format!(", {} mm above the tap's bottom", crate::ground::fmt::fmt_num(((need - room) * 1e4).round() / 1e4))
+                        }
                     ),
                 });
+                notes.push(format!(
+                    "the drill's point angle is taken as {}°, a twist drill's (a named default)",
+                    crate::ground::fmt::fmt_num(DRILL_POINT_DEG)
+                ));
             }
         }
         // The spindle.

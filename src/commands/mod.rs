@@ -399,7 +399,7 @@ commands! {
     Mill(MillArgs), api "mill";
     /// A program's tapping cycles (G84, G74) against their taps and the drills that made the
     /// holes: the drill against D1 of the tap's class, the feed against the lead, the depth
-    /// left for the tap's chamfer, the spindle's direction (exit 0 all pass, 1 one fails).
+    /// left for the tap's point above the drill's, the spindle's direction (exit 0 all pass, 1 one fails).
     Tap(TapArgs), api "tap";
     /// The thread a thread-milling program leaves (helical G2/G3 in G17 with a single-form
     /// cutter): the exact envelope of the cutter in the part's axial section, measured and
