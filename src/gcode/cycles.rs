@@ -182,24 +182,7 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                     // Rigid tapping: recorded for `threadcheck tap`, read past by the rest.
                     let (x, y, z) = m.target(b);
                     let feed = b.get("K").map(|w| m.len(w));
-                    m.push_hole(super::HoleCycle {
-                        code: "G33.1".into(),
-                        kind: super::HoleKind::Tap,
-                        line: b.line,
-                        column: col,
-                        x: x.or(m.x),
-                        y: y.or(m.y),
-                        bottom: z,
-                        feed,
-                        feed_word: "K".into(),
-                        hand: None,
-                        feed_per_rev: true,
-                        feed_mode_assumed: false,
-                        spindle: m.s,
-                        spindle_dir: m.spindle_dir,
-                        tool: m.tool,
-                        rigid: true,
-                    })?;
+                    m.push_synced_tap("G33.1", b.line, col, (x.or(m.x), y.or(m.y)), z, feed, "K")?;
                     m.read_past(
                         b.line,
                         col,
@@ -559,9 +542,7 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
                 }
                 return Ok(());
             }
-            GRole::OtherCycle
-                if !m.lathe() && m.dialect.fanuc_family() || m.dialect == Dialect::Haas && !m.lathe() =>
-            {
+            GRole::OtherCycle if !m.lathe() && (m.dialect.fanuc_family() || m.dialect == Dialect::Haas) => {
                 return mill_holes(m, b, modal);
             }
             GRole::OtherCycle => {

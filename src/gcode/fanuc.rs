@@ -242,24 +242,7 @@ fn centre_tap(m: &mut Motion, b: &RBlock<'_>, col: usize, name: &str) -> Result<
     let f = lead(m, b, col, name)?;
     let into = m.z.is_some_and(|from| z < from);
     if into {
-        m.push_hole(super::HoleCycle {
-            code: name.to_string(),
-            kind: super::HoleKind::Tap,
-            line: b.line,
-            column: col,
-            x: Some(0.0),
-            y: None,
-            bottom: Some(z),
-            feed: Some(f),
-            feed_word: "F".into(),
-            hand: None,
-            feed_per_rev: true,
-            feed_mode_assumed: false,
-            spindle: m.s,
-            spindle_dir: m.spindle_dir,
-            tool: m.tool,
-            rigid: true,
-        })?;
+        m.push_synced_tap(name, b.line, col, (Some(0.0), None), Some(z), Some(f), "F")?;
     }
     m.z = Some(z);
     m.read_past(

@@ -700,6 +700,40 @@ impl Motion {
         Ok(())
     }
 
+    /// Records a spindle-synchronized tap (LinuxCNC's G33.1, a lathe's G32 on the centre line):
+    /// feed per revolution given by `feed_word`, rigid, its hand the spindle's; spindle, direction
+    /// and tool as in force.
+    #[allow(clippy::too_many_arguments)]
+    pub fn push_synced_tap(
+        &mut self,
+        code: &str,
+        line: usize,
+        column: usize,
+        (x, y): (Option<f64>, Option<f64>),
+        bottom: Option<f64>,
+        feed: Option<f64>,
+        feed_word: &str,
+    ) -> Result<(), Error> {
+        self.push_hole(super::HoleCycle {
+            code: code.to_string(),
+            kind: super::HoleKind::Tap,
+            line,
+            column,
+            x,
+            y,
+            bottom,
+            feed,
+            feed_word: feed_word.to_string(),
+            hand: None,
+            feed_per_rev: true,
+            feed_mode_assumed: false,
+            spindle: self.s,
+            spindle_dir: self.spindle_dir,
+            tool: self.tool,
+            rigid: true,
+        })
+    }
+
     /// Adds a pass to an operation.
     pub fn push(&mut self, op: usize, line: usize, mut p: Pass) -> Result<(), Error> {
         self.passes_total += 1;
