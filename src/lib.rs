@@ -85,10 +85,10 @@ pub use standards::{Feature, GrooveForm};
 
 // Programs read as a control would.
 pub use gcode::{
-    read_program, read_program_streaming, read_program_with, rewrite_words, Budget, DepthWord, Dialect,
-    DialectFrom, GCodeSystem, HoleCycle, HoleKind, LinuxCncRelease, MachineReading, MachineType, Operation,
-    PassXWord, Program, ProgramUnits, ReadOptions, Spindle, SpindleDir, WordEdit, WordForm, WordMeans,
-    XWords,
+    comments, read_program, read_program_streaming, read_program_with, rewrite_words, Budget, Comment,
+    DepthWord, Dialect, DialectFrom, GCodeSystem, HoleCycle, HoleKind, LinuxCncRelease, MachineReading,
+    MachineType, Operation, PassXWord, Program, ProgramUnits, ReadOptions, Spindle, SpindleDir, WordEdit,
+    WordForm, WordMeans, XWords,
 };
 
 // Toolpaths: passes, generated plans, infeeds and depth schedules.
@@ -118,6 +118,7 @@ pub use analysis::correction::{correction, deeper_words, Correction, Deeper};
 pub use analysis::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};
 pub use analysis::lead::{lead_deviation, LeadDeviation};
 pub use analysis::mill::{mill, MillReport, MillSpec, Target};
+pub use analysis::naming::{designation_in_comment, infer_designation, DesignationFrom, Found, Named};
 pub use analysis::picture::{Cut, Deviation, Picture};
 pub use analysis::process::MachineProfile;
 pub use analysis::tapping::{tapping, TapCheck, TapFeature, TapReport, TapSpec, TappedHole};

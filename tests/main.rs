@@ -18,6 +18,7 @@ mod limits;
 mod linuxcnc;
 mod machining;
 mod mill;
+mod naming;
 mod process;
 mod programs;
 mod properties;

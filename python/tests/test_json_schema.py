@@ -54,6 +54,8 @@ def test_the_schema_is_a_valid_schema():
     ["--thread", "M20x1.5-6g", "--program", str(PROGRAMS / "mitsubishi-g76.nc"), "--dialect", "mitsubishi"],
     ["--thread", "M20x1.5-6g", "--program", str(PROGRAMS / "okuma-g33-repeats.min")],
     ["--thread", "M24xPh3P1.5-6g", "--program", str(PROGRAMS / "sinumerik-cycle99-two-start.mpf")],
+    # The thread named by the program: two operations by a comment, one inferred.
+    ["--program", str(PROGRAMS.parent / "naming" / "fanuc-two-threads.nc")],
     # A correction with an earlier pass deeper than its new value (`deeper`).
     ["--thread", "M12x1.75-6g", "--program", str(PROGRAMS / "shop" / "partial-insert-m12.nc"), "--insert", "full"],
 ])

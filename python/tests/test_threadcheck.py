@@ -398,7 +398,7 @@ def test_every_function_documents_every_argument():
         assert "return" in hints, name
     # help() shows each argument with its type.
     sig = str(inspect.signature(threadcheck.verify))
-    for arg in ("thread: 'Threads'", "program: 'Optional[str]'", "svg: 'Optional[PathLike]'"):
+    for arg in ("thread: 'Optional[Threads]'", "program: 'Optional[str]'", "svg: 'Optional[PathLike]'"):
         assert arg in sig, sig
 
 
@@ -584,3 +584,12 @@ def test_every_function_takes_exactly_its_commands_keys():
         params = set(inspect.signature(function).parameters) - documents
         keys = set(_threadcheck.keys(command))
         assert params == keys, (command, sorted(keys - params), sorted(params - keys))
+
+
+def test_verify_names_the_thread_from_the_program_text():
+    # The comment above the G76 names M24x2 in capitals; the passes cut a bar, so 6G is 6g.
+    text = "G0 X26 Z5\n(THREAD M24X2 6G)\nG76 P010060 Q100 R0.05\nG76 X21.546 Z-30 P1227 Q350 F2.0\nM30\n"
+    r = threadcheck.verify(program=text, program_name="shaft.nc", insert="full")
+    op = r["operations"][0]
+    assert op["thread"]["designation"] == "M24X2-6g"
+    assert (op["designation_from"], op["designation_line"]) == ("comment", 2)

@@ -112,7 +112,7 @@ def render(command: str, document: str, **arguments: Any) -> str:
     return _run(command, document, arguments)[0]
 
 
-def verify(thread: Threads, program: Optional[str] = None, dialect: Optional[str] = None,
+def verify(thread: Optional[Threads] = None, program: Optional[str] = None, dialect: Optional[str] = None,
            insert: Optional[str] = None, final_x: Optional[float] = None, internal: bool = False,
            infeed: Optional[str] = None, passes: Optional[int] = None,
            blank_diameter: Optional[float] = None, gauge_only: bool = False,
@@ -136,7 +136,10 @@ def verify(thread: Threads, program: Optional[str] = None, dialect: Optional[str
     """``threadcheck verify --json -``.
 
     ``thread`` is a designation with its class (``"M20x1.5-6g"``), or a list of them, one per
-    threading operation of ``program`` (``operation``, from 1, checks that one alone).
+    threading operation of ``program`` (``operation``, from 1, checks that one alone). With a
+    program and no ``thread``, each operation's thread is the one the program names (the nearest
+    comment above it), else the standard size it cuts; each operation's ``designation_from``
+    (``"given"``, ``"comment"``, ``"inferred"``) and ``designation_line`` say which.
     ``program`` is the program's **text** (a path is refused
     by name); ``program_name`` is what messages call it and, by its extension, chooses the dialect
     when ``dialect`` is not given (``.ngc`` linuxcnc, ``.mpf``/``.spf`` sinumerik, else fanuc,

@@ -68,6 +68,8 @@ class OperationReport(_Report, total=False):
 
     operation: Json
     reason: str
+    designation_from: str
+    designation_line: Optional[int]
 
 
 class VerifyReport(_Report, total=False):

@@ -9,6 +9,7 @@ pub mod correction;
 pub mod fit;
 pub mod lead;
 pub mod mill;
+pub mod naming;
 pub mod picture;
 pub mod process;
 pub mod tapping;

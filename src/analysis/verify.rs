@@ -129,6 +129,9 @@ pub struct VerifySpec {
     pub tolerance: f64,
     /// Lengths in the text and the picture: mm, or mm with inches beside them.
     pub units: Units,
+    /// `units` was chosen by the user; else each operation of a program takes its own
+    /// designation's default ([`VerifySpec::default_units`]).
+    pub units_given: bool,
     /// The machine whose limits the process checks of a program use.
     pub machine: Option<crate::analysis::process::MachineProfile>,
     /// The insert's side clearance angle, degrees, for the flank-clearance check.
@@ -265,6 +268,7 @@ impl VerifySpec {
             picture: false,
             tolerance: crate::DEFAULT_TOLERANCE,
             units: Units::Mm,
+            units_given: false,
             machine: None,
             clearance_angle: None,
             coating: 0.0,
@@ -1418,6 +1422,8 @@ pub struct OperationVerdict {
     pub operation: crate::gcode::Operation,
     /// The designation it was verified against.
     pub designation: String,
+    /// Where the designation came from (given, a comment, inferred) and how it was read.
+    pub named: crate::analysis::naming::Named,
     /// The verdict.
     pub result: OperationResult,
 }
@@ -1685,6 +1691,80 @@ fn verify_given(
     Ok(v)
 }
 
+/// The side a turned operation's passes cut: inward pass by pass from a bar (external), outward
+/// in a bore (internal); `None` when every pass ends at one X.
+pub fn pass_side(passes: &[Pass]) -> Option<ThreadKind> {
+    let first = passes.first()?;
+    let dx = last_head(passes).x_end - first.x_end;
+    if dx.abs() < 1e-6 {
+        None
+    } else if dx < 0.0 {
+        Some(ThreadKind::External)
+    } else {
+        Some(ThreadKind::Internal)
+    }
+}
+
+/// The designation of a turned operation from its program: the nearest comment above it (back
+/// to the operation before) that names a thread, else the nearest one higher up whose lead is
+/// the operation's, else the standard size of its lead and diameter (the last pass's tip is on
+/// d3 ≈ d − 1.2269·P on a bar, on D in a bore).
+fn name_turned(
+    op: &crate::gcode::Operation,
+    before: Option<&crate::gcode::Operation>,
+    comments: &[crate::gcode::Comment],
+    internal: bool,
+    opts: crate::standards::designation::ParseOptions,
+    file: &str,
+) -> Result<crate::analysis::naming::Named, Error> {
+    use crate::analysis::naming::{from_comments, infer_designation};
+    let kind = match (internal, pass_side(&op.passes)) {
+        (true, _) => ThreadKind::Internal,
+        (false, Some(k)) => k,
+        (false, None) => ThreadKind::External,
+    };
+    let lead = op.passes.first().map_or(0.0, |p| p.lead);
+    let upto = op
+        .passes
+        .iter()
+        .filter_map(|p| p.source_line)
+        .chain([op.source_line])
+        .max()
+        .unwrap_or(op.source_line);
+    let after = before.map_or(0, |b| b.source_line);
+    if let Some(n) = from_comments(comments, after, upto, kind, opts) {
+        return Ok(n);
+    }
+    let same_lead = comments
+        .iter()
+        .rev()
+        .filter(|c| c.line <= after)
+        .find(|c| {
+            crate::analysis::naming::designation_in_comment(&c.text, opts).is_some_and(|f| {
+                crate::analysis::lead::lead_deviation(lead, op.units, &f.designation.thread, 1.0).is_ok()
+            })
+        })
+        .map(|c| c.line);
+    if let Some(line) = same_lead {
+        if let Some(n) = from_comments(comments, line - 1, line, kind, opts) {
+            return Ok(n);
+        }
+    }
+    let last = last_head(&op.passes).x_end;
+    let starts = op.passes.iter().map(|p| p.start + 1).max().unwrap_or(1);
+    let pitch = lead / f64::from(starts);
+    let major = match kind {
+        ThreadKind::External => last + 2.0 * 0.613_434_5 * pitch,
+        ThreadKind::Internal => last,
+    };
+    infer_designation(lead, starts, major, kind, op.units, op.source_line).map_err(|e| match e {
+        Error::Input(message) => {
+            Error::Program { file: file.to_string(), line: op.source_line, column: 1, message }
+        }
+        e => e,
+    })
+}
+
 /// How a program's operation gets its insert: `None` keeps the spec's; else the insert, the
 /// note that says where it came from, and whether it is the assumed default.
 pub type InsertFor<'a> = dyn Fn(&crate::gcode::Operation) -> Option<(InsertChoice, String, bool)> + 'a;
@@ -1712,7 +1792,7 @@ pub fn verify_program(
 ) -> Result<ProgramVerification, Error> {
     let prog = crate::gcode::read_program_with(text, name, dialect, spec.reading)?;
     let n = prog.operations.len();
-    if !(threads.len() == 1 || threads.len() == n) {
+    if !(threads.is_empty() || threads.len() == 1 || threads.len() == n) {
         let lines: Vec<String> =
             prog.operations.iter().map(|o| format!("{} at line {}", o.cycle, o.source_line)).collect();
         return Err(Error::Input(format!(
@@ -1726,12 +1806,30 @@ pub fn verify_program(
     let mut operations = Vec::with_capacity(n);
     // One operation when the spec names it, else every one.
     let only = spec.operation.map(|k| operation_index(&prog, name, Some(k))).transpose()?;
+    let comments = if threads.is_empty() { crate::gcode::comments(text, dialect) } else { Vec::new() };
     for (i, op) in prog.operations.iter().enumerate() {
         if only.is_some_and(|k| k != i) {
             continue;
         }
-        let designation = threads[if threads.len() == 1 { 0 } else { i }].clone();
+        let named = match threads {
+            [] => name_turned(
+                op,
+                i.checked_sub(1).map(|k| &prog.operations[k]),
+                &comments,
+                spec.internal,
+                crate::standards::designation::ParseOptions { allow_nonstandard: spec.allow_nonstandard },
+                name,
+            )?,
+            [one] => crate::analysis::naming::Named::given(one),
+            many => crate::analysis::naming::Named::given(&many[i]),
+        };
+        let designation = named.designation.clone();
         let mut s = VerifySpec {
+            units: if spec.units_given {
+                spec.units
+            } else {
+                VerifySpec::default_units(&designation, spec.allow_nonstandard)
+            },
             designation: designation.clone(),
             program: None,
             operation: None,
@@ -1739,6 +1837,9 @@ pub fn verify_program(
             ..spec.clone()
         };
         let mut extra = Vec::new();
+        if !named.why.is_empty() {
+            extra.push(named.why.clone());
+        }
         let mut assumed = false;
         if let Some((choice, note, default)) = insert_for(op) {
             s.insert = choice;
@@ -1767,7 +1868,7 @@ pub fn verify_program(
                 ));
             }
         }
-        operations.push(OperationVerdict { operation: op.clone(), designation, result });
+        operations.push(OperationVerdict { operation: op.clone(), designation, named, result });
     }
     Ok(ProgramVerification {
         program: label,

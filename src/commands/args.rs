@@ -350,6 +350,7 @@ impl PlanArgs {
         // An inch thread is read in inches beside the mm; a designation that does not parse is
         // reported where it is resolved.
         s.units = self.units.unwrap_or_else(|| VerifySpec::default_units(first, self.allow_nonstandard));
+        s.units_given = self.units.is_some();
         match &self.program {
             Some(source) => {
                 if let Source::Text(text) = source {

@@ -15,6 +15,7 @@
 //! from. Blocks that move the tool without threading update the position and are otherwise
 //! counted as skipped.
 
+mod comments;
 mod cycles;
 mod dialect;
 mod dyna;
@@ -37,6 +38,7 @@ use crate::toolpath::passes::Pass;
 use crate::Error;
 use serde::Serialize;
 
+pub use comments::{comments, Comment};
 pub use edit::{rewrite_words, WordEdit};
 pub use machine::{MachineReading, MachineType};
 pub use motion::Move;

@@ -544,6 +544,10 @@ pub enum OperationReport<'a> {
         report: Box<VerifyReport<'a>>,
         /// The operation.
         operation: OperationInfo<'a>,
+        /// Where its designation came from: given, comment, tool or inferred.
+        designation_from: crate::analysis::naming::DesignationFrom,
+        /// The line of the comment that named it (of the operation, when inferred).
+        designation_line: Option<usize>,
     },
     /// Nothing to measure.
     NoCut {
@@ -560,6 +564,10 @@ pub enum OperationReport<'a> {
         suggested_final_x: Option<f64>,
         /// The operation.
         operation: OperationInfo<'a>,
+        /// Where its designation came from: given, comment, tool or inferred.
+        designation_from: crate::analysis::naming::DesignationFrom,
+        /// The line of the comment that named it (of the operation, when inferred).
+        designation_line: Option<usize>,
     },
 }
 
@@ -601,9 +609,12 @@ impl<'a> ProgramReport<'a> {
             .map(|o| {
                 let operation = OperationInfo::of(&o.operation);
                 match &o.result {
-                    crate::analysis::verify::OperationResult::Verified(v) => {
-                        OperationReport::Verified { report: Box::new(VerifyReport::of(v)), operation }
-                    }
+                    crate::analysis::verify::OperationResult::Verified(v) => OperationReport::Verified {
+                        report: Box::new(VerifyReport::of(v)),
+                        operation,
+                        designation_from: o.named.from,
+                        designation_line: o.named.line,
+                    },
                     crate::analysis::verify::OperationResult::NoCut { reason, suggested_final_x } => {
                         OperationReport::NoCut {
                             suggested_final_x: *suggested_final_x,
@@ -617,6 +628,8 @@ impl<'a> ProgramReport<'a> {
                             verdict: Verdict::Fail,
                             reason,
                             operation,
+                            designation_from: o.named.from,
+                            designation_line: o.named.line,
                         }
                     }
                 }
@@ -675,6 +688,9 @@ pub fn program_text(pv: &crate::analysis::verify::ProgramVerification) -> String
             crate::analysis::verify::OperationResult::NoCut { reason, suggested_final_x } => {
                 let _ =
                     writeln!(s, "{}: nothing to measure\n\nverdict: FAIL (no cut: {reason})", o.designation);
+                if !o.named.why.is_empty() {
+                    let _ = writeln!(s, "note: {}", o.named.why);
+                }
                 if let Some(next) = no_cut_next(*suggested_final_x) {
                     let _ = writeln!(s, "next: {next}");
                 }

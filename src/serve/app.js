@@ -259,7 +259,10 @@ $("verify-form").addEventListener("submit", async (ev) => {
     if (report.operations) {
       for (const op of report.operations) {
         const o = op.operation;
-        ops.appendChild(operationBlock(op, `Operation ${o.index}: ${o.cycle} at line ${o.source_line}`, lines));
+        // The thread it was checked against, and where it came from when the program named it.
+        const from = { comment: `named by the comment at line ${op.designation_line}`, inferred: "inferred from the lead and diameter it cuts", tool: "from the tool table", given: "" }[op.designation_from] || "";
+        const thread = `${op.thread.designation}${from ? ` (${from})` : ""}`;
+        ops.appendChild(operationBlock(op, `Operation ${o.index}: ${o.cycle} at line ${o.source_line}, ${thread}`, lines));
       }
     } else {
       ops.appendChild(operationBlock(report, `${report.thread.designation}: a generated plan`, null));

@@ -1,0 +1,368 @@
+//! The thread a program names: a designation in a comment near the operation (as shops write
+//! them: `(M10X1.5 THREAD)`, `; THREAD M24x2`, `(1/2-13 UNC-2A)`, `(TAP M8)`, `(1/2" BSP)`),
+//! else the standard size whose lead and diameter the operation cuts.
+//!
+//! A comment is read by the designation parser itself: the longest run of one to three of its
+//! words that parses, at the first word where one does, after the spellings shops use and the
+//! parser does not (a decimal comma, an inch mark, `×`, `BSP 1/2`, `LH` without its hyphen,
+//! a class in capitals) are put into its form. A bare `M8` counts only in a comment that also
+//! says thread or tap (in one of the words listed in [`THREAD_WORDS`]): `(COOLANT M8)` names
+//! no thread.
+
+use crate::gcode::{Comment, ProgramUnits};
+use crate::standards::designation::{parse_designation, Designation, ParseOptions};
+use crate::standards::{ThreadForm, ThreadKind, MM_PER_INCH};
+use crate::Error;
+use serde::Serialize;
+
+/// Where an operation's designation came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DesignationFrom {
+    /// Given by the user (`--thread`).
+    Given,
+    /// A comment of the program.
+    Comment,
+    /// The tool table (a tap's designation).
+    Tool,
+    /// The standard size of the lead and diameter the operation cuts.
+    Inferred,
+}
+
+impl DesignationFrom {
+    /// The word the reports and the JSON use.
+    pub fn name(self) -> &'static str {
+        match self {
+            DesignationFrom::Given => "given",
+            DesignationFrom::Comment => "comment",
+            DesignationFrom::Tool => "tool",
+            DesignationFrom::Inferred => "inferred",
+        }
+    }
+}
+
+/// An operation's designation (with the class it is checked against) and where it came from.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Named {
+    /// The designation with its class, in the parser's form.
+    pub designation: String,
+    /// Where it came from.
+    pub from: DesignationFrom,
+    /// The line of the comment (or of the operation, for an inferred one); `None` when given.
+    pub line: Option<usize>,
+    /// How it was read, for the notes (empty when given).
+    #[serde(skip)]
+    pub why: String,
+}
+
+impl Named {
+    /// A designation the user gave.
+    pub fn given(designation: &str) -> Named {
+        Named {
+            designation: designation.to_string(),
+            from: DesignationFrom::Given,
+            line: None,
+            why: String::new(),
+        }
+    }
+}
+
+/// Words that make a bare metric size (`M8`) in a comment a thread: English, German, French,
+/// Spanish, Italian, Portuguese and Russian shop words for thread and tap.
+pub const THREAD_WORDS: &[&str] = &[
+    "THREAD",
+    "THREADING",
+    "THD",
+    "THRD",
+    "THR",
+    "TAP",
+    "TAPPING",
+    "TAPPED",
+    "GEWINDE",
+    "GEW",
+    "FILETAGE",
+    "FILET",
+    "TARAUD",
+    "TARAUDAGE",
+    "ROSCA",
+    "ROSCADO",
+    "MACHO",
+    "FILETTO",
+    "FILETTATURA",
+    "MASCHIO",
+    "РЕЗЬБА",
+    "МЕТЧИК",
+];
+
+/// A designation found in a comment: in the parser's form, and the (0-based, in characters)
+/// offset of its first word in the comment.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Found {
+    /// The designation as the parser reads it.
+    pub text: String,
+    /// Its parse.
+    pub designation: Designation,
+    /// Where its first word starts in the comment, characters.
+    pub offset: usize,
+}
+
+/// The first designation a comment names, if any.
+///
+/// ```
+/// use threadcheck::{designation_in_comment, ParseOptions};
+/// let find = |c: &str| designation_in_comment(c, ParseOptions::default());
+/// assert_eq!(find("M10X1.5 THREAD").map(|f| f.text), Some("M10X1.5".to_string()));
+/// assert_eq!(find(" THREAD M24x2").map(|f| f.offset), Some(8));
+/// assert_eq!(find("1/2\"-13 UNC-2A").map(|f| f.text), Some("1/2-13 UNC-2A".to_string()));
+/// assert_eq!(find("TAP M8").map(|f| f.text), Some("M8".to_string()));
+/// assert_eq!(find("COOLANT M8"), None);
+/// ```
+pub fn designation_in_comment(comment: &str, opts: ParseOptions) -> Option<Found> {
+    // Words with their character offsets; edge punctuation is not part of a word.
+    let mut words: Vec<(usize, String)> = Vec::new();
+    let mut start = None;
+    let chars: Vec<char> = comment.chars().collect();
+    for (i, &c) in chars.iter().chain(std::iter::once(&' ')).enumerate() {
+        let sep = c.is_whitespace() || matches!(c, ',' | ';' | ':' | '=' | '(' | ')' | '[' | ']' | '\'');
+        // A comma between digits is a decimal comma, part of the word.
+        let decimal_comma = c == ','
+            && i > 0
+            && chars.get(i - 1).is_some_and(char::is_ascii_digit)
+            && chars.get(i + 1).is_some_and(char::is_ascii_digit);
+        match (sep && !decimal_comma, start) {
+            (true, Some(s)) => {
+                words.push((s, chars[s..i].iter().collect()));
+                start = None;
+            }
+            (false, None) => start = Some(i),
+            _ => {}
+        }
+    }
+    let upper = comment.to_uppercase();
+    let says_thread = upper.split(|c: char| !c.is_alphanumeric()).any(|w| THREAD_WORDS.contains(&w));
+    let capitals = !comment.chars().any(|c| c.is_lowercase());
+    for i in 0..words.len() {
+        for len in (1..=3).rev() {
+            let Some(run) = words.get(i..i + len) else { continue };
+            let joined: Vec<&str> = run.iter().map(|(_, w)| w.as_str()).collect();
+            for text in spellings(&joined, capitals) {
+                let Ok(d) = parse_designation(&text, opts) else { continue };
+                let bare = d.thread.form == ThreadForm::IsoMetric
+                    && d.external.is_none()
+                    && d.internal.is_none()
+                    && !text.to_ascii_uppercase().contains('X');
+                if bare && !says_thread {
+                    continue;
+                }
+                return Some(Found { text, designation: d, offset: words[i].0 });
+            }
+        }
+    }
+    None
+}
+
+/// The spellings of a run of words to try, the most literal first.
+fn spellings(words: &[&str], capitals: bool) -> Vec<String> {
+    let clean = |w: &str| -> String {
+        let mut s: String = w.chars().filter(|&c| c != '"').map(|c| if c == '×' { 'x' } else { c }).collect();
+        // A decimal comma.
+        let b: Vec<char> = s.chars().collect();
+        if let Some(k) = (1..b.len().saturating_sub(1))
+            .find(|&k| b[k] == ',' && b[k - 1].is_ascii_digit() && b[k + 1].is_ascii_digit())
+        {
+            s = b[..k].iter().chain(std::iter::once(&'.')).chain(&b[k + 1..]).collect();
+        }
+        s
+    };
+    let w: Vec<String> = words.iter().map(|w| clean(w)).collect();
+    let first = w[0].to_ascii_uppercase();
+    // Words that never begin a designation are not tried (the parser would only refuse them).
+    let begins = first
+        .starts_with(|c: char| c.is_ascii_digit() || matches!(c, 'M' | 'T' | 'G' | 'B' | 'R' | '#' | '.'));
+    if !begins {
+        return Vec::new();
+    }
+    let mut out = vec![w.join(" ")];
+    // `M10X1.5 6H`: the class as its own word.
+    if w.len() == 2 {
+        out.push(w.join("-"));
+    }
+    // `1/2 BSP`, `BSPP 1/2` (ISO 228-1, written G), `1/2 BSPT` (ISO 7-1, written R).
+    if w.len() == 2 {
+        let (a, b) = (w[0].to_ascii_uppercase(), w[1].to_ascii_uppercase());
+        for (size, series) in [(&w[0], &b), (&w[1], &a)] {
+            match series.as_str() {
+                "BSP" | "BSPP" => out.push(format!("G{size}")),
+                "BSPT" => out.push(format!("R{size}")),
+                _ => {}
+            }
+        }
+    }
+    let mut more = Vec::new();
+    for s in &out {
+        // `M10x1.5LH`: LH without its hyphen.
+        let up = s.to_ascii_uppercase();
+        if up.ends_with("LH") && !up.ends_with("-LH") && s.len() > 2 {
+            more.push(format!("{}-LH", &s[..s.len() - 2]));
+        }
+        // A class in capitals (`TR40X7-7E`): the letters as the standard writes the external
+        // class; the side is settled against the operation afterwards.
+        if capitals {
+            if let Some(k) = s.rfind('-') {
+                more.push(format!("{}-{}", &s[..k], s[k + 1..].to_ascii_lowercase()));
+            }
+        }
+    }
+    out.extend(more);
+    out
+}
+
+/// The designation of `found` with the class `kind` is checked against: its own, the same
+/// letters in the side's case when the comment is in capitals (`6G` on a bar is 6g), else the
+/// standard's default class.
+fn with_class(found: &Found, kind: ThreadKind, comment: &str, opts: ParseOptions) -> (String, String) {
+    let d = &found.designation;
+    if d.class(kind).is_some() {
+        return (found.text.clone(), String::new());
+    }
+    let capitals = !comment.chars().any(|c| c.is_lowercase());
+    let flip = matches!(d.thread.form, ThreadForm::IsoMetric | ThreadForm::Trapezoidal);
+    if capitals && flip && (d.external.is_some() || d.internal.is_some()) {
+        if let Some(k) = found.text.rfind('-') {
+            let class = &found.text[k + 1..];
+            let cased = match kind {
+                ThreadKind::External => class.to_ascii_lowercase(),
+                ThreadKind::Internal => class.to_ascii_uppercase(),
+            };
+            let text = format!("{}-{cased}", &found.text[..k]);
+            if parse_designation(&text, opts).is_ok_and(|e| e.class(kind).is_some()) {
+                let why = format!(
+                    "the comment is in capitals: its class {class} is read as {cased}, the {} class",
+                    kind.name()
+                );
+                return (text, why);
+            }
+        }
+    }
+    if d.external.is_none() && d.internal.is_none() {
+        let text = d.with_example_class(kind);
+        if text != found.text {
+            return (
+                text,
+                format!("the comment names no class: the standard's default for an {} thread", kind.name()),
+            );
+        }
+    }
+    // A class of the other side: kept, and refused where the operation's side is checked.
+    (found.text.clone(), String::new())
+}
+
+/// The nearest comment at or above `upto` (and below `after`, exclusive) that names a thread.
+pub fn from_comments(
+    comments: &[Comment],
+    after: usize,
+    upto: usize,
+    kind: ThreadKind,
+    opts: ParseOptions,
+) -> Option<Named> {
+    comments.iter().rev().filter(|c| c.line > after && c.line <= upto).find_map(|c| {
+        let found = designation_in_comment(&c.text, opts)?;
+        let (designation, class_why) = with_class(&found, kind, &c.text, opts);
+        let mut why =
+            format!("{designation}: named by the comment at line {} (\"{}\")", c.line, c.text.trim());
+        if !class_why.is_empty() {
+            why.push_str(&format!("; {class_why}"));
+        }
+        Some(Named { designation, from: DesignationFrom::Comment, line: Some(c.line), why })
+    })
+}
+
+/// The standard thread whose lead and diameter an operation cuts: among the sizes of ISO 261
+/// (a program in mm) or ASME B1.1's UNC, UNF and UNEF series (a program in inches) whose pitch is
+/// the lead over the starts, the one whose major diameter is nearest `major`, within one lead;
+/// with the standard's default class for `kind`. A multi-start inch thread is not inferred.
+///
+/// ```
+/// use threadcheck::{infer_designation, ProgramUnits, ThreadKind};
+/// let n = infer_designation(2.0, 1, 23.9, ThreadKind::External, ProgramUnits::Mm, 12)?;
+/// assert_eq!(n.designation, "M24x2-6g");
+/// let two = infer_designation(3.0, 2, 24.1, ThreadKind::External, ProgramUnits::Mm, 12)?;
+/// assert_eq!(two.designation, "M24xPh3P1.5-6g");
+/// let u = infer_designation(25.4 / 13.0, 1, 12.7, ThreadKind::Internal, ProgramUnits::Inch, 12)?;
+/// assert_eq!(u.designation, "1/2-13 UNC-2B");
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+pub fn infer_designation(
+    lead: f64,
+    starts: u32,
+    major: f64,
+    kind: ThreadKind,
+    units: ProgramUnits,
+    line: usize,
+) -> Result<Named, Error> {
+    let cat = crate::standards::data::catalog()?;
+    let starts = starts.max(1);
+    let pitch = lead / f64::from(starts);
+    // The lead as the program writes it: to its least increment (0.001 mm, 0.0001 in).
+    let increment = units.least_increment() * units.mm();
+    let near = |p: f64| (p - pitch).abs() <= increment + 1e-9;
+    let (series, candidates): (&str, Vec<(f64, String)>) = match units {
+        ProgramUnits::Mm => (
+            "ISO 261",
+            cat.iso
+                .series
+                .sizes
+                .iter()
+                .flat_map(|s| {
+                    s.coarse.iter().chain(&s.fine).filter(|&&p| near(p)).map(move |&p| {
+                        let name = if starts == 1 {
+                            format!("M{}x{}", s.d, p)
+                        } else {
+                            format!("M{}xPh{}P{}", s.d, p * f64::from(starts), p)
+                        };
+                        (s.d, name)
+                    })
+                })
+                .collect(),
+        ),
+        ProgramUnits::Inch if starts > 1 => ("ASME B1.1 (single-start sizes only)", Vec::new()),
+        ProgramUnits::Inch => (
+            "ASME B1.1 (UNC, UNF, UNEF)",
+            cat.unified
+                .iter()
+                .flat_map(|s| {
+                    [("UNC", s.unc), ("UNF", s.unf), ("UNEF", s.unef)].into_iter().filter_map(
+                        move |(name, tpi)| {
+                            let tpi = tpi?;
+                            near(MM_PER_INCH / tpi).then(|| {
+                                let size = if s.name.contains(['/', ' ']) || s.d >= 0.25 {
+                                    s.name.clone()
+                                } else {
+                                    format!("#{}", s.name)
+                                };
+                                (s.d * MM_PER_INCH, format!("{size}-{tpi} {name}"))
+                            })
+                        },
+                    )
+                })
+                .collect(),
+        ),
+    };
+    let best = candidates
+        .iter()
+        .min_by(|a, b| (a.0 - major).abs().total_cmp(&(b.0 - major).abs()))
+        .filter(|c| (c.0 - major).abs() <= lead);
+    let of_starts = if starts == 1 { String::new() } else { format!(" over {starts} starts") };
+    let Some((_, size)) = best else {
+        return Err(Error::Input(format!(
+            "no size of {series} has a lead of {lead:.4} mm{of_starts} and a major diameter near Ø{major:.3}: name the thread (‹thread›, or a comment such as (M20X1.5) above the operation)"
+        )));
+    };
+    let d = parse_designation(size, ParseOptions::default())?;
+    let designation = d.with_example_class(kind);
+    let why = format!(
+        "{designation}: inferred from the operation at line {line} (lead {lead:.4} mm{of_starts}, major diameter about Ø{major:.3}: the nearest {series} size of that pitch; the class is its standard's default for an {} thread; name the thread in a comment or with ‹thread› to check another)",
+        kind.name()
+    );
+    Ok(Named { designation, from: DesignationFrom::Inferred, line: Some(line), why })
+}

@@ -1,0 +1,84 @@
+//! The comments of a program, as its dialect writes them: where programs name their threads
+//! (`(M10X1.5 THREAD)`, `; THREAD M24x2`, `[1/2-13 UNC-2A]`).
+//!
+//! The lexer drops comments; this scan reads them from the text alone, line by line, so that a
+//! comment the interpreter never reaches (a skipped branch, a subprogram) is still read: it names
+//! the thread of the operations below it whether or not its block runs.
+
+use super::Dialect;
+
+/// One comment: its text (without its delimiters) and where it starts.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Comment {
+    /// 1-based line.
+    pub line: usize,
+    /// 1-based column of the first character inside the delimiters.
+    pub column: usize,
+    /// The text inside the delimiters, as written.
+    pub text: String,
+}
+
+/// The comment forms of a dialect: `(…)` on the line, `;` to the line's end, `[…]`.
+#[derive(Clone, Copy)]
+struct Forms {
+    parentheses: bool,
+    semicolon: bool,
+    brackets: bool,
+}
+
+fn forms(dialect: Dialect) -> Forms {
+    match dialect {
+        // Fanuc's family, Haas, Okuma and Dyna: `(…)`; `;` ends a block there.
+        Dialect::Fanuc
+        | Dialect::Haas
+        | Dialect::Okuma
+        | Dialect::Mitsubishi
+        | Dialect::Mazak
+        | Dialect::Dyna => Forms { parentheses: true, semicolon: false, brackets: false },
+        // LinuxCNC: `(…)` and `;` to the line's end.
+        Dialect::LinuxCnc => Forms { parentheses: true, semicolon: true, brackets: false },
+        // Sinumerik: `;` to the line's end (parentheses are expressions and calls).
+        Dialect::Sinumerik => Forms { parentheses: false, semicolon: true, brackets: false },
+        // Heidenhain DIN: `[…]`, and `(…)` as its Fanuc-like blocks read them.
+        Dialect::Heidenhain => Forms { parentheses: true, semicolon: false, brackets: true },
+    }
+}
+
+/// Every comment of `text` in `dialect`, in order. An unclosed `(` or `[` runs to the line's
+/// end (the lexer refuses such a line where it is read).
+///
+/// ```
+/// use threadcheck::{comments, Dialect};
+/// let c = comments("G0 X30 (M24X2 THREAD)\nG76 P010060 Q100 R0.05 ; not a comment here\n", Dialect::Fanuc);
+/// assert_eq!(c.len(), 1);
+/// assert_eq!((c[0].line, c[0].column, c[0].text.as_str()), (1, 9, "M24X2 THREAD"));
+/// let s = comments("N10 G0 X30 ; THREAD M24x2\n", Dialect::Sinumerik);
+/// assert_eq!(s[0].text, " THREAD M24x2");
+/// ```
+pub fn comments(text: &str, dialect: Dialect) -> Vec<Comment> {
+    let f = forms(dialect);
+    let mut out = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let chars: Vec<char> = line.chars().collect();
+        let mut k = 0;
+        while k < chars.len() {
+            let close = match chars[k] {
+                '(' if f.parentheses => Some(')'),
+                '[' if f.brackets => Some(']'),
+                ';' if f.semicolon => None,
+                _ => {
+                    k += 1;
+                    continue;
+                }
+            };
+            let start = k + 1;
+            let end = match close {
+                Some(c) => chars[start..].iter().position(|&x| x == c).map_or(chars.len(), |p| start + p),
+                None => chars.len(),
+            };
+            out.push(Comment { line: i + 1, column: start + 1, text: chars[start..end].iter().collect() });
+            k = end + 1;
+        }
+    }
+    out
+}
