@@ -118,7 +118,9 @@ pub use analysis::correction::{correction, deeper_words, Correction, Deeper};
 pub use analysis::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};
 pub use analysis::lead::{lead_deviation, LeadDeviation};
 pub use analysis::mill::{mill, MillReport, MillSpec, Target};
-pub use analysis::naming::{designation_in_comment, infer_designation, DesignationFrom, Found, Named};
+pub use analysis::naming::{
+    designation_in_comment, drill_in_comment, infer_designation, DesignationFrom, Found, Named,
+};
 pub use analysis::picture::{Cut, Deviation, Picture};
 pub use analysis::process::MachineProfile;
 pub use analysis::tapping::{tapping, TapCheck, TapFeature, TapReport, TapSpec, TappedHole};
@@ -129,6 +131,7 @@ pub use analysis::verify::{
     verify_program, InsertChoice, ProgramLabel, ProgramSource, ProgramVerification, Units, Verification,
     VerifySpec,
 };
+pub use analysis::whole::{verify_whole, Milled, Process};
 
 pub use serve::{router, serve, ServeArgs, ServeOptions};
 

@@ -749,3 +749,80 @@ fn tap_picture_dimensions_the_drill_and_d1() {
     });
     assert!(red.count() >= 20, "the drill's dimension is not drawn red");
 }
+
+/// Issue 46: `verify --html` of a program that taps four holes and mills a thread, as seen in
+/// Chromium: both sections with their verdicts and pictures (four tap panels, the milled
+/// thread's tolerance zone), no console error, nothing wider than the window (the tap's long
+/// notes wrap instead of running off the side, as they did before this test).
+#[test]
+fn html_report_of_a_whole_program_shows_every_process() {
+    let dir = tempdir("html-whole");
+    let html = dir.join("plate.html");
+    let tools = data("whole/plate-tools.toml");
+    let o = run(&[
+        "verify",
+        "--program",
+        data("whole/plate.nc").to_str().unwrap(),
+        "--tools",
+        tools.to_str().unwrap(),
+        "--html",
+        html.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&html).unwrap();
+    assert!(text.contains("IN TOLERANCE: 4 tapped holes, 1 milled thread"), "{}", &text[..1500]);
+    assert!(text.contains("<h2>Tapped: 4 tapping cycles — IN TOLERANCE</h2>"));
+    assert!(text.contains("<h2>Milled: M20X1.5-6H — IN TOLERANCE</h2>"));
+    assert_eq!(text.matches("<svg").count(), 2, "the tap picture and the thread-mill picture");
+    assert_eq!(text.matches("<g id=\"hole-").count(), 4, "four tap panels");
+    let shot = screenshot(&html, 1280, 3000);
+    assert!(console_errors(&shot.log).is_empty(), "{:?}", console_errors(&shot.log));
+    for y in 0..shot.h {
+        for x in [0, 1, shot.w - 2, shot.w - 1] {
+            let [r, g, b] = shot.at(x, y);
+            assert!(
+                u32::from(r) + u32::from(g) + u32::from(b) > 600,
+                "dark pixel at the page's edge ({x}, {y})"
+            );
+        }
+    }
+    // The milled thread's tolerance zone is drawn (green over the material or the air).
+    let zone = (0..shot.h)
+        .flat_map(|y| (0..shot.w).map(move |x| (x, y)))
+        .filter(|&(x, y)| zone_over_material(shot.at(x, y)) || zone_over_air(shot.at(x, y)))
+        .count();
+    assert!(zone > 500, "no tolerance zone seen ({zone} px)");
+}
+
+/// Issue 46 on the page, in Chromium: a pasted program that turns M24x2 and taps M8, the thread
+/// field left empty: each operation's block names its thread and the comment it came from, the
+/// tapped hole its four checks, with no console message (the field was `required`, so the page
+/// refused to send a program without a thread before this test).
+#[test]
+fn the_page_verifies_every_thread_a_pasted_program_names() {
+    let script = playwright().with_file_name("whole.mjs");
+    let chromium = chromium();
+    let server = crate::serve::start(&[]);
+    let out = tempdir("page-whole");
+    let o = std::process::Command::new("node")
+        .arg(&script)
+        .arg(&server.url)
+        .arg(&out)
+        .arg(&chromium)
+        .arg(data("whole/shaft.nc"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "the page script failed: {}", String::from_utf8_lossy(&o.stderr));
+    let seen: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(seen["console"], serde_json::json!([]));
+    assert_eq!(seen["verdict"], "IN TOLERANCE: every check passes");
+    assert_eq!(
+        seen["headings"],
+        serde_json::json!([
+            "Operation 1: G76 at line 8, M24X2-6g (named by the comment at line 4)",
+            "Tapped: G84 at line 19, tap M8X1.25-6H (named by the comment at line 16)"
+        ])
+    );
+    assert_eq!(seen["verdicts"], serde_json::json!(["IN TOLERANCE", "IN TOLERANCE"]));
+    assert_eq!(seen["tap_checks"], serde_json::json!(["drill diameter", "feed", "depth", "spindle"]));
+}

@@ -131,6 +131,7 @@ fn docs_commands_run() {
     for must in [
         "README.md: verify",
         "verify-a-lathe-program.md: verify",
+        "check-a-whole-program.md: verify",
         "tap-and-thread-mill.md: tap",
         "tap-and-thread-mill.md: thread-mill",
         "correct-after-measuring.md: correct",

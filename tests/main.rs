@@ -30,5 +30,6 @@ mod tapping;
 mod threadmill;
 mod util;
 mod verify;
+mod whole;
 
 pub use util::*;

@@ -333,6 +333,7 @@ fn the_hole_wall_follows_the_tap_and_the_drill() {
         reading: threadcheck::ReadOptions::default(),
         tools,
         allow_nonstandard: false,
+        from_program: false,
     };
     let r = threadcheck::tapping(&spec).unwrap();
     let wall = &r.holes[0].wall;

@@ -56,6 +56,10 @@ def test_the_schema_is_a_valid_schema():
     ["--thread", "M24xPh3P1.5-6g", "--program", str(PROGRAMS / "sinumerik-cycle99-two-start.mpf")],
     # The thread named by the program: two operations by a comment, one inferred.
     ["--program", str(PROGRAMS.parent / "naming" / "fanuc-two-threads.nc")],
+    # Every thread a program makes: turned and tapped; tapped and milled; milled not checked.
+    ["--program", str(PROGRAMS.parent / "whole" / "shaft.nc"), "--insert", "full"],
+    ["--program", str(PROGRAMS.parent / "whole" / "plate.nc"), "--tools", str(PROGRAMS.parent / "whole" / "plate-tools.toml")],
+    ["--program", str(PROGRAMS.parent / "whole" / "plate.nc")],
     # A correction with an earlier pass deeper than its new value (`deeper`).
     ["--thread", "M12x1.75-6g", "--program", str(PROGRAMS / "shop" / "partial-insert-m12.nc"), "--insert", "full"],
 ])

@@ -593,3 +593,14 @@ def test_verify_names_the_thread_from_the_program_text():
     op = r["operations"][0]
     assert op["thread"]["designation"] == "M24X2-6g"
     assert (op["designation_from"], op["designation_line"]) == ("comment", 2)
+
+
+def test_verify_checks_the_taps_of_a_lathe_program_too():
+    # A turned M20x1.5 and an M8 tapped on the centre line after a Ø6.8 drill, named by comments.
+    text = ("(M20X1.5-6G)\nG99 G0 X22 Z5\nG76 P010060 Q100 R0.05\nG76 X18.16 Z-20 P920 Q300 F1.5\n"
+            "T0505 (DRILL 6.8)\nG97 S900 M3\nG0 X0 Z5\nG83 Z-25 R2 Q5000 F0.1\nG80\n"
+            "T0606 (TAP M8X1.25)\nG0 X0 Z8\nG84 Z-16 R5 F1.25\nG80\nM30\n")
+    r = threadcheck.verify(program=text, program_name="part.nc", insert="full")
+    assert [o["made"] for o in r["operations"]] == ["turned", "tapped"]
+    tapped = r["operations"][1]
+    assert tapped["tap"]["designation"] == "M8X1.25-6H" and tapped["drill"]["diameter"] == 6.8

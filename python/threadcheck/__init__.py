@@ -139,7 +139,10 @@ def verify(thread: Optional[Threads] = None, program: Optional[str] = None, dial
     threading operation of ``program`` (``operation``, from 1, checks that one alone). With a
     program and no ``thread``, each operation's thread is the one the program names (the nearest
     comment above it), else the standard size it cuts; each operation's ``designation_from``
-    (``"given"``, ``"comment"``, ``"inferred"``) and ``designation_line`` say which.
+    (``"given"``, ``"comment"``, ``"inferred"``) and ``designation_line`` say which. A program's
+    report has an entry per thread it makes, each with ``made``: ``"turned"``, ``"tapped"`` (a
+    tapping cycle, as :func:`tap` reports it) or ``"milled"`` (as :func:`thread_mill` reports it;
+    ``tools`` must name the thread mill, else it is not checked and fails).
     ``program`` is the program's **text** (a path is refused
     by name); ``program_name`` is what messages call it and, by its extension, chooses the dialect
     when ``dialect`` is not given (``.ngc`` linuxcnc, ``.mpf``/``.spf`` sinumerik, else fanuc,

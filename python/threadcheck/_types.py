@@ -70,6 +70,7 @@ class OperationReport(_Report, total=False):
     reason: str
     designation_from: str
     designation_line: Optional[int]
+    made: str
 
 
 class VerifyReport(_Report, total=False):

@@ -16,3 +16,4 @@ pub mod tapping;
 pub mod threadmill;
 pub mod tools;
 pub mod verify;
+pub mod whole;

@@ -366,3 +366,46 @@ pub fn infer_designation(
     );
     Ok(Named { designation, from: DesignationFrom::Inferred, line: Some(line), why })
 }
+
+/// Words that make a number in a comment a drill's diameter.
+pub const DRILL_WORDS: &[&str] =
+    &["DRILL", "DRILLING", "BOHRER", "BOHREN", "FORET", "PERCAGE", "BROCA", "PUNTA", "СВЕРЛО"];
+
+/// The drill's diameter a comment names (`(DRILL 8.5)`, `(8.5 DRILL)`, `(DRILL D8.5)`,
+/// `(Ø6.8 BOHRER)`), in mm: the first number of the comment, bare or after `Ø`, `⌀`, `D` or `DIA`,
+/// in a comment that has a word for drill; in the program's units unless it ends in `MM`.
+///
+/// ```
+/// use threadcheck::{drill_in_comment, ProgramUnits};
+/// assert_eq!(drill_in_comment("T5 DRILL D8.5", ProgramUnits::Mm), Some(8.5));
+/// assert_eq!(drill_in_comment("6,8 BOHRER", ProgramUnits::Mm), Some(6.8));
+/// assert_eq!(drill_in_comment("DRILL .339", ProgramUnits::Inch), Some(0.339 * 25.4));
+/// assert_eq!(drill_in_comment("SPOT DRILL 90 DEG", ProgramUnits::Mm), None);
+/// assert_eq!(drill_in_comment("TAP M10", ProgramUnits::Mm), None);
+/// ```
+pub fn drill_in_comment(comment: &str, units: ProgramUnits) -> Option<f64> {
+    let upper = comment.to_uppercase();
+    if !upper.split(|c: char| !c.is_alphanumeric()).any(|w| DRILL_WORDS.contains(&w)) {
+        return None;
+    }
+    let words: Vec<&str> = upper.split_whitespace().collect();
+    words.iter().enumerate().find_map(|(i, w)| {
+        // An angle (`90 DEG`, `118°`) is not a diameter.
+        if w.ends_with('°') || words.get(i + 1).is_some_and(|n| n.starts_with("DEG") || n.starts_with('°'))
+        {
+            return None;
+        }
+        let w = w.trim_matches(|c: char| matches!(c, ',' | ';' | ':' | '=' | '(' | ')'));
+        let w = w.trim_start_matches('Ø').trim_start_matches('⌀');
+        let w = w.strip_prefix("DIA").or_else(|| w.strip_prefix('D')).unwrap_or(w);
+        let (num, mm) = match w.strip_suffix("MM") {
+            Some(n) => (n, true),
+            None => (w, false),
+        };
+        if !num.starts_with(|c: char| c.is_ascii_digit() || c == '.') {
+            return None;
+        }
+        let v: f64 = num.replace(',', ".").parse().ok()?;
+        (v.is_finite() && v > 0.0).then(|| if mm { v } else { v * units.mm() })
+    })
+}

@@ -36,6 +36,11 @@ pub struct TapSpec {
     pub tools: ToolTable,
     /// Accept sizes outside the standard series.
     pub allow_nonstandard: bool,
+    /// A tap or drill the tool table does not name is taken from the program (`verify`): the
+    /// tap's designation from the nearest comment above its cycle, else the standard size of its
+    /// lead over its drill; the drill's diameter from a comment at its cycle. Else such a tool
+    /// is refused by name.
+    pub from_program: bool,
 }
 
 /// What a tapping check looks at.
@@ -87,6 +92,10 @@ pub struct DrillInfo {
 pub struct TapInfo {
     /// The designation with its class.
     pub designation: String,
+    /// Where the designation came from: the tool table, a comment, or inferred.
+    pub designation_from: crate::analysis::naming::DesignationFrom,
+    /// The comment's line (the cycle's, when inferred); `None` from the tool table.
+    pub designation_line: Option<usize>,
     /// The lead, mm.
     pub lead: f64,
     /// The chamfer length, pitches.
@@ -218,7 +227,7 @@ fn same(a: Option<f64>, b: Option<f64>) -> bool {
 /// use threadcheck::{tapping, Dialect, ReadOptions, TapSpec, ToolTable};
 /// let program = "T0505\nG99 M3 S800\nG0 X0 Z5\nG83 Z-25 R2 Q5000 F0.1\nT0606\nG84 Z-18 R5 F1.5\nG80\nM30\n";
 /// let tools = ToolTable::from_toml("[tools]\n5 = \"drill:8.5\"\n6 = \"tap:M10x1.5-6H\"\n", "tools.toml", std::path::Path::new("."))?;
-/// let spec = TapSpec { program: (program.into(), "tap.nc".into()), dialect: Dialect::Fanuc, reading: ReadOptions::default(), tools, allow_nonstandard: false };
+/// let spec = TapSpec { program: (program.into(), "tap.nc".into()), dialect: Dialect::Fanuc, reading: ReadOptions::default(), tools, allow_nonstandard: false, from_program: false };
 /// let r = tapping(&spec)?;
 /// assert!(r.pass); // Ø8.5 within D1 8.376–8.676; F1.5 = P; 25 − 18 = 7 ≥ 2.5·1.5
 /// # Ok::<(), threadcheck::Error>(())
@@ -247,6 +256,9 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             ),
         });
     }
+    let comments = if spec.from_program { crate::gcode::comments(text, spec.dialect) } else { Vec::new() };
+    let mut tap_by_tool: std::collections::HashMap<u32, TapOf> = std::collections::HashMap::new();
+    let mut drill_by_tool: std::collections::HashMap<u32, (f64, usize)> = std::collections::HashMap::new();
     let mut holes = Vec::new();
     for (i, h) in prog.holes.iter().enumerate() {
         if h.kind != HoleKind::Tap {
@@ -254,29 +266,54 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
         }
         let perr =
             |message: String| Error::Program { file: name.clone(), line: h.line, column: h.column, message };
-        let Some(t) = h.tool else {
-            return Err(perr(format!(
-                "{} names no tool: the tapping check needs the tap (T and the tool table's tap:DESIGNATION)",
-                h.code
-            )));
+        // The drill: the last drilling cycle before this tap at its position; its diameter from
+        // the tool table, else (a program verified whole) from a comment at its cycle.
+        let mut drill_note = None;
+        let drill = prog.holes[..i]
+            .iter()
+            .rev()
+            .find(|d| d.kind == HoleKind::Drill && same(d.x, h.x) && same(d.y, h.y))
+            .map(|d| {
+                let mut diameter = d.tool.and_then(|dt| match spec.tools.tool(dt) {
+                    Some((Tool::Drill { diameter }, _)) => Some(*diameter),
+                    Some((Tool::Insert(_) | Tool::Tap { .. }, _)) | None => None,
+                });
+                if diameter.is_none() && spec.from_program {
+                    // The comment at its cycle (back to the cycle before), else the one an earlier
+                    // cycle of the same tool took.
+                    let after =
+                        prog.holes.iter().take_while(|o| o.line < d.line).map(|o| o.line).max().unwrap_or(0);
+                    let found = comments
+                        .iter()
+                        .rev()
+                        .filter(|c| c.line > after && c.line <= d.line)
+                        .find_map(|c| {
+                            crate::analysis::naming::drill_in_comment(&c.text, d.units).map(|v| (v, c.line))
+                        })
+                        .or_else(|| d.tool.and_then(|t| drill_by_tool.get(&t).copied()));
+                    if let (Some(found), Some(t)) = (found, d.tool) {
+                        drill_by_tool.entry(t).or_insert(found);
+                    }
+                    if let Some((dia, line)) = found {
+                        diameter = Some(dia);
+                        drill_note = Some(format!(
+                            "the drill's diameter Ø{} is the comment's at line {line}",
+                            crate::ground::fmt::fmt_num(dia)
+                        ));
+                    }
+                }
+                DrillInfo { cycle: d.clone(), diameter }
+            });
+        // A later cycle of the same tap takes what its first one found.
+        let tap = match h.tool.and_then(|t| tap_by_tool.get(&t)) {
+            Some(first) => first.clone(),
+            None => tap_of(spec, &prog, i, &comments, drill.as_ref().and_then(|d| d.diameter))?,
         };
-        let (designation, chamfer_pitches, chamfer_given) = match spec.tools.tool(t) {
-            Some((Tool::Tap { designation, chamfer_pitches, chamfer_given }, _)) => {
-                (designation.clone(), *chamfer_pitches, *chamfer_given)
-            }
-            Some((Tool::Insert(_) | Tool::Drill { .. }, written)) => {
-                return Err(perr(format!(
-                "{} with tool T{t}, which {} calls \"{written}\", not a tap (write {t} = \"tap:M10x1.5-6H\")",
-                h.code, spec.tools.source
-            )))
-            }
-            None => {
-                return Err(perr(format!(
-                    "{} with tool T{t}, which is not in {} (write {t} = \"tap:M10x1.5-6H\")",
-                    h.code, spec.tools.source
-                )))
-            }
-        };
+        if let Some(t) = h.tool {
+            tap_by_tool.entry(t).or_insert_with(|| tap.clone());
+        }
+        let (designation, chamfer_pitches, chamfer_given) =
+            (tap.designation.clone(), tap.chamfer_pitches, tap.chamfer_given);
         let des =
             parse_designation(&designation, ParseOptions { allow_nonstandard: spec.allow_nonstandard })?;
         let limits = limits_for(&des, ThreadKind::Internal)?.ok_or_else(|| {
@@ -286,19 +323,7 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
         let pitch = des.thread.pitch;
         let res = limits.resolution;
         let mut checks = Vec::new();
-        let mut notes = Vec::new();
-        // The drill: the last drilling cycle before this tap at its position.
-        let drill = prog.holes[..i]
-            .iter()
-            .rev()
-            .find(|d| d.kind == HoleKind::Drill && same(d.x, h.x) && same(d.y, h.y))
-            .map(|d| {
-                let diameter = d.tool.and_then(|dt| match spec.tools.tool(dt) {
-                    Some((Tool::Drill { diameter }, _)) => Some(*diameter),
-                    Some((Tool::Insert(_) | Tool::Tap { .. }, _)) | None => None,
-                });
-                DrillInfo { cycle: d.clone(), diameter }
-            });
+        let mut notes: Vec<String> = tap.why.iter().cloned().chain(drill_note).collect();
         match &drill {
             Some(DrillInfo { diameter: Some(dia), cycle }) => {
                 let (lo, hi) = (limits.minor_diameter.min, limits.minor_diameter.max);
@@ -510,6 +535,8 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             cycle: h.clone(),
             tap: TapInfo {
                 designation: des.text.clone(),
+                designation_from: tap.from,
+                designation_line: tap.line,
                 lead,
                 chamfer_pitches,
                 chamfer_given,
@@ -540,5 +567,119 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
         pass,
         notes: prog.notes,
         machine: prog.machine,
+    })
+}
+
+/// The tap of one tapping cycle, and where it came from.
+#[derive(Clone)]
+struct TapOf {
+    designation: String,
+    chamfer_pitches: f64,
+    chamfer_given: bool,
+    from: crate::analysis::naming::DesignationFrom,
+    line: Option<usize>,
+    why: Option<String>,
+}
+
+/// The tap of the tapping cycle `prog.holes[i]`: the tool table's; else, in a program verified
+/// whole, the nearest comment above it (back to the tapping cycle before) that names a thread,
+/// else the standard size of its lead (F per revolution, or F/S) whose basic minor diameter
+/// D1 = D − 1.0825·P is nearest its drill's diameter; else refused at the cycle.
+fn tap_of(
+    spec: &TapSpec,
+    prog: &crate::gcode::Program,
+    i: usize,
+    comments: &[crate::gcode::Comment],
+    drill: Option<f64>,
+) -> Result<TapOf, Error> {
+    use crate::analysis::naming::{from_comments, infer_designation, DesignationFrom};
+    let h = &prog.holes[i];
+    let name = &spec.program.1;
+    let perr =
+        |message: String| Error::Program { file: name.clone(), line: h.line, column: h.column, message };
+    let table = h.tool.map(|t| (t, spec.tools.tool(t)));
+    if let Some((_, Some((Tool::Tap { designation, chamfer_pitches, chamfer_given }, _)))) = table {
+        return Ok(TapOf {
+            designation: designation.clone(),
+            chamfer_pitches: *chamfer_pitches,
+            chamfer_given: *chamfer_given,
+            from: DesignationFrom::Tool,
+            line: None,
+            why: None,
+        });
+    }
+    // A tool the table calls something else is a contradiction, not a gap.
+    let named_otherwise = matches!(table, Some((_, Some((Tool::Insert(_) | Tool::Drill { .. }, _)))));
+    if spec.from_program && !named_otherwise {
+        let opts = ParseOptions { allow_nonstandard: spec.allow_nonstandard };
+        let after = prog.holes[..i].iter().rev().find(|o| o.kind == HoleKind::Tap).map_or(0, |o| o.line);
+        let default = crate::analysis::tools::DEFAULT_TAP_CHAMFER_PITCHES;
+        let named = match from_comments(comments, after, h.line, ThreadKind::Internal, opts) {
+            Some(n) => Some(n),
+            None => {
+                let lead = match (h.feed, h.feed_per_rev, h.spindle) {
+                    (Some(f), true, _) => Some(f),
+                    (Some(f), false, Some(s)) if s > 0.0 => Some(f / s),
+                    _ => None,
+                };
+                match (lead, drill) {
+                    (Some(lead), Some(d)) => {
+                        let major = d + 1.082_531_754_730_548 * lead;
+                        infer_designation(
+                            lead,
+                            1,
+                            major,
+                            ThreadKind::Internal,
+                            crate::gcode::ProgramUnits::Mm,
+                            h.line,
+                        )
+                        .or_else(|e| {
+                            infer_designation(
+                                lead,
+                                1,
+                                major,
+                                ThreadKind::Internal,
+                                crate::gcode::ProgramUnits::Inch,
+                                h.line,
+                            )
+                            .map_err(|_| e)
+                        })
+                        .ok()
+                    }
+                    _ => None,
+                }
+            }
+        };
+        if let Some(n) = named {
+            return Ok(TapOf {
+                designation: n.designation,
+                chamfer_pitches: default,
+                chamfer_given: false,
+                from: n.from,
+                line: n.line,
+                why: Some(n.why),
+            });
+        }
+    }
+    Err(match table {
+        None => perr(format!(
+            "{} names no tool: the tapping check needs the tap (T and the tool table's tap:DESIGNATION{})",
+            h.code,
+            if spec.from_program { ", or a comment such as (TAP M10X1.5) above the cycle" } else { "" }
+        )),
+        Some((t, Some((Tool::Insert(_) | Tool::Drill { .. }, written)))) => perr(format!(
+            "{} with tool T{t}, which {} calls \"{written}\", not a tap (write {t} = \"tap:M10x1.5-6H\")",
+            h.code, spec.tools.source
+        )),
+        Some((t, _)) => perr(format!(
+            "{} with tool T{t}, which is not in {} (write {t} = \"tap:M10x1.5-6H\"{})",
+            h.code,
+            spec.tools.source,
+            if spec.from_program {
+                ", or name the tap in a comment above the cycle: (TAP M10X1.5)"
+            } else {
+                ""
+            }
+        )),
     })
 }

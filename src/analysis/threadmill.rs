@@ -42,8 +42,9 @@ pub struct ThreadMillSpec {
     pub program: (String, String),
     /// Its dialect.
     pub dialect: Dialect,
-    /// The thread with its class.
-    pub designation: String,
+    /// The thread with its class; `None` takes the one the program names (the nearest comment
+    /// above the first helix, else the standard size its lead and diameter cut).
+    pub designation: Option<String>,
     /// Accept sizes outside the standard series.
     pub allow_nonstandard: bool,
     /// The cutter; `None` takes the helix's tool from `tools`.
@@ -65,6 +66,8 @@ pub struct ThreadMillReport {
     pub program: String,
     /// The designation.
     pub designation: String,
+    /// Where it came from, and how it was read.
+    pub named: crate::analysis::naming::Named,
     /// Internal or external.
     pub kind: ThreadKind,
     /// The cutter.
@@ -109,6 +112,66 @@ pub struct ThreadMillReport {
 /// The helices (G2/G3 arcs with a Z change in G17) of `moves`, each at its cutter centre's
 /// radius: the programmed radius, moved by the compensation `comp` under G41/G42 (to the left of
 /// the travel for G41: toward the axis on a counter-clockwise G3, away on a clockwise G2).
+/// The thread a thread-milling program names: the nearest comment above its first helix that
+/// names one (its side from the helix: the cutter inside the thread, D = 2R + Dc, or outside it,
+/// d3 = 2R − Dc, whichever the designation's diameter is nearer), else the standard size of the
+/// helix's lead and diameter, internal unless the compensation puts the cutter outside its path
+/// (a named default: thread milling is mostly of holes).
+fn name_milled(
+    text: &str,
+    dialect: Dialect,
+    hs: &[Helix],
+    cutter: f64,
+    opts: ParseOptions,
+    file: &str,
+) -> Result<crate::analysis::naming::Named, Error> {
+    use crate::analysis::naming::{from_comments, infer_designation};
+    let Some(first) = hs.first() else {
+        return Err(Error::Program {
+            file: file.to_string(),
+            line: 1,
+            column: 1,
+            message: "no helix in the program (G2/G3 with a Z change in G17): nothing is thread-milled"
+                .into(),
+        });
+    };
+    let comments = crate::gcode::comments(text, dialect);
+    let r = first.radius;
+    if let Some(n) = from_comments(&comments, 0, first.line, ThreadKind::Internal, opts) {
+        let d = parse_designation(&n.designation, opts)?.thread.nominal_diameter;
+        let external = (2.0 * r - cutter - d).abs() < (2.0 * r + cutter - d).abs();
+        if !external {
+            return Ok(n);
+        }
+        if let Some(e) = from_comments(&comments, 0, first.line, ThreadKind::External, opts) {
+            return Ok(e);
+        }
+    }
+    let outside = first.radius > first.programmed_radius + 1e-9;
+    let (kind, major) = if outside {
+        (ThreadKind::External, 2.0 * r - cutter + 2.0 * 0.613_434_5 * first.lead.abs())
+    } else {
+        (ThreadKind::Internal, 2.0 * r + cutter)
+    };
+    let place = |e: Error| match e {
+        Error::Input(message) => {
+            Error::Program { file: file.to_string(), line: first.line, column: 1, message }
+        }
+        e => e,
+    };
+    let lead = first.lead.abs();
+    let mut n = infer_designation(lead, 1, major, kind, crate::gcode::ProgramUnits::Mm, first.line)
+        .or_else(|e| {
+            infer_designation(lead, 1, major, kind, crate::gcode::ProgramUnits::Inch, first.line)
+                .map_err(|_| e)
+        })
+        .map_err(place)?;
+    if kind == ThreadKind::Internal && !outside {
+        n.why.push_str("; an internal thread, a named default (the compensation does not put the cutter outside its path)");
+    }
+    Ok(n)
+}
+
 fn helices(moves: &[Move], file: &str, comp: Option<f64>) -> Result<Vec<Helix>, Error> {
     let mut out = Vec::new();
     // Counted before any is measured: 1.9 million turns took 14 s to end in an error.
@@ -225,7 +288,7 @@ fn entry_and_exit(moves: &[Move]) -> Vec<String> {
 /// let mut program = String::from("G17 G90 G40\nG0 X4 Y0 Z-14\n");
 /// for k in 1..=8 { program += &format!("G3 X4 Y0 Z{} I-4 J0 F200\n", -14.0 + 1.5 * k as f64); }
 /// let cutter = Some(Cutter::single_form(12.0, 60.0, 0.0));
-/// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: "M20x1.5-6H".into(), allow_nonstandard: false, cutter, tools: None, blank_diameter: None, comp_radius: None };
+/// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: Some("M20x1.5-6H".into()), allow_nonstandard: false, cutter, tools: None, blank_diameter: None, comp_radius: None };
 /// let r = thread_mill(&spec)?;
 /// assert!((r.measured.major_diameter - 20.0).abs() < 1e-4);
 /// # Ok::<(), threadcheck::Error>(())
@@ -296,8 +359,18 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
             c.tip_radius
         )));
     }
-    let des =
-        parse_designation(&spec.designation, ParseOptions { allow_nonstandard: spec.allow_nonstandard })?;
+    let opts = ParseOptions { allow_nonstandard: spec.allow_nonstandard };
+    if let Some(d) = comp.filter(|d| !(d.is_finite() && *d >= 0.0)) {
+        return Err(Error::Input(format!("compensation {d} mm must be a length ≥ 0")));
+    }
+    let named = match &spec.designation {
+        Some(d) => crate::analysis::naming::Named::given(d),
+        None => name_milled(text, spec.dialect, &helices(&prog.moves, name, comp)?, c.diameter, opts, name)?,
+    };
+    if !named.why.is_empty() {
+        notes.push(named.why.clone());
+    }
+    let des = parse_designation(&named.designation, opts)?;
     let kind = if des.external.is_none() && des.internal.is_some() {
         ThreadKind::Internal
     } else {
@@ -308,9 +381,6 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         limits_for(&des, kind)?.ok_or_else(|| Error::Input("the designation needs its class".into()))?;
     let t = des.thread;
     let p = t.pitch;
-    if let Some(d) = comp.filter(|d| !(d.is_finite() && *d >= 0.0)) {
-        return Err(Error::Input(format!("compensation {d} mm must be a length ≥ 0")));
-    }
     let mut hs = helices(&prog.moves, name, comp)?;
     notes.extend(entry_and_exit(&prog.moves));
     if let Some(d) = comp {
@@ -598,6 +668,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     Ok(ThreadMillReport {
         program: name.clone(),
         designation: des.text.clone(),
+        named,
         kind,
         cutter: c,
         cutter_ratio: ratio,

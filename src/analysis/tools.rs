@@ -127,6 +127,11 @@ impl ToolTable {
         Ok(ToolTable { source: source.to_string(), tools, offsets })
     }
 
+    /// A table with no tools, for a program whose tools are named by its own comments.
+    pub fn empty(source: &str) -> ToolTable {
+        ToolTable { source: source.to_string(), tools: BTreeMap::new(), offsets: BTreeMap::new() }
+    }
+
     /// Reads a tool table file.
     pub fn read(path: &Path) -> Result<ToolTable, Error> {
         let shown = path.display().to_string();

@@ -1449,12 +1449,18 @@ pub struct ProgramVerification {
     pub read_past_blocks: usize,
     /// The machine the program was read for, and why.
     pub machine: crate::gcode::MachineReading,
+    /// Its tapping cycles, checked (`verify_whole`; `None` when it has none).
+    pub tapped: Option<crate::analysis::tapping::TapReport>,
+    /// Its thread-milled thread (`verify_whole`; `None` when it has no helix).
+    pub milled: Option<crate::analysis::whole::Milled>,
 }
 
 impl ProgramVerification {
-    /// True when every operation passes.
+    /// True when every operation passes: turned, tapped and milled.
     pub fn pass(&self) -> bool {
         self.operations.iter().all(|o| o.result.pass())
+            && self.tapped.as_ref().is_none_or(|t| t.pass)
+            && self.milled.as_ref().is_none_or(crate::analysis::whole::Milled::pass)
     }
 }
 
@@ -1879,6 +1885,8 @@ pub fn verify_program(
         skipped_blocks: prog.skipped_blocks,
         read_past_blocks: prog.read_past_blocks,
         machine: prog.machine.clone(),
+        tapped: None,
+        milled: None,
     })
 }
 

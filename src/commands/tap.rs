@@ -19,8 +19,10 @@ pub struct TapArgs {
     #[allow(missing_docs)]
     pub file: ProgramArgs,
     /// The tool table: each tap as T = "tap:M10x1.5-6H[:CHAMFER_PITCHES]", each drill as
-    /// T = "drill:8.5" (a file on the command line, its text through the API).
-    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.toml", required = true, value_parser = Source::path))]
+    /// T = "drill:8.5" (a file on the command line, its text through the API); a tap or drill it
+    /// does not name is taken from the program's comments ((TAP M10X1.5), (DRILL 8.5)), else the
+    /// tap is the standard size of its lead over its drill.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.toml", value_parser = Source::path))]
     #[serde(deserialize_with = "super::args::source_text")]
     pub tools: Option<Source>,
     /// Accept a diameter/pitch pair outside the standard series.
@@ -62,18 +64,20 @@ impl Job for TapArgs {
             machine_type: self.machine_type,
             ..Default::default()
         };
-        let tools = self.tools.as_ref().ok_or_else(|| {
-            Error::Input("tap needs ‹tools›, the tool table naming the taps and drills".into())
-        })?;
+        let tools = match &self.tools {
+            Some(t) => tool_table(t, request.files)?,
+            None => crate::analysis::tools::ToolTable::empty("no tool table"),
+        };
         let spec = TapSpec {
             program,
             dialect,
             reading,
-            tools: tool_table(tools, request.files)?,
+            tools,
             allow_nonstandard: self.allow_nonstandard,
+            from_program: true,
         };
         let r = crate::analysis::tapping::tapping(&spec)?;
-        let inputs = self.file.inputs().into_iter().chain(tools.file());
+        let inputs = self.file.inputs().into_iter().chain(self.tools.as_ref().and_then(Source::file));
         Ok(Outputs::new(
             Outcome::of(r.pass),
             [

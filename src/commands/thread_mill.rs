@@ -16,8 +16,9 @@ pub struct ThreadMillArgs {
     #[serde(skip)]
     #[allow(missing_docs)]
     pub file: ProgramArgs,
-    /// The thread with its class, e.g. M20x1.5-6H.
-    #[cfg_attr(feature = "cli", arg(long, required = true))]
+    /// The thread with its class, e.g. M20x1.5-6H (default: the one the program names in a
+    /// comment above its first helix, else the standard size of the helix's lead and diameter).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub thread: Option<String>,
     /// Accept a diameter/pitch pair outside the standard series.
     #[cfg_attr(feature = "cli", arg(long))]
@@ -66,10 +67,8 @@ impl Job for ThreadMillArgs {
     /// Pass when the milled thread is within every limit and the lead is right.
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
         let (program, dialect, _) = self.file.read("thread-mill")?;
-        let designation = self
-            .thread
-            .clone()
-            .ok_or_else(|| Error::Input("thread-mill needs ‹thread› with a class, e.g. M20x1.5-6H".into()))?;
+        // Without ‹thread›, the thread the program names (a comment), else the size it cuts.
+        let designation = self.thread.clone();
         let rows = self.cutter_rows.unwrap_or(1);
         if !(1..=200).contains(&rows) {
             return Err(Error::Input(format!("‹cutter_rows› {rows}: a whole number from 1 to 200")));

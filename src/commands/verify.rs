@@ -155,13 +155,14 @@ impl VerifyArgs {
         };
         // `spec` asks for the pictures only when a document draws them (the program's picture
         // once lost its zone, basic profile, deviation plot and full length).
-        let pv = crate::analysis::verify::verify_program(
+        let pv = crate::analysis::whole::verify_whole(
             spec,
             &text,
             &shown,
             dialect,
             &self.plan.thread,
             &insert_for,
+            tools,
         )?;
         Ok(Outputs::new(
             Outcome::of(pv.pass()),

@@ -692,6 +692,7 @@ fn push_hole_at(
     };
     m.push_hole(super::HoleCycle {
         code: m.g_name(code),
+        units: m.program_units(),
         kind,
         line: b.line,
         column: modal.col.unwrap_or(b.col),

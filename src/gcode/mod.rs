@@ -43,6 +43,18 @@ pub use edit::{rewrite_words, WordEdit};
 pub use machine::{MachineReading, MachineType};
 pub use motion::Move;
 
+/// Why a program makes no thread, when its notes show it: a subroutine defined and never called
+/// (the likely reason), or a G92 that sets only S (a speed clamp where a thread was expected);
+/// the place and the note.
+pub(crate) fn no_thread_hint(notes: &[Note]) -> Option<(usize, usize, String)> {
+    let n = notes
+        .iter()
+        .find(|n| n.kind == NoteKind::NeverCalled)
+        .or_else(|| notes.iter().find(|n| n.kind == NoteKind::ReadPast && n.message.starts_with("G92 S")))?;
+    let (line, col) = n.place.as_ref().map_or((1, 1), |p| (p.line, p.column));
+    Some((line, col, n.message.clone()))
+}
+
 /// Which control's G-code.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -168,7 +180,7 @@ impl Dialect {
     }
 
     /// What threading this dialect reads, for messages.
-    fn threading_words(self) -> &'static str {
+    pub(crate) fn threading_words(self) -> &'static str {
         match self {
             Dialect::Fanuc => "G32, G92 and G76",
             Dialect::Haas => "G32, G92 and G76",
@@ -624,6 +636,9 @@ pub struct HoleCycle {
     pub tool: Option<u32>,
     /// M29 rigid tapping.
     pub rigid: bool,
+    /// The program's units at the cycle (what a diameter in its comments is written in).
+    #[serde(skip)]
+    pub units: ProgramUnits,
 }
 
 impl Program {
@@ -901,21 +916,10 @@ fn read(
     }
     if operations.is_empty() && !opts.allow_no_threading {
         let mut why = format!("no threading pass in the program (looked for {})", dialect.threading_words());
-        // A subroutine defined and never called is the likely reason: point at it.
         let (mut line, mut col) = (1, 1);
-        if let Some(n) = notes.iter().find(|n| n.kind == NoteKind::NeverCalled) {
-            if let Some(p) = &n.place {
-                (line, col) = (p.line, p.column);
-            }
-            why.push_str(&format!("; {}", n.message));
-        } else if let Some(n) =
-            notes.iter().find(|n| n.kind == NoteKind::ReadPast && n.message.starts_with("G92 S"))
-        {
-            // A G92 that sets only S reads as a speed clamp: say so where a thread was expected.
-            if let Some(p) = &n.place {
-                (line, col) = (p.line, p.column);
-            }
-            why.push_str(&format!("; {}", n.message));
+        if let Some((l, c, hint)) = no_thread_hint(&notes) {
+            (line, col) = (l, c);
+            why.push_str(&format!("; {hint}"));
         } else if let Some(h) = holes.iter().find(|h| h.kind == HoleKind::Tap) {
             // A tapping program given to a turning check: name the command that reads it.
             (line, col) = (h.line, h.column);

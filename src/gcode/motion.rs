@@ -684,6 +684,15 @@ impl Motion {
 
     /// Records a drilling or tapping cycle; past [`MAX_HOLES`](crate::ground::bounds::MAX_HOLES)
     /// the program is refused at the cycle's place, never cut short.
+    /// The units the program's words are in now.
+    pub fn program_units(&self) -> super::ProgramUnits {
+        if self.scale > 1.0 {
+            super::ProgramUnits::Inch
+        } else {
+            super::ProgramUnits::Mm
+        }
+    }
+
     pub fn push_hole(&mut self, h: super::HoleCycle) -> Result<(), Error> {
         if self.holes.len() >= crate::ground::bounds::MAX_HOLES {
             return Err(self.err(
@@ -716,6 +725,7 @@ impl Motion {
     ) -> Result<(), Error> {
         self.push_hole(super::HoleCycle {
             code: code.to_string(),
+            units: self.program_units(),
             kind: super::HoleKind::Tap,
             line,
             column,

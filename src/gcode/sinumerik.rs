@@ -291,6 +291,7 @@ fn hole(s: &State, m: &mut Motion, call: &HoleCall, line: usize) -> Result<(), E
     let assumed = kind == super::HoleKind::Tap && feed_word == "F" && m.feed_per_rev.is_none();
     m.push_hole(super::HoleCycle {
         code: call.name.clone(),
+        units: m.program_units(),
         kind,
         line,
         column: if line == call.line { call.col } else { 1 },

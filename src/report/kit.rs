@@ -400,7 +400,7 @@ table{border-collapse:collapse;margin:8px 0 16px}th,td{border:1px solid #ccc;pad
 th{background:#eef1f5;text-align:left}td.n{text-align:right;font-variant-numeric:tabular-nums}\
 .ok{color:#1d7a36}.out{color:#c62828;font-weight:bold}.form{color:#8a6d00}\
 .verdict{font-size:18px;font-weight:bold}.pic{overflow-x:auto}.pic svg{max-width:100%;height:auto}\
-ul.notes li{font-size:13px;margin:2px 0}";
+ul.notes li{font-size:13px;margin:2px 0}pre.wrap{white-space:pre-wrap;font-size:12px}";
 
 pub(crate) fn page(title: &str, body: &str) -> String {
     format!(

@@ -70,6 +70,21 @@ pub fn text(r: &TapReport) -> String {
         r.drills,
         if r.drills == 1 { "" } else { "s" }
     );
+    s.push_str(&holes_text(r));
+    if r.holes.len() > 1 {
+        let _ = writeln!(s, "\nprogram verdict: {}", if r.pass { "PASS" } else { "FAIL" });
+    }
+    for n in &r.notes {
+        let _ = writeln!(s, "note: {n}");
+    }
+    s
+}
+
+/// Each tapped hole's section: its cycle, tap and drill, its checks, its verdict and notes (what
+/// `tap` prints between its heading and its program verdict; `verify` prints it among the
+/// program's operations).
+pub fn holes_text(r: &TapReport) -> String {
+    let mut s = String::new();
     for h in &r.holes {
         let c = &h.cycle;
         let _ = writeln!(
@@ -140,12 +155,6 @@ pub fn text(r: &TapReport) -> String {
         for n in &h.notes {
             let _ = writeln!(s, "note: {n}");
         }
-    }
-    if r.holes.len() > 1 {
-        let _ = writeln!(s, "\nprogram verdict: {}", if r.pass { "PASS" } else { "FAIL" });
-    }
-    for n in &r.notes {
-        let _ = writeln!(s, "note: {n}");
     }
     s
 }

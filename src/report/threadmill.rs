@@ -117,6 +117,10 @@ pub struct ThreadMillJson<'a> {
     pub program: &'a str,
     /// The designation.
     pub designation: &'a str,
+    /// Where it came from: given, comment or inferred.
+    pub designation_from: crate::analysis::naming::DesignationFrom,
+    /// The comment's line (the first helix's, when inferred); null when given.
+    pub designation_line: Option<usize>,
     /// `internal` or `external`.
     pub kind: crate::standards::ThreadKind,
     /// The cutter.
@@ -151,6 +155,8 @@ impl<'a> ThreadMillJson<'a> {
         ThreadMillJson {
             program: &r.program,
             designation: &r.designation,
+            designation_from: r.named.from,
+            designation_line: r.named.line,
             kind: r.kind,
             cutter: r.cutter,
             cutter_ratio: r.cutter_ratio,

@@ -539,6 +539,8 @@ pub struct NoCutCheck<'a> {
 pub enum OperationReport<'a> {
     /// Cut and measured.
     Verified {
+        /// Always `turned` (the key `process` is the process checks').
+        made: crate::analysis::whole::Process,
         /// The verify report's keys.
         #[serde(flatten)]
         report: Box<VerifyReport<'a>>,
@@ -551,6 +553,8 @@ pub enum OperationReport<'a> {
     },
     /// Nothing to measure.
     NoCut {
+        /// Always `turned` (the key `process` is the process checks').
+        made: crate::analysis::whole::Process,
         /// The designation.
         thread: DesignationOnly<'a>,
         /// One failing `cut` check.
@@ -568,6 +572,35 @@ pub enum OperationReport<'a> {
         designation_from: crate::analysis::naming::DesignationFrom,
         /// The line of the comment that named it (of the operation, when inferred).
         designation_line: Option<usize>,
+    },
+    /// A tapping cycle and its checks (`tap`'s `holes[]` entry).
+    Tapped {
+        /// Always `tapped`.
+        made: crate::analysis::whole::Process,
+        /// The hole's keys.
+        #[serde(flatten)]
+        hole: &'a crate::analysis::tapping::TappedHole,
+        /// `pass` or `fail`.
+        verdict: Verdict,
+    },
+    /// The thread-milled thread (`thread-mill`'s report).
+    Milled {
+        /// Always `milled`.
+        made: crate::analysis::whole::Process,
+        /// The report's keys.
+        #[serde(flatten)]
+        report: Box<crate::report::threadmill::ThreadMillJson<'a>>,
+    },
+    /// Helices whose cutter is not known: not checked, failing.
+    NotChecked {
+        /// Always `milled`.
+        made: crate::analysis::whole::Process,
+        /// The first helix's line.
+        line: usize,
+        /// Why, and what to give.
+        reason: &'a str,
+        /// Always `fail`.
+        verdict: Verdict,
     },
 }
 
@@ -610,6 +643,7 @@ impl<'a> ProgramReport<'a> {
                 let operation = OperationInfo::of(&o.operation);
                 match &o.result {
                     crate::analysis::verify::OperationResult::Verified(v) => OperationReport::Verified {
+                        made: crate::analysis::whole::Process::Turned,
                         report: Box::new(VerifyReport::of(v)),
                         operation,
                         designation_from: o.named.from,
@@ -617,6 +651,7 @@ impl<'a> ProgramReport<'a> {
                     },
                     crate::analysis::verify::OperationResult::NoCut { reason, suggested_final_x } => {
                         OperationReport::NoCut {
+                            made: crate::analysis::whole::Process::Turned,
                             suggested_final_x: *suggested_final_x,
                             thread: DesignationOnly { designation: &o.designation },
                             checks: [NoCutCheck {
@@ -634,6 +669,23 @@ impl<'a> ProgramReport<'a> {
                     }
                 }
             })
+            .chain(pv.tapped.iter().flat_map(|t| &t.holes).map(|hole| OperationReport::Tapped {
+                made: crate::analysis::whole::Process::Tapped,
+                hole,
+                verdict: Verdict::of(hole.pass),
+            }))
+            .chain(pv.milled.iter().map(|m| match m {
+                crate::analysis::whole::Milled::Checked(r) => OperationReport::Milled {
+                    made: crate::analysis::whole::Process::Milled,
+                    report: Box::new(crate::report::threadmill::ThreadMillJson::of(r)),
+                },
+                crate::analysis::whole::Milled::NotChecked { line, reason } => OperationReport::NotChecked {
+                    made: crate::analysis::whole::Process::Milled,
+                    line: *line,
+                    reason,
+                    verdict: Verdict::Fail,
+                },
+            }))
             .collect();
         ProgramReport {
             program: &pv.program,
@@ -665,13 +717,12 @@ pub fn program_text(pv: &crate::analysis::verify::ProgramVerification) -> String
         [o] if n > 1 => format!(" (operation {} checked)", o.operation.index),
         _ => String::new(),
     };
-    let _ = writeln!(
-        s,
-        "{}: {n} threading operation{}{named}{}\n",
-        pv.program,
-        if n == 1 { "" } else { "s" },
-        read_past_text(pv.read_past_blocks)
-    );
+    let what = if named.is_empty() {
+        program_counts(pv)
+    } else {
+        format!("{n} threading operation{}", if n == 1 { "" } else { "s" })
+    };
+    let _ = writeln!(s, "{}: {what}{named}{}\n", pv.program, read_past_text(pv.read_past_blocks));
     for o in &pv.operations {
         let op = &o.operation;
         let _ = writeln!(
@@ -701,23 +752,91 @@ pub fn program_text(pv: &crate::analysis::verify::ProgramVerification) -> String
         }
         s.push('\n');
     }
+    if let Some(t) = &pv.tapped {
+        let _ = writeln!(
+            s,
+            "== tapped: {} tapping cycle{}, {} drilling cycle{}",
+            t.holes.len(),
+            if t.holes.len() == 1 { "" } else { "s" },
+            t.drills,
+            if t.drills == 1 { "" } else { "s" }
+        );
+        s.push_str(&crate::report::tapping::holes_text(t));
+        s.push('\n');
+    }
+    match &pv.milled {
+        Some(crate::analysis::whole::Milled::Checked(r)) => {
+            let _ = writeln!(s, "== milled: {} helices\n", r.helices.len());
+            s.push_str(&crate::report::threadmill::text(r));
+            s.push('\n');
+        }
+        Some(crate::analysis::whole::Milled::NotChecked { line, reason }) => {
+            let _ =
+                writeln!(s, "== milled: helices from line {line}\n\nverdict: FAIL (not checked: {reason})\n");
+        }
+        None => {}
+    }
     for note in &pv.notes {
         let _ = writeln!(s, "note: {note}");
     }
-    if n > 1 {
-        let failed: Vec<String> = pv
+    let tapped = pv.tapped.as_ref().map_or(0, |t| t.holes.len());
+    let milled = usize::from(pv.milled.is_some());
+    if n + tapped + milled > 1 {
+        let mut failed: Vec<String> = pv
             .operations
             .iter()
             .filter(|o| !o.result.pass())
-            .map(|o| o.operation.index.to_string())
+            .map(|o| format!("operation {}", o.operation.index))
             .collect();
-        if failed.is_empty() {
+        failed.extend(
+            pv.tapped
+                .iter()
+                .flat_map(|t| &t.holes)
+                .filter(|h| !h.pass)
+                .map(|h| format!("the tap at line {}", h.cycle.line)),
+        );
+        if pv.milled.as_ref().is_some_and(|m| !m.pass()) {
+            failed.push("the milled thread".to_string());
+        }
+        let all = process_counts(n, tapped, milled);
+        if failed.is_empty() && tapped + milled == 0 {
             let _ = writeln!(s, "program verdict: PASS (all {n} operations)");
+        } else if failed.is_empty() {
+            let _ = writeln!(s, "program verdict: PASS ({all})");
         } else {
-            let _ = writeln!(s, "program verdict: FAIL (operation {})", failed.join(", "));
+            let _ = writeln!(s, "program verdict: FAIL ({})", failed.join(", "));
         }
     }
     s
+}
+
+/// What a program makes, for a heading: `2 threading operations` when it only turns threads
+/// (as ever), else `1 turned operation, 4 tapped holes, 1 milled thread`.
+pub(crate) fn program_counts(pv: &crate::analysis::verify::ProgramVerification) -> String {
+    let n = pv.operations.len();
+    let tapped = pv.tapped.as_ref().map_or(0, |t| t.holes.len());
+    let milled = usize::from(pv.milled.is_some());
+    if tapped + milled == 0 {
+        format!("{n} threading operation{}", if n == 1 { "" } else { "s" })
+    } else {
+        process_counts(n, tapped, milled)
+    }
+}
+
+/// `2 turned operations, 4 tapped holes, 1 milled thread`: the counts that are not zero.
+pub(crate) fn process_counts(turned: usize, tapped: usize, milled: usize) -> String {
+    let plural = |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
+    let mut parts = Vec::new();
+    if turned > 0 || (tapped == 0 && milled == 0) {
+        parts.push(plural(turned, "turned operation", "turned operations"));
+    }
+    if tapped > 0 {
+        parts.push(plural(tapped, "tapped hole", "tapped holes"));
+    }
+    if milled > 0 {
+        parts.push(plural(milled, "milled thread", "milled threads"));
+    }
+    parts.join(", ")
 }
 
 /// The blank before threading across the panel: between the surface and the far side.
@@ -1149,6 +1268,16 @@ pub(crate) const WIDTH: f64 = 1100.0;
 
 /// The SVG of every operation of a program, one section each, stacked.
 pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String {
+    // A program that turns nothing: the picture of what it makes (the tapped holes first).
+    if pv.operations.is_empty() {
+        match (&pv.tapped, &pv.milled) {
+            (Some(t), _) => return crate::report::tapping::tap_svg(t),
+            (None, Some(crate::analysis::whole::Milled::Checked(r))) => {
+                return crate::report::threadmill::threadmill_svg(r)
+            }
+            (None, Some(crate::analysis::whole::Milled::NotChecked { .. }) | None) => {}
+        }
+    }
     // The program's verdict first, one line per operation, then each operation's section.
     let pass = pv.pass();
     let mut head = Group::new()
@@ -1161,11 +1290,10 @@ pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String 
                 20.0,
                 shorten(
                     &format!(
-                        "{} — {}: {} threading operation{}",
+                        "{} — {}: {}",
                         label_name(&pv.program),
                         if pass { "IN TOLERANCE" } else { "OUT OF TOLERANCE" },
-                        pv.operations.len(),
-                        if pv.operations.len() == 1 { "" } else { "s" }
+                        program_counts(pv)
                     ),
                     90,
                 ),
@@ -1529,12 +1657,7 @@ pub fn program_html(pv: &ProgramVerification) -> String {
     let title = format!("threadcheck: {}", pv.program);
     let mut body = format!("<h1>{}</h1>\n", esc(&title));
     let (cls, words) = if pv.pass() { ("ok", "IN TOLERANCE") } else { ("out", "OUT OF TOLERANCE") };
-    let _ = writeln!(
-        body,
-        "<p class=\"verdict {cls}\">{words}: {} threading operation{}</p>",
-        pv.operations.len(),
-        if pv.operations.len() == 1 { "" } else { "s" }
-    );
+    let _ = writeln!(body, "<p class=\"verdict {cls}\">{words}: {}</p>", esc(&program_counts(pv)));
     if !pv.notes.is_empty() {
         body.push_str("<ul class=\"notes\">\n");
         for n in &pv.notes {
@@ -1568,6 +1691,39 @@ pub fn program_html(pv: &ProgramVerification) -> String {
                 }
             }
         }
+    }
+    // The tapped holes and the milled thread, each with its picture.
+    if let Some(t) = &pv.tapped {
+        let _ = writeln!(
+            body,
+            "<h2>Tapped: {} tapping cycle{} — {}</h2>",
+            t.holes.len(),
+            if t.holes.len() == 1 { "" } else { "s" },
+            if t.pass { "IN TOLERANCE" } else { "OUT OF TOLERANCE" }
+        );
+        let _ = writeln!(body, "<pre class=\"wrap\">{}</pre>", esc(&crate::report::tapping::holes_text(t)));
+        let _ = writeln!(body, "<div class=\"pic\">{}</div>", crate::report::tapping::tap_svg(t));
+    }
+    match &pv.milled {
+        Some(crate::analysis::whole::Milled::Checked(r)) => {
+            let _ = writeln!(
+                body,
+                "<h2>Milled: {} — {}</h2>",
+                esc(&r.designation),
+                if r.pass { "IN TOLERANCE" } else { "OUT OF TOLERANCE" }
+            );
+            let _ = writeln!(body, "<pre class=\"wrap\">{}</pre>", esc(&crate::report::threadmill::text(r)));
+            let _ =
+                writeln!(body, "<div class=\"pic\">{}</div>", crate::report::threadmill::threadmill_svg(r));
+        }
+        Some(crate::analysis::whole::Milled::NotChecked { line, reason }) => {
+            let _ = writeln!(
+                body,
+                "<h2>Milled: helices from line {line}</h2>\n<p class=\"verdict out\">NOT CHECKED: {}</p>",
+                esc(reason)
+            );
+        }
+        None => {}
     }
     page(&title, &body)
 }

@@ -177,7 +177,7 @@ function operationBlock(op, title, programLines) {
   };
   const pass = op.verdict === "pass";
   line("verdict-small " + (pass ? "ok" : "out"), pass ? "IN TOLERANCE" : "OUT OF TOLERANCE");
-  if (op.reason) line("reason", "Nothing is cut: " + op.reason);
+  if (op.reason) line("reason", (op.made === "milled" ? "Not checked: " : "Nothing is cut: ") + op.reason);
   if (op.correction) line("correction", "Next: " + op.correction.text);
   if (!pass && op.suggested_final_x !== null && op.suggested_final_x !== undefined && !op.correction) {
     line("correction", "Next: a last pass at X" + fmt(op.suggested_final_x, 4) + " puts d2 mid-tolerance");
@@ -196,7 +196,7 @@ function operationBlock(op, title, programLines) {
       const failed = c.kind === "size" || !op.gauge_only ? "OUT" : "form";
       return [
         c.feature.replaceAll("_", " "),
-        c.kind,
+        c.kind || "",
         s.value + (s.value && s.unit && s.unit !== "mm" ? unit : ""),
         s.min,
         s.max,
@@ -258,6 +258,17 @@ $("verify-form").addEventListener("submit", async (ev) => {
     const lines = args.program ? args.program.split(/\r?\n/) : null;
     if (report.operations) {
       for (const op of report.operations) {
+        // A tapped hole and a milled thread (issue 46) carry their own keys, not `operation`.
+        if (op.made === "tapped") {
+          const t = op.tap;
+          const from = t.designation_from === "comment" ? ` (named by the comment at line ${t.designation_line})` : t.designation_from === "inferred" ? " (inferred from its lead and drill)" : "";
+          ops.appendChild(operationBlock(op, `Tapped: ${op.cycle.code} at line ${op.cycle.line}, tap ${t.designation}${from}`, null));
+          continue;
+        }
+        if (op.made === "milled") {
+          ops.appendChild(operationBlock(op, op.designation ? `Milled: ${op.designation}, ${op.helices.length} helices from line ${op.helices[0].line}` : `Milled: helices from line ${op.line}`, null));
+          continue;
+        }
         const o = op.operation;
         // The thread it was checked against, and where it came from when the program named it.
         const from = { comment: `named by the comment at line ${op.designation_line}`, inferred: "inferred from the lead and diameter it cuts", tool: "from the tool table", given: "" }[op.designation_from] || "";

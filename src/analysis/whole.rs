@@ -1,0 +1,217 @@
+//! One verify for every thread a program makes: its turned threads (every threading cycle and
+//! G32/G33 chain), its tapped holes (every tapping cycle, with its drill) and its thread-milled
+//! thread (the helices), each checked as its own command checks it, in one report with one
+//! verdict.
+//!
+//! The thread of each comes from `--thread` (the turned operations'; a program with no turned
+//! thread gives it to its milled one), else from the program (a comment above it, the tool table's
+//! tap, else the standard size it cuts: [`crate::analysis::naming`]). A milled thread whose cutter
+//! is not known (no tool table names the helix's tool as a thread mill) is reported as not
+//! checked, which fails: nothing a program makes is passed unseen.
+
+use crate::analysis::tapping::TapSpec;
+use crate::analysis::threadmill::{ThreadMillReport, ThreadMillSpec};
+use crate::analysis::tools::{Tool, ToolTable};
+use crate::analysis::verify::{InsertFor, ProgramLabel, ProgramVerification, VerifySpec};
+use crate::gcode::{Dialect, HoleKind, ReadOptions};
+use crate::Error;
+use serde::Serialize;
+
+/// How a thread is made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Process {
+    /// Turned on a lathe: threading cycles and G32/G33 chains.
+    Turned,
+    /// Cut by a tap in a tapping cycle.
+    Tapped,
+    /// Milled by a thread mill on helices.
+    Milled,
+}
+
+impl Process {
+    /// The word the reports use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Process::Turned => "turned",
+            Process::Tapped => "tapped",
+            Process::Milled => "milled",
+        }
+    }
+}
+
+/// What became of a program's thread-milled thread.
+#[derive(Clone, Debug)]
+pub enum Milled {
+    /// Measured and checked.
+    Checked(Box<ThreadMillReport>),
+    /// Not checked (the cutter is not known): a failing verdict with the reason.
+    NotChecked {
+        /// The first helix's line.
+        line: usize,
+        /// Why, and what to give.
+        reason: String,
+    },
+}
+
+impl Milled {
+    /// Whether it passes (never when not checked).
+    pub fn pass(&self) -> bool {
+        match self {
+            Milled::Checked(r) => r.pass,
+            Milled::NotChecked { .. } => false,
+        }
+    }
+}
+
+/// What a program holds besides thread-making operations (`; it has 2 drilling cycles (G81 at
+/// line 5, …)`), for the message of a program that makes none; empty when nothing is worth naming.
+fn contents(prog: &crate::gcode::Program) -> String {
+    let drills = prog.holes.iter().filter(|h| h.kind == HoleKind::Drill).count();
+    let arcs = prog.moves.iter().filter(|m| m.arc.is_some()).count();
+    let mut parts = Vec::new();
+    if drills > 0 {
+        let lines: Vec<String> = prog
+            .holes
+            .iter()
+            .filter(|h| h.kind == HoleKind::Drill)
+            .take(4)
+            .map(|h| format!("{} at line {}", h.code, h.line))
+            .collect();
+        parts.push(format!(
+            "{drills} drilling cycle{} ({}{})",
+            if drills == 1 { "" } else { "s" },
+            lines.join(", "),
+            if drills > 4 { ", …" } else { "" }
+        ));
+    }
+    if arcs > 0 {
+        parts.push(format!("{arcs} arc{} without a Z change", if arcs == 1 { "" } else { "s" }));
+    }
+    if parts.is_empty() {
+        String::new()
+    } else {
+        format!("; it has {}", parts.join(", "))
+    }
+}
+
+/// Verifies every thread a program makes: its turned operations as
+/// [`verify_program`](crate::verify_program) does, its tapping cycles as
+/// [`tapping`](crate::tapping) does, its helices as [`thread_mill`](crate::thread_mill) does.
+/// `threads` (empty: the program names them) are the turned operations'; `tools` gives the
+/// inserts, taps, drills and thread mills by T number.
+///
+/// ```
+/// use threadcheck::{verify_whole, Dialect, InsertChoice, VerifySpec};
+/// // A lathe program that turns an M20x1.5 and taps an M8 on the centre line, each named by a comment.
+/// let text = "(M20X1.5-6G)\nG99 G0 X22 Z5\nG76 P010060 Q100 R0.05\nG76 X18.16 Z-20 P920 Q300 F1.5\n\
+///             T0505 (DRILL 6.8)\nG97 S900 M3\nG0 X0 Z5\nG83 Z-25 R2 Q5000 F0.1\nG80\n\
+///             T0606 (TAP M8X1.25)\nG0 X0 Z8\nG84 Z-16 R5 F1.25\nG80\nM30\n";
+/// let spec = VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("") };
+/// let r = verify_whole(&spec, text, "part.nc", Dialect::Fanuc, &[], &|_| None, None)?;
+/// assert_eq!(r.operations.len(), 1);
+/// let tapped = r.tapped.as_ref().expect("a tapping cycle");
+/// assert_eq!(tapped.holes[0].tap.designation, "M8X1.25-6H");
+/// assert!(tapped.holes[0].pass); // Ø6.8 within D1 6.647–6.912; F1.25 = P; room for the point
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+pub fn verify_whole(
+    spec: &VerifySpec,
+    text: &str,
+    name: &str,
+    dialect: Dialect,
+    threads: &[String],
+    insert_for: &InsertFor<'_>,
+    tools: Option<&ToolTable>,
+) -> Result<ProgramVerification, Error> {
+    let reading = ReadOptions { allow_no_threading: true, ..spec.reading };
+    let mut prog = crate::gcode::read_program_with(text, name, dialect, reading)?;
+    // On a machining centre, its toolpath too (a recorded toolpath is read as a mill's).
+    if prog.machine.machine_type == crate::gcode::MachineType::Mill {
+        prog = crate::gcode::read_program_with(text, name, dialect, ReadOptions { moves: true, ..reading })?;
+    }
+    let taps = prog.holes.iter().any(|h| h.kind == HoleKind::Tap);
+    let helix = prog.moves.iter().find(|m| m.arc.is_some() && (m.to[2] - m.from[2]).abs() > 1e-9);
+    if prog.operations.is_empty() && !taps && helix.is_none() {
+        let (line, column, hint) = crate::gcode::no_thread_hint(&prog.notes)
+            .map_or((1, 1, String::new()), |(l, c, h)| (l, c, format!("; {h}")));
+        return Err(Error::Program {
+            file: name.to_string(),
+            line,
+            column,
+            message: format!(
+                "no thread-making operation in the program (looked for {}, tapping cycles, and helices: G2/G3 with a Z change){hint}{}",
+                dialect.threading_words(),
+                contents(&prog)
+            ),
+        });
+    }
+    let mut pv = if prog.operations.is_empty() {
+        ProgramVerification {
+            program: ProgramLabel { file: name.to_string(), dialect },
+            dialect,
+            operations: Vec::new(),
+            operations_in_program: 0,
+            notes: prog.notes.clone(),
+            skipped_blocks: prog.skipped_blocks,
+            read_past_blocks: prog.read_past_blocks,
+            machine: prog.machine.clone(),
+            tapped: None,
+            milled: None,
+        }
+    } else {
+        crate::analysis::verify::verify_program(spec, text, name, dialect, threads, insert_for)?
+    };
+    if taps {
+        let t = TapSpec {
+            program: (text.to_string(), name.to_string()),
+            dialect,
+            reading: spec.reading,
+            tools: tools.cloned().unwrap_or_else(|| ToolTable::empty("no tool table")),
+            allow_nonstandard: spec.allow_nonstandard,
+            from_program: true,
+        };
+        let mut r = crate::analysis::tapping::tapping(&t)?;
+        // The program's notes are the report's, once.
+        r.notes.clear();
+        pv.tapped = Some(r);
+    }
+    if let Some(h) = helix {
+        // The thread mill: the helix's tool in the table, as a thread mill's file.
+        let cutter_known = match (tools, h.tool) {
+            (Some(tt), Some(t)) => matches!(tt.tool(t), Some((Tool::Insert(_), _))),
+            _ => false,
+        };
+        pv.milled = Some(if cutter_known {
+            let m = ThreadMillSpec {
+                program: (text.to_string(), name.to_string()),
+                dialect,
+                designation: match (prog.operations.is_empty(), threads) {
+                    (true, [one]) => Some(one.clone()),
+                    _ => None,
+                },
+                allow_nonstandard: spec.allow_nonstandard,
+                cutter: None,
+                tools: tools.cloned(),
+                blank_diameter: None,
+                comp_radius: None,
+            };
+            let mut r = crate::analysis::threadmill::thread_mill(&m)?;
+            // The program's notes are the report's, once.
+            let program: Vec<String> = prog.notes.iter().map(ToString::to_string).collect();
+            r.notes.retain(|n| !program.contains(n));
+            Milled::Checked(Box::new(r))
+        } else {
+            Milled::NotChecked {
+                line: h.line,
+                reason: match h.tool {
+                    Some(t) => format!(
+                        "the helices of tool T{t} are not checked: the thread mill is not known (‹tools›: {t} = \"thread-mill.toml\", the cutter's file; or `thread-mill` with ‹cutter_diameter›)"
+                    ),
+                    None => "the helices are not checked: the program names no tool before them (`thread-mill` with ‹cutter_diameter›)".to_string(),
+                },
+            }
+        });
+    }
+    Ok(pv)
+}

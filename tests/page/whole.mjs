@@ -1,0 +1,30 @@
+// Issue 46: the page's Verify with a program that turns a thread and taps a hole, each named by
+// its comment, the thread field left empty: one block per operation, the tapped hole's heading
+// naming its tap and where it came from. Usage: node whole.mjs URL OUT CHROMIUM PROGRAM
+import { chromium } from "playwright-core";
+import { readFileSync } from "node:fs";
+import { join } from "node:path";
+
+const [url, out, executablePath, programFile] = process.argv.slice(2);
+const browser = await chromium.launch({ executablePath, args: ["--no-sandbox"] });
+const seen = { console: [] };
+try {
+  const page = await browser.newPage({ viewport: { width: 1280, height: 900 } });
+  page.on("console", (m) => seen.console.push(`${m.type()}: ${m.text()}`));
+  page.on("pageerror", (e) => seen.console.push(`pageerror: ${e.message}`));
+  await page.goto(url);
+  await page.fill("#program", readFileSync(programFile, "utf8"));
+  await page.fill("#thread", "");
+  await page.selectOption("#insert", "full");
+  await page.click("#verify-button");
+  await page.waitForSelector("#verify-result:not([hidden])");
+  seen.verdict = await page.textContent("#verdict");
+  seen.headings = await page.$$eval(".operation h2", (hs) => hs.map((h) => h.textContent));
+  seen.verdicts = await page.$$eval(".operation .verdict-small", (ps) => ps.map((p) => p.textContent));
+  seen.tap_checks = await page.$$eval(".operation:nth-of-type(2) table.checks tbody tr", (rows) => rows.map((r) => r.cells[0].textContent));
+  seen.shot = join(out, "whole.png");
+  await page.screenshot({ path: seen.shot, fullPage: true });
+} finally {
+  await browser.close();
+}
+process.stdout.write(JSON.stringify(seen));
