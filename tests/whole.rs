@@ -96,7 +96,10 @@ fn helices_whose_cutter_is_not_known_fail_as_not_checked() {
     assert_eq!(last["verdict"], "fail");
     // The first G3 (line 28; line 27 is the straight feed in).
     assert_eq!(last["line"], 28);
-    assert!(last["reason"].as_str().unwrap().contains("tool T12 are not checked"), "{last}");
+    assert!(
+        last["reason"].as_str().unwrap().contains("the thread mill T12 of the helices is not known"),
+        "{last}"
+    );
     let o = run(&["verify", "--program", data("whole/plate.nc").to_str().unwrap()]);
     assert!(stdout(&o).contains("program verdict: FAIL (the milled thread)"), "{}", stdout(&o));
 }
@@ -113,4 +116,77 @@ fn tap_names_its_taps_and_drills_from_the_comments() {
         .unwrap()
         .iter()
         .all(|h| h["drill"]["diameter"] == 6.8 && h["pass"] == true));
+}
+
+/// Issue 46 item 3, a library in one run: `verify FOLDER FILE…` verifies every program (a
+/// folder's by their extensions, recursively, in name order), one line per operation and a
+/// summary; an unreadable file is its one located line in the run, not its end, and the exit
+/// status is the worst (2). Copies of our test programs, so the lines are known: the plate's four
+/// taps pass and its helices (no thread mill known) fail; the shaft's partial-insert default fails
+/// its turned thread on the root radius and more, its tap passes.
+#[test]
+fn a_library_in_one_run_with_json_lines() {
+    let dir = tempdir("library");
+    let lib = dir.join("lib");
+    std::fs::create_dir_all(lib.join("lathe")).unwrap();
+    std::fs::copy(data("whole/plate.nc"), lib.join("plate.nc")).unwrap();
+    std::fs::copy(data("whole/shaft.nc"), lib.join("lathe/shaft.NC")).unwrap();
+    std::fs::write(lib.join("notes.txt"), "not a program").unwrap();
+    std::fs::write(
+        lib.join("broken.nc"),
+        "G0 X10 Z5\nG76 P010060 Q100 R0.05\nG76 X8 Z-10 P1000 Q300 F1.5 G\n",
+    )
+    .unwrap();
+    let o = run_in(&dir, &["verify", "lib", "--json-lines", "out.jsonl"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let text = stdout(&o);
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines[0].starts_with("error: lib/broken.nc:3:"), "{text}");
+    assert_eq!(lines[1], "lib/lathe/shaft.NC:8: FAIL turned M24X2-6g (comment): pitch diameter d2, root radius, GO gauge (max. material)");
+    assert_eq!(lines[2], "lib/lathe/shaft.NC:19: PASS tapped M8X1.25-6H (comment)");
+    assert_eq!(lines[3], "lib/plate.nc:18: PASS tapped M8X1.25-6H (comment)");
+    assert!(
+        lines[7].starts_with("lib/plate.nc:28: FAIL milled —: not checked: the thread mill T12"),
+        "{text}"
+    );
+    assert_eq!(lines[8], "2 programs read, 7 operations: 5 pass, 2 fail; 1 unreadable");
+    assert_eq!(lines.len(), 9, "notes.txt is not a program: {text}");
+    let jsonl = std::fs::read_to_string(dir.join("out.jsonl")).unwrap();
+    let objects: Vec<serde_json::Value> = jsonl.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert_eq!(objects.len(), 4);
+    assert_eq!(objects[0]["verdict"], "error");
+    assert_eq!(objects[1]["file"], "lib/lathe/shaft.NC");
+    assert_eq!(objects[1]["operations"][1]["made"], "tapped");
+    assert_eq!(
+        objects[3]["summary"],
+        serde_json::json!({"programs": 2, "operations": 7, "pass": 5, "fail": 2, "unreadable": 1})
+    );
+    // Without the broken file the worst is a failing operation (exit 1); with the thread mill and
+    // a full-profile insert (as the one-program tests above) every operation passes (exit 0).
+    std::fs::remove_file(lib.join("broken.nc")).unwrap();
+    let o = run_in(&dir, &["verify", "lib"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let tools = data("whole/plate-tools.toml");
+    let o = run_in(&dir, &["verify", "lib", "--insert", "full", "--tools", tools.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).ends_with("2 programs read, 7 operations: 7 pass, 0 fail\n"), "{}", stdout(&o));
+}
+
+/// A run of many refuses the one program's documents, and an empty folder says what it looked for.
+#[test]
+fn a_library_run_refuses_one_program_s_documents() {
+    let dir = tempdir("library-refusals");
+    std::fs::create_dir_all(dir.join("empty")).unwrap();
+    let o = run_in(&dir, &["verify", "empty"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: no program in empty (looked for the extensions .nc .ngc .mpf .spf .min .ssb .sub .tap .cnc .eia .gcode .iso)"
+    );
+    let o = run_in(&dir, &["verify", "empty", "--svg", "x.svg"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: --svg is one program's: give it with --program, or --json-lines for a run of many"
+    );
 }

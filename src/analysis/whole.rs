@@ -206,9 +206,9 @@ pub fn verify_whole(
                 line: h.line,
                 reason: match h.tool {
                     Some(t) => format!(
-                        "the helices of tool T{t} are not checked: the thread mill is not known (‹tools›: {t} = \"thread-mill.toml\", the cutter's file; or `thread-mill` with ‹cutter_diameter›)"
+                        "the thread mill T{t} of the helices is not known (‹tools›: {t} = \"thread-mill.toml\", the cutter's file; or `thread-mill` with ‹cutter_diameter›)"
                     ),
-                    None => "the helices are not checked: the program names no tool before them (`thread-mill` with ‹cutter_diameter›)".to_string(),
+                    None => "the program names no tool before its helices (`thread-mill` with ‹cutter_diameter›)".to_string(),
                 },
             }
         });

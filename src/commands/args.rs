@@ -143,7 +143,7 @@ pub struct JsonArg {
 pub struct PlanArgs {
     /// Thread with its class, e.g. M10x1.5-6g. With a program that cuts several threads, give it
     /// once for all or once per operation, in program order.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "THREAD", required_unless_present = "program"))]
+    #[cfg_attr(feature = "cli", arg(long, value_name = "THREAD"))]
     #[serde(deserialize_with = "one_or_many")]
     pub thread: Vec<String>,
     /// The internal thread (else external; implied by an upper-case class alone).

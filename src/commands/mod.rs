@@ -62,6 +62,9 @@ pub enum Outcome {
     Pass,
     /// The thread (or the capability, the fit, the milled curve) is out of tolerance (exit 1).
     OutOfTolerance,
+    /// A run of many programs met one it could not read (each named in the output; exit 2, the
+    /// worst, though every other program was verified).
+    Unreadable,
 }
 
 impl Outcome {
@@ -70,6 +73,7 @@ impl Outcome {
         match self {
             Outcome::Pass => 0,
             Outcome::OutOfTolerance => 1,
+            Outcome::Unreadable => 2,
         }
     }
 
@@ -98,12 +102,21 @@ pub enum Document {
     Fix,
     /// The comparison's table as Markdown (`compare --markdown`).
     Markdown,
+    /// One JSON object per program of a run of many, then a summary (`verify --json-lines`).
+    JsonLines,
 }
 
 impl Document {
     /// Every document, in the order the documentation lists them.
-    pub const ALL: [Document; 6] =
-        [Document::Json, Document::Text, Document::Svg, Document::Html, Document::Fix, Document::Markdown];
+    pub const ALL: [Document; 7] = [
+        Document::Json,
+        Document::Text,
+        Document::Svg,
+        Document::Html,
+        Document::Fix,
+        Document::Markdown,
+        Document::JsonLines,
+    ];
 
     /// The document's name (`json`, `text`, `svg`, `html`, `fix`, `markdown`).
     pub fn name(self) -> &'static str {
@@ -114,6 +127,7 @@ impl Document {
             Document::Html => "html",
             Document::Fix => "fix",
             Document::Markdown => "markdown",
+            Document::JsonLines => "json-lines",
         }
     }
 
@@ -121,6 +135,7 @@ impl Document {
     pub fn media_type(self) -> &'static str {
         match self {
             Document::Json => "application/json",
+            Document::JsonLines => "application/jsonl",
             Document::Text | Document::Fix => "text/plain; charset=utf-8",
             Document::Markdown => "text/markdown; charset=utf-8",
             Document::Svg => "image/svg+xml",

@@ -6,6 +6,7 @@ use crate::analysis::verify::{InsertChoice, ProgramSource, VerifySpec};
 use crate::report::fmt_num;
 use crate::Error;
 use serde::Deserialize;
+use std::path::PathBuf;
 
 /// The arguments of `verify`.
 ///
@@ -51,6 +52,17 @@ pub struct VerifyArgs {
     #[serde(skip)]
     #[allow(missing_docs)]
     pub out: super::args::PictureArgs,
+    /// Programs and folders to verify in one run (folders recursively, their files with the
+    /// dialects' extensions: .nc .ngc .mpf .spf .min .ssb .sub .tap .cnc .eia .gcode .iso), in
+    /// parallel: one line per operation, then a summary; exit status the worst.
+    #[cfg_attr(feature = "cli", arg(value_name = "PROGRAM|FOLDER", conflicts_with_all = ["program", "final_x", "fix", "operation"]))]
+    #[serde(skip)]
+    pub programs: Vec<PathBuf>,
+    /// With PROGRAM|FOLDER: JSON Lines for scripts, one object per program (its verdict and each
+    /// operation's), then `{"summary": …}`, to this file or `-` (standard output).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE|-", requires = "programs"))]
+    #[serde(skip)]
+    pub json_lines: Option<String>,
 }
 
 super::args::api_args!(VerifyArgs, shares plan: PlanArgs);
@@ -58,9 +70,12 @@ super::args::api_args!(VerifyArgs, shares plan: PlanArgs);
 impl Job for VerifyArgs {
     const NAME: &'static str = "verify";
     const DOCUMENTS: &'static [Document] =
-        &[Document::Json, Document::Text, Document::Svg, Document::Html, Document::Fix];
+        &[Document::Json, Document::Text, Document::Svg, Document::Html, Document::Fix, Document::JsonLines];
 
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
+        if !self.programs.is_empty() {
+            return self.run_many(request);
+        }
         if self.plan.program.is_none() {
             self.plan.need_thread("verify")?;
         }
@@ -93,11 +108,161 @@ impl Job for VerifyArgs {
     }
 
     fn destinations(&self) -> Vec<(Document, Dest)> {
-        self.out.destinations(Some(&self.fix))
+        let mut d = self.out.destinations(Some(&self.fix));
+        d.extend(super::Dest::list([(Document::JsonLines, &self.json_lines)], []));
+        d
     }
 }
 
+/// The extensions of the programs a folder holds: the dialects' own and the ones Fanuc-family
+/// shops and CAM post-processors write.
+pub const PROGRAM_EXTENSIONS: [&str; 12] =
+    ["nc", "ngc", "mpf", "spf", "min", "ssb", "sub", "tap", "cnc", "eia", "gcode", "iso"];
+
+/// The programs of `paths`: a file as named, a folder's files with [`PROGRAM_EXTENSIONS`] found
+/// recursively, in name order; at most [`MAX_BATCH_PROGRAMS`](crate::ground::bounds::MAX_BATCH_PROGRAMS).
+fn program_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
+    let mut out = Vec::new();
+    for p in paths {
+        if p.is_dir() {
+            for entry in walkdir::WalkDir::new(p).sort_by_file_name() {
+                let entry = entry.map_err(|e| Error::File {
+                    file: e.path().map_or_else(|| p.display().to_string(), |q| q.display().to_string()),
+                    message: format!("cannot be listed: {e}"),
+                })?;
+                let ext = entry.path().extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+                if entry.file_type().is_file()
+                    && ext.is_some_and(|e| PROGRAM_EXTENSIONS.contains(&e.as_str()))
+                {
+                    out.push(entry.into_path());
+                }
+            }
+        } else {
+            // A file as named (a missing one is its own error line in the run).
+            out.push(p.clone());
+        }
+        if out.len() > crate::ground::bounds::MAX_BATCH_PROGRAMS {
+            return Err(Error::Input(format!(
+                "more than {} programs in one run: verify the folders one by one",
+                crate::ground::bounds::MAX_BATCH_PROGRAMS
+            )));
+        }
+    }
+    Ok(out)
+}
+
 impl VerifyArgs {
+    /// `verify P1 P2 FOLDER`: every program verified as `--program` verifies one, in parallel,
+    /// a chunk at a time (only the lines are kept); one line per operation and a summary.
+    fn run_many(&self, request: &Request) -> Result<Outputs, Error> {
+        use crate::report::batch::{BatchProgram, BatchSummary, SummaryLine};
+        use rayon::prelude::*;
+        for (given, what) in [
+            (self.out.svg.is_some(), "svg"),
+            (self.out.html.is_some(), "html"),
+            (self.out.json.is_some(), "json"),
+        ] {
+            if given {
+                return Err(Error::Input(format!(
+                    "‹{what}› is one program's: give it with ‹program›, or ‹json_lines› for a run of many"
+                )));
+            }
+        }
+        let files = program_files(&self.programs)?;
+        if files.is_empty() {
+            return Err(Error::Input(format!(
+                "no program in {} (looked for the extensions {})",
+                self.programs.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "),
+                PROGRAM_EXTENSIONS.map(|e| format!(".{e}")).join(" ")
+            )));
+        }
+        let tools = self.tools.as_ref().map(|t| tool_table(t, request.files)).transpose()?;
+        let lines = request.wants(Document::JsonLines);
+        let (mut text, mut jsonl, mut summary) = (String::new(), String::new(), BatchSummary::default());
+        for chunk in files.chunks(64) {
+            let done: Vec<BatchProgram> = chunk
+                .par_iter()
+                .map(|file| {
+                    let shown = file.display().to_string();
+                    let one = VerifyArgs {
+                        plan: PlanArgs { program: Some(Source::Path(file.clone())), ..self.plan.clone() },
+                        programs: Vec::new(),
+                        json_lines: None,
+                        ..self.clone()
+                    };
+                    let verified = one.plan.spec(request.files).and_then(|mut spec| {
+                        spec.gauge_only = self.gauge_only;
+                        spec.metrics = false;
+                        spec.picture = false;
+                        let (source, dialect) =
+                            spec.program.clone().ok_or_else(|| Error::Input("no program".into()))?;
+                        one.verification(&spec, &source, dialect, tools.as_ref())
+                    });
+                    match verified {
+                        Ok((shown, _, pv)) => BatchProgram::of(&shown, &pv),
+                        Err(e) => {
+                            let line = e.to_string();
+                            let line =
+                                if line.starts_with(&shown) { line } else { format!("{shown}: {line}") };
+                            BatchProgram::unreadable(&shown, format!("error: {line}"))
+                        }
+                    }
+                })
+                .collect();
+            for p in &done {
+                summary.add(p);
+                text.push_str(&p.text());
+                if lines {
+                    jsonl.push_str(&serde_json::to_string(p).map_err(|e| Error::Data(e.to_string()))?);
+                    jsonl.push('\n');
+                }
+            }
+        }
+        text.push_str(&summary.text());
+        if lines {
+            jsonl.push_str(
+                &serde_json::to_string(&SummaryLine { summary: &summary })
+                    .map_err(|e| Error::Data(e.to_string()))?,
+            );
+            jsonl.push('\n');
+        }
+        let outcome =
+            if summary.unreadable > 0 { Outcome::Unreadable } else { Outcome::of(summary.fail == 0) };
+        let mut inputs = files;
+        inputs.extend(self.tools.as_ref().and_then(Source::file));
+        Ok(Outputs::new(
+            outcome,
+            [Some((Document::Text, text)), lines.then_some((Document::JsonLines, jsonl))],
+        )
+        .reading(inputs))
+    }
+
+    /// One program verified: its name as shown and every thread it makes, checked.
+    fn verification(
+        &self,
+        spec: &VerifySpec,
+        source: &ProgramSource,
+        dialect: crate::gcode::Dialect,
+        tools: Option<&crate::analysis::tools::ToolTable>,
+    ) -> Result<(String, String, crate::analysis::verify::ProgramVerification), Error> {
+        let (shown, text) = source.load()?;
+        let default = spec.insert.clone();
+        let insert_given = self.plan.insert_given();
+        let insert_for = |op: &crate::gcode::Operation| insert_of(op, tools, insert_given, &default);
+        // `spec` asks for the pictures only when a document draws them (the program's picture
+        // once lost its zone, basic profile, deviation plot and full length).
+        let pv = crate::analysis::whole::verify_whole(
+            spec,
+            &text,
+            &shown,
+            dialect,
+            &self.plan.thread,
+            &insert_for,
+            tools,
+        )?;
+        Ok((shown, text, pv))
+    }
+
     fn run_program(
         &self,
         spec: &VerifySpec,
@@ -111,59 +276,7 @@ impl VerifyArgs {
                 "‹final_x› and ‹program› exclude each other: the program sets the passes".into(),
             ));
         }
-        let (shown, text) = source.load()?;
-        let default = spec.insert.clone();
-        let insert_given = self.plan.insert_given();
-        let insert_for = |op: &crate::gcode::Operation| -> Option<(InsertChoice, String, bool)> {
-            if insert_given {
-                return None;
-            }
-            if let (Some(tt), Some(t)) = (tools, op.tool) {
-                if let Some((choice, written)) = tt.insert(t) {
-                    return Some((
-                        choice.clone(),
-                        format!("insert of tool T{t} from {}: {written}", tt.source),
-                        false,
-                    ));
-                }
-            }
-            let why = match (op.tool, tools) {
-                (Some(t), Some(tt)) => match tt.tool(t) {
-                    Some((_, written)) => {
-                        format!("tool T{t} is \"{written}\" in {}, not a threading insert", tt.source)
-                    }
-                    None => format!("tool T{t} is not in {}", tt.source),
-                },
-                (Some(t), None) => {
-                    format!("the program names tool T{t} but no tool table was given (‹tools›)")
-                }
-                (None, _) => "the program names no tool".to_string(),
-            };
-            let what = match &default {
-                InsertChoice::Full => "a full-profile insert".to_string(),
-                InsertChoice::Partial { tip_radius } => {
-                    format!("a partial-profile insert with a {} mm tip", fmt_num(*tip_radius))
-                }
-                InsertChoice::File(p) => format!("the insert {}", p.display()),
-                InsertChoice::Toml { name, .. } => format!("the insert {name}"),
-            };
-            Some((
-                default.clone(),
-                format!("insert assumed: {what} ({why}; choose with ‹insert› or ‹tools›)"),
-                true,
-            ))
-        };
-        // `spec` asks for the pictures only when a document draws them (the program's picture
-        // once lost its zone, basic profile, deviation plot and full length).
-        let pv = crate::analysis::whole::verify_whole(
-            spec,
-            &text,
-            &shown,
-            dialect,
-            &self.plan.thread,
-            &insert_for,
-            tools,
-        )?;
+        let (shown, text, pv) = self.verification(spec, source, dialect, tools)?;
         Ok(Outputs::new(
             Outcome::of(pv.pass()),
             [
@@ -175,6 +288,49 @@ impl VerifyArgs {
             ],
         ))
     }
+}
+
+/// The insert of a program's operation: `None` keeps the one given (‹insert›); else the tool
+/// table's insert of its T number, or the default with the note that says it was assumed.
+fn insert_of(
+    op: &crate::gcode::Operation,
+    tools: Option<&crate::analysis::tools::ToolTable>,
+    insert_given: bool,
+    default: &InsertChoice,
+) -> Option<(InsertChoice, String, bool)> {
+    if insert_given {
+        return None;
+    }
+    if let (Some(tt), Some(t)) = (tools, op.tool) {
+        if let Some((choice, written)) = tt.insert(t) {
+            return Some((
+                choice.clone(),
+                format!("insert of tool T{t} from {}: {written}", tt.source),
+                false,
+            ));
+        }
+    }
+    let why = match (op.tool, tools) {
+        (Some(t), Some(tt)) => match tt.tool(t) {
+            Some((_, written)) => {
+                format!("tool T{t} is \"{written}\" in {}, not a threading insert", tt.source)
+            }
+            None => format!("tool T{t} is not in {}", tt.source),
+        },
+        (Some(t), None) => {
+            format!("the program names tool T{t} but no tool table was given (‹tools›)")
+        }
+        (None, _) => "the program names no tool".to_string(),
+    };
+    let what = match &default {
+        InsertChoice::Full => "a full-profile insert".to_string(),
+        InsertChoice::Partial { tip_radius } => {
+            format!("a partial-profile insert with a {} mm tip", fmt_num(*tip_radius))
+        }
+        InsertChoice::File(p) => format!("the insert {}", p.display()),
+        InsertChoice::Toml { name, .. } => format!("the insert {name}"),
+    };
+    Some((default.clone(), format!("insert assumed: {what} ({why}; choose with ‹insert› or ‹tools›)"), true))
 }
 
 /// The program with every operation's correction written in; an operation whose correction

@@ -85,3 +85,6 @@ pub const MAX_TOOL_DIAMETER: f64 = 1000.0;
 /// it is 0.016 mm and the helix's phase is lost (found reading a G92 to Z−10¹⁴, which gave a
 /// d2 1.2 mm off, and a CYCLE97 whose start offset NSP of 10²¹ degrees left no section window).
 pub const MAX_COORDINATE: f64 = 1.0e6;
+
+/// Programs one `verify` run of many reads (files named and found in folders together).
+pub const MAX_BATCH_PROGRAMS: usize = 100_000;

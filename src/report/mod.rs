@@ -1,5 +1,6 @@
 //! The `verify` report: JSON as the CLI contract specifies, and the human table.
 
+pub mod batch;
 pub mod capability;
 pub mod catalogue;
 pub mod compare;

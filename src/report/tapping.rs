@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 use svg::node::element::{Group, Line, Polygon, Rectangle};
 use svg::Document;
 
-pub(crate) fn feature_name(f: TapFeature) -> &'static str {
+pub fn feature_name(f: TapFeature) -> &'static str {
     match f {
         TapFeature::DrillDiameter => "drill diameter",
         TapFeature::Feed => "feed",

@@ -464,6 +464,7 @@ async fn answer(shared: Arc<Shared>, command: &str, document: &str, req: Request
             let outcome = match outcome {
                 crate::Outcome::Pass => "pass",
                 crate::Outcome::OutOfTolerance => "out-of-tolerance",
+                crate::Outcome::Unreadable => "unreadable",
             };
             (
                 [
