@@ -334,6 +334,7 @@ fn the_hole_wall_follows_the_tap_and_the_drill() {
         tools,
         allow_nonstandard: false,
         from_program: false,
+        stock_bottom: None,
     };
     let r = threadcheck::tapping(&spec).unwrap();
     let wall = &r.holes[0].wall;
@@ -393,4 +394,51 @@ fn a_failing_drill_names_the_drill_that_passes() {
         out.contains("a drill that passes: Ø8.5 mm (ISO 2306's tap drill); D1's middle 8.526 mm"),
         "{out}"
     );
+}
+
+/// `tap` of `text` with the tool table `tools` and `extra` arguments: exit code and JSON.
+fn tap_with(text: &str, tools: &str, extra: &[&str]) -> (i32, serde_json::Value) {
+    let dir = tempdir("tap-with");
+    std::fs::write(dir.join("p.nc"), text).unwrap();
+    std::fs::write(dir.join("tools.toml"), tools).unwrap();
+    let mut args = vec!["tap", "--program", "p.nc", "--tools", "tools.toml", "--json", "-"];
+    args.extend(extra);
+    let o = run_in(&dir, &args);
+    let code = o.status.code().unwrap();
+    assert!(code < 2, "{}", stderr(&o));
+    (code, serde_json::from_slice(&o.stdout).unwrap())
+}
+
+/// Issue 46: the drill's point angle from the tool table, and through holes from the stock's
+/// bottom. M10x1.5-6H tapped to Z-18 after a Ø8.5 drill to Z-20 (2 mm below). The tap's point is
+/// basic D1 = 10 − 2·(5/8)·(0.866025·1.5) = 8.376 (under the drill), its half 4.188: a 118° point
+/// needs 4.188/tan 59° = 2.5165 mm (fails), a 140° one 4.188/tan 70° = 1.5243 mm (passes). The
+/// 118° drill's full diameter reaches Z-20 + 4.25/tan 59° = −17.446: through a stock whose bottom
+/// is Z-16 (passes, nothing below the tap), not through one at Z-18 (fails as blind).
+#[test]
+fn the_drill_point_from_the_table_and_through_holes_from_the_stock() {
+    // The drill to Z-20; the tap stays at Z-18.
+    let text = program().replace("G83 Z-25.0", "G83 Z-20.0");
+    let d1 = 10.0 - 2.0 * 5.0 / 8.0 * (1.5 * 3f64.sqrt() / 2.0);
+    let (code, v) = tap_with(&text, "[tools]\n5 = \"drill:8.5\"\n6 = \"tap:M10x1.5-6H\"\n", &[]);
+    assert_eq!(code, 1);
+    assert!((check(&v, "depth")["min"].as_f64().unwrap() - 0.5 * d1 / 59f64.to_radians().tan()).abs() < 1e-4);
+    let (code, v) = tap_with(&text, "[tools]\n5 = \"drill:8.5:140\"\n6 = \"tap:M10x1.5-6H\"\n", &[]);
+    assert_eq!(code, 0, "{v}");
+    assert!((check(&v, "depth")["min"].as_f64().unwrap() - 0.5 * d1 / 70f64.to_radians().tan()).abs() < 1e-4);
+    assert_eq!(v["holes"][0]["drill"]["point_angle"], 140.0);
+    let tools = "[tools]\n5 = \"drill:8.5\"\n6 = \"tap:M10x1.5-6H\"\n";
+    let (code, v) = tap_with(&text, tools, &["--stock-bottom", "-16"]);
+    assert_eq!(code, 0, "{v}");
+    let note = check(&v, "depth")["note"].as_str().unwrap().to_string();
+    let full = -20.0 + 4.25 / 59f64.to_radians().tan();
+    assert_eq!(
+        note,
+        format!(
+            "a through hole: the drill's full diameter passes the stock's bottom (Z-16) at Z{}, so nothing lies below the tap",
+            (full * 1e4).round() / 1e4
+        )
+    );
+    let (code, _) = tap_with(&text, tools, &["--stock-bottom", "-18"]);
+    assert_eq!(code, 1);
 }

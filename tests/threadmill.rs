@@ -336,3 +336,73 @@ fn compensation_on_the_wrong_side_is_refused() {
         "threadcheck: error: g42.nc:9:1: the compensation puts the cutter's centre 3 mm outside the programmed helix (radius 10 mm), into the bore's wall: an internal thread is milled with the cutter inside its path (G41 with G3, G42 with G2)"
     );
 }
+
+/// The tooth profile's D2 of a sharp 60° Ø6 cutter whose centre runs at `r`: its tip at r + 3,
+/// the groove P/2 wide 1.5/(4·tan 30°) = 0.6495 inside it.
+fn tooth_d2(r: f64) -> f64 {
+    2.0 * (r + 3.0 - 1.5 / (4.0 * 30f64.to_radians().tan()))
+}
+
+/// Issue 46: a helical arc in and out about another centre (half circles from the hole's axis to
+/// its wall) is left out of the thread, named, and said to lie inside the helices' circle; the
+/// thread is the helices' (R 7.21: the tooth profile's D2 = 19.1210).
+#[test]
+fn helical_arcs_in_and_out_are_named_and_the_thread_measured() {
+    let v = mill_with("m20-arc-in-out.nc", &["--cutter-diameter", "6"]);
+    assert!((v["tooth_profile"]["pitch_diameter"].as_f64().unwrap() - tooth_d2(7.21)).abs() < 5e-4, "{v}");
+    assert_eq!(v["verdict"], "pass");
+    let notes: Vec<&str> = v["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap()).collect();
+    assert!(
+        notes.iter().any(|n| n.starts_with(
+            "2 helical arcs about another axis (line 8, 19) left out, inside the helices' circle"
+        )),
+        "{notes:?}"
+    );
+}
+
+/// Issue 46: the lead is compared per turn at the program's increment: half turns written as
+/// Z+0.749 and Z+0.751 (leads 1.498 and 1.502 each) make a 1.500 lead every turn.
+#[test]
+fn half_turns_rounded_to_the_increment_make_the_lead() {
+    let v = mill_with("m20-half-turns.nc", &["--cutter-diameter", "6"]);
+    assert_eq!(check_of(&v, "lead")["ok"], true, "{v}");
+    assert_eq!(check_of(&v, "lead")["value"], 1.5);
+    assert_eq!(v["verdict"], "pass");
+}
+
+/// Issue 46: a helix written as sixth turns whose points are rounded to 0.01 mm (radii 7.2047 to
+/// 7.2159 about the exact centre) is measured, each arc at the mean of its end radii, with a
+/// note. The section lies in the half-plane at 180° (−X), which the arc from 130° (−4.63, 5.52)
+/// to 190° (−7.10, −1.25) crosses: R = (7.20468 + 7.20920)/2 = 7.20694, D2 = 19.1148.
+#[test]
+fn a_helix_of_rounded_points_is_measured_not_refused() {
+    let v = mill_with("m20-rounded-arcs.nc", &["--cutter-diameter", "6"]);
+    let r = 0.5 * (4.63f64.hypot(5.52) + 7.10f64.hypot(1.25));
+    assert!((v["tooth_profile"]["pitch_diameter"].as_f64().unwrap() - tooth_d2(r)).abs() < 5e-4, "{v}");
+    let notes: Vec<&str> = v["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap()).collect();
+    assert!(
+        notes.contains(&"60 helix arcs from line 9 end up to 0.02 mm off their circle (points written rounded): measured at the mean of their radii"),
+        "{notes:?}"
+    );
+}
+
+/// Issue 46: helices too short for a groove, with a single-form cutter, suggest a comb cutter's
+/// rows.
+#[test]
+fn a_short_helix_suggests_a_comb_cutter_s_rows() {
+    let dir = tempdir("tm-comb");
+    std::fs::write(
+        dir.join("short.nc"),
+        "G17 G21 G90 G40\nG0 X7 Y0 Z-3\nG3 X7 Y0 Z-1.5 I-7 J0 F150\nG3 X7 Y0 Z0 I-7 J0\n",
+    )
+    .unwrap();
+    let o = run_in(
+        &dir,
+        &["thread-mill", "--program", "short.nc", "--thread", "M20x1.5-6H", "--cutter-diameter", "6"],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: short.nc:3:1: the helices (and the cutter's rows) span 3.000 mm of Z, under the four pitches (6.000 mm) a groove is measured in; if the cutter is a comb (multi-form) one, its rows reach higher: give them (--cutter-rows and --cutter-row-pitch 1.5, or rows and row_pitch in the thread mill's file)"
+    );
+}

@@ -130,7 +130,7 @@ def verify(thread: Optional[Threads] = None, program: Optional[str] = None, dial
            units: Optional[str] = None, machine: Optional[str] = None,
            clearance_angle: Optional[float] = None, no_pass_metrics: bool = False,
            operation: Optional[int] = None,
-        machine_type: Optional[str] = None,
+        machine_type: Optional[str] = None, stock_bottom: Optional[float] = None,
            svg: Optional[PathLike] = None, html: Optional[PathLike] = None,
            fix: Optional[PathLike] = None) -> VerifyReport:
     """``threadcheck verify --json -``.
@@ -355,16 +355,20 @@ def mill(program: str, target: str, tool_diameter: float, dialect: Optional[str]
     return report
 
 
-def tap(program: str, tools: str, dialect: Optional[str] = None, program_name: Optional[str] = None,
+def tap(program: str, tools: Optional[str] = None, dialect: Optional[str] = None, program_name: Optional[str] = None,
         allow_nonstandard: bool = False, default_units: Optional[str] = None,
         gcode_system: Optional[str] = None,
-        machine_type: Optional[str] = None) -> TapReport:
+        machine_type: Optional[str] = None, stock_bottom: Optional[float] = None) -> TapReport:
     """``threadcheck tap --json``: a program's tapping cycles (G84, G74) against their taps and
     the drills that made the holes.
 
     ``program`` is the program's text, ``tools`` the tool table's TOML text: each tap as
     ``6 = "tap:M10x1.5-6H"`` (``:PITCHES`` adds its chamfer length, default 2.5), each drill as
-    ``5 = "drill:8.5"``. Each hole in ``holes`` has its ``cycle``, ``tap``, ``drill`` and
+    ``5 = "drill:8.5"`` (``drill:8.5:135`` with its point's included angle, default 118°); a tap or
+    drill the table does not name is taken from the program's comments (``(TAP M10X1.5)``,
+    ``(DRILL 8.5)``), else the tap is the standard size of its lead over its drill.
+    ``stock_bottom`` (the stock's bottom face's Z) makes a hole whose drill passes it a through
+    hole. Each hole in ``holes`` has its ``cycle``, ``tap``, ``drill`` and
     ``checks`` (``drill_diameter`` against D1 of the tap's class, ``feed`` against the lead,
     ``depth`` left for the chamfer, ``spindle``) and ``drill_that_passes`` (the middle of D1 and
     the nearest stocked drill within it: ISO 2306's tap drill for ISO metric taps); the dict's
@@ -374,16 +378,18 @@ def tap(program: str, tools: str, dialect: Optional[str] = None, program_name: O
     return report
 
 
-def thread_mill(program: str, thread: str, cutter_diameter: Optional[float] = None, cutter_angle: Optional[float] = None,
+def thread_mill(program: str, thread: Optional[str] = None, cutter_diameter: Optional[float] = None, cutter_angle: Optional[float] = None,
                 cutter_tip_radius: Optional[float] = None, cutter_rows: Optional[int] = None,
                 cutter_row_pitch: Optional[float] = None, blank_diameter: Optional[float] = None,
                 comp_radius: Optional[float] = None, dialect: Optional[str] = None,
                 program_name: Optional[str] = None, allow_nonstandard: bool = False,
-        tools: Optional[str] = None) -> ThreadMillReport:
+        tools: Optional[str] = None, default_units: Optional[str] = None) -> ThreadMillReport:
     """``threadcheck thread-mill --json``: the thread a thread-milling program leaves.
 
     ``program`` is the program's text (helical G2/G3 in G17, the cutter centre's path),
-    ``thread`` the designation with its class, ``cutter_diameter`` (mm, over the tooth's tip),
+    ``thread`` the designation with its class (default: the one the program names in a comment
+    above its helices, else the standard size they cut), ``default_units`` (``"mm"``/``"inch"``)
+    the units of a program that sets none, ``cutter_diameter`` (mm, over the tooth's tip),
     ``cutter_angle`` (60°) and ``cutter_tip_radius`` (0) the tooth, or ``tools`` a tool table's
     TOML text naming the helices' T as a thread mill; ``cutter_rows`` (1) and
     ``cutter_row_pitch`` (mm) a multi-form cutter's rows; ``blank_diameter`` the bore (default

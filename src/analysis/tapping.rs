@@ -41,6 +41,9 @@ pub struct TapSpec {
     /// lead over its drill; the drill's diameter from a comment at its cycle. Else such a tool
     /// is refused by name.
     pub from_program: bool,
+    /// Z of the stock's bottom face, mm: a drill whose full diameter passes it makes a through
+    /// hole, whose tap has no bottom to meet (`None`: not known, every hole blind).
+    pub stock_bottom: Option<f64>,
 }
 
 /// What a tapping check looks at.
@@ -85,6 +88,10 @@ pub struct DrillInfo {
     pub cycle: HoleCycle,
     /// Its diameter from the tool table, mm (`None`: its tool is not a drill of the table).
     pub diameter: Option<f64>,
+    /// Its point's included angle, degrees (the table's, else a twist drill's 118°).
+    pub point_angle: f64,
+    /// The angle was given in the tool table (else the default).
+    pub point_given: bool,
 }
 
 /// The tap of a tapping cycle.
@@ -159,6 +166,7 @@ fn hole_wall(
     drill: f64,
     tap_z: f64,
     drill_z: f64,
+    point_deg: f64,
 ) -> Vec<crate::Point> {
     let p = t.pitch;
     let half = t.half_angle();
@@ -168,7 +176,7 @@ fn hole_wall(
     // The tap's tooth: the fundamental triangle's apex H/8 beyond D, flanks at the half angle.
     let apex = rmaj + h / 8.0;
     let top = if tap_z < 0.0 { 0.0 } else { tap_z + 6.0 * p };
-    let point_top = drill_z + rd / (0.5 * DRILL_POINT_DEG).to_radians().tan();
+    let point_top = drill_z + rd / (0.5 * point_deg).to_radians().tan();
     let mut out = Vec::new();
     let n = (((top - drill_z.min(tap_z)) / p) * 48.0).ceil().clamp(8.0, 20_000.0) as usize;
     let bottom = drill_z.min(tap_z);
@@ -186,7 +194,7 @@ fn hole_wall(
         } else if z >= point_top {
             rd
         } else {
-            (z - drill_z).max(0.0) * (0.5 * DRILL_POINT_DEG).to_radians().tan()
+            (z - drill_z).max(0.0) * (0.5 * point_deg).to_radians().tan()
         };
         out.push(crate::Point::new(z, r));
     }
@@ -227,7 +235,7 @@ fn same(a: Option<f64>, b: Option<f64>) -> bool {
 /// use threadcheck::{tapping, Dialect, ReadOptions, TapSpec, ToolTable};
 /// let program = "T0505\nG99 M3 S800\nG0 X0 Z5\nG83 Z-25 R2 Q5000 F0.1\nT0606\nG84 Z-18 R5 F1.5\nG80\nM30\n";
 /// let tools = ToolTable::from_toml("[tools]\n5 = \"drill:8.5\"\n6 = \"tap:M10x1.5-6H\"\n", "tools.toml", std::path::Path::new("."))?;
-/// let spec = TapSpec { program: (program.into(), "tap.nc".into()), dialect: Dialect::Fanuc, reading: ReadOptions::default(), tools, allow_nonstandard: false, from_program: false };
+/// let spec = TapSpec { program: (program.into(), "tap.nc".into()), dialect: Dialect::Fanuc, reading: ReadOptions::default(), tools, allow_nonstandard: false, from_program: false, stock_bottom: None };
 /// let r = tapping(&spec)?;
 /// assert!(r.pass); // Ø8.5 within D1 8.376–8.676; F1.5 = P; 25 − 18 = 7 ≥ 2.5·1.5
 /// # Ok::<(), threadcheck::Error>(())
@@ -274,10 +282,10 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             .rev()
             .find(|d| d.kind == HoleKind::Drill && same(d.x, h.x) && same(d.y, h.y))
             .map(|d| {
-                let mut diameter = d.tool.and_then(|dt| match spec.tools.tool(dt) {
-                    Some((Tool::Drill { diameter }, _)) => Some(*diameter),
-                    Some((Tool::Insert(_) | Tool::Tap { .. }, _)) | None => None,
-                });
+                let (mut diameter, point) = match d.tool.and_then(|dt| spec.tools.tool(dt)) {
+                    Some((Tool::Drill { diameter, point_angle }, _)) => (Some(*diameter), *point_angle),
+                    Some((Tool::Insert(_) | Tool::Tap { .. }, _)) | None => (None, None),
+                };
                 if diameter.is_none() && spec.from_program {
                     // The comment at its cycle (back to the cycle before), else the one an earlier
                     // cycle of the same tool took.
@@ -302,7 +310,12 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                         ));
                     }
                 }
-                DrillInfo { cycle: d.clone(), diameter }
+                DrillInfo {
+                    cycle: d.clone(),
+                    diameter,
+                    point_angle: point.unwrap_or(DRILL_POINT_DEG),
+                    point_given: point.is_some(),
+                }
             });
         // A later cycle of the same tap takes what its first one found.
         let tap = match h.tool.and_then(|t| tap_by_tool.get(&t)) {
@@ -325,7 +338,7 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
         let mut checks = Vec::new();
         let mut notes: Vec<String> = tap.why.iter().cloned().chain(drill_note).collect();
         match &drill {
-            Some(DrillInfo { diameter: Some(dia), cycle }) => {
+            Some(DrillInfo { diameter: Some(dia), cycle, .. }) => {
                 let (lo, hi) = (limits.minor_diameter.min, limits.minor_diameter.max);
                 let v = res.round(*dia);
                 let below = lo.map_or(0.0, |lo| (v - lo).min(0.0));
@@ -347,7 +360,7 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                     ),
                 });
             }
-            Some(DrillInfo { diameter: None, cycle }) => notes.push(format!(
+            Some(DrillInfo { diameter: None, cycle, .. }) => notes.push(format!(
                 "the hole is drilled by {} at line {} with {}, which the tool table does not give as a drill (write drill:DIAMETER): D1 is not checked",
                 cycle.code,
                 cycle.line,
@@ -431,9 +444,25 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                 // the drill's bottom (issue 46: the chamfer's length is not the room it needs).
                 let basic_minor = t_minor_basic(&des.thread);
                 let point = d.diameter.map_or(basic_minor, |dia| dia.min(basic_minor));
-                let need = 0.5 * point / (0.5 * DRILL_POINT_DEG).to_radians().tan();
+                let half = (0.5 * d.point_angle).to_radians().tan();
+                let need = 0.5 * point / half;
                 let room = tb - db;
-                let ok = room >= need - 1e-9;
+                // A through hole: the drill's full diameter passes the stock's bottom, and the tap
+                // has nothing below it to meet.
+                let through = match (spec.stock_bottom, d.diameter) {
+                    (Some(sb), Some(dia)) => db + 0.5 * dia / half <= sb + 1e-9,
+                    _ => false,
+                };
+                let ok = through || room >= need - 1e-9;
+                let how = if through {
+                    format!(
+                        "a through hole: the drill's full diameter passes the stock's bottom (Z{}) at Z{}, so nothing lies below the tap",
+                        crate::ground::fmt::fmt_num(spec.stock_bottom.unwrap_or(0.0)),
+                        crate::ground::fmt::fmt_num(((db + 0.5 * d.diameter.unwrap_or(0.0) / half) * 1e4).round() / 1e4)
+                    )
+                } else {
+                    String::new()
+                };
                 checks.push(TapCheck {
                     feature: TapFeature::Depth,
                     ok,
@@ -442,25 +471,31 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                     max: None,
                     unit: "mm",
                     deviation: if ok { 0.0 } else { ((room - need) * 1e4).round() / 10.0 },
-                    note: format!(
-                        "the drill's bottom (Z{}) lies {} mm below the tap's (Z{}); the tap's point (Ø{}) meets the drill's {}° point {} mm above its bottom{}",
-                        crate::ground::fmt::fmt_num(db),
-                        crate::ground::fmt::fmt_num(room),
-                        crate::ground::fmt::fmt_num(tb),
-                        crate::ground::fmt::fmt_num((point * 1e4).round() / 1e4),
-                        crate::ground::fmt::fmt_num(DRILL_POINT_DEG),
-                        crate::ground::fmt::fmt_num((need * 1e4).round() / 1e4),
-                        if ok {
-                            String::new()
-                        } else {
-                            format!(", {} mm above the tap's bottom", crate::ground::fmt::fmt_num(((need - room) * 1e4).round() / 1e4))
-                        }
-                    ),
+                    note: if through {
+                        how
+                    } else {
+                        format!(
+                            "the drill's bottom (Z{}) lies {} mm below the tap's (Z{}); the tap's point (Ø{}) meets the drill's {}° point {} mm above its bottom{}",
+                            crate::ground::fmt::fmt_num(db),
+                            crate::ground::fmt::fmt_num(room),
+                            crate::ground::fmt::fmt_num(tb),
+                            crate::ground::fmt::fmt_num((point * 1e4).round() / 1e4),
+                            crate::ground::fmt::fmt_num(d.point_angle),
+                            crate::ground::fmt::fmt_num((need * 1e4).round() / 1e4),
+                            if ok {
+                                String::new()
+                            } else {
+                                format!(", {} mm above the tap's bottom", crate::ground::fmt::fmt_num(((need - room) * 1e4).round() / 1e4))
+                            }
+                        )
+                    },
                 });
-                notes.push(format!(
-                    "the drill's point angle is taken as {}°, a twist drill's (a named default)",
-                    crate::ground::fmt::fmt_num(DRILL_POINT_DEG)
-                ));
+                if !d.point_given {
+                    notes.push(format!(
+                        "the drill's point angle is taken as {}°, a twist drill's (a named default; drill:DIAMETER:ANGLE in the tool table gives it)",
+                        crate::ground::fmt::fmt_num(DRILL_POINT_DEG)
+                    ));
+                }
             }
         }
         // The spindle.
@@ -526,9 +561,9 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
         ));
         let pass = checks.iter().all(|c| c.ok);
         let wall = match (&drill, h.bottom) {
-            (Some(DrillInfo { diameter: Some(dia), cycle }), Some(tz)) => {
-                cycle.bottom.map_or_else(Vec::new, |dz| hole_wall(&des.thread, chamfer, *dia, tz, dz))
-            }
+            (Some(DrillInfo { diameter: Some(dia), cycle, point_angle, .. }), Some(tz)) => cycle
+                .bottom
+                .map_or_else(Vec::new, |dz| hole_wall(&des.thread, chamfer, *dia, tz, dz, *point_angle)),
             _ => Vec::new(),
         };
         holes.push(TappedHole {

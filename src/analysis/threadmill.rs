@@ -57,6 +57,8 @@ pub struct ThreadMillSpec {
     /// The cutter radius compensation value (the D register) G41/G42 apply, mm; a helix under
     /// compensation without it is refused.
     pub comp_radius: Option<f64>,
+    /// The units of a program that sets neither G20 nor G21 (`None`: mm, stated).
+    pub default_units: Option<crate::gcode::ProgramUnits>,
 }
 
 /// The thread a thread mill leaves, measured and checked.
@@ -109,9 +111,6 @@ pub struct ThreadMillReport {
     pub zone: Option<crate::analysis::picture::ZoneSides>,
 }
 
-/// The helices (G2/G3 arcs with a Z change in G17) of `moves`, each at its cutter centre's
-/// radius: the programmed radius, moved by the compensation `comp` under G41/G42 (to the left of
-/// the travel for G41: toward the axis on a counter-clockwise G3, away on a clockwise G2).
 /// The thread a thread-milling program names: the nearest comment above its first helix that
 /// names one (its side from the helix: the cutter inside the thread, D = 2R + Dc, or outside it,
 /// d3 = 2R − Dc, whichever the designation's diameter is nearer), else the standard size of the
@@ -159,7 +158,14 @@ fn name_milled(
         }
         e => e,
     };
-    let lead = first.lead.abs();
+    // The lead per whole turn (arcs of part turns written rounded make it up between them).
+    let leads = turn_leads(hs);
+    let lead = if leads.is_empty() {
+        first.lead.abs()
+    } else {
+        leads.iter().map(|l| l.1).sum::<f64>() / leads.len() as f64
+    };
+    let lead = (lead * 1e6).round() / 1e6;
     let mut n = infer_designation(lead, 1, major, kind, crate::gcode::ProgramUnits::Mm, first.line)
         .or_else(|e| {
             infer_designation(lead, 1, major, kind, crate::gcode::ProgramUnits::Inch, first.line)
@@ -172,8 +178,17 @@ fn name_milled(
     Ok(n)
 }
 
-fn helices(moves: &[Move], file: &str, comp: Option<f64>) -> Result<Vec<Helix>, Error> {
+/// The helices (G2/G3 arcs with a Z change in G17) of `moves`, each at its cutter centre's
+/// radius: the programmed radius, moved by the compensation `comp` under G41/G42 (to the left of
+/// the travel for G41: toward the axis on a counter-clockwise G3, away on a clockwise G2).
+fn helices(
+    moves: &[Move],
+    file: &str,
+    comp: Option<f64>,
+    notes: &mut Vec<String>,
+) -> Result<Vec<Helix>, Error> {
     let mut out = Vec::new();
+    let mut rounded = Vec::new();
     // Counted before any is measured: 1.9 million turns took 14 s to end in an error.
     let mut turns = 0.0f64;
     for mv in moves {
@@ -203,14 +218,19 @@ fn helices(moves: &[Move], file: &str, comp: Option<f64>) -> Result<Vec<Helix>, 
         let a1 = (mv.to[1] - c[1]).atan2(mv.to[0] - c[0]);
         let r0 = (mv.from[0] - c[0]).hypot(mv.from[1] - c[1]);
         let r1 = (mv.to[0] - c[0]).hypot(mv.to[1] - c[1]);
-        if (r0 - r1).abs() > 1e-3 || r0 < 1e-6 {
+        if (r0 - r1).abs() > RADIUS_ROUNDING || r0 < 1e-6 {
             return Err(Error::Program {
                 file: file.to_string(),
                 line: mv.line,
                 column: 1,
-                message: format!("a helix whose start and end radii differ ({r0:.4} and {r1:.4} mm): not a thread-milling helix"),
+                message: format!("a helix whose start and end radii differ ({r0:.4} and {r1:.4} mm), by more than a rounding ({RADIUS_ROUNDING} mm): not a thread-milling helix"),
             });
         }
+        if (r0 - r1).abs() > 1e-3 {
+            rounded.push(mv.line);
+        }
+        // Points written to a coarser rounding than the arc's centre: the mean radius.
+        let r0 = 0.5 * (r0 + r1);
         let mut sweep = dir * (a1 - a0);
         while sweep <= 1e-9 {
             sweep += std::f64::consts::TAU;
@@ -251,7 +271,97 @@ fn helices(moves: &[Move], file: &str, comp: Option<f64>) -> Result<Vec<Helix>, 
             angle_start: a0,
         });
     }
-    Ok(out)
+    if let Some(first) = rounded.first() {
+        notes.push(format!(
+            "{} helix arc{} from line {first} end{} up to {RADIUS_ROUNDING} mm off {} circle (points written rounded): measured at the mean of {} radii",
+            rounded.len(),
+            if rounded.len() == 1 { "" } else { "s" },
+            if rounded.len() == 1 { "s" } else { "" },
+            if rounded.len() == 1 { "its" } else { "their" },
+            if rounded.len() == 1 { "its" } else { "their" }
+        ));
+    }
+    Ok(main_axis(out, notes))
+}
+
+/// How far a helix arc's start and end radii may differ and still be read as one circle: points
+/// a CAM post writes to 0.01 mm lie up to 0.007 mm off it (a named reading; a control takes such
+/// an arc within its own radius tolerance).
+const RADIUS_ROUNDING: f64 = 0.02;
+
+/// The helices about the axis with the most turns (the thread); arcs about other axes (a
+/// tangential entry or exit, another hole's thread) are left out, with a note that names them.
+fn main_axis(hs: Vec<Helix>, notes: &mut Vec<String>) -> Vec<Helix> {
+    let same = |a: &Helix, b: &Helix| (a.centre[0] - b.centre[0]).hypot(a.centre[1] - b.centre[1]) <= 1e-3;
+    let turns = |c: &Helix| hs.iter().filter(|h| same(h, c)).map(|h| h.sweep_deg.abs()).sum::<f64>();
+    let Some(main) = hs.iter().max_by(|a, b| turns(a).total_cmp(&turns(b))).cloned() else { return hs };
+    let (kept, others): (Vec<Helix>, Vec<Helix>) = hs.into_iter().partition(|h| same(h, &main));
+    if !others.is_empty() {
+        let lines: Vec<String> = others.iter().take(6).map(|h| h.line.to_string()).collect();
+        // An entry or exit arc inside the helices' circle cuts no deeper than they do.
+        let inside = others.iter().all(|h| {
+            (h.centre[0] - main.centre[0]).hypot(h.centre[1] - main.centre[1]) + h.radius
+                <= main.radius + 1e-6
+        });
+        notes.push(format!(
+            "{} helical arc{} about another axis (line {}{}) left out{}: this check reads the helices about X{} Y{}, the ones with the most turns",
+            others.len(),
+            if others.len() == 1 { "" } else { "s" },
+            lines.join(", "),
+            if others.len() > 6 { ", …" } else { "" },
+            if inside {
+                ", inside the helices' circle (an entry or exit arc): it cuts no deeper than they do"
+            } else {
+                " (another hole's thread, or an arc that reaches past the helices' circle: not swept)"
+            },
+            crate::ground::fmt::fmt_num(main.centre[0]),
+            crate::ground::fmt::fmt_num(main.centre[1])
+        ));
+    }
+    kept
+}
+
+/// The lead each whole turn of the helices cuts: for every helix end one turn or more into its
+/// run (consecutive helices about one axis), the Z travelled over the turn before it (within an
+/// arc, Z is linear in the angle); runs shorter than a turn give each helix's own lead. Half
+/// turns of 1.748 and 1.752 make a 1.750 lead.
+fn turn_leads(hs: &[Helix]) -> Vec<(usize, f64)> {
+    let mut out = Vec::new();
+    let mut start = 0;
+    while start < hs.len() {
+        let mut end = start + 1;
+        while end < hs.len()
+            && (hs[end].centre[0] - hs[start].centre[0]).hypot(hs[end].centre[1] - hs[start].centre[1])
+                <= 1e-3
+            && (hs[end].z[0] - hs[end - 1].z[1]).abs() < 1e-6
+            && hs[end].sweep_deg.signum() == hs[start].sweep_deg.signum()
+        {
+            end += 1;
+        }
+        // Cumulative angle (radians) and Z at each helix's end, from the run's start.
+        let mut pts = vec![(0.0f64, hs[start].z[0])];
+        for h in &hs[start..end] {
+            let a = pts.last().map_or(0.0, |p| p.0) + h.sweep_deg.abs().to_radians();
+            pts.push((a, h.z[1]));
+        }
+        let z_at = |a: f64| -> f64 {
+            let k = pts.iter().rposition(|p| p.0 <= a + 1e-12).unwrap_or(0).min(pts.len() - 2);
+            let (p, q) = (pts[k], pts[k + 1]);
+            p.1 + (q.1 - p.1) * (a - p.0) / (q.0 - p.0)
+        };
+        let tau = std::f64::consts::TAU;
+        let whole = pts.last().map_or(0.0, |p| p.0) >= tau - 1e-9;
+        for (i, h) in hs[start..end].iter().enumerate() {
+            let (a, z) = pts[i + 1];
+            if whole && a >= tau - 1e-9 {
+                out.push((h.line, (z - z_at(a - tau)).abs()));
+            } else if !whole {
+                out.push((h.line, h.lead.abs()));
+            }
+        }
+        start = end;
+    }
+    out
 }
 
 /// How the cutter reaches its first helix and leaves its last: by an arc in the plane (a
@@ -288,14 +398,19 @@ fn entry_and_exit(moves: &[Move]) -> Vec<String> {
 /// let mut program = String::from("G17 G90 G40\nG0 X4 Y0 Z-14\n");
 /// for k in 1..=8 { program += &format!("G3 X4 Y0 Z{} I-4 J0 F200\n", -14.0 + 1.5 * k as f64); }
 /// let cutter = Some(Cutter::single_form(12.0, 60.0, 0.0));
-/// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: Some("M20x1.5-6H".into()), allow_nonstandard: false, cutter, tools: None, blank_diameter: None, comp_radius: None };
+/// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: Some("M20x1.5-6H".into()), allow_nonstandard: false, cutter, tools: None, blank_diameter: None, comp_radius: None, default_units: None };
 /// let r = thread_mill(&spec)?;
 /// assert!((r.measured.major_diameter - 20.0).abs() < 1e-4);
 /// # Ok::<(), threadcheck::Error>(())
 /// ```
 pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     let (text, name) = &spec.program;
-    let opts = ReadOptions { moves: true, allow_no_threading: true, ..ReadOptions::default() };
+    let opts = ReadOptions {
+        moves: true,
+        allow_no_threading: true,
+        default_units: spec.default_units,
+        ..ReadOptions::default()
+    };
     let prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
     let mut notes: Vec<String> = prog.notes.iter().map(|n| n.to_string()).collect();
     // The tool of the first helix: its cutter and its compensation from the table.
@@ -365,7 +480,14 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     }
     let named = match &spec.designation {
         Some(d) => crate::analysis::naming::Named::given(d),
-        None => name_milled(text, spec.dialect, &helices(&prog.moves, name, comp)?, c.diameter, opts, name)?,
+        None => name_milled(
+            text,
+            spec.dialect,
+            &helices(&prog.moves, name, comp, &mut Vec::new())?,
+            c.diameter,
+            opts,
+            name,
+        )?,
     };
     if !named.why.is_empty() {
         notes.push(named.why.clone());
@@ -381,7 +503,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         limits_for(&des, kind)?.ok_or_else(|| Error::Input("the designation needs its class".into()))?;
     let t = des.thread;
     let p = t.pitch;
-    let mut hs = helices(&prog.moves, name, comp)?;
+    let mut hs = helices(&prog.moves, name, comp, &mut notes)?;
     notes.extend(entry_and_exit(&prog.moves));
     if let Some(d) = comp {
         if hs.iter().any(|h| (h.radius - h.programmed_radius).abs() > 1e-12)
@@ -430,16 +552,6 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
                 .into(),
         });
     };
-    let others = hs
-        .iter()
-        .filter(|h| (h.centre[0] - first.centre[0]).hypot(h.centre[1] - first.centre[1]) > 1e-3)
-        .count();
-    if others > 0 {
-        notes.push(format!(
-            "{others} helices about another axis are left out: this check reads the first hole's"
-        ));
-    }
-    hs.retain(|h| (h.centre[0] - first.centre[0]).hypot(h.centre[1] - first.centre[1]) <= 1e-3);
     // Climb milling (spindle clockwise): an internal thread's cutter goes counter-clockwise
     // (G3), an external one's clockwise (G2).
     for h in &mut hs {
@@ -477,9 +589,18 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
             line: first.line,
             column: 1,
             message: format!(
-                "the helices (and the cutter's rows) span {:.3} mm of Z, under the four pitches ({:.3} mm) a groove is measured in",
+                "the helices (and the cutter's rows) span {:.3} mm of Z, under the four pitches ({:.3} mm) a groove is measured in{}",
                 z_hi - z_lo,
-                4.0 * p
+                4.0 * p,
+                if c.rows == 1 {
+                    // A comb (multi-form) cutter's rows each cut the thread a row pitch higher.
+                    format!(
+                        "; if the cutter is a comb (multi-form) one, its rows reach higher: give them (‹cutter_rows› and ‹cutter_row_pitch› {}, or rows and row_pitch in the thread mill's file)",
+                        crate::ground::fmt::fmt_num(p)
+                    )
+                } else {
+                    String::new()
+                }
             ),
         });
     }
@@ -550,10 +671,15 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     tooth_m.root_radius = root_of(&tooth, true).or(tooth_m.root_radius);
     notes.push("the root radius is the envelope's curvature at its deepest point, from the cutter's exact reach (0.1 µm either side; 0 where it is a corner)".into());
     let mut cs = checks(&measured, &limits, &t, kind, measured.root_pockets <= 1, None);
-    // The lead each helix cuts against the designation's, at the program's resolution.
+    // The lead each turn cuts against the designation's, at the program's resolution.
     let lead_err =
-        hs.iter().map(|h| h.lead.abs() - t.lead()).fold(0.0f64, |a, e| if e.abs() > a.abs() { e } else { a });
-    let lead_ok = lead_err.abs() <= 0.0005;
+        turn_leads(&hs)
+            .iter()
+            .map(|(_, l)| l - t.lead())
+            .fold(0.0f64, |a, e| if e.abs() > a.abs() { e } else { a });
+    // Sums of rounded Z travels: nanometres are the arithmetic's, not the program's.
+    let lead_err = (lead_err * 1e9).round() / 1e9;
+    let lead_ok = lead_err.abs() <= 0.0005 + 1e-9;
     cs.push(Check {
         feature: crate::analysis::check::CheckFeature::Lead,
         kind: crate::analysis::check::CheckKind::Process,
@@ -562,7 +688,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         max: Some(t.lead()),
         ok: lead_ok,
         deviation_um: if lead_ok { 0.0 } else { (lead_err * 1e4).round() / 10.0 },
-        note: Some("the Z travel per revolution of each helix against the designation's lead".into()),
+        note: Some("the Z travel of each turn of the helices against the designation's lead".into()),
     });
     // The hand: in G17, looking down the tool axis, a right-hand helix turns counter-clockwise
     // (G3) rising or clockwise (G2) falling, inside a bore or outside a blank alike

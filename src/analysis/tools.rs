@@ -39,6 +39,9 @@ pub enum Tool {
     Drill {
         /// Diameter, mm.
         diameter: f64,
+        /// Its point's included angle, degrees (`drill:8.5:135`); `None` takes a twist drill's
+        /// 118°, stated.
+        point_angle: Option<f64>,
     },
 }
 
@@ -96,15 +99,31 @@ impl ToolTable {
                     chamfer_given: chamfer.is_some(),
                 }
             } else if let Some(rest) = v.strip_prefix("drill:") {
-                let diameter = rest
+                let (dia, point) = match rest.split_once(':') {
+                    Some((d, p)) => (d, Some(p)),
+                    None => (rest, None),
+                };
+                let bad = || {
+                    ferr(format!(
+                        "tool {k} = \"{v}\": a drill is drill:DIAMETER in mm, e.g. drill:8.5, or drill:DIAMETER:POINT_ANGLE with its point's included angle in degrees (over 0, under 180), e.g. drill:8.5:135"
+                    ))
+                };
+                let diameter = dia
                     .trim()
                     .parse::<f64>()
                     .ok()
                     .filter(|d| d.is_finite() && *d > 0.0 && *d < 1000.0)
-                    .ok_or_else(|| {
-                        ferr(format!("tool {k} = \"{v}\": a drill is drill:DIAMETER in mm, e.g. drill:8.5"))
-                    })?;
-                Tool::Drill { diameter }
+                    .ok_or_else(bad)?;
+                let point_angle = point
+                    .map(|p| {
+                        p.trim()
+                            .parse::<f64>()
+                            .ok()
+                            .filter(|a| a.is_finite() && *a > 0.0 && *a < 180.0)
+                            .ok_or_else(bad)
+                    })
+                    .transpose()?;
+                Tool::Drill { diameter, point_angle }
             } else {
                 Tool::Insert(match v.parse::<crate::analysis::verify::InsertChoice>()? {
                     InsertChoice::File(p) if p.is_relative() => InsertChoice::File(dir.join(p)),

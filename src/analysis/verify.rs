@@ -132,6 +132,9 @@ pub struct VerifySpec {
     /// `units` was chosen by the user; else each operation of a program takes its own
     /// designation's default ([`VerifySpec::default_units`]).
     pub units_given: bool,
+    /// Z of the stock's bottom face, mm: a program's tapped holes whose drill passes it are
+    /// through holes (`None`: not known).
+    pub stock_bottom: Option<f64>,
     /// The machine whose limits the process checks of a program use.
     pub machine: Option<crate::analysis::process::MachineProfile>,
     /// The insert's side clearance angle, degrees, for the flank-clearance check.
@@ -269,6 +272,7 @@ impl VerifySpec {
             tolerance: crate::DEFAULT_TOLERANCE,
             units: Units::Mm,
             units_given: false,
+            stock_bottom: None,
             machine: None,
             clearance_angle: None,
             coating: 0.0,

@@ -170,6 +170,7 @@ pub fn verify_whole(
             tools: tools.cloned().unwrap_or_else(|| ToolTable::empty("no tool table")),
             allow_nonstandard: spec.allow_nonstandard,
             from_program: true,
+            stock_bottom: spec.stock_bottom,
         };
         let mut r = crate::analysis::tapping::tapping(&t)?;
         // The program's notes are the report's, once.
@@ -195,6 +196,7 @@ pub fn verify_whole(
                 tools: tools.cloned(),
                 blank_diameter: None,
                 comp_radius: None,
+                default_units: spec.reading.default_units,
             };
             let mut r = crate::analysis::threadmill::thread_mill(&m)?;
             // The program's notes are the report's, once.

@@ -42,6 +42,10 @@ pub struct TapArgs {
     #[cfg_attr(feature = "cli", arg(long, value_name = "lathe|mill"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub machine_type: Option<crate::gcode::MachineType>,
+    /// Z of the stock's bottom face, mm: a hole whose drill passes it with its full diameter is a
+    /// through hole, whose depth needs no room below the tap.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "Z", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
+    pub stock_bottom: Option<f64>,
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
     #[allow(missing_docs)]
@@ -75,6 +79,7 @@ impl Job for TapArgs {
             tools,
             allow_nonstandard: self.allow_nonstandard,
             from_program: true,
+            stock_bottom: self.stock_bottom,
         };
         let r = crate::analysis::tapping::tapping(&spec)?;
         let inputs = self.file.inputs().into_iter().chain(self.tools.as_ref().and_then(Source::file));

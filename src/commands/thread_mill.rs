@@ -6,8 +6,10 @@ use crate::analysis::threadmill::ThreadMillSpec;
 use crate::geometry::helix::Cutter;
 use crate::Error;
 use serde::Deserialize;
+use serde_with::{serde_as, DisplayFromStr};
 
 /// The arguments of `thread-mill`.
+#[serde_as]
 #[cfg_attr(feature = "cli", derive(clap::Args))]
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -52,6 +54,10 @@ pub struct ThreadMillArgs {
     /// the left (G41) or right (G42) of the programmed helix.
     #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
     pub comp_radius: Option<f64>,
+    /// The units of a program that sets neither G20 nor G21 (default mm, stated).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "mm|inch"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub default_units: Option<crate::gcode::ProgramUnits>,
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
     #[allow(missing_docs)]
@@ -93,6 +99,7 @@ impl Job for ThreadMillArgs {
             tools: self.tools.as_ref().map(|t| tool_table(t, request.files)).transpose()?,
             blank_diameter: self.blank_diameter,
             comp_radius: self.comp_radius,
+            default_units: self.default_units,
         };
         let r = crate::analysis::threadmill::thread_mill(&spec)?;
         let inputs = self.file.inputs().into_iter().chain(self.tools.as_ref().and_then(Source::file));

@@ -40,6 +40,10 @@ pub struct VerifyArgs {
     /// Leave form checks (root radius, minor-diameter zone, flank angles) out of the verdict.
     #[cfg_attr(feature = "cli", arg(long))]
     pub gauge_only: bool,
+    /// Z of the stock's bottom face, mm: a tapped hole whose drill passes it with its full
+    /// diameter is a through hole, whose depth needs no room below the tap.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "Z", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
+    pub stock_bottom: Option<f64>,
     /// Skip the per-pass chip and edge metrics: a faster verdict.
     #[cfg_attr(feature = "cli", arg(long))]
     pub no_pass_metrics: bool,
@@ -76,6 +80,11 @@ impl Job for VerifyArgs {
         if !self.programs.is_empty() {
             return self.run_many(request);
         }
+        if self.stock_bottom.is_some() && self.plan.program.is_none() {
+            return Err(Error::Input(
+                "‹stock_bottom› describes a program's holes: give the program with ‹program›".into(),
+            ));
+        }
         if self.plan.program.is_none() {
             self.plan.need_thread("verify")?;
         }
@@ -83,6 +92,7 @@ impl Job for VerifyArgs {
         spec.gauge_only = self.gauge_only;
         spec.metrics = !self.no_pass_metrics;
         spec.operation = self.operation;
+        spec.stock_bottom = self.stock_bottom;
         // The pictures and the JSON's deviation samples are computed with the verification.
         spec.picture = [Document::Svg, Document::Html, Document::Json].into_iter().any(|d| request.wants(d));
         let tools = self.tools.as_ref().map(|t| tool_table(t, request.files)).transpose()?;
@@ -192,6 +202,7 @@ impl VerifyArgs {
                     };
                     let verified = one.plan.spec(request.files).and_then(|mut spec| {
                         spec.gauge_only = self.gauge_only;
+                        spec.stock_bottom = self.stock_bottom;
                         spec.metrics = false;
                         spec.picture = false;
                         let (source, dialect) =
