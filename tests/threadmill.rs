@@ -406,3 +406,48 @@ fn a_short_helix_suggests_a_comb_cutter_s_rows() {
         "threadcheck: error: short.nc:3:1: the helices (and the cutter's rows) span 3.000 mm of Z, under the four pitches (6.000 mm) a groove is measured in; if the cutter is a comb (multi-form) one, its rows reach higher: give them (--cutter-rows and --cutter-row-pitch 1.5, or rows and row_pitch in the thread mill's file)"
     );
 }
+
+/// Two starts of `R` 7.21, lead 3: five turns each, the second start's helices `offset` mm
+/// above the first's (1.5, a pitch, for M20xPh3P1.5).
+fn two_starts(offset: Option<f64>) -> String {
+    let mut p = String::from("G17 G21 G90 G40 G94\nT12 M6\nS3000 M3\nG0 X0 Y0 Z5\n");
+    for z0 in std::iter::once(-16.0).chain(offset.map(|o| -16.0 + o)) {
+        p.push_str(&format!("G0 Z{z0:.3}\nG1 X7.21 Y0 F100\n"));
+        for k in 1..=5 {
+            p.push_str(&format!("G3 X7.21 Y0 Z{:.3} I-7.21 J0 F150\n", z0 + 3.0 * f64::from(k)));
+        }
+        p.push_str("G1 X0 Y0\n");
+    }
+    p + "G0 Z50\nM30\n"
+}
+
+/// Issue 46, multi-start thread milling: two sets of helices of lead 3 a pitch (1.5) apart cut
+/// M20xPh3P1.5 (2 of 2 starts; the tooth profile's D2 the single start's, 19.1210); one set
+/// alone is refused at its first helix, naming the start it lacks; a set 1.7 mm above the first
+/// is a misplaced start and fails, naming its offset.
+#[test]
+fn multi_start_thread_milling_checks_its_starts() {
+    let v = mill_text("two.nc", &two_starts(Some(1.5)), "M20xPh3P1.5-6H", "6");
+    assert_eq!(check_of(&v, "starts")["ok"], true, "{v}");
+    assert!((v["tooth_profile"]["pitch_diameter"].as_f64().unwrap() - tooth_d2(7.21)).abs() < 5e-4);
+    assert_eq!(v["verdict"], "pass");
+    let dir = tempdir("tm-one-start");
+    std::fs::write(dir.join("one.nc"), two_starts(None)).unwrap();
+    let o = run_in(
+        &dir,
+        &["thread-mill", "--program", "one.nc", "--thread", "M20xPh3P1.5-6H", "--cutter-diameter", "6"],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: one.nc:7:1: the thread the helices from here mill cannot be measured: the measured window does not hold a groove between two teeth; the helices cut 1 of the 2 starts M20xPh3P1.5-6H has, a pitch (1.5 mm) apart"
+    );
+    let v = mill_text("bad.nc", &two_starts(Some(1.7)), "M20xPh3P1.5-6H", "6");
+    let starts = check_of(&v, "starts");
+    assert_eq!(starts["ok"], false);
+    assert_eq!(
+        starts["note"],
+        "a start lies 1.7000 mm along Z from start 1, not a whole number of pitches (1.5 mm)"
+    );
+    assert_eq!(v["verdict"], "fail");
+}

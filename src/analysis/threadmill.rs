@@ -321,6 +321,60 @@ fn main_axis(hs: Vec<Helix>, notes: &mut Vec<String>) -> Vec<Helix> {
     kept
 }
 
+/// The distinct phases of the helices: Z where each crosses the +X half-plane, modulo `lead`
+/// (within 5 µm one phase), in program order (the first is start 1's).
+fn start_phases(hs: &[Helix], lead: f64) -> Vec<f64> {
+    let mut out: Vec<f64> = Vec::new();
+    for h in hs {
+        let sweep = h.sweep_deg.to_radians();
+        if sweep.abs() < 1e-12 || lead <= 0.0 {
+            continue;
+        }
+        let z0 = h.z[0] - h.angle_start * (h.z[1] - h.z[0]) / sweep;
+        let p = z0.rem_euclid(lead);
+        let near = |q: f64| {
+            let d = (p - q).rem_euclid(lead);
+            d.min(lead - d) <= 0.005
+        };
+        if !out.iter().any(|&q| near(q)) {
+            out.push(p);
+        }
+    }
+    out
+}
+
+/// The starts the helices cut against the designation's: each phase's offset from the first's
+/// must be a whole number of pitches (to 5 µm); a start missing, one too many or one misplaced
+/// fails, naming it.
+fn starts_of(phases: &[f64], t: &crate::standards::BasicThread) -> Check {
+    let first = phases.first().copied().unwrap_or(0.0);
+    let mut cut = std::collections::BTreeSet::new();
+    let mut misplaced = Vec::new();
+    for &p in phases {
+        let off = (p - first).rem_euclid(t.lead());
+        let k = (off / t.pitch).round();
+        if (off - k * t.pitch).abs() > 0.005 && (t.lead() - off).abs() > 0.005 {
+            misplaced.push(off);
+        } else {
+            cut.insert((k as u32) % t.starts.max(1));
+        }
+    }
+    let c = crate::analysis::check::starts_check(&cut, t.starts, t.pitch);
+    if misplaced.is_empty() {
+        return c;
+    }
+    let offs: Vec<String> = misplaced.iter().map(|o| format!("{o:.4} mm")).collect();
+    Check {
+        ok: false,
+        note: Some(format!(
+            "a start lies {} along Z from start 1, not a whole number of pitches ({} mm)",
+            offs.join(", "),
+            crate::ground::fmt::fmt_num(t.pitch)
+        )),
+        ..c
+    }
+}
+
 /// The lead each whole turn of the helices cuts: for every helix end one turn or more into its
 /// run (consecutive helices about one axis), the Z travelled over the turn before it (within an
 /// arc, Z is linear in the angle); runs shorter than a turn give each helix's own lead. Half
@@ -641,8 +695,33 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     let profile = section(false);
     let tooth = section(true);
     let ms = MeasureSetup::for_class(&t, kind, &limits);
-    let mut measured = measure(&ms, &profile, z_mid)?;
-    let mut tooth_m = measure(&ms, &tooth, z_mid)?;
+    // A section that holds no thread to measure is the helices' fault: said at their first line,
+    // with the starts they cut when the designation has more.
+    let phases = start_phases(&hs, t.lead());
+    let at_helices = |e: Error| match e {
+        Error::Geometry(m) => {
+            let starts = if (phases.len() as u32) < t.starts {
+                format!(
+                    "; the helices cut {} of the {} starts {} has, a pitch ({} mm) apart",
+                    phases.len(),
+                    t.starts,
+                    des.text,
+                    crate::ground::fmt::fmt_num(t.pitch)
+                )
+            } else {
+                String::new()
+            };
+            Error::Program {
+                file: name.clone(),
+                line: first.line,
+                column: 1,
+                message: format!("the thread the helices from here mill cannot be measured: {m}{starts}"),
+            }
+        }
+        e => e,
+    };
+    let mut measured = measure(&ms, &profile, z_mid).map_err(at_helices)?;
+    let mut tooth_m = measure(&ms, &tooth, z_mid).map_err(at_helices)?;
     // The root radius is the envelope's own curvature at its deepest point, from the exact reach
     // (the sampled section's 3.75 µm spacing cannot resolve a root of a few µm).
     let root_of = |pts: &[Point], only_psi0: bool| -> Option<f64> {
@@ -690,6 +769,11 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         deviation_um: if lead_ok { 0.0 } else { (lead_err * 1e4).round() / 10.0 },
         note: Some("the Z travel of each turn of the helices against the designation's lead".into()),
     });
+    // The starts: each helix's Z where it crosses the +X half-plane, modulo the lead; a
+    // multi-start thread's starts lie a pitch apart (issue 46).
+    if t.starts > 1 || phases.len() > 1 {
+        cs.push(starts_of(&phases, &t));
+    }
     // The hand: in G17, looking down the tool axis, a right-hand helix turns counter-clockwise
     // (G3) rising or clockwise (G2) falling, inside a bore or outside a blank alike
     // (../shared/notes/machining-centres.md §3.2, after Heidenhain's helix table).
