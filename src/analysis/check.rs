@@ -302,13 +302,25 @@ fn check(
 /// The starts a program cuts (0-based start indices) against the designation's `wanted`: a
 /// start missing or one too many fails, naming them. A size check: a missing start is a groove
 /// the GO gauge meets.
-pub fn starts_check(cut: &std::collections::BTreeSet<u32>, wanted: u32, pitch: f64) -> Check {
+pub fn starts_check(
+    cut: &std::collections::BTreeSet<u32>,
+    wanted: u32,
+    pitch: f64,
+    misplaced: &[f64],
+) -> Check {
     let missing: Vec<String> = (0..wanted)
         .filter(|s| !cut.contains(s))
         .map(|s| format!("start {} ({:.4} mm along Z from start 1)", s + 1, f64::from(s) * pitch))
         .collect();
     let extra = cut.iter().filter(|s| **s >= wanted).count();
-    let note = if !missing.is_empty() {
+    let note = if !misplaced.is_empty() {
+        let offs: Vec<String> = misplaced.iter().map(|o| format!("{o:.4} mm")).collect();
+        format!(
+            "a start lies {} along Z from start 1, not a whole number of pitches ({} mm)",
+            offs.join(", "),
+            crate::ground::fmt::fmt_num(pitch)
+        )
+    } else if !missing.is_empty() {
         format!("{} of {wanted} starts cut; missing: {}", cut.len(), missing.join(", "))
     } else if extra > 0 {
         format!("the passes cut {} starts, the designation has {wanted}", cut.len())
@@ -324,8 +336,25 @@ pub fn starts_check(cut: &std::collections::BTreeSet<u32>, wanted: u32, pitch: f
         Some(note),
         |v| v,
     );
-    // A count has no deviation in µm: the note says what is missing.
-    Check { deviation_um: 0.0, ..c }
+    // A count has no deviation in µm: the note says what is missing or misplaced.
+    Check { deviation_um: 0.0, ok: c.ok && misplaced.is_empty(), ..c }
+}
+
+/// The offsets (mm along Z from the first start, modulo the lead) of starts that lie off a
+/// whole number of pitches by more than `tolerance`: the phases of the cuts, the first start's
+/// first.
+pub fn misplaced_starts(phases: &[f64], pitch: f64, lead: f64, tolerance: f64) -> Vec<f64> {
+    let Some(&first) = phases.first() else { return Vec::new() };
+    let mut out: Vec<f64> = Vec::new();
+    for &p in phases {
+        let off = (p - first).rem_euclid(lead);
+        let k = (off / pitch).round();
+        let off_grid = (off - k * pitch).abs() > tolerance && (lead - off).abs() > tolerance;
+        if off_grid && !out.iter().any(|o| (o - off).abs() <= tolerance) {
+            out.push(off);
+        }
+    }
+    out
 }
 
 /// The functional pitch diameter `value` (mm) against the maximum-material side of the class

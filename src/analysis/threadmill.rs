@@ -348,31 +348,14 @@ fn start_phases(hs: &[Helix], lead: f64) -> Vec<f64> {
 /// fails, naming it.
 fn starts_of(phases: &[f64], t: &crate::standards::BasicThread) -> Check {
     let first = phases.first().copied().unwrap_or(0.0);
-    let mut cut = std::collections::BTreeSet::new();
-    let mut misplaced = Vec::new();
-    for &p in phases {
-        let off = (p - first).rem_euclid(t.lead());
-        let k = (off / t.pitch).round();
-        if (off - k * t.pitch).abs() > 0.005 && (t.lead() - off).abs() > 0.005 {
-            misplaced.push(off);
-        } else {
-            cut.insert((k as u32) % t.starts.max(1));
-        }
-    }
-    let c = crate::analysis::check::starts_check(&cut, t.starts, t.pitch);
-    if misplaced.is_empty() {
-        return c;
-    }
-    let offs: Vec<String> = misplaced.iter().map(|o| format!("{o:.4} mm")).collect();
-    Check {
-        ok: false,
-        note: Some(format!(
-            "a start lies {} along Z from start 1, not a whole number of pitches ({} mm)",
-            offs.join(", "),
-            crate::ground::fmt::fmt_num(t.pitch)
-        )),
-        ..c
-    }
+    let misplaced = crate::analysis::check::misplaced_starts(phases, t.pitch, t.lead(), 0.005);
+    let cut: std::collections::BTreeSet<u32> = phases
+        .iter()
+        .map(|&p| (p - first).rem_euclid(t.lead()))
+        .filter(|off| !misplaced.iter().any(|m| (m - off).abs() <= 0.005))
+        .map(|off| ((off / t.pitch).round() as u32) % t.starts.max(1))
+        .collect();
+    crate::analysis::check::starts_check(&cut, t.starts, t.pitch, &misplaced)
 }
 
 /// The lead each whole turn of the helices cuts: for every helix end one turn or more into its

@@ -1655,7 +1655,27 @@ fn verify_given(
     let t = &r.designation.thread;
     let cut: std::collections::BTreeSet<u32> =
         if t.starts > 1 { &passes } else { &op.passes }.iter().map(|p| p.start).collect();
-    let starts = crate::analysis::check::starts_check(&cut, t.starts, t.pitch);
+    // A start off a whole number of pitches (two increments of the program's, to allow for its
+    // rounding) is misplaced: it fails by its offset (issue 47).
+    // Each start's phase is its last pass's (the infeed moves a flank-fed pass along Z; every
+    // start's last pass is at full depth alike).
+    // The starts as the program's reading told them apart (one cycle per start) when it did,
+    // else as their phases are assigned above.
+    let read: std::collections::BTreeSet<u32> = op.passes.iter().map(|p| p.start).collect();
+    let grouped = if read.len() > 1 { &op.passes } else { &passes };
+    let mut phases: Vec<f64> = Vec::new();
+    for s in grouped.iter().map(|p| p.start).collect::<std::collections::BTreeSet<u32>>() {
+        if let Some(p) = grouped.iter().rev().find(|p| p.start == s) {
+            phases.push(p.z_phase);
+        }
+    }
+    let tolerance = 2.0 * op.units.least_increment() * op.units.mm() + 1e-9;
+    let misplaced = if t.starts > 1 {
+        crate::analysis::check::misplaced_starts(&phases, t.pitch, t.lead(), tolerance)
+    } else {
+        Vec::new()
+    };
+    let starts = crate::analysis::check::starts_check(&cut, t.starts, t.pitch, &misplaced);
     let mut v = verify_core(
         r,
         Some(Given {
