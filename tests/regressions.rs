@@ -1078,3 +1078,35 @@ fn regression_a_misplaced_start_fails_by_its_offset() {
         }
     }
 }
+
+/// Issue 47: a training lathe's file (Denford's simulator: `[BILLET X29.9 Z60` and `[TOOLDEF`
+/// before the O-number, a DOS end-of-file byte at the end) was refused. The set-up lines are read
+/// past with a note; BILLET's X is the blank of the thread the program turns no diameter for, so
+/// the partial-profile insert leaves the crest at Ø29.9 (6g's d: 29.682–29.962); `--blank-diameter`
+/// still wins.
+#[test]
+fn regression_a_simulator_s_billet_is_the_blank() {
+    let dir = tempdir("billet");
+    std::fs::write(
+        dir.join("billet.nc"),
+        b"[BILLET X29.9 Z60\n[TOOLDEF T01 D0\nO0030 (M30X2 ON A TRAINING LATHE)\nG21 G95 G97 S500 M3\nT0101\nG0 X32 Z5\nG76 P010060 Q100 R0.05\nG76 X27.546 Z-30 P1227 Q350 F2.0\nG0 X100 Z100\nM30\n\x1a",
+    )
+    .unwrap();
+    let (_, v) = {
+        let o = run_in(&dir, &["verify", "--program", "billet.nc", "--json", "-"]);
+        assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+        (0, serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap())
+    };
+    let op = &v["operations"][0];
+    assert_eq!(check_of(op, "major_diameter")["value"], 29.9);
+    let notes: Vec<String> =
+        op["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap_or_default().to_string()).collect();
+    assert!(
+        notes.iter().any(|n| n
+            == "the blank is the stock the program declares at line 1: Ø29.9 (--blank-diameter overrides)"),
+        "{notes:?}"
+    );
+    let o = run_in(&dir, &["verify", "--program", "billet.nc", "--blank-diameter", "29.8", "--json", "-"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(check_of(&v["operations"][0], "major_diameter")["value"], 29.8);
+}

@@ -1870,6 +1870,17 @@ pub fn verify_program(
         if !named.why.is_empty() {
             extra.push(named.why.clone());
         }
+        // The program's declared stock is the blank of an external thread it turns no diameter
+        // for (issue 47: a training simulator's `[BILLET X30`).
+        if let (None, None, Some((d, line))) = (spec.blank_diameter, program_blank(op), prog.stock) {
+            if pass_side(&op.passes) != Some(ThreadKind::Internal) && !spec.internal {
+                s.blank_diameter = Some(d);
+                extra.push(format!(
+                    "the blank is the stock the program declares at line {line}: Ø{} (‹blank_diameter› overrides)",
+                    crate::ground::fmt::fmt_num(d)
+                ));
+            }
+        }
         let mut assumed = false;
         if let Some((choice, note, default)) = insert_for(op) {
             s.insert = choice;

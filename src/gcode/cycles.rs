@@ -436,6 +436,21 @@ pub(crate) fn read_past_item(m: &mut Motion, line: usize, p: &Past) -> Result<()
             ))
         }
         PastKind::RotarySpeed => m.read_past(line, p.col, &p.name, "a rotary (live) tool's spindle speed, not modelled"),
+        PastKind::Billet { x, z } => {
+            // The bar a lathe program turns: its diameter is the blank of a thread the program
+            // turns no diameter for.
+            if let Some(d) = x.filter(|d| d.is_finite() && *d > 0.0) {
+                m.stock = Some((d * m.scale, line));
+            }
+            let _ = z;
+            m.read_past(
+                line,
+                p.col,
+                &p.name,
+                "a training simulator's stock (Denford's BILLET): X the bar's diameter, the blank of a thread the program turns no diameter for",
+            );
+        }
+        PastKind::Simulator => m.read_past(line, p.col, &p.name, "a training simulator's set-up line (Denford's), not a move"),
         PastKind::Section => m.read_past(
             line,
             p.col,

@@ -7,7 +7,7 @@
 
 use super::dialect::{n_key, Ctx, Flow, Language, Rules, Store, SysParams};
 use super::expr::{self, Env, Expr, Value, VarKey, VarRef};
-use super::lexer::{Block, OKw, Stmt, WVal};
+use super::lexer::{Block, OKw, PastKind, Stmt, WVal};
 use super::motion::{Motion, RBlock, RWord};
 use crate::ground::bounds::{MAX_CALL_DEPTH, MAX_REPEATS};
 use crate::ground::note::NoteKind;
@@ -346,7 +346,15 @@ fn layout(blocks: &[Block], lang: Language, m: &mut Motion, main: Option<u32>) -
         {
             // Fanuc: the first O-number program is the main one (a leading header names it).
             // Sinumerik: subprograms follow the main program, each after its name.
-            let first_is_main = lang.leading_header_is_main && headers.first() == Some(&0);
+            // A training simulator's set-up lines (`[BILLET …`) may stand before it.
+            let setup_only = |b: &Block| {
+                b.words.is_empty()
+                    && b.stmts.is_empty()
+                    && !b.past.is_empty()
+                    && b.past.iter().all(|p| matches!(p.kind, PastKind::Billet { .. } | PastKind::Simulator))
+            };
+            let first_is_main = lang.leading_header_is_main
+                && headers.first().is_some_and(|&h| blocks[..h].iter().all(setup_only));
             // Several O-programs in one file: every one is a program; the main one is chosen
             // below (the one no other calls, or --main).
             let several = first_is_main && headers.len() >= 2;

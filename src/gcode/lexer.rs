@@ -201,8 +201,18 @@ pub struct Past {
 }
 
 /// The kinds of things read past in the lexer.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PastKind {
+    /// A Denford simulator's stock line (`[BILLET X30 Z60`): on a lathe X the bar's diameter,
+    /// Z its length (mm as written).
+    Billet {
+        /// X as written.
+        x: Option<f64>,
+        /// Z as written.
+        z: Option<f64>,
+    },
+    /// Another line of a training simulator's set-up (`[TOOLDEF T1 D6`, `[EDGEMOVE X0`, `[STEP …`).
+    Simulator,
     /// A message or display for the operator (`MSG("…")`, LinuxCNC `(MSG,…)`).
     Message,
     /// A tool called by name (`T="ROUGH"`).
@@ -260,6 +270,9 @@ pub fn lex(text: &str, dialect: Dialect) -> Result<Vec<Block>, LexError> {
             Dialect::Okuma if line.trim_start().starts_with('$') => {}
             Dialect::Heidenhain => heidenhain_line(line, i + 1, &mut section, &mut blocks)?,
             Dialect::Okuma => okuma_line(line, i + 1, &mut blocks)?,
+            // A training simulator's set-up line (Denford's `[BILLET X30 Z60`, `[TOOLDEF T1 D6`).
+            Dialect::Fanuc | Dialect::Haas | Dialect::Dyna | Dialect::Mitsubishi | Dialect::Mazak
+                if simulator_line(line, i + 1, &mut blocks) => {}
             Dialect::Fanuc
             | Dialect::Haas
             | Dialect::LinuxCnc
@@ -269,6 +282,37 @@ pub fn lex(text: &str, dialect: Dialect) -> Result<Vec<Block>, LexError> {
         }
     }
     Ok(blocks)
+}
+
+/// A training simulator's set-up line, as Denford's Fanuc simulators read them: `[` and a word
+/// at the line's start (`[BILLET X30 Z60`, `[TOOLDEF T01 D.5`, `[EDGEMOVE X0 Y0`), to the line's
+/// end (a closing `]` or `;` is fine). `BILLET` declares the stock; the others are read past.
+/// False when the line is not one.
+fn simulator_line(line: &str, ln: usize, blocks: &mut Vec<Block>) -> bool {
+    let trimmed = line.trim_start();
+    let Some(rest) = trimmed.strip_prefix('[') else { return false };
+    let word: String = rest.chars().take_while(char::is_ascii_alphabetic).collect();
+    if word.len() < 3 {
+        return false;
+    }
+    let col = line.len() - trimmed.len() + 1;
+    let upper = rest.to_ascii_uppercase();
+    let value = |letter: char| -> Option<f64> {
+        let i = upper[word.len()..].find(letter)? + word.len() + 1;
+        let num: String =
+            upper[i..].chars().take_while(|c| c.is_ascii_digit() || matches!(c, '.' | '-' | '+')).collect();
+        num.parse().ok()
+    };
+    let kind = if word.eq_ignore_ascii_case("BILLET") {
+        PastKind::Billet { x: value('X'), z: value('Z') }
+    } else {
+        PastKind::Simulator
+    };
+    let shown: String = trimmed.trim_end_matches([']', ';', ' ']).chars().take(40).collect();
+    let mut b = Block::new(ln);
+    b.past.push(Past { name: shown, kind, col });
+    blocks.push(b);
+    true
 }
 
 /// An OSP line as shops write it (Okuma 5238-E): a sequence name (`NAT06`, `NSTRT`: N and a

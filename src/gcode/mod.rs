@@ -574,6 +574,9 @@ pub struct Program {
     pub holes: Vec<HoleCycle>,
     /// The machine the program was read for, and why.
     pub machine: MachineReading,
+    /// The stock the program declares (a training simulator's `[BILLET X…`): its diameter, mm,
+    /// and line.
+    pub stock: Option<(f64, usize)>,
 }
 
 /// Which way the spindle turns.
@@ -845,6 +848,7 @@ fn read(
     )?;
     let units_assumed = (!m.units_set).then_some(opts.default_units);
     let holes = std::mem::take(&mut m.holes);
+    let stock = m.stock;
     let (operations, skipped, mut notes, moves, read_past) = m.finish();
     notes.extend(order_note.map(Note::from));
     let extension = std::path::Path::new(file).extension().and_then(|e| e.to_str()).unwrap_or("");
@@ -937,6 +941,7 @@ fn read(
         moves,
         holes,
         machine,
+        stock,
     })
 }
 

@@ -182,6 +182,9 @@ pub(crate) struct Motion {
     pub rigid_next: bool,
     /// The drilling and tapping cycles read, in program order.
     pub holes: Vec<super::HoleCycle>,
+    /// The stock the program declares (a training simulator's `[BILLET X…`): its diameter, mm,
+    /// and line.
+    pub stock: Option<(f64, usize)>,
     /// The modal bottom Z and feed of the canned cycle in force.
     pub hole_modal: (Option<f64>, Option<f64>),
     /// A machining centre's canned cycle: the initial level (Z where the cycle began), the R
@@ -273,6 +276,7 @@ impl Motion {
             feed_per_rev: None,
             rigid_next: false,
             holes: Vec::new(),
+            stock: None,
             hole_modal: (None, None),
             cycle_levels: (None, None),
             return_to_r: false,
