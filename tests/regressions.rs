@@ -1110,3 +1110,39 @@ fn regression_a_simulator_s_billet_is_the_blank() {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(check_of(&v["operations"][0], "major_diameter")["value"], 29.8);
 }
+
+/// Issue 47: a Swiss-type lathe's tool beyond the spindle axis writes every X negative; its G92
+/// run was refused as "reaches or crosses the axis". It is read by its distance from the axis
+/// (a note says so), its blank too, and corrected in its own sign: M10x1.5-6g with a full-profile
+/// insert to has d2 = 9.02597 + (8.16 − 8.15970) = 9.02627 against 6g's middle 8.928, so
+/// the last pass moves to |X| 8.16 − 0.09827 = 8.062, written.
+#[test]
+fn regression_negative_x_is_a_tool_beyond_the_axis() {
+    let dir = tempdir("swiss");
+    let text = "(M10X1.5-6G)\nG21 G99 G97 S2000 M3\nT0101\nG0 X-12 Z1\nG1 X-9.95 F0.1\nG1 Z-16\nG0 X-12\nZ1\nG92 X-9.6 Z-15 F1.5\nX-9.2\nX-8.8\nX-8.4\nX-8.16\nG0 X-12\nM30\n";
+    std::fs::write(dir.join("swiss.nc"), text).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "swiss.nc", "--insert", "full", "--json", "-"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let op = &v["operations"][0];
+    let d2 = check_of(op, "pitch_diameter")["value"].as_f64().unwrap();
+    // To half a micrometre: the full-profile insert's root is rounded within the standard's limits.
+    assert!((d2 - (9.025_97 + (8.16 - (10.0 - 1.226_869 * 1.5)))).abs() < 5e-4, "{d2}");
+    // The same program on the near side of the axis cuts the same thread.
+    std::fs::write(dir.join("near.nc"), text.replace("X-", "X")).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "near.nc", "--insert", "full", "--json", "-"]);
+    let near: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(check_of(&near["operations"][0], "pitch_diameter")["value"].as_f64().unwrap(), d2);
+    assert_eq!(check_of(op, "major_diameter")["value"], 9.95);
+    assert!(
+        op["operation"]["notes"].to_string().contains("the passes run at negative X"),
+        "{}",
+        op["operation"]
+    );
+    let o = run_in(&dir, &["verify", "--program", "swiss.nc", "--insert", "full", "--fix", "-"]);
+    assert!(String::from_utf8(o.stdout).unwrap().contains("\nX-8.062\n"));
+    // A pass that crosses the axis is still refused.
+    std::fs::write(dir.join("cross.nc"), "G0 X10 Z1\nG32 X-1 Z-15 F1.5\nM30\n").unwrap();
+    let o = run_in(&dir, &["verify", "--program", "cross.nc", "--thread", "M10x1.5-6g"]);
+    assert_eq!(o.status.code(), Some(2));
+}

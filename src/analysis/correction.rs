@@ -87,9 +87,10 @@ pub struct Deeper {
 /// assert_eq!(d.iter().map(|d| d.line).collect::<Vec<_>>(), [11]);
 /// ```
 pub fn deeper_words(c: &Correction, words: &[PassXWord], kind: ThreadKind) -> Vec<Deeper> {
+    // Distances from the axis: a tool beyond it writes them negative (issue 47).
     let diameter = |v: f64, m: WordMeans| match m {
-        WordMeans::Diameter => Some(v),
-        WordMeans::Radius => Some(2.0 * v),
+        WordMeans::Diameter => Some(v.abs()),
+        WordMeans::Radius => Some(2.0 * v.abs()),
         WordMeans::Depth { .. } => None,
     };
     let Some(new) = diameter(c.value, c.means) else { return Vec::new() };
@@ -129,9 +130,11 @@ pub struct Place {
 /// `kind` in a program written in `units`.
 pub fn correction(w: &DepthWord, units: ProgramUnits, kind: ThreadKind, delta_d2: f64) -> Correction {
     let per_unit = units.mm();
+    // A tool beyond the spindle axis writes X negative (issue 47): its size moves, its sign stays.
+    let side = if w.value < 0.0 { -1.0 } else { 1.0 };
     let raw = match w.means {
-        WordMeans::Diameter => w.value + delta_d2 / per_unit,
-        WordMeans::Radius => w.value + 0.5 * delta_d2 / per_unit,
+        WordMeans::Diameter => w.value + side * delta_d2 / per_unit,
+        WordMeans::Radius => w.value + side * 0.5 * delta_d2 / per_unit,
         WordMeans::Depth { per_radial } => {
             // Deeper is a smaller bolt and a larger nut.
             let deeper = match kind {

@@ -1478,7 +1478,8 @@ pub fn verify_operation(
     let mut r = resolve(spec)?;
     if spec.blank_diameter.is_none() {
         if let Some(t) = program_blank(op) {
-            r.blank = t.from[0];
+            // Its distance from the axis (a tool beyond it writes X negative).
+            r.blank = t.from[0].abs();
             r.notes.push(crate::ground::note::Note::at(
                 &label.file,
                 t.line,
@@ -1486,7 +1487,7 @@ pub fn verify_operation(
                 format!(
                     "the {} is the program's own: Ø{:.4} turned here over the thread's length (‹blank_diameter› overrides)",
                     if r.kind == ThreadKind::External { "blank" } else { "bore" },
-                    t.from[0]
+                    t.from[0].abs()
                 ),
             ));
         }

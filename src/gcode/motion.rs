@@ -754,6 +754,30 @@ impl Motion {
         if self.passes_total > MAX_PASSES {
             return Err(self.err(line, 1, format!("more than {MAX_PASSES} passes")));
         }
+        // A tool beyond the spindle axis (Swiss-type and gang-tool lathes: every X negative)
+        // cuts the same thread at the same distance from the axis: the pass is read mirrored,
+        // once said (issue 47). A pass that reaches or crosses the axis is refused.
+        // Only a tool that stays beyond the axis: its cycle starts there too, and no variable
+        // read before it was set explains the sign (an R-parameter read as 0 is refused, naming it).
+        let beyond = p.x_start < 0.0
+            && p.x_end < 0.0
+            && p.x_taper <= 0.0
+            && self.ops[op].start.is_none_or(|(x, _)| x < 0.0)
+            && self.notes.find(NoteKind::UnsetVariable).is_none();
+        if beyond {
+            p.x_start = -p.x_start;
+            p.x_end = -p.x_end;
+            p.x_taper = -p.x_taper;
+            let o = &mut self.ops[op];
+            if !o.notes.iter().any(|n| n.message.starts_with("the passes run at negative X")) {
+                o.notes.push(Note::at(
+                    &self.file,
+                    line,
+                    1,
+                    "the passes run at negative X, a tool beyond the spindle axis (Swiss-type and gang-tool lathes): read by their distance from the axis, on the same side as ever (the thread is the same)",
+                ));
+            }
+        }
         if !(p.x_start > 0.0 && p.x_end > 0.0) {
             let x = if p.x_start <= 0.0 { p.x_start } else { p.x_end };
             let mut msg = format!(
