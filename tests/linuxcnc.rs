@@ -764,3 +764,31 @@ fn named_files_agree_with_rs274() {
     }
     assert!(bad.is_empty(), "{}", bad.join("\n"));
 }
+
+/// Issue 47: LinuxCNC's predefined named parameters of the modes (`_lathe_radius_mode`,
+/// `_lathe_diameter_mode`, `_coord_system`, `_plane`, `_spindle_on`, `_spindle_cw`,
+/// `_spindle_css_mode`, `_spindle_rpm_mode`, `_units_per_rev`, `_units_per_minute`, `_rpm`) were
+/// refused as not defined. Each moves the G76's drive line by its own weight, in two programs that
+/// set every mode both ways, so a value that differs from `rs274`'s moves every pass.
+#[test]
+fn predefined_mode_parameters_agree_with_rs274() {
+    let exe = rs274();
+    let dir = tempdir("rs274-predefined");
+    let table: String = (1..=99).map(|i| format!("T{i} P{i} D0 ;\n")).collect();
+    std::fs::write(dir.join("tool.tbl"), table).unwrap();
+    let weigh = "#<a> = [#<_lathe_radius_mode> + 2*#<_lathe_diameter_mode> + 4*#<_spindle_on> + 8*#<_spindle_cw> + 16*#<_spindle_css_mode> + 32*#<_spindle_rpm_mode> + 64*#<_units_per_rev> + 128*#<_units_per_minute>]\n#<b> = [#<_coord_system> / 1000 + #<_rpm> / 100000]\n";
+    let programs = [
+        // Diameter mode, G55, G18, the spindle clockwise at constant rpm, feed per minute.
+        format!("G21 G18 G7 G94\nG55\nS500 M3\n{weigh}#<c> = #<_plane>\nG0 X[20 + #<a> / 10] Z[2 + #<b> + #<c> / 1000]\nG76 P1.5 Z-20 I-1 J0.2 K0.92 R2 Q29.5 L0 E0 H0\nM2\n"),
+        // Radius mode, G59.3, G17 read then G18 again (a lathe's program: G18 first), counter-clockwise
+        // at constant surface speed, per revolution.
+        format!("G21 G18 G8 G95\nG59.3\nG96 D1500 S120 M4\nG17\n#<c> = #<_plane>\nG18\n{weigh}G0 X[10 + #<a> / 20] Z[2 + #<b> + #<c> / 1000]\nG76 P1.5 Z-20 I-1 J0.2 K0.92 R2 Q29.5 L0 E0 H0\nM2\n"),
+    ];
+    for p in &programs {
+        let (rs, tc) = (run_rs274(&exe, p, &dir), threadcheck(p));
+        assert!(matches!(&rs, Outcome::Passes(s) if !s.is_empty()), "rs274 cut nothing: {p}");
+        if let Some(why) = compare(None, &rs, &tc) {
+            panic!("{why}\n{p}");
+        }
+    }
+}

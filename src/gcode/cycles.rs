@@ -315,6 +315,9 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             // Sinumerik's feed modes hold in every plane.
             94 if matches!(d, Dialect::Sinumerik | Dialect::Heidenhain) => m.feed_per_rev = Some(false),
             95 if matches!(d, Dialect::Sinumerik | Dialect::Heidenhain) => m.feed_per_rev = Some(true),
+            // LinuxCNC: G94 units per minute, G95 units per revolution (its `_units_per_rev`).
+            94 if d == Dialect::LinuxCnc => m.feed_per_rev = Some(false),
+            95 if d == Dialect::LinuxCnc => m.feed_per_rev = Some(true),
             90 | 94 if fanuc_like && m.lathe() => motion = Some((g, col)),
             30 => one_shot = Some(g),
             7 if d == Dialect::LinuxCnc => m.diameter = true,

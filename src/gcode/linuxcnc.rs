@@ -152,7 +152,30 @@ impl State {
 /// The read-only system parameters, from the motion state, before each block, each set once
 /// and always in the same order.
 /// LinuxCNC's read-only parameters threadcheck keeps, in their slots' order.
-const SYSTEM_NAMES: [&str; 6] = ["_x", "_z", "_imperial", "_metric", "_absolute", "_incremental"];
+/// The rest are the modes the motion state holds, as LinuxCNC's documentation of its predefined
+/// named parameters gives them (`docs/src/gcode/overview.adoc`, "Predefined Named Parameters";
+/// issue 47): `_lathe_radius_mode` and `_lathe_diameter_mode` 1 or 0, `_coord_system` 540 … 593,
+/// `_plane` 170, 180 or 190, `_spindle_on`, `_spindle_cw`, `_spindle_css_mode`,
+/// `_spindle_rpm_mode`, `_units_per_rev`, `_units_per_minute` 1 or 0, `_rpm` S, `_current_tool` T.
+const SYSTEM_NAMES: [&str; 17] = [
+    "_x",
+    "_z",
+    "_imperial",
+    "_metric",
+    "_absolute",
+    "_incremental",
+    "_lathe_radius_mode",
+    "_lathe_diameter_mode",
+    "_coord_system",
+    "_plane",
+    "_spindle_on",
+    "_spindle_cw",
+    "_spindle_css_mode",
+    "_spindle_rpm_mode",
+    "_units_per_rev",
+    "_units_per_minute",
+    "_rpm",
+];
 
 fn system_params(s: &State, m: &Motion, sys: &mut SysParams) {
     let unit = m.scale;
@@ -184,6 +207,27 @@ fn system_params(s: &State, m: &Motion, sys: &mut SysParams) {
     sys.set(3, 1.0 - imperial);
     sys.set(4, if m.absolute { 1.0 } else { 0.0 });
     sys.set(5, if m.absolute { 0.0 } else { 1.0 });
+    let flag = |b: bool| if b { 1.0 } else { 0.0 };
+    sys.set(6, flag(!m.diameter));
+    sys.set(7, flag(m.diameter));
+    // G54 is 540, …, G59 590, G59.1 591, G59.2 592, G59.3 593.
+    let system = match s.system0 {
+        k @ 0..=5 => 540.0 + 10.0 * k as f64,
+        k => 585.0 + k as f64,
+    };
+    sys.set(8, system);
+    sys.set(9, f64::from(m.plane) * 10.0);
+    let on = matches!(m.spindle_dir, Some(super::SpindleDir::Cw | super::SpindleDir::Ccw));
+    sys.set(10, flag(on));
+    sys.set(11, flag(m.spindle_dir == Some(super::SpindleDir::Cw)));
+    sys.set(12, flag(m.css));
+    sys.set(13, flag(!m.css));
+    let per_rev = m.feed_per_rev.unwrap_or(false);
+    sys.set(14, flag(per_rev));
+    sys.set(15, flag(!per_rev));
+    if let Some(rpm) = m.s {
+        sys.set(16, rpm);
+    }
 }
 
 /// The program value whose position (mm) the reader computed as `fwd(value)` to be `mm`: the
