@@ -61,6 +61,19 @@ fn screenshot(file: &Path, w: usize, h: usize) -> Shot {
     Shot { log: String::from_utf8_lossy(&out.stderr).into_owned(), ..read_png(&png) }
 }
 
+/// Nothing runs off a page's sides: its outer columns stay background.
+fn edges_stay_background(shot: &Shot) {
+    for y in 0..shot.h {
+        for x in [0, 1, shot.w - 2, shot.w - 1] {
+            let [r, g, b] = shot.at(x, y);
+            assert!(
+                u32::from(r) + u32::from(g) + u32::from(b) > 600,
+                "dark pixel at the page's edge ({x}, {y})"
+            );
+        }
+    }
+}
+
 /// The console messages Chromium logged for the page (it logs `console.error` at INFO level, so
 /// every message counts: the reports have no script, so any message is an error).
 fn console_errors(log: &str) -> Vec<&str> {
@@ -167,16 +180,7 @@ fn html_report_renders_without_console_errors() {
     );
     let shot = screenshot(&html, 1200, 1600);
     assert!(console_errors(&shot.log).is_empty(), "{:?}", console_errors(&shot.log));
-    // Nothing runs off the page's sides: the outer columns stay background.
-    for y in 0..shot.h {
-        for x in [0, 1, shot.w - 2, shot.w - 1] {
-            let [r, g, b] = shot.at(x, y);
-            assert!(
-                u32::from(r) + u32::from(g) + u32::from(b) > 600,
-                "dark pixel at the page's edge ({x}, {y})"
-            );
-        }
-    }
+    edges_stay_background(&shot);
     // The verdict is drawn: some dark-green or red text in the top 200 px.
     let coloured = (0..200).flat_map(|y| (0..1200).map(move |x| (x, y))).filter(|&(x, y)| {
         let [r, g, b] = shot.at(x, y);
@@ -777,15 +781,7 @@ fn html_report_of_a_whole_program_shows_every_process() {
     assert_eq!(text.matches("<g id=\"hole-").count(), 4, "four tap panels");
     let shot = screenshot(&html, 1280, 3000);
     assert!(console_errors(&shot.log).is_empty(), "{:?}", console_errors(&shot.log));
-    for y in 0..shot.h {
-        for x in [0, 1, shot.w - 2, shot.w - 1] {
-            let [r, g, b] = shot.at(x, y);
-            assert!(
-                u32::from(r) + u32::from(g) + u32::from(b) > 600,
-                "dark pixel at the page's edge ({x}, {y})"
-            );
-        }
-    }
+    edges_stay_background(&shot);
     // The milled thread's tolerance zone is drawn (green over the material or the air).
     let zone = (0..shot.h)
         .flat_map(|y| (0..shot.w).map(move |x| (x, y)))

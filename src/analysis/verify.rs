@@ -1460,6 +1460,28 @@ pub struct ProgramVerification {
 }
 
 impl ProgramVerification {
+    /// The verification of `prog`'s turned `operations` (of `n` in the program), its notes and
+    /// reading; no tapped or milled thread yet.
+    pub(crate) fn of(
+        prog: &crate::gcode::Program,
+        program: ProgramLabel,
+        operations: Vec<OperationVerdict>,
+        n: usize,
+    ) -> ProgramVerification {
+        ProgramVerification {
+            dialect: program.dialect,
+            program,
+            operations,
+            operations_in_program: n,
+            notes: prog.notes.clone(),
+            skipped_blocks: prog.skipped_blocks,
+            read_past_blocks: prog.read_past_blocks,
+            machine: prog.machine.clone(),
+            tapped: None,
+            milled: None,
+        }
+    }
+
     /// True when every operation passes: turned, tapped and milled.
     pub fn pass(&self) -> bool {
         self.operations.iter().all(|o| o.result.pass())
@@ -1912,18 +1934,7 @@ pub fn verify_program(
         }
         operations.push(OperationVerdict { operation: op.clone(), designation, named, result });
     }
-    Ok(ProgramVerification {
-        program: label,
-        dialect,
-        operations,
-        operations_in_program: n,
-        notes: prog.notes.clone(),
-        skipped_blocks: prog.skipped_blocks,
-        read_past_blocks: prog.read_past_blocks,
-        machine: prog.machine.clone(),
-        tapped: None,
-        milled: None,
-    })
+    Ok(ProgramVerification::of(&prog, label, operations, n))
 }
 
 /// One thread re-cut with its passes moved radially and its insert's tip radius changed: the

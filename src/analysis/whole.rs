@@ -147,18 +147,7 @@ pub fn verify_whole(
         });
     }
     let mut pv = if prog.operations.is_empty() {
-        ProgramVerification {
-            program: ProgramLabel { file: name.to_string(), dialect },
-            dialect,
-            operations: Vec::new(),
-            operations_in_program: 0,
-            notes: prog.notes.clone(),
-            skipped_blocks: prog.skipped_blocks,
-            read_past_blocks: prog.read_past_blocks,
-            machine: prog.machine.clone(),
-            tapped: None,
-            milled: None,
-        }
+        ProgramVerification::of(&prog, ProgramLabel { file: name.to_string(), dialect }, Vec::new(), 0)
     } else {
         crate::analysis::verify::verify_program(spec, text, name, dialect, threads, insert_for)?
     };
