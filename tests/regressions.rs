@@ -1146,3 +1146,30 @@ fn regression_negative_x_is_a_tool_beyond_the_axis() {
     let o = run_in(&dir, &["verify", "--program", "cross.nc", "--thread", "M10x1.5-6g"]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+/// Issue 47: blocks that begin with `/` (block delete) ran without a word, so a program whose
+/// `/M30` preview line ends it never reached its G76, and the refusal did not say why. The
+/// switch is taken as off, said in the notes and in that refusal; `--block-delete` skips them.
+#[test]
+fn regression_block_delete_is_a_stated_switch() {
+    let dir = tempdir("block-delete");
+    std::fs::write(
+        dir.join("bd.nc"),
+        "(M20X1.5-6G)\nG21 G97 S500 M3\nG0 X22 Z5\n/G0 X40\n/M30\nG76 P010060 Q100 R0.05\nG76 X18.16 Z-20 P920 Q300 F1.5\nM30\n",
+    )
+    .unwrap();
+    let o = run_in(&dir, &["verify", "--program", "bd.nc", "--insert", "full"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: bd.nc:1:1: no thread-making operation in the program (looked for G32, G92 and G76, tapping cycles, and helices: G2/G3 with a Z change); bd.nc:4: 2 blocks begin with / (block delete): the control's switch is taken as off, so they run (--block-delete skips them)"
+    );
+    let o = run_in(&dir, &["verify", "--program", "bd.nc", "--insert", "full", "--block-delete"]);
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    assert!(stdout(&o).contains(
+        "note: bd.nc:4: 2 blocks begin with / (block delete) and are skipped, as --block-delete says"
+    ));
+    // A run of many takes the reading options too.
+    let o = run_in(&dir, &["verify", ".", "--dialect", "fanuc", "--block-delete", "--insert", "full"]);
+    assert!(stdout(&o).starts_with("./bd.nc:7: "), "{}", stdout(&o));
+}

@@ -130,7 +130,7 @@ def verify(thread: Optional[Threads] = None, program: Optional[str] = None, dial
            units: Optional[str] = None, machine: Optional[str] = None,
            clearance_angle: Optional[float] = None, no_pass_metrics: bool = False,
            operation: Optional[int] = None,
-        machine_type: Optional[str] = None, stock_bottom: Optional[float] = None,
+        machine_type: Optional[str] = None, block_delete: bool = False, stock_bottom: Optional[float] = None,
            svg: Optional[PathLike] = None, html: Optional[PathLike] = None,
            fix: Optional[PathLike] = None) -> VerifyReport:
     """``threadcheck verify --json -``.
@@ -161,7 +161,9 @@ def verify(thread: Optional[Threads] = None, program: Optional[str] = None, dial
     comparison rules of a ``linuxcnc`` program; ``gcode_system`` (``"a"``, ``"b"``, ``"c"``) the
     G-code system a Fanuc control is set to (B: G78 the threading cycle; C: G78 the multiple
     one); ``machine_type`` (``"lathe"``/``"mill"``) the machine the program runs on (default: the
-    program's own evidence, else a lathe; the report's ``machine`` says which and why). ``coating`` (mm) checks against the limits
+    program's own evidence, else a lathe; the report's ``machine`` says which and why). ``block_delete``
+    skips the blocks that begin with ``/`` (the control's switch on; off, the default, runs them,
+    stated). ``coating`` (mm) checks against the limits
     before a coat of that thickness; ``coating_limits`` is ``"before"`` (the standards' default:
     the class applies before coating, the coated thread within the basic profile) or ``"after"``. ``machine`` is a machine profile's TOML text (or
     ``"training-lathe"``). ``svg``, ``html`` and ``fix`` write the picture, the page and the
@@ -205,7 +207,7 @@ def passes(thread: Optional[Threads] = None, program: Optional[str] = None,
         engagement: Optional[float] = None, gcode_system: Optional[str] = None,
         clearance_angle: Optional[float] = None, machine: Optional[str] = None,
         units: Optional[str] = None,
-        machine_type: Optional[str] = None) -> PassesReport:
+        machine_type: Optional[str] = None, block_delete: bool = False) -> PassesReport:
     """``threadcheck passes --json``: the passes of a generated plan or of a program's text.
 
     The arguments are ``verify``'s; a program needs no thread.
@@ -231,7 +233,7 @@ def correct(thread: str, program: Optional[str] = None, dialect: Optional[str] =
         first_depth: Optional[float] = None, machine: Optional[str] = None,
         min_depth: Optional[float] = None, schedule: Optional[str] = None,
         spring: Optional[int] = None, taper: Optional[float] = None, units: Optional[str] = None,
-        machine_type: Optional[str] = None,
+        machine_type: Optional[str] = None, block_delete: bool = False,
             html: Optional[PathLike] = None, fix: Optional[PathLike] = None) -> CorrectReport:
     """``threadcheck correct --json``: what was measured on the part, turned into the change.
 
@@ -269,7 +271,7 @@ def capability(thread: str, program: Optional[str] = None, dialect: Optional[str
         first_depth: Optional[float] = None, machine: Optional[str] = None,
         min_depth: Optional[float] = None, schedule: Optional[str] = None,
         spring: Optional[int] = None, taper: Optional[float] = None, units: Optional[str] = None,
-        machine_type: Optional[str] = None,
+        machine_type: Optional[str] = None, block_delete: bool = False,
                svg: Optional[PathLike] = None, html: Optional[PathLike] = None) -> CapabilityReport:
     """``threadcheck capability --json``: a seeded Monte Carlo of the parts a program cuts.
 
@@ -323,7 +325,7 @@ def compare(thread: str, insert: Optional[str] = None, final_x: Optional[float] 
         passes: Optional[int] = None, program: Optional[str] = None,
         program_name: Optional[str] = None, spring: Optional[int] = None,
         taper: Optional[float] = None, units: Optional[str] = None,
-        machine_type: Optional[str] = None,
+        machine_type: Optional[str] = None, block_delete: bool = False,
             html: Optional[PathLike] = None) -> CompareReport:
     """``threadcheck compare --json``: the thread with every infeed strategy and schedule.
 

@@ -223,7 +223,7 @@ pub struct PlanArgs {
     pub program_name: Option<String>,
     /// A machine profile for the process checks of a program: FILE.toml (its text through the
     /// API) or training-lathe.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.toml|training-lathe", requires = "program", value_parser = Source::path))]
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.toml|training-lathe", value_parser = Source::path))]
     #[serde(deserialize_with = "source_text")]
     pub machine: Option<Source>,
     /// The insert's side clearance angle, degrees: checks the leading flank against the helix.
@@ -236,37 +236,41 @@ pub struct PlanArgs {
     /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma | mitsubishi | mazak | heidenhain (default:
     /// the program's extension names it, .ngc linuxcnc, .mpf/.spf sinumerik, .min/.ssb/.sub okuma;
     /// else fanuc)
-    #[cfg_attr(feature = "cli", arg(long, requires = "program"))]
+    #[cfg_attr(feature = "cli", arg(long))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub dialect: Option<Dialect>,
     /// The units of a program that sets neither G20 nor G21 (the control's default).
-    #[cfg_attr(feature = "cli", arg(long, value_name = "mm|inch", requires = "program"))]
+    #[cfg_attr(feature = "cli", arg(long, value_name = "mm|inch"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub default_units: Option<ProgramUnits>,
     /// The main program of a file that holds several O-programs (default: the one no other
     /// calls; the output says which)
-    #[cfg_attr(feature = "cli", arg(long, value_name = "O-NUMBER", requires = "program"))]
+    #[cfg_attr(feature = "cli", arg(long, value_name = "O-NUMBER"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub main: Option<ONumber>,
     /// The LinuxCNC release whose comparisons (EQ, NE, LE, GE) a linuxcnc program follows:
     /// current (2.9.0 and later, within 1e-6; the default) or before-2.9 (EQ and NE within 1e-4,
     /// as Debian 12's linuxcnc-uspace package does)
-    #[cfg_attr(feature = "cli", arg(long, value_name = "current|before-2.9", requires = "program"))]
+    #[cfg_attr(feature = "cli", arg(long, value_name = "current|before-2.9"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub linuxcnc_release: Option<LinuxCncRelease>,
     /// The G-code system a Fanuc-family lathe control (fanuc, mitsubishi, mazak) is set to: a (G92
     /// threading cycle, the default), b (G78 threading cycle, G92 coordinates) or c (G21
     /// threading cycle, G78 multiple cycle)
-    #[cfg_attr(feature = "cli", arg(long, value_name = "a|b|c", requires = "program"))]
+    #[cfg_attr(feature = "cli", arg(long, value_name = "a|b|c"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub gcode_system: Option<GCodeSystem>,
     /// The machine the program runs on: lathe or mill (a machining centre; G90/G91 absolute and
     /// incremental, G98/G99 return levels, G73/G74/G76 drilling, left-hand tapping, fine
     /// boring). Default: the program's own evidence (G17/G18, T12 M6 or T0101, a drilling
     /// cycle's return level, U/W), else a lathe; the notes say which and why.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "lathe|mill", requires = "program"))]
+    #[cfg_attr(feature = "cli", arg(long, value_name = "lathe|mill"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub machine_type: Option<crate::gcode::MachineType>,
+    /// The control's block-delete switch on: skip the program's blocks that begin with `/`
+    /// (default off: they run, and the notes say so).
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub block_delete: bool,
 }
 
 impl PlanArgs {
@@ -378,6 +382,7 @@ impl PlanArgs {
                     ("gcode_system", self.gcode_system.is_some()),
                     ("linuxcnc_release", self.linuxcnc_release.is_some()),
                     ("machine_type", self.machine_type.is_some()),
+                    ("block_delete", self.block_delete),
                     ("machine", self.machine.is_some()),
                 ];
                 if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
@@ -393,6 +398,7 @@ impl PlanArgs {
         s.reading.linuxcnc = self.linuxcnc_release.unwrap_or_default();
         s.reading.gcode_system = self.gcode_system.unwrap_or_default();
         s.reading.machine_type = self.machine_type;
+        s.reading.block_delete = self.block_delete;
         s.validate()?;
         Ok(s)
     }

@@ -30,7 +30,7 @@ pub struct VerifyArgs {
     pub plan: PlanArgs,
     /// Tool table: which insert each T number of the program holds (TOML: a file on the command
     /// line, its text through the API).
-    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.toml", requires = "program", value_parser = Source::path))]
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.toml", value_parser = Source::path))]
     #[serde(deserialize_with = "super::args::source_text")]
     pub tools: Option<Source>,
     /// Of a program that cuts several threads, the one to take (1-based, in program order, as
@@ -83,6 +83,11 @@ impl Job for VerifyArgs {
         if self.stock_bottom.is_some() && self.plan.program.is_none() {
             return Err(Error::Input(
                 "‹stock_bottom› describes a program's holes: give the program with ‹program›".into(),
+            ));
+        }
+        if self.tools.is_some() && self.plan.program.is_none() {
+            return Err(Error::Input(
+                "‹tools› names a program's tools: give the program with ‹program›".into(),
             ));
         }
         if self.plan.program.is_none() {

@@ -187,6 +187,8 @@ pub struct Block {
     /// What the block holds that threadcheck does not model (a message, a tool called by name,
     /// a call of a cycle that is not threading): read past with a note, never silently.
     pub past: Vec<Past>,
+    /// It begins with `/`: the control's block-delete switch decides whether it runs.
+    pub block_delete: bool,
 }
 
 /// Something in a block that threadcheck reads past.
@@ -580,7 +582,8 @@ fn bracket_block(s: &Squeezed, ln: usize, dialect: Dialect, b: &mut Block) -> Re
     let perr = |i: usize, m: String| (ln, s.col_at(i), m);
     let mut i = 0;
     if c.first() == Some(&'/') {
-        // Block delete, with the switch off: the block runs.
+        // Block delete: the reader runs or skips it as the switch says.
+        b.block_delete = true;
         i += 1;
     }
     b.col = s.col_at(i);

@@ -44,13 +44,17 @@ pub use machine::{MachineReading, MachineType};
 pub use motion::Move;
 
 /// Why a program makes no thread, when its notes show it: a subroutine defined and never called
-/// (the likely reason), or a G92 that sets only S (a speed clamp where a thread was expected);
-/// the place and the note.
+/// (the likely reason), a G92 that sets only S (a speed clamp where a thread was expected), or
+/// blocks that begin with / run with the block-delete switch taken as off; the place and the note.
 pub(crate) fn no_thread_hint(notes: &[Note]) -> Option<(usize, usize, String)> {
     let n = notes
         .iter()
         .find(|n| n.kind == NoteKind::NeverCalled)
-        .or_else(|| notes.iter().find(|n| n.kind == NoteKind::ReadPast && n.message.starts_with("G92 S")))?;
+        .or_else(|| notes.iter().find(|n| n.kind == NoteKind::ReadPast && n.message.starts_with("G92 S")))
+        // Blocks that begin with / ran (the switch off) and may have ended or left the program.
+        .or_else(|| {
+            notes.iter().find(|n| n.message.contains("(block delete): the control's switch is taken as off"))
+        })?;
     let (line, col) = n.place.as_ref().map_or((1, 1), |p| (p.line, p.column));
     Some((line, col, n.message.clone()))
 }
@@ -681,6 +685,9 @@ pub struct ReadOptions {
     /// The machine the program runs on; `None` takes it from the program's own evidence, else
     /// the dialect's default (a lathe), and the notes say which.
     pub machine_type: Option<MachineType>,
+    /// The control's block-delete switch: on skips the blocks that begin with `/`; off (the
+    /// default, stated when the program has such blocks) runs them.
+    pub block_delete: bool,
 }
 
 /// How much a program may run before it is taken for a runaway.
@@ -778,6 +785,29 @@ fn read(
         dyna::prescan(text).map_err(|(l, c, m)| perr(l, c, m))?;
     }
     let mut blocks = lexer::lex(text, dialect).map_err(|(l, c, m)| perr(l, c, m))?;
+    // Block delete (`/` first): the switch on skips the blocks; off runs them; either is said.
+    let deletable: Vec<usize> = blocks.iter().filter(|b| b.block_delete).map(|b| b.line).collect();
+    let delete_note = deletable.first().map(|first| {
+        let n = deletable.len();
+        if opts.block_delete {
+            format!(
+                "{file}:{first}: {n} block{} begin{} with / (block delete) and {} skipped, as ‹block_delete› says",
+                if n == 1 { "" } else { "s" },
+                if n == 1 { "s" } else { "" },
+                if n == 1 { "is" } else { "are" }
+            )
+        } else {
+            format!(
+                "{file}:{first}: {n} block{} begin{} with / (block delete): the control's switch is taken as off, so {} (‹block_delete› skips them)",
+                if n == 1 { "" } else { "s" },
+                if n == 1 { "s" } else { "" },
+                if n == 1 { "it runs" } else { "they run" }
+            )
+        }
+    });
+    if opts.block_delete {
+        blocks.retain(|b| !b.block_delete);
+    }
     // A toolpath read as printed whose sequence numbers go back (a listing whose page break moved
     // blocks) is worth a word: the reader can run it in N order instead.
     let mut order_note = None;
@@ -911,7 +941,7 @@ fn read(
             Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak | Dialect::LinuxCnc
         ))
     .then(|| machine.reason.clone());
-    for n in [machine_note, units_note, dialect_note, system_note, model_note, encoding_note]
+    for n in [machine_note, units_note, dialect_note, system_note, model_note, encoding_note, delete_note]
         .into_iter()
         .flatten()
         .rev()
