@@ -792,3 +792,30 @@ fn predefined_mode_parameters_agree_with_rs274() {
         }
     }
 }
+
+/// Issue 47: LinuxCNC's roughing cycle of type 2, `G71.1 Q…`, was read silently as a position
+/// block and its profile subroutine reported as never called. It is named as G71 is, its profile
+/// counts as called, and the thread after it (from a rapid to its start, as programs write it:
+/// where `rs274`'s G71.1 leaves the tool is not modelled) agrees with `rs274` pass for pass;
+/// G90.1 is named.
+#[test]
+fn g71_1_is_named_and_calls_its_profile() {
+    let p = "G21 G18 G7 G90.1\nS500 M3\nG0 X22 Z2\nG71.1 Q100 D1 R0.5 F0.2\nG0 X22 Z2\nG76 P1.5 Z-20 I-1 J0.2 K0.92 R2 Q29.5 L0 E0 H0\nM2\no100 sub\nG1 X20 Z0 F0.2\nG1 Z-20\no100 endsub\n";
+    let exe = rs274();
+    let dir = tempdir("rs274-g71-1");
+    let table: String = (1..=99).map(|i| format!("T{i} P{i} D0 ;\n")).collect();
+    std::fs::write(dir.join("tool.tbl"), table).unwrap();
+    let (rs, tc) = (run_rs274(&exe, p, &dir), threadcheck(p));
+    assert!(compare(None, &rs, &tc).is_none(), "{:?}", compare(None, &rs, &tc));
+    std::fs::write(dir.join("g711.ngc"), p).unwrap();
+    let o = crate::run_in(&dir, &["passes", "--program", "g711.ngc"]);
+    let text = crate::stdout(&o);
+    assert!(
+        text.contains(
+            "note: g711.ngc:4:1: G71.1 read past: a turning or grooving cycle; it returns to its start point"
+        ),
+        "{text}"
+    );
+    assert!(text.contains("G90.1 read past: the arc centres' distance mode"), "{text}");
+    assert!(!text.contains("never called"), "{text}");
+}

@@ -191,6 +191,19 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                     );
                     one_shot = Some(g);
                 }
+                // The roughing cycles of type 2 run their profile subroutine (Q) as G71 and G72
+                // do: read past, named.
+                (Dialect::LinuxCnc, 71.1 | 72.1) => one_shot = Some(g),
+                // Arc centres absolute (G90.1) or incremental (G91.1): a lathe's arcs are kept as
+                // chords of the turned contour, so the mode is named, not needed.
+                (Dialect::LinuxCnc, 90.1 | 91.1) => {
+                    m.read_past(
+                        b.line,
+                        col,
+                        &format!("G{g}"),
+                        "the arc centres' distance mode; the turned contour's arcs are read as chords",
+                    );
+                }
                 _ if THREADING.contains(&base) => {
                     return Err(m.err(
                         b.line,

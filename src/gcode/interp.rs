@@ -1190,10 +1190,13 @@ pub(crate) fn run(
         if !st.skip_words && (!b.words.is_empty()) {
             let rb = resolve(b, &mut x.vars, file)?;
             flush_pending(&mut x.vars, m);
-            // LinuxCNC's lathe cycles G70/G71/G72 run the profile subroutine named by Q: it is
-            // called, for turning.
+            // LinuxCNC's lathe cycles G70/G71/G72 (and G71.1/G72.1) run the profile subroutine
+            // named by Q: it is called, for turning.
             if x.vars.lang.lathe_cycles_call_q
-                && rb.gs().any(|(g, _)| matches!(g as u32, 70..=72) && g.fract() == 0.0)
+                && rb.gs().any(|(g, _)| {
+                    matches!(g as u32, 70..=72)
+                        && (g.fract() == 0.0 || (g - 71.1).abs() < 1e-9 || (g - 72.1).abs() < 1e-9)
+                })
             {
                 if let Some(q) = rb.get("Q") {
                     x.called.insert(format!("{}", q.v.round() as i64));
