@@ -62,13 +62,13 @@ fn screenshot(file: &Path, w: usize, h: usize) -> Shot {
 }
 
 /// Nothing runs off a page's sides: its outer columns stay background.
-fn edges_stay_background(shot: &Shot) {
+fn edges_stay_background(shot: &Shot, what: &str) {
     for y in 0..shot.h {
         for x in [0, 1, shot.w - 2, shot.w - 1] {
             let [r, g, b] = shot.at(x, y);
             assert!(
                 u32::from(r) + u32::from(g) + u32::from(b) > 600,
-                "dark pixel at the page's edge ({x}, {y})"
+                "{what}: dark pixel at the page's edge ({x}, {y})"
             );
         }
     }
@@ -180,7 +180,7 @@ fn html_report_renders_without_console_errors() {
     );
     let shot = screenshot(&html, 1200, 1600);
     assert!(console_errors(&shot.log).is_empty(), "{:?}", console_errors(&shot.log));
-    edges_stay_background(&shot);
+    edges_stay_background(&shot, "HTML report");
     // The verdict is drawn: some dark-green or red text in the top 200 px.
     let coloured = (0..200).flat_map(|y| (0..1200).map(move |x| (x, y))).filter(|&(x, y)| {
         let [r, g, b] = shot.at(x, y);
@@ -344,15 +344,7 @@ fn screenshots_of_fit_compare_and_inch_pictures() {
     let shot = screenshot(&page, 1200, 1600);
     assert!(console_errors(&shot.log).is_empty(), "{:?}", console_errors(&shot.log));
     // A page scrolls down: only its sides must stay background.
-    for y in 0..shot.h {
-        for x in [0, 1, shot.w - 2, shot.w - 1] {
-            let [r, g, b] = shot.at(x, y);
-            assert!(
-                u32::from(r) + u32::from(g) + u32::from(b) > 600,
-                "compare page: dark pixel at its side ({x}, {y})"
-            );
-        }
-    }
+    edges_stay_background(&shot, "compare page");
     let inch = dir.join("i.svg");
     let o =
         run(&["verify", "--thread", "1/2-13 UNC-2A", "--final-x", "10.2", "--svg", inch.to_str().unwrap()]);
@@ -781,7 +773,7 @@ fn html_report_of_a_whole_program_shows_every_process() {
     assert_eq!(text.matches("<g id=\"hole-").count(), 4, "four tap panels");
     let shot = screenshot(&html, 1280, 3000);
     assert!(console_errors(&shot.log).is_empty(), "{:?}", console_errors(&shot.log));
-    edges_stay_background(&shot);
+    edges_stay_background(&shot, "HTML report");
     // The milled thread's tolerance zone is drawn (green over the material or the air).
     let zone = (0..shot.h)
         .flat_map(|y| (0..shot.w).map(move |x| (x, y)))

@@ -515,16 +515,11 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     if let Some(d) = comp.filter(|d| !(d.is_finite() && *d >= 0.0)) {
         return Err(Error::Input(format!("compensation {d} mm must be a length ≥ 0")));
     }
+    // The helices, read once: the thread's name may come from them.
+    let mut hs = helices(&prog.moves, name, comp, &mut notes)?;
     let named = match &spec.designation {
         Some(d) => crate::analysis::naming::Named::given(d),
-        None => name_milled(
-            text,
-            spec.dialect,
-            &helices(&prog.moves, name, comp, &mut Vec::new())?,
-            c.diameter,
-            opts,
-            name,
-        )?,
+        None => name_milled(text, spec.dialect, &hs, c.diameter, opts, name)?,
     };
     if !named.why.is_empty() {
         notes.push(named.why.clone());
@@ -540,7 +535,6 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         limits_for(&des, kind)?.ok_or_else(|| Error::Input("the designation needs its class".into()))?;
     let t = des.thread;
     let p = t.pitch;
-    let mut hs = helices(&prog.moves, name, comp, &mut notes)?;
     notes.extend(entry_and_exit(&prog.moves));
     if let Some(d) = comp {
         if hs.iter().any(|h| (h.radius - h.programmed_radius).abs() > 1e-12)
