@@ -13,6 +13,7 @@ mod docs;
 mod forms;
 mod gcode;
 mod infeed_comparison;
+mod integrations;
 mod layout;
 mod limits;
 mod linuxcnc;

@@ -60,6 +60,18 @@ pub enum TapFeature {
     Spindle,
 }
 
+impl TapFeature {
+    /// The JSON name (`drill_diameter`).
+    pub fn name(self) -> &'static str {
+        match self {
+            TapFeature::DrillDiameter => "drill_diameter",
+            TapFeature::Feed => "feed",
+            TapFeature::Depth => "depth",
+            TapFeature::Spindle => "spindle",
+        }
+    }
+}
+
 /// One check of a tapping cycle.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct TapCheck {

@@ -104,11 +104,15 @@ pub enum Document {
     Markdown,
     /// One JSON object per program of a run of many, then a summary (`verify --json-lines`).
     JsonLines,
+    /// A run of many as SARIF 2.1.0: a result per failing check (`verify --sarif`).
+    Sarif,
+    /// A run of many as JUnit XML: a test case per operation (`verify --junit`).
+    Junit,
 }
 
 impl Document {
     /// Every document, in the order the documentation lists them.
-    pub const ALL: [Document; 7] = [
+    pub const ALL: [Document; 9] = [
         Document::Json,
         Document::Text,
         Document::Svg,
@@ -116,6 +120,8 @@ impl Document {
         Document::Fix,
         Document::Markdown,
         Document::JsonLines,
+        Document::Sarif,
+        Document::Junit,
     ];
 
     /// The document's name (`json`, `text`, `svg`, `html`, `fix`, `markdown`).
@@ -128,6 +134,8 @@ impl Document {
             Document::Fix => "fix",
             Document::Markdown => "markdown",
             Document::JsonLines => "json-lines",
+            Document::Sarif => "sarif",
+            Document::Junit => "junit",
         }
     }
 
@@ -136,6 +144,8 @@ impl Document {
         match self {
             Document::Json => "application/json",
             Document::JsonLines => "application/jsonl",
+            Document::Sarif => "application/sarif+json",
+            Document::Junit => "application/xml",
             Document::Text | Document::Fix => "text/plain; charset=utf-8",
             Document::Markdown => "text/markdown; charset=utf-8",
             Document::Svg => "image/svg+xml",

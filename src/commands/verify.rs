@@ -67,6 +67,21 @@ pub struct VerifyArgs {
     #[cfg_attr(feature = "cli", arg(long, value_name = "FILE|-", requires = "programs"))]
     #[serde(skip)]
     pub json_lines: Option<String>,
+    /// With PROGRAM|FOLDER: SARIF 2.1.0 for code scanning (a result per failing check, at the
+    /// operation's line and column; one per unreadable program), to this file or `-`.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE|-", requires = "programs"))]
+    #[serde(skip)]
+    pub sarif: Option<String>,
+    /// With PROGRAM|FOLDER: JUnit XML for a CI server's test view (a suite per program, a case
+    /// per operation), to this file or `-`.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE|-", requires = "programs"))]
+    #[serde(skip)]
+    pub junit: Option<String>,
+    /// With PROGRAM|FOLDER: what standard output shows instead of the lines: `sarif`, `junit` or
+    /// `json-lines` (the same as `--sarif -`, `--junit -`, `--json-lines -`).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FORMAT", requires = "programs", value_parser = ["text", "sarif", "junit", "json-lines"]))]
+    #[serde(skip)]
+    pub format: Option<String>,
 }
 
 super::args::api_args!(VerifyArgs, shares plan: PlanArgs);
@@ -74,11 +89,32 @@ super::args::api_args!(VerifyArgs, shares plan: PlanArgs);
 impl Job for VerifyArgs {
     const NAME: &'static str = "verify";
     const DOCUMENTS: &'static [Document] =
-        &[Document::Json, Document::Text, Document::Svg, Document::Html, Document::Fix, Document::JsonLines];
+        &[
+            Document::Json,
+            Document::Text,
+            Document::Svg,
+            Document::Html,
+            Document::Fix,
+            Document::JsonLines,
+            Document::Sarif,
+            Document::Junit,
+        ];
 
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
         if !self.programs.is_empty() {
             return self.run_many(request);
+        }
+        for (given, what) in [
+            (self.json_lines.is_some(), "json_lines"),
+            (self.sarif.is_some(), "sarif"),
+            (self.junit.is_some(), "junit"),
+            (self.format.is_some(), "format"),
+        ] {
+            if given {
+                return Err(Error::Input(format!(
+                    "‹{what}› describes a run of programs: name them as PROGRAM|FOLDER (without ‹program›)"
+                )));
+            }
         }
         if self.stock_bottom.is_some() && self.plan.program.is_none() {
             return Err(Error::Input(
@@ -124,7 +160,21 @@ impl Job for VerifyArgs {
 
     fn destinations(&self) -> Vec<(Document, Dest)> {
         let mut d = self.out.destinations(Some(&self.fix));
-        d.extend(super::Dest::list([(Document::JsonLines, &self.json_lines)], []));
+        d.extend(super::Dest::list(
+            [
+                (Document::JsonLines, &self.json_lines),
+                (Document::Sarif, &self.sarif),
+                (Document::Junit, &self.junit),
+            ],
+            [],
+        ));
+        let to_stdout = match self.format.as_deref() {
+            Some("sarif") => Some(Document::Sarif),
+            Some("junit") => Some(Document::Junit),
+            Some("json-lines") => Some(Document::JsonLines),
+            _ => None,
+        };
+        d.extend(to_stdout.map(|doc| (doc, Dest::Stdout)));
         d
     }
 }
@@ -194,6 +244,10 @@ impl VerifyArgs {
         let tools = self.tools.as_ref().map(|t| tool_table(t, request.files)).transpose()?;
         let lines = request.wants(Document::JsonLines);
         let (mut text, mut jsonl, mut summary) = (String::new(), String::new(), BatchSummary::default());
+        // SARIF and JUnit are one document over the whole run: the programs' views are kept
+        // (their lines only, never the verifications).
+        let keep = request.wants(Document::Sarif) || request.wants(Document::Junit);
+        let mut kept = Vec::new();
         for chunk in files.chunks(64) {
             let done: Vec<BatchProgram> = chunk
                 .par_iter()
@@ -203,6 +257,9 @@ impl VerifyArgs {
                         plan: PlanArgs { program: Some(Source::Path(file.clone())), ..self.plan.clone() },
                         programs: Vec::new(),
                         json_lines: None,
+                        sarif: None,
+                        junit: None,
+                        format: None,
                         ..self.clone()
                     };
                     let verified = one.plan.spec(request.files).and_then(|mut spec| {
@@ -217,10 +274,14 @@ impl VerifyArgs {
                     match verified {
                         Ok((shown, _, pv)) => BatchProgram::of(&shown, &pv),
                         Err(e) => {
+                            let at = match &e {
+                                Error::Program { line, column, .. } => Some((*line, *column)),
+                                _ => None,
+                            };
                             let line = e.to_string();
                             let line =
                                 if line.starts_with(&shown) { line } else { format!("{shown}: {line}") };
-                            BatchProgram::unreadable(&shown, format!("error: {line}"))
+                            BatchProgram::unreadable(&shown, format!("error: {line}"), at)
                         }
                     }
                 })
@@ -232,6 +293,9 @@ impl VerifyArgs {
                     jsonl.push_str(&serde_json::to_string(p).map_err(|e| Error::Data(e.to_string()))?);
                     jsonl.push('\n');
                 }
+            }
+            if keep {
+                kept.extend(done);
             }
         }
         text.push_str(&summary.text());
@@ -248,7 +312,14 @@ impl VerifyArgs {
         inputs.extend(self.tools.as_ref().and_then(Source::file));
         Ok(Outputs::new(
             outcome,
-            [Some((Document::Text, text)), lines.then_some((Document::JsonLines, jsonl))],
+            [
+                Some((Document::Text, text)),
+                lines.then_some((Document::JsonLines, jsonl)),
+                request.render(Document::Sarif, || {
+                    crate::report::sarif::sarif_log(&kept, env!("CARGO_PKG_VERSION"), outcome.exit_code())
+                })?,
+                request.render(Document::Junit, || crate::report::junit::junit_xml(&kept))?,
+            ],
         )
         .reading(inputs))
     }

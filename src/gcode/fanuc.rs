@@ -276,7 +276,7 @@ fn g92(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), 
         .ok_or_else(|| m.err(b.line, col, format!("{name} needs Z, the end of the thread")))?;
     let op = match s.g92 {
         Some((op, ze, _, _)) if (ze - z_end).abs() < 1e-9 && (m.op_mut(op).lead() - lead).abs() < 1e-12 => op,
-        _ => m.begin_op(&name, b.line),
+        _ => m.begin_op(&name, b),
     };
     s.g92 = Some((op, z_end, r, q));
     let Some(x_end) = x else {
@@ -410,7 +410,7 @@ fn two_block_g76(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> R
     let half = 0.5 * first.angle;
     let shifts = cycles::shifts(if half > 0.0 { Shift::Flank(half) } else { Shift::Radial }, &depths, dir);
     let chamfer = f64::from(first.chamfer_tenths) / 10.0 * lead;
-    let op = m.begin_op(&name, b.line);
+    let op = m.begin_op(&name, b);
     m.op_mut(op).infeed_angle = Some((half, "P(m)(r)(a): a/2".into()));
     for (d, sh) in depths.iter().zip(shifts) {
         // Root X at the end; the taper R (radius start − end) applies to every pass.
@@ -536,7 +536,7 @@ pub(crate) fn one_block_g76(
     let shifts = cycles::shifts(shift, &depths, dir);
     let chamfer = if st.chamfer { st.chamfer_leads * f } else { 0.0 };
     let phase = dir * q / 360.0 * f;
-    let op = m.begin_op(cycle, b.line);
+    let op = m.begin_op(cycle, b);
     if half > 0.0 {
         m.op_mut(op).infeed_angle = Some((half, "A/2".into()));
     }

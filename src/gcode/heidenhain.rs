@@ -325,7 +325,7 @@ fn g31(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
     let x_start = x_end - 2.0 * r;
     let sign = if inside { 1.0 } else { -1.0 };
     m.break_chain();
-    let op = m.begin_op("G31", b.line);
+    let op = m.begin_op("G31", b);
     if matches!(offset, Offset::Left | Offset::Right) {
         m.op_mut(op).infeed_angle = Some((angle, format!("A (H{h_number})")));
     }

@@ -521,7 +521,7 @@ fn g76(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {
     let dir = if z_end < z0 { -1.0 } else { 1.0 };
     let tq = q.to_radians().tan();
     let (tin, tout) = (if l_bits & 1 != 0 { e } else { 0.0 }, if l_bits & 2 != 0 { e } else { 0.0 });
-    let op = m.begin_op("G76", b.line);
+    let op = m.begin_op("G76", b);
     m.op_mut(op).infeed_angle = Some((q.abs(), "Q".into()));
     let inward = if external { -1.0 } else { 1.0 };
     for d in depths {

@@ -225,6 +225,9 @@ pub struct Operation {
     pub cycle: String,
     /// First program line of the operation.
     pub source_line: usize,
+    /// 1-based column of the word that calls it on that line (`G76`, `CYCLE97`), else of the
+    /// block's first word.
+    pub source_column: usize,
     /// The tool number active (T), if the program names one.
     pub tool: Option<u32>,
     /// Spindle state at the operation.

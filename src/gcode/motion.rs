@@ -657,14 +657,26 @@ impl Motion {
         Spindle { s: self.s, constant_surface_speed: self.css }
     }
 
-    /// Starts a new operation for a cycle call; returns its index.
-    pub fn begin_op(&mut self, cycle: &str, line: usize) -> usize {
+    /// Starts a new operation for a cycle call in block `b`; returns its index.
+    pub fn begin_op(&mut self, cycle: &str, b: &RBlock<'_>) -> usize {
+        // The column of the word that names the cycle (`G76`, `CYCLE97`, `L97`), else the
+        // block's first word's.
+        let column = b
+            .words
+            .iter()
+            .find(|w| {
+                w.name.eq_ignore_ascii_case(cycle)
+                    || cycle.strip_prefix(w.name).and_then(|c| c.parse::<f64>().ok()) == Some(w.v)
+            })
+            .map_or(b.col, |w| w.col);
+        let line = b.line;
         self.break_chain();
         self.loose = None;
         self.ops.push(Operation {
             index: self.ops.len() + 1,
             cycle: cycle.to_string(),
             source_line: line,
+            source_column: column,
             tool: self.tool,
             spindle: self.spindle(),
             infeed_angle: None,
@@ -863,7 +875,7 @@ impl Motion {
                 let op = match self.loose {
                     Some(op) if self.joins(op, lead, z0, z1) => op,
                     _ => {
-                        let op = self.begin_op(cycle, b.line);
+                        let op = self.begin_op(cycle, b);
                         // Passes written by hand: their rapids are blocks of their own.
                         self.ops[op].start = None;
                         self.loose = Some(op);

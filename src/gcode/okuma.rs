@@ -124,7 +124,7 @@ fn g33(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), 
             let dir = if z_end < z0 { -1.0 } else { 1.0 };
             let zs = z0 + dir * c / 360.0 * lead;
             m.break_chain();
-            (m.begin_op("G33", b.line), z_end, lead, zs)
+            (m.begin_op("G33", b), z_end, lead, zs)
         }
     };
     m.lead = Some(lead);
@@ -263,7 +263,7 @@ fn g71(s: &mut State, m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), 
         m.note(b.line, col, "G71 under constant surface speed (G96); threading wants G97");
     }
     m.break_chain();
-    let op = m.begin_op("G71", b.line);
+    let op = m.begin_op("G71", b);
     if half > 0.0 {
         m.op_mut(op).infeed_angle = Some((half, format!("B/2 (M{infeed})")));
     }

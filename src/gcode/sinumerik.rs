@@ -419,7 +419,7 @@ fn l97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>, cx: &mut Ctx<'_>) -> Resul
     depths.extend(std::iter::repeat_n(t_full, idle as usize));
     let shift = if angle != 0.0 { Shift::Flank(angle.abs()) } else { Shift::Radial };
     let shifts = cycles::shifts(shift, &depths, dz);
-    let op = m.begin_op("L97", b.line);
+    let op = m.begin_op("L97", b);
     {
         let o = m.op_mut(op);
         o.infeed_angle = Some((angle.abs(), "R29".into()));
@@ -484,7 +484,7 @@ fn l96(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>, cx: &mut Ctx<'_>) -> Resul
         depths.push(t_full);
     }
     depths.extend(std::iter::repeat_n(t_full, idle as usize));
-    let op = m.begin_op("L96", b.line);
+    let op = m.begin_op("L96", b);
     {
         let o = m.op_mut(op);
         o.infeed_angle = Some((0.0, "L96 (radial)".into()));
@@ -961,7 +961,7 @@ fn cut_thread_call(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>, c: &ThreadCall
     let dir = if c.at.fpl < c.at.spl { -1.0 } else { 1.0 };
     let offsets = cycles::shifts(c.shift, &c.depths, dir);
     let lead = c.pitch * f64::from(c.starts);
-    let op = m.begin_op(c.name, b.line);
+    let op = m.begin_op(c.name, b);
     m.op_mut(op).infeed_angle = Some((c.iang.abs(), "IANG".into()));
     let args = w.args.as_deref().unwrap_or_default();
     let tdep_col = args.get(c.tdep_arg).map_or(w.col, |a| a.1);

@@ -15,6 +15,8 @@ pub struct BatchOperation {
     pub made: Process,
     /// Its line (the cycle's; a milled thread's first helix).
     pub line: usize,
+    /// Its column on that line: the word that calls the cycle (1 for a milled thread).
+    pub column: usize,
     /// The thread it was checked against (empty when not checked).
     pub designation: String,
     /// Where that came from (`None` when not checked).
@@ -23,6 +25,56 @@ pub struct BatchOperation {
     pub verdict: Verdict,
     /// The checks that fail, by name (or why it was not checked, or nothing was cut).
     pub failed: Vec<String>,
+    /// The same, each as a finding: its rule and a sentence with the value and the limit.
+    pub findings: Vec<Finding>,
+}
+
+/// A failing check of an operation, as SARIF, JUnit, the filter and the editor show it.
+#[derive(Clone, Debug, Serialize)]
+pub struct Finding {
+    /// The rule: the process and the check's JSON name (`turned.pitch_diameter`,
+    /// `tapped.drill_diameter`, `turned.no_cut`, `milled.not_checked`).
+    pub rule: String,
+    /// The sentence: what is off and by how much.
+    pub message: String,
+}
+
+/// A turned (or milled) check's sentence: `pitch diameter d2 22.5312 mm, limits 22.5670 …
+/// 22.6690 mm (−35.8 µm); low-z`.
+fn check_sentence(c: &crate::analysis::check::Check, kind: crate::ThreadKind) -> String {
+    let cells = super::check_cells(c);
+    let unit = if cells.unit.is_empty() { String::new() } else { format!(" {}", cells.unit) };
+    let limits = match (cells.min.trim_start_matches('—'), cells.max.trim_start_matches('—')) {
+        ("", "") => String::new(),
+        (lo, "") => format!(", at least {lo}{unit}"),
+        ("", hi) => format!(", at most {hi}{unit}"),
+        (lo, hi) => format!(", limits {lo} … {hi}{unit}"),
+    };
+    let dev = if cells.deviation.is_empty() { String::new() } else { format!(" ({})", cells.deviation) };
+    let note = c.note.as_deref().map_or(String::new(), |n| format!("; {n}"));
+    format!("{} {}{unit}{limits}{dev}{note}", c.feature.words(kind), cells.value)
+}
+
+/// A tapping check's sentence: `feed 1.2000 mm/rev, limits 1.2500 … 1.2500 (−50.0 µm); …`.
+fn tap_sentence(k: &crate::analysis::tapping::TapCheck) -> String {
+    let num = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.4}"));
+    let unit = if k.unit.is_empty() { String::new() } else { format!(" {}", k.unit) };
+    let value = k.value.map_or(String::new(), |v| format!(" {v:.4}{unit}"));
+    let limits = match (num(k.min), num(k.max)) {
+        (lo, hi) if lo.is_empty() && hi.is_empty() => String::new(),
+        (lo, hi) if hi.is_empty() => format!(", at least {lo}{unit}"),
+        (lo, hi) if lo.is_empty() => format!(", at most {hi}{unit}"),
+        (lo, hi) => format!(", limits {lo} … {hi}{unit}"),
+    };
+    let dev = if k.deviation == 0.0 || k.value.is_none() {
+        String::new()
+    } else if k.unit == "mm/min" {
+        format!(" ({:+.1} mm/min)", k.deviation)
+    } else {
+        format!(" ({:+.1} µm)", k.deviation)
+    };
+    let note = if k.note.is_empty() { String::new() } else { format!("; {}", k.note) };
+    format!("{}{value}{limits}{dev}{note}", crate::report::tapping::feature_name(k.feature))
 }
 
 /// One program of a run: its verdict and operations, or the one line that says why it could
@@ -42,6 +94,9 @@ pub struct BatchProgram {
     /// Why it could not be read: the one located line (absent when read).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
+    /// Where that error is, when it names a place in the program: line and column.
+    #[serde(skip)]
+    pub error_at: Option<(usize, usize)>,
 }
 
 impl BatchProgram {
@@ -51,26 +106,36 @@ impl BatchProgram {
             .operations
             .iter()
             .map(|o| {
-                let (verdict, failed) = match &o.result {
-                    OperationResult::Verified(v) => (
-                        Verdict::of(v.pass),
-                        v.checks
-                            .iter()
-                            .filter(|c| !c.ok && c.kind.counts(v.gauge_only))
-                            .map(|c| c.feature.words(v.kind).to_string())
-                            .collect(),
-                    ),
-                    OperationResult::NoCut { reason, .. } => {
-                        (Verdict::Fail, vec![format!("no cut: {reason}")])
+                let (verdict, failed, findings) = match &o.result {
+                    OperationResult::Verified(v) => {
+                        let bad: Vec<_> =
+                            v.checks.iter().filter(|c| !c.ok && c.kind.counts(v.gauge_only)).collect();
+                        (
+                            Verdict::of(v.pass),
+                            bad.iter().map(|c| c.feature.words(v.kind).to_string()).collect(),
+                            bad.iter()
+                                .map(|c| Finding {
+                                    rule: format!("turned.{}", c.feature.name()),
+                                    message: check_sentence(c, v.kind),
+                                })
+                                .collect(),
+                        )
                     }
+                    OperationResult::NoCut { reason, .. } => (
+                        Verdict::Fail,
+                        vec![format!("no cut: {reason}")],
+                        vec![Finding { rule: "turned.no_cut".into(), message: format!("no cut: {reason}") }],
+                    ),
                 };
                 BatchOperation {
                     made: Process::Turned,
                     line: o.operation.source_line,
+                    column: o.operation.source_column,
                     designation: o.designation.clone(),
                     designation_from: Some(o.named.from),
                     verdict,
                     failed,
+                    findings,
                 }
             })
             .collect();
@@ -78,6 +143,7 @@ impl BatchProgram {
             BatchOperation {
                 made: Process::Tapped,
                 line: h.cycle.line,
+                column: h.cycle.column,
                 designation: h.tap.designation.clone(),
                 designation_from: Some(h.tap.designation_from),
                 verdict: Verdict::of(h.pass),
@@ -87,25 +153,46 @@ impl BatchProgram {
                     .filter(|c| !c.ok)
                     .map(|c| crate::report::tapping::feature_name(c.feature).to_string())
                     .collect(),
+                findings: h
+                    .checks
+                    .iter()
+                    .filter(|c| !c.ok)
+                    .map(|k| Finding { rule: format!("tapped.{}", k.feature.name()), message: tap_sentence(k) })
+                    .collect(),
             }
         }));
         operations.extend(pv.milled.iter().map(|m| match m {
             Milled::Checked(r) => BatchOperation {
                 made: Process::Milled,
                 line: r.helices.first().map_or(1, |h| h.line),
+                column: 1,
                 designation: r.designation.clone(),
                 designation_from: Some(r.named.from),
                 verdict: Verdict::of(r.pass),
                 failed:
                     r.checks.iter().filter(|c| !c.ok).map(|c| c.feature.words(r.kind).to_string()).collect(),
+                findings: r
+                    .checks
+                    .iter()
+                    .filter(|c| !c.ok)
+                    .map(|c| Finding {
+                        rule: format!("milled.{}", c.feature.name()),
+                        message: check_sentence(c, r.kind),
+                    })
+                    .collect(),
             },
             Milled::NotChecked { line, reason } => BatchOperation {
                 made: Process::Milled,
                 line: *line,
+                column: 1,
                 designation: String::new(),
                 designation_from: None,
                 verdict: Verdict::Fail,
                 failed: vec![format!("not checked: {reason}")],
+                findings: vec![Finding {
+                    rule: "milled.not_checked".into(),
+                    message: format!("not checked: {reason}"),
+                }],
             },
         }));
         BatchProgram {
@@ -114,17 +201,19 @@ impl BatchProgram {
             verdict: if pv.pass() { "pass" } else { "fail" },
             operations,
             error: None,
+            error_at: None,
         }
     }
 
     /// A program that could not be read: `line` is the error's one line.
-    pub fn unreadable(file: &str, line: String) -> BatchProgram {
+    pub fn unreadable(file: &str, line: String, at: Option<(usize, usize)>) -> BatchProgram {
         BatchProgram {
             file: file.to_string(),
             dialect: None,
             verdict: "error",
             operations: Vec::new(),
             error: Some(line),
+            error_at: at,
         }
     }
 
