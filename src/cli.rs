@@ -3,7 +3,9 @@
 //! its flags name and the one writer delivers its documents. This module belongs to the binary.
 
 use clap::{Parser, Subcommand};
-use threadcheck::{deliver, Audience, Command, Document, Error, Files, Outcome, Request, ServeArgs, Shown};
+use threadcheck::{
+    deliver, Audience, Command, Document, Error, Files, FilterArgs, Outcome, Request, ServeArgs, Shown,
+};
 
 /// Predicts the thread a CNC program cuts (turned, tapped or thread-milled) and checks it
 /// against its standard.
@@ -23,6 +25,10 @@ enum Top {
     /// The shop's page and the JSON API on this computer: open the address it prints in a
     /// browser (verify, compare, fit, limits); scripts POST to /api/verify and the like.
     Serve(ServeArgs),
+    /// LinuxCNC's program filter: copies FILE to standard output, one line per failing thread
+    /// on standard error, and with --gate exits 1 so that the control refuses the program
+    /// (`[FILTER]` in the machine's INI file: docs/guide/where-programs-live.md).
+    Filter(FilterArgs),
 }
 
 /// The one-line form of clap's rendered error: the message and its tips, without the usage
@@ -54,6 +60,14 @@ impl Cli {
                     let _ = out.flush();
                 })?;
                 return Ok((Shown::default(), Outcome::Pass));
+            }
+            Top::Filter(a) => {
+                // The program's bytes as read: written here, not through the text documents.
+                use std::io::Write;
+                let out = threadcheck::filter(&a)?;
+                let written = std::io::stdout().lock().write_all(&out.stdout).and_then(|()| std::io::stdout().flush());
+                written.map_err(|e| Error::Io { path: "standard output".into(), source: e })?;
+                return Ok((Shown { stdout: String::new(), stderr: out.stderr }, out.outcome));
             }
         };
         let dests = command.destinations();

@@ -142,8 +142,8 @@ pub use report::output::write_files;
 // The commands: each one's arguments (the command line's flags, the API's keys, Python's
 // keywords), its job and the one writer of its documents.
 pub use commands::{
-    deliver, run_request, ApiArgs, CapabilityArgs, Command, CompareArgs, CorrectArgs, Dest, Document, Files,
-    FitArgs, FormSet, InsertSet, Job, JsonArg, LimitsArgs, MillArgs, NoShared, ONumber, Outcome, Outputs,
+    deliver, filter, run_request, ApiArgs, CapabilityArgs, Command, CompareArgs, CorrectArgs, Dest, Document,
+    Files, FilterArgs, Filtered, FitArgs, FormSet, InsertSet, Job, JsonArg, LimitsArgs, MillArgs, NoShared, ONumber, Outcome, Outputs,
     PassesArgs, PlanArgs, ProgramArgs, ReportArgs, ReportName, Request, SeriesSet, Shown, Source, SweepArgs,
     TapArgs, ThreadMillArgs, VerifyArgs, CAPABLE_CPK,
 };

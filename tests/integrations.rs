@@ -5,6 +5,7 @@
 //! `tests/data/schemas/`).
 
 use crate::*;
+use std::path::Path;
 
 /// Our test programs in a folder, with a broken one whose place is known: line 3's bare `G` at
 /// column 29.
@@ -115,4 +116,173 @@ fn sarif_and_junit_belong_to_a_run_of_programs() {
     let o = run_in(&dir, &["verify", "lib", "--format", "sarif", "--junit", "-"]);
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(one_line_error(&o).lines().count(), 1);
+}
+
+/// What LinuxCNC's AXIS does with a `[FILTER]` program (`src/emc/usr_intf/axis/scripts/axis.py`,
+/// `filter_program`, lines 1130–1165 at LinuxCNC commit 5c41560e): runs `sh -c "FILTER 'FILE'"`
+/// (a `'` in the name written `'\''`) with `AXIS_PROGRESS_BAR=1` in the environment and no
+/// standard input, the program's standard output into the file it then loads, and reads standard
+/// error line by line: a line matching `^FILTER_PROGRESS=(\d*)$` moves the progress bar, every
+/// other line is kept and shown in the "Filter failed" dialog when the exit code is not 0 (and
+/// the program is then not loaded). Returns the exit code, the loaded bytes, the kept text and
+/// the progress values. Written here from that description, not copied.
+fn as_axis_runs(filter: &str, file: &std::path::Path) -> (i32, Vec<u8>, String, Vec<u32>) {
+    use std::io::BufRead;
+    let out_dir = tempdir("axis-filtered");
+    let loaded = out_dir.join("filtered");
+    let quoted = file.to_str().unwrap().replace('\'', "'\\''");
+    let mut child = Command::new("sh")
+        .arg("-c")
+        .arg(format!("{filter} '{quoted}'"))
+        .env("AXIS_PROGRESS_BAR", "1")
+        .stdin(std::process::Stdio::null())
+        .stdout(std::fs::File::create(&loaded).unwrap())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let (mut kept, mut progress) = (String::new(), Vec::new());
+    for line in std::io::BufReader::new(child.stderr.take().unwrap()).lines() {
+        let line = line.unwrap();
+        match line.strip_prefix("FILTER_PROGRESS=").filter(|d| d.chars().all(|c| c.is_ascii_digit())) {
+            Some(d) => progress.push(d.parse().unwrap()),
+            None => {
+                kept.push_str(&line);
+                kept.push('\n');
+            }
+        }
+    }
+    let code = child.wait().unwrap().code().unwrap();
+    (code, std::fs::read(&loaded).unwrap(), kept, progress)
+}
+
+/// Issue 49 item 1: the filter as AXIS runs it. A program whose threads pass loads as it is
+/// (every byte, a Latin-1 comment byte included; progress 0 then 100); one whose turned thread
+/// fails (the shaft with the default partial insert: its root radius 0.04 mm under ISO 68-1's
+/// 0.125·P = 0.25 mm) is refused with `--gate`, the dialog showing one located line; a program
+/// threadcheck cannot read loads with its reason, unless `--strict`. A name with a quote in it
+/// reaches the filter whole.
+#[test]
+fn the_filter_as_axis_runs_it() {
+    let dir = tempdir("filter");
+    let bin = env!("CARGO_BIN_EXE_threadcheck");
+    let mut shaft = std::fs::read(data("whole/shaft.nc")).unwrap();
+    // A comment byte of a Latin-1 editor (0xB0, the degree sign) in the tool's line.
+    let at = shaft.windows(4).position(|w| w == b"(OD ").unwrap();
+    shaft.splice(at + 1..at + 1, [0xB0u8, b' ']);
+    let good = dir.join("shop's shaft.nc");
+    std::fs::write(&good, &shaft).unwrap();
+    let (code, loaded, kept, progress) = as_axis_runs(&format!("{bin} filter --gate --insert full"), &good);
+    assert_eq!(code, 0, "{kept}");
+    assert_eq!(loaded, shaft, "the program is loaded unchanged");
+    assert_eq!(kept, "", "nothing to show");
+    assert_eq!(progress, vec![0, 100]);
+
+    let (code, loaded, kept, _) = as_axis_runs(&format!("{bin} filter --gate"), &good);
+    assert_eq!(code, 1);
+    assert_eq!(loaded, shaft);
+    let lines: Vec<&str> = kept.lines().collect();
+    assert_eq!(lines.len(), 1, "{kept}");
+    let place = format!("threadcheck: {}:8:1: FAIL turned M24X2-6g: ", good.display());
+    assert!(lines[0].starts_with(&place), "{kept}");
+    assert!(lines[0].contains("root radius 0.0400 mm, at least 0.2500 mm"), "{kept}");
+    // Without --gate the same findings are printed and the program loads.
+    let (code, _, kept_too, _) = as_axis_runs(&format!("{bin} filter"), &good);
+    assert_eq!((code, kept_too), (0, kept));
+
+    let broken = dir.join("broken.ngc");
+    std::fs::write(&broken, "G18 G21\nG0 X10 Z5\nG33 Z-10 K\n").unwrap();
+    let (code, loaded, kept, _) = as_axis_runs(&format!("{bin} filter --gate"), &broken);
+    assert_eq!(code, 0, "an unreadable program loads without --strict");
+    assert_eq!(loaded, std::fs::read(&broken).unwrap());
+    assert!(kept.starts_with(&format!("threadcheck: not checked: {}:3:", broken.display())), "{kept}");
+    let (code, _, _, _) = as_axis_runs(&format!("{bin} filter --gate --strict"), &broken);
+    assert_eq!(code, 2);
+
+    let missing = dir.join("missing.ngc");
+    let (code, _, kept, _) = as_axis_runs(&format!("{bin} filter --gate"), &missing);
+    assert_eq!(code, 2);
+    assert!(kept.starts_with("threadcheck: error: "), "{kept}");
+}
+
+/// `--msg`: each finding as a `(MSG, …)` line after the program's opening `%`, which LinuxCNC's
+/// own interpreter reads as a message (rs274 prints `MESSAGE(…)`); the rest of the program
+/// follows unchanged.
+#[test]
+fn the_filter_s_messages_are_read_by_linuxcnc() {
+    let dir = tempdir("filter-msg");
+    let program = dir.join("part.ngc");
+    // A LinuxCNC lathe program whose G76 cuts far too shallow for M10x1.5: from the drive line
+    // X12, I-2.15 puts the crest on the turned Ø9.85 and K0.2 the root at X9.65 (in G7 both are
+    // diameters, as rs274 agrees: its last feed is at radius 4.825), where 6g's d3 is at most
+    // 8.344 (ISO 965-1). K1.84 (root X8.01) cuts the thread in tolerance.
+    let text = "%\n(M10X1.5 THREAD)\nG7 G18 G21 G90\nS500 M3\nG0 X9.85 Z2\nG1 Z-25 F0.1\nG0 X12 Z2\nG76 P1.5 Z-20 I-2.15 J0.05 K0.2 Q29.5 R1.5 H1 E0 L0\nG0 X20 Z20\nM2\n%\n";
+    std::fs::write(dir.join("good.ngc"), text.replace("K0.2 ", "K1.84 ")).unwrap();
+    let o = run_in(&dir, &["filter", "--msg", "--gate", "--insert", "full", "good.ngc"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_eq!(stdout(&o), text.replace("K0.2 ", "K1.84 "), "a passing program gets no message");
+    std::fs::write(&program, text).unwrap();
+    let o = run_in(&dir, &["filter", "--msg", "--insert", "full", "part.ngc"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let filtered = stdout(&o);
+    let lines: Vec<&str> = filtered.lines().collect();
+    assert_eq!(lines[0], "%");
+    // One message per failing check: d2, d3, both flank angles, the GO gauge.
+    let msgs: Vec<&str> = lines[1..].iter().copied().take_while(|l| l.starts_with("(MSG, ")).collect();
+    assert_eq!(msgs.len(), 5, "{filtered}");
+    assert!(msgs[0].starts_with("(MSG, threadcheck: part.ngc:8: FAIL turned M10X1.5-6g: pitch diameter d2 "), "{filtered}");
+    for m in &msgs {
+        assert!(m.len() <= 254, "LinuxCNC reads lines of at most 254 bytes: {m}");
+        assert!(!m[1..m.len() - 1].contains(['(', ')']), "one comment: {m}");
+    }
+    assert_eq!(&filtered[filtered.find("(M10X1.5").unwrap()..], &text[2..]);
+    let written = dir.join("filtered.ngc");
+    std::fs::write(&written, &filtered).unwrap();
+    let canon = Command::new(crate::linuxcnc::rs274()).arg("-g").arg(&written).output().unwrap();
+    let canon = String::from_utf8_lossy(&canon.stdout).to_string();
+    let shown: Vec<&str> = canon.lines().filter(|l| l.contains("MESSAGE(")).collect();
+    assert_eq!(shown.len(), 5, "{canon}");
+    assert!(shown[0].contains("MESSAGE(\" threadcheck: part.ngc:8: FAIL turned M10X1.5-6g: pitch diameter d2"), "{canon}");
+}
+
+/// The M150 gate (`docs/guide/linuxcnc/M150`) as LinuxCNC runs a user M-code: `M150 P Q` with P
+/// and Q as its arguments, the program stopped when it exits non-zero. Its one dependency on a
+/// running LinuxCNC, `linuxcnc.stat().file` (the loaded program), is a stand-in module here that
+/// answers what the GUI would; the threadcheck it calls is this build.
+#[test]
+fn the_m150_gate_stops_a_program_whose_thread_fails() {
+    let dir = tempdir("m150");
+    let bin_dir = dir.join("bin");
+    std::fs::create_dir_all(&bin_dir).unwrap();
+    std::os::unix::fs::symlink(env!("CARGO_BIN_EXE_threadcheck"), bin_dir.join("threadcheck")).unwrap();
+    std::fs::write(
+        dir.join("linuxcnc.py"),
+        "import os\nclass stat:\n    def poll(self):\n        self.file = os.environ['LOADED']\n",
+    )
+    .unwrap();
+    let shaft = dir.join("shaft.nc");
+    std::fs::copy(data("whole/shaft.nc"), &shaft).unwrap();
+    let broken = dir.join("broken.nc");
+    std::fs::write(&broken, "G0 X10 Z5\nG76 P010060 Q100 R0.05\nG76 X8 Z-10 P1000 Q300 F1.5 G\n").unwrap();
+    let m150 = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/guide/linuxcnc/M150");
+    let gate = |loaded: &Path, flags: &str, p: &str| {
+        let path = format!("{}:{}", bin_dir.display(), std::env::var("PATH").unwrap_or_default());
+        Command::new(&m150)
+            .args([p, "0"])
+            .env("PATH", path)
+            .env("PYTHONPATH", &dir)
+            .env("LOADED", loaded)
+            .env("THREADCHECK_FLAGS", flags)
+            .output()
+            .unwrap()
+    };
+    // The shaft's turned thread with the default partial insert fails (its root radius).
+    let o = gate(&shaft, "", "0");
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("shaft.nc:8:1: FAIL turned M24X2-6g"), "{}", stderr(&o));
+    assert_eq!(stdout(&o), "", "the program's copy is not printed");
+    let o = gate(&shaft, "--insert full", "0");
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    // An unreadable program runs unless P1 asks for --strict.
+    assert_eq!(gate(&broken, "", "0").status.code(), Some(0));
+    assert_eq!(gate(&broken, "", "1").status.code(), Some(2));
 }

@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 use threadcheck::{read_program_with, Dialect, LinuxCncRelease, ReadOptions};
 
 /// `rs274` on the PATH, or a failure that says how to get it.
-fn rs274() -> PathBuf {
+pub(crate) fn rs274() -> PathBuf {
     let found = std::env::var_os("PATH")
         .and_then(|paths| std::env::split_paths(&paths).map(|d| d.join("rs274")).find(|p| p.is_file()));
     found.unwrap_or_else(|| {

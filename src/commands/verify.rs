@@ -249,43 +249,8 @@ impl VerifyArgs {
         let keep = request.wants(Document::Sarif) || request.wants(Document::Junit);
         let mut kept = Vec::new();
         for chunk in files.chunks(64) {
-            let done: Vec<BatchProgram> = chunk
-                .par_iter()
-                .map(|file| {
-                    let shown = file.display().to_string();
-                    let one = VerifyArgs {
-                        plan: PlanArgs { program: Some(Source::Path(file.clone())), ..self.plan.clone() },
-                        programs: Vec::new(),
-                        json_lines: None,
-                        sarif: None,
-                        junit: None,
-                        format: None,
-                        ..self.clone()
-                    };
-                    let verified = one.plan.spec(request.files).and_then(|mut spec| {
-                        spec.gauge_only = self.gauge_only;
-                        spec.stock_bottom = self.stock_bottom;
-                        spec.metrics = false;
-                        spec.picture = false;
-                        let (source, dialect) =
-                            spec.program.clone().ok_or_else(|| Error::Input("no program".into()))?;
-                        one.verification(&spec, &source, dialect, tools.as_ref())
-                    });
-                    match verified {
-                        Ok((shown, _, pv)) => BatchProgram::of(&shown, &pv),
-                        Err(e) => {
-                            let at = match &e {
-                                Error::Program { line, column, .. } => Some((*line, *column)),
-                                _ => None,
-                            };
-                            let line = e.to_string();
-                            let line =
-                                if line.starts_with(&shown) { line } else { format!("{shown}: {line}") };
-                            BatchProgram::unreadable(&shown, format!("error: {line}"), at)
-                        }
-                    }
-                })
-                .collect();
+            let done: Vec<BatchProgram> =
+                chunk.par_iter().map(|file| self.one_of_many(file, tools.as_ref(), request)).collect();
             for p in &done {
                 summary.add(p);
                 text.push_str(&p.text());
@@ -322,6 +287,47 @@ impl VerifyArgs {
             ],
         )
         .reading(inputs))
+    }
+
+    /// One program of a run (or of the LinuxCNC filter): its view, or the located line that says
+    /// why it could not be read. Only the views are kept: no pictures, no per-pass metrics.
+    pub(crate) fn one_of_many(
+        &self,
+        file: &std::path::Path,
+        tools: Option<&crate::analysis::tools::ToolTable>,
+        request: &Request,
+    ) -> crate::report::batch::BatchProgram {
+        use crate::report::batch::BatchProgram;
+        let shown = file.display().to_string();
+        let one = VerifyArgs {
+            plan: PlanArgs { program: Some(Source::Path(file.to_path_buf())), ..self.plan.clone() },
+            programs: Vec::new(),
+            json_lines: None,
+            sarif: None,
+            junit: None,
+            format: None,
+            ..self.clone()
+        };
+        let verified = one.plan.spec(request.files).and_then(|mut spec| {
+            spec.gauge_only = self.gauge_only;
+            spec.stock_bottom = self.stock_bottom;
+            spec.metrics = false;
+            spec.picture = false;
+            let (source, dialect) = spec.program.clone().ok_or_else(|| Error::Input("no program".into()))?;
+            one.verification(&spec, &source, dialect, tools)
+        });
+        match verified {
+            Ok((shown, _, pv)) => BatchProgram::of(&shown, &pv),
+            Err(e) => {
+                let at = match &e {
+                    Error::Program { line, column, .. } => Some((*line, *column)),
+                    _ => None,
+                };
+                let line = e.to_string();
+                let line = if line.starts_with(&shown) { line } else { format!("{shown}: {line}") };
+                BatchProgram::unreadable(&shown, format!("error: {line}"), at)
+            }
+        }
     }
 
     /// One program verified: its name as shown and every thread it makes, checked.
