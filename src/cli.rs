@@ -4,7 +4,8 @@
 
 use clap::{Parser, Subcommand};
 use threadcheck::{
-    deliver, Audience, Command, Document, Error, Files, FilterArgs, Outcome, Request, ServeArgs, Shown,
+    deliver, Audience, Command, Document, Error, Files, FilterArgs, LspArgs, Outcome, Request, ServeArgs,
+    Shown,
 };
 
 /// Predicts the thread a CNC program cuts (turned, tapped or thread-milled) and checks it
@@ -29,6 +30,10 @@ enum Top {
     /// on standard error, and with --gate exits 1 so that the control refuses the program
     /// (`[FILTER]` in the machine's INI file: docs/guide/where-programs-live.md).
     Filter(FilterArgs),
+    /// A language server for editors over standard input and output (VS Code, Neovim, Emacs,
+    /// Kate, …): every open program verified as it changes, a diagnostic per thread at its line,
+    /// hovers with every check, the correction as a quick fix (docs/guide/where-programs-live.md).
+    Lsp(LspArgs),
 }
 
 /// The one-line form of clap's rendered error: the message and its tips, without the usage
@@ -61,11 +66,20 @@ impl Cli {
                 })?;
                 return Ok((Shown::default(), Outcome::Pass));
             }
+            Top::Lsp(a) => {
+                // The protocol's exit codes: 0 after the client's shutdown, 1 without it.
+                let code = threadcheck::lsp(&a)?;
+                return Ok((
+                    Shown::default(),
+                    if code == 0 { Outcome::Pass } else { Outcome::OutOfTolerance },
+                ));
+            }
             Top::Filter(a) => {
                 // The program's bytes as read: written here, not through the text documents.
                 use std::io::Write;
                 let out = threadcheck::filter(&a)?;
-                let written = std::io::stdout().lock().write_all(&out.stdout).and_then(|()| std::io::stdout().flush());
+                let written =
+                    std::io::stdout().lock().write_all(&out.stdout).and_then(|()| std::io::stdout().flush());
                 written.map_err(|e| Error::Io { path: "standard output".into(), source: e })?;
                 return Ok((Shown { stdout: String::new(), stderr: out.stderr }, out.outcome));
             }

@@ -59,6 +59,7 @@ mod commands;
 mod gcode;
 mod geometry;
 mod ground;
+mod lsp;
 mod report;
 mod serve;
 mod standards;
@@ -133,6 +134,7 @@ pub use analysis::verify::{
 };
 pub use analysis::whole::{verify_whole, Milled, Process};
 
+pub use lsp::{lsp, run as lsp_run, LspArgs, MAX_OPEN_DOCUMENTS};
 pub use serve::{router, serve, ServeArgs, ServeOptions};
 
 // The one output writer of the command line and the Python package.
@@ -143,7 +145,7 @@ pub use report::output::write_files;
 // keywords), its job and the one writer of its documents.
 pub use commands::{
     deliver, filter, run_request, ApiArgs, CapabilityArgs, Command, CompareArgs, CorrectArgs, Dest, Document,
-    Files, FilterArgs, Filtered, FitArgs, FormSet, InsertSet, Job, JsonArg, LimitsArgs, MillArgs, NoShared, ONumber, Outcome, Outputs,
-    PassesArgs, PlanArgs, ProgramArgs, ReportArgs, ReportName, Request, SeriesSet, Shown, Source, SweepArgs,
-    TapArgs, ThreadMillArgs, VerifyArgs, CAPABLE_CPK,
+    Files, FilterArgs, Filtered, FitArgs, FormSet, InsertSet, Job, JsonArg, LimitsArgs, MillArgs, NoShared,
+    ONumber, Outcome, Outputs, PassesArgs, PlanArgs, ProgramArgs, ReportArgs, ReportName, Request, SeriesSet,
+    Shown, Source, SweepArgs, TapArgs, ThreadMillArgs, VerifyArgs, CAPABLE_CPK,
 };

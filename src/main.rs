@@ -51,7 +51,7 @@ fn usage_error(e: &clap::Error) -> ExitCode {
         }
         ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
             eprintln!(
-                "threadcheck: error: no command given: {}, serve, filter (threadcheck --help)",
+                "threadcheck: error: no command given: {}, serve, filter, lsp (threadcheck --help)",
                 threadcheck::Command::NAMES.join(", ")
             );
             ExitCode::from(2)

@@ -15,8 +15,11 @@ fn library(tag: &str) -> std::path::PathBuf {
     std::fs::create_dir_all(&lib).unwrap();
     std::fs::copy(data("whole/plate.nc"), lib.join("plate.nc")).unwrap();
     std::fs::copy(data("whole/shaft.nc"), lib.join("shaft.nc")).unwrap();
-    std::fs::write(lib.join("broken.nc"), "G0 X10 Z5\nG76 P010060 Q100 R0.05\nG76 X8 Z-10 P1000 Q300 F1.5 G\n")
-        .unwrap();
+    std::fs::write(
+        lib.join("broken.nc"),
+        "G0 X10 Z5\nG76 P010060 Q100 R0.05\nG76 X8 Z-10 P1000 Q300 F1.5 G\n",
+    )
+    .unwrap();
     dir
 }
 
@@ -59,8 +62,12 @@ fn sarif_puts_each_failing_check_at_its_line_and_column() {
     let d2 = results[2]["message"]["text"].as_str().unwrap();
     assert!(d2.starts_with("turned M24X2-6g: pitch diameter d2 "), "{d2}");
     assert!(d2.contains("limits 22.4930 … 22.6630 mm"), "{d2}");
-    let rules: Vec<&str> =
-        run["tool"]["driver"]["rules"].as_array().unwrap().iter().map(|r| r["id"].as_str().unwrap()).collect();
+    let rules: Vec<&str> = run["tool"]["driver"]["rules"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["id"].as_str().unwrap())
+        .collect();
     for r in results {
         let i = r["ruleIndex"].as_u64().unwrap() as usize;
         assert_eq!(rules[i], r["ruleId"].as_str().unwrap());
@@ -84,15 +91,26 @@ fn junit_has_a_case_per_operation() {
     assert_eq!(o.status.code(), Some(2));
     let xml = std::fs::read_to_string(dir.join("out.xml")).unwrap();
     assert!(xml.starts_with("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"), "{xml}");
-    assert!(xml.contains("<testsuites name=\"threadcheck\" tests=\"8\" failures=\"2\" errors=\"1\">"), "{xml}");
+    assert!(
+        xml.contains("<testsuites name=\"threadcheck\" tests=\"8\" failures=\"2\" errors=\"1\">"),
+        "{xml}"
+    );
     assert!(
         xml.contains("<testsuite name=\"lib/plate.nc\" tests=\"5\" failures=\"1\" errors=\"0\" skipped=\"0\" file=\"lib/plate.nc\">"),
         "{xml}"
     );
-    assert!(xml.contains("<testcase name=\"line 18: tapped M8X1.25-6H\" classname=\"lib/plate.nc\"/>"), "{xml}");
+    assert!(
+        xml.contains("<testcase name=\"line 18: tapped M8X1.25-6H\" classname=\"lib/plate.nc\"/>"),
+        "{xml}"
+    );
     assert!(xml.contains("<testcase name=\"line 8: turned M24X2-6g\" classname=\"lib/shaft.nc\">"), "{xml}");
     assert!(xml.contains("<failure type=\"turned.pitch_diameter\" message=\"pitch diameter d2, root radius, GO gauge (max. material)\">lib/shaft.nc:8:1: pitch diameter d2 "), "{xml}");
-    assert!(xml.contains("<error type=\"unreadable\" message=\"error: lib/broken.nc:3:29: word G has no number\"/>"), "{xml}");
+    assert!(
+        xml.contains(
+            "<error type=\"unreadable\" message=\"error: lib/broken.nc:3:29: word G has no number\"/>"
+        ),
+        "{xml}"
+    );
     assert_eq!(xml.matches("<testcase ").count(), 8);
 }
 
@@ -229,7 +247,10 @@ fn the_filter_s_messages_are_read_by_linuxcnc() {
     // One message per failing check: d2, d3, both flank angles, the GO gauge.
     let msgs: Vec<&str> = lines[1..].iter().copied().take_while(|l| l.starts_with("(MSG, ")).collect();
     assert_eq!(msgs.len(), 5, "{filtered}");
-    assert!(msgs[0].starts_with("(MSG, threadcheck: part.ngc:8: FAIL turned M10X1.5-6g: pitch diameter d2 "), "{filtered}");
+    assert!(
+        msgs[0].starts_with("(MSG, threadcheck: part.ngc:8: FAIL turned M10X1.5-6g: pitch diameter d2 "),
+        "{filtered}"
+    );
     for m in &msgs {
         assert!(m.len() <= 254, "LinuxCNC reads lines of at most 254 bytes: {m}");
         assert!(!m[1..m.len() - 1].contains(['(', ')']), "one comment: {m}");
@@ -241,7 +262,10 @@ fn the_filter_s_messages_are_read_by_linuxcnc() {
     let canon = String::from_utf8_lossy(&canon.stdout).to_string();
     let shown: Vec<&str> = canon.lines().filter(|l| l.contains("MESSAGE(")).collect();
     assert_eq!(shown.len(), 5, "{canon}");
-    assert!(shown[0].contains("MESSAGE(\" threadcheck: part.ngc:8: FAIL turned M10X1.5-6g: pitch diameter d2"), "{canon}");
+    assert!(
+        shown[0].contains("MESSAGE(\" threadcheck: part.ngc:8: FAIL turned M10X1.5-6g: pitch diameter d2"),
+        "{canon}"
+    );
 }
 
 /// The M150 gate (`docs/guide/linuxcnc/M150`) as LinuxCNC runs a user M-code: `M150 P Q` with P
@@ -285,4 +309,232 @@ fn the_m150_gate_stops_a_program_whose_thread_fails() {
     // An unreadable program runs unless P1 asks for --strict.
     assert_eq!(gate(&broken, "", "0").status.code(), Some(0));
     assert_eq!(gate(&broken, "", "1").status.code(), Some(2));
+}
+
+/// A scripted language client: framed JSON-RPC messages over the server's standard input and
+/// output (the Base Protocol's `Content-Length` header), each message read as JSON.
+struct Client {
+    child: std::process::Child,
+    input: std::process::ChildStdin,
+    output: std::io::BufReader<std::process::ChildStdout>,
+    /// Notifications read while waiting for a response.
+    notes: Vec<serde_json::Value>,
+}
+
+impl Client {
+    fn start() -> Client {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_threadcheck"))
+            .arg("lsp")
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let input = child.stdin.take().unwrap();
+        let output = std::io::BufReader::new(child.stdout.take().unwrap());
+        Client { child, input, output, notes: Vec::new() }
+    }
+
+    fn send_raw(&mut self, body: &str) {
+        use std::io::Write;
+        write!(self.input, "Content-Length: {}\r\n\r\n{body}", body.len()).unwrap();
+        self.input.flush().unwrap();
+    }
+
+    fn send(&mut self, v: serde_json::Value) {
+        self.send_raw(&v.to_string());
+    }
+
+    fn request(&mut self, id: i64, method: &str, params: serde_json::Value) -> serde_json::Value {
+        self.send(serde_json::json!({"jsonrpc": "2.0", "id": id, "method": method, "params": params}));
+        self.response(serde_json::json!(id))
+    }
+
+    fn notify(&mut self, method: &str, params: serde_json::Value) {
+        self.send(serde_json::json!({"jsonrpc": "2.0", "method": method, "params": params}));
+    }
+
+    fn read(&mut self) -> serde_json::Value {
+        use std::io::{BufRead, Read};
+        let mut length = None;
+        loop {
+            let mut line = String::new();
+            assert!(self.output.read_line(&mut line).unwrap() > 0, "the server closed its output");
+            let line = line.trim_end();
+            if line.is_empty() {
+                break;
+            }
+            if let Some(n) = line.strip_prefix("Content-Length: ") {
+                length = Some(n.parse::<usize>().unwrap());
+            }
+        }
+        let mut body = vec![0; length.expect("a Content-Length header")];
+        self.output.read_exact(&mut body).unwrap();
+        serde_json::from_slice(&body).unwrap()
+    }
+
+    /// The response with this id; notifications before it are kept.
+    fn response(&mut self, id: serde_json::Value) -> serde_json::Value {
+        loop {
+            let m = self.read();
+            if m.get("method").is_some() {
+                self.notes.push(m);
+            } else {
+                assert_eq!(m["id"], id, "responses come in order: {m}");
+                return m;
+            }
+        }
+    }
+
+    /// The next `publishDiagnostics` (kept or read).
+    fn diagnostics(&mut self) -> serde_json::Value {
+        loop {
+            if let Some(i) = self.notes.iter().position(|n| n["method"] == "textDocument/publishDiagnostics")
+            {
+                return self.notes.remove(i)["params"].clone();
+            }
+            let m = self.read();
+            self.notes.push(m);
+        }
+    }
+}
+
+/// Issue 49 item 2: the language server through a scripted client exchange. The program is our
+/// lathe shaft with its M24x2 thread cut too shallow (last pass X21.9 where ISO 965-1's 6g puts
+/// d3 at most 21.797 and d2 at most 22.663): the diagnostic sits on the G76 (line 8, characters
+/// 0–3), the hover lists the checks against the standard's limits, the quick fix rewrites the
+/// X word in place (characters 4–9), and the text so corrected passes. Two changes sent at once
+/// are verified as the newer one. A message that is not JSON is answered with the parse error
+/// and the server reads on; an unknown method, bad parameters and a request before initialize
+/// get the protocol's errors; `shutdown` then `exit` ends it with 0.
+#[test]
+fn the_language_server_through_a_scripted_client() {
+    let dir = tempdir("lsp");
+    let path = dir.join("shaft.nc");
+    let uri = format!("file://{}", path.display());
+    let shaft = std::fs::read_to_string(data("whole/shaft.nc")).unwrap();
+    let shallow = shaft.replace("G76 X21.423 ", "G76 X21.9 ");
+    let mut c = Client::start();
+
+    let early = c.request(0, "textDocument/hover", serde_json::json!({}));
+    assert_eq!(early["error"]["code"], -32002, "{early}");
+
+    let init = c.request(
+        1,
+        "initialize",
+        serde_json::json!({"capabilities": {}, "initializationOptions": {"insert": "full"}}),
+    );
+    let caps = &init["result"]["capabilities"];
+    assert_eq!(caps["textDocumentSync"], 1, "whole documents");
+    assert_eq!(caps["hoverProvider"], true);
+    assert_eq!(caps["codeActionProvider"], true);
+    c.notify("initialized", serde_json::json!({}));
+
+    c.notify(
+        "textDocument/didOpen",
+        serde_json::json!({"textDocument": {"uri": uri, "languageId": "gcode", "version": 1, "text": shallow}}),
+    );
+    let d = c.diagnostics();
+    assert_eq!(d["uri"], uri);
+    assert_eq!(d["version"], 1);
+    let diags = d["diagnostics"].as_array().unwrap();
+    assert_eq!(diags.len(), 2, "the turned thread and the tap: {d}");
+    let turned = &diags[0];
+    assert_eq!(
+        turned["range"],
+        serde_json::json!({"start": {"line": 7, "character": 0}, "end": {"line": 7, "character": 3}})
+    );
+    assert_eq!(turned["severity"], 1, "an error");
+    assert_eq!(turned["source"], "threadcheck");
+    let message = turned["message"].as_str().unwrap();
+    assert!(message.starts_with("threadcheck: FAIL turned M24X2-6g (named: comment): "), "{message}");
+    assert!(message.contains("pitch diameter d2"), "{message}");
+    assert_eq!(diags[1]["range"]["start"], serde_json::json!({"line": 18, "character": 0}), "the G84");
+    assert_eq!(diags[1]["severity"], 3, "the tap passes: information");
+
+    let hover = c.request(
+        2,
+        "textDocument/hover",
+        serde_json::json!({"textDocument": {"uri": uri}, "position": {"line": 7, "character": 1}}),
+    );
+    let md = hover["result"]["contents"]["value"].as_str().unwrap();
+    assert!(md.starts_with("**G76 M24X2-6g**"), "{md}");
+    assert!(md.contains("**FAIL**"), "{md}");
+    assert!(md.contains("- ✗ pitch diameter d2 ") && md.contains("limits 22.4930 … 22.6630 mm"), "{md}");
+    let none = c.request(
+        3,
+        "textDocument/hover",
+        serde_json::json!({"textDocument": {"uri": uri}, "position": {"line": 2, "character": 0}}),
+    );
+    assert_eq!(none["result"], serde_json::Value::Null, "no operation on line 3");
+
+    let actions = c.request(
+        4,
+        "textDocument/codeAction",
+        serde_json::json!({"textDocument": {"uri": uri}, "range": {"start": {"line": 7, "character": 0}, "end": {"line": 7, "character": 0}}, "context": {"diagnostics": []}}),
+    );
+    let action = &actions["result"][0];
+    assert_eq!(action["kind"], "quickfix");
+    let edit = &action["edit"]["changes"][&uri][0];
+    assert_eq!(
+        edit["range"],
+        serde_json::json!({"start": {"line": 7, "character": 4}, "end": {"line": 7, "character": 9}})
+    );
+    let new_x = edit["newText"].as_str().unwrap().to_string();
+    assert!(new_x.starts_with('X'), "{edit}");
+    let corrected = shallow.replace("G76 X21.9 ", &format!("G76 {new_x} "));
+
+    // Two changes at once: a broken text, then the corrected one.
+    let broken = format!("{shallow}G76 X8 Z-10 P1000 Q300 F1.5 G\n");
+    c.notify(
+        "textDocument/didChange",
+        serde_json::json!({"textDocument": {"uri": uri, "version": 2}, "contentChanges": [{"text": broken}]}),
+    );
+    c.notify("textDocument/didChange", serde_json::json!({"textDocument": {"uri": uri, "version": 3}, "contentChanges": [{"text": corrected}]}));
+    let mut d = c.diagnostics();
+    while d["version"] != 3 {
+        assert_eq!(d["version"], 2, "versions in order: {d}");
+        d = c.diagnostics();
+    }
+    let diags = d["diagnostics"].as_array().unwrap();
+    assert_eq!(diags[0]["severity"], 3, "the corrected thread passes: {d}");
+    assert!(diags[0]["message"].as_str().unwrap().starts_with("threadcheck: PASS turned M24X2-6g"), "{d}");
+
+    // A broken text's diagnostic sits at its error's place.
+    c.notify("textDocument/didChange", serde_json::json!({"textDocument": {"uri": uri, "version": 4}, "contentChanges": [{"text": "G0 X10 Z5\nG76 X8 Z-10 P1000 Q300 F1.5 G\n"}]}));
+    let d = c.diagnostics();
+    assert_eq!(d["version"], 4);
+    assert_eq!(d["diagnostics"][0]["code"], "program.unreadable");
+    assert_eq!(d["diagnostics"][0]["range"]["start"], serde_json::json!({"line": 1, "character": 28}), "{d}");
+
+    c.send_raw("{\"jsonrpc\": \"2.0\", \"id\": 5, \"method\": }");
+    let parse = c.response(serde_json::Value::Null);
+    assert_eq!(parse["error"]["code"], -32700, "{parse}");
+    let unknown = c.request(6, "textDocument/rename", serde_json::json!({}));
+    assert_eq!(unknown["error"]["code"], -32601, "{unknown}");
+    let bad = c.request(7, "textDocument/hover", serde_json::json!({"textDocument": {"uri": uri}}));
+    assert_eq!(bad["error"]["code"], -32602, "{bad}");
+
+    let down = c.request(8, "shutdown", serde_json::Value::Null);
+    assert_eq!(down["result"], serde_json::Value::Null);
+    c.notify("exit", serde_json::Value::Null);
+    assert_eq!(c.child.wait().unwrap().code(), Some(0));
+}
+
+/// Without `shutdown` first, `exit` (or the end of the input) ends the server with 1, as the
+/// protocol says; options verify does not take are refused at initialize.
+#[test]
+fn the_language_server_exits_as_the_protocol_says() {
+    let mut c = Client::start();
+    let init = c.request(
+        1,
+        "initialize",
+        serde_json::json!({"capabilities": {}, "initializationOptions": {"wire": 1}}),
+    );
+    assert_eq!(init["error"]["code"], -32602, "{init}");
+    assert!(init["error"]["message"].as_str().unwrap().contains("verify takes no argument 'wire'"), "{init}");
+    c.notify("exit", serde_json::Value::Null);
+    assert_eq!(c.child.wait().unwrap().code(), Some(1));
+    let mut c = Client::start();
+    drop(c.input);
+    assert_eq!(c.child.wait().unwrap().code(), Some(1));
 }

@@ -127,11 +127,15 @@ pub fn filter(args: &FilterArgs) -> Result<Filtered, Error> {
     let words = |s: &str| crate::Audience::Cli.words(s);
     // Standard error: a line per failing operation; the messages: a line per finding.
     let (mut lines, mut messages) = (Vec::new(), Vec::new());
-    let base = args.file.file_name().map_or_else(|| checked.file.clone(), |n| n.to_string_lossy().to_string());
+    let base =
+        args.file.file_name().map_or_else(|| checked.file.clone(), |n| n.to_string_lossy().to_string());
     if let Some(e) = &checked.error {
         let e = words(e.trim_start_matches("error: "));
         lines.push(format!("threadcheck: not checked: {e}"));
-        messages.push(format!("threadcheck: {base} not checked: {}", e.strip_prefix(&checked.file).unwrap_or(&e)));
+        messages.push(format!(
+            "threadcheck: {base} not checked: {}",
+            e.strip_prefix(&checked.file).unwrap_or(&e)
+        ));
     }
     let mut failing = 0;
     for o in checked.operations.iter().filter(|o| o.verdict != crate::analysis::check::Verdict::Pass) {
@@ -142,7 +146,13 @@ pub fn filter(args: &FilterArgs) -> Result<Filtered, Error> {
             if o.designation.is_empty() { "thread" } else { &o.designation }
         );
         let detail: Vec<String> = o.findings.iter().map(|f| words(&f.message)).collect();
-        lines.push(format!("threadcheck: {}:{}:{}: {what}: {}", checked.file, o.line, o.column, detail.join("; ")));
+        lines.push(format!(
+            "threadcheck: {}:{}:{}: {what}: {}",
+            checked.file,
+            o.line,
+            o.column,
+            detail.join("; ")
+        ));
         messages.extend(detail.iter().map(|d| format!("threadcheck: {base}:{}: {what}: {d}", o.line)));
     }
     for l in &lines {

@@ -88,17 +88,16 @@ super::args::api_args!(VerifyArgs, shares plan: PlanArgs);
 
 impl Job for VerifyArgs {
     const NAME: &'static str = "verify";
-    const DOCUMENTS: &'static [Document] =
-        &[
-            Document::Json,
-            Document::Text,
-            Document::Svg,
-            Document::Html,
-            Document::Fix,
-            Document::JsonLines,
-            Document::Sarif,
-            Document::Junit,
-        ];
+    const DOCUMENTS: &'static [Document] = &[
+        Document::Json,
+        Document::Text,
+        Document::Svg,
+        Document::Html,
+        Document::Fix,
+        Document::JsonLines,
+        Document::Sarif,
+        Document::Junit,
+    ];
 
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
         if !self.programs.is_empty() {
@@ -299,8 +298,64 @@ impl VerifyArgs {
     ) -> crate::report::batch::BatchProgram {
         use crate::report::batch::BatchProgram;
         let shown = file.display().to_string();
+        match self.verify_one(Source::Path(file.to_path_buf()), None, tools, request) {
+            Ok((shown, _, pv)) => BatchProgram::of(&shown, &pv),
+            Err(e) => {
+                let (line, at) = located(&e, &shown);
+                BatchProgram::unreadable(&shown, format!("error: {line}"), at)
+            }
+        }
+    }
+
+    /// A program open in an editor (`threadcheck lsp`), its text as the editor has it and `name`
+    /// its path (the dialect comes from its extension): the editor's view, with each
+    /// correction's word edits as a quick fix.
+    pub(crate) fn for_editor(
+        &self,
+        name: &str,
+        text: String,
+        tools: Option<&crate::analysis::tools::ToolTable>,
+        request: &Request,
+    ) -> crate::report::editor::EditorView {
+        use crate::report::editor::{EditorFix, EditorView};
+        match self.verify_one(Source::Text(text), Some(name.to_string()), tools, request) {
+            Ok((shown, _, pv)) => {
+                let fixes = pv
+                    .operations
+                    .iter()
+                    .filter_map(|o| match &o.result {
+                        crate::analysis::verify::OperationResult::Verified(v) => {
+                            let c = v.correction.as_ref()?;
+                            let edits = correction_edits(c, &shown).ok()?;
+                            Some(EditorFix {
+                                line: o.operation.source_line,
+                                title: format!("threadcheck: {}", crate::report::correction_text(c)),
+                                edits,
+                            })
+                        }
+                        crate::analysis::verify::OperationResult::NoCut { .. } => None,
+                    })
+                    .collect();
+                EditorView::of(&pv, fixes)
+            }
+            Err(e) => {
+                let (line, at) = located(&e, name);
+                EditorView::unreadable(request.reader.words(&line), at)
+            }
+        }
+    }
+
+    /// One program verified as a run verifies it (no pictures, no per-pass metrics): the name as
+    /// shown, its text and every thread it makes, checked.
+    fn verify_one(
+        &self,
+        program: Source,
+        name: Option<String>,
+        tools: Option<&crate::analysis::tools::ToolTable>,
+        request: &Request,
+    ) -> Result<(String, String, crate::analysis::verify::ProgramVerification), Error> {
         let one = VerifyArgs {
-            plan: PlanArgs { program: Some(Source::Path(file.to_path_buf())), ..self.plan.clone() },
+            plan: PlanArgs { program: Some(program), program_name: name, ..self.plan.clone() },
             programs: Vec::new(),
             json_lines: None,
             sarif: None,
@@ -308,26 +363,13 @@ impl VerifyArgs {
             format: None,
             ..self.clone()
         };
-        let verified = one.plan.spec(request.files).and_then(|mut spec| {
-            spec.gauge_only = self.gauge_only;
-            spec.stock_bottom = self.stock_bottom;
-            spec.metrics = false;
-            spec.picture = false;
-            let (source, dialect) = spec.program.clone().ok_or_else(|| Error::Input("no program".into()))?;
-            one.verification(&spec, &source, dialect, tools)
-        });
-        match verified {
-            Ok((shown, _, pv)) => BatchProgram::of(&shown, &pv),
-            Err(e) => {
-                let at = match &e {
-                    Error::Program { line, column, .. } => Some((*line, *column)),
-                    _ => None,
-                };
-                let line = e.to_string();
-                let line = if line.starts_with(&shown) { line } else { format!("{shown}: {line}") };
-                BatchProgram::unreadable(&shown, format!("error: {line}"), at)
-            }
-        }
+        let mut spec = one.plan.spec(request.files)?;
+        spec.gauge_only = self.gauge_only;
+        spec.stock_bottom = self.stock_bottom;
+        spec.metrics = false;
+        spec.picture = false;
+        let (source, dialect) = spec.program.clone().ok_or_else(|| Error::Input("no program".into()))?;
+        one.verification(&spec, &source, dialect, tools)
     }
 
     /// One program verified: its name as shown and every thread it makes, checked.
@@ -381,6 +423,17 @@ impl VerifyArgs {
             ],
         ))
     }
+}
+
+/// An error's one line, starting with the program's name, and its place in the program when it
+/// names one.
+fn located(e: &Error, shown: &str) -> (String, Option<(usize, usize)>) {
+    let at = match e {
+        Error::Program { line, column, .. } => Some((*line, *column)),
+        _ => None,
+    };
+    let line = e.to_string();
+    (if line.starts_with(shown) { line } else { format!("{shown}: {line}") }, at)
 }
 
 /// The insert of a program's operation: `None` keeps the one given (‹insert›); else the tool

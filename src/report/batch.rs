@@ -41,7 +41,7 @@ pub struct Finding {
 
 /// A turned (or milled) check's sentence: `pitch diameter d2 22.5312 mm, limits 22.5670 …
 /// 22.6690 mm (−35.8 µm); low-z`.
-fn check_sentence(c: &crate::analysis::check::Check, kind: crate::ThreadKind) -> String {
+pub(crate) fn check_sentence(c: &crate::analysis::check::Check, kind: crate::ThreadKind) -> String {
     let cells = super::check_cells(c);
     let unit = if cells.unit.is_empty() { String::new() } else { format!(" {}", cells.unit) };
     let limits = match (cells.min.trim_start_matches('—'), cells.max.trim_start_matches('—')) {
@@ -56,7 +56,7 @@ fn check_sentence(c: &crate::analysis::check::Check, kind: crate::ThreadKind) ->
 }
 
 /// A tapping check's sentence: `feed 1.2000 mm/rev, limits 1.2500 … 1.2500 (−50.0 µm); …`.
-fn tap_sentence(k: &crate::analysis::tapping::TapCheck) -> String {
+pub(crate) fn tap_sentence(k: &crate::analysis::tapping::TapCheck) -> String {
     let num = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.4}"));
     let unit = if k.unit.is_empty() { String::new() } else { format!(" {}", k.unit) };
     let value = k.value.map_or(String::new(), |v| format!(" {v:.4}{unit}"));
@@ -157,43 +157,52 @@ impl BatchProgram {
                     .checks
                     .iter()
                     .filter(|c| !c.ok)
-                    .map(|k| Finding { rule: format!("tapped.{}", k.feature.name()), message: tap_sentence(k) })
+                    .map(|k| Finding {
+                        rule: format!("tapped.{}", k.feature.name()),
+                        message: tap_sentence(k),
+                    })
                     .collect(),
             }
         }));
-        operations.extend(pv.milled.iter().map(|m| match m {
-            Milled::Checked(r) => BatchOperation {
-                made: Process::Milled,
-                line: r.helices.first().map_or(1, |h| h.line),
-                column: 1,
-                designation: r.designation.clone(),
-                designation_from: Some(r.named.from),
-                verdict: Verdict::of(r.pass),
-                failed:
-                    r.checks.iter().filter(|c| !c.ok).map(|c| c.feature.words(r.kind).to_string()).collect(),
-                findings: r
-                    .checks
-                    .iter()
-                    .filter(|c| !c.ok)
-                    .map(|c| Finding {
-                        rule: format!("milled.{}", c.feature.name()),
-                        message: check_sentence(c, r.kind),
-                    })
-                    .collect(),
-            },
-            Milled::NotChecked { line, reason } => BatchOperation {
-                made: Process::Milled,
-                line: *line,
-                column: 1,
-                designation: String::new(),
-                designation_from: None,
-                verdict: Verdict::Fail,
-                failed: vec![format!("not checked: {reason}")],
-                findings: vec![Finding {
-                    rule: "milled.not_checked".into(),
-                    message: format!("not checked: {reason}"),
-                }],
-            },
+        operations.extend(pv.milled.iter().map(|m| {
+            match m {
+                Milled::Checked(r) => BatchOperation {
+                    made: Process::Milled,
+                    line: r.helices.first().map_or(1, |h| h.line),
+                    column: 1,
+                    designation: r.designation.clone(),
+                    designation_from: Some(r.named.from),
+                    verdict: Verdict::of(r.pass),
+                    failed: r
+                        .checks
+                        .iter()
+                        .filter(|c| !c.ok)
+                        .map(|c| c.feature.words(r.kind).to_string())
+                        .collect(),
+                    findings: r
+                        .checks
+                        .iter()
+                        .filter(|c| !c.ok)
+                        .map(|c| Finding {
+                            rule: format!("milled.{}", c.feature.name()),
+                            message: check_sentence(c, r.kind),
+                        })
+                        .collect(),
+                },
+                Milled::NotChecked { line, reason } => BatchOperation {
+                    made: Process::Milled,
+                    line: *line,
+                    column: 1,
+                    designation: String::new(),
+                    designation_from: None,
+                    verdict: Verdict::Fail,
+                    failed: vec![format!("not checked: {reason}")],
+                    findings: vec![Finding {
+                        rule: "milled.not_checked".into(),
+                        message: format!("not checked: {reason}"),
+                    }],
+                },
+            }
         }));
         BatchProgram {
             file: file.to_string(),

@@ -16,26 +16,25 @@ pub fn junit_xml(programs: &[BatchProgram]) -> Result<String, crate::Error> {
     let errors = |p: &BatchProgram| usize::from(p.error.is_some());
     let total = |f: &dyn Fn(&BatchProgram) -> usize| programs.iter().map(f).sum::<usize>().to_string();
     let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
-    let xml = w
-        .write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None)))
-        .and_then(|()| {
-            w.create_element("testsuites")
-                .with_attributes([
-                    ("name", "threadcheck"),
-                    ("tests", total(&cases).as_str()),
-                    ("failures", total(&failures).as_str()),
-                    ("errors", total(&errors).as_str()),
-                ])
-                .write_inner_content(|w| {
-                    for p in programs {
-                        suite(w, p, cases(p), failures(p), errors(p))?;
-                    }
-                    Ok(())
-                })
-                .map(|_| ())
-        });
+    let xml = w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None))).and_then(|()| {
+        w.create_element("testsuites")
+            .with_attributes([
+                ("name", "threadcheck"),
+                ("tests", total(&cases).as_str()),
+                ("failures", total(&failures).as_str()),
+                ("errors", total(&errors).as_str()),
+            ])
+            .write_inner_content(|w| {
+                for p in programs {
+                    suite(w, p, cases(p), failures(p), errors(p))?;
+                }
+                Ok(())
+            })
+            .map(|_| ())
+    });
     xml.map_err(|e| crate::Error::Data(format!("JUnit XML: {e}")))?;
-    let mut xml = String::from_utf8(w.into_inner()).map_err(|e| crate::Error::Data(format!("JUnit XML: {e}")))?;
+    let mut xml =
+        String::from_utf8(w.into_inner()).map_err(|e| crate::Error::Data(format!("JUnit XML: {e}")))?;
     xml.push('\n');
     Ok(xml)
 }
@@ -75,14 +74,18 @@ fn suite(
                     o.made.name(),
                     if o.designation.is_empty() { "thread" } else { &o.designation }
                 );
-                let case =
-                    w.create_element("testcase").with_attributes([("name", name.as_str()), ("classname", p.file.as_str())]);
+                let case = w
+                    .create_element("testcase")
+                    .with_attributes([("name", name.as_str()), ("classname", p.file.as_str())]);
                 if o.verdict == Verdict::Pass {
                     case.write_empty()?;
                     continue;
                 }
-                let text: Vec<String> =
-                    o.findings.iter().map(|f| format!("{}:{}:{}: {}", p.file, o.line, o.column, f.message)).collect();
+                let text: Vec<String> = o
+                    .findings
+                    .iter()
+                    .map(|f| format!("{}:{}:{}: {}", p.file, o.line, o.column, f.message))
+                    .collect();
                 let failed = o.failed.join(", ");
                 case.write_inner_content(|w| {
                     w.create_element("failure")

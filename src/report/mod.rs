@@ -5,6 +5,7 @@ pub mod capability;
 pub mod catalogue;
 pub mod compare;
 pub mod correct;
+pub mod editor;
 pub mod fit;
 pub mod junit;
 pub(crate) mod kit;

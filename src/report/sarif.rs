@@ -7,12 +7,8 @@ use serde_sarif::sarif;
 
 /// The characters a SARIF `uri` keeps as they are (RFC 3986's unreserved ones and the path's
 /// `/`); every other byte is percent-encoded.
-const URI_PATH: &percent_encoding::AsciiSet = &percent_encoding::NON_ALPHANUMERIC
-    .remove(b'-')
-    .remove(b'.')
-    .remove(b'_')
-    .remove(b'~')
-    .remove(b'/');
+const URI_PATH: &percent_encoding::AsciiSet =
+    &percent_encoding::NON_ALPHANUMERIC.remove(b'-').remove(b'.').remove(b'_').remove(b'~').remove(b'/');
 
 /// A program's path as a SARIF artifact `uri`: relative paths stay relative (code scanning
 /// places them from the repository's root), absolute ones become `file://` URIs.
