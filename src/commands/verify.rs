@@ -280,9 +280,9 @@ impl VerifyArgs {
                 Some((Document::Text, text)),
                 lines.then_some((Document::JsonLines, jsonl)),
                 request.render(Document::Sarif, || {
-                    crate::report::sarif::sarif_log(&kept, env!("CARGO_PKG_VERSION"), outcome.exit_code())
+                    crate::report::batch::sarif_log(&kept, env!("CARGO_PKG_VERSION"), outcome.exit_code())
                 })?,
-                request.render(Document::Junit, || crate::report::junit::junit_xml(&kept))?,
+                request.render(Document::Junit, || crate::report::batch::junit_xml(&kept))?,
             ],
         )
         .reading(inputs))
@@ -316,8 +316,8 @@ impl VerifyArgs {
         text: String,
         tools: Option<&crate::analysis::tools::ToolTable>,
         request: &Request,
-    ) -> crate::report::editor::EditorView {
-        use crate::report::editor::{EditorFix, EditorView};
+    ) -> crate::report::lsp::EditorView {
+        use crate::report::lsp::{EditorFix, EditorView};
         match self.verify_one(Source::Text(text), Some(name.to_string()), tools, request) {
             Ok((shown, _, pv)) => {
                 let fixes = pv

@@ -11,20 +11,18 @@
 //! (−32700) and the server reads on; a request before `initialize` gets −32002, an unknown one
 //! −32601, one with bad parameters −32602.
 
+mod args;
+
+pub use args::LspArgs;
+
 use crate::commands::VerifyArgs;
-use crate::report::editor::{EditorView, Severity};
+use crate::report::lsp::{EditorView, Severity};
 use crate::{Error, Files, Request};
 use lsp_server::{ErrorCode, Message, Notification, RequestId, Response};
 use lsp_types as lt;
 use serde_json::Value;
 use std::collections::{BTreeMap, HashMap};
 use std::io::{BufRead, Write};
-
-/// The arguments of `lsp` (the command line's alone; the editor sends the verification's
-/// options as `initializationOptions`).
-#[cfg_attr(feature = "cli", derive(clap::Args))]
-#[derive(Clone, Debug, Default)]
-pub struct LspArgs {}
 
 /// The most documents the server keeps open at once.
 pub const MAX_OPEN_DOCUMENTS: usize = 256;

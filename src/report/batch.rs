@@ -1,11 +1,18 @@
 //! `verify` over many programs: one line per operation and a summary (text), one object per
-//! program and a summary (JSON Lines). Views of the verifications; nothing is computed here.
+//! program and a summary (JSON Lines), SARIF 2.1.0 for code scanning (a result per failing check
+//! at its line and column) and JUnit XML for a CI server's test view (a suite per program, a case
+//! per operation, with the elements and attributes of Jenkins xUnit's `junit-10.xsd`, which CI
+//! servers validate against; `tests/data/schemas/`). Views of the verifications; nothing is
+//! computed here.
 
 use crate::analysis::check::Verdict;
 use crate::analysis::naming::DesignationFrom;
 use crate::analysis::verify::{OperationResult, ProgramVerification};
 use crate::analysis::whole::{Milled, Process};
+use quick_xml::events::{BytesDecl, BytesText, Event};
+use quick_xml::Writer;
 use serde::Serialize;
+use serde_sarif::sarif;
 use std::fmt::Write;
 
 /// One operation of a program in a run of many.
@@ -300,4 +307,218 @@ impl BatchSummary {
 pub struct SummaryLine<'a> {
     /// The counts.
     pub summary: &'a BatchSummary,
+}
+
+/// The characters a SARIF `uri` keeps as they are (RFC 3986's unreserved ones and the path's
+/// `/`); every other byte is percent-encoded.
+const URI_PATH: &percent_encoding::AsciiSet =
+    &percent_encoding::NON_ALPHANUMERIC.remove(b'-').remove(b'.').remove(b'_').remove(b'~').remove(b'/');
+
+/// A program's path as a SARIF artifact `uri`: relative paths stay relative (code scanning
+/// places them from the repository's root), absolute ones become `file://` URIs.
+pub fn artifact_uri(file: &str) -> String {
+    let slashed = file.replace('\\', "/");
+    let encoded = percent_encoding::utf8_percent_encode(&slashed, URI_PATH).to_string();
+    if slashed.starts_with('/') {
+        format!("file://{encoded}")
+    } else {
+        encoded.trim_start_matches("./").to_string()
+    }
+}
+
+/// What a rule checks, for the SARIF rule's short description.
+fn rule_words(rule: &str) -> String {
+    let (made, check) = rule.split_once('.').unwrap_or(("", rule));
+    let made = match made {
+        "turned" => "turned thread",
+        "tapped" => "tapped hole",
+        "milled" => "thread-milled hole",
+        _ => "program",
+    };
+    format!("{made}: {}", check.replace('_', " "))
+}
+
+/// The SARIF log of a run: `version` is threadcheck's.
+pub fn sarif_log(programs: &[BatchProgram], version: &str, exit_code: i32) -> Result<String, crate::Error> {
+    let mut rules: Vec<String> = Vec::new();
+    let mut results = Vec::new();
+    let mut rule_index = |rule: &str| -> i64 {
+        match rules.iter().position(|r| r == rule) {
+            Some(i) => i as i64,
+            None => {
+                rules.push(rule.to_string());
+                rules.len() as i64 - 1
+            }
+        }
+    };
+    let location = |file: &str, at: Option<(usize, usize)>| {
+        let artifact = sarif::ArtifactLocation::builder().uri(artifact_uri(file)).build();
+        let physical = match at {
+            Some((line, column)) => sarif::PhysicalLocation::builder()
+                .artifact_location(artifact)
+                .region(
+                    sarif::Region::builder()
+                        .start_line(line.max(1) as i64)
+                        .start_column(column.max(1) as i64)
+                        .build(),
+                )
+                .build(),
+            None => sarif::PhysicalLocation::builder().artifact_location(artifact).build(),
+        };
+        sarif::Location::builder().physical_location(physical).build()
+    };
+    for p in programs {
+        if let Some(e) = &p.error {
+            let i = rule_index("program.unreadable");
+            results.push(
+                sarif::Result::builder()
+                    .rule_id("program.unreadable")
+                    .rule_index(i)
+                    .level(sarif::ResultLevel::Error)
+                    .message(sarif::Message::builder().text(e.clone()).build())
+                    .locations(vec![location(&p.file, p.error_at)])
+                    .build(),
+            );
+            continue;
+        }
+        for o in &p.operations {
+            let what = format!(
+                "{} {}",
+                o.made.name(),
+                if o.designation.is_empty() { "thread" } else { &o.designation }
+            );
+            for f in &o.findings {
+                let i = rule_index(&f.rule);
+                results.push(
+                    sarif::Result::builder()
+                        .rule_id(f.rule.clone())
+                        .rule_index(i)
+                        .level(sarif::ResultLevel::Error)
+                        .message(sarif::Message::builder().text(format!("{what}: {}", f.message)).build())
+                        .locations(vec![location(&p.file, Some((o.line, o.column)))])
+                        .build(),
+                );
+            }
+        }
+    }
+    let descriptors: Vec<sarif::ReportingDescriptor> = rules
+        .iter()
+        .map(|r| {
+            sarif::ReportingDescriptor::builder()
+                .id(r.clone())
+                .short_description(sarif::MultiformatMessageString::builder().text(rule_words(r)).build())
+                .build()
+        })
+        .collect();
+    let driver = sarif::ToolComponent::builder()
+        .name("threadcheck")
+        .version(version.to_string())
+        .rules(descriptors)
+        .build();
+    let invocation =
+        sarif::Invocation::builder().execution_successful(true).exit_code(i64::from(exit_code)).build();
+    let run = sarif::Run::builder()
+        .tool(sarif::Tool::builder().driver(driver).build())
+        .invocations(vec![invocation])
+        .results(results)
+        .build();
+    let log = sarif::Sarif::builder()
+        .schema("https://json.schemastore.org/sarif-2.1.0.json")
+        .version(serde_json::json!("2.1.0"))
+        .runs(vec![run])
+        .build();
+    super::to_json_pretty(&log)
+}
+
+/// The JUnit XML of a run.
+pub fn junit_xml(programs: &[BatchProgram]) -> Result<String, crate::Error> {
+    let cases = |p: &BatchProgram| p.operations.len() + usize::from(p.error.is_some());
+    let failures = |p: &BatchProgram| p.operations.iter().filter(|o| o.verdict != Verdict::Pass).count();
+    let errors = |p: &BatchProgram| usize::from(p.error.is_some());
+    let total = |f: &dyn Fn(&BatchProgram) -> usize| programs.iter().map(f).sum::<usize>().to_string();
+    let mut w = Writer::new_with_indent(Vec::new(), b' ', 2);
+    let xml = w.write_event(Event::Decl(BytesDecl::new("1.0", Some("UTF-8"), None))).and_then(|()| {
+        w.create_element("testsuites")
+            .with_attributes([
+                ("name", "threadcheck"),
+                ("tests", total(&cases).as_str()),
+                ("failures", total(&failures).as_str()),
+                ("errors", total(&errors).as_str()),
+            ])
+            .write_inner_content(|w| {
+                for p in programs {
+                    suite(w, p, cases(p), failures(p), errors(p))?;
+                }
+                Ok(())
+            })
+            .map(|_| ())
+    });
+    xml.map_err(|e| crate::Error::Data(format!("JUnit XML: {e}")))?;
+    let mut xml =
+        String::from_utf8(w.into_inner()).map_err(|e| crate::Error::Data(format!("JUnit XML: {e}")))?;
+    xml.push('\n');
+    Ok(xml)
+}
+
+/// One program's test suite.
+fn suite(
+    w: &mut Writer<Vec<u8>>,
+    p: &BatchProgram,
+    cases: usize,
+    failures: usize,
+    errors: usize,
+) -> std::io::Result<()> {
+    w.create_element("testsuite")
+        .with_attributes([
+            ("name", p.file.as_str()),
+            ("tests", cases.to_string().as_str()),
+            ("failures", failures.to_string().as_str()),
+            ("errors", errors.to_string().as_str()),
+            ("skipped", "0"),
+            ("file", p.file.as_str()),
+        ])
+        .write_inner_content(|w| {
+            if let Some(e) = &p.error {
+                w.create_element("testcase")
+                    .with_attributes([("name", "read the program"), ("classname", p.file.as_str())])
+                    .write_inner_content(|w| {
+                        w.create_element("error")
+                            .with_attributes([("type", "unreadable"), ("message", e.as_str())])
+                            .write_empty()
+                            .map(|_| ())
+                    })?;
+            }
+            for o in &p.operations {
+                let name = format!(
+                    "line {}: {} {}",
+                    o.line,
+                    o.made.name(),
+                    if o.designation.is_empty() { "thread" } else { &o.designation }
+                );
+                let case = w
+                    .create_element("testcase")
+                    .with_attributes([("name", name.as_str()), ("classname", p.file.as_str())]);
+                if o.verdict == Verdict::Pass {
+                    case.write_empty()?;
+                    continue;
+                }
+                let text: Vec<String> = o
+                    .findings
+                    .iter()
+                    .map(|f| format!("{}:{}:{}: {}", p.file, o.line, o.column, f.message))
+                    .collect();
+                let failed = o.failed.join(", ");
+                case.write_inner_content(|w| {
+                    w.create_element("failure")
+                        .with_attributes([
+                            ("type", o.findings.first().map_or("fail", |f| f.rule.as_str())),
+                            ("message", failed.as_str()),
+                        ])
+                        .write_text_content(BytesText::new(&text.join("\n")))
+                        .map(|_| ())
+                })?;
+            }
+            Ok(())
+        })
+        .map(|_| ())
 }
