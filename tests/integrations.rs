@@ -538,3 +538,57 @@ fn the_language_server_exits_as_the_protocol_says() {
     drop(c.input);
     assert_eq!(c.child.wait().unwrap().code(), Some(1));
 }
+
+/// The guide's git pre-commit hook, as the guide prints it (`docs/guide/where-programs-live.md`),
+/// in a repository of its own: a commit whose program's thread fails is refused (git aborts on the
+/// hook's exit 1), one whose threads pass goes in, one with no program needs no check.
+#[test]
+fn the_guide_s_pre_commit_hook_refuses_a_failing_thread() {
+    let guide = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/guide/where-programs-live.md"),
+    )
+    .unwrap();
+    let after = &guide[guide.find("**pre-commit hook**").unwrap()..];
+    let start = after.find("```sh\n").unwrap() + "```sh\n".len();
+    let hook = &after[start..start + after[start..].find("```").unwrap()];
+    assert!(hook.starts_with("#!/bin/sh\n"), "{hook}");
+    let dir = tempdir("pre-commit");
+    let bin_dir = dir.join("bin");
+    std::fs::create_dir_all(&bin_dir).unwrap();
+    std::os::unix::fs::symlink(env!("CARGO_BIN_EXE_threadcheck"), bin_dir.join("threadcheck")).unwrap();
+    let repo = dir.join("repo");
+    std::fs::create_dir_all(&repo).unwrap();
+    let path = format!("{}:{}", bin_dir.display(), std::env::var("PATH").unwrap_or_default());
+    let git = |args: &[&str]| {
+        Command::new("git")
+            .args(["-c", "user.name=t", "-c", "user.email=t@example.com", "-c", "commit.gpgsign=false"])
+            .args(args)
+            .current_dir(&repo)
+            .env("PATH", &path)
+            .output()
+            .unwrap()
+    };
+    assert!(git(&["init", "-q"]).status.success());
+    let hook_file = repo.join(".git/hooks/pre-commit");
+    std::fs::write(&hook_file, hook).unwrap();
+    use std::os::unix::fs::PermissionsExt;
+    std::fs::set_permissions(&hook_file, std::fs::Permissions::from_mode(0o755)).unwrap();
+
+    std::fs::write(repo.join("notes.txt"), "no program here\n").unwrap();
+    git(&["add", "notes.txt"]);
+    assert!(git(&["commit", "-qm", "notes"]).status.success());
+    // The shaft with the default partial insert fails its turned thread (root radius).
+    std::fs::copy(data("whole/shaft.nc"), repo.join("shaft.nc")).unwrap();
+    git(&["add", "shaft.nc"]);
+    let o = git(&["commit", "-qm", "shaft"]);
+    assert!(!o.status.success(), "the hook refuses it");
+    // git shows a hook's output on its standard error.
+    assert!(stderr(&o).contains("shaft.nc:8: FAIL turned M24X2-6g"), "{}{}", stdout(&o), stderr(&o));
+    // A program whose one tap passes (M8x1.25 after a Ø6.8 drill, ISO 2306's tap drill, F625 at
+    // S500 = 1.25 mm a turn) goes in.
+    std::fs::write(repo.join("tapped.nc"), "(TAP M8X1.25)\nG21 G17 G90\nT2 M6 (DRILL 6.8)\nS1000 M3\nG0 X20 Y20 Z5\nG43 H2\nG81 Z-20 R3 F100\nG80\nT3 M6 (TAP M8X1.25)\nM29 S500\nG0 X20 Y20 Z5\nG43 H3\nG84 Z-14 R3 F625\nG80\nM30\n").unwrap();
+    git(&["reset", "-q", "shaft.nc"]);
+    git(&["add", "tapped.nc"]);
+    let o = git(&["commit", "-qm", "tapped"]);
+    assert!(o.status.success(), "{}{}", stdout(&o), stderr(&o));
+}
