@@ -14,6 +14,7 @@ mod forms;
 mod gcode;
 mod infeed_comparison;
 mod integrations;
+mod lathes;
 mod layout;
 mod limits;
 mod linuxcnc;

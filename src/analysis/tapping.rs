@@ -519,16 +519,34 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             Hand::Left => SpindleDir::Ccw,
         };
         let hand_ok = des.thread.hand == hand;
-        // A Haas control starts the spindle clockwise for G84 itself ("It is not necessary to
-        // start the spindle CW before this canned cycle", the lathe's G84 page; the mill's the
-        // same, a named reading): a stopped or unset spindle is taken as clockwise.
+        // A Haas control starts the spindle itself for its tapping cycles: clockwise for G84,
+        // counter-clockwise for G184 ("It is not necessary to start the spindle CW before this
+        // canned cycle", the lathe's G84 page; the mill's G84 the same, a named reading); G95 and
+        // G186 turn the live tool, whatever the main spindle does (HAAS-L84).
         let spindle_dir = match (spec.dialect, h.code.as_str(), h.spindle_dir) {
-            (Dialect::Haas, "G84", Some(SpindleDir::Stopped) | None) => {
-                notes.push(
-                    "the Haas control starts the spindle clockwise for G84 itself: the spindle is taken as clockwise (M3)"
-                        .to_string(),
-                );
-                Some(SpindleDir::Cw)
+            (Dialect::Haas, "G84" | "G184", Some(SpindleDir::Stopped) | None) => {
+                let (dir, turn, code) = if h.code == "G84" {
+                    (SpindleDir::Cw, "clockwise", "M3")
+                } else {
+                    (SpindleDir::Ccw, "counter-clockwise", "M4")
+                };
+                notes.push(format!(
+                    "the Haas control starts the spindle {turn} for {} itself: the spindle is taken as {turn} ({code})",
+                    h.code
+                ));
+                Some(dir)
+            }
+            (Dialect::Haas, "G95" | "G186", _) => {
+                let (dir, words) = if h.code == "G95" {
+                    (SpindleDir::Cw, "clockwise")
+                } else {
+                    (SpindleDir::Ccw, "counter-clockwise")
+                };
+                notes.push(format!(
+                    "{} is the Haas lathe's live-tool rigid tapping: the control turns the live tool {words} itself, whatever the main spindle does",
+                    h.code
+                ));
+                Some(dir)
             }
             (_, _, d) => d,
         };

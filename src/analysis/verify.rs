@@ -1498,18 +1498,24 @@ pub fn verify_operation(
     label: &ProgramLabel,
 ) -> Result<OperationResult, Error> {
     let mut r = resolve(spec)?;
+    let side = if r.kind == ThreadKind::External { "blank" } else { "bore" };
+    let mut blank_from = match spec.blank_diameter {
+        Some(_) => format!("the {side} as given (‹blank_diameter›, or the stock the program declares)"),
+        None => format!(
+            "the default {side}: no feed move of the program turns the thread's stretch (‹blank_diameter› gives it)"
+        ),
+    };
     if spec.blank_diameter.is_none() {
-        if let Some(t) = program_blank(op) {
-            // Its distance from the axis (a tool beyond it writes X negative).
-            r.blank = t.from[0].abs();
+        if let Some((d, line)) = program_blank(op, r.kind) {
+            r.blank = d;
+            blank_from = format!("the {side} the program's moves leave, turned at line {line}");
             r.notes.push(crate::ground::note::Note::at(
                 &label.file,
-                t.line,
+                line,
                 1,
                 format!(
-                    "the {} is the program's own: Ø{:.4} turned here over the thread's length (‹blank_diameter› overrides)",
+                    "the {} is the program's own: Ø{d:.4}, the material its moves leave over the thread, turned here (‹blank_diameter› overrides)",
                     if r.kind == ThreadKind::External { "blank" } else { "bore" },
-                    t.from[0].abs()
                 ),
             ));
         }
@@ -1529,7 +1535,7 @@ pub fn verify_operation(
                 ..spec.clone()
             };
             let suggested_final_x = verify(&plan).ok().map(|v| v.final_x);
-            Ok(OperationResult::NoCut { reason: m, suggested_final_x })
+            Ok(OperationResult::NoCut { reason: format!("{m}; {blank_from}"), suggested_final_x })
         }
         Err(e) => Err(e),
     }
@@ -1571,26 +1577,87 @@ fn side_agrees(
     })
 }
 
-/// The diameter the program turned (or bored) for the thread before cutting it: the last
-/// cylindrical feed move (X constant to 1 µm) that covers the middle half of the finishing
-/// pass's Z span, clear of chamfers at either end. `None` when the program turns none there.
-fn program_blank(op: &crate::gcode::Operation) -> Option<crate::gcode::Turned> {
+/// The diameter the program turned (or bored) for the thread before cutting it, and the line of
+/// the move that left it: the material its feed moves leave over the finishing pass's Z span.
+/// At each Z the moves that cover it bring the material down to their X (a bore: open it up to
+/// their X), so a feed through the air at a larger diameter after the part was turned smaller
+/// changes nothing, and a later cut to a smaller diameter (a roughing cycle's profile, a finishing
+/// pass) replaces an earlier one; of that material's cylinders along at least a quarter of the
+/// pass (a taper is a chamfer, or an approach from beyond the face; a shorter cylinder a nose or
+/// a collar) the outermost (a bore: innermost) is the blank, so chamfers and a run-in beyond the
+/// part's end do not hide the journal. Distances from the axis (a tool beyond it writes X negative). `None`
+/// when no feed move covers the pass.
+fn program_blank(op: &crate::gcode::Operation, kind: ThreadKind) -> Option<(f64, usize)> {
     let passes = &op.passes;
     if passes.is_empty() {
         return None;
     }
     let last = last_head(passes);
     let (t0, t1) = (last.z_start.min(last.z_end), last.z_start.max(last.z_end));
-    let q = 0.25 * (t1 - t0);
-    let (lo, hi) = (t0 + q, t1 - q);
-    op.contour
+    const EPS: f64 = 1e-9;
+    // Moves along Z over the pass (a radial move, a face or a plunge, covers no length).
+    let moves: Vec<&crate::gcode::Turned> = op
+        .contour
         .iter()
-        .rev()
-        .find(|t| {
+        .filter(|t| {
             let (zl, zh) = (t.from[1].min(t.to[1]), t.from[1].max(t.to[1]));
-            (t.from[0] - t.to[0]).abs() < 1e-3 && zl <= lo + 1e-9 && zh >= hi - 1e-9
+            zh - zl > 1e-6 && zh >= t0 - EPS && zl <= t1 + EPS
         })
-        .copied()
+        .collect();
+    if moves.is_empty() {
+        return None;
+    }
+    // The material is piecewise linear between the moves' ends: it is looked at halfway
+    // between each two.
+    let mut zs: Vec<f64> = vec![t0, t1];
+    zs.extend(moves.iter().flat_map(|t| [t.from[1], t.to[1]]).filter(|z| (t0..=t1).contains(z)));
+    zs.sort_by(f64::total_cmp);
+    zs.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    let external = kind == ThreadKind::External;
+    // At one Z: the material's distance from the axis, the move that left it (of equal ones,
+    // the last) and whether that move turned a cylinder.
+    let material = |z: f64| -> Option<(f64, usize, bool)> {
+        let mut best: Option<(f64, usize, bool)> = None;
+        for t in &moves {
+            let (za, zb) = (t.from[1], t.to[1]);
+            if z < za.min(zb) - EPS || z > za.max(zb) + EPS {
+                continue;
+            }
+            let f = ((z - za) / (zb - za)).clamp(0.0, 1.0);
+            let x = (t.from[0] + f * (t.to[0] - t.from[0])).abs();
+            let deeper = match best {
+                None => true,
+                Some((b, _, _)) if external => x <= b + 1e-6,
+                Some((b, _, _)) => x >= b - 1e-6,
+            };
+            if deeper {
+                best = Some((x, t.line, (t.from[0] - t.to[0]).abs() < 1e-3));
+            }
+        }
+        best
+    };
+    // The cylinders of that material and the length of the pass each runs along: a taper there
+    // is a chamfer or an approach from beyond the part's face, and a cylinder along less than a
+    // quarter of the pass (a nose, a collar) is not the diameter the thread is cut into.
+    let mut cylinders: Vec<(f64, usize, f64)> = Vec::new();
+    for w in zs.windows(2) {
+        let Some((x, line, true)) = material(0.5 * (w[0] + w[1])) else { continue };
+        match cylinders.iter_mut().find(|c| (c.0 - x).abs() < 1e-6) {
+            Some(c) => {
+                c.1 = line;
+                c.2 += w[1] - w[0];
+            }
+            None => cylinders.push((x, line, w[1] - w[0])),
+        }
+    }
+    let least = 0.25 * (t1 - t0);
+    cylinders.into_iter().filter(|c| c.2 >= least - 1e-9).map(|(x, line, _)| (x, line)).reduce(|a, b| {
+        if (external && b.0 > a.0 + 1e-6) || (!external && b.0 < a.0 - 1e-6) {
+            b
+        } else {
+            a
+        }
+    })
 }
 
 /// One program operation verified; passes that cut nothing are an [`Error::Geometry`].
@@ -1895,7 +1962,9 @@ pub fn verify_program(
         }
         // The program's declared stock is the blank of an external thread it turns no diameter
         // for (issue 47: a training simulator's `[BILLET X30`).
-        if let (None, None, Some((d, line))) = (spec.blank_diameter, program_blank(op), prog.stock) {
+        if let (None, None, Some((d, line))) =
+            (spec.blank_diameter, program_blank(op, ThreadKind::External), prog.stock)
+        {
             if pass_side(&op.passes) != Some(ThreadKind::Internal) && !spec.internal {
                 s.blank_diameter = Some(d);
                 extra.push(format!(

@@ -54,6 +54,8 @@ fn g_role(d: Dialect, g: u32, lathe: bool) -> GRole {
         Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => match g {
             90 | 94 if lathe => BoxCycle,
             73 | 74 | 76 if !lathe => OtherCycle,
+            // A Haas lathe's G95 is live-tool rigid tapping, not a feed mode (HAAS-L84).
+            95 if lathe && d == Dialect::Haas => OtherCycle,
             9 | 22 | 23 | 25 | 26 | 40..=44 | 49 | 61..=64 | 67..=69 | 80 | 94 | 95 | 98 | 99 | 103 | 187 => {
                 Setting
             }
@@ -622,8 +624,21 @@ fn record_hole(
         }
     };
     let code = modal.motion as u32;
+    let haas_lathe = m.dialect == Dialect::Haas && m.lathe();
     let kind = match code {
         74 | 84 => super::HoleKind::Tap,
+        // A Haas lathe's G184 (left-hand tapping), G95 and G186 (live-tool rigid tapping along
+        // Z, right- and left-hand; HAAS-L84).
+        95 | 184 | 186 if haas_lathe => super::HoleKind::Tap,
+        195 | 196 if haas_lathe => {
+            return Err(m.err(
+                b.line,
+                modal.col.unwrap_or(b.col),
+                format!(
+                    "G{code} taps radially with a live tool (along X): threadcheck checks tapping along Z (G84, G184, G95, G186) only"
+                ),
+            ))
+        }
         73 | 81..=83 | 85..=89 => super::HoleKind::Drill,
         _ => return Ok(()),
     };
@@ -735,6 +750,8 @@ fn push_hole_at(
         hand: match code {
             84 => Some(crate::standards::Hand::Right),
             74 => Some(crate::standards::Hand::Left),
+            95 if m.dialect == Dialect::Haas => Some(crate::standards::Hand::Right),
+            184 | 186 if m.dialect == Dialect::Haas => Some(crate::standards::Hand::Left),
             _ => None,
         },
         feed_per_rev,

@@ -1,0 +1,128 @@
+//! Issue 47, lathes as shops write them (round 2): the blank the thread is cut into, subprograms
+//! in files beside the program, Haas's live tapping.
+
+use crate::*;
+
+/// Verifies a Fanuc lathe program's text with a full-profile insert; the report's text.
+fn verify_text(name: &str, text: &str) -> (i32, String) {
+    let dir = tempdir("lathes");
+    std::fs::write(dir.join(name), text).unwrap();
+    let o = run_in(&dir, &["verify", "--program", name, "--insert", "full"]);
+    (o.status.code().unwrap(), stdout(&o))
+}
+
+/// The M24x2 thread of these programs: the shaft's G76 (last pass X21.423: a full-profile insert
+/// leaves d2 22.578, inside 6g's 22.493 … 22.663, ISO 965-1), cut into whatever the lines above
+/// it left.
+const THREAD: &str = "G0 X40 Z50\nT0202\nG97 S700 M3\nG0 X26 Z5\nG76 P010060 Q100 R0.05\nG76 X21.423 Z-30 P1289 Q350 F2.0\nG0 X100 Z100\nM30\n%\n";
+
+/// Issue 47 item 1: the blank is the material the moves leave, never an air move. The bar is
+/// turned to Ø23.9 (line 8, inside 6g's major diameter 23.682 … 23.962); a feed along the part
+/// at X28 afterwards (line 12) cuts air. The thread is cut into Ø23.9 and passes; the air move
+/// at Ø28 as its blank would put d at 28, far over 23.962.
+#[test]
+fn an_air_move_after_the_part_was_turned_smaller_is_not_the_blank() {
+    let text = format!(
+        "%\nO4701 (M24X2 THREAD)\nG21 G18 G99\nT0101\nG97 S800 M3\nG0 X30 Z2\nG1 X23.9 F0.2\nG1 Z-32\nG0 X30\nG0 Z2\nG1 X28 F0.3\nG1 Z-32\n{THREAD}"
+    );
+    let (code, out) = verify_text("air.nc", &text);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("blank X23.9000, final X21.4230"), "{out}");
+    assert!(out.contains("air.nc:8:1: the blank is the program's own: Ø23.9000"), "{out}");
+}
+
+/// A box cut (G90 X26, line 7) turned away by the roughing cycle after it, whose profile
+/// (N100–N200, read as the finished contour) turns Ø23.9 at line 12: the thread's blank is 23.9.
+#[test]
+fn a_box_cut_turned_away_by_a_later_roughing_cycle_is_not_the_blank() {
+    let text = format!(
+        "%\nO4702 (M24X2 THREAD)\nG21 G18 G99\nT0101\nG97 S800 M3\nG0 X32 Z2\nG90 X26 Z-32 F0.25\nG0 X32 Z2\nG71 U1.5 R0.5\nG71 P100 Q200 U0.4 W0.1 F0.25\nN100 G0 X23.9\nG1 Z-32\nN200 G1 X32\nG70 P100 Q200\n{THREAD}"
+    );
+    let (code, out) = verify_text("rough.nc", &text);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("rough.nc:12:1: the blank is the program's own: Ø23.9000"), "{out}");
+}
+
+/// A journal (Ø23.9 from Z2 to Z-12, line 8) shorter than the pass, whose long run-in starts at
+/// Z8: the middle half of the pass (Z+3 … −7) runs off the journal, the journal is still the
+/// blank.
+#[test]
+fn a_journal_under_a_long_run_in_is_the_blank() {
+    let text = "%\nO4703 (M24X2 THREAD)\nG21 G18 G99\nT0101\nG97 S800 M3\nG0 X30 Z2\nG1 X23.9 F0.2\nG1 Z-12\nG1 X30\nG0 X40 Z50\nT0202\nG97 S700 M3\nG0 X26 Z8\nG76 P010060 Q100 R0.05\nG76 X21.423 Z-12 P1289 Q350 F2.0\nG0 X100 Z100\nM30\n%\n";
+    let (code, out) = verify_text("journal.nc", text);
+    assert_eq!(code, 0, "{out}");
+    assert!(out.contains("journal.nc:8:1: the blank is the program's own: Ø23.9000"), "{out}");
+}
+
+/// "Nothing is cut" names the blank's diameter and where it came from: the part turned to
+/// Ø20 at line 8 is under the thread's crest, so the G76's passes (deepest X21.423) miss it.
+#[test]
+fn nothing_is_cut_names_the_blank_and_its_line() {
+    let text = format!(
+        "%\nO4704 (M24X2 THREAD)\nG21 G18 G99\nT0101\nG97 S800 M3\nG0 X30 Z2\nG1 X20 F0.2\nG1 Z-32\nG0 X30\n{THREAD}"
+    );
+    let (code, out) = verify_text("small.nc", &text);
+    assert_eq!(code, 1, "{out}");
+    assert!(
+        out.contains("no pass reaches the blank Ø20.0000: the deepest pass is at X21.4230, so nothing is cut (is the blank diameter or the thread wrong?); the blank the program's moves leave, turned at line 8"),
+        "{out}"
+    );
+}
+
+/// A Haas lathe program tapping M8x1.25 on the face after its Ø6.8 drill (ISO 2306's tap
+/// drill), the main spindle stopped (M5) before the tap; `code` is the tapping block.
+fn haas_tap(code: &str, tap: &str) -> String {
+    format!(
+        "%\nO4705 (HAAS LATHE: TAP ON THE FACE)\nG21 G18 G99\nT505 (DRILL 6.8)\nG97 S1200 M3\nG0 X0 Z5\nG83 Z-20 R2 Q4000 F0.1\nG80\nM5\nG0 X100 Z100\nT606 (TAP {tap})\nG97 S400\nG0 X0 Z8\n{code}\nG80\nG0 X100 Z100\nM30\n%\n"
+    )
+}
+
+/// Issue 47 item 8, Haas lathe tapping as Haas documents it (the G84 page, HAAS-L84 in
+/// ../shared/notes/machining-centres.md §7): the control starts the spindle for G84 (clockwise)
+/// and G184 (counter-clockwise, a left-hand tap) itself, so a stopped spindle passes; G95 and G186
+/// tap with a live tool (right- and left-hand), which the control turns itself; G195/G196 tap
+/// along X and are refused at their line. F1.25 in G99 is the lead.
+#[test]
+fn haas_lathe_tapping_cycles_start_their_own_spindle() {
+    let dir = tempdir("haas-tap");
+    for (code, tap, hand_note) in [
+        ("G84 Z-14 R5 F1.25", "M8X1.25", "starts the spindle clockwise for G84 itself"),
+        ("G184 Z-14 R5 F1.25", "M8X1.25LH", "starts the spindle counter-clockwise for G184 itself"),
+        ("G95 Z-14 R5 F1.25", "M8X1.25", "G95 is the Haas lathe's live-tool rigid tapping: the control turns the live tool clockwise"),
+        ("G186 Z-14 R5 F1.25", "M8X1.25LH", "G186 is the Haas lathe's live-tool rigid tapping: the control turns the live tool counter-clockwise"),
+    ] {
+        std::fs::write(dir.join("tap.nc"), haas_tap(code, tap)).unwrap();
+        let o = run_in(&dir, &["verify", "--program", "tap.nc", "--dialect", "haas"]);
+        assert_eq!(o.status.code(), Some(0), "{code}: {}{}", stdout(&o), stderr(&o));
+        assert!(stdout(&o).contains(hand_note), "{code}: {}", stdout(&o));
+        assert!(stdout(&o).contains("tapped"), "{code}");
+    }
+    // A right-hand tap under G184 turns the wrong way.
+    std::fs::write(dir.join("tap.nc"), haas_tap("G184 Z-14 R5 F1.25", "M8X1.25")).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "tap.nc", "--dialect", "haas"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stdout(&o));
+    std::fs::write(dir.join("tap.nc"), haas_tap("G195 X10 R15 F1.25", "M8X1.25")).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "tap.nc", "--dialect", "haas"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: tap.nc:14:1: G195 taps radially with a live tool (along X): threadcheck checks tapping along Z (G84, G184, G95, G186) only"
+    );
+}
+
+/// A nose turned at the part's tip (Ø4 for 0.5 mm, line 8) and a taper up from it: the only
+/// cylinder under the pass runs along 0.5 of its 25 mm, far under a quarter, so it is not the
+/// blank (the thread would cut nothing into Ø4); the program turns no diameter for the thread and
+/// the default blank stands, as without the nose.
+#[test]
+fn a_nose_at_the_tip_is_not_the_blank() {
+    let nose = "%\nO4706 (M10X1.5 THREAD)\nG21 G18 G99\nT0101\nG97 S800 M3\nG0 X12 Z2\nG1 X4 Z0 F0.1\nG1 Z-0.5\nG1 X9.85 Z-3\nG0 X20\nG0 X40 Z50\nT0202\nG97 S700 M3\nG0 X12 Z5\nG76 P010060 Q100 R0.05\nG76 X8.16 Z-20 P920 Q300 F1.5\nG0 X100 Z100\nM30\n%\n";
+    let (code, out) = verify_text("nose.nc", nose);
+    assert!(!out.contains("the blank is the program's own"), "{out}");
+    assert!(!out.contains("no cut"), "{out}");
+    let plain = nose.replace("G1 X4 Z0 F0.1\nG1 Z-0.5\nG1 X9.85 Z-3\nG0 X20\n", "");
+    let (plain_code, plain_out) = verify_text("plain.nc", &plain);
+    assert_eq!(code, plain_code);
+    let blank = |o: &str| o.lines().find(|l| l.starts_with("blank X")).map(str::to_string);
+    assert_eq!(blank(&out), blank(&plain_out));
+}
