@@ -793,6 +793,30 @@ fn predefined_mode_parameters_agree_with_rs274() {
     }
 }
 
+/// Issue 47 item 4: LinuxCNC's numbered parameters that follow the program's state (#5220 the
+/// coordinate system, #5400 the tool, #5420 and #5422 the current X and Z in program units) were
+/// read as unset. Each moves the G76's drive line by its own weight, after a tool change, a G56
+/// and a move, in diameter and radius mode, so a value that differs from `rs274`'s moves every
+/// pass.
+#[test]
+fn numbered_state_parameters_agree_with_rs274() {
+    let exe = rs274();
+    let dir = tempdir("rs274-numbered");
+    let table: String = (1..=99).map(|i| format!("T{i} P{i} D0 ;\n")).collect();
+    std::fs::write(dir.join("tool.tbl"), table).unwrap();
+    let programs = [
+        "G21 G18 G7\nT3 M6\nG56\nS500 M3\nG0 X30 Z5\n#<a> = [#5220 + #5400 / 10 + #5420 / 100 + #5422 / 1000 + #5421 + #5423 + #5428]\nG0 X[20 + #<a>] Z2\nG76 P1.5 Z-20 I-1 J0.2 K0.92 R2 Q29.5 L0 E0 H0\nM2\n",
+        "G21 G18 G8\nT7 M6\nG59.3\nS500 M3\nG0 X15 Z4\n#<a> = [#5220 + #5400 / 10 + #5420 / 100 + #5422 / 1000]\nG0 X[10 + #<a> / 2] Z2\nG76 P1.5 Z-20 I-1 J0.2 K0.92 R2 Q29.5 L0 E0 H0\nM2\n",
+    ];
+    for p in programs {
+        let (rs, tc) = (run_rs274(&exe, p, &dir), threadcheck(p));
+        assert!(matches!(&rs, Outcome::Passes(s) if !s.is_empty()), "rs274 cut nothing: {p}");
+        if let Some(why) = compare(None, &rs, &tc) {
+            panic!("{why}\n{p}");
+        }
+    }
+}
+
 /// Issue 47: LinuxCNC's roughing cycle of type 2, `G71.1 Q…`, was read silently as a position
 /// block and its profile subroutine reported as never called. It is named as G71 is, its profile
 /// counts as called, and the thread after it (from a rapid to its start, as programs write it:

@@ -182,12 +182,15 @@ impl Language {
 pub(crate) struct SysParams {
     names: &'static [&'static str],
     values: Vec<Option<f64>>,
+    /// The dialect's numbered parameters the program's state sets (LinuxCNC's #5220, #5400,
+    /// #5420–#5428), by number.
+    numbered: Vec<(i64, f64)>,
 }
 
 impl SysParams {
     /// The parameters `names`, none set yet.
     pub fn new(names: &'static [&'static str]) -> SysParams {
-        SysParams { names, values: vec![None; names.len()] }
+        SysParams { names, values: vec![None; names.len()], numbered: Vec::new() }
     }
 
     /// Sets the parameter in slot `k` (its index in the names) to `v`.
@@ -201,6 +204,19 @@ impl SysParams {
     /// The value of `name`, if the dialect has one by that name and has set it.
     pub fn get(&self, name: &str) -> Option<f64> {
         self.names.iter().position(|n| *n == name).and_then(|k| self.values[k])
+    }
+
+    /// Sets the numbered parameter `n` to `v`.
+    pub fn set_numbered(&mut self, n: i64, v: f64) {
+        match self.numbered.iter_mut().find(|(k, _)| *k == n) {
+            Some(p) => p.1 = v,
+            None => self.numbered.push((n, v)),
+        }
+    }
+
+    /// The numbered parameter `n`, if the dialect's state sets it.
+    pub fn get_numbered(&self, n: i64) -> Option<f64> {
+        self.numbered.iter().find(|(k, _)| *k == n).map(|p| p.1)
     }
 
     /// Whether the dialect has a parameter by that name.

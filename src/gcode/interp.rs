@@ -110,7 +110,9 @@ impl Vars {
                 self.frames.last().and_then(|f| f.0[*n as usize])
             }
             VarKey::Num(n) if (0..FAST_VARS as i64).contains(n) => self.globals[*n as usize],
-            VarKey::Num(n) => self.other.get(n).copied(),
+            // A parameter the dialect's state sets (LinuxCNC's #5220, #5420…) unless the program
+            // wrote it.
+            VarKey::Num(n) => self.other.get(n).copied().or_else(|| self.system.get_numbered(*n)),
             VarKey::Named(s) if s.starts_with('_') => {
                 self.system.get(s).or_else(|| self.named_globals.get(s).copied())
             }

@@ -228,6 +228,19 @@ fn system_params(s: &State, m: &Motion, sys: &mut SysParams) {
     if let Some(rpm) = m.s {
         sys.set(16, rpm);
     }
+    // The numbered parameters the docs list that follow the program's state (LinuxCNC's
+    // docs/src/gcode/overview.adoc, "Numbered Parameters"): #5220 the coordinate system (1 =
+    // G54 … 9 = G59.3), #5400 the tool number, #5420–#5428 the current position in program
+    // units (X as #<_x>, Z as #<_z>; Y and the rotary and U V W axes 0 on a lathe).
+    sys.set_numbered(5220, s.system0 as f64 + 1.0);
+    sys.set_numbered(5400, f64::from(m.tool.unwrap_or(0)));
+    for (k, slot) in [(5420, Some(0)), (5421, None), (5422, Some(1))] {
+        let v = slot.and_then(|k| sys.get(SYSTEM_NAMES[k])).unwrap_or(0.0);
+        sys.set_numbered(k, v);
+    }
+    for k in 5423..=5428 {
+        sys.set_numbered(k, 0.0);
+    }
 }
 
 /// The program value whose position (mm) the reader computed as `fwd(value)` to be `mm`: the
