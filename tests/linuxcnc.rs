@@ -34,6 +34,15 @@ pub(crate) fn rs274() -> PathBuf {
     })
 }
 
+/// A folder for `rs274` runs, with the tool table they read (tools 1–99 in pockets 1–99, no
+/// offsets).
+fn rs274_dir(tag: &str) -> PathBuf {
+    let dir = tempdir(tag);
+    let table: String = (1..=99).map(|i| format!("T{i} P{i} D0 ;\n")).collect();
+    std::fs::write(dir.join("tool.tbl"), table).unwrap();
+    dir
+}
+
 /// One synchronised pass: its points in machine coordinates (X diameter, Z; mm), the distance
 /// per revolution of each feed between them (program units, as K is written) and how far
 /// each point may be off (mm) at the print precision.
@@ -746,9 +755,7 @@ fn generated_programs_agree_with_rs274() {
 fn named_files_agree_with_rs274() {
     let exe = rs274();
     let files = std::env::var("THREADCHECK_RS274_FILES").expect("THREADCHECK_RS274_FILES names the files");
-    let dir = tempdir("rs274-files");
-    let table: String = (1..=99).map(|i| format!("T{i} P{i} D0 ;\n")).collect();
-    std::fs::write(dir.join("tool.tbl"), table).unwrap();
+    let dir = rs274_dir("rs274-files");
     let mut bad = Vec::new();
     for f in files.split(':').filter(|f| !f.is_empty()) {
         let text = std::fs::read_to_string(f).unwrap();
@@ -773,9 +780,7 @@ fn named_files_agree_with_rs274() {
 #[test]
 fn predefined_mode_parameters_agree_with_rs274() {
     let exe = rs274();
-    let dir = tempdir("rs274-predefined");
-    let table: String = (1..=99).map(|i| format!("T{i} P{i} D0 ;\n")).collect();
-    std::fs::write(dir.join("tool.tbl"), table).unwrap();
+    let dir = rs274_dir("rs274-predefined");
     let weigh = "#<a> = [#<_lathe_radius_mode> + 2*#<_lathe_diameter_mode> + 4*#<_spindle_on> + 8*#<_spindle_cw> + 16*#<_spindle_css_mode> + 32*#<_spindle_rpm_mode> + 64*#<_units_per_rev> + 128*#<_units_per_minute>]\n#<b> = [#<_coord_system> / 1000 + #<_rpm> / 100000]\n";
     let programs = [
         // Diameter mode, G55, G18, the spindle clockwise at constant rpm, feed per minute.
@@ -801,9 +806,7 @@ fn predefined_mode_parameters_agree_with_rs274() {
 #[test]
 fn numbered_state_parameters_agree_with_rs274() {
     let exe = rs274();
-    let dir = tempdir("rs274-numbered");
-    let table: String = (1..=99).map(|i| format!("T{i} P{i} D0 ;\n")).collect();
-    std::fs::write(dir.join("tool.tbl"), table).unwrap();
+    let dir = rs274_dir("rs274-numbered");
     let programs = [
         "G21 G18 G7\nT3 M6\nG56\nS500 M3\nG0 X30 Z5\n#<a> = [#5220 + #5400 / 10 + #5420 / 100 + #5422 / 1000 + #5421 + #5423 + #5428]\nG0 X[20 + #<a>] Z2\nG76 P1.5 Z-20 I-1 J0.2 K0.92 R2 Q29.5 L0 E0 H0\nM2\n",
         "G21 G18 G8\nT7 M6\nG59.3\nS500 M3\nG0 X15 Z4\n#<a> = [#5220 + #5400 / 10 + #5420 / 100 + #5422 / 1000]\nG0 X[10 + #<a> / 2] Z2\nG76 P1.5 Z-20 I-1 J0.2 K0.92 R2 Q29.5 L0 E0 H0\nM2\n",
@@ -826,9 +829,7 @@ fn numbered_state_parameters_agree_with_rs274() {
 fn g71_1_is_named_and_calls_its_profile() {
     let p = "G21 G18 G7 G90.1\nS500 M3\nG0 X22 Z2\nG71.1 Q100 D1 R0.5 F0.2\nG0 X22 Z2\nG76 P1.5 Z-20 I-1 J0.2 K0.92 R2 Q29.5 L0 E0 H0\nM2\no100 sub\nG1 X20 Z0 F0.2\nG1 Z-20\no100 endsub\n";
     let exe = rs274();
-    let dir = tempdir("rs274-g71-1");
-    let table: String = (1..=99).map(|i| format!("T{i} P{i} D0 ;\n")).collect();
-    std::fs::write(dir.join("tool.tbl"), table).unwrap();
+    let dir = rs274_dir("rs274-g71-1");
     let (rs, tc) = (run_rs274(&exe, p, &dir), threadcheck(p));
     assert!(compare(None, &rs, &tc).is_none(), "{:?}", compare(None, &rs, &tc));
     std::fs::write(dir.join("g711.ngc"), p).unwrap();
