@@ -90,27 +90,42 @@ fn system_c_g78_is_the_multiple_threading_cycle() {
     assert!((v["operations"][0]["passes"][0]["lead"].as_f64().unwrap() - 38.1).abs() < 1e-9, "{v}");
 }
 
-/// Without the system, G78 is refused with the systems that define it; a system of another
-/// dialect is refused; system A's codes read in B are not A's.
+/// Without the system, and without a word that shows it (issue 45: a G91 is system B's or C's,
+/// so the program is read in B, said), G78 is refused with the systems that define it; a system
+/// of another dialect is refused; system A's codes read in B are not A's.
 #[test]
 fn g78_is_never_read_without_its_system() {
-    for (program, args, line) in [
+    // The system-B program's G91 at line 13 shows its system.
+    let p = data("programs/fanuc-system-b-g78.nc");
+    let o = run_in(p.parent().unwrap(), &["passes", "--program", "fanuc-system-b-g78.nc"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("read in Fanuc G-code system B, as its own words show: line 13:1 writes G91, which system A does not have"),
+        "{}",
+        stdout(&o)
+    );
+    // Without that part (lines 13–17), nothing in it shows the system.
+    let dir = tempdir("system-b-unshown");
+    let text = std::fs::read_to_string(&p).unwrap();
+    let first: Vec<&str> = text.lines().take(12).collect();
+    std::fs::write(dir.join("fanuc-system-b-g78.nc"), format!("{}\nM30\n%\n", first.join("\n"))).unwrap();
+    for (program, at, args, line) in [
         (
             "fanuc-system-b-g78.nc",
+            &dir,
             vec![],
             "fanuc-system-b-g78.nc:7:1: G78 is not a code of Fanuc G-code system A, which this program is read in: a control set to system B reads it as the threading cycle (G92 in A), one set to system C as the multiple threading cycle (G76 in A); give --gcode-system b or c (the EMCO training lathe's G78 box cycle is not supported)",
         ),
         (
             "haas-g76-metric.nc",
+            &data("programs"),
             vec!["--dialect", "haas", "--gcode-system", "b"],
             "G-code system B is a setting of Fanuc-family lathe controls (fanuc, mitsubishi, mazak): a haas program has one G-code list (leave --gcode-system out)",
         ),
     ] {
-        let p = data(&format!("programs/{program}"));
-        let dir = p.parent().unwrap();
         let mut all = vec!["passes", "--program", program];
         all.extend(args);
-        let o = run_in(dir, &all);
+        let o = run_in(at, &all);
         assert_eq!(o.status.code(), Some(2));
         assert_eq!(stderr(&o).trim(), format!("threadcheck: error: {line}"));
     }
@@ -381,4 +396,61 @@ fn sinumerik_cycle99_degressive_flank_and_two_starts() {
             assert!((dev - 32.0).abs() < 0.1, "{program}: {dev}");
         }
     }
+}
+
+/// Issue 45 item 1: the G-code system from the program's own words. The header `G28 G91 Z0.` /
+/// `G90` is system B's or C's (system A has no G91; its G90 is the box cycle, which needs a
+/// position): the program is read in B, the named default of the two, and said, so G90 makes the
+/// G76 absolute again and its last pass is the X27.546 it writes (read in A, G91 stayed in force
+/// and every pass drifted to X57.8 and beyond). A G92 with F in such a program is system A's
+/// threading cycle and B's coordinate setting: refused at its line. Given `--gcode-system a`, G91
+/// is no code of system A's lathe and is read past with a note.
+#[test]
+fn the_gcode_system_is_read_from_the_program() {
+    let dir = tempdir("gsystem-evidence");
+    let header = "O5001 (M30X2)\nG21 G18 G99\nG28 G91 Z0.\nG90\nT0101\nG97 S600 M3\nG0 X32 Z5\n";
+    std::fs::write(
+        dir.join("g76.nc"),
+        format!("{header}G76 P010060 Q100 R0.05\nG76 X27.546 Z-30 P1227 Q350 F2.0\nG0 X100 Z100\nM30\n"),
+    )
+    .unwrap();
+    let o = run_in(&dir, &["passes", "--program", "g76.nc", "--json", "-"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let passes = v["operations"][0]["passes"].as_array().unwrap();
+    assert_eq!(passes.last().unwrap()["x_end"], 27.546);
+    assert!(passes.iter().all(|p| p["x_end"].as_f64().unwrap() < 32.0), "every pass under the start X32");
+    let o = run_in(&dir, &["passes", "--program", "g76.nc"]);
+    assert!(
+        stdout(&o)
+            .contains("note: read in Fanuc G-code system B, as its own words show: line 3:5 writes G91"),
+        "{}",
+        stdout(&o)
+    );
+
+    std::fs::write(dir.join("g92.nc"), format!("{header}G92 X29 Z-30 F2.0\nX28.5\nG0 X100 Z100\nM30\n"))
+        .unwrap();
+    let o = run_in(&dir, &["passes", "--program", "g92.nc"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: g92.nc:8:1: G92 with F is Fanuc G-code system A's threading cycle, but line 3 writes G91, which system A does not have (systems B and C: incremental programming): give --gcode-system"
+    );
+    let o = run_in(&dir, &["passes", "--program", "g92.nc", "--gcode-system", "a"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("g92.nc:3:5: G91 read past: not a code threadcheck knows in this dialect"),
+        "{}",
+        stdout(&o)
+    );
+    // A G90 without a position in a safety line is no evidence (regression: a system A program
+    // whose first line is `G20 G90 G18` was refused at its G92 threading cycle).
+    std::fs::write(
+        dir.join("safe.nc"),
+        "G20 G90 G18\nG0 X2.0 Z0.2\nM3\nS500\nG92 X1.9 Z-1.0 F0.05\nX1.8\nM5\nM2\n",
+    )
+    .unwrap();
+    let o = run_in(&dir, &["passes", "--program", "safe.nc"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("read in Fanuc G-code system A"), "{}", stdout(&o));
 }

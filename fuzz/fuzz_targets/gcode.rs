@@ -16,7 +16,7 @@ fuzz_target!(|data: &[u8]| {
             let _ = read_program_with(text, "fuzz.nc", d, opts);
         }
         for gcode_system in [GCodeSystem::B, GCodeSystem::C] {
-            let _ = read_program_with(text, "fuzz.nc", Dialect::Fanuc, ReadOptions { gcode_system, ..opts });
+            let _ = read_program_with(text, "fuzz.nc", Dialect::Fanuc, ReadOptions { gcode_system: Some(gcode_system), ..opts });
         }
     }
 });

@@ -396,7 +396,7 @@ impl PlanArgs {
         s.reading.default_units = self.default_units;
         s.reading.main = self.main.map(|o| o.0);
         s.reading.linuxcnc = self.linuxcnc_release.unwrap_or_default();
-        s.reading.gcode_system = self.gcode_system.unwrap_or_default();
+        s.reading.gcode_system = self.gcode_system;
         s.reading.machine_type = self.machine_type;
         s.reading.block_delete = self.block_delete;
         s.validate()?;

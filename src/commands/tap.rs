@@ -64,7 +64,7 @@ impl Job for TapArgs {
         let reading = ReadOptions {
             dialect_from: from,
             default_units: self.default_units,
-            gcode_system: self.gcode_system.unwrap_or_default(),
+            gcode_system: self.gcode_system,
             machine_type: self.machine_type,
             ..Default::default()
         };

@@ -221,6 +221,11 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
         // A program of G-code system B or C: its code in system A's terms.
         let g = if d.fanuc_family() {
             match m.gsystem.to_a(g as u32) {
+                // System A has no G91 on a lathe (U and W are its increments).
+                SystemCode::A(91) if m.gsystem == super::GCodeSystem::A && m.lathe() => {
+                    unknown.push((g, col));
+                    continue;
+                }
                 SystemCode::A(a) => f64::from(a),
                 SystemCode::Absolute => {
                     m.absolute = true;

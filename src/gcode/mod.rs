@@ -682,15 +682,39 @@ pub struct ReadOptions {
     /// The LinuxCNC release whose comparison rules a `linuxcnc` program follows (other
     /// dialects ignore it).
     pub linuxcnc: LinuxCncRelease,
-    /// The G-code system of a `fanuc` program (system A unless given; the other dialects have
-    /// one G-code list and refuse B and C).
-    pub gcode_system: GCodeSystem,
+    /// The G-code system of a `fanuc` program; `None` takes it from the program's own words on
+    /// a lathe (a G91 is system B's or C's: B, the named default; else A) and the notes say
+    /// which; the other dialects have one G-code list and refuse B
+    /// and C.
+    pub gcode_system: Option<GCodeSystem>,
     /// The machine the program runs on; `None` takes it from the program's own evidence, else
     /// the dialect's default (a lathe), and the notes say which.
     pub machine_type: Option<MachineType>,
     /// The control's block-delete switch: on skips the blocks that begin with `/`; off (the
     /// default, stated when the program has such blocks) runs them.
     pub block_delete: bool,
+}
+
+/// A word's plain number, if it has one.
+fn word_value(w: &lexer::Word) -> Option<f64> {
+    match w.val {
+        lexer::WVal::Num { v, .. } => Some(v),
+        _ => None,
+    }
+}
+
+/// Where a Fanuc-family lathe program shows it is written for G-code system B or C: its first
+/// G91 (incremental programming; system A has none, its increments are U and W), with its line,
+/// column, the code as written and what it is there. A G90 without a position is no evidence:
+/// system A programs write it in their safety lines too, where it does nothing.
+fn system_evidence(blocks: &[lexer::Block]) -> Option<(usize, usize, String, &'static str)> {
+    blocks.iter().find_map(|b| {
+        b.words
+            .iter()
+            .filter(|w| w.name == "G")
+            .find(|w| word_value(w) == Some(91.0))
+            .map(|w| (b.line, w.col, w.text.clone(), "incremental programming"))
+    })
 }
 
 /// How much a program may run before it is taken for a runaway.
@@ -847,19 +871,45 @@ fn read(
         blocks = keyed.into_iter().map(|k| k.2).collect();
     }
     let fanuc_family = dialect.fanuc_family();
-    if !fanuc_family && opts.gcode_system != GCodeSystem::A {
+    if let Some(sys) = opts.gcode_system.filter(|s| !fanuc_family && *s != GCodeSystem::A) {
         return Err(Error::Input(format!(
             "G-code system {} is a setting of Fanuc-family lathe controls (fanuc, mitsubishi, mazak): a {} program has one G-code list (leave ‹gcode_system› out)",
-            opts.gcode_system.name(),
+            sys.name(),
             dialect.name()
         )));
     }
     let machine = machine::decide(&blocks, dialect, opts.machine_type, opts.moves);
+    let lathe = machine.machine_type != MachineType::Mill;
+    let (gsystem, system_evidence) = match opts.gcode_system {
+        Some(s) => (s, None),
+        None if fanuc_family && lathe => match system_evidence(&blocks) {
+            Some(e) => {
+                // System A's threading cycle in a program whose words are system B's or C's:
+                // which one the control runs is not in the program.
+                if let Some((b, col)) = blocks.iter().find_map(|b| {
+                    let g92 = b.words.iter().find(|w| w.name == "G" && word_value(w) == Some(92.0))?;
+                    b.words.iter().any(|w| w.name == "F").then_some((b, g92.col))
+                }) {
+                    return Err(perr(
+                        b.line,
+                        col,
+                        format!(
+                            "G92 with F is Fanuc G-code system A's threading cycle, but line {} writes {}, which system A does not have (systems B and C: {}): give ‹gcode_system›",
+                            e.0, e.2, e.3
+                        ),
+                    ));
+                }
+                (GCodeSystem::B, Some(e))
+            }
+            None => (GCodeSystem::A, None),
+        },
+        None => (GCodeSystem::A, None),
+    };
     let mut m = motion::Motion::new(dialect, file, opts.moves, machine.machine_type == MachineType::Mill);
     if let Some(out) = out {
         m.stream_to(out);
     }
-    m.gsystem = opts.gcode_system;
+    m.gsystem = gsystem;
     if let Some(u) = opts.default_units {
         m.scale = u.mm();
     }
@@ -910,10 +960,16 @@ fn read(
         _ => None,
     };
     // The system is a setting of the control, not in the program: say which one was read.
-    let system_note = (fanuc_family && !operations.is_empty()).then(|| match opts.gcode_system {
+    let why = match &system_evidence {
+        Some((line, col, code, _)) => format!(
+            "as its own words show: line {line}:{col} writes {code}, which system A does not have (B, the named default of B and C, whose words these are; ‹gcode_system› c chooses C)"
+        ),
+        None => "as ‹gcode_system› says".to_string(),
+    };
+    let system_note = (fanuc_family && !operations.is_empty()).then(|| match gsystem {
         GCodeSystem::A => "read in Fanuc G-code system A (G92 the threading cycle, G76 the multiple one, G32 thread cutting); a control set to system B or C needs ‹gcode_system› b or c".to_string(),
-        GCodeSystem::B => "read in Fanuc G-code system B, as ‹gcode_system› says: G78 the threading cycle, G76 the multiple one, G33 thread cutting, G92 coordinates, G90/G91 absolute/incremental".to_string(),
-        GCodeSystem::C => "read in Fanuc G-code system C, as ‹gcode_system› says: G21 the threading cycle, G78 the multiple one, G33 thread cutting, G70/G71 inch/metric, G92 coordinates, G90/G91 absolute/incremental".to_string(),
+        GCodeSystem::B => format!("read in Fanuc G-code system B, {why}: G78 the threading cycle, G76 the multiple one, G33 thread cutting, G92 coordinates, G90/G91 absolute/incremental"),
+        GCodeSystem::C => format!("read in Fanuc G-code system C, {why}: G21 the threading cycle, G78 the multiple one, G33 thread cutting, G70/G71 inch/metric, G92 coordinates, G90/G91 absolute/incremental"),
     });
     // Mitsubishi and Mazak are read as the Fanuc model: say so wherever they thread.
     let model_note = match dialect {
