@@ -126,3 +126,74 @@ fn a_nose_at_the_tip_is_not_the_blank() {
     let blank = |o: &str| o.lines().find(|l| l.starts_with("blank X")).map(str::to_string);
     assert_eq!(blank(&out), blank(&plain_out));
 }
+
+/// Issue 47 item 5, subprograms where the control finds them. A LinuxCNC program calls
+/// `o<thr>`, whose file `thr.ngc` stands in a library folder (`--subroutine-path lib`); the
+/// library's preview lines begin with `/` and end in `/ o<thr> return`. With the block-delete
+/// switch off (the default, said) the return runs before the G76, so the program makes no thread,
+/// and the refusal names the library's line; with `--block-delete` the G76 runs: its depth
+/// `#1 · (1 + #<_lathe_radius_mode>)` = 1.84 in G7 (diameter) puts the root at 9.85 − 1.84 =
+/// X8.01, inside 6g's d3 (ISO 965-1), and the operation is named by its file. Without the path
+/// the call is refused at its line.
+#[test]
+fn a_linuxcnc_subroutine_library_in_another_folder() {
+    let dir = tempdir("sub-library");
+    std::fs::create_dir_all(dir.join("lib")).unwrap();
+    std::fs::write(
+        dir.join("main.ngc"),
+        "(M10X1.5 THREAD)\nG7 G18 G21 G90\nS500 M3\nG0 X9.85 Z2\nG1 Z-25 F0.1\nG0 X12 Z2\no<thr> call [1.84]\nG0 X20 Z20\nM2\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("lib/thr.ngc"),
+        "o<thr> sub\n/ G0 X30 Z30 (preview)\n/ o<thr> return\n#<depth> = [#1 * [1 + #<_lathe_radius_mode>]]\nG76 P1.5 Z-20 I-2.15 J0.05 K#<depth> Q29.5 R1.5 H1 E0 L0\no<thr> endsub\n",
+    )
+    .unwrap();
+    let args = ["verify", "--program", "main.ngc", "--insert", "full", "--subroutine-path", "lib"];
+    let o = run_in(&dir, &args);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        one_line_error(&o).ends_with("lib/thr.ngc:2: 2 blocks begin with / (block delete): the control's switch is taken as off, so they run (--block-delete skips them)"),
+        "{}",
+        one_line_error(&o)
+    );
+    let o = run_in(&dir, &[&args[..], &["--block-delete"]].concat());
+    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("== operation 1 of 1: G76 at line 5 of lib/thr.ngc"), "{out}");
+    assert!(out.contains("blank X9.8500, final X8.0100"), "{out}");
+    assert!(
+        out.contains(
+            "note: subprograms read from files beside the program, where the control finds them: lib/thr.ngc"
+        ),
+        "{out}"
+    );
+    let o = run_in(&dir, &["verify", "--program", "main.ngc", "--insert", "full"]);
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: main.ngc:7:1: o<thr> call: no o<thr> sub in this file, nor its file where the control looks (the program's folder and --subroutine-path, for a program read from a file)"
+    );
+}
+
+/// A Fanuc program's `M98 P2000` finds O2000 in the file of that number beside it (`O2000.nc`,
+/// or `2000` without an extension and without its O line); the thread it cuts (the shaft's
+/// M24x2 G76, last pass X21.423) is checked against the main program's comment, and a run of
+/// many places its lines in the subprogram's file.
+#[test]
+fn m98_finds_its_subprogram_in_the_file_of_its_number() {
+    let dir = tempdir("sub-m98");
+    let main = "%\nO1000 (M24X2-6G THREAD)\nG21 G18 G99\nT0101\nG97 S800 M3\nG0 X30 Z2\nG1 X23.9 F0.2\nG1 Z-32\nG0 X40 Z50\nM98 P2000\nG0 X100 Z100\nM30\n%\n";
+    let sub =
+        "T0202\nG97 S700 M3\nG0 X26 Z5\nG76 P010060 Q100 R0.05\nG76 X21.423 Z-30 P1289 Q350 F2.0\nM99\n";
+    std::fs::write(dir.join("o1000.nc"), main).unwrap();
+    std::fs::write(dir.join("O2000.nc"), format!("%\nO2000\n{sub}%\n")).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "o1000.nc", "--insert", "full"]);
+    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    assert!(stdout(&o).contains("G76 at line 7 of O2000.nc, tool T2"), "{}", stdout(&o));
+    assert!(stdout(&o).contains("M24X2-6g: named by the comment at line 2"), "{}", stdout(&o));
+    std::fs::remove_file(dir.join("O2000.nc")).unwrap();
+    std::fs::write(dir.join("2000"), sub).unwrap();
+    let o = run_in(&dir, &["verify", "o1000.nc"]);
+    assert_eq!(o.status.code(), Some(1), "the default partial insert fails the root: {}", stdout(&o));
+    assert!(stdout(&o).starts_with("2000:5: FAIL turned M24X2-6g (comment)"), "{}", stdout(&o));
+}

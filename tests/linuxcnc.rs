@@ -155,6 +155,7 @@ fn run_rs274(exe: &Path, program: &str, dir: &Path) -> Outcome {
     let file = dir.join("p.ngc");
     std::fs::write(&file, program).unwrap();
     let out = std::process::Command::new(exe)
+        .current_dir(dir)
         .env("HOME", dir)
         .arg("-t")
         .arg(dir.join("tool.tbl"))
@@ -169,7 +170,12 @@ fn run_rs274(exe: &Path, program: &str, dir: &Path) -> Outcome {
 
 /// threadcheck's passes of `program` as the same points.
 fn threadcheck(program: &str) -> Outcome {
-    let opts = ReadOptions { linuxcnc: LinuxCncRelease::Before29, ..ReadOptions::default() };
+    threadcheck_with(program, ReadOptions::default())
+}
+
+/// [`threadcheck`] with reading options (the subprogram files it finds).
+fn threadcheck_with(program: &str, opts: ReadOptions) -> Outcome {
+    let opts = ReadOptions { linuxcnc: LinuxCncRelease::Before29, ..opts };
     let p = match read_program_with(program, "p.ngc", Dialect::LinuxCnc, opts) {
         Ok(p) => p,
         Err(e) => return Outcome::Refused(e.to_string()),
@@ -817,6 +823,33 @@ fn numbered_state_parameters_agree_with_rs274() {
         if let Some(why) = compare(None, &rs, &tc) {
             panic!("{why}\n{p}");
         }
+    }
+}
+
+/// Issue 47 item 5: a subroutine in a file of its own, found where LinuxCNC looks (`rs274`
+/// runs in the folder that holds `thr.ngc`; threadcheck's commands search the program's folder and
+/// `--subroutine-path`, here a finder that holds the one file). The library reads
+/// `#<_lathe_radius_mode>` and the program turns a G90.1 arc before it: the passes agree with
+/// `rs274`'s, and a call of a file that is not there is refused at the call.
+#[test]
+fn a_subroutine_file_beside_the_program_agrees_with_rs274() {
+    let exe = rs274();
+    let dir = rs274_dir("rs274-sub-file");
+    let thr = "o<thr> sub\n#<depth> = [#1 * [2 - #<_lathe_radius_mode>]]\nG76 P1.5 Z-20 I-1 J0.2 K#<depth> R2 Q29.5 L0 E0 H0\no<thr> endsub\nM2\n";
+    std::fs::write(dir.join("thr.ngc"), thr).unwrap();
+    let p = "G21 G18 G8 G90.1\nS500 M3\nG0 X10 Z2\nG1 X10 Z0 F0.1\nG3 X11 Z-1 I10 K-1\nG0 X12 Z2\no<thr> call [0.92]\nM2\n";
+    let finder = threadcheck::SubFinder(std::sync::Arc::new(move |name: &str| {
+        (name == "thr").then(|| Ok(("thr.ngc".to_string(), thr.to_string())))
+    }));
+    let rs = run_rs274(&exe, p, &dir);
+    assert!(matches!(&rs, Outcome::Passes(s) if !s.is_empty()), "rs274 cut nothing");
+    let tc = threadcheck_with(p, ReadOptions { sub_files: Some(finder), ..ReadOptions::default() });
+    assert!(compare(None, &rs, &tc).is_none(), "{:?}", compare(None, &rs, &tc));
+    match threadcheck(&p.replace("<thr>", "<missing>")) {
+        Outcome::Refused(e) => {
+            assert!(e.starts_with("p.ngc:7:1: o<missing> call: no o<missing> sub in this file"), "{e}")
+        }
+        other => panic!("{other:?}"),
     }
 }
 

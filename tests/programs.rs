@@ -442,7 +442,7 @@ fn dyna_counted_loops_and_moves() {
 fn seed_cardioid_cam_expands_in_n_order() {
     let text = std::fs::read_to_string(data("programs/milling/seed002-cardioid-cam.nc")).unwrap();
     let opts = ReadOptions { moves: true, allow_no_threading: true, n_order: true, ..ReadOptions::default() };
-    let p = read_program_with(&text, "cam.nc", Dialect::Dyna, opts).unwrap();
+    let p = read_program_with(&text, "cam.nc", Dialect::Dyna, opts.clone()).unwrap();
     let last_feed = p.moves.iter().rev().find(|m| !m.rapid).unwrap();
     assert_eq!(p.moves.len(), 92_290, "the first G00 and the final G00 Z2 included");
     assert_eq!(p.moves[0].to, [0.0, 0.0, 2.0]);

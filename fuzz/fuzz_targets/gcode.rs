@@ -13,10 +13,10 @@ fuzz_target!(|data: &[u8]| {
             ..ReadOptions::default()
         };
         for d in Dialect::ALL {
-            let _ = read_program_with(text, "fuzz.nc", d, opts);
+            let _ = read_program_with(text, "fuzz.nc", d, opts.clone());
         }
         for gcode_system in [GCodeSystem::B, GCodeSystem::C] {
-            let _ = read_program_with(text, "fuzz.nc", Dialect::Fanuc, ReadOptions { gcode_system: Some(gcode_system), ..opts });
+            let _ = read_program_with(text, "fuzz.nc", Dialect::Fanuc, ReadOptions { gcode_system: Some(gcode_system), ..opts.clone() });
         }
     }
 });

@@ -254,7 +254,7 @@ fn same(a: Option<f64>, b: Option<f64>) -> bool {
 /// ```
 pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
     let (text, name) = &spec.program;
-    let opts = ReadOptions { allow_no_threading: true, ..spec.reading };
+    let opts = ReadOptions { allow_no_threading: true, ..spec.reading.clone() };
     let prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
     let taps: Vec<&HoleCycle> = prog.holes.iter().filter(|h| h.kind == HoleKind::Tap).collect();
     if taps.is_empty() {

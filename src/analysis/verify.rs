@@ -945,7 +945,7 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
             ));
         }
         let (shown, text) = source.load()?;
-        let prog = crate::gcode::read_program_with(&text, &shown, *dialect, spec.reading)?;
+        let prog = crate::gcode::read_program_with(&text, &shown, *dialect, spec.reading.clone())?;
         let index = operation_index(&prog, &shown, spec.operation)?;
         let label = ProgramLabel { file: shown, dialect: *dialect };
         let mut v = verify_given(&resolve(spec)?, &prog.operations[index], &label)?;
@@ -1851,8 +1851,11 @@ fn name_turned(
         .chain([op.source_line])
         .max()
         .unwrap_or(op.source_line);
-    let after = before.map_or(0, |b| b.source_line);
-    if let Some(n) = from_comments(comments, after, upto, kind, opts) {
+    // The comments are the program's own: an operation in a subprogram's file has none above it
+    // there, and takes the program's nearest comment of its lead.
+    let in_sub = op.source_file.is_some();
+    let after = if in_sub { usize::MAX } else { before.map_or(0, |b| b.source_line) };
+    if let Some(n) = from_comments(comments, after, upto, kind, opts).filter(|_| !in_sub) {
         return Ok(n);
     }
     let same_lead = comments
@@ -1910,7 +1913,7 @@ pub fn verify_program(
     threads: &[String],
     insert_for: &InsertFor<'_>,
 ) -> Result<ProgramVerification, Error> {
-    let prog = crate::gcode::read_program_with(text, name, dialect, spec.reading)?;
+    let prog = crate::gcode::read_program_with(text, name, dialect, spec.reading.clone())?;
     let n = prog.operations.len();
     if !(threads.is_empty() || threads.len() == 1 || threads.len() == n) {
         let lines: Vec<String> =

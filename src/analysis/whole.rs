@@ -124,8 +124,8 @@ pub fn verify_whole(
     insert_for: &InsertFor<'_>,
     tools: Option<&ToolTable>,
 ) -> Result<ProgramVerification, Error> {
-    let reading = ReadOptions { allow_no_threading: true, ..spec.reading };
-    let mut prog = crate::gcode::read_program_with(text, name, dialect, reading)?;
+    let reading = ReadOptions { allow_no_threading: true, ..spec.reading.clone() };
+    let mut prog = crate::gcode::read_program_with(text, name, dialect, reading.clone())?;
     // On a machining centre, its toolpath too (a recorded toolpath is read as a mill's).
     if prog.machine.machine_type == crate::gcode::MachineType::Mill {
         prog = crate::gcode::read_program_with(text, name, dialect, ReadOptions { moves: true, ..reading })?;
@@ -155,7 +155,7 @@ pub fn verify_whole(
         let t = TapSpec {
             program: (text.to_string(), name.to_string()),
             dialect,
-            reading: spec.reading,
+            reading: spec.reading.clone(),
             tools: tools.cloned().unwrap_or_else(|| ToolTable::empty("no tool table")),
             allow_nonstandard: spec.allow_nonstandard,
             from_program: true,

@@ -255,8 +255,8 @@ pub struct PlanArgs {
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub linuxcnc_release: Option<LinuxCncRelease>,
     /// The G-code system a Fanuc-family lathe control (fanuc, mitsubishi, mazak) is set to: a (G92
-    /// threading cycle, the default), b (G78 threading cycle, G92 coordinates) or c (G21
-    /// threading cycle, G78 multiple cycle)
+    /// threading cycle), b (G78 threading cycle, G92 coordinates) or c (G21 threading cycle, G78
+    /// multiple cycle). Default: the program's own words (a G91 is B's or C's: b), else a.
     #[cfg_attr(feature = "cli", arg(long, value_name = "a|b|c"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub gcode_system: Option<GCodeSystem>,
@@ -271,6 +271,50 @@ pub struct PlanArgs {
     /// (default off: they run, and the notes say so).
     #[cfg_attr(feature = "cli", arg(long))]
     pub block_delete: bool,
+    /// Folders where a LinuxCNC program's `o<name> call` finds `name.ngc` (its INI's
+    /// SUBROUTINE_PATH, `:` between folders), after the program's own folder, where Fanuc's
+    /// `M98 P2000` finds the file of O2000 too.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "DIR[:DIR…]", value_delimiter = ':'))]
+    #[serde(skip)]
+    pub subroutine_path: Vec<PathBuf>,
+}
+
+/// Finds the files of the subprograms a program calls in `dirs`, as the controls name them:
+/// LinuxCNC's `o<name> call` the file `name.ngc`, Fanuc's `M98 P2000` a file named `O2000`,
+/// `O02000` or `2000`, with a program extension or none. Each file is read as a program is
+/// (bounded, its encoding checked).
+fn sub_finder(dirs: Vec<PathBuf>) -> crate::gcode::SubFinder {
+    crate::gcode::SubFinder(std::sync::Arc::new(move |name: &str| {
+        let number =
+            name.strip_prefix('O').filter(|n| !n.is_empty() && n.bytes().all(|c| c.is_ascii_digit()));
+        let stems: Vec<String> = match number {
+            Some(n) => {
+                let n: String = n.trim_start_matches('0').to_string();
+                vec![format!("o{n}"), format!("o{n:0>4}"), format!("o{n:0>5}"), n.clone(), format!("{n:0>4}")]
+            }
+            None => Vec::new(),
+        };
+        for dir in &dirs {
+            let found = match number {
+                None => Some(dir.join(format!("{name}.ngc"))).filter(|p| p.is_file()),
+                Some(_) => std::fs::read_dir(dir).ok().and_then(|entries| {
+                    entries.filter_map(Result::ok).take(100_000).map(|e| e.path()).find(|p| {
+                        let stem = p.file_stem().and_then(|s| s.to_str()).map(str::to_ascii_lowercase);
+                        let ext = p.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+                        p.is_file()
+                            && stem.is_some_and(|s| stems.contains(&s))
+                            && ext.is_none_or(|e| super::verify::PROGRAM_EXTENSIONS.contains(&e.as_str()))
+                    })
+                }),
+            };
+            if let Some(path) = found {
+                // Named as the program is (`lib/thr.ngc`), without the `./` of its own folder.
+                let shown = path.strip_prefix(".").unwrap_or(&path).display().to_string();
+                return Some(crate::analysis::verify::read_program_text(&path).map(|text| (shown, text)));
+            }
+        }
+        None
+    }))
 }
 
 impl PlanArgs {
@@ -372,6 +416,14 @@ impl PlanArgs {
                 let (dialect, from) = dialect_for(self.dialect, &shown);
                 s.program = Some((source.program(&name), dialect));
                 s.reading.dialect_from = from;
+                // A program read from a file finds its subprograms' files where the control
+                // would: its own folder, then the subroutine path.
+                if let (Source::Path(p), super::Files::Allowed) = (source, files) {
+                    let own = p.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+                    let mut dirs = vec![own.to_path_buf()];
+                    dirs.extend(self.subroutine_path.iter().cloned());
+                    s.reading.sub_files = Some(sub_finder(dirs));
+                }
             }
             None => {
                 let given = [
@@ -383,6 +435,7 @@ impl PlanArgs {
                     ("linuxcnc_release", self.linuxcnc_release.is_some()),
                     ("machine_type", self.machine_type.is_some()),
                     ("block_delete", self.block_delete),
+                    ("subroutine_path", !self.subroutine_path.is_empty()),
                     ("machine", self.machine.is_some()),
                 ];
                 if let Some((key, _)) = given.iter().find(|(_, g)| *g) {

@@ -148,7 +148,7 @@ pub fn filter(args: &FilterArgs) -> Result<Filtered, Error> {
         let detail: Vec<String> = o.findings.iter().map(|f| words(&f.message)).collect();
         lines.push(format!(
             "threadcheck: {}:{}:{}: {what}: {}",
-            checked.file,
+            o.in_file.as_deref().unwrap_or(&checked.file),
             o.line,
             o.column,
             detail.join("; ")

@@ -69,7 +69,7 @@ impl Job for PassesArgs {
         let (json, text) = match &spec.program {
             Some((source, dialect)) => {
                 let (shown, text) = source.load()?;
-                let prog = crate::gcode::read_program_with(&text, &shown, *dialect, spec.reading)?;
+                let prog = crate::gcode::read_program_with(&text, &shown, *dialect, spec.reading.clone())?;
                 let thread = if spec.designation.is_empty() { None } else { Some(thread_of(&spec)?) };
                 let source = PassesSource::Program { shown: &shown, dialect: *dialect, program: &prog };
                 (

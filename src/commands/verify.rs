@@ -324,6 +324,12 @@ impl VerifyArgs {
                     .operations
                     .iter()
                     .filter_map(|o| match &o.result {
+                        // A correction in a subprogram's file is not this document's to edit.
+                        crate::analysis::verify::OperationResult::Verified(_)
+                            if o.operation.source_file.is_some() =>
+                        {
+                            None
+                        }
                         crate::analysis::verify::OperationResult::Verified(v) => {
                             let c = v.correction.as_ref()?;
                             let edits = correction_edits(c, &shown).ok()?;
@@ -493,6 +499,17 @@ fn fixed_program(
             continue;
         };
         let Some(c) = &v.correction else { continue };
+        if let Some(sub) = &o.operation.source_file {
+            return Err(Error::Program {
+                file: sub.clone(),
+                line: c.line,
+                column: c.column,
+                message: format!(
+                    "‹fix› rewrites the program's own file, and this correction is in its subprogram's: {}",
+                    crate::report::correction_text(c)
+                ),
+            });
+        }
         edits.extend(correction_edits(c, shown)?);
     }
     crate::gcode::rewrite_words(text, shown, &edits)

@@ -234,7 +234,7 @@ struct Layout {
 
 /// The O-numbers a program section calls by a literal word: `M98 P…` (more than four digits:
 /// the last four) and `G65 P…`.
-fn static_calls(blocks: &[Block]) -> Vec<String> {
+pub(crate) fn static_calls(blocks: &[Block]) -> Vec<String> {
     let num = |w: &super::lexer::Word| match w.val {
         super::lexer::WVal::Num { v, .. } => Some(v),
         _ => None,
@@ -328,15 +328,26 @@ fn choose_main(
     Ok(())
 }
 
-fn layout(blocks: &[Block], lang: Language, m: &mut Motion, main: Option<u32>) -> Result<Layout, Error> {
+/// The name of the file a block stands in: the program's, or a subprogram file's.
+fn file_of<'n>(names: &'n [String], b: &Block) -> &'n str {
+    names.get(b.file).or(names.first()).map_or("", String::as_str)
+}
+
+fn layout(
+    blocks: &[Block],
+    lang: Language,
+    m: &mut Motion,
+    main: Option<u32>,
+    names: &[String],
+) -> Result<Layout, Error> {
+    let name_of = |b: &Block| file_of(names, b);
     let mut l = Layout {
         main_end: blocks.len(),
         section: vec![(0, blocks.len()); blocks.len()],
         ..Layout::default()
     };
-    let file = m.file.clone();
     let perr = |b: &Block, col: usize, msg: String| Error::Program {
-        file: file.clone(),
+        file: name_of(b).to_string(),
         line: b.line,
         column: col,
         message: msg,
@@ -807,7 +818,7 @@ impl<'a> Exec<'a> {
                     vals.push(self.ev(b, a, col)?.unwrap_or(0.0));
                 }
                 let Some(&(start, send)) = self.lay.subs.get(name.as_str()) else {
-                    return Err(perr(self.file, b, col, format!("o{name} call: no o{name} sub in this file (threadcheck reads subroutines defined in the same file)")));
+                    return Err(perr(self.file, b, col, format!("o{name} call: no o{name} sub in this file, nor its file where the control looks (the program's folder and ‹subroutine_path›, for a program read from a file)")));
                 };
                 if self.frames.len() + 1 > MAX_CALL_DEPTH {
                     return Err(perr(
@@ -958,7 +969,7 @@ impl<'a> Exec<'a> {
             }
             Flow::Call { name, repeats: reps, locals, col } => {
                 let Some(&(start, send)) = self.lay.subs.get(&name) else {
-                    return Err(perr(self.file, b, col, format!("subprogram {name} is not in this file")));
+                    return Err(perr(self.file, b, col, format!("subprogram {name} is not in this file, nor in a file of its number beside it (for a program read from a file)")));
                 };
                 if reps as usize > MAX_REPEATS {
                     return Err(perr(
@@ -1118,11 +1129,14 @@ pub(crate) fn run(
     lang: Language,
     rules: &mut dyn Rules,
     m: &mut Motion,
-    file: &str,
+    names: &[String],
     budget: super::Budget,
     main: Option<u32>,
 ) -> Result<(), Error> {
-    let lay = layout(blocks, lang, m, main)?;
+    debug_assert!(!names.is_empty() && blocks.iter().all(|b| b.file < names.len()));
+    let name_of = |b: &Block| file_of(names, b);
+    let lay = layout(blocks, lang, m, main, names)?;
+    let mut file: &str = &names[0];
     let sub_names: HashSet<String> = lay.subs.keys().cloned().collect();
     let n_numbers: HashSet<u64> = lay.n_index.keys().copied().collect();
     let mut vars = Vars::new(lang);
@@ -1158,6 +1172,12 @@ pub(crate) fn run(
         }
         let pc = x.pc;
         let b = &blocks[pc];
+        // Errors and notes name the file the block stands in.
+        if name_of(b) != file {
+            file = name_of(b);
+            x.file = file;
+            m.file = file.to_string();
+        }
         executed += 1;
         // A request no longer wanted (the server's time budget) stops here within microseconds.
         if executed % 4096 == 0 {

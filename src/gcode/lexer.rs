@@ -169,6 +169,8 @@ pub enum Stmt {
 /// A block.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct Block {
+    /// The file it stands in: 0 the program's own, else a subprogram's file read beside it.
+    pub file: usize,
     /// 1-based line.
     pub line: usize,
     /// Column of the first word.

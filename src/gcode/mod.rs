@@ -228,6 +228,9 @@ pub struct Operation {
     /// 1-based column of the word that calls it on that line (`G76`, `CYCLE97`), else of the
     /// block's first word.
     pub source_column: usize,
+    /// The subprogram file it stands in, when not the program's own (its line is that file's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub source_file: Option<String>,
     /// The tool number active (T), if the program names one.
     pub tool: Option<u32>,
     /// Spindle state at the operation.
@@ -658,8 +661,33 @@ impl Program {
     }
 }
 
+/// Finds a subprogram the program calls and does not hold, where the control would find it: its
+/// name as the call writes it (`thr` for LinuxCNC's `o<thr> call`, `O2000` for `M98 P2000`), and
+/// the file it stands in (the name shown, its text), `None` when there is none, or the error of
+/// reading it. The reader calls it; it reads the files (the commands give it the program's
+/// folder and the subroutine path).
+#[derive(Clone)]
+pub struct SubFinder(pub std::sync::Arc<FindSub>);
+
+/// What a [`SubFinder`] calls: a subprogram's name to its file's name and text.
+pub type FindSub = dyn Fn(&str) -> Option<Result<(String, String), Error>> + Send + Sync;
+
+impl std::fmt::Debug for SubFinder {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("SubFinder")
+    }
+}
+
+impl PartialEq for SubFinder {
+    fn eq(&self, other: &SubFinder) -> bool {
+        std::sync::Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl Eq for SubFinder {}
+
 /// How to read a program.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
 pub struct ReadOptions {
     /// Record every G0/G1/G2/G3 move (milling toolpaths); off for lathe threading.
     pub moves: bool,
@@ -693,6 +721,91 @@ pub struct ReadOptions {
     /// The control's block-delete switch: on skips the blocks that begin with `/`; off (the
     /// default, stated when the program has such blocks) runs them.
     pub block_delete: bool,
+    /// Where subprograms the program calls but does not hold are found (its folder, LinuxCNC's
+    /// subroutine path, a Fanuc program per O-number); `None` reads the program's own alone.
+    pub sub_files: Option<SubFinder>,
+}
+
+/// The most subprogram files one program reads beside its own.
+pub const MAX_SUB_FILES: usize = 64;
+
+/// The subprograms `blocks` call and do not hold, by the name their file is found by: LinuxCNC's
+/// named `o<name> call` (its file `name.ngc`), Fanuc's `M98 P…`/`G65 P…` (`O2000`).
+fn missing_subs(blocks: &[lexer::Block], dialect: Dialect) -> Vec<String> {
+    let mut defined = std::collections::HashSet::new();
+    let mut called = Vec::new();
+    if dialect == Dialect::LinuxCnc {
+        for b in blocks {
+            for st in &b.stmts {
+                if let lexer::Stmt::O { name, kw, .. } = st {
+                    match kw {
+                        lexer::OKw::Sub => {
+                            defined.insert(name.clone());
+                        }
+                        lexer::OKw::Call if name.starts_with('<') => called.push(name.clone()),
+                        _ => {}
+                    }
+                }
+            }
+        }
+        called.retain(|n| !defined.contains(n));
+        called.iter_mut().for_each(|n| *n = n.trim_start_matches('<').trim_end_matches('>').to_string());
+    } else if dialect.fanuc_family() || dialect == Dialect::Haas {
+        defined.extend(blocks.iter().filter_map(|b| b.header.clone()));
+        called = interp::static_calls(blocks);
+        called.retain(|n| !defined.contains(n));
+    }
+    let mut seen = std::collections::HashSet::new();
+    called.retain(|n| seen.insert(n.clone()));
+    called
+}
+
+/// Reads the subprograms `blocks` call from the files `finder` finds, and theirs in turn, up to
+/// [`MAX_SUB_FILES`]: each file's blocks follow, marked with its index in `names`. A Fanuc file
+/// without its `O` line gets one (the file is the program of that number).
+fn read_sub_files(
+    blocks: &mut Vec<lexer::Block>,
+    names: &mut Vec<String>,
+    dialect: Dialect,
+    finder: &SubFinder,
+) -> Result<(), Error> {
+    let mut tried = std::collections::HashSet::new();
+    loop {
+        let wanted: Vec<String> =
+            missing_subs(blocks, dialect).into_iter().filter(|n| !tried.contains(n)).collect();
+        if wanted.is_empty() {
+            return Ok(());
+        }
+        for name in wanted {
+            tried.insert(name.clone());
+            let Some(found) = (finder.0)(&name) else { continue };
+            let (shown, text) = found?;
+            if names.len() > MAX_SUB_FILES {
+                return Err(Error::Input(format!(
+                    "more than {MAX_SUB_FILES} subprogram files for one program: {shown} is one too many"
+                )));
+            }
+            let k = names.len();
+            let mut sub = lexer::lex(&text, dialect).map_err(|(line, column, message)| Error::Program {
+                file: shown.clone(),
+                line,
+                column,
+                message,
+            })?;
+            if (dialect.fanuc_family() || dialect == Dialect::Haas) && !sub.iter().any(|b| b.header.is_some())
+            {
+                sub.insert(
+                    0,
+                    lexer::Block { line: 1, col: 1, header: Some(name.clone()), ..lexer::Block::default() },
+                );
+            }
+            for b in &mut sub {
+                b.file = k;
+            }
+            blocks.extend(sub);
+            names.push(shown);
+        }
+    }
 }
 
 /// A word's plain number, if it has one.
@@ -812,9 +925,17 @@ fn read(
         dyna::prescan(text).map_err(|(l, c, m)| perr(l, c, m))?;
     }
     let mut blocks = lexer::lex(text, dialect).map_err(|(l, c, m)| perr(l, c, m))?;
+    // Subprograms in other files, where the control finds them: their blocks follow the
+    // program's own, each marked with its file.
+    let mut names: Vec<String> = vec![file.to_string()];
+    if let Some(finder) = &opts.sub_files {
+        read_sub_files(&mut blocks, &mut names, dialect, finder)?;
+    }
     // Block delete (`/` first): the switch on skips the blocks; off runs them; either is said.
-    let deletable: Vec<usize> = blocks.iter().filter(|b| b.block_delete).map(|b| b.line).collect();
-    let delete_note = deletable.first().map(|first| {
+    let deletable: Vec<(usize, usize)> =
+        blocks.iter().filter(|b| b.block_delete).map(|b| (b.file, b.line)).collect();
+    let delete_note = deletable.first().map(|&(in_file, first)| {
+        let file = names.get(in_file).map_or(file, String::as_str);
         let n = deletable.len();
         if opts.block_delete {
             format!(
@@ -925,15 +1046,23 @@ fn read(
         language,
         rules(dialect).as_mut(),
         &mut m,
-        file,
+        &names,
         opts.budget.unwrap_or_default(),
         opts.main,
     )?;
+    m.file = file.to_string();
+    let sub_note = (names.len() > 1).then(|| {
+        format!(
+            "subprograms read from files beside the program, where the control finds them: {}",
+            names[1..].join(", ")
+        )
+    });
     let units_assumed = (!m.units_set).then_some(opts.default_units);
     let holes = std::mem::take(&mut m.holes);
     let stock = m.stock;
     let (operations, skipped, mut notes, moves, read_past) = m.finish();
     notes.extend(order_note.map(Note::from));
+    notes.extend(sub_note.map(Note::from));
     let extension = std::path::Path::new(file).extension().and_then(|e| e.to_str()).unwrap_or("");
     let dialect_note = match opts.dialect_from {
         DialectFrom::Given => None,

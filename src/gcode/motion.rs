@@ -148,6 +148,8 @@ pub(crate) struct Motion {
     /// Read as a milling toolpath (X and Y in the plane, G17).
     mill: bool,
     pub file: String,
+    /// The program's own file (`file` names a subprogram file while its blocks run).
+    pub main_file: String,
     /// Position: X (diameter, mm, for lathes; plain X for mills), Y, Z — in machine coordinates.
     pub x: Option<f64>,
     pub y: Option<f64>,
@@ -246,6 +248,7 @@ impl Motion {
             gsystem: super::GCodeSystem::A,
             mill,
             file: file.to_string(),
+            main_file: file.to_string(),
             x: None,
             y: None,
             z: None,
@@ -677,6 +680,7 @@ impl Motion {
             cycle: cycle.to_string(),
             source_line: line,
             source_column: column,
+            source_file: (self.file != self.main_file).then(|| self.file.clone()),
             tool: self.tool,
             spindle: self.spindle(),
             infeed_angle: None,

@@ -22,6 +22,9 @@ pub struct BatchOperation {
     pub made: Process,
     /// Its line (the cycle's; a milled thread's first helix).
     pub line: usize,
+    /// The subprogram file that line is in, when not the program's own.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub in_file: Option<String>,
     /// Its column on that line: the word that calls the cycle (1 for a milled thread).
     pub column: usize,
     /// The thread it was checked against (empty when not checked).
@@ -137,6 +140,7 @@ impl BatchProgram {
                 BatchOperation {
                     made: Process::Turned,
                     line: o.operation.source_line,
+                    in_file: o.operation.source_file.clone(),
                     column: o.operation.source_column,
                     designation: o.designation.clone(),
                     designation_from: Some(o.named.from),
@@ -150,6 +154,7 @@ impl BatchProgram {
             BatchOperation {
                 made: Process::Tapped,
                 line: h.cycle.line,
+                in_file: None,
                 column: h.cycle.column,
                 designation: h.tap.designation.clone(),
                 designation_from: Some(h.tap.designation_from),
@@ -176,6 +181,7 @@ impl BatchProgram {
                 Milled::Checked(r) => BatchOperation {
                     made: Process::Milled,
                     line: r.helices.first().map_or(1, |h| h.line),
+                    in_file: None,
                     column: 1,
                     designation: r.designation.clone(),
                     designation_from: Some(r.named.from),
@@ -199,6 +205,7 @@ impl BatchProgram {
                 Milled::NotChecked { line, reason } => BatchOperation {
                     made: Process::Milled,
                     line: *line,
+                    in_file: None,
                     column: 1,
                     designation: String::new(),
                     designation_from: None,
@@ -248,7 +255,7 @@ impl BatchProgram {
             let _ = writeln!(
                 s,
                 "{}:{}: {} {} {}{from}{failed}",
-                self.file,
+                o.in_file.as_deref().unwrap_or(&self.file),
                 o.line,
                 if o.verdict == Verdict::Pass { "PASS" } else { "FAIL" },
                 o.made.name(),
@@ -395,7 +402,10 @@ pub fn sarif_log(programs: &[BatchProgram], version: &str, exit_code: i32) -> Re
                         .rule_index(i)
                         .level(sarif::ResultLevel::Error)
                         .message(sarif::Message::builder().text(format!("{what}: {}", f.message)).build())
-                        .locations(vec![location(&p.file, Some((o.line, o.column)))])
+                        .locations(vec![location(
+                            o.in_file.as_deref().unwrap_or(&p.file),
+                            Some((o.line, o.column)),
+                        )])
                         .build(),
                 );
             }

@@ -163,10 +163,11 @@ pub fn text(source: PassesSource<'_>, passes: &[crate::toolpath::passes::Pass]) 
             for op in &program.operations {
                 let _ = writeln!(
                     s,
-                    "\noperation {}: {} at line {}{}, lead {} mm, {} passes",
+                    "\noperation {}: {} at line {}{}{}, lead {} mm, {} passes",
                     op.index,
                     op.cycle,
                     op.source_line,
+                    op.source_file.as_ref().map_or(String::new(), |f| format!(" of {f}")),
                     op.tool.map_or(String::new(), |t| format!(", tool T{t}")),
                     fmt_num(op.lead()),
                     op.passes.len()

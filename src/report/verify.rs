@@ -727,10 +727,11 @@ pub fn program_text(pv: &crate::analysis::verify::ProgramVerification) -> String
         let op = &o.operation;
         let _ = writeln!(
             s,
-            "== operation {} of {n}: {} at line {}{}, {} passes",
+            "== operation {} of {n}: {} at line {}{}{}, {} passes",
             op.index,
             op.cycle,
             op.source_line,
+            op.source_file.as_ref().map_or(String::new(), |f| format!(" of {f}")),
             op.tool.map_or(String::new(), |t| format!(", tool T{t}")),
             op.passes.len()
         );
