@@ -197,3 +197,32 @@ fn m98_finds_its_subprogram_in_the_file_of_its_number() {
     assert_eq!(o.status.code(), Some(1), "the default partial insert fails the root: {}", stdout(&o));
     assert!(stdout(&o).starts_with("2000:5: FAIL turned M24X2-6g (comment)"), "{}", stdout(&o));
 }
+
+/// Sinumerik: `L9` alone on a line of the main program calls L9 (regression: it was read as the
+/// start of subprogram L9, so the call never ran and the program was said to define L9 without
+/// calling it), found in `L9.SPF` beside the program; after M30 the same line still starts a
+/// subprogram of the listing.
+#[test]
+fn a_sinumerik_call_finds_its_spf_file() {
+    let dir = tempdir("sub-spf");
+    std::fs::write(dir.join("MAIN.MPF"), "G18 G90 G95\nT1 D1\nS500 M3\nG0 X12 Z2\nL9\nM30\n").unwrap();
+    std::fs::write(dir.join("L9.SPF"), "G0 X12 Z2\nG33 Z-20 K1.5 X8.4\nM17\n").unwrap();
+    let o = run_in(&dir, &["passes", "--program", "MAIN.MPF"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("operation 1: G33 at line 2 of L9.SPF"), "{}", stdout(&o));
+    // The same subprogram in the listing after M30.
+    std::fs::remove_file(dir.join("L9.SPF")).unwrap();
+    std::fs::write(
+        dir.join("ONE.MPF"),
+        "G18 G90 G95\nT1 D1\nS500 M3\nG0 X12 Z2\nL9\nM30\nL9\nG0 X12 Z2\nG33 Z-20 K1.5 X8.4\nM17\n",
+    )
+    .unwrap();
+    let o = run_in(&dir, &["passes", "--program", "ONE.MPF"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("operation 1: G33 at line 9, tool T1"), "{}", stdout(&o));
+    let o = run_in(&dir, &["passes", "--program", "MAIN.MPF"]);
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: MAIN.MPF:5:1: subprogram L9 is not in this file, nor its file L9.SPF beside it (for a program read from a file)"
+    );
+}

@@ -266,10 +266,23 @@ pub fn lex(text: &str, dialect: Dialect) -> Result<Vec<Block>, LexError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut blocks = Vec::new();
     let mut section = Section::Moves;
+    // Sinumerik: whether the main program has ended (M2, M30 or M17, or a subprogram began):
+    // a line holding only `L9` starts subprogram L9 after it and calls it before it.
+    let mut main_ended = false;
     for (i, raw) in text.split('\n').enumerate() {
         let line = raw.strip_suffix('\r').unwrap_or(raw);
         match dialect {
-            Dialect::Sinumerik => sinumerik_line(line, i + 1, &mut blocks)?,
+            Dialect::Sinumerik => {
+                let before = blocks.len();
+                sinumerik_line(line, i + 1, main_ended, &mut blocks)?;
+                main_ended = main_ended
+                    || blocks[before..].iter().any(|b| {
+                        b.header.is_some() || b.words.iter().any(|w| {
+                            w.name == "M"
+                                && matches!(w.val, WVal::Num { v, .. } if v == 2.0 || v == 30.0 || v == 17.0)
+                        })
+                    });
+            }
             // An OSP header line (`$NAME.MIN%`) names the file: nothing to run.
             Dialect::Okuma if line.trim_start().starts_with('$') => {}
             Dialect::Heidenhain => heidenhain_line(line, i + 1, &mut section, &mut blocks)?,
@@ -950,7 +963,7 @@ fn skip_spaces(chars: &[char], i: &mut usize) {
     }
 }
 
-fn sinumerik_line(line: &str, ln: usize, out: &mut Vec<Block>) -> Result<(), LexError> {
+fn sinumerik_line(line: &str, ln: usize, main_ended: bool, out: &mut Vec<Block>) -> Result<(), LexError> {
     let chars: Vec<char> = line.chars().collect();
     let trimmed = line.trim();
     // `%_N_L9_SPF` starts subprogram L9 (file headers of a listing); `%7772` names the program.
@@ -964,9 +977,14 @@ fn sinumerik_line(line: &str, ln: usize, out: &mut Vec<Block>) -> Result<(), Lex
     if trimmed.starts_with('%') {
         return Ok(());
     }
-    // A subprogram in the same listing starts with a line holding only its name (`L9`).
+    // A subprogram in the same listing starts with a line holding only its name (`L9`), after
+    // the main program; within it, the same line calls it (read as a block).
     let bare = trimmed.split(';').next().unwrap_or("").trim().trim_end_matches("LF").trim();
-    if bare.len() > 1 && bare.starts_with(['L', 'l']) && bare[1..].chars().all(|c| c.is_ascii_digit()) {
+    if main_ended
+        && bare.len() > 1
+        && bare.starts_with(['L', 'l'])
+        && bare[1..].chars().all(|c| c.is_ascii_digit())
+    {
         let n: u64 = bare[1..].parse().unwrap_or(0);
         out.push(Block { line: ln, col: 1, header: Some(format!("L{n}")), ..Block::default() });
         return Ok(());

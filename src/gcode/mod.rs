@@ -730,7 +730,8 @@ pub struct ReadOptions {
 pub const MAX_SUB_FILES: usize = 64;
 
 /// The subprograms `blocks` call and do not hold, by the name their file is found by: LinuxCNC's
-/// named `o<name> call` (its file `name.ngc`), Fanuc's `M98 P…`/`G65 P…` (`O2000`).
+/// named `o<name> call` (its file `name.ngc`), Fanuc's `M98 P…`/`G65 P…` (`O2000`), Sinumerik's
+/// `L9` (its file `L9.SPF`).
 fn missing_subs(blocks: &[lexer::Block], dialect: Dialect) -> Vec<String> {
     let mut defined = std::collections::HashSet::new();
     let mut called = Vec::new();
@@ -754,6 +755,18 @@ fn missing_subs(blocks: &[lexer::Block], dialect: Dialect) -> Vec<String> {
         defined.extend(blocks.iter().filter_map(|b| b.header.clone()));
         called = interp::static_calls(blocks);
         called.retain(|n| !defined.contains(n));
+    } else if dialect == Dialect::Sinumerik {
+        // `L9` calls the subprogram L9 (its file L9.SPF); L96 and L97 are the threading cycles.
+        defined.extend(blocks.iter().filter_map(|b| b.header.clone()));
+        called = blocks
+            .iter()
+            .flat_map(|b| &b.words)
+            .filter(|w| w.name == "L")
+            .filter_map(word_value)
+            .filter(|v| v.fract() == 0.0 && *v >= 0.0 && *v != 96.0 && *v != 97.0)
+            .map(|v| format!("L{}", v as i64))
+            .filter(|n| !defined.contains(n))
+            .collect();
     }
     let mut seen = std::collections::HashSet::new();
     called.retain(|n| seen.insert(n.clone()));
@@ -792,8 +805,8 @@ fn read_sub_files(
                 column,
                 message,
             })?;
-            if (dialect.fanuc_family() || dialect == Dialect::Haas) && !sub.iter().any(|b| b.header.is_some())
-            {
+            let headed = dialect.fanuc_family() || matches!(dialect, Dialect::Haas | Dialect::Sinumerik);
+            if headed && !sub.iter().any(|b| b.header.is_some()) {
                 sub.insert(
                     0,
                     lexer::Block { line: 1, col: 1, header: Some(name.clone()), ..lexer::Block::default() },

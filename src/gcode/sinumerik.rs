@@ -118,7 +118,13 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Res
                     }
                     return Ok(Flow::Next);
                 }
-                _ => return Err(b.werr(&m.file, w, format!("subprogram {name} is not in this file"))),
+                _ => {
+                    return Err(b.werr(
+                        &m.file,
+                        w,
+                        format!("subprogram {name} is not in this file, nor its file {name}.SPF beside it (for a program read from a file)"),
+                    ))
+                }
             }
         }
         return Ok(Flow::Call { name, repeats: reps as u32, locals: None, col: w.col });
