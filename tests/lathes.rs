@@ -226,3 +226,21 @@ fn a_sinumerik_call_finds_its_spf_file() {
         "threadcheck: error: MAIN.MPF:5:1: subprogram L9 is not in this file, nor its file L9.SPF beside it (for a program read from a file)"
     );
 }
+
+/// LinuxCNC's stored parameters (#5161–#5390: the homes, G92 and the work offsets) live in the
+/// machine's parameter file: read unset, they are a fresh file's 0 (as `rs274` reads them), and
+/// the note says where the value really comes from, not that LinuxCNC reads it as 0.
+#[test]
+fn linuxcnc_stored_parameters_are_named_as_such() {
+    let dir = tempdir("stored-params");
+    std::fs::write(
+        dir.join("st.ngc"),
+        "G21 G18 G7\n#1=#5221\n#2=#100\nS500 M3\nG0 X12 Z2\nG76 P1.5 Z-20 I-1 J0.2 K0.92 R2 Q29.5 L0 E0 H0\nM2\n",
+    )
+    .unwrap();
+    let o = run_in(&dir, &["passes", "--program", "st.ngc"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("note: st.ngc:2:1: #5221 is one of LinuxCNC's stored parameters (a home position, the G92 or a work offset), kept in the machine's parameter file: threadcheck reads it as 0, a fresh file's value (rs274's)"), "{out}");
+    assert!(out.contains("note: st.ngc:3:1: #100 is read before it is set: LinuxCNC reads it as 0"), "{out}");
+}

@@ -22,6 +22,9 @@ pub(crate) struct Language {
     pub unset_reads: &'static str,
     /// Reading an undefined named parameter is an error (LinuxCNC).
     pub named_must_exist: bool,
+    /// The numbered parameters the control keeps in its parameter file, not the program (LinuxCNC's
+    /// homes, G92 and work offsets, #5161–#5390): an unset one reads as a fresh file's 0, said.
+    pub stored_numbered: Option<(i64, i64)>,
     /// The block's words are evaluated before its assignments, which all take effect after the
     /// block, an unset value as 0 (LinuxCNC); otherwise assignments run first, in order.
     pub deferred_assignments: bool,
@@ -118,6 +121,7 @@ impl Language {
             r_parameters: false,
             unset_reads: "it is null (0 in arithmetic)",
             named_must_exist: false,
+            stored_numbered: None,
             deferred_assignments: false,
             null_word_omitted: true,
             headers_split_programs: true,
@@ -153,6 +157,7 @@ impl Language {
                 fanuc_macro: false,
                 unset_reads: "LinuxCNC reads it as 0",
                 named_must_exist: true,
+                stored_numbered: Some((5161, 5390)),
                 deferred_assignments: true,
                 null_word_omitted: false,
                 headers_split_programs: false,

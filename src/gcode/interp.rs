@@ -170,7 +170,15 @@ impl Vars {
                 VarKey::Named(s) => format!("#<{s}>"),
             };
             let how = self.lang.unset_reads;
-            m.note_of(NoteKind::UnsetVariable, line, col, format!("{name} is read before it is set: {how}"));
+            // LinuxCNC's persistent parameters (homes, G92 and the work offsets, #5161–#5390)
+            // live in the machine's parameter file, not in the program.
+            let stored = matches!((k, self.lang.stored_numbered), (VarKey::Num(n), Some((lo, hi))) if (lo..=hi).contains(n));
+            let message = if stored {
+                format!("{name} is one of LinuxCNC's stored parameters (a home position, the G92 or a work offset), kept in the machine's parameter file: threadcheck reads it as 0, a fresh file's value (rs274's)")
+            } else {
+                format!("{name} is read before it is set: {how}")
+            };
+            m.note_of(NoteKind::UnsetVariable, line, col, message);
         }
     }
 }
