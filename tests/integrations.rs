@@ -592,3 +592,52 @@ fn the_guide_s_pre_commit_hook_refuses_a_failing_thread() {
     let o = git(&["commit", "-qm", "tapped"]);
     assert!(o.status.success(), "{}{}", stdout(&o), stderr(&o));
 }
+
+/// A document saved on this computer finds its subprograms' files as `verify` does (its folder,
+/// and the editor's `subroutine_path`): the G76 in `lib/thr.ngc` is checked and its diagnostic,
+/// at the document's first line, names its file's line; without the path the call's line says
+/// where it looked.
+#[test]
+fn the_language_server_finds_subroutine_files() {
+    let dir = tempdir("lsp-sub");
+    std::fs::create_dir_all(dir.join("lib")).unwrap();
+    std::fs::write(
+        dir.join("lib/thr.ngc"),
+        "o<thr> sub\nG76 P1.5 Z-20 I-2.15 J0.05 K#1 Q29.5 R1.5 H1 E0 L0\no<thr> endsub\n",
+    )
+    .unwrap();
+    let text = "(M10X1.5 THREAD)\nG7 G18 G21 G90\nS500 M3\nG0 X9.85 Z2\nG1 Z-25 F0.1\nG0 X12 Z2\no<thr> call [1.84]\nM2\n";
+    let uri = format!("file://{}", dir.join("main.ngc").display());
+    for (options, opened) in [
+        (
+            serde_json::json!({"insert": "full", "subroutine_path": dir.join("lib").display().to_string()}),
+            true,
+        ),
+        (serde_json::json!({"insert": "full"}), false),
+    ] {
+        let mut c = Client::start();
+        c.request(1, "initialize", serde_json::json!({"capabilities": {}, "initializationOptions": options}));
+        c.notify("initialized", serde_json::json!({}));
+        c.notify(
+            "textDocument/didOpen",
+            serde_json::json!({"textDocument": {"uri": uri, "languageId": "gcode", "version": 1, "text": text}}),
+        );
+        let d = c.diagnostics();
+        let first = &d["diagnostics"][0];
+        if opened {
+            assert_eq!(first["severity"], 3, "the thread passes: {d}");
+            assert!(
+                first["message"].as_str().unwrap().starts_with("threadcheck: PASS turned M10X1.5-6g (at "),
+                "{d}"
+            );
+            assert!(first["message"].as_str().unwrap().contains("thr.ngc:2)"), "{d}");
+            assert_eq!(first["range"]["start"], serde_json::json!({"line": 0, "character": 0}), "{d}");
+        } else {
+            assert_eq!(first["code"], "program.unreadable", "{d}");
+            assert_eq!(first["range"]["start"], serde_json::json!({"line": 6, "character": 0}), "{d}");
+        }
+        c.request(2, "shutdown", serde_json::Value::Null);
+        c.notify("exit", serde_json::Value::Null);
+        assert_eq!(c.child.wait().unwrap().code(), Some(0));
+    }
+}

@@ -283,7 +283,7 @@ pub struct PlanArgs {
 /// LinuxCNC's `o<name> call` the file `name.ngc`, Fanuc's `M98 P2000` a file named `O2000`,
 /// `O02000` or `2000`, with a program extension or none, Sinumerik's `L9` the file `L9.SPF`. Each file is read as a program is
 /// (bounded, its encoding checked).
-fn sub_finder(dirs: Vec<PathBuf>) -> crate::gcode::SubFinder {
+pub(crate) fn sub_finder(dirs: Vec<PathBuf>) -> crate::gcode::SubFinder {
     crate::gcode::SubFinder(std::sync::Arc::new(move |name: &str| {
         let number =
             name.strip_prefix('O').filter(|n| !n.is_empty() && n.bytes().all(|c| c.is_ascii_digit()));

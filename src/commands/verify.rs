@@ -318,7 +318,14 @@ impl VerifyArgs {
         request: &Request,
     ) -> crate::report::lsp::EditorView {
         use crate::report::lsp::{EditorFix, EditorView};
-        match self.verify_one(Source::Text(text), Some(name.to_string()), tools, request) {
+        // A document saved on this computer finds its subprograms' files as the program does.
+        let own = std::path::Path::new(name).parent().filter(|d| d.is_absolute() && d.is_dir());
+        let finder = own.map(|d| {
+            let mut dirs = vec![d.to_path_buf()];
+            dirs.extend(self.plan.subroutine_path.iter().cloned());
+            super::args::sub_finder(dirs)
+        });
+        match self.verify_one_finding(Source::Text(text), Some(name.to_string()), tools, request, finder) {
             Ok((shown, _, pv)) => {
                 let fixes = pv
                     .operations
@@ -360,6 +367,19 @@ impl VerifyArgs {
         tools: Option<&crate::analysis::tools::ToolTable>,
         request: &Request,
     ) -> Result<(String, String, crate::analysis::verify::ProgramVerification), Error> {
+        self.verify_one_finding(program, name, tools, request, None)
+    }
+
+    /// [`Self::verify_one`] with the finder of its subprograms' files, when not the one its
+    /// source gives (an editor's document saved on this computer).
+    fn verify_one_finding(
+        &self,
+        program: Source,
+        name: Option<String>,
+        tools: Option<&crate::analysis::tools::ToolTable>,
+        request: &Request,
+        finder: Option<crate::gcode::SubFinder>,
+    ) -> Result<(String, String, crate::analysis::verify::ProgramVerification), Error> {
         let one = VerifyArgs {
             plan: PlanArgs { program: Some(program), program_name: name, ..self.plan.clone() },
             programs: Vec::new(),
@@ -374,6 +394,9 @@ impl VerifyArgs {
         spec.stock_bottom = self.stock_bottom;
         spec.metrics = false;
         spec.picture = false;
+        if finder.is_some() {
+            spec.reading.sub_files = finder;
+        }
         let (source, dialect) = spec.program.clone().ok_or_else(|| Error::Input("no program".into()))?;
         one.verification(&spec, &source, dialect, tools)
     }

@@ -302,7 +302,8 @@ impl<W: Write> Server<W> {
     }
 
     /// The editor's options: the API's `verify` keys (`insert`, `dialect`, `machine_type`,
-    /// `gauge_only`, `tools` as TOML text, …) and `tools_file`, a tool table's path.
+    /// `gauge_only`, `tools` as TOML text, …), `tools_file`, a tool table's path, and
+    /// `subroutine_path`, LinuxCNC's folders of subroutine files (`:` between them).
     fn configure(&mut self, options: Option<Value>) -> Result<(), String> {
         let mut options = match options {
             None | Some(Value::Null) => serde_json::Map::new(),
@@ -314,6 +315,13 @@ impl<W: Write> Server<W> {
             let text = std::fs::read_to_string(path).map_err(|e| format!("tools_file {path}: {e}"))?;
             options.insert("tools".into(), Value::String(text));
         }
+        let subroutine_path = match options.remove("subroutine_path") {
+            None | Some(Value::Null) => Vec::new(),
+            Some(Value::String(p)) => {
+                p.split(':').filter(|d| !d.is_empty()).map(std::path::PathBuf::from).collect()
+            }
+            Some(_) => return Err("subroutine_path is a list of folders separated by ':'".into()),
+        };
         for key in ["program", "program_name", "thread"] {
             if options.contains_key(key) {
                 return Err(format!(
@@ -333,6 +341,7 @@ impl<W: Write> Server<W> {
             .transpose()
             .map_err(|e| e.one_line_for(crate::Audience::Api))?;
         self.settings = args;
+        self.settings.plan.subroutine_path = subroutine_path;
         Ok(())
     }
 

@@ -80,10 +80,15 @@ impl EditorView {
                     if o.designation.is_empty() { "thread" } else { &o.designation }
                 );
                 let from = o.designation_from.map_or(String::new(), |f| format!(" (named: {})", f.name()));
+                // An operation in a subprogram's file: at the document's first line, with its place.
+                let (line, column, what) = match &o.in_file {
+                    Some(f) => (1, 1, format!("{what} (at {f}:{})", o.line)),
+                    None => (o.line, o.column, what),
+                };
                 if o.verdict == Verdict::Pass {
                     EditorDiagnostic {
-                        line: o.line,
-                        column: o.column,
+                        line,
+                        column,
                         severity: Severity::Information,
                         code: "pass".into(),
                         message: format!("threadcheck: PASS {what}{from}"),
@@ -91,8 +96,8 @@ impl EditorView {
                 } else {
                     let found: Vec<&str> = o.findings.iter().map(|f| f.message.as_str()).collect();
                     EditorDiagnostic {
-                        line: o.line,
-                        column: o.column,
+                        line,
+                        column,
                         severity: Severity::Error,
                         code: o.findings.first().map_or_else(|| "fail".into(), |f| f.rule.clone()),
                         message: format!("threadcheck: FAIL {what}{from}: {}", found.join("; ")),
@@ -131,7 +136,8 @@ fn mark(ok: bool) -> &'static str {
 /// One hover per operation: its thread, where the name came from, its verdict and every check.
 fn hovers(pv: &ProgramVerification) -> Vec<EditorHover> {
     let mut out = Vec::new();
-    for o in &pv.operations {
+    // Hovers on the document's own lines: an operation in a subprogram's file has none here.
+    for o in pv.operations.iter().filter(|o| o.operation.source_file.is_none()) {
         let mut md = format!("**{} {}** (turned, {})", o.operation.cycle, o.designation, o.named.why);
         match &o.result {
             OperationResult::Verified(v) => {
