@@ -826,6 +826,21 @@ fn numbered_state_parameters_agree_with_rs274() {
     }
 }
 
+/// Issue 47 item 4: more of LinuxCNC's predefined named parameters from the program's state
+/// (`_current_tool` after M6 and `_selected_tool` after T, `_motion_mode` G-code × 10,
+/// `_ccomp`, `_y` and the other axes, `_call_level` inside a subroutine, `_remap_level`, `_line`
+/// the block's line): each moves the G76's drive line by its own weight, so a value that differs
+/// from `rs274`'s moves every pass.
+#[test]
+fn state_parameters_agree_with_rs274() {
+    let exe = rs274();
+    let dir = rs274_dir("rs274-state-params");
+    let p = "G21 G18 G7\nT3 M6\nT2\nG1 X30 Z5 F0.1\no<s> sub\n#<_lvl> = [#<_call_level> + #<_line> / 1000]\no<s> endsub\no<s> call\n#<w> = [#<_current_tool> + #<_selected_tool> * 10 + #<_motion_mode> / 100 + #<_ccomp> / 1000 + #<_y> + #<_a> + #<_b> + #<_c> + #<_u> + #<_v> + #<_w> + #<_lvl> * 100 + #<_remap_level> + #5400 / 10000 + #<_line> / 100000]\nS500 M3\nG0 X[20 + #<w> / 100] Z2\nG76 P1.5 Z-20 I-1 J0.2 K0.92 R2 Q29.5 L0 E0 H0\nM2\n";
+    let (rs, tc) = (run_rs274(&exe, p, &dir), threadcheck(p));
+    assert!(matches!(&rs, Outcome::Passes(s) if !s.is_empty()), "rs274 cut nothing");
+    assert!(compare(None, &rs, &tc).is_none(), "{:?}", compare(None, &rs, &tc));
+}
+
 /// Issue 47 item 5: a subroutine in a file of its own, found where LinuxCNC looks (`rs274`
 /// runs in the folder that holds `thr.ngc`; threadcheck's commands search the program's folder and
 /// `--subroutine-path`, here a finder that holds the one file). The library reads

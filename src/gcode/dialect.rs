@@ -25,6 +25,9 @@ pub(crate) struct Language {
     /// The numbered parameters the control keeps in its parameter file, not the program (LinuxCNC's
     /// homes, G92 and work offsets, #5161–#5390): an unset one reads as a fresh file's 0, said.
     pub stored_numbered: Option<(i64, i64)>,
+    /// Predefined parameters the control has and threadcheck does not model, with what they
+    /// hold (a name ending in `[` stands for a family, `_ini[`): reading one is refused by name.
+    pub unmodelled_names: &'static [(&'static str, &'static str)],
     /// The block's words are evaluated before its assignments, which all take effect after the
     /// block, an unset value as 0 (LinuxCNC); otherwise assignments run first, in order.
     pub deferred_assignments: bool,
@@ -122,6 +125,7 @@ impl Language {
             unset_reads: "it is null (0 in arithmetic)",
             named_must_exist: false,
             stored_numbered: None,
+            unmodelled_names: &[],
             deferred_assignments: false,
             null_word_omitted: true,
             headers_split_programs: true,
@@ -158,6 +162,35 @@ impl Language {
                 unset_reads: "LinuxCNC reads it as 0",
                 named_must_exist: true,
                 stored_numbered: Some((5161, 5390)),
+                unmodelled_names: &[
+                    ("_vmajor", "the version the machine runs"),
+                    ("_vminor", "the version the machine runs"),
+                    ("_task", "whether the machine runs the program or a preview reads it"),
+                    ("_inverse_time", "the inverse-time feed mode (G93)"),
+                    ("_tool_offset", "the tool length offset (G43)"),
+                    ("_retract_r_plane", "the canned cycles' return level (G98)"),
+                    ("_retract_old_z", "the canned cycles' return level (G99)"),
+                    ("_ijk_absolute_mode", "the arc centres' mode (G90.1)"),
+                    ("_mist", "the coolant (M7)"),
+                    ("_flood", "the coolant (M8)"),
+                    ("_speed_override", "the override switches (M48, M50)"),
+                    ("_feed_override", "the override switches (M48, M51)"),
+                    ("_adaptive_feed", "the adaptive feed (M52)"),
+                    ("_feed_hold", "the feed hold switch (M53)"),
+                    ("_feed", "the feed F in force"),
+                    ("_abs_x", "the position without offsets (G53)"),
+                    ("_abs_y", "the position without offsets (G53)"),
+                    ("_abs_z", "the position without offsets (G53)"),
+                    ("_abs_a", "the position without offsets (G53)"),
+                    ("_abs_b", "the position without offsets (G53)"),
+                    ("_abs_c", "the position without offsets (G53)"),
+                    ("_abs_u", "the position without offsets (G53)"),
+                    ("_abs_v", "the position without offsets (G53)"),
+                    ("_abs_w", "the position without offsets (G53)"),
+                    ("_current_pocket", "the tool table's pockets"),
+                    ("_selected_pocket", "the tool table's pockets"),
+                    ("_ini[", "the machine's INI file"),
+                ],
                 deferred_assignments: true,
                 null_word_omitted: false,
                 headers_split_programs: false,
@@ -209,6 +242,13 @@ impl SysParams {
     /// The value of `name`, if the dialect has one by that name and has set it.
     pub fn get(&self, name: &str) -> Option<f64> {
         self.names.iter().position(|n| *n == name).and_then(|k| self.values[k])
+    }
+
+    /// Sets the parameter `name` to `v`, where the dialect has it.
+    pub fn set_named(&mut self, name: &str, v: f64) {
+        if let Some(k) = self.names.iter().position(|n| *n == name) {
+            self.values[k] = Some(v);
+        }
     }
 
     /// Sets the numbered parameter `n` to `v`.

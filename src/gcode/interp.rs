@@ -196,6 +196,17 @@ impl Env for EvalEnv<'_> {
         let v = self.vars.read(k);
         if v.is_none() {
             if let VarKey::Named(s) = k {
+                if let Some((_, what)) = self
+                    .vars
+                    .lang
+                    .unmodelled_names
+                    .iter()
+                    .find(|(n, _)| s == n || (n.ends_with('[') && s.starts_with(n)))
+                {
+                    return Err(format!(
+                        "#<{s}> is LinuxCNC's predefined parameter of {what}, which threadcheck does not model: a program that reads it is refused"
+                    ));
+                }
                 if self.vars.lang.named_must_exist {
                     return Err(format!("named parameter #<{s}> is not defined"));
                 }
@@ -1203,6 +1214,11 @@ pub(crate) fn run(
         // The read-only position parameters (#<_x>, #<_z>) as the last move left them, for the
         // block's conditions, assignments and words alike.
         rules.system_params(m, &mut x.vars.system);
+        // The interpreter's own: the subroutine depth and the block's line (LinuxCNC's
+        // `#<_call_level>`, `#<_line>`), where the dialect has them.
+        let depth = x.frames.len() as f64;
+        x.vars.system.set_named("_call_level", depth);
+        x.vars.system.set_named("_line", b.line as f64);
         let arrived_skipping = std::mem::take(&mut x.skipping_to_end);
         let mut st = x.statements(b, pc, arrived_skipping)?;
         x.entering_branch = st.enter_branch;

@@ -42,6 +42,11 @@ pub(crate) struct State {
     /// The spindle turns (M3, M4): LinuxCNC refuses G33 and G76 with it stopped; M5, M19 and a
     /// tool change (M6) stop it.
     spindle_on: bool,
+    /// The tool in the spindle: the one selected at the last M6 (`#<_current_tool>`, #5400).
+    current_tool: u32,
+    /// The motion mode in force, as `#<_motion_mode>` gives it (G-code × 10; G80, 800, at the
+    /// start, as in LinuxCNC).
+    motion_mode: Option<f64>,
 }
 
 /// A coordinate in program units and what it was set under.
@@ -157,7 +162,7 @@ impl State {
 /// issue 47): `_lathe_radius_mode` and `_lathe_diameter_mode` 1 or 0, `_coord_system` 540 … 593,
 /// `_plane` 170, 180 or 190, `_spindle_on`, `_spindle_cw`, `_spindle_css_mode`,
 /// `_spindle_rpm_mode`, `_units_per_rev`, `_units_per_minute` 1 or 0, `_rpm` S, `_current_tool` T.
-const SYSTEM_NAMES: [&str; 17] = [
+const SYSTEM_NAMES: [&str; 31] = [
     "_x",
     "_z",
     "_imperial",
@@ -175,6 +180,20 @@ const SYSTEM_NAMES: [&str; 17] = [
     "_units_per_rev",
     "_units_per_minute",
     "_rpm",
+    "_current_tool",
+    "_selected_tool",
+    "_motion_mode",
+    "_ccomp",
+    "_y",
+    "_a",
+    "_b",
+    "_c",
+    "_u",
+    "_v",
+    "_w",
+    "_call_level",
+    "_remap_level",
+    "_line",
 ];
 
 fn system_params(s: &State, m: &Motion, sys: &mut SysParams) {
@@ -228,12 +247,25 @@ fn system_params(s: &State, m: &Motion, sys: &mut SysParams) {
     if let Some(rpm) = m.s {
         sys.set(16, rpm);
     }
+    // The tool in the spindle (last M6) and the one selected (last T), 0 before any.
+    sys.set(17, f64::from(s.current_tool));
+    sys.set(18, f64::from(m.tool.unwrap_or(0)));
+    sys.set(19, s.motion_mode.unwrap_or(800.0));
+    // G40, G41, G42: 400, 410, 420.
+    sys.set(20, 400.0 + 10.0 * f64::from(m.comp));
+    // A lathe program's Y and the rotary and U V W axes: where it put Y, else 0.
+    sys.set(21, m.y.map_or(0.0, |y| (y - m.offset[1]) / unit));
+    for k in 22..=27 {
+        sys.set(k, 0.0);
+    }
+    // The subroutine depth (28) and the line (30) are the interpreter's (interp.rs); no remap.
+    sys.set(29, 0.0);
     // The numbered parameters the docs list that follow the program's state (LinuxCNC's
     // docs/src/gcode/overview.adoc, "Numbered Parameters"): #5220 the coordinate system (1 =
     // G54 … 9 = G59.3), #5400 the tool number, #5420–#5428 the current position in program
     // units (X as #<_x>, Z as #<_z>; Y and the rotary and U V W axes 0 on a lathe).
     sys.set_numbered(5220, s.system0 as f64 + 1.0);
-    sys.set_numbered(5400, f64::from(m.tool.unwrap_or(0)));
+    sys.set_numbered(5400, f64::from(s.current_tool));
     for (k, slot) in [(5420, Some(0)), (5421, None), (5422, Some(1))] {
         let v = slot.and_then(|k| sys.get(SYSTEM_NAMES[k])).unwrap_or(0.0);
         sys.set_numbered(k, v);
@@ -402,6 +434,20 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, _cx: &mut Ctx<'_>) -> Re
     // convert_lathe_diameter_mode and convert_threading_cycle); separate lines are right.
     let mode_and_g76 = b.gs().any(|(g, _)| g == 76.0) && b.gs().any(|(g, _)| g == 7.0 || g == 8.0);
     let md = cycles::modal(m, b)?;
+    if b.has_m(6.0) {
+        s.current_tool = m.tool.unwrap_or(0);
+    }
+    // The modal motion group (G0–G3, G33, G33.1, G38.n, G73, G76, G80–G89).
+    if let Some((g, _)) = b
+        .gs()
+        .filter(|(g, _)| {
+            matches!(*g as u32, 0..=3 | 33 | 38 | 73 | 76 | 80..=89)
+                && (g.fract() == 0.0 || matches!(*g as u32, 33 | 38))
+        })
+        .last()
+    {
+        s.motion_mode = Some((g * 10.0).round());
+    }
     spindle(s, b);
     if coordinates(s, m, b, &md)? {
         return Ok(Flow::Next);
