@@ -244,3 +244,28 @@ fn linuxcnc_stored_parameters_are_named_as_such() {
     assert!(out.contains("note: st.ngc:2:1: #5221 is one of LinuxCNC's stored parameters (a home position, the G92 or a work offset), kept in the machine's parameter file: threadcheck reads it as 0, a fresh file's value (rs274's)"), "{out}");
     assert!(out.contains("note: st.ngc:3:1: #100 is read before it is set: LinuxCNC reads it as 0"), "{out}");
 }
+
+/// LinuxCNC reads lines of at most 254 bytes (LINELEN 255, `src/emc/linuxcnc.h`): a longer one is
+/// refused at its column 255, as LinuxCNC refuses it ("Command too long"), and a line of 254 is read.
+#[test]
+fn a_linuxcnc_line_longer_than_linuxcnc_reads_is_refused() {
+    let dir = tempdir("linelen");
+    let pad = |n: usize| format!("#<p> = [{}1]", "0+".repeat((n - 10) / 2));
+    assert_eq!(pad(254).len(), 254);
+    for (n, ok) in [(254, true), (256, false)] {
+        let line = pad(n);
+        let text = format!(
+            "G21 G18 G7\n{line}\nS500 M3\nG0 X12 Z2\nG76 P1.5 Z-20 I-1 J0.2 K0.92 R2 Q29.5 L0 E0 H0\nM2\n"
+        );
+        std::fs::write(dir.join("l.ngc"), text).unwrap();
+        let o = run_in(&dir, &["passes", "--program", "l.ngc"]);
+        if ok {
+            assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        } else {
+            assert_eq!(
+                one_line_error(&o),
+                format!("threadcheck: error: l.ngc:2:255: the line is {n} bytes long: LinuxCNC reads lines of at most 254 (Command too long)")
+            );
+        }
+    }
+}

@@ -841,6 +841,32 @@ fn state_parameters_agree_with_rs274() {
     assert!(compare(None, &rs, &tc).is_none(), "{:?}", compare(None, &rs, &tc));
 }
 
+/// Issue 47 item 4: the switches and modes LinuxCNC's predefined parameters read (`_feed`,
+/// `_mist`, `_flood`, the overrides M48–M51, `_adaptive_feed` M52, `_feed_hold` M53,
+/// `_inverse_time` G93, the return level G98/G99, `_ijk_absolute_mode` G90.1, `_abs_x`/`_abs_z`
+/// with a G55 offset), read at the start, after the program sets them and after it resets them:
+/// each moves the G76's drive line by its own weight.
+#[test]
+fn switch_parameters_agree_with_rs274() {
+    let exe = rs274();
+    let dir = rs274_dir("rs274-switch-params");
+    // Two lines each (LinuxCNC reads lines of at most 254 bytes).
+    let weigh = |v: &str| {
+        format!(
+            "#<{v}1> = [#<_feed> + #<_mist> * 2 + #<_flood> * 4 + #<_speed_override> * 8 + #<_feed_override> * 16 + #<_adaptive_feed> * 32 + #<_feed_hold> * 64]\n#<{v}> = [#<{v}1> + #<_inverse_time> * 128 + #<_retract_r_plane> * 256 + #<_retract_old_z> * 512 + #<_ijk_absolute_mode> * 1024 + #<_units_per_minute> * 2048 + #<_abs_x> / 10 + #<_abs_z> / 100 + #<_abs_y>]\n"
+        )
+    };
+    let p = format!(
+        "G21 G18 G7\n{}G55\nG10 L2 P2 X1 Z2\nG1 X30 Z5 F0.1\nM7\nM8\nM49\nM52 P1\nM53 P0\nG93\nG98\nG90.1\n{}M9\nM48\nM50 P0\nG94 G99 G91.1\n{}S500 M3\nG0 X[20 + #<a> / 1000 + #<b> / 10000 + #<c> / 100000] Z2\nG76 P1.5 Z-20 I-1 J0.2 K0.92 R2 Q29.5 L0 E0 H0\nM2\n",
+        weigh("a"),
+        weigh("b"),
+        weigh("c")
+    );
+    let (rs, tc) = (run_rs274(&exe, &p, &dir), threadcheck(&p));
+    assert!(matches!(&rs, Outcome::Passes(s) if !s.is_empty()), "rs274 cut nothing");
+    assert!(compare(None, &rs, &tc).is_none(), "{:?}", compare(None, &rs, &tc));
+}
+
 /// Issue 47 item 5: a subroutine in a file of its own, found where LinuxCNC looks (`rs274`
 /// runs in the folder that holds `thr.ngc`; threadcheck's commands search the program's folder and
 /// `--subroutine-path`, here a finder that holds the one file). The library reads

@@ -271,6 +271,18 @@ pub fn lex(text: &str, dialect: Dialect) -> Result<Vec<Block>, LexError> {
     let mut main_ended = false;
     for (i, raw) in text.split('\n').enumerate() {
         let line = raw.strip_suffix('\r').unwrap_or(raw);
+        // LinuxCNC reads lines shorter than its LINELEN, 255 bytes (`src/emc/linuxcnc.h`), and
+        // refuses a longer one ("Command too long", `interp_read.cc`).
+        if dialect == Dialect::LinuxCnc && line.len() >= 255 {
+            return Err((
+                i + 1,
+                255,
+                format!(
+                    "the line is {} bytes long: LinuxCNC reads lines of at most 254 (Command too long)",
+                    line.len()
+                ),
+            ));
+        }
         match dialect {
             Dialect::Sinumerik => {
                 let before = blocks.len();

@@ -47,6 +47,95 @@ pub(crate) struct State {
     /// The motion mode in force, as `#<_motion_mode>` gives it (G-code × 10; G80, 800, at the
     /// start, as in LinuxCNC).
     motion_mode: Option<f64>,
+    /// The switches and modes LinuxCNC's predefined parameters read, as the program set them
+    /// (`None`: the standalone interpreter's state at the start, which `Switches::start` gives).
+    switches: Option<Switches>,
+}
+
+/// What `#<_feed>`, `#<_mist>`, `#<_flood>`, the override and feed-hold switches, the
+/// inverse-time mode, the return level and the arc-centre mode read.
+#[derive(Clone, Copy, Debug)]
+struct Switches {
+    feed: f64,
+    mist: bool,
+    flood: bool,
+    /// M51 (and M48/M49): the spindle speed override.
+    speed_override: bool,
+    /// M50 (and M48/M49): the feed override.
+    feed_override: bool,
+    adaptive_feed: bool,
+    feed_hold: bool,
+    inverse_time: bool,
+    /// G99 (return to the R plane) against G98.
+    r_plane: bool,
+    ijk_absolute: bool,
+}
+
+impl Switches {
+    /// LinuxCNC's standalone interpreter at the start (`rs274`, no INI startup code): F0, the
+    /// coolant off, both overrides and the feed hold enabled, G99's return level, incremental
+    /// arc centres.
+    fn start() -> Switches {
+        Switches {
+            feed: 0.0,
+            mist: false,
+            flood: false,
+            speed_override: true,
+            feed_override: true,
+            adaptive_feed: false,
+            feed_hold: true,
+            inverse_time: false,
+            r_plane: true,
+            ijk_absolute: false,
+        }
+    }
+
+    /// What block `b` sets.
+    fn after(mut self, b: &RBlock<'_>) -> Switches {
+        let p_on = || b.get("P").is_none_or(|p| p.v != 0.0);
+        if let Some(f) = b.get("F") {
+            self.feed = f.v;
+        }
+        if b.has_m(7.0) {
+            self.mist = true;
+        }
+        if b.has_m(8.0) {
+            self.flood = true;
+        }
+        if b.has_m(9.0) {
+            (self.mist, self.flood) = (false, false);
+        }
+        if b.has_m(48.0) {
+            (self.speed_override, self.feed_override) = (true, true);
+        }
+        if b.has_m(49.0) {
+            (self.speed_override, self.feed_override) = (false, false);
+        }
+        if b.has_m(50.0) {
+            self.feed_override = p_on();
+        }
+        if b.has_m(51.0) {
+            self.speed_override = p_on();
+        }
+        if b.has_m(52.0) {
+            self.adaptive_feed = p_on();
+        }
+        if b.has_m(53.0) {
+            self.feed_hold = p_on();
+        }
+        for (g, _) in b.gs() {
+            match (g * 10.0).round() as i64 {
+                930 => self.inverse_time = true,
+                940 | 950 => self.inverse_time = false,
+                980 => self.r_plane = false,
+                990 => self.r_plane = true,
+                901 => self.ijk_absolute = true,
+                911 => self.ijk_absolute = false,
+                _ => {}
+            }
+        }
+        self
+    }
 }
 
 /// A coordinate in program units and what it was set under.
@@ -162,7 +251,7 @@ impl State {
 /// issue 47): `_lathe_radius_mode` and `_lathe_diameter_mode` 1 or 0, `_coord_system` 540 … 593,
 /// `_plane` 170, 180 or 190, `_spindle_on`, `_spindle_cw`, `_spindle_css_mode`,
 /// `_spindle_rpm_mode`, `_units_per_rev`, `_units_per_minute` 1 or 0, `_rpm` S, `_current_tool` T.
-const SYSTEM_NAMES: [&str; 31] = [
+const SYSTEM_NAMES: [&str; 45] = [
     "_x",
     "_z",
     "_imperial",
@@ -194,6 +283,20 @@ const SYSTEM_NAMES: [&str; 31] = [
     "_call_level",
     "_remap_level",
     "_line",
+    "_feed",
+    "_mist",
+    "_flood",
+    "_speed_override",
+    "_feed_override",
+    "_adaptive_feed",
+    "_feed_hold",
+    "_inverse_time",
+    "_retract_r_plane",
+    "_retract_old_z",
+    "_ijk_absolute_mode",
+    "_abs_x",
+    "_abs_z",
+    "_abs_y",
 ];
 
 fn system_params(s: &State, m: &Motion, sys: &mut SysParams) {
@@ -260,6 +363,31 @@ fn system_params(s: &State, m: &Motion, sys: &mut SysParams) {
     }
     // The subroutine depth (28) and the line (30) are the interpreter's (interp.rs); no remap.
     sys.set(29, 0.0);
+    let sw = s.switches.unwrap_or_else(Switches::start);
+    sys.set(31, sw.feed);
+    for (k, on) in [
+        (32, sw.mist),
+        (33, sw.flood),
+        (34, sw.speed_override),
+        (35, sw.feed_override),
+        (36, sw.adaptive_feed),
+        (37, sw.feed_hold),
+        (38, sw.inverse_time),
+        (39, sw.r_plane),
+        (40, !sw.r_plane),
+        (41, sw.ijk_absolute),
+    ] {
+        sys.set(k, flag(on));
+    }
+    // G93 is neither per minute nor per revolution.
+    if sw.inverse_time {
+        sys.set(14, 0.0);
+        sys.set(15, 0.0);
+    }
+    // The position with no offsets, in program units, X as a radius whatever the mode.
+    sys.set(42, m.x.map_or(0.0, |x| 0.5 * x / unit));
+    sys.set(43, m.z.map_or(0.0, |z| z / unit));
+    sys.set(44, m.y.map_or(0.0, |y| y / unit));
     // The numbered parameters the docs list that follow the program's state (LinuxCNC's
     // docs/src/gcode/overview.adoc, "Numbered Parameters"): #5220 the coordinate system (1 =
     // G54 … 9 = G59.3), #5400 the tool number, #5420–#5428 the current position in program
@@ -448,6 +576,7 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, _cx: &mut Ctx<'_>) -> Re
     {
         s.motion_mode = Some((g * 10.0).round());
     }
+    s.switches = Some(s.switches.unwrap_or_else(Switches::start).after(b));
     spindle(s, b);
     if coordinates(s, m, b, &md)? {
         return Ok(Flow::Next);
