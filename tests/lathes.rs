@@ -227,6 +227,55 @@ fn a_sinumerik_call_finds_its_spf_file() {
     );
 }
 
+/// Sinumerik subprograms called by a name of letters (`THRSUB`): found in `THRSUB.SPF` beside the
+/// program (its `PROC THRSUB SAVE` line names it), in the listing after M30 (`%_N_THRSUB_SPF` or
+/// the name alone on its line), repeated by `P`. Regression: such a call was read past silently,
+/// so the thread in the subprogram was never seen. A bare word that names no subprogram (`SOFT`)
+/// is read past with a note naming it.
+#[test]
+fn a_sinumerik_call_by_name_finds_its_subprogram() {
+    let dir = tempdir("sub-named");
+    let main = "G18 G90 G95 DIAMON\nT1 D1\nS500 M3\nSOFT\nG0 X12 Z2\nTHRSUB P2\nM30\n";
+    std::fs::write(dir.join("MAIN.MPF"), main).unwrap();
+    std::fs::write(dir.join("thrsub.spf"), "PROC THRSUB SAVE\nG0 X12 Z2\nG33 Z-20 K1.5 X8.4\nM17\n").unwrap();
+    let o = run_in(&dir, &["passes", "--program", "MAIN.MPF"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("operation 1: G33 at line 3 of thrsub.spf"), "{out}");
+    let o = run_in(&dir, &["passes", "--json", "--program", "MAIN.MPF"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    // P2: the subprogram runs twice, so its one G33 is two passes at X8.4.
+    let passes = v["operations"][0]["passes"].as_array().unwrap();
+    assert_eq!(passes.len(), 2, "{v}");
+    for p in passes {
+        assert!((p["x_end"].as_f64().unwrap() - 8.4).abs() < 1e-9, "{p}");
+    }
+    let o = run_in(&dir, &["verify", "--program", "MAIN.MPF", "--thread", "M12x1.5-6g"]);
+    assert!(
+        stdout(&o).contains("MAIN.MPF:4:1: SOFT read past: a word threadcheck does not model"),
+        "{}",
+        stdout(&o)
+    );
+    // The listing's two forms of a subprogram after the main program.
+    std::fs::remove_file(dir.join("thrsub.spf")).unwrap();
+    for head in ["%_N_THRSUB_SPF", "THRSUB"] {
+        std::fs::write(dir.join("ONE.MPF"), format!("{main}{head}\nG0 X12 Z2\nG33 Z-20 K1.5 X8.4\nM17\n"))
+            .unwrap();
+        let o = run_in(&dir, &["passes", "--program", "ONE.MPF"]);
+        assert_eq!(o.status.code(), Some(0), "{head}: {}", stderr(&o));
+        assert!(stdout(&o).contains("operation 1: G33 at line 10, tool T1"), "{head}: {}", stdout(&o));
+    }
+    // Without the file: no thread, and the call named in the notes.
+    let o = run_in(&dir, &["verify", "--program", "MAIN.MPF", "--thread", "M12x1.5-6g"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stdout(&o));
+    std::fs::write(dir.join("P.MPF"), "PROC THRSUB(REAL DEPTH)\nM17\n").unwrap();
+    let o = run_in(&dir, &["passes", "--program", "P.MPF"]);
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: P.MPF:1:12: PROC THRSUB(…): a subprogram with parameters is not supported (one without is)"
+    );
+}
+
 /// LinuxCNC's stored parameters (#5161–#5390: the homes, G92 and the work offsets) live in the
 /// machine's parameter file: read unset, they are a fresh file's 0 (as `rs274` reads them), and
 /// the note says where the value really comes from, not that LinuxCNC reads it as 0.

@@ -281,7 +281,8 @@ pub struct PlanArgs {
 
 /// Finds the files of the subprograms a program calls in `dirs`, as the controls name them:
 /// LinuxCNC's `o<name> call` the file `name.ngc`, Fanuc's `M98 P2000` a file named `O2000`,
-/// `O02000` or `2000`, with a program extension or none, Sinumerik's `L9` the file `L9.SPF`. Each file is read as a program is
+/// `O02000` or `2000`, with a program extension or none, Sinumerik's `L9` and `THRSUB` (asked for
+/// as `L9.SPF`, `THRSUB.SPF`) the file of that name in any case. Each file is read as a program is
 /// (bounded, its encoding checked).
 pub(crate) fn sub_finder(dirs: Vec<PathBuf>) -> crate::gcode::SubFinder {
     crate::gcode::SubFinder(std::sync::Arc::new(move |name: &str| {
@@ -294,9 +295,8 @@ pub(crate) fn sub_finder(dirs: Vec<PathBuf>) -> crate::gcode::SubFinder {
             }
             None => Vec::new(),
         };
-        // Sinumerik's `L9`: the file L9.SPF (any case).
-        let sinumerik =
-            name.strip_prefix('L').is_some_and(|n| !n.is_empty() && n.bytes().all(|c| c.is_ascii_digit()));
+        // Sinumerik's `L9` and `THRSUB`: asked for as `L9.SPF`, `THRSUB.SPF` (any case).
+        let sinumerik = name.ends_with(".SPF");
         for dir in &dirs {
             let found = match number {
                 None if sinumerik => std::fs::read_dir(dir).ok().and_then(|entries| {
@@ -304,7 +304,7 @@ pub(crate) fn sub_finder(dirs: Vec<PathBuf>) -> crate::gcode::SubFinder {
                         p.is_file()
                             && p.file_name()
                                 .and_then(|f| f.to_str())
-                                .is_some_and(|f| f.eq_ignore_ascii_case(&format!("{name}.spf")))
+                                .is_some_and(|f| f.eq_ignore_ascii_case(name))
                     })
                 }),
                 None => Some(dir.join(format!("{name}.ngc"))).filter(|p| p.is_file()),

@@ -1001,6 +1001,21 @@ fn sinumerik_line(line: &str, ln: usize, main_ended: bool, out: &mut Vec<Block>)
         out.push(Block { line: ln, col: 1, header: Some(format!("L{n}")), ..Block::default() });
         return Ok(());
     }
+    // A subprogram called by a name of letters starts with that name alone on its line after
+    // the main program too (`THRSUB`), as `L9` does.
+    if main_ended
+        && is_sinumerik_program_name(bare)
+        && !SINUMERIK_BARE_WORDS.contains(&bare.to_ascii_uppercase().as_str())
+    {
+        out.push(Block { line: ln, col: 1, header: Some(bare.to_ascii_uppercase()), ..Block::default() });
+        return Ok(());
+    }
+    // `PROC THRSUB` (with `SAVE`, `SBLOF`, `DISPLOF` or `ACTBLOCNO` after it) opens the
+    // subprogram THRSUB: its file's first line, or a subprogram in the listing.
+    if let Some(header) = sinumerik_proc(&chars, ln)? {
+        out.push(Block { line: ln, col: 1, header: Some(header), ..Block::default() });
+        return Ok(());
+    }
     let mut b = Block::new(ln);
     let mut i = 0;
     while i < chars.len() {
@@ -1081,6 +1096,59 @@ fn sinumerik_line(line: &str, ln: usize, main_ended: bool, out: &mut Vec<Block>)
         out.push(b.compact());
     }
     Ok(())
+}
+
+/// The bare words (no value) a Sinumerik program writes that threadcheck models: never a
+/// subprogram's name.
+pub(crate) const SINUMERIK_BARE_WORDS: [&str; 6] = ["DIAMON", "DIAMOF", "MCALL", "RET", "M30", "M17"];
+
+/// A Sinumerik program name: a letter or `_`, then letters, digits and `_`, at least two
+/// characters (Siemens' rule for program names; `L` and digits alone are the old numbered form).
+pub(crate) fn is_sinumerik_program_name(s: &str) -> bool {
+    s.len() >= 2
+        && s.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+        && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+        && !(s.starts_with(['L', 'l']) && s[1..].chars().all(|c| c.is_ascii_digit()))
+}
+
+/// `PROC NAME` with nothing after the name but the subprogram attributes `SAVE`, `SBLOF`,
+/// `DISPLOF`, `ACTBLOCNO`: the subprogram's name. A `PROC` with parameters is refused at them.
+fn sinumerik_proc(chars: &[char], ln: usize) -> Result<Option<String>, LexError> {
+    let text: String = chars.iter().collect();
+    let code = text.split(';').next().unwrap_or("");
+    let lead = code.len() - code.trim_start().len();
+    let mut words = code.split_whitespace();
+    if !words.next().is_some_and(|w| w.eq_ignore_ascii_case("PROC")) {
+        return Ok(None);
+    }
+    let col = lead + 6;
+    let Some(name) = words.next() else {
+        return Err((ln, lead + 1, "PROC needs the subprogram's name".into()));
+    };
+    if let Some(p) = name.find('(') {
+        let at = code.find(name).unwrap_or(0) + p + 1;
+        return Err((
+            ln,
+            at,
+            format!("PROC {}(…): a subprogram with parameters is not supported (one without is)", &name[..p]),
+        ));
+    }
+    let numbered =
+        name.len() > 1 && name.starts_with(['L', 'l']) && name[1..].chars().all(|c| c.is_ascii_digit());
+    if !is_sinumerik_program_name(name) && !numbered {
+        return Err((ln, col, format!("PROC {name}: not a program name")));
+    }
+    for w in words {
+        if !["SAVE", "SBLOF", "DISPLOF", "ACTBLOCNO"].iter().any(|a| w.eq_ignore_ascii_case(a)) {
+            let at = lead + code[lead..].find(w).unwrap_or(0) + 1;
+            return Err((
+                ln,
+                at,
+                format!("PROC {name} … {w}: only SAVE, SBLOF, DISPLOF and ACTBLOCNO are read after the name"),
+            ));
+        }
+    }
+    Ok(Some(name.to_ascii_uppercase()))
 }
 
 /// `GOTOF label`, `GOTOB label`, `GOTO label`, `IF cond GOTOF label`.

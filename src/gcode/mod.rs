@@ -662,7 +662,8 @@ impl Program {
 }
 
 /// Finds a subprogram the program calls and does not hold, where the control would find it: its
-/// name as the call writes it (`thr` for LinuxCNC's `o<thr> call`, `O2000` for `M98 P2000`), and
+/// name as the call writes it (`thr` for LinuxCNC's `o<thr> call`, `O2000` for `M98 P2000`;
+/// Sinumerik's with its file's extension, `L9.SPF` for `L9`, `THRSUB.SPF` for `THRSUB`), and
 /// the file it stands in (the name shown, its text), `None` when there is none, or the error of
 /// reading it. The reader calls it; it reads the files (the commands give it the program's
 /// folder and the subroutine path).
@@ -757,15 +758,21 @@ fn missing_subs(blocks: &[lexer::Block], dialect: Dialect) -> Vec<String> {
         called.retain(|n| !defined.contains(n));
     } else if dialect == Dialect::Sinumerik {
         // `L9` calls the subprogram L9 (its file L9.SPF); L96 and L97 are the threading cycles.
+        // A bare name (`THRSUB`) calls the subprogram of that name (its file THRSUB.SPF). The
+        // names go to the finder with the file's extension.
         defined.extend(blocks.iter().filter_map(|b| b.header.clone()));
         called = blocks
             .iter()
             .flat_map(|b| &b.words)
-            .filter(|w| w.name == "L")
-            .filter_map(word_value)
-            .filter(|v| v.fract() == 0.0 && *v >= 0.0 && *v != 96.0 && *v != 97.0)
-            .map(|v| format!("L{}", v as i64))
+            .filter_map(|w| match w.val {
+                lexer::WVal::Bare if sinumerik_named_call(&w.name) => Some(w.name.clone()),
+                _ if w.name == "L" => word_value(w)
+                    .filter(|v| v.fract() == 0.0 && *v >= 0.0 && *v != 96.0 && *v != 97.0)
+                    .map(|v| format!("L{}", v as i64)),
+                _ => None,
+            })
             .filter(|n| !defined.contains(n))
+            .map(|n| format!("{n}.SPF"))
             .collect();
     }
     let mut seen = std::collections::HashSet::new();
@@ -807,9 +814,10 @@ fn read_sub_files(
             })?;
             let headed = dialect.fanuc_family() || matches!(dialect, Dialect::Haas | Dialect::Sinumerik);
             if headed && !sub.iter().any(|b| b.header.is_some()) {
+                let header = name.strip_suffix(".SPF").unwrap_or(&name).to_string();
                 sub.insert(
                     0,
-                    lexer::Block { line: 1, col: 1, header: Some(name.clone()), ..lexer::Block::default() },
+                    lexer::Block { line: 1, col: 1, header: Some(header), ..lexer::Block::default() },
                 );
             }
             for b in &mut sub {
@@ -819,6 +827,12 @@ fn read_sub_files(
             names.push(shown);
         }
     }
+}
+
+/// Whether a Sinumerik bare word (`THRSUB`) is read as a call of the subprogram of that name:
+/// a program name that is no word threadcheck models.
+pub(crate) fn sinumerik_named_call(name: &str) -> bool {
+    lexer::is_sinumerik_program_name(name) && !lexer::SINUMERIK_BARE_WORDS.contains(&name)
 }
 
 /// A word's plain number, if it has one.

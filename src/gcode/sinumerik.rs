@@ -33,6 +33,29 @@ struct HoleCall {
     col: usize,
 }
 
+/// A word written as a name alone (`THRSUB`, `SOFT`): no value, no arguments, and no word
+/// threadcheck models.
+fn is_bare_name(w: &RWord<'_>) -> bool {
+    w.args.is_none() && w.text.eq_ignore_ascii_case(w.name) && super::sinumerik_named_call(w.name)
+}
+
+/// A call's repetitions `P` (1 without): a whole number up to the bound.
+fn repetitions(m: &Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<u32, Error> {
+    let reps = b.get("P").map_or(1.0, |p| p.v);
+    if !(reps >= 0.0 && reps.fract() == 0.0 && reps <= crate::ground::bounds::MAX_REPEATS as f64) {
+        return Err(b.werr(
+            &m.file,
+            w,
+            format!(
+                "{} P{reps}: repetitions must be a whole number up to {}",
+                w.text,
+                crate::ground::bounds::MAX_REPEATS
+            ),
+        ));
+    }
+    Ok(reps as u32)
+}
+
 /// Runs one block.
 fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Result<Flow, Error> {
     for w in &b.words {
@@ -91,25 +114,33 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Res
             format!("{} is not a threading cycle threadcheck reads (CYCLE97 and CYCLE99 are)", w.name),
         ));
     }
+    // A bare name: the subprogram of that name (`THRSUB`, `THRSUB P2`), else a word threadcheck
+    // does not model, read past with a note.
+    for w in b.words.iter().filter(|w| is_bare_name(w)) {
+        if cx.subs.contains(w.name) {
+            cycles::modal(m, b)?;
+            let reps = repetitions(m, b, w)?;
+            return Ok(Flow::Call { name: w.name.to_string(), repeats: reps, locals: None, col: w.col });
+        }
+        m.read_past(
+            b.line,
+            w.col,
+            w.name,
+            &format!(
+                "a word threadcheck does not model; were it a subprogram's call, its subprogram is neither in this file nor a file {}.SPF beside it",
+                w.name
+            ),
+        );
+    }
     // Subprogram call: L9 P33, or the old thread cycles L96/L97 when the file does not define them.
     if let Some(w) = b.get("L") {
         cycles::modal(m, b)?;
         let name = format!("L{}", w.v.round() as i64);
-        let reps = b.get("P").map_or(1.0, |p| p.v);
-        if !(reps >= 0.0 && reps.fract() == 0.0 && reps <= crate::ground::bounds::MAX_REPEATS as f64) {
-            return Err(b.werr(
-                &m.file,
-                w,
-                format!(
-                    "{name} P{reps}: repetitions must be a whole number up to {}",
-                    crate::ground::bounds::MAX_REPEATS
-                ),
-            ));
-        }
+        let reps = repetitions(m, b, w)?;
         if !cx.subs.contains(&name) {
             match name.as_str() {
                 "L97" | "L96" => {
-                    for _ in 0..reps as usize {
+                    for _ in 0..reps {
                         if name == "L97" {
                             l97(m, b, w, cx)?;
                         } else {
@@ -127,7 +158,7 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Res
                 }
             }
         }
-        return Ok(Flow::Call { name, repeats: reps as u32, locals: None, col: w.col });
+        return Ok(Flow::Call { name, repeats: reps, locals: None, col: w.col });
     }
     let md = cycles::modal(m, b)?;
     if md.motion == 33.0 && md.one_shot.is_none() {
