@@ -337,3 +337,143 @@ fn okuma_labels_rotary_speed_and_zig_zag() {
     assert!(notes.contains("SB=1200 read past"), "{notes}");
     assert!(notes.contains("M33 (zig-zag) read as alternating flanks"), "{notes}");
 }
+
+/// Issue 45 item 3: a Heidenhain Klartext plate (`tests/data/klartext/plate.h`). Cycle 200 drills
+/// Ø6.8 at the two points of `PATTERN DEF` (`CYCL CALL PAT`), cycle 207 taps M8x1.25 at the
+/// same points (`L … M99`); then a datum shift (cycle 7: X+100 Y+50) and a rotation (cycle 10:
+/// 90°) move the polar pattern of cycle 220 (Ø40 about the datum, four holes from 0°, Q247 = 0
+/// over a full circle: every 90°) that drills Ø10.2 and taps M12x1.75LH with cycle 209, its
+/// pitch Q239 = Q1 = −1.75 (a left-hand tap). By hand, the pattern's points (20, 0), (0, 20),
+/// (−20, 0), (0, −20) turned by 90° ((x, y) → (−y, x)) and shifted: (100, 70), (80, 50),
+/// (100, 30), (120, 50). Bottoms: Q203 + Q201, −15 and −20. The stock's bottom is BLK FORM's
+/// Z−20: the Ø6.8 drill's full diameter passes it at −25 + 3.4/tan 59° = −22.9571, so the M8
+/// holes are through holes.
+#[test]
+fn klartext_taps_at_patterns_shifted_and_rotated() {
+    let program = data("klartext/plate.h");
+    let (code, v) = run_json(&["tap", "--program", program.to_str().unwrap(), "--json", "-"]);
+    assert_eq!(code, 0, "{v}");
+    let got = holes(&v);
+    let want = [
+        (20.0, 20.0, -15.0),
+        (60.0, 20.0, -15.0),
+        (100.0, 70.0, -20.0),
+        (80.0, 50.0, -20.0),
+        (100.0, 30.0, -20.0),
+        (120.0, 50.0, -20.0),
+    ];
+    assert_eq!(got.len(), want.len(), "{got:?}");
+    for (g, w) in got.iter().zip(want) {
+        assert!((g.0.unwrap() - w.0).abs() < 1e-9 && (g.1.unwrap() - w.1).abs() < 1e-9, "{g:?} {w:?}");
+        assert!((g.2.unwrap() - w.2).abs() < 1e-9, "{g:?} {w:?}");
+    }
+    let hs = v["holes"].as_array().unwrap();
+    assert_eq!(hs[0]["tap"]["designation"], "M8X1.25-6H");
+    assert_eq!(hs[2]["tap"]["designation"], "M12X1.75-LH-6H");
+    assert_eq!(hs[2]["cycle"]["hand"], "left");
+    assert_eq!(hs[2]["cycle"]["feed"].as_f64(), Some(1.75));
+    assert_eq!(hs[2]["cycle"]["feed_word"], "Q239");
+    // The M8 holes' drills are the pattern's, the M12 holes' the second cycle 200's.
+    assert_eq!(hs[0]["drill"]["diameter"].as_f64(), Some(6.8));
+    assert_eq!(hs[5]["drill"]["diameter"].as_f64(), Some(10.2));
+    let depth = check_of(&hs[0], "depth");
+    assert!(
+        depth["note"].as_str().unwrap().contains("stock's bottom (Z-20, BLK FORM at line 2) at Z-22.9571"),
+        "{depth}"
+    );
+    // The same file through `verify`: every thread it makes, one verdict.
+    let o = run(&["verify", program.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+    assert!(stdout(&o).contains("6 operations: 6 pass, 0 fail"), "{}", stdout(&o));
+}
+
+/// Issue 45 item 3: cycle 262 mills M20x1.5 inside (`nut.h`: Q335 = 20, Q239 = +1.5, Q201 =
+/// −15, Q355 = 1, Q351 = +1 climb) as the TNC does, about the cycle's point, compensated by the
+/// cutter's radius: a Ø14 cutter's centre runs at 10 − 7 = 3 mm, counter-clockwise and rising
+/// (right hand, climb: `docs/dialects.md`), 15/1.5 = 10 turns from Z−15 to Z0; its tip reaches
+/// D = 2·(3 + 7) = 20. The helix written by hand (`helix.h`: `CC`, `CP IPA+360 IZ+1.5 DR+`
+/// repeated by `CALL LBL 1 REP 9`, ten turns at radius 3, uncompensated) makes the same thread.
+#[test]
+fn klartext_thread_milling_cycle_is_the_helix_by_hand() {
+    let mut got = Vec::new();
+    for name in ["nut", "helix"] {
+        let program = data(&format!("klartext/{name}.h"));
+        let (code, v) = run_json(&[
+            "thread-mill",
+            "--program",
+            program.to_str().unwrap(),
+            "--cutter-diameter",
+            "14",
+            "--thread",
+            "M20x1.5-6H",
+            "--json",
+            "-",
+        ]);
+        assert_eq!(code, 1, "a sharp tip at D leaves D2 small: {v}");
+        let hs = v["helices"].as_array().unwrap();
+        let sweep: f64 = hs.iter().map(|h| h["sweep_deg"].as_f64().unwrap()).sum();
+        assert!(hs.iter().all(|h| (h["radius"].as_f64().unwrap() - 3.0).abs() < 1e-9), "{name}: {v}");
+        assert!((sweep - 3600.0).abs() < 1e-6, "{name}: {sweep}");
+        assert!((hs[0]["z"][0].as_f64().unwrap() + 15.0).abs() < 1e-9, "{name}: {v}");
+        assert!(hs[hs.len() - 1]["z"][1].as_f64().unwrap().abs() < 1e-9, "{name}: {v}");
+        assert!((v["measured"]["major_diameter"].as_f64().unwrap() - 20.0).abs() < 1e-4, "{name}: {v}");
+        assert!(
+            check_of(&v, "lead")["ok"].as_bool().unwrap() && check_of(&v, "hand")["ok"].as_bool().unwrap()
+        );
+        got.push(v["measured"]["pitch_diameter"].as_f64().unwrap());
+    }
+    assert!((got[0] - got[1]).abs() < 1e-7, "{got:?}");
+}
+
+/// Cycle 262 up-cut (Q351 = −1) goes clockwise and falls; a left-hand pitch (Q239 = −1.5) climbs
+/// counter-clockwise and falls: each is its hand's helix (the `hand` check), and a right-hand
+/// designation fails the left-hand helix. Cycle 267 mills outside: its tip reaches the minor
+/// diameter d3 = 20 − 2·0.61343·1.5 = 18.1597 (ISO 68-1's h3, the named default), the Ø14
+/// cutter's centre 7 mm further out.
+#[test]
+fn klartext_thread_milling_directions_and_outside() {
+    let base = std::fs::read_to_string(data("klartext/nut.h")).unwrap();
+    let dir = tempdir("klartext-mill");
+    let cases = [
+        ("upcut", base.replace("Q351=+1", "Q351=-1"), "M20x1.5-6H", true, -1.0),
+        ("left", base.replace("Q239=+1.5", "Q239=-1.5"), "M20x1.5-LH-6H", true, 1.0),
+        ("left-as-right", base.replace("Q239=+1.5", "Q239=-1.5"), "M20x1.5-6H", false, 1.0),
+    ];
+    for (name, text, thread, hand_ok, sense) in cases {
+        let p = dir.join(format!("{name}.h"));
+        std::fs::write(&p, text).unwrap();
+        let (_, v) = run_json(&[
+            "thread-mill",
+            "--program",
+            p.to_str().unwrap(),
+            "--cutter-diameter",
+            "14",
+            "--thread",
+            thread,
+            "--json",
+            "-",
+        ]);
+        assert_eq!(check_of(&v, "hand")["ok"].as_bool(), Some(hand_ok), "{name}: {v}");
+        let _ = sense;
+    }
+    let outside = base.replace("262 THREAD MILLING", "267 OUTSIDE THREAD MLLNG");
+    let p = dir.join("outside.h");
+    std::fs::write(&p, outside).unwrap();
+    let (_, v) = run_json(&[
+        "thread-mill",
+        "--program",
+        p.to_str().unwrap(),
+        "--cutter-diameter",
+        "14",
+        "--thread",
+        "M20x1.5-6g",
+        "--json",
+        "-",
+    ]);
+    let h = &v["helices"][0];
+    assert!((h["radius"].as_f64().unwrap() - (10.0 - 0.613_434_5 * 1.5 + 7.0)).abs() < 1e-9, "{v}");
+    assert!(
+        (v["measured"]["minor_diameter"].as_f64().unwrap() - (20.0 - 2.0 * 0.613_434_5 * 1.5)).abs() < 1e-4,
+        "{v}"
+    );
+}

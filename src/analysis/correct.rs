@@ -345,9 +345,12 @@ fn wear_offset_in_x(d: crate::gcode::Dialect) -> bool {
         // Sinumerik's wear is a length per tool edge whose diameter or radius meaning depends on
         // machine data; LinuxCNC's and Dyna's tables are not modelled.
         // Okuma OSP's and Heidenhain's wear offsets are not modelled here either.
-        Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma | Dialect::Heidenhain => {
-            false
-        }
+        Dialect::Sinumerik
+        | Dialect::LinuxCnc
+        | Dialect::Dyna
+        | Dialect::Okuma
+        | Dialect::Heidenhain
+        | Dialect::Klartext => false,
     }
 }
 

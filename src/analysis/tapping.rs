@@ -268,6 +268,7 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                     Dialect::Sinumerik => "CYCLE84 and CYCLE840",
                     Dialect::LinuxCnc => "G33.1",
                     Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => "G84 and G74",
+                    Dialect::Klartext => "the cycles 206, 207 and 209",
                     Dialect::Okuma | Dialect::Dyna | Dialect::Heidenhain => {
                         "a tapping cycle threadcheck reads: none yet"
                     }
@@ -461,7 +462,10 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                 let room = tb - db;
                 // A through hole: the drill's full diameter passes the stock's bottom, and the tap
                 // has nothing below it to meet.
-                let through = match (spec.stock_bottom, d.diameter) {
+                // The stock's bottom: the caller's, else the one the program declares
+                // (Klartext's BLK FORM 0.1).
+                let stock_bottom = spec.stock_bottom.or(prog.stock_bottom.map(|s| s.0));
+                let through = match (stock_bottom, d.diameter) {
                     (Some(sb), Some(dia)) => db + 0.5 * dia / half <= sb + 1e-9,
                     _ => false,
                 };
@@ -469,7 +473,10 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                 let how = if through {
                     format!(
                         "a through hole: the drill's full diameter passes the stock's bottom (Z{}) at Z{}, so nothing lies below the tap",
-                        crate::ground::fmt::fmt_num(spec.stock_bottom.unwrap_or(0.0)),
+                        match (spec.stock_bottom, prog.stock_bottom) {
+                            (None, Some((z, line))) => format!("{}, BLK FORM at line {line}", crate::ground::fmt::fmt_num(z)),
+                            _ => crate::ground::fmt::fmt_num(stock_bottom.unwrap_or(0.0)),
+                        },
                         crate::ground::fmt::fmt_num(((db + 0.5 * d.diameter.unwrap_or(0.0) / half) * 1e4).round() / 1e4)
                     )
                 } else {

@@ -486,7 +486,17 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
             return Err(Error::Input("give the cutter: ‹cutter_diameter›, or a tool table (‹tools›)".into()))
         }
     };
-    let comp = match (spec.comp_radius, &spec.tools, first_tool) {
+    // A TNC compensates RL/RR by the tool table's radius, which is the cutter's: a Klartext
+    // program's helices (its thread-milling cycles' among them) need no D register.
+    let tnc = spec.dialect == crate::gcode::Dialect::Klartext;
+    let tnc_comp = (tnc && spec.comp_radius.is_none() && prog.moves.iter().any(|m| m.comp != 0)).then(|| {
+        notes.push(format!(
+            "RL/RR compensate by the cutter's radius, {} mm, as a TNC takes it from its tool table (‹comp_radius› gives another)",
+            crate::ground::fmt::fmt_num(0.5 * c.diameter)
+        ));
+        0.5 * c.diameter
+    });
+    let comp = match (spec.comp_radius.or(tnc_comp), &spec.tools, first_tool) {
         (Some(d), _, _) => Some(d),
         (None, Some(tt), Some(t)) => Some(tt.offset(t).unwrap_or_else(|| {
             if prog.moves.iter().any(|m| m.comp != 0) {

@@ -233,8 +233,8 @@ pub struct PlanArgs {
     /// threads of inch sizes (UN, Acme, NPT, BSW, BSP), else mm)
     #[cfg_attr(feature = "cli", arg(long, value_name = "mm|inch"))]
     pub units: Option<Units>,
-    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma | mitsubishi | mazak | heidenhain (default:
-    /// the program's extension names it, .ngc linuxcnc, .mpf/.spf sinumerik, .min/.ssb/.sub okuma;
+    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma | mitsubishi | mazak | heidenhain | klartext (default:
+    /// the program's extension names it, .ngc linuxcnc, .mpf/.spf sinumerik, .min/.ssb/.sub okuma, .h klartext;
     /// else fanuc)
     #[cfg_attr(feature = "cli", arg(long))]
     #[serde_as(as = "Option<DisplayFromStr>")]
@@ -533,7 +533,7 @@ pub struct ProgramArgs {
     /// What messages call a program given as text; its extension chooses the dialect.
     #[cfg_attr(feature = "cli", arg(skip))]
     pub program_name: Option<String>,
-    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma | mitsubishi | mazak | heidenhain (default: by
+    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma | mitsubishi | mazak | heidenhain | klartext (default: by
     /// the extension, else fanuc)
     #[cfg_attr(feature = "cli", arg(long))]
     #[serde_as(as = "Option<DisplayFromStr>")]

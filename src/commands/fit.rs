@@ -26,7 +26,7 @@ pub struct FitArgs {
     #[cfg_attr(feature = "cli", arg(long, value_name = "FILE", conflicts_with = "bolt_final_x", value_parser = Source::path))]
     #[serde(deserialize_with = "super::args::source_text")]
     pub bolt_program: Option<Source>,
-    /// Its dialect: fanuc, haas, sinumerik, linuxcnc, dyna, okuma, mitsubishi, mazak or heidenhain.
+    /// Its dialect: fanuc, haas, sinumerik, linuxcnc, dyna, okuma, mitsubishi, mazak, heidenhain or klartext.
     #[cfg_attr(feature = "cli", arg(long))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub bolt_dialect: Option<Dialect>,

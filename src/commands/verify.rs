@@ -183,8 +183,16 @@ impl Job for VerifyArgs {
 pub const PROGRAM_EXTENSIONS: [&str; 12] =
     ["nc", "ngc", "mpf", "spf", "min", "ssb", "sub", "tap", "cnc", "eia", "gcode", "iso"];
 
+/// Whether the file's first 4 KiB hold `BEGIN PGM` (a Klartext program's first block).
+fn opens_klartext(path: &std::path::Path) -> bool {
+    use std::io::Read;
+    let mut head = Vec::new();
+    std::fs::File::open(path).and_then(|f| f.take(4096).read_to_end(&mut head)).is_ok()
+        && String::from_utf8_lossy(&head).contains("BEGIN PGM")
+}
+
 /// The programs of `paths`: a file as named, a folder's files with [`PROGRAM_EXTENSIONS`] found
-/// recursively, in name order; at most [`MAX_BATCH_PROGRAMS`](crate::ground::bounds::MAX_BATCH_PROGRAMS).
+/// recursively (and `.h` files that open a Klartext program), in name order; at most [`MAX_BATCH_PROGRAMS`](crate::ground::bounds::MAX_BATCH_PROGRAMS).
 fn program_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
     let mut out = Vec::new();
     for p in paths {
@@ -195,8 +203,10 @@ fn program_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
                     message: format!("cannot be listed: {e}"),
                 })?;
                 let ext = entry.path().extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+                // A `.h` file is a Klartext program when it opens one (else a C header, say).
+                let klartext = ext.as_deref() == Some("h") && opens_klartext(entry.path());
                 if entry.file_type().is_file()
-                    && ext.is_some_and(|e| PROGRAM_EXTENSIONS.contains(&e.as_str()))
+                    && (klartext || ext.is_some_and(|e| PROGRAM_EXTENSIONS.contains(&e.as_str())))
                 {
                     out.push(entry.into_path());
                 }

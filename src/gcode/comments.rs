@@ -41,6 +41,9 @@ fn forms(dialect: Dialect) -> Forms {
         Dialect::Sinumerik => Forms { parentheses: false, semicolon: true, brackets: false },
         // Heidenhain DIN: `[…]`, and `(…)` as its Fanuc-like blocks read them.
         Dialect::Heidenhain => Forms { parentheses: true, semicolon: false, brackets: true },
+        // Klartext: `;` to the line's end (the cycles' parameter names are read too, and name
+        // no thread).
+        Dialect::Klartext => Forms { parentheses: false, semicolon: true, brackets: false },
     }
 }
 

@@ -104,6 +104,8 @@ fn g_role(d: Dialect, g: u32, lathe: bool) -> GRole {
             36 | 71..=74 | 81..=87 => OtherCycle,
             _ => Unknown,
         },
+        // Klartext has no G codes (its own reader reads it).
+        Dialect::Klartext => Unknown,
     }
 }
 
@@ -118,7 +120,7 @@ fn m_known(d: Dialect, c: u32) -> bool {
                 matches!(c, 10..=11 | 23 | 24 | 29 | 98 | 99)
             }
             // Heidenhain's lathe M codes beyond the common ones are not modelled.
-            Dialect::Heidenhain => false,
+            Dialect::Heidenhain | Dialect::Klartext => false,
             Dialect::Haas => matches!(
                 c,
                 10..=15
@@ -164,9 +166,12 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
     let mut unknown: Vec<(f64, usize)> = Vec::new();
     let fanuc_like = match d {
         Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => true,
-        Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma | Dialect::Heidenhain => {
-            false
-        }
+        Dialect::Sinumerik
+        | Dialect::LinuxCnc
+        | Dialect::Dyna
+        | Dialect::Okuma
+        | Dialect::Heidenhain
+        | Dialect::Klartext => false,
     };
     // A dialect without unit codes (Heidenhain) matches none (no G code is negative).
     let inch_codes = d.unit_codes().map_or((-1.0, -1.0), |(i, mm)| (f64::from(i), f64::from(mm)));
@@ -624,9 +629,12 @@ fn record_hole(
 ) -> Result<(), Error> {
     let fanuc_like = match m.dialect {
         Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => true,
-        Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma | Dialect::Heidenhain => {
-            false
-        }
+        Dialect::Sinumerik
+        | Dialect::LinuxCnc
+        | Dialect::Dyna
+        | Dialect::Okuma
+        | Dialect::Heidenhain
+        | Dialect::Klartext => false,
     };
     let code = modal.motion as u32;
     let haas_lathe = m.dialect == Dialect::Haas && m.lathe();

@@ -145,7 +145,8 @@ impl Language {
             | Dialect::Okuma
             | Dialect::Mitsubishi
             | Dialect::Mazak
-            | Dialect::Heidenhain => fanuc,
+            | Dialect::Heidenhain
+            | Dialect::Klartext => fanuc,
             Dialect::Sinumerik => Language {
                 local_range: 0,
                 fanuc_macro: false,

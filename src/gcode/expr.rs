@@ -700,6 +700,9 @@ pub enum Syntax {
     /// `^` and `**` for powers, functions `sin(…)` … `atan2(y, x)` in degrees as the macros have
     /// them.
     Formula,
+    /// Heidenhain Klartext Q-parameter formulas: round brackets, `Q12` variables, `+ - * / ^`,
+    /// `PI`, functions `SIN(…)` … `SQRT(…)` in degrees.
+    Klartext,
 }
 
 /// A parse error: the 0-based character offset in the parsed text, and what is wrong.
@@ -725,7 +728,7 @@ impl<'a> Parser<'a> {
     }
 
     fn skip_ws(&mut self) {
-        if matches!(self.syntax, Syntax::Sinumerik | Syntax::Formula) {
+        if matches!(self.syntax, Syntax::Sinumerik | Syntax::Formula | Syntax::Klartext) {
             while matches!(self.peek(), Some(' ' | '\t')) {
                 self.i += 1;
             }
@@ -770,9 +773,9 @@ impl<'a> Parser<'a> {
             }
         } else if two == "**" && matches!(self.syntax, Syntax::LinuxCnc | Syntax::Formula) {
             (BinOp::Pow, 2)
-        } else if c == '^' && self.syntax == Syntax::Formula {
+        } else if c == '^' && matches!(self.syntax, Syntax::Formula | Syntax::Klartext) {
             (BinOp::Pow, 1)
-        } else if c.is_ascii_alphabetic() && self.syntax == Syntax::Formula {
+        } else if c.is_ascii_alphabetic() && matches!(self.syntax, Syntax::Formula | Syntax::Klartext) {
             // Formulas have no word operators: a word there is a name, not an operator.
             return None;
         } else if c.is_ascii_alphabetic() {
@@ -824,7 +827,7 @@ impl<'a> Parser<'a> {
                 Mul | Div | Mod | BitAnd | And => 2,
                 Pow => 3,
             },
-            Syntax::LinuxCnc | Syntax::Sinumerik | Syntax::Formula => match op {
+            Syntax::LinuxCnc | Syntax::Sinumerik | Syntax::Formula | Syntax::Klartext => match op {
                 And | Or | Xor | BitAnd | BitOr | BitXor => 0,
                 Eq | Ne | Gt | Ge | Lt | Le => 1,
                 Add | Sub => 2,
@@ -837,7 +840,7 @@ impl<'a> Parser<'a> {
     fn top(&self) -> u8 {
         match self.syntax {
             Syntax::MacroB | Syntax::Dyna => 3,
-            Syntax::LinuxCnc | Syntax::Sinumerik | Syntax::Formula => 4,
+            Syntax::LinuxCnc | Syntax::Sinumerik | Syntax::Formula | Syntax::Klartext => 4,
         }
     }
 
@@ -859,7 +862,7 @@ impl<'a> Parser<'a> {
     }
 
     fn open(&self) -> char {
-        if matches!(self.syntax, Syntax::Sinumerik | Syntax::Formula) {
+        if matches!(self.syntax, Syntax::Sinumerik | Syntax::Formula | Syntax::Klartext) {
             '('
         } else {
             '['
@@ -867,7 +870,7 @@ impl<'a> Parser<'a> {
     }
 
     fn close(&self) -> char {
-        if matches!(self.syntax, Syntax::Sinumerik | Syntax::Formula) {
+        if matches!(self.syntax, Syntax::Sinumerik | Syntax::Formula | Syntax::Klartext) {
             ')'
         } else {
             ']'
@@ -934,14 +937,20 @@ impl<'a> Parser<'a> {
         if c.is_ascii_digit() || c == '.' {
             return self.number();
         }
-        if c == '#' && !matches!(self.syntax, Syntax::Sinumerik | Syntax::Formula) {
+        if c == '#' && !matches!(self.syntax, Syntax::Sinumerik | Syntax::Formula | Syntax::Klartext) {
             return self.var().map(Expr::Var);
         }
         if c.is_ascii_alphabetic() {
             let start = self.i;
             let name = self.letters_at(self.i);
-            // Sinumerik R-parameters: R3, R[…] is not read.
-            if self.syntax == Syntax::Sinumerik && name == "R" {
+            if self.syntax == Syntax::Klartext && name == "PI" {
+                self.i += 2;
+                return Ok(Expr::Num(std::f64::consts::PI));
+            }
+            // Sinumerik R-parameters: R3, R[…] is not read; Klartext's Q-parameters: Q12.
+            if (self.syntax == Syntax::Sinumerik && name == "R")
+                || (self.syntax == Syntax::Klartext && name == "Q")
+            {
                 self.i += 1;
                 let ds = self.i;
                 while matches!(self.peek(), Some(d) if d.is_ascii_digit()) {
@@ -951,7 +960,7 @@ impl<'a> Parser<'a> {
                 return t
                     .parse::<i64>()
                     .map(|n| Expr::Var(VarRef::Num(n)))
-                    .map_err(|_| (start, "R needs a parameter number".into()));
+                    .map_err(|_| (start, format!("{name} needs a parameter number")));
             }
             if self.syntax == Syntax::Formula {
                 // A word not followed by '(' is a name (`t`, `z`) or the constant PI.
@@ -983,7 +992,7 @@ impl<'a> Parser<'a> {
                 ("ROUND", _) => Func::Round,
                 ("FIX", Syntax::LinuxCnc) => Func::Floor,
                 ("FUP", Syntax::LinuxCnc) => Func::Ceil,
-                ("FIX", _) | ("TRUNC", Syntax::Sinumerik) => Func::Fix,
+                ("FIX", _) | ("TRUNC", Syntax::Sinumerik) | ("INT", Syntax::Klartext) => Func::Fix,
                 ("FUP", _) => Func::Fup,
                 ("LN", _) => Func::Ln,
                 ("EXP", _) => Func::Exp,
@@ -1015,7 +1024,9 @@ impl<'a> Parser<'a> {
                     return Ok(Expr::Call(Func::Atan, vec![y]));
                 }
             }
-            if f == Func::Atan2Signed && matches!(self.syntax, Syntax::Sinumerik | Syntax::Formula) {
+            if f == Func::Atan2Signed
+                && matches!(self.syntax, Syntax::Sinumerik | Syntax::Formula | Syntax::Klartext)
+            {
                 return self.args2(f);
             }
             self.skip_ws();

@@ -298,6 +298,14 @@ pub fn lex(text: &str, dialect: Dialect) -> Result<Vec<Block>, LexError> {
             // An OSP header line (`$NAME.MIN%`) names the file: nothing to run.
             Dialect::Okuma if line.trim_start().starts_with('$') => {}
             Dialect::Heidenhain => heidenhain_line(line, i + 1, &mut section, &mut blocks)?,
+            // Klartext is not G-code: its own reader (klartext.rs) reads it, never this lexer.
+            Dialect::Klartext => {
+                return Err((
+                    i + 1,
+                    1,
+                    "a Klartext program is read by the Klartext reader, not as G-code".into(),
+                ))
+            }
             Dialect::Okuma => okuma_line(line, i + 1, &mut blocks)?,
             // A training simulator's set-up line (Denford's `[BILLET X30 Z60`, `[TOOLDEF T1 D6`).
             Dialect::Fanuc | Dialect::Haas | Dialect::Dyna | Dialect::Mitsubishi | Dialect::Mazak
@@ -494,7 +502,8 @@ pub fn syntax_of(d: Dialect) -> Syntax {
         | Dialect::Okuma
         | Dialect::Mitsubishi
         | Dialect::Mazak
-        | Dialect::Heidenhain => Syntax::MacroB,
+        | Dialect::Heidenhain
+        | Dialect::Klartext => Syntax::MacroB,
         Dialect::LinuxCnc => Syntax::LinuxCnc,
         Dialect::Dyna => Syntax::Dyna,
         Dialect::Sinumerik => Syntax::Sinumerik,
@@ -817,7 +826,8 @@ fn keyword(
         | Dialect::Okuma
         | Dialect::Mitsubishi
         | Dialect::Mazak
-        | Dialect::Heidenhain => true,
+        | Dialect::Heidenhain
+        | Dialect::Klartext => true,
         Dialect::Sinumerik | Dialect::LinuxCnc => false,
     };
     let refuse = |m: String| Err((ln, col, m));
@@ -1381,7 +1391,8 @@ fn semicolon_ends_line(dialect: Dialect) -> bool {
         | Dialect::Okuma
         | Dialect::Mitsubishi
         | Dialect::Mazak
-        | Dialect::Heidenhain => false,
+        | Dialect::Heidenhain
+        | Dialect::Klartext => false,
     }
 }
 
@@ -1396,7 +1407,8 @@ fn o_words_are_flow(dialect: Dialect) -> bool {
         | Dialect::Okuma
         | Dialect::Mitsubishi
         | Dialect::Mazak
-        | Dialect::Heidenhain => false,
+        | Dialect::Heidenhain
+        | Dialect::Klartext => false,
     }
 }
 

@@ -73,6 +73,10 @@ pub(crate) fn decide(
                 format!("read as a lathe: the {} dialect is its lathe control's", dialect.name()),
             )
         }
+        // Read by its own reader, which says so; here for completeness.
+        Dialect::Klartext => {
+            return read(MachineType::Mill, "read as a machining centre: Klartext is a TNC's".into())
+        }
         Dialect::Dyna => {
             return read(MachineType::Mill, "read as a machining centre: Dyna controls are mills".into())
         }
@@ -168,7 +172,7 @@ pub(crate) fn foreign_control(text: &str) -> Option<(usize, usize, String)> {
             return Some((
                 i + 1,
                 wcol,
-                "BEGIN PGM opens a Heidenhain Klartext (conversational) program, which threadcheck does not read yet: its machining-centre cycles are not modelled (‹dialect› heidenhain reads the DIN/ISO programs of Heidenhain's lathe controls)".into(),
+                "BEGIN PGM opens a Heidenhain Klartext (conversational) program: read it with ‹dialect› klartext (a .h file is read so by its extension; ‹dialect› heidenhain reads the DIN programs of Heidenhain's lathe controls)".into(),
             ));
         }
         let hash_word = words.strip_prefix('#').is_some_and(|r| {

@@ -25,6 +25,7 @@ mod fanuc;
 mod haas;
 mod heidenhain;
 mod interp;
+mod klartext;
 mod lexer;
 mod linuxcnc;
 mod machine;
@@ -85,11 +86,14 @@ pub enum Dialect {
     /// Heidenhain MANUALplus / CNC PILOT DIN programs: the G31 thread cycle and G33 single
     /// thread paths, `[ ]` comments.
     Heidenhain,
+    /// Heidenhain Klartext (TNC conversational) machining-centre programs: `BEGIN PGM`, `L`,
+    /// `CC`/`CP` helices, the drilling, tapping and thread-milling cycles by their Q parameters.
+    Klartext,
 }
 
 impl Dialect {
     /// Every dialect, in the order the CLI lists them.
-    pub const ALL: [Dialect; 9] = [
+    pub const ALL: [Dialect; 10] = [
         Dialect::Fanuc,
         Dialect::Haas,
         Dialect::Sinumerik,
@@ -99,6 +103,7 @@ impl Dialect {
         Dialect::Mitsubishi,
         Dialect::Mazak,
         Dialect::Heidenhain,
+        Dialect::Klartext,
     ];
 
     /// The dialect's command-line name.
@@ -113,6 +118,7 @@ impl Dialect {
             Dialect::Mitsubishi => "mitsubishi",
             Dialect::Mazak => "mazak",
             Dialect::Heidenhain => "heidenhain",
+            Dialect::Klartext => "klartext",
         }
     }
 
@@ -126,7 +132,7 @@ impl Dialect {
         }
         Dialect::ALL.into_iter().find(|d| d.name() == s).ok_or_else(|| {
             Error::Input(format!(
-                "unknown dialect '{s}': expected fanuc, haas, sinumerik, linuxcnc, dyna, okuma, mitsubishi, mazak or heidenhain"
+                "unknown dialect '{s}': expected fanuc, haas, sinumerik, linuxcnc, dyna, okuma, mitsubishi, mazak, heidenhain or klartext"
             ))
         })
     }
@@ -148,6 +154,8 @@ impl Dialect {
             "mpf" | "spf" => Some(Dialect::Sinumerik),
             // OSP main programs and subprograms.
             "min" | "ssb" | "sub" => Some(Dialect::Okuma),
+            // TNC conversational programs.
+            "h" => Some(Dialect::Klartext),
             _ => None,
         }
     }
@@ -165,7 +173,8 @@ impl Dialect {
             | Dialect::Okuma
             | Dialect::Mitsubishi
             | Dialect::Mazak => Some((20, 21)),
-            Dialect::Heidenhain => None,
+            // The unit is BEGIN PGM's (MM or INCH).
+            Dialect::Heidenhain | Dialect::Klartext => None,
         }
     }
 
@@ -179,7 +188,8 @@ impl Dialect {
             | Dialect::LinuxCnc
             | Dialect::Dyna
             | Dialect::Okuma
-            | Dialect::Heidenhain => false,
+            | Dialect::Heidenhain
+            | Dialect::Klartext => false,
         }
     }
 
@@ -194,6 +204,7 @@ impl Dialect {
             Dialect::Okuma => "G33 and the compound cycles G71 and G72",
             Dialect::Mitsubishi | Dialect::Mazak => "G32, G92 and G76 (the Fanuc model)",
             Dialect::Heidenhain => "G31 and G33",
+            Dialect::Klartext => "none on a lathe: Klartext programs tap (cycles 206, 207, 209) and mill threads (262, 267, CP helices)",
         }
     }
 }
@@ -587,6 +598,9 @@ pub struct Program {
     /// The stock the program declares (a training simulator's `[BILLET X…`): its diameter, mm,
     /// and line.
     pub stock: Option<(f64, usize)>,
+    /// The bottom of the stock a machining-centre program declares (Klartext's `BLK FORM 0.1`):
+    /// its Z in the workpiece frame, mm, and line.
+    pub stock_bottom: Option<(f64, usize)>,
 }
 
 /// Which way the spindle turns.
@@ -945,6 +959,23 @@ fn read(
         column,
         message,
     };
+    if dialect == Dialect::Klartext {
+        let perr = |line: usize, column: usize, message: String| Error::Program {
+            file: file.to_string(),
+            line,
+            column,
+            message,
+        };
+        if opts.machine_type == Some(MachineType::Lathe) {
+            return Err(perr(
+                1,
+                1,
+                "a Klartext program is a machining centre's (TNC): ‹machine_type› lathe contradicts it"
+                    .into(),
+            ));
+        }
+        return klartext::read(text, file, &opts, out);
+    }
     if let Some((line, column, message)) = machine::foreign_control(text) {
         return Err(perr(line, column, message));
     }
@@ -1140,7 +1171,7 @@ fn read(
         | Dialect::LinuxCnc
         | Dialect::Dyna
         | Dialect::Okuma
-        | Dialect::Heidenhain => None,
+        | Dialect::Heidenhain | Dialect::Klartext => None,
     };
     // Comments in another encoding were read as U+FFFD (text_of): say where.
     let encoding_note = text.lines().position(|l| l.contains('\u{fffd}')).map(|i| {
@@ -1187,6 +1218,7 @@ fn read(
         holes,
         machine,
         stock,
+        stock_bottom: None,
     })
 }
 
@@ -1202,5 +1234,6 @@ fn rules(dialect: Dialect) -> Box<dyn dialect::Rules> {
         // Reported Fanuc-compatible: the Fanuc model, its rules and G-code systems.
         Dialect::Mitsubishi | Dialect::Mazak => Box::<fanuc::State>::default(),
         Dialect::Heidenhain => Box::<heidenhain::State>::default(),
+        Dialect::Klartext => unreachable!("Klartext is read by its own reader (klartext::read)"),
     }
 }

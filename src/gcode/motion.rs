@@ -267,7 +267,8 @@ impl Motion {
                 | Dialect::Okuma
                 | Dialect::Mitsubishi
                 | Dialect::Mazak
-                | Dialect::Heidenhain => true,
+                | Dialect::Heidenhain
+                | Dialect::Klartext => true,
                 Dialect::LinuxCnc | Dialect::Dyna => false,
             },
             motion: 0.0,
@@ -416,9 +417,12 @@ impl Motion {
             // U and W are incremental X and Z on a lathe only.
             Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => self.lathe(),
             // OSP programs incremental moves with G91; Heidenhain's U is G31's thread depth.
-            Dialect::Sinumerik | Dialect::LinuxCnc | Dialect::Dyna | Dialect::Okuma | Dialect::Heidenhain => {
-                false
-            }
+            Dialect::Sinumerik
+            | Dialect::LinuxCnc
+            | Dialect::Dyna
+            | Dialect::Okuma
+            | Dialect::Heidenhain
+            | Dialect::Klartext => false,
         };
         let (mut x, mut y, mut z) = (None, None, None);
         for w in &b.words {
@@ -545,7 +549,8 @@ impl Motion {
                 | Dialect::Mitsubishi
                 | Dialect::Mazak
                 | Dialect::Dyna
-                | Dialect::Heidenhain,
+                | Dialect::Heidenhain
+                | Dialect::Klartext,
                 _,
             ) => 0,
         };
@@ -1149,7 +1154,8 @@ fn lathe_dialect(d: Dialect) -> bool {
         | Dialect::Okuma
         | Dialect::Mitsubishi
         | Dialect::Mazak
-        | Dialect::Heidenhain => true,
+        | Dialect::Heidenhain
+        | Dialect::Klartext => true,
         Dialect::Dyna => false,
     }
 }
