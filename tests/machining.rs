@@ -477,3 +477,29 @@ fn klartext_thread_milling_directions_and_outside() {
         "{v}"
     );
 }
+
+/// Issue 45 item 2: Sinumerik hole patterns and frames (`sinumerik-holes.mpf`). `MCALL
+/// CYCLE81`/`CYCLE84` then `HOLES2(50, 50, 20, 0, 0, 4)`: a circle of radius 20 about (50, 50),
+/// INDA 0 dividing it in four from 0°: (70, 50), (50, 70), (30, 50), (50, 30). Then `TRANS X100
+/// Y20` and `AROT RPL=90`, and `HOLES1(0, 0, 0, 10, 15, 3)`: a row along 0° from the frame's
+/// origin, the first hole 10 from it and then every 15, at (10, 0), (25, 0), (40, 0) in the
+/// frame; turned by 90° ((x, y) → (−y, x)) and shifted: (100, 30), (100, 45), (100, 60). Each tap
+/// finds its drill at the same point (Ø6.8 by the comment) and passes.
+#[test]
+fn sinumerik_holes_under_frames() {
+    let program = data("machining/sinumerik-holes.mpf");
+    let (code, v) = run_json(&["tap", "--program", program.to_str().unwrap(), "--json", "-"]);
+    assert_eq!(code, 0, "{v}");
+    let want =
+        [(70.0, 50.0), (50.0, 70.0), (30.0, 50.0), (50.0, 30.0), (100.0, 30.0), (100.0, 45.0), (100.0, 60.0)];
+    let got = holes(&v);
+    assert_eq!(got.len(), want.len(), "{got:?}");
+    for (g, w) in got.iter().zip(want) {
+        assert!((g.0.unwrap() - w.0).abs() < 1e-9 && (g.1.unwrap() - w.1).abs() < 1e-9, "{g:?} {w:?}");
+        assert_eq!(g.2, Some(-15.0));
+    }
+    for h in v["holes"].as_array().unwrap() {
+        assert_eq!(h["drill"]["diameter"].as_f64(), Some(6.8), "{h}");
+        assert_eq!(h["pass"], true, "{h}");
+    }
+}

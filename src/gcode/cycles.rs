@@ -453,6 +453,19 @@ pub(crate) fn read_past_item(m: &mut Motion, line: usize, p: &Past) -> Result<()
                 "a tool called by name; the insert is the one ‹insert› (or ‹tools› by number) gives",
             );
         }
+        // Sinumerik's thread milling and free hole positions: their arguments' order is seen in
+        // CAM posts and readers, their meanings in no manual read (notes/machining-centres.md §4).
+        PastKind::Call if matches!(p.name.strip_suffix("(…)"), Some("CYCLE90" | "CYCLE802")) => {
+            let what = if p.name.starts_with("CYCLE90(") { "thread milling" } else { "a pattern of free hole positions" };
+            return Err(m.err(
+                line,
+                p.col,
+                format!(
+                    "{} ({what}) is not read: the meanings of its arguments are not published in the sources read (write the helices as G2/G3 with Z, or the positions as blocks)",
+                    p.name.trim_end_matches("(…)")
+                ),
+            ));
+        }
         PastKind::Call if THREADING_CALLS.iter().any(|t| p.name.strip_suffix("(…)") == Some(t)) => {
             return Err(m.err(
                 line,

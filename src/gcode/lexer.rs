@@ -1110,7 +1110,10 @@ fn sinumerik_line(line: &str, ln: usize, main_ended: bool, out: &mut Vec<Block>)
 
 /// The bare words (no value) a Sinumerik program writes that threadcheck models: never a
 /// subprogram's name.
-pub(crate) const SINUMERIK_BARE_WORDS: [&str; 6] = ["DIAMON", "DIAMOF", "MCALL", "RET", "M30", "M17"];
+pub(crate) const SINUMERIK_BARE_WORDS: [&str; 14] = [
+    "DIAMON", "DIAMOF", "MCALL", "RET", "M30", "M17", "TRANS", "ATRANS", "ROT", "AROT", "MIRROR", "AMIRROR",
+    "SCALE", "ASCALE",
+];
 
 /// A Sinumerik program name: a letter or `_`, then letters, digits and `_`, at least two
 /// characters (Siemens' rule for program names; `L` and digits alone are the old numbered form).
@@ -1259,11 +1262,12 @@ fn sin_expr(chars: &[char], i: &mut usize, ln: usize, name: &str) -> Result<Expr
     Ok(e)
 }
 
-/// Sinumerik calls whose arguments are read: the threading cycles CYCLE97 and CYCLE99 and the
-/// drilling and tapping cycles `threadcheck tap` checks (every other call is read past whole).
-pub(crate) const ARGUMENT_CALLS: [&str; 12] = [
+/// Sinumerik calls whose arguments are read: the threading cycles CYCLE97 and CYCLE99, the
+/// drilling and tapping cycles `threadcheck tap` checks and the hole patterns that call them
+/// (every other call is read past whole).
+pub(crate) const ARGUMENT_CALLS: [&str; 15] = [
     "CYCLE97", "CYCLE99", "CYCLE81", "CYCLE82", "CYCLE83", "CYCLE84", "CYCLE840", "CYCLE85", "CYCLE86",
-    "CYCLE87", "CYCLE88", "CYCLE89",
+    "CYCLE87", "CYCLE88", "CYCLE89", "HOLES1", "HOLES2", "CYCLE801",
 ];
 
 /// A Sinumerik word: `X-20`, `G33`, `R3=R3-0.05`, `X=R3`, `SF=90`, `CYCLE97(…)`, `DIAMON`, `L9`,

@@ -33,6 +33,139 @@ struct HoleCall {
     col: usize,
 }
 
+/// The frame statements: substitutive (`TRANS`, `ROT`, `MIRROR`, `SCALE`: the programmable frame
+/// anew) and additive (`ATRANS`, `AROT`, …: onto the frame in force). Siemens, SINUMERIK 808D
+/// Programming (Milling) p.56; SINUMERIK ONE NC programming p.309.
+const FRAMES: [&str; 8] = ["TRANS", "ATRANS", "ROT", "AROT", "MIRROR", "AMIRROR", "SCALE", "ASCALE"];
+
+/// A frame statement on a machining centre (G17): `TRANS X… Y… Z…` sets the translation (and
+/// clears the rotation), `ATRANS` adds one in the frame in force, `ROT RPL=a` sets the rotation
+/// in the plane about the frame's origin (and clears the translation), `AROT RPL=a` adds to it;
+/// `TRANS` alone clears the frame. The frame moves every later hole into the workpiece's
+/// coordinates. Mirror and scale, rotations about X or Y, and frames on a lathe are refused by
+/// name: the positions (and a mirrored thread's hand) under them would be wrong.
+fn frame(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
+    let refuse = |m: &Motion, why: &str| Err(b.werr(&m.file, w, format!("{} {why}", w.name)));
+    let axes: Vec<&RWord<'_>> = b.words.iter().filter(|x| matches!(x.name, "X" | "Y" | "Z")).collect();
+    let rpl = b.get("RPL");
+    let empty = axes.is_empty() && rpl.is_none();
+    if matches!(w.name, "MIRROR" | "AMIRROR" | "SCALE" | "ASCALE") {
+        if empty && !w.name.starts_with('A') {
+            m.local = [0.0; 3];
+            m.rotation = None;
+            return Ok(());
+        }
+        return refuse(m, "is not modelled: the positions and the hand of a thread under a mirrored or scaled frame would be wrong (TRANS, ATRANS, ROT and AROT are read)");
+    }
+    if m.lathe() && !empty {
+        return refuse(m, "on a lathe is not modelled: the passes would not be moved (frames are read on a machining centre, G17)");
+    }
+    let (angle, origin) = (m.rotation.map_or(0.0, |r| r.2), m.local);
+    match w.name {
+        "TRANS" | "ATRANS" => {
+            let mut d = [0.0; 3];
+            for a in &axes {
+                d[match a.name {
+                    "X" => 0,
+                    "Y" => 1,
+                    _ => 2,
+                }] = m.len(a);
+            }
+            if w.name == "TRANS" {
+                m.local = d;
+                m.rotation = None;
+            } else {
+                // Along the frame's own (rotated) axes.
+                let (s, c) = angle.to_radians().sin_cos();
+                m.local =
+                    [origin[0] + c * d[0] - s * d[1], origin[1] + s * d[0] + c * d[1], origin[2] + d[2]];
+            }
+        }
+        _ => {
+            let about_z = axes.is_empty() || (axes.len() == 1 && axes[0].name == "Z" && rpl.is_none());
+            if !about_z {
+                return refuse(m, "about X or Y is not modelled: a thread's axis would tilt (ROT RPL=… and ROT Z… in G17 are read)");
+            }
+            let a = rpl.or(axes.first().copied()).map_or(0.0, |r| r.v);
+            if w.name == "ROT" {
+                m.local = [0.0; 3];
+                m.rotation = (a != 0.0).then_some((0.0, 0.0, a));
+            } else {
+                // About the frame's origin, which the translation holds.
+                m.rotation = Some((0.0, 0.0, angle + a));
+            }
+        }
+    }
+    m.read_past(
+        b.line,
+        w.col,
+        w.name,
+        "a frame: later holes are placed in the workpiece's coordinates through it",
+    );
+    Ok(())
+}
+
+/// The points (in the program's frame) of the hole patterns, from their arguments (ncplot7py's
+/// Siemens mill handler: `HOLES1(SPCA, SPCO, STA1, FDIS, DBH, NUM)` a row from the reference
+/// point at angle STA1, the first hole FDIS from it, then every DBH; `HOLES2(CPA, CPO, RAD, STA1,
+/// INDA, NUM)` a circle, INDA 0 dividing it in NUM; `CYCLE801(SPCA, SPCO, STA, DIS1, DIS2, NUM1,
+/// NUM2)` a grid of NUM1 columns DIS1 apart along STA and NUM2 lines DIS2 apart).
+fn pattern_points(m: &Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<Vec<(f64, f64)>, Error> {
+    let args: Vec<Option<f64>> = w.args.iter().flatten().map(|a| a.0).collect();
+    let arg = |k: usize| args.get(k).copied().flatten().unwrap_or(0.0);
+    let count = |k: usize| -> Result<usize, Error> {
+        let n = arg(k);
+        if n >= 1.0 && n.fract() == 0.0 && n <= crate::ground::bounds::MAX_HOLES as f64 {
+            Ok(n as usize)
+        } else {
+            Err(b.werr(
+                &m.file,
+                w,
+                format!("{}: {} holes: a whole number from 1", w.name, crate::ground::fmt::fmt_num(n)),
+            ))
+        }
+    };
+    let sc = m.scale;
+    let mut out = Vec::new();
+    match w.name {
+        "HOLES1" => {
+            let (x0, y0, a, fdis, dbh, n) =
+                (arg(0) * sc, arg(1) * sc, arg(2).to_radians(), arg(3) * sc, arg(4) * sc, count(5)?);
+            for k in 0..n {
+                let d = fdis + dbh * k as f64;
+                out.push((x0 + d * a.cos(), y0 + d * a.sin()));
+            }
+        }
+        "HOLES2" => {
+            let (cx, cy, r, a0, n) = (arg(0) * sc, arg(1) * sc, arg(2) * sc, arg(3), count(5)?);
+            let step = if arg(4) == 0.0 { 360.0 / n as f64 } else { arg(4) };
+            for k in 0..n {
+                let a = (a0 + step * k as f64).to_radians();
+                out.push((cx + r * a.cos(), cy + r * a.sin()));
+            }
+        }
+        _ => {
+            let (x0, y0, a, d1, d2) =
+                (arg(0) * sc, arg(1) * sc, arg(2).to_radians(), arg(3) * sc, arg(4) * sc);
+            let (n1, n2) = (count(5)?, count(6)?);
+            if n1 * n2 > crate::ground::bounds::MAX_HOLES {
+                return Err(b.werr(
+                    &m.file,
+                    w,
+                    format!("CYCLE801: {n1} × {n2} holes, over {}", crate::ground::bounds::MAX_HOLES),
+                ));
+            }
+            for j in 0..n2 {
+                for i in 0..n1 {
+                    let (u, v) = (d1 * i as f64, d2 * j as f64);
+                    out.push((x0 + u * a.cos() - v * a.sin(), y0 + u * a.sin() + v * a.cos()));
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
 /// A word written as a name alone (`THRSUB`, `SOFT`): no value, no arguments, and no word
 /// threadcheck models.
 fn is_bare_name(w: &RWord<'_>) -> bool {
@@ -113,6 +246,32 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Res
             w,
             format!("{} is not a threading cycle threadcheck reads (CYCLE97 and CYCLE99 are)", w.name),
         ));
+    }
+    // A frame statement: its axis words are the frame's, not a move.
+    if let Some(w) = b.words.iter().find(|w| FRAMES.contains(&w.name) && w.args.is_none()) {
+        frame(m, b, w)?;
+        return Ok(Flow::Next);
+    }
+    // A hole pattern: the modal cycle at each of its points.
+    if let Some(w) = b.words.iter().find(|w| matches!(w.name, "HOLES1" | "HOLES2" | "CYCLE801")) {
+        cycles::modal(m, b)?;
+        let pts = pattern_points(m, b, w)?;
+        match s.mcall.clone() {
+            Some(call) => {
+                for (x, y) in pts {
+                    m.x = Some(x);
+                    m.y = Some(y);
+                    hole(s, m, &call, b.line)?;
+                }
+            }
+            None => m.read_past(
+                b.line,
+                w.col,
+                &format!("{}(…)", w.name),
+                "a hole pattern with no MCALL cycle in force: it calls nothing",
+            ),
+        }
+        return Ok(Flow::Next);
     }
     // A bare name: the subprogram of that name (`THRSUB`, `THRSUB P2`), else a word threadcheck
     // does not model, read past with a note.
@@ -326,15 +485,17 @@ fn hole(s: &State, m: &mut Motion, call: &HoleCall, line: usize) -> Result<(), E
         }
     }
     let assumed = kind == super::HoleKind::Tap && feed_word == "F" && m.feed_per_rev.is_none();
+    // Through the frame in force (TRANS, ROT …) into the workpiece's coordinates.
+    let (wx, wy, wz) = m.work_point(m.x, m.y, bottom);
     m.push_hole(super::HoleCycle {
         code: call.name.clone(),
         units: m.program_units(),
         kind,
         line,
         column: if line == call.line { call.col } else { 1 },
-        x: m.x,
-        y: m.y,
-        bottom,
+        x: wx,
+        y: wy,
+        bottom: wz,
         feed,
         feed_word: feed_word.into(),
         hand,
