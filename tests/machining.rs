@@ -503,3 +503,42 @@ fn sinumerik_holes_under_frames() {
         assert_eq!(h["pass"], true, "{h}");
     }
 }
+
+/// Issue 45 item 2: Fanuc polar coordinates and the mirror image (`fanuc-polar-mirror.nc`).
+/// Under G16, X40 is the radius and Y30/Y150/Y270 the angles about the work zero: (40 cos 30°,
+/// 40 sin 30°) = (34.641016, 20), (−34.641016, 20), (0, −40). `G51.1 X0` mirrors X25 Y−10 to
+/// (−25, −10); after `G50.1` the same block is (25, −10). Each tap meets its drill at the same
+/// point (the drill's line asserted), F750 = S600 × 1.25 under G94.
+#[test]
+fn fanuc_polar_coordinates_and_mirror_image() {
+    let program = data("machining/fanuc-polar-mirror.nc");
+    let (code, v) = run_json(&["tap", "--program", program.to_str().unwrap(), "--json", "-"]);
+    assert_eq!(code, 0, "{v}");
+    let r = 40.0 * 30f64.to_radians().cos();
+    let want = [(r, 20.0, 8), (-r, 20.0, 9), (0.0, -40.0, 10), (-25.0, -10.0, 14), (25.0, -10.0, 16)];
+    let hs = v["holes"].as_array().unwrap();
+    assert_eq!(hs.len(), want.len(), "{v}");
+    for (h, (x, y, drill_line)) in hs.iter().zip(want) {
+        let c = &h["cycle"];
+        assert!(
+            (c["x"].as_f64().unwrap() - x).abs() < 1e-9 && (c["y"].as_f64().unwrap() - y).abs() < 1e-9,
+            "{c}"
+        );
+        assert_eq!(h["drill"]["cycle"]["line"], drill_line, "{h}");
+        assert_eq!(h["pass"], true, "{h}");
+    }
+    // A helix under the mirror would change hand: refused at its line.
+    let dir = tempdir("mirror-helix");
+    let p = dir.join("m.nc");
+    std::fs::write(&p, "G17 G21 G90\nT12 M6\nS3000 M3\nG51.1 X0\nG0 X7 Y0 Z5\nG1 Z-15 F100\nG3 X7 Y0 Z-13.5 I-7 J0 F200\nM30\n").unwrap();
+    let o = run(&[
+        "thread-mill",
+        "--program",
+        p.to_str().unwrap(),
+        "--cutter-diameter",
+        "6",
+        "--thread",
+        "M20x1.5-6H",
+    ]);
+    assert!(one_line_error(&o).ends_with("m.nc:7:1: an arc under G51.1 (a mirror image, which reverses its direction and a thread's hand) is not read: write it without"), "{}", one_line_error(&o));
+}

@@ -198,6 +198,33 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                     );
                     one_shot = Some(g);
                 }
+                // A machining centre's programmable mirror image (SIE-ISO p.3-65): G51.1 X… Y…
+                // mirrors the positions about the axis values given, G50.1 cancels them.
+                (_, 51.1) if fanuc_like && !m.lathe() => {
+                    one_shot = Some(g);
+                    for (i, axis) in ["X", "Y"].iter().enumerate() {
+                        if let Some(w) = b.get(axis) {
+                            m.mirror[i] = Some(m.len(w));
+                        }
+                    }
+                    if b.get("Z").is_some() {
+                        return Err(m.err(
+                            b.line,
+                            col,
+                            "G51.1 Z: a mirrored tool axis is not read (X and Y are)",
+                        ));
+                    }
+                }
+                (_, 50.1) if fanuc_like && !m.lathe() => {
+                    one_shot = Some(g);
+                    let (x, y) = (b.get("X").is_some(), b.get("Y").is_some());
+                    if x || !y {
+                        m.mirror[0] = None;
+                    }
+                    if y || !x {
+                        m.mirror[1] = None;
+                    }
+                }
                 // The roughing cycles of type 2 run their profile subroutine (Q) as G71 and G72
                 // do: read past, named.
                 (Dialect::LinuxCnc, 71.1 | 72.1) => one_shot = Some(g),
@@ -306,6 +333,19 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                 m.rotation = Some((cx, cy, b.get("R").map_or(0.0, |w| w.v)));
             }
             69 if fanuc_like && !m.lathe() => m.rotation = None,
+            // A machining centre's polar coordinates (F16MC 9.2): under G16 in G17, X is the
+            // radius and Y the angle (degrees) about the work zero; G15 ends them.
+            16 if fanuc_like && !m.lathe() => {
+                if m.plane != 17 {
+                    return Err(m.err(b.line, col, format!("G16 under G{}: threadcheck reads polar coordinates in the plane G17", m.plane)));
+                }
+                m.polar = Some((None, None));
+            }
+            15 if fanuc_like && !m.lathe() => m.polar = None,
+            // Scaling moves every later position by a factor about a centre: not read.
+            51 if fanuc_like && !m.lathe() => {
+                return Err(m.err(b.line, col, "G51 (scaling) is not read: the positions under it would be wrong (G51.1, the mirror image, is)"));
+            }
             // Haas's bolt-hole patterns on a mill (../shared/notes/machining-centres.md §2).
             70 | 71 if d == Dialect::Haas && !m.lathe() => one_shot = Some(g),
             // A machining centre's G92: the current point gets the given coordinates.
@@ -378,6 +418,30 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                 GRole::OtherCycle | GRole::BoxCycle => motion = Some((g, col)),
                 GRole::Unknown => unknown.push((g, col)),
             },
+        }
+    }
+    // Under G16 the block's X is the radius and Y the angle: remembered, so that a block that
+    // gives one takes the other from before (the move itself is made in `Motion::target`).
+    if let Some((r0, a0)) = m.polar {
+        let (xw, yw) = (b.get("X"), b.get("Y"));
+        if xw.is_some() || yw.is_some() {
+            if !m.absolute {
+                return Err(m.err(
+                    b.line,
+                    b.col,
+                    "G16 with G91 (an incremental radius or angle) is not read: write them absolute",
+                ));
+            }
+            let r = xw.map(|w| m.len(w)).or(r0);
+            let a = yw.map(|w| w.v).or(a0);
+            if r.is_none() || a.is_none() {
+                return Err(m.err(
+                    b.line,
+                    b.col,
+                    format!("G16: the {} is not known yet: write X (the radius) and Y (the angle) in the first polar block", if r.is_none() { "radius X" } else { "angle Y" }),
+                ));
+            }
+            m.polar = Some((r, a));
         }
     }
     for w in b.words.iter().filter(|w| w.name == "M") {
@@ -838,7 +902,12 @@ fn mill_holes(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Result<(), Error
     }
     let (dx, dy) = (xw.unwrap_or(0.0), yw.unwrap_or(0.0));
     let (mut x, mut y) = (m.x, m.y);
-    if m.absolute {
+    if m.polar.is_some() && (xw.is_some() || yw.is_some()) {
+        // G16: the radius and angle (remembered by `modal`) about the work zero.
+        let (px, py, _) = m.target(b);
+        x = px;
+        y = py;
+    } else if m.absolute {
         x = xw.map(|v| v + m.offset[0]).or(x);
         y = yw.map(|v| v + m.offset[1]).or(y);
     }

@@ -199,6 +199,11 @@ pub(crate) struct Motion {
     /// A machining centre's coordinate rotation (Fanuc G68): centre X, Y (mm) and angle
     /// (degrees, counter-clockwise).
     pub rotation: Option<(f64, f64, f64)>,
+    /// A machining centre's programmable mirror image (Fanuc G51.1): the X and Y about which
+    /// positions are mirrored.
+    pub mirror: [Option<f64>; 2],
+    /// A machining centre's polar coordinates (Fanuc G16): the last radius and angle written.
+    pub polar: Option<(Option<f64>, Option<f64>)>,
     /// Cutter radius compensation: 0 G40, 1 G41, 2 G42.
     pub comp: u8,
     /// Working plane (17, 18, 19).
@@ -286,6 +291,8 @@ impl Motion {
             return_to_r: false,
             local: [0.0; 3],
             rotation: None,
+            mirror: [None; 2],
+            polar: None,
             comp: 0,
             plane: if !mill && lathe_dialect(dialect) { 18 } else { 17 },
             ops: Vec::new(),
@@ -425,8 +432,17 @@ impl Motion {
             | Dialect::Klartext => false,
         };
         let (mut x, mut y, mut z) = (None, None, None);
+        // G16: X the radius and Y the angle about the work zero (remembered in `cycles::modal`).
+        let polar = self.polar.filter(|_| b.get("X").is_some() || b.get("Y").is_some());
+        if let Some((Some(r), Some(a))) = polar {
+            let (s, c) = a.to_radians().sin_cos();
+            let tidy = |v: f64| if v.abs() < 1e-9 { 0.0 } else { v };
+            x = Some(tidy(r * c) + self.offset[0]);
+            y = Some(tidy(r * s) + self.offset[1]);
+        }
         for w in &b.words {
             match w.name {
+                "X" | "Y" if polar.is_some() => {}
                 "X" => {
                     let v = self.x_dia(w);
                     x = Some(if self.absolute { v + self.offset[0] } else { self.x.unwrap_or(0.0) + v });
@@ -450,13 +466,23 @@ impl Motion {
     }
 
     /// A point of the program (X, Y, Z in its coordinates) in the workpiece coordinates of the
-    /// work offset in force: rotated about the G68 centre, then shifted by the G52 local system.
+    /// work offset in force: mirrored (G51.1), rotated about the G68 centre, then shifted by the
+    /// G52 local system.
     pub fn work_point(
         &self,
         x: Option<f64>,
         y: Option<f64>,
         z: Option<f64>,
     ) -> (Option<f64>, Option<f64>, Option<f64>) {
+        // The mirror first, then the rotation, then the local system.
+        let x = match self.mirror[0] {
+            Some(m) => x.map(|v| 2.0 * m - v),
+            None => x,
+        };
+        let y = match self.mirror[1] {
+            Some(m) => y.map(|v| 2.0 * m - v),
+            None => y,
+        };
         let (x, y) = match (self.rotation, x, y) {
             (Some((cx, cy, deg)), Some(x), Some(y)) => {
                 let (s, c) = deg.to_radians().sin_cos();
@@ -513,6 +539,18 @@ impl Motion {
         let (x, y, z) = self.target(b);
         if x.is_none() && y.is_none() && z.is_none() {
             return Ok(false);
+        }
+        if self.polar.is_some() || self.mirror.iter().any(Option::is_some) {
+            let what = if self.polar.is_some() {
+                "G16 (polar coordinates)"
+            } else {
+                "G51.1 (a mirror image, which reverses its direction and a thread's hand)"
+            };
+            return Err(self.err(
+                b.line,
+                b.col,
+                format!("an arc under {what} is not read: write it without"),
+            ));
         }
         self.break_chain();
         // LinuxCNC's P: the number of turns of the arc (a helix of several turns in one block);
