@@ -86,15 +86,16 @@ fn a_machining_centre_program_with_the_g91_header_drills_bores_and_taps_where_it
     }
 }
 
-/// The same program read as a lathe (`--machine-type lathe`): its G76 is then the lathe's
-/// threading cycle, which the G17 of line 5 refuses; the type given wins over the evidence.
+/// The same program read as a lathe (`--machine-type lathe`): the G17 of line 5 contradicts the
+/// type given and is refused at its line (issue 45: it used to be read on until its G76 was taken
+/// for the lathe's threading cycle); read as a mill, the type given is stated.
 #[test]
 fn the_machine_type_given_wins() {
     let (code, _, e) = tap_file("fanuc-mill-plate", &["--machine-type", "lathe"]);
     assert_eq!(code, 2);
     assert!(
         e.ends_with(
-            "fanuc-mill-plate.nc:18:5: G76 under G17: threading is programmed in the lathe plane G18\n"
+            "fanuc-mill-plate.nc:5:1: line 5 writes G17, the milling plane, which a lathe does not (--machine-type says lathe): a program that turns and mills is read with machine type mill-turn\n"
         ),
         "{e}"
     );
@@ -541,4 +542,38 @@ fn fanuc_polar_coordinates_and_mirror_image() {
         "M20x1.5-6H",
     ]);
     assert!(one_line_error(&o).ends_with("m.nc:7:1: an arc under G51.1 (a mirror image, which reverses its direction and a thread's hand) is not read: write it without"), "{}", one_line_error(&o));
+}
+
+/// Issue 45 item 1: a mill-turn program (`fanuc-mill-turn.nc`, a Fanuc lathe with live tools):
+/// G18 (line 3) and G17 (line 11) make it a mill-turn, each section read by its plane. The
+/// turning section's G99 is feed per revolution and its G76 a threading cycle (last pass at
+/// the X21.546 it writes); the milling section's G94 is feed per minute, G98 the return level
+/// and X plain X: the taps at (20, 0) and (−20, 0) to Z−10 over the drills of lines 13 and 14,
+/// F750 = S600 × 1.25 per minute. Given `--machine-type lathe`, line 11 contradicts it.
+#[test]
+fn a_mill_turn_program_is_read_section_by_section() {
+    let program = data("machining/fanuc-mill-turn.nc");
+    let p = program.to_str().unwrap();
+    let (code, v) = run_json(&["verify", "--program", p, "--insert", "full", "--json", "-"]);
+    assert_eq!(code, 1, "the full-profile insert leaves d2 37.7 µm over: {v}");
+    assert_eq!(v["machine"]["machine_type"], "mill-turn", "{v}");
+    let ops = v["operations"].as_array().unwrap();
+    assert_eq!(ops.len(), 3, "{v}");
+    assert_eq!(ops[0]["made"], "turned");
+    let last = ops[0]["passes"].as_array().unwrap().last().unwrap().clone();
+    assert!((last["x"].as_f64().unwrap() - 21.546).abs() < 1e-9, "{last}");
+    for (op, (x, drill)) in ops[1..].iter().zip([(20.0, 13), (-20.0, 14)]) {
+        assert_eq!(op["made"], "tapped");
+        let c = &op["cycle"];
+        assert_eq!(
+            (c["x"].as_f64(), c["y"].as_f64(), c["bottom"].as_f64()),
+            (Some(x), Some(0.0), Some(-10.0)),
+            "{c}"
+        );
+        assert_eq!(c["feed_per_rev"], false, "{c}");
+        assert_eq!(op["drill"]["cycle"]["line"], drill, "{op}");
+        assert_eq!(op["pass"], true, "{op}");
+    }
+    let o = run(&["verify", "--program", p, "--insert", "full", "--machine-type", "lathe"]);
+    assert!(one_line_error(&o).ends_with("fanuc-mill-turn.nc:11:1: line 11 writes G17, the milling plane, which a lathe does not (--machine-type says lathe): a program that turns and mills is read with machine type mill-turn"), "{}", one_line_error(&o));
 }

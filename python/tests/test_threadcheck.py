@@ -604,3 +604,38 @@ def test_verify_checks_the_taps_of_a_lathe_program_too():
     assert [o["made"] for o in r["operations"]] == ["turned", "tapped"]
     tapped = r["operations"][1]
     assert tapped["tap"]["designation"] == "M8X1.25-6H" and tapped["drill"]["diameter"] == 6.8
+
+
+KLARTEXT_TAP = """0 BEGIN PGM TAP MM
+1 BLK FORM 0.1 Z X+0 Y+0 Z-20
+2 TOOL CALL 1 Z S2000 ; DRILL 8.5
+3 CYCL DEF 200 DRILLING ~
+  Q200=+2 ;SET-UP CLEARANCE ~
+  Q201=-25 ;DEPTH ~
+  Q206=+150 ;FEED RATE FOR PLNGNG ~
+  Q203=+0 ;SURFACE COORDINATE ~
+  Q204=+50 ;2ND SET-UP CLEARANCE
+4 L X+30 Y+10 R0 FMAX M99
+5 TOOL CALL 2 Z S400 ; TAP M10X1.5
+6 CYCL DEF 207 RIGID TAPPING NEW ~
+  Q200=+2 ;SET-UP CLEARANCE ~
+  Q201=-16 ;DEPTH OF THREAD ~
+  Q239=+1.5 ;THREAD PITCH ~
+  Q203=+0 ;SURFACE COORDINATE ~
+  Q204=+50 ;2ND SET-UP CLEARANCE
+7 L X+30 Y+10 R0 FMAX M99
+8 L Z+100 R0 FMAX M30
+9 END PGM TAP MM
+"""
+
+
+def test_klartext_tapping_from_python():
+    """Issue 45: a Klartext program read from Python: cycle 207 taps M10x1.5 at (30, 10) to
+    Z-16 over the Ø8.5 drill of cycle 200 (ISO 2306's tap drill, inside D1 8.376-8.676)."""
+    r = threadcheck.tap(program=KLARTEXT_TAP, dialect="klartext")
+    assert r["machine"]["machine_type"] == "mill"
+    (h,) = r["holes"]
+    assert (h["cycle"]["x"], h["cycle"]["y"], h["cycle"]["bottom"]) == (30.0, 10.0, -16.0)
+    assert h["cycle"]["feed_word"] == "Q239"
+    assert h["drill"]["diameter"] == 8.5
+    assert h["pass"] is True

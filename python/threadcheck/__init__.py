@@ -160,7 +160,7 @@ def verify(thread: Optional[Threads] = None, program: Optional[str] = None, dial
     several O-programs. ``linuxcnc_release`` (``"current"``/``"before-2.9"``) chooses the
     comparison rules of a ``linuxcnc`` program; ``gcode_system`` (``"a"``, ``"b"``, ``"c"``) the
     G-code system a Fanuc control is set to (B: G78 the threading cycle; C: G78 the multiple
-    one); ``machine_type`` (``"lathe"``/``"mill"``) the machine the program runs on (default: the
+    one); ``machine_type`` (``"lathe"``/``"mill"``/``"mill-turn"``) the machine the program runs on (default: the
     program's own evidence, else a lathe; the report's ``machine`` says which and why). ``block_delete``
     skips the blocks that begin with ``/`` (the control's switch on; off, the default, runs them,
     stated). ``coating`` (mm) checks against the limits

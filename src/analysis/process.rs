@@ -37,6 +37,9 @@ pub struct MachineProfile {
     pub max_feed_mm_min: Option<f64>,
     /// Rapid traverse rate, mm/min, for the machining time.
     pub rapid_mm_min: f64,
+    /// What kind of machine it is (`type = "lathe"`, `"mill"` or `"mill-turn"`): how its
+    /// programs are read, unless ‹machine_type› says otherwise.
+    pub machine_type: Option<crate::gcode::MachineType>,
     /// Fastest spindle speed by pitch: (pitch up to, mm; rpm), ascending.
     #[serde(default)]
     pub rpm_per_pitch: Vec<(f64, f64)>,
@@ -52,6 +55,7 @@ impl MachineProfile {
             max_rpm: Some(950.0),
             max_feed_mm_min: None,
             rapid_mm_min: 5000.0,
+            machine_type: Some(crate::gcode::MachineType::Lathe),
             rpm_per_pitch: vec![
                 (0.5, 950.0),
                 (1.0, 500.0),
@@ -98,6 +102,8 @@ impl MachineProfile {
             rapid_mm_min: Option<f64>,
             #[serde(default)]
             rpm_per_pitch: Vec<(f64, f64)>,
+            #[serde(rename = "type")]
+            machine_type: Option<crate::gcode::MachineType>,
         }
         let arg = source;
         let f: File = toml::from_str(text).map_err(|e| Error::File {
@@ -117,6 +123,7 @@ impl MachineProfile {
             max_feed_mm_min: f.max_feed_mm_min,
             rapid_mm_min: f.rapid_mm_min.unwrap_or(ASSUMED_RAPID_MM_MIN),
             rpm_per_pitch: f.rpm_per_pitch,
+            machine_type: f.machine_type,
         };
         let positive = |v: f64| v > 0.0 && v.is_finite();
         if !positive(m.rapid_mm_min)

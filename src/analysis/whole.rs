@@ -127,8 +127,14 @@ pub fn verify_whole(
     let reading = ReadOptions { allow_no_threading: true, ..spec.reading.clone() };
     let mut prog = crate::gcode::read_program_with(text, name, dialect, reading.clone())?;
     // On a machining centre, its toolpath too (a recorded toolpath is read as a mill's).
-    if prog.machine.machine_type == crate::gcode::MachineType::Mill {
-        prog = crate::gcode::read_program_with(text, name, dialect, ReadOptions { moves: true, ..reading })?;
+    if prog.machine.machine_type != crate::gcode::MachineType::Lathe {
+        // A mill-turn program's toolpath is still read section by section (its reading kept).
+        let machine = prog.machine.clone();
+        let mill_turn = (machine.machine_type == crate::gcode::MachineType::MillTurn)
+            .then_some(crate::gcode::MachineType::MillTurn);
+        let again = ReadOptions { moves: true, machine_type: mill_turn.or(reading.machine_type), ..reading };
+        prog = crate::gcode::read_program_with(text, name, dialect, again)?;
+        prog.machine = machine;
     }
     let taps = prog.holes.iter().any(|h| h.kind == HoleKind::Tap);
     let helix = prog.moves.iter().find(|m| m.arc.is_some() && (m.to[2] - m.from[2]).abs() > 1e-9);

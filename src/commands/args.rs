@@ -260,11 +260,13 @@ pub struct PlanArgs {
     #[cfg_attr(feature = "cli", arg(long, value_name = "a|b|c"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub gcode_system: Option<GCodeSystem>,
-    /// The machine the program runs on: lathe or mill (a machining centre; G90/G91 absolute and
+    /// The machine the program runs on: lathe, mill (a machining centre; G90/G91 absolute and
     /// incremental, G98/G99 return levels, G73/G74/G76 drilling, left-hand tapping, fine
-    /// boring). Default: the program's own evidence (G17/G18, T12 M6 or T0101, a drilling
-    /// cycle's return level, U/W), else a lathe; the notes say which and why.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "lathe|mill"))]
+    /// boring) or mill-turn (each section by its plane: G18 a lathe's, G17/G19 a mill's).
+    /// Default: the machine file's `type`, else the program's own evidence (G17/G18, T12 M6 or
+    /// T0101, a drilling cycle's return level, U/W; both kinds: mill-turn), else a lathe; the
+    /// notes say which and why. A block that contradicts a lathe or mill given is refused.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "lathe|mill|mill-turn"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub machine_type: Option<crate::gcode::MachineType>,
     /// The control's block-delete switch on: skip the program's blocks that begin with `/`
@@ -462,6 +464,11 @@ impl PlanArgs {
         s.reading.linuxcnc = self.linuxcnc_release.unwrap_or_default();
         s.reading.gcode_system = self.gcode_system;
         s.reading.machine_type = self.machine_type;
+        // The machine file's type, unless the flag says otherwise.
+        if let (None, Some(t)) = (self.machine_type, s.machine.as_ref().and_then(|m| m.machine_type)) {
+            s.reading.machine_type = Some(t);
+            s.reading.machine_type_by = s.machine.as_ref().map(|m| format!("'{}'", m.name));
+        }
         s.reading.block_delete = self.block_delete;
         s.validate()?;
         Ok(s)

@@ -37,9 +37,9 @@ pub struct TapArgs {
     #[cfg_attr(feature = "cli", arg(long, value_name = "a|b|c"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub gcode_system: Option<GCodeSystem>,
-    /// The machine the program runs on: lathe or mill (default: the program's evidence, else a
-    /// lathe; the notes say which and why).
-    #[cfg_attr(feature = "cli", arg(long, value_name = "lathe|mill"))]
+    /// The machine the program runs on: lathe, mill or mill-turn (default: the machine file's
+    /// `type`, else the program's evidence, else a lathe; the notes say which and why).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "lathe|mill|mill-turn"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub machine_type: Option<crate::gcode::MachineType>,
     /// Z of the stock's bottom face, mm: a hole whose drill passes it with its full diameter is a

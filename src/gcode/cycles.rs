@@ -395,9 +395,18 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             91 => m.absolute = false,
             96 => m.css = true,
             97 => m.css = false,
-            17 => m.plane = 17,
-            18 => m.plane = 18,
-            19 => m.plane = 19,
+            17 => {
+                m.plane = 17;
+                m.plane_changed();
+            }
+            18 => {
+                m.plane = 18;
+                m.plane_changed();
+            }
+            19 => {
+                m.plane = 19;
+                m.plane_changed();
+            }
             80 => motion = Some((80.0, col)),
             4 | 28 | 53 => one_shot = Some(g),
             // Okuma's compound threading cycles (okuma.rs).

@@ -7,7 +7,7 @@ use super::Dialect;
 use serde::Serialize;
 
 /// The kind of machine a program runs on.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum MachineType {
     /// A lathe: X a diameter, G18; on Fanuc's G-code system A, G90 the box cycle, G98/G99 feed
@@ -17,6 +17,10 @@ pub enum MachineType {
     /// G98/G99 the canned cycles' return level, G73/G74/G76 drilling, left-hand tapping and
     /// fine boring.
     Mill,
+    /// A lathe with live tools (or a machining centre that turns): each section read as the
+    /// machine its plane names, G18 a lathe's, G17 and G19 a machining centre's (X and Y in the
+    /// plane, X not a diameter).
+    MillTurn,
 }
 
 impl MachineType {
@@ -25,6 +29,7 @@ impl MachineType {
         match self {
             MachineType::Lathe => "lathe",
             MachineType::Mill => "mill",
+            MachineType::MillTurn => "mill-turn",
         }
     }
 }
@@ -36,7 +41,8 @@ impl std::str::FromStr for MachineType {
         match s {
             "lathe" => Ok(MachineType::Lathe),
             "mill" | "machining-centre" | "machining-center" => Ok(MachineType::Mill),
-            _ => Err(crate::Error::Input(format!("machine type '{s}': expected lathe or mill"))),
+            "mill-turn" => Ok(MachineType::MillTurn),
+            _ => Err(crate::Error::Input(format!("machine type '{s}': expected lathe, mill or mill-turn"))),
         }
     }
 }
@@ -50,20 +56,41 @@ pub struct MachineReading {
     pub reason: String,
 }
 
-/// What decides the machine: `given` (the caller's choice), a milling toolpath (`moves`), the
-/// first block whose words only one kind of machine writes, else the dialect's default.
+/// What decides the machine: `given` (the caller's choice, or the machine file's `type`, named
+/// by `by`), a milling toolpath (`moves`), the program's own evidence (a block whose words only
+/// one kind of machine writes: both kinds make it a mill-turn program), else the dialect's
+/// default. A block that contradicts a given lathe or mill is an error at its line (line,
+/// column, message).
 pub(crate) fn decide(
     blocks: &[Block],
     dialect: Dialect,
     given: Option<MachineType>,
+    by: Option<&str>,
     moves: bool,
-) -> MachineReading {
-    let read = |machine_type, reason: String| MachineReading { machine_type, reason };
-    if moves {
+) -> Result<MachineReading, (usize, usize, String)> {
+    let read = |machine_type, reason: String| Ok(MachineReading { machine_type, reason });
+    if moves && given != Some(MachineType::MillTurn) {
         return read(MachineType::Mill, "read as a milling toolpath (G17, X and Y in the plane)".into());
     }
     if let Some(t) = given {
-        return read(t, format!("read as a {}, as ‹machine_type› says", t.name()));
+        let source = by.map_or("‹machine_type›".to_string(), |f| format!("the machine file {f}"));
+        if t != MachineType::MillTurn {
+            if let Some((b, what)) =
+                blocks.iter().find_map(|b| evidence(b, dialect).filter(|e| e.0 != t).map(|e| (b, e.1)))
+            {
+                return Err((
+                    b.line,
+                    b.col,
+                    format!(
+                        "line {} writes {what}, which a {} does not ({source} says {}): a program that turns and mills is read with machine type mill-turn",
+                        b.line,
+                        if t == MachineType::Lathe { "lathe" } else { "machining centre" },
+                        t.name()
+                    ),
+                ));
+            }
+        }
+        return read(t, format!("read as a {}, as {source} says", t.name()));
     }
     match dialect {
         // Okuma OSP lathes and Heidenhain's DIN lathe controls are the dialects read here.
@@ -87,6 +114,20 @@ pub(crate) fn decide(
         | Dialect::Sinumerik
         | Dialect::LinuxCnc => {}
     }
+    let first = blocks.iter().find_map(|b| evidence(b, dialect).map(|e| (b, e)));
+    if let Some((b0, (t0, what0))) = &first {
+        if let Some((b1, what1)) =
+            blocks.iter().find_map(|b| evidence(b, dialect).filter(|e| e.0 != *t0).map(|e| (b, e.1)))
+        {
+            return read(
+                MachineType::MillTurn,
+                format!(
+                    "read as a mill-turn: line {} writes {what0} and line {} writes {what1}; each section is read by its plane, G18 as a lathe's, G17 and G19 as a machining centre's (‹machine_type› chooses otherwise)",
+                    b0.line, b1.line
+                ),
+            );
+        }
+    }
     for b in blocks {
         if let Some((t, what)) = evidence(b, dialect) {
             return read(
@@ -96,6 +137,7 @@ pub(crate) fn decide(
                     match t {
                         MachineType::Lathe => "lathe",
                         MachineType::Mill => "machining centre",
+                        MachineType::MillTurn => "mill-turn",
                     },
                     b.line
                 ),

@@ -733,6 +733,8 @@ pub struct ReadOptions {
     /// The machine the program runs on; `None` takes it from the program's own evidence, else
     /// the dialect's default (a lathe), and the notes say which.
     pub machine_type: Option<MachineType>,
+    /// Where `machine_type` came from when not from the caller's flag: the machine file's name.
+    pub machine_type_by: Option<String>,
     /// The control's block-delete switch: on skips the blocks that begin with `/`; off (the
     /// default, stated when the program has such blocks) runs them.
     pub block_delete: bool,
@@ -1057,8 +1059,10 @@ fn read(
             dialect.name()
         )));
     }
-    let machine = machine::decide(&blocks, dialect, opts.machine_type, opts.moves);
-    let lathe = machine.machine_type != MachineType::Mill;
+    let machine =
+        machine::decide(&blocks, dialect, opts.machine_type, opts.machine_type_by.as_deref(), opts.moves)
+            .map_err(|(l, c, msg)| perr(l, c, msg))?;
+    let lathe = machine.machine_type == MachineType::Lathe;
     let (gsystem, system_evidence) = match opts.gcode_system {
         Some(s) => (s, None),
         None if fanuc_family && lathe => match system_evidence(&blocks) {
@@ -1085,6 +1089,9 @@ fn read(
         None => (GCodeSystem::A, None),
     };
     let mut m = motion::Motion::new(dialect, file, opts.moves, machine.machine_type == MachineType::Mill);
+    if machine.machine_type == MachineType::MillTurn {
+        m.set_mill_turn();
+    }
     if let Some(out) = out {
         m.stream_to(out);
     }

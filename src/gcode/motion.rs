@@ -147,6 +147,8 @@ pub(crate) struct Motion {
     pub gsystem: super::GCodeSystem,
     /// Read as a milling toolpath (X and Y in the plane, G17).
     mill: bool,
+    /// A mill-turn program: `mill` follows the plane.
+    mill_turn: bool,
     pub file: String,
     /// The program's own file (`file` names a subprogram file while its blocks run).
     pub main_file: String,
@@ -252,6 +254,7 @@ impl Motion {
             dialect,
             gsystem: super::GCodeSystem::A,
             mill,
+            mill_turn: false,
             file: file.to_string(),
             main_file: file.to_string(),
             x: None,
@@ -369,6 +372,20 @@ impl Motion {
                 super::WordMeans::Radius
             };
             self.last_x = Some(address_word(b, w, means));
+        }
+    }
+
+    /// A mill-turn program: each section read by its plane (G18 a lathe's, G17 and G19 a
+    /// machining centre's), from a lathe's at the start.
+    pub(crate) fn set_mill_turn(&mut self) {
+        self.mill_turn = true;
+        self.mill = false;
+    }
+
+    /// On a mill-turn program, the machine the plane just set names.
+    pub(crate) fn plane_changed(&mut self) {
+        if self.mill_turn {
+            self.mill = self.plane != 18;
         }
     }
 
