@@ -335,6 +335,7 @@ fn the_hole_wall_follows_the_tap_and_the_drill() {
         allow_nonstandard: false,
         from_program: false,
         stock_bottom: None,
+        tap: None,
     };
     let r = threadcheck::tapping(&spec).unwrap();
     let wall = &r.holes[0].wall;
@@ -441,4 +442,37 @@ fn the_drill_point_from_the_table_and_through_holes_from_the_stock() {
     );
     let (code, _) = tap_with(&text, tools, &["--stock-bottom", "-18"]);
     assert_eq!(code, 1);
+}
+
+/// Issue 45 item 4: a tapping cycle before any T names no tool. The tool table's `in_spindle = 6`
+/// says which tool is in the spindle at the start (stated at the first such cycle), or `--tap`
+/// gives the tap; without either the cycle is refused by name. M10x1.5 at S400 under G94: F600 =
+/// 400 × 1.5; the drill (T5's Ø8.5 by the table when it is in the spindle) is not the tap.
+#[test]
+fn a_cycle_that_names_no_tool_takes_the_tool_in_the_spindle() {
+    let dir = tempdir("in-spindle");
+    std::fs::write(
+        dir.join("p.nc"),
+        "G17 G21 G90 G94\nG0 X0 Y0 Z20 S400 M3\nG98 G84 X10 Y10 Z-15 R2 F600\nG80\nM30\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("t.toml"),
+        "in_spindle = 6\n[tools]\n5 = \"drill:8.5\"\n6 = \"tap:M10x1.5-6H\"\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("none.toml"), "[tools]\n6 = \"tap:M10x1.5-6H\"\n").unwrap();
+    let o = run_in(&dir, &["tap", "--program", "p.nc", "--tools", "t.toml"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+    assert!(stdout(&o).contains("note: p.nc:3:5: the cycles that name no tool take T6, the tool t.toml says is in the spindle (in_spindle)"), "{}", stdout(&o));
+    let o = run_in(
+        &dir,
+        &["tap", "--program", "p.nc", "--tools", "none.toml", "--tap", "M10x1.5-6H", "--json", "-"],
+    );
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["holes"][0]["tap"]["designation"], "M10x1.5-6H");
+    assert_eq!(v["holes"][0]["tap"]["designation_from"], "given");
+    assert_eq!(check_of(&v["holes"][0], "feed")["value"].as_f64(), Some(600.0));
+    let o = run_in(&dir, &["tap", "--program", "p.nc", "--tools", "none.toml"]);
+    assert!(one_line_error(&o).contains("p.nc:3:5: G84 names no tool: the tapping check needs the tap (T and the tool table's tap:DESIGNATION, the table's in_spindle, --tap, or a comment"), "{}", one_line_error(&o));
 }

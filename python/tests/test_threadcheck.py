@@ -639,3 +639,15 @@ def test_klartext_tapping_from_python():
     assert h["cycle"]["feed_word"] == "Q239"
     assert h["drill"]["diameter"] == 8.5
     assert h["pass"] is True
+
+
+def test_a_tap_for_cycles_that_name_no_tool():
+    """Issue 45 item 4: a G84 before any T takes the tap given (``tap``): M10x1.5 at S400 needs
+    F = 400 x 1.5 = 600 per minute."""
+    program = "G17 G21 G90 G94\nG0 X0 Y0 Z20 S400 M3\nG98 G84 X10 Y10 Z-15 R2 F600\nG80\nM30\n"
+    with pytest.raises(ValueError):
+        threadcheck.tap(program=program)
+    r = threadcheck.tap(program=program, tap="M10x1.5-6H")
+    (h,) = r["holes"]
+    assert h["tap"]["designation"] == "M10x1.5-6H"
+    assert [c["ok"] for c in h["checks"] if c["feature"] == "feed"] == [True]

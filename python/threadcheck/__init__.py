@@ -360,7 +360,8 @@ def mill(program: str, target: str, tool_diameter: float, dialect: Optional[str]
 def tap(program: str, tools: Optional[str] = None, dialect: Optional[str] = None, program_name: Optional[str] = None,
         allow_nonstandard: bool = False, default_units: Optional[str] = None,
         gcode_system: Optional[str] = None,
-        machine_type: Optional[str] = None, stock_bottom: Optional[float] = None) -> TapReport:
+        machine_type: Optional[str] = None, stock_bottom: Optional[float] = None,
+        tap: Optional[str] = None) -> TapReport:
     """``threadcheck tap --json``: a program's tapping cycles (G84, G74) against their taps and
     the drills that made the holes.
 
@@ -370,7 +371,8 @@ def tap(program: str, tools: Optional[str] = None, dialect: Optional[str] = None
     drill the table does not name is taken from the program's comments (``(TAP M10X1.5)``,
     ``(DRILL 8.5)``), else the tap is the standard size of its lead over its drill.
     ``stock_bottom`` (the stock's bottom face's Z) makes a hole whose drill passes it a through
-    hole. Each hole in ``holes`` has its ``cycle``, ``tap``, ``drill`` and
+    hole. ``tap`` (``"M10x1.5-6H"``) is the tap of the cycles that name no tool (a table's
+    ``in_spindle = T`` names the tool in the spindle at the start instead). Each hole in ``holes`` has its ``cycle``, ``tap``, ``drill`` and
     ``checks`` (``drill_diameter`` against D1 of the tap's class, ``feed`` against the lead,
     ``depth`` left for the chamfer, ``spindle``) and ``drill_that_passes`` (the middle of D1 and
     the nearest stocked drill within it: ISO 2306's tap drill for ISO metric taps); the dict's

@@ -44,6 +44,9 @@ pub struct TapSpec {
     /// Z of the stock's bottom face, mm: a drill whose full diameter passes it makes a through
     /// hole, whose tap has no bottom to meet (`None`: not known, every hole blind).
     pub stock_bottom: Option<f64>,
+    /// The tap of the tapping cycles that name no tool (`--tap`), when neither the tool table's
+    /// `in_spindle` nor a comment names it: a designation such as `M10x1.5-6H`.
+    pub tap: Option<String>,
 }
 
 /// What a tapping check looks at.
@@ -247,7 +250,7 @@ fn same(a: Option<f64>, b: Option<f64>) -> bool {
 /// use threadcheck::{tapping, Dialect, ReadOptions, TapSpec, ToolTable};
 /// let program = "T0505\nG99 M3 S800\nG0 X0 Z5\nG83 Z-25 R2 Q5000 F0.1\nT0606\nG84 Z-18 R5 F1.5\nG80\nM30\n";
 /// let tools = ToolTable::from_toml("[tools]\n5 = \"drill:8.5\"\n6 = \"tap:M10x1.5-6H\"\n", "tools.toml", std::path::Path::new("."))?;
-/// let spec = TapSpec { program: (program.into(), "tap.nc".into()), dialect: Dialect::Fanuc, reading: ReadOptions::default(), tools, allow_nonstandard: false, from_program: false, stock_bottom: None };
+/// let spec = TapSpec { program: (program.into(), "tap.nc".into()), dialect: Dialect::Fanuc, reading: ReadOptions::default(), tools, allow_nonstandard: false, from_program: false, stock_bottom: None, tap: None };
 /// let r = tapping(&spec)?;
 /// assert!(r.pass); // Ø8.5 within D1 8.376–8.676; F1.5 = P; 25 − 18 = 7 ≥ 2.5·1.5
 /// # Ok::<(), threadcheck::Error>(())
@@ -255,7 +258,25 @@ fn same(a: Option<f64>, b: Option<f64>) -> bool {
 pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
     let (text, name) = &spec.program;
     let opts = ReadOptions { allow_no_threading: true, ..spec.reading.clone() };
-    let prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
+    let mut prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
+    // Cycles before the program calls a tool take the one the tool table says is in the spindle.
+    if let Some(t) = spec.tools.in_spindle() {
+        let first = prog.holes.iter().find(|h| h.tool.is_none()).map(|h| (h.line, h.column));
+        if let Some((line, column)) = first {
+            for h in prog.holes.iter_mut().filter(|h| h.tool.is_none()) {
+                h.tool = Some(t);
+            }
+            prog.notes.push(crate::ground::note::Note::at(
+                name,
+                line,
+                column,
+                format!(
+                    "the cycles that name no tool take T{t}, the tool {} says is in the spindle (in_spindle)",
+                    spec.tools.source
+                ),
+            ));
+        }
+    }
     let taps: Vec<&HoleCycle> = prog.holes.iter().filter(|h| h.kind == HoleKind::Tap).collect();
     if taps.is_empty() {
         return Err(Error::Program {
@@ -670,6 +691,17 @@ fn tap_of(
     let perr =
         |message: String| Error::Program { file: name.clone(), line: h.line, column: h.column, message };
     let table = h.tool.map(|t| (t, spec.tools.tool(t)));
+    // A cycle that names no tool: the tap given (`--tap`).
+    if let (None, Some(designation)) = (h.tool, &spec.tap) {
+        return Ok(TapOf {
+            designation: designation.clone(),
+            chamfer_pitches: crate::analysis::tools::DEFAULT_TAP_CHAMFER_PITCHES,
+            chamfer_given: false,
+            from: DesignationFrom::Given,
+            line: None,
+            why: Some(format!("{designation}: the tap given (‹tap›) for the cycles that name no tool")),
+        });
+    }
     if let Some((_, Some((Tool::Tap { designation, chamfer_pitches, chamfer_given }, _)))) = table {
         return Ok(TapOf {
             designation: designation.clone(),
@@ -735,7 +767,7 @@ fn tap_of(
     }
     Err(match table {
         None => perr(format!(
-            "{} names no tool: the tapping check needs the tap (T and the tool table's tap:DESIGNATION{})",
+            "{} names no tool: the tapping check needs the tap (T and the tool table's tap:DESIGNATION, the table's in_spindle, ‹tap›{})",
             h.code,
             if spec.from_program { ", or a comment such as (TAP M10X1.5) above the cycle" } else { "" }
         )),

@@ -53,6 +53,9 @@ pub struct ToolTable {
     tools: BTreeMap<u32, (Tool, String)>,
     /// `[offsets]`: the cutter radius compensation value (the D register) of each T, mm.
     offsets: BTreeMap<u32, f64>,
+    /// `in_spindle = 2`: the tool in the spindle when the program starts, which its cycles take
+    /// until it calls another.
+    in_spindle: Option<u32>,
 }
 
 #[derive(serde::Deserialize)]
@@ -61,6 +64,7 @@ struct Raw {
     tools: BTreeMap<String, String>,
     #[serde(default)]
     offsets: BTreeMap<String, f64>,
+    in_spindle: Option<u32>,
 }
 
 impl ToolTable {
@@ -143,12 +147,22 @@ impl ToolTable {
             }
             offsets.insert(t, v);
         }
-        Ok(ToolTable { source: source.to_string(), tools, offsets })
+        Ok(ToolTable { source: source.to_string(), tools, offsets, in_spindle: raw.in_spindle })
     }
 
     /// A table with no tools, for a program whose tools are named by its own comments.
     pub fn empty(source: &str) -> ToolTable {
-        ToolTable { source: source.to_string(), tools: BTreeMap::new(), offsets: BTreeMap::new() }
+        ToolTable {
+            source: source.to_string(),
+            tools: BTreeMap::new(),
+            offsets: BTreeMap::new(),
+            in_spindle: None,
+        }
+    }
+
+    /// The tool in the spindle when the program starts (`in_spindle = T`), if the table says.
+    pub fn in_spindle(&self) -> Option<u32> {
+        self.in_spindle
     }
 
     /// Reads a tool table file.

@@ -166,6 +166,7 @@ pub fn verify_whole(
             allow_nonstandard: spec.allow_nonstandard,
             from_program: true,
             stock_bottom: spec.stock_bottom,
+            tap: None,
         };
         let mut r = crate::analysis::tapping::tapping(&t)?;
         // The program's notes are the report's, once.

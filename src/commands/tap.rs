@@ -46,6 +46,10 @@ pub struct TapArgs {
     /// through hole, whose depth needs no room below the tap.
     #[cfg_attr(feature = "cli", arg(long, value_name = "Z", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
     pub stock_bottom: Option<f64>,
+    /// The tap of the tapping cycles that name no tool (no T before them, and no in_spindle in
+    /// the tool table), e.g. M10x1.5-6H
+    #[cfg_attr(feature = "cli", arg(long, value_name = "DESIGNATION"))]
+    pub tap: Option<String>,
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
     #[allow(missing_docs)]
@@ -80,6 +84,7 @@ impl Job for TapArgs {
             allow_nonstandard: self.allow_nonstandard,
             from_program: true,
             stock_bottom: self.stock_bottom,
+            tap: self.tap.clone(),
         };
         let r = crate::analysis::tapping::tapping(&spec)?;
         let inputs = self.file.inputs().into_iter().chain(self.tools.as_ref().and_then(Source::file));
