@@ -577,3 +577,32 @@ fn a_mill_turn_program_is_read_section_by_section() {
     let o = run(&["verify", "--program", p, "--insert", "full", "--machine-type", "lathe"]);
     assert!(one_line_error(&o).ends_with("fanuc-mill-turn.nc:11:1: line 11 writes G17, the milling plane, which a lathe does not (--machine-type says lathe): a program that turns and mills is read with machine type mill-turn"), "{}", one_line_error(&o));
 }
+
+/// Issue 45 item 4: face tapping with a live tool on a Fanuc lathe (`fanuc-live-tool.nc`):
+/// `G83`/`G84 X40 C0 … ` then `C90`: each hole placed by X (a diameter: radius 20) and the
+/// spindle's angle C, (20 cos C, 20 sin C) on the face: (20, 0) and (0, 20), each tap over the
+/// drill at the same angle; the tap's F1.25 is per revolution (G99, the lathe's). Side tapping
+/// (G88, along X) is refused at its line.
+#[test]
+fn live_tool_face_tapping_on_a_lathe() {
+    let program = data("machining/fanuc-live-tool.nc");
+    let (code, v) = run_json(&["tap", "--program", program.to_str().unwrap(), "--json", "-"]);
+    assert_eq!(code, 0, "{v}");
+    let hs = v["holes"].as_array().unwrap();
+    let want = [(20.0, 0.0, 6), (0.0, 20.0, 7)];
+    assert_eq!(hs.len(), 2, "{v}");
+    for (h, (x, y, drill)) in hs.iter().zip(want) {
+        let c = &h["cycle"];
+        assert_eq!((c["x"].as_f64(), c["y"].as_f64()), (Some(x), Some(y)), "{c}");
+        assert_eq!(c["feed_per_rev"], true, "{c}");
+        assert_eq!(h["drill"]["cycle"]["line"], drill, "{h}");
+    }
+    let dir = tempdir("g88");
+    std::fs::write(
+        dir.join("side.nc"),
+        "G18 G21 G99\nT0606\nG0 X60 Z-10 C0\nG88 Z-10 X20 C0 R55 F1.25\nG80\nM30\n",
+    )
+    .unwrap();
+    let o = run_in(&dir, &["tap", "--program", "side.nc", "--tap", "M8x1.25-6H"]);
+    assert_eq!(one_line_error(&o), "threadcheck: error: side.nc:4:1: G88 taps from the side with a live tool (along X): threadcheck checks tapping along Z (G84 on the face) only");
+}

@@ -453,6 +453,10 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             m.polar = Some((r, a));
         }
     }
+    // A lathe's C axis (the spindle's angle for live tools): kept for the holes it places.
+    if let Some(c) = b.get("C").filter(|_| fanuc_like && m.lathe()) {
+        m.c_axis = Some(c.v);
+    }
     for w in b.words.iter().filter(|w| w.name == "M") {
         match w.v {
             3.0 => m.spindle_dir = Some(super::SpindleDir::Cw),
@@ -679,7 +683,13 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
                 let what = format!("G{}", modal.motion);
                 record_hole(m, b, modal, (x, y, z))?;
                 if x.is_some() || z.is_some() || modal.col.is_some() {
+                    // A drilling or tapping cycle along Z ends at its X (the face's cycles: a
+                    // live tool's next hole is placed by C alone); the side's (G87, G88) do not.
+                    let keep_x = x.or(m.x).filter(|_| !matches!(modal.motion as u32, 87 | 88));
                     m.lose_position(b.line, &what, true, true);
+                    if m.lathe() {
+                        m.x = keep_x;
+                    }
                     m.read_past(
                         b.line,
                         modal.col.unwrap_or(b.col),
@@ -738,15 +748,41 @@ fn record_hole(
                 ),
             ))
         }
+        // A Fanuc lathe's G88: side tapping with a live tool, along X (FT-BLOG's table).
+        88 if fanuc_like && !haas_lathe && m.lathe() => {
+            return Err(m.err(
+                b.line,
+                modal.col.unwrap_or(b.col),
+                "G88 taps from the side with a live tool (along X): threadcheck checks tapping along Z (G84 on the face) only",
+            ))
+        }
         73 | 81..=83 | 85..=89 => super::HoleKind::Drill,
         _ => return Ok(()),
     };
     let reads = fanuc_like || m.dialect == Dialect::LinuxCnc && kind == super::HoleKind::Drill;
-    if !reads || !(x.is_some() || y.is_some() || z.is_some() || modal.col.is_some()) {
+    let c_word = b.get("C").is_some() && fanuc_like && m.lathe();
+    if !reads || !(x.is_some() || y.is_some() || z.is_some() || modal.col.is_some() || c_word) {
         return Ok(());
     }
     let bottom = z.or(m.hole_modal.0);
-    push_hole_at(m, b, modal, kind, (x.or(m.x), y.or(m.y)), bottom)
+    let (mut x, mut y) = (x.or(m.x), y.or(m.y));
+    // A live tool on a lathe's face: X (a diameter) and the spindle's angle C place the hole
+    // (FT-BLOG's G83/G84 with C; C0 along +X, a named default).
+    if let (Some(c), true, Some(d)) = (m.c_axis, fanuc_like && m.lathe(), x) {
+        let (s, co) = c.to_radians().sin_cos();
+        let tidy = |v: f64| if v.abs() < 1e-9 { 0.0 } else { v };
+        x = Some(tidy(0.5 * d * co));
+        y = Some(tidy(0.5 * d * s));
+        if !m.live_tool_said {
+            m.live_tool_said = true;
+            m.note(
+                b.line,
+                modal.col.unwrap_or(b.col),
+                "a live tool on the face: each hole placed by X (a diameter) and C (the spindle's angle, C0 along +X), as X and Y on the face (a named default)",
+            );
+        }
+    }
+    push_hole_at(m, b, modal, kind, (x, y), bottom)
 }
 
 /// Haas's bolt-hole circle `G70 I J L` and arc `G71 I J K L` on a mill: L holes on a circle of

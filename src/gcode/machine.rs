@@ -150,6 +150,12 @@ pub(crate) fn decide(
     )
 }
 
+/// Whether a mill-turn program starts as a machining centre's: its first block that shows a
+/// machine shows one (else it starts as a lathe's).
+pub(crate) fn starts_as_mill(blocks: &[Block], dialect: Dialect) -> bool {
+    blocks.iter().find_map(|b| evidence(b, dialect)).is_some_and(|e| e.0 == MachineType::Mill)
+}
+
 /// The machine a block shows, if any, and the words that show it.
 fn evidence(b: &Block, dialect: Dialect) -> Option<(MachineType, String)> {
     let num = |name: &'static str| {

@@ -1090,7 +1090,7 @@ fn read(
     };
     let mut m = motion::Motion::new(dialect, file, opts.moves, machine.machine_type == MachineType::Mill);
     if machine.machine_type == MachineType::MillTurn {
-        m.set_mill_turn();
+        m.set_mill_turn(machine::starts_as_mill(&blocks, dialect));
     }
     if let Some(out) = out {
         m.stream_to(out);

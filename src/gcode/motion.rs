@@ -206,6 +206,10 @@ pub(crate) struct Motion {
     pub mirror: [Option<f64>; 2],
     /// A machining centre's polar coordinates (Fanuc G16): the last radius and angle written.
     pub polar: Option<(Option<f64>, Option<f64>)>,
+    /// A lathe's C axis (the spindle's angle, degrees) as last written: live-tool holes.
+    pub c_axis: Option<f64>,
+    /// The live-tool placement was said in a note.
+    pub live_tool_said: bool,
     /// Cutter radius compensation: 0 G40, 1 G41, 2 G42.
     pub comp: u8,
     /// Working plane (17, 18, 19).
@@ -296,6 +300,8 @@ impl Motion {
             rotation: None,
             mirror: [None; 2],
             polar: None,
+            c_axis: None,
+            live_tool_said: false,
             comp: 0,
             plane: if !mill && lathe_dialect(dialect) { 18 } else { 17 },
             ops: Vec::new(),
@@ -376,10 +382,10 @@ impl Motion {
     }
 
     /// A mill-turn program: each section read by its plane (G18 a lathe's, G17 and G19 a
-    /// machining centre's), from a lathe's at the start.
-    pub(crate) fn set_mill_turn(&mut self) {
+    /// machining centre's), from the machine its first evidence shows at the start.
+    pub(crate) fn set_mill_turn(&mut self, start_as_mill: bool) {
         self.mill_turn = true;
-        self.mill = false;
+        self.mill = start_as_mill;
     }
 
     /// On a mill-turn program, the machine the plane just set names.
