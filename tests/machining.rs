@@ -606,3 +606,41 @@ fn live_tool_face_tapping_on_a_lathe() {
     let o = run_in(&dir, &["tap", "--program", "side.nc", "--tap", "M8x1.25-6H"]);
     assert_eq!(one_line_error(&o), "threadcheck: error: side.nc:4:1: G88 taps from the side with a live tool (along X): threadcheck checks tapping along Z (G84 on the face) only");
 }
+
+/// Issue 46 (its mixed example, now one file): a mill-turn program (`fanuc-mixed.nc`) turns
+/// M24x2 in G18 (the last pass at the X21.546 it writes), drills and taps four M8 holes in G17 at
+/// (30, 0), (−30, 0), (0, 30), (0, −30) (each tap over its drill, F750 = S600 × 1.25 per minute)
+/// and thread-mills M20x1.5 at the centre with T4, a Ø6 cutter (the tool table's): ten G3 turns
+/// of radius 7 rising 1.5 each, so its tip reaches D = 2·(7 + 3) = 20. One `verify`, six
+/// operations, each checked by its process.
+#[test]
+fn a_mixed_mill_turn_program_is_verified_whole() {
+    let (p, t) = (data("machining/fanuc-mixed.nc"), data("machining/fanuc-mixed.toml"));
+    let (code, v) = run_json(&[
+        "verify",
+        "--program",
+        p.to_str().unwrap(),
+        "--tools",
+        t.to_str().unwrap(),
+        "--insert",
+        "full",
+        "--json",
+        "-",
+    ]);
+    assert_eq!(code, 1, "{v}");
+    assert_eq!(v["machine"]["machine_type"], "mill-turn");
+    let ops = v["operations"].as_array().unwrap();
+    let made: Vec<&str> = ops.iter().map(|o| o["made"].as_str().unwrap()).collect();
+    assert_eq!(made, ["turned", "tapped", "tapped", "tapped", "tapped", "milled"]);
+    let last = ops[0]["passes"].as_array().unwrap().last().unwrap().clone();
+    assert!((last["x"].as_f64().unwrap() - 21.546).abs() < 1e-9, "{last}");
+    for (op, (x, y)) in ops[1..5].iter().zip([(30.0, 0.0), (-30.0, 0.0), (0.0, 30.0), (0.0, -30.0)]) {
+        assert_eq!((op["cycle"]["x"].as_f64(), op["cycle"]["y"].as_f64()), (Some(x), Some(y)), "{op}");
+        assert_eq!(op["drill"]["diameter"].as_f64(), Some(6.8));
+        assert_eq!(op["pass"], true, "{op}");
+    }
+    let milled = &ops[5];
+    assert_eq!(milled["designation"], "M20X1.5-6H");
+    assert!((milled["measured"]["major_diameter"].as_f64().unwrap() - 20.0).abs() < 1e-4, "{milled}");
+    assert!(check_of(milled, "lead")["ok"].as_bool().unwrap());
+}
