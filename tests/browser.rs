@@ -746,6 +746,47 @@ fn tap_picture_dimensions_the_drill_and_d1() {
     assert!(red.count() >= 20, "the drill's dimension is not drawn red");
 }
 
+/// Issue 45/46: the tap picture of a Klartext program whose stock `BLK FORM` ends at Z−20 (the
+/// holes are through holes): the stock is drawn down to its bottom face and no further (its
+/// height is 20 mm at the scale bar's px/mm), labelled `stock Z-20`, or said in the tap's label
+/// where the tap ends at the stock's bottom (the M12 holes: `tap = stock Z-20`, one label, not
+/// two over each other); each panel names its hole's place (X100 Y70 after the datum shift and
+/// the rotation). Chromium paints the stock's blue only above its bottom face.
+#[test]
+fn tap_picture_draws_the_stock_to_its_bottom_face() {
+    let dir = tempdir("tap-stock");
+    let svg_path = dir.join("plate.svg");
+    let o = run(&[
+        "tap",
+        "--program",
+        data("klartext/plate.h").to_str().unwrap(),
+        "--svg",
+        svg_path.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(&svg_path).unwrap();
+    let n = |id: &str, k: &str| attr(tag_of(&svg, id), k).unwrap().parse::<f64>().unwrap();
+    let s = (n("scale-bar", "x2") - n("scale-bar", "x1")) / n("scale-bar", "data-mm");
+    for k in 0..4 {
+        let h = n(&format!("hole-{k}-stock"), "height");
+        assert!((h - 20.0 * s).abs() < 0.02, "hole {k}: the stock is {h} px, 20 mm is {} px", 20.0 * s);
+    }
+    assert_eq!(svg.matches(">\nstock Z-20\n</text>").count(), 2, "the M8 holes' stock labels");
+    assert_eq!(svg.matches(">\ntap = stock Z-20\n</text>").count(), 2, "the M12 holes' one label each");
+    assert!(svg.contains("CYCL 209 line 66, T4 at X100 Y70"));
+    assert_laid_out(&svg, "tap");
+    let (w, hgt) = svg_size(&svg);
+    let shot = screenshot(&svg_path, w, hgt);
+    let x = n("hole-0-stock", "x") as usize + 3;
+    let bottom = (n("hole-0-stock", "y") + n("hole-0-stock", "height")).round() as usize;
+    let blue = |y: usize| {
+        let [r, g, b] = shot.at(x, y);
+        b > 190 && r < 200 && g < 215 && b > r + 20
+    };
+    assert!(blue(bottom - 4), "the stock is painted above its bottom face");
+    assert!(!blue(bottom + 6), "nothing is painted below the stock's bottom face");
+}
+
 /// Issue 46: `verify --html` of a program that taps four holes and mills a thread, as seen in
 /// Chromium: both sections with their verdicts and pictures (four tap panels, the milled
 /// thread's tolerance zone), no console error, nothing wider than the window (the tap's long

@@ -233,6 +233,9 @@ pub struct TapReport {
     pub notes: Vec<crate::ground::note::Note>,
     /// The machine the program was read for, and why.
     pub machine: crate::gcode::MachineReading,
+    /// Z of the stock's bottom face, mm: the caller's, else the program's own (Klartext's
+    /// `BLK FORM 0.1`); `None` when not known.
+    pub stock_bottom: Option<f64>,
 }
 
 /// The same position (within 1 µm; unknown matches unknown).
@@ -660,6 +663,7 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
         pass,
         notes: prog.notes,
         machine: prog.machine,
+        stock_bottom: spec.stock_bottom.or(prog.stock_bottom.map(|s| s.0)),
     })
 }
 

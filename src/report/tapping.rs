@@ -209,7 +209,16 @@ pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
                 x0,
                 80.0,
                 12.0,
-                format!("{} line {}{}", c.code, c.line, c.tool.map_or(String::new(), |t| format!(", T{t}"))),
+                format!(
+                    "{} line {}{}{}",
+                    c.code,
+                    c.line,
+                    c.tool.map_or(String::new(), |t| format!(", T{t}")),
+                    match (c.x, c.y) {
+                        (Some(x), Some(y)) => format!(" at X{} Y{}", fmt_num(x), fmt_num(y)),
+                        _ => String::new(),
+                    }
+                ),
             )
             .set("font-weight", "bold"),
         );
@@ -226,12 +235,16 @@ pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
             let y = |z: f64| y0 + (top - z) * s;
             let x = |r: f64| cx + r * s;
             let half_w = 0.8 * wide * s;
+            // The stock: down to its bottom face when known (a through hole opens there).
+            let stock_end = r.stock_bottom.filter(|sb| *sb < top && *sb > bottom - 12.0 / s);
+            let stock_h = stock_end.map_or(y(bottom) - y0 + 12.0, |sb| y(sb) - y0);
             g = g.add(
                 Rectangle::new()
+                    .set("id", format!("hole-{k}-stock"))
                     .set("x", format!("{:.2}", cx - half_w))
                     .set("y", format!("{y0:.2}"))
                     .set("width", format!("{:.2}", 2.0 * half_w))
-                    .set("height", format!("{:.2}", y(bottom) - y0 + 12.0))
+                    .set("height", format!("{stock_h:.2}"))
                     .set("fill", "#b8c7d9"),
             );
             let mut pts: Vec<String> =
@@ -274,14 +287,22 @@ pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
                 )
                 .add(text(cx + half_w + 8.0, y(z) + 4.0, 11.0, label).set("fill", colour.to_string()))
             };
+            // The stock's bottom on the same height as the tap's (or near it, under a label's
+            // height) is said in the tap's label, so the two never overlap.
+            let stock_with_tap =
+                stock_end.is_some_and(|sb| c.bottom.is_some_and(|tz| (y(tz) - y(sb)).abs() < 12.0));
             if let Some(tz) = c.bottom {
-                g = mark(g, tz, "#333", format!("tap Z{}", fmt_num(tz)));
+                let label = if stock_with_tap { "tap = stock" } else { "tap" };
+                g = mark(g, tz, "#333", format!("{label} Z{}", fmt_num(tz)));
                 if let Some(f) = hole.tap.full_thread_z {
                     g = mark(g, f, "#777", format!("full Z{}", fmt_num(f)));
                 }
             }
             if let Some(db) = hole.drill.as_ref().and_then(|d| d.cycle.bottom) {
                 g = mark(g, db, "#a35a00", format!("drill Z{}", fmt_num(db)));
+            }
+            if let Some(sb) = stock_end.filter(|_| !stock_with_tap) {
+                g = mark(g, sb, "#2b6e2b", format!("stock Z{}", fmt_num(sb)));
             }
             // The drill's diameter across the plain bore, between the tap's bottom and the
             // drill's point, with arrowheads.
