@@ -855,3 +855,41 @@ fn the_page_verifies_every_thread_a_pasted_program_names() {
     assert_eq!(seen["verdicts"], serde_json::json!(["IN TOLERANCE", "IN TOLERANCE"]));
     assert_eq!(seen["tap_checks"], serde_json::json!(["drill diameter", "feed", "depth", "spindle"]));
 }
+
+/// Issue 45 on the page, in Chromium: the dialect list offers every dialect (Klartext among
+/// them), and a pasted Klartext plate read as Klartext gives its six tapped holes, each named by
+/// its comment and placed (X120 Y50: the pattern's 270° point turned by 90° and shifted), the
+/// M12 ones left-hand, with no console message.
+#[test]
+fn the_page_reads_a_klartext_program() {
+    let script = playwright().with_file_name("whole.mjs");
+    let chromium = chromium();
+    let server = crate::serve::start(&[]);
+    let out = tempdir("page-klartext");
+    let o = std::process::Command::new("node")
+        .arg(&script)
+        .arg(&server.url)
+        .arg(&out)
+        .arg(&chromium)
+        .arg(data("klartext/plate.h"))
+        .arg("klartext")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "the page script failed: {}", String::from_utf8_lossy(&o.stderr));
+    let seen: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(seen["console"], serde_json::json!([]));
+    let offered: Vec<&str> = seen["dialects"].as_array().unwrap().iter().filter_map(|d| d.as_str()).collect();
+    for d in threadcheck::Dialect::ALL {
+        assert!(offered.contains(&d.name()), "{} is not offered: {offered:?}", d.name());
+    }
+    assert_eq!(seen["verdict"], "IN TOLERANCE: every check passes");
+    let headings: Vec<&str> =
+        seen["headings"].as_array().unwrap().iter().filter_map(|h| h.as_str()).collect();
+    assert_eq!(headings.len(), 6, "{headings:?}");
+    // Each hole's place: the four of the pattern cycle share its line.
+    assert!(headings[0].starts_with("Tapped: CYCL 207 at line 26 (X20 Y20), tap M8X1.25-6H"), "{headings:?}");
+    assert!(
+        headings[5].starts_with("Tapped: CYCL 209 at line 66 (X120 Y50), tap M12X1.75-LH-6H"),
+        "{headings:?}"
+    );
+}

@@ -83,15 +83,25 @@ pub fn text(r: &TapReport) -> String {
 /// Each tapped hole's section: its cycle, tap and drill, its checks, its verdict and notes (what
 /// `tap` prints between its heading and its program verdict; `verify` prints it among the
 /// program's operations).
+/// A machining centre's hole's place, ` (X20 Y15)`, when both are known (a lathe's holes on the
+/// axis have no Y): the holes of one pattern cycle share its line.
+fn place(c: &crate::gcode::HoleCycle) -> String {
+    match (c.x, c.y) {
+        (Some(x), Some(y)) => format!(" (X{} Y{})", fmt_num(x), fmt_num(y)),
+        _ => String::new(),
+    }
+}
+
 pub fn holes_text(r: &TapReport) -> String {
     let mut s = String::new();
     for h in &r.holes {
         let c = &h.cycle;
         let _ = writeln!(
             s,
-            "\n== {} at line {}{}, tap {} (chamfer {} P{}){}",
+            "\n== {} at line {}{}{}, tap {} (chamfer {} P{}){}",
             c.code,
             c.line,
+            place(c),
             c.tool.map_or(String::new(), |t| format!(", tool T{t}")),
             h.tap.designation,
             fmt_num(h.tap.chamfer_pitches),
@@ -512,9 +522,10 @@ pub fn tap_html(r: &crate::analysis::tapping::TapReport) -> String {
         let c = &h.cycle;
         let _ = writeln!(
             s,
-            "<h2>{} at line {}{}: tap {}</h2>",
+            "<h2>{} at line {}{}{}: tap {}</h2>",
             esc(&c.code),
             c.line,
+            place(c),
             c.tool.map_or(String::new(), |t| format!(", T{t}")),
             esc(&h.tap.designation)
         );

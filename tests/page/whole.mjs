@@ -1,11 +1,12 @@
 // Issue 46: the page's Verify with a program that turns a thread and taps a hole, each named by
 // its comment, the thread field left empty: one block per operation, the tapped hole's heading
-// naming its tap and where it came from. Usage: node whole.mjs URL OUT CHROMIUM PROGRAM
+// naming its tap and where it came from. Usage: node whole.mjs URL OUT CHROMIUM PROGRAM [DIALECT]
+// (DIALECT chosen in the Verify tab's dialect list; the shot is named after the program).
 import { chromium } from "playwright-core";
 import { readFileSync } from "node:fs";
 import { join } from "node:path";
 
-const [url, out, executablePath, programFile] = process.argv.slice(2);
+const [url, out, executablePath, programFile, dialect] = process.argv.slice(2);
 const browser = await chromium.launch({ executablePath, args: ["--no-sandbox"] });
 const seen = { console: [] };
 try {
@@ -16,6 +17,10 @@ try {
   await page.fill("#program", readFileSync(programFile, "utf8"));
   await page.fill("#thread", "");
   await page.selectOption("#insert", "full");
+  if (dialect) {
+    await page.selectOption("#dialect", dialect);
+  }
+  seen.dialects = await page.$$eval("#dialect option", (os) => os.map((o) => o.value));
   await page.click("#verify-button");
   await page.waitForSelector("#verify-result:not([hidden])");
   seen.verdict = await page.textContent("#verdict");
