@@ -577,6 +577,14 @@ fn block(
             );
             return Ok(Flow::Next);
         }
+        // A TNC 640 that turns (option 50): its turning cycles are not read.
+        "FUNCTION" if up.contains("MODE TURN") => {
+            return Err((
+                b.line,
+                b.col,
+                "FUNCTION MODE TURN: turning on a TNC (its turning cycles and diameters) is not read; the milling blocks are".into(),
+            ))
+        }
         "STOP" => {
             let ws = words(t, 4, b.col);
             return m_words(st, b, &ws).map(|end| if end { Flow::End } else { Flow::Next });
