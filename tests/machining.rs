@@ -440,37 +440,21 @@ fn klartext_thread_milling_directions_and_outside() {
         ("left", base.replace("Q239=+1.5", "Q239=-1.5"), "M20x1.5-LH-6H", true, 1.0),
         ("left-as-right", base.replace("Q239=+1.5", "Q239=-1.5"), "M20x1.5-6H", false, 1.0),
     ];
-    for (name, text, thread, hand_ok, sense) in cases {
+    // `thread-mill --json` of `text` with a Ø14 cutter against `thread`.
+    let mill14 = |name: &str, text: &str, thread: &str| {
         let p = dir.join(format!("{name}.h"));
         std::fs::write(&p, text).unwrap();
-        let (_, v) = run_json(&[
-            "thread-mill",
-            "--program",
-            p.to_str().unwrap(),
-            "--cutter-diameter",
-            "14",
-            "--thread",
-            thread,
-            "--json",
-            "-",
-        ]);
+        let args =
+            ["thread-mill", "--program", p.to_str().unwrap(), "--cutter-diameter", "14", "--thread", thread];
+        run_json(&[&args[..], &["--json", "-"]].concat()).1
+    };
+    for (name, text, thread, hand_ok, sense) in cases {
+        let v = mill14(name, &text, thread);
         assert_eq!(check_of(&v, "hand")["ok"].as_bool(), Some(hand_ok), "{name}: {v}");
-        let _ = sense;
+        // Counter-clockwise (+) or clockwise (−) as the direction table says.
+        assert_eq!(v["helices"][0]["sweep_deg"].as_f64().unwrap().signum(), sense, "{name}: {v}");
     }
-    let outside = base.replace("262 THREAD MILLING", "267 OUTSIDE THREAD MLLNG");
-    let p = dir.join("outside.h");
-    std::fs::write(&p, outside).unwrap();
-    let (_, v) = run_json(&[
-        "thread-mill",
-        "--program",
-        p.to_str().unwrap(),
-        "--cutter-diameter",
-        "14",
-        "--thread",
-        "M20x1.5-6g",
-        "--json",
-        "-",
-    ]);
+    let v = mill14("outside", &base.replace("262 THREAD MILLING", "267 OUTSIDE THREAD MLLNG"), "M20x1.5-6g");
     let h = &v["helices"][0];
     assert!((h["radius"].as_f64().unwrap() - (10.0 - 0.613_434_5 * 1.5 + 7.0)).abs() < 1e-9, "{v}");
     assert!(

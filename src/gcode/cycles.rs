@@ -164,15 +164,7 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
     let mut one_shot = None;
     let mut offset = None;
     let mut unknown: Vec<(f64, usize)> = Vec::new();
-    let fanuc_like = match d {
-        Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => true,
-        Dialect::Sinumerik
-        | Dialect::LinuxCnc
-        | Dialect::Dyna
-        | Dialect::Okuma
-        | Dialect::Heidenhain
-        | Dialect::Klartext => false,
-    };
+    let fanuc_like = fanuc_like(d);
     // A dialect without unit codes (Heidenhain) matches none (no G code is negative).
     let inch_codes = d.unit_codes().map_or((-1.0, -1.0), |(i, mm)| (f64::from(i), f64::from(mm)));
     for (g, col) in b.gs() {
@@ -715,6 +707,20 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
     Ok(())
 }
 
+/// The dialects read with Fanuc's codes (G-code system A on a lathe, the M-series' on a
+/// machining centre): Fanuc's family and Haas.
+fn fanuc_like(d: Dialect) -> bool {
+    match d {
+        Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => true,
+        Dialect::Sinumerik
+        | Dialect::LinuxCnc
+        | Dialect::Dyna
+        | Dialect::Okuma
+        | Dialect::Heidenhain
+        | Dialect::Klartext => false,
+    }
+}
+
 /// Records a Fanuc or Haas drilling or tapping cycle's hole (one per block that gives a
 /// position while the cycle is in force).
 fn record_hole(
@@ -723,15 +729,7 @@ fn record_hole(
     modal: &Modal,
     (x, y, z): (Option<f64>, Option<f64>, Option<f64>),
 ) -> Result<(), Error> {
-    let fanuc_like = match m.dialect {
-        Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => true,
-        Dialect::Sinumerik
-        | Dialect::LinuxCnc
-        | Dialect::Dyna
-        | Dialect::Okuma
-        | Dialect::Heidenhain
-        | Dialect::Klartext => false,
-    };
+    let fanuc_like = fanuc_like(m.dialect);
     let code = modal.motion as u32;
     let haas_lathe = m.dialect == Dialect::Haas && m.lathe();
     let kind = match code {
