@@ -454,6 +454,20 @@ fn klartext_thread_milling_directions_and_outside() {
         // Counter-clockwise (+) or clockwise (−) as the direction table says.
         assert_eq!(v["helices"][0]["sweep_deg"].as_f64().unwrap().signum(), sense, "{name}: {v}");
     }
+    // 263 (with countersinking): its thread as 262's, one helix over Q201 (the countersink not
+    // modelled, said).
+    let v =
+        mill14("countersink", &base.replace("262 THREAD MILLING", "263 THREAD MLLNG/CNTSNKG"), "M20x1.5-6H");
+    assert!((v["measured"]["major_diameter"].as_f64().unwrap() - 20.0).abs() < 1e-4, "{v}");
+    assert!((v["helices"][0]["sweep_deg"].as_f64().unwrap() - 3600.0).abs() < 1e-6, "{v}");
+    assert!(
+        v["notes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|n| n.as_str().unwrap().contains("its countersinking is not modelled")),
+        "{v}"
+    );
     let v = mill14("outside", &base.replace("262 THREAD MILLING", "267 OUTSIDE THREAD MLLNG"), "M20x1.5-6g");
     let h = &v["helices"][0];
     assert!((h["radius"].as_f64().unwrap() - (10.0 - 0.613_434_5 * 1.5 + 7.0)).abs() < 1e-9, "{v}");

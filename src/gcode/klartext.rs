@@ -1,8 +1,8 @@
 //! Heidenhain Klartext (TNC conversational) programs, read for the threads a machining centre
 //! makes: the drilling cycles 200, 201, 203 and 205 and the tapping cycles 206, 207 and 209 at
 //! every point they are called (`CYCL CALL`, `CYCL CALL POS`, `L … M99`, `CYCL CALL PAT` with
-//! `PATTERN DEF POS…`, the pattern cycles 220 and 221), the thread-milling cycles 262 (inside)
-//! and 267 (outside) as the helices they mill, and helices written by hand (`CC`, `CP IPA… IZ…
+//! `PATTERN DEF POS…`, the pattern cycles 220 and 221), the thread-milling cycles 262–265
+//! (inside) and 267 (outside) as the helices they mill, and helices written by hand (`CC`, `CP IPA… IZ…
 //! DR±`). Lines `L`, `LP`, `C`, `CR`, `CT`, `CP`, labels and their calls (`CALL LBL n REP k`),
 //! Q-parameter arithmetic (`FN 0`–`FN 5`, formulas), `FN 9`–`FN 12` jumps, the datum shift
 //! (cycle 7) and rotation (cycle 10). Sources: docs/dialects.md, "Heidenhain Klartext".
@@ -204,7 +204,9 @@ fn cycle_kind(n: u32) -> Option<CycleKind> {
         200 | 201 | 203 | 205 => Some(CycleKind::Drill),
         206 => Some(CycleKind::TapFloating),
         207 | 209 => Some(CycleKind::TapRigid),
-        262 => Some(CycleKind::Mill { external: false }),
+        // 263 (with countersinking), 264 (with drilling) and 265 (helical, drilling with it):
+        // their thread read as 262's with one helix over the depth; the rest is not modelled.
+        262..=265 => Some(CycleKind::Mill { external: false }),
         267 => Some(CycleKind::Mill { external: true }),
         _ => None,
     }
@@ -1269,16 +1271,6 @@ fn cycle(st: &mut St<'_>, b: &KBlock, up: &str) -> Result<Flow, KErr> {
                 run_with(st, &target, [p[0], p[1], st.pos[2]], b.line, b.col, surface)?;
             }
         }
-        263..=265 => {
-            return Err((
-                b.line,
-                b.col,
-                format!(
-                "CYCL DEF {major} {}: its countersinking and drilling path is not modelled (262 and 267 are)",
-                def.name
-            ),
-            ))
-        }
         n if cycle_kind(n).is_some() => {
             let need: &[u32] = match cycle_kind(n) {
                 Some(CycleKind::Drill) => &[201, 203],
@@ -1475,7 +1467,7 @@ fn run_with(
     Ok(())
 }
 
-/// The helices of the thread-milling cycles 262 (inside) and 267 (outside) as the TNC mills
+/// The helices of the thread-milling cycles 262–265 (inside) and 267 (outside) as the TNC mills
 /// them about the called point: the programmed contour is the thread's nominal circle (Q335),
 /// compensated by the cutter's radius (RL/RR as the direction and side give it), over the depth
 /// Q201 below the surface. Named defaults, stated in a note: the helix starts at +X of the
@@ -1500,7 +1492,8 @@ fn mill(
     if !(r > 0.0) || pitch == 0.0 {
         return Err((def.line, def.col, format!("CYCL DEF {}: Q335 and Q239 must not be 0", def.number)));
     }
-    let climb = q(351) >= 0.0;
+    // 265 writes no Q351: climb milling, a named default (said below).
+    let climb = q(351) >= 0.0 || def.number == 265;
     let right = pitch > 0.0;
     let lead = pitch.abs();
     // Inside, climb milling (spindle M3) goes counter-clockwise; outside, clockwise.
@@ -1509,7 +1502,9 @@ fn mill(
     let rising = ccw == right;
     let dir = if ccw { 1.0 } else { -1.0 };
     let depth = (top - bottom).abs();
-    let per_step = q(355);
+    // Only 262 and 267 write Q355; 263 to 265 mill the thread in one helix over its depth (a
+    // named default, said: their countersinking and drilling paths are not modelled).
+    let per_step = if matches!(def.number, 262 | 267) { q(355) } else { 1.0 };
     let steps: Vec<(f64, f64)> = if per_step == 1.0 || depth < 1e-9 {
         vec![(bottom, top)]
     } else if per_step <= 0.0 {
@@ -1547,6 +1542,18 @@ fn mill(
             if per_step == 1.0 { "one helix over the depth" } else if per_step <= 0.0 { "one turn at the bottom" } else { "one turn every Q355 pitches" }
         ),
     );
+    if (263..=265).contains(&def.number) {
+        st.note(
+            line,
+            def.col,
+            format!(
+                "cycle {}: only its thread is read, one helix over the depth Q201 (a named default{}); its countersinking{} is not modelled",
+                def.number,
+                if def.number == 265 { ", climb milling" } else { "" },
+                if def.number == 263 { "" } else { " and drilling" }
+            ),
+        );
+    }
     let comp = if ccw != external { 1 } else { 2 };
     // Inside, the cutter enters from the centre; outside, from a radius further out; the half
     // circles in and out turn the other way round outside, so that they meet the helix

@@ -204,7 +204,7 @@ impl Dialect {
             Dialect::Okuma => "G33 and the compound cycles G71 and G72",
             Dialect::Mitsubishi | Dialect::Mazak => "G32, G92 and G76 (the Fanuc model)",
             Dialect::Heidenhain => "G31 and G33",
-            Dialect::Klartext => "turned threads: a Klartext program taps (cycles 206, 207, 209) and mills threads (262, 267, CP helices) instead",
+            Dialect::Klartext => "turned threads: a Klartext program taps (cycles 206, 207, 209) and mills threads (262 to 265, 267, CP helices) instead",
         }
     }
 }
