@@ -945,14 +945,11 @@ fn mill_holes(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Result<(), Error
     }
     let (dx, dy) = (xw.unwrap_or(0.0), yw.unwrap_or(0.0));
     let (mut x, mut y) = (m.x, m.y);
-    if m.polar.is_some() && (xw.is_some() || yw.is_some()) {
-        // G16: the radius and angle (remembered by `modal`) about the work zero.
-        let (px, py, _) = m.target(b);
-        x = px;
-        y = py;
-    } else if m.absolute {
-        x = xw.map(|v| v + m.offset[0]).or(x);
-        y = yw.map(|v| v + m.offset[1]).or(y);
+    if m.absolute {
+        // The block's target, as every move reads it (G16's radius and angle included).
+        let (tx, ty, _) = m.target(b);
+        x = tx.or(x);
+        y = ty.or(y);
     }
     let holes = if m.absolute { repeats.min(1) } else { repeats };
     for _ in 0..holes {

@@ -236,8 +236,12 @@ struct St<'a> {
     holes: Vec<HoleCycle>,
     moves: Vec<Move>,
     notes: Vec<Note>,
-    past: HashMap<String, usize>,
+    /// What was read past (each named once), the blocks that held it, and the last such line.
+    past: std::collections::HashSet<String>,
     read_past_blocks: usize,
+    past_last_line: usize,
+    /// The first line at which the toolpath passed its bound (the program is refused there).
+    moves_overflow: Option<usize>,
     stock_bottom: Option<(f64, usize)>,
 }
 
@@ -247,12 +251,13 @@ impl St<'_> {
     }
 
     fn read_past(&mut self, line: usize, col: usize, what: &str, why: &str) {
-        self.read_past_blocks += 1;
-        if let Some(&k) = self.past.get(what) {
-            let _ = k;
+        if self.past_last_line != line {
+            self.read_past_blocks += 1;
+            self.past_last_line = line;
+        }
+        if !self.past.insert(what.to_string()) {
             return;
         }
-        self.past.insert(what.to_string(), self.notes.len());
         self.notes.push(
             Note::at(self.file, line, col, format!("{what} read past: {why}")).of_kind(NoteKind::ReadPast),
         );
@@ -298,7 +303,9 @@ impl St<'_> {
 
     fn push_move(&mut self, rapid: bool, to: [f64; 3], arc: Option<([f64; 2], f64, u32)>, line: usize) {
         let from = self.pos;
-        if self.known.iter().all(|k| *k) && self.moves.len() < crate::ground::bounds::MAX_IMPRINTS {
+        if self.moves.len() >= crate::ground::bounds::MAX_IMPRINTS {
+            self.moves_overflow.get_or_insert(line);
+        } else if self.known.iter().all(|k| *k) {
             let a = self.to_work(from);
             let b = self.to_work(to);
             let arc_w = arc.map(|(c, d, _)| {
@@ -381,8 +388,10 @@ pub(crate) fn read(
         holes: Vec::new(),
         moves: Vec::new(),
         notes: Vec::new(),
-        past: HashMap::new(),
+        past: std::collections::HashSet::new(),
         read_past_blocks: 0,
+        past_last_line: 0,
+        moves_overflow: None,
         stock_bottom: None,
     };
     let budget = opts.budget.unwrap_or_default();
@@ -431,7 +440,13 @@ pub(crate) fn read(
         }
         pc = next;
     }
-    // A subprogram section the main program never calls.
+    if let Some(line) = st.moves_overflow {
+        return Err(perr((
+            line,
+            1,
+            format!("the program moves more than {} times", crate::ground::bounds::MAX_IMPRINTS),
+        )));
+    }
     let notes_units = (!st.units_set).then(|| {
         format!(
             "{file}:1: the program has no BEGIN PGM … MM|INCH line: read in {}",
@@ -1514,7 +1529,7 @@ fn mill(
         let n = (depth / h - 1e-9).ceil().max(1.0) as usize;
         (0..n).map(|k| (bottom + k as f64 * h, bottom + k as f64 * h + lead)).collect()
     };
-    let saved = (st.comp, st.cc);
+    let saved_comp = st.comp;
     let clear = top + q(200).abs() * s;
     let c = [p[0], p[1]];
     st.comp = 0;
@@ -1583,7 +1598,6 @@ fn mill(
         st.comp = 0;
     }
     st.push_move(true, [last[0], last[1], clear], None, line);
-    st.comp = saved.0;
-    st.cc = saved.1;
+    st.comp = saved_comp;
     Ok(())
 }

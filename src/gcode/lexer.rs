@@ -1013,10 +1013,7 @@ fn sinumerik_line(line: &str, ln: usize, main_ended: bool, out: &mut Vec<Block>)
     }
     // A subprogram called by a name of letters starts with that name alone on its line after
     // the main program too (`THRSUB`), as `L9` does.
-    if main_ended
-        && is_sinumerik_program_name(bare)
-        && !SINUMERIK_BARE_WORDS.contains(&bare.to_ascii_uppercase().as_str())
-    {
+    if main_ended && sinumerik_named_call(&bare.to_ascii_uppercase()) {
         out.push(Block { line: ln, col: 1, header: Some(bare.to_ascii_uppercase()), ..Block::default() });
         return Ok(());
     }
@@ -1108,16 +1105,27 @@ fn sinumerik_line(line: &str, ln: usize, main_ended: bool, out: &mut Vec<Block>)
     Ok(())
 }
 
-/// The bare words (no value) a Sinumerik program writes that threadcheck models: never a
-/// subprogram's name.
-pub(crate) const SINUMERIK_BARE_WORDS: [&str; 14] = [
-    "DIAMON", "DIAMOF", "MCALL", "RET", "M30", "M17", "TRANS", "ATRANS", "ROT", "AROT", "MIRROR", "AMIRROR",
-    "SCALE", "ASCALE",
-];
+/// The bare words (no value) a Sinumerik program writes that threadcheck models, besides the
+/// frames: never a subprogram's name.
+const SINUMERIK_BARE_WORDS: [&str; 6] = ["DIAMON", "DIAMOF", "MCALL", "RET", "M30", "M17"];
+
+/// The frame statements: substitutive (`TRANS`, `ROT`, `MIRROR`, `SCALE`: the programmable frame
+/// anew) and additive (`ATRANS`, `AROT`, …: onto the frame in force). Siemens, SINUMERIK 808D
+/// Programming (Milling) p.56; SINUMERIK ONE NC programming p.309.
+pub(crate) const SINUMERIK_FRAMES: [&str; 8] =
+    ["TRANS", "ATRANS", "ROT", "AROT", "MIRROR", "AMIRROR", "SCALE", "ASCALE"];
+
+/// Whether a Sinumerik bare word (`THRSUB`, upper case) is read as a call of the subprogram of
+/// that name: a program name that is no word threadcheck models.
+pub(crate) fn sinumerik_named_call(name: &str) -> bool {
+    is_sinumerik_program_name(name)
+        && !SINUMERIK_BARE_WORDS.contains(&name)
+        && !SINUMERIK_FRAMES.contains(&name)
+}
 
 /// A Sinumerik program name: a letter or `_`, then letters, digits and `_`, at least two
 /// characters (Siemens' rule for program names; `L` and digits alone are the old numbered form).
-pub(crate) fn is_sinumerik_program_name(s: &str) -> bool {
+fn is_sinumerik_program_name(s: &str) -> bool {
     s.len() >= 2
         && s.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
         && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')

@@ -75,9 +75,7 @@ pub(crate) fn decide(
     if let Some(t) = given {
         let source = by.map_or("‹machine_type›".to_string(), |f| format!("the machine file {f}"));
         if t != MachineType::MillTurn {
-            if let Some((b, what)) =
-                blocks.iter().find_map(|b| evidence(b, dialect).filter(|e| e.0 != t).map(|e| (b, e.1)))
-            {
+            if let Some((b, _, what)) = first_showing(blocks, dialect, |m| m != t) {
                 return Err((
                     b.line,
                     b.col,
@@ -114,46 +112,49 @@ pub(crate) fn decide(
         | Dialect::Sinumerik
         | Dialect::LinuxCnc => {}
     }
-    let first = blocks.iter().find_map(|b| evidence(b, dialect).map(|e| (b, e)));
-    if let Some((b0, (t0, what0))) = &first {
-        if let Some((b1, what1)) =
-            blocks.iter().find_map(|b| evidence(b, dialect).filter(|e| e.0 != *t0).map(|e| (b, e.1)))
-        {
-            return read(
-                MachineType::MillTurn,
-                format!(
-                    "read as a mill-turn: line {} writes {what0} and line {} writes {what1}; each section is read by its plane, G18 as a lathe's, G17 and G19 as a machining centre's (‹machine_type› chooses otherwise)",
-                    b0.line, b1.line
-                ),
-            );
-        }
-    }
-    for b in blocks {
-        if let Some((t, what)) = evidence(b, dialect) {
-            return read(
-                t,
-                format!(
-                    "read as a {}: line {} writes {what} (‹machine_type› chooses otherwise)",
-                    match t {
-                        MachineType::Lathe => "lathe",
-                        MachineType::Mill => "machining centre",
-                        MachineType::MillTurn => "mill-turn",
-                    },
-                    b.line
-                ),
-            );
-        }
+    let Some((b0, t0, what0)) = first_showing(blocks, dialect, |_| true) else {
+        return read(
+            MachineType::Lathe,
+            "read as a lathe, the default: no block shows the machine (G17 or G18, a tool change, a drilling cycle's return level, …; ‹machine_type› chooses)".into(),
+        );
+    };
+    if let Some((b1, _, what1)) = first_showing(blocks, dialect, |m| m != t0) {
+        return read(
+            MachineType::MillTurn,
+            format!(
+                "read as a mill-turn: line {} writes {what0} and line {} writes {what1}; each section is read by its plane, G18 as a lathe's, G17 and G19 as a machining centre's (‹machine_type› chooses otherwise)",
+                b0.line, b1.line
+            ),
+        );
     }
     read(
-        MachineType::Lathe,
-        "read as a lathe, the default: no block shows the machine (G17 or G18, a tool change, a drilling cycle's return level, …; ‹machine_type› chooses)".into(),
+        t0,
+        format!(
+            "read as a {}: line {} writes {what0} (‹machine_type› chooses otherwise)",
+            match t0 {
+                MachineType::Lathe => "lathe",
+                MachineType::Mill => "machining centre",
+                MachineType::MillTurn => "mill-turn",
+            },
+            b0.line
+        ),
     )
+}
+
+/// The first block whose words show a machine `wanted` accepts, the machine and the words that
+/// show it.
+fn first_showing(
+    blocks: &[Block],
+    dialect: Dialect,
+    wanted: impl Fn(MachineType) -> bool,
+) -> Option<(&Block, MachineType, String)> {
+    blocks.iter().find_map(|b| evidence(b, dialect).filter(|e| wanted(e.0)).map(|e| (b, e.0, e.1)))
 }
 
 /// Whether a mill-turn program starts as a machining centre's: its first block that shows a
 /// machine shows one (else it starts as a lathe's).
 pub(crate) fn starts_as_mill(blocks: &[Block], dialect: Dialect) -> bool {
-    blocks.iter().find_map(|b| evidence(b, dialect)).is_some_and(|e| e.0 == MachineType::Mill)
+    first_showing(blocks, dialect, |_| true).is_some_and(|e| e.1 == MachineType::Mill)
 }
 
 /// The machine a block shows, if any, and the words that show it.

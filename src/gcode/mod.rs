@@ -781,7 +781,7 @@ fn missing_subs(blocks: &[lexer::Block], dialect: Dialect) -> Vec<String> {
             .iter()
             .flat_map(|b| &b.words)
             .filter_map(|w| match w.val {
-                lexer::WVal::Bare if sinumerik_named_call(&w.name) => Some(w.name.clone()),
+                lexer::WVal::Bare if lexer::sinumerik_named_call(&w.name) => Some(w.name.clone()),
                 _ if w.name == "L" => word_value(w)
                     .filter(|v| v.fract() == 0.0 && *v >= 0.0 && *v != 96.0 && *v != 97.0)
                     .map(|v| format!("L{}", v as i64)),
@@ -843,12 +843,6 @@ fn read_sub_files(
             names.push(shown);
         }
     }
-}
-
-/// Whether a Sinumerik bare word (`THRSUB`) is read as a call of the subprogram of that name:
-/// a program name that is no word threadcheck models.
-pub(crate) fn sinumerik_named_call(name: &str) -> bool {
-    lexer::is_sinumerik_program_name(name) && !lexer::SINUMERIK_BARE_WORDS.contains(&name)
 }
 
 /// A word's plain number, if it has one.
@@ -962,12 +956,6 @@ fn read(
         message,
     };
     if dialect == Dialect::Klartext {
-        let perr = |line: usize, column: usize, message: String| Error::Program {
-            file: file.to_string(),
-            line,
-            column,
-            message,
-        };
         if opts.machine_type == Some(MachineType::Lathe) {
             return Err(perr(
                 1,

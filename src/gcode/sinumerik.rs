@@ -33,11 +33,6 @@ struct HoleCall {
     col: usize,
 }
 
-/// The frame statements: substitutive (`TRANS`, `ROT`, `MIRROR`, `SCALE`: the programmable frame
-/// anew) and additive (`ATRANS`, `AROT`, …: onto the frame in force). Siemens, SINUMERIK 808D
-/// Programming (Milling) p.56; SINUMERIK ONE NC programming p.309.
-const FRAMES: [&str; 8] = ["TRANS", "ATRANS", "ROT", "AROT", "MIRROR", "AMIRROR", "SCALE", "ASCALE"];
-
 /// A frame statement on a machining centre (G17): `TRANS X… Y… Z…` sets the translation (and
 /// clears the rotation), `ATRANS` adds one in the frame in force, `ROT RPL=a` sets the rotation
 /// in the plane about the frame's origin (and clears the translation), `AROT RPL=a` adds to it;
@@ -169,7 +164,7 @@ fn pattern_points(m: &Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<Vec<(f64,
 /// A word written as a name alone (`THRSUB`, `SOFT`): no value, no arguments, and no word
 /// threadcheck models.
 fn is_bare_name(w: &RWord<'_>) -> bool {
-    w.args.is_none() && w.text.eq_ignore_ascii_case(w.name) && super::sinumerik_named_call(w.name)
+    w.args.is_none() && w.text.eq_ignore_ascii_case(w.name) && super::lexer::sinumerik_named_call(w.name)
 }
 
 /// A call's repetitions `P` (1 without): a whole number up to the bound.
@@ -248,7 +243,9 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Res
         ));
     }
     // A frame statement: its axis words are the frame's, not a move.
-    if let Some(w) = b.words.iter().find(|w| FRAMES.contains(&w.name) && w.args.is_none()) {
+    if let Some(w) =
+        b.words.iter().find(|w| super::lexer::SINUMERIK_FRAMES.contains(&w.name) && w.args.is_none())
+    {
         frame(m, b, w)?;
         return Ok(Flow::Next);
     }
