@@ -83,11 +83,16 @@ pub fn text(r: &TapReport) -> String {
 /// Each tapped hole's section: its cycle, tap and drill, its checks, its verdict and notes (what
 /// `tap` prints between its heading and its program verdict; `verify` prints it among the
 /// program's operations).
+/// A position as a program writes it, to the micrometre (a computed place, 34.641016, as 34.641).
+fn micron(v: f64) -> String {
+    fmt_num((v * 1000.0).round() / 1000.0)
+}
+
 /// A machining centre's hole's place, ` (X20 Y15)`, when both are known (a lathe's holes on the
 /// axis have no Y): the holes of one pattern cycle share its line.
 fn place(c: &crate::gcode::HoleCycle) -> String {
     match (c.x, c.y) {
-        (Some(x), Some(y)) => format!(" (X{} Y{})", fmt_num(x), fmt_num(y)),
+        (Some(x), Some(y)) => format!(" (X{} Y{})", micron(x), micron(y)),
         _ => String::new(),
     }
 }
@@ -225,7 +230,7 @@ pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
                     c.line,
                     c.tool.map_or(String::new(), |t| format!(", T{t}")),
                     match (c.x, c.y) {
-                        (Some(x), Some(y)) => format!(" at X{} Y{}", fmt_num(x), fmt_num(y)),
+                        (Some(x), Some(y)) => format!(" at X{} Y{}", micron(x), micron(y)),
                         _ => String::new(),
                     }
                 ),

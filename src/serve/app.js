@@ -263,7 +263,7 @@ $("verify-form").addEventListener("submit", async (ev) => {
           const t = op.tap;
           const from = t.designation_from === "comment" ? ` (named by the comment at line ${t.designation_line})` : t.designation_from === "inferred" ? " (inferred from its lead and drill)" : "";
           // A machining centre's hole's place: the holes of one pattern cycle share its line.
-          const at = op.cycle.x !== null && op.cycle.y !== null ? ` (X${+op.cycle.x.toFixed(4)} Y${+op.cycle.y.toFixed(4)})` : "";
+          const at = op.cycle.x !== null && op.cycle.y !== null ? ` (X${+op.cycle.x.toFixed(3)} Y${+op.cycle.y.toFixed(3)})` : "";
           ops.appendChild(operationBlock(op, `Tapped: ${op.cycle.code} at line ${op.cycle.line}${at}, tap ${t.designation}${from}`, null));
           continue;
         }
