@@ -823,6 +823,54 @@ fn html_report_of_a_whole_program_shows_every_process() {
     assert!(zone > 500, "no tolerance zone seen ({zone} px)");
 }
 
+/// Issue 46: `verify --svg` of a program that makes threads of several processes draws every
+/// one (it drew the turned threads alone, and a program that taps and mills drew its taps
+/// alone): under the verdict's lines, each turned operation, then the tapped holes' picture and
+/// the milled thread's, each under a band naming it. Chromium paints the part (blue-grey) in
+/// the tapped holes' panels and the tolerance zone (green) in the milled section.
+#[test]
+fn program_svg_draws_every_process() {
+    for (program, tools, turned, code) in [
+        ("machining/fanuc-mixed.nc", "machining/fanuc-mixed.toml", true, 1),
+        ("whole/plate.nc", "whole/plate-tools.toml", false, 0),
+    ] {
+        let dir = tempdir("svg-whole");
+        let svg_path = dir.join("p.svg");
+        let o = run(&[
+            "verify",
+            "--program",
+            data(program).to_str().unwrap(),
+            "--tools",
+            data(tools).to_str().unwrap(),
+            "--svg",
+            svg_path.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(code), "{program}: {}", stderr(&o));
+        let svg = std::fs::read_to_string(&svg_path).unwrap();
+        assert_eq!(svg.contains("id=\"operation-1\""), turned, "{program}");
+        assert!(svg.contains("tapped: 4 tapping cycles: IN TOLERANCE"), "{program}: the tapped line");
+        assert!(svg.contains("milled: M20X1.5-6H: "), "{program}: the milled line");
+        assert_eq!(svg.matches("<g id=\"hole-").count(), 4, "{program}: four tap panels");
+        let n = |id: &str, k: &str| attr(tag_of(&svg, id), k).unwrap().parse::<f64>().unwrap();
+        let tapped = (n("tapped", "y"), n("tapped", "y") + n("tapped", "height"));
+        let milled = (n("milled", "y"), n("milled", "y") + n("milled", "height"));
+        assert!(tapped.1 <= milled.0, "{program}: the pictures overlap");
+        let (w, h) = svg_size(&svg);
+        assert!((milled.1 - h as f64).abs() < 1.0, "{program}: the milled picture ends the SVG");
+        let shot = screenshot(&svg_path, w, h);
+        let count = |(y0, y1): (f64, f64), f: &dyn Fn([u8; 3]) -> bool| {
+            (y0 as usize..(y1 as usize).min(shot.h))
+                .flat_map(|y| (0..shot.w).map(move |x| (x, y)))
+                .filter(|&(x, y)| f(shot.at(x, y)))
+                .count()
+        };
+        let part = |[r, g, b]: [u8; 3]| b > 190 && r < 200 && g < 215 && b > r + 20;
+        let zone = |p: [u8; 3]| zone_over_material(p) || zone_over_air(p);
+        assert!(count(tapped, &part) > 5000, "{program}: no part painted in the tap panels");
+        assert!(count(milled, &zone) > 500, "{program}: no tolerance zone in the milled section");
+    }
+}
+
 /// Issue 46 on the page, in Chromium: a pasted program that turns M24x2 and taps M8, the thread
 /// field left empty: each operation's block names its thread and the comment it came from, the
 /// tapped hole its four checks, with no console message (the field was `required`, so the page

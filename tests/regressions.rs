@@ -1181,3 +1181,22 @@ fn regression_block_delete_is_a_stated_switch() {
     let o = run_in(&dir, &["verify", ".", "--dialect", "fanuc", "--block-delete", "--insert", "full"]);
     assert!(stdout(&o).starts_with("./bd.nc:7: "), "{}", stdout(&o));
 }
+
+/// Issue 46: `thread-mill` (and `verify`'s milled section) read a mill-turn program as a
+/// machining centre's toolpath, so the turning section's G76 threading cycle was said to be "a
+/// drilling, tapping or boring cycle" read past. A milling toolpath of a program that shows
+/// both machines is read as a mill-turn's: its G18 section as a lathe's.
+#[test]
+fn regression_thread_mill_reads_a_mill_turn_program_as_one() {
+    let o = run(&[
+        "thread-mill",
+        "--program",
+        data("machining/fanuc-mixed.nc").to_str().unwrap(),
+        "--tools",
+        data("machining/fanuc-mixed.toml").to_str().unwrap(),
+    ]);
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(!out.contains("G76 read past"), "{out}");
+    assert!(out.contains("G84 read past (4 times)"), "{out}");
+}

@@ -56,6 +56,13 @@ pub struct MachineReading {
     pub reason: String,
 }
 
+/// Why a program is read as a mill-turn: the first block of each machine.
+fn mill_turn_reason(l0: usize, what0: &str, l1: usize, what1: &str) -> String {
+    format!(
+        "read as a mill-turn: line {l0} writes {what0} and line {l1} writes {what1}; each section is read by its plane, G18 as a lathe's, G17 and G19 as a machining centre's (‹machine_type› chooses otherwise)"
+    )
+}
+
 /// What decides the machine: `given` (the caller's choice, or the machine file's `type`, named
 /// by `by`), a milling toolpath (`moves`), the program's own evidence (a block whose words only
 /// one kind of machine writes: both kinds make it a mill-turn program), else the dialect's
@@ -69,6 +76,20 @@ pub(crate) fn decide(
     moves: bool,
 ) -> Result<MachineReading, (usize, usize, String)> {
     let read = |machine_type, reason: String| Ok(MachineReading { machine_type, reason });
+    // A milling toolpath is a machining centre's unless the program turns too (a mill-turn
+    // program's turning sections are read as a lathe's, so a lathe cycle is not taken for a
+    // mill's drilling cycle).
+    let evidence_read = matches!(
+        dialect,
+        Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak | Dialect::Sinumerik | Dialect::LinuxCnc
+    );
+    if moves && given.is_none() && evidence_read {
+        if let Some((b0, t0, what0)) = first_showing(blocks, dialect, |_| true) {
+            if let Some((b1, _, what1)) = first_showing(blocks, dialect, |m| m != t0) {
+                return read(MachineType::MillTurn, mill_turn_reason(b0.line, &what0, b1.line, &what1));
+            }
+        }
+    }
     if moves && given != Some(MachineType::MillTurn) {
         return read(MachineType::Mill, "read as a milling toolpath (G17, X and Y in the plane)".into());
     }
@@ -119,13 +140,7 @@ pub(crate) fn decide(
         );
     };
     if let Some((b1, _, what1)) = first_showing(blocks, dialect, |m| m != t0) {
-        return read(
-            MachineType::MillTurn,
-            format!(
-                "read as a mill-turn: line {} writes {what0} and line {} writes {what1}; each section is read by its plane, G18 as a lathe's, G17 and G19 as a machining centre's (‹machine_type› chooses otherwise)",
-                b0.line, b1.line
-            ),
-        );
+        return read(MachineType::MillTurn, mill_turn_reason(b0.line, &what0, b1.line, &what1));
     }
     read(
         t0,

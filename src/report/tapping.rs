@@ -183,6 +183,11 @@ const TAP_PANELS: usize = 4;
 /// dimensioned across the plain bore (red when out of D1), the tap's and the drill's bottoms,
 /// the checks with their limits, and the drill that would pass.
 pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
+    tap_document(r).0.to_string()
+}
+
+/// The tap picture as a document with its width and height, for a program's picture to stack.
+pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document, f64, f64) {
     use super::kit::text;
     use crate::analysis::tapping::TapFeature;
     use crate::ground::fmt::fmt_num;
@@ -504,7 +509,7 @@ pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
         foot = format!("{foot}; {} more tapping cycles in the text and JSON", r.holes.len() - shown.len());
     }
     doc = doc.add(text(20.0, h - 14.0, 11.0, foot).set("fill", "#555"));
-    doc.to_string()
+    (doc, w, h)
 }
 
 /// `threadcheck tap --html`: one self-contained page: the verdict, the holes' sections, and per

@@ -181,6 +181,12 @@ impl<'a> ThreadMillJson<'a> {
 /// dimensioned with their values and limits (red with the deviation when out); below it, the
 /// helix's widening of the groove (radial µm) against the same Z.
 pub fn threadmill_svg(r: &crate::analysis::threadmill::ThreadMillReport) -> String {
+    threadmill_document(r).0.to_string()
+}
+
+/// The thread-milling picture as a document with its width and height, for a program's picture
+/// to stack.
+pub(crate) fn threadmill_document(r: &crate::analysis::threadmill::ThreadMillReport) -> (Document, f64, f64) {
     use super::kit::text;
     use crate::ground::fmt::fmt_num;
     let w = 900.0;
@@ -389,7 +395,7 @@ pub fn threadmill_svg(r: &crate::analysis::threadmill::ThreadMillReport) -> Stri
         .add(labels)
         .add(legend)
         .add(wid);
-    doc.to_string()
+    (doc, w, h)
 }
 
 /// The thread-milling page: the verdict, the distortion, the section, the checks, the helices

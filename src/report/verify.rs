@@ -1269,14 +1269,13 @@ pub(crate) const WIDTH: f64 = 1100.0;
 
 /// The SVG of every operation of a program, one section each, stacked.
 pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String {
-    // A program that turns nothing: the picture of what it makes (the tapped holes first).
+    use crate::analysis::whole::Milled;
+    // A program that makes one kind of thread other than turned: that kind's own picture.
     if pv.operations.is_empty() {
         match (&pv.tapped, &pv.milled) {
-            (Some(t), _) => return crate::report::tapping::tap_svg(t),
-            (None, Some(crate::analysis::whole::Milled::Checked(r))) => {
-                return crate::report::threadmill::threadmill_svg(r)
-            }
-            (None, Some(crate::analysis::whole::Milled::NotChecked { .. }) | None) => {}
+            (Some(t), None | Some(Milled::NotChecked { .. })) => return crate::report::tapping::tap_svg(t),
+            (None, Some(Milled::Checked(r))) => return crate::report::threadmill::threadmill_svg(r),
+            _ => {}
         }
     }
     // The program's verdict first, one line per operation, then each operation's section.
@@ -1329,6 +1328,39 @@ pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String 
             y += 17.0;
         }
     }
+    // The tapped holes and the milled thread after the turned operations, a line each.
+    let mut more = Vec::new();
+    if let Some(t) = &pv.tapped {
+        let n = t.holes.len();
+        let line = format!(
+            "tapped: {n} tapping cycle{}: {}",
+            if n == 1 { "" } else { "s" },
+            if t.pass { "IN TOLERANCE" } else { "OUT OF TOLERANCE" }
+        );
+        let (d, w, h) = crate::report::tapping::tap_document(t);
+        more.push((line, t.pass, "tapped", Some((d, w, h))));
+    }
+    match &pv.milled {
+        Some(Milled::Checked(r)) => {
+            let line = format!(
+                "milled: {}: {}",
+                r.designation,
+                if r.pass { "IN TOLERANCE" } else { "OUT OF TOLERANCE" }
+            );
+            let (d, w, h) = crate::report::threadmill::threadmill_document(r);
+            more.push((line, r.pass, "milled", Some((d, w, h))));
+        }
+        Some(Milled::NotChecked { line, reason }) => {
+            more.push((format!("milled: helices from line {line}: NOT CHECKED: {reason}"), false, "milled", None));
+        }
+        None => {}
+    }
+    for (line, pass, _, _) in &more {
+        for l in wrap(line, 125).into_iter().take(2) {
+            head = head.add(text(20.0, y, 13.0, l).set("fill", if *pass { "#1d7a36" } else { FAIL }));
+            y += 17.0;
+        }
+    }
     y += 12.0;
     let mut doc = Document::new()
         .add(Rectangle::new().set("width", WIDTH).set("height", y).set("fill", "white"))
@@ -1375,7 +1407,22 @@ pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String 
         doc = doc.add(g);
         y += h;
     }
-    doc.set("viewBox", (0, 0, WIDTH, y)).set("width", WIDTH).set("height", y).to_string()
+    // Each other process's own picture under a band that names it, as drawn on its own.
+    let width = more.iter().filter_map(|m| m.3.as_ref()).map(|p| p.1).fold(WIDTH, f64::max);
+    for (line, _, id, picture) in more {
+        let Some((d, _, h)) = picture else { continue };
+        doc = doc.add(
+            Group::new()
+                .set("id", format!("{id}-band"))
+                .set("transform", format!("translate(0,{y})"))
+                .add(Rectangle::new().set("width", width).set("height", 34).set("fill", "#eef1f5"))
+                .add(text(20.0, 23.0, 15.0, shorten(&line, 120)).set("font-weight", "bold")),
+        );
+        y += 34.0;
+        doc = doc.add(d.set("id", id).set("x", 0).set("y", y));
+        y += h;
+    }
+    doc.set("viewBox", (0, 0, width, y)).set("width", width).set("height", y).to_string()
 }
 
 /// The verdict in a machinist's words.
