@@ -451,3 +451,76 @@ fn multi_start_thread_milling_checks_its_starts() {
     );
     assert_eq!(v["verdict"], "fail");
 }
+
+/// Issue 46: taper thread milling. `npt-half-internal.nc` mills a 1/2-14 NPT fitting (its
+/// comment names it) with a sharp Ø10 60° cutter in 40 quarter-turn arcs, each ending off its
+/// start's circle: the cutter centre's radius is R(Z) = (E1 + Z/16 + H)/2 − 5 with ASME B1.20.1's
+/// E1 = 0.77843 in = 19.772122 mm at the face (Z0), P = 25.4/14 and H = 0.866025·P: the sharp
+/// V's apex on the basic cone's sharp root. Hand values: the helices taper 2·(1/32) = 1/16 on the
+/// diameter per mm; measured four pitches into the fitting (Z−7.2571) the basic cone's pitch
+/// diameter is E1 − 4P/16 = 19.318551 mm, which the tooth profile alone cuts (to 1 µm: the
+/// groove's width is taken along the cone, 0.5 µm off a radial reading) with flanks of 30° to
+/// the axis. The gauge plane stands (D2 − 19.318551)/(P/16) turns in, and a path 0.1 mm out on
+/// the radius moves it 0.2/(P/16) = 1.7638 turns further: out of ±1 turn. The spiral arcs with a
+/// parallel designation are refused, naming the taper: 10 turns rise 10·P = 18.1429 mm and
+/// widen the radius by 18.1429/32 = 0.567 mm.
+#[test]
+fn a_taper_thread_milled_on_its_cone_is_gauged_at_its_gauge_plane() {
+    let p = 25.4 / 14.0;
+    let check = |v: &serde_json::Value, f: &str| {
+        v["checks"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|c| c["feature"] == f)
+            .unwrap_or_else(|| panic!("{f}: {v}"))
+            .clone()
+    };
+    let run_npt = |name: &str| {
+        let o = run(&[
+            "thread-mill",
+            "--program",
+            data(&format!("programs/threadmill/{name}")).to_str().unwrap(),
+            "--cutter-diameter",
+            "10",
+            "--json",
+            "-",
+        ]);
+        assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()
+    };
+    let mut turns = Vec::new();
+    for (name, shift, pass) in
+        [("npt-half-internal.nc", 0.0, "pass"), ("npt-half-internal-large.nc", 0.2, "fail")]
+    {
+        let v = run_npt(name);
+        assert_eq!(v["kind"], "internal", "{name}");
+        assert_eq!(v["verdict"], pass, "{name}");
+        let tooth = v["tooth_profile"]["pitch_diameter"].as_f64().unwrap();
+        assert!((tooth - (19.318551 + shift)).abs() < 1e-3, "{name}: tooth D2 {tooth}");
+        for a in v["tooth_profile"]["flank_angles"].as_array().unwrap() {
+            assert!((a.as_f64().unwrap() - 30.0).abs() < 2e-3, "{name}: {a}");
+        }
+        let taper = check(&v, "taper")["value"].as_f64().unwrap();
+        assert!((taper - 1.0 / 16.0).abs() < 2e-5, "{name}: taper {taper}");
+        let d2 = v["measured"]["pitch_diameter"].as_f64().unwrap();
+        let t = check(&v, "gauge_plane")["value"].as_f64().unwrap();
+        assert!((t - (d2 - 19.318551) / (p / 16.0)).abs() < 0.01, "{name}: {t} turns at D2 {d2}");
+        turns.push(t);
+    }
+    assert!((turns[1] - turns[0] - 0.2 / (p / 16.0)).abs() < 0.01, "{turns:?}");
+    // The same spirals named as a parallel thread: refused at the first arc, the taper named.
+    let o = run(&[
+        "thread-mill",
+        "--program",
+        data("programs/threadmill/npt-half-internal.nc").to_str().unwrap(),
+        "--cutter-diameter",
+        "10",
+        "--thread",
+        "M20x1.5-6H",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = one_line_error(&o);
+    assert!(e.contains("npt-half-internal.nc:10:1: the helices from here spiral one way along Z, their radius growing 0.567 mm over 18.1429 mm of Z (a taper of 1:16 on the diameter)"), "{e}");
+    assert!(e.contains("name the taper thread (NPT, ISO 7-1 R/Rc)"), "{e}");
+}

@@ -153,24 +153,42 @@ impl Zone<'_> {
             ThreadKind::External => ProfileKind::Basic,
             ThreadKind::Internal => ProfileKind::Nut,
         };
-        let basic = shifted_profile(
-            self,
-            basic_variant,
-            self.thread.pitch_diameter(),
-            self.groove_center,
-            span,
-            None,
-        );
+        let basic = shifted_profile(self, basic_variant, self.basic_d2(), self.groove_center, span, None);
         (basic, zone_profiles(self, span))
+    }
+
+    /// The basic pitch diameter where the groove is: a taper thread's basic cone's there (the
+    /// face at Z0, the thread going −Z), else the thread's.
+    fn basic_d2(&self) -> f64 {
+        match self.limits.gauge_plane {
+            Some(gp) => {
+                let depth = -self.groove_center - gp.distance;
+                match self.kind {
+                    ThreadKind::External => gp.pitch_diameter + depth * gp.taper,
+                    ThreadKind::Internal => gp.pitch_diameter - depth * gp.taper,
+                }
+            }
+            None => self.thread.pitch_diameter(),
+        }
     }
 }
 
 /// The maximum- and minimum-material profiles over `zr`.
 fn zone_profiles(v: &Zone<'_>, zr: (f64, f64)) -> Option<(Vec<Point>, Vec<Point>)> {
     let l = v.limits;
-    let (mmc_d2, lmc_d2) = match v.kind {
-        ThreadKind::External => (l.pitch_diameter.max, l.pitch_diameter.min),
-        ThreadKind::Internal => (l.pitch_diameter.min, l.pitch_diameter.max),
+    let (mmc_d2, lmc_d2) = match (l.gauge_plane, v.kind) {
+        // A taper thread's zone: the gauge's turns either way, on the diameter where the groove
+        // is (the gauge plane moves one turn for P·taper of pitch diameter).
+        (Some(gp), kind) => {
+            let band = gp.tolerance_turns * v.thread.pitch * gp.taper;
+            let d2 = v.basic_d2();
+            match kind {
+                ThreadKind::External => (Some(d2 + band), Some(d2 - band)),
+                ThreadKind::Internal => (Some(d2 - band), Some(d2 + band)),
+            }
+        }
+        (None, ThreadKind::External) => (l.pitch_diameter.max, l.pitch_diameter.min),
+        (None, ThreadKind::Internal) => (l.pitch_diameter.min, l.pitch_diameter.max),
     };
     let (a, b) = (mmc_d2?, lmc_d2?);
     let (mmc_variant, lmc_variant, lmc_crest) = match v.kind {

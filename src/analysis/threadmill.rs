@@ -188,7 +188,6 @@ fn helices(
     notes: &mut Vec<String>,
 ) -> Result<Vec<Helix>, Error> {
     let mut out = Vec::new();
-    let mut rounded = Vec::new();
     // Counted before any is measured: 1.9 million turns took 14 s to end in an error.
     let mut turns = 0.0f64;
     for mv in moves {
@@ -218,19 +217,14 @@ fn helices(
         let a1 = (mv.to[1] - c[1]).atan2(mv.to[0] - c[0]);
         let r0 = (mv.from[0] - c[0]).hypot(mv.from[1] - c[1]);
         let r1 = (mv.to[0] - c[0]).hypot(mv.to[1] - c[1]);
-        if (r0 - r1).abs() > RADIUS_ROUNDING || r0 < 1e-6 {
+        if r0 < 1e-6 || r1 < 1e-6 {
             return Err(Error::Program {
                 file: file.to_string(),
                 line: mv.line,
                 column: 1,
-                message: format!("a helix whose start and end radii differ ({r0:.4} and {r1:.4} mm), by more than a rounding ({RADIUS_ROUNDING} mm): not a thread-milling helix"),
+                message: "a helix that starts or ends on its own axis: not a thread-milling helix".into(),
             });
         }
-        if (r0 - r1).abs() > 1e-3 {
-            rounded.push(mv.line);
-        }
-        // Points written to a coarser rounding than the arc's centre: the mean radius.
-        let r0 = 0.5 * (r0 + r1);
         let mut sweep = dir * (a1 - a0);
         while sweep <= 1e-9 {
             sweep += std::f64::consts::TAU;
@@ -264,12 +258,70 @@ fn helices(
             centre: c,
             radius,
             programmed_radius: r0,
+            radius_change: r1 - r0,
             z: [mv.from[2], mv.to[2]],
             sweep_deg: dir * sweep.to_degrees(),
             lead,
             climb: false,
             angle_start: a0,
         });
+    }
+    Ok(main_axis(out, notes))
+}
+
+/// The helices of a parallel thread, each on one circle: an arc whose end lies up to a rounding
+/// off its start's circle (points written rounded) is measured at the mean of its two radii,
+/// said; one further off is refused at its line.
+fn circular(hs: Vec<Helix>, file: &str, notes: &mut Vec<String>) -> Result<Vec<Helix>, Error> {
+    // Helices that all widen one way along Z: a taper thread's, named as a parallel one.
+    let spirals = |h: &Helix| h.radius_change * (h.z[1] - h.z[0]);
+    let tapering = hs.iter().all(|h| spirals(h) > 0.0) || hs.iter().all(|h| spirals(h) < 0.0);
+    // Every arc off its circle the same way, adding up past a rounding: a spiral, not points
+    // written rounded (those scatter either way).
+    let (dr, dz) = hs.iter().fold((0.0, 0.0), |(r, z), h| (r + h.radius_change, z + (h.z[1] - h.z[0])));
+    if let (true, Some(first)) = (
+        tapering && hs.iter().all(|h| h.radius_change.abs() > 1e-3) && dr.abs() > RADIUS_ROUNDING,
+        hs.first(),
+    ) {
+        return Err(Error::Program {
+            file: file.to_string(),
+            line: first.line,
+            column: 1,
+            message: format!(
+                "the helices from here spiral one way along Z, their radius growing {} mm over {} mm of Z (a taper of 1:{} on the diameter): a taper thread's helices, not a parallel thread's; name the taper thread (NPT, ISO 7-1 R/Rc) in a comment or ‹thread›",
+                crate::ground::fmt::fmt_num((dr * 1e4).round() / 1e4),
+                crate::ground::fmt::fmt_num((dz * 1e4).round() / 1e4),
+                crate::ground::fmt::fmt_num(((dz / (2.0 * dr)).abs() * 10.0).round() / 10.0)
+            ),
+        });
+    }
+    let mut rounded = Vec::new();
+    let mut out = Vec::with_capacity(hs.len());
+    for mut h in hs {
+        let (r0, r1) = (h.programmed_radius, h.programmed_radius + h.radius_change);
+        if h.radius_change.abs() > RADIUS_ROUNDING {
+            return Err(Error::Program {
+                file: file.to_string(),
+                line: h.line,
+                column: 1,
+                message: format!(
+                    "a helix whose start and end radii differ ({r0:.4} and {r1:.4} mm), by more than a rounding ({RADIUS_ROUNDING} mm): not a parallel thread's helix{}",
+                    if tapering {
+                        "; the helices spiral one way along Z, as a taper thread's do: name the taper thread (NPT, ISO 7-1 R/Rc) in a comment or ‹thread›"
+                    } else {
+                        ""
+                    }
+                ),
+            });
+        }
+        if h.radius_change.abs() > 1e-3 {
+            rounded.push(h.line);
+        }
+        // Points written to a coarser rounding than the arc's centre: the mean radius.
+        h.radius += 0.5 * h.radius_change;
+        h.programmed_radius += 0.5 * h.radius_change;
+        h.radius_change = 0.0;
+        out.push(h);
     }
     if let Some(first) = rounded.first() {
         notes.push(format!(
@@ -281,7 +333,7 @@ fn helices(
             if rounded.len() == 1 { "its" } else { "their" }
         ));
     }
-    Ok(main_axis(out, notes))
+    Ok(out)
 }
 
 /// How far a helix arc's start and end radii may differ and still be read as one circle: points
@@ -526,7 +578,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         return Err(Error::Input(format!("compensation {d} mm must be a length ≥ 0")));
     }
     // The helices, read once: the thread's name may come from them.
-    let mut hs = helices(&prog.moves, name, comp, &mut notes)?;
+    let hs = helices(&prog.moves, name, comp, &mut notes)?;
     let named = match &spec.designation {
         Some(d) => crate::analysis::naming::Named::given(d),
         None => name_milled(text, spec.dialect, &hs, c.diameter, opts, name)?,
@@ -535,16 +587,40 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         notes.push(named.why.clone());
     }
     let des = parse_designation(&named.designation, opts)?;
-    let kind = if des.external.is_none() && des.internal.is_some() {
-        ThreadKind::Internal
-    } else {
-        ThreadKind::External
+    let kind = match (&des.external, &des.internal) {
+        (None, Some(_)) => ThreadKind::Internal,
+        (Some(_), None) | (None, None) => ThreadKind::External,
+        // Both sides named (an NPT size, `6H/6g`): the side the helices cut, inside the
+        // thread's diameter or outside it.
+        (Some(_), Some(_)) => {
+            let inside = hs.first().is_some_and(|h| 2.0 * h.radius < des.thread.nominal_diameter);
+            let kind = if inside { ThreadKind::Internal } else { ThreadKind::External };
+            notes.push(format!(
+                "{} names both sides: the helices run {} its diameter, so its {} thread is checked",
+                des.text,
+                if inside { "inside" } else { "outside" },
+                kind.name()
+            ));
+            kind
+        }
     };
     let internal = kind == ThreadKind::Internal;
     let limits =
         limits_for(&des, kind)?.ok_or_else(|| Error::Input("the designation needs its class".into()))?;
     let t = des.thread;
     let p = t.pitch;
+    // A taper thread's helices spiral along its cone; a parallel thread's lie on circles.
+    let taper = crate::analysis::verify::taper_of(&limits, kind, p);
+    let mut hs = match taper {
+        Some(_) => {
+            notes.push(crate::analysis::verify::TAPER_FACE_NOTE.into());
+            if hs.iter().any(|h| h.radius_change != 0.0) {
+                notes.push("each helix arc whose end lies off its start's circle is swept as a spiral, its radius linear in the angle (a named reading: the controls' spiral interpolation)".into());
+            }
+            hs
+        }
+        None => circular(hs, name, &mut notes)?,
+    };
     notes.extend(entry_and_exit(&prog.moves));
     if let Some(d) = comp {
         if hs.iter().any(|h| (h.radius - h.programmed_radius).abs() > 1e-12)
@@ -605,15 +681,27 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         Some(b) => b,
         None => {
             let lim = if internal { limits.minor_diameter } else { limits.major_diameter };
-            let b = match (lim.min, lim.max) {
-                (Some(a), Some(b)) => 0.5 * (a + b),
-                (Some(a), None) | (None, Some(a)) => a,
-                (None, None) => t.nominal_diameter,
+            let (b, from) = match (lim.min, lim.max) {
+                (Some(a), Some(b)) => (0.5 * (a + b), "the middle of the class's"),
+                (Some(a), None) | (None, Some(a)) => (a, "the class's"),
+                // A taper thread: the basic cone's diameter at its gauge plane, a cylinder (as
+                // `verify` turns it).
+                (None, None) if internal => {
+                    (t.minor_diameter_internal(), "a cylinder at the gauge plane's basic")
+                }
+                (None, None) => (t.nominal_diameter, "a cylinder at the gauge plane's basic"),
             };
             notes.push(format!(
-                "the {} is taken as Ø{b:.4}, the middle of the class's {} limits (‹blank_diameter› sets it)",
+                "the {} is taken as Ø{b:.4}, {from} {}{} (‹blank_diameter› sets it)",
                 if internal { "bore" } else { "blank" },
-                if internal { "D1" } else { "d" }
+                if internal { "D1" } else { "d" },
+                if lim.min.is_some() && lim.max.is_some() {
+                    " limits"
+                } else if lim.min.is_some() || lim.max.is_some() {
+                    " limit"
+                } else {
+                    ""
+                }
             ));
             b
         }
@@ -645,7 +733,29 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
             ),
         });
     }
-    let z_mid = 0.5 * (z_lo + z_hi);
+    // A taper thread is measured where its gauge would read it (the face at Z0), which the
+    // helices must cut two pitches either side of.
+    let z_mid = match taper {
+        Some((_, z_meas, _)) => {
+            if z_meas - 2.0 * p < z_lo - 1e-9 || z_meas + 2.0 * p > z_hi + 1e-9 {
+                return Err(Error::Program {
+                    file: name.clone(),
+                    line: first.line,
+                    column: 1,
+                    message: format!(
+                        "the helices (and the cutter's rows) span Z{} to Z{}: a taper thread is measured at Z{} ({}, the face taken at Z0), which they do not reach two pitches ({} mm) either side of",
+                        crate::ground::fmt::fmt_num(z_lo),
+                        crate::ground::fmt::fmt_num(z_hi),
+                        crate::ground::fmt::fmt_num(z_meas),
+                        if internal { "four pitches into the fitting" } else { "the gauge plane, L1 from the small end" },
+                        crate::ground::fmt::fmt_num(2.0 * p)
+                    ),
+                });
+            }
+            z_meas
+        }
+        None => 0.5 * (z_lo + z_hi),
+    };
     let n = 1600usize;
     let zs: Vec<f64> = (0..=n).map(|i| z_mid - 2.0 * p + 4.0 * p * i as f64 / n as f64).collect();
     // The section's cost is counted before it is cut (10 000 one-turn helices stacked
@@ -675,13 +785,18 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
                     (Some(r), false) => r.min(bound),
                     (None, _) => bound,
                 };
-                Point::new(z, v)
+                // A taper thread's section sheared level along its cone (its pitch line level).
+                Point::new(z, v - taper.map_or(0.0, |(_, _, slope)| slope * (z - z_mid)))
             })
             .collect()
     };
     let profile = section(false);
     let tooth = section(true);
-    let ms = MeasureSetup::for_class(&t, kind, &limits);
+    let ms = match taper {
+        // A taper thread's maximum material is its gauge plane's, not a parallel profile's.
+        Some(_) => MeasureSetup { mmc_pitch_diameter: None, ..MeasureSetup::for_class(&t, kind, &limits) },
+        None => MeasureSetup::for_class(&t, kind, &limits),
+    };
     // A section that holds no thread to measure is the helices' fault: said at their first line,
     // with the starts they cut when the designation has more.
     let phases = start_phases(&hs, t.lead());
@@ -733,10 +848,24 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         let (a, b) = (radius(2e-4)?, radius(1e-4)?);
         Some(if b < 0.75 * a { 0.0 } else { b })
     };
+    if let Some((_, _, slope)) = taper {
+        // The flanks as they stand to the axis (the section was sheared level along the cone).
+        measured.flank_angles = crate::analysis::verify::unsheared_flanks(measured.flank_angles, slope, kind);
+        tooth_m.flank_angles = crate::analysis::verify::unsheared_flanks(tooth_m.flank_angles, slope, kind);
+        notes.push("taper thread: measured along its cone (the section sheared level by the taper), the flank angles as they stand to the axis".into());
+    }
     measured.root_radius = root_of(&profile, false).or(measured.root_radius);
     tooth_m.root_radius = root_of(&tooth, true).or(tooth_m.root_radius);
     notes.push("the root radius is the envelope's curvature at its deepest point, from the cutter's exact reach (0.1 µm either side; 0 where it is a corner)".into());
-    let mut cs = checks(&measured, &limits, &t, kind, measured.root_pockets <= 1, None);
+    // A taper thread's cone: the gauge plane from the pitch diameter measured at Z{z_mid}, the
+    // taper from the helices' spiral (the diameter's change per mm of depth).
+    let cone = taper.map(|(gp, _, _)| {
+        let (dr, dz) = hs.iter().fold((0.0, 0.0), |(r, z), h| (r + h.radius_change, z + (h.z[1] - h.z[0])));
+        let measured_taper =
+            if dz.abs() > 1e-12 { 2.0 * dr / dz * if internal { 1.0 } else { -1.0 } } else { 0.0 };
+        crate::analysis::verify::cone_of(gp, kind, z_mid, measured.pitch_diameter, measured_taper, p)
+    });
+    let mut cs = checks(&measured, &limits, &t, kind, measured.root_pockets <= 1, cone);
     // The lead each turn cuts against the designation's, at the program's resolution.
     let lead_err =
         turn_leads(&hs)
@@ -833,7 +962,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         r.dedup_by(|a, b| (*a - *b).abs() < 1e-6);
         r
     };
-    if radii.len() > 1 {
+    if radii.len() > 1 && taper.is_none() {
         let steps: Vec<String> = radii.windows(2).map(|w| format!("{:.4}", w[1] - w[0])).collect();
         notes.push(format!(
             "{} radial passes; radial engagement between them {} mm",

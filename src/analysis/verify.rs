@@ -998,7 +998,7 @@ struct Given {
 /// A cut that leaves nothing to measure is an [`Error::Geometry`].
 /// A taper thread's cone where it is measured: its gauge plane, the measuring height (the gauge
 /// plane on an external thread, four pitches in on an internal one) and the cone's radial slope.
-type Taper = (crate::standards::tolerance::GaugePlane, f64, f64);
+pub(crate) type Taper = (crate::standards::tolerance::GaugePlane, f64, f64);
 
 /// What measuring a cut needs: the sweep's setup, the measurement's, and a taper thread's cone
 /// (measured along it: the section sheared so the cone's pitch line runs level).
@@ -1087,13 +1087,7 @@ fn gauge_cone(
     cut: &Cut,
     t: &crate::standards::BasicThread,
 ) -> Option<crate::analysis::check::Cone> {
-    let m = &cut.measurement;
     taper.map(|(gp, _, _)| {
-        let s_ref = -cut.z_ref;
-        let s_gp = match kind {
-            ThreadKind::External => s_ref + (gp.pitch_diameter - m.pitch_diameter) / gp.taper,
-            ThreadKind::Internal => s_ref + (m.pitch_diameter - gp.pitch_diameter) / gp.taper,
-        };
         let last = last_head(&cut.passes);
         let run = (last.z_end - last.z_start).abs();
         let measured_taper = if run > 0.0 {
@@ -1101,14 +1095,64 @@ fn gauge_cone(
         } else {
             0.0
         };
-        crate::analysis::check::Cone {
-            turns: (s_gp - gp.distance) / t.pitch,
-            tolerance_turns: gp.tolerance_turns,
-            taper: measured_taper,
-            nominal_taper: gp.taper,
-        }
+        cone_of(gp, kind, cut.z_ref, cut.measurement.pitch_diameter, measured_taper, t.pitch)
     })
 }
+
+/// A taper thread's cone as its gauge finds it: the pitch diameter measured at `z_ref` (the face
+/// at Z0, the thread going −Z) carried along the basic taper to the basic gauge diameter, its
+/// distance from the gauge plane's in turns of `pitch`; `measured_taper` the diameter's change per
+/// mm of depth the toolpath cuts (growing on a bolt, narrowing in a nut).
+pub(crate) fn cone_of(
+    gp: crate::standards::tolerance::GaugePlane,
+    kind: ThreadKind,
+    z_ref: f64,
+    pitch_diameter: f64,
+    measured_taper: f64,
+    pitch: f64,
+) -> crate::analysis::check::Cone {
+    let s_ref = -z_ref;
+    let s_gp = match kind {
+        ThreadKind::External => s_ref + (gp.pitch_diameter - pitch_diameter) / gp.taper,
+        ThreadKind::Internal => s_ref + (pitch_diameter - gp.pitch_diameter) / gp.taper,
+    };
+    crate::analysis::check::Cone {
+        turns: (s_gp - gp.distance) / pitch,
+        tolerance_turns: gp.tolerance_turns,
+        taper: measured_taper,
+        nominal_taper: gp.taper,
+    }
+}
+
+/// Where a taper thread's cone is measured (the gauge plane on an external thread, four pitches
+/// in on an internal one, the face at Z0) and its radial slope along Z: the section there is
+/// sheared level by it.
+pub(crate) fn taper_of(limits: &ThreadLimits, kind: ThreadKind, pitch: f64) -> Option<Taper> {
+    limits.gauge_plane.map(|gp| {
+        let (z_meas, slope_r) = match kind {
+            ThreadKind::External => (-gp.distance, -0.5 * gp.taper),
+            ThreadKind::Internal => (-4.0 * pitch, 0.5 * gp.taper),
+        };
+        (gp, z_meas, slope_r)
+    })
+}
+
+/// Flank angles measured on a section sheared level along a taper's cone (`slope_r`, the radius's
+/// change per mm of Z), as they stand to the thread's axis, where ASME B1.20.1 measures them: a
+/// flank of slope b′ (dZ per dR) in the sheared section has b′ / (1 + k·b′) on the axial one.
+pub(crate) fn unsheared_flanks(angles_deg: [f64; 2], slope_r: f64, kind: ThreadKind) -> [f64; 2] {
+    // The low-Z flank of a nut's groove rises outward with Z (b > 0), a bolt's inward.
+    let s_low = if kind == ThreadKind::Internal { 1.0 } else { -1.0 };
+    let one = |deg: f64, s: f64| {
+        let b = s * deg.to_radians().tan();
+        (b / (1.0 + slope_r * b)).abs().atan().to_degrees()
+    };
+    [one(angles_deg[0], s_low), one(angles_deg[1], -s_low)]
+}
+
+/// What a taper thread's measurement assumes of the part, said in its notes.
+pub(crate) const TAPER_FACE_NOTE: &str =
+    "taper thread: the face (the small end of an external thread, the opening of a fitting) is taken at Z0";
 
 /// The checks of a measured cut: sizes and form, a taper's gauge plane (stood off by the lead
 /// error's share), and the functional pitch diameter when the program's lead is off; with the
@@ -1162,15 +1206,9 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
     let t = des.thread;
     // A taper thread is measured along its cone: at the gauge plane (external, the face at Z0)
     // or four pitches in (internal), the section sheared so the cone's pitch line runs level.
-    let taper = limits.gauge_plane.map(|gp| {
-        let (z_meas, slope_r) = match kind {
-            ThreadKind::External => (-gp.distance, -0.5 * gp.taper),
-            ThreadKind::Internal => (-4.0 * t.pitch, 0.5 * gp.taper),
-        };
-        (gp, z_meas, slope_r)
-    });
+    let taper = taper_of(&limits, kind, t.pitch);
     if taper.is_some() {
-        notes.push("taper thread: the face (the small end of an external thread, the opening of a fitting) is taken at Z0".into());
+        notes.push(TAPER_FACE_NOTE.into());
     }
     // A taper thread's maximum-material check is its gauge plane's, not a parallel profile's.
     let parallel = MeasureSetup::for_class(&t, kind, &limits);

@@ -81,7 +81,12 @@ pub(crate) fn decide(
     // mill's drilling cycle).
     let evidence_read = matches!(
         dialect,
-        Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak | Dialect::Sinumerik | Dialect::LinuxCnc
+        Dialect::Fanuc
+            | Dialect::Haas
+            | Dialect::Mitsubishi
+            | Dialect::Mazak
+            | Dialect::Sinumerik
+            | Dialect::LinuxCnc
     );
     if moves && given.is_none() && evidence_read {
         if let Some((b0, t0, what0)) = first_showing(blocks, dialect, |_| true) {

@@ -201,6 +201,11 @@ pub struct Helix {
     pub radius: f64,
     /// The programmed path's distance from it, mm (the centre's, unless G41/G42 moves it).
     pub programmed_radius: f64,
+    /// How much the cutter centre's radius grows from the helix's start to its end, mm: 0 on a
+    /// circular helix; a taper thread's helix spirals, its radius linear in the angle (a named
+    /// reading of an arc whose end lies off its start's circle, as the controls' spiral
+    /// interpolation moves it).
+    pub radius_change: f64,
     /// Z at its start and end, mm.
     pub z: [f64; 2],
     /// Its sweep, degrees (positive counter-clockwise, G3).
@@ -269,13 +274,14 @@ pub(crate) fn reach(
             let psi = h.angle_start + dir * t;
             let (s, c) = psi.sin_cos();
             let rho = cutter.rho(z - zc(t), neck);
-            let q = rho * rho - h.radius * h.radius * s * s;
+            let radius = h.radius + h.radius_change * t / sweep;
+            let q = rho * rho - radius * radius * s * s;
             if q < 0.0 {
                 return None;
             }
             // The cutter covers r from R·cos ψ − √q to R·cos ψ + √q on the half-plane's line; of
             // a bolt it removes from the outside in, so only a chord reaching r > 0 counts.
-            let (lo, hi) = (h.radius * c - q.sqrt(), h.radius * c + q.sqrt());
+            let (lo, hi) = (radius * c - q.sqrt(), radius * c + q.sqrt());
             if internal {
                 Some(hi)
             } else if hi > 0.0 {

@@ -204,8 +204,15 @@ pub(crate) fn threadmill_document(r: &crate::analysis::threadmill::ThreadMillRep
     let mut material = r.profile.clone();
     material.push(Point::new(z1, edge));
     material.push(Point::new(z0, edge));
-    let (mut sec, mut body) =
-        panel(&f, "section", "the milled section over four pitches (axial, true to scale)");
+    let (mut sec, mut body) = panel(
+        &f,
+        "section",
+        if r.limits.gauge_plane.is_some() {
+            "the milled section over four pitches (axial, sheared level along the taper's cone)"
+        } else {
+            "the milled section over four pitches (axial, true to scale)"
+        },
+    );
     body = body
         .add(Group::new().set("id", "section-material").add(
             Polygon::new().set("points", f.points(&material)).set("fill", "#b8c7d9").set("stroke", "none"),

@@ -1351,7 +1351,12 @@ pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String 
             more.push((line, r.pass, "milled", Some((d, w, h))));
         }
         Some(Milled::NotChecked { line, reason }) => {
-            more.push((format!("milled: helices from line {line}: NOT CHECKED: {reason}"), false, "milled", None));
+            more.push((
+                format!("milled: helices from line {line}: NOT CHECKED: {reason}"),
+                false,
+                "milled",
+                None,
+            ));
         }
         None => {}
     }
