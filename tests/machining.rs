@@ -221,6 +221,28 @@ fn a_haas_bolt_circle_in_an_m97_subroutine_drills_and_taps_six_holes() {
     assert!(v["holes"].as_array().unwrap().iter().all(|h| h["pass"] == true));
 }
 
+/// Haas's holes along an angle, `G72 I15. J30. L4` from X10 Y5 after a drilling and a tapping
+/// cycle written with L0: four holes 15 mm apart on the 30° line, the first at the current point
+/// (the named default): (10 + 15k·cos 30°, 5 + 15k·sin 30°) for k = 0…3, i.e. (10, 5),
+/// (22.990381, 12.5), (35.980762, 20), (48.971143, 27.5); each drilled to Z−20 and tapped to
+/// Z−16 (F750 = S600 × 1.25), the default said.
+#[test]
+fn a_haas_line_of_holes_at_an_angle_is_drilled_and_tapped() {
+    let (code, v, e) = tap_file("haas-g72-line", &["--dialect", "haas"]);
+    assert_eq!(code, 0, "{e}");
+    assert_eq!(v["drills"], 4);
+    let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+    let got = holes(&v);
+    assert_eq!(got.len(), 4);
+    for (k, (x, y, bottom, line)) in got.into_iter().enumerate() {
+        let (wx, wy) = (10.0 + 15.0 * k as f64 * c, 5.0 + 15.0 * k as f64 * s);
+        assert!((x.unwrap() - wx).abs() < 1e-9 && (y.unwrap() - wy).abs() < 1e-9, "hole {k}: ({x:?}, {y:?})");
+        assert_eq!((bottom, line), (Some(-16.0), 14));
+    }
+    assert!(v["holes"].as_array().unwrap().iter().all(|h| h["pass"] == true));
+    assert!(v["notes"].to_string().contains("the first at the current point (a named default"), "{}", v["notes"]);
+}
+
 /// A bolt pattern with no drilling or tapping cycle in force has nothing to place: one located
 /// line.
 #[test]

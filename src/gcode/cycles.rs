@@ -339,7 +339,7 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                 return Err(m.err(b.line, col, "G51 (scaling) is not read: the positions under it would be wrong (G51.1, the mirror image, is)"));
             }
             // Haas's bolt-hole patterns on a mill (../shared/notes/machining-centres.md §2).
-            70 | 71 if d == Dialect::Haas && !m.lathe() => one_shot = Some(g),
+            70..=72 if d == Dialect::Haas && !m.lathe() => one_shot = Some(g),
             // A machining centre's G92: the current point gets the given coordinates.
             92 if fanuc_like && !m.lathe() => {
                 one_shot = Some(g);
@@ -622,7 +622,7 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
             m.skipped += 1;
             return Ok(());
         }
-        Some(g) if (g == 70.0 || g == 71.0) && m.dialect == Dialect::Haas && !m.lathe() => {
+        Some(g) if (g == 70.0 || g == 71.0 || g == 72.0) && m.dialect == Dialect::Haas && !m.lathe() => {
             return bolt_pattern(m, b, modal, g);
         }
         Some(g) if (70.0..=75.0).contains(&g) && m.dialect != Dialect::Sinumerik => {
@@ -787,7 +787,9 @@ fn record_hole(
 /// radius I about the current point (or the block's X Y), from J degrees counter-clockwise of
 /// +X, every 360°/L (G70; L's sign the direction) or every K degrees (G71), each made by the
 /// drilling or tapping cycle in force (YASNAC PCNC pp.4-33; helmancnc for G71; Haas inherits
-/// the Yasnac format, a named reading).
+/// the Yasnac format, a named reading); and the holes along an angle `G72 I J L`: L holes I apart
+/// on a line at J degrees from +X through the current point (YASNAC p.4-35), the first at that
+/// point (a named default, said: the pages read give the line, not whether its start is a hole).
 fn bolt_pattern(m: &mut Motion, b: &RBlock<'_>, modal: &Modal, g: f64) -> Result<(), Error> {
     let col = modal.col.unwrap_or(b.col);
     let name = format!("G{g}");
@@ -801,8 +803,8 @@ fn bolt_pattern(m: &mut Motion, b: &RBlock<'_>, modal: &Modal, g: f64) -> Result
     let need = |w: &str, what: &str| {
         b.get(w).map(|v| v.v).ok_or_else(|| m.err(b.line, col, format!("{name} needs {w}, {what}")))
     };
-    let radius = need("I", "the circle's radius")?;
-    let start = need("J", "the first hole's angle")?;
+    let radius = need("I", if g == 72.0 { "the distance between holes" } else { "the circle's radius" })?;
+    let start = need("J", if g == 72.0 { "the line's angle" } else { "the first hole's angle" })?;
     let count = need("L", "the number of holes")?;
     if count.fract() != 0.0 || count == 0.0 || count.abs() > 9999.0 {
         return Err(m.err(
@@ -811,7 +813,11 @@ fn bolt_pattern(m: &mut Motion, b: &RBlock<'_>, modal: &Modal, g: f64) -> Result
             format!("{name} L{count}: the number of holes is a whole number from 1 to 9999"),
         ));
     }
-    let step = if g == 70.0 { 360.0 / count } else { need("K", "the angle between holes")? };
+    let step = match g as u32 {
+        70 => 360.0 / count,
+        71 => need("K", "the angle between holes")?,
+        _ => 0.0,
+    };
     let centre = |axis: &str, now: Option<f64>| {
         b.get(axis).map(|w| m.len(w) + if axis == "X" { m.offset[0] } else { m.offset[1] }).or(now)
     };
@@ -827,8 +833,14 @@ fn bolt_pattern(m: &mut Motion, b: &RBlock<'_>, modal: &Modal, g: f64) -> Result
     let bottom = m.hole_modal.0;
     let mut last = (cx, cy);
     for i in 0..count.abs() as usize {
-        let a = (start + step * i as f64).to_radians();
-        last = (cx + r * a.cos(), cy + r * a.sin());
+        last = if g == 72.0 {
+            // Along the line: the first hole at the current point, each next I further.
+            let a = start.to_radians();
+            (cx + r * i as f64 * a.cos(), cy + r * i as f64 * a.sin())
+        } else {
+            let a = (start + step * i as f64).to_radians();
+            (cx + r * a.cos(), cy + r * a.sin())
+        };
         push_hole_at(m, b, modal, kind, (Some(last.0), Some(last.1)), bottom)?;
     }
     m.x = Some(last.0);
@@ -837,7 +849,11 @@ fn bolt_pattern(m: &mut Motion, b: &RBlock<'_>, modal: &Modal, g: f64) -> Result
         b.line,
         col,
         &name,
-        "a bolt-hole pattern: its holes are made by the cycle in force (threadcheck tap checks them)",
+        if g == 72.0 {
+            "holes along an angle: made by the cycle in force (threadcheck tap checks them), the first at the current point (a named default: the pages read give the line, not whether its start is a hole)"
+        } else {
+            "a bolt-hole pattern: its holes are made by the cycle in force (threadcheck tap checks them)"
+        },
     );
     Ok(())
 }
