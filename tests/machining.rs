@@ -240,7 +240,47 @@ fn a_haas_line_of_holes_at_an_angle_is_drilled_and_tapped() {
         assert_eq!((bottom, line), (Some(-16.0), 14));
     }
     assert!(v["holes"].as_array().unwrap().iter().all(|h| h["pass"] == true));
-    assert!(v["notes"].to_string().contains("the first at the current point (a named default"), "{}", v["notes"]);
+    assert!(
+        v["notes"].to_string().contains("the first at the current point (a named default"),
+        "{}",
+        v["notes"]
+    );
+}
+
+/// Work offsets: `fanuc-g10-fixtures.nc` sets G54's origin to X−400 Y−200, G55's and G54.1 P2's
+/// to X−250 Y−200 by G10 L2/L20, drills X20 Y10 in G54 with Ø6.8 (machine −380, −190) and in G55
+/// with Ø6.0 (machine −230, −190), then taps M8x1.25 four times. By hand: the G54 tap at X20 Y10
+/// is the Ø6.8 hole (passes, D1 6.647–6.912); the G55 tap at X20 Y10 is the Ø6.0 one (fails: it
+/// was matched to the last drill at X20 Y10 whatever its offset); the G54 tap at X170 Y10 lies at
+/// machine −230, −190, the G55 hole (fails); the G54.1 P2 tap at X20 Y10 too (fails).
+#[test]
+fn taps_find_their_drills_in_their_own_work_offsets() {
+    let (code, v, e) = tap_file("fanuc-g10-fixtures", &[]);
+    assert_eq!(code, 1, "{e}");
+    let hs = v["holes"].as_array().unwrap();
+    let got: Vec<(u64, f64, bool, String)> = hs
+        .iter()
+        .map(|h| {
+            (
+                h["drill"]["cycle"]["line"].as_u64().unwrap(),
+                h["drill"]["diameter"].as_f64().unwrap(),
+                h["pass"].as_bool().unwrap(),
+                h["cycle"]["work_offset"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect();
+    let want = [
+        (10, 6.8, true, "G54"),
+        (15, 6.0, false, "G55"),
+        (15, 6.0, false, "G54"),
+        (15, 6.0, false, "G54.1 P2"),
+    ];
+    for (g, w) in got.iter().zip(want) {
+        assert_eq!((g.0, g.1, g.2, g.3.as_str()), w, "{got:?}");
+    }
+    assert!(v["notes"]
+        .to_string()
+        .contains("G10 L20 P2 read past: sets G54.1 P2's origin in machine coordinates"));
 }
 
 /// A bolt pattern with no drilling or tapping cycle in force has nothing to place: one located

@@ -247,6 +247,19 @@ fn same(a: Option<f64>, b: Option<f64>) -> bool {
     }
 }
 
+/// Whether a drill and a tap are one hole: the same place in machine coordinates when the
+/// program set both work offsets' origins (G10), else the same place in work offsets that do not
+/// differ (a cycle before any G54… is in the machine's, which may be either).
+fn same_place(d: &crate::gcode::HoleCycle, h: &crate::gcode::HoleCycle) -> bool {
+    match (d.machine_xy, h.machine_xy) {
+        (Some(a), Some(b)) => (a.0 - b.0).abs() < 1e-3 && (a.1 - b.1).abs() < 1e-3,
+        _ => {
+            let offsets_differ = matches!((&d.work_offset, &h.work_offset), (Some(a), Some(b)) if a != b);
+            !offsets_differ && same(d.x, h.x) && same(d.y, h.y)
+        }
+    }
+}
+
 /// Reads the program's drilling and tapping cycles and checks each tapping cycle.
 ///
 /// ```
@@ -314,11 +327,8 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
         // The drill: the last drilling cycle before this tap at its position; its diameter from
         // the tool table, else (a program verified whole) from a comment at its cycle.
         let mut drill_note = None;
-        let drill = prog.holes[..i]
-            .iter()
-            .rev()
-            .find(|d| d.kind == HoleKind::Drill && same(d.x, h.x) && same(d.y, h.y))
-            .map(|d| {
+        let drill =
+            prog.holes[..i].iter().rev().find(|d| d.kind == HoleKind::Drill && same_place(d, h)).map(|d| {
                 let (mut diameter, point) = match d.tool.and_then(|dt| spec.tools.tool(dt)) {
                     Some((Tool::Drill { diameter, point_angle }, _)) => (Some(*diameter), *point_angle),
                     Some((Tool::Insert(_) | Tool::Tap { .. }, _)) | None => (None, None),

@@ -190,6 +190,13 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                     );
                     one_shot = Some(g);
                 }
+                // The additional work offsets (G54.1 P1…P48/300): a work offset as G54…G59 are.
+                (Dialect::Fanuc | Dialect::Mitsubishi | Dialect::Mazak, 54.1) => {
+                    if let Some(name) = work_offset_name(d, g, b) {
+                        m.work_offset = Some(name);
+                    }
+                    offset = Some(format!("G{g}, a work offset"));
+                }
                 // A machining centre's programmable mirror image (SIE-ISO p.3-65): G51.1 X… Y…
                 // mirrors the positions about the axis values given, G50.1 cancels them.
                 (_, 51.1) if fanuc_like && !m.lathe() => {
@@ -406,10 +413,18 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             70..=75 if fanuc_like || d == Dialect::LinuxCnc => one_shot = Some(g),
             c => match g_role(d, c, m.lathe()) {
                 GRole::Setting => {}
-                GRole::Offset => offset = Some(format!("G{g}, a work offset")),
+                GRole::Offset => {
+                    offset = Some(format!("G{g}, a work offset"));
+                    if let Some(name) = work_offset_name(d, g, b) {
+                        m.work_offset = Some(name);
+                    }
+                }
                 GRole::Data => {
                     one_shot = Some(g);
                     offset = Some(format!("G{g}, data setting"));
+                    if c == 10 && !m.lathe() {
+                        set_work_origin(m, b, col);
+                    }
                 }
                 GRole::Coordinates => {
                     if c == 10 || c == 52 {
@@ -502,6 +517,65 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
         m.tool = Some(if fanuc_like && v >= 100 { v / 100 } else { v });
     }
     Ok(Modal { motion: m.motion, col: motion.map(|x| x.1), one_shot })
+}
+
+/// The work offset a block selects, by one name per offset: `G54`…`G59`; Fanuc's `G54.1 P3`;
+/// Haas's `G154 P3`, which its `G110`…`G129` also name (G110 = G154 P1); Sinumerik's `G505`…`G599`.
+/// `None` for a code that selects none (G52, G92 and their kin, G500/G53/G153 on Sinumerik).
+fn work_offset_name(d: Dialect, g: f64, b: &RBlock<'_>) -> Option<String> {
+    let p = || b.get("P").map(|w| w.v).filter(|v| v.fract() == 0.0 && *v >= 1.0).map(|v| v as u32);
+    match (d, g) {
+        (_, g) if g.fract() == 0.0 && (54.0..=59.0).contains(&g) => Some(format!("G{g}")),
+        (Dialect::Fanuc | Dialect::Mitsubishi | Dialect::Mazak, 54.1) => Some(format!("G54.1 P{}", p()?)),
+        (Dialect::Haas, 154.0) => Some(format!("G154 P{}", p()?)),
+        (Dialect::Haas, g) if g.fract() == 0.0 && (110.0..=129.0).contains(&g) => {
+            Some(format!("G154 P{}", g as u32 - 109))
+        }
+        (Dialect::Sinumerik, g) if g.fract() == 0.0 && (505.0..=599.0).contains(&g) => Some(format!("G{g}")),
+        _ => None,
+    }
+}
+
+/// A machining centre's `G10 L2 Pn X Y Z` (G54…G59's origins, P1…P6) or `G10 L20 Pn` (the
+/// additional offsets: Fanuc's G54.1 Pn, Haas's G154 Pn) under G90: the origin the program gives
+/// an offset, in machine coordinates, per axis written. Under G91 the words add to values not in
+/// the program: the offset's origin is forgotten.
+fn set_work_origin(m: &mut Motion, b: &RBlock<'_>, col: usize) {
+    let (Some(l), Some(p)) = (b.get("L").map(|w| w.v), b.get("P").map(|w| w.v)) else { return };
+    if p.fract() != 0.0 || p < 1.0 {
+        return;
+    }
+    let n = p as u32;
+    let name = match l as u32 {
+        2 if l.fract() == 0.0 && n <= 6 => format!("G{}", 53 + n),
+        20 if l.fract() == 0.0 && m.dialect == Dialect::Haas => format!("G154 P{n}"),
+        20 if l.fract() == 0.0 => format!("G54.1 P{n}"),
+        _ => return,
+    };
+    let code = format!("G10 L{l} P{n}");
+    if !m.absolute {
+        m.read_past(
+            b.line,
+            col,
+            &code,
+            &format!("under G91 it adds to {name}'s origin, a value not in the program: holes in {name} are matched to their drills in it alone"),
+        );
+        m.work_origins.remove(&name);
+        return;
+    }
+    m.read_past(
+        b.line,
+        col,
+        &code,
+        &format!("sets {name}'s origin in machine coordinates: a tap in it finds its drill by their places on the machine, in whichever offset whose origin the program sets"),
+    );
+    let given = ["X", "Y", "Z"].map(|axis| b.get(axis).map(|w| m.len(w)));
+    let entry = m.work_origins.entry(name).or_insert([None; 3]);
+    for (old, new) in entry.iter_mut().zip(given) {
+        if new.is_some() {
+            *old = new;
+        }
+    }
 }
 
 /// Sinumerik threading cycles that threadcheck does not read: refused by name, never read past.
@@ -908,6 +982,9 @@ fn push_hole_at(
         spindle: m.s,
         spindle_dir: m.spindle_dir,
         tool: m.tool,
+        // Set where it is recorded (Motion::push_hole).
+        work_offset: None,
+        machine_xy: None,
         rigid,
     })
 }

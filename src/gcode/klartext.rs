@@ -1453,6 +1453,9 @@ fn run_with(
         spindle: st.spindle,
         spindle_dir: st.dir,
         tool: st.tool,
+        // A TNC's datum shift (cycle 7) is applied to the place itself.
+        work_offset: None,
+        machine_xy: None,
         rigid: false,
         units,
     };

@@ -663,6 +663,15 @@ pub struct HoleCycle {
     pub tool: Option<u32>,
     /// M29 rigid tapping.
     pub rigid: bool,
+    /// The work offset the program selected before the cycle (`G55`, `G54.1 P3`, `G154 P3`,
+    /// `G505`); `None` when it selected none (the machine's, whichever is in force). Holes are
+    /// placed in its coordinates.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub work_offset: Option<String>,
+    /// The hole's place in machine coordinates, when the program set its work offset's origin
+    /// itself (Fanuc's and Haas's `G10 L2`/`L20`): a tap in one offset finds its drill in another.
+    #[serde(skip)]
+    pub machine_xy: Option<(f64, f64)>,
     /// The program's units at the cycle (what a diameter in its comments is written in).
     #[serde(skip)]
     pub units: ProgramUnits,

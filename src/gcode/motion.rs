@@ -186,6 +186,11 @@ pub(crate) struct Motion {
     pub rigid_next: bool,
     /// The drilling and tapping cycles read, in program order.
     pub holes: Vec<super::HoleCycle>,
+    /// The work offset the program selected last (`G55`, `G54.1 P3`), `None` before any.
+    pub work_offset: Option<String>,
+    /// The origins of work offsets the program set itself (`G10 L2 P2 X… Y…`), in machine
+    /// coordinates, per axis when written.
+    pub work_origins: std::collections::HashMap<String, [Option<f64>; 3]>,
     /// The stock the program declares (a training simulator's `[BILLET X…`): its diameter, mm,
     /// and line.
     pub stock: Option<(f64, usize)>,
@@ -292,6 +297,8 @@ impl Motion {
             feed_per_rev: None,
             rigid_next: false,
             holes: Vec::new(),
+            work_offset: None,
+            work_origins: std::collections::HashMap::new(),
             stock: None,
             hole_modal: (None, None),
             cycle_levels: (None, None),
@@ -779,7 +786,14 @@ impl Motion {
         }
     }
 
-    pub fn push_hole(&mut self, h: super::HoleCycle) -> Result<(), Error> {
+    pub fn push_hole(&mut self, mut h: super::HoleCycle) -> Result<(), Error> {
+        h.work_offset = self.work_offset.clone();
+        h.machine_xy = match (&self.work_offset, h.x, h.y) {
+            (Some(name), Some(x), Some(y)) => {
+                self.work_origins.get(name).and_then(|o| Some((x + o[0]?, y + o[1]?)))
+            }
+            _ => None,
+        };
         if self.holes.len() >= crate::ground::bounds::MAX_HOLES {
             return Err(self.err(
                 h.line,
@@ -826,6 +840,9 @@ impl Motion {
             spindle: self.s,
             spindle_dir: self.spindle_dir,
             tool: self.tool,
+            // Set where it is recorded (Motion::push_hole).
+            work_offset: None,
+            machine_xy: None,
             rigid: true,
         })
     }

@@ -501,6 +501,9 @@ fn hole(s: &State, m: &mut Motion, call: &HoleCall, line: usize) -> Result<(), E
         spindle: m.s,
         spindle_dir,
         tool: m.tool,
+        // Set where it is recorded (Motion::push_hole).
+        work_offset: None,
+        machine_xy: None,
         rigid: call.name == "CYCLE84",
     })?;
     m.lose_position(line, &format!("{}(…)", call.name), false, true);

@@ -92,7 +92,15 @@ fn micron(v: f64) -> String {
 /// axis have no Y): the holes of one pattern cycle share its line.
 fn place(c: &crate::gcode::HoleCycle) -> String {
     match (c.x, c.y) {
-        (Some(x), Some(y)) => format!(" (X{} Y{})", micron(x), micron(y)),
+        (Some(x), Some(y)) => format!(" (X{} Y{}{})", micron(x), micron(y), in_offset(c)),
+        _ => String::new(),
+    }
+}
+
+/// ` in G55`: the work offset a hole's place is in, when the program selected one other than G54.
+fn in_offset(c: &crate::gcode::HoleCycle) -> String {
+    match c.work_offset.as_deref() {
+        Some(w) if w != "G54" => format!(" in {w}"),
         _ => String::new(),
     }
 }
@@ -235,7 +243,7 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
                     c.line,
                     c.tool.map_or(String::new(), |t| format!(", T{t}")),
                     match (c.x, c.y) {
-                        (Some(x), Some(y)) => format!(" at X{} Y{}", micron(x), micron(y)),
+                        (Some(x), Some(y)) => format!(" at X{} Y{}{}", micron(x), micron(y), in_offset(c)),
                         _ => String::new(),
                     }
                 ),
