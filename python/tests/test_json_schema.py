@@ -170,6 +170,8 @@ def test_thread_mill():
     # A multi-form cutter: its rows and row pitch, and the row_pitch check.
     validate("thread_mill", threadcheck.thread_mill((mill / "m20-dc14-rows8.nc").read_text(), "M20x1.5-6H", 14.0,
                                                     cutter_rows=8, cutter_row_pitch=1.5))
+    # A taper thread: its helices' radius_change, the gauge plane and taper checks.
+    validate("thread_mill", threadcheck.thread_mill((mill / "npt-half-internal.nc").read_text(), cutter_diameter=10.0))
 
 
 def test_tap_sinumerik():

@@ -492,6 +492,18 @@ def test_thread_mill_multi_form_rows_one_pitch_apart():
         threadcheck.thread_mill((mill / "m20-dc14-rows8.nc").read_text(), "M20x1.5-6H", 14.0, cutter_rows=8)
 
 
+def test_thread_mill_taper_thread_is_gauged():
+    # A 1/2-14 NPT fitting milled on its cone (tests/threadmill.rs derives the program): the
+    # helices taper 1/16 on the diameter; a Ø10 cutter's groove stands the gauge 0.18 turn in.
+    mill = pathlib.Path(__file__).resolve().parents[2] / "tests" / "data" / "programs" / "threadmill"
+    r = threadcheck.thread_mill((mill / "npt-half-internal.nc").read_text(), cutter_diameter=10.0)
+    assert r["kind"] == "internal" and r["verdict"] == "pass"
+    checks = {c["feature"]: c for c in r["checks"]}
+    assert checks["taper"]["value"] == pytest.approx(1 / 16, abs=2e-5)
+    assert abs(checks["gauge_plane"]["value"]) < 1.0
+    assert r["tooth_profile"]["pitch_diameter"] == pytest.approx(19.318551, abs=1e-3)
+
+
 def test_tap_render_svg_and_html():
     # The tapping picture through the same door: the tap's bottom Z-18, the drill's Z-25.
     tools = '[tools]\n5 = "drill:8.5"\n6 = "tap:M10x1.5-6H"\n'
