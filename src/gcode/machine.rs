@@ -225,13 +225,57 @@ fn evidence(b: &Block, dialect: Dialect) -> Option<(MachineType, String)> {
     None
 }
 
+/// What in a block's code (comments cut off) only a DDCS controller's macros write, and its
+/// column: its Modbus and byte commands (`MSETDATA[…]`, DDCS Expert's manual); in a program
+/// read as Fanuc-family or LinuxCNC (which compare with EQ and NE), a comparison written `!=` or
+/// `==`, or a `//` comment after a block's words (those dialects read `/` as block delete or
+/// division, never twice).
+fn ddcs_word(code: &str, dialect: Dialect) -> Option<(usize, String)> {
+    let col = |at: usize| code[..at].chars().count() + 1;
+    for w in ["MSETDATA", "MGETDATA", "MDATA2BYTE", "MBYTE2DATA"] {
+        if let Some(at) = code.find(w) {
+            return Some((col(at), format!("{w} is a DDCS controller's data command")));
+        }
+    }
+    // The dialects whose comparison words are known here (EQ, NE: Fanuc macro B, LinuxCNC).
+    let words_compare = matches!(
+        dialect,
+        Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak | Dialect::LinuxCnc
+    );
+    if words_compare {
+        if let Some(at) = code.find("!=") {
+            return Some((
+                col(at),
+                "`!=` compares as a DDCS controller's macros do (Fanuc macro B writes NE)".into(),
+            ));
+        }
+        if let Some(at) = code.find("==") {
+            return Some((
+                col(at),
+                "`==` compares as a DDCS controller's macros do (Fanuc macro B writes EQ)".into(),
+            ));
+        }
+        if let Some(at) = code.find("//").filter(|&at| !code[..at].trim().is_empty()) {
+            return Some((col(at), "`//` opens a comment as a DDCS controller's programs write it".into()));
+        }
+    }
+    None
+}
+
 /// A control whose programs threadcheck does not read, named at the first line that shows it:
 /// (line, column, message). Heidenhain's Klartext (`BEGIN PGM`), Beckhoff TwinCAT's `#`
 /// commands and cycle calls (`#TURN[…]`, `L CYCLE [NAME=…]`); a Fanuc macro's `#100=`, a
 /// LinuxCNC `#<name>` and a Sinumerik `L100` call are their own dialects' and pass.
-pub(crate) fn foreign_control(text: &str) -> Option<(usize, usize, String)> {
+pub(crate) fn foreign_control(text: &str, dialect: Dialect) -> Option<(usize, usize, String)> {
     for (i, line) in text.lines().enumerate().take(200_000) {
         let code = line.split(['(', ';']).next().unwrap_or("");
+        if let Some((col, what)) = ddcs_word(code, dialect) {
+            return Some((
+                i + 1,
+                col,
+                format!("{what}: a DDCS (Digital Dream) controller's macro program, which threadcheck does not read (its C-style comparisons, // comments and M…DATA commands are not Fanuc macro B's); give the threading blocks as a Fanuc-family control reads them (EQ, NE, GT, LT in IF and WHILE), or check it on the control"),
+            ));
+        }
         let trimmed = code.trim_start();
         let col = code.len() - trimmed.len() + 1;
         // A block number before the words (Klartext numbers every block: `0 BEGIN PGM`).

@@ -975,7 +975,7 @@ fn read(
         }
         return klartext::read(text, file, &opts, out);
     }
-    if let Some((line, column, message)) = machine::foreign_control(text) {
+    if let Some((line, column, message)) = machine::foreign_control(text, dialect) {
         return Err(perr(line, column, message));
     }
     if dialect == Dialect::Dyna {
