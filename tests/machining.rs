@@ -565,6 +565,53 @@ fn sinumerik_holes_under_frames() {
     }
 }
 
+/// Issue 45 item 2: Sinumerik's mirrored frames (`sinumerik-mirror.mpf`), the drill and the tap
+/// each called by MCALL at `X30 Y10` four times: as written, (30, 10); under `MIRROR X0`, X about
+/// the frame's zero, (−30, 10); after `TRANS X100` (which clears the mirror) and `AMIRROR Y0`,
+/// (30, −10) + (100, 0) = (130, −10); after `AROT RPL=90` in that frame, the point turned first
+/// and mirrored after, (30, 10) → (−10, 30) → (−10, −30), + (100, 0) = (90, −30). Each tap finds
+/// its drill there. A helix under MIRROR is refused (its hand turns over), as is a mirrored Z.
+#[test]
+fn sinumerik_mirrored_frames_place_the_holes() {
+    let program = data("machining/sinumerik-mirror.mpf");
+    let (code, v) = run_json(&["tap", "--program", program.to_str().unwrap(), "--json", "-"]);
+    assert_eq!(code, 0, "{v}");
+    let want = [(30.0, 10.0), (-30.0, 10.0), (130.0, -10.0), (90.0, -30.0)];
+    let got = holes(&v);
+    assert_eq!(got.len(), want.len(), "{got:?}");
+    for (g, w) in got.iter().zip(want) {
+        assert!((g.0.unwrap() - w.0).abs() < 1e-9 && (g.1.unwrap() - w.1).abs() < 1e-9, "{g:?} {w:?}");
+    }
+    let drill_lines: Vec<u64> = v["holes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|h| h["drill"]["cycle"]["line"].as_u64().unwrap())
+        .collect();
+    assert_eq!(drill_lines, [7, 9, 12, 14]);
+    let dir = tempdir("sin-mirror");
+    std::fs::write(
+        dir.join("m.mpf"),
+        "G17 G90 G94\nT1 D1 M6\nMIRROR X0\nG0 X7 Y0 Z5\nG3 X7 Y0 Z3.5 I-7 J0\nM30\n",
+    )
+    .unwrap();
+    let o = run_in(
+        &dir,
+        &["thread-mill", "--program", "m.mpf", "--thread", "M20x1.5-6H", "--cutter-diameter", "6"],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: m.mpf:5:1: an arc under MIRROR (a mirrored frame, which reverses its direction and a thread's hand) is not read: write it without"
+    );
+    std::fs::write(dir.join("z.mpf"), "G17 G90 G94\nMIRROR Z0\nM30\n").unwrap();
+    let o = run_in(&dir, &["tap", "--program", "z.mpf"]);
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: z.mpf:2:1: MIRROR Z is not modelled: a mirrored Z turns the thread's axis over"
+    );
+}
+
 /// Issue 45 item 2: Fanuc polar coordinates and the mirror image (`fanuc-polar-mirror.nc`).
 /// Under G16, X40 is the radius and Y30/Y150/Y270 the angles about the work zero: (40 cos 30°,
 /// 40 sin 30°) = (34.641016, 20), (−34.641016, 20), (0, −40). `G51.1 X0` mirrors X25 Y−10 to

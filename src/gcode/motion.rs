@@ -571,10 +571,12 @@ impl Motion {
             return Ok(false);
         }
         if self.polar.is_some() || self.mirror.iter().any(Option::is_some) {
-            let what = if self.polar.is_some() {
-                "G16 (polar coordinates)"
-            } else {
-                "G51.1 (a mirror image, which reverses its direction and a thread's hand)"
+            let what = match (self.polar.is_some(), self.dialect) {
+                (true, _) => "G16 (polar coordinates)",
+                (false, Dialect::Sinumerik) => {
+                    "MIRROR (a mirrored frame, which reverses its direction and a thread's hand)"
+                }
+                (false, _) => "G51.1 (a mirror image, which reverses its direction and a thread's hand)",
             };
             return Err(self.err(
                 b.line,

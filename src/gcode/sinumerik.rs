@@ -36,26 +36,58 @@ struct HoleCall {
 /// A frame statement on a machining centre (G17): `TRANS X… Y… Z…` sets the translation (and
 /// clears the rotation), `ATRANS` adds one in the frame in force, `ROT RPL=a` sets the rotation
 /// in the plane about the frame's origin (and clears the translation), `AROT RPL=a` adds to it;
-/// `TRANS` alone clears the frame. The frame moves every later hole into the workpiece's
-/// coordinates. Mirror and scale, rotations about X or Y, and frames on a lathe are refused by
-/// name: the positions (and a mirrored thread's hand) under them would be wrong.
+/// `TRANS` alone clears the frame. `MIRROR X0 Y0` mirrors the named axes about the frame's zero
+/// (the values are not read, as the control reads none) and replaces the frame, `AMIRROR` adds
+/// a mirror to the frame in force (mirroring an axis twice undoes it); a helix under a mirror is
+/// refused (its hand turns over). The frame moves every later hole into the workpiece's
+/// coordinates. Scale, a mirrored Z, rotations about X or Y, and frames on a lathe are refused
+/// by name: the positions (and a thread's axis) under them would be wrong.
 fn frame(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
     let refuse = |m: &Motion, why: &str| Err(b.werr(&m.file, w, format!("{} {why}", w.name)));
     let axes: Vec<&RWord<'_>> = b.words.iter().filter(|x| matches!(x.name, "X" | "Y" | "Z")).collect();
     let rpl = b.get("RPL");
     let empty = axes.is_empty() && rpl.is_none();
-    if matches!(w.name, "MIRROR" | "AMIRROR" | "SCALE" | "ASCALE") {
-        if empty && !w.name.starts_with('A') {
+    if matches!(w.name, "SCALE" | "ASCALE") || (w.name == "AMIRROR" && empty) {
+        if empty && w.name == "SCALE" {
             m.local = [0.0; 3];
             m.rotation = None;
+            m.mirror = [None; 2];
             return Ok(());
         }
-        return refuse(m, "is not modelled: the positions and the hand of a thread under a mirrored or scaled frame would be wrong (TRANS, ATRANS, ROT and AROT are read)");
+        return refuse(m, "is not modelled: the positions under a scaled frame would be wrong (TRANS, ATRANS, ROT, AROT, MIRROR and AMIRROR are read)");
     }
     if m.lathe() && !empty {
         return refuse(m, "on a lathe is not modelled: the passes would not be moved (frames are read on a machining centre, G17)");
     }
+    if matches!(w.name, "MIRROR" | "AMIRROR") {
+        if axes.iter().any(|a| a.name == "Z") {
+            return refuse(m, "Z is not modelled: a mirrored Z turns the thread's axis over");
+        }
+        if w.name == "MIRROR" {
+            m.local = [0.0; 3];
+            m.rotation = None;
+            m.mirror = [None; 2];
+        }
+        for a in &axes {
+            let i = usize::from(a.name == "Y");
+            // Mirrored twice is not mirrored; about the frame's zero, whatever value is written.
+            m.mirror[i] = if m.mirror[i].is_some() { None } else { Some(0.0) };
+        }
+        // Mirroring one axis turns a later AROT the other way; the rotation already in the
+        // frame stays outside the mirror.
+        if !empty {
+            m.read_past(
+                b.line,
+                w.col,
+                w.name,
+                "a mirrored frame: later holes are placed in the workpiece's coordinates through it (a helix under it is refused: its hand turns over)",
+            );
+        }
+        return Ok(());
+    }
     let (angle, origin) = (m.rotation.map_or(0.0, |r| r.2), m.local);
+    // One mirrored axis: the frame's own directions under it are mirrored too.
+    let flips = [m.mirror[0].is_some(), m.mirror[1].is_some()];
     match w.name {
         "TRANS" | "ATRANS" => {
             let mut d = [0.0; 3];
@@ -69,7 +101,14 @@ fn frame(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
             if w.name == "TRANS" {
                 m.local = d;
                 m.rotation = None;
+                m.mirror = [None; 2];
             } else {
+                // A translation added inside a mirror is mirrored with it.
+                for (i, f) in flips.iter().enumerate() {
+                    if *f {
+                        d[i] = -d[i];
+                    }
+                }
                 // Along the frame's own (rotated) axes.
                 let (s, c) = angle.to_radians().sin_cos();
                 m.local =
@@ -84,9 +123,12 @@ fn frame(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
             let a = rpl.or(axes.first().copied()).map_or(0.0, |r| r.v);
             if w.name == "ROT" {
                 m.local = [0.0; 3];
+                m.mirror = [None; 2];
                 m.rotation = (a != 0.0).then_some((0.0, 0.0, a));
             } else {
-                // About the frame's origin, which the translation holds.
+                // About the frame's origin, which the translation holds; inside a mirror of one
+                // axis the turn runs the other way (M·R(a) = R(−a)·M).
+                let a = if flips[0] != flips[1] { -a } else { a };
                 m.rotation = Some((0.0, 0.0, angle + a));
             }
         }
