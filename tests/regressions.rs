@@ -1200,3 +1200,64 @@ fn regression_thread_mill_reads_a_mill_turn_program_as_one() {
     assert!(!out.contains("G76 read past"), "{out}");
     assert!(out.contains("G84 read past (4 times)"), "{out}");
 }
+
+/// `tap` and `thread-mill` did not look for subprogram files (`verify` did): a program whose
+/// holes or helices stand in `O2000.nc` (`M98 P2000`) had none. And a hole read from a
+/// subprogram file was placed and named as the main program's (an error said `main.nc:3`, the
+/// tap's comment was looked for above line 3 of the main program). Now each hole names its file,
+/// and the comments are read above the call that runs it.
+#[test]
+fn regression_tap_and_thread_mill_read_subprogram_files() {
+    let dir = tempdir("tap-subfile");
+    std::fs::write(
+        dir.join("main.nc"),
+        "%\nO1000 (THE HOLES IN O2000)\nG17 G21 G90 G94\nT1 M6 (DRILL 6.8)\nG0 X0 Y0 S2000 M3\nG43 H1 Z25.\nG98 G81 Z-20. R2. F200. L0\nM98 P2000\nG80\nT2 M6 (TAP M8X1.25)\nG0 X0 Y0 S600 M3\nG43 H2 Z25.\nG98 G84 Z-15. R3. F750. L0\nM98 P2000\nG80\nM30\n%\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("O2000.nc"), "%\nO2000 (THE HOLES)\nX20. Y0\nX-20. Y0\nM99\n%\n").unwrap();
+    let o = run_in(&dir, &["tap", "--program", "main.nc"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("== G84 at line 3 of O2000.nc (X20 Y0), tool T2, tap M8X1.25-6H"), "{out}");
+    assert!(out.contains("drilled by G81 at line 4 of O2000.nc, tool T1, Ø6.8"), "{out}");
+    assert!(out.contains("named by the comment at line 10 (\"TAP M8X1.25\")"), "{out}");
+    // The error at a subprogram's hole names its file.
+    std::fs::write(dir.join("t.toml"), "[tools]\n2 = \"drill:6.8\"\n").unwrap();
+    let o = run_in(&dir, &["tap", "--program", "main.nc", "--tools", "t.toml"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        one_line_error(&o).starts_with("threadcheck: error: O2000.nc:3:1: G84 with tool T2"),
+        "{}",
+        one_line_error(&o)
+    );
+    // Helices in a subprogram file: a Ø6 cutter on radius 7 mills D = 2·(7 + 3) = 20.
+    let helices: String =
+        (1..=10).map(|k| format!("G3 X7. Y0 Z{:.1} I-7. J0\n", -16.0 + 1.5 * f64::from(k))).collect();
+    std::fs::write(
+        dir.join("O3000.nc"),
+        format!("%\nO3000 (THE HELICES)\nG1 X7. Y0 F150\n{helices}G1 X0 Y0\nM99\n%\n"),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("mill.nc"),
+        "%\nO1001\nG17 G21 G90 G94 G40\nG0 X0 Y0 Z5. S3000 M3\nG1 Z-16. F500\nM98 P3000\nG0 Z50.\nM30\n%\n",
+    )
+    .unwrap();
+    let o = run_in(
+        &dir,
+        &[
+            "thread-mill",
+            "--program",
+            "mill.nc",
+            "--thread",
+            "M20x1.5-6H",
+            "--cutter-diameter",
+            "6",
+            "--json",
+            "-",
+        ],
+    );
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!((v["measured"]["major_diameter"].as_f64().unwrap() - 20.0).abs() < 1e-4, "{v}");
+}

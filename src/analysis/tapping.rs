@@ -322,8 +322,12 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
         if h.kind != HoleKind::Tap {
             continue;
         }
-        let perr =
-            |message: String| Error::Program { file: name.clone(), line: h.line, column: h.column, message };
+        let perr = |message: String| Error::Program {
+            file: h.source_file.clone().unwrap_or_else(|| name.clone()),
+            line: h.line,
+            column: h.column,
+            message,
+        };
         // The drill: the last drilling cycle before this tap at its position; its diameter from
         // the tool table, else (a program verified whole) from a comment at its cycle.
         let mut drill_note = None;
@@ -336,12 +340,17 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                 if diameter.is_none() && spec.from_program {
                     // The comment at its cycle (back to the cycle before), else the one an earlier
                     // cycle of the same tool took.
-                    let after =
-                        prog.holes.iter().take_while(|o| o.line < d.line).map(|o| o.line).max().unwrap_or(0);
+                    let after = prog
+                        .holes
+                        .iter()
+                        .take_while(|o| o.main_line < d.main_line)
+                        .map(|o| o.main_line)
+                        .max()
+                        .unwrap_or(0);
                     let found = comments
                         .iter()
                         .rev()
-                        .filter(|c| c.line > after && c.line <= d.line)
+                        .filter(|c| c.line > after && c.line <= d.main_line)
                         .find_map(|c| {
                             crate::analysis::naming::drill_in_comment(&c.text, d.units).map(|v| (v, c.line))
                         })
@@ -702,8 +711,12 @@ fn tap_of(
     use crate::analysis::naming::{from_comments, infer_designation, DesignationFrom};
     let h = &prog.holes[i];
     let name = &spec.program.1;
-    let perr =
-        |message: String| Error::Program { file: name.clone(), line: h.line, column: h.column, message };
+    let perr = |message: String| Error::Program {
+        file: h.source_file.clone().unwrap_or_else(|| name.clone()),
+        line: h.line,
+        column: h.column,
+        message,
+    };
     let table = h.tool.map(|t| (t, spec.tools.tool(t)));
     // A cycle that names no tool: the tap given (`--tap`).
     if let (None, Some(designation)) = (h.tool, &spec.tap) {
@@ -730,9 +743,14 @@ fn tap_of(
     let named_otherwise = matches!(table, Some((_, Some((Tool::Insert(_) | Tool::Drill { .. }, _)))));
     if spec.from_program && !named_otherwise {
         let opts = ParseOptions { allow_nonstandard: spec.allow_nonstandard };
-        let after = prog.holes[..i].iter().rev().find(|o| o.kind == HoleKind::Tap).map_or(0, |o| o.line);
+        // Comments are the main program's: a hole of a subprogram file reads them at its call.
+        let after = prog.holes[..i]
+            .iter()
+            .rev()
+            .find(|o| o.kind == HoleKind::Tap && o.main_line < h.main_line)
+            .map_or(0, |o| o.main_line);
         let default = crate::analysis::tools::DEFAULT_TAP_CHAMFER_PITCHES;
-        let named = match from_comments(comments, after, h.line, ThreadKind::Internal, opts) {
+        let named = match from_comments(comments, after, h.main_line, ThreadKind::Internal, opts) {
             Some(n) => Some(n),
             None => {
                 let lead = match (h.feed, h.feed_per_rev, h.spindle) {

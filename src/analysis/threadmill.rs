@@ -57,8 +57,10 @@ pub struct ThreadMillSpec {
     /// The cutter radius compensation value (the D register) G41/G42 apply, mm; a helix under
     /// compensation without it is refused.
     pub comp_radius: Option<f64>,
-    /// The units of a program that sets neither G20 nor G21 (`None`: mm, stated).
-    pub default_units: Option<crate::gcode::ProgramUnits>,
+    /// How the program is read: the units of a program that sets neither G20 nor G21, the
+    /// machine, where its subprograms' files are (its toolpath and `allow_no_threading` are this
+    /// check's own).
+    pub reading: ReadOptions,
 }
 
 /// The thread a thread mill leaves, measured and checked.
@@ -481,25 +483,20 @@ fn entry_and_exit(moves: &[Move]) -> Vec<String> {
 /// Mills the thread in the computer and checks it.
 ///
 /// ```
-/// use threadcheck::{thread_mill, Cutter, Dialect, ThreadMillSpec};
+/// use threadcheck::{thread_mill, Cutter, Dialect, ReadOptions, ThreadMillSpec};
 /// // M20x1.5-6H with a Ø12 single-form cutter: the helix radius 10 − 6 = 4 puts the tooth's tip on
 /// // D = 20; eight turns climbing 1.5 mm each.
 /// let mut program = String::from("G17 G90 G40\nG0 X4 Y0 Z-14\n");
 /// for k in 1..=8 { program += &format!("G3 X4 Y0 Z{} I-4 J0 F200\n", -14.0 + 1.5 * k as f64); }
 /// let cutter = Some(Cutter::single_form(12.0, 60.0, 0.0));
-/// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: Some("M20x1.5-6H".into()), allow_nonstandard: false, cutter, tools: None, blank_diameter: None, comp_radius: None, default_units: None };
+/// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: Some("M20x1.5-6H".into()), allow_nonstandard: false, cutter, tools: None, blank_diameter: None, comp_radius: None, reading: ReadOptions::default() };
 /// let r = thread_mill(&spec)?;
 /// assert!((r.measured.major_diameter - 20.0).abs() < 1e-4);
 /// # Ok::<(), threadcheck::Error>(())
 /// ```
 pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     let (text, name) = &spec.program;
-    let opts = ReadOptions {
-        moves: true,
-        allow_no_threading: true,
-        default_units: spec.default_units,
-        ..ReadOptions::default()
-    };
+    let opts = ReadOptions { moves: true, allow_no_threading: true, ..spec.reading.clone() };
     let prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
     let mut notes: Vec<String> = prog.notes.iter().map(|n| n.to_string()).collect();
     // The tool of the first helix: its cutter and its compensation from the table.

@@ -192,7 +192,7 @@ pub fn verify_whole(
                 tools: tools.cloned(),
                 blank_diameter: None,
                 comp_radius: None,
-                default_units: spec.reading.default_units,
+                reading: spec.reading.clone(),
             };
             let mut r = crate::analysis::threadmill::thread_mill(&m)?;
             // The program's notes are the report's, once.

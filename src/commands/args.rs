@@ -545,9 +545,30 @@ pub struct ProgramArgs {
     #[cfg_attr(feature = "cli", arg(long))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub dialect: Option<Dialect>,
+    /// Folders where a LinuxCNC program's `o<name> call` finds `name.ngc` (its INI's
+    /// SUBROUTINE_PATH, `:` between folders), after the program's own folder, where Fanuc's
+    /// `M98 P2000` finds the file of O2000 too.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "DIR[:DIR…]", value_delimiter = ':'))]
+    #[serde(skip)]
+    pub subroutine_path: Vec<PathBuf>,
 }
 
 impl ProgramArgs {
+    /// Where a program read from a file finds its subprograms' files, as the control would: its
+    /// own folder, then the subroutine path (`None` for a program given as text, or when no file
+    /// may be read).
+    pub fn sub_files(&self, files: super::Files) -> Option<crate::gcode::SubFinder> {
+        match (&self.program, files) {
+            (Some(Source::Path(p)), super::Files::Allowed) => {
+                let own = p.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+                let mut dirs = vec![own.to_path_buf()];
+                dirs.extend(self.subroutine_path.iter().cloned());
+                Some(sub_finder(dirs))
+            }
+            _ => None,
+        }
+    }
+
     /// The program's text and name, its dialect and how the dialect was chosen.
     pub fn read(&self, command: &str) -> Result<((String, String), Dialect, DialectFrom), Error> {
         let source =

@@ -70,6 +70,7 @@ impl Job for TapArgs {
             default_units: self.default_units,
             gcode_system: self.gcode_system,
             machine_type: self.machine_type,
+            sub_files: self.file.sub_files(request.files),
             ..Default::default()
         };
         let tools = match &self.tools {

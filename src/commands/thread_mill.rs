@@ -72,7 +72,7 @@ impl Job for ThreadMillArgs {
 
     /// Pass when the milled thread is within every limit and the lead is right.
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
-        let (program, dialect, _) = self.file.read("thread-mill")?;
+        let (program, dialect, from) = self.file.read("thread-mill")?;
         // Without ‹thread›, the thread the program names (a comment), else the size it cuts.
         let designation = self.thread.clone();
         let rows = self.cutter_rows.unwrap_or(1);
@@ -99,7 +99,12 @@ impl Job for ThreadMillArgs {
             tools: self.tools.as_ref().map(|t| tool_table(t, request.files)).transpose()?,
             blank_diameter: self.blank_diameter,
             comp_radius: self.comp_radius,
-            default_units: self.default_units,
+            reading: crate::gcode::ReadOptions {
+                dialect_from: from,
+                default_units: self.default_units,
+                sub_files: self.file.sub_files(request.files),
+                ..Default::default()
+            },
         };
         let r = crate::analysis::threadmill::thread_mill(&spec)?;
         let inputs = self.file.inputs().into_iter().chain(self.tools.as_ref().and_then(Source::file));

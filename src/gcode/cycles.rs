@@ -984,6 +984,8 @@ fn push_hole_at(
         tool: m.tool,
         // Set where it is recorded (Motion::push_hole).
         work_offset: None,
+        source_file: None,
+        main_line: 0,
         machine_xy: None,
         rigid,
     })

@@ -1197,6 +1197,8 @@ pub(crate) fn run(
             x.file = file;
             m.file = file.to_string();
         }
+        // A block of a subprogram file is made at the main program's outermost call.
+        m.call_line = if m.file == m.main_file { None } else { x.frames.first().map(|f| f.line) };
         executed += 1;
         // A request no longer wanted (the server's time budget) stops here within microseconds.
         if executed % 4096 == 0 {

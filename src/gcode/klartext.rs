@@ -1455,6 +1455,8 @@ fn run_with(
         tool: st.tool,
         // A TNC's datum shift (cycle 7) is applied to the place itself.
         work_offset: None,
+        source_file: None,
+        main_line: line,
         machine_xy: None,
         rigid: false,
         units,

@@ -663,6 +663,13 @@ pub struct HoleCycle {
     pub tool: Option<u32>,
     /// M29 rigid tapping.
     pub rigid: bool,
+    /// The subprogram file it stands in, when not the program's own (its line is that file's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub source_file: Option<String>,
+    /// The main program's line at which it is made: its own line there, else the line of the
+    /// call that runs the subprogram file it stands in (what comments above it are read by).
+    #[serde(skip)]
+    pub main_line: usize,
     /// The work offset the program selected before the cycle (`G55`, `G54.1 P3`, `G154 P3`,
     /// `G505`); `None` when it selected none (the machine's, whichever is in force). Holes are
     /// placed in its coordinates.

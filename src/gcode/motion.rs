@@ -186,6 +186,9 @@ pub(crate) struct Motion {
     pub rigid_next: bool,
     /// The drilling and tapping cycles read, in program order.
     pub holes: Vec<super::HoleCycle>,
+    /// The main program's line of the call that runs the subprogram file being read (`None`
+    /// in the main program's own file).
+    pub call_line: Option<usize>,
     /// The work offset the program selected last (`G55`, `G54.1 P3`), `None` before any.
     pub work_offset: Option<String>,
     /// The origins of work offsets the program set itself (`G10 L2 P2 X… Y…`), in machine
@@ -298,6 +301,7 @@ impl Motion {
             rigid_next: false,
             holes: Vec::new(),
             work_offset: None,
+            call_line: None,
             work_origins: std::collections::HashMap::new(),
             stock: None,
             hole_modal: (None, None),
@@ -790,6 +794,11 @@ impl Motion {
 
     pub fn push_hole(&mut self, mut h: super::HoleCycle) -> Result<(), Error> {
         h.work_offset = self.work_offset.clone();
+        h.source_file = (self.file != self.main_file).then(|| self.file.clone());
+        h.main_line = match (&h.source_file, self.call_line) {
+            (Some(_), Some(call)) => call,
+            _ => h.line,
+        };
         h.machine_xy = match (&self.work_offset, h.x, h.y) {
             (Some(name), Some(x), Some(y)) => {
                 self.work_origins.get(name).and_then(|o| Some((x + o[0]?, y + o[1]?)))
@@ -844,6 +853,8 @@ impl Motion {
             tool: self.tool,
             // Set where it is recorded (Motion::push_hole).
             work_offset: None,
+            source_file: None,
+            main_line: 0,
             machine_xy: None,
             rigid: true,
         })

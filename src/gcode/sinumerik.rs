@@ -545,6 +545,8 @@ fn hole(s: &State, m: &mut Motion, call: &HoleCall, line: usize) -> Result<(), E
         tool: m.tool,
         // Set where it is recorded (Motion::push_hole).
         work_offset: None,
+        source_file: None,
+        main_line: 0,
         machine_xy: None,
         rigid: call.name == "CYCLE84",
     })?;

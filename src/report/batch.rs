@@ -154,7 +154,7 @@ impl BatchProgram {
             BatchOperation {
                 made: Process::Tapped,
                 line: h.cycle.line,
-                in_file: None,
+                in_file: h.cycle.source_file.clone(),
                 column: h.cycle.column,
                 designation: h.tap.designation.clone(),
                 designation_from: Some(h.tap.designation_from),

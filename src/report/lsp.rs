@@ -160,7 +160,7 @@ fn hovers(pv: &ProgramVerification) -> Vec<EditorHover> {
         }
         out.push(EditorHover { line: o.operation.source_line, markdown: md });
     }
-    for h in pv.tapped.iter().flat_map(|t| &t.holes) {
+    for h in pv.tapped.iter().flat_map(|t| &t.holes).filter(|h| h.cycle.source_file.is_none()) {
         let mut md = format!(
             "**{} {}** (tapped) — **{}**\n\n",
             h.cycle.code,

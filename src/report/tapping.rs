@@ -97,6 +97,14 @@ fn place(c: &crate::gcode::HoleCycle) -> String {
     }
 }
 
+/// `3`, or `3 of O2000.nc` for a cycle that stands in a subprogram file.
+fn line_of(c: &crate::gcode::HoleCycle) -> String {
+    match &c.source_file {
+        Some(f) => format!("{} of {}", c.line, file_name(f)),
+        None => c.line.to_string(),
+    }
+}
+
 /// ` in G55`: the work offset a hole's place is in, when the program selected one other than G54.
 fn in_offset(c: &crate::gcode::HoleCycle) -> String {
     match c.work_offset.as_deref() {
@@ -113,7 +121,7 @@ pub fn holes_text(r: &TapReport) -> String {
             s,
             "\n== {} at line {}{}{}, tap {} (chamfer {} P{}){}",
             c.code,
-            c.line,
+            line_of(c),
             place(c),
             c.tool.map_or(String::new(), |t| format!(", tool T{t}")),
             h.tap.designation,
@@ -127,7 +135,7 @@ pub fn holes_text(r: &TapReport) -> String {
                     s,
                     "drilled by {} at line {}{}{}{}",
                     d.cycle.code,
-                    d.cycle.line,
+                    line_of(&d.cycle),
                     d.cycle.tool.map_or(String::new(), |t| format!(", tool T{t}")),
                     d.diameter.map_or(String::new(), |v| format!(", Ø{}", fmt_num(v))),
                     d.cycle.bottom.map_or(String::new(), |z| format!(", bottom Z{}", fmt_num(z)))
@@ -240,7 +248,7 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
                 format!(
                     "{} line {}{}{}",
                     c.code,
-                    c.line,
+                    line_of(c),
                     c.tool.map_or(String::new(), |t| format!(", T{t}")),
                     match (c.x, c.y) {
                         (Some(x), Some(y)) => format!(" at X{} Y{}{}", micron(x), micron(y), in_offset(c)),
@@ -542,7 +550,7 @@ pub fn tap_html(r: &crate::analysis::tapping::TapReport) -> String {
             s,
             "<h2>{} at line {}{}{}: tap {}</h2>",
             esc(&c.code),
-            c.line,
+            esc(&line_of(c)),
             place(c),
             c.tool.map_or(String::new(), |t| format!(", T{t}")),
             esc(&h.tap.designation)
@@ -551,7 +559,7 @@ pub fn tap_html(r: &crate::analysis::tapping::TapReport) -> String {
             Some(d) => format!(
                 "drilled by {} at line {}{}{}",
                 d.cycle.code,
-                d.cycle.line,
+                line_of(&d.cycle),
                 d.diameter.map_or(String::new(), |v| format!(", Ø{}", fmt_num(v))),
                 d.cycle.bottom.map_or(String::new(), |z| format!(", bottom Z{}", fmt_num(z)))
             ),

@@ -789,13 +789,12 @@ pub fn program_text(pv: &crate::analysis::verify::ProgramVerification) -> String
             .filter(|o| !o.result.pass())
             .map(|o| format!("operation {}", o.operation.index))
             .collect();
-        failed.extend(
-            pv.tapped
-                .iter()
-                .flat_map(|t| &t.holes)
-                .filter(|h| !h.pass)
-                .map(|h| format!("the tap at line {}", h.cycle.line)),
-        );
+        failed.extend(pv.tapped.iter().flat_map(|t| &t.holes).filter(|h| !h.pass).map(|h| {
+            match &h.cycle.source_file {
+                Some(f) => format!("the tap at line {} of {}", h.cycle.line, f),
+                None => format!("the tap at line {}", h.cycle.line),
+            }
+        }));
         if pv.milled.as_ref().is_some_and(|m| !m.pass()) {
             failed.push("the milled thread".to_string());
         }
