@@ -283,6 +283,32 @@ fn taps_find_their_drills_in_their_own_work_offsets() {
         .contains("G10 L20 P2 read past: sets G54.1 P2's origin in machine coordinates"));
 }
 
+/// Haas's additional work offsets: G129 is G154 P20 (G110 = G154 P1), so a tap in G154 P20 finds
+/// the drill made in G129 at the same X Y, and a tap in G154 P19 does not.
+#[test]
+fn haas_g110_to_g129_are_g154_p1_to_p20() {
+    let dir = tempdir("haas-g129");
+    let program = |tap_offset: &str| {
+        format!("G17 G21 G90 G94\nT1 M6 (DRILL 6.8)\nG129 G0 X10. Y10. S2000 M3\nG98 G81 Z-20. R2. F200.\nG80\nT2 M6 (TAP M8X1.25)\n{tap_offset} G0 X10. Y10. S600 M3\nG98 G84 Z-15. R3. F750.\nG80\nM30\n")
+    };
+    for (offset, drilled) in [("G154 P20", true), ("G154 P19", false)] {
+        std::fs::write(dir.join("h.nc"), program(offset)).unwrap();
+        let (code, v) = run_json(&[
+            "tap",
+            "--program",
+            dir.join("h.nc").to_str().unwrap(),
+            "--dialect",
+            "haas",
+            "--json",
+            "-",
+        ]);
+        assert!(code < 2, "{v}");
+        let h = &v["holes"][0];
+        assert_eq!(h["cycle"]["work_offset"], offset);
+        assert_eq!(h["drill"].is_object(), drilled, "{offset}: {h}");
+    }
+}
+
 /// A bolt pattern with no drilling or tapping cycle in force has nothing to place: one located
 /// line.
 #[test]

@@ -60,6 +60,8 @@ fn g_role(d: Dialect, g: u32, lathe: bool) -> GRole {
                 Setting
             }
             52 | 54..=59 | 100 | 101 | 110 | 111 | 154 => Offset,
+            // A Haas mill's additional work offsets G110–G129 (G154 P1–P20).
+            112..=129 if !lathe && d == Dialect::Haas => Offset,
             10 | 11 => Data,
             81..=89 | 184 | 186 | 195 | 196 => OtherCycle,
             _ => Unknown,
