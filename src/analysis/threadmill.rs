@@ -847,8 +847,9 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     };
     if let Some((_, _, slope)) = taper {
         // The flanks as they stand to the axis (the section was sheared level along the cone).
-        measured.flank_angles = crate::analysis::verify::unsheared_flanks(measured.flank_angles, slope, kind);
-        tooth_m.flank_angles = crate::analysis::verify::unsheared_flanks(tooth_m.flank_angles, slope, kind);
+        measured.flank_angles =
+            crate::analysis::verify::true_flank_angles(measured.flank_angles, slope, kind);
+        tooth_m.flank_angles = crate::analysis::verify::true_flank_angles(tooth_m.flank_angles, slope, kind);
         notes.push("taper thread: measured along its cone (the section sheared level by the taper), the flank angles as they stand to the axis".into());
     }
     measured.root_radius = root_of(&profile, false).or(measured.root_radius);

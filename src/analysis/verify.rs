@@ -1137,19 +1137,6 @@ pub(crate) fn taper_of(limits: &ThreadLimits, kind: ThreadKind, pitch: f64) -> O
     })
 }
 
-/// Flank angles measured on a section sheared level along a taper's cone (`slope_r`, the radius's
-/// change per mm of Z), as they stand to the thread's axis, where ASME B1.20.1 measures them: a
-/// flank of slope b′ (dZ per dR) in the sheared section has b′ / (1 + k·b′) on the axial one.
-pub(crate) fn unsheared_flanks(angles_deg: [f64; 2], slope_r: f64, kind: ThreadKind) -> [f64; 2] {
-    // The low-Z flank of a nut's groove rises outward with Z (b > 0), a bolt's inward.
-    let s_low = if kind == ThreadKind::Internal { 1.0 } else { -1.0 };
-    let one = |deg: f64, s: f64| {
-        let b = s * deg.to_radians().tan();
-        (b / (1.0 + slope_r * b)).abs().atan().to_degrees()
-    };
-    [one(angles_deg[0], s_low), one(angles_deg[1], -s_low)]
-}
-
 /// What a taper thread's measurement assumes of the part, said in its notes.
 pub(crate) const TAPER_FACE_NOTE: &str =
     "taper thread: the face (the small end of an external thread, the opening of a fitting) is taken at Z0";
@@ -1395,7 +1382,7 @@ fn measured_notes(
 /// back into the true axial section: a flank with dz/dr' = ±t in the sheared section has
 /// dz/dr = ±t / (1 ± s·t) in the true one. A bolt's low-z flank falls towards its root as z
 /// grows (−t), a nut's rises.
-fn true_flank_angles(sheared: [f64; 2], slope_r: f64, kind: ThreadKind) -> [f64; 2] {
+pub(crate) fn true_flank_angles(sheared: [f64; 2], slope_r: f64, kind: ThreadKind) -> [f64; 2] {
     let sign = match kind {
         ThreadKind::External => [-1.0, 1.0],
         ThreadKind::Internal => [1.0, -1.0],
