@@ -21,6 +21,11 @@ fn tap_file(name: &str, extra: &[&str]) -> (i32, serde_json::Value, String) {
     (code, v, stderr(&o))
 }
 
+/// The line of each tap's drilling cycle.
+fn drill_lines(v: &serde_json::Value) -> Vec<u64> {
+    v["holes"].as_array().unwrap().iter().map(|h| h["drill"]["cycle"]["line"].as_u64().unwrap()).collect()
+}
+
 /// A hole: x, y, bottom (mm) and its cycle's line.
 type Hole = (Option<f64>, Option<f64>, Option<f64>, u64);
 
@@ -192,13 +197,7 @@ fn g68_rotation_and_g52_local_system_place_the_holes() {
             (Some(110.0), Some(60.0), Some(-18.0), 33),
         ]
     );
-    let drill_lines: Vec<u64> = v["holes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|h| h["drill"]["cycle"]["line"].as_u64().unwrap())
-        .collect();
-    assert_eq!(drill_lines, [6, 7, 8, 9, 10]);
+    assert_eq!(drill_lines(&v), [6, 7, 8, 9, 10]);
 }
 
 /// Haas G70 I40 J0 L6 in an M97 local subroutine, after a cycle stored with L0: six holes 60°
@@ -608,13 +607,7 @@ fn sinumerik_mirrored_frames_place_the_holes() {
     for (g, w) in got.iter().zip(want) {
         assert!((g.0.unwrap() - w.0).abs() < 1e-9 && (g.1.unwrap() - w.1).abs() < 1e-9, "{g:?} {w:?}");
     }
-    let drill_lines: Vec<u64> = v["holes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|h| h["drill"]["cycle"]["line"].as_u64().unwrap())
-        .collect();
-    assert_eq!(drill_lines, [7, 9, 12, 14]);
+    assert_eq!(drill_lines(&v), [7, 9, 12, 14]);
     let dir = tempdir("sin-mirror");
     std::fs::write(
         dir.join("m.mpf"),
