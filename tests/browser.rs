@@ -706,6 +706,50 @@ fn thread_mill_picture_has_zone_scales_and_limits() {
     assert!(runs >= 6, "the zone shows {runs} times on the D2 row");
 }
 
+/// Issue 46: the picture of a taper thread milled on its cone (`npt-half-internal.nc`, 1/2-14
+/// NPT): the section sheared level along the cone (its title says so), the tolerance zone drawn
+/// where the groove is measured, about the basic cone's pitch diameter there, E1 − 4P/16 =
+/// 19.318551 mm, and as wide as the gauge's ±1 turn: P/16 = 0.113393 mm either side on the
+/// diameter, so each flank's band is 0.113393 · tan 30° = 0.065467 mm wide along Z on any row
+/// (it was drawn at the face's diameter, 0.45 mm off the groove). Chromium paints it green there.
+#[test]
+fn taper_thread_mill_picture_draws_its_zone_on_the_cone() {
+    let dir = tempdir("tm-taper");
+    let svg_path = dir.join("t.svg");
+    let p = data("programs/threadmill/npt-half-internal.nc");
+    let o = run(&[
+        "thread-mill",
+        "--program",
+        p.to_str().unwrap(),
+        "--cutter-diameter",
+        "10",
+        "--svg",
+        svg_path.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(&svg_path).unwrap();
+    assert!(
+        svg.contains("milled section over four pitches, sheared along the cone")
+    );
+    let sc = Scales::of(&svg, "section");
+    let y = sc.y_of_d(19.318551);
+    let bands = zone_bands(&svg, "section-tolerance-zone", y);
+    assert!(bands.len() >= 3, "{} bands at D2", bands.len());
+    let want = 25.4 / 14.0 / 16.0 * 30f64.to_radians().tan() * sc.px_per_mm;
+    for band in bands {
+        assert!((band - want).abs() < 0.35, "band {band:.2} px, want {want:.2}");
+    }
+    assert_laid_out(&svg, "taper thread-mill");
+    let (w, h) = svg_size(&svg);
+    let shot = screenshot(&svg_path, w, h);
+    let row = y.round() as usize;
+    let green: Vec<usize> = (0..shot.w)
+        .filter(|&x| zone_over_material(shot.at(x, row)) || zone_over_air(shot.at(x, row)))
+        .collect();
+    let runs = green.windows(2).filter(|w| w[1] > w[0] + 1).count() + usize::from(!green.is_empty());
+    assert!(runs >= 6, "the zone shows {runs} times on the D2 row");
+}
+
 /// Issue 43: the tap picture dimensions the drill and D1 true to its scale bar: the Ø8 drill's
 /// dimension is 8 mm long and red (it lies under D1 min 8.376, ISO 965-2), D1's limits are
 /// 8.376 and 8.676 mm apart, and it names the drill that passes, ISO 2306's 8.5.

@@ -208,7 +208,7 @@ pub(crate) fn threadmill_document(r: &crate::analysis::threadmill::ThreadMillRep
         &f,
         "section",
         if r.limits.gauge_plane.is_some() {
-            "the milled section over four pitches (axial, sheared level along the taper's cone)"
+            "milled section over four pitches, sheared along the cone"
         } else {
             "the milled section over four pitches (axial, true to scale)"
         },
