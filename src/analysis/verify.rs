@@ -767,7 +767,10 @@ pub fn text_of(bytes: &[u8], file: &str) -> Result<String, Error> {
         return Err(at(0, "the program is empty".into()));
     }
     if let Some(i) = bytes.iter().position(|&b| b == 0) {
-        return Err(at(i, "a NUL byte: this is a binary file, not a program".into()));
+        return Err(at(
+            i,
+            "a NUL byte: this is a binary file, not a program (a control's own stored format, a Mazatrol conversational program's among them, is no G-code: export the program as EIA/ISO code)".into(),
+        ));
     }
     if let Ok(text) = std::str::from_utf8(bytes) {
         return Ok(text.to_string());
