@@ -728,9 +728,7 @@ fn taper_thread_mill_picture_draws_its_zone_on_the_cone() {
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let svg = std::fs::read_to_string(&svg_path).unwrap();
-    assert!(
-        svg.contains("milled section over four pitches, sheared along the cone")
-    );
+    assert!(svg.contains("milled section over four pitches, sheared along the cone"));
     let sc = Scales::of(&svg, "section");
     let y = sc.y_of_d(19.318551);
     let bands = zone_bands(&svg, "section-tolerance-zone", y);
