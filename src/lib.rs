@@ -88,8 +88,8 @@ pub use standards::{Feature, GrooveForm};
 pub use gcode::{
     comments, read_program, read_program_streaming, read_program_with, rewrite_words, Budget, Comment,
     DepthWord, Dialect, DialectFrom, GCodeSystem, HoleCycle, HoleKind, LinuxCncRelease, MachineReading,
-    MachineType, Operation, PassXWord, Program, ProgramUnits, ReadOptions, Spindle, SpindleDir, SubFinder,
-    WordEdit, WordForm, WordMeans, XWords,
+    MachineType, Operation, PassXWord, Program, ProgramUnits, RadialPlace, ReadOptions, Spindle, SpindleDir,
+    SubFinder, WordEdit, WordForm, WordMeans, XWords,
 };
 
 // Toolpaths: passes, generated plans, infeeds and depth schedules.

@@ -748,6 +748,33 @@ fn taper_thread_mill_picture_draws_its_zone_on_the_cone() {
     assert!(runs >= 6, "the zone shows {runs} times on the D2 row");
 }
 
+/// Issue 45: the tap picture of radial holes (a live tool along X on a lathe,
+/// `haas-radial-taps.nc`): each panel names its hole's Z and C, the heights along the hole's
+/// axis are written as the program's X (the tap's bottom X24, the drill's X20; no Z label), and
+/// the picture is laid out.
+#[test]
+fn tap_picture_of_radial_holes_writes_x() {
+    let dir = tempdir("tap-radial");
+    let svg_path = dir.join("r.svg");
+    let p = data("machining/haas-radial-taps.nc");
+    let o = run(&[
+        "tap",
+        "--program",
+        p.to_str().unwrap(),
+        "--dialect",
+        "haas",
+        "--svg",
+        svg_path.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(&svg_path).unwrap();
+    assert!(svg.contains("G195 line 12, T2 at Z-10 C0") && svg.contains("G195 line 13, T2 at Z-10 C90"));
+    assert_eq!(svg.matches(">\ntap X24\n</text>").count(), 2);
+    assert_eq!(svg.matches(">\ndrill X20\n</text>").count(), 2);
+    assert!(!svg.contains(" Z-10\n</text>") && !svg.contains("tap Z"), "a Z label on a radial hole");
+    assert_laid_out(&svg, "radial taps");
+}
+
 /// Issue 43: the tap picture dimensions the drill and D1 true to its scale bar: the Ø8 drill's
 /// dimension is 8 mm long and red (it lies under D1 min 8.376, ISO 965-2), D1's limits are
 /// 8.376 and 8.676 mm apart, and it names the drill that passes, ISO 2306's 8.5.

@@ -81,7 +81,8 @@ fn haas_tap(code: &str, tap: &str) -> String {
 /// ../shared/notes/machining-centres.md §7): the control starts the spindle for G84 (clockwise)
 /// and G184 (counter-clockwise, a left-hand tap) itself, so a stopped spindle passes; G95 and G186
 /// tap with a live tool (right- and left-hand), which the control turns itself; G195/G196 tap
-/// along X and are refused at their line. F1.25 in G99 is the lead.
+/// along X, placed by Z and C: one with no C known is refused at its line. F1.25 in G99 is the
+/// lead.
 #[test]
 fn haas_lathe_tapping_cycles_start_their_own_spindle() {
     let dir = tempdir("haas-tap");
@@ -106,7 +107,7 @@ fn haas_lathe_tapping_cycles_start_their_own_spindle() {
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(
         one_line_error(&o),
-        "threadcheck: error: tap.nc:14:1: G195 taps radially with a live tool (along X): threadcheck checks tapping along Z (G84, G184, G95, G186) only"
+        "threadcheck: error: tap.nc:14:1: G195 makes a radial hole with a live tool: its Z and C (the spindle's angle) place it, and C is not known here"
     );
 }
 

@@ -308,6 +308,44 @@ fn haas_g110_to_g129_are_g154_p1_to_p20() {
     }
 }
 
+/// Radial holes with a live tool on a lathe (issue 45 item 4): `haas-radial-taps.nc` drills Ø5 to
+/// X20 with G241 and taps M6x1 to X24 with G195 at Z−10, C0 and C90 (the drill and the tap named
+/// in comments). By hand: each tap finds the drill at its Z and C; their bottoms are the radii 12
+/// and 10, 2 mm apart along X; the tap's point (Ø4.9175, D1 basic = 6 − 1.25·0.866025) meets the
+/// drill's 118° point 0.5·4.91747 / tan 59° = 1.4774 mm above its bottom, so the depth passes;
+/// F1 under G99 is the lead. Fanuc's G87/G88 from the side read the same way.
+#[test]
+fn radial_live_tool_holes_are_drilled_and_tapped_along_x() {
+    let program = data("machining/haas-radial-taps.nc");
+    let (code, v) =
+        run_json(&["tap", "--program", program.to_str().unwrap(), "--dialect", "haas", "--json", "-"]);
+    assert_eq!(code, 0, "{v}");
+    let hs = v["holes"].as_array().unwrap();
+    assert_eq!(hs.len(), 2, "{v}");
+    for (h, (c, drill_line)) in hs.iter().zip([(0.0, 7), (90.0, 8)]) {
+        assert_eq!(h["cycle"]["radial"]["z"].as_f64(), Some(-10.0));
+        assert_eq!(h["cycle"]["radial"]["c_deg"].as_f64(), Some(c));
+        assert_eq!(h["cycle"]["bottom"].as_f64(), Some(12.0));
+        assert_eq!(h["drill"]["cycle"]["bottom"].as_f64(), Some(10.0));
+        assert_eq!(h["drill"]["cycle"]["line"].as_u64(), Some(drill_line));
+        let depth = h["checks"].as_array().unwrap().iter().find(|k| k["feature"] == "depth").unwrap();
+        assert_eq!(depth["value"].as_f64(), Some(2.0));
+        assert_eq!(depth["min"].as_f64(), Some(1.4774));
+        assert_eq!(h["pass"], true, "{h}");
+    }
+    let dir = tempdir("fanuc-radial");
+    std::fs::write(
+        dir.join("f.nc"),
+        "G18 G21 G99\nT0101 (DRILL 5.0)\nG97 S1000 M3\nG0 X40. Z-10. C0.\nG87 X20. Z-10. C0. R-4. F0.08\nC180.\nG80\nT0202 (TAP M6X1)\nG0 X40. Z-10. C0.\nG88 X24. Z-10. C0. R-4. F1.\nC180.\nG80\nM30\n",
+    )
+    .unwrap();
+    let o = run_in(&dir, &["tap", "--program", "f.nc"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("== G88 at line 11 (Z-10 C180, radial), tool T2, tap M6X1-6H"), "{out}");
+    assert!(out.contains("drilled by G87 at line 6, tool T1, Ø5, bottom X20"), "{out}");
+}
+
 /// A bolt pattern with no drilling or tapping cycle in force has nothing to place: one located
 /// line.
 #[test]
@@ -708,7 +746,7 @@ fn a_mill_turn_program_is_read_section_by_section() {
 /// `G83`/`G84 X40 C0 … ` then `C90`: each hole placed by X (a diameter: radius 20) and the
 /// spindle's angle C, (20 cos C, 20 sin C) on the face: (20, 0) and (0, 20), each tap over the
 /// drill at the same angle; the tap's F1.25 is per revolution (G99, the lathe's). Side tapping
-/// (G88, along X) is refused at its line.
+/// (G88, along X) makes a radial hole placed by Z and C.
 #[test]
 fn live_tool_face_tapping_on_a_lathe() {
     let program = data("machining/fanuc-live-tool.nc");
@@ -726,11 +764,13 @@ fn live_tool_face_tapping_on_a_lathe() {
     let dir = tempdir("g88");
     std::fs::write(
         dir.join("side.nc"),
-        "G18 G21 G99\nT0606\nG0 X60 Z-10 C0\nG88 Z-10 X20 C0 R55 F1.25\nG80\nM30\n",
+        "G18 G21 G99\nG97 S800 M3\nG0 X60 Z-10 C0\nG88 Z-10 X20 C0 R55 F1.25\nG80\nM30\n",
     )
     .unwrap();
+    // G88 taps from the side (it was refused): a radial hole at Z−10 C0, no drill before it.
     let o = run_in(&dir, &["tap", "--program", "side.nc", "--tap", "M8x1.25-6H"]);
-    assert_eq!(one_line_error(&o), "threadcheck: error: side.nc:4:1: G88 taps from the side with a live tool (along X): threadcheck checks tapping along Z (G84 on the face) only");
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("== G88 at line 4 (Z-10 C0, radial), tap M8x1.25-6H"), "{}", stdout(&o));
 }
 
 /// Issue 46 (its mixed example, now one file): a mill-turn program (`fanuc-mixed.nc`) turns

@@ -251,6 +251,12 @@ fn same(a: Option<f64>, b: Option<f64>) -> bool {
 /// program set both work offsets' origins (G10), else the same place in work offsets that do not
 /// differ (a cycle before any G54… is in the machine's, which may be either).
 fn same_place(d: &crate::gcode::HoleCycle, h: &crate::gcode::HoleCycle) -> bool {
+    // Radial holes (a live tool along X) by their Z and C; never one of each kind.
+    match (d.radial, h.radial) {
+        (Some(a), Some(b)) => return (a.z - b.z).abs() < 1e-3 && (a.c_deg - b.c_deg).abs() < 1e-3,
+        (None, None) => {}
+        _ => return false,
+    }
     match (d.machine_xy, h.machine_xy) {
         (Some(a), Some(b)) => (a.0 - b.0).abs() < 1e-3 && (a.1 - b.1).abs() < 1e-3,
         _ => {
@@ -507,7 +513,9 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                 // has nothing below it to meet.
                 // The stock's bottom: the caller's, else the one the program declares
                 // (Klartext's BLK FORM 0.1).
-                let stock_bottom = spec.stock_bottom.or(prog.stock_bottom.map(|s| s.0));
+                // (A Z: a radial hole's axis does not meet it.)
+                let stock_bottom =
+                    spec.stock_bottom.or(prog.stock_bottom.map(|s| s.0)).filter(|_| h.radial.is_none());
                 let through = match (stock_bottom, d.diameter) {
                     (Some(sb), Some(dia)) => db + 0.5 * dia / half <= sb + 1e-9,
                     _ => false,
@@ -536,11 +544,16 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                     note: if through {
                         how
                     } else {
+                        // A radial hole's bottoms are radii: written as the program's X.
+                        let at = |v: f64| match h.radial {
+                            Some(_) => format!("X{}", crate::ground::fmt::fmt_num(2.0 * v)),
+                            None => format!("Z{}", crate::ground::fmt::fmt_num(v)),
+                        };
                         format!(
-                            "the drill's bottom (Z{}) lies {} mm below the tap's (Z{}); the tap's point (Ø{}) meets the drill's {}° point {} mm above its bottom{}",
-                            crate::ground::fmt::fmt_num(db),
+                            "the drill's bottom ({}) lies {} mm below the tap's ({}); the tap's point (Ø{}) meets the drill's {}° point {} mm above its bottom{}",
+                            at(db),
                             crate::ground::fmt::fmt_num(room),
-                            crate::ground::fmt::fmt_num(tb),
+                            at(tb),
                             crate::ground::fmt::fmt_num((point * 1e4).round() / 1e4),
                             crate::ground::fmt::fmt_num(d.point_angle),
                             crate::ground::fmt::fmt_num((need * 1e4).round() / 1e4),
@@ -586,8 +599,8 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                 ));
                 Some(dir)
             }
-            (Dialect::Haas, "G95" | "G186", _) => {
-                let (dir, words) = if h.code == "G95" {
+            (Dialect::Haas, "G95" | "G186" | "G195" | "G196", _) => {
+                let (dir, words) = if matches!(h.code.as_str(), "G95" | "G195") {
                     (SpindleDir::Cw, "clockwise")
                 } else {
                     (SpindleDir::Ccw, "counter-clockwise")

@@ -64,6 +64,8 @@ fn g_role(d: Dialect, g: u32, lathe: bool) -> GRole {
             112..=129 if !lathe && d == Dialect::Haas => Offset,
             10 | 11 => Data,
             81..=89 | 184 | 186 | 195 | 196 => OtherCycle,
+            // A Haas lathe's radial drilling cycles (live tool, along X).
+            241..=243 if lathe && d == Dialect::Haas => OtherCycle,
             _ => Unknown,
         },
         Dialect::Sinumerik => match g {
@@ -144,6 +146,7 @@ fn m_known(d: Dialect, c: u32) -> bool {
                     | 133..=135
                     | 143..=145
                     | 154
+                    | 155
             ),
             Dialect::Sinumerik => matches!(c, 17 | 45),
             Dialect::LinuxCnc => matches!(c, 48..=53 | 60..=73),
@@ -753,10 +756,16 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
                 if x.is_some() || z.is_some() || modal.col.is_some() {
                     // A drilling or tapping cycle along Z ends at its X (the face's cycles: a
                     // live tool's next hole is placed by C alone); the side's (G87, G88) do not.
-                    let keep_x = x.or(m.x).filter(|_| !matches!(modal.motion as u32, 87 | 88));
+                    let radial = matches!(modal.motion as u32, 87 | 88 | 195 | 196 | 241..=243);
+                    let keep_x = x.or(m.x).filter(|_| !radial);
+                    // A radial cycle ends at its Z (the next hole may be placed by C alone).
+                    let keep_z = z.or(m.z).filter(|_| radial);
                     m.lose_position(b.line, &what, true, true);
                     if m.lathe() {
                         m.x = keep_x;
+                        if radial {
+                            m.z = keep_z;
+                        }
                     }
                     m.read_past(
                         b.line,
@@ -813,22 +822,16 @@ fn record_hole(
         // A Haas lathe's G184 (left-hand tapping), G95 and G186 (live-tool rigid tapping along
         // Z, right- and left-hand; HAAS-L84).
         95 | 184 | 186 if haas_lathe => super::HoleKind::Tap,
-        195 | 196 if haas_lathe => {
-            return Err(m.err(
-                b.line,
-                modal.col.unwrap_or(b.col),
-                format!(
-                    "G{code} taps radially with a live tool (along X): threadcheck checks tapping along Z (G84, G184, G95, G186) only"
-                ),
-            ))
+        // Radial holes with a live tool, along X: Haas's G195/G196 tapping (right, left) and
+        // G241–G243 drilling (HAAS-L84 names them), Fanuc's G88 tapping and G87 drilling from
+        // the side (FT-BLOG's table).
+        195 | 196 if haas_lathe => return record_radial_hole(m, b, modal, super::HoleKind::Tap, (x, z)),
+        241..=243 if haas_lathe => return record_radial_hole(m, b, modal, super::HoleKind::Drill, (x, z)),
+        88 if fanuc_like && m.lathe() => {
+            return record_radial_hole(m, b, modal, super::HoleKind::Tap, (x, z))
         }
-        // A Fanuc lathe's G88: side tapping with a live tool, along X (FT-BLOG's table).
-        88 if fanuc_like && !haas_lathe && m.lathe() => {
-            return Err(m.err(
-                b.line,
-                modal.col.unwrap_or(b.col),
-                "G88 taps from the side with a live tool (along X): threadcheck checks tapping along Z (G84 on the face) only",
-            ))
+        87 if fanuc_like && m.lathe() => {
+            return record_radial_hole(m, b, modal, super::HoleKind::Drill, (x, z))
         }
         73 | 81..=83 | 85..=89 => super::HoleKind::Drill,
         _ => return Ok(()),
@@ -857,6 +860,51 @@ fn record_hole(
         }
     }
     push_hole_at(m, b, modal, kind, (x, y), bottom)
+}
+
+/// A radial hole on a lathe (a live tool along X): placed by the block's Z (else the current Z)
+/// and C (else the last C), its bottom the block's X (a diameter; else the cycle's last), kept
+/// as its radius. The words as the face cycles' with X and Z changing roles (FT-BLOG's G87 table;
+/// Haas's G195 and G241 read so, a named reading said once).
+fn record_radial_hole(
+    m: &mut Motion,
+    b: &RBlock<'_>,
+    modal: &Modal,
+    kind: super::HoleKind,
+    (x, z): (Option<f64>, Option<f64>),
+) -> Result<(), Error> {
+    let col = modal.col.unwrap_or(b.col);
+    let code = m.g_name(modal.motion as u32);
+    if !(x.is_some() || z.is_some() || modal.col.is_some() || b.get("C").is_some()) {
+        return Ok(());
+    }
+    let bottom = x.map(|d| 0.5 * d).or(m.radial_bottom);
+    m.radial_bottom = bottom;
+    let (Some(zp), Some(c)) = (z.or(m.z), m.c_axis) else {
+        return Err(m.err(
+            b.line,
+            col,
+            format!("{code} makes a radial hole with a live tool: its Z and C (the spindle's angle) place it, and {} not known here", if m.c_axis.is_none() { "C is" } else { "Z is" }),
+        ));
+    };
+    if !m.radial_said {
+        m.radial_said = true;
+        m.note(
+            b.line,
+            col,
+            "a live tool from the side: each hole placed by Z and C (the spindle's angle), its bottom by X (a diameter), its depth along X (a named reading: the face cycles' words with X and Z changing roles)",
+        );
+    }
+    push_hole_at(m, b, modal, kind, (None, None), bottom)?;
+    if let Some(h) = m.holes.last_mut() {
+        h.radial = Some(super::RadialPlace { z: zp, c_deg: c });
+        h.hand = match modal.motion as u32 {
+            196 => Some(crate::standards::Hand::Left),
+            195 | 88 => Some(crate::standards::Hand::Right),
+            _ => h.hand,
+        };
+    }
+    Ok(())
 }
 
 /// Haas's bolt-hole circle `G70 I J L` and arc `G71 I J K L` on a mill: L holes on a circle of
@@ -969,6 +1017,7 @@ fn push_hole_at(
         column: modal.col.unwrap_or(b.col),
         x,
         y,
+        radial: None,
         bottom,
         feed,
         feed_word: "F".into(),

@@ -1444,6 +1444,7 @@ fn run_with(
         column: col,
         x: Some(w[0]),
         y: Some(w[1]),
+        radial: None,
         bottom: Some(w[2]),
         feed: def.get(206).map(|f| f * s),
         feed_word: "Q206".into(),

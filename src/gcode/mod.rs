@@ -615,6 +615,16 @@ pub enum SpindleDir {
     Stopped,
 }
 
+/// Where a radial hole lies on a lathe's part (a live tool drilling or tapping from the side,
+/// along X): its Z and the spindle's angle C. Its bottom is a radius (X/2).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct RadialPlace {
+    /// Z of the hole's axis, mm.
+    pub z: f64,
+    /// The spindle's angle C, degrees.
+    pub c_deg: f64,
+}
+
 /// What a drilling or tapping cycle does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -637,11 +647,15 @@ pub struct HoleCycle {
     pub line: usize,
     /// Its column.
     pub column: usize,
-    /// The hole's position, mm (X a diameter on a lathe); `None` when not known.
+    /// The hole's position, mm (X a diameter on a lathe); `None` when not known, and for a
+    /// radial hole.
     pub x: Option<f64>,
     /// Y, mm.
     pub y: Option<f64>,
-    /// Z of the hole's bottom, mm.
+    /// A radial hole's place (a live tool along X on a lathe): its Z and C.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub radial: Option<RadialPlace>,
+    /// The hole's bottom along its axis, mm: its Z, or a radial hole's radius (X/2).
     pub bottom: Option<f64>,
     /// F as written, in mm (per revolution or per minute); a cycle that takes the pitch
     /// instead (Sinumerik CYCLE84 `PIT`, LinuxCNC G33.1 `K`) gives it here, per revolution.

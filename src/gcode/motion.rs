@@ -216,6 +216,10 @@ pub(crate) struct Motion {
     pub polar: Option<(Option<f64>, Option<f64>)>,
     /// A lathe's C axis (the spindle's angle, degrees) as last written: live-tool holes.
     pub c_axis: Option<f64>,
+    /// The bottom (a radius) of the last radial hole, for a repeat that gives none.
+    pub radial_bottom: Option<f64>,
+    /// The radial holes' reading said once.
+    pub radial_said: bool,
     /// The live-tool placement was said in a note.
     pub live_tool_said: bool,
     /// Cutter radius compensation: 0 G40, 1 G41, 2 G42.
@@ -312,6 +316,8 @@ impl Motion {
             mirror: [None; 2],
             polar: None,
             c_axis: None,
+            radial_bottom: None,
+            radial_said: false,
             live_tool_said: false,
             comp: 0,
             plane: if !mill && lathe_dialect(dialect) { 18 } else { 17 },
@@ -842,6 +848,7 @@ impl Motion {
             column,
             x,
             y,
+            radial: None,
             bottom,
             feed,
             feed_word: feed_word.to_string(),

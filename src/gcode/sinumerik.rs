@@ -534,6 +534,7 @@ fn hole(s: &State, m: &mut Motion, call: &HoleCall, line: usize) -> Result<(), E
         column: if line == call.line { call.col } else { 1 },
         x: wx,
         y: wy,
+        radial: None,
         bottom: wz,
         feed,
         feed_word: feed_word.into(),

@@ -91,9 +91,19 @@ fn micron(v: f64) -> String {
 /// A machining centre's hole's place, ` (X20 Y15)`, when both are known (a lathe's holes on the
 /// axis have no Y): the holes of one pattern cycle share its line.
 fn place(c: &crate::gcode::HoleCycle) -> String {
-    match (c.x, c.y) {
-        (Some(x), Some(y)) => format!(" (X{} Y{}{})", micron(x), micron(y), in_offset(c)),
+    match (c.x, c.y, c.radial) {
+        (_, _, Some(r)) => format!(" (Z{} C{}, radial)", micron(r.z), micron(r.c_deg)),
+        (Some(x), Some(y), None) => format!(" (X{} Y{}{})", micron(x), micron(y), in_offset(c)),
         _ => String::new(),
+    }
+}
+
+/// A height along a hole's axis as the program writes it: `Z-15`, or a radial hole's `X20` (its
+/// radius 10 as the lathe's diameter).
+fn along(c: &crate::gcode::HoleCycle, v: f64) -> String {
+    match c.radial {
+        Some(_) => format!("X{}", fmt_num(2.0 * v)),
+        None => format!("Z{}", fmt_num(v)),
     }
 }
 
@@ -138,7 +148,7 @@ pub fn holes_text(r: &TapReport) -> String {
                     line_of(&d.cycle),
                     d.cycle.tool.map_or(String::new(), |t| format!(", tool T{t}")),
                     d.diameter.map_or(String::new(), |v| format!(", Ø{}", fmt_num(v))),
-                    d.cycle.bottom.map_or(String::new(), |z| format!(", bottom Z{}", fmt_num(z)))
+                    d.cycle.bottom.map_or(String::new(), |z| format!(", bottom {}", along(&d.cycle, z)))
                 );
             }
             None => {
@@ -250,8 +260,11 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
                     c.code,
                     line_of(c),
                     c.tool.map_or(String::new(), |t| format!(", T{t}")),
-                    match (c.x, c.y) {
-                        (Some(x), Some(y)) => format!(" at X{} Y{}{}", micron(x), micron(y), in_offset(c)),
+                    match (c.x, c.y, c.radial) {
+                        (_, _, Some(r)) => format!(" at Z{} C{}", micron(r.z), micron(r.c_deg)),
+                        (Some(x), Some(y), None) => {
+                            format!(" at X{} Y{}{}", micron(x), micron(y), in_offset(c))
+                        }
                         _ => String::new(),
                     }
                 ),
@@ -272,7 +285,9 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
             let x = |r: f64| cx + r * s;
             let half_w = 0.8 * wide * s;
             // The stock: down to its bottom face when known (a through hole opens there).
-            let stock_end = r.stock_bottom.filter(|sb| *sb < top && *sb > bottom - 12.0 / s);
+            // The stock's bottom face is a Z: a radial hole's axis does not meet it.
+            let stock_end =
+                r.stock_bottom.filter(|sb| c.radial.is_none() && *sb < top && *sb > bottom - 12.0 / s);
             let stock_h = stock_end.map_or(y(bottom) - y0 + 12.0, |sb| y(sb) - y0);
             g = g.add(
                 Rectangle::new()
@@ -329,13 +344,13 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
                 stock_end.is_some_and(|sb| c.bottom.is_some_and(|tz| (y(tz) - y(sb)).abs() < 12.0));
             if let Some(tz) = c.bottom {
                 let label = if stock_with_tap { "tap = stock" } else { "tap" };
-                g = mark(g, tz, "#333", format!("{label} Z{}", fmt_num(tz)));
+                g = mark(g, tz, "#333", format!("{label} {}", along(c, tz)));
                 if let Some(f) = hole.tap.full_thread_z {
-                    g = mark(g, f, "#777", format!("full Z{}", fmt_num(f)));
+                    g = mark(g, f, "#777", format!("full {}", along(c, f)));
                 }
             }
             if let Some(db) = hole.drill.as_ref().and_then(|d| d.cycle.bottom) {
-                g = mark(g, db, "#a35a00", format!("drill Z{}", fmt_num(db)));
+                g = mark(g, db, "#a35a00", format!("drill {}", along(c, db)));
             }
             if let Some(sb) = stock_end.filter(|_| !stock_with_tap) {
                 g = mark(g, sb, "#2b6e2b", format!("stock Z{}", fmt_num(sb)));
@@ -386,7 +401,7 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
                     );
             }
             g = g.add(
-                text(cx + half_w + 8.0, y0 + 10.0, 11.0, format!("top Z{}", fmt_num(top)))
+                text(cx + half_w + 8.0, y0 + 10.0, 11.0, format!("top {}", along(c, top)))
                     .set("fill", "#555"),
             );
         }
@@ -561,7 +576,7 @@ pub fn tap_html(r: &crate::analysis::tapping::TapReport) -> String {
                 d.cycle.code,
                 line_of(&d.cycle),
                 d.diameter.map_or(String::new(), |v| format!(", Ø{}", fmt_num(v))),
-                d.cycle.bottom.map_or(String::new(), |z| format!(", bottom Z{}", fmt_num(z)))
+                d.cycle.bottom.map_or(String::new(), |z| format!(", bottom {}", along(&d.cycle, z)))
             ),
             None => "no drilling cycle at this position before it".into(),
         };
