@@ -684,20 +684,31 @@ fn thread_mill_picture_has_zone_scales_and_limits() {
         sc.px_per_mm_d
     );
     let y = sc.y_of_d(19.026 + 0.001);
-    let bands = zone_bands(&svg, "section-tolerance-zone", y);
-    assert!(bands.len() >= 3, "{} bands at D2", bands.len());
-    let want = 0.095 * 30f64.to_radians().tan() * sc.px_per_mm;
-    for band in bands {
-        assert!((band - want).abs() < 0.35, "band {band:.2} px, want {want:.2}");
-    }
+    assert_zone_bands(&svg, y, 0.095 * 30f64.to_radians().tan() * sc.px_per_mm);
     // The measured diameters with their limits; D2 out of them in red with its deviation.
     assert!(svg.contains("[19.026 – 19.216]") && svg.contains("[18.376 – 18.676]"), "limits");
     assert!(svg.contains("D2 18.7071 mm"), "D2's value");
     // The widening plot: µm and Z scales of its own.
     assert!(!tick_labels(&svg, "id=\"widening\"").is_empty() && svg.contains("µm, radial"));
     assert_laid_out(&svg, "thread-mill");
-    let (w, h) = svg_size(&svg);
-    let shot = screenshot(&svg_path, w, h);
+    assert_zone_painted_on_row(&svg_path, &svg, y);
+}
+
+/// The section's tolerance zone crosses the row at `y` in at least three bands, each `want_px`
+/// wide along Z.
+fn assert_zone_bands(svg: &str, y: f64, want_px: f64) {
+    let bands = zone_bands(svg, "section-tolerance-zone", y);
+    assert!(bands.len() >= 3, "{} bands at D2", bands.len());
+    for band in bands {
+        assert!((band - want_px).abs() < 0.35, "band {band:.2} px, want {want_px:.2}");
+    }
+}
+
+/// Chromium paints the zone (green over the material or the air) at least six times along the
+/// row at `y` of the picture `svg` at `path`.
+fn assert_zone_painted_on_row(path: &Path, svg: &str, y: f64) {
+    let (w, h) = svg_size(svg);
+    let shot = screenshot(path, w, h);
     let row = y.round() as usize;
     let green: Vec<usize> = (0..shot.w)
         .filter(|&x| zone_over_material(shot.at(x, row)) || zone_over_air(shot.at(x, row)))
@@ -731,21 +742,9 @@ fn taper_thread_mill_picture_draws_its_zone_on_the_cone() {
     assert!(svg.contains("milled section over four pitches, sheared along the cone"));
     let sc = Scales::of(&svg, "section");
     let y = sc.y_of_d(19.318551);
-    let bands = zone_bands(&svg, "section-tolerance-zone", y);
-    assert!(bands.len() >= 3, "{} bands at D2", bands.len());
-    let want = 25.4 / 14.0 / 16.0 * 30f64.to_radians().tan() * sc.px_per_mm;
-    for band in bands {
-        assert!((band - want).abs() < 0.35, "band {band:.2} px, want {want:.2}");
-    }
+    assert_zone_bands(&svg, y, 25.4 / 14.0 / 16.0 * 30f64.to_radians().tan() * sc.px_per_mm);
     assert_laid_out(&svg, "taper thread-mill");
-    let (w, h) = svg_size(&svg);
-    let shot = screenshot(&svg_path, w, h);
-    let row = y.round() as usize;
-    let green: Vec<usize> = (0..shot.w)
-        .filter(|&x| zone_over_material(shot.at(x, row)) || zone_over_air(shot.at(x, row)))
-        .collect();
-    let runs = green.windows(2).filter(|w| w[1] > w[0] + 1).count() + usize::from(!green.is_empty());
-    assert!(runs >= 6, "the zone shows {runs} times on the D2 row");
+    assert_zone_painted_on_row(&svg_path, &svg, y);
 }
 
 /// Issue 45: the tap picture of radial holes (a live tool along X on a lathe,

@@ -281,12 +281,25 @@ pub struct PlanArgs {
     pub subroutine_path: Vec<PathBuf>,
 }
 
+/// The folder a program file stands in (`.` for a bare file name).
+pub(crate) fn program_folder(p: &Path) -> &Path {
+    p.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."))
+}
+
+/// Where a program in folder `own` finds its subprograms' files: there, then in each folder of
+/// the subroutine path.
+pub(crate) fn sub_finder_in(own: &Path, subroutine_path: &[PathBuf]) -> crate::gcode::SubFinder {
+    let mut dirs = vec![own.to_path_buf()];
+    dirs.extend(subroutine_path.iter().cloned());
+    sub_finder(dirs)
+}
+
 /// Finds the files of the subprograms a program calls in `dirs`, as the controls name them:
 /// LinuxCNC's `o<name> call` the file `name.ngc`, Fanuc's `M98 P2000` a file named `O2000`,
 /// `O02000` or `2000`, with a program extension or none, Sinumerik's `L9` and `THRSUB` (asked for
 /// as `L9.SPF`, `THRSUB.SPF`) the file of that name in any case. Each file is read as a program is
 /// (bounded, its encoding checked).
-pub(crate) fn sub_finder(dirs: Vec<PathBuf>) -> crate::gcode::SubFinder {
+fn sub_finder(dirs: Vec<PathBuf>) -> crate::gcode::SubFinder {
     crate::gcode::SubFinder(std::sync::Arc::new(move |name: &str| {
         let number =
             name.strip_prefix('O').filter(|n| !n.is_empty() && n.bytes().all(|c| c.is_ascii_digit()));
@@ -432,10 +445,7 @@ impl PlanArgs {
                 // A program read from a file finds its subprograms' files where the control
                 // would: its own folder, then the subroutine path.
                 if let (Source::Path(p), super::Files::Allowed) = (source, files) {
-                    let own = p.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-                    let mut dirs = vec![own.to_path_buf()];
-                    dirs.extend(self.subroutine_path.iter().cloned());
-                    s.reading.sub_files = Some(sub_finder(dirs));
+                    s.reading.sub_files = Some(sub_finder_in(program_folder(p), &self.subroutine_path));
                 }
             }
             None => {
@@ -560,10 +570,7 @@ impl ProgramArgs {
     pub fn sub_files(&self, files: super::Files) -> Option<crate::gcode::SubFinder> {
         match (&self.program, files) {
             (Some(Source::Path(p)), super::Files::Allowed) => {
-                let own = p.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-                let mut dirs = vec![own.to_path_buf()];
-                dirs.extend(self.subroutine_path.iter().cloned());
-                Some(sub_finder(dirs))
+                Some(sub_finder_in(program_folder(p), &self.subroutine_path))
             }
             _ => None,
         }

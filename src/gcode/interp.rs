@@ -1196,9 +1196,10 @@ pub(crate) fn run(
             file = name_of(b);
             x.file = file;
             m.file = file.to_string();
+            // A subprogram file's blocks are made at the main program's outermost call (the
+            // file changes at every entry from the main program and at the return to it).
+            m.call_line = if m.file == m.main_file { None } else { x.frames.first().map(|f| f.line) };
         }
-        // A block of a subprogram file is made at the main program's outermost call.
-        m.call_line = if m.file == m.main_file { None } else { x.frames.first().map(|f| f.line) };
         executed += 1;
         // A request no longer wanted (the server's time budget) stops here within microseconds.
         if executed % 4096 == 0 {

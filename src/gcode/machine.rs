@@ -76,23 +76,41 @@ pub(crate) fn decide(
     moves: bool,
 ) -> Result<MachineReading, (usize, usize, String)> {
     let read = |machine_type, reason: String| Ok(MachineReading { machine_type, reason });
+    // The machine a dialect's controls are, whatever a program writes; `None`: its evidence
+    // decides.
+    let fixed = match dialect {
+        // Okuma OSP lathes and Heidenhain's DIN lathe controls are the dialects read here.
+        Dialect::Okuma | Dialect::Heidenhain => Some((
+            MachineType::Lathe,
+            format!("read as a lathe: the {} dialect is its lathe control's", dialect.name()),
+        )),
+        // Read by its own reader, which says so; here for completeness.
+        Dialect::Klartext => {
+            Some((MachineType::Mill, "read as a machining centre: Klartext is a TNC's".into()))
+        }
+        Dialect::Dyna => {
+            Some((MachineType::Mill, "read as a machining centre: Dyna controls are mills".into()))
+        }
+        Dialect::Fanuc
+        | Dialect::Haas
+        | Dialect::Mitsubishi
+        | Dialect::Mazak
+        | Dialect::Sinumerik
+        | Dialect::LinuxCnc => None,
+    };
+    // The program's evidence: the first block that shows a machine, and the first that shows
+    // the other (both: a mill-turn program).
+    let shown = || {
+        let first = first_showing(blocks, dialect, |_| true)?;
+        let other = first_showing(blocks, dialect, |m| m != first.1);
+        Some((first, other))
+    };
     // A milling toolpath is a machining centre's unless the program turns too (a mill-turn
     // program's turning sections are read as a lathe's, so a lathe cycle is not taken for a
     // mill's drilling cycle).
-    let evidence_read = matches!(
-        dialect,
-        Dialect::Fanuc
-            | Dialect::Haas
-            | Dialect::Mitsubishi
-            | Dialect::Mazak
-            | Dialect::Sinumerik
-            | Dialect::LinuxCnc
-    );
-    if moves && given.is_none() && evidence_read {
-        if let Some((b0, t0, what0)) = first_showing(blocks, dialect, |_| true) {
-            if let Some((b1, _, what1)) = first_showing(blocks, dialect, |m| m != t0) {
-                return read(MachineType::MillTurn, mill_turn_reason(b0.line, &what0, b1.line, &what1));
-            }
+    if moves && given.is_none() && fixed.is_none() {
+        if let Some(((b0, _, what0), Some((b1, _, what1)))) = shown() {
+            return read(MachineType::MillTurn, mill_turn_reason(b0.line, &what0, b1.line, &what1));
         }
     }
     if moves && given != Some(MachineType::MillTurn) {
@@ -116,35 +134,16 @@ pub(crate) fn decide(
         }
         return read(t, format!("read as a {}, as {source} says", t.name()));
     }
-    match dialect {
-        // Okuma OSP lathes and Heidenhain's DIN lathe controls are the dialects read here.
-        Dialect::Okuma | Dialect::Heidenhain => {
-            return read(
-                MachineType::Lathe,
-                format!("read as a lathe: the {} dialect is its lathe control's", dialect.name()),
-            )
-        }
-        // Read by its own reader, which says so; here for completeness.
-        Dialect::Klartext => {
-            return read(MachineType::Mill, "read as a machining centre: Klartext is a TNC's".into())
-        }
-        Dialect::Dyna => {
-            return read(MachineType::Mill, "read as a machining centre: Dyna controls are mills".into())
-        }
-        Dialect::Fanuc
-        | Dialect::Haas
-        | Dialect::Mitsubishi
-        | Dialect::Mazak
-        | Dialect::Sinumerik
-        | Dialect::LinuxCnc => {}
+    if let Some((t, why)) = fixed {
+        return read(t, why);
     }
-    let Some((b0, t0, what0)) = first_showing(blocks, dialect, |_| true) else {
+    let Some(((b0, t0, what0), other)) = shown() else {
         return read(
             MachineType::Lathe,
             "read as a lathe, the default: no block shows the machine (G17 or G18, a tool change, a drilling cycle's return level, …; ‹machine_type› chooses)".into(),
         );
     };
-    if let Some((b1, _, what1)) = first_showing(blocks, dialect, |m| m != t0) {
+    if let Some((b1, _, what1)) = other {
         return read(MachineType::MillTurn, mill_turn_reason(b0.line, &what0, b1.line, &what1));
     }
     read(
@@ -238,10 +237,13 @@ fn ddcs_word(code: &str, dialect: Dialect) -> Option<(usize, String)> {
         }
     }
     // The dialects whose comparison words are known here (EQ, NE: Fanuc macro B, LinuxCNC).
-    let words_compare = matches!(
-        dialect,
-        Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak | Dialect::LinuxCnc
-    );
+    let words_compare = match dialect {
+        Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak | Dialect::LinuxCnc => true,
+        // Sinumerik writes `==` itself; the others' comparison words were not read here.
+        Dialect::Sinumerik | Dialect::Dyna | Dialect::Okuma | Dialect::Heidenhain | Dialect::Klartext => {
+            false
+        }
+    };
     if words_compare {
         if let Some(at) = code.find("!=") {
             return Some((
