@@ -112,13 +112,13 @@ fn g78_is_never_read_without_its_system() {
     for (program, at, args, line) in [
         (
             "fanuc-system-b-g78.nc",
-            &dir,
+            &*dir as &std::path::Path,
             vec![],
             "fanuc-system-b-g78.nc:7:1: G78 is not a code of Fanuc G-code system A, which this program is read in: a control set to system B reads it as the threading cycle (G92 in A), one set to system C as the multiple threading cycle (G76 in A); give --gcode-system b or c (the EMCO training lathe's G78 box cycle is not supported)",
         ),
         (
             "haas-g76-metric.nc",
-            &data("programs"),
+            &data("programs") as &std::path::Path,
             vec!["--dialect", "haas", "--gcode-system", "b"],
             "G-code system B is a setting of Fanuc-family lathe controls (fanuc, mitsubishi, mazak): a haas program has one G-code list (leave --gcode-system out)",
         ),

@@ -246,7 +246,7 @@ fn constant_depth_grows_the_chip_constant_area_holds_it() {
 fn the_committed_report_regenerates_byte_for_byte() {
     let dir = crate::tempdir("report");
     let report =
-        threadcheck::ReportArgs { name: threadcheck::ReportName::InfeedComparison, out: dir.clone() };
+        threadcheck::ReportArgs { name: threadcheck::ReportName::InfeedComparison, out: dir.to_path_buf() };
     // The command line's report: its words name flags (`--insert full`).
     let request = threadcheck::Request {
         wanted: vec![threadcheck::Document::Text],

@@ -9,7 +9,7 @@ use std::path::Path;
 
 /// Our test programs in a folder, with a broken one whose place is known: line 3's bare `G` at
 /// column 29.
-fn library(tag: &str) -> std::path::PathBuf {
+fn library(tag: &str) -> crate::util::Scratch {
     let dir = tempdir(tag);
     let lib = dir.join("lib");
     std::fs::create_dir_all(&lib).unwrap();

@@ -26,18 +26,36 @@ pub fn run(args: &[&str]) -> Output {
     run_in(&dir, args)
 }
 
-/// A fresh, empty temporary folder unique to this test process and `tag`.
-pub fn tempdir(tag: &str) -> PathBuf {
-    use std::sync::atomic::{AtomicUsize, Ordering};
-    static N: AtomicUsize = AtomicUsize::new(0);
-    let d = std::env::temp_dir().join(format!(
-        "threadcheck-{}-{tag}-{}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::SeqCst)
-    ));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+/// A fresh, empty temporary folder unique to this test and `tag`, removed with everything in it
+/// when the value is dropped (a test run used to leave some three hundred folders behind).
+pub fn tempdir(tag: &str) -> Scratch {
+    let dir = tempfile::Builder::new()
+        .prefix(&format!("threadcheck-{tag}-"))
+        .tempdir()
+        .unwrap();
+    Scratch(dir)
+}
+
+/// A temporary folder that is removed when dropped; it reads as the [`Path`] of the folder.
+pub struct Scratch(tempfile::TempDir);
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        self.0.path()
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        self.0.path()
+    }
+}
+
+impl AsRef<std::ffi::OsStr> for Scratch {
+    fn as_ref(&self) -> &std::ffi::OsStr {
+        self.0.path().as_os_str()
+    }
 }
 
 /// `sweep` over M10 coarse alone (P 1.5), one insert set, the given infeeds, constant area.

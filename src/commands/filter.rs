@@ -104,6 +104,7 @@ fn msg_comment(text: &str) -> String {
 /// assert_eq!(out.stdout, b"G21 G18\nG0 X12 Z2\n");
 /// assert_eq!(out.outcome, threadcheck::Outcome::Pass);
 /// assert!(out.stderr.starts_with("FILTER_PROGRESS=0\n"));
+/// # std::fs::remove_dir_all(&dir)?;
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn filter(args: &FilterArgs) -> Result<Filtered, Error> {
