@@ -509,6 +509,31 @@ fn a_taper_thread_milled_on_its_cone_is_gauged_at_its_gauge_plane() {
         turns.push(t);
     }
     assert!((turns[1] - turns[0] - 0.2 / (p / 16.0)).abs() < 0.01, "{turns:?}");
+    // The picture's widening plot: on the flanks about half the pitch-diameter distortion
+    // (+20.1 µm, radial against diametral), 0 on the crests; it drew spikes of 250 µm where the
+    // cutter's tooth, taken 0.625·P deep, ended short of the bore (0.8·P below the root). Its
+    // scale's top tick stays under the whole distortion.
+    let dir = tempdir("npt-widening");
+    let svg = dir.join("npt.svg");
+    let o = run(&[
+        "thread-mill",
+        "--program",
+        data("programs/threadmill/npt-half-internal.nc").to_str().unwrap(),
+        "--cutter-diameter",
+        "10",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let panel = &text[text.find("id=\"widening\"").unwrap()..];
+    let ticks: Vec<f64> = panel
+        .split("text-anchor=\"end\"")
+        .skip(1)
+        .filter_map(|t| t.split('>').nth(1)?.split('<').next()?.trim().parse().ok())
+        .collect();
+    let top = ticks.iter().cloned().fold(0.0, f64::max);
+    assert!(ticks.len() >= 2 && top > 5.0 && top < 20.1, "widening scale {ticks:?}");
     // The same spirals named as a parallel thread: refused at the first arc, the taper named.
     let o = run(&[
         "thread-mill",
@@ -523,4 +548,58 @@ fn a_taper_thread_milled_on_its_cone_is_gauged_at_its_gauge_plane() {
     let e = one_line_error(&o);
     assert!(e.contains("npt-half-internal.nc:10:1: the helices from here spiral one way along Z, their radius growing 0.567 mm over 18.1429 mm of Z (a taper of 1:16 on the diameter)"), "{e}");
     assert!(e.contains("name the taper thread (NPT, ISO 7-1 R/Rc)"), "{e}");
+}
+
+/// A Whitworth nut is 0.64·P deep from its root to its bore, deeper than the 0.625·P of tooth
+/// the cutter was taken to have: the tooth ended short of the bore and its neck cut a step into
+/// each flank, so the crest at the bore was measured 0.28 mm too wide (and an NPT's, 0.8·P deep,
+/// the same way; the picture's widening plot showed spikes of 250 µm at each step). The tooth now
+/// reaches the thread's fundamental triangle, H.
+///
+/// BSW 1/2 (P = 25.4/12, H = P/(2·tan 27.5°) = 2.033039) milled by a Ø6 55° cutter whose sharp
+/// tip runs on the fundamental triangle's apex, D/2 + H/6 = 6.688840 (R = 3.688840); bore Ø10.2.
+#[test]
+fn a_thread_deeper_than_five_eighths_of_its_pitch_is_cut_by_the_whole_tooth() {
+    let p = 25.4 / 12.0;
+    let tan = 27.5f64.to_radians().tan();
+    let h = p / (2.0 * tan);
+    let apex = 6.35 + h / 6.0;
+    let prog = data("programs/threadmill/bsw-half-nut.nc");
+    let o = run(&[
+        "thread-mill",
+        "--program",
+        prog.to_str().unwrap(),
+        "--cutter-diameter",
+        "6",
+        "--cutter-angle",
+        "55",
+        "--blank-diameter",
+        "10.2",
+        "--json",
+        "-",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["designation"], "BSW 1/2 MEDIUM");
+    assert_eq!(v["kind"], "internal");
+    let tooth = &v["tooth_profile"];
+    // The tooth alone: a sharp 55° V from the apex to the bore.
+    let f = |x: &serde_json::Value| x.as_f64().unwrap();
+    assert!((f(&tooth["major_diameter"]) - 2.0 * apex).abs() < 1e-3, "{tooth}");
+    assert!((f(&tooth["pitch_diameter"]) - (12.7 - 2.0 * h / 3.0)).abs() < 1e-3, "{tooth}");
+    assert_eq!(f(&tooth["minor_diameter"]), 10.2);
+    // The crest at the bore: the pitch less the groove's width there, 2·(apex − 5.1)·tan 27.5°
+    // (0.4625; within the section's sampling, 4P/1600 = 5.3 µm). The old tooth left 0.739.
+    let crest = p - 2.0 * (apex - 5.1) * tan;
+    assert!((f(&tooth["crest_width"]) - crest).abs() < 6e-3, "{} against {crest}", tooth["crest_width"]);
+    // As milled, the groove wider by the small-angle model's 2·Δr (above), the cutter's radius at
+    // the pitch line ρ = 3 − (apex − D2/2): 39.7 µm.
+    let rho = 3.0 - (apex - (12.7 - 2.0 * h / 3.0) / 2.0);
+    let r = apex - 3.0;
+    let k = (p / std::f64::consts::TAU) / tan;
+    let widen = 2.0 * k * k / (2.0 * (r + r * r / rho)) * 1000.0;
+    let d2 = f(&v["distortion_pitch_diameter_um"]);
+    assert!((d2 - widen).abs() < 1.5, "{d2} µm against {widen} µm");
+    assert!((f(&v["measured"]["crest_width"]) - (crest - widen / 1000.0 * tan)).abs() < 6e-3, "{v}");
+    assert_eq!(v["verdict"], "pass");
 }

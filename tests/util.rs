@@ -29,10 +29,7 @@ pub fn run(args: &[&str]) -> Output {
 /// A fresh, empty temporary folder unique to this test and `tag`, removed with everything in it
 /// when the value is dropped (a test run used to leave some three hundred folders behind).
 pub fn tempdir(tag: &str) -> Scratch {
-    let dir = tempfile::Builder::new()
-        .prefix(&format!("threadcheck-{tag}-"))
-        .tempdir()
-        .unwrap();
+    let dir = tempfile::Builder::new().prefix(&format!("threadcheck-{tag}-")).tempdir().unwrap();
     Scratch(dir)
 }
 

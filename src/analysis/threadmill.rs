@@ -20,8 +20,8 @@
 //! measurement and class checks as a turned thread.
 //!
 //! The cutter: `diameter` over the tooth's tip, the tooth's included `angle` and tip radius, a
-//! tooth height of 0.625·P below the tip (deeper than an ISO thread's 0.5413·P, so the neck never
-//! reaches the thread: a named default). Under cutter radius compensation (G41/G42) the helix
+//! tooth as deep as the thread's fundamental triangle H below the tip (deeper than any standard
+//! thread, so the neck never reaches it: a named default). Under cutter radius compensation (G41/G42) the helix
 //! radius is the programmed one moved by the compensation value given (the D register's).
 
 use crate::analysis::check::{checks, Check};
@@ -104,6 +104,10 @@ pub struct ThreadMillReport {
     /// The tooth profile's section over the same heights.
     #[serde(skip)]
     pub tooth_points: Vec<Point>,
+    /// The helix's widening of the groove along the section: (z mm, the as-milled radius's
+    /// distance from the tooth profile's, µm) at each height.
+    #[serde(skip)]
+    pub widening_um: Vec<(f64, f64)>,
     /// The basic profile placed on the measured groove, over the same heights.
     #[serde(skip)]
     pub basic: Vec<Point>,
@@ -703,8 +707,15 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
             b
         }
     };
-    notes.push("the cutter's tooth is taken 0.625·P deep below its tip (a named default; its neck never reaches the thread)".into());
-    let neck = 0.5 * c.diameter - 0.625 * p;
+    // The tooth reaches the depth of the thread's fundamental triangle, deeper than any
+    // standard thread (an NPT's 0.8·P and a Whitworth's 0.64·P passed the 0.625·P taken before,
+    // so the neck cut their crests flat).
+    let tooth_depth = t.fundamental_height();
+    notes.push(format!(
+        "the cutter's tooth is taken as deep as the thread's fundamental triangle, H = P/(2·tan(α/2)) = {} mm below its tip (a named default; deeper than the thread, its neck never reaches it)",
+        crate::ground::fmt::fmt_num((tooth_depth * 1e4).round() / 1e4)
+    ));
+    let neck = (0.5 * c.diameter - tooth_depth).max(0.0);
     // The section: around the helices' middle height, a whole number of leads from a crossing.
     // A multi-form cutter's rows reach `span` above the helices.
     let z_lo = hs.iter().map(|h| h.z[0].min(h.z[1])).fold(f64::INFINITY, f64::min);
@@ -1006,6 +1017,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         checks: cs,
         pass,
         notes,
+        widening_um: profile.iter().zip(&tooth).map(|(a, b)| (a.z, (a.r - b.r).abs() * 1000.0)).collect(),
         profile,
         tooth_points: tooth,
         basic,

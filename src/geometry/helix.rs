@@ -18,8 +18,8 @@
 //! measurement and class checks as a turned thread.
 //!
 //! The cutter: `diameter` over the tooth's tip, the tooth's included `angle` and tip radius, a
-//! tooth height of 0.625·P below the tip (deeper than an ISO thread's 0.5413·P, so the neck never
-//! reaches the thread: a named default). Under cutter radius compensation (G41/G42) the helix
+//! tooth as deep as the thread's fundamental triangle H below the tip (deeper than any standard
+//! thread, so the neck never reaches it: a named default). Under cutter radius compensation (G41/G42) the helix
 //! radius is the programmed one moved by the compensation value given (the D register's).
 
 use crate::Error;
@@ -294,9 +294,11 @@ pub(crate) fn reach(
         let Some((t_a, t_b)) = reach_range(h, cutter, hw, z) else { continue };
         if only_psi0 {
             // The tooth profile alone: the cutter where it crosses the half-plane (ψ = 0 mod 2π).
-            let k0 = ((dir * (t_a + h.angle_start * dir)) / std::f64::consts::TAU).floor() as i64 - 1;
-            let turns = ((t_b - t_a) / std::f64::consts::TAU).ceil() as i64;
-            for k in k0..k0 + 4 + turns {
+            // ψ = angle_start + dir·t = k·2π: k runs between its values at t_a and t_b (a
+            // clockwise helix's k falls as t grows; counting up from t_a missed its crossings).
+            let k_of = |t: f64| (h.angle_start + dir * t) / std::f64::consts::TAU;
+            let (k_lo, k_hi) = (k_of(t_a).min(k_of(t_b)), k_of(t_a).max(k_of(t_b)));
+            for k in (k_lo.floor() as i64 - 1)..=(k_hi.ceil() as i64 + 1) {
                 let t = dir * (k as f64 * std::f64::consts::TAU - h.angle_start);
                 if t >= t_a - 1e-12 && t <= t_b + 1e-12 {
                     if let Some(v) = eval(t.clamp(0.0, sweep)) {
@@ -343,4 +345,51 @@ pub(crate) fn reach(
         }
     }
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A helix run backwards passes the same places: six turns of G3 spiralling in from
+    /// (7.3, 0, Z0) to (7, 0, Z9), 1.5 mm a turn (a taper's), and the same path as G2 falling
+    /// from Z9. Under a comb cutter reaching five turns of it, each height's section is the same,
+    /// the tooth profile alone too (the clockwise helix's crossings of the section were counted
+    /// from the wrong end, so only two turns of its reach were found, and on a spiral the
+    /// farthest row was missed).
+    #[test]
+    fn a_helix_run_backwards_cuts_the_same_section() {
+        let cutter = Cutter::single_form(6.0, 60.0, 0.0).with_rows(5, Some(1.5)).unwrap();
+        let up = Helix {
+            line: 1,
+            centre: [0.0, 0.0],
+            radius: 7.3,
+            programmed_radius: 7.3,
+            radius_change: -0.3,
+            z: [0.0, 9.0],
+            sweep_deg: 6.0 * 360.0,
+            lead: 1.5,
+            climb: true,
+            angle_start: 0.0,
+        };
+        let down = Helix {
+            radius: 7.0,
+            programmed_radius: 7.0,
+            radius_change: 0.3,
+            z: [9.0, 0.0],
+            sweep_deg: -6.0 * 360.0,
+            climb: false,
+            ..up.clone()
+        };
+        let neck = 3.0 - 1.3;
+        for i in 0..=700 {
+            let z = 2.0 + 0.01 * i as f64;
+            for only_psi0 in [true, false] {
+                let a = reach(std::slice::from_ref(&up), &cutter, neck, z, true, only_psi0);
+                let b = reach(std::slice::from_ref(&down), &cutter, neck, z, true, only_psi0);
+                let (Some(a), Some(b)) = (a, b) else { panic!("z {z}: {a:?} {b:?}") };
+                assert!((a - b).abs() < 1e-7, "z {z}, tooth alone {only_psi0}: {a} {b}");
+            }
+        }
+    }
 }

@@ -308,10 +308,8 @@ pub(crate) fn threadmill_document(r: &crate::analysis::threadmill::ThreadMillRep
         legend = legend.add(text(lx + 30.0, ly, 11.0, name));
         lx += 30.0 + 6.6 * name.chars().count() as f64 + 22.0;
     }
-    // The groove's widening along Z: the milled radius less the tooth profile's, in µm, on the
-    // section's own Z scale.
-    let widen: Vec<(f64, f64)> =
-        r.profile.iter().zip(&r.tooth_points).map(|(a, b)| (a.z, (a.r - b.r).abs() * 1000.0)).collect();
+    // The groove's widening along Z, on the section's own Z scale.
+    let widen = &r.widening_um;
     let peak = widen.iter().map(|p| p.1).fold(0.0f64, f64::max);
     let step = tick_step(peak.max(1e-3), 4.0);
     let top = (peak / step).ceil().max(1.0) * step;
