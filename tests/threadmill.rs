@@ -603,3 +603,63 @@ fn a_thread_deeper_than_five_eighths_of_its_pitch_is_cut_by_the_whole_tooth() {
     assert!((f(&v["measured"]["crest_width"]) - (crest - widen / 1000.0 * tan)).abs() < 6e-3, "{v}");
     assert_eq!(v["verdict"], "pass");
 }
+
+/// A program as a CAM post writes it names its thread mill in its tool list, `(T5  D=8. CR=0. -
+/// ZMIN=-18.5 - thread mill)` (Autodesk's posts' form), and enters and leaves its helices on
+/// quarter helical arcs. `verify` found no cutter without a tool table ("the thread mill T5 of
+/// the helices is not known"), and the entry, a helix about another axis, was taken for one of
+/// the helices, so the straight move before it was reported as the entry ("a witness mark").
+///
+/// M12x1.75-6H by a Ø8 cutter whose sharp tip runs on the basic profile's apex, D/2 + H/8: R =
+/// 6 + 0.189443 − 4, written 2.1894; the tooth alone cuts D2 = 2·(2.1894 + 4 − H/2) = 10.863256,
+/// and the helix widens it by the small-angle model's 2·Δr (top of this file): 63.4 µm.
+#[test]
+fn a_cam_program_s_tool_list_names_its_thread_mill_and_its_lead_in_arc_is_the_entry() {
+    let prog = data("programs/threadmill/m12-cam-helical-lead-in.nc");
+    let o = run(&["verify", "--program", prog.to_str().unwrap(), "--json", "-"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let op = &v["operations"][0];
+    assert_eq!(op["made"], "milled");
+    assert_eq!(op["cutter"]["diameter"], 8.0);
+    assert_eq!(op["cutter"]["angle_deg"], 60.0);
+    let notes: Vec<&str> = op["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap()).collect();
+    assert!(
+        notes.iter().any(|n| n.starts_with(
+            "the thread mill T5 is the program's comment at line 4: Ø8, its tooth 60°, the default"
+        )),
+        "{notes:?}"
+    );
+    assert!(notes.contains(&"the cutter reaches its helices on a helical arc about another axis (line 21): a tangential entry"), "{notes:?}");
+    assert!(
+        notes.contains(
+            &"the cutter leaves its helices on a helical arc about another axis (line 38): a tangential exit"
+        ),
+        "{notes:?}"
+    );
+    assert!(!notes.iter().any(|n| n.contains("straight feed move")), "{notes:?}");
+    let h = 3f64.sqrt() / 2.0 * 1.75;
+    let f = |x: &serde_json::Value| x.as_f64().unwrap();
+    assert!(
+        (f(&op["tooth_profile"]["pitch_diameter"]) - 2.0 * (2.1894 + 4.0 - h / 2.0)).abs() < 1e-4,
+        "{op}"
+    );
+    let (r, rho) = (2.1894, 4.0 - h / 2.0);
+    let k = 1.75 / std::f64::consts::TAU * 3f64.sqrt();
+    let widen = 2.0 * k * k / (2.0 * (r + r * r / rho)) * 1000.0;
+    assert!(
+        (f(&op["distortion_pitch_diameter_um"]) - widen).abs() < 1.5,
+        "{} against {widen}",
+        op["distortion_pitch_diameter_um"]
+    );
+    assert_eq!(v["verdict"], "pass");
+    // `thread-mill` reads the same list; a cutter given wins over it.
+    let o = run(&["thread-mill", "--program", prog.to_str().unwrap(), "--json", "-"]);
+    let m: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(m["cutter"]["diameter"], 8.0, "{}", stderr(&o));
+    let o =
+        run(&["thread-mill", "--program", prog.to_str().unwrap(), "--cutter-diameter", "6", "--json", "-"]);
+    let m: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(m["cutter"]["diameter"], 6.0, "{}", stderr(&o));
+    assert!(!m["notes"].to_string().contains("program's comment at line 4"));
+}

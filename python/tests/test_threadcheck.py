@@ -663,3 +663,15 @@ def test_a_tap_for_cycles_that_name_no_tool():
     (h,) = r["holes"]
     assert h["tap"]["designation"] == "M10x1.5-6H"
     assert [c["ok"] for c in h["checks"] if c["feature"] == "feed"] == [True]
+
+
+def test_thread_mill_from_a_cam_tool_list():
+    # A program as Autodesk's posts write it lists its tools, (T5  D=8. CR=0. - ... - thread mill):
+    # the thread mill needs no tool table, and a shape option alone is refused, never dropped.
+    mill = pathlib.Path(__file__).resolve().parents[2] / "tests" / "data" / "programs" / "threadmill"
+    text = (mill / "m12-cam-helical-lead-in.nc").read_text()
+    r = threadcheck.thread_mill(text)
+    assert r["cutter"]["diameter"] == 8.0 and r["designation"] == "M12X1.75-6H"
+    assert any(n.startswith("the thread mill T5 is the program's comment at line 4") for n in r["notes"])
+    with pytest.raises(ValueError, match="cutter_angle describes the cutter cutter_diameter gives"):
+        threadcheck.thread_mill(text, cutter_angle=55.0)

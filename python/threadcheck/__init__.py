@@ -395,7 +395,9 @@ def thread_mill(program: str, thread: Optional[str] = None, cutter_diameter: Opt
     above its helices, else the standard size they cut), ``default_units`` (``"mm"``/``"inch"``)
     the units of a program that sets none, ``cutter_diameter`` (mm, over the tooth's tip),
     ``cutter_angle`` (60°) and ``cutter_tip_radius`` (0) the tooth, or ``tools`` a tool table's
-    TOML text naming the helices' T as a thread mill; ``cutter_rows`` (1) and
+    TOML text naming the helices' T as a thread mill, else the thread mill the program's
+    comments name for that T (a CAM post's tool list, ``(T5  D=8. CR=0. - thread mill)``; the
+    shape options then raise ``ValueError``: they need ``cutter_diameter``); ``cutter_rows`` (1) and
     ``cutter_row_pitch`` (mm) a multi-form cutter's rows; ``blank_diameter`` the bore (default
     the middle of D1); ``comp_radius`` the D register G41/G42 apply (mm). The dict has ``measured``,
     ``tooth_profile`` (the cutter's tooth alone), ``distortion_pitch_diameter_um``,

@@ -367,6 +367,82 @@ pub fn infer_designation(
     Ok(Named { designation, from: DesignationFrom::Inferred, line: Some(line), why })
 }
 
+/// A thread mill a comment names: its tool number when the comment lists tools (`T5 …`), its
+/// diameter in mm and, when written, its tooth's angle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MillInComment {
+    /// The tool the comment begins with (`T5  D=8. CR=0. - thread mill`, as a CAM system's
+    /// tool list writes it), else `None` (a comment at the tool change).
+    pub tool: Option<u32>,
+    /// The diameter over the tooth's tip, mm.
+    pub diameter: f64,
+    /// The tooth's included angle, degrees, when the comment writes one (`60 DEG`, `60°`).
+    pub angle_deg: Option<f64>,
+}
+
+/// The thread mill a comment names: a comment with the words THREAD MILL (THREADMILL,
+/// THREAD-MILL; GEWINDEFRÄSER) and a diameter written as one (`D=8.`, `D8`, `DIA 8`, `Ø8`), in the
+/// program's units unless it ends in `MM`. Autodesk's posts list every tool at the program's
+/// top as `(T5  D=8. CR=0. - ZMIN=-15. - thread mill)`.
+///
+/// ```
+/// use threadcheck::{thread_mill_in_comment, ProgramUnits};
+/// let m = thread_mill_in_comment("T5  D=8. CR=0. - ZMIN=-15. - thread mill", ProgramUnits::Mm).unwrap();
+/// assert_eq!((m.tool, m.diameter, m.angle_deg), (Some(5), 8.0, None));
+/// let m = thread_mill_in_comment("THREAD MILL D10 60 DEG", ProgramUnits::Mm).unwrap();
+/// assert_eq!((m.tool, m.diameter, m.angle_deg), (None, 10.0, Some(60.0)));
+/// let m = thread_mill_in_comment("T12 D=0.375 CR=0. - thread mill", ProgramUnits::Inch).unwrap();
+/// assert!((m.diameter - 9.525).abs() < 1e-12);
+/// // A drill's or an end mill's line names no thread mill.
+/// assert_eq!(thread_mill_in_comment("T2  D=8.5 CR=0. TAPER=118deg - drill", ProgramUnits::Mm), None);
+/// assert_eq!(thread_mill_in_comment("THREAD M12X1.75", ProgramUnits::Mm), None);
+/// ```
+pub fn thread_mill_in_comment(comment: &str, units: ProgramUnits) -> Option<MillInComment> {
+    let upper = comment.to_uppercase().replace('-', " ");
+    let words: Vec<&str> = upper.split_whitespace().collect();
+    let names_mill = words.windows(2).any(|w| w[0] == "THREAD" && (w[1] == "MILL" || w[1] == "MILLING"))
+        || words.iter().any(|w| w.starts_with("THREADMILL") || w.starts_with("GEWINDEFR"));
+    if !names_mill {
+        return None;
+    }
+    let tool = words.first().and_then(|w| w.strip_prefix('T')).and_then(|n| n.parse::<u32>().ok());
+    let length = |w: &str| -> Option<f64> {
+        let w = w.trim_end_matches([',', ';', ')']);
+        let (num, mm) = match w.strip_suffix("MM") {
+            Some(n) => (n, true),
+            None => (w, false),
+        };
+        if !num.starts_with(|c: char| c.is_ascii_digit() || c == '.') {
+            return None;
+        }
+        let v: f64 = num.replace(',', ".").parse().ok()?;
+        (v.is_finite() && v > 0.0).then(|| if mm { v } else { v * units.mm() })
+    };
+    let diameter = words.iter().enumerate().find_map(|(i, w)| {
+        for mark in ["DIA.", "DIAM", "DIA", "D=", "Ø", "⌀", "D"] {
+            if let Some(rest) = w.strip_prefix(mark) {
+                let rest = rest.trim_start_matches('=');
+                return if rest.is_empty() {
+                    // `DIA 8`, `Ø 8`: the number is the next word (a bare `D` is no mark).
+                    (mark != "D").then(|| words.get(i + 1).and_then(|n| length(n))).flatten()
+                } else {
+                    length(rest)
+                };
+            }
+        }
+        None
+    })?;
+    let angle_deg = words.iter().enumerate().find_map(|(i, w)| {
+        let (num, marked) = match w.strip_suffix('°') {
+            Some(n) => (n, true),
+            None => (*w, words.get(i + 1).is_some_and(|n| n.starts_with("DEG") || n.starts_with('°'))),
+        };
+        let v: f64 = num.strip_suffix("DEG").unwrap_or(num).parse().ok()?;
+        (marked || num.ends_with("DEG")).then_some(v).filter(|v| *v > 0.0 && *v < 180.0)
+    });
+    Some(MillInComment { tool, diameter, angle_deg })
+}
+
 /// Words that make a number in a comment a drill's diameter.
 pub const DRILL_WORDS: &[&str] =
     &["DRILL", "DRILLING", "BOHRER", "BOHREN", "FORET", "PERCAGE", "BROCA", "PUNTA", "СВЕРЛО"];

@@ -459,17 +459,91 @@ fn turn_leads(hs: &[Helix]) -> Vec<(usize, f64)> {
     out
 }
 
+/// A thread mill a comment of the program names for a tool.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CommentedCutter {
+    /// The cutter: the comment's diameter, its angle or 60°, tip radius 0, one row.
+    pub cutter: Cutter,
+    /// The comment's line.
+    pub line: usize,
+    /// The comment wrote the tooth's angle.
+    pub angle_given: bool,
+}
+
+impl CommentedCutter {
+    /// The note that says where the cutter came from.
+    fn note(&self, tool: u32) -> String {
+        format!(
+            "the thread mill T{tool} is the program's comment at line {}: Ø{}, its tooth {}°{}, tip radius 0 and one row (a named default; ‹cutter_diameter› or a tool table gives the cutter)",
+            self.line,
+            crate::ground::fmt::fmt_num(self.cutter.diameter),
+            crate::ground::fmt::fmt_num(self.cutter.angle_deg),
+            if self.angle_given { " as written" } else { ", the default" }
+        )
+    }
+}
+
+/// The thread mill the program's comments name for tool `tool`: a tool list's line
+/// (`(T5  D=8. CR=0. - thread mill)`, as Autodesk's posts write one for every tool at the top),
+/// else a comment on a line that calls the tool (`T5 M6 (THREAD MILL D10 60 DEG)`); its
+/// diameter in `units`, the program's where the helices run.
+pub(crate) fn cutter_in_comments(
+    text: &str,
+    dialect: crate::gcode::Dialect,
+    tool: u32,
+    units: crate::gcode::ProgramUnits,
+) -> Option<CommentedCutter> {
+    use crate::analysis::naming::thread_mill_in_comment;
+    let comments = crate::gcode::comments(text, dialect);
+    let calls_tool = |line: usize, column: usize| -> bool {
+        let code: Vec<char> =
+            text.lines().nth(line - 1).unwrap_or("").chars().take(column.saturating_sub(2)).collect();
+        (0..code.len()).any(|i| {
+            code[i].eq_ignore_ascii_case(&'T') && (i == 0 || !code[i - 1].is_ascii_alphabetic()) && {
+                let digits: String = code[i + 1..].iter().take_while(|c| c.is_ascii_digit()).collect();
+                digits.parse::<u32>().ok() == Some(tool)
+            }
+        })
+    };
+    let listed = comments.iter().find_map(|c| {
+        thread_mill_in_comment(&c.text, units).filter(|m| m.tool == Some(tool)).map(|m| (m, c.line))
+    });
+    let at_call = || {
+        comments.iter().find_map(|c| {
+            thread_mill_in_comment(&c.text, units)
+                .filter(|m| m.tool.is_none() && calls_tool(c.line, c.column))
+                .map(|m| (m, c.line))
+        })
+    };
+    let (m, line) = listed.or_else(at_call)?;
+    (m.diameter < 1000.0).then(|| CommentedCutter {
+        cutter: Cutter::single_form(m.diameter, m.angle_deg.unwrap_or(60.0), 0.0),
+        line,
+        angle_given: m.angle_deg.is_some(),
+    })
+}
+
 /// How the cutter reaches its first helix and leaves its last: by an arc in the plane (a
 /// tangential entry, the usual practice) or by a straight feed move, which meets the thread
 /// square on and leaves a witness mark where it stops.
-fn entry_and_exit(moves: &[Move]) -> Vec<String> {
+/// The helices are the measured ones, `hs`: a helical arc about another axis before or after
+/// them (a CAM system's helical lead-in) is an arc in too.
+fn entry_and_exit(moves: &[Move], hs: &[Helix]) -> Vec<String> {
     let is_helix = |m: &Move| m.arc.is_some() && (m.to[2] - m.from[2]).abs() > 1e-9;
-    let Some(first) = moves.iter().position(is_helix) else { return Vec::new() };
-    let last = moves.iter().rposition(is_helix).unwrap_or(first);
+    let (Some(h0), Some(h1)) = (hs.first(), hs.last()) else { return Vec::new() };
+    let Some(first) = moves.iter().position(|m| is_helix(m) && m.line == h0.line) else {
+        return Vec::new();
+    };
+    let last = moves.iter().rposition(|m| is_helix(m) && m.line == h1.line).unwrap_or(first);
     let word = |m: Option<&Move>, what: &str| -> String {
         match m {
             Some(m) if m.rapid => format!("the cutter {what} its helices by a rapid move (line {}): it should feed", m.line),
-            Some(m) if m.arc.is_some() => format!("the cutter {what} its helices on an arc in the plane (line {}): a tangential {}", m.line, if what == "reaches" { "entry" } else { "exit" }),
+            Some(m) if m.arc.is_some() => format!(
+                "the cutter {what} its helices on {} (line {}): a tangential {}",
+                if is_helix(m) { "a helical arc about another axis" } else { "an arc in the plane" },
+                m.line,
+                if what == "reaches" { "entry" } else { "exit" }
+            ),
             Some(m) => format!(
                 "the cutter {what} its helices by a straight feed move (line {}): it meets the thread square on and leaves a witness mark; an arc {} is the usual practice",
                 m.line,
@@ -504,14 +578,24 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     let prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
     let mut notes: Vec<String> = prog.notes.iter().map(|n| n.to_string()).collect();
     // The tool of the first helix: its cutter and its compensation from the table.
-    let first_tool = prog
-        .moves
-        .iter()
-        .find(|m| m.arc.is_some() && (m.to[2] - m.from[2]).abs() > 1e-9)
-        .and_then(|m| m.tool);
-    let c = match (spec.cutter, &spec.tools) {
-        (Some(c), _) => c,
-        (None, Some(tt)) => {
+    let first_helix = prog.moves.iter().find(|m| m.arc.is_some() && (m.to[2] - m.from[2]).abs() > 1e-9);
+    let first_tool = first_helix.and_then(|m| m.tool);
+    // Else the thread mill the program's comments name for that tool.
+    let in_table = match (&spec.tools, first_tool) {
+        (Some(tt), Some(t)) => tt.tool(t).is_some(),
+        _ => false,
+    };
+    let commented = match (spec.cutter, in_table, first_helix, first_tool) {
+        (None, false, Some(m), Some(t)) => cutter_in_comments(text, spec.dialect, t, m.units),
+        _ => None,
+    };
+    let c = match (spec.cutter, &spec.tools, commented) {
+        (Some(c), _, _) => c,
+        (None, _, Some(found)) => {
+            notes.push(found.note(first_tool.unwrap_or(0)));
+            found.cutter
+        }
+        (None, Some(tt), None) => {
             let t = first_tool.ok_or_else(|| {
                 Error::Input(
                     "the program names no tool before its helices: give the cutter (‹cutter_diameter›)"
@@ -535,8 +619,11 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
                 None => return Err(Error::Input(format!("tool T{t} of the helices is not in {}", tt.source))),
             }
         }
-        (None, None) => {
-            return Err(Error::Input("give the cutter: ‹cutter_diameter›, or a tool table (‹tools›)".into()))
+        (None, None, None) => {
+            return Err(Error::Input(match first_tool {
+                Some(t) => format!("give the cutter: ‹cutter_diameter›, a tool table (‹tools›), or a comment naming T{t} a thread mill, such as (T{t} THREAD MILL D8)"),
+                None => "give the cutter: ‹cutter_diameter› or a tool table (‹tools›)".into(),
+            }))
         }
     };
     // A TNC compensates RL/RR by the tool table's radius, which is the cutter's: a Klartext
@@ -622,7 +709,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         }
         None => circular(hs, name, &mut notes)?,
     };
-    notes.extend(entry_and_exit(&prog.moves));
+    notes.extend(entry_and_exit(&prog.moves, &hs));
     if let Some(d) = comp {
         if hs.iter().any(|h| (h.radius - h.programmed_radius).abs() > 1e-12)
             && (d - 0.5 * c.diameter).abs() > 1e-3

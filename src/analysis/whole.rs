@@ -174,9 +174,13 @@ pub fn verify_whole(
         pv.tapped = Some(r);
     }
     if let Some(h) = helix {
-        // The thread mill: the helix's tool in the table, as a thread mill's file.
+        // The thread mill: the helix's tool in the table, as a thread mill's file, else the one
+        // the program's comments name for it.
         let cutter_known = match (tools, h.tool) {
-            (Some(tt), Some(t)) => matches!(tt.tool(t), Some((Tool::Insert(_), _))),
+            (Some(tt), Some(t)) if tt.tool(t).is_some() => matches!(tt.tool(t), Some((Tool::Insert(_), _))),
+            (_, Some(t)) => {
+                crate::analysis::threadmill::cutter_in_comments(text, dialect, t, h.units).is_some()
+            }
             _ => false,
         };
         pv.milled = Some(if cutter_known {
@@ -204,7 +208,7 @@ pub fn verify_whole(
                 line: h.line,
                 reason: match h.tool {
                     Some(t) => format!(
-                        "the thread mill T{t} of the helices is not known (‹tools›: {t} = \"thread-mill.toml\", the cutter's file; or `thread-mill` with ‹cutter_diameter›)"
+                        "the thread mill T{t} of the helices is not known (‹tools›: {t} = \"thread-mill.toml\", the cutter's file; a comment such as (T{t} THREAD MILL D8); or `thread-mill` with ‹cutter_diameter›)"
                     ),
                     None => "the program names no tool before its helices (`thread-mill` with ‹cutter_diameter›)".to_string(),
                 },

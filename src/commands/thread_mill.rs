@@ -25,8 +25,9 @@ pub struct ThreadMillArgs {
     /// Accept a diameter/pitch pair outside the standard series.
     #[cfg_attr(feature = "cli", arg(long))]
     pub allow_nonstandard: bool,
-    /// The cutter's diameter over its tooth's tip, mm (else the tool table's thread mill).
-    #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite, required_unless_present = "tools"))]
+    /// The cutter's diameter over its tooth's tip, mm (else the tool table's thread mill, else the
+    /// one the program's comments name for the helices' tool: `(T5 D=8. … - thread mill)`).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
     pub cutter_diameter: Option<f64>,
     /// The tool table: the helices' T as a thread mill's file (`12 = "thread-mill.toml"`:
     /// kind = "thread-mill", diameter, angle, tip_radius, rows, row_pitch) and `[offsets]` (12 = 3.0,
@@ -78,6 +79,21 @@ impl Job for ThreadMillArgs {
         let rows = self.cutter_rows.unwrap_or(1);
         if !(1..=200).contains(&rows) {
             return Err(Error::Input(format!("‹cutter_rows› {rows}: a whole number from 1 to 200")));
+        }
+        // The cutter's shape goes with its diameter: a tool table's or a comment's thread mill
+        // is whole, and a shape word beside it would be dropped unsaid.
+        if self.cutter_diameter.is_none() {
+            let shape = [
+                (self.cutter_angle.is_some(), "cutter_angle"),
+                (self.cutter_tip_radius.is_some(), "cutter_tip_radius"),
+                (self.cutter_rows.is_some(), "cutter_rows"),
+                (self.cutter_row_pitch.is_some(), "cutter_row_pitch"),
+            ];
+            if let Some((_, word)) = shape.iter().find(|(given, _)| *given) {
+                return Err(Error::Input(format!(
+                    "‹{word}› describes the cutter ‹cutter_diameter› gives: give it too (a tool table's thread mill has its own file)"
+                )));
+            }
         }
         let cutter = self
             .cutter_diameter

@@ -321,6 +321,7 @@ impl St<'_> {
                 comp: self.comp,
                 tool: self.tool,
                 extra_turns: arc.map_or(0, |a| a.2),
+                units: if self.scale == 1.0 { ProgramUnits::Mm } else { ProgramUnits::Inch },
             });
         }
         self.tangent = match arc {

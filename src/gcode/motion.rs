@@ -124,6 +124,9 @@ pub struct Move {
     pub tool: Option<u32>,
     /// Full turns an arc makes beyond its first (LinuxCNC's `P`: P3 is two more turns).
     pub extra_turns: u32,
+    /// The program's units at the move (what a diameter in its comments is written in).
+    #[serde(skip)]
+    pub units: super::ProgramUnits,
 }
 
 /// An open chain of synchronised moves (G32/G33 blocks one after the other): one helix.
@@ -544,6 +547,7 @@ impl Motion {
         let moved = x.is_some() || y.is_some() || z.is_some();
         if moved {
             self.break_chain();
+            let units = self.program_units();
             if let Some(mv) = self.moves.as_mut() {
                 let from = [self.x.unwrap_or(0.0), self.y.unwrap_or(0.0), self.z.unwrap_or(0.0)];
                 let to = [x.unwrap_or(from[0]), y.unwrap_or(from[1]), z.unwrap_or(from[2])];
@@ -556,6 +560,7 @@ impl Motion {
                     comp: self.comp,
                     tool: self.tool,
                     extra_turns: 0,
+                    units,
                 });
                 self.stream_moves(false);
             }
@@ -659,6 +664,7 @@ impl Motion {
                 let j = b.get("J").map_or(0.0, |w| self.len(w));
                 [from[0] + i, from[1] + j]
             };
+            let units = self.program_units();
             if let Some(mv) = self.moves.as_mut() {
                 mv.push(Move {
                     rapid: false,
@@ -669,6 +675,7 @@ impl Motion {
                     comp: self.comp,
                     tool: self.tool,
                     extra_turns,
+                    units,
                 });
                 self.stream_moves(false);
             }
