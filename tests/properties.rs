@@ -108,3 +108,18 @@ proptest! {
         prop_assert!((mn.pitch_diameter - t.pitch_diameter()).abs() < 1e-5);
     }
 }
+
+proptest! {
+    /// A comment of any text is read or passed over, never a panic; a tool list's line in
+    /// Autodesk's form gives back its tool and diameter, in the program's units.
+    #[test]
+    fn a_comment_names_a_thread_mill_or_nothing(text in "\\PC{0,80}", t in 1u32..999, d in 0.5f64..60.0) {
+        let _ = threadcheck::thread_mill_in_comment(&text, threadcheck::ProgramUnits::Mm);
+        let line = format!("T{t}  D={d:.3} CR=0. - ZMIN=-12. - thread mill");
+        let m = threadcheck::thread_mill_in_comment(&line, threadcheck::ProgramUnits::Mm).unwrap();
+        prop_assert_eq!(m.tool, Some(t));
+        prop_assert!((m.diameter - (d * 1000.0).round() / 1000.0).abs() < 1e-9);
+        let inch = threadcheck::thread_mill_in_comment(&line, threadcheck::ProgramUnits::Inch).unwrap();
+        prop_assert!((inch.diameter - 25.4 * (d * 1000.0).round() / 1000.0).abs() < 1e-9);
+    }
+}
