@@ -406,18 +406,7 @@ pub fn thread_mill_in_comment(comment: &str, units: ProgramUnits) -> Option<Mill
         return None;
     }
     let tool = words.first().and_then(|w| w.strip_prefix('T')).and_then(|n| n.parse::<u32>().ok());
-    let length = |w: &str| -> Option<f64> {
-        let w = w.trim_end_matches([',', ';', ')']);
-        let (num, mm) = match w.strip_suffix("MM") {
-            Some(n) => (n, true),
-            None => (w, false),
-        };
-        if !num.starts_with(|c: char| c.is_ascii_digit() || c == '.') {
-            return None;
-        }
-        let v: f64 = num.replace(',', ".").parse().ok()?;
-        (v.is_finite() && v > 0.0).then(|| if mm { v } else { v * units.mm() })
-    };
+    let length = |w: &str| length_in_comment(w.trim_end_matches([',', ';', ')']), units);
     let diameter = words.iter().enumerate().find_map(|(i, w)| {
         for mark in ["DIA.", "DIAM", "DIA", "D=", "Ø", "⌀", "D"] {
             if let Some(rest) = w.strip_prefix(mark) {
@@ -473,15 +462,20 @@ pub fn drill_in_comment(comment: &str, units: ProgramUnits) -> Option<f64> {
         }
         let w = w.trim_matches(|c: char| matches!(c, ',' | ';' | ':' | '=' | '(' | ')'));
         let w = w.trim_start_matches('Ø').trim_start_matches('⌀');
-        let w = w.strip_prefix("DIA").or_else(|| w.strip_prefix('D')).unwrap_or(w);
-        let (num, mm) = match w.strip_suffix("MM") {
-            Some(n) => (n, true),
-            None => (w, false),
-        };
-        if !num.starts_with(|c: char| c.is_ascii_digit() || c == '.') {
-            return None;
-        }
-        let v: f64 = num.replace(',', ".").parse().ok()?;
-        (v.is_finite() && v > 0.0).then(|| if mm { v } else { v * units.mm() })
+        length_in_comment(w.strip_prefix("DIA").or_else(|| w.strip_prefix('D')).unwrap_or(w), units)
     })
+}
+
+/// A length a comment writes (`8.5`, `6,8`, `.339`, `8.5MM`), in mm: in the program's units
+/// unless it ends in `MM`; `None` unless it is a positive number.
+fn length_in_comment(w: &str, units: ProgramUnits) -> Option<f64> {
+    let (num, mm) = match w.strip_suffix("MM") {
+        Some(n) => (n, true),
+        None => (w, false),
+    };
+    if !num.starts_with(|c: char| c.is_ascii_digit() || c == '.') {
+        return None;
+    }
+    let v: f64 = num.replace(',', ".").parse().ok()?;
+    (v.is_finite() && v > 0.0).then(|| if mm { v } else { v * units.mm() })
 }
