@@ -476,3 +476,37 @@ fn a_cycle_that_names_no_tool_takes_the_tool_in_the_spindle() {
     let o = run_in(&dir, &["tap", "--program", "p.nc", "--tools", "none.toml"]);
     assert!(one_line_error(&o).contains("p.nc:3:5: G84 names no tool: the tapping check needs the tap (T and the tool table's tap:DESIGNATION, the table's in_spindle, --tap, or a comment"), "{}", one_line_error(&o));
 }
+
+/// `--tap` gives the tap of a cycle whose T no tool table names, not only of one with no T (it
+/// was dropped unsaid there, and the refusal read "T1, which is not in no tool table").
+#[test]
+fn the_tap_given_serves_a_tool_no_table_names() {
+    let dir = tempdir("tap-unnamed-tool");
+    std::fs::write(
+        dir.join("p.nc"),
+        "G17 G21 G90 G94\nT1 M6\nG0 X0 Y0 Z20 S400 M3\nG98 G84 X10 Y10 Z-15 R2 F600\nG80\nM30\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("t.toml"), "[tools]\n5 = \"drill:8.5\"\n").unwrap();
+    let o = run_in(&dir, &["tap", "--program", "p.nc"]);
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: p.nc:4:5: G84 with tool T1, which no tool table names (write 1 = \"tap:M10x1.5-6H\" in --tools, give --tap, or name the tap in a comment above the cycle: (TAP M10X1.5))"
+    );
+    let o = run_in(&dir, &["tap", "--program", "p.nc", "--tools", "t.toml"]);
+    assert!(one_line_error(&o).contains("G84 with tool T1, which t.toml does not name"), "{}", stderr(&o));
+    for (args, why) in [
+        (vec!["--tap", "M10x1.5-6H"], "M10x1.5-6H: the tap given (--tap) for T1, which no tool table names"),
+        (
+            vec!["--tools", "t.toml", "--tap", "M10x1.5-6H"],
+            "M10x1.5-6H: the tap given (--tap) for T1, which t.toml does not name",
+        ),
+    ] {
+        let mut a = vec!["tap", "--program", "p.nc"];
+        a.extend(args);
+        let o = run_in(&dir, &a);
+        // F600 at S400: a lead of 1.5, M10x1.5's.
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        assert!(stdout(&o).contains(why), "{}", stdout(&o));
+    }
+}

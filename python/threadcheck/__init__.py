@@ -371,7 +371,8 @@ def tap(program: str, tools: Optional[str] = None, dialect: Optional[str] = None
     drill the table does not name is taken from the program's comments (``(TAP M10X1.5)``,
     ``(DRILL 8.5)``), else the tap is the standard size of its lead over its drill.
     ``stock_bottom`` (the stock's bottom face's Z) makes a hole whose drill passes it a through
-    hole. ``tap`` (``"M10x1.5-6H"``) is the tap of the cycles that name no tool (a table's
+    hole. ``tap`` (``"M10x1.5-6H"``) is the tap of the cycles whose tool is not known (no T, or one the
+    table does not name; a table's
     ``in_spindle = T`` names the tool in the spindle at the start instead). Each hole in ``holes`` has its ``cycle``, ``tap``, ``drill`` and
     ``checks`` (``drill_diameter`` against D1 of the tap's class, ``feed`` against the lead,
     ``depth`` left for the chamfer, ``spindle``) and ``drill_that_passes`` (the middle of D1 and

@@ -44,8 +44,9 @@ pub struct TapSpec {
     /// Z of the stock's bottom face, mm: a drill whose full diameter passes it makes a through
     /// hole, whose tap has no bottom to meet (`None`: not known, every hole blind).
     pub stock_bottom: Option<f64>,
-    /// The tap of the tapping cycles that name no tool (`--tap`), when neither the tool table's
-    /// `in_spindle` nor a comment names it: a designation such as `M10x1.5-6H`.
+    /// The tap of the tapping cycles whose tool is not known (`--tap`): one that names no tool
+    /// (and no `in_spindle` in the table), or a T the tool table does not name; before the
+    /// program's comments. A designation such as `M10x1.5-6H`.
     pub tap: Option<String>,
 }
 
@@ -731,15 +732,21 @@ fn tap_of(
         message,
     };
     let table = h.tool.map(|t| (t, spec.tools.tool(t)));
-    // A cycle that names no tool: the tap given (`--tap`).
-    if let (None, Some(designation)) = (h.tool, &spec.tap) {
+    // A cycle whose tool is not known (it names none, or one the table does not name): the tap
+    // given (`--tap`).
+    if let (None | Some((_, None)), Some(designation)) = (table, &spec.tap) {
         return Ok(TapOf {
             designation: designation.clone(),
             chamfer_pitches: crate::analysis::tools::DEFAULT_TAP_CHAMFER_PITCHES,
             chamfer_given: false,
             from: DesignationFrom::Given,
             line: None,
-            why: Some(format!("{designation}: the tap given (‹tap›) for the cycles that name no tool")),
+            why: Some(match h.tool {
+                None => format!("{designation}: the tap given (‹tap›) for the cycles that name no tool"),
+                Some(t) => {
+                    format!("{designation}: the tap given (‹tap›) for T{t}, which {}", not_named(&spec.tools))
+                }
+            }),
         });
     }
     if let Some((_, Some((Tool::Tap { designation, chamfer_pitches, chamfer_given }, _)))) = table {
@@ -821,9 +828,9 @@ fn tap_of(
             h.code, spec.tools.source
         )),
         Some((t, _)) => perr(format!(
-            "{} with tool T{t}, which is not in {} (write {t} = \"tap:M10x1.5-6H\"{})",
+            "{} with tool T{t}, which {} (write {t} = \"tap:M10x1.5-6H\" in ‹tools›, give ‹tap›{})",
             h.code,
-            spec.tools.source,
+            not_named(&spec.tools),
             if spec.from_program {
                 ", or name the tap in a comment above the cycle: (TAP M10X1.5)"
             } else {
@@ -831,4 +838,14 @@ fn tap_of(
             }
         )),
     })
+}
+
+/// What the tool table says of a tool it does not name: "no tool table names" when none was
+/// given.
+fn not_named(tools: &crate::analysis::tools::ToolTable) -> String {
+    if tools.is_given() {
+        format!("{} does not name", tools.source)
+    } else {
+        "no tool table names".to_string()
+    }
 }

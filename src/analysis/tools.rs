@@ -150,14 +150,19 @@ impl ToolTable {
         Ok(ToolTable { source: source.to_string(), tools, offsets, in_spindle: raw.in_spindle })
     }
 
-    /// A table with no tools, for a program whose tools are named by its own comments.
-    pub fn empty(source: &str) -> ToolTable {
+    /// No tool table: a program whose tools are named by its own comments, or by options.
+    pub fn none() -> ToolTable {
         ToolTable {
-            source: source.to_string(),
+            source: "no tool table".to_string(),
             tools: BTreeMap::new(),
             offsets: BTreeMap::new(),
             in_spindle: None,
         }
+    }
+
+    /// A table was given (a file or a text), not [`none`](Self::none).
+    pub fn is_given(&self) -> bool {
+        self.source != Self::none().source
     }
 
     /// The tool in the spindle when the program starts (`in_spindle = T`), if the table says.

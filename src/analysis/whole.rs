@@ -162,7 +162,7 @@ pub fn verify_whole(
             program: (text.to_string(), name.to_string()),
             dialect,
             reading: spec.reading.clone(),
-            tools: tools.cloned().unwrap_or_else(|| ToolTable::empty("no tool table")),
+            tools: tools.cloned().unwrap_or_else(ToolTable::none),
             allow_nonstandard: spec.allow_nonstandard,
             from_program: true,
             stock_bottom: spec.stock_bottom,

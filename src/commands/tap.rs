@@ -46,8 +46,8 @@ pub struct TapArgs {
     /// through hole, whose depth needs no room below the tap.
     #[cfg_attr(feature = "cli", arg(long, value_name = "Z", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
     pub stock_bottom: Option<f64>,
-    /// The tap of the tapping cycles that name no tool (no T before them, and no in_spindle in
-    /// the tool table), e.g. M10x1.5-6H
+    /// The tap of the tapping cycles whose tool is not known (no T before them and no in_spindle
+    /// in the tool table, or a T the tool table does not name), e.g. M10x1.5-6H
     #[cfg_attr(feature = "cli", arg(long, value_name = "DESIGNATION"))]
     pub tap: Option<String>,
     #[cfg_attr(feature = "cli", command(flatten))]
@@ -75,7 +75,7 @@ impl Job for TapArgs {
         };
         let tools = match &self.tools {
             Some(t) => tool_table(t, request.files)?,
-            None => crate::analysis::tools::ToolTable::empty("no tool table"),
+            None => crate::analysis::tools::ToolTable::none(),
         };
         let spec = TapSpec {
             program,
