@@ -675,3 +675,12 @@ def test_thread_mill_from_a_cam_tool_list():
     assert any(n.startswith("the thread mill T5 is the program's comment at line 4") for n in r["notes"])
     with pytest.raises(ValueError, match="cutter_angle describes the cutter cutter_diameter gives"):
         threadcheck.thread_mill(text, cutter_angle=55.0)
+
+
+def test_tap_given_serves_a_tool_no_table_names():
+    # T1 taps M10x1.5 (F600 at S400) and no table names it: ``tap`` gives it, stated.
+    prog = "G17 G21 G90 G94\nT1 M6\nG0 X0 Y0 Z20 S400 M3\nG98 G84 X10 Y10 Z-15 R2 F600\nG80\nM30\n"
+    with pytest.raises(ValueError, match="T1, which no tool table names"):
+        threadcheck.tap(prog)
+    r = threadcheck.tap(prog, tap="M10x1.5-6H")
+    assert r["pass"] and r["holes"][0]["tap"]["designation_from"] == "given"
