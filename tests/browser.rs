@@ -747,6 +747,23 @@ fn taper_thread_mill_picture_draws_its_zone_on_the_cone() {
     assert_zone_painted_on_row(&svg_path, &svg, y);
 }
 
+/// A CAM post's thread-milling program (its cutter from its tool list): the picture's title names
+/// the file, the thread and the cutter whole (82 characters were cut to 80 with an ellipsis,
+/// seen in Chromium), inside the picture and clear of every other label.
+#[test]
+fn cam_thread_mill_picture_names_its_cutter_whole() {
+    let dir = tempdir("tm-cam");
+    let svg_path = dir.join("t.svg");
+    let p = data("programs/threadmill/m12-cam-helical-lead-in.nc");
+    let o = run(&["thread-mill", "--program", p.to_str().unwrap(), "--svg", svg_path.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(&svg_path).unwrap();
+    let title = "m12-cam-helical-lead-in.nc: M12X1.75-6H thread-milled with a Ø8 single-form cutter";
+    let (texts, _) = layout(&svg);
+    assert!(texts.iter().any(|(t, _)| t == title), "{:?}", texts.iter().take(3).collect::<Vec<_>>());
+    assert_laid_out(&svg, "CAM thread-mill");
+}
+
 /// Issue 45: the tap picture of radial holes (a live tool along X on a lathe,
 /// `haas-radial-taps.nc`): each panel names its hole's Z and C, the heights along the hole's
 /// axis are written as the program's X (the tap's bottom X24, the drill's X20; no Z label), and

@@ -152,16 +152,20 @@ pub(crate) fn axes(f: &Frame, diameter_axis: bool, units: crate::analysis::verif
         let mut d = (d0 / step).ceil() * step;
         while d <= d1 + 1e-9 * step.max(1.0) {
             let y = f.y(0.5 * d * per);
-            g = g
-                .add(
-                    Line::new()
-                        .set("x1", f.x0 + f.w)
-                        .set("x2", f.x0 + f.w + 4.0)
-                        .set("y1", y)
-                        .set("y2", y)
-                        .set("stroke", "#333"),
-                )
-                .add(text(f.x0 + f.w + 6.0, y + 3.0, 9.0, tick_label(d, step)));
+            g = g.add(
+                Line::new()
+                    .set("x1", f.x0 + f.w)
+                    .set("x2", f.x0 + f.w + 4.0)
+                    .set("y1", y)
+                    .set("y2", y)
+                    .set("stroke", "#333"),
+            );
+            // A tick at the panel's top edge keeps its line; its label (9 px text, from about
+            // 5.5 px above its tick) would cross the unit's, whose foot lies 2.5 px above the
+            // edge ("13" on "Ø mm", 1 px below the edge, seen in Chromium).
+            if y - f.y0 >= 4.0 {
+                g = g.add(text(f.x0 + f.w + 6.0, y + 3.0, 9.0, tick_label(d, step)));
+            }
             d += step;
         }
         g = g.add(text(f.x0 + f.w + 6.0, f.y0 - 5.0, 9.0, format!("Ø {name}")));
