@@ -662,4 +662,15 @@ fn a_cam_program_s_tool_list_names_its_thread_mill_and_its_lead_in_arc_is_the_en
     let m: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(m["cutter"]["diameter"], 6.0, "{}", stderr(&o));
     assert!(!m["notes"].to_string().contains("program's comment at line 4"));
+    // Mastercam's form of the same tool, in its comment before the tool change.
+    let text = std::fs::read_to_string(&prog).unwrap().replace(
+        "(T5  D=8. CR=0. - ZMIN=-18.5 - thread mill)",
+        "( M12 THREAD MILL TOOL - 5 DIA. OFF. - 5 LEN. - 5 DIA. - 8. )",
+    );
+    let dir = tempdir("cam-mastercam");
+    std::fs::write(dir.join("p.nc"), text).unwrap();
+    let o = run_in(&dir, &["thread-mill", "--program", "p.nc", "--json", "-"]);
+    let m: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(m["cutter"]["diameter"], 8.0, "{}", stderr(&o));
+    assert_eq!(m["verdict"], "pass");
 }

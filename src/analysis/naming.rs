@@ -383,7 +383,8 @@ pub struct MillInComment {
 /// The thread mill a comment names: a comment with the words THREAD MILL (THREADMILL,
 /// THREAD-MILL; GEWINDEFRÄSER) and a diameter written as one (`D=8.`, `D8`, `DIA 8`, `Ø8`), in the
 /// program's units unless it ends in `MM`. Autodesk's posts list every tool at the program's
-/// top as `(T5  D=8. CR=0. - ZMIN=-15. - thread mill)`.
+/// top as `(T5  D=8. CR=0. - ZMIN=-15. - thread mill)`, Mastercam's before each tool change as
+/// `( 8. THREAD MILL TOOL - 5 DIA. OFF. - 5 LEN. - 5 DIA. - 8. )`.
 ///
 /// ```
 /// use threadcheck::{thread_mill_in_comment, ProgramUnits};
@@ -391,6 +392,9 @@ pub struct MillInComment {
 /// assert_eq!((m.tool, m.diameter, m.angle_deg), (Some(5), 8.0, None));
 /// let m = thread_mill_in_comment("THREAD MILL D10 60 DEG", ProgramUnits::Mm).unwrap();
 /// assert_eq!((m.tool, m.diameter, m.angle_deg), (None, 10.0, Some(60.0)));
+/// // Mastercam's form: the description, then the tool, its offsets and its diameter.
+/// let m = thread_mill_in_comment(" 8. THREAD MILL TOOL - 5 DIA. OFF. - 5 LEN. - 5 DIA. - 8. ", ProgramUnits::Mm).unwrap();
+/// assert_eq!((m.tool, m.diameter), (Some(5), 8.0));
 /// let m = thread_mill_in_comment("T12 D=0.375 CR=0. - thread mill", ProgramUnits::Inch).unwrap();
 /// assert!((m.diameter - 9.525).abs() < 1e-12);
 /// // A drill's or an end mill's line names no thread mill.
@@ -405,7 +409,12 @@ pub fn thread_mill_in_comment(comment: &str, units: ProgramUnits) -> Option<Mill
     if !names_mill {
         return None;
     }
-    let tool = words.first().and_then(|w| w.strip_prefix('T')).and_then(|n| n.parse::<u32>().ok());
+    // `T5 …` (Autodesk's list), or `… TOOL - 5 …` (Mastercam's).
+    let tool = words
+        .first()
+        .and_then(|w| w.strip_prefix('T'))
+        .and_then(|n| n.parse::<u32>().ok())
+        .or_else(|| words.windows(2).find(|w| w[0] == "TOOL").and_then(|w| w[1].parse::<u32>().ok()));
     let length = |w: &str| length_in_comment(w.trim_end_matches([',', ';', ')']), units);
     let diameter = words.iter().enumerate().find_map(|(i, w)| {
         for mark in ["DIA.", "DIAM", "DIA", "D=", "Ø", "⌀", "D"] {

@@ -484,7 +484,8 @@ impl CommentedCutter {
 }
 
 /// The thread mill the program's comments name for tool `tool`: a tool list's line
-/// (`(T5  D=8. CR=0. - thread mill)`, as Autodesk's posts write one for every tool at the top),
+/// (`(T5  D=8. CR=0. - thread mill)`, as Autodesk's posts write one for every tool at the top;
+/// `( 8. THREAD MILL TOOL - 5 DIA. OFF. - 5 LEN. - 5 DIA. - 8. )`, Mastercam's),
 /// else a comment on a line that calls the tool (`T5 M6 (THREAD MILL D10 60 DEG)`); its
 /// diameter in `units`, the program's where the helices run.
 pub(crate) fn cutter_in_comments(
