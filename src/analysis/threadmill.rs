@@ -483,18 +483,23 @@ impl CommentedCutter {
     }
 }
 
-/// The thread mill the program's comments name for tool `tool`: a tool list's line
-/// (`(T5  D=8. CR=0. - thread mill)`, as Autodesk's posts write one for every tool at the top;
-/// `( 8. THREAD MILL TOOL - 5 DIA. OFF. - 5 LEN. - 5 DIA. - 8. )`, Mastercam's),
-/// else a comment on a line that calls the tool (`T5 M6 (THREAD MILL D10 60 DEG)`); its
-/// diameter in `units`, the program's where the helices run.
+/// The thread mill the program's comments name for the tool of `helix` (its first), when the
+/// tool table `tools` does not name that tool: a tool list's line (`(T5  D=8. CR=0. - thread
+/// mill)`, as Autodesk's posts write one for every tool at the top; `( 8. THREAD MILL TOOL - 5
+/// DIA. OFF. - 5 LEN. - 5 DIA. - 8. )`, Mastercam's), else a comment on a line that calls the
+/// tool (`T5 M6 (THREAD MILL D10 60 DEG)`); its diameter in the program's units at the helix.
 pub(crate) fn cutter_in_comments(
     text: &str,
     dialect: crate::gcode::Dialect,
-    tool: u32,
-    units: crate::gcode::ProgramUnits,
+    tools: Option<&crate::analysis::tools::ToolTable>,
+    helix: &Move,
 ) -> Option<CommentedCutter> {
     use crate::analysis::naming::thread_mill_in_comment;
+    let tool = helix.tool?;
+    if tools.is_some_and(|tt| tt.tool(tool).is_some()) {
+        return None;
+    }
+    let units = helix.units;
     let comments = crate::gcode::comments(text, dialect);
     let calls_tool = |line: usize, column: usize| -> bool {
         let code: Vec<char> =
@@ -582,12 +587,8 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     let first_helix = prog.moves.iter().find(|m| m.arc.is_some() && (m.to[2] - m.from[2]).abs() > 1e-9);
     let first_tool = first_helix.and_then(|m| m.tool);
     // Else the thread mill the program's comments name for that tool.
-    let in_table = match (&spec.tools, first_tool) {
-        (Some(tt), Some(t)) => tt.tool(t).is_some(),
-        _ => false,
-    };
-    let commented = match (spec.cutter, in_table, first_helix, first_tool) {
-        (None, false, Some(m), Some(t)) => cutter_in_comments(text, spec.dialect, t, m.units),
+    let commented = match (spec.cutter, first_helix) {
+        (None, Some(m)) => cutter_in_comments(text, spec.dialect, spec.tools.as_ref(), m),
         _ => None,
     };
     let c = match (spec.cutter, &spec.tools, commented) {

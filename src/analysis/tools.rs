@@ -45,6 +45,9 @@ pub enum Tool {
     },
 }
 
+/// The source of [`ToolTable::none`], which names no file.
+const NO_TABLE: &str = "no tool table";
+
 /// T numbers and their tools.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ToolTable {
@@ -153,7 +156,7 @@ impl ToolTable {
     /// No tool table: a program whose tools are named by its own comments, or by options.
     pub fn none() -> ToolTable {
         ToolTable {
-            source: "no tool table".to_string(),
+            source: NO_TABLE.to_string(),
             tools: BTreeMap::new(),
             offsets: BTreeMap::new(),
             in_spindle: None,
@@ -162,7 +165,7 @@ impl ToolTable {
 
     /// A table was given (a file or a text), not [`none`](Self::none).
     pub fn is_given(&self) -> bool {
-        self.source != Self::none().source
+        self.source != NO_TABLE
     }
 
     /// The tool in the spindle when the program starts (`in_spindle = T`), if the table says.

@@ -176,13 +176,12 @@ pub fn verify_whole(
     if let Some(h) = helix {
         // The thread mill: the helix's tool in the table, as a thread mill's file, else the one
         // the program's comments name for it.
-        let cutter_known = match (tools, h.tool) {
-            (Some(tt), Some(t)) if tt.tool(t).is_some() => matches!(tt.tool(t), Some((Tool::Insert(_), _))),
-            (_, Some(t)) => {
-                crate::analysis::threadmill::cutter_in_comments(text, dialect, t, h.units).is_some()
-            }
+        let in_table = match (tools, h.tool) {
+            (Some(tt), Some(t)) => matches!(tt.tool(t), Some((Tool::Insert(_), _))),
             _ => false,
         };
+        let cutter_known =
+            in_table || crate::analysis::threadmill::cutter_in_comments(text, dialect, tools, h).is_some();
         pv.milled = Some(if cutter_known {
             let m = ThreadMillSpec {
                 program: (text.to_string(), name.to_string()),

@@ -321,7 +321,7 @@ impl St<'_> {
                 comp: self.comp,
                 tool: self.tool,
                 extra_turns: arc.map_or(0, |a| a.2),
-                units: if self.scale == 1.0 { ProgramUnits::Mm } else { ProgramUnits::Inch },
+                units: ProgramUnits::of_scale(self.scale),
             });
         }
         self.tangent = match arc {
@@ -1437,7 +1437,7 @@ fn run_with(
     let bottom = top + q(201) * s;
     let w = st.to_work([p[0], p[1], bottom]);
     let code = format!("CYCL {}", def.number);
-    let units = if s == 1.0 { ProgramUnits::Mm } else { ProgramUnits::Inch };
+    let units = ProgramUnits::of_scale(s);
     let mut hole = HoleCycle {
         code,
         kind: HoleKind::Drill,

@@ -362,6 +362,15 @@ pub enum ProgramUnits {
 }
 
 impl ProgramUnits {
+    /// The units whose words a reader scales by `scale` to mm (1 for mm, 25.4 for inches).
+    pub(crate) fn of_scale(scale: f64) -> ProgramUnits {
+        if scale > 1.0 {
+            ProgramUnits::Inch
+        } else {
+            ProgramUnits::Mm
+        }
+    }
+
     /// Millimetres per program unit.
     pub fn mm(self) -> f64 {
         match self {

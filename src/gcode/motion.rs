@@ -780,7 +780,7 @@ impl Motion {
             contour: self.contour.clone(),
             passes: Vec::new(),
             notes: Vec::new(),
-            units: if self.scale == 1.0 { ProgramUnits::Mm } else { ProgramUnits::Inch },
+            units: self.program_units(),
             x_words: if self.diameter { XWords::Diameter } else { XWords::Radius },
             depth_word: None,
             start_words: Vec::new(),
@@ -794,17 +794,13 @@ impl Motion {
         &mut self.ops[op]
     }
 
-    /// Records a drilling or tapping cycle; past [`MAX_HOLES`](crate::ground::bounds::MAX_HOLES)
-    /// the program is refused at the cycle's place, never cut short.
     /// The units the program's words are in now.
-    pub fn program_units(&self) -> super::ProgramUnits {
-        if self.scale > 1.0 {
-            super::ProgramUnits::Inch
-        } else {
-            super::ProgramUnits::Mm
-        }
+    pub fn program_units(&self) -> ProgramUnits {
+        ProgramUnits::of_scale(self.scale)
     }
 
+    /// Records a drilling or tapping cycle; past [`MAX_HOLES`](crate::ground::bounds::MAX_HOLES)
+    /// the program is refused at the cycle's place, never cut short.
     pub fn push_hole(&mut self, mut h: super::HoleCycle) -> Result<(), Error> {
         h.work_offset = self.work_offset.clone();
         h.source_file = (self.file != self.main_file).then(|| self.file.clone());
