@@ -7,7 +7,9 @@
 # Installed when missing, from Debian's archive (sudo when not root):
 #   chromium          the browser tests (tests/browser.rs) open the pictures and the HTML report
 #   linuxcnc-uspace   its rs274, LinuxCNC's own interpreter, which the conformance test
-#                     (tests/linuxcnc.rs) runs side by side with threadcheck
+#                     (tests/linuxcnc.rs) runs side by side with threadcheck; where the package
+#                     cannot be installed (a -dev dependency older than the machine's library),
+#                     unpacked into target/linuxcnc instead: tests/install-rs274.sh
 #   nodejs, npm       run tests/page/page.mjs, which drives `threadcheck serve`'s page in
 #                     Chromium through playwright-core (from the npm registry, pinned by
 #                     tests/page/package-lock.json; it uses the system Chromium, downloads none)
@@ -23,10 +25,10 @@ install() {
 }
 command -v chromium >/dev/null 2>&1 || install chromium
 # About 180 MB and half a minute to three minutes of dpkg: the interpreter alone is needed.
-command -v rs274 >/dev/null 2>&1 || install --no-install-recommends linuxcnc-uspace
+bash tests/install-rs274.sh
 command -v npm >/dev/null 2>&1 || install --no-install-recommends nodejs npm
 chromium --version
-command -v rs274
+command -v rs274 || ls target/linuxcnc/bin/rs274
 node --version
 (cd tests/page && npm ci --no-audit --no-fund --loglevel=error)
 # --no-fail-fast: a failing test binary does not hide the results of the others (the doc tests

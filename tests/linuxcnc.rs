@@ -21,15 +21,19 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use threadcheck::{read_program_with, Dialect, LinuxCncRelease, ReadOptions};
 
-/// `rs274` on the PATH, or a failure that says how to get it.
+/// `rs274` on the PATH, or where `tests/install-rs274.sh` unpacks it when Debian's package cannot
+/// be installed (`target/linuxcnc/bin/rs274`), or a failure that says how to get it.
 pub(crate) fn rs274() -> PathBuf {
+    let unpacked = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/linuxcnc/bin/rs274");
     let found = std::env::var_os("PATH")
-        .and_then(|paths| std::env::split_paths(&paths).map(|d| d.join("rs274")).find(|p| p.is_file()));
+        .and_then(|paths| std::env::split_paths(&paths).map(|d| d.join("rs274")).find(|p| p.is_file()))
+        .or_else(|| unpacked.is_file().then_some(unpacked));
     found.unwrap_or_else(|| {
         panic!(
             "rs274 (LinuxCNC's standalone interpreter) is not installed: the LinuxCNC conformance \
              test needs it. Install Debian's linuxcnc-uspace package \
-             (apt-get install --no-install-recommends linuxcnc-uspace), or run tests/install-and-test.sh"
+             (apt-get install --no-install-recommends linuxcnc-uspace), or run tests/install-rs274.sh, which \
+             unpacks it into target/linuxcnc when the package cannot be installed"
         )
     })
 }
