@@ -473,12 +473,24 @@ fn page_in_chromium() {
     );
     assert_eq!(seen["title"], "threadcheck");
 
-    // The verdict and the correction, as the CLI gives them for the same program and insert.
+    // Every field starts empty (issue 59): the program's own naming and tools are used.
+    assert_eq!(
+        seen["fields_as_found"],
+        serde_json::json!({"thread": "", "insert": "", "tap_tools": "", "mill_thread": "", "mill_diameter": ""})
+    );
+    // The verdict and the correction, as the CLI gives them for the same program, nothing else
+    // given: the thread its comment names (M20X1.5), the full-profile insert assumed and the
+    // form it alone decides unverified.
     let p = program.to_str().unwrap();
-    let cli = run(&["verify", "--thread", "M20x1.5-6g", "--insert", "full", "--program", p, "--json", "-"]);
+    let cli = run(&["verify", "--program", p, "--json", "-"]);
     let v: serde_json::Value = serde_json::from_slice(&cli.stdout).unwrap();
     let correction = v["operations"][0]["correction"]["text"].as_str().unwrap().replace(p, "pasted program");
-    assert_eq!(seen["verdict"], "OUT OF TOLERANCE");
+    assert_eq!(
+        seen["verdict"],
+        "OUT OF TOLERANCE — form unverified: tool not known (choose the insert or a tool table)"
+    );
+    let unverified = seen["checks"].as_array().unwrap().iter().find(|r| r[0] == "root radius").unwrap();
+    assert_eq!(unverified[6], "unverified");
     assert_eq!(seen["correction"].as_str().unwrap(), format!("Next: {correction}"));
     // The G76 sheet's result: d2 19.066 against 6g's 18.994, 72.0 µm over.
     let d2 = seen["checks"].as_array().unwrap().iter().find(|r| r[0] == "pitch diameter").unwrap();
@@ -497,7 +509,7 @@ fn page_in_chromium() {
     assert!(passes.iter().all(|r| r[5] == "6" && r[6] == "G76 X18.2 Z-20. P900 Q450 F1.5"), "{passes:?}");
 
     // Downloads: the corrected program is `verify --fix -`; the report is `--html`'s page.
-    let fixed = run(&["verify", "--thread", "M20x1.5-6g", "--insert", "full", "--program", p, "--fix", "-"]);
+    let fixed = run(&["verify", "--program", p, "--fix", "-"]);
     let got = std::fs::read(seen["fixed.nc"]["path"].as_str().unwrap()).unwrap();
     let expected = String::from_utf8(fixed.stdout).unwrap().replace(p, "pasted program");
     assert_eq!(String::from_utf8(got).unwrap(), expected);

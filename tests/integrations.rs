@@ -7,14 +7,23 @@
 use crate::*;
 use std::path::Path;
 
-/// Our test programs in a folder, with a broken one whose place is known: line 3's bare `G` at
-/// column 29.
+/// The shaft of `tests/data/whole` with its G76 ending at X21.7 instead of X21.423: with the
+/// full-profile insert assumed (no tool known, issue 59) d2 = 21.7 + (22.701 − 21.546) = 22.855,
+/// over 6g's 22.663: a turned thread that fails on size whatever the insert's form.
+fn failing_shaft() -> Vec<u8> {
+    let text = std::fs::read_to_string(data("whole/shaft.nc")).unwrap();
+    assert!(text.contains("G76 X21.423 "));
+    text.replace("G76 X21.423 ", "G76 X21.7 ").into_bytes()
+}
+
+/// Our test programs in a folder (the shaft's thread failing), with a broken one whose place is
+/// known: line 3's bare `G` at column 29.
 fn library(tag: &str) -> crate::util::Scratch {
     let dir = tempdir(tag);
     let lib = dir.join("lib");
     std::fs::create_dir_all(&lib).unwrap();
     std::fs::copy(data("whole/plate.nc"), lib.join("plate.nc")).unwrap();
-    std::fs::copy(data("whole/shaft.nc"), lib.join("shaft.nc")).unwrap();
+    std::fs::write(lib.join("shaft.nc"), failing_shaft()).unwrap();
     std::fs::write(
         lib.join("broken.nc"),
         "G0 X10 Z5\nG76 P010060 Q100 R0.05\nG76 X8 Z-10 P1000 Q300 F1.5 G\n",
@@ -54,12 +63,19 @@ fn sarif_puts_each_failing_check_at_its_line_and_column() {
         vec![
             want("lib/broken.nc", 3, 29, "program.unreadable"),
             want("lib/plate.nc", 28, 1, "milled.not_checked"),
+            want("lib/shaft.nc", 8, 1, "turned.major_diameter"),
             want("lib/shaft.nc", 8, 1, "turned.pitch_diameter"),
-            want("lib/shaft.nc", 8, 1, "turned.root_radius"),
             want("lib/shaft.nc", 8, 1, "turned.max_material"),
+            // What the assumed insert alone decides (issue 59): notes, never errors.
+            want("lib/shaft.nc", 8, 1, "turned.minor_diameter.unverified"),
+            want("lib/shaft.nc", 8, 1, "turned.root_radius.unverified"),
+            want("lib/shaft.nc", 8, 1, "turned.crest.unverified"),
         ]
     );
-    let d2 = results[2]["message"]["text"].as_str().unwrap();
+    let levels: Vec<&str> = results.iter().map(|r| r["level"].as_str().unwrap()).collect();
+    assert_eq!(levels, ["error", "error", "error", "error", "error", "note", "note", "note"]);
+    assert!(results[6]["message"]["text"].as_str().unwrap().contains("unverified: root radius"));
+    let d2 = results[3]["message"]["text"].as_str().unwrap();
     assert!(d2.starts_with("turned M24X2-6g: pitch diameter d2 "), "{d2}");
     assert!(d2.contains("limits 22.4930 … 22.6630 mm"), "{d2}");
     let rules: Vec<&str> = run["tool"]["driver"]["rules"]
@@ -104,7 +120,7 @@ fn junit_has_a_case_per_operation() {
         "{xml}"
     );
     assert!(xml.contains("<testcase name=\"line 8: turned M24X2-6g\" classname=\"lib/shaft.nc\">"), "{xml}");
-    assert!(xml.contains("<failure type=\"turned.pitch_diameter\" message=\"pitch diameter d2, root radius, GO gauge (max. material)\">lib/shaft.nc:8:1: pitch diameter d2 "), "{xml}");
+    assert!(xml.contains("<failure type=\"turned.major_diameter\" message=\"major diameter d, pitch diameter d2, GO gauge (max. material)\">lib/shaft.nc:8:1: major diameter d "), "{xml}");
     assert!(
         xml.contains(
             "<error type=\"unreadable\" message=\"error: lib/broken.nc:3:29: word G has no number\"/>"
@@ -195,7 +211,8 @@ fn the_filter_as_axis_runs_it() {
     assert_eq!(kept, "", "nothing to show");
     assert_eq!(progress, vec![0, 100]);
 
-    let (code, loaded, kept, _) = as_axis_runs(&format!("{bin} filter --gate"), &good);
+    // Given the partial insert, its sharp tip fails the root.
+    let (code, loaded, kept, _) = as_axis_runs(&format!("{bin} filter --gate --insert partial"), &good);
     assert_eq!(code, 1);
     assert_eq!(loaded, shaft);
     let lines: Vec<&str> = kept.lines().collect();
@@ -204,7 +221,7 @@ fn the_filter_as_axis_runs_it() {
     assert!(lines[0].starts_with(&place), "{kept}");
     assert!(lines[0].contains("root radius 0.0400 mm, at least 0.2500 mm"), "{kept}");
     // Without --gate the same findings are printed and the program loads.
-    let (code, _, kept_too, _) = as_axis_runs(&format!("{bin} filter"), &good);
+    let (code, _, kept_too, _) = as_axis_runs(&format!("{bin} filter --insert partial"), &good);
     assert_eq!((code, kept_too), (0, kept));
 
     let broken = dir.join("broken.ngc");
@@ -258,7 +275,18 @@ fn the_filter_s_messages_are_read_by_linuxcnc() {
     assert_eq!(&filtered[filtered.find("(M10X1.5").unwrap()..], &text[2..]);
     let written = dir.join("filtered.ngc");
     std::fs::write(&written, &filtered).unwrap();
-    let canon = Command::new(crate::linuxcnc::rs274()).arg("-g").arg(&written).output().unwrap();
+    // With a tool table of its own: rs274 unpacked outside its package (tests/install-rs274.sh)
+    // finds no default one and prints nothing without it.
+    std::fs::write(dir.join("tool.tbl"), "T1 P1 D0 ;\n").unwrap();
+    let canon = Command::new(crate::linuxcnc::rs274())
+        .current_dir(&dir)
+        .env("HOME", &*dir)
+        .arg("-t")
+        .arg(dir.join("tool.tbl"))
+        .arg("-g")
+        .arg(&written)
+        .output()
+        .unwrap();
     let canon = String::from_utf8_lossy(&canon.stdout).to_string();
     let shown: Vec<&str> = canon.lines().filter(|l| l.contains("MESSAGE(")).collect();
     assert_eq!(shown.len(), 5, "{canon}");
@@ -299,8 +327,8 @@ fn the_m150_gate_stops_a_program_whose_thread_fails() {
             .output()
             .unwrap()
     };
-    // The shaft's turned thread with the default partial insert fails (its root radius).
-    let o = gate(&shaft, "", "0");
+    // The shaft's turned thread cut with the partial insert fails (its root radius).
+    let o = gate(&shaft, "--insert partial", "0");
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("shaft.nc:8:1: FAIL turned M24X2-6g"), "{}", stderr(&o));
     assert_eq!(stdout(&o), "", "the program's copy is not printed");
@@ -577,8 +605,8 @@ fn the_guide_s_pre_commit_hook_refuses_a_failing_thread() {
     std::fs::write(repo.join("notes.txt"), "no program here\n").unwrap();
     git(&["add", "notes.txt"]);
     assert!(git(&["commit", "-qm", "notes"]).status.success());
-    // The shaft with the default partial insert fails its turned thread (root radius).
-    std::fs::copy(data("whole/shaft.nc"), repo.join("shaft.nc")).unwrap();
+    // The shaft fails its turned thread (d2, X21.7).
+    std::fs::write(repo.join("shaft.nc"), failing_shaft()).unwrap();
     git(&["add", "shaft.nc"]);
     let o = git(&["commit", "-qm", "shaft"]);
     assert!(!o.status.success(), "the hook refuses it");

@@ -118,6 +118,10 @@ fn seed_o1818_damaged_reads_as_written_and_leaves_no_crest() {
         "--allow-nonstandard",
         "--blank-diameter",
         "12",
+        // The insert's V at the program's depth: with no tool named the crest is unverified (a
+        // full-profile insert would top it).
+        "--insert",
+        "partial",
         "--no-pass-metrics",
         "--json",
         "-",

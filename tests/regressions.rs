@@ -717,7 +717,17 @@ fn inches_reach_the_svg_and_the_html() {
     let prog = crate::data("programs/fanuc-g76-inch.nc");
     let o = crate::run_in(
         &dir,
-        &["verify", "--program", prog.to_str().unwrap(), "--thread", "1-16-UN-2A", "--svg", "p.svg"],
+        &[
+            "verify",
+            "--program",
+            prog.to_str().unwrap(),
+            "--thread",
+            "1-16-UN-2A",
+            "--insert",
+            "partial",
+            "--svg",
+            "p.svg",
+        ],
     );
     assert!(o.status.code().is_some_and(|c| c < 2), "{}", crate::stderr(&o));
     let svg = std::fs::read_to_string(dir.join("p.svg")).unwrap();

@@ -330,6 +330,16 @@ fn api_errors_are_one_json_line_with_their_status() {
     assert!(!answer.2.contains('\u{1b}'), "{}", answer.2);
 }
 
+/// Issue 59: the API refuses a designation of another size than the program cuts, as the command
+/// line does (an M30x1.5 bolt given M20x1.5-6g), naming both diameters.
+#[test]
+fn api_refuses_a_designation_of_another_size() {
+    let s = start(&[]);
+    let path = data("programs/m30x1.5-turned.nc");
+    let answer = post(&s.url, "api/verify", &program_args(&path, r#", "thread": "M20x1.5-6g""#));
+    assert_error(&answer, 400, "about Ø30.0 (final X28.160), the designation M20x1.5-6g is Ø20 (d3 18.160)");
+}
+
 /// The slowest request the API takes: the Monte Carlo at its work bound (42 553 samples of a
 /// 7-pass plan: about 0.7 s on 2 cores).
 const SLOW: &str = r#"{"thread": "M10x1.5-6g", "insert": "full", "x_sigma": 0.01, "samples": 42553}"#;

@@ -480,10 +480,11 @@ fn a_file_with_two_programs_runs_the_one_no_other_calls() {
     assert_eq!(stderr(&o).trim(), "threadcheck: error: --main O99: the file's programs are O3102, O3101");
 }
 
-/// With the default partial insert, a program whose sizes pass fails only on its form (the
-/// sharp tip's root, d3 below its minimum): the text ends with the hint to choose the insert.
+/// A program whose sizes pass: with no tool known it passes, its form unverified (issue 59);
+/// given the partial insert it fails only on its form (the sharp tip's root, d3 below its
+/// minimum), and the verdict says so with the options that change it.
 #[test]
-fn only_form_failures_with_the_assumed_insert_end_with_a_hint() {
+fn only_form_failures_with_the_partial_insert_say_so() {
     let path = data("programs/shop/partial-insert-m12.nc");
     let args = [
         "verify",
@@ -495,11 +496,18 @@ fn only_form_failures_with_the_assumed_insert_end_with_a_hint() {
         "11.9",
     ];
     let o = run(&args);
+    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+    assert!(
+        stdout(&o).contains("verdict: PASS — form unverified (minor diameter d3, root radius"),
+        "{}",
+        stdout(&o)
+    );
+    let partial = [&args[..], &["--insert", "partial"]].concat();
+    let o = run(&partial);
     assert_eq!(o.status.code(), Some(1));
     let out = stdout(&o);
-    assert!(out.contains("verdict: FAIL (minor diameter d3, root radius)"), "{out}");
-    assert!(out.contains("note: only form checks fail, with the assumed partial-profile insert: --insert full cuts the standard root; --gauge-only gives the gauge verdict"), "{out}");
-    let o = run(&[&args[..], &["--gauge-only"]].concat());
+    assert!(out.contains("verdict: FAIL (minor diameter d3, root radius) — form only, from the insert's 0.04 mm tip: --insert full cuts the standard root; --gauge-only judges the sizes and the GO gauge alone"), "{out}");
+    let o = run(&[&partial[..], &["--gauge-only"]].concat());
     assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
 }
 

@@ -418,9 +418,12 @@ fn tool_table_chooses_the_insert_of_the_programs_tool() {
         .unwrap()
         .iter()
         .any(|n| n.as_str().unwrap().contains("insert of tool T3")));
+    assert!(check(op, "root_radius")["unverified"].is_null(), "the table's insert is known");
+    // Without the table: the full-profile insert assumed (issue 59), its root unverified.
     let (_, v) = json_of(&args);
     let op = &v["operations"][0];
-    assert_eq!(op["insert"]["kind"], "partial");
+    assert_eq!(op["insert"]["kind"], "full");
+    assert!(check(op, "root_radius")["unverified"].as_str().unwrap().contains("tool not known"));
     let notes: Vec<&str> = op["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap()).collect();
     assert!(
         notes.iter().any(|n| n.to_string().contains("insert assumed")
@@ -537,4 +540,80 @@ fn insert_label_has_no_float_noise() {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v["insert"]["name"], "partial 60° r0.035");
     assert_eq!(v["insert"]["tip_radius"], 0.035);
+}
+
+/// Issue 59: a designation given by mistake is refused where the program cuts another size,
+/// naming both, and no correction is offered. An M30x1.5 bolt turned to Ø29.97 and threaded to
+/// X28.16 (= 30 − 2·h3, h3 = 17/24·0.866025·1.5 = 0.920) given `M20x1.5-6g` (d3 = 20 − 1.840 =
+/// 18.160): 10 mm apart on the diameter, far over one thread depth.
+#[test]
+fn a_designation_of_another_size_is_refused_naming_both() {
+    let p = data("programs/m30x1.5-turned.nc");
+    let o = run(&["verify", "--program", p.to_str().unwrap(), "--thread", "M20x1.5-6g"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stdout(&o));
+    let e = stderr(&o);
+    assert_eq!(e.lines().count(), 1, "{e}");
+    assert!(e.contains("m30x1.5-turned.nc:12:1:"), "{e}");
+    assert!(e.contains("about Ø30.0 (final X28.160)") && e.contains("M20x1.5-6g is Ø20 (d3 18.160)"), "{e}");
+    assert!(!e.contains("X18") && !e.contains("change"), "no correction: {e}");
+    // The size it cuts is checked as ever.
+    let o = run(&["verify", "--program", p.to_str().unwrap(), "--thread", "M30x1.5-6g"]);
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+}
+
+/// Issue 59: with no turned blank, the wrong designation's default blank is never reached: a FAIL
+/// (no cut) that names both diameters and offers no final X (it was "a last pass at X17.7050",
+/// a 5 mm plunge into the M30 bolt).
+#[test]
+fn a_designation_of_another_size_offers_no_plunge() {
+    let dir = tempdir("misfit");
+    let text = std::fs::read_to_string(data("programs/m30x1.5-turned.nc")).unwrap();
+    let untouched: String =
+        text.lines().filter(|l| !l.starts_with("G1 ")).map(|l| format!("{l}\n")).collect();
+    std::fs::write(dir.join("m30.nc"), untouched).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "m30.nc", "--thread", "M20x1.5-6g"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(
+        out.contains("no cut")
+            && out.contains("M20x1.5-6g is Ø20")
+            && out.contains("no correction is offered"),
+        "{out}"
+    );
+    assert!(!out.contains("a last pass at X"), "{out}");
+    let o = run_in(&dir, &["verify", "--program", "m30.nc", "--thread", "M20x1.5-6g", "--json", "-"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let op = &v["operations"][0];
+    assert!(op["suggested_final_x"].is_null(), "{op}");
+}
+
+/// Issue 59: a program that names no insert is cut with the full-profile insert its depth is
+/// written for, and what that insert's shape alone decides is `unverified`, never failed. An
+/// M30x1.5 bolt turned to Ø29.85 (inside 6g's d, 29.732–29.968) and threaded to X28.053: a
+/// full-profile tip there leaves d2 = 28.053 + 0.57735·1.5 = 28.919, the middle of 6g's
+/// 28.844–28.994: PASS on size, with d3, the root radius and the crest unverified.
+#[test]
+fn a_program_without_its_tool_passes_on_size_with_its_form_unverified() {
+    let p = data("programs/m30x1.5-mid.nc");
+    let (code, v) = json_of(&["verify", "--program", p.to_str().unwrap()]);
+    assert_eq!(code, 0, "{v}");
+    let op = &v["operations"][0];
+    assert_eq!(op["unverified"], serde_json::json!(["minor_diameter", "root_radius", "crest"]));
+    assert!((check(op, "pitch_diameter")["value"].as_f64().unwrap() - 28.919).abs() < 1e-4);
+    assert!(check(op, "pitch_diameter")["unverified"].is_null());
+    assert!(check(op, "root_radius")["unverified"].as_str().unwrap().contains("tool not known"));
+    let text = stdout(&run(&["verify", "--program", p.to_str().unwrap()]));
+    assert!(text.contains("verdict: PASS — form unverified (minor diameter d3, root radius, crest left standing): tool not known"), "{text}");
+    // A tool table naming a partial-profile insert with a 0.04 mm tip: the root radius is the
+    // program's now, and 0.04 is under the standard's 0.125·P = 0.1875 mm.
+    let dir = tempdir("tools-04");
+    std::fs::write(dir.join("tools.toml"), "[tools]\n3 = \"partial:0.04\"\n").unwrap();
+    let o =
+        run_in(&dir, &["verify", "--program", p.to_str().unwrap(), "--tools", "tools.toml", "--json", "-"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let root = check(&v["operations"][0], "root_radius");
+    assert_eq!(root["ok"].as_bool(), Some(false));
+    assert!((root["value"].as_f64().unwrap() - 0.04).abs() < 1e-9, "{root}");
+    assert!(root["unverified"].is_null());
 }

@@ -130,7 +130,10 @@ fn a_library_in_one_run_with_json_lines() {
     let lib = dir.join("lib");
     std::fs::create_dir_all(lib.join("lathe")).unwrap();
     std::fs::copy(data("whole/plate.nc"), lib.join("plate.nc")).unwrap();
-    std::fs::copy(data("whole/shaft.nc"), lib.join("lathe/shaft.NC")).unwrap();
+    // The shaft's G76 ending at X21.7 (d2 22.855 over 6g's 22.663): a turned thread that fails.
+    let shaft =
+        std::fs::read_to_string(data("whole/shaft.nc")).unwrap().replace("G76 X21.423 ", "G76 X21.7 ");
+    std::fs::write(lib.join("lathe/shaft.NC"), shaft).unwrap();
     std::fs::write(lib.join("notes.txt"), "not a program").unwrap();
     std::fs::write(
         lib.join("broken.nc"),
@@ -142,7 +145,7 @@ fn a_library_in_one_run_with_json_lines() {
     let text = stdout(&o);
     let lines: Vec<&str> = text.lines().collect();
     assert!(lines[0].starts_with("error: lib/broken.nc:3:"), "{text}");
-    assert_eq!(lines[1], "lib/lathe/shaft.NC:8: FAIL turned M24X2-6g (comment): pitch diameter d2, root radius, GO gauge (max. material)");
+    assert_eq!(lines[1], "lib/lathe/shaft.NC:8: FAIL turned M24X2-6g (comment): major diameter d, pitch diameter d2, GO gauge (max. material)");
     assert_eq!(lines[2], "lib/lathe/shaft.NC:19: PASS tapped M8X1.25-6H (comment)");
     assert_eq!(lines[3], "lib/plate.nc:18: PASS tapped M8X1.25-6H (comment)");
     assert!(
@@ -161,11 +164,13 @@ fn a_library_in_one_run_with_json_lines() {
         objects[3]["summary"],
         serde_json::json!({"programs": 2, "operations": 7, "pass": 5, "fail": 2, "unreadable": 1})
     );
-    // Without the broken file the worst is a failing operation (exit 1); with the thread mill and
-    // a full-profile insert (as the one-program tests above) every operation passes (exit 0).
+    // Without the broken file the worst is a failing operation (exit 1); with the shaft as drawn
+    // (X21.423), the thread mill and a full-profile insert (as the one-program tests above)
+    // every operation passes (exit 0).
     std::fs::remove_file(lib.join("broken.nc")).unwrap();
     let o = run_in(&dir, &["verify", "lib"]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    std::fs::copy(data("whole/shaft.nc"), lib.join("lathe/shaft.NC")).unwrap();
     let tools = data("whole/plate-tools.toml");
     let o = run_in(&dir, &["verify", "lib", "--insert", "full", "--tools", tools.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));

@@ -56,6 +56,26 @@ def test_verify_program_text_reads_72_um_over_6g():
     assert fixed["verdict"] == "pass"
 
 
+def test_pasted_text_is_read_as_a_file_is_with_its_dos_end_of_file():
+    # Issue 58: a trailing ^Z (DOS end of file) ends the text on every route, as it does when the
+    # command line reads a file; a NUL byte is refused at its place.
+    plain = threadcheck.verify("M20x1.5-6g", program=G76_M20, insert="full")
+    with_eof = threadcheck.verify("M20x1.5-6g", program=G76_M20 + "\x1a", insert="full")
+    assert with_eof["verdict"] == plain["verdict"]
+    assert with_eof["operations"][0]["passes"] == plain["operations"][0]["passes"]
+    with pytest.raises(ValueError, match=r"^post\.nc:1:3: a NUL byte"):
+        threadcheck.verify("M20x1.5-6g", program="G0\x00X1\n", program_name="post.nc")
+
+
+def test_a_designation_of_another_size_is_refused_naming_both():
+    # Issue 59: an M30x1.5 bolt (G76 to X28.16 = 30 - 2 x 0.920) given M20x1.5-6g (d3 18.160):
+    # refused at the G76's second block, naming both diameters, never corrected.
+    bolt = "G21 G18 G99\nT0101\nG97 S800 M3\nG0 X31 Z2\nG1 X29.85 F0.2\nG1 Z-25\nG0 X32 Z5\n" \
+        "G76 P010060 Q100 R0.05\nG76 X28.16 Z-20 P920 Q350 F1.5\nM30\n"
+    with pytest.raises(ValueError, match=r"^m30\.nc:9:1: G76: the passes cut about Ø30\.0 .*M20x1\.5-6g is Ø20 \(d3 18\.160\)"):
+        threadcheck.verify("M20x1.5-6g", program=bolt, program_name="m30.nc")
+
+
 def as_keys(cli_text):
     """The command line's text with each flag (``--gcode-system``) written as the keyword Python
     takes (``gcode_system``): the one way Python's words differ from the command line's."""

@@ -273,6 +273,24 @@ pub struct Check {
     /// Which flank (`low-z`, `high-z`) or other detail.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub note: Option<String>,
+    /// Set when the value rests on a tool nobody chose (the program names no insert): what was
+    /// assumed. Such a check is reported `unverified` and left out of the verdict, whatever
+    /// `ok` says of the assumed tool.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unverified: Option<String>,
+}
+
+impl Check {
+    /// Whether the check counts in the verdict: not when it is unverified, nor a form check with
+    /// `gauge_only`.
+    pub fn counts(&self, gauge_only: bool) -> bool {
+        self.unverified.is_none() && self.kind.counts(gauge_only)
+    }
+
+    /// Whether it fails the verdict: out of its limits and counted.
+    pub fn fails(&self, gauge_only: bool) -> bool {
+        !self.ok && self.counts(gauge_only)
+    }
 }
 
 /// A check of `value` against `lim`, compared at the resolution `at` rounds to (the standard's:
@@ -296,6 +314,7 @@ fn check(
         ok: dev == 0.0,
         deviation_um: dev * 1000.0,
         note,
+        unverified: None,
     }
 }
 
@@ -521,6 +540,7 @@ pub fn checks(
         ok: crest_ok,
         deviation_um: if crest_ok { 0.0 } else { (m.crest_width - MIN_CREST_WIDTH) * 1000.0 },
         note: (!crest_ok).then(|| "no crest left: the grooves overlap and meet in a sharp edge".to_string()),
+        unverified: None,
     });
     out.push(single_groove_check(single_groove, m.fin_height));
     out
@@ -549,6 +569,7 @@ fn taper_checks(m: &Measurement, thread: &BasicThread, single_groove: bool, c: C
             if c.turns >= 0.0 { "further in" } else { "further out" },
             c.tolerance_turns
         )),
+        unverified: None,
     }];
     let taper_ok = (c.taper - c.nominal_taper).abs() <= TAPER_TOLERANCE + 1e-12;
     out.push(Check {
@@ -563,6 +584,7 @@ fn taper_checks(m: &Measurement, thread: &BasicThread, single_groove: bool, c: C
             "taper of the passes on the diameter, 1:{:.1} (1:16 ± 1/96 assumed)",
             if c.taper != 0.0 { 1.0 / c.taper } else { f64::INFINITY }
         )),
+        unverified: None,
     });
     out.extend(flank_checks(m, thread));
     out.push(single_groove_check(single_groove, m.fin_height));
@@ -595,6 +617,7 @@ fn single_groove_check(single_groove: bool, fin_height: f64) -> Check {
         ok,
         deviation_um: 0.0,
         note,
+        unverified: None,
     }
 }
 
@@ -648,7 +671,7 @@ pub fn hints(
 
 /// True when every check that counts passes; with `gauge_only`, only size checks count.
 pub fn verdict(checks: &[Check], gauge_only: bool) -> bool {
-    checks.iter().filter(|c| c.kind.counts(gauge_only)).all(|c| c.ok)
+    !checks.iter().any(|c| c.fails(gauge_only))
 }
 
 /// A verdict.
@@ -687,10 +710,17 @@ mod tests {
             ok,
             deviation_um: 0.0,
             note: None,
+            unverified: None,
         };
         let cs = vec![mk(CheckKind::Size, true), mk(CheckKind::Form, false)];
         assert!(!verdict(&cs, false));
         assert!(verdict(&cs, true));
+        // An unverified check is reported, never failed.
+        let cs = vec![
+            mk(CheckKind::Size, true),
+            Check { unverified: Some("assumed".into()), ..mk(CheckKind::Size, false) },
+        ];
+        assert!(verdict(&cs, false));
     }
 
     #[test]

@@ -223,7 +223,7 @@ fn summarise(label: &str, schedule: &str, v: &Verification) -> Summary {
         minor_diameter: v.measurement.minor_diameter,
         flank_angles: v.measurement.flank_angles,
         pass: v.pass,
-        failed: v.checks.iter().filter(|c| !c.ok && c.kind.counts(v.gauge_only)).map(|c| c.feature).collect(),
+        failed: v.checks.iter().filter(|c| c.fails(v.gauge_only)).map(|c| c.feature).collect(),
     }
 }
 

@@ -196,6 +196,7 @@ fn process_check(
         ok,
         deviation_um: 0.0,
         note: Some(note),
+        unverified: None,
     }
 }
 

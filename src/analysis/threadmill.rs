@@ -982,6 +982,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         ok: lead_ok,
         deviation_um: if lead_ok { 0.0 } else { (lead_err * 1e4).round() / 10.0 },
         note: Some("the Z travel of each turn of the helices against the designation's lead".into()),
+        unverified: None,
     });
     // The starts: each helix's Z where it crosses the +X half-plane, modulo the lead; a
     // multi-start thread's starts lie a pitch apart (issue 46).
@@ -1026,6 +1027,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
                 hand_name(t.hand)
             ),
         }),
+        unverified: None,
     });
     if c.rows > 1 {
         // Each row cuts the groove its neighbour cuts one pitch along: the rows must lie a pitch
@@ -1044,6 +1046,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
                 "the {} rows of the multi-form cutter must lie one pitch apart; each cuts its neighbour's groove",
                 c.rows
             )),
+            unverified: None,
         });
         notes.push(format!(
             "a multi-form cutter of {} rows {} mm apart, the first at the programmed point and the others above it (a named default)",

@@ -704,8 +704,8 @@ impl ProgramSource {
         ProgramSource::Text { name: name.into(), text: text.into() }
     }
 
-    /// The name messages use and the text, read from the file if it is one; bounded in size
-    /// either way.
+    /// The name messages use and the text, read from the file if it is one; bounded in size and
+    /// read by [`text_of`]'s rules either way.
     pub fn load(&self) -> Result<(String, String), Error> {
         match self {
             ProgramSource::File(path) => Ok((path.display().to_string(), read_program_text(path)?)),
@@ -721,7 +721,9 @@ impl ProgramSource {
                         ),
                     });
                 }
-                Ok((name.clone(), text.clone()))
+                // The file's rules for pasted text too (issue 58: one reader for every route): a
+                // DOS end-of-file ^Z ends it, a NUL byte or an empty program is refused.
+                Ok((name.clone(), text_of(text.as_bytes(), name)?))
             }
         }
     }
@@ -1562,6 +1564,14 @@ pub fn verify_operation(
                 designation: r.designation.text.clone(),
                 ..spec.clone()
             };
+            // Passes nowhere near the designation's size: no final X is offered (it would plunge
+            // to another thread's diameter); the reason names both.
+            if let Some((_, misfit)) = diameter_misfit(&r, op, &op.passes) {
+                return Ok(OperationResult::NoCut {
+                    reason: format!("{m}; {blank_from}; {misfit}: no correction is offered"),
+                    suggested_final_x: None,
+                });
+            }
             let suggested_final_x = verify(&plan).ok().map(|v| v.final_x);
             Ok(OperationResult::NoCut { reason: format!("{m}; {blank_from}"), suggested_final_x })
         }
@@ -1603,6 +1613,73 @@ fn side_agrees(
             last.x_end,
         ),
     })
+}
+
+/// Where the designation is not the thread the passes cut. Both sides of the profile are
+/// compared, each against one thread depth on the radius (plus, on a taper, what the cone changes
+/// over the pass and the nominal length): the deepest pass's tip against the designation's root
+/// (d3 on a bar, D in a bore), and the crest side (the diameter the program turned or bored for
+/// the thread, else its first pass) against its crest (d, D1). Off on both, the designation names
+/// another size and no correction would be safe; off on the root alone, the program cuts this
+/// size too deep or too shallow, which the checks show. The last pass's line and what to say,
+/// naming both diameters.
+fn diameter_misfit(
+    r: &Resolved,
+    op: &crate::gcode::Operation,
+    passes: &[Pass],
+) -> Option<(Option<usize>, String)> {
+    let t = &r.designation.thread;
+    let last = last_head(passes);
+    let final_x = 0.5 * (last.x_start.abs() + last.x_end.abs());
+    let xs = passes.iter().map(|p| 0.5 * (p.x_start.abs() + p.x_end.abs()));
+    let (root, root_name, crest, about, crest_side) = match r.kind {
+        ThreadKind::External => (
+            t.minor_diameter_external(),
+            "d3",
+            t.nominal_diameter,
+            final_x + 2.0 * t.thread_depth(),
+            program_blank(op, r.kind).map_or_else(|| xs.fold(f64::NEG_INFINITY, f64::max), |b| b.0),
+        ),
+        ThreadKind::Internal => (
+            t.nominal_diameter,
+            "D",
+            t.minor_diameter_internal(),
+            final_x,
+            program_blank(op, r.kind).map_or_else(|| xs.fold(f64::INFINITY, f64::min), |b| b.0),
+        ),
+    };
+    let cone = t.form.taper() * ((last.z_end - last.z_start).abs() + t.nominal_diameter);
+    let margin = 2.0 * t.thread_depth() + cone;
+    if (final_x - root).abs() <= margin || (crest_side - crest).abs() <= margin {
+        return None;
+    }
+    Some((
+        last.source_line,
+        format!(
+            "the passes cut about Ø{about:.1} (final X{:.3}), the designation {} is Ø{} ({root_name} {root:.3}): they differ by more than a thread depth; check the thread",
+            last.x_end,
+            r.designation.text,
+            crate::ground::fmt::fmt_num(t.nominal_diameter),
+        ),
+    ))
+}
+
+/// [`diameter_misfit`] as a refusal at the last pass's line.
+fn diameter_agrees(
+    r: &Resolved,
+    op: &crate::gcode::Operation,
+    passes: &[Pass],
+    label: &ProgramLabel,
+) -> Result<(), Error> {
+    match diameter_misfit(r, op, passes) {
+        None => Ok(()),
+        Some((line, message)) => Err(Error::Program {
+            file: label.file.clone(),
+            line: line.unwrap_or(op.source_line),
+            column: 1,
+            message: format!("{}: {message}", op.cycle),
+        }),
+    }
 }
 
 /// The diameter the program turned (or bored) for the thread before cutting it, and the line of
@@ -1736,6 +1813,8 @@ fn verify_given(
                 if r.kind == ThreadKind::External { "blank diameter" } else { "bore diameter" },
         )));
     }
+    // Passes that cut the material but not near the designation's size: refused, never corrected.
+    diameter_agrees(r, op, &passes, label)?;
     // The lead error adds up over the thread a gauge engages: the thread on the part (its face
     // taken at Z0, the part at Z ≤ 0: a named default), capped at the length of engagement.
     let last = last_head(&passes);
@@ -2006,8 +2085,16 @@ pub fn verify_program(
         }
         let mut assumed = false;
         if let Some((choice, note, default)) = insert_for(op) {
-            s.insert = choice;
-            extra.push(note);
+            if default {
+                let (choice, what) = assumed_insert(op, &s);
+                s.insert = choice;
+                extra.push(format!(
+                    "insert assumed: {what} ({note}; choose with ‹insert› or ‹tools›): the root radius, the crest and the diameters its tip and crest leave are unverified"
+                ));
+            } else {
+                s.insert = choice;
+                extra.push(note);
+            }
             assumed = default;
         }
         let mut result = verify_operation(&s, op, &label)?;
@@ -2023,18 +2110,85 @@ pub fn verify_program(
             );
             v.checks.extend(checks);
             v.process = Some(report);
-            v.pass = verdict(&v.checks, v.gauge_only);
-            let only_form =
-                v.checks.iter().filter(|c| !c.ok).all(|c| c.kind == crate::analysis::check::CheckKind::Form);
-            if assumed && !v.pass && only_form && matches!(s.insert, InsertChoice::Partial { .. }) {
-                v.notes.push(crate::ground::note::Note::from(
-                    "only form checks fail, with the assumed partial-profile insert: ‹insert› full cuts the standard root; ‹gauge_only› gives the gauge verdict (sizes and the GO gauge)",
-                ));
+            if assumed {
+                unverified_by_assumed_insert(v);
             }
+            v.pass = verdict(&v.checks, v.gauge_only);
         }
         operations.push(OperationVerdict { operation: op.clone(), designation, named, result });
     }
     Ok(ProgramVerification::of(&prog, label, operations, n))
+}
+
+/// The insert a program's passes are written for when no tool is known: of the full-profile
+/// insert (its tip on the basic root: d3 on a bar, D in a bore) and the default partial-profile
+/// insert (tip r0.04: the flanks on the basic d2 put the tip H − 2r(1/sin α − 1) beyond d2 on the
+/// diameter), the one whose tip position lies nearer the deepest pass; the full one on a tie or
+/// when the designation cannot be read here (the verification then says why). With what to say.
+fn assumed_insert(op: &crate::gcode::Operation, spec: &VerifySpec) -> (InsertChoice, String) {
+    const TIP: f64 = 0.04;
+    let full = (
+        InsertChoice::Full,
+        "the full-profile insert of the thread's pitch, the one the passes' depth is written for".to_string(),
+    );
+    let Ok(des) =
+        parse_designation(&spec.designation, ParseOptions { allow_nonstandard: spec.allow_nonstandard })
+    else {
+        return full;
+    };
+    let t = des.thread;
+    if op.passes.is_empty() || t.form.taper() != 0.0 || TIP > t.root_radius() {
+        return full;
+    }
+    let internal = spec.internal
+        || (des.external.is_none() && des.internal.is_some())
+        || pass_side(&op.passes) == Some(ThreadKind::Internal);
+    let last = last_head(&op.passes);
+    let x = 0.5 * (last.x_start.abs() + last.x_end.abs());
+    let below_d2 = t.fundamental_height() - 2.0 * TIP * (1.0 / t.half_angle().sin() - 1.0);
+    let (x_full, x_partial) = if internal {
+        (t.nominal_diameter, t.pitch_diameter() + below_d2)
+    } else {
+        (t.minor_diameter_external(), t.pitch_diameter() - below_d2)
+    };
+    if (x - x_partial).abs() < (x - x_full).abs() - 1e-9 {
+        (
+            InsertChoice::Partial { tip_radius: TIP },
+            format!(
+                "a partial-profile insert with a {} mm tip, the one the passes' depth is written for (the last pass X{x:.3} lies nearer its X{x_partial:.3} than a full-profile insert's X{x_full:.3})",
+                crate::ground::fmt::fmt_num(TIP)
+            ),
+        )
+    } else {
+        full
+    }
+}
+
+/// What an insert nobody chose decides: the root radius, the diameter its tip leaves (d3 on a
+/// bar, D in a bore), the crest (a full-profile insert tops it, a partial one leaves the
+/// blank's) and the crest's diameter where the insert topped the blank. With the insert assumed these checks are reported
+/// `unverified`, with what was assumed, and left out of the verdict; the sizes the passes decide
+/// (d2, the GO gauge, the crest diameter the blank leaves) and the flanks count.
+pub fn unverified_by_assumed_insert(v: &mut Verification) {
+    use crate::analysis::check::CheckFeature as F;
+    let kind = v.kind;
+    let assumed = format!("tool not known: the insert assumed is {}", v.insert.name);
+    // The crest diameter is the blank's unless the assumed insert topped it.
+    let blank = v.blank_diameter;
+    for c in &mut v.checks {
+        let on_tool = match (c.feature, kind) {
+            (F::RootRadius | F::Crest, _) => true,
+            (F::MinorDiameter, ThreadKind::External) | (F::MajorDiameter, ThreadKind::Internal) => true,
+            (F::MajorDiameter, ThreadKind::External) => c.value < blank - 1e-4,
+            (F::MinorDiameter, ThreadKind::Internal) => c.value > blank + 1e-4,
+            _ => false,
+        };
+        if on_tool {
+            c.unverified = Some(assumed.clone());
+        }
+    }
+    // Hints about a failing root or crest speak of the assumed insert: not the program's.
+    v.hints.retain(|h| !matches!(h, crate::analysis::check::Hint::TipRadius { .. }));
 }
 
 /// One thread re-cut with its passes moved radially and its insert's tip radius changed: the

@@ -112,8 +112,13 @@ pub fn filter(args: &FilterArgs) -> Result<Filtered, Error> {
         return Err(Error::Input("filter takes the program as FILE, not ‹program›".into()));
     }
     // The bytes as LinuxCNC would read them: copied whatever threadcheck makes of them.
-    let bytes = std::fs::read(&args.file)
-        .map_err(|e| Error::Io { path: args.file.display().to_string(), source: e })?;
+    // Through the bounded reader (a FIFO with no writer or /dev/zero is refused, never waited on
+    // or grown without bound).
+    let bytes = crate::ground::input::read_bounded(
+        &args.file,
+        crate::ground::bounds::MAX_PROGRAM_BYTES,
+        "the program",
+    )?;
     let request = Request { wanted: Vec::new(), files: Files::Allowed, reader: crate::Audience::Cli };
     let tools = args.tools.as_ref().map(|t| tool_table(t, Files::Allowed)).transpose()?;
     let verify = VerifyArgs {

@@ -183,7 +183,7 @@ impl Job for SweepArgs {
                             let failed: Vec<String> = v
                                 .checks
                                 .iter()
-                                .filter(|k| !k.ok && k.kind.counts(v.gauge_only))
+                                .filter(|k| k.fails(v.gauge_only))
                                 .map(|k| {
                                     if k.deviation_um != 0.0 {
                                         format!("{} {:+.1} µm", k.feature, k.deviation_um)

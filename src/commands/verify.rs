@@ -3,7 +3,6 @@
 use super::args::{tool_table, PlanArgs, Source};
 use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
 use crate::analysis::verify::{InsertChoice, ProgramSource, VerifySpec};
-use crate::report::fmt_num;
 use crate::Error;
 use serde::Deserialize;
 use std::path::PathBuf;
@@ -416,9 +415,8 @@ impl VerifyArgs {
         tools: Option<&crate::analysis::tools::ToolTable>,
     ) -> Result<(String, String, crate::analysis::verify::ProgramVerification), Error> {
         let (shown, text) = source.load()?;
-        let default = spec.insert.clone();
         let insert_given = self.plan.insert_given();
-        let insert_for = |op: &crate::gcode::Operation| insert_of(op, tools, insert_given, &default);
+        let insert_for = |op: &crate::gcode::Operation| insert_of(op, tools, insert_given);
         // `spec` asks for the pictures only when a document draws them (the program's picture
         // once lost its zone, basic profile, deviation plot and full length).
         let pv = crate::analysis::whole::verify_whole(
@@ -472,12 +470,12 @@ fn located(e: &Error, shown: &str) -> (String, Option<(usize, usize)>) {
 }
 
 /// The insert of a program's operation: `None` keeps the one given (‹insert›); else the tool
-/// table's insert of its T number, or the default with the note that says it was assumed.
+/// table's insert of its T number, or (the third value true) none known, with why: the analysis
+/// then assumes the insert the passes' depth is written for.
 fn insert_of(
     op: &crate::gcode::Operation,
     tools: Option<&crate::analysis::tools::ToolTable>,
     insert_given: bool,
-    default: &InsertChoice,
 ) -> Option<(InsertChoice, String, bool)> {
     if insert_given {
         return None;
@@ -503,15 +501,9 @@ fn insert_of(
         }
         (None, _) => "the program names no tool".to_string(),
     };
-    let what = match &default {
-        InsertChoice::Full => "a full-profile insert".to_string(),
-        InsertChoice::Partial { tip_radius } => {
-            format!("a partial-profile insert with a {} mm tip", fmt_num(*tip_radius))
-        }
-        InsertChoice::File(p) => format!("the insert {}", p.display()),
-        InsertChoice::Toml { name, .. } => format!("the insert {name}"),
-    };
-    Some((default.clone(), format!("insert assumed: {what} ({why}; choose with ‹insert› or ‹tools›)"), true))
+    // The insert assumed is chosen by the analysis from the passes' depth (the one the program's
+    // numbers are written for); here only why it is assumed.
+    Some((InsertChoice::Full, why, true))
 }
 
 /// The program with every operation's correction written in; an operation whose correction

@@ -37,6 +37,9 @@ pub struct BatchOperation {
     pub failed: Vec<String>,
     /// The same, each as a finding: its rule and a sentence with the value and the limit.
     pub findings: Vec<Finding>,
+    /// The checks that rest on a tool nobody chose, as findings of their own (SARIF notes).
+    #[serde(skip)]
+    pub unverified: Vec<Finding>,
 }
 
 /// A failing check of an operation, as SARIF, JUnit, the filter and the editor show it.
@@ -116,10 +119,9 @@ impl BatchProgram {
             .operations
             .iter()
             .map(|o| {
-                let (verdict, failed, findings) = match &o.result {
+                let (verdict, failed, findings, unverified) = match &o.result {
                     OperationResult::Verified(v) => {
-                        let bad: Vec<_> =
-                            v.checks.iter().filter(|c| !c.ok && c.kind.counts(v.gauge_only)).collect();
+                        let bad: Vec<_> = v.checks.iter().filter(|c| c.fails(v.gauge_only)).collect();
                         (
                             Verdict::of(v.pass),
                             bad.iter().map(|c| c.feature.words(v.kind).to_string()).collect(),
@@ -129,12 +131,26 @@ impl BatchProgram {
                                     message: check_sentence(c, v.kind),
                                 })
                                 .collect(),
+                            v.checks
+                                .iter()
+                                .filter_map(|c| {
+                                    Some(Finding {
+                                        rule: format!("turned.{}.unverified", c.feature.name()),
+                                        message: format!(
+                                            "unverified: {} ({})",
+                                            check_sentence(c, v.kind),
+                                            c.unverified.as_deref()?
+                                        ),
+                                    })
+                                })
+                                .collect(),
                         )
                     }
                     OperationResult::NoCut { reason, .. } => (
                         Verdict::Fail,
                         vec![format!("no cut: {reason}")],
                         vec![Finding { rule: "turned.no_cut".into(), message: format!("no cut: {reason}") }],
+                        Vec::new(),
                     ),
                 };
                 BatchOperation {
@@ -147,11 +163,13 @@ impl BatchProgram {
                     verdict,
                     failed,
                     findings,
+                    unverified,
                 }
             })
             .collect();
         operations.extend(pv.tapped.iter().flat_map(|t| &t.holes).map(|h| {
             BatchOperation {
+                unverified: Vec::new(),
                 made: Process::Tapped,
                 line: h.cycle.line,
                 in_file: h.cycle.source_file.clone(),
@@ -179,6 +197,7 @@ impl BatchProgram {
         operations.extend(pv.milled.iter().map(|m| {
             match m {
                 Milled::Checked(r) => BatchOperation {
+                    unverified: Vec::new(),
                     made: Process::Milled,
                     line: r.helices.first().map_or(1, |h| h.line),
                     in_file: None,
@@ -203,6 +222,7 @@ impl BatchProgram {
                         .collect(),
                 },
                 Milled::NotChecked { line, reason } => BatchOperation {
+                    unverified: Vec::new(),
                     made: Process::Milled,
                     line: *line,
                     in_file: None,
@@ -394,13 +414,14 @@ pub fn sarif_log(programs: &[BatchProgram], version: &str, exit_code: i32) -> Re
                 o.made.name(),
                 if o.designation.is_empty() { "thread" } else { &o.designation }
             );
-            for f in &o.findings {
+            let levels = o.findings.iter().map(|f| (f, sarif::ResultLevel::Error));
+            for (f, level) in levels.chain(o.unverified.iter().map(|f| (f, sarif::ResultLevel::Note))) {
                 let i = rule_index(&f.rule);
                 results.push(
                     sarif::Result::builder()
                         .rule_id(f.rule.clone())
                         .rule_index(i)
-                        .level(sarif::ResultLevel::Error)
+                        .level(level)
                         .message(sarif::Message::builder().text(format!("{what}: {}", f.message)).build())
                         .locations(vec![location(
                             o.in_file.as_deref().unwrap_or(&p.file),

@@ -147,7 +147,7 @@ fn hovers(pv: &ProgramVerification) -> Vec<EditorHover> {
                     if v.pass { "PASS" } else { "FAIL" },
                     o.operation.passes.len()
                 );
-                for c in v.checks.iter().filter(|c| c.kind.counts(v.gauge_only)) {
+                for c in v.checks.iter().filter(|c| c.counts(v.gauge_only)) {
                     let _ = writeln!(md, "- {} {}", mark(c.ok), check_sentence(c, v.kind));
                 }
                 if let Some(c) = &v.correction {

@@ -178,6 +178,9 @@ pub struct VerifyReport<'a> {
     pub correction: Option<CorrectionReport<'a>>,
     /// What failing form checks say about the insert or the infeed.
     pub hints: Vec<HintReport<'a>>,
+    /// The checks that rest on a tool nobody chose (their `unverified` says what was
+    /// assumed): reported, never failed.
+    pub unverified: Vec<crate::analysis::check::CheckFeature>,
     /// Stated assumptions.
     pub notes: &'a [crate::ground::note::Note],
     /// The normal deviation from the basic profile along one pitch, as the picture plots it
@@ -234,6 +237,7 @@ impl<'a> VerifyReport<'a> {
                 .as_ref()
                 .map(|c| CorrectionReport { text: correction_text(c), correction: c }),
             hints: v.hints.iter().map(|h| HintReport { hint: h, text: hint_text(h) }).collect(),
+            unverified: v.checks.iter().filter(|c| c.unverified.is_some()).map(|c| c.feature).collect(),
             limits: &v.limits,
             checks: v.checks.iter().map(|c| CheckReport { check: c, shown: check_cells(c) }).collect(),
             verdict: Verdict::of(v.pass),
@@ -271,7 +275,7 @@ pub struct CorrectionReport<'a> {
 /// counts is a form check and the tip-radius hint stands (the first run of a newcomer, with the
 /// assumed partial-profile insert). `None` otherwise.
 pub(crate) fn form_only_from_tip(v: &Verification) -> Option<f64> {
-    let mut failing = v.checks.iter().filter(|c| !c.ok && c.kind.counts(v.gauge_only)).peekable();
+    let mut failing = v.checks.iter().filter(|c| c.fails(v.gauge_only)).peekable();
     failing.peek()?;
     if !failing.all(|c| c.kind == crate::analysis::check::CheckKind::Form) {
         return None;
@@ -331,8 +335,10 @@ pub fn verify_text(v: &Verification) -> String {
         writeln!(s, "\n    {:<16}{:>10}{:>10}{:>10}{:>12}  kind", "check", "value", "min", "max", "deviation")
     };
     for c in &v.checks {
-        let counts = c.kind.counts(v.gauge_only);
-        let mark = if c.ok {
+        let counts = c.counts(v.gauge_only);
+        let mark = if c.unverified.is_some() {
+            "?"
+        } else if c.ok {
             "✓"
         } else if counts {
             "✗"
@@ -411,16 +417,19 @@ pub fn verify_text(v: &Verification) -> String {
             );
         }
     }
-    let failed: Vec<&str> = v
-        .checks
-        .iter()
-        .filter(|c| !c.ok && c.kind.counts(v.gauge_only))
-        .map(|c| c.feature.words(v.kind))
-        .collect();
+    let failed: Vec<&str> =
+        v.checks.iter().filter(|c| c.fails(v.gauge_only)).map(|c| c.feature.words(v.kind)).collect();
+    // The checks a tool nobody chose decides: named beside the verdict, never failed.
+    let unverified: Vec<&str> =
+        v.checks.iter().filter(|c| c.unverified.is_some()).map(|c| c.feature.words(v.kind)).collect();
+    let unverified = match v.checks.iter().find_map(|c| c.unverified.as_deref()) {
+        Some(why) => format!(" — form unverified ({}): {why}", unverified.join(", ")),
+        None => String::new(),
+    };
     if v.pass {
-        let _ = writeln!(s, "\nverdict: PASS");
+        let _ = writeln!(s, "\nverdict: PASS{unverified}");
     } else {
-        let form = form_only_from_tip(v).map_or(String::new(), |tip| {
+        let form = form_only_from_tip(v).map_or(unverified, |tip| {
             format!(
                 " — form only, from the insert's {} mm tip: ‹insert› full cuts the standard root; ‹gauge_only› judges the sizes and the GO gauge alone",
                 fmt_num(tip)
@@ -1014,8 +1023,8 @@ pub(crate) fn check_table(v: &Verification, x: f64, y: f64) -> (Group, f64) {
     }
     let mut yy = y + 32.0;
     for c in &v.checks {
-        let counts = c.kind.counts(v.gauge_only);
-        let colour = if c.ok {
+        let counts = c.counts(v.gauge_only);
+        let colour = if c.ok && counts {
             "#1d1d1d"
         } else if counts {
             FAIL
@@ -1037,6 +1046,7 @@ pub(crate) fn check_table(v: &Verification, x: f64, y: f64) -> (Group, f64) {
         };
         let off = cells.deviation;
         let verdict = match (c.ok, counts) {
+            _ if c.unverified.is_some() => "unverified",
             (true, _) => "ok",
             (false, true) => "OUT",
             (false, false) => "form",
@@ -1434,7 +1444,7 @@ pub(crate) fn verdict_words(v: &Verification) -> String {
     let failed: Vec<String> = v
         .checks
         .iter()
-        .filter(|c| !c.ok && c.kind.counts(v.gauge_only))
+        .filter(|c| c.fails(v.gauge_only))
         .map(|c| {
             if c.feature.is_length() && c.deviation_um != 0.0 {
                 let dir = if c.deviation_um > 0.0 { "over" } else { "under" };
@@ -1626,9 +1636,10 @@ pub(crate) fn verification_body(v: &Verification, svg: &str, level: u8) -> Strin
         "<table><tr><th>feature</th><th>value</th><th>min</th><th>max</th><th>deviation</th><th>ok</th><th>note</th></tr>\n"
     });
     for c in &v.checks {
-        let counts = c.kind.counts(v.gauge_only);
+        let counts = c.counts(v.gauge_only);
         let cells = super::check_cells(c);
         let (cls, word) = match (c.ok, counts) {
+            _ if c.unverified.is_some() => ("form", "unverified"),
             (true, _) => ("ok", "ok"),
             (false, true) => ("out", "OUT"),
             (false, false) => ("form", "out (not counted)"),

@@ -132,8 +132,9 @@ $("tools-file").addEventListener("change", async () => { state.files.tools = awa
 
 function verifyArgs() {
   const args = {};
+  // An empty field: each thread as the program names it (a plan needs one).
   const threads = $("thread").value.split(",").map((s) => s.trim()).filter((s) => s);
-  args.thread = threads.length === 1 ? threads[0] : threads;
+  if (threads.length) args.thread = threads.length === 1 ? threads[0] : threads;
   if ($("internal").checked) args.internal = true;
   if ($("allow-nonstandard").checked) args.allow_nonstandard = true;
   if ($("gauge-only").checked) args.gauge_only = true;
@@ -153,7 +154,8 @@ function verifyArgs() {
       if (!state.files.insert) throw new Error("choose the insert file (TOML)");
       args.insert_toml = state.files.insert.text;
       break;
-    default: if (!args.tools) args.insert = "partial";
+    case "partial": args.insert = "partial"; break;
+    default: break; // the program's tool, else the one assumed (a plan: the partial insert)
   }
   const coating = Number($("coating").value || 0);
   if (coating) {
@@ -201,8 +203,8 @@ function operationBlock(op, title, programLines) {
         s.min,
         s.max,
         s.deviation,
-        c.ok ? ["ok", "ok"] : [failed, "out"],
-        c.note || "",
+        c.unverified ? ["unverified", "form"] : c.ok ? ["ok", "ok"] : [failed, "out"],
+        c.unverified ? (c.note ? c.note + "; " : "") + c.unverified : c.note || "",
       ];
     });
     const t = table(document.createElement("table"), ["check", "kind", "value", "min", "max", "deviation", "result", "note"], rows);
@@ -239,14 +241,17 @@ $("verify-form").addEventListener("submit", async (ev) => {
     const pass = report.verdict === "pass";
     // Only form checks failing, with the insert's tip behind them: the newcomer's first run.
     const formOnly = !pass && (report.operations || [report]).every((o) => {
-      const failing = (o.checks || []).filter((c) => !c.ok && (c.kind === "size" || !o.gauge_only));
+      const failing = (o.checks || []).filter((c) => !c.ok && !c.unverified && (c.kind === "size" || !o.gauge_only));
       return failing.length === 0 || (failing.every((c) => c.kind === "form") && (o.hints || []).some((h) => h.hint === "tip_radius"));
     });
+    // Checks that rest on a tool nobody chose: said beside the verdict, never failed.
+    const unverified = (report.operations || [report]).some((o) => (o.unverified || []).length);
+    const form = unverified ? " — form unverified: tool not known (choose the insert or a tool table)" : "";
     $("verdict").textContent = pass
-      ? "IN TOLERANCE: every check passes"
+      ? (unverified ? "IN TOLERANCE" + form : "IN TOLERANCE: every check passes")
       : formOnly
         ? "OUT OF TOLERANCE — form only: the insert's tip (a full-profile insert cuts the standard root; 'gauge only' judges the sizes)"
-        : "OUT OF TOLERANCE";
+        : "OUT OF TOLERANCE" + form;
     $("verdict").className = "verdict " + (pass ? "ok" : "out");
     const nexts = (report.operations || [report])
       .filter((o) => o.correction)
@@ -418,7 +423,8 @@ for (const prefix of ["tap", "mill"]) {
 
 function tapArgs() {
   const args = programFrom("tap");
-  args.tools = $("tap-tools").value;
+  // An empty table: the tools the program names.
+  if ($("tap-tools").value.trim()) args.tools = $("tap-tools").value;
   return args;
 }
 $("tap-form").addEventListener("submit", async (ev) => {
@@ -454,13 +460,19 @@ $("tap-download-html").addEventListener("click", async () => {
 
 function millArgs() {
   const args = programFrom("mill");
-  args.thread = $("mill-thread").value.trim();
-  args.cutter_diameter = Number($("mill-diameter").value);
+  // Empty fields: the thread and the cutter the program names; the cutter's shape goes with a
+  // diameter typed here.
+  if ($("mill-thread").value.trim()) args.thread = $("mill-thread").value.trim();
   const num = (id, key) => { if ($(id).value !== "") args[key] = Number($(id).value); };
-  num("mill-angle", "cutter_angle");
-  num("mill-tip", "cutter_tip_radius");
-  num("mill-rows", "cutter_rows");
-  num("mill-row-pitch", "cutter_row_pitch");
+  num("mill-diameter", "cutter_diameter");
+  if (args.cutter_diameter !== undefined) {
+    num("mill-angle", "cutter_angle");
+    num("mill-tip", "cutter_tip_radius");
+    num("mill-rows", "cutter_rows");
+    num("mill-row-pitch", "cutter_row_pitch");
+  } else if (["mill-angle", "mill-tip", "mill-rows", "mill-row-pitch"].some((id) => $(id).value !== "")) {
+    throw new Error("the tooth angle, tip radius, rows and row pitch describe a cutter Ø typed here: give it too");
+  }
   num("mill-comp", "comp_radius");
   num("mill-blank", "blank_diameter");
   return args;

@@ -52,10 +52,16 @@ try {
   seen.title = await page.title();
 
   step = "verify";
-  // 1. Paste a program, choose the thread and the insert, verify.
+  // 1. Paste a program and verify, every other field as a new user finds it (issue 59: the
+  // thread was pre-filled and checked every pasted program against M20x1.5-6g).
+  seen.fields_as_found = await page.evaluate(() => ({
+    thread: document.getElementById("thread").value,
+    insert: document.getElementById("insert").value,
+    tap_tools: document.getElementById("tap-tools").value,
+    mill_thread: document.getElementById("mill-thread").value,
+    mill_diameter: document.getElementById("mill-diameter").value,
+  }));
   await page.fill("#program", readFileSync(programFile, "utf8"));
-  await page.fill("#thread", "M20x1.5-6g");
-  await page.selectOption("#insert", "full");
   await page.click("#verify-button");
   await page.waitForSelector("#verify-result:not([hidden])");
   await pictureLoaded("picture");
@@ -156,10 +162,11 @@ try {
   await shot("limits");
 
   step = "tap";
-  // 8. Tap: a program with its drilling and tapping cycles, uploaded; the page's tool table.
+  // 8. Tap: a program with its drilling and tapping cycles, uploaded; a tool table typed.
   await page.click("#tab-tap");
   await page.setInputFiles("#tap-program-file", tapFile);
   await page.waitForFunction(() => document.getElementById("tap-program").value.length > 0);
+  await page.fill("#tap-tools", '[tools]\n5 = "drill:8.5"\n6 = "tap:M10x1.5-6H"\n');
   await page.click("#tap-button");
   await page.waitForSelector("#tap-result:not([hidden])");
   await pictureLoaded("tap-picture");
@@ -168,9 +175,10 @@ try {
   await shot("tap");
 
   step = "mill";
-  // 9. Thread mill: a program pasted, an Ø14 cutter.
+  // 9. Thread mill: a program pasted, its thread and an Ø14 cutter typed.
   await page.click("#tab-mill");
   await page.fill("#mill-program", readFileSync(millFile, "utf8"));
+  await page.fill("#mill-thread", "M20x1.5-6H");
   await page.fill("#mill-diameter", "14");
   await page.click("#mill-button");
   await page.waitForSelector("#mill-result:not([hidden])");
