@@ -20,8 +20,12 @@ SCHEMAS = REPO / "tests" / "data" / "schemas"
 def library(tmp_path):
     lib = tmp_path / "lib"
     lib.mkdir()
-    for name in ("plate.nc", "shaft.nc"):
-        shutil.copy(REPO / "tests" / "data" / "whole" / name, lib / name)
+    shutil.copy(REPO / "tests" / "data" / "whole" / "plate.nc", lib / "plate.nc")
+    # The shaft's G76 ending at X21.7 (not X21.423): d2 = 21.7 + (22.701 - 21.546) = 22.855, over
+    # 6g's 22.663, whatever the insert (none is named: the full-profile one is assumed).
+    shaft = (REPO / "tests" / "data" / "whole" / "shaft.nc").read_text()
+    assert "G76 X21.423 " in shaft
+    (lib / "shaft.nc").write_text(shaft.replace("G76 X21.423 ", "G76 X21.7 "))
     (lib / "broken.nc").write_text("G0 X10 Z5\nG76 P010060 Q100 R0.05\nG76 X8 Z-10 P1000 Q300 F1.5 G\n")
     return lib
 
@@ -41,8 +45,10 @@ def test_sarif_is_valid_sarif_2_1_0(tmp_path):
     jsonschema.Draft4Validator.check_schema(schema)
     errors = sorted(jsonschema.Draft4Validator(schema).iter_errors(log), key=lambda e: list(e.path))
     assert not errors, [f"{list(e.path)}: {e.message[:200]}" for e in errors]
-    # The broken program, the plate's unchecked helices, the shaft's three failing checks.
-    assert len(log["runs"][0]["results"]) == 5
+    # The broken program, the plate's unchecked helices, the shaft's three failing checks (d, d2,
+    # the GO gauge) and, as notes, the three its assumed insert alone decides (issue 59).
+    levels = [r["level"] for r in log["runs"][0]["results"]]
+    assert levels == ["error"] * 5 + ["note"] * 3
 
 def test_junit_is_valid_against_the_junit_schema(tmp_path):
     library(tmp_path)

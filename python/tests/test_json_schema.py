@@ -46,7 +46,7 @@ def test_the_schema_is_a_valid_schema():
     ["--thread", "M20x2.5-6g", "--gauge-only", "--no-pass-metrics"],
     ["--thread", "M20x1.5-6g", "--thread", "M40x1.5-6g", "--insert", "full",
      "--program", str(PROGRAMS / "source-docs" / "seed003-two-threads.nc")],
-    ["--thread", "M10x1.5-6g", "--program", str(PROGRAMS / "fanuc-runout-shoulder.nc"),
+    ["--thread", "M20x1.5-6g", "--program", str(PROGRAMS / "fanuc-runout-shoulder.nc"),
      "--machine", "training-lathe", "--clearance-angle", "1"],
     ["--thread", "M10x1.5-6g", "--program", str(PROGRAMS / "fanuc-g92-above-blank.nc")],
     ["--thread", "1/2-14 NPT", "--program", str(PROGRAMS / "fanuc-g92-npt-1-2.nc"), "--insert", "full"],
