@@ -41,7 +41,7 @@ fn a_comment_in_capitals_names_the_thread_and_its_class() {
     let o = run(&["verify", "--program", data("naming/fanuc-capitals.nc").to_str().unwrap()]);
     let text = stdout(&o);
     assert!(
-        text.contains("M24X2-6g: named by the comment at line 6 (\"THREAD M24X2 6G\"); the comment is in capitals: its class 6G is read as 6g"),
+        text.contains("M24X2-6g: named by the comment at line 6 (\"THREAD M24X2 6G\"); comments are read without regard to case: its class 6G is read as 6g"),
         "{text}"
     );
 }
@@ -108,7 +108,7 @@ fn an_unnamed_nonstandard_thread_asks_for_its_name() {
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(
         one_line_error(&o),
-        format!("threadcheck: error: {}:3:1: no size of ISO 261 has a lead of 1.7000 mm and a major diameter near Ø19.986: name the thread (--thread, or a comment such as (M20X1.5) above the operation)", p.display())
+        format!("threadcheck: error: {}:3:1: cannot name the thread: no size of ISO 261, ASME B1.1, BS 84, ISO 228-1 or ISO 2902 has a lead of 1.7000 mm and a major diameter within a thread depth of Ø19.986: name it (--thread, or a comment such as (M20X1.5) above the operation)", p.display())
     );
 }
 
@@ -125,4 +125,112 @@ fn shops_spellings_are_read() {
     assert_eq!(find("GEWINDE M12"), Some("M12".into()));
     assert_eq!(find("T12 M6 TOOL CHANGE"), None);
     assert_eq!(find("SPINDLE M3 S800"), None);
+}
+
+/// What a comment-free program must be named: its designation, or the words of its refusal.
+type Named<'a> = Result<&'a str, &'a [&'a str]>;
+
+/// A lathe program with no comment: G76 from X`crest` to the last pass at X`root` and lead `f`,
+/// in mm (G21) or inches (G20), outside (`bore` false: passes inward) or in a bore.
+fn bare_g76(units: &str, crest: &str, root: &str, f: &str, bore: bool) -> String {
+    let start = if bore { "X0.1 Z5" } else { "X99 Z5" };
+    let (start, crest) = if units == "G20" {
+        (start.replace("X99", "X4").replace("X0.1", "X0.01"), crest)
+    } else {
+        (start.to_string(), crest)
+    };
+    format!(
+        "{units} G18 G99\nT0101\nG97 S500 M3\nG0 {start}\nG0 X{crest} Z5\nG76 P010060 Q100 R0.01\nG76 X{root} Z-20 P600 Q150 F{f}\nG0 {start}\nM30\n"
+    )
+}
+
+/// Issue 59 item 4: comment-free programs across the series are named by their diameters first
+/// (the series whose size lies within a thread depth), then the nearest size of that series; two
+/// series that fit alike are refused naming both, never guessed. Each root is the standard's
+/// d3 (a bar: d − 2·h, h = 0.613435·P metric/unified, 0.640327·P Whitworth, P/2 + ac Tr) or D
+/// (a bore), worked by hand.
+#[test]
+fn comment_free_programs_are_named_by_their_series_first() {
+    let dir = tempdir("series");
+    let cases: &[(&str, String, Named<'_>)] = &[
+        // BSW 1/2: 12 tpi, d 0.5 in: root 0.5 − 2·0.640327/12 = 0.3933 in; 9/16-12 UNC (Ø14.29)
+        // lies 1.6 mm away, beyond its thread depth 1.30 mm.
+        ("bsw-half.nc", bare_g76("G20", ".5", ".3933", ".083333", false), Ok("BSW 1/2 medium")),
+        // 1/2-13 UNC: root 0.5 − 2·0.613435/13 = 0.4056 in.
+        ("unc-half.nc", bare_g76("G20", ".5", ".4056", ".076923", false), Ok("1/2-13 UNC-2A")),
+        // 3/8-24 UNF: root 0.375 − 2·0.613435/24 = 0.3239 in.
+        ("unf-3-8.nc", bare_g76("G20", ".375", ".3239", ".041667", false), Ok("3/8-24 UNF-2A")),
+        // M20x1.5: root 20 − 1.8403 = 18.160.
+        ("m20.nc", bare_g76("G21", "20", "18.16", "1.5", false), Ok("M20x1.5-6g")),
+        // M12x1.75: root 12 − 2.1470 = 9.853.
+        ("m12.nc", bare_g76("G21", "12", "9.853", "1.75", false), Ok("M12x1.75-6g")),
+        // M8x1.25: root 8 − 1.5336 = 6.466.
+        ("m8.nc", bare_g76("G21", "8", "6.466", "1.25", false), Ok("M8x1.25-6g")),
+        // G1/2 (BSP, 14 tpi, d 20.955): root 20.955 − 2·0.640327·1.81429 = 18.632.
+        ("g-half.nc", bare_g76("G21", "20.955", "18.632", "1.814", false), Ok("G1/2 A")),
+        // Tr20x4 (ac 0.25): root 20 − 2·(2 + 0.25) = 15.5.
+        ("tr20.nc", bare_g76("G21", "20", "15.5", "4", false), Ok("Tr20x4-7e")),
+        // M30x2 in a bore: the last pass on D = 30.
+        ("m30-bore.nc", bare_g76("G21", "27.8", "30", "2", true), Ok("M30x2-6H")),
+        // 1-8: 1-8 UNC and BSW 1 are both Ø25.4 at 8 tpi; the passes cannot tell 60° from 55°.
+        ("one-inch-8.nc", bare_g76("G20", "1", ".8467", ".125", false), Err(&["1-8 UNC", "BSW 1"])),
+        // Ø50 at 1.3 mm: no standard size of any series.
+        ("odd.nc", bare_g76("G21", "50", "48.4", "1.3", false), Err(&["cannot name the thread", "Ø"])),
+    ];
+    for (file, text, want) in cases {
+        std::fs::write(dir.join(file), text).unwrap();
+        let o = run_in(&dir, &["verify", "--program", file, "--json", "-"]);
+        match want {
+            Ok(designation) => {
+                assert!(matches!(o.status.code(), Some(0 | 1)), "{file}: {}", stderr(&o));
+                let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+                let op = &v["operations"][0];
+                assert_eq!(op["thread"]["designation"], *designation, "{file}");
+                assert_eq!(op["designation_from"], "inferred", "{file}");
+            }
+            Err(words) => {
+                assert_eq!(o.status.code(), Some(2), "{file}: {}", stdout(&o));
+                let e = stderr(&o);
+                assert!(e.contains(&format!("{file}:7:1:")), "{file}: {e}");
+                for w in *words {
+                    assert!(e.contains(w), "{file}: {w} not in {e}");
+                }
+            }
+        }
+    }
+}
+
+/// Issue 59 item 4: a comment's class is read without regard to case, the operation's side
+/// deciding: `(OD THREAD M24X2-6G deburr after)` over a bar is M24X2-6g (it was read as the
+/// internal 6G, and the program refused).
+#[test]
+fn a_comment_s_class_is_read_without_regard_to_case() {
+    let dir = tempdir("class-case");
+    let text = bare_g76("G21", "24", "21.546", "2", false)
+        .replace("T0101\n", "T0101 (OD THREAD M24X2-6G deburr after)\n");
+    std::fs::write(dir.join("m24.nc"), text).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "m24.nc", "--json", "-"]);
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["operations"][0]["thread"]["designation"], "M24X2-6g");
+}
+
+/// Issue 59 item 4: an M24x3 bolt thread-milled with no G41/G42, the tool coming down outside
+/// the helix (X30) and moving in to it: external, M24x3-6g. The Ø10 cutter's centre runs on
+/// r = d3/2 + 5 = (24 − 2·0.613435·3)/2 + 5 = 15.1596 (it was named M42x3-6H, from 2r + 10).
+#[test]
+fn a_bolt_milled_without_compensation_is_named_by_its_approach() {
+    let dir = tempdir("milled-bolt");
+    let mut text =
+        String::from("G21 G17 G90\nT1 M6\nS3000 M3\nG0 X30 Y0\nG0 Z5\nG1 Z-20 F500\nG1 X15.1596 F200\n");
+    for k in 1..=6 {
+        text.push_str(&format!("G3 X15.1596 Y0 I-15.1596 J0 Z{} F200\n", -20 + 3 * k));
+    }
+    text.push_str("G1 X30\nG0 Z50\nM30\n");
+    std::fs::write(dir.join("bolt.nc"), text).unwrap();
+    let o = run_in(&dir, &["thread-mill", "--program", "bolt.nc", "--cutter-diameter", "10", "--json", "-"]);
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["designation"], "M24x3-6g", "{}", stdout(&o));
+    assert_eq!(v["designation_from"], "inferred");
 }

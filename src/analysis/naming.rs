@@ -220,14 +220,15 @@ fn spellings(words: &[&str], capitals: bool) -> Vec<String> {
 /// The designation of `found` with the class `kind` is checked against: its own, the same
 /// letters in the side's case when the comment is in capitals (`6G` on a bar is 6g), else the
 /// standard's default class.
-fn with_class(found: &Found, kind: ThreadKind, comment: &str, opts: ParseOptions) -> (String, String) {
+fn with_class(found: &Found, kind: ThreadKind, opts: ParseOptions) -> (String, String) {
     let d = &found.designation;
     if d.class(kind).is_some() {
         return (found.text.clone(), String::new());
     }
-    let capitals = !comment.chars().any(|c| c.is_lowercase());
+    // A comment is read without regard to case (a shop writes `M24X2-6G deburr after` for a
+    // bolt): the class takes the case the standard writes for the side the operation cuts.
     let flip = matches!(d.thread.form, ThreadForm::IsoMetric | ThreadForm::Trapezoidal);
-    if capitals && flip && (d.external.is_some() || d.internal.is_some()) {
+    if flip && (d.external.is_some() || d.internal.is_some()) {
         if let Some(k) = found.text.rfind('-') {
             let class = &found.text[k + 1..];
             let cased = match kind {
@@ -237,7 +238,7 @@ fn with_class(found: &Found, kind: ThreadKind, comment: &str, opts: ParseOptions
             let text = format!("{}-{cased}", &found.text[..k]);
             if parse_designation(&text, opts).is_ok_and(|e| e.class(kind).is_some()) {
                 let why = format!(
-                    "the comment is in capitals: its class {class} is read as {cased}, the {} class",
+                    "comments are read without regard to case: its class {class} is read as {cased}, the {} class (the operation's side decides)",
                     kind.name()
                 );
                 return (text, why);
@@ -267,7 +268,7 @@ pub fn from_comments(
 ) -> Option<Named> {
     comments.iter().rev().filter(|c| c.line > after && c.line <= upto).find_map(|c| {
         let found = designation_in_comment(&c.text, opts)?;
-        let (designation, class_why) = with_class(&found, kind, &c.text, opts);
+        let (designation, class_why) = with_class(&found, kind, opts);
         let mut why =
             format!("{designation}: named by the comment at line {} (\"{}\")", c.line, c.text.trim());
         if !class_why.is_empty() {
@@ -277,10 +278,14 @@ pub fn from_comments(
     })
 }
 
-/// The standard thread whose lead and diameter an operation cuts: among the sizes of ISO 261
-/// (a program in mm) or ASME B1.1's UNC, UNF and UNEF series (a program in inches) whose pitch is
-/// the lead over the starts, the one whose major diameter is nearest `major`, within one lead;
-/// with the standard's default class for `kind`. A multi-start inch thread is not inferred.
+/// The standard thread whose lead and diameter an operation cuts. The series is chosen by the
+/// diameters first: every size of ISO 261 (metric coarse and fine), ASME B1.1 (UNC, UNF, UNEF),
+/// BS 84 (BSW, BSF), ISO 228-1 (BSP) and ISO 2902 (Tr) whose pitch is the lead over the starts
+/// (to the program's least increment) and whose major diameter lies within one thread depth of
+/// `major` fits; the nearest size of the one series that fits is named, with the standard's
+/// default class for `kind`. When sizes of two series fit (1-8 UNC and BSW 1, both Ø25.4 at
+/// 8 tpi: the passes cannot tell 60° from 55°), or none does, it is refused naming what was
+/// looked at, never guessed across series. A multi-start thread is inferred in ISO 261 alone.
 ///
 /// ```
 /// use threadcheck::{infer_designation, ProgramUnits, ThreadKind};
@@ -290,6 +295,12 @@ pub fn from_comments(
 /// assert_eq!(two.designation, "M24xPh3P1.5-6g");
 /// let u = infer_designation(25.4 / 13.0, 1, 12.7, ThreadKind::Internal, ProgramUnits::Inch, 12)?;
 /// assert_eq!(u.designation, "1/2-13 UNC-2B");
+/// // 12 tpi on Ø12.67: BSW 1/2, not 9/16-12 UNC (Ø14.29, beyond a thread depth).
+/// let w = infer_designation(25.4 / 12.0, 1, 12.67, ThreadKind::External, ProgramUnits::Inch, 12)?;
+/// assert_eq!(w.designation, "BSW 1/2 medium");
+/// // 8 tpi on Ø25.4 is 1-8 UNC and BSW 1 alike: refused, naming both.
+/// let e = infer_designation(25.4 / 8.0, 1, 25.3, ThreadKind::External, ProgramUnits::Inch, 12).unwrap_err();
+/// assert!(e.to_string().contains("1-8 UNC") && e.to_string().contains("BSW 1"));
 /// # Ok::<(), threadcheck::Error>(())
 /// ```
 pub fn infer_designation(
@@ -300,68 +311,126 @@ pub fn infer_designation(
     units: ProgramUnits,
     line: usize,
 ) -> Result<Named, Error> {
+    infer_designation_with(lead, starts, major, kind, units, line, None)
+}
+
+/// [`infer_designation`] with the tool's included angle when the program or the tool says it (a
+/// G76's angle word, a thread mill's tooth): of series that fit alike, those whose flank angle
+/// is not within 5° of it are set aside (M24x3 and Tr24x3 are both Ø24 at 3 mm; a 60° tool cuts
+/// the metric one), and the name says so.
+pub fn infer_designation_with(
+    lead: f64,
+    starts: u32,
+    major: f64,
+    kind: ThreadKind,
+    units: ProgramUnits,
+    line: usize,
+    tool_angle: Option<f64>,
+) -> Result<Named, Error> {
     let cat = crate::standards::data::catalog()?;
     let starts = starts.max(1);
     let pitch = lead / f64::from(starts);
     // The lead as the program writes it: to its least increment (0.001 mm, 0.0001 in).
     let increment = units.least_increment() * units.mm();
     let near = |p: f64| (p - pitch).abs() <= increment + 1e-9;
-    let (series, candidates): (&str, Vec<(f64, String)>) = match units {
-        ProgramUnits::Mm => (
-            "ISO 261",
-            cat.iso
-                .series
-                .sizes
-                .iter()
-                .flat_map(|s| {
-                    s.coarse.iter().chain(&s.fine).filter(|&&p| near(p)).map(move |&p| {
-                        let name = if starts == 1 {
-                            format!("M{}x{}", s.d, p)
-                        } else {
-                            format!("M{}xPh{}P{}", s.d, p * f64::from(starts), p)
-                        };
-                        (s.d, name)
-                    })
-                })
-                .collect(),
-        ),
-        ProgramUnits::Inch if starts > 1 => ("ASME B1.1 (single-start sizes only)", Vec::new()),
-        ProgramUnits::Inch => (
-            "ASME B1.1 (UNC, UNF, UNEF)",
-            cat.unified
-                .iter()
-                .flat_map(|s| {
-                    [("UNC", s.unc), ("UNF", s.unf), ("UNEF", s.unef)].into_iter().filter_map(
-                        move |(name, tpi)| {
-                            let tpi = tpi?;
-                            near(MM_PER_INCH / tpi).then(|| {
-                                let size = if s.name.contains(['/', ' ']) || s.d >= 0.25 {
-                                    s.name.clone()
-                                } else {
-                                    format!("#{}", s.name)
-                                };
-                                (s.d * MM_PER_INCH, format!("{size}-{tpi} {name}"))
-                            })
-                        },
-                    )
-                })
-                .collect(),
-        ),
-    };
-    let best = candidates
-        .iter()
-        .min_by(|a, b| (a.0 - major).abs().total_cmp(&(b.0 - major).abs()))
-        .filter(|c| (c.0 - major).abs() <= lead);
+    // (series, major diameter mm, size as the parser reads it)
+    let mut candidates: Vec<(&str, f64, String)> = Vec::new();
+    for s in &cat.iso.series.sizes {
+        for &p in s.coarse.iter().chain(&s.fine).filter(|&&p| near(p)) {
+            let name = if starts == 1 {
+                format!("M{}x{}", s.d, p)
+            } else {
+                format!("M{}xPh{}P{}", s.d, p * f64::from(starts), p)
+            };
+            candidates.push(("ISO 261 metric", s.d, name));
+        }
+    }
+    if starts == 1 {
+        for s in &cat.unified {
+            for (name, tpi) in [("UNC", s.unc), ("UNF", s.unf), ("UNEF", s.unef)] {
+                let Some(tpi) = tpi.filter(|&t| near(MM_PER_INCH / t)) else { continue };
+                let size = if s.name.contains(['/', ' ']) || s.d >= 0.25 {
+                    s.name.clone()
+                } else {
+                    format!("#{}", s.name)
+                };
+                candidates.push(("ASME B1.1 unified", s.d * MM_PER_INCH, format!("{size}-{tpi} {name}")));
+            }
+        }
+        for (series, sizes) in [("BS 84 BSW", &cat.bsw), ("BS 84 BSF", &cat.bsf)] {
+            for s in sizes.iter().filter(|s| near(MM_PER_INCH / s.tpi)) {
+                let name = format!("{} {}", &series[6..], s.size);
+                if let Ok(d) = parse_designation(&name, ParseOptions::default()) {
+                    candidates.push((series, d.thread.nominal_diameter, name));
+                }
+            }
+        }
+        for s in cat.bsp.iter().filter(|s| near(MM_PER_INCH / s.tpi)) {
+            candidates.push(("ISO 228-1 BSP", s.d, format!("G{}", s.size)));
+        }
+        for (d, pitches) in cat.tr.series_d.iter().zip(&cat.tr.series_pitches) {
+            for &p in pitches.iter().filter(|&&p| near(p)) {
+                candidates.push(("ISO 2902 trapezoidal", *d, format!("Tr{d}x{p}")));
+            }
+        }
+    }
+    // Of each series, its nearest size within one thread depth of the major diameter.
+    let mut fits: Vec<(&str, f64, String)> = Vec::new();
+    for (series, d, name) in candidates {
+        let Ok(des) = parse_designation(&name, ParseOptions::default()) else { continue };
+        if (d - major).abs() > des.thread.thread_depth() + 1e-9 {
+            continue;
+        }
+        match fits.iter_mut().find(|f| f.0 == series) {
+            Some(f) if (d - major).abs() < (f.1 - major).abs() => *f = (series, d, name),
+            Some(_) => {}
+            None => fits.push((series, d, name)),
+        }
+    }
+    // Series that fit alike told apart by the tool's angle.
+    let mut by_angle = String::new();
+    if let (Some(angle), true) = (tool_angle, fits.len() > 1) {
+        let agree: Vec<(&str, f64, String)> = fits
+            .iter()
+            .filter(|f| {
+                parse_designation(&f.2, ParseOptions::default())
+                    .is_ok_and(|d| (d.thread.form.flank_angle() - angle).abs() <= 5.0)
+            })
+            .cloned()
+            .collect();
+        if agree.len() == 1 {
+            let set_aside: Vec<&str> =
+                fits.iter().filter(|f| f.2 != agree[0].2).map(|f| f.2.as_str()).collect();
+            by_angle = format!(
+                "; {} set aside: the tool's {}° is not its flank angle",
+                set_aside.join(", "),
+                crate::ground::fmt::fmt_num(angle)
+            );
+            fits = agree;
+        }
+    }
     let of_starts = if starts == 1 { String::new() } else { format!(" over {starts} starts") };
-    let Some((_, size)) = best else {
-        return Err(Error::Input(format!(
-            "no size of {series} has a lead of {lead:.4} mm{of_starts} and a major diameter near Ø{major:.3}: name the thread (‹thread›, or a comment such as (M20X1.5) above the operation)"
-        )));
+    let size = match fits.as_slice() {
+        [] => {
+            return Err(Error::Input(format!(
+                "cannot name the thread: no size of ISO 261, ASME B1.1, BS 84, ISO 228-1 or ISO 2902 has a lead of {lead:.4} mm{of_starts} and a major diameter within a thread depth of Ø{major:.3}: name it (‹thread›, or a comment such as (M20X1.5) above the operation)"
+            )))
+        }
+        [(_, _, name)] => name.clone(),
+        several => {
+            let named: Vec<String> =
+                several.iter().map(|(series, d, name)| format!("{name} (Ø{d:.3}, {series})")).collect();
+            return Err(Error::Input(format!(
+                "cannot name the thread: Ø{major:.3} at a lead of {lead:.4} mm fits {}, which the passes cannot tell apart: name it (‹thread›, or a comment above the operation)",
+                named.join(" and ")
+            )));
+        }
     };
-    let d = parse_designation(size, ParseOptions::default())?;
+    let series = fits[0].0;
+    let d = parse_designation(&size, ParseOptions::default())?;
     let designation = d.with_example_class(kind);
     let why = format!(
-        "{designation}: inferred from the operation at line {line} (lead {lead:.4} mm{of_starts}, major diameter about Ø{major:.3}: the nearest {series} size of that pitch; the class is its standard's default for an {} thread; name the thread in a comment or with ‹thread› to check another)",
+        "{designation}: inferred from the operation at line {line} (lead {lead:.4} mm{of_starts}, major diameter about Ø{major:.3}: the nearest {series} size of that pitch, no other series within a thread depth{by_angle}; the class is its standard's default for an {} thread; name the thread in a comment or with ‹thread› to check another)",
         kind.name()
     );
     Ok(Named { designation, from: DesignationFrom::Inferred, line: Some(line), why })

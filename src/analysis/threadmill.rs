@@ -125,12 +125,13 @@ pub struct ThreadMillReport {
 fn name_milled(
     text: &str,
     dialect: Dialect,
+    moves: &[Move],
     hs: &[Helix],
-    cutter: f64,
+    (cutter, cutter_angle): (f64, f64),
     opts: ParseOptions,
     file: &str,
 ) -> Result<crate::analysis::naming::Named, Error> {
-    use crate::analysis::naming::{from_comments, infer_designation};
+    use crate::analysis::naming::{from_comments, infer_designation_with};
     let Some(first) = hs.first() else {
         return Err(Error::Program {
             file: file.to_string(),
@@ -152,7 +153,11 @@ fn name_milled(
             return Ok(e);
         }
     }
-    let outside = first.radius > first.programmed_radius + 1e-9;
+    // Outside the helix: the compensation puts the cutter there, or (with none) the tool came
+    // down to the helix's level beyond its path and moved in, as one mills a bolt (a bore's
+    // cutter comes down inside it).
+    let approach = approach_side(moves, first);
+    let outside = first.radius > first.programmed_radius + 1e-9 || approach == Some(ThreadKind::External);
     let (kind, major) = if outside {
         (ThreadKind::External, 2.0 * r - cutter + 2.0 * 0.613_434_5 * first.lead.abs())
     } else {
@@ -172,16 +177,57 @@ fn name_milled(
         leads.iter().map(|l| l.1).sum::<f64>() / leads.len() as f64
     };
     let lead = (lead * 1e6).round() / 1e6;
-    let mut n = infer_designation(lead, 1, major, kind, crate::gcode::ProgramUnits::Mm, first.line)
-        .or_else(|e| {
-            infer_designation(lead, 1, major, kind, crate::gcode::ProgramUnits::Inch, first.line)
+    let angle = Some(cutter_angle);
+    let mut n =
+        infer_designation_with(lead, 1, major, kind, crate::gcode::ProgramUnits::Mm, first.line, angle)
+            .or_else(|e| {
+                infer_designation_with(
+                    lead,
+                    1,
+                    major,
+                    kind,
+                    crate::gcode::ProgramUnits::Inch,
+                    first.line,
+                    angle,
+                )
                 .map_err(|_| e)
-        })
-        .map_err(place)?;
-    if kind == ThreadKind::Internal && !outside {
-        n.why.push_str("; an internal thread, a named default (the compensation does not put the cutter outside its path)");
+            })
+            .map_err(place)?;
+    match (kind, approach) {
+        (ThreadKind::External, Some(ThreadKind::External))
+            if first.radius <= first.programmed_radius + 1e-9 =>
+        {
+            n.why.push_str(
+                "; an external thread: the tool comes down outside the helix's path and moves in to it",
+            );
+        }
+        (ThreadKind::Internal, Some(ThreadKind::Internal)) => {
+            n.why.push_str(
+                "; an internal thread: the tool comes down inside the helix's path and moves out to it",
+            );
+        }
+        (ThreadKind::Internal, _) => {
+            n.why.push_str("; an internal thread, a named default (neither the compensation nor the approach puts the cutter outside its path)");
+        }
+        _ => {}
     }
     Ok(n)
+}
+
+/// The side the tool approaches a helix from: where the last move that brings it down before the
+/// helix ends, against the helix's programmed path (beyond it: an external thread; inside it: a
+/// bore). `None` when that point lies on the path or no move brings the tool down.
+fn approach_side(moves: &[Move], first: &Helix) -> Option<ThreadKind> {
+    let at = moves.iter().position(|m| m.arc.is_some() && m.line == first.line)?;
+    let down = moves[..at].iter().rev().find(|m| m.arc.is_none() && m.to[2] < m.from[2] - 1e-9)?;
+    let d = (down.to[0] - first.centre[0]).hypot(down.to[1] - first.centre[1]);
+    if d > first.programmed_radius + 1e-3 {
+        Some(ThreadKind::External)
+    } else if d < first.programmed_radius - 1e-3 {
+        Some(ThreadKind::Internal)
+    } else {
+        None
+    }
 }
 
 /// The helices (G2/G3 arcs with a Z change in G17) of `moves`, each at its cutter centre's
@@ -671,7 +717,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     let hs = helices(&prog.moves, name, comp, &mut notes)?;
     let named = match &spec.designation {
         Some(d) => crate::analysis::naming::Named::given(d),
-        None => name_milled(text, spec.dialect, &hs, c.diameter, opts, name)?,
+        None => name_milled(text, spec.dialect, &prog.moves, &hs, (c.diameter, c.angle_deg), opts, name)?,
     };
     if !named.why.is_empty() {
         notes.push(named.why.clone());
