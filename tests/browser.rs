@@ -449,6 +449,7 @@ fn page_in_chromium() {
     let upload = data("programs/linuxcnc-g76.ngc");
     let tap_program = data("programs/tapping/m10-cycle84.mpf");
     let mill_program = data("programs/threadmill/m20-dc14.nc");
+    let misfit = data("programs/m30x1.5-turned.nc");
     let o = std::process::Command::new("node")
         .arg(&script)
         .arg(&server.url)
@@ -458,6 +459,7 @@ fn page_in_chromium() {
         .arg(&upload)
         .arg(&tap_program)
         .arg(&mill_program)
+        .arg(&misfit)
         .output()
         .unwrap();
     assert!(o.status.success(), "the page script failed: {}", String::from_utf8_lossy(&o.stderr));
@@ -467,6 +469,7 @@ fn page_in_chromium() {
         seen["console"],
         serde_json::json!([
             "bad-designation: error: Failed to load resource: the server responded with a status of 400 (Bad Request)",
+            "misfit: error: Failed to load resource: the server responded with a status of 400 (Bad Request)",
             "nonstandard: error: Failed to load resource: the server responded with a status of 400 (Bad Request)"
         ]),
         "console messages"
@@ -548,6 +551,16 @@ fn page_in_chromium() {
     let after = read_png(Path::new(seen["shots"]["after-error"].as_str().unwrap()));
     let zone = after.rgb.iter().filter(|&&p| zone_over_material(p) || zone_over_air(p)).count();
     assert!(zone < 50, "a tolerance zone ({zone} pixels) is on screen after the error");
+    // A designation typed by mistake over an M30x1.5 program (issue 59): refused naming both
+    // diameters (the passes' X28.160 is d3 of M30x1.5, 30 − 2·0.920; M20x1.5's d3 is 18.160), and
+    // nothing on the page offers a correction.
+    let misfit = &seen["misfit"];
+    assert_eq!(
+        misfit["error"],
+        "pasted program:12:1: G76: the passes cut about Ø30.0 (final X28.160), the designation M20x1.5-6g is Ø20 (d3 18.160): they differ by more than a thread depth; check the thread (the passes fit M30x1.5-6g, inferred)"
+    );
+    assert_eq!(misfit["next_visible"], false);
+    assert_eq!(misfit["corrections"], serde_json::json!([]));
     // A pasted program is called so; the error of a size outside the series names the page's
     // control, and ticking it verifies the thread.
     let heading = seen["pasted_heading"].as_str().unwrap();

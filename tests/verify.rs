@@ -556,6 +556,8 @@ fn a_designation_of_another_size_is_refused_naming_both() {
     assert!(e.contains("m30x1.5-turned.nc:12:1:"), "{e}");
     assert!(e.contains("about Ø30.0 (final X28.160)") && e.contains("M20x1.5-6g is Ø20 (d3 18.160)"), "{e}");
     assert!(!e.contains("X18") && !e.contains("change"), "no correction: {e}");
+    // The thread the passes cut, by their lead and diameters, beside the one given.
+    assert!(e.trim_end().ends_with("check the thread (the passes fit M30x1.5-6g, inferred)"), "{e}");
     // The size it cuts is checked as ever.
     let o = run(&["verify", "--program", p.to_str().unwrap(), "--thread", "M30x1.5-6g"]);
     assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));

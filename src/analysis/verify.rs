@@ -1615,6 +1615,9 @@ fn side_agrees(
     })
 }
 
+/// How a refusal of a designation of another size ends (the inferred one is said after it).
+const MISFIT_END: &str = "check the thread";
+
 /// Where the designation is not the thread the passes cut. Both sides of the profile are
 /// compared, each against one thread depth on the radius (plus, on a taper, what the cone changes
 /// over the pass and the nominal length): the deepest pass's tip against the designation's root
@@ -1656,7 +1659,7 @@ fn diameter_misfit(
     Some((
         last.source_line,
         format!(
-            "the passes cut about Ø{about:.1} (final X{:.3}), the designation {} is Ø{} ({root_name} {root:.3}): they differ by more than a thread depth; check the thread",
+            "the passes cut about Ø{about:.1} (final X{:.3}), the designation {} is Ø{} ({root_name} {root:.3}): they differ by more than a thread depth; {MISFIT_END}",
             last.x_end,
             r.designation.text,
             crate::ground::fmt::fmt_num(t.nominal_diameter),
@@ -1944,7 +1947,7 @@ fn name_turned(
     opts: crate::standards::designation::ParseOptions,
     file: &str,
 ) -> Result<crate::analysis::naming::Named, Error> {
-    use crate::analysis::naming::{from_comments, infer_designation};
+    use crate::analysis::naming::{from_comments, infer_designation_with};
     let kind = match (internal, pass_side(&op.passes)) {
         (true, _) => ThreadKind::Internal,
         (false, Some(k)) => k,
@@ -1987,11 +1990,15 @@ fn name_turned(
         ThreadKind::External => last + 2.0 * 0.613_434_5 * pitch,
         ThreadKind::Internal => last,
     };
-    infer_designation(lead, starts, major, kind, op.units, op.source_line).map_err(|e| match e {
-        Error::Input(message) => {
-            Error::Program { file: file.to_string(), line: op.source_line, column: 1, message }
+    // A G76's angle word is the tool's included angle: twice the infeed angle it sets.
+    let tool_angle = op.infeed_angle.as_ref().filter(|_| op.cycle == "G76").map(|(a, _)| 2.0 * a);
+    infer_designation_with(lead, starts, major, kind, op.units, op.source_line, tool_angle).map_err(|e| {
+        match e {
+            Error::Input(message) => {
+                Error::Program { file: file.to_string(), line: op.source_line, column: 1, message }
+            }
+            e => e,
         }
-        e => e,
     })
 }
 
@@ -2097,7 +2104,38 @@ pub fn verify_program(
             }
             assumed = default;
         }
-        let mut result = verify_operation(&s, op, &label)?;
+        // A thread given: the one the passes cut, by their lead and diameters, is said beside it
+        // when the two differ (and in the refusal of one far from it).
+        let inferred = (!threads.is_empty())
+            .then(|| {
+                let opts =
+                    crate::standards::designation::ParseOptions { allow_nonstandard: spec.allow_nonstandard };
+                let cut = name_turned(op, None, &[], spec.internal, opts, name).ok()?;
+                let size = |d: &str| parse_designation(d, opts).ok().map(|d| d.thread);
+                let (a, b) = (size(&cut.designation)?, size(&designation)?);
+                let same = a.form == b.form
+                    && (a.nominal_diameter - b.nominal_diameter).abs() < 1e-6
+                    && (a.pitch - b.pitch).abs() < 1e-6
+                    && a.starts == b.starts;
+                (!same).then_some(cut.designation)
+            })
+            .flatten();
+        if let Some(cut) = &inferred {
+            extra.push(format!(
+                "the thread given is {designation}; the passes' lead and diameters are those of {cut} (inferred)"
+            ));
+        }
+        let mut result = verify_operation(&s, op, &label).map_err(|e| match (e, &inferred) {
+            (Error::Program { file, line, column, message }, Some(cut)) if message.ends_with(MISFIT_END) => {
+                Error::Program {
+                    file,
+                    line,
+                    column,
+                    message: format!("{message} (the passes fit {cut}, inferred)"),
+                }
+            }
+            (e, _) => e,
+        })?;
         if let OperationResult::Verified(v) = &mut result {
             v.notes.extend(extra.into_iter().map(crate::ground::note::Note::from));
             let t = v.designation.thread;

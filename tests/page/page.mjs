@@ -5,12 +5,12 @@
 // Screenshots go to OUT.
 // Prints one JSON object of what it saw; tests/page.rs checks it.
 //
-// usage: node page.mjs URL OUT CHROMIUM PROGRAM_FILE UPLOAD_FILE TAP_FILE MILL_FILE
+// usage: node page.mjs URL OUT CHROMIUM PROGRAM_FILE UPLOAD_FILE TAP_FILE MILL_FILE MISFIT_FILE
 import { chromium } from "playwright-core";
 import { readFileSync } from "node:fs";
 import { join } from "node:path";
 
-const [url, out, executablePath, programFile, uploadFile, tapFile, millFile] = process.argv.slice(2);
+const [url, out, executablePath, programFile, uploadFile, tapFile, millFile, misfitFile] = process.argv.slice(2);
 const seen = { console: [], shots: {}, layout: {} };
 let step = "load"; // which step a console message came in
 
@@ -119,6 +119,21 @@ try {
     };
   });
   await shot("after-error");
+  // Issue 59: a real M30x1.5 program checked against a designation typed by mistake: refused
+  // naming both diameters, and no next step (it advised a 5 mm plunge).
+  step = "misfit";
+  await page.fill("#program", ""); // forget the uploaded file's name (and its dialect)
+  await page.fill("#program", readFileSync(misfitFile, "utf8"));
+  await page.fill("#thread", "M20x1.5-6g");
+  await page.click("#verify-button");
+  await page.waitForFunction(() => !document.getElementById("verify-error").hidden
+    && document.getElementById("verify-error").textContent.includes("Ø30"));
+  seen.misfit = {
+    error: await page.textContent("#verify-error"),
+    next_visible: await page.evaluate(() => { const e = document.getElementById("next"); return !e.hidden && e.offsetParent !== null; }),
+    corrections: await page.$$eval(".correction", (l) => l.filter((e) => e.offsetParent !== null).map((e) => e.textContent)),
+  };
+  await shot("misfit");
   // A size outside the series: the error names the page's own control, which accepts it (a
   // generated plan: the program field emptied).
   step = "nonstandard";
