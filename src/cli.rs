@@ -36,6 +36,18 @@ enum Top {
     Lsp(LspArgs),
 }
 
+/// Every command's name and the keys its flags set (`--cutter-diameter` is `cutter_diameter`).
+pub fn accepted_keys() -> Vec<(String, Vec<String>)> {
+    use clap::CommandFactory;
+    Cli::command()
+        .get_subcommands()
+        .map(|c| {
+            let keys = c.get_arguments().filter_map(|a| a.get_long()).map(|l| l.replace('-', "_")).collect();
+            (c.get_name().to_string(), keys)
+        })
+        .collect()
+}
+
 /// The one-line form of clap's rendered error: the message and its tips, without the usage
 /// block and the `--help` hint.
 pub fn one_line(rendered: &str) -> String {

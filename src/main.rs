@@ -13,6 +13,9 @@ fn main() -> ExitCode {
         Ok(c) => c,
         Err(e) => return usage_error(&e),
     };
+    // An error names the flags of the command in use (another command's with its name).
+    let flags =
+        threadcheck::CliFlags::of(&std::env::args().nth(1).unwrap_or_default(), &cli::accepted_keys());
     match cli.run() {
         Ok((shown, outcome)) => {
             let written = std::io::stdout()
@@ -34,7 +37,7 @@ fn main() -> ExitCode {
         }
         Err(e) => {
             // One line, whatever the message carried.
-            eprintln!("threadcheck: error: {}", e.one_line_for(threadcheck::Audience::Cli));
+            eprintln!("threadcheck: error: {}", e.one_line_for_command(&flags));
             ExitCode::from(2)
         }
     }

@@ -19,6 +19,7 @@ mod layout;
 mod limits;
 mod linuxcnc;
 mod machining;
+mod messages;
 mod mill;
 mod naming;
 mod process;

@@ -817,24 +817,29 @@ fn tap_of(
             });
         }
     }
+    // The examples in the program's units (an inch program is offered an inch tap).
+    let (example, in_comment) = match h.units {
+        crate::gcode::ProgramUnits::Mm => ("M10x1.5-6H", "TAP M10X1.5"),
+        crate::gcode::ProgramUnits::Inch => ("1/4-20 UNC-2B", "TAP 1/4-20 UNC"),
+    };
     Err(match table {
         None => perr(format!(
             "{} names no tool: the tapping check needs the tap (T and the tool table's tap:DESIGNATION, the table's in_spindle, ‹tap›{})",
             h.code,
-            if spec.from_program { ", or a comment such as (TAP M10X1.5) above the cycle" } else { "" }
+            if spec.from_program { format!(", or a comment such as ({in_comment}) above the cycle") } else { String::new() }
         )),
         Some((t, Some((Tool::Insert(_) | Tool::Drill { .. }, written)))) => perr(format!(
-            "{} with tool T{t}, which {} calls \"{written}\", not a tap (write {t} = \"tap:M10x1.5-6H\")",
+            "{} with tool T{t}, which {} calls \"{written}\", not a tap (write {t} = \"tap:{example}\")",
             h.code, spec.tools.source
         )),
         Some((t, _)) => perr(format!(
-            "{} with tool T{t}, which {} (write {t} = \"tap:M10x1.5-6H\" in ‹tools›, give ‹tap›{})",
+            "{} with tool T{t}, which {} (write {t} = \"tap:{example}\" in ‹tools›, give ‹tap›{})",
             h.code,
             not_named(&spec.tools),
             if spec.from_program {
-                ", or name the tap in a comment above the cycle: (TAP M10X1.5)"
+                format!(", or name the tap in a comment above the cycle: ({in_comment})")
             } else {
-                ""
+                String::new()
             }
         )),
     })

@@ -124,36 +124,82 @@ impl Audience {
     /// assert_eq!(Audience::Api.words("‹Not a key›"), "‹Not a key›");
     /// ```
     pub fn words(self, text: &str) -> String {
-        let mut out = String::with_capacity(text.len());
-        let mut rest = text;
-        while let Some(open) = rest.find('‹') {
-            out.push_str(&rest[..open]);
-            let after = &rest[open + '‹'.len_utf8()..];
-            let key_len = after.find('›').filter(|&n| {
-                n > 0
-                    && after[..n].starts_with(|c: char| c.is_ascii_lowercase())
-                    && after[..n].chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
-            });
-            match key_len {
-                Some(n) => {
-                    match self {
-                        Audience::Cli => {
-                            out.push_str("--");
-                            out.push_str(&after[..n].replace('_', "-"));
-                        }
-                        Audience::Api => out.push_str(&after[..n]),
-                    }
-                    rest = &after[n + '›'.len_utf8()..];
-                }
-                None => {
-                    out.push('‹');
-                    rest = after;
-                }
+        name_keys(text, |key| match self {
+            Audience::Cli => format!("--{}", key.replace('_', "-")),
+            Audience::Api => key.to_string(),
+        })
+    }
+}
+
+/// `text` with every `‹key›` replaced by `name(key)`; anything else between guillemets is left.
+fn name_keys(text: &str, name: impl Fn(&str) -> String) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(open) = rest.find('‹') {
+        out.push_str(&rest[..open]);
+        let after = &rest[open + '‹'.len_utf8()..];
+        match after.find('›').filter(|&n| n > 0 && is_key(&after[..n])) {
+            Some(n) => {
+                out.push_str(&name(&after[..n]));
+                rest = &after[n + '›'.len_utf8()..];
+            }
+            None => {
+                out.push('‹');
+                rest = after;
             }
         }
-        out.push_str(rest);
-        out
     }
+    out.push_str(rest);
+    out
+}
+
+/// What the command line in use accepts, for naming a `‹key›` in an error line: its own keys and
+/// each other command's (key, command).
+#[derive(Clone, Debug, Default)]
+pub struct CliFlags {
+    own: Vec<String>,
+    elsewhere: Vec<(String, String)>,
+}
+
+impl CliFlags {
+    /// The flags of `command` among every command's (their keys, `_` for `-`).
+    pub fn of(command: &str, accepts: &[(String, Vec<String>)]) -> CliFlags {
+        let own = accepts.iter().find(|(c, _)| c == command).map(|(_, k)| k.clone()).unwrap_or_default();
+        let elsewhere = accepts
+            .iter()
+            .filter(|(c, _)| c != command)
+            .flat_map(|(c, keys)| keys.iter().map(move |k| (k.clone(), c.clone())))
+            .collect();
+        CliFlags { own, elsewhere }
+    }
+
+    /// `key` as the command line in use names it: its flag, or another command's flag with that
+    /// command's name when this one lacks it (`threadcheck tap --tap`), so that an error never
+    /// tells the user to give a flag the command refuses.
+    fn flag(&self, key: &str) -> String {
+        let flag = format!("--{}", key.replace('_', "-"));
+        if self.own.iter().any(|k| k == key) {
+            return flag;
+        }
+        match self.elsewhere.iter().find(|(k, _)| k == key) {
+            Some((_, other)) => format!("`threadcheck {other} {flag}`"),
+            None => flag,
+        }
+    }
+}
+
+impl Error {
+    /// The one line the command line prints for this error, each `‹key›` named as the command in
+    /// use takes it ([`CliFlags`]).
+    pub fn one_line_for_command(&self, flags: &CliFlags) -> String {
+        name_keys(&self.one_line(), |key| flags.flag(key))
+    }
+}
+
+/// A `‹key›`'s inside: a lower-case letter, then lower-case letters, digits and `_`.
+fn is_key(k: &str) -> bool {
+    k.starts_with(|c: char| c.is_ascii_lowercase())
+        && k.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
 }
 
 /// Longest run of text without a space that an error line shows whole; a longer one (a

@@ -1,0 +1,111 @@
+//! Issue 59 item 5: every suggestion names an option the command in use accepts. Messages carry
+//! the options they suggest as `‹key›` markers, rendered for the command line as the flag; a key
+//! the command in use lacks is named with the command that has it (`threadcheck tap --tap`).
+//! Here every marker in `src/` is walked against the commands' clap definitions (their `--help`).
+
+use crate::*;
+use std::collections::BTreeSet;
+
+/// Every command's flags, as keys (`--cutter-diameter` is `cutter_diameter`), read off `--help`.
+fn flags_of(command: &str) -> BTreeSet<String> {
+    let help = stdout(&run(&[command, "--help"]));
+    help.lines()
+        .filter_map(|l| {
+            let l = l.trim_start();
+            let l = l
+                .strip_prefix("-")
+                .filter(|r| r.chars().nth(1) == Some(','))
+                .map_or(l, |r| r[2..].trim_start());
+            let flag = l.strip_prefix("--")?;
+            Some(flag.split(|c: char| !(c.is_ascii_alphanumeric() || c == '-')).next()?.replace('-', "_"))
+        })
+        .collect()
+}
+
+fn commands() -> Vec<String> {
+    let help = stdout(&run(&["--help"]));
+    help.lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| !l.trim().is_empty())
+        .filter_map(|l| l.split_whitespace().next().map(str::to_string))
+        .filter(|c| c != "help")
+        .collect()
+}
+
+/// The `‹key›` markers of every source file.
+fn markers() -> BTreeSet<(String, String)> {
+    let mut out = BTreeSet::new();
+    let mut stack = vec![std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src")];
+    while let Some(dir) = stack.pop() {
+        for e in std::fs::read_dir(&dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                let text = std::fs::read_to_string(&p).unwrap();
+                for piece in text.split('‹').skip(1) {
+                    let Some(key) = piece.split('›').next() else { continue };
+                    if !key.is_empty()
+                        && key.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+                    {
+                        out.insert((key.to_string(), p.display().to_string()));
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Every key a message suggests is a flag of some command (or one of the few named here: keys of
+/// the API alone, the renderer's own documentation).
+#[test]
+fn every_suggested_option_exists() {
+    let all: BTreeSet<String> = commands().iter().flat_map(|c| flags_of(c)).collect();
+    assert!(all.contains("thread") && all.contains("cutter_diameter") && all.contains("tap"), "{all:?}");
+    // insert_toml: the API's text of an insert file (the command line's --insert reads the file);
+    // designation: the API's key for `limits D`; key and x: the renderer's own doc example.
+    let api_only = ["insert_toml", "designation", "key", "x"];
+    let missing: Vec<_> =
+        markers().into_iter().filter(|(k, _)| !all.contains(k) && !api_only.contains(&k.as_str())).collect();
+    assert!(missing.is_empty(), "suggested options no command has: {missing:?}");
+}
+
+/// A key the command in use lacks is named with the command that has it: `verify` on a tapping
+/// cycle whose tap no table names said "give --tap", which verify refuses.
+#[test]
+fn a_suggestion_names_the_command_that_takes_it() {
+    let dir = tempdir("suggest");
+    std::fs::write(
+        dir.join("tap.nc"),
+        "G21 G17 G90\nT2 M6\nS500 M3\nG0 X20 Y20 Z5\nG43 H2\nG84 Z-14 R3 F625\nG80\nM30\n",
+    )
+    .unwrap();
+    assert!(!flags_of("verify").contains("tap") && flags_of("tap").contains("tap"));
+    let e = stderr(&run_in(&dir, &["verify", "--program", "tap.nc"]));
+    assert!(e.contains("give `threadcheck tap --tap`") && !e.contains("give --tap"), "{e}");
+    assert!(e.contains("in --tools"), "verify's own flag stays as it is: {e}");
+    let e = stderr(&run_in(&dir, &["tap", "--program", "tap.nc"]));
+    assert!(e.contains("give --tap"), "{e}");
+}
+
+/// An inch program is offered an inch tap in its suggestions (it was offered tap:M10x1.5-6H and
+/// the comment (TAP M10X1.5)), and the comment suggested is one the reader takes.
+#[test]
+fn an_inch_program_is_offered_an_inch_tap() {
+    let dir = tempdir("suggest-inch");
+    let program = "G20 G17 G90\nT2 M6\nS500 M3\nG0 X2 Y2 Z.2\nG43 H2\nG84 Z-.5 R.1 F25\nG80\nM30\n";
+    std::fs::write(dir.join("inch.nc"), program).unwrap();
+    let e = stderr(&run_in(&dir, &["tap", "--program", "inch.nc"]));
+    assert!(
+        e.contains("2 = \"tap:1/4-20 UNC-2B\"") && e.contains("(TAP 1/4-20 UNC)") && !e.contains("M10"),
+        "{e}"
+    );
+    // The suggested comment, written above the cycle, names the tap: 1/4-20 at F25 and S500
+    // (0.05 in a turn, 20 tpi) passes its feed check.
+    std::fs::write(dir.join("named.nc"), program.replace("T2 M6\n", "(TAP 1/4-20 UNC)\nT2 M6\n")).unwrap();
+    let o = run_in(&dir, &["tap", "--program", "named.nc"]);
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    assert!(stdout(&o).contains("tap 1/4-20 UNC-2B"), "{}", stdout(&o));
+}
