@@ -29,6 +29,29 @@ fn unified_sizes_are_compared_at_a_ten_thousandth_of_an_inch() {
         let c = v.checks.iter().find(|c| c.feature == CheckFeature::PitchDiameter).unwrap();
         assert_eq!(c.max, Some(d2_max));
         assert_eq!(c.ok, ok, "{over_um} µm over d2 max: {c:?}");
+        // Issue 59: a value shown past its shown limit never passes without a word.
+        if ok {
+            let x = format!("{:.6}", 10.0 + (d2_max + over_um / 1000.0 - d2_0));
+            let o = run(&[
+                "verify",
+                "--thread",
+                "1/2-13 UNC-2A",
+                "--insert",
+                "full",
+                "--final-x",
+                &x,
+                "--json",
+                "-",
+            ]);
+            let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+            let d2 =
+                v["checks"].as_array().unwrap().iter().find(|c| c["feature"] == "pitch_diameter").unwrap();
+            assert_eq!(
+                (d2["ok"].as_bool(), d2["shown"]["deviation"].as_str()),
+                (Some(true), Some("rounds to the limit")),
+                "{d2}"
+            );
+        }
     }
 }
 
@@ -1208,7 +1231,9 @@ fn regression_thread_mill_reads_a_mill_turn_program_as_one() {
     assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
     let out = stdout(&o);
     assert!(!out.contains("G76 read past"), "{out}");
-    assert!(out.contains("G84 read past (4 times)"), "{out}");
+    // Its G84 holes are checked: said as read, never "read past" (issue 59).
+    assert!(out.contains("G84 (4 times): a drilling, tapping or boring cycle, read as its holes"), "{out}");
+    assert!(!out.contains("G84 read past"), "{out}");
 }
 
 /// `tap` and `thread-mill` did not look for subprogram files (`verify` did): a program whose

@@ -606,6 +606,17 @@ fn a_program_without_its_tool_passes_on_size_with_its_form_unverified() {
     assert!(check(op, "root_radius")["unverified"].as_str().unwrap().contains("tool not known"));
     let text = stdout(&run(&["verify", "--program", p.to_str().unwrap()]));
     assert!(text.contains("verdict: PASS — form unverified (minor diameter d3, root radius, crest left standing): tool not known"), "{text}");
+    // The picture and the page say it too: the verdict line, and the three rows (seen in Chromium).
+    let dir = tempdir("unverified-svg");
+    let o = run_in(&dir, &["verify", "--program", p.to_str().unwrap(), "--svg", "m.svg", "--html", "m.html"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(dir.join("m.svg")).unwrap();
+    assert!(svg.contains("IN TOLERANCE — form unverified: tool not known"), "no verdict line");
+    assert_eq!(svg.matches(">\nunverified\n<").count(), 3, "three unverified rows");
+    let html = std::fs::read_to_string(dir.join("m.html")).unwrap();
+    assert!(html.contains(
+        "IN TOLERANCE — form unverified: tool not known: the insert assumed is full-profile iso-metric P1.5"
+    ));
     // A tool table naming a partial-profile insert with a 0.04 mm tip: the root radius is the
     // program's now, and 0.04 is under the standard's 0.125·P = 0.1875 mm.
     let dir = tempdir("tools-04");

@@ -817,16 +817,21 @@ fn tap_of(
             });
         }
     }
-    // The examples in the program's units (an inch program is offered an inch tap).
-    let (example, in_comment) = match h.units {
+    // The examples in the program's units (an inch program is offered an inch tap) and its
+    // dialect's comment syntax (Klartext and Sinumerik comment after `;`).
+    let (example, words) = match h.units {
         crate::gcode::ProgramUnits::Mm => ("M10x1.5-6H", "TAP M10X1.5"),
         crate::gcode::ProgramUnits::Inch => ("1/4-20 UNC-2B", "TAP 1/4-20 UNC"),
+    };
+    let in_comment = match spec.dialect {
+        Dialect::Klartext | Dialect::Sinumerik => format!("; {words}"),
+        _ => format!("({words})"),
     };
     Err(match table {
         None => perr(format!(
             "{} names no tool: the tapping check needs the tap (T and the tool table's tap:DESIGNATION, the table's in_spindle, ‹tap›{})",
             h.code,
-            if spec.from_program { format!(", or a comment such as ({in_comment}) above the cycle") } else { String::new() }
+            if spec.from_program { format!(", or a comment such as {in_comment} above the cycle") } else { String::new() }
         )),
         Some((t, Some((Tool::Insert(_) | Tool::Drill { .. }, written)))) => perr(format!(
             "{} with tool T{t}, which {} calls \"{written}\", not a tap (write {t} = \"tap:{example}\")",
@@ -837,7 +842,7 @@ fn tap_of(
             h.code,
             not_named(&spec.tools),
             if spec.from_program {
-                format!(", or name the tap in a comment above the cycle: ({in_comment})")
+                format!(", or name the tap in a comment above the cycle: {in_comment}")
             } else {
                 String::new()
             }

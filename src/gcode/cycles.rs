@@ -1113,11 +1113,11 @@ fn mill_holes(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Result<(), Error
     m.x = x;
     m.y = y;
     m.z = if m.return_to_r { r_level } else { initial };
-    m.read_past(
+    m.read_as_holes(
         b.line,
         modal.col.unwrap_or(b.col),
         &format!("G{}", modal.motion),
-        "a drilling, tapping or boring cycle (threadcheck tap checks its holes); the tool ends at the return level",
+        "a drilling, tapping or boring cycle, read as its holes (the tapping check of verify and tap takes them; no turning pass); the tool ends at the return level",
     );
     Ok(())
 }

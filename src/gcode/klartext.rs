@@ -613,6 +613,12 @@ fn block(
         assign(st, b, t)?;
         return Ok(Flow::Next);
     }
+    // A block of M words alone (`M3`, `M5 M9`): the spindle's direction and the program's end
+    // are read, as in an L block (it was read past while the tapping check used its M3).
+    let ws = words(t, 0, b.col);
+    if !ws.is_empty() && ws.iter().all(|w| w.name == "M") {
+        return m_words(st, b, &ws).map(|end| if end { Flow::End } else { Flow::Next });
+    }
     st.read_past(b.line, b.col, first, "a Klartext block threadcheck does not model");
     Ok(Flow::Next)
 }

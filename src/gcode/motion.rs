@@ -350,6 +350,16 @@ impl Motion {
             self.past_blocks += 1;
             self.past_last_line = line;
         }
+        self.record(line, col, what, why, true);
+    }
+
+    /// Records a cycle that is modelled as holes, not as turning passes (a drilling or tapping
+    /// cycle: the tapping check reads its holes): said once with its count, never "read past".
+    pub fn read_as_holes(&mut self, line: usize, col: usize, what: &str, why: &str) {
+        self.record(line, col, what, why, false);
+    }
+
+    fn record(&mut self, line: usize, col: usize, what: &str, why: &str, past: bool) {
         match self.past_index.get(what) {
             Some(&k) => self.past[k].count += 1,
             None => {
@@ -360,6 +370,7 @@ impl Motion {
                     line,
                     col,
                     count: 1,
+                    past,
                 });
             }
         }
@@ -1084,10 +1095,12 @@ impl Motion {
         }
         for e in std::mem::take(&mut self.past) {
             let times = if e.count == 1 { String::new() } else { format!(" ({} times)", e.count) };
-            self.notes.push(
+            self.notes.push(if e.past {
                 Note::at(&file, e.line, e.col, format!("{} read past{times}: {}", e.what, e.why))
-                    .of_kind(NoteKind::ReadPast),
-            );
+                    .of_kind(NoteKind::ReadPast)
+            } else {
+                Note::at(&file, e.line, e.col, format!("{}{times}: {}", e.what, e.why))
+            });
         }
         (self.ops, self.skipped, self.notes.into_vec(), self.moves.unwrap_or_default(), self.past_blocks)
     }
@@ -1101,6 +1114,8 @@ struct PastEntry {
     line: usize,
     col: usize,
     count: usize,
+    /// Read past (else modelled elsewhere: a hole cycle's holes).
+    past: bool,
 }
 
 /// The most a flank infeed moves a pass along Z per mm of radial depth: tan 30°, half the

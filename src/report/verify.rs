@@ -1458,10 +1458,16 @@ pub(crate) fn verdict_words(v: &Verification) -> String {
     let form = form_only_from_tip(v).map_or(String::new(), |tip| {
         format!(" (form only: the insert's {} mm tip)", crate::ground::fmt::fmt_num(tip))
     });
-    if failed.is_empty() {
-        format!("IN TOLERANCE{gauge}")
+    // Checks a tool nobody chose decides: said beside the verdict, never failed.
+    let unverified = if v.checks.iter().any(|c| c.unverified.is_some()) {
+        " — form unverified: tool not known"
     } else {
-        format!("OUT OF TOLERANCE{form}: {}{gauge}", failed.join(", "))
+        ""
+    };
+    if failed.is_empty() {
+        format!("IN TOLERANCE{gauge}{unverified}")
+    } else {
+        format!("OUT OF TOLERANCE{form}: {}{gauge}{unverified}", failed.join(", "))
     }
 }
 
@@ -1588,7 +1594,11 @@ pub(crate) fn verification_body(v: &Verification, svg: &str, level: u8) -> Strin
     let mut s = String::new();
     let (cls, words) = if v.pass { ("ok", "IN TOLERANCE") } else { ("out", "OUT OF TOLERANCE") };
     let gauge = if v.gauge_only { " (gauge-only: form checks are not counted)" } else { "" };
-    let _ = writeln!(s, "<p class=\"verdict {cls}\">{words}{}</p>", esc(gauge));
+    let unverified = match v.checks.iter().find_map(|c| c.unverified.as_deref()) {
+        Some(why) => format!(" — form unverified: {why}"),
+        None => String::new(),
+    };
+    let _ = writeln!(s, "<p class=\"verdict {cls}\">{words}{}{}</p>", esc(gauge), esc(&unverified));
     let stock = if v.kind == ThreadKind::External { "blank" } else { "bore" };
     let inch = |mm: f64| match v.units {
         crate::analysis::verify::Units::Mm => String::new(),
