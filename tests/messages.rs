@@ -109,3 +109,24 @@ fn an_inch_program_is_offered_an_inch_tap() {
     assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
     assert!(stdout(&o).contains("tap 1/4-20 UNC-2B"), "{}", stdout(&o));
 }
+
+/// Reports agree with themselves (issue 59 item 5): a Klartext block of M words alone sets the
+/// spindle (its `M3` was "read past" beside the tapping check's "spindle clockwise (M3)"), and
+/// the suggestion for a tap no table names is a comment in Klartext's own syntax.
+#[test]
+fn a_klartext_m3_block_is_read_and_suggestions_use_its_comments() {
+    let dir = tempdir("klartext-m3");
+    let program = "BEGIN PGM T MM\nBLK FORM 0.1 Z X+0 Y+0 Z-20\nBLK FORM 0.2 X+100 Y+100 Z+0\nTOOL CALL 5 Z S600\nM3\nL Z+50 R0 FMAX\nCYCL DEF 207 RIGID TAPPING ~\n  Q200=+2 ;SET-UP CLEARANCE ~\n  Q201=-14 ;DEPTH ~\n  Q239=+1.25 ;PITCH ~\n  Q203=+0 ;SURFACE COORDINATE ~\n  Q204=+50 ;2ND SET-UP CLEARANCE\nL X+20 Y+20 R0 FMAX M99\nL Z+50 R0 FMAX M30\nEND PGM T MM\n";
+    std::fs::write(dir.join("t.h"), program).unwrap();
+    let e = stderr(&run_in(&dir, &["tap", "--program", "t.h"]));
+    assert!(
+        e.contains("name the tap in a comment above the cycle: ; TAP M10X1.5") && !e.contains("(TAP"),
+        "{e}"
+    );
+    std::fs::write(dir.join("named.h"), program.replace("TOOL CALL 5", "; TAP M10X1.25\nTOOL CALL 5"))
+        .unwrap();
+    let o = run_in(&dir, &["tap", "--program", "named.h"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(!out.contains("M3 read past") && out.contains("the spindle is clockwise (M3)"), "{out}");
+}
