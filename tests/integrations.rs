@@ -669,3 +669,19 @@ fn the_language_server_finds_subroutine_files() {
         assert_eq!(c.child.wait().unwrap().code(), Some(0));
     }
 }
+
+/// Issue 58 item 7: a control character in a program's file name (here ESC) is written in the
+/// JUnit report as its escape: XML 1.0 forbids it even as a character reference, and a CI server
+/// rejected the whole report.
+#[test]
+fn junit_escapes_what_xml_forbids() {
+    let dir = tempdir("junit-esc");
+    let lib = dir.join("lib");
+    std::fs::create_dir_all(&lib).unwrap();
+    std::fs::write(lib.join("shaft\u{1b}[31m.nc"), failing_shaft()).unwrap();
+    let o = run_in(&dir, &["verify", "lib", "--junit", "out.xml"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let xml = std::fs::read_to_string(dir.join("out.xml")).unwrap();
+    assert!(!xml.contains('\u{1b}'), "{xml}");
+    assert!(xml.contains("classname=\"lib/shaft\\u{1b}[31m.nc\""), "{xml}");
+}

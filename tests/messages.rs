@@ -130,3 +130,22 @@ fn a_klartext_m3_block_is_read_and_suggestions_use_its_comments() {
     let out = stdout(&o);
     assert!(!out.contains("M3 read past") && out.contains("the spindle is clockwise (M3)"), "{out}");
 }
+
+/// Issue 58 item 9: a Klartext tapping cycle the control would not run is refused at its Q201
+/// line, naming the parameter: DEPTH 0 (the TNC does not run the cycle) and a positive depth
+/// (+1e9 passed as a hole).
+#[test]
+fn a_klartext_cycle_of_depth_zero_or_positive_is_refused_at_its_parameter() {
+    let dir = tempdir("klartext-depth");
+    let program = "BEGIN PGM T MM\n; TAP M10X1.25\nTOOL CALL 5 Z S600\nM3\nL Z+50 R0 FMAX\nCYCL DEF 207 RIGID TAPPING ~\n  Q200=+2 ;SET-UP CLEARANCE ~\n  Q201=-14 ;DEPTH ~\n  Q239=+1.25 ;PITCH ~\n  Q203=+0 ;SURFACE COORDINATE ~\n  Q204=+50 ;2ND SET-UP CLEARANCE\nL X+20 Y+20 R0 FMAX M99\nL Z+50 R0 FMAX M30\nEND PGM T MM\n";
+    for (depth, words) in [
+        ("+0", "Q201 (DEPTH) = 0: the control does not run a cycle of depth 0"),
+        ("+1000000000", "a positive depth"),
+    ] {
+        std::fs::write(dir.join("t.h"), program.replace("Q201=-14", &format!("Q201={depth}"))).unwrap();
+        let o = run_in(&dir, &["tap", "--program", "t.h"]);
+        assert_eq!(o.status.code(), Some(2), "{depth}: {}", stdout(&o));
+        let e = stderr(&o);
+        assert!(e.contains("t.h:8:8: CYCL DEF 207") && e.contains(words), "{depth}: {e}");
+    }
+}

@@ -445,6 +445,12 @@ fn every_layer_answers_its_error_as_json() {
     assert_eq!(raw(&s.url, &req("lathe-3.shop:8080", "application/json"), second).0, 200);
     assert_eq!(raw(&s.url, &req(&addr, "application/json; charset=utf-8"), second).0, 200);
     assert_eq!(raw(&s.url, &req("localhost", "application/json"), second).0, 200);
+    // Issue 58: two Host headers (the first used to win) are refused.
+    json(
+        raw(&s.url, &req(&format!("{addr}\r\nHost: evil.example"), "application/json"), second),
+        400,
+        "more than one Host header",
+    );
     json(
         raw(&s.url, &req(&addr, "text/plain"), second),
         415,

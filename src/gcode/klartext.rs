@@ -1304,6 +1304,29 @@ fn cycle(st: &mut St<'_>, b: &KBlock, up: &str) -> Result<Flow, KErr> {
             if let Some(m) = need.iter().find(|q| !def.q.contains_key(q)) {
                 return Err((b.line, b.col, format!("CYCL DEF {n} {}: Q{m} is missing", def.name)));
             }
+            // The depth as the control takes it: with DEPTH = 0 it does not run the cycle, and a
+            // positive depth works upward from the surface (the TNC's cycle pages; the control
+            // refuses it where its displayDepthErr is set): no hole either way, refused at the
+            // parameter's place.
+            let depth = def.get(201).unwrap_or(0.0);
+            if depth >= 0.0 {
+                let (line, col) =
+                    b.params.iter().find(|p| p.q == 201).map_or((b.line, b.col), |p| (p.line, p.col));
+                return Err((
+                    line,
+                    col,
+                    format!(
+                        "CYCL DEF {n} {}: Q201 (DEPTH) = {}: {}",
+                        def.name,
+                        crate::ground::fmt::fmt_num(depth),
+                        if depth == 0.0 {
+                            "the control does not run a cycle of depth 0, so nothing is drilled or tapped"
+                        } else {
+                            "a positive depth works upward from the surface Q203, into no material (the control refuses it where its displayDepthErr parameter is set): write the depth negative"
+                        }
+                    ),
+                ));
+            }
             st.cycle = Some(def);
         }
         _ => {

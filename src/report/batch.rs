@@ -485,10 +485,21 @@ pub fn junit_xml(programs: &[BatchProgram]) -> Result<String, crate::Error> {
             .map(|_| ())
     });
     xml.map_err(|e| crate::Error::Data(format!("JUnit XML: {e}")))?;
-    let mut xml =
-        String::from_utf8(w.into_inner()).map_err(|e| crate::Error::Data(format!("JUnit XML: {e}")))?;
-    xml.push('\n');
-    Ok(xml)
+    let xml = String::from_utf8(w.into_inner()).map_err(|e| crate::Error::Data(format!("JUnit XML: {e}")))?;
+    // XML 1.0 forbids most control characters even escaped (a CI server rejects the whole
+    // report): one in a file name or a program's token is written as its escape, `\u{1b}`.
+    let mut out = String::with_capacity(xml.len() + 1);
+    for c in xml.chars() {
+        let allowed =
+            matches!(c, '\t' | '\n' | '\r' | '\u{20}'..='\u{D7FF}' | '\u{E000}'..='\u{FFFD}' | '\u{10000}'..);
+        if allowed {
+            out.push(c);
+        } else {
+            out.push_str(&format!("\\u{{{:x}}}", u32::from(c)));
+        }
+    }
+    out.push('\n');
+    Ok(out)
 }
 
 /// One program's test suite.

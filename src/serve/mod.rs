@@ -249,6 +249,11 @@ async fn guard(State(shared): State<Arc<Shared>>, req: Request, next: Next) -> R
             format!("the request's headers are larger than {MAX_HEADER_BYTES} bytes"),
         );
     }
+    // Two Host headers: which one a proxy or a browser meant is not known (RFC 9112 §3.2: a
+    // request with more than one Host field is answered 400).
+    if req.headers().get_all(header::HOST).iter().count() > 1 {
+        return error(StatusCode::BAD_REQUEST, "the request has more than one Host header".to_string());
+    }
     if let Err(host) = host_allowed(&shared.options, req.headers().get(header::HOST)) {
         return error(StatusCode::FORBIDDEN, host);
     }
