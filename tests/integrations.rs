@@ -685,3 +685,34 @@ fn junit_escapes_what_xml_forbids() {
     assert!(!xml.contains('\u{1b}'), "{xml}");
     assert!(xml.contains("classname=\"lib/shaft\\u{1b}[31m.nc\""), "{xml}");
 }
+
+/// Issue 58 item 5: a `Content-Length` of 10¹² (it aborted the server: SIGABRT allocating it) is
+/// answered with JSON-RPC's invalid-request error and a null id, nothing allocated, and the
+/// valid request after it is answered; a stream that breaks (a header with no length) ends the
+/// server with 1, the protocol's code for an end without `shutdown` (it exited 2).
+#[test]
+fn the_language_server_survives_a_huge_content_length() {
+    let framed = |s: &str| format!("Content-Length: {}\r\n\r\n{s}", s.len());
+    let input = [
+        "Content-Length: 999999999999\r\n\r\n{\"jsonrpc\":\"2.0\",\"id\":7,\"method\":\"initialize\"}"
+            .to_string(),
+        framed(r#"{"jsonrpc":"2.0","id":1,"method":"initialize","params":{"capabilities":{}}}"#),
+        framed(r#"{"jsonrpc":"2.0","id":2,"method":"shutdown"}"#),
+        framed(r#"{"jsonrpc":"2.0","method":"exit"}"#),
+    ]
+    .concat();
+    let mut out = Vec::new();
+    let code = threadcheck::lsp_run(std::io::Cursor::new(input.into_bytes()), &mut out).unwrap();
+    let out = String::from_utf8(out).unwrap();
+    assert_eq!(code, 0, "{out}");
+    assert!(
+        out.contains(r#""error":{"code":-32600,"message":"a message of 999999999999 bytes is larger than"#),
+        "{out}"
+    );
+    assert!(out.contains(r#""id":null"#) && out.contains(r#""hoverProvider":true"#), "{out}");
+    // A header without a length: nothing after it can be read.
+    let mut out = Vec::new();
+    let code =
+        threadcheck::lsp_run(std::io::Cursor::new(b"Content-Type: x\r\n\r\n{}".to_vec()), &mut out).unwrap();
+    assert_eq!(code, 1);
+}

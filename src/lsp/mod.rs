@@ -12,6 +12,7 @@
 //! −32601, one with bad parameters −32602.
 
 mod args;
+mod frame;
 
 pub use args::LspArgs;
 
@@ -44,6 +45,8 @@ enum Event {
     Message(Message),
     /// A message whose body is not a JSON-RPC message (the framing held).
     Malformed(String),
+    /// A message announced larger than the framing reader takes: skipped, not read.
+    TooLarge(u64),
     /// The input ended.
     End,
     /// The framing broke (a header without Content-Length, a read error): nothing after it can
@@ -94,24 +97,26 @@ pub fn lsp(_args: &LspArgs) -> Result<i32, Error> {
 pub fn run<R: BufRead + Send + 'static, W: Write>(input: R, out: W) -> Result<i32, Error> {
     let (tx, rx) = std::sync::mpsc::channel::<Event>();
     let reader = std::thread::spawn(move || {
-        let mut input = input;
+        let mut input = frame::Framed::new(input);
         loop {
-            let event = match Message::read(&mut input) {
-                Ok(Some(m)) => {
+            let event = match input.read() {
+                Ok(frame::Frame::Message(m)) => {
                     let exit = matches!(&m, Message::Notification(n) if n.method == "exit");
                     if tx.send(Event::Message(m)).is_err() || exit {
                         return;
                     }
                     continue;
                 }
-                Ok(None) => Event::End,
-                // lsp-server reads the whole body before it parses it: the next message is
-                // still framed.
-                Err(e)
-                    if e.kind() == std::io::ErrorKind::InvalidData
-                        && e.to_string().starts_with("malformed LSP payload") =>
-                {
-                    if tx.send(Event::Malformed(e.to_string())).is_err() {
+                Ok(frame::Frame::End) => Event::End,
+                // The framing held: answered, and the reader reads on.
+                Ok(frame::Frame::Malformed(why)) => {
+                    if tx.send(Event::Malformed(why)).is_err() {
+                        return;
+                    }
+                    continue;
+                }
+                Ok(frame::Frame::TooLarge(n)) => {
+                    if tx.send(Event::TooLarge(n)).is_err() {
                         return;
                     }
                     continue;
@@ -180,6 +185,19 @@ impl<W: Write> Server<W> {
         self.send(Message::Response(r))
     }
 
+    /// An error answer to a message whose id is not known.
+    fn null_id_error(&mut self, code: ErrorCode, message: &str) -> Result<(), Error> {
+        let body = serde_json::json!({
+            "jsonrpc": "2.0",
+            "id": null,
+            "error": {"code": code as i32, "message": message},
+        })
+        .to_string();
+        write!(self.out, "Content-Length: {}\r\n\r\n{body}", body.len())
+            .and_then(|()| self.out.flush())
+            .map_err(|e| Error::Io { path: "standard output".into(), source: e })
+    }
+
     fn notify<P: serde::Serialize>(&mut self, method: &str, params: P) -> Result<(), Error> {
         self.send(Message::Notification(Notification::new(method.to_string(), params)))
     }
@@ -199,24 +217,31 @@ impl<W: Write> Server<W> {
             }
             Event::Message(Message::Notification(n)) => self.notification(&n.method, n.params),
             Event::Message(Message::Response(_)) => Ok(Flow::Continue),
+            // JSON-RPC 2.0: an error whose request cannot be read is answered with a null id.
             Event::Malformed(why) => {
-                // JSON-RPC 2.0: a parse error is answered with a null id.
-                let body = serde_json::json!({
-                    "jsonrpc": "2.0",
-                    "id": null,
-                    "error": {"code": ErrorCode::ParseError as i32, "message": short(&why)},
-                })
-                .to_string();
-                write!(self.out, "Content-Length: {}\r\n\r\n{body}", body.len())
-                    .and_then(|()| self.out.flush())
-                    .map_err(|e| Error::Io { path: "standard output".into(), source: e })?;
+                self.null_id_error(ErrorCode::ParseError, &short(&why))?;
+                Ok(Flow::Continue)
+            }
+            Event::TooLarge(n) => {
+                self.null_id_error(
+                    ErrorCode::InvalidRequest,
+                    &format!(
+                        "a message of {n} bytes is larger than the {} bytes a document and its framing take: skipped, not read",
+                        frame::MAX_BODY
+                    ),
+                )?;
                 Ok(Flow::Continue)
             }
             Event::End => Ok(Flow::Exit(if self.shut_down { 0 } else { 1 })),
-            Event::Broken(why) => Err(Error::Input(format!(
-                "the language client's messages cannot be read on: {}",
-                short(&why)
-            ))),
+            // Nothing after a broken framing can be read: said on standard error, and the
+            // process ends as the protocol's rule has it for an end without `shutdown` (1).
+            Event::Broken(why) => {
+                eprintln!(
+                    "threadcheck: error: the language client's messages cannot be read on: {}",
+                    short(&why)
+                );
+                Ok(Flow::Exit(if self.shut_down { 0 } else { 1 }))
+            }
         }
     }
 
