@@ -195,3 +195,50 @@ fn a_library_run_refuses_one_program_s_documents() {
         "threadcheck: error: --svg is one program's: give it with --program, or --json-lines for a run of many"
     );
 }
+
+/// Issue 58 item 4: a run of many follows symbolic links to programs and folders (a failing
+/// program linked in was skipped: exit 0 and PASS), names a loop once, never opens a FIFO (one
+/// named `*.h` hung the run for ever), names files that are not UTF-8 apart and escapes a
+/// newline in a name (it forged a line of the report).
+#[test]
+fn a_library_run_follows_links_and_opens_only_regular_files() {
+    use std::os::unix::ffi::OsStrExt;
+    let dir = tempdir("library-links");
+    let (lib, other) = (dir.join("lib"), dir.join("other"));
+    std::fs::create_dir_all(&lib).unwrap();
+    std::fs::create_dir_all(other.join("deep")).unwrap();
+    // A failing shaft (G76 to X21.7: d2 22.855 over 6g's 22.663) outside the folder, linked in.
+    let failing =
+        std::fs::read_to_string(data("whole/shaft.nc")).unwrap().replace("G76 X21.423 ", "G76 X21.7 ");
+    std::fs::write(other.join("failing.nc"), &failing).unwrap();
+    std::fs::write(other.join("deep/plain.nc"), std::fs::read(data("whole/shaft.nc")).unwrap()).unwrap();
+    std::os::unix::fs::symlink("../other/failing.nc", lib.join("linked.nc")).unwrap();
+    std::os::unix::fs::symlink("../other/deep", lib.join("deep")).unwrap();
+    std::os::unix::fs::symlink("..", lib.join("up")).unwrap();
+    for fifo in ["pipe.h", "pipe.nc"] {
+        assert!(Command::new("mkfifo").arg(lib.join(fifo)).status().unwrap().success());
+    }
+    for name in [&b"a\xfe.nc"[..], &b"a\xff.nc"[..], &b"nl\nPASS.nc"[..]] {
+        std::fs::write(
+            lib.join(std::ffi::OsStr::from_bytes(name)),
+            std::fs::read(data("whole/shaft.nc")).unwrap(),
+        )
+        .unwrap();
+    }
+    let o = run_in(&dir, &["verify", "lib", "--insert", "full"]);
+    let text = stdout(&o);
+    assert_eq!(o.status.code(), Some(2), "{text}");
+    assert!(text.contains("lib/linked.nc:8: FAIL turned M24X2-6g"), "{text}");
+    assert!(text.contains("lib/deep/plain.nc:8: PASS"), "{text}");
+    assert!(text.contains("lib/a\\xfe.nc:8: PASS") && text.contains("lib/a\\xff.nc:8: PASS"), "{text}");
+    assert!(
+        text.contains("lib/nl\\u{a}PASS.nc:8: PASS") && !text.lines().any(|l| l.starts_with("PASS")),
+        "{text}"
+    );
+    for fifo in ["pipe.h", "pipe.nc"] {
+        assert!(text.contains(&format!("{fifo}: not a regular file")), "{text}");
+    }
+    assert!(text.contains("a link back to a folder it is in (a loop)"), "{text}");
+    // Each file once: the linked shaft is not read again through `up`.
+    assert_eq!(text.matches(":8: FAIL turned").count(), 1, "{text}");
+}

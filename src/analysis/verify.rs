@@ -708,7 +708,7 @@ impl ProgramSource {
     /// read by [`text_of`]'s rules either way.
     pub fn load(&self) -> Result<(String, String), Error> {
         match self {
-            ProgramSource::File(path) => Ok((path.display().to_string(), read_program_text(path)?)),
+            ProgramSource::File(path) => Ok((crate::ground::fmt::path_name(path), read_program_text(path)?)),
             ProgramSource::Text { name, text } => {
                 if text.len() > crate::ground::bounds::MAX_PROGRAM_BYTES {
                     return Err(Error::Program {
@@ -736,7 +736,7 @@ impl ProgramSource {
 /// assert!(e.to_string().starts_with("no/such/program.nc:"));
 /// ```
 pub fn read_program_text(path: &std::path::Path) -> Result<String, Error> {
-    let shown = path.display().to_string();
+    let shown = crate::ground::fmt::path_name(path);
     let bytes =
         crate::ground::input::read_bounded(path, crate::ground::bounds::MAX_PROGRAM_BYTES, "the program")?;
     text_of(&bytes, &shown)

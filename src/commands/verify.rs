@@ -192,21 +192,47 @@ fn opens_klartext(path: &std::path::Path) -> bool {
 
 /// The programs of `paths`: a file as named, a folder's files with [`PROGRAM_EXTENSIONS`] found
 /// recursively (and `.h` files that open a Klartext program), in name order; at most [`MAX_BATCH_PROGRAMS`](crate::ground::bounds::MAX_BATCH_PROGRAMS).
+/// Symbolic links to programs and folders are followed and named as linked (a loop is listed
+/// once, by the link that closes it, and its line says so); a file reached twice is read once,
+/// under the first name. Entries that are not regular files (a FIFO, a device, a socket) are
+/// listed and never opened: their line says so.
 fn program_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
     let mut out = Vec::new();
+    let mut seen = std::collections::HashSet::new();
     for p in paths {
         if p.is_dir() {
-            for entry in walkdir::WalkDir::new(p).sort_by_file_name() {
-                let entry = entry.map_err(|e| Error::File {
-                    file: e.path().map_or_else(|| p.display().to_string(), |q| q.display().to_string()),
-                    message: format!("cannot be listed: {e}"),
-                })?;
+            for entry in walkdir::WalkDir::new(p).follow_links(true).sort_by_file_name() {
+                let entry = match entry {
+                    Ok(e) => e,
+                    // A link back to a folder above it: named, never walked again.
+                    Err(e) if e.loop_ancestor().is_some() => {
+                        if let Some(path) = e.path() {
+                            out.push(path.to_path_buf());
+                        }
+                        continue;
+                    }
+                    Err(e) => {
+                        return Err(Error::File {
+                            file: e
+                                .path()
+                                .map_or_else(|| p.display().to_string(), |q| q.display().to_string()),
+                            message: format!("cannot be listed: {e}"),
+                        })
+                    }
+                };
+                if entry.file_type().is_dir() {
+                    continue;
+                }
                 let ext = entry.path().extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-                // A `.h` file is a Klartext program when it opens one (else a C header, say).
-                let klartext = ext.as_deref() == Some("h") && opens_klartext(entry.path());
-                if entry.file_type().is_file()
-                    && (klartext || ext.is_some_and(|e| PROGRAM_EXTENSIONS.contains(&e.as_str())))
-                {
+                let regular = entry.file_type().is_file();
+                // A `.h` file is a Klartext program when it opens one (else a C header, say);
+                // only a regular file is opened to see.
+                let klartext = ext.as_deref() == Some("h") && (!regular || opens_klartext(entry.path()));
+                if !(klartext || ext.is_some_and(|e| PROGRAM_EXTENSIONS.contains(&e.as_str()))) {
+                    continue;
+                }
+                let once = std::fs::canonicalize(entry.path()).unwrap_or_else(|_| entry.path().to_path_buf());
+                if seen.insert(once) {
                     out.push(entry.into_path());
                 }
             }
@@ -222,6 +248,19 @@ fn program_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
         }
     }
     Ok(out)
+}
+
+/// Why a listed entry of a run is not read: a folder (a link's loop) or anything but a regular
+/// file. `None` for a regular file (or one that cannot be looked at: its read says why).
+fn not_a_program_file(path: &std::path::Path) -> Option<&'static str> {
+    let meta = std::fs::metadata(path).ok()?;
+    if meta.is_dir() {
+        Some("a link back to a folder it is in (a loop): its programs are read once, under their first name")
+    } else if !meta.is_file() {
+        Some("not a regular file (a FIFO, a device or a socket is never opened in a run of many)")
+    } else {
+        None
+    }
 }
 
 impl VerifyArgs {
@@ -306,7 +345,14 @@ impl VerifyArgs {
         request: &Request,
     ) -> crate::report::batch::BatchProgram {
         use crate::report::batch::BatchProgram;
-        let shown = file.display().to_string();
+        let shown = crate::ground::fmt::path_name(file);
+        if let Some(why) = not_a_program_file(file) {
+            return BatchProgram::unreadable(
+                &shown,
+                format!("error: {}: {why}", crate::ground::error::one_line(&shown)),
+                None,
+            );
+        }
         match self.verify_one(Source::Path(file.to_path_buf()), None, tools, request) {
             Ok((shown, _, pv)) => BatchProgram::of(&shown, &pv),
             Err(e) => {

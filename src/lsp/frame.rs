@@ -5,7 +5,6 @@
 //! then looks for the next `Content-Length:` header (a client writes it right after a body) and
 //! reads on from there.
 
-use lsp_server::Message;
 use std::io::{BufRead, Read};
 
 /// The longest header line read.
@@ -17,10 +16,8 @@ pub const MAX_BODY: usize = 2 * crate::ground::bounds::MAX_PROGRAM_BYTES + 64 * 
 
 /// What one read gives.
 pub enum Frame {
-    /// A message.
-    Message(Message),
-    /// A body that is not a JSON-RPC message (the framing held).
-    Malformed(String),
+    /// A message's body (JSON, parsed by the server: `lsp-server` stays behind its one door).
+    Body(Vec<u8>),
     /// A message announced larger than [`MAX_BODY`]: not read.
     TooLarge(u64),
     /// The input ended between messages.
@@ -94,10 +91,7 @@ impl<R: BufRead> Framed<R> {
         }
         let mut body = vec![0u8; n as usize];
         self.input.read_exact(&mut body)?;
-        Ok(match serde_json::from_slice::<Message>(&body) {
-            Ok(m) => Frame::Message(m),
-            Err(e) => Frame::Malformed(format!("malformed LSP payload: {e}")),
-        })
+        Ok(Frame::Body(body))
     }
 }
 

@@ -100,21 +100,23 @@ pub fn run<R: BufRead + Send + 'static, W: Write>(input: R, out: W) -> Result<i3
         let mut input = frame::Framed::new(input);
         loop {
             let event = match input.read() {
-                Ok(frame::Frame::Message(m)) => {
-                    let exit = matches!(&m, Message::Notification(n) if n.method == "exit");
-                    if tx.send(Event::Message(m)).is_err() || exit {
-                        return;
+                Ok(frame::Frame::Body(body)) => match serde_json::from_slice::<Message>(&body) {
+                    Ok(m) => {
+                        let exit = matches!(&m, Message::Notification(n) if n.method == "exit");
+                        if tx.send(Event::Message(m)).is_err() || exit {
+                            return;
+                        }
+                        continue;
                     }
-                    continue;
-                }
+                    // The framing held: answered, and the reader reads on.
+                    Err(e) => {
+                        if tx.send(Event::Malformed(format!("malformed LSP payload: {e}"))).is_err() {
+                            return;
+                        }
+                        continue;
+                    }
+                },
                 Ok(frame::Frame::End) => Event::End,
-                // The framing held: answered, and the reader reads on.
-                Ok(frame::Frame::Malformed(why)) => {
-                    if tx.send(Event::Malformed(why)).is_err() {
-                        return;
-                    }
-                    continue;
-                }
                 Ok(frame::Frame::TooLarge(n)) => {
                     if tx.send(Event::TooLarge(n)).is_err() {
                         return;
