@@ -716,3 +716,63 @@ fn the_language_server_survives_a_huge_content_length() {
         threadcheck::lsp_run(std::io::Cursor::new(b"Content-Type: x\r\n\r\n{}".to_vec()), &mut out).unwrap();
     assert_eq!(code, 1);
 }
+
+/// Issue 58 item 3: a document whose check is long (a Klartext loop of about 2 s) does not stop
+/// the server: a newer version replaces it at once (its diagnostics come within a second, and
+/// none for the old version), and `shutdown` sent while a check runs is answered within a second.
+#[test]
+fn the_language_server_answers_while_a_document_is_checked() {
+    let dir = tempdir("lsp-busy");
+    let uri = format!("file://{}", dir.join("loop.h").display());
+    let looping = "0 BEGIN PGM LOOP MM\n1 LBL 1\n2 Q1 = Q1 + 1\n3 FN 12: IF +Q1 LT +100000000 GOTO LBL 1\n4 END PGM LOOP MM\n";
+    let quick = "0 BEGIN PGM QUICK MM\n1 L Z+100 R0 FMAX\n2 END PGM QUICK MM\n";
+    let mut c = Client::start();
+    c.request(1, "initialize", serde_json::json!({"capabilities": {}}));
+    c.notify("initialized", serde_json::json!({}));
+    let open = |c: &mut Client, version: i64, text: &str| {
+        c.notify(
+            "textDocument/didOpen",
+            serde_json::json!({"textDocument": {"uri": uri, "languageId": "klartext", "version": version, "text": text}}),
+        );
+    };
+    open(&mut c, 1, looping);
+    std::thread::sleep(std::time::Duration::from_millis(100));
+    let t = std::time::Instant::now();
+    c.notify(
+        "textDocument/didChange",
+        serde_json::json!({"textDocument": {"uri": uri, "version": 2}, "contentChanges": [{"text": quick}]}),
+    );
+    let d = c.diagnostics();
+    assert!(t.elapsed() < std::time::Duration::from_secs(1), "the new version waited {:?}", t.elapsed());
+    assert_eq!(d["version"], 2, "the looping version was stopped, not published: {d}");
+    // A hover asked before the check has ended is answered when it ends (here: nothing on line 1).
+    let other = format!("file://{}", dir.join("other.h").display());
+    c.notify(
+        "textDocument/didOpen",
+        serde_json::json!({"textDocument": {"uri": other, "languageId": "klartext", "version": 1, "text": quick}}),
+    );
+    let hover = c.request(
+        5,
+        "textDocument/hover",
+        serde_json::json!({"textDocument": {"uri": other}, "position": {"line": 0, "character": 0}}),
+    );
+    assert_eq!(hover["result"], serde_json::Value::Null, "{hover}");
+    assert_eq!(c.diagnostics()["uri"], other.as_str(), "published before the hover was answered");
+    // The loop again, and shutdown while it is checked.
+    c.notify(
+        "textDocument/didChange",
+        serde_json::json!({"textDocument": {"uri": uri, "version": 3}, "contentChanges": [{"text": looping}]}),
+    );
+    std::thread::sleep(std::time::Duration::from_millis(100));
+    let t = std::time::Instant::now();
+    let down = c.request(2, "shutdown", serde_json::Value::Null);
+    assert!(t.elapsed() < std::time::Duration::from_secs(1), "shutdown waited {:?}", t.elapsed());
+    assert_eq!(down["result"], serde_json::Value::Null, "{down}");
+    c.notify("exit", serde_json::Value::Null);
+    assert_eq!(c.child.wait().unwrap().code(), Some(0));
+    assert!(
+        c.notes.iter().all(|n| n["params"]["version"] != 3),
+        "no diagnostics of the stopped check: {:?}",
+        c.notes
+    );
+}

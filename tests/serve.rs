@@ -404,6 +404,28 @@ fn a_request_past_its_budget_is_stopped_and_frees_its_slot() {
     assert!(waited < std::time::Duration::from_secs(1), "the limits request waited {waited:?}");
 }
 
+/// Issue 58: a Klartext program that loops (about 2 s of reading on the CLI) is stopped at the
+/// budget, not left running with the only slot: a second request sent meanwhile is answered.
+#[test]
+fn a_klartext_loop_past_the_budget_frees_its_slot() {
+    let s = start(&["--max-in-flight", "1", "--queue-wait", "5", "--time-budget", "0.2"]);
+    let url = s.url.clone();
+    let looping = r#"{"thread": "M8x1.25-6H", "dialect": "klartext", "program": "0 BEGIN PGM LOOP MM\n1 LBL 1\n2 Q1 = Q1 + 1\n3 FN 12: IF +Q1 LT +100000000 GOTO LBL 1\n4 END PGM LOOP MM\n"}"#;
+    let slow = std::thread::spawn(move || {
+        let t = std::time::Instant::now();
+        (post(&url, "api/verify", looping), t.elapsed())
+    });
+    std::thread::sleep(std::time::Duration::from_millis(50));
+    let t = std::time::Instant::now();
+    let quick = post(&s.url, "api/limits", r#"{"thread": "M10x1.5-6g"}"#);
+    let waited = t.elapsed();
+    let (answer, took) = slow.join().unwrap();
+    assert_error(&answer, 503, "time budget of 0.2 s; it was stopped");
+    assert!(took < std::time::Duration::from_millis(900), "the looping request took {took:?}");
+    assert_eq!(quick.0, 200, "{}", quick.2);
+    assert!(waited < std::time::Duration::from_secs(1), "the limits request waited {waited:?}");
+}
+
 /// A raw HTTP exchange on a new connection: `request` sent whole, the answer read until the
 /// server closes or `wait` passes. Returns the status (0: none) and the body.
 fn raw(url: &str, request: &str, wait: std::time::Duration) -> (u16, String) {

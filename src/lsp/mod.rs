@@ -5,9 +5,13 @@
 //! thread-making operation at its line, answers a hover on an operation's line with every check,
 //! and offers the correction, in the program's own words, as a quick fix.
 //!
-//! The loop reads messages on a thread of its own; the main thread answers them in order and,
-//! before verifying, takes every message already waiting, so that a newer change of a document
-//! replaces an older one not yet verified. A message that is not JSON gets JSON-RPC's parse error
+//! The loop reads messages on a thread of its own; the main thread answers them and hands each
+//! document's check to a thread of its own (at most [`MAX_CHECKS`] at once), so that `shutdown`,
+//! `exit` and other documents' requests are answered while a long program is checked. Before it
+//! starts checks the main thread takes every message already waiting, so that a newer change of
+//! a document replaces an older one not yet checked; a change while a check runs stops that check
+//! (its [`Cancel`](crate::Cancel) is raised) and starts one of the new text. A hover or quick fix
+//! asked of a document being checked is answered when its check ends. A message that is not JSON gets JSON-RPC's parse error
 //! (−32700) and the server reads on; a request before `initialize` gets −32002, an unknown one
 //! −32601, one with bad parameters −32602.
 
@@ -24,9 +28,14 @@ use lsp_types as lt;
 use serde_json::Value;
 use std::collections::{BTreeMap, HashMap};
 use std::io::{BufRead, Write};
+use std::sync::mpsc::Sender;
+use std::sync::Arc;
 
 /// The most documents the server keeps open at once.
 pub const MAX_OPEN_DOCUMENTS: usize = 256;
+
+/// The most checks running at once (a stopped check counts until its thread has ended).
+pub const MAX_CHECKS: usize = 4;
 
 /// One open program.
 struct Doc {
@@ -34,10 +43,8 @@ struct Doc {
     name: String,
     text: String,
     version: i32,
-    /// Its view, `None` until verified after the last change.
+    /// Its view, `None` until checked after the last change.
     view: Option<EditorView>,
-    /// Its diagnostics are to be published.
-    unpublished: bool,
 }
 
 /// What the reader thread hands over.
@@ -52,6 +59,36 @@ enum Event {
     /// The framing broke (a header without Content-Length, a read error): nothing after it can
     /// be read.
     Broken(String),
+    /// A check's thread ended: the document, the version it checked, its view (`None` when it
+    /// was stopped).
+    Checked {
+        uri: String,
+        version: i32,
+        view: Option<EditorView>,
+    },
+}
+
+/// A check under way.
+struct Running {
+    version: i32,
+    stop: crate::Cancel,
+}
+
+/// A request waiting for its document's check.
+struct Waiting {
+    id: RequestId,
+    method: String,
+    params: Value,
+    uri: String,
+}
+
+/// What a request finds of its document.
+enum Lookup<'a> {
+    /// Not open: answered with nothing.
+    Absent,
+    /// Being checked (or about to be): the request waits.
+    Pending,
+    Ready(&'a Doc),
 }
 
 /// How the loop goes on.
@@ -59,6 +96,8 @@ enum Flow {
     Continue,
     /// The process ends with this code (0 after shutdown, 1 otherwise: the protocol's rule).
     Exit(i32),
+    /// The input ended: the process ends with this code once the checks under way have ended.
+    Ending(i32),
 }
 
 struct Server<W: Write> {
@@ -66,8 +105,16 @@ struct Server<W: Write> {
     initialized: bool,
     shut_down: bool,
     docs: BTreeMap<String, Doc>,
-    settings: VerifyArgs,
-    tools: Option<crate::analysis::tools::ToolTable>,
+    settings: Arc<VerifyArgs>,
+    tools: Arc<Option<crate::analysis::tools::ToolTable>>,
+    /// The check of each document under way.
+    running: HashMap<String, Running>,
+    /// Check threads not yet ended (stopped ones included).
+    alive: usize,
+    /// Requests waiting for a check, in the order they came.
+    waiting: Vec<Waiting>,
+    /// Where a check's thread hands its view.
+    events: Sender<Event>,
 }
 
 /// Runs the server on standard input and output until the client's `exit` (or the end of the
@@ -96,6 +143,7 @@ pub fn lsp(_args: &LspArgs) -> Result<i32, Error> {
 /// ```
 pub fn run<R: BufRead + Send + 'static, W: Write>(input: R, out: W) -> Result<i32, Error> {
     let (tx, rx) = std::sync::mpsc::channel::<Event>();
+    let events = tx.clone();
     let reader = std::thread::spawn(move || {
         let mut input = frame::Framed::new(input);
         loop {
@@ -134,31 +182,39 @@ pub fn run<R: BufRead + Send + 'static, W: Write>(input: R, out: W) -> Result<i3
         initialized: false,
         shut_down: false,
         docs: BTreeMap::new(),
-        settings: VerifyArgs::default(),
-        tools: None,
+        settings: Arc::new(VerifyArgs::default()),
+        tools: Arc::new(None),
+        running: HashMap::new(),
+        alive: 0,
+        waiting: Vec::new(),
+        events,
     };
+    // The input's end once seen: the checks under way are finished and published, then the
+    // server ends with this code.
+    let mut ending: Option<i32> = None;
     let code = 'serve: loop {
+        if let Some(code) = ending {
+            if server.alive == 0 {
+                break code;
+            }
+        }
+        // The main thread holds a sender, so this waits for a message or a check's end.
         let Ok(first) = rx.recv() else { break 1 };
-        // Every message already waiting is handled before any verification: a newer change
+        // Every message already waiting is handled before any check starts: a newer change
         // replaces an older one.
         let mut events = vec![first];
         events.extend(rx.try_iter());
         for event in events {
-            // A request (or the end) is answered after the changes before it are published.
-            let answers = match &event {
-                Event::Message(Message::Request(_)) | Event::End => true,
-                Event::Message(Message::Notification(n)) => n.method == "exit",
-                _ => false,
-            };
-            if answers {
-                server.publish()?;
-            }
             match server.handle(event)? {
                 Flow::Continue => {}
-                Flow::Exit(code) => break 'serve code,
+                Flow::Exit(code) => {
+                    server.stop_all();
+                    break 'serve code;
+                }
+                Flow::Ending(code) => ending = Some(code),
             }
         }
-        server.publish()?;
+        server.start_checks();
     };
     drop(rx);
     // The reader ends at `exit` or at the end of the input; at neither it is left blocked on
@@ -212,9 +268,27 @@ impl<W: Write> Server<W> {
     fn handle(&mut self, event: Event) -> Result<Flow, Error> {
         match event {
             Event::Message(Message::Request(r)) => {
+                // A hover or quick fix of a document being checked waits for its check.
+                if let Some(uri) = self.waits_for_check(&r.method, &r.params) {
+                    self.waiting.push(Waiting { id: r.id, method: r.method, params: r.params, uri });
+                    return Ok(Flow::Continue);
+                }
                 let id = r.id.clone();
                 let result = self.request(&r.method, r.params);
                 self.respond(id, result)?;
+                Ok(Flow::Continue)
+            }
+            Event::Checked { uri, version, view } => {
+                self.alive = self.alive.saturating_sub(1);
+                if self.running.get(&uri).is_some_and(|r| r.version == version) {
+                    self.running.remove(&uri);
+                }
+                let current = self.docs.get_mut(&uri).filter(|d| d.version == version && d.view.is_none());
+                if let (Some(doc), Some(view)) = (current, view) {
+                    doc.view = Some(view);
+                    self.publish(&uri)?;
+                    self.answer_waiting(&uri)?;
+                }
                 Ok(Flow::Continue)
             }
             Event::Message(Message::Notification(n)) => self.notification(&n.method, n.params),
@@ -234,7 +308,7 @@ impl<W: Write> Server<W> {
                 )?;
                 Ok(Flow::Continue)
             }
-            Event::End => Ok(Flow::Exit(if self.shut_down { 0 } else { 1 })),
+            Event::End => Ok(Flow::Ending(if self.shut_down { 0 } else { 1 })),
             // Nothing after a broken framing can be read: said on standard error, and the
             // process ends as the protocol's rule has it for an end without `shutdown` (1).
             Event::Broken(why) => {
@@ -266,14 +340,17 @@ impl<W: Write> Server<W> {
         }
         match method {
             "shutdown" => {
+                // Answered at once: the checks under way are stopped, and what waited for them
+                // is answered with nothing.
                 self.shut_down = true;
+                self.stop_all();
                 Ok(Value::Null)
             }
             "textDocument/hover" => {
                 let p: lt::HoverParams = serde_json::from_value(params).map_err(bad)?;
                 let pos = p.text_document_position_params;
                 let line = pos.position.line as usize + 1;
-                let Some(doc) = self.fresh(pos.text_document.uri.as_str()) else {
+                let Lookup::Ready(doc) = self.lookup(pos.text_document.uri.as_str()) else {
                     return Ok(Value::Null);
                 };
                 let hover =
@@ -290,7 +367,7 @@ impl<W: Write> Server<W> {
                 let p: lt::CodeActionParams = serde_json::from_value(params).map_err(bad)?;
                 let (first, last) = (p.range.start.line as usize + 1, p.range.end.line as usize + 1);
                 let uri = p.text_document.uri;
-                let Some(doc) = self.fresh(uri.as_str()) else {
+                let Lookup::Ready(doc) = self.lookup(uri.as_str()) else {
                     return Ok(Value::Array(Vec::new()));
                 };
                 let actions: Vec<lt::CodeActionOrCommand> = doc
@@ -361,14 +438,16 @@ impl<W: Write> Server<W> {
         let crate::Command::Verify(args) = command else {
             return Err("initializationOptions: not verify's options".into());
         };
-        self.tools = args
-            .tools
-            .as_ref()
-            .map(|t| crate::commands::args::tool_table(t, Files::Refused))
-            .transpose()
-            .map_err(|e| e.one_line_for(crate::Audience::Api))?;
-        self.settings = args;
-        self.settings.plan.subroutine_path = subroutine_path;
+        self.tools = Arc::new(
+            args.tools
+                .as_ref()
+                .map(|t| crate::commands::args::tool_table(t, Files::Refused))
+                .transpose()
+                .map_err(|e| e.one_line_for(crate::Audience::Api))?,
+        );
+        let mut settings = args;
+        settings.plan.subroutine_path = subroutine_path;
+        self.settings = Arc::new(settings);
         Ok(())
     }
 
@@ -398,7 +477,6 @@ impl<W: Write> Server<W> {
                             text: p.text_document.text,
                             version: p.text_document.version,
                             view: None,
-                            unpublished: true,
                         },
                     );
                     Ok(())
@@ -418,13 +496,20 @@ impl<W: Write> Server<W> {
                     doc.text = change.text;
                     doc.version = p.text_document.version;
                     doc.view = None;
-                    doc.unpublished = true;
+                    if let Some(r) = self.running.remove(&uri) {
+                        r.stop.raise();
+                    }
                     Ok(())
                 }),
             "textDocument/didClose" => serde_json::from_value::<lt::DidCloseTextDocumentParams>(params)
                 .map_err(|e| e.to_string())
                 .and_then(|p| {
-                    self.docs.remove(p.text_document.uri.as_str());
+                    let uri = p.text_document.uri.as_str();
+                    self.docs.remove(uri);
+                    if let Some(r) = self.running.remove(uri) {
+                        r.stop.raise();
+                    }
+                    self.answer_waiting(uri).map_err(|e| e.to_string())?;
                     self.notify(
                         "textDocument/publishDiagnostics",
                         lt::PublishDiagnosticsParams {
@@ -443,50 +528,124 @@ impl<W: Write> Server<W> {
         Ok(Flow::Continue)
     }
 
-    /// The document with its view verified for its text as it is now.
-    fn fresh(&mut self, uri: &str) -> Option<&Doc> {
-        let request = Request { wanted: Vec::new(), files: Files::Refused, reader: crate::Audience::Api };
-        let (settings, tools) = (&self.settings, self.tools.as_ref());
-        let doc = self.docs.get_mut(uri)?;
-        if doc.view.is_none() {
-            doc.view = Some(settings.for_editor(&doc.name, doc.text.clone(), tools, &request));
+    /// The document a request asks about, if it is one that waits for its check.
+    fn waits_for_check(&self, method: &str, params: &Value) -> Option<String> {
+        if !self.initialized || self.shut_down {
+            return None;
         }
-        Some(doc)
+        if !matches!(method, "textDocument/hover" | "textDocument/codeAction") {
+            return None;
+        }
+        let uri = params.get("textDocument")?.get("uri")?.as_str()?;
+        matches!(self.lookup(uri), Lookup::Pending).then(|| uri.to_string())
     }
 
-    /// Verifies every changed document and publishes its diagnostics.
-    fn publish(&mut self) -> Result<(), Error> {
-        let waiting: Vec<String> =
-            self.docs.iter().filter(|(_, d)| d.unpublished).map(|(u, _)| u.clone()).collect();
-        for uri in waiting {
-            let Some(doc) = self.fresh(&uri) else { continue };
-            let diagnostics = doc
-                .view
-                .iter()
-                .flat_map(|v| &v.diagnostics)
-                .map(|d| lt::Diagnostic {
-                    range: word_range(&doc.text, d.line, d.column, 0),
-                    severity: Some(match d.severity {
-                        Severity::Error => lt::DiagnosticSeverity::ERROR,
-                        Severity::Information => lt::DiagnosticSeverity::INFORMATION,
-                    }),
-                    code: Some(lt::NumberOrString::String(d.code.clone())),
-                    source: Some("threadcheck".into()),
-                    message: d.message.clone(),
-                    ..lt::Diagnostic::default()
-                })
-                .collect();
-            let version = Some(doc.version);
-            let Ok(parsed) = uri.parse::<lt::Uri>() else { continue };
-            if let Some(d) = self.docs.get_mut(&uri) {
-                d.unpublished = false;
-            }
-            self.notify(
-                "textDocument/publishDiagnostics",
-                lt::PublishDiagnosticsParams { uri: parsed, diagnostics, version },
-            )?;
+    /// What a request finds of the document `uri`.
+    fn lookup(&self, uri: &str) -> Lookup<'_> {
+        match self.docs.get(uri) {
+            None => Lookup::Absent,
+            Some(d) if d.view.is_none() => Lookup::Pending,
+            Some(d) => Lookup::Ready(d),
+        }
+    }
+
+    /// Answers the requests that waited for `uri`'s check, in the order they came (the
+    /// document closed or the server shut down: with nothing).
+    fn answer_waiting(&mut self, uri: &str) -> Result<(), Error> {
+        let (now, later): (Vec<Waiting>, Vec<Waiting>) =
+            std::mem::take(&mut self.waiting).into_iter().partition(|w| w.uri == uri);
+        self.waiting = later;
+        for w in now {
+            let result = self.request(&w.method, w.params);
+            self.respond(w.id, result)?;
         }
         Ok(())
+    }
+
+    /// Stops every check under way and answers what waited for one.
+    fn stop_all(&mut self) {
+        for (_, r) in self.running.drain() {
+            r.stop.raise();
+        }
+        for w in std::mem::take(&mut self.waiting) {
+            let empty =
+                if w.method == "textDocument/codeAction" { Value::Array(Vec::new()) } else { Value::Null };
+            let _ = self.respond(w.id, Ok(empty));
+        }
+    }
+
+    /// Starts the checks of the documents changed and not being checked, while fewer than
+    /// [`MAX_CHECKS`] threads run.
+    fn start_checks(&mut self) {
+        if self.shut_down {
+            return;
+        }
+        let due: Vec<String> = self
+            .docs
+            .iter()
+            .filter(|(u, d)| d.view.is_none() && !self.running.contains_key(*u))
+            .map(|(u, _)| u.clone())
+            .collect();
+        for uri in due {
+            if self.alive >= MAX_CHECKS {
+                return;
+            }
+            let Some(doc) = self.docs.get(&uri) else { continue };
+            let (name, text, version) = (doc.name.clone(), doc.text.clone(), doc.version);
+            let (settings, tools, events) =
+                (Arc::clone(&self.settings), Arc::clone(&self.tools), self.events.clone());
+            let stop = crate::Cancel::new();
+            let mine = stop.clone();
+            let key = uri.clone();
+            let spawned = std::thread::Builder::new().name("threadcheck-lsp-check".into()).spawn(move || {
+                let request =
+                    Request { wanted: Vec::new(), files: Files::Refused, reader: crate::Audience::Api };
+                let checked = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                    mine.run(|| settings.for_editor(&name, text, (*tools).as_ref(), &request))
+                }));
+                // A check that panicked (a bug) is said on the document, not waited for forever.
+                let view = checked.unwrap_or_else(|_| {
+                    EditorView::unreadable(
+                        "threadcheck stopped unexpectedly checking this program: a bug, please report it"
+                            .into(),
+                        None,
+                    )
+                });
+                let view = (!mine.is_raised()).then_some(view);
+                let _ = events.send(Event::Checked { uri: key, version, view });
+            });
+            if spawned.is_ok() {
+                self.alive += 1;
+                self.running.insert(uri, Running { version, stop });
+            }
+        }
+    }
+
+    /// Publishes the diagnostics of `uri`'s checked view.
+    fn publish(&mut self, uri: &str) -> Result<(), Error> {
+        let Some(doc) = self.docs.get(uri) else { return Ok(()) };
+        let diagnostics = doc
+            .view
+            .iter()
+            .flat_map(|v| &v.diagnostics)
+            .map(|d| lt::Diagnostic {
+                range: word_range(&doc.text, d.line, d.column, 0),
+                severity: Some(match d.severity {
+                    Severity::Error => lt::DiagnosticSeverity::ERROR,
+                    Severity::Information => lt::DiagnosticSeverity::INFORMATION,
+                }),
+                code: Some(lt::NumberOrString::String(d.code.clone())),
+                source: Some("threadcheck".into()),
+                message: d.message.clone(),
+                ..lt::Diagnostic::default()
+            })
+            .collect();
+        let version = Some(doc.version);
+        let Ok(parsed) = uri.parse::<lt::Uri>() else { return Ok(()) };
+        self.notify(
+            "textDocument/publishDiagnostics",
+            lt::PublishDiagnosticsParams { uri: parsed, diagnostics, version },
+        )
     }
 }
 
