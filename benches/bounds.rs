@@ -96,7 +96,53 @@ fn main() {
     );
     // The interpreter at its block bound: a macro B loop that never ends (10 million blocks).
     let runaway = write(&dir, "runaway.nc", "#1=0\nWHILE[#1GE0]DO1\n#1=#1+1\nEND1\nM30\n");
+    // Klartext PATTERN DEF (issue 58: it was read in quadratic time, 16 000 points in 36 s): one
+    // of 9 999 points tapped, one of 16 000 (refused at the 10 000-hole bound) and one filling
+    // the 2 MiB input limit.
+    let pattern = |n: usize, limit: Option<usize>| {
+        let mut p = String::from(
+            "0 BEGIN PGM PAT MM\n1 TOOL CALL 2 Z S600\n2 L Z+100 R0 FMAX M3\n3 CYCL DEF 207 RIGID TAPPING NEW ~\n  Q200=+2 ~\n  Q201=-15 ~\n  Q239=+1.25 ~\n  Q203=+0 ~\n  Q204=+50\n4 PATTERN DEF ~\n",
+        );
+        let tail = "\n5 CYCL CALL PAT FMAX\n6 L Z+100 R0 FMAX M30\n7 END PGM PAT MM\n";
+        let mut i = 1;
+        loop {
+            let point = format!("  POS{i} (X+{} Y+{} Z+0)", i % 200, i / 200);
+            let full = limit.is_some_and(|l| p.len() + point.len() + 3 + tail.len() > l);
+            if i > n || full {
+                break;
+            }
+            if i > 1 {
+                p.push_str(" ~\n");
+            }
+            p.push_str(&point);
+            i += 1;
+        }
+        p.push_str(tail);
+        p
+    };
+    let pat9999 = write(&dir, "pattern-9999.h", &pattern(9_999, None));
+    let pat16000 = write(&dir, "pattern-16000.h", &pattern(16_000, None));
+    let pat_limit = write(&dir, "pattern-limit.h", &pattern(usize::MAX, Some(2 * 1024 * 1024)));
+    let tap_tools = write(&dir, "pattern-tools.toml", "[tools]\n2 = \"tap:M8x1.25-6H\"\n");
     let cases = vec![
+        Case {
+            what: "Klartext PATTERN DEF of 9 999 points, tapped (tap)",
+            bound: "10 000 holes",
+            args: s(&["tap", "--program", &pat9999, "--tools", &tap_tools]),
+            exit: 0,
+        },
+        Case {
+            what: "Klartext PATTERN DEF of 16 000 points (refused at the hole bound)",
+            bound: "10 000 holes",
+            args: s(&["tap", "--program", &pat16000, "--tools", &tap_tools]),
+            exit: 2,
+        },
+        Case {
+            what: "Klartext PATTERN DEF filling the input limit (refused at the hole bound)",
+            bound: "2 MiB of program",
+            args: s(&["tap", "--program", &pat_limit, "--tools", &tap_tools]),
+            exit: 2,
+        },
         Case {
             what: "Heidenhain G31 V1 of 1 000 cuts (verify)",
             bound: "1 000 passes",

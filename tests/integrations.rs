@@ -776,3 +776,36 @@ fn the_language_server_answers_while_a_document_is_checked() {
         c.notes
     );
 }
+
+/// Issue 58 item 6: an output that is a FIFO no program reads was opened and waited for forever
+/// (`--svg`, `--json-lines`, Python's `svg=`): it is given up after the stated 5 s with a line
+/// naming it, exit 2, and the run's other files are not written (all or none).
+#[cfg(unix)]
+#[test]
+fn an_output_fifo_with_no_reader_is_given_up() {
+    let dir = tempdir("fifo-out");
+    let lib = dir.join("lib");
+    std::fs::create_dir_all(&lib).unwrap();
+    std::fs::write(lib.join("shaft.nc"), failing_shaft()).unwrap();
+    assert!(Command::new("mkfifo").arg(dir.join("out.svg")).status().unwrap().success());
+    assert!(Command::new("mkfifo").arg(dir.join("out.jsonl")).status().unwrap().success());
+    let t = std::time::Instant::now();
+    let o = run_in(
+        &dir,
+        &["verify", "--thread", "M10x1.5-6g", "--insert", "full", "--svg", "out.svg", "--json", "r.json"],
+    );
+    let took = t.elapsed();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(
+        stderr(&o).trim_end(),
+        "threadcheck: error: out.svg: a FIFO that no program read within 5 s: nothing was written to it"
+    );
+    assert!(
+        took >= std::time::Duration::from_secs(5) && took < std::time::Duration::from_secs(8),
+        "{took:?}"
+    );
+    assert!(!dir.join("r.json").exists(), "all or none: the JSON waits for the FIFO");
+    let o = run_in(&dir, &["verify", "lib", "--json-lines", "out.jsonl"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("out.jsonl: a FIFO that no program read within 5 s"), "{}", stderr(&o));
+}

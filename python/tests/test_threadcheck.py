@@ -585,6 +585,11 @@ def test_outputs_never_replace_inputs_and_follow_the_cli_writer(tmp_path):
     threadcheck.verify("M10x1.5-6g", insert="full", svg=fifo)
     reader.join(10)
     assert stat_is_fifo(fifo) and got and b"<svg" in got[0][:400]
+    # Issue 58: a FIFO no program reads is given up after 5 s (it was waited for forever).
+    lonely = tmp_path / "lonely.svg"
+    os.mkfifo(lonely)
+    with pytest.raises(ValueError, match=r"lonely\.svg: a FIFO that no program read within 5 s"):
+        threadcheck.verify("M10x1.5-6g", insert="full", svg=lonely)
 
 
 def stat_is_fifo(path):

@@ -2,7 +2,8 @@
 //! same folder (`tempfile`), flush it to disk, then rename it over the target (atomic on one file
 //! system).
 //! A target that is not a regular file (a device such as `/dev/null`, a FIFO) is written in
-//! place: renaming over it would replace the device with a file.
+//! place: renaming over it would replace the device with a file. A FIFO that no program reads is
+//! given up after [`FIFO_WAIT`], never waited for forever.
 
 use crate::Error;
 use std::io::Write;
@@ -27,9 +28,7 @@ pub fn write_all_atomic(outputs: &[(PathBuf, Vec<u8>)]) -> Result<(), Error> {
     }
     for ((_, bytes), t) in outputs.iter().zip(&targets) {
         if let Target::Device { path } = t {
-            let io = |e: std::io::Error| Error::io(path.display(), e);
-            let mut f = std::fs::OpenOptions::new().write(true).open(path).map_err(io)?;
-            f.write_all(bytes).and_then(|()| f.flush()).map_err(io)?;
+            write_device(path, bytes)?;
         }
     }
     for t in targets {
@@ -38,6 +37,67 @@ pub fn write_all_atomic(outputs: &[(PathBuf, Vec<u8>)]) -> Result<(), Error> {
         }
     }
     Ok(())
+}
+
+/// How long an output that is a FIFO waits for a program to read it, and for a reader that has
+/// stopped taking bytes to take more: then the run gives up with an error (a named default).
+pub const FIFO_WAIT: std::time::Duration = std::time::Duration::from_secs(5);
+
+/// Writes `bytes` in place to a device or FIFO. A FIFO is opened without waiting (opening one
+/// that no program reads would wait forever): tried again for [`FIFO_WAIT`], then refused; a
+/// reader that stops taking bytes for as long is given up too.
+fn write_device(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    let io = |e: std::io::Error| Error::io(path.display(), e);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::{FileTypeExt, OpenOptionsExt};
+        if std::fs::metadata(path).is_ok_and(|m| m.file_type().is_fifo()) {
+            let wait = FIFO_WAIT.as_secs_f64();
+            let start = std::time::Instant::now();
+            let mut f = loop {
+                match std::fs::OpenOptions::new().write(true).custom_flags(libc::O_NONBLOCK).open(path) {
+                    Ok(f) => break f,
+                    // ENXIO: no program has the FIFO open for reading.
+                    Err(e) if e.raw_os_error() == Some(libc::ENXIO) => {
+                        if start.elapsed() >= FIFO_WAIT {
+                            return Err(Error::Input(format!(
+                                "{}: a FIFO that no program read within {wait} s: nothing was written to it",
+                                path.display()
+                            )));
+                        }
+                        std::thread::sleep(std::time::Duration::from_millis(20));
+                    }
+                    Err(e) => return Err(io(e)),
+                }
+            };
+            let (mut rest, mut progress) = (bytes, std::time::Instant::now());
+            while !rest.is_empty() {
+                match f.write(rest) {
+                    Ok(0) => return Err(io(std::io::ErrorKind::WriteZero.into())),
+                    Ok(n) => {
+                        rest = &rest[n..];
+                        progress = std::time::Instant::now();
+                    }
+                    Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => {
+                        if progress.elapsed() >= FIFO_WAIT {
+                            return Err(Error::Input(format!(
+                                "{}: the FIFO's reader took nothing for {wait} s: {} of {} bytes were written",
+                                path.display(),
+                                bytes.len() - rest.len(),
+                                bytes.len()
+                            )));
+                        }
+                        std::thread::sleep(std::time::Duration::from_millis(5));
+                    }
+                    Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+                    Err(e) => return Err(io(e)),
+                }
+            }
+            return Ok(());
+        }
+    }
+    let mut f = std::fs::OpenOptions::new().write(true).open(path).map_err(io)?;
+    f.write_all(bytes).and_then(|()| f.flush()).map_err(io)
 }
 
 /// Refuses an output that is one of the run's inputs (the same file, by any path): the files
