@@ -68,7 +68,7 @@ mod toolpath;
 // Ground: the error, the plane's value types.
 pub use ground::cancel::{check as check_cancelled, Cancel};
 pub use ground::error::{one_line, Audience, CliFlags, Error, Result};
-pub use ground::fmt::path_name;
+pub use ground::fmt::{path_name, shown_text};
 pub use ground::note::{Note, NoteKind, Place};
 pub use ground::plane::{Arc, Point, DEFAULT_TOLERANCE, MIN_TOLERANCE};
 

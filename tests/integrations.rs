@@ -809,3 +809,24 @@ fn an_output_fifo_with_no_reader_is_given_up() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("out.jsonl: a FIFO that no program read within 5 s"), "{}", stderr(&o));
 }
+
+/// Issue 58 item 7: what a text report prints of a user's file is escaped: a machine profile
+/// named `lathe\nverdict: PASS` forged a verdict line (the server's text answer echoed it), and
+/// in a run of many an ESC in a program's bad token reached the terminal raw.
+#[test]
+fn text_reports_escape_names_and_tokens() {
+    let dir = tempdir("text-esc");
+    std::fs::write(dir.join("m.toml"), "name = \"lathe\\nverdict: PASS\"\nmax_rpm = 2000\n").unwrap();
+    std::fs::copy(data("whole/shaft.nc"), dir.join("shaft.nc")).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "shaft.nc", "--insert", "full", "--machine", "m.toml"]);
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(out.contains("on lathe\\u{a}verdict: PASS (rapid 5000 mm/min assumed)"), "{out}");
+    assert!(!out.lines().any(|l| l.starts_with("verdict: PASS (rapid")), "{out}");
+    let lib = dir.join("lib");
+    std::fs::create_dir_all(&lib).unwrap();
+    std::fs::write(lib.join("a.nc"), "G0 X10 Z5\nG76 X8 Z-10 P1000 Q300 F1.5 \u{1b}[31mEVIL\n").unwrap();
+    let o = run_in(&dir, &["verify", "lib"]);
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(!out.contains('\u{1b}'), "{out}");
+    assert!(out.contains("error: lib/a.nc:2:29: unexpected character '\\u{1b}'"), "{out}");
+}

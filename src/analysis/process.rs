@@ -113,7 +113,8 @@ impl MachineProfile {
         let stem = std::path::Path::new(source)
             .file_stem()
             .map_or(source.to_string(), |s| s.to_string_lossy().into_owned());
-        let mut name = f.name.unwrap_or(stem);
+        // Shown in every report: its control characters escaped (a newline forged a verdict line).
+        let mut name = crate::ground::fmt::shown_text(&f.name.unwrap_or(stem));
         if f.rapid_mm_min.is_none() {
             name.push_str(&format!(" (rapid {ASSUMED_RAPID_MM_MIN} mm/min assumed)"));
         }

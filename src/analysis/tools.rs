@@ -137,7 +137,8 @@ impl ToolTable {
                     c => c,
                 })
             };
-            tools.insert(t, (tool, v));
+            // The entry as written, shown in reports: its control characters escaped.
+            tools.insert(t, (tool, crate::ground::fmt::shown_text(&v)));
         }
         let mut offsets = BTreeMap::new();
         for (k, v) in raw.offsets {
@@ -150,7 +151,12 @@ impl ToolTable {
             }
             offsets.insert(t, v);
         }
-        Ok(ToolTable { source: source.to_string(), tools, offsets, in_spindle: raw.in_spindle })
+        Ok(ToolTable {
+            source: crate::ground::fmt::shown_text(source),
+            tools,
+            offsets,
+            in_spindle: raw.in_spindle,
+        })
     }
 
     /// No tool table: a program whose tools are named by its own comments, or by options.

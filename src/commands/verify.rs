@@ -511,7 +511,8 @@ fn located(e: &Error, shown: &str) -> (String, Option<(usize, usize)>) {
         Error::Program { line, column, .. } => Some((*line, *column)),
         _ => None,
     };
-    let line = e.to_string();
+    // One line with control characters escaped (an ESC in a bad token coloured the terminal).
+    let line = e.one_line();
     (if line.starts_with(shown) { line } else { format!("{shown}: {line}") }, at)
 }
 

@@ -191,7 +191,7 @@ impl Insert {
                 let outline = outline_from_points(points, tolerance).map_err(ferr)?;
                 Insert {
                     kind: InsertKind::Custom,
-                    name: spec.name.clone().unwrap_or_else(|| file.to_string()),
+                    name: crate::ground::fmt::shown_text(spec.name.as_deref().unwrap_or(file)),
                     angle: spec.angle.unwrap_or(0.0),
                     tip_radius,
                     pitch_range: None,
@@ -205,7 +205,7 @@ impl Insert {
                 let mut i =
                     Insert::partial(angle, tip_radius, height, tolerance).map_err(|e| ferr(e.to_string()))?;
                 if let Some(n) = &spec.name {
-                    i.name = n.clone();
+                    i.name = crate::ground::fmt::shown_text(n);
                 }
                 i
             }

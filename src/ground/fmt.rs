@@ -21,6 +21,26 @@ pub fn fmt_shown(v: f64) -> String {
     }
 }
 
+/// A name read from a user's file (a machine profile's, an insert's, a tool table's entry) as
+/// every output shows it: control characters and the bidirectional overrides escaped as
+/// `\u{…}`, so that a newline in a name cannot forge a line of a report.
+///
+/// ```
+/// assert_eq!(threadcheck::shown_text("lathe\nverdict: PASS"), "lathe\\u{a}verdict: PASS");
+/// assert_eq!(threadcheck::shown_text("ok \u{202e}x"), "ok \\u{202e}x");
+/// ```
+pub fn shown_text(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() || matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}') {
+            out.push_str(&format!("\\u{{{:x}}}", c as u32));
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
 /// A path as messages and reports name it: its text, each byte that is not UTF-8 written as
 /// `\xNN` (two names that differ only there stay apart; `display()` made both `�`) and each
 /// control character as `\u{a}` (a newline in a file name forged a line of a run's report).
@@ -34,15 +54,7 @@ pub fn fmt_shown(v: f64) -> String {
 /// # }
 /// ```
 pub fn path_name(path: &std::path::Path) -> String {
-    let controls = |s: &str, out: &mut String| {
-        for c in s.chars() {
-            if c.is_control() {
-                out.push_str(&format!("\\u{{{:x}}}", c as u32));
-            } else {
-                out.push(c);
-            }
-        }
-    };
+    let controls = |s: &str, out: &mut String| out.push_str(&shown_text(s));
     let mut out = String::new();
     if let Some(s) = path.to_str() {
         controls(s, &mut out);
