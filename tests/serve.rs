@@ -531,6 +531,45 @@ fn idle_and_slow_connections_are_closed() {
     assert_error(&(answer.0, None, answer.1), 408, "did not arrive within 1 s");
 }
 
+/// Issue 58 item 8: a client trickling its body (a byte every 200 ms) held the only slot for
+/// the whole body timeout (10 s); it falls behind the minimum rate (16 KiB/s after a first
+/// second) at once and is answered 408 with its connection closed, about a second after its
+/// slot was taken, and the request queued behind it is answered.
+#[test]
+fn a_trickled_body_is_answered_408_and_frees_its_slot() {
+    use std::io::{Read, Write};
+    let s = start(&["--max-in-flight", "1", "--queue-wait", "5"]);
+    let addr = s.url.trim_start_matches("http://").trim_end_matches('/').to_string();
+    let mut tcp = std::net::TcpStream::connect(&addr).unwrap();
+    let t = std::time::Instant::now();
+    write!(
+        tcp,
+        "POST /api/limits HTTP/1.1\r\nHost: {addr}\r\nContent-Type: application/json\r\nContent-Length: 100\r\n\r\n"
+    )
+    .unwrap();
+    let trickle = std::thread::spawn(move || {
+        for b in b"{\"thread\": \"M10x1.5-6g\"" {
+            if tcp.write_all(&[*b]).is_err() {
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(200));
+        }
+        tcp.set_read_timeout(Some(std::time::Duration::from_secs(10))).unwrap();
+        let mut answer = Vec::new();
+        let _ = tcp.read_to_end(&mut answer);
+        String::from_utf8_lossy(&answer).into_owned()
+    });
+    std::thread::sleep(std::time::Duration::from_millis(100));
+    let queued = post(&s.url, "api/limits", r#"{"thread": "M10x1.5-6g"}"#);
+    let waited = t.elapsed();
+    assert_eq!(queued.0, 200, "{}", queued.2);
+    assert!(waited < std::time::Duration::from_secs(3), "the queued request waited {waited:?}");
+    let answer = trickle.join().unwrap();
+    assert!(answer.starts_with("HTTP/1.1 408"), "{answer}");
+    assert!(answer.to_ascii_lowercase().contains("connection: close"), "{answer}");
+    assert!(answer.contains("arrived slower than 16384 bytes a second"), "{answer}");
+}
+
 /// The server's resident memory, KiB (`VmRSS`, or `VmHWM` for the peak).
 fn memory_kib(pid: u32, field: &str) -> u64 {
     let status = std::fs::read_to_string(format!("/proc/{pid}/status")).unwrap();

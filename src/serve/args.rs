@@ -25,6 +25,10 @@ pub struct ServeArgs {
     /// Seconds a request's body may take to arrive once its turn has come (else 408).
     #[cfg_attr(feature = "cli", arg(long, value_name = "SECONDS", default_value_t = 10.0, value_parser = positive_seconds))]
     pub body_timeout: f64,
+    /// The slowest a request's body may arrive, bytes a second, after a first second (else 408
+    /// and the connection is closed).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "BYTES", default_value_t = super::MIN_BODY_RATE, value_parser = clap::value_parser!(u64).range(1..=1_000_000_000)))]
+    pub min_body_rate: u64,
     /// Connections open at once; past it the server accepts no more until one closes.
     #[cfg_attr(feature = "cli", arg(long, value_name = "N", default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=65536)))]
     pub max_connections: u32,
@@ -64,6 +68,7 @@ impl ServeArgs {
         options.queue_wait = std::time::Duration::from_secs_f64(self.queue_wait);
         options.header_timeout = std::time::Duration::from_secs_f64(self.header_timeout);
         options.body_timeout = std::time::Duration::from_secs_f64(self.body_timeout);
+        options.min_body_rate = self.min_body_rate;
         options.max_connections = self.max_connections as usize;
         options.allow_hosts = self.allow_host.clone();
         options

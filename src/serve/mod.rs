@@ -9,7 +9,8 @@
 //!
 //! Every error of every layer is JSON, `{"error": "<one line>", "status": N}`: 400 bad input,
 //! 403 a Host that is not this server's name, 404 no such command or page, 405 a method the
-//! path does not take, 408 a body not sent within [`ServeOptions::body_timeout`], 413 a body
+//! path does not take, 408 a body not sent within [`ServeOptions::body_timeout`] or arriving
+//! slower than [`ServeOptions::min_body_rate`] (the connection is closed), 413 a body
 //! over [`ServeOptions::body_limit`] (answered from `Content-Length` before any of the body is
 //! read), 414 a path over 2 KiB, 415 a body that is not `application/json`, 431 headers over
 //! 16 KiB, 503 when the requests in flight are at their bound for longer than the queue wait or
@@ -56,6 +57,10 @@ const STYLE: &str = include_str!("style.css");
 /// The largest request body the server takes by default, bytes (8 MiB).
 pub const MAX_BODY_BYTES: usize = 8 << 20;
 
+/// The slowest a request body may arrive by default, bytes a second (after a second of grace):
+/// 16 KiB/s, which the largest body meets in 10 minutes and a program of a few kilobytes at once.
+pub const MIN_BODY_RATE: u64 = 16 << 10;
+
 /// The longest request target (path and query) answered, bytes.
 pub const MAX_URI_BYTES: usize = 2 << 10;
 
@@ -86,6 +91,10 @@ pub struct ServeOptions {
     pub header_timeout: Duration,
     /// How long a request's body may take to arrive once its turn has come.
     pub body_timeout: Duration,
+    /// The slowest a body may arrive once its turn has come, bytes a second, after a first
+    /// second of grace: a body that falls behind is answered 408 and its connection closed, so
+    /// that a client trickling its body cannot hold a slot for the whole `body_timeout`.
+    pub min_body_rate: u64,
     /// Connections open at once.
     pub max_connections: usize,
     /// Host names the server answers besides its own address and `localhost` (`--allow-host`):
@@ -106,6 +115,7 @@ impl Default for ServeOptions {
             time_budget: Duration::from_secs(10),
             header_timeout: Duration::from_secs(5),
             body_timeout: Duration::from_secs(10),
+            min_body_rate: MIN_BODY_RATE,
             max_connections: 256,
             allow_hosts: Vec::new(),
         }
@@ -362,6 +372,57 @@ impl Drop for RaiseOnDrop {
     }
 }
 
+/// Why a request body was not read whole.
+enum BodyFault {
+    TooLarge,
+    /// Past the body timeout, or behind the minimum rate: the message says which.
+    Slow(String),
+    Unreadable(String),
+}
+
+/// Reads a request body within the options' bounds: at most `body_limit` bytes, all of it
+/// within `body_timeout`, and at every moment after the first second at least `min_body_rate`
+/// bytes a second on average since the slot was taken.
+async fn read_body(mut body: Body, options: &ServeOptions) -> Result<Vec<u8>, BodyFault> {
+    use axum::body::HttpBody;
+    let start = tokio::time::Instant::now();
+    let end = start + options.body_timeout;
+    let rate = options.min_body_rate.max(1) as f64;
+    let mut got: Vec<u8> = Vec::new();
+    loop {
+        // When the bytes so far stop being enough: a second of grace, then `rate` a second.
+        let behind = start + Duration::from_secs(1) + Duration::from_secs_f64(got.len() as f64 / rate);
+        let deadline = behind.min(end);
+        let frame = std::future::poll_fn(|cx| std::pin::Pin::new(&mut body).poll_frame(cx));
+        match tokio::time::timeout_at(deadline, frame).await {
+            Err(_) if deadline == end => {
+                return Err(BodyFault::Slow(format!(
+                    "the request body did not arrive within {} s",
+                    options.body_timeout.as_secs_f64()
+                )))
+            }
+            Err(_) => {
+                return Err(BodyFault::Slow(format!(
+                    "the request body arrived slower than {} bytes a second ({} bytes in {:.1} s): the connection is closed",
+                    options.min_body_rate,
+                    got.len(),
+                    start.elapsed().as_secs_f64()
+                )))
+            }
+            Ok(None) => return Ok(got),
+            Ok(Some(Err(e))) => return Err(BodyFault::Unreadable(crate::one_line(&e.to_string()))),
+            Ok(Some(Ok(frame))) => {
+                if let Ok(data) = frame.into_data() {
+                    if got.len() + data.len() > options.body_limit {
+                        return Err(BodyFault::TooLarge);
+                    }
+                    got.extend_from_slice(&data);
+                }
+            }
+        }
+    }
+}
+
 /// One API request: checked, queued for a permit, its body read, computed on the blocking pool
 /// within the time budget, answered.
 async fn answer(shared: Arc<Shared>, command: &str, document: &str, req: Request) -> Response {
@@ -402,31 +463,20 @@ async fn answer(shared: Arc<Shared>, command: &str, document: &str, req: Request
             }
         };
     // The body is read only now, with a slot: the bodies in memory are bounded by the slots.
-    let body =
-        match tokio::time::timeout(shared.options.body_timeout, axum::body::to_bytes(req.into_body(), limit))
-            .await
-        {
-            Err(_) => {
-                return error(
-                    StatusCode::REQUEST_TIMEOUT,
-                    format!(
-                        "the request body did not arrive within {} s",
-                        shared.options.body_timeout.as_secs_f64()
-                    ),
-                )
-            }
-            Ok(Err(e)) => {
-                // http-body-util's LengthLimitError, as axum's to_bytes words it.
-                let over = e.to_string().contains("length limit exceeded");
-                return if over {
-                    too_large()
-                } else {
-                    error(StatusCode::BAD_REQUEST, format!("the request body could not be read: {e}"))
-                };
-            }
-            Ok(Ok(b)) => b,
-        };
-    let Ok(args) = String::from_utf8(body.to_vec()) else {
+    let body = match read_body(req.into_body(), &shared.options).await {
+        Ok(b) => b,
+        Err(BodyFault::TooLarge) => return too_large(),
+        Err(BodyFault::Slow(why)) => {
+            let mut r = error(StatusCode::REQUEST_TIMEOUT, why);
+            // The slot is freed now and the connection is not read on.
+            r.headers_mut().insert(header::CONNECTION, HeaderValue::from_static("close"));
+            return r;
+        }
+        Err(BodyFault::Unreadable(e)) => {
+            return error(StatusCode::BAD_REQUEST, format!("the request body could not be read: {e}"))
+        }
+    };
+    let Ok(args) = String::from_utf8(body) else {
         return error(StatusCode::BAD_REQUEST, "the request body is not UTF-8 text".into());
     };
     let stop = Cancel::new();
