@@ -570,6 +570,105 @@ fn a_trickled_body_is_answered_408_and_frees_its_slot() {
     assert!(answer.contains("arrived slower than 16384 bytes a second"), "{answer}");
 }
 
+/// Issue 58 item 8: `docs/api.md`'s `curl` examples run as written (all three got 415: they sent
+/// no `Content-Type`): each against a server here, in a folder whose `request.json` holds the
+/// second example's object; each answer is the command's document, not an error.
+#[test]
+fn the_api_guide_s_curl_examples_run() {
+    let found = Command::new("curl").arg("--version").output();
+    assert!(
+        found.is_ok_and(|o| o.status.success()),
+        "curl is needed to run docs/api.md's examples: install it"
+    );
+    let guide = std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/api.md"))
+        .unwrap();
+    let examples = guide
+        .split("### Examples")
+        .nth(1)
+        .unwrap()
+        .split("```sh\n")
+        .nth(1)
+        .unwrap()
+        .split("```")
+        .next()
+        .unwrap();
+    // A line ending inside a quote goes on with the next one, as a shell reads it.
+    let mut lines: Vec<String> = Vec::new();
+    for l in examples.lines() {
+        match lines.last_mut() {
+            Some(last) if last.matches('\'').count() % 2 == 1 => {
+                last.push('\n');
+                last.push_str(l);
+            }
+            _ => lines.push(l.to_string()),
+        }
+    }
+    assert_eq!(lines.len(), 3, "{lines:?}");
+    let s = start(&[]);
+    let addr = s.url.trim_start_matches("http://").trim_end_matches('/');
+    let dir = tempdir("api-examples");
+    let second = lines[1].split("-d '").nth(1).unwrap().trim_end_matches('\'');
+    std::fs::write(dir.join("request.json"), second).unwrap();
+    for line in &lines {
+        let o = Command::new("sh")
+            .arg("-c")
+            .arg(line.replace("localhost:8080", addr))
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{line}: {}", String::from_utf8_lossy(&o.stderr));
+        let out = String::from_utf8_lossy(&o.stdout).into_owned();
+        if line.contains("> post-fixed.nc") {
+            let fixed = std::fs::read_to_string(dir.join("post-fixed.nc")).unwrap();
+            assert!(fixed.starts_with("G0 X24 Z5\n") && fixed.contains("G76 X"), "{line}: {fixed}");
+        } else {
+            let v: serde_json::Value =
+                serde_json::from_str(&out).unwrap_or_else(|e| panic!("{line}: {e}: {out}"));
+            assert!(v.get("error").is_none(), "{line}: {out}");
+        }
+    }
+}
+
+/// Issue 58 item 8: `GET /api` lists only what each command serves (verify listed SARIF, JUnit
+/// and JSON Lines, and each was answered 400): every listed document of verify and limits is
+/// answered 200, and a run of many's document is 404 naming the command line that makes it.
+#[test]
+fn the_api_serves_every_document_it_lists() {
+    let s = start(&[]);
+    let (status, index) = get(&s.url, "api");
+    assert_eq!(status, 200);
+    let index: serde_json::Value = serde_json::from_str(&index).unwrap();
+    for (command, body) in [
+        (
+            "verify",
+            r#"{"thread": "M10x1.5-6g", "insert": "full", "program": "G0 X12 Z5\nG76 P010060 Q100 R0\nG76 X8.16 Z-20 P920 Q300 F1.5\n"}"#,
+        ),
+        ("limits", r#"{"thread": "M10x1.5-6g"}"#),
+    ] {
+        let listed = index["commands"].as_array().unwrap().iter().find(|c| c["command"] == command).unwrap();
+        let documents: Vec<&str> =
+            listed["documents"].as_array().unwrap().iter().map(|d| d.as_str().unwrap()).collect();
+        assert!(!documents.is_empty());
+        for d in &documents {
+            let path = if *d == "json" { format!("api/{command}") } else { format!("api/{command}/{d}") };
+            let (status, _, answer) = post(&s.url, &path, body);
+            assert_eq!(status, 200, "{path}: {answer}");
+        }
+        assert!(
+            !documents.contains(&"sarif")
+                && !documents.contains(&"junit")
+                && !documents.contains(&"json-lines")
+        );
+    }
+    let (status, _, answer) =
+        post(&s.url, "api/verify/sarif", r#"{"thread": "M10x1.5-6g", "insert": "full"}"#);
+    assert_error(
+        &(status, None, answer),
+        404,
+        "made on the command line (threadcheck verify FOLDER --sarif)",
+    );
+}
+
 /// The server's resident memory, KiB (`VmRSS`, or `VmHWM` for the peak).
 fn memory_kib(pid: u32, field: &str) -> u64 {
     let status = std::fs::read_to_string(format!("/proc/{pid}/status")).unwrap();

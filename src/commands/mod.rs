@@ -113,6 +113,12 @@ pub enum Document {
 }
 
 impl Document {
+    /// Whether this is a run of many programs' document (JSON Lines, SARIF, JUnit XML): made by
+    /// `verify FOLDER` on the command line, never by the API, which verifies one program.
+    pub fn of_many(self) -> bool {
+        matches!(self, Document::JsonLines | Document::Sarif | Document::Junit)
+    }
+
     /// Every document, in the order the documentation lists them.
     pub const ALL: [Document; 9] = [
         Document::Json,
@@ -381,6 +387,33 @@ macro_rules! commands {
                 &[]
             }
 
+            /// The documents the API (and Python) serve of command `name`: its documents but
+            /// a run of many's (JSON Lines, SARIF, JUnit), which `verify FOLDER` makes on the
+            /// command line.
+            pub fn api_documents(name: &str) -> Vec<Document> {
+                Command::documents_of(name).iter().copied().filter(|d| !d.of_many()).collect()
+            }
+
+            /// Whether the API serves `document` of command `name`; else why not, naming what
+            /// it serves.
+            pub fn served(name: &str, document: Document) -> Result<(), Error> {
+                let served = Command::api_documents(name);
+                if served.contains(&document) {
+                    return Ok(());
+                }
+                let names: Vec<&str> = served.iter().map(|d| d.name()).collect();
+                let why = if document.of_many() && Command::documents_of(name).contains(&document) {
+                    format!(
+                        "{} is a run of many programs' document, made on the command line (threadcheck {name} FOLDER --{}); the API verifies one program",
+                        document.name(),
+                        document.name()
+                    )
+                } else {
+                    format!("{name} gives no {} document", document.name())
+                };
+                Err(Error::Input(format!("{why}: {name} gives {}", names.join(", "))))
+            }
+
             /// The keys the API command `name` takes (Python's keyword arguments).
             pub fn keys(name: &str) -> Result<Vec<&'static str>, Error> {
                 $($(if name == $api { return Ok(<$args as ApiArgs>::keys()); })?)*
@@ -458,14 +491,7 @@ pub fn run_request(
     files: Files,
 ) -> Result<(String, Outcome), Error> {
     let command = Command::from_api(name, args)?;
-    if !command.documents().contains(&document) {
-        let names: Vec<&str> = command.documents().iter().map(|d| d.name()).collect();
-        return Err(Error::Input(format!(
-            "{name} gives no {} document: it gives {}",
-            document.name(),
-            names.join(", ")
-        )));
-    }
+    Command::served(name, document)?;
     let out = command.run(&Request::api(document, files))?;
     let body = out
         .document(document)

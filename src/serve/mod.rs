@@ -342,7 +342,8 @@ async fn api_index() -> Response {
             serde_json::json!({
                 "command": name,
                 "keys": Command::keys(name).unwrap_or_default(),
-                "documents": Command::documents_of(name).iter().map(|d| d.name()).collect::<Vec<_>>(),
+                // What the API serves: a run of many's documents are the command line's.
+                "documents": Command::api_documents(name).iter().map(|d| d.name()).collect::<Vec<_>>(),
             })
         })
         .collect();
@@ -434,6 +435,11 @@ async fn answer(shared: Arc<Shared>, command: &str, document: &str, req: Request
         Ok(d) => d,
         Err(e) => return error(StatusCode::NOT_FOUND, e.to_string()),
     };
+    // Only what `GET /api` lists for the command (it listed SARIF, JUnit and JSON Lines for
+    // verify, and each was answered 400).
+    if let Err(e) = Command::served(&command, document) {
+        return error(StatusCode::NOT_FOUND, e.to_string());
+    }
     let limit = shared.options.body_limit;
     let too_large =
         || error(StatusCode::PAYLOAD_TOO_LARGE, format!("the request body is larger than {limit} bytes"));
