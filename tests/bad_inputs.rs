@@ -53,3 +53,52 @@ fn every_bad_input_gives_its_one_line_error() {
     let after: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(before, after, "a case left a file behind");
 }
+
+/// Issue 58 item 9: the 65th subprogram file's refusal had no place; it names the call's
+/// `file:line:column` (line 66: the first line sets the plane, the calls follow).
+#[test]
+fn the_sixty_fifth_subprogram_file_is_refused_at_its_call() {
+    let dir = tempdir("sub-files");
+    let mut main = String::from("G18 G21 G90\n");
+    for i in 1..=70 {
+        std::fs::write(dir.join(format!("s{i}.ngc")), format!("o<s{i}> sub\nG0 X1\no<s{i}> endsub\n"))
+            .unwrap();
+        main.push_str(&format!("o<s{i}> call\n"));
+    }
+    main.push_str("M2\n");
+    std::fs::write(dir.join("main.ngc"), main).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "main.ngc"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr(&o).trim_end(),
+        "threadcheck: error: main.ngc:66:1: more than 64 subprogram files for one program: s65.ngc is one too many"
+    );
+}
+
+/// Issue 58 item 9: a file named as a table that is no table (here a system file's kind of
+/// line) is refused at its place with the reader's message alone: its text was quoted in the
+/// error (`| 1 | root:x:0:0:…`), through the command line and the language server's
+/// `tools_file` alike.
+#[test]
+fn a_file_that_is_no_table_is_not_quoted() {
+    let dir = tempdir("no-table");
+    std::fs::write(dir.join("passwd"), "root:x:0:0:secret-gecos:/root:/bin/bash\n").unwrap();
+    std::fs::copy(data("whole/shaft.nc"), dir.join("shaft.nc")).unwrap();
+    for flag in ["--tools", "--machine"] {
+        let o = run_in(&dir, &["verify", "--program", "shaft.nc", flag, "passwd"]);
+        assert_eq!(o.status.code(), Some(2));
+        assert_eq!(
+            stderr(&o).trim_end(),
+            "threadcheck: error: passwd:1:40: key with no value, expected `=`",
+            "{flag}"
+        );
+    }
+    let framed = |s: &str| format!("Content-Length: {}\r\n\r\n{s}", s.len());
+    let init = serde_json::json!({"jsonrpc": "2.0", "id": 1, "method": "initialize",
+        "params": {"capabilities": {}, "initializationOptions": {"tools_file": dir.join("passwd").display().to_string()}}});
+    let input = [framed(&init.to_string()), framed(r#"{"jsonrpc":"2.0","method":"exit"}"#)].concat();
+    let mut out = Vec::new();
+    threadcheck::lsp_run(std::io::Cursor::new(input.into_bytes()), &mut out).unwrap();
+    let out = String::from_utf8(out).unwrap();
+    assert!(out.contains("key with no value") && !out.contains("secret-gecos"), "{out}");
+}

@@ -314,7 +314,7 @@ fn api_errors_are_one_json_line_with_their_status() {
     assert_error(&post(&s.url, "api/shutdown", "{}"), 404, "unknown command 'shutdown'");
     assert_error(
         &post(&s.url, "api/limits/svg", r#"{"thread": "M10x1.5-6g"}"#),
-        400,
+        404,
         "limits gives no svg document",
     );
     let cli = run(&["verify", "--thread", "M10x1.5-6q"]);

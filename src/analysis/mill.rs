@@ -216,7 +216,8 @@ impl Target {
     /// Reads a target from TOML text; `source` names it in messages.
     pub fn from_toml(text: &str, source: &str) -> Result<Target, Error> {
         let ferr = |m: String| Error::File { file: source.to_string(), message: m };
-        let raw: RawTarget = toml::from_str(text).map_err(|e| ferr(e.to_string().replace('\n', " ")))?;
+        let raw: RawTarget =
+            toml::from_str(text).map_err(|e| crate::ground::error::toml_error(&e, text, source))?;
         let [t0, t1] = raw.t;
         if !(t0.is_finite() && t1.is_finite() && t0 < t1) {
             return Err(ferr(format!("t = [{t0}, {t1}]: the range must be finite and increasing")));

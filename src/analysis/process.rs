@@ -106,10 +106,7 @@ impl MachineProfile {
             machine_type: Option<crate::gcode::MachineType>,
         }
         let arg = source;
-        let f: File = toml::from_str(text).map_err(|e| Error::File {
-            file: arg.to_string(),
-            message: crate::ground::error::one_line(&e.to_string()),
-        })?;
+        let f: File = toml::from_str(text).map_err(|e| crate::ground::error::toml_error(&e, text, arg))?;
         let stem = std::path::Path::new(source)
             .file_stem()
             .map_or(source.to_string(), |s| s.to_string_lossy().into_owned());

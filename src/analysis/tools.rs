@@ -82,7 +82,8 @@ impl ToolTable {
     /// ```
     pub fn from_toml(text: &str, source: &str, dir: &Path) -> Result<ToolTable, Error> {
         let ferr = |m: String| Error::File { file: source.to_string(), message: m };
-        let raw: Raw = toml::from_str(text).map_err(|e| ferr(e.to_string().replace('\n', " ")))?;
+        let raw: Raw =
+            toml::from_str(text).map_err(|e| crate::ground::error::toml_error(&e, text, source))?;
         let mut tools = BTreeMap::new();
         for (k, v) in raw.tools {
             let t: u32 = k

@@ -856,9 +856,21 @@ fn read_sub_files(
             let Some(found) = (finder.0)(&name) else { continue };
             let (shown, text) = found?;
             if names.len() > MAX_SUB_FILES {
-                return Err(Error::Input(format!(
+                let message = format!(
                     "more than {MAX_SUB_FILES} subprogram files for one program: {shown} is one too many"
-                )));
+                );
+                // Refused at the call's place (the first block that calls it).
+                let call =
+                    blocks.iter().find(|b| missing_subs(std::slice::from_ref(b), dialect).contains(&name));
+                return Err(match call {
+                    Some(b) => Error::Program {
+                        file: names.get(b.file).cloned().unwrap_or_default(),
+                        line: b.line,
+                        column: b.col,
+                        message,
+                    },
+                    None => Error::Input(message),
+                });
             }
             let k = names.len();
             let mut sub = lexer::lex(&text, dialect).map_err(|(line, column, message)| Error::Program {

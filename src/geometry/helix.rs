@@ -92,7 +92,8 @@ impl Cutter {
     /// ```
     pub fn from_toml(text: &str, source: &str) -> Result<Cutter, Error> {
         let ferr = |m: String| Error::File { file: source.to_string(), message: m };
-        let f: CutterFile = toml::from_str(text).map_err(|e| ferr(e.to_string().replace('\n', " ")))?;
+        let f: CutterFile =
+            toml::from_str(text).map_err(|e| crate::ground::error::toml_error(&e, text, source))?;
         if f.kind != "thread-mill" {
             return Err(ferr(format!(
                 "kind = \"{}\": a thread mill's file says kind = \"thread-mill\"",

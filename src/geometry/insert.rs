@@ -175,16 +175,8 @@ impl Insert {
     /// Reads a custom insert from TOML text (see `profiles/inserts/`). `file` names it in errors.
     pub fn from_toml(text: &str, file: &str, tolerance: f64) -> Result<Insert, Error> {
         let ferr = |m: String| Error::File { file: file.to_string(), message: m };
-        let spec: InsertFile = toml::from_str(text).map_err(|e| {
-            let msg = e.message().to_string();
-            match e.span() {
-                Some(sp) => {
-                    let (line, col) = line_col(text, sp.start);
-                    Error::File { file: format!("{file}:{line}:{col}"), message: msg }
-                }
-                None => ferr(msg),
-            }
-        })?;
+        let spec: InsertFile =
+            toml::from_str(text).map_err(|e| crate::ground::error::toml_error(&e, text, file))?;
         let tip_radius = spec.tip_radius.unwrap_or(0.0);
         let mut ins = match (&spec.outline, spec.angle) {
             (Some(points), _) => {
@@ -278,13 +270,6 @@ struct InsertFile {
     /// Points `[z, r]` or `[z, r, bulge]`: a bulge b ≠ 0 makes the edge to the next point an arc
     /// of included angle 4·atan(b), counter-clockwise for b > 0 (the DXF convention).
     outline: Option<Vec<Vec<f64>>>,
-}
-
-fn line_col(text: &str, byte: usize) -> (usize, usize) {
-    let before = &text[..byte.min(text.len())];
-    let line = before.matches('\n').count() + 1;
-    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, col)
 }
 
 fn outline_from_points(points: &[Vec<f64>], tolerance: f64) -> Result<Vec<Point>, String> {

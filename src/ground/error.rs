@@ -247,6 +247,22 @@ fn escape_into(out: &mut String, chars: impl Iterator<Item = char>) {
     }
 }
 
+/// A user's TOML file that cannot be read (a tool table, insert, thread mill, machine profile,
+/// target), located at `file:line:column` with the reader's message alone: never the file's
+/// text, which may be a file that is no table at all (a system file named by mistake).
+pub fn toml_error(e: &toml::de::Error, text: &str, file: &str) -> Error {
+    let message = one_line(e.message());
+    match e.span() {
+        Some(span) => {
+            let before = text.get(..span.start.min(text.len())).unwrap_or("");
+            let line = before.matches('\n').count() + 1;
+            let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+            Error::Program { file: file.to_string(), line, column, message }
+        }
+        None => Error::File { file: file.to_string(), message },
+    }
+}
+
 /// Shorthand for results in this crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 

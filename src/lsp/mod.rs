@@ -416,7 +416,13 @@ impl<W: Write> Server<W> {
         };
         if let Some(path) = options.remove("tools_file") {
             let path = path.as_str().ok_or("tools_file must be a path")?;
-            let text = std::fs::read_to_string(path).map_err(|e| format!("tools_file {path}: {e}"))?;
+            // Through the bounded reader, as every file: a FIFO or /dev/zero named here is given up.
+            let text = crate::ground::input::read_text_bounded(
+                std::path::Path::new(path),
+                crate::ground::bounds::MAX_DATA_FILE_BYTES,
+                "a tool table",
+            )
+            .map_err(|e| format!("tools_file: {}", e.one_line()))?;
             options.insert("tools".into(), Value::String(text));
         }
         let subroutine_path = match options.remove("subroutine_path") {
