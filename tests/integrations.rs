@@ -830,3 +830,16 @@ fn text_reports_escape_names_and_tokens() {
     assert!(!out.contains('\u{1b}'), "{out}");
     assert!(out.contains("error: lib/a.nc:2:29: unexpected character '\\u{1b}'"), "{out}");
 }
+
+/// Found by the `lsp` fuzz target (issue 58): a header line whose bytes are not UTF-8 (read as
+/// U+FFFD, three bytes each) across its 15th byte panicked the framing reader, which sliced
+/// it there; the stream is refused as broken, exit 1.
+#[test]
+fn regression_lsp_header_of_invalid_bytes_panicked() {
+    let mut input = b"CA{noC\nME".to_vec();
+    input.extend([0xff; 61]);
+    input.extend(b"a}");
+    let mut out = Vec::new();
+    let code = threadcheck::lsp_run(std::io::Cursor::new(input), &mut out).unwrap();
+    assert_eq!(code, 1);
+}

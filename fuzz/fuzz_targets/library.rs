@@ -38,7 +38,13 @@ fuzz_target!(|data: &[u8]| {
         let path = dir.join(std::ffi::OsStr::from_bytes(&name));
         let _ = match kind % 7 {
             0 => std::fs::create_dir(dir.join(format!("d{a}"))).map(|()| dirs.push(dir.join(format!("d{a}")))),
-            1 | 2 => std::fs::write(&path, TEXTS[b as usize % TEXTS.len()]).map(|()| files.push(path.clone())),
+            // A new file only: writing to a FIFO made before would wait for a reader.
+            1 | 2 => std::fs::OpenOptions::new()
+                .write(true)
+                .create_new(true)
+                .open(&path)
+                .and_then(|mut f| std::io::Write::write_all(&mut f, TEXTS[b as usize % TEXTS.len()].as_bytes()))
+                .map(|()| files.push(path.clone())),
             3 if !files.is_empty() => std::os::unix::fs::symlink(&files[a as usize % files.len()], &path),
             4 => std::os::unix::fs::symlink(&dirs[a as usize % dirs.len()], dir.join(format!("l{a}"))),
             5 => std::os::unix::fs::symlink(root.join("missing"), &path),

@@ -69,7 +69,9 @@ impl<R: BufRead> Framed<R> {
                 }
                 self.resync = false;
             }
-            let is_length = line.len() > 15 && line[..15].eq_ignore_ascii_case("content-length:");
+            // By `get`: a header of other bytes may hold a character across byte 15 (a fuzzed
+            // header of 0xFF bytes, read as U+FFFD, panicked here).
+            let value = line.get(..15).filter(|h| h.eq_ignore_ascii_case("content-length:")).and_then(|_| line.get(15..));
             if line.is_empty() {
                 if first {
                     continue;
@@ -77,8 +79,8 @@ impl<R: BufRead> Framed<R> {
                 break;
             }
             first = false;
-            if is_length {
-                let n = line[15..].trim();
+            if let Some(n) = value {
+                let n = n.trim();
                 length = Some(n.parse().map_err(|_| {
                     broken(format!("Content-Length '{}' is not a length", crate::ground::error::one_line(n)))
                 })?);
