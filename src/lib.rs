@@ -126,15 +126,14 @@ pub use analysis::naming::{
 };
 pub use analysis::picture::{Cut, Deviation, Picture};
 pub use analysis::process::MachineProfile;
+pub use analysis::program::{verify_program, verify_whole, Milled, Process, ProgramVerification};
 pub use analysis::tapping::{tapping, TapCheck, TapFeature, TapReport, TapSpec, TappedHole};
 pub use analysis::threadmill::{thread_mill, ThreadMillReport, ThreadMillSpec};
-pub use analysis::tools::{Tool, ToolTable};
+pub use analysis::tools::{InsertChoice, Tool, ToolTable};
 pub use analysis::verify::{
     default_blank, default_pass_count, program_passes, read_program_text, reference_groove, text_of, verify,
-    verify_program, InsertChoice, ProgramLabel, ProgramSource, ProgramVerification, Units, Verification,
-    VerifySpec,
+    ProgramLabel, ProgramSource, Units, Verification, VerifySpec,
 };
-pub use analysis::whole::{verify_whole, Milled, Process};
 
 pub use lsp::{lsp, run as lsp_run, LspArgs, MAX_OPEN_DOCUMENTS};
 pub use serve::{router, serve, ServeArgs, ServeOptions};

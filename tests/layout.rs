@@ -287,3 +287,145 @@ fn every_api_key_is_a_flag_of_its_command() {
         }
     }
 }
+
+/// The module path of each file of `src/` (`analysis/verify.rs` → `analysis::verify`,
+/// `gcode/mod.rs` → `gcode`), with the file.
+fn modules() -> Vec<(String, String)> {
+    src_code()
+        .into_iter()
+        .map(|(rel, _)| {
+            let m = rel.trim_end_matches(".rs").trim_end_matches("/mod").replace('/', "::");
+            (m, rel)
+        })
+        .collect()
+}
+
+/// The files of `src/` each file's code names (by `crate::…`, `super::…` and braced `use` lists,
+/// to the deepest module a path names), unit tests left out. A module's own `mod.rs` naming its
+/// children by their bare names is not an import: a parent holding its children is no circle.
+fn imports() -> std::collections::BTreeMap<String, std::collections::BTreeSet<String>> {
+    let mods: std::collections::BTreeSet<String> = modules().into_iter().map(|(m, _)| m).collect();
+    let deepest = |parts: &[String]| -> Option<String> {
+        (1..=parts.len()).rev().map(|k| parts[..k].join("::")).find(|c| mods.contains(c))
+    };
+    let ident = |s: &str| {
+        s.chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_' || *c == ':').collect::<String>()
+    };
+    let mut out = std::collections::BTreeMap::new();
+    for (rel, text) in src_code() {
+        let me = rel.trim_end_matches(".rs").trim_end_matches("/mod").replace('/', "::");
+        let is_mod = rel.ends_with("mod.rs") || rel == "lib.rs";
+        let parent: Vec<String> = if is_mod {
+            me.split("::").map(String::from).collect()
+        } else {
+            let v: Vec<String> = me.split("::").map(String::from).collect();
+            v[..v.len() - 1].to_vec()
+        };
+        let mut deps = std::collections::BTreeSet::new();
+        for (prefix, base) in [
+            ("crate::", Vec::new()),
+            ("super::", parent[..parent.len().saturating_sub(usize::from(is_mod))].to_vec()),
+        ] {
+            for (i, _) in text.match_indices(prefix) {
+                if text[..i].ends_with(|c: char| c.is_ascii_alphanumeric() || c == '_' || c == ':') {
+                    continue;
+                }
+                let rest = &text[i + prefix.len()..];
+                let path = ident(rest);
+                let path = path.trim_end_matches(':');
+                let mut parts: Vec<String> = base.clone();
+                parts.extend(path.split("::").filter(|p| !p.is_empty()).map(String::from));
+                // `crate::analysis::{verify, tools::Tool}`: each braced item.
+                let after = &rest[path.len()..];
+                if let Some(list) = after.strip_prefix("::{").and_then(|l| l.split('}').next()) {
+                    for item in list.split(',') {
+                        let mut p = parts.clone();
+                        p.extend(ident(item.trim()).split("::").filter(|s| !s.is_empty()).map(String::from));
+                        if let Some(m) = deepest(&p) {
+                            deps.insert(m);
+                        }
+                    }
+                }
+                if let Some(m) = deepest(&parts) {
+                    deps.insert(m);
+                }
+            }
+        }
+        deps.remove(&me);
+        out.insert(me, deps);
+    }
+    out
+}
+
+/// Issue 60: no import circle between the files of `src/` (the five files of `analysis/` and
+/// `commands/args.rs` with `commands/verify.rs` made two): each circle found is named.
+#[test]
+fn no_file_imports_itself_round_a_circle() {
+    let graph = imports();
+    assert!(
+        graph.get("analysis::verify").is_some_and(|d| d.contains("analysis::check")),
+        "the imports were not read: {:?}",
+        graph.get("analysis::verify")
+    );
+    // Tarjan's strongly connected components: each of more than one file is a circle.
+    struct T<'a> {
+        g: &'a std::collections::BTreeMap<String, std::collections::BTreeSet<String>>,
+        index: std::collections::HashMap<&'a str, usize>,
+        low: std::collections::HashMap<&'a str, usize>,
+        stack: Vec<&'a str>,
+        on: std::collections::HashSet<&'a str>,
+        circles: Vec<Vec<&'a str>>,
+    }
+    fn visit<'a>(t: &mut T<'a>, v: &'a str) {
+        let n = t.index.len();
+        t.index.insert(v, n);
+        t.low.insert(v, n);
+        t.stack.push(v);
+        t.on.insert(v);
+        for w in t.g.get(v).into_iter().flatten() {
+            let w = w.as_str();
+            if !t.g.contains_key(w) {
+                continue;
+            }
+            if !t.index.contains_key(w) {
+                visit(t, w);
+                let lw = t.low[w];
+                let lv = t.low.get_mut(v).unwrap();
+                *lv = (*lv).min(lw);
+            } else if t.on.contains(w) {
+                let iw = t.index[w];
+                let lv = t.low.get_mut(v).unwrap();
+                *lv = (*lv).min(iw);
+            }
+        }
+        if t.low[v] == t.index[v] {
+            let mut c = Vec::new();
+            while let Some(w) = t.stack.pop() {
+                t.on.remove(w);
+                c.push(w);
+                if w == v {
+                    break;
+                }
+            }
+            if c.len() > 1 {
+                c.sort();
+                t.circles.push(c);
+            }
+        }
+    }
+    let mut t = T {
+        g: &graph,
+        index: Default::default(),
+        low: Default::default(),
+        stack: Vec::new(),
+        on: Default::default(),
+        circles: Vec::new(),
+    };
+    for v in graph.keys() {
+        if !t.index.contains_key(v.as_str()) {
+            visit(&mut t, v);
+        }
+    }
+    let circles: Vec<String> = t.circles.iter().map(|c| c.join(" → ")).collect();
+    assert!(circles.is_empty(), "import circles:\n{}", circles.join("\n"));
+}

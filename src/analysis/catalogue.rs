@@ -2,7 +2,8 @@
 //! ASME B1.1 and B1.5 series, ISO 2902, BS 84, ISO 228-1), external and internal, with every
 //! insert, infeed and schedule asked for, in parallel.
 
-use crate::analysis::verify::{verify, InsertChoice, Verification, VerifySpec};
+use crate::analysis::tools::InsertChoice;
+use crate::analysis::verify::{verify, Verification, VerifySpec};
 use crate::standards::{catalog, ThreadForm};
 use crate::toolpath::passes::{InfeedChoice, Schedule};
 use crate::Error;

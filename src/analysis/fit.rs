@@ -2,9 +2,9 @@
 //! plan, assembled in the axial section: the signed clearance at the best axial position, the
 //! real engagement depth, the flank overlap, and whether the pair screws together.
 
-use crate::analysis::verify::{
-    verify, verify_program, InsertChoice, OperationResult, Verification, VerifySpec,
-};
+use crate::analysis::program::verify_program;
+use crate::analysis::tools::InsertChoice;
+use crate::analysis::verify::{verify, OperationResult, Verification, VerifySpec};
 use crate::ground::plane::Point;
 use crate::Error;
 

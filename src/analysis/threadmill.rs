@@ -651,11 +651,11 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
                 )
             })?;
             match tt.tool(t) {
-                Some((crate::analysis::tools::Tool::Insert(crate::analysis::verify::InsertChoice::File(p)), _)) => {
+                Some((crate::analysis::tools::Tool::Insert(crate::analysis::tools::InsertChoice::File(p)), _)) => {
                     let text = crate::ground::input::read_text_bounded(p, crate::ground::bounds::MAX_DATA_FILE_BYTES, "a thread mill's file")?;
                     Cutter::from_toml(&text, &p.display().to_string())?
                 }
-                Some((crate::analysis::tools::Tool::Insert(crate::analysis::verify::InsertChoice::Toml { name, text }), _)) => {
+                Some((crate::analysis::tools::Tool::Insert(crate::analysis::tools::InsertChoice::Toml { name, text }), _)) => {
                     Cutter::from_toml(text, name)?
                 }
                 Some((_, written)) => {
@@ -746,10 +746,10 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     let t = des.thread;
     let p = t.pitch;
     // A taper thread's helices spiral along its cone; a parallel thread's lie on circles.
-    let taper = crate::analysis::verify::taper_of(&limits, kind, p);
+    let taper = crate::analysis::taper::taper_of(&limits, kind, p);
     let mut hs = match taper {
         Some(_) => {
-            notes.push(crate::analysis::verify::TAPER_FACE_NOTE.into());
+            notes.push(crate::analysis::taper::TAPER_FACE_NOTE.into());
             if hs.iter().any(|h| h.radius_change != 0.0) {
                 notes.push("each helix arc whose end lies off its start's circle is swept as a spiral, its radius linear in the angle (a named reading: the controls' spiral interpolation)".into());
             }
@@ -993,9 +993,8 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     };
     if let Some((_, _, slope)) = taper {
         // The flanks as they stand to the axis (the section was sheared level along the cone).
-        measured.flank_angles =
-            crate::analysis::verify::true_flank_angles(measured.flank_angles, slope, kind);
-        tooth_m.flank_angles = crate::analysis::verify::true_flank_angles(tooth_m.flank_angles, slope, kind);
+        measured.flank_angles = crate::analysis::taper::true_flank_angles(measured.flank_angles, slope, kind);
+        tooth_m.flank_angles = crate::analysis::taper::true_flank_angles(tooth_m.flank_angles, slope, kind);
         notes.push("taper thread: measured along its cone (the section sheared level by the taper), the flank angles as they stand to the axis".into());
     }
     measured.root_radius = root_of(&profile, false).or(measured.root_radius);
@@ -1007,7 +1006,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         let (dr, dz) = hs.iter().fold((0.0, 0.0), |(r, z), h| (r + h.radius_change, z + (h.z[1] - h.z[0])));
         let measured_taper =
             if dz.abs() > 1e-12 { 2.0 * dr / dz * if internal { 1.0 } else { -1.0 } } else { 0.0 };
-        crate::analysis::verify::cone_of(gp, kind, z_mid, measured.pitch_diameter, measured_taper, p)
+        crate::analysis::taper::cone_of(gp, kind, z_mid, measured.pitch_diameter, measured_taper, p)
     });
     let mut cs = checks(&measured, &limits, &t, kind, measured.root_pockets <= 1, cone);
     // The lead each turn cuts against the designation's, at the program's resolution.

@@ -12,10 +12,71 @@
 //! 6 = "tap:M10x1.5-6H"
 //! ```
 
-use crate::analysis::verify::InsertChoice;
 use crate::Error;
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+/// Which insert to cut with.
+#[derive(Clone, Debug, PartialEq)]
+pub enum InsertChoice {
+    /// Full profile for the thread's form and pitch.
+    Full,
+    /// Partial-profile V of the form's angle with this tip radius, mm.
+    Partial {
+        /// Tip radius, mm.
+        tip_radius: f64,
+    },
+    /// A TOML insert file.
+    File(PathBuf),
+    /// An insert file's TOML text (the API and the Python package, which read no file of the
+    /// server's); `name` stands for the file in messages.
+    Toml {
+        /// What messages call the insert.
+        name: String,
+        /// The insert's TOML.
+        text: String,
+    },
+}
+
+impl std::str::FromStr for InsertChoice {
+    type Err = Error;
+
+    /// `full`, `partial` (tip radius 0.04 mm), `partial:R` (tip radius R mm) or a TOML file's path.
+    ///
+    /// ```
+    /// use threadcheck::InsertChoice;
+    /// assert_eq!("partial:0.035".parse::<InsertChoice>()?, InsertChoice::Partial { tip_radius: 0.035 });
+    /// # Ok::<(), threadcheck::Error>(())
+    /// ```
+    fn from_str(s: &str) -> Result<Self, Error> {
+        let lower = s.to_ascii_lowercase();
+        match lower.as_str() {
+            "full" => Ok(InsertChoice::Full),
+            "partial" => Ok(InsertChoice::Partial { tip_radius: 0.04 }),
+            // A word that is neither a keyword nor a file name (no extension, no folder).
+            _ if !s.is_empty() && !s.contains(['.', '/', '\\', ':']) => Err(Error::Input(format!(
+                "insert '{s}': expected full, partial, partial:TIP_RADIUS or an insert FILE.toml"
+            ))),
+            _ => match lower.strip_prefix("partial:").map(|_| &s[8..]) {
+                Some(r) => {
+                    let tip_radius: f64 = r.trim().parse().map_err(|_| {
+                        Error::Input(format!("insert '{s}': the tip radius '{r}' is not a number"))
+                    })?;
+                    if !(tip_radius.is_finite() && tip_radius >= 0.0) {
+                        return Err(Error::Input(format!(
+                            "insert '{s}': the tip radius must be a length ≥ 0"
+                        )));
+                    }
+                    Ok(InsertChoice::Partial { tip_radius })
+                }
+                None if s.is_empty() => {
+                    Err(Error::Input("insert '': expected full, partial[:TIP_RADIUS] or FILE.toml".into()))
+                }
+                None => Ok(InsertChoice::File(PathBuf::from(s))),
+            },
+        }
+    }
+}
 
 /// The chamfer length of a tap given without one, in pitches: form C of ISO 8830 / DIN 2197
 /// (2 to 3 threads), taken at its middle; a named default the tapping check states.
@@ -133,7 +194,7 @@ impl ToolTable {
                     .transpose()?;
                 Tool::Drill { diameter, point_angle }
             } else {
-                Tool::Insert(match v.parse::<crate::analysis::verify::InsertChoice>()? {
+                Tool::Insert(match v.parse::<InsertChoice>()? {
                     InsertChoice::File(p) if p.is_relative() => InsertChoice::File(dir.join(p)),
                     c => c,
                 })

@@ -2,6 +2,8 @@
 //! the as-cut thread, its measurement, the checks and the verdict.
 
 use crate::analysis::check::{checks, verdict, Check};
+use crate::analysis::taper::{cone_of, taper_of, true_flank_angles, Taper, TAPER_FACE_NOTE};
+use crate::analysis::tools::InsertChoice;
 use crate::geometry::boolean::UnionStrategy;
 use crate::geometry::insert::{Insert, InsertKind};
 use crate::geometry::measure::{measure, MeasureSetup, Measurement};
@@ -12,68 +14,6 @@ use crate::standards::{parse_designation, Designation, ParseOptions, ProfileKind
 use crate::toolpath::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
 use crate::{BasicThread, Error};
 use std::path::PathBuf;
-
-/// Which insert to cut with.
-#[derive(Clone, Debug, PartialEq)]
-pub enum InsertChoice {
-    /// Full profile for the thread's form and pitch.
-    Full,
-    /// Partial-profile V of the form's angle with this tip radius, mm.
-    Partial {
-        /// Tip radius, mm.
-        tip_radius: f64,
-    },
-    /// A TOML insert file.
-    File(PathBuf),
-    /// An insert file's TOML text (the API and the Python package, which read no file of the
-    /// server's); `name` stands for the file in messages.
-    Toml {
-        /// What messages call the insert.
-        name: String,
-        /// The insert's TOML.
-        text: String,
-    },
-}
-
-impl std::str::FromStr for InsertChoice {
-    type Err = Error;
-
-    /// `full`, `partial` (tip radius 0.04 mm), `partial:R` (tip radius R mm) or a TOML file's path.
-    ///
-    /// ```
-    /// use threadcheck::InsertChoice;
-    /// assert_eq!("partial:0.035".parse::<InsertChoice>()?, InsertChoice::Partial { tip_radius: 0.035 });
-    /// # Ok::<(), threadcheck::Error>(())
-    /// ```
-    fn from_str(s: &str) -> Result<Self, Error> {
-        let lower = s.to_ascii_lowercase();
-        match lower.as_str() {
-            "full" => Ok(InsertChoice::Full),
-            "partial" => Ok(InsertChoice::Partial { tip_radius: 0.04 }),
-            // A word that is neither a keyword nor a file name (no extension, no folder).
-            _ if !s.is_empty() && !s.contains(['.', '/', '\\', ':']) => Err(Error::Input(format!(
-                "insert '{s}': expected full, partial, partial:TIP_RADIUS or an insert FILE.toml"
-            ))),
-            _ => match lower.strip_prefix("partial:").map(|_| &s[8..]) {
-                Some(r) => {
-                    let tip_radius: f64 = r.trim().parse().map_err(|_| {
-                        Error::Input(format!("insert '{s}': the tip radius '{r}' is not a number"))
-                    })?;
-                    if !(tip_radius.is_finite() && tip_radius >= 0.0) {
-                        return Err(Error::Input(format!(
-                            "insert '{s}': the tip radius must be a length ≥ 0"
-                        )));
-                    }
-                    Ok(InsertChoice::Partial { tip_radius })
-                }
-                None if s.is_empty() => {
-                    Err(Error::Input("insert '': expected full, partial[:TIP_RADIUS] or FILE.toml".into()))
-                }
-                None => Ok(InsertChoice::File(PathBuf::from(s))),
-            },
-        }
-    }
-}
 
 /// Everything `verify` needs; the CLI fills it from its options.
 #[derive(Clone, Debug, PartialEq)]
@@ -999,12 +939,6 @@ struct Given {
     notes: Vec<crate::ground::note::Note>,
 }
 
-/// The verification of a resolved spec, with the passes of a program operation or its own plan.
-/// A cut that leaves nothing to measure is an [`Error::Geometry`].
-/// A taper thread's cone where it is measured: its gauge plane, the measuring height (the gauge
-/// plane on an external thread, four pitches in on an internal one) and the cone's radial slope.
-pub(crate) type Taper = (crate::standards::tolerance::GaugePlane, f64, f64);
-
 /// What measuring a cut needs: the sweep's setup, the measurement's, and a taper thread's cone
 /// (measured along it: the section sheared so the cone's pitch line runs level).
 struct Measurer<'a> {
@@ -1104,48 +1038,6 @@ fn gauge_cone(
     })
 }
 
-/// A taper thread's cone as its gauge finds it: the pitch diameter measured at `z_ref` (the face
-/// at Z0, the thread going −Z) carried along the basic taper to the basic gauge diameter, its
-/// distance from the gauge plane's in turns of `pitch`; `measured_taper` the diameter's change per
-/// mm of depth the toolpath cuts (growing on a bolt, narrowing in a nut).
-pub(crate) fn cone_of(
-    gp: crate::standards::tolerance::GaugePlane,
-    kind: ThreadKind,
-    z_ref: f64,
-    pitch_diameter: f64,
-    measured_taper: f64,
-    pitch: f64,
-) -> crate::analysis::check::Cone {
-    let s_ref = -z_ref;
-    let s_gp = match kind {
-        ThreadKind::External => s_ref + (gp.pitch_diameter - pitch_diameter) / gp.taper,
-        ThreadKind::Internal => s_ref + (pitch_diameter - gp.pitch_diameter) / gp.taper,
-    };
-    crate::analysis::check::Cone {
-        turns: (s_gp - gp.distance) / pitch,
-        tolerance_turns: gp.tolerance_turns,
-        taper: measured_taper,
-        nominal_taper: gp.taper,
-    }
-}
-
-/// Where a taper thread's cone is measured (the gauge plane on an external thread, four pitches
-/// in on an internal one, the face at Z0) and its radial slope along Z: the section there is
-/// sheared level by it.
-pub(crate) fn taper_of(limits: &ThreadLimits, kind: ThreadKind, pitch: f64) -> Option<Taper> {
-    limits.gauge_plane.map(|gp| {
-        let (z_meas, slope_r) = match kind {
-            ThreadKind::External => (-gp.distance, -0.5 * gp.taper),
-            ThreadKind::Internal => (-4.0 * pitch, 0.5 * gp.taper),
-        };
-        (gp, z_meas, slope_r)
-    })
-}
-
-/// What a taper thread's measurement assumes of the part, said in its notes.
-pub(crate) const TAPER_FACE_NOTE: &str =
-    "taper thread: the face (the small end of an external thread, the opening of a fitting) is taken at Z0";
-
 /// The checks of a measured cut: sizes and form, a taper's gauge plane (stood off by the lead
 /// error's share), and the functional pitch diameter when the program's lead is off; with the
 /// functional pitch diameter.
@@ -1187,6 +1079,8 @@ fn judge(
     (cs, functional)
 }
 
+/// The verification of a resolved spec, with the passes of a program operation or its own plan.
+/// A cut that leaves nothing to measure is an [`Error::Geometry`].
 fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error> {
     let spec = &r.spec;
     if spec.taper != 0.0 {
@@ -1383,23 +1277,6 @@ fn measured_notes(
     notes
 }
 
-/// Flank half-angles measured on a section sheared by `slope_r` (radius per mm of z) turned
-/// back into the true axial section: a flank with dz/dr' = ±t in the sheared section has
-/// dz/dr = ±t / (1 ± s·t) in the true one. A bolt's low-z flank falls towards its root as z
-/// grows (−t), a nut's rises.
-pub(crate) fn true_flank_angles(sheared: [f64; 2], slope_r: f64, kind: ThreadKind) -> [f64; 2] {
-    let sign = match kind {
-        ThreadKind::External => [-1.0, 1.0],
-        ThreadKind::Internal => [1.0, -1.0],
-    };
-    let mut out = [0.0; 2];
-    for k in 0..2 {
-        let d = sign[k] * sheared[k].to_radians().tan();
-        out[k] = (d / (1.0 + slope_r * d)).abs().atan().to_degrees();
-    }
-    out
-}
-
 /// A program as the reports name it: the file (as given) and the dialect it was read in.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ProgramLabel {
@@ -1460,64 +1337,6 @@ pub struct OperationVerdict {
     pub named: crate::analysis::naming::Named,
     /// The verdict.
     pub result: OperationResult,
-}
-
-/// Every operation of a program, verified.
-#[derive(Clone, Debug)]
-pub struct ProgramVerification {
-    /// The program's name and dialect, as shown.
-    pub program: ProgramLabel,
-    /// The dialect.
-    pub dialect: crate::gcode::Dialect,
-    /// Each threading operation in program order (the one `VerifySpec::operation` names, when
-    /// it names one).
-    pub operations: Vec<OperationVerdict>,
-    /// How many threading operations the program has (more than `operations` holds when one
-    /// was named).
-    pub operations_in_program: usize,
-    /// Program-wide warnings (variables read before set, repeated sequence numbers, …).
-    pub notes: Vec<crate::ground::note::Note>,
-    /// Blocks read for position only.
-    pub skipped_blocks: usize,
-    /// Blocks holding something threadcheck does not model, read past (named in the notes).
-    pub read_past_blocks: usize,
-    /// The machine the program was read for, and why.
-    pub machine: crate::gcode::MachineReading,
-    /// Its tapping cycles, checked (`verify_whole`; `None` when it has none).
-    pub tapped: Option<crate::analysis::tapping::TapReport>,
-    /// Its thread-milled thread (`verify_whole`; `None` when it has no helix).
-    pub milled: Option<crate::analysis::whole::Milled>,
-}
-
-impl ProgramVerification {
-    /// The verification of `prog`'s turned `operations` (of `n` in the program), its notes and
-    /// reading; no tapped or milled thread yet.
-    pub(crate) fn of(
-        prog: &crate::gcode::Program,
-        program: ProgramLabel,
-        operations: Vec<OperationVerdict>,
-        n: usize,
-    ) -> ProgramVerification {
-        ProgramVerification {
-            dialect: program.dialect,
-            program,
-            operations,
-            operations_in_program: n,
-            notes: prog.notes.clone(),
-            skipped_blocks: prog.skipped_blocks,
-            read_past_blocks: prog.read_past_blocks,
-            machine: prog.machine.clone(),
-            tapped: None,
-            milled: None,
-        }
-    }
-
-    /// True when every operation passes: turned, tapped and milled.
-    pub fn pass(&self) -> bool {
-        self.operations.iter().all(|o| o.result.pass())
-            && self.tapped.as_ref().is_none_or(|t| t.pass)
-            && self.milled.as_ref().is_none_or(crate::analysis::whole::Milled::pass)
-    }
 }
 
 /// Verifies one operation of a program read already: the insert and designation come from
@@ -2006,27 +1825,32 @@ fn name_turned(
 /// note that says where it came from, and whether it is the assumed default.
 pub type InsertFor<'a> = dyn Fn(&crate::gcode::Operation) -> Option<(InsertChoice, String, bool)> + 'a;
 
-/// Verifies every threading operation of a program held in memory: `threads` gives one
-/// designation for all operations or one per operation in program order; `insert_for` chooses
-/// each operation's insert (from its tool number, say) and says what it assumed.
-///
-/// ```
-/// use threadcheck::{verify_program, InsertChoice, VerifySpec};
-/// use threadcheck::Dialect;
-/// let text = "G0 X22 Z5\nG76 P011060 Q100 R0.05\nG76 X18.16 Z-20 P920 Q350 F1.5\n";
-/// let spec = VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M20x1.5-6g") };
-/// let r = verify_program(&spec, text, "m20.nc", Dialect::Fanuc, &["M20x1.5-6g".to_string()], &|_| None)?;
-/// assert_eq!(r.operations.len(), 1);
-/// # Ok::<(), threadcheck::Error>(())
-/// ```
-pub fn verify_program(
+/// A program read, and its turned threads verified.
+#[derive(Clone, Debug)]
+pub struct TurnedProgram {
+    /// The program as read (its notes and reading go to the whole program's verification).
+    pub prog: crate::gcode::Program,
+    /// The program's name and dialect, as shown.
+    pub label: ProgramLabel,
+    /// Each turned operation verified, in program order (the one `VerifySpec::operation` names,
+    /// when it names one).
+    pub operations: Vec<OperationVerdict>,
+    /// How many threading operations the program has.
+    pub operations_in_program: usize,
+}
+
+/// The turned threads of a program held in memory, each verified: `threads` gives one designation
+/// for all operations or one per operation in program order; `insert_for` chooses each
+/// operation's insert (from its tool number, say) and says what it assumed. The whole program's
+/// verification ([`verify_program`](crate::verify_program)) is made of these.
+pub fn turned_program(
     spec: &VerifySpec,
     text: &str,
     name: &str,
     dialect: crate::gcode::Dialect,
     threads: &[String],
     insert_for: &InsertFor<'_>,
-) -> Result<ProgramVerification, Error> {
+) -> Result<TurnedProgram, Error> {
     let prog = crate::gcode::read_program_with(text, name, dialect, spec.reading.clone())?;
     let n = prog.operations.len();
     if !(threads.is_empty() || threads.len() == 1 || threads.len() == n) {
@@ -2155,7 +1979,7 @@ pub fn verify_program(
         }
         operations.push(OperationVerdict { operation: op.clone(), designation, named, result });
     }
-    Ok(ProgramVerification::of(&prog, label, operations, n))
+    Ok(TurnedProgram { prog, label, operations, operations_in_program: n })
 }
 
 /// The insert a program's passes are written for when no tool is known: of the full-profile

@@ -2,7 +2,8 @@
 //! or program ([`PlanArgs`]), a file given by path on the command line and as text through the
 //! API ([`Source`]), and the readers both sides use.
 
-use crate::analysis::verify::{InsertChoice, ProgramSource, Units, VerifySpec};
+use crate::analysis::tools::InsertChoice;
+use crate::analysis::verify::{ProgramSource, Units, VerifySpec};
 use crate::gcode::{Dialect, DialectFrom, GCodeSystem, LinuxCncRelease, ProgramUnits};
 use crate::standards::tolerance::CoatingLimits;
 use crate::toolpath::passes::{InfeedChoice, Schedule};
@@ -329,7 +330,7 @@ fn sub_finder(dirs: Vec<PathBuf>) -> crate::gcode::SubFinder {
                         let ext = p.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
                         p.is_file()
                             && stem.is_some_and(|s| stems.contains(&s))
-                            && ext.is_none_or(|e| super::verify::PROGRAM_EXTENSIONS.contains(&e.as_str()))
+                            && ext.is_none_or(|e| crate::gcode::PROGRAM_EXTENSIONS.contains(&e.as_str()))
                     })
                 }),
             };

@@ -3,7 +3,7 @@
 use super::args::{dialect_for, JsonArg, Source};
 use super::{pretty, Dest, Document, Files, Job, Outcome, Outputs, Request};
 use crate::analysis::fit::{FitSide, FitSpec};
-use crate::analysis::verify::InsertChoice;
+use crate::analysis::tools::InsertChoice;
 use crate::gcode::Dialect;
 use crate::Error;
 use serde::Deserialize;

@@ -32,7 +32,8 @@ impl Job for ReportArgs {
     /// partial-profile insert; the page and its pictures are the run's files.
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
         use crate::analysis::compare::{compare, REPORT_THREADS};
-        use crate::analysis::verify::{InsertChoice, VerifySpec};
+        use crate::analysis::tools::InsertChoice;
+        use crate::analysis::verify::VerifySpec;
         match self.name {
             ReportName::InfeedComparison => {
                 let inserts = [

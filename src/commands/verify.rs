@@ -2,7 +2,8 @@
 
 use super::args::{tool_table, PlanArgs, Source};
 use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
-use crate::analysis::verify::{InsertChoice, ProgramSource, VerifySpec};
+use crate::analysis::tools::InsertChoice;
+use crate::analysis::verify::{ProgramSource, VerifySpec};
 use crate::Error;
 use serde::Deserialize;
 use std::path::PathBuf;
@@ -177,11 +178,6 @@ impl Job for VerifyArgs {
     }
 }
 
-/// The extensions of the programs a folder holds: the dialects' own and the ones Fanuc-family
-/// shops and CAM post-processors write.
-pub const PROGRAM_EXTENSIONS: [&str; 12] =
-    ["nc", "ngc", "mpf", "spf", "min", "ssb", "sub", "tap", "cnc", "eia", "gcode", "iso"];
-
 /// Whether the file's first 4 KiB hold `BEGIN PGM` (a Klartext program's first block).
 fn opens_klartext(path: &std::path::Path) -> bool {
     use std::io::Read;
@@ -190,7 +186,7 @@ fn opens_klartext(path: &std::path::Path) -> bool {
         && String::from_utf8_lossy(&head).contains("BEGIN PGM")
 }
 
-/// The programs of `paths`: a file as named, a folder's files with [`PROGRAM_EXTENSIONS`] found
+/// The programs of `paths`: a file as named, a folder's files with [`PROGRAM_EXTENSIONS`](crate::gcode::PROGRAM_EXTENSIONS) found
 /// recursively (and `.h` files that open a Klartext program), in name order; at most [`MAX_BATCH_PROGRAMS`](crate::ground::bounds::MAX_BATCH_PROGRAMS).
 /// Symbolic links to programs and folders are followed and named as linked (a loop is listed
 /// once, by the link that closes it, and its line says so); a file reached twice is read once,
@@ -228,7 +224,8 @@ fn program_files(paths: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
                 // A `.h` file is a Klartext program when it opens one (else a C header, say);
                 // only a regular file is opened to see.
                 let klartext = ext.as_deref() == Some("h") && (!regular || opens_klartext(entry.path()));
-                if !(klartext || ext.is_some_and(|e| PROGRAM_EXTENSIONS.contains(&e.as_str()))) {
+                if !(klartext || ext.is_some_and(|e| crate::gcode::PROGRAM_EXTENSIONS.contains(&e.as_str())))
+                {
                     continue;
                 }
                 let once = std::fs::canonicalize(entry.path()).unwrap_or_else(|_| entry.path().to_path_buf());
@@ -285,7 +282,7 @@ impl VerifyArgs {
             return Err(Error::Input(format!(
                 "no program in {} (looked for the extensions {})",
                 self.programs.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "),
-                PROGRAM_EXTENSIONS.map(|e| format!(".{e}")).join(" ")
+                crate::gcode::PROGRAM_EXTENSIONS.map(|e| format!(".{e}")).join(" ")
             )));
         }
         let tools = self.tools.as_ref().map(|t| tool_table(t, request.files)).transpose()?;
@@ -417,7 +414,7 @@ impl VerifyArgs {
         name: Option<String>,
         tools: Option<&crate::analysis::tools::ToolTable>,
         request: &Request,
-    ) -> Result<(String, String, crate::analysis::verify::ProgramVerification), Error> {
+    ) -> Result<(String, String, crate::analysis::program::ProgramVerification), Error> {
         self.verify_one_finding(program, name, tools, request, None)
     }
 
@@ -430,7 +427,7 @@ impl VerifyArgs {
         tools: Option<&crate::analysis::tools::ToolTable>,
         request: &Request,
         finder: Option<crate::gcode::SubFinder>,
-    ) -> Result<(String, String, crate::analysis::verify::ProgramVerification), Error> {
+    ) -> Result<(String, String, crate::analysis::program::ProgramVerification), Error> {
         let one = VerifyArgs {
             plan: PlanArgs { program: Some(program), program_name: name, ..self.plan.clone() },
             programs: Vec::new(),
@@ -459,13 +456,13 @@ impl VerifyArgs {
         source: &ProgramSource,
         dialect: crate::gcode::Dialect,
         tools: Option<&crate::analysis::tools::ToolTable>,
-    ) -> Result<(String, String, crate::analysis::verify::ProgramVerification), Error> {
+    ) -> Result<(String, String, crate::analysis::program::ProgramVerification), Error> {
         let (shown, text) = source.load()?;
         let insert_given = self.plan.insert_given();
         let insert_for = |op: &crate::gcode::Operation| insert_of(op, tools, insert_given);
         // `spec` asks for the pictures only when a document draws them (the program's picture
         // once lost its zone, basic profile, deviation plot and full length).
-        let pv = crate::analysis::whole::verify_whole(
+        let pv = crate::analysis::program::verify_whole(
             spec,
             &text,
             &shown,
@@ -557,7 +554,7 @@ fn insert_of(
 /// is not a plain number in place (an expression, an R-parameter set elsewhere) is an error that
 /// says what to change by hand.
 fn fixed_program(
-    pv: &crate::analysis::verify::ProgramVerification,
+    pv: &crate::analysis::program::ProgramVerification,
     text: &str,
     shown: &str,
 ) -> Result<String, Error> {

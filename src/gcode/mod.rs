@@ -782,6 +782,11 @@ pub struct ReadOptions {
     pub sub_files: Option<SubFinder>,
 }
 
+/// The extensions of the programs a folder holds: the dialects' own (see
+/// [`Dialect::by_extension`]) and the ones Fanuc-family shops and CAM post-processors write.
+pub const PROGRAM_EXTENSIONS: [&str; 12] =
+    ["nc", "ngc", "mpf", "spf", "min", "ssb", "sub", "tap", "cnc", "eia", "gcode", "iso"];
+
 /// The most subprogram files one program reads beside its own.
 pub const MAX_SUB_FILES: usize = 64;
 

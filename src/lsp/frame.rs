@@ -71,7 +71,10 @@ impl<R: BufRead> Framed<R> {
             }
             // By `get`: a header of other bytes may hold a character across byte 15 (a fuzzed
             // header of 0xFF bytes, read as U+FFFD, panicked here).
-            let value = line.get(..15).filter(|h| h.eq_ignore_ascii_case("content-length:")).and_then(|_| line.get(15..));
+            let value = line
+                .get(..15)
+                .filter(|h| h.eq_ignore_ascii_case("content-length:"))
+                .and_then(|_| line.get(15..));
             if line.is_empty() {
                 if first {
                     continue;

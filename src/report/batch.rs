@@ -7,8 +7,9 @@
 
 use crate::analysis::check::Verdict;
 use crate::analysis::naming::DesignationFrom;
-use crate::analysis::verify::{OperationResult, ProgramVerification};
-use crate::analysis::whole::{Milled, Process};
+use crate::analysis::program::ProgramVerification;
+use crate::analysis::program::{Milled, Process};
+use crate::analysis::verify::OperationResult;
 use quick_xml::events::{BytesDecl, BytesText, Event};
 use quick_xml::Writer;
 use serde::Serialize;

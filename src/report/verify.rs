@@ -8,8 +8,9 @@ use super::kit::*;
 use super::*;
 use crate::analysis::check::{CheckFeature, Verdict};
 use crate::analysis::picture::Picture;
+use crate::analysis::program::ProgramVerification;
+use crate::analysis::verify::OperationResult;
 use crate::analysis::verify::Verification;
-use crate::analysis::verify::{OperationResult, ProgramVerification};
 use crate::geometry::insert::Insert;
 use crate::geometry::measure::{DeviationSample, ProfileRegion};
 use crate::ground::plane::{rad, Point};
@@ -549,7 +550,7 @@ pub enum OperationReport<'a> {
     /// Cut and measured.
     Verified {
         /// Always `turned` (the key `process` is the process checks').
-        made: crate::analysis::whole::Process,
+        made: crate::analysis::program::Process,
         /// The verify report's keys.
         #[serde(flatten)]
         report: Box<VerifyReport<'a>>,
@@ -563,7 +564,7 @@ pub enum OperationReport<'a> {
     /// Nothing to measure.
     NoCut {
         /// Always `turned` (the key `process` is the process checks').
-        made: crate::analysis::whole::Process,
+        made: crate::analysis::program::Process,
         /// The designation.
         thread: DesignationOnly<'a>,
         /// One failing `cut` check.
@@ -585,7 +586,7 @@ pub enum OperationReport<'a> {
     /// A tapping cycle and its checks (`tap`'s `holes[]` entry).
     Tapped {
         /// Always `tapped`.
-        made: crate::analysis::whole::Process,
+        made: crate::analysis::program::Process,
         /// The hole's keys.
         #[serde(flatten)]
         hole: &'a crate::analysis::tapping::TappedHole,
@@ -595,7 +596,7 @@ pub enum OperationReport<'a> {
     /// The thread-milled thread (`thread-mill`'s report).
     Milled {
         /// Always `milled`.
-        made: crate::analysis::whole::Process,
+        made: crate::analysis::program::Process,
         /// The report's keys.
         #[serde(flatten)]
         report: Box<crate::report::threadmill::ThreadMillJson<'a>>,
@@ -603,7 +604,7 @@ pub enum OperationReport<'a> {
     /// Helices whose cutter is not known: not checked, failing.
     NotChecked {
         /// Always `milled`.
-        made: crate::analysis::whole::Process,
+        made: crate::analysis::program::Process,
         /// The first helix's line.
         line: usize,
         /// Why, and what to give.
@@ -644,7 +645,7 @@ pub struct ProgramReport<'a> {
 
 impl<'a> ProgramReport<'a> {
     /// The report of a program's verification.
-    pub fn of(pv: &'a crate::analysis::verify::ProgramVerification) -> Self {
+    pub fn of(pv: &'a crate::analysis::program::ProgramVerification) -> Self {
         let operations = pv
             .operations
             .iter()
@@ -652,7 +653,7 @@ impl<'a> ProgramReport<'a> {
                 let operation = OperationInfo::of(&o.operation);
                 match &o.result {
                     crate::analysis::verify::OperationResult::Verified(v) => OperationReport::Verified {
-                        made: crate::analysis::whole::Process::Turned,
+                        made: crate::analysis::program::Process::Turned,
                         report: Box::new(VerifyReport::of(v)),
                         operation,
                         designation_from: o.named.from,
@@ -660,7 +661,7 @@ impl<'a> ProgramReport<'a> {
                     },
                     crate::analysis::verify::OperationResult::NoCut { reason, suggested_final_x } => {
                         OperationReport::NoCut {
-                            made: crate::analysis::whole::Process::Turned,
+                            made: crate::analysis::program::Process::Turned,
                             suggested_final_x: *suggested_final_x,
                             thread: DesignationOnly { designation: &o.designation },
                             checks: [NoCutCheck {
@@ -679,21 +680,23 @@ impl<'a> ProgramReport<'a> {
                 }
             })
             .chain(pv.tapped.iter().flat_map(|t| &t.holes).map(|hole| OperationReport::Tapped {
-                made: crate::analysis::whole::Process::Tapped,
+                made: crate::analysis::program::Process::Tapped,
                 hole,
                 verdict: Verdict::of(hole.pass),
             }))
             .chain(pv.milled.iter().map(|m| match m {
-                crate::analysis::whole::Milled::Checked(r) => OperationReport::Milled {
-                    made: crate::analysis::whole::Process::Milled,
+                crate::analysis::program::Milled::Checked(r) => OperationReport::Milled {
+                    made: crate::analysis::program::Process::Milled,
                     report: Box::new(crate::report::threadmill::ThreadMillJson::of(r)),
                 },
-                crate::analysis::whole::Milled::NotChecked { line, reason } => OperationReport::NotChecked {
-                    made: crate::analysis::whole::Process::Milled,
-                    line: *line,
-                    reason,
-                    verdict: Verdict::Fail,
-                },
+                crate::analysis::program::Milled::NotChecked { line, reason } => {
+                    OperationReport::NotChecked {
+                        made: crate::analysis::program::Process::Milled,
+                        line: *line,
+                        reason,
+                        verdict: Verdict::Fail,
+                    }
+                }
             }))
             .collect();
         ProgramReport {
@@ -719,7 +722,7 @@ pub fn read_past_text(blocks: usize) -> String {
 }
 
 /// The human report of a program: one section per operation, then the program's verdict.
-pub fn program_text(pv: &crate::analysis::verify::ProgramVerification) -> String {
+pub fn program_text(pv: &crate::analysis::program::ProgramVerification) -> String {
     let mut s = String::new();
     let n = pv.operations_in_program;
     let named = match pv.operations.as_slice() {
@@ -775,12 +778,12 @@ pub fn program_text(pv: &crate::analysis::verify::ProgramVerification) -> String
         s.push('\n');
     }
     match &pv.milled {
-        Some(crate::analysis::whole::Milled::Checked(r)) => {
+        Some(crate::analysis::program::Milled::Checked(r)) => {
             let _ = writeln!(s, "== milled: {} helices\n", r.helices.len());
             s.push_str(&crate::report::threadmill::text(r));
             s.push('\n');
         }
-        Some(crate::analysis::whole::Milled::NotChecked { line, reason }) => {
+        Some(crate::analysis::program::Milled::NotChecked { line, reason }) => {
             let _ =
                 writeln!(s, "== milled: helices from line {line}\n\nverdict: FAIL (not checked: {reason})\n");
         }
@@ -821,7 +824,7 @@ pub fn program_text(pv: &crate::analysis::verify::ProgramVerification) -> String
 
 /// What a program makes, for a heading: `2 threading operations` when it only turns threads
 /// (as ever), else `1 turned operation, 4 tapped holes, 1 milled thread`.
-pub(crate) fn program_counts(pv: &crate::analysis::verify::ProgramVerification) -> String {
+pub(crate) fn program_counts(pv: &crate::analysis::program::ProgramVerification) -> String {
     let n = pv.operations.len();
     let tapped = pv.tapped.as_ref().map_or(0, |t| t.holes.len());
     let milled = usize::from(pv.milled.is_some());
@@ -1277,8 +1280,8 @@ pub fn verify_svg(v: &Verification) -> String {
 pub(crate) const WIDTH: f64 = 1100.0;
 
 /// The SVG of every operation of a program, one section each, stacked.
-pub fn program_svg(pv: &crate::analysis::verify::ProgramVerification) -> String {
-    use crate::analysis::whole::Milled;
+pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String {
+    use crate::analysis::program::Milled;
     // A program that makes one kind of thread other than turned: that kind's own picture.
     if pv.operations.is_empty() {
         match (&pv.tapped, &pv.milled) {
@@ -1778,7 +1781,7 @@ pub fn program_html(pv: &ProgramVerification) -> String {
         let _ = writeln!(body, "<div class=\"pic\">{}</div>", crate::report::tapping::tap_svg(t));
     }
     match &pv.milled {
-        Some(crate::analysis::whole::Milled::Checked(r)) => {
+        Some(crate::analysis::program::Milled::Checked(r)) => {
             let _ = writeln!(
                 body,
                 "<h2>Milled: {} — {}</h2>",
@@ -1789,7 +1792,7 @@ pub fn program_html(pv: &ProgramVerification) -> String {
             let _ =
                 writeln!(body, "<div class=\"pic\">{}</div>", crate::report::threadmill::threadmill_svg(r));
         }
-        Some(crate::analysis::whole::Milled::NotChecked { line, reason }) => {
+        Some(crate::analysis::program::Milled::NotChecked { line, reason }) => {
             let _ = writeln!(
                 body,
                 "<h2>Milled: helices from line {line}</h2>\n<p class=\"verdict out\">NOT CHECKED: {}</p>",

@@ -12,10 +12,89 @@
 use crate::analysis::tapping::TapSpec;
 use crate::analysis::threadmill::{ThreadMillReport, ThreadMillSpec};
 use crate::analysis::tools::{Tool, ToolTable};
-use crate::analysis::verify::{InsertFor, ProgramLabel, ProgramVerification, VerifySpec};
+use crate::analysis::verify::{InsertFor, OperationVerdict, ProgramLabel, TurnedProgram, VerifySpec};
 use crate::gcode::{Dialect, HoleKind, ReadOptions};
 use crate::Error;
 use serde::Serialize;
+
+/// Every operation of a program, verified.
+#[derive(Clone, Debug)]
+pub struct ProgramVerification {
+    /// The program's name and dialect, as shown.
+    pub program: ProgramLabel,
+    /// The dialect.
+    pub dialect: crate::gcode::Dialect,
+    /// Each threading operation in program order (the one `VerifySpec::operation` names, when
+    /// it names one).
+    pub operations: Vec<OperationVerdict>,
+    /// How many threading operations the program has (more than `operations` holds when one
+    /// was named).
+    pub operations_in_program: usize,
+    /// Program-wide warnings (variables read before set, repeated sequence numbers, …).
+    pub notes: Vec<crate::ground::note::Note>,
+    /// Blocks read for position only.
+    pub skipped_blocks: usize,
+    /// Blocks holding something threadcheck does not model, read past (named in the notes).
+    pub read_past_blocks: usize,
+    /// The machine the program was read for, and why.
+    pub machine: crate::gcode::MachineReading,
+    /// Its tapping cycles, checked (`verify_whole`; `None` when it has none).
+    pub tapped: Option<crate::analysis::tapping::TapReport>,
+    /// Its thread-milled thread (`verify_whole`; `None` when it has no helix).
+    pub milled: Option<Milled>,
+}
+
+impl ProgramVerification {
+    /// The verification of `prog`'s turned `operations` (of `n` in the program), its notes and
+    /// reading; no tapped or milled thread yet.
+    pub(crate) fn of(turned: TurnedProgram) -> ProgramVerification {
+        let TurnedProgram { prog, label: program, operations, operations_in_program: n } = turned;
+        ProgramVerification {
+            dialect: program.dialect,
+            program,
+            operations,
+            operations_in_program: n,
+            notes: prog.notes,
+            skipped_blocks: prog.skipped_blocks,
+            read_past_blocks: prog.read_past_blocks,
+            machine: prog.machine,
+            tapped: None,
+            milled: None,
+        }
+    }
+
+    /// True when every operation passes: turned, tapped and milled.
+    pub fn pass(&self) -> bool {
+        self.operations.iter().all(|o| o.result.pass())
+            && self.tapped.as_ref().is_none_or(|t| t.pass)
+            && self.milled.as_ref().is_none_or(Milled::pass)
+    }
+}
+
+/// Verifies every threading operation of a program held in memory: `threads` gives one
+/// designation for all operations or one per operation in program order; `insert_for` chooses
+/// each operation's insert (from its tool number, say) and says what it assumed.
+///
+/// ```
+/// use threadcheck::{verify_program, InsertChoice, VerifySpec};
+/// use threadcheck::Dialect;
+/// let text = "G0 X22 Z5\nG76 P011060 Q100 R0.05\nG76 X18.16 Z-20 P920 Q350 F1.5\n";
+/// let spec = VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M20x1.5-6g") };
+/// let r = verify_program(&spec, text, "m20.nc", Dialect::Fanuc, &["M20x1.5-6g".to_string()], &|_| None)?;
+/// assert_eq!(r.operations.len(), 1);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+pub fn verify_program(
+    spec: &VerifySpec,
+    text: &str,
+    name: &str,
+    dialect: crate::gcode::Dialect,
+    threads: &[String],
+    insert_for: &InsertFor<'_>,
+) -> Result<ProgramVerification, Error> {
+    crate::analysis::verify::turned_program(spec, text, name, dialect, threads, insert_for)
+        .map(ProgramVerification::of)
+}
 
 /// How a thread is made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -153,9 +232,14 @@ pub fn verify_whole(
         });
     }
     let mut pv = if prog.operations.is_empty() {
-        ProgramVerification::of(&prog, ProgramLabel { file: name.to_string(), dialect }, Vec::new(), 0)
+        ProgramVerification::of(TurnedProgram {
+            prog: prog.clone(),
+            label: ProgramLabel { file: name.to_string(), dialect },
+            operations: Vec::new(),
+            operations_in_program: 0,
+        })
     } else {
-        crate::analysis::verify::verify_program(spec, text, name, dialect, threads, insert_for)?
+        verify_program(spec, text, name, dialect, threads, insert_for)?
     };
     if taps {
         let t = TapSpec {
