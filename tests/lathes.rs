@@ -324,3 +324,37 @@ fn a_linuxcnc_line_longer_than_linuxcnc_reads_is_refused() {
         }
     }
 }
+
+/// Issue 61 item 4: a Fanuc lathe program that writes `G28 G91 X0 Z0` (a reference return) and
+/// cuts with G32 is read in G-code system A, G32 its thread cutting (systems B and C write G33),
+/// the G91 read past with a note naming both lines: it was taken for system B on the G91 alone
+/// and the G32 dropped ("no threading pass"). Hand-derived: three passes at X19.4, X19.1, X18.9
+/// from Z3 to Z-20, lead 1.5. Read as system B when told, the G32 is refused at its place.
+#[test]
+fn a_g91_reference_return_does_not_turn_a_g32_program_into_system_b() {
+    let dir = tempdir("g28-g91-g32");
+    let program = "O0061 (M20X1.5)\nG18 G21 G40\nG28 G91 X0 Z0\nG90\nT0101 M3 S500\nG0 X24 Z3\nX19.4\nG32 Z-20 F1.5\nG0 X24\nZ3\nX19.1\nG32 Z-20 F1.5\nG0 X24\nZ3\nX18.9\nG32 Z-20 F1.5\nG0 X24\nZ3\nG28 G91 X0 Z0\nM30\n";
+    std::fs::write(dir.join("g32.nc"), program).unwrap();
+    let o = run_in(&dir, &["passes", "--program", "g32.nc", "--json", "-"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let ops = v["operations"].as_array().unwrap();
+    let passes: Vec<(f64, f64, f64)> = ops
+        .iter()
+        .flat_map(|op| op["passes"].as_array().unwrap().clone())
+        .map(|p| {
+            (p["x_start"].as_f64().unwrap(), p["z_start"].as_f64().unwrap(), p["z_end"].as_f64().unwrap())
+        })
+        .collect();
+    assert_eq!(passes, vec![(19.4, 3.0, -20.0), (19.1, 3.0, -20.0), (18.9, 3.0, -20.0)], "{v}");
+    let notes = v.to_string();
+    assert!(
+        notes.contains(
+            "line 3:5 writes G91, which Fanuc G-code system A does not have, but line 8:1 writes G32"
+        ),
+        "{notes}"
+    );
+    let o = run_in(&dir, &["passes", "--program", "g32.nc", "--gcode-system", "b"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).starts_with("threadcheck: error: g32.nc:8:1: G32 is thread cutting in Fanuc G-code system A; this program is read in system B"), "{}", stderr(&o));
+}

@@ -272,6 +272,18 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                     continue;
                 }
                 SystemCode::Setting => continue,
+                // System A's thread cutting in a program read in B or C (which write G33): never
+                // dropped, refused at its place.
+                SystemCode::Foreign if g == 32.0 => {
+                    return Err(m.err(
+                        b.line,
+                        col,
+                        format!(
+                            "G32 is thread cutting in Fanuc G-code system A; this program is read in system {} (thread cutting G33), so the G32 would not cut a thread: give ‹gcode_system› a if the control runs system A",
+                            m.gsystem.name()
+                        ),
+                    ));
+                }
                 SystemCode::Foreign => {
                     unknown.push((g, col));
                     continue;

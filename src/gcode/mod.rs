@@ -1107,9 +1107,23 @@ fn read(
         machine::decide(&blocks, dialect, opts.machine_type, opts.machine_type_by.as_deref(), opts.moves)
             .map_err(|(l, c, msg)| perr(l, c, msg))?;
     let lathe = machine.machine_type == MachineType::Lathe;
+    // G32, system A's thread cutting (B and C write G33), outweighs a G91 (often only in
+    // `G28 G91 X0 Z0`): the system is never inferred from G91 alone against it.
+    let g32 = blocks.iter().find_map(|b| {
+        b.words.iter().find(|w| w.name == "G" && word_value(w) == Some(32.0)).map(|w| (b.line, w.col))
+    });
+    let mut overruled: Option<String> = None;
     let (gsystem, system_evidence) = match opts.gcode_system {
         Some(s) => (s, None),
         None if fanuc_family && lathe => match system_evidence(&blocks) {
+            Some(e) if g32.is_some() => {
+                let (l, c) = g32.unwrap_or_default();
+                overruled = Some(format!(
+                    "line {}:{} writes {}, which Fanuc G-code system A does not have, but line {l}:{c} writes G32, system A's thread cutting (systems B and C write G33): read in system A, the {} read past; ‹gcode_system› chooses",
+                    e.0, e.1, e.2, e.2
+                ));
+                (GCodeSystem::A, None)
+            }
             Some(e) => {
                 // System A's threading cycle in a program whose words are system B's or C's:
                 // which one the control runs is not in the program.
@@ -1205,6 +1219,7 @@ fn read(
         None => "as ‹gcode_system› says".to_string(),
     };
     let system_note = (fanuc_family && !operations.is_empty()).then(|| match gsystem {
+        GCodeSystem::A if overruled.is_some() => overruled.clone().unwrap_or_default(),
         GCodeSystem::A => "read in Fanuc G-code system A (G92 the threading cycle, G76 the multiple one, G32 thread cutting); a control set to system B or C needs ‹gcode_system› b or c".to_string(),
         GCodeSystem::B => format!("read in Fanuc G-code system B, {why}: G78 the threading cycle, G76 the multiple one, G33 thread cutting, G92 coordinates, G90/G91 absolute/incremental"),
         GCodeSystem::C => format!("read in Fanuc G-code system C, {why}: G21 the threading cycle, G78 the multiple one, G33 thread cutting, G70/G71 inch/metric, G92 coordinates, G90/G91 absolute/incremental"),
