@@ -207,18 +207,31 @@ pub fn run<R: BufRead + Send + 'static, W: Write>(input: R, out: W) -> Result<i3
         for event in events {
             match server.handle(event)? {
                 Flow::Continue => {}
-                Flow::Exit(code) => {
-                    server.stop_all();
-                    break 'serve code;
-                }
+                Flow::Exit(code) => break 'serve code,
                 Flow::Ending(code) => ending = Some(code),
             }
         }
         server.start_checks();
     };
+    // The checks stopped end within milliseconds (at their next check of the flag): waited
+    // for, up to two seconds, so that no thread of this server outlives it.
+    server.stop_all();
+    let until = std::time::Instant::now() + std::time::Duration::from_secs(2);
+    while server.alive > 0 {
+        match rx.recv_timeout(until.saturating_duration_since(std::time::Instant::now())) {
+            Ok(Event::Checked { .. }) => server.alive -= 1,
+            Ok(_) => {}
+            Err(_) => break,
+        }
+    }
     drop(rx);
-    // The reader ends at `exit` or at the end of the input; at neither it is left blocked on
-    // its input, which the process's end closes.
+    // The reader ends at `exit` or at the end of the input (it has sent either when the loop
+    // ends): joined once it has returned, within a tenth of a second; otherwise it is left
+    // blocked on its input, which the process's end closes.
+    let until = std::time::Instant::now() + std::time::Duration::from_millis(100);
+    while !reader.is_finished() && std::time::Instant::now() < until {
+        std::thread::sleep(std::time::Duration::from_millis(1));
+    }
     if reader.is_finished() {
         let _ = reader.join();
     }
