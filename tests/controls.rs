@@ -454,3 +454,43 @@ fn the_gcode_system_is_read_from_the_program() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(stdout(&o).contains("read in Fanuc G-code system A"), "{}", stdout(&o));
 }
+
+/// Issue 61 item 5: an Okuma program with a LAP rough-turning cycle (`G85 NSHP D… U… W… F…`), its
+/// shape (`NSHP G81` to `G80`) and a `/GOTO NSTRT` was refused ("'NSHP' is not a word"). Read
+/// now: the LAP and the jump are read past by name, the shape's blocks are moves, so the blank
+/// is the shape's Ø73.8 (line 12), and the G71 cuts the passes of the M74x2 program above
+/// (D 0.4 per pass in diameter, U 0.1, H 2.454: X73.6 … X71.546).
+#[test]
+fn an_okuma_lap_cycle_and_its_shape_are_read() {
+    let (ops, v) = pass_xs("okuma-lap-m74x2.min", &[]);
+    let depths = [0.4, 0.8, 1.2, 1.6, 2.0, 2.354, 2.454];
+    let x: Vec<f64> = depths.iter().map(|d| 71.546 + (2.454 - d)).collect();
+    assert!(close(&ops[0], &x), "{ops:?}");
+    let notes = v.to_string();
+    for said in [
+        "G85 NSHP read past: an Okuma LAP rough-turning cycle",
+        "G81 read past: the start of an Okuma LAP cycle's shape",
+        "GOTO NSTRT read past: a jump or call to a sequence name, not followed",
+    ] {
+        assert!(notes.contains(said), "{said}: {notes}");
+    }
+    let p = data("programs/okuma-lap-m74x2.min");
+    let (_, v) = run_json(&[
+        "verify",
+        "--thread",
+        "M74x2-6g",
+        "--allow-nonstandard",
+        "--program",
+        p.to_str().unwrap(),
+        "--insert",
+        "full",
+        "--json",
+        "-",
+    ]);
+    let op = &v["operations"][0];
+    assert_eq!(op["plan"]["blank_diameter"], 73.8);
+    assert!(
+        v.to_string().contains("okuma-lap-m74x2.min:12:1: the blank is the program's own: Ø73.8000"),
+        "{v}"
+    );
+}

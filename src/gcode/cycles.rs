@@ -637,6 +637,27 @@ pub(crate) fn read_past_item(m: &mut Motion, line: usize, p: &Past) -> Result<()
             ))
         }
         PastKind::RotarySpeed => m.read_past(line, p.col, &p.name, "a rotary (live) tool's spindle speed, not modelled"),
+        PastKind::Lap => {
+            m.lose_position(line, &p.name, true, true);
+            m.read_past(
+                line,
+                p.col,
+                &p.name,
+                "an Okuma LAP rough-turning cycle: its roughing passes are not modelled; the shape it names is read from its own blocks, which follow, as moves",
+            );
+        }
+        PastKind::LapShape => m.read_past(
+            line,
+            p.col,
+            &p.name,
+            "the start of an Okuma LAP cycle's shape (to its G80): its blocks are read as moves, the finished profile",
+        ),
+        PastKind::SequenceJump => m.read_past(
+            line,
+            p.col,
+            &p.name,
+            "a jump or call to a sequence name, not followed (the blocks after it are read in order)",
+        ),
         PastKind::Billet { x, z } => {
             // The bar a lathe program turns: its diameter is the blank of a thread the program
             // turns no diameter for.

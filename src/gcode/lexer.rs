@@ -228,6 +228,14 @@ pub enum PastKind {
     Section,
     /// An Okuma rotary (live) tool's spindle speed `SB=…`: a setting threadcheck does not model.
     RotarySpeed,
+    /// An Okuma LAP cycle (`G85 NTURN D… U… W… F…`): rough turning of the shape the named
+    /// sequence starts (its own blocks, `NTURN G81` to `G80`, follow and are read as moves).
+    Lap,
+    /// An Okuma block that names a sequence as its operand (`GOTO NSTRT`): a jump not followed.
+    SequenceJump,
+    /// The start of an Okuma LAP cycle's shape (`NSHP G81`: G81 a longitudinal shape, G82 a
+    /// transverse one, G83 a shape copied, to the G80 that ends it).
+    LapShape,
 }
 
 impl Block {
@@ -366,6 +374,44 @@ fn okuma_line(line: &str, ln: usize, blocks: &mut Vec<Block>) -> Result<(), LexE
         let end = (start + 1..code_end).find(|&k| !chars[k].is_ascii_alphanumeric()).unwrap_or(code_end);
         label = Some(chars[start..end].iter().collect::<String>());
         chars[start..end].iter_mut().for_each(|c| *c = ' ');
+    }
+    // A sequence name as an operand (`G85 NTURN …`, `GOTO NSTRT`): the LAP cycle or the jump is
+    // the whole block, read past by name.
+    let operand = (start..code_end).find(|&k| {
+        (k == 0 || !chars[k - 1].is_ascii_alphanumeric())
+            && chars[k] == 'N'
+            && chars.get(k + 1).is_some_and(|c| c.is_ascii_uppercase())
+    });
+    if let Some(at) = operand {
+        let code: String = chars[start..code_end].iter().collect();
+        let head: String = chars[start..at].iter().collect::<String>().trim().to_string();
+        let name_end = (at + 1..code_end).find(|&k| !chars[k].is_ascii_alphanumeric()).unwrap_or(code_end);
+        let seq: String = chars[at..name_end].iter().collect();
+        let lap = ["G85", "G86", "G87", "G88"].iter().any(|g| {
+            head.split_whitespace().any(|w| w == *g)
+                || head.split_whitespace().any(|w| w.trim_start_matches('/') == *g)
+        });
+        let kind = if lap { PastKind::Lap } else { PastKind::SequenceJump };
+        let name = format!("{} {seq}", head.trim_start_matches('/').trim());
+        let _ = code;
+        chars[start..code_end].iter_mut().for_each(|c| *c = ' ');
+        past.push(Past { name: name.trim().to_string(), kind, col: start + 1 });
+    }
+    // A labelled G81, G82 or G83 opens a LAP cycle's shape (a lathe's OSP has them so), not a
+    // drilling cycle.
+    if label.is_some() {
+        for g in ["G81", "G82", "G83"] {
+            let gc: Vec<char> = g.chars().collect();
+            let found = (start..code_end.saturating_sub(2)).find(|&k| {
+                chars[k..].starts_with(&gc)
+                    && (k == 0 || !chars[k - 1].is_ascii_alphanumeric())
+                    && chars.get(k + 3).is_none_or(|c| !c.is_ascii_digit() && *c != '.')
+            });
+            if let Some(k) = found {
+                chars[k..k + 3].iter_mut().for_each(|c| *c = ' ');
+                past.push(Past { name: g.to_string(), kind: PastKind::LapShape, col: k + 1 });
+            }
+        }
     }
     let mut k = 0;
     while k + 3 <= code_end {
