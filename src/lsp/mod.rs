@@ -111,6 +111,8 @@ struct Server<W: Write> {
     running: HashMap<String, Running>,
     /// Check threads not yet ended (stopped ones included).
     alive: usize,
+    /// The check threads, joined once they have ended (none outlives the server).
+    threads: Vec<std::thread::JoinHandle<()>>,
     /// Requests waiting for a check, in the order they came.
     waiting: Vec<Waiting>,
     /// Where a check's thread hands its view.
@@ -186,6 +188,7 @@ pub fn run<R: BufRead + Send + 'static, W: Write>(input: R, out: W) -> Result<i3
         tools: Arc::new(None),
         running: HashMap::new(),
         alive: 0,
+        threads: Vec::new(),
         waiting: Vec::new(),
         events,
     };
@@ -222,6 +225,13 @@ pub fn run<R: BufRead + Send + 'static, W: Write>(input: R, out: W) -> Result<i3
             Ok(Event::Checked { .. }) => server.alive -= 1,
             Ok(_) => {}
             Err(_) => break,
+        }
+    }
+    // Each thread that has handed over its view returns at once: joined (one still checking
+    // past the two seconds is left, the process's end stops it).
+    for h in std::mem::take(&mut server.threads) {
+        if server.alive == 0 || h.is_finished() {
+            let _ = h.join();
         }
     }
     drop(rx);
@@ -596,6 +606,14 @@ impl<W: Write> Server<W> {
     /// Starts the checks of the documents changed and not being checked, while fewer than
     /// [`MAX_CHECKS`] threads run.
     fn start_checks(&mut self) {
+        // The threads that have ended are joined.
+        for h in std::mem::take(&mut self.threads) {
+            if h.is_finished() {
+                let _ = h.join();
+            } else {
+                self.threads.push(h);
+            }
+        }
         if self.shut_down {
             return;
         }
@@ -633,8 +651,9 @@ impl<W: Write> Server<W> {
                 let view = (!mine.is_raised()).then_some(view);
                 let _ = events.send(Event::Checked { uri: key, version, view });
             });
-            if spawned.is_ok() {
+            if let Ok(handle) = spawned {
                 self.alive += 1;
+                self.threads.push(handle);
                 self.running.insert(uri, Running { version, stop });
             }
         }
