@@ -73,7 +73,7 @@ pub use ground::note::{Note, NoteKind, Place};
 pub use ground::plane::{Arc, Point, DEFAULT_TOLERANCE, MIN_TOLERANCE};
 
 // Standards: designations, forms, classes and their limits of size.
-pub use standards::drills::{drill_that_passes, DrillSource, PassingDrill};
+pub use standards::drills::{drill_that_passes, inch_drill, DrillSource, PassingDrill};
 pub use standards::tolerance::Resolution;
 pub use standards::tolerance::{
     iso_limits, limits_for, AcmeClass, Bs84Class, CoatingLimits, GaugePlane, Iso228Class, IsoClass, Limit,

@@ -234,3 +234,20 @@ fn a_bolt_milled_without_compensation_is_named_by_its_approach() {
     assert_eq!(v["designation"], "M24x3-6g", "{}", stdout(&o));
     assert_eq!(v["designation_from"], "inferred");
 }
+
+/// Issue 61 item 6: a shop's inch comments name the tap and the drill: `(3/8-16 TAP)` is
+/// 3/8-16 UNC (the Unified series whose standard size it is; class 2B, the default for a tapped
+/// hole) and `(5/16 DRILL)` a 0.3125 in drill, 7.9375 mm, inside 3/8-16 UNC-2B's minor diameter
+/// 0.3070–0.3210 in (ASME B1.1 table 2A: 7.798–8.153 mm): the tap passes. It was refused at the
+/// G84 ("no tool table names" T2).
+#[test]
+fn inch_tap_and_drill_comments_name_the_tools() {
+    let dir = tempdir("inch-comments");
+    let program = "%\nO1000 (INCH TAP)\nG20 G17 G90\nT1 M6 (5/16 DRILL)\nS1000 M3\nG0 X0 Y0 Z0.2\nG81 Z-0.8 R0.1 F5.\nG80\nT2 M6 (3/8-16 TAP)\nS500 M3\nG0 X0 Y0 Z0.2\nG84 Z-0.6 R0.2 F31.25\nG80\nM30\n%\n";
+    std::fs::write(dir.join("inch.nc"), program).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "inch.nc", "--json", "-"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(text.contains("3/8-16 UNC-2B"), "{text}");
+    assert!(text.contains("the drill's diameter Ø7.9375 is the comment's at line 4"), "{text}");
+}

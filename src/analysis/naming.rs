@@ -116,6 +116,9 @@ pub struct Found {
 /// assert_eq!(find("1/2\"-13 UNC-2A").map(|f| f.text), Some("1/2-13 UNC-2A".to_string()));
 /// assert_eq!(find("TAP M8").map(|f| f.text), Some("M8".to_string()));
 /// assert_eq!(find("COOLANT M8"), None);
+/// // A shop's inch tap: the Unified series whose standard size it is.
+/// assert_eq!(find("3/8-16 TAP").map(|f| f.text), Some("3/8-16 UNC".to_string()));
+/// assert_eq!(find("#10-32 TAP").map(|f| f.text), Some("#10-32 UNF".to_string()));
 /// ```
 pub fn designation_in_comment(comment: &str, opts: ParseOptions) -> Option<Found> {
     // Words with their character offsets; edge punctuation is not part of a word.
@@ -147,6 +150,12 @@ pub fn designation_in_comment(comment: &str, opts: ParseOptions) -> Option<Found
             let joined: Vec<&str> = run.iter().map(|(_, w)| w.as_str()).collect();
             for text in spellings(&joined, capitals) {
                 let Ok(d) = parse_designation(&text, opts) else { continue };
+                // A series added to a bare inch size (`3/8-16` read as 3/8-16 UNC) needs a word
+                // for a thread or tap in the comment.
+                if !says_thread && text.len() > joined.join(" ").len() && d.thread.form == ThreadForm::Unified
+                {
+                    continue;
+                }
                 let bare = d.thread.form == ThreadForm::IsoMetric
                     && d.external.is_none()
                     && d.internal.is_none()
@@ -159,6 +168,19 @@ pub fn designation_in_comment(comment: &str, opts: ParseOptions) -> Option<Found
         }
     }
     None
+}
+
+/// Whether `w` is an inch size with its threads per inch and nothing else: `3/8-16`, `1/4-20`,
+/// `#10-32`, `0-80`.
+fn is_inch_size_and_tpi(w: &str) -> bool {
+    let Some((size, tpi)) = w.rsplit_once('-') else { return false };
+    let size = size.strip_prefix('#').unwrap_or(size);
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    let size_ok = match size.split_once('/') {
+        Some((a, b)) => digits(a) && digits(b),
+        None => digits(size) && size.len() <= 2,
+    };
+    size_ok && digits(tpi)
 }
 
 /// The spellings of a run of words to try, the most literal first.
@@ -183,6 +205,12 @@ fn spellings(words: &[&str], capitals: bool) -> Vec<String> {
         return Vec::new();
     }
     let mut out = vec![w.join(" ")];
+    // `3/8-16`, `#10-32` (a shop's tap comment): the Unified series whose standard size it is.
+    if w.len() == 1 && is_inch_size_and_tpi(&w[0]) {
+        for series in ["UNC", "UNF", "UNEF"] {
+            out.push(format!("{} {series}", w[0]));
+        }
+    }
     // `M10X1.5 6H`: the class as its own word.
     if w.len() == 2 {
         out.push(w.join("-"));
@@ -525,6 +553,11 @@ pub const DRILL_WORDS: &[&str] =
 /// assert_eq!(drill_in_comment("DRILL .339", ProgramUnits::Inch), Some(0.339 * 25.4));
 /// assert_eq!(drill_in_comment("SPOT DRILL 90 DEG", ProgramUnits::Mm), None);
 /// assert_eq!(drill_in_comment("TAP M10", ProgramUnits::Mm), None);
+/// // Inch drills by their gauges, whatever the program's units.
+/// assert_eq!(drill_in_comment("5/16 DRILL", ProgramUnits::Mm), Some(0.3125 * 25.4));
+/// assert!((drill_in_comment("T4 | NO. 29 DRILL | H4", ProgramUnits::Inch).unwrap() - 3.4544).abs() < 1e-9);
+/// assert!((drill_in_comment("LETTER F DRILL", ProgramUnits::Inch).unwrap() - 6.5278).abs() < 1e-9);
+/// assert!((drill_in_comment("F DRILL", ProgramUnits::Inch).unwrap() - 6.5278).abs() < 1e-9);
 /// ```
 pub fn drill_in_comment(comment: &str, units: ProgramUnits) -> Option<f64> {
     let upper = comment.to_uppercase();
@@ -532,7 +565,27 @@ pub fn drill_in_comment(comment: &str, units: ProgramUnits) -> Option<f64> {
         return None;
     }
     let words: Vec<&str> = upper.split_whitespace().collect();
+    let bare =
+        |w: &str| w.trim_matches(|c: char| matches!(c, ',' | ';' | ':' | '=' | '(' | ')' | '"')).to_string();
     words.iter().enumerate().find_map(|(i, w)| {
+        // An inch drill by its gauge: `5/16`, `#29`, `NO. 29`, `LETTER F`, `F DRILL`.
+        let w0 = bare(w);
+        let next = words.get(i + 1).map(|n| bare(n));
+        let gauge = match w0.as_str() {
+            "NO." | "NO" | "NR." => {
+                next.as_deref().and_then(|n| crate::standards::drills::inch_drill(&format!("#{n}")))
+            }
+            "LETTER" => next.as_deref().and_then(crate::standards::drills::inch_drill),
+            l if l.len() == 1 => next
+                .as_deref()
+                .filter(|n| DRILL_WORDS.contains(n))
+                .and_then(|_| crate::standards::drills::inch_drill(l)),
+            f if f.contains('/') || f.starts_with('#') => crate::standards::drills::inch_drill(f),
+            _ => None,
+        };
+        if gauge.is_some() {
+            return gauge;
+        }
         // An angle (`90 DEG`, `118°`) is not a diameter.
         if w.ends_with('°') || words.get(i + 1).is_some_and(|n| n.starts_with("DEG") || n.starts_with('°'))
         {

@@ -149,6 +149,39 @@ fn nearest_metric(middle: f64, within: &impl Fn(f64) -> bool) -> Option<f64> {
         })
 }
 
+/// The diameter, mm, of an inch drill named by its gauge: a number drill (`#29`, 1 to 60), a
+/// letter drill (`F`, A to Z) or a fractional one (`5/16`, a fraction of 2 to 64 parts).
+///
+/// ```
+/// use threadcheck::inch_drill;
+/// assert_eq!(inch_drill("5/16"), Some(0.3125 * 25.4));
+/// assert!((inch_drill("#29").unwrap() - 0.136 * 25.4).abs() < 1e-9);
+/// assert!((inch_drill("F").unwrap() - 0.257 * 25.4).abs() < 1e-9);
+/// assert_eq!(inch_drill("#61"), None);
+/// # Ok::<(), threadcheck::Error>(())
+/// ```
+pub fn inch_drill(name: &str) -> Option<f64> {
+    let gauge = &crate::standards::catalog().ok()?.drills.inch_drills;
+    let inches = if let Some(n) = name.strip_prefix('#') {
+        let n: usize = n.parse().ok()?;
+        *gauge.number.get(n.checked_sub(1)?)?
+    } else if let Some((a, b)) = name.split_once('/') {
+        let (a, b): (u32, u32) = (a.parse().ok()?, b.parse().ok()?);
+        if !(2..=64).contains(&b) || !b.is_power_of_two() || a == 0 || a >= 4 * b {
+            return None;
+        }
+        f64::from(a) / f64::from(b)
+    } else {
+        let mut c = name.chars();
+        let (Some(l), None) = (c.next(), c.next()) else { return None };
+        if !l.is_ascii_uppercase() {
+            return None;
+        }
+        *gauge.letter.get(usize::from(l as u8 - b'A'))?
+    };
+    Some(inches * MM_PER_INCH)
+}
+
 /// The inch drill nearest `middle` (mm) that passes, of the fractional, number and letter
 /// gauges; of two equally near, the smaller.
 fn nearest_inch(
