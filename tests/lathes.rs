@@ -358,3 +358,27 @@ fn a_g91_reference_return_does_not_turn_a_g32_program_into_system_b() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).starts_with("threadcheck: error: g32.nc:8:1: G32 is thread cutting in Fanuc G-code system A; this program is read in system B"), "{}", stderr(&o));
 }
+
+/// Issue 61 item 1: a turret lathe that indexes with `T0707 M06` (Denford's Fanuc-style
+/// controls) is a lathe: the four-digit T word (station and offset) decides, not the M6 (it was
+/// read as a mill-turn, its G76 a fine-boring cycle: "no thread-making operation"); the tool word
+/// is named as written. Hand-derived: G70/G71 finish the journal to Ø20 over Z0…−25 (line 9),
+/// the blank of the G76 (X16.933, P1534: an M20x2.5).
+#[test]
+fn a_turret_lathe_that_indexes_with_m06_is_a_lathe() {
+    let dir = tempdir("t0707-m06");
+    let program = "(M20X2.5)\nG21 G40 G99\nT0101 M06\nG97 S1500 M03\nG00 X32 Z2\nG71 U1 R0.5\nG71 P10 Q20 U0.2 W0.1 F0.2\nN10 G00 X20\nG01 Z-25 F0.1\nX30\nN20 Z-40\nG70 P10 Q20\nG28 U0 W0\nT0707 M06\nG97 S600 M03\nG00 X22 Z5\nG76 P010060 Q100 R0.05\nG76 X16.933 Z-20 P1534 Q400 F2.5\nG28 U0 W0\nM30\n";
+    std::fs::write(dir.join("denford.nc"), program).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "denford.nc", "--insert", "full", "--json", "-"]);
+    let v: serde_json::Value =
+        serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{e}: {}", stderr(&o)));
+    assert_eq!(v["machine"]["reason"], "read as a lathe: line 3 writes T0101 M06, a turret station and its offset (--machine-type chooses otherwise)");
+    let op = &v["operations"][0];
+    assert_eq!(op["made"], "turned", "{op}");
+    assert_eq!(op["plan"]["blank_diameter"], 20.0, "{op}");
+    assert_eq!(op["plan"]["final_x"], 16.933, "{op}");
+    // The user's word, lathe, is taken without a refusal.
+    let o =
+        run_in(&dir, &["verify", "--program", "denford.nc", "--insert", "full", "--machine-type", "lathe"]);
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+}

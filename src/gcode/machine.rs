@@ -118,18 +118,18 @@ pub(crate) fn decide(
     }
     if let Some(t) = given {
         let source = by.map_or("‹machine_type›".to_string(), |f| format!("the machine file {f}"));
+        // The user's word wins: obeyed, with what in the program disagrees named.
         if t != MachineType::MillTurn {
             if let Some((b, _, what)) = first_showing(blocks, dialect, |m| m != t) {
-                return Err((
-                    b.line,
-                    b.col,
+                return read(
+                    t,
                     format!(
-                        "line {} writes {what}, which a {} does not ({source} says {}): a program that turns and mills is read with machine type mill-turn",
+                        "read as a {}, as {source} says, though line {} writes {what}, which a {} does not write as a rule (a program that turns and mills is read with machine type mill-turn)",
+                        t.name(),
                         b.line,
                         if t == MachineType::Lathe { "lathe" } else { "machining centre" },
-                        t.name()
                     ),
-                ));
+                );
             }
         }
         return read(t, format!("read as a {}, as {source} says", t.name()));
@@ -209,12 +209,28 @@ fn evidence(b: &Block, dialect: Dialect) -> Option<(MachineType, String)> {
             ));
         }
         let tool_change = num("M").any(|m| m == 6.0);
-        if let Some(t) = num("T").next() {
-            if tool_change {
-                return Some((MachineType::Mill, format!("T{t} M6, a tool change")));
+        // The T word as written (`T0707`), and whether it is a lathe's four digits: the turret
+        // station and its offset. A turret lathe (Denford's Fanuc-style controls among them)
+        // may index with M6 too: the four digits decide, not the M6.
+        let t_word = b.words.iter().find(|w| w.name == "T" && matches!(w.val, WVal::Num { .. }));
+        let m_word =
+            b.words.iter().find(|w| w.name == "M" && matches!(w.val, WVal::Num { v, .. } if v == 6.0));
+        if let (Some(t), Some(tv)) = (t_word, num("T").next()) {
+            let digits = t.text.trim_start_matches(['T', 't']);
+            let station_and_offset = digits.len() == 4 && digits.bytes().all(|c| c.is_ascii_digit());
+            if station_and_offset {
+                let with = m_word.map_or(String::new(), |m| format!(" {}", m.text));
+                return Some((
+                    MachineType::Lathe,
+                    format!("{}{with}, a turret station and its offset", t.text),
+                ));
             }
-            if t >= 100.0 {
-                return Some((MachineType::Lathe, format!("T{t:04}, a tool and its offset")));
+            if tool_change {
+                let m = m_word.map_or("M6".to_string(), |m| m.text.clone());
+                return Some((MachineType::Mill, format!("{} {m}, a tool change", t.text)));
+            }
+            if tv >= 100.0 {
+                return Some((MachineType::Lathe, format!("{}, a tool and its offset", t.text)));
             }
         }
         if has("U") || has("W") {
