@@ -382,3 +382,20 @@ fn a_turret_lathe_that_indexes_with_m06_is_a_lathe() {
         run_in(&dir, &["verify", "--program", "denford.nc", "--insert", "full", "--machine-type", "lathe"]);
     assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
 }
+
+/// Issue 61 item 3: an internal M30x1.5 in a part turned outside to Ø48, drilled on the axis
+/// and bored to Ø28.4: its bore is the Ø28.4 the boring bar leaves (line 15), never the outside
+/// Ø48 (it was taken, and the thread got "no cut") nor the drill's path on the axis.
+#[test]
+fn an_internal_thread_s_bore_is_the_bored_diameter() {
+    let dir = tempdir("bore");
+    let program = "(M30X1.5-6H)\nG18 G21 G40 G99\nT0101\nG97 S800 M3\nG0 X50 Z2\nG1 X48 F0.2\nZ-40\nG0 X60 Z2\nT0202\nG0 X0 Z5\nG1 Z-40 F0.1\nG0 Z5\nT0303\nG0 X28.4 Z2\nG1 Z-30 F0.1\nG0 X26 Z5\nT0404\nG0 X27 Z5\nG76 P010060 Q100 R0.05\nG76 X30 Z-25 P812 Q250 F1.5\nG0 Z50\nM30\n";
+    std::fs::write(dir.join("bore.nc"), program).unwrap();
+    let o =
+        run_in(&dir, &["verify", "--program", "bore.nc", "--insert", "full", "--internal", "--json", "-"]);
+    let v: serde_json::Value =
+        serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{e}: {}", stderr(&o)));
+    let op = &v["operations"][0];
+    assert_eq!(op["plan"]["blank_diameter"], 28.4, "{op}");
+    assert!(v.to_string().contains("bore.nc:15:1: the bore is the program's own: Ø28.4000"), "{v}");
+}

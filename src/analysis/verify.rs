@@ -1541,10 +1541,19 @@ fn program_blank(op: &crate::gcode::Operation, kind: ThreadKind) -> Option<(f64,
     zs.sort_by(f64::total_cmp);
     zs.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
     let external = kind == ThreadKind::External;
+    // The thread's root: its deepest pass (the least X of a bolt's, the greatest of a nut's).
+    // Only the surface on the thread's side of it is the blank: a bolt's material lies above
+    // its root (a centre drill's X0 or a bore below it is not its blank), a nut's below (the
+    // outside a part is turned to is not its bore).
+    let xs = passes.iter().flat_map(|p| [p.x_start.abs(), p.x_end.abs()]);
+    let root = if external { xs.fold(f64::INFINITY, f64::min) } else { xs.fold(0.0, f64::max) };
     // At one Z: the material's distance from the axis, the move that left it (of equal ones,
-    // the last) and whether that move turned a cylinder.
+    // the last) and whether that move turned a cylinder. The surface on the thread's side of its
+    // root first; only where there is none, the one on the other side nearest the root (a part
+    // turned under a bolt's root: nothing is cut, and the message names that diameter).
     let material = |z: f64| -> Option<(f64, usize, bool)> {
         let mut best: Option<(f64, usize, bool)> = None;
+        let mut beyond: Option<(f64, usize, bool)> = None;
         for t in &moves {
             let (za, zb) = (t.from[1], t.to[1]);
             if z < za.min(zb) - EPS || z > za.max(zb) + EPS {
@@ -1552,16 +1561,32 @@ fn program_blank(op: &crate::gcode::Operation, kind: ThreadKind) -> Option<(f64,
             }
             let f = ((z - za) / (zb - za)).clamp(0.0, 1.0);
             let x = (t.from[0] + f * (t.to[0] - t.from[0])).abs();
+            let here = (x, t.line, (t.from[0] - t.to[0]).abs() < 1e-3);
+            // On the axis: a drill's path, whose hole is the drill's diameter, not the path's.
+            if x < 1e-3 {
+                continue;
+            }
+            if (external && x <= root + 1e-6) || (!external && x >= root - 1e-6) {
+                let nearer = match beyond {
+                    None => true,
+                    Some((b, _, _)) if external => x >= b - 1e-6,
+                    Some((b, _, _)) => x <= b + 1e-6,
+                };
+                if nearer {
+                    beyond = Some(here);
+                }
+                continue;
+            }
             let deeper = match best {
                 None => true,
                 Some((b, _, _)) if external => x <= b + 1e-6,
                 Some((b, _, _)) => x >= b - 1e-6,
             };
             if deeper {
-                best = Some((x, t.line, (t.from[0] - t.to[0]).abs() < 1e-3));
+                best = Some(here);
             }
         }
-        best
+        best.or(beyond)
     };
     // The cylinders of that material and the length of the pass each runs along: a taper there
     // is a chamfer or an approach from beyond the part's face, and a cylinder along less than a
