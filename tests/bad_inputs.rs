@@ -102,3 +102,20 @@ fn a_file_that_is_no_table_is_not_quoted() {
     let out = String::from_utf8(out).unwrap();
     assert!(out.contains("key with no value") && !out.contains("secret-gecos"), "{out}");
 }
+
+/// Issue 58 item 9: a subprogram file over the program limit (2 MiB) was refused at its own name
+/// with no place; it is refused at the call's `file:line:column`.
+#[test]
+fn a_subprogram_file_over_the_limit_is_refused_at_its_call() {
+    let dir = tempdir("sub-big");
+    let line = format!("({})\n", "x".repeat(100));
+    std::fs::write(dir.join("big.ngc"), format!("o<big> sub\n{}o<big> endsub\n", line.repeat(22_000)))
+        .unwrap();
+    std::fs::write(dir.join("main.ngc"), "G18 G21 G90\nG0 X10 Z5\no<big> call\nM2\n").unwrap();
+    let o = run_in(&dir, &["verify", "--program", "main.ngc"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr(&o).trim_end(),
+        "threadcheck: error: main.ngc:3:1: the subprogram file ./big.ngc: the program is larger than 2097152 bytes"
+    );
+}

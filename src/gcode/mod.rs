@@ -859,23 +859,27 @@ fn read_sub_files(
         for name in wanted {
             tried.insert(name.clone());
             let Some(found) = (finder.0)(&name) else { continue };
-            let (shown, text) = found?;
+            // Refused at the call's place (the first block that calls it): a file that cannot be
+            // read (too large, not text) and one past the limit.
+            let call = blocks.iter().find(|b| missing_subs(std::slice::from_ref(b), dialect).contains(&name));
+            let at_call = |message: String| match call {
+                Some(b) => Error::Program {
+                    file: names.get(b.file).cloned().unwrap_or_default(),
+                    line: b.line,
+                    column: b.col,
+                    message,
+                },
+                None => Error::Input(message),
+            };
+            let (shown, text) = match found {
+                Ok(f) => f,
+                Err(e @ Error::Program { .. }) => return Err(e),
+                Err(e) => return Err(at_call(format!("the subprogram file {}", e.one_line()))),
+            };
             if names.len() > MAX_SUB_FILES {
-                let message = format!(
+                return Err(at_call(format!(
                     "more than {MAX_SUB_FILES} subprogram files for one program: {shown} is one too many"
-                );
-                // Refused at the call's place (the first block that calls it).
-                let call =
-                    blocks.iter().find(|b| missing_subs(std::slice::from_ref(b), dialect).contains(&name));
-                return Err(match call {
-                    Some(b) => Error::Program {
-                        file: names.get(b.file).cloned().unwrap_or_default(),
-                        line: b.line,
-                        column: b.col,
-                        message,
-                    },
-                    None => Error::Input(message),
-                });
+                )));
             }
             let k = names.len();
             let mut sub = lexer::lex(&text, dialect).map_err(|(line, column, message)| Error::Program {
