@@ -399,3 +399,18 @@ fn an_internal_thread_s_bore_is_the_bored_diameter() {
     assert_eq!(op["plan"]["blank_diameter"], 28.4, "{op}");
     assert!(v.to_string().contains("bore.nc:15:1: the bore is the program's own: Ø28.4000"), "{v}");
 }
+
+/// Issue 61 item 3: a Swiss-type part at negative X with a collar (Ø24 from Z-20) in the
+/// run-out of a thread that ends at Z-20.2: the last pass runs into the collar, so the run-out
+/// check fails, naming X24 at Z-20.95 against the thread's X20 (half a pitch beyond the end). It
+/// compared the negative turned X with a positive thread X and passed.
+#[test]
+fn a_negative_x_collar_in_the_run_out_fails() {
+    let dir = tempdir("swiss");
+    let program = "(M20X1.5-6G SWISS)\nG18 G21 G99\nT0101\nG97 S1000 M3\nG0 X-26 Z2\nG1 X-20 F0.1\nZ-20\nX-24\nZ-30\nG0 X-30 Z2\nT0202\nG0 X-22 Z5\nG76 P010060 Q100 R0.05\nG76 X-18.16 Z-20.2 P920 Q300 F1.5\nG0 X-30 Z50\nM30\n";
+    std::fs::write(dir.join("swiss.nc"), program).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "swiss.nc", "--insert", "full"]);
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert_eq!(o.status.code(), Some(1), "{out}{}", stderr(&o));
+    assert!(out.contains("the last pass ends at Z-20.200, but the turned contour stands at X24.000 at Z-20.950, above the thread's X20.000"), "{out}");
+}

@@ -312,12 +312,16 @@ pub fn process_checks(
 fn run_out(op: &Operation, pitch: f64) -> Option<Check> {
     let last = op.passes.iter().rev().find(|p| (p.z_phase - p.z_start).abs() < 1e-12)?;
     let dir = last.feed_direction();
-    let external = op.passes.first().is_some_and(|f| last.x_end <= f.x_end);
+    // Distances from the axis throughout: a tool working at negative X (a Swiss or rear tool
+    // post) is measured by them as one at positive X (a negative turned X compared with a
+    // positive thread X passed a shoulder in the run-out).
+    let external = op.passes.first().is_some_and(|f| last.x_end.abs() <= f.x_end.abs());
     // The contour's extreme diameter over [lo, hi]: external the largest, internal the smallest.
     let extreme = |lo: f64, hi: f64| -> Option<(f64, f64)> {
         let mut worst: Option<(f64, f64)> = None;
         for t in &op.contour {
             let ([x0, z0], [x1, z1]) = (t.from, t.to);
+            let (x0, x1) = (x0.abs(), x1.abs());
             let (zl, zh) = (z0.min(z1), z0.max(z1));
             if zh < lo || zl > hi {
                 continue;
