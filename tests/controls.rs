@@ -25,6 +25,16 @@ fn close(a: &[f64], b: &[f64]) -> bool {
     a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-9)
 }
 
+/// `verify --thread THREAD --program tests/data/programs/PROGRAM --insert full --json -` with
+/// `extra` flags: the exit code and the JSON.
+fn verify_full(program: &str, thread: &str, extra: &[&str]) -> (i32, serde_json::Value) {
+    let p = data(&format!("programs/{program}"));
+    let mut args = vec!["verify", "--thread", thread, "--program", p.to_str().unwrap(), "--insert", "full"];
+    args.extend_from_slice(extra);
+    args.extend(["--json", "-"]);
+    run_json(&args)
+}
+
 /// System B: G78 is the threading cycle (system A's G92), one pass per X word, the X-only
 /// blocks repeating it; G92 S is the spindle clamp (A's G50); G91 makes X and Z incremental,
 /// each repeat's X from the cycle's start point X22 (X−2.8 → 19.2, X−3.2 → 18.8), Z−25 from Z5 →
@@ -42,20 +52,7 @@ fn system_b_g78_is_the_threading_cycle() {
     // Verified: the last pass at X18.2 with a full-profile insert cuts d2 = X + (d2 − d3) =
     // 18.2 + 0.866 = 19.066, 72 µm over 6g's 18.994 (the G76 sheet's figure), and the
     // correction names the program's own G78 repeat.
-    let p = data("programs/fanuc-system-b-g78.nc");
-    let (code, v) = run_json(&[
-        "verify",
-        "--thread",
-        "M20x1.5-6g",
-        "--program",
-        p.to_str().unwrap(),
-        "--insert",
-        "full",
-        "--gcode-system",
-        "b",
-        "--json",
-        "-",
-    ]);
+    let (code, v) = verify_full("fanuc-system-b-g78.nc", "M20x1.5-6g", &["--gcode-system", "b"]);
     assert_eq!(code, 1);
     let d2 = check_of(&v["operations"][0], "pitch_diameter");
     assert!((d2["deviation_um"].as_f64().unwrap() - 72.0).abs() < 0.05, "{d2}");
@@ -153,18 +150,7 @@ fn okuma_g33_fixed_cycle_repeats_on_x_only_blocks() {
     assert!(close(&ops[0], &[19.4, 19.0, 18.6, 18.3, 18.16]), "{ops:?}");
     assert!(v["passes"].as_array().unwrap().iter().all(|p| p["z_start"] == 5.0 && p["z_end"] == -20.0));
     assert!(v["notes"].to_string().contains("read as okuma, the dialect of its extension .min"));
-    let p = data("programs/okuma-g33-repeats.min");
-    let (code, v) = run_json(&[
-        "verify",
-        "--thread",
-        "M20x1.5-6g",
-        "--program",
-        p.to_str().unwrap(),
-        "--insert",
-        "full",
-        "--json",
-        "-",
-    ]);
+    let (code, v) = verify_full("okuma-g33-repeats.min", "M20x1.5-6g", &[]);
     assert_eq!(code, 1);
     let d2 = check_of(&v["operations"][0], "pitch_diameter");
     assert!((d2["value"].as_f64().unwrap() - 19.026).abs() < 1e-4, "{d2}");
@@ -207,19 +193,7 @@ fn okuma_g71_patterns_1_and_3_with_single_blade_infeed() {
     );
     // Verified: the finishing pass's tip on d3 = 71.546 with a full-profile insert cuts the basic
     // d2 72.701, 37.7 µm over 6g's 72.663 (es = −38 µm on M74x2).
-    let p = data("programs/okuma-g71-m74x2.min");
-    let (code, v) = run_json(&[
-        "verify",
-        "--thread",
-        "M74x2-6g",
-        "--allow-nonstandard",
-        "--program",
-        p.to_str().unwrap(),
-        "--insert",
-        "full",
-        "--json",
-        "-",
-    ]);
+    let (code, v) = verify_full("okuma-g71-m74x2.min", "M74x2-6g", &["--allow-nonstandard"]);
     assert_eq!(code, 1);
     for op in v["operations"].as_array().unwrap() {
         let d2 = check_of(op, "pitch_diameter");
@@ -474,19 +448,7 @@ fn an_okuma_lap_cycle_and_its_shape_are_read() {
     ] {
         assert!(notes.contains(said), "{said}: {notes}");
     }
-    let p = data("programs/okuma-lap-m74x2.min");
-    let (_, v) = run_json(&[
-        "verify",
-        "--thread",
-        "M74x2-6g",
-        "--allow-nonstandard",
-        "--program",
-        p.to_str().unwrap(),
-        "--insert",
-        "full",
-        "--json",
-        "-",
-    ]);
+    let (_, v) = verify_full("okuma-lap-m74x2.min", "M74x2-6g", &["--allow-nonstandard"]);
     let op = &v["operations"][0];
     assert_eq!(op["plan"]["blank_diameter"], 73.8);
     assert!(
