@@ -414,3 +414,19 @@ fn a_negative_x_collar_in_the_run_out_fails() {
     assert_eq!(o.status.code(), Some(1), "{out}{}", stderr(&o));
     assert!(out.contains("the last pass ends at Z-20.200, but the turned contour stands at X24.000 at Z-20.950, above the thread's X20.000"), "{out}");
 }
+
+/// Issue 61 item 2: on a lathe-based mill-turn read in Fanuc G-code system A, G98/G99 stay the
+/// feed modes in the live tool's G17 section (F0i-CON: "G98 and G99 are modal … feed per minute,
+/// feed per revolution"): `G17 G98` then `G84 … F750` at S600 taps M8x1.25 at F = S·P =
+/// 600 × 1.25 = 750 mm/min, which passes. It was read as feed per revolution (G98 a return
+/// level) and failed by +748 750 µm.
+#[test]
+fn a_live_tool_s_g98_is_feed_per_minute_in_system_a() {
+    let dir = tempdir("live-g98");
+    let program = "(M8X1.25 LIVE TAP)\nG18 G21 G99\nT0101\nG97 S800 M3\nG0 X30 Z2\nG1 X24 F0.1\nZ-20\nG0 X40 Z5\nT0505 (DRILL 6.8)\nG17 G98\nM45 S1200\nG0 X0 Y0 Z5\nG81 Z-15 R2 F120\nG80\nT0606 (TAP M8X1.25)\nG17 G98\nS600\nG0 X0 Y0 Z5\nG84 Z-12 R2 F750\nG80\nG18\nM30\n";
+    std::fs::write(dir.join("live.nc"), program).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "live.nc"]);
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert_eq!(o.status.code(), Some(0), "{out}{}", stderr(&o));
+    assert!(out.contains("mm/min; feed per minute: F must be S × lead = 600 × 1.25"), "{out}");
+}

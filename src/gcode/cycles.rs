@@ -385,9 +385,10 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                 ))
             }
             50 if fanuc_like && m.lathe() => one_shot = Some(g),
-            // Feed modes (the tapping check reads them): G98/G99 on a lathe, G94/G95 in G17.
-            98 if fanuc_like && m.lathe() => m.feed_per_rev = Some(false),
-            99 if fanuc_like && m.lathe() => m.feed_per_rev = Some(true),
+            // Feed modes (the tapping check reads them): G98/G99 on a lathe (and in a lathe-based
+            // mill-turn's milling sections in system A), G94/G95 in G17.
+            98 if fanuc_like && m.g98_is_feed() => m.feed_per_rev = Some(false),
+            99 if fanuc_like && m.g98_is_feed() => m.feed_per_rev = Some(true),
             // A machining centre's G98/G99: the canned cycles' return level.
             98 if fanuc_like => m.return_to_r = false,
             99 if fanuc_like => m.return_to_r = true,

@@ -152,6 +152,9 @@ pub(crate) struct Motion {
     mill: bool,
     /// A mill-turn program: `mill` follows the plane.
     mill_turn: bool,
+    /// A lathe-based mill-turn (its first evidence a lathe's: a T-series control with live
+    /// tools), whose G98/G99 stay the feed modes in G-code system A in every plane.
+    lathe_based: bool,
     pub file: String,
     /// The program's own file (`file` names a subprogram file while its blocks run).
     pub main_file: String,
@@ -274,6 +277,7 @@ impl Motion {
             gsystem: super::GCodeSystem::A,
             mill,
             mill_turn: false,
+            lathe_based: false,
             file: file.to_string(),
             main_file: file.to_string(),
             x: None,
@@ -417,6 +421,14 @@ impl Motion {
     pub(crate) fn set_mill_turn(&mut self, start_as_mill: bool) {
         self.mill_turn = true;
         self.mill = start_as_mill;
+        self.lathe_based = !start_as_mill;
+    }
+
+    /// Whether G98/G99 are the feed modes (per minute, per revolution) here: on a lathe, and in
+    /// every section of a lathe-based mill-turn read in G-code system A (a T-series control's
+    /// live tool drills and taps with the lathe's feed words: F0i-CON, notes §1.1).
+    pub(crate) fn g98_is_feed(&self) -> bool {
+        self.lathe() || (self.lathe_based && self.gsystem == super::GCodeSystem::A)
     }
 
     /// On a mill-turn program, the machine the plane just set names.
