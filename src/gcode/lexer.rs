@@ -383,17 +383,15 @@ fn okuma_line(line: &str, ln: usize, blocks: &mut Vec<Block>) -> Result<(), LexE
             && chars.get(k + 1).is_some_and(|c| c.is_ascii_uppercase())
     });
     if let Some(at) = operand {
-        let code: String = chars[start..code_end].iter().collect();
         let head: String = chars[start..at].iter().collect::<String>().trim().to_string();
         let name_end = (at + 1..code_end).find(|&k| !chars[k].is_ascii_alphanumeric()).unwrap_or(code_end);
         let seq: String = chars[at..name_end].iter().collect();
-        let lap = ["G85", "G86", "G87", "G88"].iter().any(|g| {
-            head.split_whitespace().any(|w| w == *g)
-                || head.split_whitespace().any(|w| w.trim_start_matches('/') == *g)
-        });
+        // `/` is block delete: `/G85 …` is the LAP cycle too.
+        let lap = head
+            .split_whitespace()
+            .any(|w| ["G85", "G86", "G87", "G88"].contains(&w.trim_start_matches('/')));
         let kind = if lap { PastKind::Lap } else { PastKind::SequenceJump };
         let name = format!("{} {seq}", head.trim_start_matches('/').trim());
-        let _ = code;
         chars[start..code_end].iter_mut().for_each(|c| *c = ' ');
         past.push(Past { name: name.trim().to_string(), kind, col: start + 1 });
     }
