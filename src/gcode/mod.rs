@@ -861,8 +861,11 @@ fn read_sub_files(
             let Some(found) = (finder.0)(&name) else { continue };
             // Refused at the call's place (the first block that calls it): a file that cannot be
             // read (too large, not text) and one past the limit.
-            let call = blocks.iter().find(|b| missing_subs(std::slice::from_ref(b), dialect).contains(&name));
-            let at_call = |message: String| match call {
+            // Looked for only when refusing: a scan of every block is no work for the normal path.
+            let at_call = |message: String| match blocks
+                .iter()
+                .find(|b| missing_subs(std::slice::from_ref(b), dialect).contains(&name))
+            {
                 Some(b) => Error::Program {
                     file: names.get(b.file).cloned().unwrap_or_default(),
                     line: b.line,
@@ -1223,8 +1226,10 @@ fn read(
         None => "as ‹gcode_system› says".to_string(),
     };
     let system_note = (fanuc_family && !operations.is_empty()).then(|| match gsystem {
-        GCodeSystem::A if overruled.is_some() => overruled.clone().unwrap_or_default(),
-        GCodeSystem::A => "read in Fanuc G-code system A (G92 the threading cycle, G76 the multiple one, G32 thread cutting); a control set to system B or C needs ‹gcode_system› b or c".to_string(),
+        GCodeSystem::A => match overruled.take() {
+            Some(why) => why,
+            None => "read in Fanuc G-code system A (G92 the threading cycle, G76 the multiple one, G32 thread cutting); a control set to system B or C needs ‹gcode_system› b or c".to_string(),
+        },
         GCodeSystem::B => format!("read in Fanuc G-code system B, {why}: G78 the threading cycle, G76 the multiple one, G33 thread cutting, G92 coordinates, G90/G91 absolute/incremental"),
         GCodeSystem::C => format!("read in Fanuc G-code system C, {why}: G21 the threading cycle, G78 the multiple one, G33 thread cutting, G70/G71 inch/metric, G92 coordinates, G90/G91 absolute/incremental"),
     });
