@@ -66,17 +66,25 @@ fn main() {
     let g31 = write(&dir, "g31-1000.nc", "G0 X22 Z5\nG31 X20 Z-20 F1.5 U-0.92 I0.00092 V1\n");
     // 1 000 passes of a plan.
     // The Monte Carlo at its work bound: 42 553 samples of 7 passes; 1 923 of 1 000 passes.
-    // thread-mill: 20 one-turn helices 0.35 mm apart, all reaching the section, near the 4e7
-    // evaluations allowed (30 helices 0.25 mm apart, the case of issue 42, are now estimated
-    // over it and refused in one line).
-    let mut tm = String::from("G17 G21 G90 G40 G94\nT12 M6\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-16\nG1 X7 Y0 F100\n");
-    let mut z = -16.0;
-    for _ in 0..20 {
-        z += 0.35;
-        writeln!(tm, "G3 X7 Y0 Z{z:.4} I-7 J0 F150").unwrap();
+    // thread-mill: passes of a six-turn helix, each 0.5 µm further out, all cutting the
+    // section: 36 of them near the 4·10⁷ evaluations allowed (the reach is sought only where the
+    // cutter can pass the tooth profile's own and the bore, issue 62: the 20 one-turn helices
+    // 0.35 mm apart that stood here at the bound take a tenth of it now).
+    let mut tm = String::from("G17 G21 G90 G40 G94\nT12 M6\nS3000 M3\nG0 X0 Y0 Z5\n");
+    for i in 0..36 {
+        let r = 7.0 + 0.0005 * f64::from(i);
+        writeln!(tm, "G0 Z-16\nG1 X{r:.4} Y0 F100\nG3 X{r:.4} Y0 Z-7 I-{r:.4} J0 P6 F150\nG1 X0 Y0").unwrap();
     }
-    tm.push_str("G1 X0 Y0\nG0 Z50\nM30\n");
-    let tm = write(&dir, "thread-mill-crowded.nc", &tm);
+    tm.push_str("G0 Z50\nM30\n");
+    let tm = write(&dir, "thread-mill-crowded.ngc", &tm);
+    // thread-mill, issue 62: a comb cutter (Ø11.9, 5 rows 2 mm apart) in 4 radial passes of 3
+    // one-turn helices, M16x2 in a Ø14 bore; a single-form cutter on one helix of 100 turns.
+    let comb = data.join("programs/threadmill/m16x2-comb-4-passes.nc").to_string_lossy().into_owned();
+    let long = write(
+        &dir,
+        "thread-mill-100-turns.ngc",
+        "G17 G21 G90 G40 G94\nT12 M6\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-160\nG1 X7 Y0 F100\nG3 X7 Y0 Z-10 I-7 J0 P100 F150\nG1 X0 Y0\nG0 Z50\nM30\n",
+    );
     // tap: 10 000 tapped holes (the hole bound), none drilled before (D1 not checked, said).
     let mut tap = String::from("G90 G54 G17 G94\nT1 M6\nS600 M3\nG0 X0 Y0 Z5\nG99 G84 X0 Y0 Z-10 R2 F750\n");
     for i in 1..10_000 {
@@ -201,9 +209,33 @@ fn main() {
             exit: 0,
         },
         Case {
-            what: "thread-mill, 20 one-turn helices 0.35 mm apart",
+            what: "thread-mill, 36 passes of a six-turn helix 0.5 µm apart",
             bound: "4·10⁷ reach evaluations a section; 10 000 turns",
             args: s(&["thread-mill", "--thread", "M20x1.5-6H", "--cutter-diameter", "6", "--program", &tm]),
+            exit: 1,
+        },
+        Case {
+            what: "thread-mill, a comb cutter's 4 passes of 3 turns (M16x2, 5 rows)",
+            bound: "4·10⁷ reach evaluations a section",
+            args: s(&[
+                "thread-mill",
+                "--thread",
+                "M16x2-6H",
+                "--cutter-diameter",
+                "11.9",
+                "--cutter-rows",
+                "5",
+                "--cutter-row-pitch",
+                "2",
+                "--program",
+                &comb,
+            ]),
+            exit: 1,
+        },
+        Case {
+            what: "thread-mill, one helix of 100 turns",
+            bound: "4·10⁷ reach evaluations a section; 10 000 turns",
+            args: s(&["thread-mill", "--thread", "M20x1.5-6H", "--cutter-diameter", "6", "--program", &long]),
             exit: 1,
         },
         Case {

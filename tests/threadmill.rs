@@ -674,3 +674,82 @@ fn a_cam_program_s_tool_list_names_its_thread_mill_and_its_lead_in_arc_is_the_en
     assert_eq!(m["cutter"]["diameter"], 8.0, "{}", stderr(&o));
     assert_eq!(m["verdict"], "pass");
 }
+
+/// Issue 62: a comb (multi-form) cutter's program as shops write it: Ø11.9, 5 rows 2 mm apart, 4
+/// radial passes (R 1.3 to 2.05) of 3 one-turn helices each in a Ø14 bore for M16x2-6H. It was
+/// refused over the evaluation budget (9·10⁷ against 4·10⁷); the reach is now sought only where
+/// the cutter can pass the tooth profile's own and the bore. Against geometry computed here: the
+/// major diameter 2(R + ρ) = 2(2.05 + 5.95) = 16; the tooth profile's D2, 16 − 2·0.866025·P/2·…
+/// = D − 0.866025·P = 14.26795; the milled D2, twice the median over one pitch of heights of
+/// the reach max over ψ of R·cos ψ + √(ρ(z − zc(ψ))² − R²·sin² ψ), by brute force on a grid of
+/// ψ (every pass, every row), clamped to the bore: its groove is P/2 wide where half the heights
+/// reach past it.
+#[test]
+fn a_comb_cutter_s_passes_are_measured_within_the_budget() {
+    let p = data("programs/threadmill/m16x2-comb-4-passes.nc");
+    let o = run(&[
+        "thread-mill",
+        "--program",
+        p.to_str().unwrap(),
+        "--json",
+        "-",
+        "--thread",
+        "M16x2-6H",
+        "--cutter-diameter",
+        "11.9",
+        "--cutter-angle",
+        "60",
+        "--cutter-tip-radius",
+        "0",
+        "--cutter-rows",
+        "5",
+        "--cutter-row-pitch",
+        "2",
+        "--blank-diameter",
+        "14",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["helices"].as_array().unwrap().len(), 12);
+    let m = |k: &str| v["measured"][k].as_f64().unwrap();
+    assert!((m("major_diameter") - 16.0).abs() < 1e-4, "{}", m("major_diameter"));
+    let tooth = v["tooth_profile"]["pitch_diameter"].as_f64().unwrap();
+    assert!((tooth - (16.0 - 0.866_025_4 * 2.0)).abs() < 1e-4, "{tooth}");
+    // The brute force: heights over one pitch around the section's middle (Z-17: the helices
+    // and the rows span Z-27 to Z-13), ψ within 1.2 rad of each crossing of the half-plane (beyond
+    // it R·cos ψ + ρmax = 2.05·0.362 + 5.95 < 7, the bore).
+    let cot = 30f64.to_radians().tan().recip();
+    let rho = |dz: f64| {
+        (0..5).map(|k| 5.95 - (dz - 2.0 * k as f64).abs() * cot).fold(5.95 - 2.0 * 0.866_025_4, f64::max)
+    };
+    let n = 4000;
+    let mut reach: Vec<f64> = (0..n)
+        .map(|i| {
+            let z = -18.0 + 2.0 * (i as f64 + 0.5) / n as f64;
+            let mut best = 7.0f64;
+            for r in [1.3, 1.55, 1.8, 2.05] {
+                for z0 in [-27.0, -25.0, -23.0] {
+                    for j in -1200..=1200 {
+                        let psi = j as f64 * 1e-3;
+                        // The turn's parameter t from its start at ψ = 0: [0, 1.2] and [2π − 1.2, 2π].
+                        let t = if psi >= 0.0 { psi } else { std::f64::consts::TAU + psi };
+                        let p = rho(z - (z0 + 2.0 * t / std::f64::consts::TAU));
+                        let q = p * p - r * r * psi.sin().powi(2);
+                        if q >= 0.0 {
+                            best = best.max(r * psi.cos() + q.sqrt());
+                        }
+                    }
+                }
+            }
+            best
+        })
+        .collect();
+    reach.sort_by(f64::total_cmp);
+    let d2 = reach[n / 2 - 1] + reach[n / 2];
+    assert!(
+        (m("pitch_diameter") - d2).abs() < 1e-3,
+        "milled D2 {} against {d2} by brute force",
+        m("pitch_diameter")
+    );
+    assert_eq!(v["verdict"], "fail");
+}

@@ -903,26 +903,26 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     let zs: Vec<f64> = (0..=n).map(|i| z_mid - 2.0 * p + 4.0 * p * i as f64 / n as f64).collect();
     // The section's cost is counted before it is cut (10 000 one-turn helices stacked
     // 0.0006 mm apart took 372 s): the helix pieces and turns that reach each height.
-    let cost = section_cost(&hs, &c, neck, &zs);
+    let bound = 0.5 * blank;
+    let beyond = bound;
+    let cost = section_cost(&hs, &c, neck, &zs, internal, beyond);
     if !(cost <= crate::ground::bounds::MAX_SECTION_EVALS as f64) {
-        let worst = hs.iter().min_by(|a, b| a.lead.abs().total_cmp(&b.lead.abs())).unwrap_or(&first);
         return Err(Error::Program {
             file: name.clone(),
-            line: worst.line,
+            line: first.line,
             column: 1,
             message: format!(
-                "the helices crowd the measured section (the closest lead {} mm): cutting it takes {} evaluations of the cutter's reach, more than the {} threadcheck allows (about a second)",
-                crate::ground::fmt::fmt_shown((worst.lead.abs() * 1e6).round() / 1e6),
+                "{} helices from here cut the measured section: cutting it takes {} evaluations of the cutter's reach, more than the {} threadcheck allows (about a second)",
+                hs.len(),
                 crate::ground::fmt::fmt_shown((cost / 1e6).round() * 1e6),
                 crate::ground::fmt::fmt_shown(crate::ground::bounds::MAX_SECTION_EVALS as f64)
             ),
         });
     }
-    let bound = 0.5 * blank;
     let section = |only_psi0: bool| -> Vec<Point> {
         zs.par_iter()
             .map(|&z| {
-                let r = reach(&hs, &c, neck, z, internal, only_psi0);
+                let r = reach(&hs, &c, neck, z, internal, only_psi0, beyond);
                 let v = match (r, internal) {
                     (Some(r), true) => r.max(bound),
                     (Some(r), false) => r.min(bound),
@@ -973,8 +973,18 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         let deepest = |p: &&Point| if internal { p.r } else { -p.r };
         let near: Vec<&Point> = pts.iter().filter(|p| (p.z - z_mid).abs() <= 0.5 * t.pitch).collect();
         let at = near.iter().copied().max_by(|a, b| deepest(a).total_cmp(&deepest(b)))?;
-        let r_at =
-            |z: f64| reach(&hs, &c, neck, z, internal, only_psi0).map(|r| if internal { r } else { -r });
+        let r_at = |z: f64| {
+            reach(
+                &hs,
+                &c,
+                neck,
+                z,
+                internal,
+                only_psi0,
+                if internal { f64::NEG_INFINITY } else { f64::INFINITY },
+            )
+            .map(|r| if internal { r } else { -r })
+        };
         let dz = 4.0 * t.pitch / 1600.0;
         let (z0, _) = crate::geometry::measure::golden_min(
             &|z| r_at(z).map_or(f64::INFINITY, |r| -r),

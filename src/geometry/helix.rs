@@ -238,24 +238,191 @@ pub(crate) fn samples(t_a: f64, t_b: f64) -> usize {
 }
 
 /// The evaluations of the cutter's reach that cutting the section at heights `zs` takes, from
-/// a sample of 33 of them: counted before the section is cut.
-pub(crate) fn section_cost(hs: &[Helix], cutter: &Cutter, neck: f64, zs: &[f64]) -> f64 {
+/// a sample of 33 of them: counted before the section is cut, with the pruning [`reach`] does
+/// (`beyond` as it is given there).
+pub(crate) fn section_cost(
+    hs: &[Helix],
+    cutter: &Cutter,
+    neck: f64,
+    zs: &[f64],
+    internal: bool,
+    beyond: f64,
+) -> f64 {
     let hw = cutter.half_width(neck);
     let k = 32usize;
     let per: f64 = (0..=k)
         .map(|i| {
             let z = zs[i * (zs.len() - 1) / k];
+            let thr = threshold(hs, cutter, neck, z, internal, beyond);
             hs.iter()
-                .filter_map(|h| reach_range(h, cutter, hw, z))
-                .map(|(a, b)| samples(a, b) as f64 + 122.0)
+                .filter_map(|h| reach_range(h, cutter, hw, z).map(|r| (h, r)))
+                .map(|(h, (a, b))| {
+                    let step = (b - a) / samples(a, b) as f64;
+                    let n: usize = windows(h, cutter, a, b, step, internal, thr)
+                        .iter()
+                        .map(|&(i0, i1)| i1 + 1 - i0)
+                        .sum();
+                    if n == 0 {
+                        1.0
+                    } else {
+                        n as f64 + 122.0
+                    }
+                })
                 .sum::<f64>()
         })
         .sum();
     per / (k + 1) as f64 * zs.len() as f64
 }
 
+/// The reach at height `z` that a point of the helices must pass to matter: the better of the
+/// tooth profile's own (the cutter where it crosses the half-plane, reached for certain) and
+/// `beyond`, the blank's radius, which the section is clamped to anyway.
+fn threshold(hs: &[Helix], cutter: &Cutter, neck: f64, z: f64, internal: bool, beyond: f64) -> f64 {
+    let tooth = reach_crossings(hs, cutter, neck, z, internal);
+    match (tooth, internal) {
+        (Some(t), true) => t.max(beyond),
+        (Some(t), false) => t.min(beyond),
+        (None, _) => beyond,
+    }
+}
+
+/// The runs of sample indices `i` (t = t_a + i·step, 0 ≤ i ≤ n) where helix `h`'s cutter can
+/// reach past `thr` at all, each widened by a sample either side; the bound is the cutter at its
+/// largest radius ρmax (its tip): an internal cutter reaches at most R·cos ψ + ρmax on the
+/// half-plane's line; an external one, outside the bolt (R > ρmax), at least where a disc of
+/// radius ρmax at angle ψ meets it, which moves out as |ψ| grows. Anything else is sampled whole.
+fn windows(
+    h: &Helix,
+    cutter: &Cutter,
+    t_a: f64,
+    t_b: f64,
+    step: f64,
+    internal: bool,
+    thr: f64,
+) -> Vec<(usize, usize)> {
+    let n = samples(t_a, t_b);
+    let whole = vec![(0, n)];
+    let rho = 0.5 * cutter.diameter;
+    let r_end = h.radius + h.radius_change;
+    let (r_lo, r_hi) = (h.radius.min(r_end), h.radius.max(r_end));
+    // The half-width of the ψ window around each crossing of the half-plane (ψ = 2πk).
+    let half = if internal {
+        if !thr.is_finite() || thr - rho <= 0.0 || r_hi <= 0.0 {
+            return whole;
+        }
+        let c_min = (thr - rho) / r_hi;
+        if c_min > 1.0 {
+            return Vec::new();
+        }
+        c_min.acos()
+    } else {
+        if !thr.is_finite() || r_lo <= rho || thr <= 0.0 {
+            return whole;
+        }
+        if thr <= r_lo - rho {
+            return Vec::new();
+        }
+        if thr * thr >= r_lo * r_lo - rho * rho {
+            (rho / r_lo).asin()
+        } else {
+            ((r_lo * r_lo + thr * thr - rho * rho) / (2.0 * r_lo * thr)).clamp(-1.0, 1.0).acos()
+        }
+    };
+    if half >= std::f64::consts::PI {
+        return whole;
+    }
+    let dir = h.sweep_deg.signum();
+    let to_t = |psi: f64| dir * (psi - h.angle_start);
+    let k_of = |t: f64| (h.angle_start + dir * t) / std::f64::consts::TAU;
+    let (k_lo, k_hi) = (k_of(t_a).min(k_of(t_b)), k_of(t_a).max(k_of(t_b)));
+    let mut out: Vec<(usize, usize)> = Vec::new();
+    for k in (k_lo.floor() as i64 - 1)..=(k_hi.ceil() as i64 + 1) {
+        let centre = k as f64 * std::f64::consts::TAU;
+        let (a, b) = (to_t(centre - half), to_t(centre + half));
+        let (a, b) = (a.min(b) - step, a.max(b) + step);
+        if b < t_a || a > t_b {
+            continue;
+        }
+        let i0 = (((a - t_a) / step).floor().max(0.0)) as usize;
+        let i1 = (((b - t_a) / step).ceil().max(0.0) as usize).min(n);
+        if i0 > i1 {
+            continue;
+        }
+        out.push((i0, i1));
+    }
+    // A clockwise helix's windows come last first: in order, then the overlapping ones joined.
+    out.sort_unstable();
+    let mut runs: Vec<(usize, usize)> = Vec::with_capacity(out.len());
+    for (i0, i1) in out {
+        match runs.last_mut() {
+            Some(last) if i0 <= last.1 + 1 => last.1 = last.1.max(i1),
+            _ => runs.push((i0, i1)),
+        }
+    }
+    runs
+}
+
+/// The reach of the tooth profile alone: the cutter where it crosses the half-plane (ψ = 0
+/// mod 2π), over every helix.
+fn reach_crossings(hs: &[Helix], cutter: &Cutter, neck: f64, z: f64, internal: bool) -> Option<f64> {
+    let hw = cutter.half_width(neck);
+    let mut best: Option<f64> = None;
+    let better = |a: f64, b: f64| if internal { a > b } else { a < b };
+    for h in hs {
+        let Some((t_a, t_b)) = reach_range(h, cutter, hw, z) else { continue };
+        let sweep = h.sweep_deg.to_radians().abs();
+        let dir = h.sweep_deg.signum();
+        // ψ = angle_start + dir·t = k·2π: k runs between its values at t_a and t_b (a
+        // clockwise helix's k falls as t grows; counting up from t_a missed its crossings).
+        let k_of = |t: f64| (h.angle_start + dir * t) / std::f64::consts::TAU;
+        let (k_lo, k_hi) = (k_of(t_a).min(k_of(t_b)), k_of(t_a).max(k_of(t_b)));
+        for k in (k_lo.floor() as i64 - 1)..=(k_hi.ceil() as i64 + 1) {
+            let t = dir * (k as f64 * std::f64::consts::TAU - h.angle_start);
+            if t >= t_a - 1e-12 && t <= t_b + 1e-12 {
+                if let Some(v) = eval_at(h, cutter, neck, z, internal, t.clamp(0.0, sweep)) {
+                    if best.is_none_or(|b| better(v, b)) {
+                        best = Some(v);
+                    }
+                }
+            }
+        }
+    }
+    best
+}
+
+/// The reach on the half-plane's line of helix `h`'s cutter at parameter `t` (radians from
+/// its start), at height `z`; `None` where the cutter does not meet the line (or, outside a
+/// bolt, meets it only behind the axis).
+fn eval_at(h: &Helix, cutter: &Cutter, neck: f64, z: f64, internal: bool, t: f64) -> Option<f64> {
+    let sweep = h.sweep_deg.to_radians().abs();
+    let dir = h.sweep_deg.signum();
+    let zc = h.z[0] + (h.z[1] - h.z[0]) * t / sweep;
+    let psi = h.angle_start + dir * t;
+    let (s, c) = psi.sin_cos();
+    let rho = cutter.rho(z - zc, neck);
+    let radius = h.radius + h.radius_change * t / sweep;
+    let q = rho * rho - radius * radius * s * s;
+    if q < 0.0 {
+        return None;
+    }
+    // The cutter covers r from R·cos ψ − √q to R·cos ψ + √q on the half-plane's line; of
+    // a bolt it removes from the outside in, so only a chord reaching r > 0 counts.
+    let (lo, hi) = (radius * c - q.sqrt(), radius * c + q.sqrt());
+    if internal {
+        Some(hi)
+    } else if hi > 0.0 {
+        Some(lo.max(0.0))
+    } else {
+        None
+    }
+}
+
 /// The farthest (internal) or nearest (external) radius the cutter reaches at height `z` in
 /// the half-plane at angle 0 from the helix axis, over every helix; `None` when none reaches it.
+/// Only reach past `beyond` (the blank's radius, which the caller clamps the section to; ±∞ for
+/// none) is sought: a reach that does not pass it may come back as any value that does not
+/// either. The helix is sampled only where the cutter can pass both `beyond` and the tooth
+/// profile's own reach ([`windows`]), which leaves the result as sampling it all would.
 pub(crate) fn reach(
     hs: &[Helix],
     cutter: &Cutter,
@@ -263,62 +430,46 @@ pub(crate) fn reach(
     z: f64,
     internal: bool,
     only_psi0: bool,
+    beyond: f64,
+) -> Option<f64> {
+    if only_psi0 {
+        return reach_crossings(hs, cutter, neck, z, internal);
+    }
+    reach_sampled(hs, cutter, neck, z, internal, Some(beyond))
+}
+
+/// [`reach`] sampling each helix's whole range when `prune` is `None`.
+fn reach_sampled(
+    hs: &[Helix],
+    cutter: &Cutter,
+    neck: f64,
+    z: f64,
+    internal: bool,
+    prune: Option<f64>,
 ) -> Option<f64> {
     let hw = cutter.half_width(neck);
-    let mut best: Option<f64> = None;
+    let tooth = reach_crossings(hs, cutter, neck, z, internal);
+    let thr = prune.map(|beyond| threshold(hs, cutter, neck, z, internal, beyond));
+    let better = |a: f64, b: f64| if internal { a > b } else { a < b };
+    // The tooth profile's reach is reached for certain: the start of the search.
+    let mut best = tooth;
     for h in hs {
-        let sweep = h.sweep_deg.to_radians().abs();
-        let dir = h.sweep_deg.signum();
-        let dz = h.z[1] - h.z[0];
-        let zc = |t: f64| h.z[0] + dz * t / sweep;
-        let eval = |t: f64| -> Option<f64> {
-            let psi = h.angle_start + dir * t;
-            let (s, c) = psi.sin_cos();
-            let rho = cutter.rho(z - zc(t), neck);
-            let radius = h.radius + h.radius_change * t / sweep;
-            let q = rho * rho - radius * radius * s * s;
-            if q < 0.0 {
-                return None;
-            }
-            // The cutter covers r from R·cos ψ − √q to R·cos ψ + √q on the half-plane's line; of
-            // a bolt it removes from the outside in, so only a chord reaching r > 0 counts.
-            let (lo, hi) = (radius * c - q.sqrt(), radius * c + q.sqrt());
-            if internal {
-                Some(hi)
-            } else if hi > 0.0 {
-                Some(lo.max(0.0))
-            } else {
-                None
-            }
-        };
-        let better = |a: f64, b: f64| if internal { a > b } else { a < b };
         let Some((t_a, t_b)) = reach_range(h, cutter, hw, z) else { continue };
-        if only_psi0 {
-            // The tooth profile alone: the cutter where it crosses the half-plane (ψ = 0 mod 2π).
-            // ψ = angle_start + dir·t = k·2π: k runs between its values at t_a and t_b (a
-            // clockwise helix's k falls as t grows; counting up from t_a missed its crossings).
-            let k_of = |t: f64| (h.angle_start + dir * t) / std::f64::consts::TAU;
-            let (k_lo, k_hi) = (k_of(t_a).min(k_of(t_b)), k_of(t_a).max(k_of(t_b)));
-            for k in (k_lo.floor() as i64 - 1)..=(k_hi.ceil() as i64 + 1) {
-                let t = dir * (k as f64 * std::f64::consts::TAU - h.angle_start);
-                if t >= t_a - 1e-12 && t <= t_b + 1e-12 {
-                    if let Some(v) = eval(t.clamp(0.0, sweep)) {
-                        if best.is_none_or(|b| better(v, b)) {
-                            best = Some(v);
-                        }
-                    }
-                }
-            }
-            continue;
-        }
+        let eval = |t: f64| eval_at(h, cutter, neck, z, internal, t);
         let n = samples(t_a, t_b);
         let step = (t_b - t_a) / n as f64;
+        let runs = match thr {
+            Some(thr) => windows(h, cutter, t_a, t_b, step, internal, thr),
+            None => vec![(0, n)],
+        };
         let mut top: Option<(f64, f64)> = None;
-        for i in 0..=n {
-            let t = t_a + step * i as f64;
-            if let Some(v) = eval(t) {
-                if top.is_none_or(|(_, b)| better(v, b)) {
-                    top = Some((t, v));
+        for (i0, i1) in runs {
+            for i in i0..=i1 {
+                let t = t_a + step * i as f64;
+                if let Some(v) = eval(t) {
+                    if top.is_none_or(|(_, b)| better(v, b)) {
+                        top = Some((t, v));
+                    }
                 }
             }
         }
@@ -386,11 +537,73 @@ mod tests {
         for i in 0..=700 {
             let z = 2.0 + 0.01 * i as f64;
             for only_psi0 in [true, false] {
-                let a = reach(std::slice::from_ref(&up), &cutter, neck, z, true, only_psi0);
-                let b = reach(std::slice::from_ref(&down), &cutter, neck, z, true, only_psi0);
+                let a =
+                    reach(std::slice::from_ref(&up), &cutter, neck, z, true, only_psi0, f64::NEG_INFINITY);
+                let b =
+                    reach(std::slice::from_ref(&down), &cutter, neck, z, true, only_psi0, f64::NEG_INFINITY);
                 let (Some(a), Some(b)) = (a, b) else { panic!("z {z}: {a:?} {b:?}") };
                 assert!((a - b).abs() < 1e-7, "z {z}, tooth alone {only_psi0}: {a} {b}");
             }
         }
+    }
+
+    /// Sampling a helix only where its cutter can pass the tooth profile's reach and the blank
+    /// leaves the section as sampling it whole: internal and external, single-form and comb,
+    /// circles and spirals, climb and conventional, at heights over the whole of their reach.
+    #[test]
+    fn the_pruned_reach_is_the_whole_reach() {
+        let mut checked = 0;
+        for (internal, radius, change, d, rows, blank) in [
+            (true, 2.05, 0.0, 11.9, 5u32, 14.0),
+            (true, 1.3, 0.0, 11.9, 5, 14.0),
+            (true, 3.0, 0.2, 6.0, 1, 15.0),
+            (true, 5.0, 0.0, 8.0, 1, 17.5),
+            (false, 9.0, 0.0, 6.0, 1, 20.0),
+            (false, 8.2, -0.3, 6.0, 3, 20.0),
+            (false, 11.0, 0.0, 12.0, 1, 20.0),
+        ] {
+            for g3 in [true, false] {
+                let cutter = if rows == 1 {
+                    Cutter::single_form(d, 60.0, 0.05)
+                } else {
+                    Cutter::single_form(d, 60.0, 0.05).with_rows(rows, Some(2.0)).unwrap()
+                };
+                let h = Helix {
+                    line: 1,
+                    centre: [0.0, 0.0],
+                    radius,
+                    programmed_radius: radius,
+                    radius_change: change,
+                    z: [-6.0, 0.0],
+                    sweep_deg: if g3 { 3.0 * 360.0 } else { -3.0 * 360.0 },
+                    lead: 2.0,
+                    climb: g3,
+                    angle_start: 0.37,
+                };
+                let neck = 0.5 * d - 2.0 * 0.866;
+                let bound = 0.5 * blank;
+                for i in 0..=300 {
+                    let z = -8.0 + 0.06 * i as f64 + cutter.span() * i as f64 / 300.0;
+                    let a = reach(std::slice::from_ref(&h), &cutter, neck, z, internal, false, bound);
+                    let b = reach_sampled(std::slice::from_ref(&h), &cutter, neck, z, internal, None);
+                    let clamp = |r: Option<f64>| match (r, internal) {
+                        (Some(r), true) => r.max(bound),
+                        (Some(r), false) => r.min(bound),
+                        (None, _) => bound,
+                    };
+                    let (a, b) = (clamp(a), clamp(b));
+                    assert!(
+                        (a - b).abs() < 1e-9 || (if internal { a > b } else { a < b }),
+                        "internal {internal}, R {radius}, g3 {g3}, z {z}: pruned {a}, whole {b}"
+                    );
+                    assert!(
+                        (a - b).abs() < 1e-7,
+                        "internal {internal}, R {radius}, g3 {g3}, z {z}: pruned {a}, whole {b}"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert_eq!(checked, 7 * 2 * 301);
     }
 }
