@@ -237,6 +237,17 @@ fn evidence(b: &Block, dialect: Dialect) -> Option<(MachineType, String)> {
             return Some((MachineType::Lathe, "U or W, incremental X and Z".into()));
         }
     }
+    // A Y move: a lathe has no Y axis (one with live tools and a Y axis mills in G17 or G19,
+    // which says so first). Not a Y that sets an offset, a reference point or a macro's argument.
+    // Nor a Y in a threading block: a lathe's word that does not belong there, refused there.
+    let sets_not_moves = gs
+        .iter()
+        .any(|&c| [10.0, 28.0, 30.0, 32.0, 33.0, 34.0, 52.0, 65.0, 66.0, 76.0, 78.0, 92.0].contains(&c));
+    if (fanuc || dialect == Dialect::LinuxCnc) && !sets_not_moves {
+        if let Some(y) = b.words.iter().find(|w| w.name == "Y" && matches!(w.val, WVal::Num { .. })) {
+            return Some((MachineType::Mill, format!("{}, a Y move (a lathe has no Y axis)", y.text)));
+        }
+    }
     None
 }
 

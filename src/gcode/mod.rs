@@ -1212,7 +1212,8 @@ fn read(
         }
     };
     let units_note = match units_assumed {
-        Some(None) if !operations.is_empty() => Some(format!(
+        // A tap's or thread mill's program too: its holes and helices are in the same units.
+        Some(None) if !operations.is_empty() || !holes.is_empty() || !moves.is_empty() => Some(format!(
             "{codes}: read in mm, the default; an inch control's program needs ‹default_units› inch"
         )),
         Some(Some(u)) => Some(format!("{codes}: read in {}, as ‹default_units› says", u.name())),
