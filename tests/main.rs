@@ -18,6 +18,7 @@ mod lathes;
 mod layout;
 mod limits;
 mod linuxcnc;
+mod linuxcnc_holes;
 mod machining;
 mod messages;
 mod mill;

@@ -228,6 +228,8 @@ pub struct TapReport {
     pub holes: Vec<TappedHole>,
     /// The drilling cycles read.
     pub drills: usize,
+    /// Every drilling and boring cycle's hole, in program order.
+    pub drilled: Vec<crate::gcode::HoleCycle>,
     /// Every tapping cycle passes.
     pub pass: bool,
     /// The program's notes.
@@ -687,12 +689,14 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
         });
     }
     let pass = holes.iter().all(|h| h.pass);
-    let drills = prog.holes.iter().filter(|h| h.kind == HoleKind::Drill).count();
+    let drilled: Vec<crate::gcode::HoleCycle> =
+        prog.holes.iter().filter(|h| h.kind == HoleKind::Drill).cloned().collect();
     Ok(TapReport {
         program: name.clone(),
         dialect: spec.dialect,
         holes,
-        drills,
+        drills: drilled.len(),
+        drilled,
         pass,
         notes: prog.notes,
         machine: prog.machine,

@@ -314,6 +314,9 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             76 if d == Dialect::Heidenhain => unknown.push((g, col)),
             // A machining centre's peck drilling, left-hand tapping and fine boring.
             73 | 74 | 76 if fanuc_like && !m.lathe() => motion = Some((g, col)),
+            // LinuxCNC's G73 is chip-breaking drilling and its G74 left-hand tapping on every
+            // machine (its lathe cycles are G70–G72 and G76).
+            73 | 74 if d == Dialect::LinuxCnc => motion = Some((g, col)),
             0 | 1 | 2 | 3 | 32 | 33 | 76 => motion = Some((g, col)),
             92 if d == Dialect::LinuxCnc => one_shot = Some(g),
             92 if fanuc_like && b.has("S") && !["X", "Z", "U", "W", "F", "E", "R"].iter().any(|w| b.has(w)) => {
@@ -390,8 +393,8 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             98 if fanuc_like && m.g98_is_feed() => m.feed_per_rev = Some(false),
             99 if fanuc_like && m.g98_is_feed() => m.feed_per_rev = Some(true),
             // A machining centre's G98/G99: the canned cycles' return level.
-            98 if fanuc_like => m.return_to_r = false,
-            99 if fanuc_like => m.return_to_r = true,
+            98 if fanuc_like || d == Dialect::LinuxCnc => m.return_to_r = false,
+            99 if fanuc_like || d == Dialect::LinuxCnc => m.return_to_r = true,
             94 if fanuc_like && (m.plane == 17 || !m.lathe()) => m.feed_per_rev = Some(false),
             95 if fanuc_like && (m.plane == 17 || !m.lathe()) => m.feed_per_rev = Some(true),
             // Sinumerik's feed modes hold in every plane.
@@ -522,6 +525,7 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
         m.motion = g;
         if !is_hole_cycle(g) {
             m.cycle_levels = (None, None);
+            m.cycle_in_force = None;
         }
     }
     if let Some(s) = b.get("S") {
@@ -780,7 +784,11 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
                 }
                 return Ok(());
             }
-            GRole::OtherCycle if !m.lathe() && (m.dialect.fanuc_family() || m.dialect == Dialect::Haas) => {
+            GRole::OtherCycle
+                if !m.lathe()
+                    && (m.dialect.fanuc_family()
+                        || matches!(m.dialect, Dialect::Haas | Dialect::LinuxCnc)) =>
+            {
                 return mill_holes(m, b, modal);
             }
             GRole::OtherCycle => {
@@ -1073,15 +1081,21 @@ fn push_hole_at(
         main_line: 0,
         machine_xy: None,
         rigid,
+        r_level: None,
     })
 }
 
 /// A machining centre's drilling, tapping or boring cycle block (Fanuc, Haas, Mitsubishi,
-/// Mazak; ../shared/notes/machining-centres.md §1.2): in G90 X, Y, Z and R are positions; in G91
-/// X and Y are increments from the current point, R the distance from the initial level (Z where
-/// the cycle began) to the R level and Z the distance from the R level to the bottom. K (or L)
-/// repeats the hole, each time moved by the increment in G91 (in place in G90). The tool
-/// returns to the initial level (G98) or the R level (G99), at the last hole.
+/// Mazak, LinuxCNC; ../shared/notes/machining-centres.md §1.2, LinuxCNC's `convert_cycle_xy`):
+/// in G90 X, Y, Z and R are positions; in G91 X and Y are increments from the current point, R
+/// the distance from the initial level (Z where the cycle began) to the R level and Z the
+/// distance from the R level to the bottom, each kept as written for the blocks that follow. K
+/// (Fanuc; L on LinuxCNC and Haas too) repeats the hole, each time moved by the increment in
+/// G91 (in place in G90, one hole). The tool returns to the initial level (G98) or the R level
+/// (G99) and stays at the last hole. LinuxCNC's own rules: a block that writes only Z makes a
+/// hole too; a tool below the R level rises to it first and G98 returns there; it refuses a
+/// cycle whose first block lacks R or Z (or the P, Q a cycle needs), R below Z, L0, a cycle under
+/// cutter compensation and any plane but G17 (threadcheck reads G17's).
 fn mill_holes(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Result<(), Error> {
     let code = modal.motion as u32;
     let kind = match code {
@@ -1090,25 +1104,78 @@ fn mill_holes(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Result<(), Error
         73 | 76 | 81..=83 | 85..=89 => super::HoleKind::Drill,
         _ => return Ok(()),
     };
+    let linuxcnc = m.dialect == Dialect::LinuxCnc;
+    let col = modal.col.unwrap_or(b.col);
+    let name = m.g_name(code);
     let at = |name: &str| b.get(name).map(|w| m.len(w));
     let (xw, yw, zw, rw) = (at("X"), at("Y"), at("Z"), at("R"));
-    let positioned = xw.is_some() || yw.is_some() || modal.col.is_some();
+    let positioned = xw.is_some() || yw.is_some() || modal.col.is_some() || linuxcnc && zw.is_some();
+    if linuxcnc && positioned {
+        let refuse = |why: String| Err(m.err(b.line, col, format!("{name}: {why}")));
+        if m.plane != 17 {
+            return refuse(format!("a canned cycle in the plane G{}: threadcheck reads LinuxCNC's canned cycles in G17 (its drilling axis Z)", m.plane));
+        }
+        if m.comp != 0 {
+            return refuse("LinuxCNC refuses canned cycles with cutter compensation on (G41/G42): cancel it with G40 first".into());
+        }
+        // The words the first block of a cycle must give (LinuxCNC's convert_cycle_xy).
+        let first = m.cycle_in_force != Some(code);
+        let mut need = vec![("R", "the R level"), ("Z", "the bottom")];
+        match code {
+            73 | 83 => need.push(("Q", "the peck depth")),
+            82 | 86 | 88 | 89 => need.push(("P", "the dwell")),
+            87 => need.extend([
+                ("I", "the offset in X"),
+                ("J", "the offset in Y"),
+                ("K", "the back bore's top"),
+            ]),
+            _ => {}
+        }
+        if first {
+            if let Some((w, what)) = need.iter().find(|(w, _)| b.get(w).is_none()) {
+                return refuse(format!("the first block of a canned cycle gives {w} ({what}), and LinuxCNC refuses one without it"));
+            }
+        }
+        if let Some(q) = b.get("Q").filter(|q| matches!(code, 73 | 83) && q.v <= 0.0) {
+            return Err(b.werr(
+                &m.file,
+                q,
+                format!("{name} Q{}: the peck depth must be over zero (LinuxCNC refuses it)", q.v),
+            ));
+        }
+        if let Some(l) = b.get("L").filter(|l| l.v == 0.0) {
+            return Err(b.werr(&m.file, l, "L0: LinuxCNC cannot do zero repeats of a canned cycle"));
+        }
+        // LinuxCNC's word check (check_other_codes) lists the cycles that take L, and G74 is not
+        // among them in the interpreter tested here (Debian 12's 2.9.0~pre1).
+        if let Some(l) = b.get("L").filter(|_| code == 74) {
+            return Err(b.werr(&m.file, l, "L with G74: LinuxCNC refuses it (\"L word with no G10, cutter compensation, canned cycle, digital/analog input, M98 or NURBS code\"): G74 does not repeat"));
+        }
+    }
     if m.cycle_levels.0.is_none() {
         m.cycle_levels.0 = m.z;
     }
     let initial = m.cycle_levels.0;
-    let r_level = match (rw, m.absolute) {
+    // R and Z as written, kept for the blocks that leave them out.
+    if rw.is_some() {
+        m.cycle_words.0 = rw;
+    }
+    if zw.is_some() {
+        m.cycle_words.1 = zw;
+    }
+    let r_level = match (m.cycle_words.0, m.absolute) {
         (Some(r), true) => Some(r + m.offset[2]),
         (Some(r), false) => initial.map(|i| i + r),
         (None, _) => m.cycle_levels.1,
     };
     m.cycle_levels.1 = r_level;
-    let bottom = match (zw, m.absolute) {
+    let bottom = match (m.cycle_words.1, m.absolute) {
         (Some(z), true) => Some(z + m.offset[2]),
         (Some(z), false) => r_level.map(|r| r + z),
         (None, _) => m.hole_modal.0,
     };
-    let repeats = match b.get("K").or_else(|| b.get("L")) {
+    let repeat_word = if linuxcnc { b.get("L") } else { b.get("K").or_else(|| b.get("L")) };
+    let repeats = match repeat_word {
         None => 1,
         Some(w) if w.v >= 0.0 && w.v.fract() == 0.0 && w.v <= 9999.0 => w.v as usize,
         Some(w) => {
@@ -1122,6 +1189,21 @@ fn mill_holes(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Result<(), Error
     if !positioned {
         m.skipped += 1;
         return Ok(());
+    }
+    if linuxcnc {
+        if let (Some(r), Some(z)) = (r_level, bottom) {
+            if r < z {
+                return Err(m.err(
+                    b.line,
+                    col,
+                    format!(
+                        "{name}: the R level Z{} lies below the bottom Z{} (LinuxCNC refuses R less than Z)",
+                        crate::ground::fmt::fmt_num(r / m.scale),
+                        crate::ground::fmt::fmt_num(z / m.scale)
+                    ),
+                ));
+            }
+        }
     }
     let (dx, dy) = (xw.unwrap_or(0.0), yw.unwrap_or(0.0));
     let (mut x, mut y) = (m.x, m.y);
@@ -1138,18 +1220,27 @@ fn mill_holes(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Result<(), Error
             y = y.map(|v| v + dy);
         }
         push_hole_at(m, b, modal, kind, (x, y), bottom)?;
+        if let Some(h) = m.holes.last_mut() {
+            h.r_level = r_level;
+        }
     }
     if repeats == 0 {
         // K0: the cycle is stored for the positions that follow (Haas's L0 at a bolt pattern's
         // centre).
         m.hole_modal.0 = bottom;
     }
+    m.cycle_in_force = Some(code);
     m.x = x;
     m.y = y;
-    m.z = if m.return_to_r { r_level } else { initial };
+    // LinuxCNC: a tool below the R level rises to it first, and G98 returns there.
+    let clear = match (initial, r_level) {
+        (Some(i), Some(r)) if linuxcnc && i < r => Some(r),
+        _ => initial,
+    };
+    m.z = if m.return_to_r { r_level } else { clear };
     m.read_as_holes(
         b.line,
-        modal.col.unwrap_or(b.col),
+        col,
         &format!("G{}", modal.motion),
         "a drilling, tapping or boring cycle, read as its holes (the tapping check of verify and tap takes them; no turning pass); the tool ends at the return level",
     );

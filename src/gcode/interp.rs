@@ -434,6 +434,9 @@ fn layout(
     // Loop pairs.
     let mut stack: Vec<(usize, u32)> = Vec::new();
     let mut ostack: Vec<(usize, String, OKw)> = Vec::new();
+    // The labels that open a control block, per subroutine (`None`: outside any), and the
+    // line of each: LinuxCNC refuses a label used twice ("duplicate O-word label").
+    let mut opened: HashMap<(Option<usize>, String), usize> = HashMap::new();
     let mut section_start = 0;
     for (i, b) in blocks.iter().enumerate() {
         if l.section[i].0 != section_start {
@@ -502,6 +505,20 @@ fn layout(
                                         l.pair.insert(i, j);
                                         continue;
                                     }
+                                }
+                            }
+                            if *kw != OKw::Sub {
+                                let scope =
+                                    ostack.iter().rev().find(|(_, _, k)| *k == OKw::Sub).map(|(j, _, _)| *j);
+                                if let Some(first) = opened.insert((scope, name.clone()), b.line) {
+                                    return Err(perr(
+                                        b,
+                                        *col,
+                                        format!(
+                                            "o{name} {}: the label o{name} already opens a block at line {first}, and LinuxCNC refuses a label used twice (\"duplicate O-word label\"): give each loop and branch a label of its own",
+                                            okw(*kw)
+                                        ),
+                                    ));
                                 }
                             }
                             ostack.push((i, name.clone(), *kw));

@@ -1497,6 +1497,8 @@ fn run_with(
         machine_xy: None,
         rigid: false,
         units,
+        // The set-up clearance Q200 above the surface: where the cycle feeds from.
+        r_level: Some(st.to_work([p[0], p[1], top + q(200) * s])[2]),
     };
     if st.holes.len() >= crate::ground::bounds::MAX_HOLES {
         return Err((line, col, format!("more than {} holes", crate::ground::bounds::MAX_HOLES)));

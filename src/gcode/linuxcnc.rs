@@ -578,6 +578,7 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, _cx: &mut Ctx<'_>) -> Re
     }
     s.switches = Some(s.switches.unwrap_or_else(Switches::start).after(b));
     spindle(s, b);
+    spindle_for_cycle(s, m, b, &md)?;
     if coordinates(s, m, b, &md)? {
         return Ok(Flow::Next);
     }
@@ -633,6 +634,51 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, _cx: &mut Ctx<'_>) -> Re
         _ => cycles::other_block(m, b, &md)?,
     }
     Ok(Flow::Next)
+}
+
+/// The spindle a cycle needs, as LinuxCNC refuses it (its `convert_cycle_g74_g84`, `g86`–`g88`
+/// and `convert_straight` for G33.1): turning for G33.1 and G86–G88, clockwise for G84 and
+/// counter-clockwise for G74, each in LinuxCNC's own words.
+fn spindle_for_cycle(s: &State, m: &Motion, b: &RBlock<'_>, md: &cycles::Modal) -> Result<(), Error> {
+    let moves = b.has("X") || b.has("Y") || b.has("Z");
+    let code = match md.one_shot {
+        Some(33.1) => "G33.1",
+        _ if !moves || m.lathe() => return Ok(()),
+        _ => match md.motion as u32 {
+            _ if md.motion.fract() != 0.0 => return Ok(()),
+            74 => "G74",
+            84 => "G84",
+            86 => "G86",
+            87 => "G87",
+            88 => "G88",
+            _ => return Ok(()),
+        },
+    };
+    let dir = if s.spindle_on { m.spindle_dir } else { Some(super::SpindleDir::Stopped) };
+    let refusal = match (code, dir) {
+        (_, Some(super::SpindleDir::Stopped) | None) => format!("Spindle not turning in {code}"),
+        ("G74", Some(super::SpindleDir::Cw)) => "Spindle turning clockwise in G74".to_string(),
+        ("G84", Some(super::SpindleDir::Ccw)) => "Spindle turning counterclockwise in G84".to_string(),
+        _ => return Ok(()),
+    };
+    let col = md.col.or_else(|| b.gs().find(|(g, _)| *g == 33.1).map(|(_, c)| c)).unwrap_or(b.col);
+    Err(m.err(
+        b.line,
+        col,
+        format!(
+            "{code} with the spindle {}: LinuxCNC refuses it (\"{refusal}\"); start it with {} first",
+            match dir {
+                Some(super::SpindleDir::Cw) => "turning clockwise",
+                Some(super::SpindleDir::Ccw) => "turning counter-clockwise",
+                _ => "stopped",
+            },
+            match code {
+                "G74" => "M4",
+                "G84" => "M3",
+                _ => "M3 or M4",
+            }
+        ),
+    ))
 }
 
 fn g76(m: &mut Motion, b: &RBlock<'_>, col: usize) -> Result<(), Error> {

@@ -705,6 +705,11 @@ pub struct HoleCycle {
     /// The program's units at the cycle (what a diameter in its comments is written in).
     #[serde(skip)]
     pub units: ProgramUnits,
+    /// A machining centre's canned cycle: the R level it feeds from, mm (Z, in the work offset's
+    /// coordinates; Klartext's set-up clearance above the surface); `None` for G33.1, which starts where
+    /// the tool stands, and the cycles whose R level is not read (Sinumerik's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub r_level: Option<f64>,
 }
 
 impl Program {

@@ -210,6 +210,12 @@ pub(crate) struct Motion {
     pub cycle_levels: (Option<f64>, Option<f64>),
     /// G99 (return to the R level) in force on a machining centre.
     pub return_to_r: bool,
+    /// The canned cycle's R and Z as last written (mm; in G91 increments), for the blocks
+    /// that leave them out.
+    pub cycle_words: (Option<f64>, Option<f64>),
+    /// The canned cycle whose holes the last cycle block made, until another motion (LinuxCNC
+    /// refuses a cycle's first block without R and Z).
+    pub cycle_in_force: Option<u32>,
     /// A machining centre's local coordinate system (Fanuc G52 X Y Z), mm.
     pub local: [f64; 3],
     /// A machining centre's coordinate rotation (Fanuc G68): centre X, Y (mm) and angle
@@ -318,6 +324,8 @@ impl Motion {
             hole_modal: (None, None),
             cycle_levels: (None, None),
             return_to_r: false,
+            cycle_words: (None, None),
+            cycle_in_force: None,
             local: [0.0; 3],
             rotation: None,
             mirror: [None; 2],
@@ -890,6 +898,7 @@ impl Motion {
             main_line: 0,
             machine_xy: None,
             rigid: true,
+            r_level: None,
         })
     }
 
