@@ -816,3 +816,108 @@ fn a_mixed_mill_turn_program_is_verified_whole() {
     assert!((milled["measured"]["major_diameter"].as_f64().unwrap() - 20.0).abs() < 1e-4, "{milled}");
     assert!(check_of(milled, "lead")["ok"].as_bool().unwrap());
 }
+
+/// `tap --json -` on program `text` written as `name` in a fresh folder, with the tool table
+/// `tools` beside it.
+fn tap_text(name: &str, text: &str, tools: &str) -> (i32, serde_json::Value, String) {
+    let dir = tempdir("mc-text");
+    std::fs::write(dir.join(name), text).unwrap();
+    std::fs::write(dir.join("tools.toml"), tools).unwrap();
+    let o = run_in(&dir, &["tap", "--program", name, "--tools", "tools.toml", "--json", "-"]);
+    let code = o.status.code().unwrap();
+    let v = if code < 2 { serde_json::from_slice(&o.stdout).unwrap() } else { serde_json::Value::Null };
+    (code, v, stderr(&o))
+}
+
+/// The drilled holes' (x, y, R, bottom).
+fn drilled(v: &serde_json::Value) -> Vec<[f64; 4]> {
+    v["drilled"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|h| ["x", "y", "r_level", "bottom"].map(|k| h[k].as_f64().unwrap()))
+        .collect()
+}
+
+/// Issue 62: a row of five holes by L5 (LinuxCNC) and K5 (Fanuc) in G91, then tapped. From Z10,
+/// `G91 G99 G81 X12 R-8 Z-15 L5`: R = 10 − 8 = 2, bottom = 2 − 15 = −13 (R from the initial level,
+/// Z from R), holes at X 12, 24, 36, 48, 60 (Y0); the tool ends at R (G99), X60. The tapping
+/// row `G90 G98 G84 X12 Y0 R2 Z-11 F500` at S400 (500 = 400 × 1.25) and `X24`: the tap's
+/// feed is M8x1.25's lead, its drill the hole beneath it.
+#[test]
+fn a_g91_row_of_holes_repeats_by_l_and_by_k() {
+    let tools = "[tools]\n1 = \"drill:6.8\"\n2 = \"tap:M8x1.25-6H\"\n";
+    for (name, repeat, dialect_words) in [
+        ("row.ngc", "L5", "G17 G21 G90 G94\nT1 M6\nS1200 M3\n"),
+        ("row.nc", "K5", "G17 G21 G90 G94\nT1 M6\nS1200 M3\n"),
+    ] {
+        let program = format!(
+            "{dialect_words}G0 X0 Y0 Z10\nG91 G99 G81 X12 R-8 Z-15 {repeat} F100\nG80\nG90 G0 Z10\nT2 M6\nS400 M3\nG98 G84 X12 Y0 R2 Z-11 F500\nX24\nG80\nM5\nM30\n"
+        );
+        let (code, v, err) = tap_text(name, &program, tools);
+        assert_eq!(code, 0, "{name}: {err}");
+        let want: Vec<[f64; 4]> = (1..=5).map(|i| [12.0 * f64::from(i), 0.0, 2.0, -13.0]).collect();
+        assert_eq!(drilled(&v), want, "{name}");
+        let taps = holes(&v);
+        assert_eq!(
+            taps.iter().map(|h| (h.0, h.2)).collect::<Vec<_>>(),
+            [(Some(12.0), Some(-11.0)), (Some(24.0), Some(-11.0))]
+        );
+        assert_eq!(v["pass"], true, "{name}");
+    }
+}
+
+/// Issue 62: LinuxCNC's G73 drills (it was read as a lathe cycle), its G84 taps (it was passed
+/// over: "no tapping cycle"), and a block that writes only Y under the cycle keeps the X it
+/// left (it was a hole with no X): `G98 G73 X5 Y5 R2 Z-12 Q3` then `Y15` drill (5, 5) and (5, 15).
+/// LinuxCNC refuses G84 with the spindle counter-clockwise, at the cycle's line.
+#[test]
+fn linuxcnc_g73_drills_and_g84_taps_where_the_tool_stands() {
+    let tools = "[tools]\n1 = \"drill:6.8\"\n2 = \"tap:M8x1.25-6H\"\n";
+    let program = "G17 G21 G90 G94\nT1 M6\nS1200 M3\nG0 X0 Y0 Z10\nG98 G73 X5 Y5 R2 Z-12 Q3 F100\nY15\nG80\nT2 M6\nS400 M3\nG98 G84 X5 Y5 R2 Z-10 F500\nY15\nG80\nM2\n";
+    let (code, v, err) = tap_text("p.ngc", program, tools);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(drilled(&v), [[5.0, 5.0, 2.0, -12.0], [5.0, 15.0, 2.0, -12.0]]);
+    assert_eq!(
+        holes(&v).iter().map(|h| (h.0, h.1)).collect::<Vec<_>>(),
+        [(Some(5.0), Some(5.0)), (Some(5.0), Some(15.0))]
+    );
+    let ccw = program.replace("S400 M3", "S400 M4");
+    let (code, _, err) = tap_text("p.ngc", &ccw, tools);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("p.ngc:10:5: G84 with the spindle turning counter-clockwise: LinuxCNC refuses it"),
+        "{err}"
+    );
+}
+
+/// Issue 62: a LinuxCNC rigid-tap test that writes no G17 and no tool length offset, in inch:
+/// its Y moves show a machining centre (a lathe has no Y axis), so X3 is 76.2 mm, not a
+/// diameter (it was read as a lathe, every X doubled). A program that sets no units says mm
+/// was assumed.
+#[test]
+fn a_y_move_shows_a_machining_centre_and_missing_units_are_said() {
+    let tools = "[tools]\n";
+    let program =
+        "G20 G90\nM3 S300\nG0 X0 Y1 Z0.1\nG33.1 Z-0.5 K0.05\nG0 X3 Y1 Z0.1\nG33.1 Z-0.5 K0.05\nM5\nM2\n";
+    let dir = tempdir("mc-y");
+    std::fs::write(dir.join("rt.ngc"), program).unwrap();
+    std::fs::write(dir.join("tools.toml"), tools).unwrap();
+    let o = run_in(&dir, &["tap", "--program", "rt.ngc", "--tap", "1/4-20 UNC-2B", "--json", "-"]);
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let xs: Vec<f64> = holes(&v).iter().map(|h| h.0.unwrap()).collect();
+    assert!(xs.len() == 2 && xs[0].abs() < 1e-9 && (xs[1] - 76.2).abs() < 1e-9, "{xs:?}");
+    assert_eq!(v["machine"]["machine_type"], "mill");
+    assert!(
+        v["machine"]["reason"].as_str().unwrap().contains("line 3 writes Y1, a Y move"),
+        "{}",
+        v["machine"]
+    );
+    let no_units = program.replace("G20 G90", "G90");
+    std::fs::write(dir.join("rt.ngc"), no_units).unwrap();
+    let o = run_in(&dir, &["tap", "--program", "rt.ngc", "--tap", "1/4-20 UNC-2B", "--json", "-"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let notes = v["notes"].to_string();
+    assert!(notes.contains("the program sets no units (G20/G21) before it threads: read in mm"), "{notes}");
+}
