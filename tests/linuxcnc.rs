@@ -66,7 +66,7 @@ enum Outcome {
 
 /// The numbers in an argument list `1, 0.5000, CANON_X` (the words that are not numbers
 /// are left out).
-fn numbers(args: &str) -> Vec<f64> {
+pub(crate) fn numbers(args: &str) -> Vec<f64> {
     args.split(',').filter_map(|a| a.trim().parse::<f64>().ok()).collect()
 }
 
@@ -81,21 +81,9 @@ fn parse_canon(out: &str) -> Outcome {
     let mut k = 0.0;
     let mut segs = Vec::new();
     let mut errors = Vec::new();
-    for line in out.lines() {
-        let t = line.trim();
-        // `executing` is rs274's banner (on stderr).
-        if t.is_empty() || t == "executing" {
-            continue;
-        }
-        let canon = t.split_once("N..... ").and_then(|(n, rest)| {
-            n.trim().parse::<u64>().ok()?;
-            let (name, args) = rest.split_once('(')?;
-            Some((name, args.strip_suffix(')')?))
-        });
-        let Some((name, args)) = canon else {
-            errors.push(t.to_string());
-            continue;
-        };
+    let (calls, rs_errors) = canon_calls(out);
+    errors.extend(rs_errors);
+    for (name, args) in calls {
         let v = numbers(args);
         let machine = |p: [f64; 2], unit: f64, g5x: [f64; 2], g92: [f64; 2]| {
             [2.0 * (p[0] + g5x[0] + g92[0]) * unit, (p[1] + g5x[1] + g92[1]) * unit]
@@ -154,8 +142,31 @@ fn parse_canon(out: &str) -> Outcome {
     Outcome::Passes(segs)
 }
 
-/// Runs `rs274` on `program` with its own `HOME` (it keeps files there) and tool table.
-fn run_rs274(exe: &Path, program: &str, dir: &Path) -> Outcome {
+/// The canonical calls in `rs274 -g`'s output (name, arguments), and the lines that are not
+/// one (its errors; `executing`, its banner, left out).
+pub(crate) fn canon_calls(out: &str) -> (Vec<(&str, &str)>, Vec<String>) {
+    let (mut calls, mut errors) = (Vec::new(), Vec::new());
+    for line in out.lines() {
+        let t = line.trim();
+        if t.is_empty() || t == "executing" {
+            continue;
+        }
+        let canon = t.split_once("N..... ").and_then(|(n, rest)| {
+            n.trim().parse::<u64>().ok()?;
+            let (name, args) = rest.split_once('(')?;
+            Some((name, args.strip_suffix(')')?))
+        });
+        match canon {
+            Some(c) => calls.push(c),
+            None => errors.push(t.to_string()),
+        }
+    }
+    (calls, errors)
+}
+
+/// `rs274 -g`'s output (stdout and stderr) for `program`, run with its own `HOME` (it keeps
+/// files there) and the tool table in `dir`.
+pub(crate) fn rs274_text(exe: &Path, program: &str, dir: &Path) -> String {
     let file = dir.join("p.ngc");
     std::fs::write(&file, program).unwrap();
     let out = std::process::Command::new(exe)
@@ -168,8 +179,39 @@ fn run_rs274(exe: &Path, program: &str, dir: &Path) -> Outcome {
         .stdin(std::process::Stdio::null())
         .output()
         .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
-    parse_canon(&text)
+    String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr)
+}
+
+/// Runs `rs274` on `program`: its passes.
+fn run_rs274(exe: &Path, program: &str, dir: &Path) -> Outcome {
+    parse_canon(&rs274_text(exe, program, dir))
+}
+
+/// The random draws of a program generator.
+pub(crate) trait Draws {
+    fn rng(&mut self) -> &mut TestRng;
+    fn f(&mut self, lo: f64, hi: f64) -> f64 {
+        self.rng().random_range(lo..hi)
+    }
+    fn i(&mut self, lo: i64, hi: i64) -> i64 {
+        self.rng().random_range(lo..=hi)
+    }
+    fn chance(&mut self, p: f64) -> bool {
+        self.rng().random_bool(p)
+    }
+    fn pick<T: Copy>(&mut self, xs: &[T]) -> T {
+        let k = self.rng().random_range(0..xs.len());
+        xs[k]
+    }
+}
+
+/// A generator's random numbers from `seed` (`salt` keeps two generators' streams apart).
+pub(crate) fn seeded(seed: u64, salt: u8) -> TestRng {
+    let mut bytes = [0u8; 32];
+    for (i, b) in bytes.iter_mut().enumerate() {
+        *b = (seed.rotate_left(8 * (i as u32 % 8)) as u8) ^ (i as u8).wrapping_mul(salt);
+    }
+    TestRng::from_seed(RngAlgorithm::ChaCha, &bytes)
 }
 
 /// threadcheck's passes of `program` as the same points.
@@ -273,31 +315,15 @@ struct Gen {
     refusal: Option<&'static str>,
 }
 
+impl Draws for Gen {
+    fn rng(&mut self) -> &mut TestRng {
+        &mut self.r
+    }
+}
+
 impl Gen {
     fn new(seed: u64) -> Gen {
-        let mut bytes = [0u8; 32];
-        for (i, b) in bytes.iter_mut().enumerate() {
-            *b = (seed.rotate_left(8 * (i as u32 % 8)) as u8) ^ (i as u8).wrapping_mul(37);
-        }
-        Gen {
-            r: TestRng::from_seed(RngAlgorithm::ChaCha, &bytes),
-            s: String::new(),
-            inch: false,
-            dia: false,
-            refusal: None,
-        }
-    }
-    fn f(&mut self, lo: f64, hi: f64) -> f64 {
-        self.r.random_range(lo..hi)
-    }
-    fn i(&mut self, lo: i64, hi: i64) -> i64 {
-        self.r.random_range(lo..=hi)
-    }
-    fn chance(&mut self, p: f64) -> bool {
-        self.r.random_bool(p)
-    }
-    fn pick<T: Copy>(&mut self, xs: &[T]) -> T {
-        xs[self.r.random_range(0..xs.len())]
+        Gen { r: seeded(seed, 37), s: String::new(), inch: false, dia: false, refusal: None }
     }
     /// A number with at most 4 decimals.
     fn n4(v: f64) -> String {

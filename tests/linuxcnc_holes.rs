@@ -17,10 +17,9 @@
 //! `THREADCHECK_RS274_HOLE_PROGRAMS` (default 1 000) and `THREADCHECK_RS274_HOLE_SEED`
 //! (default 1) set the run; the figure is in `reports/linuxcnc-holes.md`.
 
-use crate::linuxcnc::rs274;
+use crate::linuxcnc::{canon_calls, numbers, rs274, rs274_text, seeded, Draws};
 use crate::util::tempdir;
-use proptest::prelude::RngExt;
-use proptest::test_runner::{RngAlgorithm, TestRng};
+use proptest::test_runner::TestRng;
 use std::path::Path;
 use threadcheck::{read_program_with, Dialect, HoleKind, ReadOptions};
 
@@ -38,10 +37,6 @@ enum Outcome {
     Refused(String),
 }
 
-fn numbers(args: &str) -> Vec<f64> {
-    args.split(',').filter_map(|a| a.trim().parse::<f64>().ok()).collect()
-}
-
 /// The holes in `rs274 -g`'s canonical output.
 fn holes_of_canon(out: &str) -> Outcome {
     let (mut unit, mut g5x, mut g92) = (1.0, [0.0f64; 3], [0.0f64; 3]);
@@ -50,21 +45,8 @@ fn holes_of_canon(out: &str) -> Outcome {
     let mut holes: Vec<Hole> = Vec::new();
     // The hole being fed: its index in `holes`.
     let mut open: Option<usize> = None;
-    let mut errors = Vec::new();
-    for line in out.lines() {
-        let t = line.trim();
-        if t.is_empty() || t == "executing" {
-            continue;
-        }
-        let canon = t.split_once("N..... ").and_then(|(n, rest)| {
-            n.trim().parse::<u64>().ok()?;
-            let (name, args) = rest.split_once('(')?;
-            Some((name, args.strip_suffix(')')?))
-        });
-        let Some((name, args)) = canon else {
-            errors.push(t.to_string());
-            continue;
-        };
+    let (calls, errors) = canon_calls(out);
+    for (name, args) in calls {
         let v = numbers(args);
         let machine = |p: [f64; 3]| [0, 1, 2].map(|i| (p[i] + g5x[i] + g92[i]) * unit);
         match name {
@@ -136,20 +118,7 @@ fn same_hole_once(mut holes: Vec<Hole>) -> Vec<Hole> {
 }
 
 fn run_rs274(exe: &Path, program: &str, dir: &Path) -> Outcome {
-    let file = dir.join("p.ngc");
-    std::fs::write(&file, program).unwrap();
-    let out = std::process::Command::new(exe)
-        .current_dir(dir)
-        .env("HOME", dir)
-        .arg("-t")
-        .arg(dir.join("tool.tbl"))
-        .arg("-g")
-        .arg(&file)
-        .stdin(std::process::Stdio::null())
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
-    holes_of_canon(&text)
+    holes_of_canon(&rs274_text(exe, program, dir))
 }
 
 /// threadcheck's holes of `program` read in `dialect`, in program order.
@@ -244,25 +213,15 @@ struct Gen {
     loops: u32,
 }
 
+impl Draws for Gen {
+    fn rng(&mut self) -> &mut TestRng {
+        &mut self.r
+    }
+}
+
 impl Gen {
     fn new(seed: u64) -> Gen {
-        let mut bytes = [0u8; 32];
-        for (i, b) in bytes.iter_mut().enumerate() {
-            *b = (seed.rotate_left(8 * (i as u32 % 8)) as u8) ^ (i as u8).wrapping_mul(53);
-        }
-        Gen { r: TestRng::from_seed(RngAlgorithm::ChaCha, &bytes), s: String::new(), inch: false, loops: 0 }
-    }
-    fn f(&mut self, lo: f64, hi: f64) -> f64 {
-        self.r.random_range(lo..hi)
-    }
-    fn i(&mut self, lo: i64, hi: i64) -> i64 {
-        self.r.random_range(lo..=hi)
-    }
-    fn chance(&mut self, p: f64) -> bool {
-        self.r.random_bool(p)
-    }
-    fn pick<T: Copy>(&mut self, xs: &[T]) -> T {
-        xs[self.r.random_range(0..xs.len())]
+        Gen { r: seeded(seed, 53), s: String::new(), inch: false, loops: 0 }
     }
     /// A length in mm as program units, 3 decimals.
     fn len(&self, mm: f64) -> String {

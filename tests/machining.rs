@@ -921,3 +921,29 @@ fn a_y_move_shows_a_machining_centre_and_missing_units_are_said() {
     let notes = v["notes"].to_string();
     assert!(notes.contains("the program sets no units (G20/G21) before it threads: read in mm"), "{notes}");
 }
+
+/// Issue 62: a Haas program whose taps lie in an M97 local subprogram, read in the default
+/// dialect (Fanuc, which does not run M97): the refusal is at the M97 and names the Haas
+/// dialect; read as Haas its two holes are tapped (F25 in/min at S500 = 0.05 in = 1/4-20's lead).
+#[test]
+fn a_haas_m97_read_as_fanuc_names_the_haas_dialect() {
+    let program = "%\nO01234 (TAPS IN A LOCAL SUBPROGRAM)\nG17 G20 G90 G40 G80\nT3 M06\nG54 G00 X0 Y0 S500 M03\nG43 H03 Z1.\nM97 P1000\nG80 G00 Z1.\nM30\nN1000 G98 G84 X1. Y1. Z-0.5 R0.1 F25.\nX2.\nM99\n%\n";
+    let dir = tempdir("mc-m97");
+    std::fs::write(dir.join("h.nc"), program).unwrap();
+    let o = run_in(&dir, &["tap", "--program", "h.nc", "--tap", "1/4-20 UNC-2B"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: h.nc:7:1: no tapping cycle in the program (looked for G84 and G74 in the fanuc dialect); M97 read past: Haas's call of a local subprogram (M97 P…, an N label in the same program), which the fanuc dialect does not run: a Haas program is read with --dialect haas"
+    );
+    let o = run_in(
+        &dir,
+        &["tap", "--program", "h.nc", "--tap", "1/4-20 UNC-2B", "--dialect", "haas", "--json", "-"],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(
+        holes(&v).iter().map(|h| (h.0, h.1)).collect::<Vec<_>>(),
+        [(Some(25.4), Some(25.4)), (Some(50.8), Some(25.4))]
+    );
+}

@@ -304,12 +304,16 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
     }
     let taps: Vec<&HoleCycle> = prog.holes.iter().filter(|h| h.kind == HoleKind::Tap).collect();
     if taps.is_empty() {
+        // What in the program explains it, named at its place (a Haas program's M97 read in
+        // another dialect).
+        let hint = crate::gcode::no_thread_hint(&prog.notes);
+        let (line, column) = hint.as_ref().map_or((1, 1), |h| (h.0, h.1));
         return Err(Error::Program {
             file: name.clone(),
-            line: 1,
-            column: 1,
+            line,
+            column,
             message: format!(
-                "no tapping cycle in the program (looked for {} in the {} dialect)",
+                "no tapping cycle in the program (looked for {} in the {} dialect){}",
                 match spec.dialect {
                     Dialect::Sinumerik => "CYCLE84 and CYCLE840",
                     Dialect::LinuxCnc => "G33.1",
@@ -319,7 +323,8 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                         "a tapping cycle threadcheck reads: none yet"
                     }
                 },
-                spec.dialect.name()
+                spec.dialect.name(),
+                hint.map_or(String::new(), |h| format!("; {}", h.2))
             ),
         });
     }

@@ -493,7 +493,15 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             29.0 if fanuc_like => m.rigid_next = true,
             _ => {}
         }
-        if w.v >= 0.0 && w.v.fract() == 0.0 && w.v < 1e6 && !m_known(d, w.v as u32) {
+        if w.v == 97.0 && fanuc_like && d != Dialect::Haas {
+            // The evidence of a Haas program read in another dialect (issue 62): named.
+            m.read_past(
+                b.line,
+                w.col,
+                "M97",
+                &format!("Haas's call of a local subprogram (M97 P…, an N label in the same program), which the {} dialect does not run: a Haas program is read with ‹dialect› haas", d.name()),
+            );
+        } else if w.v >= 0.0 && w.v.fract() == 0.0 && w.v < 1e6 && !m_known(d, w.v as u32) {
             m.read_past(
                 b.line,
                 w.col,

@@ -55,7 +55,9 @@ pub(crate) fn no_thread_hint(notes: &[Note]) -> Option<(usize, usize, String)> {
         // Blocks that begin with / ran (the switch off) and may have ended or left the program.
         .or_else(|| {
             notes.iter().find(|n| n.message.contains("(block delete): the control's switch is taken as off"))
-        })?;
+        })
+        // A Haas program's local subprogram, not run in another dialect.
+        .or_else(|| notes.iter().find(|n| n.kind == NoteKind::ReadPast && n.message.starts_with("M97")))?;
     let (line, col) = n.place.as_ref().map_or((1, 1), |p| (p.line, p.column));
     Some((line, col, n.message.clone()))
 }
