@@ -121,8 +121,8 @@ pub use analysis::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};
 pub use analysis::lead::{lead_deviation, LeadDeviation};
 pub use analysis::mill::{mill, MillReport, MillSpec, Target};
 pub use analysis::naming::{
-    designation_in_comment, drill_in_comment, infer_designation, thread_mill_in_comment, DesignationFrom,
-    Found, MillInComment, Named,
+    designation_in_comment, drill_in_comment, infer_designation, listed_tool, thread_mill_in_comment,
+    DesignationFrom, Found, ListedKind, ListedTool, MillInComment, Named,
 };
 pub use analysis::picture::{Cut, Deviation, Picture};
 pub use analysis::process::MachineProfile;

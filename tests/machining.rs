@@ -947,3 +947,63 @@ fn a_haas_m97_read_as_fanuc_names_the_haas_dialect() {
         [(Some(25.4), Some(25.4)), (Some(50.8), Some(25.4))]
     );
 }
+
+/// Issue 62: Klartext as a CAM post writes it (`tests/data/klartext/cam-post.h`, written here):
+/// a tool list in `;` comments, `FUNCTION`, `CYCL DEF 32`, `L M140 MB MAX`, rotary axes at 0,
+/// `Q206=FAUTO`, PATTERN DEF, M92. The drill T7 and the tap T9 are the list's (Ø6.8; a right-hand
+/// tap of Ø8 at Q239 1.25: M8x1.25-6H, its D1 6.647–6.912 holds 6.8), three holes each at (10,
+/// 10), (30, 10), (30, 25), tapped to Z-14 over drills to Z-16. With B tilted the tap's axis is
+/// not Z: refused at the cycle call; a pitch of 1.27 fits no M8 (1.25, 1, 0.75): refused naming
+/// both.
+#[test]
+fn klartext_as_a_cam_post_writes_it_reaches_a_verdict() {
+    let program = std::fs::read_to_string(data("klartext/cam-post.h")).unwrap();
+    let (code, v, err) = tap_text("cam-post.h", &program, "[tools]\n");
+    assert_eq!(code, 0, "{err}");
+    let places: Vec<(f64, f64, f64)> =
+        holes(&v).iter().map(|h| (h.0.unwrap(), h.1.unwrap(), h.2.unwrap())).collect();
+    assert_eq!(places, [(10.0, 10.0, -14.0), (30.0, 10.0, -14.0), (30.0, 25.0, -14.0)]);
+    for h in v["holes"].as_array().unwrap() {
+        assert_eq!(h["tap"]["designation"], "M8x1.25-6H");
+        assert_eq!(h["drill"]["diameter"].as_f64(), Some(6.8));
+    }
+    let tilted = program.replace("23 L Z+15 R0 FMAX", "23 L B+90 R0 FMAX");
+    let (code, _, err) = tap_text("cam-post.h", &tilted, "[tools]\n");
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("cam-post.h:42:4: cycle 207 with the rotary axis B at 90°: the hole's axis is tilted"),
+        "{err}"
+    );
+    let wrong = program.replace("Q239=+1.25", "Q239=+1.27");
+    let (code, _, err) = tap_text("cam-post.h", &wrong, "[tools]\n");
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("T9 is a tap of Ø8 in the program's tool list at line 4, and the cycle's lead 1.27 mm fits no standard thread of that diameter (M8 has 1.25, 1, 0.75)"),
+        "{err}"
+    );
+}
+
+/// Issue 62: a Mastercam-style Haas program, written here: its tool list names the drill
+/// `( T4 | NO. 29 DRILL | H4 )` (#29 = 0.1360 in = 3.4544 mm) and the tap `( T5 | NO. 8-32 TAPRH | H5 )`;
+/// both cycles stand in an M97 subprogram called at two positions. #8-32 UNC-2B's D1 limits are
+/// 0.1300–0.1450 in (ASME B1.1), so the #29 drill passes; F = S × 1/32 in = 600/32 = 18.75 in/min.
+#[test]
+fn a_mastercam_tool_list_names_the_tap_and_the_drill() {
+    let program = "%\nO1001 (TOOL LIST WRITTEN HERE)\n( T4 | NO. 29 DRILL | H4 )\n( T5 | NO. 8-32 TAPRH | H5 )\nG20 G17 G40 G80 G90 G94\nT4 M06\nG00 G54 X0. Y0. S2500 M03\nG43 H4 Z1.\nG98 G81 Z-.5 R.1 F10. L0\nM97 P100\nG80\nT5 M06\nG00 G54 X0. Y0. S600 M03\nG43 H5 Z1.\nG98 G84 Z-.4 R.1 F18.75 L0\nM97 P100\nG80\nM30\nN100 X1. Y1.\nX2. Y1.\nM99\n%\n";
+    let (code, v, err) = {
+        let dir = tempdir("mc-mastercam");
+        std::fs::write(dir.join("m.nc"), program).unwrap();
+        let o = run_in(&dir, &["tap", "--program", "m.nc", "--dialect", "haas", "--json", "-"]);
+        let code = o.status.code().unwrap();
+        let v = if code < 2 { serde_json::from_slice(&o.stdout).unwrap() } else { serde_json::Value::Null };
+        (code, v, stderr(&o))
+    };
+    assert_eq!(code, 0, "{err}");
+    let hs = v["holes"].as_array().unwrap();
+    assert_eq!(hs.len(), 2);
+    for h in hs {
+        assert_eq!(h["tap"]["designation"], "#8-32 UNC-2B");
+        assert!((h["drill"]["diameter"].as_f64().unwrap() - 3.4544).abs() < 1e-9, "{}", h["drill"]);
+        assert_eq!(h["pass"], true);
+    }
+}

@@ -593,7 +593,176 @@ pub fn drill_in_comment(comment: &str, units: ProgramUnits) -> Option<f64> {
         }
         let w = w.trim_matches(|c: char| matches!(c, ',' | ';' | ':' | '=' | '(' | ')'));
         let w = w.trim_start_matches('Ø').trim_start_matches('⌀');
-        length_in_comment(w.strip_prefix("DIA").or_else(|| w.strip_prefix('D')).unwrap_or(w), units)
+        let w = w.strip_prefix("DIA").or_else(|| w.strip_prefix('D')).unwrap_or(w);
+        length_in_comment(w.trim_start_matches('='), units)
+    })
+}
+
+/// A tool as a CAM system's tool list names it: its number, and what it is.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ListedTool {
+    /// The tool's number.
+    pub tool: u32,
+    /// What the list says it is.
+    pub kind: ListedKind,
+}
+
+/// What a tool list's line says a tool is.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ListedKind {
+    /// A drill.
+    Drill {
+        /// Its diameter, mm.
+        diameter: f64,
+    },
+    /// A tap.
+    Tap {
+        /// Its designation where the line writes one (`NO. 8-32 TAPRH`).
+        designation: Option<String>,
+        /// Its diameter, mm (`D=8`), for the cycle's pitch to complete.
+        diameter: Option<f64>,
+        /// Its hand where the line says it.
+        hand: Option<crate::standards::Hand>,
+    },
+}
+
+/// The tool a CAM system's tool-list line names, in the forms the posts write: Autodesk's
+/// `T9  D=8. CR=0. - ZMIN=-14. - right hand tap` (Fusion 360, HSMWorks, Inventor CAM; `#9` on
+/// some posts), Mastercam's `T5 | NO. 8-32 TAPRH | H5` and `T4 | NO. 29 DRILL | H4`: a tap or a
+/// drill, with its number first. Lengths in the program's units unless they end in `MM`.
+///
+/// ```
+/// use threadcheck::{listed_tool, ListedKind, ListedTool, ParseOptions, ProgramUnits, Hand};
+/// let mm = ProgramUnits::Mm;
+/// let l = listed_tool("T9  D=8. CR=0. - ZMIN=-14. - right hand tap", mm, ParseOptions::default());
+/// assert_eq!(l, Some(ListedTool { tool: 9, kind: ListedKind::Tap { designation: None, diameter: Some(8.0), hand: Some(Hand::Right) } }));
+/// let l = listed_tool("#7 D=6.8 - ZMIN=-16 - drill", mm, ParseOptions::default());
+/// assert_eq!(l, Some(ListedTool { tool: 7, kind: ListedKind::Drill { diameter: 6.8 } }));
+/// let l = listed_tool(" T5 | NO. 8-32 TAPRH | H5 ", ProgramUnits::Inch, ParseOptions::default()).unwrap();
+/// assert_eq!(l.kind, ListedKind::Tap { designation: Some("#8-32 UNC-2B".into()), diameter: None, hand: Some(Hand::Right) });
+/// let l = listed_tool(" T4 | NO. 29 DRILL | H4 ", ProgramUnits::Inch, ParseOptions::default()).unwrap();
+/// assert_eq!(l.tool, 4);
+/// assert!(matches!(l.kind, ListedKind::Drill { diameter } if (diameter - 3.4544).abs() < 1e-9));
+/// // A thread mill's or an end mill's line, or a comment with no tool first, is none.
+/// assert_eq!(listed_tool("T5 D=8. CR=0. - thread mill", mm, ParseOptions::default()), None);
+/// assert_eq!(listed_tool("DRILL 6.8", mm, ParseOptions::default()), None);
+/// ```
+pub fn listed_tool(comment: &str, units: ProgramUnits, opts: ParseOptions) -> Option<ListedTool> {
+    let t = comment.trim();
+    let head = t.split(|c: char| c.is_whitespace() || c == '|').next()?;
+    let tool: u32 = head.strip_prefix(['T', 't', '#']).and_then(|n| n.parse().ok())?;
+    let rest = t[head.len()..].replace('|', " ");
+    let upper = rest.to_uppercase();
+    // Mastercam's `TAPRH`, `NO. 8-32`: as the comment reader reads them.
+    let spaced =
+        upper.replace("TAPRH", "TAP RH").replace("TAPLH", "TAP LH").replace("NO. ", "#").replace("NO.", "#");
+    let words: Vec<&str> = spaced.split_whitespace().collect();
+    let plain: Vec<&str> = spaced.split(|c: char| !c.is_alphanumeric()).filter(|w| !w.is_empty()).collect();
+    let has = |w: &str| plain.contains(&w);
+    if has("MILL") || spaced.contains("THREADMILL") {
+        return None;
+    }
+    if has("TAP") || has("TAPPING") {
+        let hand = if has("LH") || spaced.contains("LEFT HAND") {
+            Some(crate::standards::Hand::Left)
+        } else if has("RH") || spaced.contains("RIGHT HAND") {
+            Some(crate::standards::Hand::Right)
+        } else {
+            None
+        };
+        let designation =
+            designation_in_comment(&spaced, opts).map(|f| with_class(&f, ThreadKind::Internal, opts).0);
+        let diameter = words.iter().find_map(|w| {
+            let v = w.strip_prefix("D=").or_else(|| w.strip_prefix("DIA="))?;
+            length_in_comment(v.trim_end_matches(','), units)
+        });
+        if designation.is_none() && diameter.is_none() {
+            return None;
+        }
+        return Some(ListedTool { tool, kind: ListedKind::Tap { designation, diameter, hand } });
+    }
+    let diameter = drill_in_comment(&spaced.replace('#', "NO. "), units)?;
+    Some(ListedTool { tool, kind: ListedKind::Drill { diameter } })
+}
+
+/// The tap a CAM tool list names for tool `tool` (the first line of the list that names it, see
+/// [`listed_tool`]): its designation with the class a comment gets; else its diameter with the
+/// cycle's `lead` (mm), the standard size of both ([`infer_designation`]: an error when none
+/// fits, naming both). `None` when no line names the tool as a tap.
+pub(crate) fn listed_tap(
+    comments: &[Comment],
+    tool: u32,
+    units: ProgramUnits,
+    opts: ParseOptions,
+    lead: Option<f64>,
+    line: usize,
+) -> Option<Result<Named, Error>> {
+    let (kind, at) = comments.iter().find_map(|c| {
+        listed_tool(&c.text, units, opts).filter(|l| l.tool == tool).map(|l| (l.kind, c.line))
+    })?;
+    let ListedKind::Tap { designation, diameter, .. } = kind else { return None };
+    if let Some(designation) = designation {
+        let why = format!("{designation}: T{tool} in the program's tool list at line {at}");
+        return Some(Ok(Named { designation, from: DesignationFrom::Comment, line: Some(at), why }));
+    }
+    let d = diameter?;
+    let Some(lead) = lead else {
+        return Some(Err(Error::Program {
+            file: String::new(),
+            line,
+            column: 1,
+            message: format!(
+                "T{tool} is a tap of Ø{} in the program's tool list at line {at}, and the cycle's feed gives no lead to complete its size",
+                crate::ground::fmt::fmt_num(d)
+            ),
+        }));
+    };
+    let fits = infer_designation(lead, 1, d, ThreadKind::Internal, units, line);
+    Some(match fits {
+        Ok(mut n) => {
+            n.from = DesignationFrom::Comment;
+            n.line = Some(at);
+            n.why = format!(
+                "{}: T{tool}, a tap of Ø{} in the program's tool list at line {at}, at the cycle's lead {} mm",
+                n.designation,
+                crate::ground::fmt::fmt_num(d),
+                crate::ground::fmt::fmt_num((lead * 1e6).round() / 1e6)
+            );
+            Ok(n)
+        }
+        Err(_) => {
+            // The metric sizes of that diameter and their pitches, named beside the cycle's.
+            let sizes: Vec<String> = crate::standards::data::catalog()
+                .map(|cat| {
+                    cat.iso
+                        .series
+                        .sizes
+                        .iter()
+                        .filter(|s| (s.d - d).abs() < 1e-6)
+                        .map(|s| {
+                            let pitches: Vec<String> = s
+                                .coarse
+                                .iter()
+                                .chain(&s.fine)
+                                .map(|p| crate::ground::fmt::fmt_num(*p))
+                                .collect();
+                            format!("M{} has {}", crate::ground::fmt::fmt_num(s.d), pitches.join(", "))
+                        })
+                        .collect()
+                })
+                .unwrap_or_default();
+            Err(Error::Program {
+                file: String::new(),
+                line,
+                column: 1,
+                message: format!(
+                    "T{tool} is a tap of Ø{} in the program's tool list at line {at}, and the cycle's lead {} mm fits no standard thread of that diameter{}: a tap of this pitch does not exist, or the cycle's pitch is wrong",
+                    crate::ground::fmt::fmt_num(d),
+                    crate::ground::fmt::fmt_num((lead * 1e6).round() / 1e6),
+                    if sizes.is_empty() { String::new() } else { format!(" ({})", sizes.join("; ")) }
+                ),
+            })
+        }
     })
 }
 

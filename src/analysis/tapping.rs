@@ -361,12 +361,32 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                         .map(|o| o.main_line)
                         .max()
                         .unwrap_or(0);
-                    let found = comments
-                        .iter()
-                        .rev()
-                        .filter(|c| c.line > after && c.line <= d.main_line)
-                        .find_map(|c| {
-                            crate::analysis::naming::drill_in_comment(&c.text, d.units).map(|v| (v, c.line))
+                    // A CAM system's tool list that names the drill by its number first.
+                    let listed = d.tool.and_then(|t| {
+                        comments.iter().find_map(|c| {
+                            match crate::analysis::naming::listed_tool(
+                                &c.text,
+                                d.units,
+                                ParseOptions::default(),
+                            ) {
+                                Some(crate::analysis::naming::ListedTool {
+                                    tool,
+                                    kind: crate::analysis::naming::ListedKind::Drill { diameter },
+                                }) if tool == t => Some((diameter, c.line)),
+                                _ => None,
+                            }
+                        })
+                    });
+                    let found = listed
+                        .or_else(|| {
+                            comments
+                                .iter()
+                                .rev()
+                                .filter(|c| c.line > after && c.line <= d.main_line)
+                                .find_map(|c| {
+                                    crate::analysis::naming::drill_in_comment(&c.text, d.units)
+                                        .map(|v| (v, c.line))
+                                })
                         })
                         .or_else(|| d.tool.and_then(|t| drill_by_tool.get(&t).copied()));
                     if let (Some(found), Some(t)) = (found, d.tool) {
@@ -779,41 +799,51 @@ fn tap_of(
             .find(|o| o.kind == HoleKind::Tap && o.main_line < h.main_line)
             .map_or(0, |o| o.main_line);
         let default = crate::analysis::tools::DEFAULT_TAP_CHAMFER_PITCHES;
-        let named = match from_comments(comments, after, h.main_line, ThreadKind::Internal, opts) {
+        let lead = match (h.feed, h.feed_per_rev, h.spindle) {
+            (Some(f), true, _) => Some(f),
+            (Some(f), false, Some(s)) if s > 0.0 => Some(f / s),
+            _ => None,
+        };
+        // A CAM system's tool list that names the tool as a tap, before the nearest comment.
+        let listed = h
+            .tool
+            .and_then(|t| crate::analysis::naming::listed_tap(comments, t, h.units, opts, lead, h.line));
+        let listed = match listed {
+            Some(Ok(n)) => Some(n),
+            Some(Err(Error::Program { message, .. })) => return Err(perr(message)),
+            Some(Err(e)) => return Err(e),
+            None => None,
+        };
+        let named = match listed
+            .or_else(|| from_comments(comments, after, h.main_line, ThreadKind::Internal, opts))
+        {
             Some(n) => Some(n),
-            None => {
-                let lead = match (h.feed, h.feed_per_rev, h.spindle) {
-                    (Some(f), true, _) => Some(f),
-                    (Some(f), false, Some(s)) if s > 0.0 => Some(f / s),
-                    _ => None,
-                };
-                match (lead, drill) {
-                    (Some(lead), Some(d)) => {
-                        let major = d + 1.082_531_754_730_548 * lead;
+            None => match (lead, drill) {
+                (Some(lead), Some(d)) => {
+                    let major = d + 1.082_531_754_730_548 * lead;
+                    infer_designation(
+                        lead,
+                        1,
+                        major,
+                        ThreadKind::Internal,
+                        crate::gcode::ProgramUnits::Mm,
+                        h.line,
+                    )
+                    .or_else(|e| {
                         infer_designation(
                             lead,
                             1,
                             major,
                             ThreadKind::Internal,
-                            crate::gcode::ProgramUnits::Mm,
+                            crate::gcode::ProgramUnits::Inch,
                             h.line,
                         )
-                        .or_else(|e| {
-                            infer_designation(
-                                lead,
-                                1,
-                                major,
-                                ThreadKind::Internal,
-                                crate::gcode::ProgramUnits::Inch,
-                                h.line,
-                            )
-                            .map_err(|_| e)
-                        })
-                        .ok()
-                    }
-                    _ => None,
+                        .map_err(|_| e)
+                    })
+                    .ok()
                 }
-            }
+                _ => None,
+            },
         };
         if let Some(n) = named {
             return Ok(TapOf {

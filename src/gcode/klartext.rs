@@ -94,7 +94,8 @@ fn blocks(text: &str) -> Result<Vec<KBlock>, KErr> {
         } else {
             (t, lead + 1)
         };
-        if body.starts_with('*') {
+        // `*` lines are comments; so is a block number with only a comment after it (`1 ; …`).
+        if body.starts_with('*') || !numbered && t.bytes().all(|c| c.is_ascii_digit()) {
             continue;
         }
         let under_def = out.last().is_some_and(|b| b.text.starts_with("CYCL DEF"));
@@ -224,6 +225,12 @@ struct St<'a> {
     /// The direction of the last move's end (for `CT`).
     tangent: Option<[f64; 2]>,
     comp: u8,
+    /// The rotary axes A, B, C as last written (degrees; 0 until written).
+    rotary: [f64; 3],
+    /// The feed the last TOOL CALL gave (its F), mm/min: what a cycle's FAUTO takes.
+    tool_feed: Option<f64>,
+    /// Cycle parameters written as a feed word that is not a number (`Q206=FMAX`): where.
+    symbolic: HashMap<u32, (usize, usize, String)>,
     tool: Option<u32>,
     spindle: Option<f64>,
     dir: Option<SpindleDir>,
@@ -375,6 +382,9 @@ pub(crate) fn read(
         units_set: false,
         pos: [0.0; 3],
         known: [false; 3],
+        rotary: [0.0; 3],
+        tool_feed: None,
+        symbolic: HashMap::new(),
         cc: None,
         tangent: None,
         comp: 0,
@@ -696,6 +706,7 @@ fn tool(st: &mut St<'_>, b: &KBlock, up: &str) -> Result<Flow, KErr> {
         }
     }
     let ws = words(&b.text, from, b.col);
+    st.tool_feed = None;
     for (k, w) in ws.iter().enumerate() {
         match w.name.as_str() {
             "Z" if w.val.is_empty() => {}
@@ -711,7 +722,7 @@ fn tool(st: &mut St<'_>, b: &KBlock, up: &str) -> Result<Flow, KErr> {
             }
             "S" => st.spindle = Some(st.value(w, b.line)?),
             "F" => {
-                st.len(w, b.line)?;
+                st.tool_feed = Some(st.len(w, b.line)?);
             }
             "DL" | "DR" | "DR2" if st.value(w, b.line)? != 0.0 => {
                 st.read_past(
@@ -735,7 +746,30 @@ fn path(st: &mut St<'_>, b: &KBlock, kind: &str) -> Result<Flow, KErr> {
     let (mut rapid, mut dr, mut radius, mut pr, mut pa, mut ipa, mut ipr) =
         (false, None, None, None, None, None, None);
     let mut m99 = None;
-    for w in &ws {
+    // `M140 MB MAX` / `MB+50`: the retract along the tool axis; M91/M92: machine coordinates.
+    let (mut mb, mut machine) = (None, None);
+    for (i, w) in ws.iter().enumerate() {
+        if w.name == "MAX" && i > 0 && ws[i - 1].name == "MB" && ws[i - 1].val.is_empty() {
+            continue;
+        }
+        if let Some(k) = ["A", "B", "C"].iter().position(|a| *a == w.name).filter(|_| kind == "L") {
+            st.rotary[k] = st.value(w, b.line)?;
+            continue;
+        }
+        if let Some(k) = ["IA", "IB", "IC"].iter().position(|a| *a == w.name).filter(|_| kind == "L") {
+            st.rotary[k] += st.value(w, b.line)?;
+            continue;
+        }
+        if w.name == "MB" {
+            mb = Some(w.col);
+            if !w.val.is_empty() {
+                st.len(w, b.line)?;
+            }
+            continue;
+        }
+        if w.name == "M" && matches!(w.val.as_str(), "91" | "92") {
+            machine = Some((w.col, w.val.clone()));
+        }
         if let Some((k, inc)) = axis_word(&w.name) {
             let v = st.len(w, b.line)?;
             if inc {
@@ -807,6 +841,23 @@ fn path(st: &mut St<'_>, b: &KBlock, kind: &str) -> Result<Flow, KErr> {
         return Ok(Flow::Next);
     }
     let ends = m_words(st, b, &ws)?;
+    if let Some(col) = mb {
+        // The retract's height is the machine's (MAX: the travel limit): Z unknown until the
+        // program sets it again; nothing is cut on the way.
+        st.known[2] = false;
+        st.read_past(b.line, col, "M140 MB", "a retract along the tool axis (MB MAX: to the travel limit); Z is taken as unknown until the program sets it");
+        return Ok(if ends { Flow::End } else { Flow::Next });
+    }
+    if let Some((col, code)) = machine {
+        // Positions in the machine's coordinates: not the program's, so unknown after it.
+        for (known, given) in st.known.iter_mut().zip(given) {
+            if given {
+                *known = false;
+            }
+        }
+        st.read_past(b.line, col, &format!("M{code}"), "a move in machine coordinates (M91: the machine datum, M92: the machine's reference point): the axes it moves are taken as unknown until the program sets them");
+        return Ok(if ends { Flow::End } else { Flow::Next });
+    }
     let needs_pos = |st: &St<'_>| -> Result<(), KErr> {
         if st.known[0] && st.known[1] {
             Ok(())
@@ -1267,6 +1318,23 @@ fn cycle(st: &mut St<'_>, b: &KBlock, up: &str) -> Result<Flow, KErr> {
     // A cycle with Q parameters: evaluated now, in order; each also a Q-parameter after it.
     let mut q = HashMap::new();
     for p in &b.params {
+        // A feed written as a word (CAM posts' `Q206=FAUTO`): FAUTO is the feed of the TOOL
+        // CALL, FMAX the rapid rate, FU and FZ a feed per revolution and per tooth.
+        let word = p.text.trim().to_ascii_uppercase();
+        if matches!(word.as_str(), "FAUTO" | "FMAX" | "FU" | "FZ") {
+            match (word.as_str(), st.tool_feed) {
+                ("FAUTO", Some(f)) => {
+                    q.insert(p.q, f);
+                    st.q.insert(p.q as i64, f);
+                }
+                _ => {
+                    // Kept unknown: a cycle that needs it is refused at its line.
+                    st.symbolic.insert(p.q, (p.line, p.col, word.clone()));
+                }
+            }
+            continue;
+        }
+        st.symbolic.remove(&p.q);
         let v = eval(st, &p.text, p.line, p.col)
             .map_err(|(l, c, m)| (l, c, format!("Q{}={}: {m}", p.q, p.text)))?;
         q.insert(p.q, v);
@@ -1306,6 +1374,23 @@ fn cycle(st: &mut St<'_>, b: &KBlock, up: &str) -> Result<Flow, KErr> {
                 None => &[],
             };
             if let Some(m) = need.iter().find(|q| !def.q.contains_key(q)) {
+                if let Some((line, col, word)) =
+                    b.params.iter().find(|p| p.q == *m).and_then(|_| st.symbolic.get(m).cloned())
+                {
+                    return Err((
+                        line,
+                        col,
+                        format!(
+                            "CYCL DEF {n} {}: Q{m}={word}: {}",
+                            def.name,
+                            match word.as_str() {
+                                "FAUTO" =>
+                                    "the feed of the TOOL CALL, which gives no F: the tap's feed is not known",
+                                _ => "a feed this cycle's check cannot take as the tap's: write it in mm/min",
+                            }
+                        ),
+                    ));
+                }
                 return Err((b.line, b.col, format!("CYCL DEF {n} {}: Q{m} is missing", def.name)));
             }
             // The depth as the control takes it: with DEPTH = 0 it does not run the cycle, and a
@@ -1466,6 +1551,22 @@ fn run_with(
         st.read_past(line, col, &format!("call of cycle {}", def.number), "a cycle that makes no thread");
         return Ok(());
     };
+    // A tilted tool axis (A or B turned) drills and taps along another axis than Z.
+    if let Some(k) = (0..2).find(|&k| st.rotary[k] != 0.0) {
+        return Err((
+            line,
+            col,
+            format!(
+                "cycle {} with the rotary axis {} at {}°: the hole's axis is tilted, and threadcheck reads holes along Z (A and B at 0)",
+                def.number,
+                ["A", "B"][k],
+                crate::ground::fmt::fmt_num(st.rotary[k])
+            ),
+        ));
+    }
+    if st.rotary[2] != 0.0 {
+        st.read_past(line, col, "C (a turned table)", "the rotary table C is turned: the holes' X and Y are in the program's coordinates, not the part's as it stood at C0");
+    }
     let s = st.scale;
     let q = |n: u32| def.get(n).unwrap_or(0.0);
     let top = surface.unwrap_or(q(203)) * s;
