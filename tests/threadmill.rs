@@ -753,3 +753,58 @@ fn a_comb_cutter_s_passes_are_measured_within_the_budget() {
     );
     assert_eq!(v["verdict"], "fail");
 }
+
+/// Issue 62: LinuxCNC's G90.1 makes an arc's I and J its centre's coordinates: four turns about
+/// (30, 40) written `G90.1 … G3 X37 Y40 Z-10 I30 J40 P4` are the helix written `I-7 J0` in G91.1
+/// (7 mm from the centre, 1.5 mm a turn): the same centre, radius and measured thread (they were
+/// read as I30 J40 from the start point, a helix "on its own axis" 50 mm away).
+#[test]
+fn g90_1_arc_centres_are_absolute() {
+    let abs = "G17 G21 G90 G40 G94\nT12 M6\nS3000 M3\nG0 X30 Y40 Z5\nG0 Z-16\nG1 X37 Y40 F100\nG90.1\nG3 X37 Y40 Z-10 I30 J40 P4 F150\nG91.1\nG1 X30 Y40\nM2\n";
+    let inc = abs.replace("G90.1\n", "").replace("I30 J40", "I-7 J0");
+    let (a, b) =
+        (mill_text("abs.ngc", abs, "M20x1.5-6H", "6"), mill_text("inc.ngc", &inc, "M20x1.5-6H", "6"));
+    let centre = |v: &serde_json::Value| {
+        (v["helices"][0]["centre"][0].as_f64(), v["helices"][0]["centre"][1].as_f64())
+    };
+    assert_eq!(centre(&a), (Some(30.0), Some(40.0)));
+    assert_eq!(centre(&b), (Some(30.0), Some(40.0)));
+    assert_eq!(a["helices"][0]["radius"].as_f64(), Some(7.0));
+    assert_eq!(a["measured"], b["measured"]);
+}
+
+/// Issue 62: a helix of R-format quarter arcs (six turns of R7 about X0 Y0, 1.5 mm a turn) with
+/// one point written 0.01 mm off the circle, (6.99, 0) on the third turn: the two arcs through it
+/// take centres about 0.005 mm off the axis from their radius, and were left out as arcs "about
+/// another axis", so no groove was measured. Now they are measured about the axis from their end
+/// points, at the mean of their radii where they cross the +X half-plane: D = 2·((7 + 6.99)/2 +
+/// 3) = 19.990 with a Ø6 cutter (20.000 with the point on the circle).
+#[test]
+fn r_format_arcs_through_a_rounded_point_are_measured() {
+    let program = |off: f64| {
+        let mut p =
+            String::from("G17 G21 G90 G40 G94\nT12 M6\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-16\nG1 X7 Y0 F100\n");
+        let pts = [(0.0, 7.0), (-7.0, 0.0), (0.0, -7.0), (7.0, 0.0)];
+        for turn in 0..6 {
+            for (q, (x, y)) in pts.iter().enumerate() {
+                let z = -16.0 + 1.5 * (f64::from(turn) + (q as f64 + 1.0) / 4.0);
+                let x = if turn == 2 && q == 3 { x - off } else { *x };
+                p.push_str(&format!("G3 X{x:.3} Y{y:.3} Z{z:.4} R7. F150\n"));
+            }
+        }
+        p + "G1 X0 Y0\nM30\n"
+    };
+    let on = mill_text("on.nc", &program(0.0), "M20x1.5-6H", "6");
+    let off = mill_text("off.nc", &program(0.01), "M20x1.5-6H", "6");
+    assert!((on["measured"]["major_diameter"].as_f64().unwrap() - 20.0).abs() < 1e-4, "{}", on["measured"]);
+    assert!(
+        (off["measured"]["major_diameter"].as_f64().unwrap() - 19.99).abs() < 1e-4,
+        "{}",
+        off["measured"]
+    );
+    let notes = off["notes"].to_string();
+    assert!(
+        notes.contains("2 helix arcs from line 18 have their centres up to 0.02 mm off the helices' axis"),
+        "{notes}"
+    );
+}

@@ -399,6 +399,25 @@ fn main_axis(hs: Vec<Helix>, notes: &mut Vec<String>) -> Vec<Helix> {
     let same = |a: &Helix, b: &Helix| (a.centre[0] - b.centre[0]).hypot(a.centre[1] - b.centre[1]) <= 1e-3;
     let turns = |c: &Helix| hs.iter().filter(|h| same(h, c)).map(|h| h.sweep_deg.abs()).sum::<f64>();
     let Some(main) = hs.iter().max_by(|a, b| turns(a).total_cmp(&turns(b))).cloned() else { return hs };
+    // An arc whose centre lies within a rounding of the main axis (an R-format arc through a
+    // point written rounded: its centre moves with the point) is the same helix, measured about
+    // the main axis from its own end points.
+    let near = |h: &Helix| {
+        let d = (h.centre[0] - main.centre[0]).hypot(h.centre[1] - main.centre[1]);
+        d > 1e-3 && d <= RADIUS_ROUNDING
+    };
+    let moved = hs.iter().filter(|h| near(h)).count();
+    let first_moved = hs.iter().find(|h| near(h)).map(|h| h.line);
+    let hs: Vec<Helix> =
+        hs.into_iter().map(|h| if near(&h) { recentred(h, main.centre) } else { h }).collect();
+    if let Some(first) = first_moved {
+        notes.push(format!(
+            "{moved} helix arc{} from line {first} {} centres up to {RADIUS_ROUNDING} mm off the helices' axis (arcs by their radius through points written rounded): measured about the axis, from {} end points",
+            if moved == 1 { "" } else { "s" },
+            if moved == 1 { "has its" } else { "have their" },
+            if moved == 1 { "its" } else { "their" },
+        ));
+    }
     let (kept, others): (Vec<Helix>, Vec<Helix>) = hs.into_iter().partition(|h| same(h, &main));
     if !others.is_empty() {
         let lines: Vec<String> = others.iter().take(6).map(|h| h.line.to_string()).collect();
@@ -423,6 +442,36 @@ fn main_axis(hs: Vec<Helix>, notes: &mut Vec<String>) -> Vec<Helix> {
         ));
     }
     kept
+}
+
+/// Helix `h` about the axis at `centre` instead of its own: its end points kept, its radii,
+/// start angle and sweep (the same turns and direction) taken about `centre`.
+fn recentred(h: Helix, centre: [f64; 2]) -> Helix {
+    let sweep = h.sweep_deg.to_radians();
+    let (r0, r1) = (h.programmed_radius, h.programmed_radius + h.radius_change);
+    let at = |r: f64, a: f64| [h.centre[0] + r * a.cos(), h.centre[1] + r * a.sin()];
+    let (from, to) = (at(r0, h.angle_start), at(r1, h.angle_start + sweep));
+    let polar = |p: [f64; 2]| {
+        ((p[0] - centre[0]).hypot(p[1] - centre[1]), (p[1] - centre[1]).atan2(p[0] - centre[0]))
+    };
+    let ((n0, b0), (n1, b1)) = (polar(from), polar(to));
+    // The small turn of each end point about the new centre, added to the sweep.
+    let wrap = |a: f64| (a + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
+    let d_start = wrap(b0 - h.angle_start);
+    let d_end = wrap(b1 - (h.angle_start + sweep));
+    let new_sweep = sweep + (d_end - d_start);
+    let shift = h.radius - h.programmed_radius;
+    let lead = (h.z[1] - h.z[0]) * std::f64::consts::TAU / new_sweep.abs();
+    Helix {
+        centre,
+        radius: n0 + shift,
+        programmed_radius: n0,
+        radius_change: n1 - n0,
+        sweep_deg: new_sweep.to_degrees(),
+        lead,
+        angle_start: b0,
+        ..h
+    }
 }
 
 /// The distinct phases of the helices: Z where each crosses the +X half-plane, modulo `lead`

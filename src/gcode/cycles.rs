@@ -235,12 +235,15 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                 // Arc centres absolute (G90.1) or incremental (G91.1): a lathe's arcs are kept as
                 // chords of the turned contour, so the mode is named, not needed.
                 (Dialect::LinuxCnc, 90.1 | 91.1) => {
-                    m.read_past(
-                        b.line,
-                        col,
-                        &format!("G{g}"),
-                        "the arc centres' distance mode; the turned contour's arcs are read as chords",
-                    );
+                    m.arc_centres_absolute = g == 90.1;
+                    if m.lathe() {
+                        m.read_past(
+                            b.line,
+                            col,
+                            &format!("G{g}"),
+                            "the arc centres' distance mode; the turned contour's arcs are read as chords",
+                        );
+                    }
                 }
                 _ if THREADING.contains(&base) => {
                     return Err(m.err(

@@ -236,6 +236,9 @@ pub(crate) struct Motion {
     pub live_tool_said: bool,
     /// Cutter radius compensation: 0 G40, 1 G41, 2 G42.
     pub comp: u8,
+    /// LinuxCNC's G90.1: an arc's I and J are its centre's coordinates (G91.1, the power-on
+    /// state: offsets from its start).
+    pub arc_centres_absolute: bool,
     /// Working plane (17, 18, 19).
     pub plane: u32,
     ops: Vec<Operation>,
@@ -325,6 +328,7 @@ impl Motion {
             cycle_levels: (None, None),
             return_to_r: false,
             cycle_words: (None, None),
+            arc_centres_absolute: false,
             cycle_in_force: None,
             local: [0.0; 3],
             rotation: None,
@@ -690,6 +694,12 @@ impl Motion {
                 // R > 0: the shorter arc; the centre lies to the left of the chord for G3.
                 let s = dir * r.signum();
                 [from[0] + 0.5 * dx - s * h * dy / d, from[1] + 0.5 * dy + s * h * dx / d]
+            } else if self.arc_centres_absolute {
+                // G90.1 (LinuxCNC): I and J are the centre's coordinates, in the program's frame
+                // as X and Y are; an axis left out is 0 there.
+                let i = b.get("I").map_or(0.0, |w| self.len(w)) + self.offset[0];
+                let j = b.get("J").map_or(0.0, |w| self.len(w)) + self.offset[1];
+                [i, j]
             } else {
                 let i = b.get("I").map_or(0.0, |w| self.len(w));
                 let j = b.get("J").map_or(0.0, |w| self.len(w));
