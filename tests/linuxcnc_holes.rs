@@ -3,12 +3,14 @@
 //!
 //! Each program (G17; G81, G82, G83, G73, G84, G74, G85, G86, G89 and G33.1; G90 and G91, G98
 //! and G99, L repeats, blocks that write only X, Y or Z under the cycle in force, R changed on
-//! the way, work offsets set by G10 L2 and chosen by G54–G59, G92 and G52 shifts, `o…repeat`
-//! loops, inch and mm) is run by `rs274 -g`, which prints the canonical moves the cycles expand
+//! the way, work offsets set by G10 L2 (some turned by R) and chosen by G54–G59, G92 and G52
+//! shifts, `o…repeat` loops, inch and mm) is run by `rs274 -g`, which prints the canonical moves
+//! the cycles expand
 //! to, and read by threadcheck's `linuxcnc` dialect. A hole of `rs274`'s is a run of feeds down
 //! Z at one X, Y (pecks and the retracts between them included) or a `RIGID_TAP`: its X, Y, the
 //! Z its first feed starts from (the R level; G33.1's start) and the lowest Z fed, in machine
-//! coordinates (the printed program coordinates plus the G5x and G92 offsets it prints). Both
+//! coordinates (the printed program coordinates with the G92 offset added, turned by the XY
+//! rotation, and the G5x offset added, as LinuxCNC's canon places them). Both
 //! sides must give the same holes in the same order to 1e-4 mm (the print's 4 decimals of
 //! program units), a tap the same feed and spindle speed, and a program `rs274` refuses
 //! threadcheck must refuse too (and the other way round). A cycle repeated in place in G90 (L
@@ -39,7 +41,7 @@ enum Outcome {
 
 /// The holes in `rs274 -g`'s canonical output.
 fn holes_of_canon(out: &str) -> Outcome {
-    let (mut unit, mut g5x, mut g92) = (1.0, [0.0f64; 3], [0.0f64; 3]);
+    let (mut unit, mut g5x, mut g92, mut rot) = (1.0, [0.0f64; 3], [0.0f64; 3], 0.0f64);
     let mut pos = [0.0f64; 3];
     let (mut feed, mut speed, mut k) = (0.0, 0.0, None::<f64>);
     let mut holes: Vec<Hole> = Vec::new();
@@ -48,11 +50,18 @@ fn holes_of_canon(out: &str) -> Outcome {
     let (calls, errors) = canon_calls(out);
     for (name, args) in calls {
         let v = numbers(args);
-        let machine = |p: [f64; 3]| [0, 1, 2].map(|i| (p[i] + g5x[i] + g92[i]) * unit);
+        // LinuxCNC's canon: the G92 offset added, the XY plane rotated, the G5x offset added.
+        let machine = |p: [f64; 3]| {
+            let q = [0, 1, 2].map(|i| p[i] + g92[i]);
+            let (s, c) = rot.to_radians().sin_cos();
+            let r = [c * q[0] - s * q[1], s * q[0] + c * q[1], q[2]];
+            [0, 1, 2].map(|i| (r[i] + g5x[i]) * unit)
+        };
         match name {
             "USE_LENGTH_UNITS" => unit = if args.contains("INCHES") { 25.4 } else { 1.0 },
             "SET_G5X_OFFSET" => g5x = [v[1], v[2], v[3]],
             "SET_G92_OFFSET" => g92 = [v[0], v[1], v[2]],
+            "SET_XY_ROTATION" => rot = v[0],
             "SET_FEED_RATE" => feed = v[0],
             "SET_SPINDLE_SPEED" => speed = v[1],
             "START_SPEED_FEED_SYNC" => k = Some(v[0]),
@@ -265,7 +274,13 @@ impl Gen {
                 let p = self.i(1, 6);
                 let (x, y, z) = (self.f(-50.0, 50.0), self.f(-50.0, 50.0), self.f(-5.0, 5.0));
                 let (x, y, z) = (self.len(x), self.len(y), self.len(z));
-                self.line(&format!("G10 L2 P{p} X{x} Y{y} Z{z}"));
+                // Now and then the plane turned about the system's origin (R, degrees).
+                let r = if self.chance(0.4) {
+                    format!(" R{}", self.pick(&[15, 30, 45, 90, -60, 135]))
+                } else {
+                    String::new()
+                };
+                self.line(&format!("G10 L2 P{p} X{x} Y{y} Z{z}{r}"));
                 self.line(&format!("G{}", 53 + p));
             }
             1 => {
@@ -301,7 +316,14 @@ impl Gen {
             for _ in 0..self.i(1, 4) {
                 let (x, y) = (self.f(-40.0, 40.0), self.f(-40.0, 40.0));
                 let (x, y) = (self.len(x), self.len(y));
-                self.line(&format!("G0 X{x} Y{y}"));
+                if self.chance(0.2) {
+                    // LinuxCNC's polar words: a distance from the origin and an angle.
+                    let (r, a) = (self.f(5.0, 40.0), self.i(-180, 180));
+                    let r = self.len(r);
+                    self.line(&format!("G0 @{r} ^{a}"));
+                } else {
+                    self.line(&format!("G0 X{x} Y{y}"));
+                }
                 let depth = self.f(-25.0, -1.0);
                 let depth = self.len(depth);
                 let k = self.pick(&[0.5, 0.7, 0.8, 1.0, 1.25, 1.5, 1.75, 2.0]);
@@ -349,7 +371,14 @@ impl Gen {
         let l = if self.chance(0.3) { format!(" L{}", self.i(1, 4)) } else { String::new() };
         let l = if self.chance(0.01) { " L0".to_string() } else { l };
         let r_word = if self.chance(0.02) { String::new() } else { format!(" R{rs}") };
-        self.line(&format!("{mode} {ret} {code} X{dx} Y{dy} Z{zs}{r_word}{words}{l} F{feed}"));
+        // In G90 now and then placed by polar words (`@` the distance, `^` the angle).
+        let place = if !incremental && self.chance(0.15) {
+            let (r, a) = (self.f(3.0, 30.0), self.i(-180, 180));
+            format!("@{} ^{a}", self.len(r))
+        } else {
+            format!("X{dx} Y{dy}")
+        };
+        self.line(&format!("{mode} {ret} {code} {place} Z{zs}{r_word}{words}{l} F{feed}"));
         for _ in 0..self.i(0, 4) {
             let what = self.i(0, 6);
             let (x, y) = (self.f(-15.0, 15.0), self.f(-15.0, 15.0));
@@ -372,6 +401,10 @@ impl Gen {
                     let label = if self.chance(0.1) { 100 } else { 100 + self.loops };
                     format!("o{label} repeat [{n}]\nX{x}\no{label} endrepeat")
                 }
+                6 if !incremental && self.chance(0.5) => {
+                    let a = self.i(-180, 180);
+                    format!("^{a}")
+                }
                 _ => format!("G98 X{x} Y{y}"),
             };
             self.line(&block);
@@ -390,7 +423,8 @@ fn as_fanuc(program: &str) -> Option<String> {
     for line in program.lines() {
         // The shifts too: the Fanuc reading reports holes in the work offset's coordinates,
         // LinuxCNC's in the machine's (a difference of frame, not of holes).
-        if ["G33.1", "G92", "G10", "G52"].iter().any(|w| line.contains(w)) || line.starts_with('Z') {
+        if ["G33.1", "G92", "G10", "G52", "@", "^"].iter().any(|w| line.contains(w)) || line.starts_with('Z')
+        {
             return None;
         }
         if let Some(rest) = line.strip_prefix('o') {

@@ -1007,3 +1007,25 @@ fn a_mastercam_tool_list_names_the_tap_and_the_drill() {
         assert_eq!(h["pass"], true);
     }
 }
+
+/// Issue 62: LinuxCNC's `G10 L2 P1 X100 Y50 R90` turns G54's XY plane 90° about its origin
+/// (100, 50): the hole written at X10 Y0 stands at (100 − 0, 50 + 10) = (100, 60), and the
+/// G91 row `X5 L2` after it runs along the turned X: (100, 65), (100, 70). (Rotation was noted as
+/// not modelled and the unrotated (110, 50) reported.)
+#[test]
+fn a_rotated_linuxcnc_work_offset_turns_the_holes() {
+    let program = "G17 G21 G90 G94\nT1 M6\nS1200 M3\nG10 L2 P1 X100 Y50 Z0 R90\nG54\nG0 X0 Y0 Z10\nG99 G81 X10 Y0 R2 Z-5 F100\nG91 X5 L2\nG90 G80\nM2\n";
+    let p = threadcheck::read_program_with(
+        program,
+        "rot.ngc",
+        threadcheck::Dialect::LinuxCnc,
+        threadcheck::ReadOptions { allow_no_threading: true, ..Default::default() },
+    )
+    .unwrap();
+    let xy: Vec<(f64, f64)> = p.holes.iter().map(|h| (h.x.unwrap(), h.y.unwrap())).collect();
+    let want = [(100.0, 60.0), (100.0, 65.0), (100.0, 70.0)];
+    assert_eq!(xy.len(), 3);
+    for (a, b) in xy.iter().zip(want) {
+        assert!((a.0 - b.0).abs() < 1e-9 && (a.1 - b.1).abs() < 1e-9, "{xy:?}");
+    }
+}

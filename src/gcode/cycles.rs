@@ -1120,7 +1120,9 @@ fn mill_holes(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Result<(), Error
     let name = m.g_name(code);
     let at = |name: &str| b.get(name).map(|w| m.len(w));
     let (xw, yw, zw, rw) = (at("X"), at("Y"), at("Z"), at("R"));
-    let positioned = xw.is_some() || yw.is_some() || modal.col.is_some() || linuxcnc && zw.is_some();
+    let polar = b.get("@").is_some() || b.get("^").is_some();
+    let positioned =
+        xw.is_some() || yw.is_some() || modal.col.is_some() || linuxcnc && (zw.is_some() || polar);
     if linuxcnc && positioned {
         let refuse = |why: String| Err(m.err(b.line, col, format!("{name}: {why}")));
         if m.plane != 17 {

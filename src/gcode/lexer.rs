@@ -726,6 +726,16 @@ fn bracket_block(s: &Squeezed, ln: usize, dialect: Dialect, b: &mut Block) -> Re
             i = p.i;
             continue;
         }
+        // LinuxCNC's polar coordinates: `@` the distance from the origin, `^` the angle.
+        if dialect == Dialect::LinuxCnc && (ch == '@' || ch == '^') {
+            let start = i;
+            i += 1;
+            let name = ch.to_string();
+            let val = value(s, &mut i, ln, &name, syntax)?;
+            let text: String = line_text(s, start, i);
+            b.words.push(Word { name, val, col: s.col_at(start), text });
+            continue;
+        }
         if !ch.is_ascii_alphabetic() {
             return Err(perr(i, format!("unexpected character '{ch}'")));
         }

@@ -18,6 +18,9 @@ use crate::Error;
 struct Offset {
     v: [f64; 3],
     var: [u32; 3],
+    /// The XY plane's rotation about the offset's origin, degrees counter-clockwise (G10 L2 R;
+    /// a coordinate system's, LinuxCNC's #5210 + 20·k; 0 for the G92 offset).
+    rot: f64,
 }
 
 /// LinuxCNC's coordinate systems and spindle, beyond the shared motion state.
@@ -221,6 +224,26 @@ impl State {
     /// (`what` at `line` did it).
     fn apply(&mut self, m: &mut Motion, before: [[u32; 2]; 3], line: usize, what: &str) {
         let (w, g) = (self.g5x[self.system()], self.g92);
+        // The position is kept unrotated (the program's point plus both offsets); a rotation
+        // turns it about the work offset's origin, as LinuxCNC's canon does (the G92 offset
+        // added, rotated, the G5x offset added). Where the rotation or its centre changes, the
+        // point the machine stands at stays.
+        let now = m.rotation.map(|(cx, cy, deg)| ([cx, cy], deg));
+        let next = (w.rot != 0.0 && !m.lathe()).then_some(([w.v[0], w.v[1]], w.rot));
+        if now != next {
+            if let (Some(x), Some(y)) = (m.x, m.y) {
+                let turn = |p: [f64; 2], c: [f64; 2], deg: f64| {
+                    let (s, co) = deg.to_radians().sin_cos();
+                    let (dx, dy) = (p[0] - c[0], p[1] - c[1]);
+                    [c[0] + co * dx - s * dy, c[1] + s * dx + co * dy]
+                };
+                let at = now.map_or([x, y], |(c, deg)| turn([x, y], c, deg));
+                let u = next.map_or(at, |(c, deg)| turn(at, c, -deg));
+                m.x = Some(u[0]);
+                m.y = Some(u[1]);
+            }
+            m.rotation = next.map(|(c, deg)| (c[0], c[1], deg));
+        }
         let after = self.unknowns();
         let dx = w.v[0] + g.v[0] - m.offset[0];
         if dx.abs() > 1e-9 && !self.x_noted {
@@ -493,10 +516,18 @@ fn coordinates(s: &mut State, m: &mut Motion, b: &RBlock<'_>, md: &cycles::Modal
             }
             let k = if k == 0 { s.system() } else { k };
             let active = k == s.system();
-            if b.get("R").is_some_and(|r| r.v != 0.0) {
-                m.lose_position(b.line, "G10 with R, a rotation of the XY plane", true, true);
-                m.lose_frame(b.line, "G10 with R, a rotation of the XY plane");
-                m.read_past(b.line, col, "G10 R", "a rotation of the XY plane, not modelled");
+            if let Some(r) = b.get("R") {
+                // The XY plane's rotation about the system's origin (applied to the holes'
+                // places; a lathe's passes in XZ do not turn with it).
+                if m.lathe() {
+                    if r.v != 0.0 {
+                        m.lose_position(b.line, "G10 with R, a rotation of the XY plane", true, true);
+                        m.lose_frame(b.line, "G10 with R, a rotation of the XY plane");
+                        m.read_past(b.line, col, "G10 R", "a rotation of the XY plane, not modelled on a lathe (its X would turn out of the XZ plane)");
+                    }
+                } else {
+                    s.g5x[k].rot = r.v;
+                }
             }
             for (a, v) in words.iter().enumerate() {
                 let Some(v) = *v else { continue };
@@ -579,6 +610,7 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, _cx: &mut Ctx<'_>) -> Re
     s.switches = Some(s.switches.unwrap_or_else(Switches::start).after(b));
     spindle(s, b);
     spindle_for_cycle(s, m, b, &md)?;
+    polar_words(m, b, &md)?;
     if coordinates(s, m, b, &md)? {
         return Ok(Flow::Next);
     }
@@ -634,6 +666,25 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, _cx: &mut Ctx<'_>) -> Re
         _ => cycles::other_block(m, b, &md)?,
     }
     Ok(Flow::Next)
+}
+
+/// LinuxCNC's polar words `@` and `^` where threadcheck reads them: in the XY plane of a
+/// machining centre, without X or Y in the same block (LinuxCNC refuses the mix), and in a
+/// canned cycle only in G90 (its G91 polar increments per repeat are not read).
+fn polar_words(m: &Motion, b: &RBlock<'_>, md: &cycles::Modal) -> Result<(), Error> {
+    let Some(w) = b.words.iter().find(|w| w.name == "@" || w.name == "^") else { return Ok(()) };
+    let refuse = |why: &str| Err(m.err(b.line, w.col, format!("{}: {why}", w.name)));
+    if m.lathe() || m.plane != 17 {
+        return refuse("polar coordinates are read in the XY plane of a machining centre (G17)");
+    }
+    if b.has("X") || b.has("Y") {
+        return refuse("polar coordinates with X or Y in the same block: LinuxCNC refuses the mix");
+    }
+    let cycle = md.motion.fract() == 0.0 && matches!(md.motion as u32, 73 | 74 | 81..=89);
+    if cycle && !m.absolute {
+        return refuse("a canned cycle's polar increments in G91 are not read: write the positions in G90");
+    }
+    Ok(())
 }
 
 /// The spindle a cycle needs, as LinuxCNC refuses it (its `convert_cycle_g74_g84`, `g86`–`g88`

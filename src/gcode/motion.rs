@@ -518,9 +518,35 @@ impl Motion {
             x = Some(tidy(r * c) + self.offset[0]);
             y = Some(tidy(r * s) + self.offset[1]);
         }
+        // LinuxCNC's polar words: `@` the distance from the program's origin, `^` the angle
+        // (degrees) from +X; one left out is the current point's; in G91 both are increments of
+        // the current point's (its checks in linuxcnc.rs: never with X or Y).
+        let lpolar = self.dialect == Dialect::LinuxCnc && (b.get("@").is_some() || b.get("^").is_some());
+        if lpolar {
+            let cur = match (self.x, self.y) {
+                (Some(x), Some(y)) => {
+                    let (px, py) = (x - self.offset[0], y - self.offset[1]);
+                    Some((px.hypot(py), py.atan2(px).to_degrees()))
+                }
+                _ => None,
+            };
+            let r = b.get("@").map(|w| self.len(w));
+            let a = b.get("^").map(|w| w.v);
+            let ra = match (self.absolute, r, a, cur) {
+                (true, Some(r), Some(a), _) => Some((r, a)),
+                (true, r, a, Some((r0, a0))) => Some((r.unwrap_or(r0), a.unwrap_or(a0))),
+                (false, r, a, Some((r0, a0))) => Some((r0 + r.unwrap_or(0.0), a0 + a.unwrap_or(0.0))),
+                _ => None,
+            };
+            if let Some((r, a)) = ra {
+                let (s, c) = a.to_radians().sin_cos();
+                x = Some(r * c + self.offset[0]);
+                y = Some(r * s + self.offset[1]);
+            }
+        }
         for w in &b.words {
             match w.name {
-                "X" | "Y" if polar.is_some() => {}
+                "X" | "Y" if polar.is_some() || lpolar => {}
                 "X" => {
                     let v = self.x_dia(w);
                     x = Some(if self.absolute { v + self.offset[0] } else { self.x.unwrap_or(0.0) + v });
@@ -884,6 +910,8 @@ impl Motion {
         feed: Option<f64>,
         feed_word: &str,
     ) -> Result<(), Error> {
+        // In the frame holes are reported in (LinuxCNC's plane rotation applied).
+        let (x, y, bottom) = self.work_point(x, y, bottom);
         self.push_hole(super::HoleCycle {
             code: code.to_string(),
             units: self.program_units(),
