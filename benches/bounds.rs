@@ -93,6 +93,18 @@ fn main() {
     tap.push_str("G80\nM30\n");
     let tap = write(&dir, "tap-10000.nc", &tap);
     let tools = write(&dir, "tap-tools.toml", "[tools]\n1 = \"tap:M8x1.25-6H\"\n");
+    // tap, issue 62: 1 000 holes as LinuxCNC writes rows of them (G91 with L), drilled then
+    // tapped: 20 rows of 25 drilled and 25 tapped holes.
+    let mut rows = String::from("G17 G21 G90 G94\nT2 M6\nS1200 M3\nG0 X0 Y0 Z10\n");
+    for (tool, cycle) in [(2, "G81 R-8 Z-12 F100"), (1, "G84 R-8 Z-10 F750")] {
+        rows.push_str(&format!("T{tool} M6\nS{} M3\n", if tool == 1 { 600 } else { 1200 }));
+        for r in 0..20 {
+            rows.push_str(&format!("G90 G0 X0 Y{}\nG91 G99 {cycle} X10 L25\nG90 G80 G0 Z10\n", 10 * r));
+        }
+    }
+    rows.push_str("M5\nM2\n");
+    let rows = write(&dir, "tap-rows-1000.ngc", &rows);
+    let row_tools = write(&dir, "row-tools.toml", "[tools]\n1 = \"tap:M8x1.25-6H\"\n2 = \"drill:6.8\"\n");
     // mill: the boss with formulas of 203 terms each for x and y, near the largest this
     // program's levels allow within the 8·10⁷ term evaluations (about 260 each are refused).
     let zeros = vec!["0*t"; 100].join("+");
@@ -237,6 +249,12 @@ fn main() {
             bound: "4·10⁷ reach evaluations a section; 10 000 turns",
             args: s(&["thread-mill", "--thread", "M20x1.5-6H", "--cutter-diameter", "6", "--program", &long]),
             exit: 1,
+        },
+        Case {
+            what: "tap, 1 000 holes in LinuxCNC G91 L rows (500 drilled, 500 tapped)",
+            bound: "10 000 holes",
+            args: s(&["tap", "--program", &rows, "--tools", &row_tools]),
+            exit: 0,
         },
         Case {
             what: "tap, 10 000 tapped holes (with SVG and HTML)",
