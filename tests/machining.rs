@@ -974,6 +974,15 @@ fn klartext_as_a_cam_post_writes_it_reaches_a_verdict() {
         err.contains("cam-post.h:42:4: cycle 207 with the rotary axis B at 90°: the hole's axis is tilted"),
         "{err}"
     );
+    // The tap called by name (Fusion 360's `TOOL CALL "name"`): the name says its size.
+    let named = program.replace("TOOL CALL 9 Z S500", "TOOL CALL \"TAP M8X1.25\" Z S500");
+    let (code, v, err) = tap_text("cam-post.h", &named, "[tools]\n");
+    assert_eq!(code, 0, "{err}");
+    let first = &v["holes"][0]["tap"];
+    assert_eq!(
+        (first["designation"].as_str(), first["designation_from"].as_str()),
+        (Some("M8X1.25-6H"), Some("comment"))
+    );
     let wrong = program.replace("Q239=+1.25", "Q239=+1.27");
     let (code, _, err) = tap_text("cam-post.h", &wrong, "[tools]\n");
     assert_eq!(code, 2);

@@ -62,6 +62,9 @@ pub fn comments(text: &str, dialect: Dialect) -> Vec<Comment> {
     let f = forms(dialect);
     let mut out = Vec::new();
     for (i, line) in text.lines().enumerate() {
+        if dialect == Dialect::Klartext {
+            klartext_names(line, i + 1, &mut out);
+        }
         let chars: Vec<char> = line.chars().collect();
         let mut k = 0;
         while k < chars.len() {
@@ -84,4 +87,45 @@ pub fn comments(text: &str, dialect: Dialect) -> Vec<Comment> {
         }
     }
     out
+}
+
+/// What a Klartext line says in words besides its `;` comment, read as comments are (issue 62:
+/// CAM posts name their operations and tools so): a `* - TAP M8` line (a section's title), and
+/// the name of a tool called by name, `TOOL CALL "TAP M8X1.25" Z S500`.
+///
+/// ```
+/// use threadcheck::{comments, Dialect};
+/// let c = comments("17 * - DRILL 6.8\n18 TOOL CALL \"TAP M8X1.25\" Z S500\n", Dialect::Klartext);
+/// let texts: Vec<&str> = c.iter().map(|c| c.text.as_str()).collect();
+/// assert_eq!(texts, ["DRILL 6.8", "TAP M8X1.25"]);
+/// assert_eq!((c[1].line, c[1].column), (2, 15));
+/// ```
+fn klartext_names(line: &str, ln: usize, out: &mut Vec<Comment>) {
+    let code = line.split(';').next().unwrap_or("");
+    let t = code.trim_start();
+    let body = t.trim_start_matches(|c: char| c.is_ascii_digit()).trim_start();
+    let at = |sub: &str| code.len() - sub.len();
+    if let Some(rest) = body.strip_prefix('*') {
+        let title = rest.trim_start().trim_start_matches('-').trim_start();
+        if !title.is_empty() {
+            out.push(Comment {
+                line: ln,
+                column: code[..at(title)].chars().count() + 1,
+                text: title.trim_end().to_string(),
+            });
+        }
+        return;
+    }
+    if let Some(rest) = body.strip_prefix("TOOL CALL") {
+        let r = rest.trim_start();
+        if let Some(name) = r.strip_prefix('"') {
+            if let Some(end) = name.find('"') {
+                out.push(Comment {
+                    line: ln,
+                    column: code[..at(name)].chars().count() + 1,
+                    text: name[..end].to_string(),
+                });
+            }
+        }
+    }
 }

@@ -691,7 +691,7 @@ fn tool(st: &mut St<'_>, b: &KBlock, up: &str) -> Result<Flow, KErr> {
             "TOOL CALL \"…: the name has no closing '\"'".to_string(),
         ))?;
         st.tool = None;
-        st.read_past(b.line, b.col + from, "TOOL CALL \"name\"", "a tool called by name: its number is not known (name the tap or drill in a comment, or call it by number)");
+        st.read_past(b.line, b.col + from, "TOOL CALL \"name\"", "a tool called by name: its number is not known; its name is read as a comment is, for the tap's or drill's size (`TOOL CALL \"TAP M8X1.25\"`)");
         from += close + 2;
     } else {
         let n = r.bytes().take_while(u8::is_ascii_digit).count();
