@@ -127,7 +127,10 @@ pub use analysis::naming::{
 pub use analysis::picture::{Cut, Deviation, Picture};
 pub use analysis::process::MachineProfile;
 pub use analysis::program::{verify_program, verify_whole, Milled, Process, ProgramVerification};
-pub use analysis::tapping::{tapping, TapCheck, TapFeature, TapReport, TapSpec, TappedHole};
+pub use analysis::tapping::{
+    tapping, thread_percent, TapCheck, TapFeature, TapReport, TapSpec, TappedHole, ThreadPercent,
+    THREAD_PERCENT_BAND,
+};
 pub use analysis::threadmill::{thread_mill, ThreadMillReport, ThreadMillSpec};
 pub use analysis::tools::{InsertChoice, Tool, ToolTable};
 pub use analysis::verify::{

@@ -510,3 +510,30 @@ fn the_tap_given_serves_a_tool_no_table_names() {
         assert!(stdout(&o).contains(why), "{}", stdout(&o));
     }
 }
+
+/// Issue 64: the percent of thread the drill leaves, in the tap makers' definition (100 % is
+/// 0.6495·P a side): M10x1.5 after Ø8.5, (10 − 8.5)/(1.299038·1.5) = 76.98 % ("≈ 77 %" in the
+/// charts), 92.38 % of the basic height 1.0825·1.5 = 1.6238; 1/4-20 after a #7 drill (0.201 in =
+/// 5.1054 mm):
+/// 76.98 · 20 · (0.25 − 0.201) = 75.44 %, just over the shops' 60–75 % band (said in a note).
+#[test]
+fn the_percent_of_thread_is_the_charts() {
+    let (code, v, err) = tap(&program(), TOOLS);
+    assert!(code < 2, "{err}");
+    let t = &v["holes"][0]["thread_percent"];
+    assert!((t["percent"].as_f64().unwrap() - 76.98).abs() < 0.005, "{t}");
+    assert!((t["of_basic_height"].as_f64().unwrap() - 92.376).abs() < 0.005, "{t}");
+    assert_eq!(t["band"], serde_json::json!([60.0, 75.0]));
+    let inch = "G20 G17 G90 G94\nT5 M6\nS1500 M3\nG0 X0 Y0 Z0.1\nG99 G81 X1. Y1. Z-.6 R.1 F6.\nG80\nT6 M6\nS500 M3\nG99 G84 X1. Y1. Z-.5 R.1 F25.\nG80\nM30\n";
+    let (code, v, err) = tap(inch, "[tools]\n5 = \"drill:5.1054\"\n6 = \"tap:1/4-20 UNC-2B\"\n");
+    assert!(code < 2, "{err}");
+    let t = &v["holes"][0]["thread_percent"];
+    assert!((t["percent"].as_f64().unwrap() - 75.44).abs() < 0.01, "{t}");
+    let notes = v["holes"][0]["notes"].to_string();
+    assert!(
+        notes.contains(
+            "the drill leaves 75.4 % of thread, outside the 60–75 % shop charts give for a cutting tap"
+        ),
+        "{notes}"
+    );
+}
