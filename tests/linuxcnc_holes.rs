@@ -4,7 +4,8 @@
 //! Each program (G17; G81, G82, G83, G73, G84, G74, G85, G86, G89 and G33.1; G90 and G91, G98
 //! and G99, L repeats, blocks that write only X, Y or Z under the cycle in force, R changed on
 //! the way, work offsets set by G10 L2 (some turned by R) and chosen by G54–G59, G92 and G52
-//! shifts, `o…repeat` loops, inch and mm) is run by `rs274 -g`, which prints the canonical moves
+//! shifts, polar `@`/`^` positions, `o…repeat` loops, a subroutine called with the position as
+//! its arguments, inch and mm) is run by `rs274 -g`, which prints the canonical moves
 //! the cycles expand
 //! to, and read by threadcheck's `linuxcnc` dialect. A hole of `rs274`'s is a run of feeds down
 //! Z at one X, Y (pecks and the retracts between them included) or a `RIGID_TAP`: its X, Y, the
@@ -220,6 +221,8 @@ struct Gen {
     inch: bool,
     /// The loops written so far (each takes a label of its own).
     loops: u32,
+    /// The program defines the subroutine `o200`, which places a hole at its arguments.
+    sub: bool,
 }
 
 impl Draws for Gen {
@@ -230,7 +233,7 @@ impl Draws for Gen {
 
 impl Gen {
     fn new(seed: u64) -> Gen {
-        Gen { r: seeded(seed, 53), s: String::new(), inch: false, loops: 0 }
+        Gen { r: seeded(seed, 53), s: String::new(), inch: false, loops: 0, sub: false }
     }
     /// A length in mm as program units, 3 decimals.
     fn len(&self, mm: f64) -> String {
@@ -255,6 +258,12 @@ impl Gen {
         self.line("T1 M6");
         let s = self.i(200, 1200);
         self.line(&format!("S{s} M3"));
+        // Now and then a subroutine that places a hole of the cycle in force by its two
+        // arguments (X and Y), called from the cycles' blocks.
+        self.sub = self.chance(0.3);
+        if self.sub {
+            self.line("o200 sub\nX#1 Y#2\no200 endsub");
+        }
         let z0 = self.f(5.0, 30.0);
         let z0 = self.len(z0);
         self.line(&format!("G0 X0 Y0 Z{z0}"));
@@ -401,6 +410,7 @@ impl Gen {
                     let label = if self.chance(0.1) { 100 } else { 100 + self.loops };
                     format!("o{label} repeat [{n}]\nX{x}\no{label} endrepeat")
                 }
+                4 if self.sub => format!("o200 call [{x}] [{y}]"),
                 6 if !incremental && self.chance(0.5) => {
                     let a = self.i(-180, 180);
                     format!("^{a}")
