@@ -401,6 +401,7 @@ impl Gen {
                 1 => format!("Y{y}{l}"),
                 2 => format!("Z{z}"),
                 3 => format!("X{x} Y{y}{l}"),
+                4 if self.sub && self.chance(0.5) => format!("o200 call [{x}] [{y}]"),
                 4 => format!("X{x} R{rs}"),
                 5 => {
                     // A loop of holes under the cycle in force (now and then under a label
@@ -410,7 +411,6 @@ impl Gen {
                     let label = if self.chance(0.1) { 100 } else { 100 + self.loops };
                     format!("o{label} repeat [{n}]\nX{x}\no{label} endrepeat")
                 }
-                4 if self.sub => format!("o200 call [{x}] [{y}]"),
                 6 if !incremental && self.chance(0.5) => {
                     let a = self.i(-180, 180);
                     format!("^{a}")
