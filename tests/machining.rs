@@ -820,10 +820,17 @@ fn a_mixed_mill_turn_program_is_verified_whole() {
 /// `tap --json -` on program `text` written as `name` in a fresh folder, with the tool table
 /// `tools` beside it.
 fn tap_text(name: &str, text: &str, tools: &str) -> (i32, serde_json::Value, String) {
+    tap_text_with(name, text, tools, &[])
+}
+
+/// [`tap_text`] with more arguments (`--dialect haas`, `--tap …`).
+fn tap_text_with(name: &str, text: &str, tools: &str, extra: &[&str]) -> (i32, serde_json::Value, String) {
     let dir = tempdir("mc-text");
     std::fs::write(dir.join(name), text).unwrap();
     std::fs::write(dir.join("tools.toml"), tools).unwrap();
-    let o = run_in(&dir, &["tap", "--program", name, "--tools", "tools.toml", "--json", "-"]);
+    let mut args = vec!["tap", "--program", name, "--tools", "tools.toml", "--json", "-"];
+    args.extend_from_slice(extra);
+    let o = run_in(&dir, &args);
     let code = o.status.code().unwrap();
     let v = if code < 2 { serde_json::from_slice(&o.stdout).unwrap() } else { serde_json::Value::Null };
     (code, v, stderr(&o))
@@ -897,15 +904,11 @@ fn linuxcnc_g73_drills_and_g84_taps_where_the_tool_stands() {
 /// was assumed.
 #[test]
 fn a_y_move_shows_a_machining_centre_and_missing_units_are_said() {
-    let tools = "[tools]\n";
     let program =
         "G20 G90\nM3 S300\nG0 X0 Y1 Z0.1\nG33.1 Z-0.5 K0.05\nG0 X3 Y1 Z0.1\nG33.1 Z-0.5 K0.05\nM5\nM2\n";
-    let dir = tempdir("mc-y");
-    std::fs::write(dir.join("rt.ngc"), program).unwrap();
-    std::fs::write(dir.join("tools.toml"), tools).unwrap();
-    let o = run_in(&dir, &["tap", "--program", "rt.ngc", "--tap", "1/4-20 UNC-2B", "--json", "-"]);
-    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let tap = ["--tap", "1/4-20 UNC-2B"];
+    let (code, v, err) = tap_text_with("rt.ngc", program, "[tools]\n", &tap);
+    assert!(code < 2, "{err}");
     let xs: Vec<f64> = holes(&v).iter().map(|h| h.0.unwrap()).collect();
     assert!(xs.len() == 2 && xs[0].abs() < 1e-9 && (xs[1] - 76.2).abs() < 1e-9, "{xs:?}");
     assert_eq!(v["machine"]["machine_type"], "mill");
@@ -915,9 +918,8 @@ fn a_y_move_shows_a_machining_centre_and_missing_units_are_said() {
         v["machine"]
     );
     let no_units = program.replace("G20 G90", "G90");
-    std::fs::write(dir.join("rt.ngc"), no_units).unwrap();
-    let o = run_in(&dir, &["tap", "--program", "rt.ngc", "--tap", "1/4-20 UNC-2B", "--json", "-"]);
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let (code, v, err) = tap_text_with("rt.ngc", &no_units, "[tools]\n", &tap);
+    assert!(code < 2, "{err}");
     let notes = v["notes"].to_string();
     assert!(notes.contains("the program sets no units (G20/G21) before it threads: read in mm"), "{notes}");
 }
@@ -999,14 +1001,7 @@ fn klartext_as_a_cam_post_writes_it_reaches_a_verdict() {
 #[test]
 fn a_mastercam_tool_list_names_the_tap_and_the_drill() {
     let program = "%\nO1001 (TOOL LIST WRITTEN HERE)\n( T4 | NO. 29 DRILL | H4 )\n( T5 | NO. 8-32 TAPRH | H5 )\nG20 G17 G40 G80 G90 G94\nT4 M06\nG00 G54 X0. Y0. S2500 M03\nG43 H4 Z1.\nG98 G81 Z-.5 R.1 F10. L0\nM97 P100\nG80\nT5 M06\nG00 G54 X0. Y0. S600 M03\nG43 H5 Z1.\nG98 G84 Z-.4 R.1 F18.75 L0\nM97 P100\nG80\nM30\nN100 X1. Y1.\nX2. Y1.\nM99\n%\n";
-    let (code, v, err) = {
-        let dir = tempdir("mc-mastercam");
-        std::fs::write(dir.join("m.nc"), program).unwrap();
-        let o = run_in(&dir, &["tap", "--program", "m.nc", "--dialect", "haas", "--json", "-"]);
-        let code = o.status.code().unwrap();
-        let v = if code < 2 { serde_json::from_slice(&o.stdout).unwrap() } else { serde_json::Value::Null };
-        (code, v, stderr(&o))
-    };
+    let (code, v, err) = tap_text_with("m.nc", program, "[tools]\n", &["--dialect", "haas"]);
     assert_eq!(code, 0, "{err}");
     let hs = v["holes"].as_array().unwrap();
     assert_eq!(hs.len(), 2);
