@@ -333,10 +333,8 @@ fn windows(
     }
     let dir = h.sweep_deg.signum();
     let to_t = |psi: f64| dir * (psi - h.angle_start);
-    let k_of = |t: f64| (h.angle_start + dir * t) / std::f64::consts::TAU;
-    let (k_lo, k_hi) = (k_of(t_a).min(k_of(t_b)), k_of(t_a).max(k_of(t_b)));
     let mut out: Vec<(usize, usize)> = Vec::new();
-    for k in (k_lo.floor() as i64 - 1)..=(k_hi.ceil() as i64 + 1) {
+    for k in crossings(h, t_a, t_b) {
         let centre = k as f64 * std::f64::consts::TAU;
         let (a, b) = (to_t(centre - half), to_t(centre + half));
         let (a, b) = (a.min(b) - step, a.max(b) + step);
@@ -362,6 +360,15 @@ fn windows(
     runs
 }
 
+/// The turns k whose crossing of the half-plane (ψ = angle_start + dir·t = k·2π) may fall in the
+/// parameter range [t_a, t_b], one either side to spare: k runs between its values at t_a and
+/// t_b (a clockwise helix's k falls as t grows; counting up from t_a missed its crossings).
+fn crossings(h: &Helix, t_a: f64, t_b: f64) -> std::ops::RangeInclusive<i64> {
+    let k_of = |t: f64| (h.angle_start + h.sweep_deg.signum() * t) / std::f64::consts::TAU;
+    let (k_lo, k_hi) = (k_of(t_a).min(k_of(t_b)), k_of(t_a).max(k_of(t_b)));
+    (k_lo.floor() as i64 - 1)..=(k_hi.ceil() as i64 + 1)
+}
+
 /// The reach of the tooth profile alone: the cutter where it crosses the half-plane (ψ = 0
 /// mod 2π), over every helix.
 fn reach_crossings(hs: &[Helix], cutter: &Cutter, neck: f64, z: f64, internal: bool) -> Option<f64> {
@@ -372,11 +379,7 @@ fn reach_crossings(hs: &[Helix], cutter: &Cutter, neck: f64, z: f64, internal: b
         let Some((t_a, t_b)) = reach_range(h, cutter, hw, z) else { continue };
         let sweep = h.sweep_deg.to_radians().abs();
         let dir = h.sweep_deg.signum();
-        // ψ = angle_start + dir·t = k·2π: k runs between its values at t_a and t_b (a
-        // clockwise helix's k falls as t grows; counting up from t_a missed its crossings).
-        let k_of = |t: f64| (h.angle_start + dir * t) / std::f64::consts::TAU;
-        let (k_lo, k_hi) = (k_of(t_a).min(k_of(t_b)), k_of(t_a).max(k_of(t_b)));
-        for k in (k_lo.floor() as i64 - 1)..=(k_hi.ceil() as i64 + 1) {
+        for k in crossings(h, t_a, t_b) {
             let t = dir * (k as f64 * std::f64::consts::TAU - h.angle_start);
             if t >= t_a - 1e-12 && t <= t_b + 1e-12 {
                 if let Some(v) = eval_at(h, cutter, neck, z, internal, t.clamp(0.0, sweep)) {
