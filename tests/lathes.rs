@@ -430,3 +430,23 @@ fn a_live_tool_s_g98_is_feed_per_minute_in_system_a() {
     assert_eq!(o.status.code(), Some(0), "{out}{}", stderr(&o));
     assert!(out.contains("mm/min; feed per minute: F must be S × lead = 600 × 1.25"), "{out}");
 }
+
+/// Issue 61 item 3: a G71 roughing cycle's profile written in modal G00 (`N10 G00 X26` and the
+/// blocks after it give no G01) is the contour the roughing and the G70 cut: the blank of the
+/// M30x1.5 that follows is its Ø29.9 cylinder at line 13 (Z-2 to Z-30), not the Ø44 box cut at
+/// line 7 (which then failed the first pass: "ends inside the blank"). A full-profile tip at
+/// X28.06 leaves d2 = 28.06 + 0.57735·1.5 = 28.926, inside 6g's
+/// 28.844–28.994 (ISO 965-1: d2 29.026, es −32, Td2 150 µm).
+#[test]
+fn a_roughing_profile_written_in_g00_is_the_turned_contour() {
+    let dir = tempdir("g00-profile");
+    let program = "(M30X1.5-6G)\nG21 G40 G99\nT0101\nG96 S180 M3\nG50 S2500\nG0 X52 Z2\nG90 X44 Z-45 F0.25\nG71 U1.5 R0.5\nG71 P10 Q20 U0.4 W0.1 F0.25\nN10 G0 X26\nZ0\nX29.9 Z-2\nZ-30\nX40\nZ-45\nN20 X52\nG70 P10 Q20 F0.1\nG0 X100 Z100\nT0303\nG97 S800 M3\nG0 X32 Z5\nG76 P010060 Q50 R0.05\nG76 X28.06 Z-26 P970 Q400 F1.5\nG0 X100 Z100\nM30\n";
+    std::fs::write(dir.join("profile.nc"), program).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "profile.nc", "--insert", "full", "--json", "-"]);
+    let v: serde_json::Value =
+        serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{e}: {}", stderr(&o)));
+    let op = &v["operations"][0];
+    assert_eq!(op["plan"]["blank_diameter"], 29.9, "{op}");
+    assert!(v.to_string().contains("profile.nc:13:1"), "{v}");
+    assert_eq!(v["verdict"], "pass", "{v}");
+}

@@ -316,25 +316,45 @@ fn run_out(op: &Operation, pitch: f64) -> Option<Check> {
     // post) is measured by them as one at positive X (a negative turned X compared with a
     // positive thread X passed a shoulder in the run-out).
     let external = op.passes.first().is_some_and(|f| last.x_end.abs() <= f.x_end.abs());
-    // The contour's extreme diameter over [lo, hi]: external the largest, internal the smallest.
-    let extreme = |lo: f64, hi: f64| -> Option<(f64, f64)> {
-        let mut worst: Option<(f64, f64)> = None;
-        for t in &op.contour {
-            let ([x0, z0], [x1, z1]) = (t.from, t.to);
-            let (x0, x1) = (x0.abs(), x1.abs());
-            let (zl, zh) = (z0.min(z1), z0.max(z1));
-            if zh < lo || zl > hi {
+    // The material the contour leaves at a Z: a later or deeper cut replaces an earlier one, so
+    // it is the least distance from the axis that a move along Z there reached (a bore's: the
+    // greatest); a box cut's cylinder under a profile turned smaller is gone. Moves more than a
+    // pitch (in diameter) beyond the thread's root are the part's other side (a bore or a drill's
+    // path in a shaft, the outside of a nut), not the surface the thread is cut into; an
+    // undercut (DIN 76: about 0.4 P below d3, 0.3 P above D) lies within it.
+    let xs = op.passes.iter().flat_map(|p| [p.x_start.abs(), p.x_end.abs()]);
+    let root = if external { xs.fold(f64::INFINITY, f64::min) } else { xs.fold(0.0, f64::max) };
+    let along: Vec<([f64; 2], [f64; 2])> = op
+        .contour
+        .iter()
+        .map(|t| ([t.from[0].abs(), t.from[1]], [t.to[0].abs(), t.to[1]]))
+        .filter(|(a, b)| (b[1] - a[1]).abs() > 1e-12)
+        .filter(|(a, b)| if external { a[0].min(b[0]) >= root - pitch } else { a[0].max(b[0]) <= root + pitch })
+        .collect();
+    let material = |z: f64| -> Option<f64> {
+        let mut m: Option<f64> = None;
+        for ([x0, z0], [x1, z1]) in &along {
+            if z < z0.min(*z1) - 1e-9 || z > z0.max(*z1) + 1e-9 {
                 continue;
             }
-            let face = (z1 - z0).abs() < 1e-12;
-            let at = |z: f64| x0 + (x1 - x0) * (z - z0) / (z1 - z0);
-            let points = if face {
-                vec![(z0, if external { x0.max(x1) } else { x0.min(x1) })]
-            } else {
-                let (za, zb) = (zl.max(lo), zh.min(hi));
-                vec![(za, at(za)), (zb, at(zb))]
-            };
-            for (z, x) in points {
+            let x = x0 + (x1 - x0) * ((z - z0) / (z1 - z0)).clamp(0.0, 1.0);
+            if m.is_none_or(|w| if external { x < w } else { x > w }) {
+                m = Some(x);
+            }
+        }
+        m
+    };
+    // Its extreme over [lo, hi] (external the largest, internal the smallest), looked at at
+    // every move's end there and halfway between.
+    let extreme = |lo: f64, hi: f64| -> Option<(f64, f64)> {
+        let mut zs: Vec<f64> = vec![lo, hi];
+        zs.extend(along.iter().flat_map(|(a, b)| [a[1], b[1]]).filter(|z| (lo..=hi).contains(z)));
+        zs.sort_by(f64::total_cmp);
+        zs.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+        let mids: Vec<f64> = zs.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
+        let mut worst: Option<(f64, f64)> = None;
+        for z in zs.into_iter().chain(mids) {
+            if let Some(x) = material(z) {
                 if worst.is_none_or(|(_, w)| if external { x > w } else { x < w }) {
                     worst = Some((z, x));
                 }

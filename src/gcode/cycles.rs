@@ -2,7 +2,7 @@
 //! passes of a cycle laid out from a list of depths.
 
 use super::lexer::{Past, PastKind};
-use super::motion::{Motion, RBlock};
+use super::motion::{Motion, Profile, RBlock};
 use super::Dialect;
 use crate::gcode::SystemCode;
 use crate::ground::bounds::MAX_PASSES;
@@ -755,7 +755,14 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
         }
         Some(g) if (70.0..=75.0).contains(&g) && m.dialect != Dialect::Sinumerik => {
             // The turning, facing, pattern and grooving cycles: read past; each returns to its
-            // start point (a profile's blocks that follow run as moves).
+            // start point (a profile's blocks that follow run as moves). A roughing cycle's
+            // profile (G71/G72/G73 P… Q…) is what it cuts, in whatever motion its blocks are
+            // written: they are kept as the turned contour.
+            if matches!(g as u32, 71..=73) && m.lathe() {
+                if let (Some(p), Some(q)) = (b.get("P"), b.get("Q")) {
+                    m.profile = Some(Profile { first: p.v, last: q.v, on: false });
+                }
+            }
             m.read_past(
                 b.line,
                 modal.col.unwrap_or(b.col),

@@ -1270,7 +1270,9 @@ pub(crate) fn run(
             }
             let mut cx = Ctx { store: &mut x.vars, subs: &sub_names, ns: &n_numbers };
             m.note_x_word(&rb);
+            m.profile_starts(b.n);
             flow = rules.block(m, &rb, &mut cx)?;
+            m.profile_ends(b.n);
         }
         if deferred {
             do_assigns(&st.assigns, &mut x.vars, b, file)?;

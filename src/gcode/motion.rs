@@ -267,6 +267,19 @@ pub(crate) struct Motion {
     /// The turned contour so far: feed moves (G1, G2, G3) of the lathe dialects as
     /// (X0, Z0, X1, Z1), diameters, capped at `MAX_CONTOUR` segments.
     contour: Vec<super::Turned>,
+    /// A roughing cycle's finished profile (Fanuc G71/G72/G73 `P… Q…`): the sequence numbers
+    /// of its first and last block, and whether its blocks are being read. The roughing cuts
+    /// along the profile whatever motion its blocks are written in (a modal G00 included), so
+    /// they are all kept as the turned contour.
+    pub profile: Option<Profile>,
+}
+
+/// The sequence numbers a roughing cycle's profile runs between, and whether it is being read.
+#[derive(Clone, Copy, Debug)]
+pub struct Profile {
+    pub first: f64,
+    pub last: f64,
+    pub on: bool,
 }
 
 /// Moves sent at once to a streaming reader's receiver.
@@ -349,6 +362,7 @@ impl Motion {
             moves_out: None,
             passes_total: 0,
             contour: Vec::new(),
+            profile: None,
             last_x: None,
             past: Vec::new(),
             past_index: std::collections::HashMap::new(),
@@ -753,10 +767,28 @@ impl Motion {
         Ok(true)
     }
 
-    /// Keeps a feed move of a lathe program as a segment of the turned contour.
+    /// A block numbered as a roughing cycle's profile's first opens it.
+    pub fn profile_starts(&mut self, n: Option<f64>) {
+        if let (Some(p), Some(n)) = (self.profile.as_mut(), n) {
+            if n == p.first {
+                p.on = true;
+            }
+        }
+    }
+
+    /// A block numbered as the profile's last closes it, once read.
+    pub fn profile_ends(&mut self, n: Option<f64>) {
+        if self.profile.is_some_and(|p| p.on && n == Some(p.last)) {
+            self.profile = None;
+        }
+    }
+
+    /// Keeps a feed move of a lathe program as a segment of the turned contour (and a rapid one
+    /// of a roughing cycle's profile, which the roughing cuts).
     fn record_contour(&mut self, x: Option<f64>, z: Option<f64>, line: usize) {
         let feed = matches!(self.motion as u32, 1..=3) && self.motion.fract() == 0.0;
-        if !feed || !self.lathe() || self.contour.len() >= MAX_CONTOUR {
+        let profile = self.profile.is_some_and(|p| p.on) && self.motion == 0.0;
+        if !(feed || profile) || !self.lathe() || self.contour.len() >= MAX_CONTOUR {
             return;
         }
         if let (Some(x0), Some(z0)) = (self.x, self.z) {
