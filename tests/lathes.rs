@@ -450,3 +450,36 @@ fn a_roughing_profile_written_in_g00_is_the_turned_contour() {
     assert!(v.to_string().contains("profile.nc:13:1"), "{v}");
     assert_eq!(v["verdict"], "pass", "{v}");
 }
+
+/// Issue 61 item 1: a lathe's live tool milling a face in polar coordinate interpolation
+/// (G12.1 … G13.1, Fanuc's F0i-TF; G112 … G113 as also written) is a milling section: the program
+/// is a mill-turn's (line 2's G18 and line 12's G12.1 named), the moves under it are read past
+/// by name, not as turning (a face move to X-20 at Z-3 is no diameter), the X after G13.1 is
+/// unknown until given, and the thread after it is turned as written. A G76 under G12.1 is
+/// refused at its place: the control cuts no thread there.
+#[test]
+fn polar_interpolation_is_a_milling_section_read_past() {
+    let dir = tempdir("polar");
+    let program = |inside: &str| {
+        format!("(M20X1.5-6G)\nG18 G21 G99\nT0101\nG97 S800 M3\nG0 X22 Z2\nG1 X19.9 F0.1\nZ-25\nG0 X30 Z5\nT0505\nG98\nG0 X40 C0 Z2\nG112\nG1 Z-3 F100\nX20 C5.77\nX-20 C5.77\n{inside}G113\nG0 Z5\nG18 G99\nT0303\nG97 S700 M3\nG0 X22 Z5\nG76 P010060 Q100 R0.05\nG76 X18.06 Z-20 P970 Q300 F1.5\nG0 X40 Z50\nM30\n")
+    };
+    std::fs::write(dir.join("polar.nc"), program("")).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "polar.nc", "--insert", "full"]);
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert_eq!(o.status.code(), Some(0), "{out}{}", stderr(&o));
+    assert!(
+        out.contains("read as a mill-turn: line 2 writes G18, the turning plane and line 12 writes G112"),
+        "{out}"
+    );
+    assert!(out.contains("polar.nc:12:1: G112 read past: polar coordinate interpolation"), "{out}");
+    assert!(out.contains("polar.nc:13:1: moves under G12.1 read past (3 times)"), "{out}");
+    assert!(out.contains("blank X19.9000, final X18.0600"), "{out}");
+    std::fs::write(dir.join("inside.nc"), program("G76 X18.06 Z-20 P970 Q300 F1.5\n")).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "inside.nc", "--insert", "full"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("inside.nc:16:1: G76 under the polar coordinate interpolation of line 12"),
+        "{}",
+        stderr(&o)
+    );
+}

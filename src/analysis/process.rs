@@ -329,7 +329,9 @@ fn run_out(op: &Operation, pitch: f64) -> Option<Check> {
         .iter()
         .map(|t| ([t.from[0].abs(), t.from[1]], [t.to[0].abs(), t.to[1]]))
         .filter(|(a, b)| (b[1] - a[1]).abs() > 1e-12)
-        .filter(|(a, b)| if external { a[0].min(b[0]) >= root - pitch } else { a[0].max(b[0]) <= root + pitch })
+        .filter(
+            |(a, b)| if external { a[0].min(b[0]) >= root - pitch } else { a[0].max(b[0]) <= root + pitch },
+        )
         .collect();
     let material = |z: f64| -> Option<f64> {
         let mut m: Option<f64> = None;

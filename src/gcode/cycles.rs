@@ -252,6 +252,10 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                         format!("G{g} is not G{base}: threadcheck reads G{base} and does not read G{g}"),
                     ))
                 }
+                // A lathe's polar coordinate interpolation (F0i-TF: G12.1 on, G13.1 off): a live
+                // tool mills the face in X and C.
+                (_, 12.1) if fanuc_like && m.lathe_program() => polar(m, b.line, col, "G12.1"),
+                (_, 13.1) if fanuc_like && m.lathe_program() => polar_off(m, b.line, col, "G13.1"),
                 // G7.1, G42.1, G43.1 and kin: not lathe threading; the block is read for position.
                 _ => {}
             }
@@ -304,6 +308,9 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             }
         }
         match g as u32 {
+            // G112/G113: G12.1/G13.1 as Fanuc's lathes also write them (Haas: G112, XY to XC).
+            112 if fanuc_like && m.lathe_program() => polar(m, b.line, col, "G112"),
+            113 if fanuc_like && m.lathe_program() => polar_off(m, b.line, col, "G113"),
             // Heidenhain's thread cycle G31 (heidenhain.rs); its G32, the simple thread cycle,
             // is refused by name; its G76 is no threading code.
             31 if d == Dialect::Heidenhain => motion = Some((g, col)),
@@ -706,6 +713,55 @@ pub(crate) fn read_past_item(m: &mut Motion, line: usize, p: &Past) -> Result<()
         }
     }
     Ok(())
+}
+
+/// A lathe's polar coordinate interpolation starts: its moves mill the face, read past.
+fn polar(m: &mut Motion, line: usize, col: usize, code: &str) {
+    m.face_polar = Some(line);
+    m.read_past(
+        line,
+        col,
+        code,
+        "polar coordinate interpolation: a live tool mills the face in X and C; its moves, to the G13.1 (G113), are read past, not as turning",
+    );
+}
+
+/// Polar coordinate interpolation ends: the X it left is not known here (its X was a point of
+/// the face, not a diameter), so the next move must give one.
+fn polar_off(m: &mut Motion, line: usize, col: usize, code: &str) {
+    if m.face_polar.take().is_some() {
+        m.lose_position(line, &format!("{code} ending polar coordinate interpolation"), true, false);
+    } else {
+        m.read_past(line, col, code, "cancels polar coordinate interpolation, which is not in force");
+    }
+}
+
+/// A block under a lathe's polar coordinate interpolation: its moves mill the face and are read
+/// past (true); a threading word there is refused, since the control cuts no thread in it.
+pub(crate) fn polar_block(m: &mut Motion, b: &RBlock<'_>, md: &Modal) -> Result<bool, Error> {
+    let Some(from) = m.face_polar else { return Ok(false) };
+    if matches!(md.motion as u32, 32 | 33 | 76 | 92) && md.motion.fract() == 0.0 && md.col.is_some() {
+        return Err(m.err(
+            b.line,
+            md.col.unwrap_or(b.col),
+            format!(
+                "G{} under the polar coordinate interpolation of line {from}: a thread is turned in G18 after G13.1 (G113)",
+                md.motion
+            ),
+        ));
+    }
+    if ["X", "Y", "Z", "C", "U", "W", "H"].iter().any(|w| b.has(w)) {
+        m.read_past(
+            b.line,
+            b.col,
+            "moves under G12.1",
+            "a live tool milling the face in polar coordinate interpolation (X and C a plane): read past, not as turning",
+        );
+        if b.has("Z") || b.has("W") {
+            m.lose_position(b.line, "a move under polar coordinate interpolation", false, true);
+        }
+    }
+    Ok(true)
 }
 
 /// Threading is programmed in the lathe plane G18.

@@ -162,6 +162,9 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Res
     if let Some(f) = calls(m, b)? {
         return Ok(f);
     }
+    if cycles::polar_block(m, b, &md)? {
+        return Ok(Flow::Next);
+    }
     check_turning_cycle_targets(m, b, &md, cx);
     thread_block(s, m, b, &md)?;
     Ok(Flow::Next)

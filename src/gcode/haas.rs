@@ -46,6 +46,9 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, cx: &mut Ctx<'_>) -> Res
     if let Some(f) = fanuc::calls(m, b)? {
         return Ok(f);
     }
+    if cycles::polar_block(m, b, &md)? {
+        return Ok(Flow::Next);
+    }
     fanuc::check_turning_cycle_targets(m, b, &md, cx);
     if md.motion == 76.0 && md.col.is_some() && md.one_shot.is_none() {
         let col = md.col.unwrap_or(b.col);

@@ -201,6 +201,11 @@ fn evidence(b: &Block, dialect: Dialect) -> Option<(MachineType, String)> {
         return Some((MachineType::Lathe, "G7, diameter mode".into()));
     }
     if fanuc {
+        // A lathe's live tool milling the face (F0i-TF: G12.1, also written G112): a lathe's
+        // code, but a milling section of it.
+        if let Some(c) = gs.iter().find(|&&c| c == 12.1 || c == 112.0) {
+            return Some((MachineType::Mill, format!("G{c}, a live tool's polar coordinate interpolation")));
+        }
         let drilling = gs.iter().any(|c| matches!(*c as u32, 73 | 74 | 76 | 81..=89) && c.fract() == 0.0);
         if drilling && (g(98.0) || g(99.0)) && has("R") {
             return Some((

@@ -272,6 +272,9 @@ pub(crate) struct Motion {
     /// along the profile whatever motion its blocks are written in (a modal G00 included), so
     /// they are all kept as the turned contour.
     pub profile: Option<Profile>,
+    /// The line of a lathe's G12.1 (G112), polar coordinate interpolation, while it is in force:
+    /// a live tool mills the face in X and C; its moves are read past, not as turning.
+    pub face_polar: Option<usize>,
 }
 
 /// The sequence numbers a roughing cycle's profile runs between, and whether it is being read.
@@ -363,6 +366,7 @@ impl Motion {
             passes_total: 0,
             contour: Vec::new(),
             profile: None,
+            face_polar: None,
             last_x: None,
             past: Vec::new(),
             past_index: std::collections::HashMap::new(),
@@ -462,6 +466,12 @@ impl Motion {
         if self.mill_turn {
             self.mill = self.plane != 18;
         }
+    }
+
+    /// Whether the program runs on a lathe: a lathe's, or a mill-turn's (a live tool's
+    /// polar interpolation is a lathe's code in every section).
+    pub(crate) fn lathe_program(&self) -> bool {
+        self.lathe() || self.mill_turn
     }
 
     /// Whether the program is read as a milling toolpath.
