@@ -483,3 +483,27 @@ fn polar_interpolation_is_a_milling_section_read_past() {
         stderr(&o)
     );
 }
+
+/// Issue 61 item 2: a lathe-based mill-turn read in Fanuc G-code system B (or C) keeps G94/G95
+/// the feed modes and G98/G99 the drilling cycles' initial and R level in its milling sections
+/// too (F0i-TF's G-code list). `G17 G94` then a G84 at F750 and S600 taps M8x1.25 at
+/// S·P = 750 mm/min (read per revolution it failed by +748 750 µm, G94 being taken for system
+/// A's G98, a return level). The return level decides where the next G91 cycle starts: after
+/// `G98 G81 … R2` from Z5 the tool is back at Z5, so `G91 G84 R-3 Z-10` has R at 5 − 3 = 2 and
+/// its bottom at 2 − 10 = −8; after `G99`, at the R level Z2: R −1, bottom −11.
+#[test]
+fn system_b_mill_turn_keeps_feed_modes_and_return_levels_apart() {
+    let dir = tempdir("sysb-mill-turn");
+    for (ret, r_level, bottom) in [("G98", 2.0, -8.0), ("G99", -1.0, -11.0)] {
+        let program = format!("(M8X1.25 LIVE TAP)\nG18 G21 G95\nT0101\nG97 S800 M3\nG0 X30 Z2\nG1 X24 F0.1\nZ-20\nG0 X40 Z5\nT0505 (DRILL 6.8)\nG17 G94\nS1200\nG0 X0 Y0 Z5\n{ret} G81 Z-15 R2 F120\nG80\nT0606 (TAP M8X1.25)\nS600\nG91 G84 X0 Y0 R-3 Z-10 F750\nG80 G90\nG18\nM30\n");
+        std::fs::write(dir.join("b.nc"), program).unwrap();
+        let o = run_in(&dir, &["tap", "--program", "b.nc", "--gcode-system", "b", "--json", "-"]);
+        let v: serde_json::Value =
+            serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{e}: {}", stderr(&o)));
+        let cycle = &v["holes"][0]["cycle"];
+        assert_eq!(cycle["feed_per_rev"], false, "{ret}: {cycle}");
+        assert_eq!(cycle["r_level"], r_level, "{ret}: {cycle}");
+        assert_eq!(cycle["bottom"], bottom, "{ret}: {cycle}");
+        assert_eq!(o.status.code(), Some(0), "{ret}: {v}");
+    }
+}

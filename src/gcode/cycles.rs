@@ -261,6 +261,22 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             }
             continue;
         }
+        // Systems B and C keep the feed modes and the return levels apart in every section
+        // (F0i-TF's G-code list: G94/G95 feed per minute/revolution, G98/G99 the drilling
+        // cycles' initial and R level), as a machining centre does.
+        if d.fanuc_family() && m.gsystem != super::GCodeSystem::A && g.fract() == 0.0 {
+            match g as u32 {
+                94 | 95 => {
+                    m.feed_per_rev = Some(g == 95.0);
+                    continue;
+                }
+                98 | 99 => {
+                    m.return_to_r = g == 99.0;
+                    continue;
+                }
+                _ => {}
+            }
+        }
         // A program of G-code system B or C: its code in system A's terms.
         let g = if d.fanuc_family() {
             match m.gsystem.to_a(g as u32) {
