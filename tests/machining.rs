@@ -463,6 +463,20 @@ fn okuma_labels_rotary_speed_and_zig_zag() {
     let notes = v["notes"].to_string() + &v["operations"][0]["notes"].to_string();
     assert!(notes.contains("SB=1200 read past"), "{notes}");
     assert!(notes.contains("M33 (zig-zag) read as alternating flanks"), "{notes}");
+    // Issue 61 item 5: verify's plan says what was cut, read back from the passes (it said the
+    // options' `flank 29.5`, `constant-area`): alternating at B/2 = 30°, √n·0.2 mm a side (D 0.4
+    // on the diameter) for the 14 passes before H − U.
+    let o = run(&["verify", "--program", p.to_str().unwrap(), "--json", "-"]);
+    let v: serde_json::Value =
+        serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{e}: {}", stderr(&o)));
+    let plan = &v["operations"][0]["plan"];
+    assert_eq!(plan["infeed"], serde_json::json!({"method": "alternating", "angle": 30.0}), "{plan}");
+    assert_eq!(
+        (&plan["schedule"], &plan["from"], &plan["law_passes"]),
+        (&"constant-area".into(), &"passes".into(), &14.into()),
+        "{plan}"
+    );
+    assert!((plan["first_depth"].as_f64().unwrap() - 0.2).abs() < 1e-9, "{plan}");
 }
 
 /// Issue 45 item 3: a Heidenhain Klartext plate (`tests/data/klartext/plate.h`). Cycle 200 drills

@@ -6,6 +6,7 @@ pub mod check;
 pub mod compare;
 pub mod correct;
 pub mod correction;
+pub mod cut_plan;
 pub mod fit;
 pub mod lead;
 pub mod mill;

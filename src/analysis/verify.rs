@@ -261,6 +261,9 @@ pub struct Verification {
     pub infeed: Infeed,
     /// Schedule used.
     pub schedule: Schedule,
+    /// For a program's passes, the infeed and depth law read back from them (`infeed` and
+    /// `schedule` are then the options', which the passes did not follow).
+    pub cut_plan: Option<crate::analysis::cut_plan::CutPlan>,
     /// Blank or bore diameter, mm.
     pub blank_diameter: f64,
     /// Tip diameter of the last pass, mm.
@@ -1116,6 +1119,7 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
     let program_label = given.as_ref().map(|g| g.label.clone());
     let lead_deviation = given.as_ref().and_then(|g| g.lead);
     let depth_word = given.as_ref().and_then(|g| g.depth_word.clone().map(|w| (w, g.units)));
+    let cut_plan = given.as_ref().map(|g| crate::analysis::cut_plan::cut_plan(&g.passes));
     let (final_x, solved, cut) = if let Some(g) = given {
         notes.extend(g.notes);
         let final_x = last_head(&g.passes).x_at(mr.z_of(&g.passes));
@@ -1184,6 +1188,7 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         insert,
         infeed,
         schedule: spec.schedule.clone(),
+        cut_plan,
         blank_diameter: blank,
         final_x,
         final_x_solved: solved,
@@ -1999,6 +2004,10 @@ pub fn turned_program(
             v.process = Some(report);
             if assumed {
                 unverified_by_assumed_insert(v);
+                if v.correction.is_some() || v.suggested_final_x.is_some() {
+                    let other = other_candidate(&s, op, &label);
+                    withhold_correction(v, other);
+                }
             }
             v.pass = verdict(&v.checks, v.gauge_only);
         }
@@ -2049,6 +2058,60 @@ fn assumed_insert(op: &crate::gcode::Operation, spec: &VerifySpec) -> (InsertCho
     } else {
         full
     }
+}
+
+/// The insert a program's passes could equally be written for, beside the one assumed (the
+/// full-profile insert of the pitch and the default partial one), and the pitch diameter it
+/// leaves (`None` when it cannot cut this thread).
+fn other_candidate(
+    spec: &VerifySpec,
+    op: &crate::gcode::Operation,
+    label: &ProgramLabel,
+) -> Option<(String, f64, bool)> {
+    let other = match spec.insert {
+        InsertChoice::Full => InsertChoice::Partial { tip_radius: 0.04 },
+        InsertChoice::Partial { .. } => InsertChoice::Full,
+        _ => return None,
+    };
+    let s = VerifySpec { insert: other, metrics: false, picture: false, ..spec.clone() };
+    match verify_operation(&s, op, label).ok()? {
+        OperationResult::Verified(o) => {
+            let size_ok = !o.checks.iter().any(|c| {
+                matches!(
+                    c.feature,
+                    crate::analysis::check::CheckFeature::PitchDiameter
+                        | crate::analysis::check::CheckFeature::MaxMaterial
+                        | crate::analysis::check::CheckFeature::FunctionalPitchDiameter
+                ) && !c.ok
+            });
+            Some((o.insert.name, o.measurement.pitch_diameter, size_ok))
+        }
+        OperationResult::NoCut { .. } => None,
+    }
+}
+
+/// A correction computed with an insert nobody chose is no instruction: the pitch diameter the
+/// passes leave depends on the insert (a partial-profile insert's flanks stand off its tip
+/// otherwise than a full-profile one's), and moving X by the assumed insert's figure scraps the
+/// part cut with the other (issue 61: an Okuma M25x1.25 nut, −44.5 µm with the partial r0.04
+/// assumed, +51 µm inside 6H with a full-profile insert; its X.990 moved to X.9955 would have left it
+/// over D2 max). It is withheld, with the other insert's pitch diameter said.
+pub fn withhold_correction(v: &mut Verification, other: Option<(String, f64, bool)>) {
+    v.correction = None;
+    v.suggested_final_x = None;
+    let pd = v.measurement.pitch_diameter;
+    let also = match other {
+        Some((name, d2, ok)) => format!(
+            "; with {name} the passes leave {} {d2:.4}, {}",
+            if v.kind == ThreadKind::External { "d2" } else { "D2" },
+            if ok { "inside the class" } else { "outside the class too" }
+        ),
+        None => String::new(),
+    };
+    v.notes.push(crate::ground::note::Note::from(format!(
+        "no correction is offered: the pitch diameter {pd:.4} rests on the insert assumed ({}){also}; give ‹insert› or ‹tools› for a correction",
+        v.insert.name
+    )));
 }
 
 /// What an insert nobody chose decides: the root radius, the diameter its tip leaves (d3 on a

@@ -89,10 +89,21 @@ pub struct InsertReport<'a> {
 pub struct PlanReport<'a> {
     /// The program and its dialect, `None` for a generated plan.
     pub program: Option<&'a crate::analysis::verify::ProgramLabel>,
-    /// The infeed.
-    pub infeed: Infeed,
-    /// The depth schedule's name.
+    /// The infeed: the options' for a generated plan; for a program's passes the one they
+    /// follow (`null` when they follow no single one).
+    pub infeed: Option<Infeed>,
+    /// The depth schedule's name; for a program's passes the law they follow
+    /// (`constant-area`, `constant-depth`, else `programmed`).
     pub schedule: &'static str,
+    /// Where the infeed and the schedule come from: `options` (a generated plan) or `passes`
+    /// (read back from a program's passes).
+    pub from: &'static str,
+    /// For a program's passes: how many leading passes follow the law (the rest run to the
+    /// final depth) and its first depth (mm, radial).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub law_passes: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub first_depth: Option<f64>,
     /// Blank (external) or bore (internal) diameter, mm.
     pub blank_diameter: f64,
     /// The last pass's X, mm.
@@ -224,8 +235,11 @@ impl<'a> VerifyReport<'a> {
             },
             plan: PlanReport {
                 program: v.program.as_ref(),
-                infeed: v.infeed,
-                schedule: schedule_text(&v.schedule),
+                infeed: v.cut_plan.map_or(Some(v.infeed), |c| c.infeed),
+                schedule: v.cut_plan.map_or_else(|| schedule_text(&v.schedule), |c| c.law.name()),
+                from: if v.cut_plan.is_some() { "passes" } else { "options" },
+                law_passes: v.cut_plan.and_then(|c| (c.law_passes > 0).then_some(c.law_passes)),
+                first_depth: v.cut_plan.and_then(|c| c.first_depth),
                 blank_diameter: v.blank_diameter,
                 final_x: v.final_x,
                 final_x_solved: v.final_x_solved,
@@ -288,6 +302,34 @@ pub(crate) fn form_only_from_tip(v: &Verification) -> Option<f64> {
 }
 
 /// The human report: a compact table of checks with ✓/✗ and deviations in µm.
+/// What a program's passes follow, in words: `flank 30° infeed, constant area √n × 0.4 mm a side
+/// for 5 passes`.
+fn cut_plan_text(c: &crate::analysis::cut_plan::CutPlan) -> String {
+    use crate::analysis::cut_plan::DepthLaw;
+    let infeed = match c.infeed {
+        Some(i) => format!("{i} infeed"),
+        None => "no single infeed".to_string(),
+    };
+    let law = match (c.law, c.first_depth) {
+        (DepthLaw::ConstantArea, Some(a)) => {
+            format!(
+                "constant area √n × {} mm a side for {} passes",
+                crate::ground::fmt::fmt_num((a * 1e4).round() / 1e4),
+                c.law_passes
+            )
+        }
+        (DepthLaw::ConstantDepth, Some(a)) => {
+            format!(
+                "constant depth {} mm a side for {} passes",
+                crate::ground::fmt::fmt_num((a * 1e4).round() / 1e4),
+                c.law_passes
+            )
+        }
+        _ => "depths as programmed".to_string(),
+    };
+    format!("{infeed}, {law}")
+}
+
 pub fn verify_text(v: &Verification) -> String {
     let mut s = String::new();
     let _ = writeln!(
@@ -303,7 +345,10 @@ pub fn verify_text(v: &Verification) -> String {
         },
         v.insert.name,
         match &v.program {
-            Some(p) => format!("passes from {p}"),
+            Some(p) => match v.cut_plan {
+                Some(c) => format!("passes from {p} ({})", cut_plan_text(&c)),
+                None => format!("passes from {p}"),
+            },
             None => format!("{} infeed, {}", v.infeed, schedule_text(&v.schedule)),
         },
         v.passes.len()
