@@ -507,3 +507,29 @@ fn system_b_mill_turn_keeps_feed_modes_and_return_levels_apart() {
         assert_eq!(o.status.code(), Some(0), "{ret}: {v}");
     }
 }
+
+/// Issue 61 (the Okuma A-6266 nut's correction): a correction computed with an insert nobody
+/// chose is withheld. An M30x1.5-6H nut whose G76 ends at X30.146 is nearer the default partial
+/// insert's tip position (r0.04: D2 + H − 2r = 29.026 + 1.299 − 0.080 = 30.245) than a
+/// full-profile insert's (D = 30.000), so the partial is assumed: D2 = 30.146 − 1.219 = 28.927,
+/// −99 µm under 6H's 29.026. With a full-profile insert the same passes leave D2 = 30.146 −
+/// 0.974 = 29.172, inside 29.026–29.226 (ISO 965-1: TD2 200 µm): moving X by the partial's
+/// figure would scrap that part. Given the insert, the correction is offered.
+#[test]
+fn no_correction_rests_on_an_assumed_insert() {
+    let dir = tempdir("assumed-correction");
+    let program = "(M30X1.5-6H NUT)\nG18 G21 G99\nT0101\nG97 S800 M3\nG0 X27 Z2\nG1 X28.4 F0.1\nZ-25\nG0 X26 Z5\nT0303\nG0 X28 Z5\nG76 P010060 Q100 R0.05\nG76 X30.146 Z-20 P870 Q200 F1.5\nG0 Z50\nM30\n";
+    std::fs::write(dir.join("nut.nc"), program).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "nut.nc", "--json", "-"]);
+    let v: serde_json::Value =
+        serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{e}: {}", stderr(&o)));
+    let op = &v["operations"][0];
+    assert!((op["measured"]["pitch_diameter"].as_f64().unwrap() - 28.927).abs() < 5e-4, "{op}");
+    assert!(op["correction"].is_null(), "{op}");
+    let notes = op["notes"].to_string();
+    assert!(notes.contains("no correction is offered: the pitch diameter 28.9270 rests on the insert assumed"), "{notes}");
+    assert!(notes.contains("with full-profile iso-metric P1.5 the passes leave D2 29.1717, inside the class"), "{notes}");
+    let o = run_in(&dir, &["verify", "--program", "nut.nc", "--insert", "partial"]);
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(out.contains("change X30.146 at line 12:5"), "{out}");
+}
