@@ -487,14 +487,32 @@ fn page_in_chromium() {
     let p = program.to_str().unwrap();
     let cli = run(&["verify", "--program", p, "--json", "-"]);
     let v: serde_json::Value = serde_json::from_slice(&cli.stdout).unwrap();
-    let correction = v["operations"][0]["correction"]["text"].as_str().unwrap().replace(p, "pasted program");
+    // With the insert assumed no correction is offered (it would rest on the assumption): the
+    // next step is the insert, with the pitch diameter the other candidate leaves, and no
+    // corrected program to download.
+    let withheld = v["operations"][0]["notes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|n| n.as_str())
+        .find(|n| n.starts_with("no correction is offered"))
+        .unwrap()
+        .replace("give --insert or --tools", "choose the Insert or give a tool table");
+    assert!(v["operations"][0]["correction"].is_null());
+    let full = run(&["verify", "--program", p, "--insert", "full", "--json", "-"]);
+    let full: serde_json::Value = serde_json::from_slice(&full.stdout).unwrap();
+    let correction =
+        full["operations"][0]["correction"]["text"].as_str().unwrap().replace(p, "pasted program");
     assert_eq!(
         seen["verdict"],
         "OUT OF TOLERANCE — form unverified: tool not known (choose the insert or a tool table)"
     );
     let unverified = seen["checks"].as_array().unwrap().iter().find(|r| r[0] == "root radius").unwrap();
     assert_eq!(unverified[6], "unverified");
-    assert_eq!(seen["correction"].as_str().unwrap(), format!("Next: {correction}"));
+    assert_eq!(seen["correction"].as_str().unwrap(), format!("Next: {withheld}"));
+    assert_eq!(seen["fixed_visible_as_found"], false);
+    // The insert chosen (full profile): the CLI's correction.
+    assert_eq!(seen["correction_full"].as_str().unwrap(), format!("Next: {correction}"));
     // The G76 sheet's result: d2 19.066 against 6g's 18.994, 72.0 µm over.
     let d2 = seen["checks"].as_array().unwrap().iter().find(|r| r[0] == "pitch diameter").unwrap();
     assert_eq!(d2[2], "19.0660");
@@ -512,7 +530,7 @@ fn page_in_chromium() {
     assert!(passes.iter().all(|r| r[5] == "6" && r[6] == "G76 X18.2 Z-20. P900 Q450 F1.5"), "{passes:?}");
 
     // Downloads: the corrected program is `verify --fix -`; the report is `--html`'s page.
-    let fixed = run(&["verify", "--program", p, "--fix", "-"]);
+    let fixed = run(&["verify", "--program", p, "--insert", "full", "--fix", "-"]);
     let got = std::fs::read(seen["fixed.nc"]["path"].as_str().unwrap()).unwrap();
     let expected = String::from_utf8(fixed.stdout).unwrap().replace(p, "pasted program");
     assert_eq!(String::from_utf8(got).unwrap(), expected);

@@ -527,9 +527,42 @@ fn no_correction_rests_on_an_assumed_insert() {
     assert!((op["measured"]["pitch_diameter"].as_f64().unwrap() - 28.927).abs() < 5e-4, "{op}");
     assert!(op["correction"].is_null(), "{op}");
     let notes = op["notes"].to_string();
-    assert!(notes.contains("no correction is offered: the pitch diameter 28.9270 rests on the insert assumed"), "{notes}");
-    assert!(notes.contains("with full-profile iso-metric P1.5 the passes leave D2 29.1717, inside the class"), "{notes}");
+    assert!(
+        notes.contains("no correction is offered: the pitch diameter 28.9270 rests on the insert assumed"),
+        "{notes}"
+    );
+    assert!(
+        notes.contains("with full-profile iso-metric P1.5 the passes leave D2 29.1717, inside the class"),
+        "{notes}"
+    );
     let o = run_in(&dir, &["verify", "--program", "nut.nc", "--insert", "partial"]);
     let out = String::from_utf8_lossy(&o.stdout).into_owned();
     assert!(out.contains("change X30.146 at line 12:5"), "{out}");
+}
+
+/// Issue 61's done-when: a Denford-style turret lathe program (every index `T0x0x M06`) that
+/// centre-drills on the axis (`G01 Z-5` at X0), roughs and finishes a journal with G71/G70 (its
+/// profile in a modal G00 first block), grooves with G75 and threads M20x2.5 with G76, read as a
+/// lathe with and without `--machine-type lathe`. Hand-derived: the blank is the G70 journal
+/// Ø19.9 (line 15), never the drill's path on the axis; G75 is read past by name; the run-out at
+/// Z-22 lies on the journal (clear); a full-profile tip at X16.933 (d3 = 20 − 1.226869·2.5 =
+/// 16.93283) leaves d2 = 18.37620 + 0.00017 = 18.37637, 42.4 µm over 6g's d2 max 18.334
+/// (ISO 965-1: es −42 µm).
+#[test]
+fn a_denford_style_lathe_program_reads_whole() {
+    let dir = tempdir("denford");
+    let program = "(M20X2.5)\nG21 G40 G99\nT0202 M06 (CENTRE DRILL)\nG97 S1500 M03\nG00 X0 Z2\nG01 Z-5 F0.05\nG00 Z5\nT0101 M06\nG96 S180 M03\nG50 S2500\nG00 X32 Z2\nG71 U1 R0.5\nG71 P10 Q20 U0.2 W0.1 F0.2\nN10 G00 X19.9\nG01 Z-25 F0.1\nX30\nN20 Z-40\nG70 P10 Q20\nG28 U0 W0\nT0505 M06 (GROOVE 3MM)\nG97 S600 M03\nG00 X32 Z-25\nG75 R0.5\nG75 X16 Z-25 P1000 Q2000 F0.08\nG28 U0 W0\nT0707 M06\nG97 S600 M03\nG00 X22 Z5\nG76 P010060 Q100 R0.05\nG76 X16.933 Z-22 P1534 Q400 F2.5\nG28 U0 W0\nM30\n";
+    std::fs::write(dir.join("denford.nc"), program).unwrap();
+    for given in [&[][..], &["--machine-type", "lathe"][..]] {
+        let mut args = vec!["verify", "--program", "denford.nc", "--insert", "full"];
+        args.extend_from_slice(given);
+        let o = run_in(&dir, &args);
+        let out = String::from_utf8_lossy(&o.stdout).into_owned();
+        assert_eq!(o.status.code(), Some(1), "{out}{}", stderr(&o));
+        assert!(out.contains("read as a lathe"), "{out}");
+        assert!(out.contains("denford.nc:15:1: the blank is the program's own: Ø19.9000"), "{out}");
+        assert!(out.contains("denford.nc:23:1: G75 read past"), "{out}");
+        assert!(out.contains("pitch diameter     18.3764   18.1640   18.3340    +42.4 µm"), "{out}");
+        assert!(out.contains("✓ run-out room"), "{out}");
+    }
 }

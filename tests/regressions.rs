@@ -566,6 +566,9 @@ fn units_inch_reach_the_header_the_measured_line_and_the_correction() {
         "1-16-UN-2A",
         "--units",
         "inch",
+        // The insert given: a correction resting on an assumed one is withheld.
+        "--insert",
+        "full",
     ]);
     let out = crate::stdout(&o);
     assert!(out.contains("final X22.8600 (0.90000 in)"), "{out}");

@@ -2008,6 +2008,8 @@ pub fn turned_program(
                     let other = other_candidate(&s, op, &label);
                     withhold_correction(v, other);
                 }
+                // The mid-tolerance X rests on the insert as the correction does.
+                v.middle_final_x = None;
             }
             v.pass = verdict(&v.checks, v.gauge_only);
         }
@@ -2099,6 +2101,7 @@ fn other_candidate(
 pub fn withhold_correction(v: &mut Verification, other: Option<(String, f64, bool)>) {
     v.correction = None;
     v.suggested_final_x = None;
+    v.middle_final_x = None;
     let pd = v.measurement.pitch_diameter;
     let also = match other {
         Some((name, d2, ok)) => format!(

@@ -25,6 +25,7 @@ function show(id, on) { $(id).hidden = !on; }
 /** The API's keys that an error may name, as the page's own controls. */
 const CONTROLS = [
   [/\binsert full\b/g, "Insert: full profile"],
+  [/\bgive insert or tools\b/g, "choose the Insert or give a tool table"],
   [/\bgauge_only\b/g, "the 'gauge only' box"],
   [/\bcoating_limits after\b/g, "'The class applies: after coating'"],
   [/\(allow_nonstandard\)/g, "(tick 'non-standard size')"],
@@ -183,6 +184,13 @@ function operationBlock(op, title, programLines) {
   if (op.correction) line("correction", "Next: " + op.correction.text);
   if (!pass && op.suggested_final_x !== null && op.suggested_final_x !== undefined && !op.correction) {
     line("correction", "Next: a last pass at X" + fmt(op.suggested_final_x, 4) + " puts d2 mid-tolerance");
+  }
+  // A correction resting on an insert nobody chose is withheld: the next step is the insert.
+  const withheld = !op.correction && (op.notes || []).find((n) => String(n).startsWith("no correction is offered"));
+  if (withheld) {
+    let text = String(withheld);
+    for (const [key, control] of CONTROLS) text = text.replace(key, control);
+    line("correction", "Next: " + text);
   }
   for (const hint of op.hints || []) {
     let text = hint.text || hint.message || JSON.stringify(hint);

@@ -80,8 +80,17 @@ try {
   await page.evaluate(() => window.scrollBy(0, -40));
   await page.screenshot({ path: join(out, "verify-window.png") });
 
+  // Nothing to download as a corrected program: the correction waits for the insert.
+  seen.fixed_visible_as_found = await page.evaluate(() => !document.getElementById("download-fixed").hidden);
+  step = "insert";
+  // 2. The insert chosen: the correction is offered.
+  await page.selectOption("#insert", "full");
+  await page.click("#verify-button");
+  await page.waitForFunction(() => document.getElementById("verify-result").dataset.run === "2");
+  seen.correction_full = await page.textContent(".operation .correction");
+
   step = "downloads";
-  // 2. Downloads: the corrected program and the HTML report.
+  // Downloads: the corrected program and the HTML report.
   for (const [button, file] of [["#download-fixed", "fixed.nc"], ["#download-html", "report.html"], ["#download-json", "report.json"]]) {
     const [download] = await Promise.all([page.waitForEvent("download"), page.click(button)]);
     const path = join(out, file);
@@ -96,7 +105,7 @@ try {
   await page.fill("#thread", "1/4-20 UNC-2A");
   await page.selectOption("#insert", "partial");
   await page.click("#verify-button");
-  await page.waitForFunction(() => document.getElementById("verify-result").dataset.run === "2");
+  await page.waitForFunction(() => document.getElementById("verify-result").dataset.run === "3");
   seen.upload_notes = await page.$$eval(".notes li", (l) => l.map((x) => x.textContent));
   seen.upload_heading = await page.textContent(".operation h2");
 
@@ -144,7 +153,7 @@ try {
   seen.nonstandard_error = await page.textContent("#verify-error");
   await page.check("#allow-nonstandard");
   await page.click("#verify-button");
-  await page.waitForFunction(() => document.getElementById("verify-result").dataset.run === "3");
+  await page.waitForFunction(() => document.getElementById("verify-result").dataset.run === "4");
   seen.nonstandard_verdict = await page.textContent("#verdict");
   seen.nonstandard_hint = await page.textContent(".operation .hint");
   await shot("form-only");
