@@ -1299,3 +1299,30 @@ fn regression_tap_and_thread_mill_read_subprogram_files() {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert!((v["measured"]["major_diameter"].as_f64().unwrap() - 20.0).abs() < 1e-4, "{v}");
 }
+
+/// Seen in Chromium on a real M10x1.5 nut program: a D2 0.3 µm under its limit, which passes at
+/// the standard's 1 µm, was "rounds to the limit" in the picture's 60-pixel "off" column, running
+/// over the verdict column ("rounds to the lim" over "ok"), and glued to the max column in the text
+/// (`9.2060rounds to the limit`). A full-profile tip at D = 10 leaves D2 = 10 − 0.974279 =
+/// 9.02572, under 6H's 9.026.
+#[test]
+fn a_value_that_rounds_to_its_limit_fits_its_column() {
+    let dir = crate::tempdir("at-limit");
+    let svg = dir.join("nut.svg");
+    let o = crate::run(&[
+        "verify",
+        "--thread",
+        "M10x1.5-6H",
+        "--insert",
+        "full",
+        "--final-x",
+        "10",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    let out = crate::stdout(&o);
+    assert!(out.contains("9.2060  rounds to the limit"), "{out}");
+    let svg = std::fs::read_to_string(&svg).unwrap();
+    let table = &svg[svg.find("check-table").unwrap()..];
+    assert!(table.contains("\nat limit\n") && !table.contains("rounds to the limit"), "{table}");
+}

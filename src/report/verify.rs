@@ -392,6 +392,12 @@ pub fn verify_text(v: &Verification) -> String {
             "·"
         };
         let cells = check_cells(c);
+        // A cell wider than its column ("rounds to the limit") keeps two spaces before it.
+        let deviation = if cells.deviation.chars().count() > 10 {
+            format!("  {}", cells.deviation)
+        } else {
+            cells.deviation
+        };
         let _ = write!(
             s,
             "  {mark} {:<16}{:>10}{:>10}{:>10}{:>12}  {}",
@@ -399,7 +405,7 @@ pub fn verify_text(v: &Verification) -> String {
             cells.value,
             cells.min,
             cells.max,
-            cells.deviation,
+            deviation,
             c.kind.name()
         );
         // Lengths in inches beside the mm (not the angles, the counts or the turns).
@@ -1092,7 +1098,9 @@ pub(crate) fn check_table(v: &Verification, x: f64, y: f64) -> (Group, f64) {
             crate::CheckUnit::YesNo => String::new(),
             _ => fmt_limits(c.min, c.max, &unit),
         };
-        let off = cells.deviation;
+        // A passing value past its shown limit (within the standard's resolution): the text's
+        // "rounds to the limit", short enough for the picture's column.
+        let off = if c.ok && !cells.deviation.is_empty() { "at limit".to_string() } else { cells.deviation };
         let verdict = match (c.ok, counts) {
             _ if c.unverified.is_some() => "unverified",
             (true, _) => "ok",
