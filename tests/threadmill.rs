@@ -808,3 +808,48 @@ fn r_format_arcs_through_a_rounded_point_are_measured() {
         "{notes}"
     );
 }
+
+/// Issue 64 item 4: the feed at a thread mill's edge from the centre feed the program writes,
+/// the makers' worked example: a 0.370 in (9.398 mm) cutter milling 9/16-18 at 8.3 in/min at
+/// the edge is 8.3 · (0.5625 − 0.370)/0.5625 = 2.84 in/min at the centre inside and
+/// 8.3 · (0.5625 + 0.370)/0.5625 = 13.76 outside. Programs written at F2.84 (inside, the centre
+/// on a circle of (0.5625 − 0.370)/2) and F13.76 (outside) get 8.30 in/min at the edge.
+#[test]
+fn the_edge_feed_reproduces_the_makers_example() {
+    let dir = crate::tempdir("edge-feed");
+    for (name, radius, feed, factor) in [
+        ("int", 0.09625, 2.84, 0.5625 / (0.5625 - 0.370)),
+        ("ext", 0.43216, 13.76, 0.5625 / (0.5625 + 0.370)),
+    ] {
+        let mut p = format!("%\nO0200 (9/16-18 UNF)\nG17 G20 G90 G40 G94\nT5 M6\nS3000 M3\nG0 X0.7 Y0 Z0.2\nG0 Z-0.5\nG1 X{radius} Y0 F2.0\n");
+        for i in 1..9 {
+            p += &format!("G3 X{radius} Y0 Z{:.6} I-{radius} J0 F{feed}\n", -0.5 + f64::from(i) / 18.0);
+        }
+        p += "G1 X0.7 Y0\nG0 Z1.0\nM30\n%\n";
+        let file = dir.join(format!("{name}.nc"));
+        std::fs::write(&file, p).unwrap();
+        let o = crate::run(&[
+            "thread-mill",
+            "--program",
+            file.to_str().unwrap(),
+            "--cutter-diameter",
+            "9.398",
+            "--json",
+            "-",
+        ]);
+        let v: serde_json::Value =
+            serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{e}: {}", crate::stderr(&o)));
+        let feeds = v["feeds"].as_array().unwrap();
+        assert_eq!(feeds.len(), 8, "{name}: {feeds:?}");
+        let f = &feeds[0];
+        assert!((f["factor"].as_f64().unwrap() - factor).abs() < 1e-12, "{name}: {f}");
+        // 8.3 in/min to the example's digits.
+        let edge_in = f["edge"].as_f64().unwrap() / 25.4;
+        assert!((edge_in - 8.3).abs() < 0.005, "{name}: {edge_in} in/min");
+        assert_eq!(f["inch"], true);
+        let text =
+            crate::run(&["thread-mill", "--program", file.to_str().unwrap(), "--cutter-diameter", "9.398"]);
+        let out = crate::stdout(&text);
+        assert!(out.contains(&format!("{feed:.2} in/min")) && out.contains("is 8.30 in/min"), "{out}");
+    }
+}

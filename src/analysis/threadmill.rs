@@ -25,7 +25,7 @@
 //! radius is the programmed one moved by the compensation value given (the D register's).
 
 use crate::analysis::check::{checks, Check};
-use crate::gcode::{Dialect, Move, ReadOptions};
+use crate::gcode::{Dialect, Move, ProgramUnits, ReadOptions};
 use crate::geometry::helix::{reach, section_cost};
 use crate::geometry::helix::{Cutter, Helix};
 use crate::geometry::measure::{measure, MeasureSetup, Measurement};
@@ -80,6 +80,9 @@ pub struct ThreadMillReport {
     pub cutter_ratio: f64,
     /// The helices of the operation, in program order.
     pub helices: Vec<Helix>,
+    /// The feed each helix's cutter edge sees, from the centre feed the program writes (the
+    /// helices with a known feed, in program order).
+    pub feeds: Vec<HelixFeed>,
     /// The bore or blank diameter, mm.
     pub blank_diameter: f64,
     /// The as-cut thread, measured.
@@ -115,6 +118,53 @@ pub struct ThreadMillReport {
     /// class lacks a pitch-diameter limit).
     #[serde(skip)]
     pub zone: Option<crate::analysis::picture::ZoneSides>,
+}
+
+/// The feed a helix's cutter edge sees, from the centre feed the program writes.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct HelixFeed {
+    /// The helix's program line.
+    pub line: usize,
+    /// The cutter centre's feed the program writes, mm/min.
+    pub centre: f64,
+    /// The feed at the cutter's edge on the thread's major diameter, mm/min.
+    pub edge: f64,
+    /// Edge over centre: the radii's ratio, D/(D − d) for an internal thread, D/(D + d) for an
+    /// external one.
+    pub factor: f64,
+    /// The program writes the feed in inches (a minute).
+    pub inch: bool,
+}
+
+/// The edge feeds of the helices with a feed. The control moves the cutter's centre at F (the
+/// programmed path's feed: under G41/G42 the compensated centre's, a named default); the
+/// cutting edge on the thread's major diameter D moves in proportion to its radius, D/(D − d)
+/// faster inside (the centre runs on a circle of D − d), D/(D + d) slower outside, with d the
+/// cutter's diameter: the thread-mill makers' feed adjustment, taken on D as they publish it
+/// (the 9/16-18 example: a 0.370 in cutter, 8.3 in/min at the edge is 2.84 in/min at the centre
+/// inside, 13.76 outside). The helix's Z travel is left out (its lead angle's cosine: 0.999 at
+/// P 2 on a Ø10 circle).
+fn edge_feeds(
+    hs: &[Helix],
+    moves: &[Move],
+    major: f64,
+    cutter_diameter: f64,
+    kind: ThreadKind,
+) -> Vec<HelixFeed> {
+    let factor = match kind {
+        ThreadKind::Internal => major / (major - cutter_diameter),
+        ThreadKind::External => major / (major + cutter_diameter),
+    };
+    if !(factor.is_finite() && factor > 0.0) {
+        return Vec::new();
+    }
+    hs.iter()
+        .filter_map(|h| {
+            let centre = h.feed?;
+            let inch = moves.iter().find(|m| m.line == h.line).is_some_and(|m| m.units == ProgramUnits::Inch);
+            Some(HelixFeed { line: h.line, centre, edge: centre * factor, factor, inch })
+        })
+        .collect()
 }
 
 /// The thread a thread-milling program names: the nearest comment above its first helix that
@@ -315,6 +365,7 @@ fn helices(
             sweep_deg: dir * sweep.to_degrees(),
             lead,
             climb: false,
+            feed: mv.feed,
             angle_start: a0,
         });
     }
@@ -1182,6 +1233,14 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
             100.0 * ratio
         ));
     }
+    let feeds = edge_feeds(&hs, &prog.moves, t.nominal_diameter, c.diameter, kind);
+    let unfed: Vec<String> = hs.iter().filter(|h| h.feed.is_none()).map(|h| h.line.to_string()).collect();
+    if !unfed.is_empty() {
+        notes.push(format!(
+            "no feed is known for the helix at line {} (no F before it, or F per revolution with no spindle speed): its edge feed is not computed",
+            unfed.join(", ")
+        ));
+    }
     let pass = crate::analysis::check::verdict(&cs, false);
     let span = (zs[0], zs[zs.len() - 1]);
     let (basic, zone) = crate::analysis::picture::Zone {
@@ -1204,6 +1263,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         cutter: c,
         cutter_ratio: ratio,
         helices: hs,
+        feeds,
         blank_diameter: blank,
         measured,
         tooth_profile: tooth_m,

@@ -229,6 +229,8 @@ struct St<'a> {
     rotary: [f64; 3],
     /// The feed the last TOOL CALL gave (its F), mm/min: what a cycle's FAUTO takes.
     tool_feed: Option<f64>,
+    /// The feed in force for contour moves (F in mm/min, or FAUTO's tool call feed).
+    feed: Option<f64>,
     /// Cycle parameters written as a feed word that is not a number (`Q206=FMAX`): where.
     symbolic: HashMap<u32, (usize, usize, String)>,
     tool: Option<u32>,
@@ -329,6 +331,7 @@ impl St<'_> {
                 tool: self.tool,
                 extra_turns: arc.map_or(0, |a| a.2),
                 units: ProgramUnits::of_scale(self.scale),
+                feed: if rapid { None } else { self.feed },
             });
         }
         self.tangent = match arc {
@@ -384,6 +387,7 @@ pub(crate) fn read(
         known: [false; 3],
         rotary: [0.0; 3],
         tool_feed: None,
+        feed: None,
         symbolic: HashMap::new(),
         cc: None,
         tangent: None,
@@ -791,9 +795,11 @@ fn path(st: &mut St<'_>, b: &KBlock, kind: &str) -> Result<Flow, KErr> {
             "FMAX" => rapid = true,
             "F" if w.val.is_empty() => return Err((b.line, w.col, "F needs a feed".into())),
             "F" => {
-                st.len(w, b.line)?;
+                st.feed = Some(st.len(w, b.line)?);
             }
-            "FAUTO" | "FU" | "FZ" => {}
+            // The tool call's feed; per revolution and per tooth are not modelled: unknown.
+            "FAUTO" => st.feed = st.tool_feed,
+            "FU" | "FZ" => st.feed = None,
             "R" if kind == "CR" => radius = Some(st.len(w, b.line)?),
             "R" if w.val == "0" => st.comp = 0,
             "RL" => st.comp = 1,

@@ -127,6 +127,10 @@ pub struct Move {
     /// The program's units at the move (what a diameter in its comments is written in).
     #[serde(skip)]
     pub units: super::ProgramUnits,
+    /// The feed in force, mm/min (F per minute; per revolution times the spindle speed);
+    /// `None` for a rapid and where the program has not given one (or per revolution without S).
+    #[serde(skip)]
+    pub feed: Option<f64>,
 }
 
 /// An open chain of synchronised moves (G32/G33 blocks one after the other): one helix.
@@ -275,6 +279,8 @@ pub(crate) struct Motion {
     /// The line of a lathe's G12.1 (G112), polar coordinate interpolation, while it is in force:
     /// a live tool mills the face in X and C; its moves are read past, not as turning.
     pub face_polar: Option<usize>,
+    /// A milling toolpath's F, mm (a minute's or a revolution's travel, as the feed mode says).
+    mill_f: Option<f64>,
 }
 
 /// The sequence numbers a roughing cycle's profile runs between, and whether it is being read.
@@ -367,6 +373,7 @@ impl Motion {
             contour: Vec::new(),
             profile: None,
             face_polar: None,
+            mill_f: None,
             last_x: None,
             past: Vec::new(),
             past_index: std::collections::HashMap::new(),
@@ -626,13 +633,28 @@ impl Motion {
         (x.map(|v| v + self.local[0]), y.map(|v| v + self.local[1]), z.map(|v| v + self.local[2]))
     }
 
+    /// A milling toolpath's feed in force after the block's F, mm/min (`None`: not given, or
+    /// per revolution with no spindle speed).
+    fn mill_feed(&mut self, b: &RBlock<'_>) -> Option<f64> {
+        if let Some(w) = b.get("F") {
+            self.mill_f = Some(self.len(w));
+        }
+        match self.feed_per_rev {
+            Some(true) => self.mill_f.zip(self.s).map(|(f, s)| f * s),
+            _ => self.mill_f,
+        }
+    }
+
     /// Moves to the block's target; true if it moved. Records the move when asked.
     pub fn move_to(&mut self, b: &RBlock<'_>) -> bool {
+        // A block's F holds for the moves after it, whether it moves or not (`F500` alone).
+        let feed = if self.moves.is_some() { self.mill_feed(b) } else { None };
         let (x, y, z) = self.target(b);
         let moved = x.is_some() || y.is_some() || z.is_some();
         if moved {
             self.break_chain();
             let units = self.program_units();
+            let feed = if self.motion == 0.0 { None } else { feed };
             if let Some(mv) = self.moves.as_mut() {
                 let from = [self.x.unwrap_or(0.0), self.y.unwrap_or(0.0), self.z.unwrap_or(0.0)];
                 let to = [x.unwrap_or(from[0]), y.unwrap_or(from[1]), z.unwrap_or(from[2])];
@@ -646,6 +668,7 @@ impl Motion {
                     tool: self.tool,
                     extra_turns: 0,
                     units,
+                    feed,
                 });
                 self.stream_moves(false);
             }
@@ -756,6 +779,7 @@ impl Motion {
                 [from[0] + i, from[1] + j]
             };
             let units = self.program_units();
+            let feed = if self.moves.is_some() { self.mill_feed(b) } else { None };
             if let Some(mv) = self.moves.as_mut() {
                 mv.push(Move {
                     rapid: false,
@@ -767,6 +791,7 @@ impl Motion {
                     tool: self.tool,
                     extra_turns,
                     units,
+                    feed,
                 });
                 self.stream_moves(false);
             }

@@ -215,6 +215,8 @@ pub struct Helix {
     pub lead: f64,
     /// Climb milling (else conventional), with the spindle turning clockwise.
     pub climb: bool,
+    /// The feed the program writes for it, mm/min: the cutter centre's (`None` when not given).
+    pub feed: Option<f64>,
     /// The angle of its start from the measured half-plane, radians.
     #[serde(skip)]
     pub(crate) angle_start: f64,
@@ -525,6 +527,7 @@ mod tests {
             sweep_deg: 6.0 * 360.0,
             lead: 1.5,
             climb: true,
+            feed: None,
             angle_start: 0.0,
         };
         let down = Helix {
@@ -581,6 +584,7 @@ mod tests {
                     sweep_deg: if g3 { 3.0 * 360.0 } else { -3.0 * 360.0 },
                     lead: 2.0,
                     climb: g3,
+                    feed: None,
                     angle_start: 0.37,
                 };
                 let neck = 0.5 * d - 2.0 * 0.866;

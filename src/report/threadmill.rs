@@ -65,6 +65,39 @@ pub fn text(r: &ThreadMillReport) -> String {
         );
         i = j;
     }
+    // Each run of helices at one feed: the centre's as written, the edge's it makes.
+    let mut k = 0;
+    while k < r.feeds.len() {
+        let f = &r.feeds[k];
+        let mut j = k + 1;
+        while j < r.feeds.len()
+            && r.feeds[j].centre == f.centre
+            && (r.feeds[j].factor - f.factor).abs() < 1e-9
+        {
+            j += 1;
+        }
+        let lines = if j - k == 1 {
+            format!("line {}", f.line)
+        } else {
+            format!("lines {}–{}", f.line, r.feeds[j - 1].line)
+        };
+        let per_min = |mm: f64| {
+            if f.inch {
+                format!("{:.2} in/min ({:.0} mm/min)", mm / 25.4, mm)
+            } else {
+                format!("{mm:.0} mm/min")
+            }
+        };
+        let _ = writeln!(
+            s,
+            "  feed ({lines}): {} at the cutter's centre is {} at its edge (× {:.3}, D/(D {} d))",
+            per_min(f.centre),
+            per_min(f.edge),
+            f.factor,
+            if r.kind == crate::standards::ThreadKind::Internal { "−" } else { "+" }
+        );
+        k = j;
+    }
     let m = &r.measured;
     let _ = writeln!(
         s,
@@ -129,6 +162,8 @@ pub struct ThreadMillJson<'a> {
     pub cutter_ratio: f64,
     /// The helices.
     pub helices: &'a [Helix],
+    /// The feed at the cutter's edge of each helix with a known feed.
+    pub feeds: &'a [crate::analysis::threadmill::HelixFeed],
     /// The bore or blank, mm.
     pub blank_diameter: f64,
     /// The milled thread.
@@ -161,6 +196,7 @@ impl<'a> ThreadMillJson<'a> {
             cutter: r.cutter,
             cutter_ratio: r.cutter_ratio,
             helices: &r.helices,
+            feeds: &r.feeds,
             blank_diameter: r.blank_diameter,
             measured: MeasuredReport::of(&r.measured, None),
             tooth_profile: MeasuredReport::of(&r.tooth_profile, None),
