@@ -124,13 +124,11 @@ pub use analysis::naming::{
     designation_in_comment, drill_in_comment, infer_designation, listed_tool, thread_mill_in_comment,
     DesignationFrom, Found, ListedKind, ListedTool, MillInComment, Named,
 };
+pub use analysis::percent::{thread_percent, ThreadPercent, THREAD_PERCENT_BAND};
 pub use analysis::picture::{Cut, Deviation, Picture};
 pub use analysis::process::MachineProfile;
 pub use analysis::program::{verify_program, verify_whole, Milled, Process, ProgramVerification};
-pub use analysis::tapping::{
-    tapping, thread_percent, TapCheck, TapFeature, TapReport, TapSpec, TappedHole, ThreadPercent,
-    THREAD_PERCENT_BAND,
-};
+pub use analysis::tapping::{tapping, TapCheck, TapFeature, TapReport, TapSpec, TappedHole};
 pub use analysis::threadmill::{thread_mill, ThreadMillReport, ThreadMillSpec};
 pub use analysis::tools::{InsertChoice, Tool, ToolTable};
 pub use analysis::verify::{

@@ -566,3 +566,21 @@ fn a_denford_style_lathe_program_reads_whole() {
         assert!(out.contains("✓ run-out room"), "{out}");
     }
 }
+
+/// Issue 64 item 1: a turned internal thread's percent of thread from its bore, in the charts'
+/// definition: the M30x1.5 nut bored to Ø28.4 has (30 − 28.4)/(1.299038·1.5) = 82.1 % of
+/// thread, (30 − 28.4)/(1.082532·1.5) = 98.5 % of the basic height D − D1.
+#[test]
+fn a_turned_nut_s_percent_of_thread_is_its_bore_s() {
+    let dir = tempdir("nut-percent");
+    let program = "(M30X1.5-6H NUT)\nG18 G21 G99\nT0101\nG97 S800 M3\nG0 X27 Z2\nG1 X28.4 F0.1\nZ-25\nG0 X26 Z5\nT0303\nG0 X28 Z5\nG76 P010060 Q100 R0.05\nG76 X30.146 Z-20 P870 Q200 F1.5\nG0 Z50\nM30\n";
+    std::fs::write(dir.join("nut.nc"), program).unwrap();
+    let o = run_in(&dir, &["verify", "--program", "nut.nc", "--insert", "full", "--json", "-"]);
+    let v: serde_json::Value =
+        serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{e}: {}", stderr(&o)));
+    let t = &v["operations"][0]["thread_percent"];
+    assert!((t["percent"].as_f64().unwrap() - 1.6 / (1.299_038 * 1.5) * 100.0).abs() < 1e-3, "{t}");
+    assert!((t["of_basic_height"].as_f64().unwrap() - 1.6 / (1.082_532 * 1.5) * 100.0).abs() < 1e-3, "{t}");
+    let o = run_in(&dir, &["verify", "--program", "nut.nc", "--insert", "full"]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("thread from the bore Ø28.4000: 82.1 %"));
+}

@@ -853,3 +853,32 @@ fn the_edge_feed_reproduces_the_makers_example() {
         assert!(out.contains(&format!("{feed:.2} in/min")) && out.contains("is 8.30 in/min"), "{out}");
     }
 }
+
+/// Issue 64 item 1: a thread-milled hole's percent of thread from its bore: 9/16-18 in a
+/// Ø0.5 in (12.7 mm) bore, 76.98·TPI·(D − bore) = 76.98·18·0.0625 = 86.6 %.
+#[test]
+fn a_milled_hole_s_percent_of_thread_is_its_bore_s() {
+    let dir = crate::tempdir("mill-percent");
+    let mut p = String::from("%\nO0200 (9/16-18 UNF-2B)\nG17 G20 G90 G40 G94\nT5 M6\nS3000 M3\nG0 X0 Y0 Z0.2\nG0 Z-0.5\nG1 X0.09625 Y0 F2.0\n");
+    for i in 1..9 {
+        p += &format!("G3 X0.09625 Y0 Z{:.6} I-0.09625 J0 F2.84\n", -0.5 + f64::from(i) / 18.0);
+    }
+    p += "G1 X0 Y0\nG0 Z1.0\nM30\n%\n";
+    let file = dir.join("int.nc");
+    std::fs::write(&file, p).unwrap();
+    let o = crate::run(&[
+        "thread-mill",
+        "--program",
+        file.to_str().unwrap(),
+        "--cutter-diameter",
+        "9.398",
+        "--blank-diameter",
+        "12.7",
+        "--json",
+        "-",
+    ]);
+    let v: serde_json::Value =
+        serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{e}: {}", crate::stderr(&o)));
+    let pct = v["thread_percent"]["percent"].as_f64().unwrap();
+    assert!((pct - 76.98 * 18.0 * 0.0625).abs() < 0.01, "{pct}");
+}

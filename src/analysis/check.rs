@@ -669,6 +669,11 @@ pub fn hints(
     out
 }
 
+/// Whether any of the checks of these features fails.
+pub fn any_fails(checks: &[Check], features: &[CheckFeature]) -> bool {
+    checks.iter().any(|c| features.contains(&c.feature) && !c.ok)
+}
+
 /// True when every check that counts passes; with `gauge_only`, only size checks count.
 pub fn verdict(checks: &[Check], gauge_only: bool) -> bool {
     !checks.iter().any(|c| c.fails(gauge_only))

@@ -11,6 +11,7 @@ pub mod fit;
 pub mod lead;
 pub mod mill;
 pub mod naming;
+pub mod percent;
 pub mod picture;
 pub mod process;
 pub mod program;

@@ -83,6 +83,8 @@ pub struct ThreadMillReport {
     /// The feed each helix's cutter edge sees, from the centre feed the program writes (the
     /// helices with a known feed, in program order).
     pub feeds: Vec<HelixFeed>,
+    /// An internal 60° thread's percent of thread from its bore (the charts' figure, issue 64).
+    pub thread_percent: Option<crate::analysis::percent::ThreadPercent>,
     /// The bore or blank diameter, mm.
     pub blank_diameter: f64,
     /// The as-cut thread, measured.
@@ -1264,6 +1266,10 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         cutter_ratio: ratio,
         helices: hs,
         feeds,
+        thread_percent: match kind {
+            ThreadKind::Internal => crate::analysis::percent::thread_percent(&t, blank),
+            ThreadKind::External => None,
+        },
         blank_diameter: blank,
         measured,
         tooth_profile: tooth_m,

@@ -264,6 +264,8 @@ pub struct Verification {
     /// For a program's passes, the infeed and depth law read back from them (`infeed` and
     /// `schedule` are then the options', which the passes did not follow).
     pub cut_plan: Option<crate::analysis::cut_plan::CutPlan>,
+    /// An internal 60° thread's percent of thread from its bore (the charts' figure, issue 64).
+    pub thread_percent: Option<crate::analysis::percent::ThreadPercent>,
     /// Blank or bore diameter, mm.
     pub blank_diameter: f64,
     /// Tip diameter of the last pass, mm.
@@ -1152,14 +1154,10 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
     let cone = gauge_cone(taper, kind, &cut, &t);
     let (cs, functional) = judge(m, &limits, &t, kind, cone, taper.is_some(), lead_deviation);
     let pass = verdict(&cs, spec.gauge_only);
-    let d2_off = cs.iter().any(|c| {
-        matches!(
-            c.feature,
-            crate::analysis::check::CheckFeature::PitchDiameter
-                | crate::analysis::check::CheckFeature::GaugePlane
-                | crate::analysis::check::CheckFeature::FunctionalPitchDiameter
-        ) && !c.ok
-    });
+    let d2_off = {
+        use crate::analysis::check::CheckFeature as F;
+        crate::analysis::check::any_fails(&cs, &[F::PitchDiameter, F::GaugePlane, F::FunctionalPitchDiameter])
+    };
     let delta = mr.target_at(cut.z_ref) - m.pitch_diameter;
     let suggested = d2_off.then_some(final_x + delta);
     let correction = match (d2_off, &depth_word) {
@@ -1189,6 +1187,10 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
         infeed,
         schedule: spec.schedule.clone(),
         cut_plan,
+        thread_percent: match kind {
+            ThreadKind::Internal => crate::analysis::percent::thread_percent(&t, blank),
+            ThreadKind::External => None,
+        },
         blank_diameter: blank,
         final_x,
         final_x_solved: solved,
@@ -2078,14 +2080,11 @@ fn other_candidate(
     let s = VerifySpec { insert: other, metrics: false, picture: false, ..spec.clone() };
     match verify_operation(&s, op, label).ok()? {
         OperationResult::Verified(o) => {
-            let size_ok = !o.checks.iter().any(|c| {
-                matches!(
-                    c.feature,
-                    crate::analysis::check::CheckFeature::PitchDiameter
-                        | crate::analysis::check::CheckFeature::MaxMaterial
-                        | crate::analysis::check::CheckFeature::FunctionalPitchDiameter
-                ) && !c.ok
-            });
+            use crate::analysis::check::CheckFeature as F;
+            let size_ok = !crate::analysis::check::any_fails(
+                &o.checks,
+                &[F::PitchDiameter, F::MaxMaterial, F::FunctionalPitchDiameter],
+            );
             Some((o.insert.name, o.measurement.pitch_diameter, size_ok))
         }
         OperationResult::NoCut { .. } => None,

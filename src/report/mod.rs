@@ -264,3 +264,14 @@ pub fn to_json_line<T: Serialize>(v: &T) -> Result<String, crate::Error> {
     s.push('\n');
     Ok(s)
 }
+
+/// A hole's percent of thread in words (issue 64): `77 % (the charts' percent: 100 % is 0.6495·P
+/// a side), 88.7 % of the basic height D − D1`.
+pub(crate) fn thread_percent_words(t: &crate::analysis::percent::ThreadPercent) -> String {
+    use crate::ground::fmt::fmt_num;
+    format!(
+        "{} % (the charts' percent: 100 % is 0.6495·P a side), {} % of the basic height D − D1",
+        fmt_num((t.percent * 10.0).round() / 10.0),
+        fmt_num((t.of_basic_height * 10.0).round() / 10.0)
+    )
+}

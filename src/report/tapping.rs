@@ -182,9 +182,8 @@ pub fn holes_text(r: &TapReport) -> String {
         if let Some(t) = &h.thread_percent {
             let _ = writeln!(
                 s,
-                "thread: {} % (the charts' percent: 100 % is 0.6495·P a side), {} % of the basic height D − D1; shops' band for a cutting tap {}–{} % (a named default)",
-                fmt_num((t.percent * 10.0).round() / 10.0),
-                fmt_num((t.of_basic_height * 10.0).round() / 10.0),
+                "thread: {}; shops' band for a cutting tap {}–{} % (a named default)",
+                super::thread_percent_words(t),
                 fmt_num(t.band[0]),
                 fmt_num(t.band[1])
             );

@@ -104,6 +104,10 @@ pub fn text(r: &ThreadMillReport) -> String {
         "\nas milled: D/d {:.4}, pitch diameter {:.4}, minor {:.4}, flanks {:.3}° / {:.3}°",
         m.major_diameter, m.pitch_diameter, m.minor_diameter, m.flank_angles[0], m.flank_angles[1]
     );
+    if let Some(p) = &r.thread_percent {
+        let _ =
+            writeln!(s, "thread from the bore Ø{:.4}: {}", r.blank_diameter, super::thread_percent_words(p));
+    }
     let t = &r.tooth_profile;
     let _ = writeln!(
         s,
@@ -164,6 +168,8 @@ pub struct ThreadMillJson<'a> {
     pub helices: &'a [Helix],
     /// The feed at the cutter's edge of each helix with a known feed.
     pub feeds: &'a [crate::analysis::threadmill::HelixFeed],
+    /// An internal thread's percent of thread from its bore.
+    pub thread_percent: Option<crate::analysis::percent::ThreadPercent>,
     /// The bore or blank, mm.
     pub blank_diameter: f64,
     /// The milled thread.
@@ -197,6 +203,7 @@ impl<'a> ThreadMillJson<'a> {
             cutter_ratio: r.cutter_ratio,
             helices: &r.helices,
             feeds: &r.feeds,
+            thread_percent: r.thread_percent,
             blank_diameter: r.blank_diameter,
             measured: MeasuredReport::of(&r.measured, None),
             tooth_profile: MeasuredReport::of(&r.tooth_profile, None),

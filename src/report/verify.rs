@@ -181,6 +181,9 @@ pub struct VerifyReport<'a> {
     pub helix_angle: f64,
     /// Process figures of a program's operation.
     pub process: Option<&'a crate::analysis::process::ProcessReport>,
+    /// An internal 60° thread's percent of thread from its bore (issue 64); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thread_percent: Option<crate::analysis::percent::ThreadPercent>,
     /// The last pass's X for mid-tolerance d2, mm, whether d2 is off or not (null only when no
     /// X helps: a start missing).
     pub suggested_final_x: Option<f64>,
@@ -259,6 +262,7 @@ impl<'a> VerifyReport<'a> {
             gauge_only: v.gauge_only,
             helix_angle: v.helix_angle,
             process: v.process.as_ref(),
+            thread_percent: v.thread_percent,
             suggested_final_x: v.middle_final_x,
             notes: &v.notes,
             deviation: v.picture.as_ref().map(|p| &p.deviation),
@@ -451,6 +455,14 @@ pub fn verify_text(v: &Verification) -> String {
             ld.cumulative * 1000.0,
             ld.length,
             (f - m.pitch_diameter) * 1000.0
+        );
+    }
+    if let Some(t) = &v.thread_percent {
+        let _ = writeln!(
+            s,
+            "  thread from the bore Ø{:.4}: {}",
+            v.blank_diameter,
+            super::thread_percent_words(t)
         );
     }
     let _ = writeln!(s, "  helix angle {:.3}° at d2: incline the insert by it", v.helix_angle);
