@@ -882,3 +882,20 @@ fn a_milled_hole_s_percent_of_thread_is_its_bore_s() {
     let pct = v["thread_percent"]["percent"].as_f64().unwrap();
     assert!((pct - 76.98 * 18.0 * 0.0625).abs() < 0.01, "{pct}");
 }
+
+/// Seen on a real macro program (a helix in a WHILE loop): the helices one line makes again and
+/// again were listed as "lines 34–34"; they are that line with its count.
+#[test]
+fn a_helix_a_loop_repeats_is_one_line_with_its_count() {
+    let dir = crate::tempdir("loop-helix");
+    let program = "%\nO0101 (M20X1.5-6H)\nG17 G21 G90 G40 G94\nT12 M6\nS3000 M3\nG0 X0 Y0 Z5.0\nG0 Z-16.0\nG1 X3.0 Y0 F100\n#1=-16\nWHILE[#1LT-1]DO1\nG3 X3.0 Y0 Z[#1+1.5] I-3.0 J0 F150\n#1=#1+1.5\nEND1\nG1 X0 Y0\nG0 Z50.0\nM30\n%\n";
+    let file = dir.join("loop.nc");
+    std::fs::write(&file, program).unwrap();
+    let o = crate::run(&["thread-mill", "--program", file.to_str().unwrap(), "--cutter-diameter", "14"]);
+    let out = crate::stdout(&o);
+    assert!(out.contains("  line 11, 10 times: 10 turns at radius 3.0000, Z-16 to Z-1"), "{out}");
+    assert!(
+        out.contains("feed (line 11, 10 times): 150 mm/min at the cutter's centre is 500 mm/min at its edge"),
+        "{out}"
+    );
+}

@@ -22,6 +22,16 @@ pub(crate) fn cutter_kind(c: &Cutter) -> String {
 }
 
 /// The text `threadcheck thread-mill` prints.
+/// The lines of a run of `n` helices from `first` to `last`: one line a loop runs again is named
+/// once with its count (`line 34, 20 times`), never as `lines 34–34`.
+fn lines_label(first: usize, last: usize, n: usize) -> String {
+    match (first == last, n) {
+        (true, 1) => format!("line {first}"),
+        (true, n) => format!("line {first}, {n} times"),
+        (false, _) => format!("lines {first}–{last}"),
+    }
+}
+
 pub fn text(r: &ThreadMillReport) -> String {
     let mut s = String::new();
     let c = &r.cutter;
@@ -54,7 +64,7 @@ pub fn text(r: &ThreadMillReport) -> String {
         let _ = writeln!(
             s,
             "  {}: {} turn{} at radius {:.4}, Z{} to Z{}, lead {:.4} mm/rev, {} milling",
-            if j - i == 1 { format!("line {}", h.line) } else { format!("lines {}–{}", h.line, last.line) },
+            lines_label(h.line, last.line, j - i),
             fmt_num(turns),
             if (turns - 1.0).abs() < 1e-9 { "" } else { "s" },
             h.radius,
@@ -76,11 +86,7 @@ pub fn text(r: &ThreadMillReport) -> String {
         {
             j += 1;
         }
-        let lines = if j - k == 1 {
-            format!("line {}", f.line)
-        } else {
-            format!("lines {}–{}", f.line, r.feeds[j - 1].line)
-        };
+        let lines = lines_label(f.line, r.feeds[j - 1].line, j - k);
         let per_min = |mm: f64| {
             if f.inch {
                 format!("{:.2} in/min ({:.0} mm/min)", mm / 25.4, mm)
