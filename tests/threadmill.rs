@@ -809,6 +809,18 @@ fn r_format_arcs_through_a_rounded_point_are_measured() {
     );
 }
 
+/// A 9/16-18 thread milled in G20 from Z-0.5 up in eight turns of radius `radius` (in) at F `feed`
+/// (in/min), G3 with M3; the cutter goes down on the hole's axis (a helix radius under the
+/// thread's), else beside the boss.
+fn nine_sixteen_18(radius: f64, feed: f64) -> String {
+    let x = if radius < 0.28 { 0.0 } else { 0.7 };
+    let mut p = format!("%\nO0200 (9/16-18 UNF)\nG17 G20 G90 G40 G94\nT5 M6\nS3000 M3\nG0 X{x} Y0 Z0.2\nG0 Z-0.5\nG1 X{radius} Y0 F2.0\n");
+    for i in 1..9 {
+        p += &format!("G3 X{radius} Y0 Z{:.6} I-{radius} J0 F{feed}\n", -0.5 + f64::from(i) / 18.0);
+    }
+    p + &format!("G1 X{x} Y0\nG0 Z1.0\nM30\n%\n")
+}
+
 /// Issue 64 item 4: the feed at a thread mill's edge from the centre feed the program writes,
 /// the makers' worked example: a 0.370 in (9.398 mm) cutter milling 9/16-18 at 8.3 in/min at
 /// the edge is 8.3 · (0.5625 − 0.370)/0.5625 = 2.84 in/min at the centre inside and
@@ -821,13 +833,8 @@ fn the_edge_feed_reproduces_the_makers_example() {
         ("int", 0.09625, 2.84, 0.5625 / (0.5625 - 0.370)),
         ("ext", 0.43216, 13.76, 0.5625 / (0.5625 + 0.370)),
     ] {
-        let mut p = format!("%\nO0200 (9/16-18 UNF)\nG17 G20 G90 G40 G94\nT5 M6\nS3000 M3\nG0 X0.7 Y0 Z0.2\nG0 Z-0.5\nG1 X{radius} Y0 F2.0\n");
-        for i in 1..9 {
-            p += &format!("G3 X{radius} Y0 Z{:.6} I-{radius} J0 F{feed}\n", -0.5 + f64::from(i) / 18.0);
-        }
-        p += "G1 X0.7 Y0\nG0 Z1.0\nM30\n%\n";
         let file = dir.join(format!("{name}.nc"));
-        std::fs::write(&file, p).unwrap();
+        std::fs::write(&file, nine_sixteen_18(radius, feed)).unwrap();
         let o = crate::run(&[
             "thread-mill",
             "--program",
@@ -859,13 +866,8 @@ fn the_edge_feed_reproduces_the_makers_example() {
 #[test]
 fn a_milled_hole_s_percent_of_thread_is_its_bore_s() {
     let dir = crate::tempdir("mill-percent");
-    let mut p = String::from("%\nO0200 (9/16-18 UNF-2B)\nG17 G20 G90 G40 G94\nT5 M6\nS3000 M3\nG0 X0 Y0 Z0.2\nG0 Z-0.5\nG1 X0.09625 Y0 F2.0\n");
-    for i in 1..9 {
-        p += &format!("G3 X0.09625 Y0 Z{:.6} I-0.09625 J0 F2.84\n", -0.5 + f64::from(i) / 18.0);
-    }
-    p += "G1 X0 Y0\nG0 Z1.0\nM30\n%\n";
     let file = dir.join("int.nc");
-    std::fs::write(&file, p).unwrap();
+    std::fs::write(&file, nine_sixteen_18(0.09625, 2.84)).unwrap();
     let o = crate::run(&[
         "thread-mill",
         "--program",
