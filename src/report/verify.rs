@@ -306,6 +306,58 @@ pub(crate) fn form_only_from_tip(v: &Verification) -> Option<f64> {
 }
 
 /// The human report: a compact table of checks with ✓/✗ and deviations in µm.
+/// The text's check table: a row per check, with inches beside the lengths under `--units inch`.
+fn check_rows(s: &mut String, v: &Verification, inch: bool) {
+    let _ = if inch {
+        writeln!(
+            s,
+            "\n    {:<16}{:>10}{:>10}{:>10}{:>12}  kind  {:>8}{:>8}{:>8} in",
+            "check", "value", "min", "max", "deviation", "value", "min", "max"
+        )
+    } else {
+        writeln!(s, "\n    {:<16}{:>10}{:>10}{:>10}{:>12}  kind", "check", "value", "min", "max", "deviation")
+    };
+    for c in &v.checks {
+        let counts = c.counts(v.gauge_only);
+        let mark = if c.unverified.is_some() {
+            "?"
+        } else if c.ok {
+            "✓"
+        } else if counts {
+            "✗"
+        } else {
+            "·"
+        };
+        let cells = check_cells(c);
+        // A cell wider than its column ("rounds to the limit") keeps two spaces before it.
+        let deviation = if cells.deviation.chars().count() > 10 {
+            format!("  {}", cells.deviation)
+        } else {
+            cells.deviation
+        };
+        let _ = write!(
+            s,
+            "  {mark} {:<16}{:>10}{:>10}{:>10}{:>12}  {}",
+            c.feature.label(),
+            cells.value,
+            cells.min,
+            cells.max,
+            deviation,
+            c.kind.name()
+        );
+        // Lengths in inches beside the mm (not the angles, the counts or the turns).
+        let length = c.feature.is_length();
+        if inch && length {
+            let i = |x: Option<f64>| x.map_or_else(|| "—".to_string(), |x| format!("{:.5}", x / 25.4));
+            let _ = write!(s, "  {:>8}{:>8}{:>8} in", i(Some(c.value)), i(c.min), i(c.max));
+        }
+        if let Some(n) = &c.note {
+            let _ = write!(s, "  {n}");
+        }
+        s.push('\n');
+    }
+}
+
 /// What a program's passes follow, in words: `flank 30° infeed, constant area √n × 0.4 mm a side
 /// for 5 passes`.
 fn cut_plan_text(c: &crate::analysis::cut_plan::CutPlan) -> String {
@@ -375,54 +427,7 @@ pub fn verify_text(v: &Verification) -> String {
             ""
         }
     );
-    let _ = if inch {
-        writeln!(
-            s,
-            "\n    {:<16}{:>10}{:>10}{:>10}{:>12}  kind  {:>8}{:>8}{:>8} in",
-            "check", "value", "min", "max", "deviation", "value", "min", "max"
-        )
-    } else {
-        writeln!(s, "\n    {:<16}{:>10}{:>10}{:>10}{:>12}  kind", "check", "value", "min", "max", "deviation")
-    };
-    for c in &v.checks {
-        let counts = c.counts(v.gauge_only);
-        let mark = if c.unverified.is_some() {
-            "?"
-        } else if c.ok {
-            "✓"
-        } else if counts {
-            "✗"
-        } else {
-            "·"
-        };
-        let cells = check_cells(c);
-        // A cell wider than its column ("rounds to the limit") keeps two spaces before it.
-        let deviation = if cells.deviation.chars().count() > 10 {
-            format!("  {}", cells.deviation)
-        } else {
-            cells.deviation
-        };
-        let _ = write!(
-            s,
-            "  {mark} {:<16}{:>10}{:>10}{:>10}{:>12}  {}",
-            c.feature.label(),
-            cells.value,
-            cells.min,
-            cells.max,
-            deviation,
-            c.kind.name()
-        );
-        // Lengths in inches beside the mm (not the angles, the counts or the turns).
-        let length = c.feature.is_length();
-        if inch && length {
-            let i = |x: Option<f64>| x.map_or_else(|| "—".to_string(), |x| format!("{:.5}", x / 25.4));
-            let _ = write!(s, "  {:>8}{:>8}{:>8} in", i(Some(c.value)), i(c.min), i(c.max));
-        }
-        if let Some(n) = &c.note {
-            let _ = write!(s, "  {n}");
-        }
-        s.push('\n');
-    }
+    check_rows(&mut s, v, inch);
     let m = &v.measurement;
     let _ = writeln!(
         s,
