@@ -87,11 +87,12 @@ pub use standards::{Feature, GrooveForm};
 
 // Programs read as a control would.
 pub use gcode::{
-    comments, read_program, read_program_streaming, read_program_with, rewrite_words, Budget, Comment,
+    alarm, comments, read_program, read_program_streaming, read_program_with, rewrite_words, Budget, Comment,
     DepthWord, Dialect, DialectFrom, GCodeSystem, HoleCycle, HoleKind, LinuxCncRelease, MachineReading,
     MachineType, Operation, PassXWord, Program, ProgramUnits, RadialPlace, ReadOptions, Spindle, SpindleDir,
     SubFinder, WordEdit, WordForm, WordMeans, XWords,
 };
+pub use gcode::{Alarm, ControlEvent, ControlRule, Level};
 
 // Toolpaths: passes, generated plans, infeeds and depth schedules.
 pub use toolpath::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
@@ -112,6 +113,7 @@ pub use analysis::capability::{capability, CapabilityReport, CapabilitySpec, His
 pub use analysis::catalogue::{cases as catalogue_cases, run as run_catalogue, Case, CatalogueSpec};
 pub use analysis::check::{checks, Check, CheckFeature, CheckKind, CheckUnit, Verdict};
 pub use analysis::compare::{compare, CompareChoice, Comparison, Ground, Recommendation};
+pub use analysis::control::{before_machine, ControlFinding};
 pub use analysis::correct::{
     correct, CorrectReport, CorrectSpec, GaugeResult, Measured, MeasuredState, Pickup, WearOffset,
     WireReading,

@@ -1032,6 +1032,51 @@ fn the_page_verifies_every_thread_a_pasted_program_names() {
     assert_eq!(seen["tap_checks"], serde_json::json!(["drill diameter", "feed", "depth", "spindle"]));
 }
 
+/// Issue 63 on the page, in Chromium, as a new user leaves its fields (the dialect chosen): a
+/// LinuxCNC program whose G33.1 moves X as it taps is "will not run as written", the finding
+/// listed under its tapped hole as an error with its line, and the picture's heading says the
+/// same and lists it.
+#[test]
+fn the_page_says_what_the_control_will_refuse() {
+    let script = playwright().with_file_name("whole.mjs");
+    let chromium = chromium();
+    let server = crate::serve::start(&[]);
+    let out = tempdir("page-control");
+    let o = std::process::Command::new("node")
+        .arg(&script)
+        .arg(&server.url)
+        .arg(&out)
+        .arg(&chromium)
+        .arg(data("programs/control/sideways-tap.ngc"))
+        .arg("linuxcnc")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "the page script failed: {}", String::from_utf8_lossy(&o.stderr));
+    let seen: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(seen["console"], serde_json::json!([]));
+    assert!(
+        seen["verdict"].as_str().unwrap().starts_with("WILL NOT RUN AS WRITTEN — 1 error before the machine"),
+        "{}",
+        seen["verdict"]
+    );
+    assert_eq!(seen["control"].as_array().unwrap().len(), 1, "{}", seen["control"]);
+    assert_eq!(seen["control"][0]["level"], "error");
+    let text = seen["control"][0]["text"].as_str().unwrap();
+    assert!(text.starts_with("✗ Before the machine, line 6 (G33.1): the tap moves X from 0 to 5"), "{text}");
+    assert!(text.ends_with("[post.tap_moves_sideways]"), "{text}");
+    let picture: Vec<&str> =
+        seen["picture_control"].as_array().unwrap().iter().filter_map(|t| t.as_str()).collect();
+    assert!(
+        picture.first().is_some_and(|t| t.starts_with("✗ before the machine, line 6 (G33.1)")),
+        "{picture:?}"
+    );
+    assert!(
+        seen["picture_verdict"].as_str().unwrap().contains("WILL NOT RUN AS WRITTEN"),
+        "{}",
+        seen["picture_verdict"]
+    );
+}
+
 /// Issue 45 on the page, in Chromium: the dialect list offers every dialect (Klartext among
 /// them), and a pasted Klartext plate read as Klartext gives its six tapped holes, each named by
 /// its comment and placed (X120 Y50: the pattern's 270° point turned by 90° and shifted), the

@@ -40,7 +40,7 @@ pub(crate) fn rs274() -> PathBuf {
 
 /// A folder for `rs274` runs, with the tool table they read (tools 1–99 in pockets 1–99, no
 /// offsets).
-fn rs274_dir(tag: &str) -> crate::util::Scratch {
+pub(crate) fn rs274_dir(tag: &str) -> crate::util::Scratch {
     let dir = tempdir(tag);
     let table: String = (1..=99).map(|i| format!("T{i} P{i} D0 ;\n")).collect();
     std::fs::write(dir.join("tool.tbl"), table).unwrap();

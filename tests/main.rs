@@ -6,6 +6,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod bad_inputs;
+mod before_machine;
 mod browser;
 mod closing;
 mod controls;

@@ -12,6 +12,8 @@
 //! rapid_mm_min = 10000
 //! # optional: the fastest spindle speed by pitch, pitch up to (mm) and rpm
 //! rpm_per_pitch = [[0.5, 950], [1.0, 500]]
+//! # optional: the Z axis's servo time constant, s (the run-in check; default 0.033)
+//! servo_time_constant_s = 0.02
 //! ```
 
 use crate::analysis::check::{Check, CheckKind};
@@ -43,6 +45,10 @@ pub struct MachineProfile {
     /// Fastest spindle speed by pitch: (pitch up to, mm; rpm), ascending.
     #[serde(default)]
     pub rpm_per_pitch: Vec<(f64, f64)>,
+    /// The Z axis's servo time constant, seconds: how far it needs to reach a threading feed
+    /// (`None`: the run-in check's named default).
+    #[serde(default)]
+    pub servo_time_constant_s: Option<f64>,
 }
 
 impl MachineProfile {
@@ -56,6 +62,7 @@ impl MachineProfile {
             max_feed_mm_min: None,
             rapid_mm_min: 5000.0,
             machine_type: Some(crate::gcode::MachineType::Lathe),
+            servo_time_constant_s: None,
             rpm_per_pitch: vec![
                 (0.5, 950.0),
                 (1.0, 500.0),
@@ -104,6 +111,7 @@ impl MachineProfile {
             rpm_per_pitch: Vec<(f64, f64)>,
             #[serde(rename = "type")]
             machine_type: Option<crate::gcode::MachineType>,
+            servo_time_constant_s: Option<f64>,
         }
         let arg = source;
         let f: File = toml::from_str(text).map_err(|e| crate::ground::error::toml_error(&e, text, arg))?;
@@ -122,11 +130,13 @@ impl MachineProfile {
             rapid_mm_min: f.rapid_mm_min.unwrap_or(ASSUMED_RAPID_MM_MIN),
             rpm_per_pitch: f.rpm_per_pitch,
             machine_type: f.machine_type,
+            servo_time_constant_s: f.servo_time_constant_s,
         };
         let positive = |v: f64| v > 0.0 && v.is_finite();
         if !positive(m.rapid_mm_min)
             || m.max_rpm.is_some_and(|r| !positive(r))
             || m.max_feed_mm_min.is_some_and(|f| !positive(f))
+            || m.servo_time_constant_s.is_some_and(|t| !positive(t))
             || m.rpm_per_pitch.iter().any(|(up, rpm)| !positive(*up) || !positive(*rpm))
         {
             return Err(Error::File {

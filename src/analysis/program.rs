@@ -15,7 +15,6 @@ use crate::analysis::tools::{Tool, ToolTable};
 use crate::analysis::verify::{InsertFor, OperationVerdict, ProgramLabel, TurnedProgram, VerifySpec};
 use crate::gcode::{Dialect, HoleKind, ReadOptions};
 use crate::Error;
-use serde::Serialize;
 
 /// Every operation of a program, verified.
 #[derive(Clone, Debug)]
@@ -42,6 +41,9 @@ pub struct ProgramVerification {
     pub tapped: Option<crate::analysis::tapping::TapReport>,
     /// Its thread-milled thread (`verify_whole`; `None` when it has no helix).
     pub milled: Option<Milled>,
+    /// What the control will refuse and what the post got wrong (`verify_whole`): an error
+    /// fails the program.
+    pub control: Vec<crate::analysis::control::ControlFinding>,
 }
 
 impl ProgramVerification {
@@ -60,14 +62,27 @@ impl ProgramVerification {
             machine: prog.machine,
             tapped: None,
             milled: None,
+            control: Vec::new(),
         }
     }
 
-    /// True when every operation passes: turned, tapped and milled.
+    /// True when every operation passes, turned, tapped and milled, and the control refuses
+    /// nothing.
     pub fn pass(&self) -> bool {
+        self.threads_pass() && !self.refused()
+    }
+
+    /// True when every thread it makes is within its checks (whatever the control says).
+    pub fn threads_pass(&self) -> bool {
         self.operations.iter().all(|o| o.result.pass())
             && self.tapped.as_ref().is_none_or(|t| t.pass)
             && self.milled.as_ref().is_none_or(Milled::pass)
+    }
+
+    /// True when a control finding is an error: the control refuses a block, or the cut breaks
+    /// the tool.
+    pub fn refused(&self) -> bool {
+        crate::analysis::control::any_error(&self.control)
     }
 }
 
@@ -96,28 +111,7 @@ pub fn verify_program(
         .map(ProgramVerification::of)
 }
 
-/// How a thread is made.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Process {
-    /// Turned on a lathe: threading cycles and G32/G33 chains.
-    Turned,
-    /// Cut by a tap in a tapping cycle.
-    Tapped,
-    /// Milled by a thread mill on helices.
-    Milled,
-}
-
-impl Process {
-    /// The word the reports use.
-    pub fn name(self) -> &'static str {
-        match self {
-            Process::Turned => "turned",
-            Process::Tapped => "tapped",
-            Process::Milled => "milled",
-        }
-    }
-}
+pub use crate::analysis::made::Process;
 
 /// What became of a program's thread-milled thread.
 #[derive(Clone, Debug)]
@@ -257,6 +251,12 @@ pub fn verify_whole(
         r.notes.clear();
         pv.tapped = Some(r);
     }
+    pv.control = crate::analysis::control::before_machine(
+        &prog,
+        dialect,
+        pv.tapped.as_ref(),
+        spec.machine.as_ref().and_then(|m| m.servo_time_constant_s),
+    );
     if let Some(h) = helix {
         // The thread mill: the helix's tool in the table, as a thread mill's file, else the one
         // the program's comments name for it.
@@ -285,6 +285,7 @@ pub fn verify_whole(
             // The program's notes are the report's, once.
             let program: Vec<String> = prog.notes.iter().map(ToString::to_string).collect();
             r.notes.retain(|n| !program.contains(n));
+            pv.control.extend(crate::analysis::control::milled(&r, dialect));
             Milled::Checked(Box::new(r))
         } else {
             Milled::NotChecked {

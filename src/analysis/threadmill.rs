@@ -83,6 +83,9 @@ pub struct ThreadMillReport {
     /// The feed each helix's cutter edge sees, from the centre feed the program writes (the
     /// helices with a known feed, in program order).
     pub feeds: Vec<HelixFeed>,
+    /// What the moves after the last helix do to the finished thread (issue 63).
+    #[serde(skip)]
+    pub after_finish: crate::analysis::gouge::AfterFinish,
     /// An internal 60° thread's percent of thread from its bore (the charts' figure, issue 64).
     pub thread_percent: Option<crate::analysis::percent::ThreadPercent>,
     /// The bore or blank diameter, mm.
@@ -99,7 +102,7 @@ pub struct ThreadMillReport {
     pub limits: ThreadLimits,
     /// Size and form checks, and the program's (`lead`).
     pub checks: Vec<Check>,
-    /// Every check passes.
+    /// Every check passes, and no move after the last helix cuts the thread.
     pub pass: bool,
     /// What was assumed.
     pub notes: Vec<String>,
@@ -1236,6 +1239,17 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         ));
     }
     let feeds = edge_feeds(&hs, &prog.moves, t.nominal_diameter, c.diameter, kind);
+    // The moves after the last helix against the finished crest (a straight thread's: a taper
+    // thread's crest is not one radius, and is not judged).
+    let crest = match kind {
+        ThreadKind::Internal => 0.5 * measured.minor_diameter,
+        ThreadKind::External => 0.5 * measured.major_diameter,
+    };
+    let after_finish = if taper.is_none() {
+        crate::analysis::gouge::after_finish(&prog.moves, &hs, kind, 0.5 * c.diameter, crest)
+    } else {
+        crate::analysis::gouge::AfterFinish::default()
+    };
     let unfed: Vec<String> = hs.iter().filter(|h| h.feed.is_none()).map(|h| h.line.to_string()).collect();
     if !unfed.is_empty() {
         notes.push(format!(
@@ -1243,7 +1257,9 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
             unfed.join(", ")
         ));
     }
-    let pass = crate::analysis::check::verdict(&cs, false);
+    // A move after the last helix that cuts the finished thread scraps it, whatever the
+    // helices measured.
+    let pass = crate::analysis::check::verdict(&cs, false) && after_finish.gouges.is_empty();
     let span = (zs[0], zs[zs.len() - 1]);
     let (basic, zone) = crate::analysis::picture::Zone {
         thread: &t,
@@ -1266,6 +1282,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         cutter_ratio: ratio,
         helices: hs,
         feeds,
+        after_finish,
         thread_percent: match kind {
             ThreadKind::Internal => crate::analysis::percent::thread_percent(&t, blank),
             ThreadKind::External => None,

@@ -187,6 +187,30 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                     let (x, y, z) = m.target(b);
                     let feed = b.get("K").map(|w| m.len(w));
                     m.push_synced_tap("G33.1", b.line, col, (x.or(m.x), y.or(m.y)), z, feed, "K")?;
+                    // LinuxCNC moves the tap in a straight line to X Y Z: X or Y away from
+                    // where it stands drags it sideways (its documentation: preposition X and
+                    // Y, give only Z).
+                    let from = [m.x, m.y];
+                    let sideways: Vec<String> = [("X", x, from[0]), ("Y", y, from[1])]
+                        .iter()
+                        .filter_map(|(n, to, at)| match (to, at) {
+                            (Some(to), Some(at)) if (to - at).abs() > 1e-6 => Some(format!(
+                                "{n} from {} to {}",
+                                crate::ground::fmt::fmt_num(*at),
+                                crate::ground::fmt::fmt_num(*to)
+                            )),
+                            _ => None,
+                        })
+                        .collect();
+                    if !sideways.is_empty() {
+                        m.flag(
+                            super::ControlRule::TapMovesSideways,
+                            "G33.1",
+                            b.line,
+                            col,
+                            format!("the tap moves {} as it feeds to the bottom", sideways.join(" and ")),
+                        );
+                    }
                     m.read_past(
                         b.line,
                         col,
@@ -322,6 +346,8 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
                 42 => m.comp = 2,
                 _ => {}
             }
+        } else if matches!(g as u32, 40..=42) {
+            m.nose_comp = g as u8 - 40;
         }
         match g as u32 {
             // G112/G113: G12.1/G13.1 as Fanuc's lathes also write them (Haas: G112, XY to XC).

@@ -514,6 +514,7 @@ pub(crate) fn read(
         },
         stock: None,
         stock_bottom: st.stock_bottom,
+        control: Vec::new(),
     })
 }
 

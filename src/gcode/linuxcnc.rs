@@ -610,6 +610,7 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, _cx: &mut Ctx<'_>) -> Re
     s.switches = Some(s.switches.unwrap_or_else(Switches::start).after(b));
     spindle(s, b);
     spindle_for_cycle(s, m, b, &md)?;
+    tapping_words(m, b, &md);
     polar_words(m, b, &md)?;
     if coordinates(s, m, b, &md)? {
         return Ok(Flow::Next);
@@ -632,6 +633,20 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, _cx: &mut Ctx<'_>) -> Re
     if md.one_shot.is_some() {
         cycles::other_block(m, b, &md)?;
         return Ok(Flow::Next);
+    }
+    let comp = m.comp.max(m.nose_comp);
+    if threading && comp != 0 {
+        // LinuxCNC's interpreter refuses a threading move under cutter compensation (its
+        // convert_straight_comp1/comp2 take G0 and G1 only): said, and read on.
+        let col = md.col.unwrap_or(b.col);
+        let code = format!("G{}", md.motion);
+        m.flag(
+            super::ControlRule::SyncUnderCompensation,
+            &code,
+            b.line,
+            col,
+            format!("{code} with cutter radius compensation G4{comp} in force"),
+        );
     }
     match md.motion as u32 {
         76 if md.col.is_some() => {
@@ -666,6 +681,29 @@ fn block(s: &mut State, m: &mut Motion, b: &RBlock<'_>, _cx: &mut Ctx<'_>) -> Re
         _ => cycles::other_block(m, b, &md)?,
     }
     Ok(Flow::Next)
+}
+
+/// The words LinuxCNC refuses on a tapping block, said and read on: a peck depth `Q` (LinuxCNC
+/// has no peck tapping: G84, G74 and G33.1 take no Q) and an `F` on G33.1 (its feed is K).
+fn tapping_words(m: &mut Motion, b: &RBlock<'_>, md: &cycles::Modal) {
+    let moves = b.has("X") || b.has("Y") || b.has("Z");
+    let code = match md.one_shot {
+        Some(33.1) => "G33.1",
+        _ if !moves || md.motion.fract() != 0.0 => return,
+        _ => match md.motion as u32 {
+            74 => "G74",
+            84 => "G84",
+            _ => return,
+        },
+    };
+    if let Some(q) = b.get("Q") {
+        let detail = format!("{code} with {}: LinuxCNC has no peck tapping", q.text);
+        m.flag(super::ControlRule::TapPeckQ, code, b.line, q.col, detail);
+    }
+    if let (Some(f), "G33.1") = (b.get("F"), code) {
+        let detail = format!("G33.1 with {}: its feed per revolution is K", f.text);
+        m.flag(super::ControlRule::FeedWordInSync, code, b.line, f.col, detail);
+    }
 }
 
 /// LinuxCNC's polar words `@` and `^` where threadcheck reads them: in the XY plane of a

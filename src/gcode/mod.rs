@@ -16,6 +16,7 @@
 //! counted as skipped.
 
 mod comments;
+mod control;
 mod cycles;
 mod dialect;
 mod dyna;
@@ -40,6 +41,7 @@ use crate::Error;
 use serde::Serialize;
 
 pub use comments::{comments, Comment};
+pub use control::{alarm, Alarm, ControlEvent, ControlRule, Level};
 pub use edit::{rewrite_words, WordEdit};
 pub use machine::{MachineReading, MachineType};
 pub use motion::Move;
@@ -226,6 +228,9 @@ pub struct Spindle {
     pub s: Option<f64>,
     /// Constant surface speed (G96) was active.
     pub constant_surface_speed: bool,
+    /// The direction the last M3, M4 or M5 left (`None` before any).
+    #[serde(skip)]
+    pub dir: Option<SpindleDir>,
 }
 
 /// One threading operation: one cycle call, or a run of G32/G33 passes on one helix over one
@@ -577,6 +582,8 @@ pub struct Turned {
     pub to: [f64; 2],
     /// The program line.
     pub line: usize,
+    /// A rapid move of a roughing cycle's profile (its approach, as often as not in the air).
+    pub rapid: bool,
 }
 
 impl Operation {
@@ -612,6 +619,8 @@ pub struct Program {
     /// The bottom of the stock a machining-centre program declares (Klartext's `BLK FORM 0.1`):
     /// its Z in the workpiece frame, mm, and line.
     pub stock_bottom: Option<(f64, usize)>,
+    /// What the control will refuse or a post got wrong, as the reader saw it (issue 63).
+    pub control: Vec<ControlEvent>,
 }
 
 /// Which way the spindle turns.
@@ -1196,6 +1205,7 @@ fn read(
     });
     let units_assumed = (!m.units_set).then_some(opts.default_units);
     let holes = std::mem::take(&mut m.holes);
+    let control = std::mem::take(&mut m.control);
     let stock = m.stock;
     let (operations, skipped, mut notes, moves, read_past) = m.finish();
     notes.extend(order_note.map(Note::from));
@@ -1302,6 +1312,7 @@ fn read(
         machine,
         stock,
         stock_bottom: None,
+        control,
     })
 }
 

@@ -196,6 +196,8 @@ pub(crate) struct Motion {
     pub rigid_next: bool,
     /// The drilling and tapping cycles read, in program order.
     pub holes: Vec<super::HoleCycle>,
+    /// What the control will refuse or a post got wrong, seen while reading (issue 63).
+    pub control: Vec<super::control::ControlEvent>,
     /// The main program's line of the call that runs the subprogram file being read (`None`
     /// in the main program's own file).
     pub call_line: Option<usize>,
@@ -240,6 +242,8 @@ pub(crate) struct Motion {
     pub live_tool_said: bool,
     /// Cutter radius compensation: 0 G40, 1 G41, 2 G42.
     pub comp: u8,
+    /// A lathe's tool nose radius compensation (G41/G42 outside G17): 0 G40, 1 G41, 2 G42.
+    pub nose_comp: u8,
     /// LinuxCNC's G90.1: an arc's I and J are its centre's coordinates (G91.1, the power-on
     /// state: offsets from its start).
     pub arc_centres_absolute: bool,
@@ -342,6 +346,7 @@ impl Motion {
             feed_per_rev: None,
             rigid_next: false,
             holes: Vec::new(),
+            control: Vec::new(),
             work_offset: None,
             call_line: None,
             work_origins: std::collections::HashMap::new(),
@@ -361,6 +366,7 @@ impl Motion {
             radial_said: false,
             live_tool_said: false,
             comp: 0,
+            nose_comp: 0,
             plane: if !mill && lathe_dialect(dialect) { 18 } else { 17 },
             ops: Vec::new(),
             loose: None,
@@ -382,6 +388,27 @@ impl Motion {
             lost: None,
             box_last: None,
         }
+    }
+
+    /// Records what the control will refuse or a post got wrong at a block (`code` the block's
+    /// cycle), reading on.
+    pub fn flag(
+        &mut self,
+        rule: super::control::ControlRule,
+        code: &str,
+        line: usize,
+        column: usize,
+        detail: String,
+    ) {
+        let file = (self.file != self.main_file).then(|| self.file.clone());
+        self.control.push(super::control::ControlEvent {
+            rule,
+            code: code.to_string(),
+            line,
+            column,
+            file,
+            detail,
+        });
     }
 
     /// Records something read past: `what` as the program writes it, `why` what threadcheck
@@ -827,7 +854,12 @@ impl Motion {
             return;
         }
         if let (Some(x0), Some(z0)) = (self.x, self.z) {
-            self.contour.push(super::Turned { from: [x0, z0], to: [x.unwrap_or(x0), z.unwrap_or(z0)], line });
+            self.contour.push(super::Turned {
+                from: [x0, z0],
+                to: [x.unwrap_or(x0), z.unwrap_or(z0)],
+                line,
+                rapid: !feed,
+            });
         }
     }
 
@@ -836,7 +868,7 @@ impl Motion {
     pub fn record_box_cut(&mut self, x: f64, z: f64, line: usize) {
         if let Some(z0) = self.z {
             if self.lathe() && self.contour.len() < MAX_CONTOUR {
-                self.contour.push(super::Turned { from: [x, z0], to: [x, z], line });
+                self.contour.push(super::Turned { from: [x, z0], to: [x, z], line, rapid: false });
             }
         }
     }
@@ -883,7 +915,7 @@ impl Motion {
 
     /// The spindle as it stands.
     pub fn spindle(&self) -> Spindle {
-        Spindle { s: self.s, constant_surface_speed: self.css }
+        Spindle { s: self.s, constant_surface_speed: self.css, dir: self.spindle_dir }
     }
 
     /// Starts a new operation for a cycle call in block `b`; returns its index.

@@ -671,6 +671,7 @@ impl<W: Write> Server<W> {
                 severity: Some(match d.severity {
                     Severity::Error => lt::DiagnosticSeverity::ERROR,
                     Severity::Information => lt::DiagnosticSeverity::INFORMATION,
+                    Severity::Warning => lt::DiagnosticSeverity::WARNING,
                 }),
                 code: Some(lt::NumberOrString::String(d.code.clone())),
                 source: Some("threadcheck".into()),

@@ -41,6 +41,10 @@ pub struct BatchOperation {
     /// The checks that rest on a tool nobody chose, as findings of their own (SARIF notes).
     #[serde(skip)]
     pub unverified: Vec<Finding>,
+    /// What the control runs and the thread suffers from (SARIF warnings; `control` in the
+    /// program's JSON).
+    #[serde(skip)]
+    pub warnings: Vec<Finding>,
 }
 
 /// A failing check of an operation, as SARIF, JUnit, the filter and the editor show it.
@@ -155,6 +159,7 @@ impl BatchProgram {
                     ),
                 };
                 BatchOperation {
+                    warnings: Vec::new(),
                     made: Process::Turned,
                     line: o.operation.source_line,
                     in_file: o.operation.source_file.clone(),
@@ -171,6 +176,7 @@ impl BatchProgram {
         operations.extend(pv.tapped.iter().flat_map(|t| &t.holes).map(|h| {
             BatchOperation {
                 unverified: Vec::new(),
+                warnings: Vec::new(),
                 made: Process::Tapped,
                 line: h.cycle.line,
                 in_file: h.cycle.source_file.clone(),
@@ -199,6 +205,7 @@ impl BatchProgram {
             match m {
                 Milled::Checked(r) => BatchOperation {
                     unverified: Vec::new(),
+                    warnings: Vec::new(),
                     made: Process::Milled,
                     line: r.helices.first().map_or(1, |h| h.line),
                     in_file: None,
@@ -224,6 +231,7 @@ impl BatchProgram {
                 },
                 Milled::NotChecked { line, reason } => BatchOperation {
                     unverified: Vec::new(),
+                    warnings: Vec::new(),
                     made: Process::Milled,
                     line: *line,
                     in_file: None,
@@ -239,6 +247,28 @@ impl BatchProgram {
                 },
             }
         }));
+        // What the control will refuse or runs badly, with the operation it concerns (the
+        // same process at the same line; else the program's first).
+        for f in &pv.control {
+            let at = operations
+                .iter()
+                .position(|o| {
+                    // A milled thread is one operation: its findings are its own at any line.
+                    o.made == f.made
+                        && (f.made == Process::Milled || (o.line == f.line && o.in_file == f.file))
+                })
+                .unwrap_or(0);
+            let Some(o) = operations.get_mut(at) else { continue };
+            let finding =
+                Finding { rule: f.rule.to_string(), message: crate::report::verify::control_sentence(f) };
+            if f.level == crate::gcode::Level::Error {
+                o.verdict = Verdict::Fail;
+                o.failed.push(format!("before the machine: {}", f.rule));
+                o.findings.push(finding);
+            } else {
+                o.warnings.push(finding);
+            }
+        }
         BatchProgram {
             file: file.to_string(),
             dialect: Some(pv.dialect),
@@ -356,6 +386,9 @@ pub fn artifact_uri(file: &str) -> String {
 
 /// What a rule checks, for the SARIF rule's short description.
 fn rule_words(rule: &str) -> String {
+    if let Some(r) = crate::gcode::ControlRule::ALL.iter().find(|r| r.id() == rule) {
+        return r.what().to_string();
+    }
     let (made, check) = rule.split_once('.').unwrap_or(("", rule));
     let made = match made {
         "turned" => "turned thread",
@@ -415,8 +448,13 @@ pub fn sarif_log(programs: &[BatchProgram], version: &str, exit_code: i32) -> Re
                 o.made.name(),
                 if o.designation.is_empty() { "thread" } else { &o.designation }
             );
-            let levels = o.findings.iter().map(|f| (f, sarif::ResultLevel::Error));
-            for (f, level) in levels.chain(o.unverified.iter().map(|f| (f, sarif::ResultLevel::Note))) {
+            let levels = o
+                .findings
+                .iter()
+                .map(|f| (f, sarif::ResultLevel::Error))
+                .chain(o.warnings.iter().map(|f| (f, sarif::ResultLevel::Warning)))
+                .chain(o.unverified.iter().map(|f| (f, sarif::ResultLevel::Note)));
+            for (f, level) in levels {
                 let i = rule_index(&f.rule);
                 results.push(
                     sarif::Result::builder()

@@ -16,6 +16,8 @@ use std::fmt::Write as _;
 pub enum Severity {
     /// An operation that fails, or a program that cannot be read.
     Error,
+    /// What the control runs while the thread suffers (a control finding's warning).
+    Warning,
     /// An operation that passes.
     Information,
 }
@@ -105,6 +107,15 @@ impl EditorView {
                     }
                 }
             })
+            .chain(batch.operations.iter().flat_map(|o| {
+                o.warnings.iter().map(move |w| EditorDiagnostic {
+                    line: o.line,
+                    column: o.column,
+                    severity: Severity::Warning,
+                    code: w.rule.clone(),
+                    message: format!("threadcheck: {}", w.message),
+                })
+            }))
             .collect();
         EditorView { diagnostics, hovers: hovers(pv), fixes }
     }

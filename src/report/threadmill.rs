@@ -140,7 +140,24 @@ pub fn text(r: &ThreadMillReport) -> String {
             c.deviation
         );
     }
-    let failed: Vec<&str> = r.checks.iter().filter(|k| !k.ok).map(|k| k.feature.words(r.kind)).collect();
+    let mut failed: Vec<&str> = r.checks.iter().filter(|k| !k.ok).map(|k| k.feature.words(r.kind)).collect();
+    for g in &r.after_finish.gouges {
+        let _ = writeln!(
+            s,
+            "  ✗ after the last helix: line {} ({}) cuts the finished thread, its teeth {:.3} mm past the crest",
+            g.line, g.code, g.depth
+        );
+    }
+    if !r.after_finish.gouges.is_empty() {
+        failed.push("a move after the last helix cuts the thread");
+    }
+    if let (Some(first), n) = (r.after_finish.compensated.first(), r.after_finish.compensated.len()) {
+        let _ = writeln!(
+            s,
+            "  note: {n} move{} after the last helix from line {first} run under cutter compensation: not judged (the centre is not the programmed path)",
+            if n == 1 { "" } else { "s" }
+        );
+    }
     let _ = writeln!(
         s,
         "verdict: {}",
@@ -174,6 +191,9 @@ pub struct ThreadMillJson<'a> {
     pub helices: &'a [Helix],
     /// The feed at the cutter's edge of each helix with a known feed.
     pub feeds: &'a [crate::analysis::threadmill::HelixFeed],
+    /// What the moves after the last helix do to the finished thread: the gouges and the moves
+    /// under compensation not judged (issue 63).
+    pub after_finish: &'a crate::analysis::gouge::AfterFinish,
     /// An internal thread's percent of thread from its bore.
     pub thread_percent: Option<crate::analysis::percent::ThreadPercent>,
     /// The bore or blank, mm.
@@ -209,6 +229,7 @@ impl<'a> ThreadMillJson<'a> {
             cutter_ratio: r.cutter_ratio,
             helices: &r.helices,
             feeds: &r.feeds,
+            after_finish: &r.after_finish,
             thread_percent: r.thread_percent,
             blank_diameter: r.blank_diameter,
             measured: MeasuredReport::of(&r.measured, None),
@@ -393,7 +414,10 @@ pub(crate) fn threadmill_document(r: &crate::analysis::threadmill::ThreadMillRep
         .add(text(20.0, sy + 0.5 * sh + 8.0, 11.0, "which the tooth alone"))
         .add(text(20.0, sy + 0.5 * sh + 22.0, 11.0, "shapes; the flanks widen"));
     let h = sy + sh + 50.0;
-    let failed: Vec<&str> = r.checks.iter().filter(|k| !k.ok).map(|k| k.feature.words(r.kind)).collect();
+    let mut failed: Vec<&str> = r.checks.iter().filter(|k| !k.ok).map(|k| k.feature.words(r.kind)).collect();
+    if !r.after_finish.gouges.is_empty() {
+        failed.push("a move after the last helix cuts the thread");
+    }
     let verdict =
         if r.pass { "IN TOLERANCE".to_string() } else { format!("OUT OF TOLERANCE: {}", failed.join(", ")) };
     let d2n = if internal { "D2" } else { "d2" };

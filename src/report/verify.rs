@@ -709,6 +709,9 @@ pub struct ProgramReport<'a> {
     pub notes: &'a [crate::ground::note::Note],
     /// The machine the program was read for, and why.
     pub machine: &'a crate::gcode::MachineReading,
+    /// What the control will refuse and what the post got wrong, each at its line (an error
+    /// fails the program).
+    pub control: &'a [crate::analysis::control::ControlFinding],
 }
 
 impl<'a> ProgramReport<'a> {
@@ -776,8 +779,48 @@ impl<'a> ProgramReport<'a> {
             read_past_blocks: pv.read_past_blocks,
             notes: &pv.notes,
             machine: &pv.machine,
+            control: &pv.control,
         }
     }
+}
+
+/// A control finding as one sentence: `line 5 (G33.1): the tap moves X from 0 to 5 …;
+/// LinuxCNC: "Bug code not g0 or g1"` (its file when not the program's own).
+pub fn control_sentence(f: &crate::analysis::control::ControlFinding) -> String {
+    let place = match &f.file {
+        Some(file) => format!("line {} of {file}", f.line),
+        None => format!("line {}", f.line),
+    };
+    let alarm = f.alarm.map_or(String::new(), |a| match a.number {
+        Some(n) => format!("; {} alarm {n}: \"{}\"", a.control, a.text),
+        None => format!("; {} refuses it: \"{}\"", a.control, a.text),
+    });
+    format!("{place} ({}): {}{alarm}", f.code, f.message)
+}
+
+/// The text of a program's control findings: a heading, then a line each (`✗` an error, `!`
+/// a warning) with its rule and what it assumed; empty when there are none.
+fn control_text(findings: &[crate::analysis::control::ControlFinding]) -> String {
+    if findings.is_empty() {
+        return String::new();
+    }
+    let errors = findings.iter().filter(|f| f.level == crate::gcode::Level::Error).count();
+    let warnings = findings.len() - errors;
+    let mut s = format!(
+        "== before the machine: {}, {}\n\n",
+        plural(errors, "error", "errors"),
+        plural(warnings, "warning", "warnings")
+    );
+    for f in findings {
+        let mark = if f.level == crate::gcode::Level::Error { "✗" } else { "!" };
+        let _ = writeln!(s, "  {mark} {}", control_sentence(f));
+        let _ = writeln!(s, "    rule {}", f.rule);
+        if let Some(a) = &f.assumed {
+            let _ = writeln!(s, "    assumed: {a}");
+        }
+    }
+    s.push('\n');
+    s
 }
 
 /// How many blocks were read past, for a header line: empty when none.
@@ -857,12 +900,14 @@ pub fn program_text(pv: &crate::analysis::program::ProgramVerification) -> Strin
         }
         None => {}
     }
+    s.push_str(&control_text(&pv.control));
     for note in &pv.notes {
         let _ = writeln!(s, "note: {note}");
     }
     let tapped = pv.tapped.as_ref().map_or(0, |t| t.holes.len());
     let milled = usize::from(pv.milled.is_some());
-    if n + tapped + milled > 1 {
+    let refused = pv.control.iter().filter(|f| f.level == crate::gcode::Level::Error).count();
+    if n + tapped + milled > 1 || refused > 0 {
         let mut failed: Vec<String> = pv
             .operations
             .iter()
@@ -877,6 +922,9 @@ pub fn program_text(pv: &crate::analysis::program::ProgramVerification) -> Strin
         }));
         if pv.milled.as_ref().is_some_and(|m| !m.pass()) {
             failed.push("the milled thread".to_string());
+        }
+        if refused > 0 {
+            failed.push(format!("before the machine: {}", plural(refused, "error", "errors")));
         }
         let all = process_counts(n, tapped, milled);
         if failed.is_empty() && tapped + milled == 0 {
@@ -903,9 +951,13 @@ pub(crate) fn program_counts(pv: &crate::analysis::program::ProgramVerification)
     }
 }
 
+/// `1 error`, `2 errors`.
+fn plural(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
 /// `2 turned operations, 4 tapped holes, 1 milled thread`: the counts that are not zero.
 pub(crate) fn process_counts(turned: usize, tapped: usize, milled: usize) -> String {
-    let plural = |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     let mut parts = Vec::new();
     if turned > 0 || (tapped == 0 && milled == 0) {
         parts.push(plural(turned, "turned operation", "turned operations"));
@@ -1349,11 +1401,26 @@ pub fn verify_svg(v: &Verification) -> String {
 
 pub(crate) const WIDTH: f64 = 1100.0;
 
+/// The amber of a warning.
+const WARN: &str = "#a15c00";
+
+/// The program's verdict in words: `IN TOLERANCE`, `OUT OF TOLERANCE`, or `WILL NOT RUN AS
+/// WRITTEN` when every thread is in tolerance but the control refuses a block (or the tool
+/// breaks).
+fn program_verdict_words(pv: &crate::analysis::program::ProgramVerification) -> &'static str {
+    match (pv.threads_pass(), pv.refused()) {
+        (true, false) => "IN TOLERANCE",
+        (true, true) => "WILL NOT RUN AS WRITTEN",
+        (false, _) => "OUT OF TOLERANCE",
+    }
+}
+
 /// The SVG of every operation of a program, one section each, stacked.
 pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String {
     use crate::analysis::program::Milled;
-    // A program that makes one kind of thread other than turned: that kind's own picture.
-    if pv.operations.is_empty() {
+    // A program that makes one kind of thread other than turned: that kind's own picture
+    // (unless the control's findings need the program's heading).
+    if pv.operations.is_empty() && pv.control.is_empty() {
         match (&pv.tapped, &pv.milled) {
             (Some(t), None | Some(Milled::NotChecked { .. })) => return crate::report::tapping::tap_svg(t),
             (None, Some(Milled::Checked(r))) => return crate::report::threadmill::threadmill_svg(r),
@@ -1374,7 +1441,7 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
                     &format!(
                         "{} — {}: {}",
                         label_name(&pv.program),
-                        if pass { "IN TOLERANCE" } else { "OUT OF TOLERANCE" },
+                        program_verdict_words(pv),
                         program_counts(pv)
                     ),
                     90,
@@ -1447,6 +1514,21 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
             head = head.add(text(20.0, y, 13.0, l).set("fill", if *pass { "#1d7a36" } else { FAIL }));
             y += 17.0;
         }
+    }
+    // What the control will refuse and what the post got wrong, a line each (an error in the
+    // failing colour, a warning in amber), by the operation's line they name.
+    if !pv.control.is_empty() {
+        let mut g = Group::new().set("id", "control");
+        for f in &pv.control {
+            let error = f.level == crate::gcode::Level::Error;
+            let line =
+                format!("{} before the machine, {}", if error { "✗" } else { "!" }, control_sentence(f));
+            for l in wrap(&line, 125).into_iter().take(3) {
+                g = g.add(text(20.0, y, 13.0, l).set("fill", if error { FAIL } else { WARN }));
+                y += 17.0;
+            }
+        }
+        head = head.add(g);
     }
     y += 12.0;
     let mut doc = Document::new()

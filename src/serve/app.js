@@ -236,6 +236,22 @@ function operationBlock(op, title, programLines) {
   return div;
 }
 
+// A list of control findings: `✗ line 5 (G33.1): … — LinuxCNC refuses it: "…"`, an error
+// marked ✗, a warning !, with what it assumed.
+function controlList(findings) {
+  const ul = document.createElement("ul");
+  ul.className = "control";
+  for (const f of findings) {
+    const li = document.createElement("li");
+    li.className = f.level;
+    const alarm = f.alarm ? (f.alarm.number ? ` — ${f.alarm.control} alarm ${f.alarm.number}: "${f.alarm.text}"` : ` — ${f.alarm.control} refuses it: "${f.alarm.text}"`) : "";
+    const assumed = f.assumed ? ` (assumed: ${f.assumed})` : "";
+    li.textContent = `${f.level === "error" ? "✗" : "!"} Before the machine, line ${f.line} (${f.code}): ${f.message}${alarm}${assumed} [${f.rule}]`;
+    ul.appendChild(li);
+  }
+  return ul;
+}
+
 $("verify-form").addEventListener("submit", async (ev) => {
   ev.preventDefault();
   clearResult("verify");
@@ -255,11 +271,18 @@ $("verify-form").addEventListener("submit", async (ev) => {
     // Checks that rest on a tool nobody chose: said beside the verdict, never failed.
     const unverified = (report.operations || [report]).some((o) => (o.unverified || []).length);
     const form = unverified ? " — form unverified: tool not known (choose the insert or a tool table)" : "";
+    // What the control refuses or a post got wrong (issue 63): errors fail the program.
+    const control = report.control || [];
+    const refused = control.filter((f) => f.level === "error").length;
+    const opsPass = (report.operations || [report]).every((o) => o.verdict === "pass");
+    const before = refused ? ` — ${refused} error${refused === 1 ? "" : "s"} before the machine (the control refuses it, or the tool breaks)` : "";
     $("verdict").textContent = pass
       ? (unverified ? "IN TOLERANCE" + form : "IN TOLERANCE: every check passes")
-      : formOnly
-        ? "OUT OF TOLERANCE — form only: the insert's tip (a full-profile insert cuts the standard root; 'gauge only' judges the sizes)"
-        : "OUT OF TOLERANCE" + form;
+      : refused && opsPass
+        ? "WILL NOT RUN AS WRITTEN" + before
+        : formOnly
+          ? "OUT OF TOLERANCE — form only: the insert's tip (a full-profile insert cuts the standard root; 'gauge only' judges the sizes)" + before
+          : "OUT OF TOLERANCE" + form + before;
     $("verdict").className = "verdict " + (pass ? "ok" : "out");
     const nexts = (report.operations || [report])
       .filter((o) => o.correction)
@@ -269,30 +292,43 @@ $("verify-form").addEventListener("submit", async (ev) => {
     const ops = $("operations");
     ops.replaceChildren();
     const lines = args.program ? args.program.split(/\r?\n/) : null;
+    // Each control finding under the operation it concerns (the same process at the same line).
+    const shown = new Set();
+    const findingsOf = (made, line) => {
+      // A milled thread is one operation: its findings are its own at any line.
+      const mine = control.filter((f, i) => !shown.has(i) && f.made === made && (made === "milled" || f.line === line) && shown.add(i));
+      return mine.length ? controlList(mine) : null;
+    };
     if (report.operations) {
       for (const op of report.operations) {
+        const line = op.made === "tapped" ? op.cycle.line : op.made === "milled" ? (op.helices ? op.helices[0].line : op.line) : op.operation.source_line;
+        const list = findingsOf(op.made || "turned", line);
+        // The operation's block with its findings at its end.
+        const add = (block) => { if (list) block.appendChild(list); ops.appendChild(block); };
         // A tapped hole and a milled thread (issue 46) carry their own keys, not `operation`.
         if (op.made === "tapped") {
           const t = op.tap;
           const from = t.designation_from === "comment" ? ` (named by the comment at line ${t.designation_line})` : t.designation_from === "inferred" ? " (inferred from its lead and drill)" : "";
           // A machining centre's hole's place: the holes of one pattern cycle share its line.
           const at = op.cycle.x !== null && op.cycle.y !== null ? ` (X${+op.cycle.x.toFixed(3)} Y${+op.cycle.y.toFixed(3)})` : "";
-          ops.appendChild(operationBlock(op, `Tapped: ${op.cycle.code} at line ${op.cycle.line}${at}, tap ${t.designation}${from}`, null));
+          add(operationBlock(op, `Tapped: ${op.cycle.code} at line ${op.cycle.line}${at}, tap ${t.designation}${from}`, null));
           continue;
         }
         if (op.made === "milled") {
-          ops.appendChild(operationBlock(op, op.designation ? `Milled: ${op.designation}, ${op.helices.length} helices from line ${op.helices[0].line}` : `Milled: helices from line ${op.line}`, null));
+          add(operationBlock(op, op.designation ? `Milled: ${op.designation}, ${op.helices.length} helices from line ${op.helices[0].line}` : `Milled: helices from line ${op.line}`, null));
           continue;
         }
         const o = op.operation;
         // The thread it was checked against, and where it came from when the program named it.
         const from = { comment: `named by the comment at line ${op.designation_line}`, inferred: "inferred from the lead and diameter it cuts", tool: "from the tool table", given: "" }[op.designation_from] || "";
         const thread = `${op.thread.designation}${from ? ` (${from})` : ""}`;
-        ops.appendChild(operationBlock(op, `Operation ${o.index}: ${o.cycle} at line ${o.source_line}, ${thread}`, lines));
+        add(operationBlock(op, `Operation ${o.index}: ${o.cycle} at line ${o.source_line}, ${thread}`, lines));
       }
     } else {
       ops.appendChild(operationBlock(report, `${report.thread.designation}: a generated plan`, null));
     }
+    const rest = control.filter((f, i) => !shown.has(i));
+    if (rest.length) ops.appendChild(controlList(rest));
     const notes = report.notes || [];
     if (notes.length) {
       const ul = document.createElement("ul");

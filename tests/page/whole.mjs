@@ -1,7 +1,8 @@
 // Issue 46: the page's Verify with a program that turns a thread and taps a hole, each named by
 // its comment, the thread field left empty: one block per operation, the tapped hole's heading
 // naming its tap and where it came from. Usage: node whole.mjs URL OUT CHROMIUM PROGRAM [DIALECT]
-// (DIALECT chosen in the Verify tab's dialect list; the shot is named after the program).
+// (DIALECT chosen in the Verify tab's dialect list; the shot is named after the program). It
+// also reads the control's findings each operation lists and the picture's (issue 63).
 import { chromium } from "playwright-core";
 import { readFileSync } from "node:fs";
 import { join } from "node:path";
@@ -27,6 +28,20 @@ try {
   seen.headings = await page.$$eval(".operation h2", (hs) => hs.map((h) => h.textContent));
   seen.verdicts = await page.$$eval(".operation .verdict-small", (ps) => ps.map((p) => p.textContent));
   seen.tap_checks = await page.$$eval(".operation:nth-of-type(2) table.checks tbody tr", (rows) => rows.map((r) => r.cells[0].textContent));
+  // Issue 63: what the control will refuse, under the operation it concerns and in the picture.
+  seen.control = await page.$$eval(".operation .control li", (ls) => ls.map((l) => ({ level: l.className, text: l.textContent })));
+  // The picture is an <img> of the SVG the API gives: read that SVG as the page loaded it.
+  await page.waitForFunction(() => document.querySelector("#picture").complete && document.querySelector("#picture").src);
+  const svg = await page.evaluate(async () => (await fetch(document.querySelector("#picture").src)).text());
+  const doc = await page.evaluate((text) => {
+    const d = new DOMParser().parseFromString(text, "image/svg+xml");
+    return {
+      control: [...d.querySelectorAll("#control text")].map((t) => t.textContent.trim()),
+      verdict: d.querySelector("#program-verdict text")?.textContent.trim() ?? null,
+    };
+  }, svg);
+  seen.picture_control = doc.control;
+  seen.picture_verdict = doc.verdict;
   seen.shot = join(out, "whole.png");
   await page.screenshot({ path: seen.shot, fullPage: true });
 } finally {

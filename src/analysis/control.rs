@@ -1,0 +1,329 @@
+//! Before the machine (issue 63): what the control will refuse and what a post got wrong, each
+//! at its line, with the control's own message where it publishes one
+//! ([`crate::gcode::alarm`]). The reader's events (cutter compensation at a threading move, a
+//! tap dragged sideways) join what the operations show: the spindle stopped or at S0 at a
+//! threading operation or a tap, a tap's zero feed, a tap's feed written in the other feed
+//! mode's convention, and a threading pass that starts too close to the part for the Z axis to
+//! reach the synchronised feed (Fanuc's run-in formula, its servo time constant a named
+//! default unless the machine file gives it).
+//!
+//! An error fails the program (the control refuses the block, or the cut breaks the tool); a
+//! warning is said and leaves the verdict to the checks.
+
+use crate::analysis::made::Process;
+use crate::analysis::tapping::{TapFeature, TapReport};
+use crate::gcode::{Alarm, ControlRule, Dialect, HoleKind, Level, Operation, Program, SpindleDir};
+use serde::Serialize;
+
+/// The Z axis's servo time constant assumed where the machine file gives none, seconds: the
+/// value Fanuc's lathe manuals use in their run-in formula's example (a named default).
+pub const ASSUMED_SERVO_TIME_CONSTANT_S: f64 = 0.033;
+
+/// The lead error allowed in the first thread, as a fraction (Fanuc's formula's `a`; a named
+/// default).
+pub const ALLOWED_LEAD_ERROR: f64 = 0.01;
+
+/// One finding: a rule at a place.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ControlFinding {
+    /// The rule's id (`control.spindle_stopped`).
+    pub rule: &'static str,
+    /// Error or warning.
+    pub level: Level,
+    /// The operation it concerns: a turned thread, a tapped hole or a milled one.
+    pub made: Process,
+    /// The block's code (`G76`, `G84`, `G33.1`).
+    pub code: String,
+    /// Its line.
+    pub line: usize,
+    /// Its column.
+    pub column: usize,
+    /// The subprogram file the line is in, when not the program's own.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+    /// The control's own message, where it publishes one.
+    pub alarm: Option<Alarm>,
+    /// What is wrong, with the values.
+    pub message: String,
+    /// What the check assumed (a machine's figure the machine file did not give).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub assumed: Option<String>,
+}
+
+impl ControlFinding {
+    fn new(
+        dialect: Dialect,
+        rule: ControlRule,
+        made: Process,
+        code: &str,
+        at: (usize, usize),
+        message: String,
+    ) -> Self {
+        ControlFinding {
+            rule: rule.id(),
+            level: rule.level(),
+            made,
+            code: code.to_string(),
+            line: at.0,
+            column: at.1,
+            file: None,
+            alarm: crate::gcode::alarm(dialect, rule, code),
+            message,
+            assumed: None,
+        }
+    }
+}
+
+/// Whether any finding is an error (the program then fails).
+pub fn any_error(findings: &[ControlFinding]) -> bool {
+    findings.iter().any(|f| f.level == Level::Error)
+}
+
+/// The findings of a program read in `dialect`: the reader's events, then each threading
+/// operation's, then each tapping cycle's (with its tap's lead where the tapping check found
+/// it), in program order within each. `servo_time_constant` is the machine file's (seconds).
+pub fn before_machine(
+    prog: &Program,
+    dialect: Dialect,
+    tapped: Option<&TapReport>,
+    servo_time_constant: Option<f64>,
+) -> Vec<ControlFinding> {
+    let mut out: Vec<ControlFinding> = prog
+        .control
+        .iter()
+        .map(|e| {
+            let tap = matches!(e.code.as_str(), "G33.1" | "G84" | "G74");
+            let made = if tap { Process::Tapped } else { Process::Turned };
+            let mut f =
+                ControlFinding::new(dialect, e.rule, made, &e.code, (e.line, e.column), e.detail.clone());
+            f.file.clone_from(&e.file);
+            f
+        })
+        .collect();
+    for op in &prog.operations {
+        out.extend(turned(op, dialect, servo_time_constant));
+    }
+    for h in prog.holes.iter().filter(|h| h.kind == HoleKind::Tap) {
+        let at = (h.line, h.column);
+        let mut found = Vec::new();
+        // A Haas control turns the spindle itself for its tapping cycles (the tapping check
+        // says so); a rigid tap's spindle is the cycle's.
+        let starts_itself = dialect == Dialect::Haas || h.rigid;
+        if h.spindle_dir == Some(SpindleDir::Stopped) && !starts_itself {
+            found.push(ControlFinding::new(
+                dialect,
+                ControlRule::SpindleStopped,
+                Process::Tapped,
+                &h.code,
+                at,
+                format!(
+                    "{} with the spindle stopped (M5): the tap is pushed into the hole without turning",
+                    h.code
+                ),
+            ));
+        }
+        if h.spindle == Some(0.0) {
+            found.push(ControlFinding::new(
+                dialect,
+                ControlRule::SpindleSpeedZero,
+                Process::Tapped,
+                &h.code,
+                at,
+                format!("{} at S0: the spindle does not turn", h.code),
+            ));
+        }
+        if h.feed == Some(0.0) {
+            found.push(ControlFinding::new(
+                dialect,
+                ControlRule::FeedZero,
+                Process::Tapped,
+                &h.code,
+                at,
+                format!("{} with {}0: the tap is given no feed", h.code, h.feed_word),
+            ));
+        }
+        for f in &mut found {
+            f.file.clone_from(&h.source_file);
+        }
+        out.extend(found);
+    }
+    if let Some(t) = tapped {
+        out.extend(t.holes.iter().filter_map(|th| feed_convention(dialect, th)));
+    }
+    out
+}
+
+/// The findings of a thread-milled thread: each move after its last helix that cuts the
+/// finished thread, with how deep, and the moves under compensation that were not judged said
+/// once.
+pub fn milled(r: &crate::analysis::threadmill::ThreadMillReport, dialect: Dialect) -> Vec<ControlFinding> {
+    r.after_finish
+        .gouges
+        .iter()
+        .map(|g| {
+            let what = match (g.rapid, g.along_z) {
+                (true, true) => "a rapid along Z",
+                (false, true) => "a feed along Z",
+                (true, false) => "a rapid in the plane",
+                (false, false) => "a move in the plane",
+            };
+            ControlFinding::new(
+                dialect,
+                ControlRule::MillGouge,
+                Process::Milled,
+                g.code,
+                (g.line, 1),
+                format!(
+                    "{what} after the last helix (line {}) with the cutter's teeth {:.3} mm past the finished thread's crest: it cuts the thread just made; leave the groove toward the hole's axis (away from an external thread's) before moving along Z",
+                    r.helices.last().map_or(0, |h| h.line),
+                    g.depth
+                ),
+            )
+        })
+        .collect()
+}
+
+/// A tap's feed in the other feed mode's convention: under a per-minute mode F is the lead,
+/// under a per-revolution mode F is S × lead (FreeCAD's posts, #5714 and #31599).
+fn feed_convention(dialect: Dialect, th: &crate::analysis::tapping::TappedHole) -> Option<ControlFinding> {
+    let h = &th.cycle;
+    let k = th.checks.iter().find(|k| k.feature == TapFeature::Feed && !k.ok)?;
+    let f = k.value?;
+    let lead = th.tap.lead;
+    let s = h.spindle.filter(|s| *s > 0.0)?;
+    let num = crate::ground::fmt::fmt_num;
+    let message = if !h.feed_per_rev && (f - lead).abs() <= 0.0005 {
+        format!(
+            "{} F{} is the lead, written as if the feed were per revolution; under the per-minute feed mode in force F must be S × lead = {} × {} = {} mm/min: the tap is fed {} times too slowly",
+            h.code,
+            num(f),
+            num(s),
+            num(lead),
+            num(s * lead),
+            num((s * lead / f).round())
+        )
+    } else if h.feed_per_rev && (f - s * lead).abs() <= 0.5 {
+        format!(
+            "{} F{} is S × lead, written as if the feed were per minute; under the per-revolution feed mode in force F must be the lead, {} mm: the tap is fed {} times too fast",
+            h.code,
+            num(f),
+            num(lead),
+            num((f / lead).round())
+        )
+    } else {
+        return None;
+    };
+    let mut c = ControlFinding::new(
+        dialect,
+        ControlRule::TapFeedConvention,
+        Process::Tapped,
+        &h.code,
+        (h.line, h.column),
+        message,
+    );
+    c.file.clone_from(&h.source_file);
+    Some(c)
+}
+
+/// A threading operation's findings: the spindle stopped or at S0, and a run-in shorter than
+/// the Z axis needs to reach the synchronised feed.
+fn turned(op: &Operation, dialect: Dialect, servo_time_constant: Option<f64>) -> Vec<ControlFinding> {
+    let at = (op.source_line, op.source_column);
+    let mut out = Vec::new();
+    let mut push = |rule: ControlRule, message: String, assumed: Option<String>| {
+        let mut f = ControlFinding::new(dialect, rule, Process::Turned, &op.cycle, at, message);
+        f.file.clone_from(&op.source_file);
+        f.assumed = assumed;
+        out.push(f);
+    };
+    if op.spindle.dir == Some(SpindleDir::Stopped) {
+        push(
+            ControlRule::SpindleStopped,
+            format!(
+                "{} with the spindle stopped (M5): the threading feed waits for the spindle's one-revolution signal, which never comes",
+                op.cycle
+            ),
+            None,
+        );
+    }
+    if op.spindle.s == Some(0.0) && !op.spindle.constant_surface_speed {
+        push(ControlRule::SpindleSpeedZero, format!("{} at S0: the spindle does not turn", op.cycle), None);
+    }
+    if let Some(RunIn { start, end, run_in, need, rpm }) = run_in(op, servo_time_constant) {
+        let t1 = servo_time_constant.unwrap_or(ASSUMED_SERVO_TIME_CONSTANT_S);
+        let num = crate::ground::fmt::fmt_num;
+        push(
+            ControlRule::RunInShort,
+            format!(
+                "the first pass starts at Z{start:.3}, {:.2} mm before the part's end at Z{end:.3}; at S{} × lead {} the Z axis needs {:.2} mm to reach the threading feed within {} % of the lead (Fanuc's run-in δ1 = t1·V·(−1 − ln a)): the first threads' lead is short; start the passes {:.2} mm or more before the part",
+                run_in,
+                num(rpm),
+                num(op.lead()),
+                need,
+                num(ALLOWED_LEAD_ERROR * 100.0),
+                need
+            ),
+            servo_time_constant.is_none().then(|| {
+                format!(
+                    "servo time constant t1 = {} s (a named default; the machine file's servo_time_constant_s gives the machine's)",
+                    num(t1)
+                )
+            }),
+        );
+    }
+    out
+}
+
+/// A run-in too short: the first pass's start and the part's end (Z, mm), the run-in and what
+/// the axis needs (mm), at the spindle speed (rpm).
+struct RunIn {
+    start: f64,
+    end: f64,
+    run_in: f64,
+    need: f64,
+    rpm: f64,
+}
+
+/// The run-in of an operation's first pass against what the Z axis needs, where the program
+/// faced or chamfered the part's end before the thread (the contour's X move nearest the
+/// passes' start, over the stretch the thread is cut in) and the spindle speed is known;
+/// `None` when long enough or not known.
+fn run_in(op: &Operation, servo_time_constant: Option<f64>) -> Option<RunIn> {
+    let rpm = op.spindle.s.filter(|s| *s > 0.0 && !op.spindle.constant_surface_speed)?;
+    let first = op.passes.first()?;
+    let dir = first.feed_direction();
+    let lead = first.lead;
+    let (lo_x, hi_x) = op.passes.iter().fold((f64::INFINITY, 0.0_f64), |(lo, hi), p| {
+        (lo.min(p.x_end.abs()).min(p.x_start.abs()), hi.max(p.x_end.abs()).max(p.x_start.abs()))
+    });
+    let external = op.passes.last().is_some_and(|l| l.x_end.abs() <= first.x_end.abs());
+    let (z0, z1) = (first.z_start.min(first.z_end), first.z_start.max(first.z_end));
+    // The part's end: a facing or chamfering feed move (one that changes X; a move along Z,
+    // or a profile's rapid approach, starts in the air as often as not) across the stretch between the root and two pitches beyond
+    // the crest, within the thread's Z range.
+    let ends = op
+        .contour
+        .iter()
+        .filter(|t| !t.rapid && (t.to[0] - t.from[0]).abs() > 1e-6)
+        .filter(|t| {
+            let (a, b) = (t.from[0].abs(), t.to[0].abs());
+            if external {
+                a.max(b) > lo_x + 1e-6 && a.min(b) <= hi_x + 2.0 * lead
+            } else {
+                a.min(b) < hi_x - 1e-6 && a.max(b) >= lo_x - 2.0 * lead
+            }
+        })
+        .flat_map(|t| [t.from[1], t.to[1]])
+        .filter(|z| (z0 - 1e-9..=z1 + 1e-9).contains(z));
+    // The part's end the passes enter: the contour's Z nearest the passes' start.
+    let end =
+        if dir < 0.0 { ends.fold(f64::NEG_INFINITY, f64::max) } else { ends.fold(f64::INFINITY, f64::min) };
+    if !end.is_finite() {
+        return None;
+    }
+    let run_in = (first.z_start - end) * -dir;
+    let t1 = servo_time_constant.unwrap_or(ASSUMED_SERVO_TIME_CONSTANT_S);
+    let v = rpm * lead / 60.0;
+    let need = t1 * v * (-1.0 - ALLOWED_LEAD_ERROR.ln());
+    (run_in > 1e-6 && run_in + 1e-9 < need).then_some(RunIn { start: first.z_start, end, run_in, need, rpm })
+}
