@@ -999,26 +999,29 @@ fn program_svg_draws_every_process() {
     }
 }
 
+/// `whole.mjs` on the page for `program` (its dialect chosen when given): what it saw.
+fn page_whole(tag: &str, program: &std::path::Path, dialect: Option<&str>) -> serde_json::Value {
+    let script = playwright().with_file_name("whole.mjs");
+    let chromium = chromium();
+    let server = crate::serve::start(&[]);
+    let out = tempdir(tag);
+    let mut node = std::process::Command::new("node");
+    node.arg(&script).arg(&server.url).arg(&*out).arg(&chromium).arg(program);
+    if let Some(d) = dialect {
+        node.arg(d);
+    }
+    let o = node.output().unwrap();
+    assert!(o.status.success(), "the page script failed: {}", String::from_utf8_lossy(&o.stderr));
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
 /// Issue 46 on the page, in Chromium: a pasted program that turns M24x2 and taps M8, the thread
 /// field left empty: each operation's block names its thread and the comment it came from, the
 /// tapped hole its four checks, with no console message (the field was `required`, so the page
 /// refused to send a program without a thread before this test).
 #[test]
 fn the_page_verifies_every_thread_a_pasted_program_names() {
-    let script = playwright().with_file_name("whole.mjs");
-    let chromium = chromium();
-    let server = crate::serve::start(&[]);
-    let out = tempdir("page-whole");
-    let o = std::process::Command::new("node")
-        .arg(&script)
-        .arg(&server.url)
-        .arg(&out)
-        .arg(&chromium)
-        .arg(data("whole/shaft.nc"))
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "the page script failed: {}", String::from_utf8_lossy(&o.stderr));
-    let seen: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let seen = page_whole("page-whole", &data("whole/shaft.nc"), None);
     assert_eq!(seen["console"], serde_json::json!([]));
     assert_eq!(seen["verdict"], "IN TOLERANCE: every check passes");
     assert_eq!(
@@ -1038,21 +1041,7 @@ fn the_page_verifies_every_thread_a_pasted_program_names() {
 /// same and lists it.
 #[test]
 fn the_page_says_what_the_control_will_refuse() {
-    let script = playwright().with_file_name("whole.mjs");
-    let chromium = chromium();
-    let server = crate::serve::start(&[]);
-    let out = tempdir("page-control");
-    let o = std::process::Command::new("node")
-        .arg(&script)
-        .arg(&server.url)
-        .arg(&out)
-        .arg(&chromium)
-        .arg(data("programs/control/sideways-tap.ngc"))
-        .arg("linuxcnc")
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "the page script failed: {}", String::from_utf8_lossy(&o.stderr));
-    let seen: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let seen = page_whole("page-control", &data("programs/control/sideways-tap.ngc"), Some("linuxcnc"));
     assert_eq!(seen["console"], serde_json::json!([]));
     assert!(
         seen["verdict"].as_str().unwrap().starts_with("WILL NOT RUN AS WRITTEN — 1 error before the machine"),
@@ -1083,21 +1072,7 @@ fn the_page_says_what_the_control_will_refuse() {
 /// M12 ones left-hand, with no console message.
 #[test]
 fn the_page_reads_a_klartext_program() {
-    let script = playwright().with_file_name("whole.mjs");
-    let chromium = chromium();
-    let server = crate::serve::start(&[]);
-    let out = tempdir("page-klartext");
-    let o = std::process::Command::new("node")
-        .arg(&script)
-        .arg(&server.url)
-        .arg(&out)
-        .arg(&chromium)
-        .arg(data("klartext/plate.h"))
-        .arg("klartext")
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "the page script failed: {}", String::from_utf8_lossy(&o.stderr));
-    let seen: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let seen = page_whole("page-klartext", &data("klartext/plate.h"), Some("klartext"));
     assert_eq!(seen["console"], serde_json::json!([]));
     let offered: Vec<&str> = seen["dialects"].as_array().unwrap().iter().filter_map(|d| d.as_str()).collect();
     for d in threadcheck::Dialect::ALL {

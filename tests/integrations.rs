@@ -130,26 +130,79 @@ fn junit_has_a_case_per_operation() {
     assert_eq!(xml.matches("<testcase ").count(), 8);
 }
 
-/// `--format`, `--sarif`, `--junit` and `--json-lines` need programs given as PROGRAM|FOLDER
-/// (regression: `verify --program P --json-lines -` printed nothing and exited 0, clap's
-/// `requires` on the positional list not holding); two documents on standard output are refused.
+/// `--format`, `--sarif`, `--junit` and `--json-lines` describe a run of programs: one program
+/// file given with `--program` is a run of one (issue 65), the same documents as naming it
+/// (regression: `verify --program P --json-lines -` once printed nothing and exited 0); with
+/// `--fix`, one program's, they are refused; two documents on standard output are refused.
 #[test]
 fn sarif_and_junit_belong_to_a_run_of_programs() {
     let dir = library("sarif-refusals");
-    for flag in [["--format", "sarif"], ["--sarif", "-"], ["--junit", "x.xml"], ["--json-lines", "-"]] {
-        let o = run_in(&dir, &["verify", "--program", "lib/shaft.nc", flag[0], flag[1]]);
-        assert_eq!(o.status.code(), Some(2), "{flag:?}");
-        assert_eq!(
-            one_line_error(&o),
-            format!(
-                "threadcheck: error: {} describes a run of programs: name them as PROGRAM|FOLDER (without --program)",
-                flag[0]
-            )
-        );
+    for flag in [["--format", "sarif"], ["--sarif", "-"], ["--json-lines", "-"], ["--format", "junit"]] {
+        let one = run_in(&dir, &["verify", "--program", "lib/shaft.nc", flag[0], flag[1]]);
+        let named = run_in(&dir, &["verify", "lib/shaft.nc", flag[0], flag[1]]);
+        assert_eq!(one.status.code(), Some(1), "{flag:?}: {}", stderr(&one));
+        assert!(!one.stdout.is_empty(), "{flag:?}");
+        assert_eq!(stdout(&one), stdout(&named), "{flag:?}");
     }
+    let o = run_in(&dir, &["verify", "--program", "lib/shaft.nc", "--fix", "f.nc", "--format", "sarif"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        one_line_error(&o),
+        "threadcheck: error: --format describes a run of programs: name them as PROGRAM|FOLDER, or one program file with --program"
+    );
     let o = run_in(&dir, &["verify", "lib", "--format", "sarif", "--junit", "-"]);
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(one_line_error(&o).lines().count(), 1);
+}
+
+/// Code scanning (issue 65): each result's fingerprint names its file, the operation's process
+/// and thread and its rule, never its line, so an edit that moves every line keeps them; the
+/// rules carry a full description and help naming their guide.
+#[test]
+fn sarif_fingerprints_survive_an_edit_that_moves_lines() {
+    let dir = library("sarif-fingerprints");
+    let prints = |dir: &Path| -> Vec<(String, u64)> {
+        let o = run_in(dir, &["verify", "lib", "--format", "sarif"]);
+        let log: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+        log["runs"][0]["results"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| {
+                (
+                    r["partialFingerprints"]["threadcheck/v1"].as_str().unwrap().to_string(),
+                    r["locations"][0]["physicalLocation"]["region"]["startLine"].as_u64().unwrap(),
+                )
+            })
+            .collect()
+    };
+    let before = prints(&dir);
+    // Three comment lines on top of the shaft: its results move three lines down.
+    let shaft = dir.join("lib/shaft.nc");
+    let text = std::fs::read_to_string(&shaft).unwrap();
+    std::fs::write(&shaft, format!("(A)\n(B)\n(C)\n{text}")).unwrap();
+    let after = prints(&dir);
+    assert_eq!(before.len(), after.len());
+    for (b, a) in before.iter().zip(&after) {
+        assert_eq!(b.0, a.0);
+        let moved = if b.0.starts_with("lib/shaft.nc|") { 3 } else { 0 };
+        assert_eq!(a.1, b.1 + moved, "{}", b.0);
+    }
+    let keys: Vec<&str> = before.iter().map(|b| b.0.as_str()).collect();
+    assert!(keys.contains(&"lib/shaft.nc|turned|M24X2-6g|turned.pitch_diameter|1"), "{keys:?}");
+    assert!(keys.contains(&"lib/broken.nc|program.unreadable|1"), "{keys:?}");
+    let mut unique = keys.clone();
+    unique.sort_unstable();
+    unique.dedup();
+    assert_eq!(unique.len(), keys.len(), "every fingerprint its own");
+    let o = run_in(&dir, &["verify", "lib", "--format", "sarif"]);
+    let log: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    for rule in log["runs"][0]["tool"]["driver"]["rules"].as_array().unwrap() {
+        let help = rule["help"]["text"].as_str().unwrap();
+        let guide = help.trim_start_matches("See ").split(' ').next().unwrap();
+        assert!(Path::new(env!("CARGO_MANIFEST_DIR")).join(guide).is_file(), "{rule}");
+        assert!(rule["fullDescription"]["text"].as_str().unwrap().contains(rule["id"].as_str().unwrap()));
+    }
 }
 
 /// What LinuxCNC's AXIS does with a `[FILTER]` program (`src/emc/usr_intf/axis/scripts/axis.py`,

@@ -62,24 +62,24 @@ pub struct VerifyArgs {
     #[cfg_attr(feature = "cli", arg(value_name = "PROGRAM|FOLDER", conflicts_with_all = ["program", "final_x", "fix", "operation"]))]
     #[serde(skip)]
     pub programs: Vec<PathBuf>,
-    /// With PROGRAM|FOLDER: JSON Lines for scripts, one object per program (its verdict and each
+    /// With PROGRAM|FOLDER (or one --program): JSON Lines for scripts, one object per program (its verdict and each
     /// operation's), then `{"summary": …}`, to this file or `-` (standard output).
-    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE|-", requires = "programs"))]
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE|-"))]
     #[serde(skip)]
     pub json_lines: Option<String>,
-    /// With PROGRAM|FOLDER: SARIF 2.1.0 for code scanning (a result per failing check, at the
+    /// With PROGRAM|FOLDER (or one --program): SARIF 2.1.0 for code scanning (a result per failing check, at the
     /// operation's line and column; one per unreadable program), to this file or `-`.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE|-", requires = "programs"))]
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE|-"))]
     #[serde(skip)]
     pub sarif: Option<String>,
-    /// With PROGRAM|FOLDER: JUnit XML for a CI server's test view (a suite per program, a case
+    /// With PROGRAM|FOLDER (or one --program): JUnit XML for a CI server's test view (a suite per program, a case
     /// per operation), to this file or `-`.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE|-", requires = "programs"))]
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE|-"))]
     #[serde(skip)]
     pub junit: Option<String>,
-    /// With PROGRAM|FOLDER: what standard output shows instead of the lines: `sarif`, `junit` or
+    /// With PROGRAM|FOLDER (or one --program): what standard output shows instead of the lines: `sarif`, `junit` or
     /// `json-lines` (the same as `--sarif -`, `--junit -`, `--json-lines -`).
-    #[cfg_attr(feature = "cli", arg(long, value_name = "FORMAT", requires = "programs", value_parser = ["text", "sarif", "junit", "json-lines"]))]
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FORMAT", value_parser = ["text", "sarif", "junit", "json-lines"]))]
     #[serde(skip)]
     pub format: Option<String>,
 }
@@ -109,10 +109,25 @@ impl Job for VerifyArgs {
             (self.junit.is_some(), "junit"),
             (self.format.is_some(), "format"),
         ] {
-            if given {
-                return Err(Error::Input(format!(
-                    "‹{what}› describes a run of programs: name them as PROGRAM|FOLDER (without ‹program›)"
-                )));
+            if !given {
+                continue;
+            }
+            // One program file is a run of one (issue 65: `--program P --format sarif`); a
+            // program given as text (the API) is not a file a run's documents can name.
+            match &self.plan.program {
+                Some(Source::Path(p)) if self.fix.is_none() && self.plan.final_x.is_none() && self.operation.is_none() => {
+                    let one = VerifyArgs {
+                        programs: vec![p.clone()],
+                        plan: PlanArgs { program: None, ..self.plan.clone() },
+                        ..self.clone()
+                    };
+                    return one.run_many(request);
+                }
+                _ => {
+                    return Err(Error::Input(format!(
+                        "‹{what}› describes a run of programs: name them as PROGRAM|FOLDER, or one program file with ‹program›"
+                    )))
+                }
             }
         }
         if self.stock_bottom.is_some() && self.plan.program.is_none() {

@@ -399,7 +399,27 @@ fn rule_words(rule: &str) -> String {
     format!("{made}: {}", check.replace('_', " "))
 }
 
-/// The SARIF log of a run: `version` is threadcheck's.
+/// The guide that explains a rule, from the repository's root.
+fn rule_guide(rule: &str) -> &'static str {
+    match rule.split_once('.').map_or(rule, |(made, _)| made) {
+        "control" | "post" => "docs/guide/before-the-machine.md",
+        "turned" => "docs/guide/verify-a-lathe-program.md",
+        "tapped" | "milled" => "docs/guide/tap-and-thread-mill.md",
+        _ => "docs/guide/check-a-whole-program.md",
+    }
+}
+
+/// The most results a SARIF run holds: GitHub's code scanning keeps 25 000 a run.
+pub const SARIF_MAX_RESULTS: usize = 25_000;
+
+/// The key of a result's fingerprint (SARIF `partialFingerprints`).
+pub const FINGERPRINT_KEY: &str = "threadcheck/v1";
+
+/// The SARIF log of a run: `version` is threadcheck's. Each result carries a fingerprint that
+/// survives edits elsewhere in its file: its file, the operation's process and thread, its
+/// rule, and its rank among the results that share those (`lib/shaft.nc|turned|M24X2-6g|
+/// turned.pitch_diameter|1`); never its line. A run of more than [`SARIF_MAX_RESULTS`] results
+/// keeps the first ones and says so in the invocation's notifications.
 pub fn sarif_log(programs: &[BatchProgram], version: &str, exit_code: i32) -> Result<String, crate::Error> {
     let mut rules: Vec<String> = Vec::new();
     let mut results = Vec::new();
@@ -428,6 +448,13 @@ pub fn sarif_log(programs: &[BatchProgram], version: &str, exit_code: i32) -> Re
         };
         sarif::Location::builder().physical_location(physical).build()
     };
+    // Fingerprints: how many results have shared a key so far.
+    let mut seen: std::collections::HashMap<String, usize> = std::collections::HashMap::new();
+    let mut fingerprint = |key: String| -> std::collections::BTreeMap<String, String> {
+        let n = seen.entry(key.clone()).or_insert(0);
+        *n += 1;
+        std::iter::once((FINGERPRINT_KEY.to_string(), format!("{key}|{n}"))).collect()
+    };
     for p in programs {
         if let Some(e) = &p.error {
             let i = rule_index("program.unreadable");
@@ -436,6 +463,10 @@ pub fn sarif_log(programs: &[BatchProgram], version: &str, exit_code: i32) -> Re
                     .rule_id("program.unreadable")
                     .rule_index(i)
                     .level(sarif::ResultLevel::Error)
+                    .partial_fingerprints(fingerprint(format!(
+                        "{}|program.unreadable",
+                        artifact_uri(&p.file)
+                    )))
                     .message(sarif::Message::builder().text(e.clone()).build())
                     .locations(vec![location(&p.file, p.error_at)])
                     .build(),
@@ -456,11 +487,14 @@ pub fn sarif_log(programs: &[BatchProgram], version: &str, exit_code: i32) -> Re
                 .chain(o.unverified.iter().map(|f| (f, sarif::ResultLevel::Note)));
             for (f, level) in levels {
                 let i = rule_index(&f.rule);
+                let file = o.in_file.as_deref().unwrap_or(&p.file);
+                let key = format!("{}|{}|{}|{}", artifact_uri(file), o.made.name(), o.designation, f.rule);
                 results.push(
                     sarif::Result::builder()
                         .rule_id(f.rule.clone())
                         .rule_index(i)
                         .level(level)
+                        .partial_fingerprints(fingerprint(key))
                         .message(sarif::Message::builder().text(format!("{what}: {}", f.message)).build())
                         .locations(vec![location(
                             o.in_file.as_deref().unwrap_or(&p.file),
@@ -474,9 +508,21 @@ pub fn sarif_log(programs: &[BatchProgram], version: &str, exit_code: i32) -> Re
     let descriptors: Vec<sarif::ReportingDescriptor> = rules
         .iter()
         .map(|r| {
+            let guide = rule_guide(r);
             sarif::ReportingDescriptor::builder()
                 .id(r.clone())
                 .short_description(sarif::MultiformatMessageString::builder().text(rule_words(r)).build())
+                .full_description(
+                    sarif::MultiformatMessageString::builder()
+                        .text(format!("{} (threadcheck's rule {r}; {guide})", rule_words(r)))
+                        .build(),
+                )
+                .help(
+                    sarif::MultiformatMessageString::builder()
+                        .text(format!("See {guide} in threadcheck's repository."))
+                        .markdown(format!("See [{guide}]({guide}) in threadcheck's repository."))
+                        .build(),
+                )
                 .build()
         })
         .collect();
@@ -485,8 +531,29 @@ pub fn sarif_log(programs: &[BatchProgram], version: &str, exit_code: i32) -> Re
         .version(version.to_string())
         .rules(descriptors)
         .build();
-    let invocation =
-        sarif::Invocation::builder().execution_successful(true).exit_code(i64::from(exit_code)).build();
+    // GitHub's code scanning keeps 25 000 results a run: the first ones, and the rest counted.
+    let found = results.len();
+    results.truncate(SARIF_MAX_RESULTS);
+    let notifications: Vec<sarif::Notification> = (found > SARIF_MAX_RESULTS)
+        .then(|| {
+            sarif::Notification::builder()
+                .level(serde_json::json!("warning"))
+                .message(
+                    sarif::Message::builder()
+                        .text(format!(
+                            "{found} results, of which the first {SARIF_MAX_RESULTS} are here (code scanning keeps {SARIF_MAX_RESULTS} a run): run the folders apart"
+                        ))
+                        .build(),
+                )
+                .build()
+        })
+        .into_iter()
+        .collect();
+    let invocation = sarif::Invocation::builder()
+        .execution_successful(true)
+        .exit_code(i64::from(exit_code))
+        .tool_execution_notifications(notifications)
+        .build();
     let run = sarif::Run::builder()
         .tool(sarif::Tool::builder().driver(driver).build())
         .invocations(vec![invocation])
