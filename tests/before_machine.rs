@@ -594,3 +594,27 @@ fn the_guide_shows_what_the_binary_prints() {
         assert!(out.contains(line), "the guide shows {line:?}; threadcheck {command} prints:\n{out}");
     }
 }
+
+/// A tap's S × lead against the machine's fastest feed: M8x1.25 at S600 is 750 mm/min, over
+/// the 500 the slow machine's axes follow (at most S400 for this lead); at S400, 500 mm/min,
+/// a limit exactly met passes. Without the machine file nothing is said.
+#[test]
+fn a_tap_faster_than_the_axes_follow() {
+    let machine = data("programs/control/slow-axes.toml");
+    let m = machine.to_str().unwrap();
+    let c = CASES.iter().find(|c| c.name == "fanuc-mc-g84-right").unwrap();
+    let (code, v) = verify(c, &["--machine", m]);
+    assert_eq!(found(&v), vec![("control.sync_feed_limit".to_string(), 5)]);
+    assert_eq!(code, 1);
+    let msg = v["control"][0]["message"].as_str().unwrap();
+    assert!(
+        msg.contains(
+            "S600 × lead 1.25 = 750 mm/min, beyond the fastest feed the axes follow, 500 mm/min (slow axes"
+        ),
+        "{msg}"
+    );
+    assert!(msg.contains("at most S400"), "{msg}");
+    let at_400 = Case { text: c.text.replace("S600", "S400").replace("F750", "F500").leak(), ..*c };
+    assert_eq!(found(&verify(&at_400, &["--machine", m]).1), vec![]);
+    assert_eq!(found(&verify(c, &[]).1), vec![]);
+}

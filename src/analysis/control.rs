@@ -86,8 +86,9 @@ pub fn before_machine(
     prog: &Program,
     dialect: Dialect,
     tapped: Option<&TapReport>,
-    servo_time_constant: Option<f64>,
+    machine: Option<&crate::analysis::process::MachineProfile>,
 ) -> Vec<ControlFinding> {
+    let servo_time_constant = machine.and_then(|m| m.servo_time_constant_s);
     let mut out: Vec<ControlFinding> = prog
         .control
         .iter()
@@ -149,8 +150,46 @@ pub fn before_machine(
     }
     if let Some(t) = tapped {
         out.extend(t.holes.iter().filter_map(|th| feed_convention(dialect, th)));
+        if let Some((m, max)) = machine.and_then(|m| Some((m, m.max_feed_mm_min?))) {
+            out.extend(t.holes.iter().filter_map(|th| feed_limit(dialect, th, &m.name, max)));
+        }
     }
     out
+}
+
+/// A tap whose synchronised feed S × lead the machine's axes cannot follow (LinuxCNC #4391:
+/// "the thread is ruined"); `max` the machine file's fastest feed, mm/min.
+fn feed_limit(
+    dialect: Dialect,
+    th: &crate::analysis::tapping::TappedHole,
+    machine: &str,
+    max: f64,
+) -> Option<ControlFinding> {
+    let h = &th.cycle;
+    let s = h.spindle.filter(|s| *s > 0.0)?;
+    let feed = s * th.tap.lead;
+    if feed <= max + 1e-9 {
+        return None;
+    }
+    let num = crate::ground::fmt::fmt_num;
+    let mut c = ControlFinding::new(
+        dialect,
+        ControlRule::SyncFeedLimit,
+        Process::Tapped,
+        &h.code,
+        (h.line, h.column),
+        format!(
+            "{} at S{} × lead {} = {} mm/min, beyond the fastest feed the axes follow, {} mm/min ({machine}): the tap strips its thread or breaks; at most S{} for this lead",
+            h.code,
+            num(s),
+            num(th.tap.lead),
+            num((feed * 1000.0).round() / 1000.0),
+            num(max),
+            num((max / th.tap.lead).floor())
+        ),
+    );
+    c.file.clone_from(&h.source_file);
+    Some(c)
 }
 
 /// The findings of a thread-milled thread: each move after its last helix that cuts the

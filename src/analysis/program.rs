@@ -251,12 +251,8 @@ pub fn verify_whole(
         r.notes.clear();
         pv.tapped = Some(r);
     }
-    pv.control = crate::analysis::control::before_machine(
-        &prog,
-        dialect,
-        pv.tapped.as_ref(),
-        spec.machine.as_ref().and_then(|m| m.servo_time_constant_s),
-    );
+    pv.control =
+        crate::analysis::control::before_machine(&prog, dialect, pv.tapped.as_ref(), spec.machine.as_ref());
     if let Some(h) = helix {
         // The thread mill: the helix's tool in the table, as a thread mill's file, else the one
         // the program's comments name for it.

@@ -46,11 +46,13 @@ pub enum ControlRule {
     FeedWordInSync,
     /// A thread mill's move after its last helix that cuts the finished thread.
     MillGouge,
+    /// A tap's synchronised feed, S × lead, beyond the fastest feed the machine's axes follow.
+    SyncFeedLimit,
 }
 
 impl ControlRule {
     /// Every rule, in the order the reports list them.
-    pub const ALL: [ControlRule; 10] = [
+    pub const ALL: [ControlRule; 11] = [
         ControlRule::SpindleStopped,
         ControlRule::SpindleSpeedZero,
         ControlRule::FeedZero,
@@ -60,6 +62,7 @@ impl ControlRule {
         ControlRule::TapMovesSideways,
         ControlRule::TapFeedConvention,
         ControlRule::MillGouge,
+        ControlRule::SyncFeedLimit,
         ControlRule::RunInShort,
     ];
 
@@ -77,6 +80,7 @@ impl ControlRule {
             ControlRule::TapPeckQ => "control.tap_peck_q",
             ControlRule::FeedWordInSync => "control.feed_word_in_sync",
             ControlRule::MillGouge => "post.mill_gouge",
+            ControlRule::SyncFeedLimit => "control.sync_feed_limit",
         }
     }
 
@@ -117,6 +121,9 @@ impl ControlRule {
             }
             ControlRule::FeedWordInSync => {
                 "An F word on a spindle-synchronised move (LinuxCNC's G33.1, whose feed is K): the control refuses it."
+            }
+            ControlRule::SyncFeedLimit => {
+                "A tap's synchronised feed, S × lead, beyond the fastest feed the machine's axes follow (its machine file's max_feed_mm_min): the axis lags the spindle and the tap strips its thread or breaks."
             }
             ControlRule::MillGouge => {
                 "A thread mill's move after its last helix (a retract along Z, a return circle, a move across the grooves) whose teeth reach past the finished thread's crest: it cuts the thread just made."
