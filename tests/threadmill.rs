@@ -27,6 +27,16 @@ fn mill_with(program: &str, more: &[&str]) -> serde_json::Value {
     serde_json::from_slice(&o.stdout).unwrap()
 }
 
+/// `thread-mill --json` on a 9/16-18 program of [`nine_sixteen_18`] with the makers' 0.370 in
+/// (9.398 mm) cutter, and `extra` arguments.
+fn nine_sixteen_json(file: &std::path::Path, extra: &[&str]) -> serde_json::Value {
+    let mut args = vec!["thread-mill", "--program", file.to_str().unwrap(), "--cutter-diameter", "9.398"];
+    args.extend(extra);
+    args.extend(["--json", "-"]);
+    let o = crate::run(&args);
+    serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{e}: {}", crate::stderr(&o)))
+}
+
 /// `thread-mill --json` on program `text`, written as `name` in a fresh folder.
 fn mill_text(name: &str, text: &str, thread: &str, cutter: &str) -> serde_json::Value {
     let dir = tempdir("tm-text");
@@ -835,17 +845,7 @@ fn the_edge_feed_reproduces_the_makers_example() {
     ] {
         let file = dir.join(format!("{name}.nc"));
         std::fs::write(&file, nine_sixteen_18(radius, feed)).unwrap();
-        let o = crate::run(&[
-            "thread-mill",
-            "--program",
-            file.to_str().unwrap(),
-            "--cutter-diameter",
-            "9.398",
-            "--json",
-            "-",
-        ]);
-        let v: serde_json::Value =
-            serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{e}: {}", crate::stderr(&o)));
+        let v = nine_sixteen_json(&file, &[]);
         let feeds = v["feeds"].as_array().unwrap();
         assert_eq!(feeds.len(), 8, "{name}: {feeds:?}");
         let f = &feeds[0];
@@ -868,19 +868,7 @@ fn a_milled_hole_s_percent_of_thread_is_its_bore_s() {
     let dir = crate::tempdir("mill-percent");
     let file = dir.join("int.nc");
     std::fs::write(&file, nine_sixteen_18(0.09625, 2.84)).unwrap();
-    let o = crate::run(&[
-        "thread-mill",
-        "--program",
-        file.to_str().unwrap(),
-        "--cutter-diameter",
-        "9.398",
-        "--blank-diameter",
-        "12.7",
-        "--json",
-        "-",
-    ]);
-    let v: serde_json::Value =
-        serde_json::from_slice(&o.stdout).unwrap_or_else(|e| panic!("{e}: {}", crate::stderr(&o)));
+    let v = nine_sixteen_json(&file, &["--blank-diameter", "12.7"]);
     let pct = v["thread_percent"]["percent"].as_f64().unwrap();
     assert!((pct - 76.98 * 18.0 * 0.0625).abs() < 0.01, "{pct}");
 }

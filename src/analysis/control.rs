@@ -106,47 +106,32 @@ pub fn before_machine(
     }
     for h in prog.holes.iter().filter(|h| h.kind == HoleKind::Tap) {
         let at = (h.line, h.column);
-        let mut found = Vec::new();
+        let mut flag = |rule: ControlRule, message: String| {
+            let mut f = ControlFinding::new(dialect, rule, Process::Tapped, &h.code, at, message);
+            f.file.clone_from(&h.source_file);
+            out.push(f);
+        };
         // A Haas control turns the spindle itself for its tapping cycles (the tapping check
         // says so); a rigid tap's spindle is the cycle's.
         let starts_itself = dialect == Dialect::Haas || h.rigid;
         if h.spindle_dir == Some(SpindleDir::Stopped) && !starts_itself {
-            found.push(ControlFinding::new(
-                dialect,
+            flag(
                 ControlRule::SpindleStopped,
-                Process::Tapped,
-                &h.code,
-                at,
                 format!(
                     "{} with the spindle stopped (M5): the tap is pushed into the hole without turning",
                     h.code
                 ),
-            ));
+            );
         }
         if h.spindle == Some(0.0) {
-            found.push(ControlFinding::new(
-                dialect,
-                ControlRule::SpindleSpeedZero,
-                Process::Tapped,
-                &h.code,
-                at,
-                format!("{} at S0: the spindle does not turn", h.code),
-            ));
+            flag(ControlRule::SpindleSpeedZero, format!("{} at S0: the spindle does not turn", h.code));
         }
         if h.feed == Some(0.0) {
-            found.push(ControlFinding::new(
-                dialect,
+            flag(
                 ControlRule::FeedZero,
-                Process::Tapped,
-                &h.code,
-                at,
                 format!("{} with {}0: the tap is given no feed", h.code, h.feed_word),
-            ));
+            );
         }
-        for f in &mut found {
-            f.file.clone_from(&h.source_file);
-        }
-        out.extend(found);
     }
     if let Some(t) = tapped {
         out.extend(t.holes.iter().filter_map(|th| feed_convention(dialect, th)));
