@@ -1026,6 +1026,40 @@ fn a_mastercam_tool_list_names_the_tap_and_the_drill() {
     }
 }
 
+/// Issue 62: tool lists in SolidCAM's and hyperMILL's header forms (written here; the forms
+/// differ by post, these are threadcheck's default reading): `(TOOL 3 - TAP M8X1.25 - DIA 8.)`,
+/// `(TOOL NUMBER: 4  DRILL D6.8)`, far above the cycles that use them. ISO 965-1 gives M8x1.25-6H
+/// D1 6.647–6.912 mm, so the Ø6.8 drill passes; F = S × lead = 400 × 1.25 = 500 mm/min. A Klartext
+/// tap called by its German name (`TOOL CALL "GEWINDEBOHRER M8"`) is M8 coarse, 1.25 mm (ISO 261).
+#[test]
+fn solidcam_and_hypermill_tool_lists_name_the_tap_and_the_drill() {
+    let program = "%\nO5001\n(TOOL LIST)\n(TOOL 3 - TAP M8X1.25 - DIA 8.)\n(TOOL NUMBER: 4  DRILL D6.8)\n(TOOL 5 - END MILL D10)\nG21 G17 G90 G40 G80\nT4 M6\nG54 G0 X10. Y10. S1200 M3\nG43 H4 Z10.\nG98 G83 Z-20. R3. Q3. F120.\nG80\nT5 M6\nG0 X0 Y0 S3000 M3\nG43 H5 Z10.\nG1 Z-1. F300.\nG0 Z50.\nT3 M6\nG0 X10. Y10. S400 M3\nG43 H3 Z10.\nM29 S400\nG98 G84 Z-15. R3. F500.\nG80\nM30\n%\n";
+    let (code, v, err) = tap_text("solidcam.nc", program, "[tools]\n");
+    assert_eq!(code, 0, "{err}");
+    let h = &v["holes"][0];
+    assert_eq!(h["tap"]["designation"], "M8X1.25-6H");
+    assert_eq!(h["drill"]["diameter"].as_f64(), Some(6.8));
+    assert_eq!(h["pass"], true);
+    // The cycle's pitch 1.0 against a list that says M8X1.25: the feed fails by name.
+    let (code, v, _) = tap_text("solidcam.nc", &program.replace("F500.", "F400."), "[tools]\n");
+    assert_eq!((code, &v["holes"][0]["pass"]), (1, &serde_json::Value::Bool(false)));
+    let klartext = "0 BEGIN PGM 1 MM\n1 BLK FORM 0.1 Z X-50 Y-50 Z-20\n2 BLK FORM 0.2 X+50 Y+50 Z+0\n3 TOOL CALL \"GEWINDEBOHRER M8\" Z S400\n4 L Z+100 R0 FMAX M91\n5 L X+10 Y+10 R0 FMAX M3\n6 CYCL DEF 207 RIGID TAPPING ~\n  Q200=2 ;SET-UP CLEARANCE ~\n  Q201=-15 ;DEPTH ~\n  Q239=+1.25 ;THREAD PITCH ~\n  Q203=+0 ;SURFACE COORDINATE ~\n  Q204=50 ;2ND SET-UP CLEARANCE\n7 L Z+50 R0 FMAX\n8 CYCL CALL\n9 L M140 MB MAX\n10 M30\n11 END PGM 1 MM\n";
+    let (code, v, err) = tap_text("named.h", klartext, "[tools]\n");
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(v["holes"][0]["tap"]["designation"], "M8-6H");
+}
+
+/// Issue 62: a Fanuc-family machining centre drills along the plane's normal, Y in G18: the
+/// cycle is refused at its place, not read as a hole along Z at (X10, Y-10).
+#[test]
+fn a_canned_cycle_in_g18_on_a_machining_centre_is_refused_at_its_place() {
+    let program = "G21 G90 G18\nT1 M6\nG43 H1 Z10\nS500 M3\nG0 X10 Y10\nG98 G84 Y-10 R3 F625\nG80\nM30\n";
+    let (code, _, err) =
+        tap_text_with("g18.nc", program, "[tools]\n1 = \"tap:M8x1.25-6H\"\n", &["--machine-type", "mill"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("g18.nc:6:5: G84: a canned cycle in the plane G18, which drills along Y"), "{err}");
+}
+
 /// Issue 62: LinuxCNC's `G10 L2 P1 X100 Y50 R90` turns G54's XY plane 90° about its origin
 /// (100, 50): the hole written at X10 Y0 stands at (100 − 0, 50 + 10) = (100, 60), and the
 /// G91 row `X5 L2` after it runs along the turned X: (100, 65), (100, 70). (Rotation was noted as

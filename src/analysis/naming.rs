@@ -80,6 +80,9 @@ pub const THREAD_WORDS: &[&str] = &[
     "TAPPED",
     "GEWINDE",
     "GEW",
+    "GEWINDEBOHRER",
+    "GEWINDEFORMER",
+    "GEWINDEFURCHER",
     "FILETAGE",
     "FILET",
     "TARAUD",
@@ -506,11 +509,9 @@ pub fn thread_mill_in_comment(comment: &str, units: ProgramUnits) -> Option<Mill
     if !names_mill {
         return None;
     }
-    // `T5 …` (Autodesk's list), or `… TOOL - 5 …` (Mastercam's).
-    let tool = words
-        .first()
-        .and_then(|w| w.strip_prefix('T'))
-        .and_then(|n| n.parse::<u32>().ok())
+    // `T5 …` (Autodesk's list), `TOOL 5 …` (SolidCAM's), or `… TOOL - 5 …` (Mastercam's).
+    let tool = listed_number(comment)
+        .map(|(n, _)| n)
         .or_else(|| words.windows(2).find(|w| w[0] == "TOOL").and_then(|w| w[1].parse::<u32>().ok()));
     let length = |w: &str| length_in_comment(w.trim_end_matches([',', ';', ')']), units);
     let diameter = words.iter().enumerate().find_map(|(i, w)| {
@@ -537,6 +538,20 @@ pub fn thread_mill_in_comment(comment: &str, units: ProgramUnits) -> Option<Mill
     });
     Some(MillInComment { tool, diameter, angle_deg })
 }
+
+/// Words that make a tool list's line a tap's: English, German (cutting and forming taps),
+/// French, Spanish, Italian and Russian.
+pub const TAP_WORDS: &[&str] = &[
+    "TAP",
+    "TAPPING",
+    "GEWINDEBOHRER",
+    "GEWINDEFORMER",
+    "GEWINDEFURCHER",
+    "TARAUD",
+    "MACHO",
+    "MASCHIO",
+    "МЕТЧИК",
+];
 
 /// Words that make a number in a comment a drill's diameter.
 pub const DRILL_WORDS: &[&str] =
@@ -643,15 +658,21 @@ pub enum ListedKind {
 /// let l = listed_tool(" T4 | NO. 29 DRILL | H4 ", ProgramUnits::Inch, ParseOptions::default()).unwrap();
 /// assert_eq!(l.tool, 4);
 /// assert!(matches!(l.kind, ListedKind::Drill { diameter } if (diameter - 3.4544).abs() < 1e-9));
+/// // SolidCAM's and hyperMILL's headers: the tool's number after TOOL.
+/// let l = listed_tool("TOOL 3 - TAP M8X1.25 - DIA 8.", mm, ParseOptions::default()).unwrap();
+/// assert_eq!((l.tool, l.kind), (3, ListedKind::Tap { designation: Some("M8X1.25-6H".into()), diameter: None, hand: None }));
+/// let l = listed_tool("TOOL NUMBER: 4  DRILL D6.8", mm, ParseOptions::default()).unwrap();
+/// assert_eq!((l.tool, l.kind), (4, ListedKind::Drill { diameter: 6.8 }));
+/// let l = listed_tool("T12: GEWINDEBOHRER M10", mm, ParseOptions::default()).unwrap();
+/// assert_eq!((l.tool, l.kind), (12, ListedKind::Tap { designation: Some("M10-6H".into()), diameter: None, hand: None }));
+/// assert_eq!(listed_tool("TOOLING CHECK - TAP M8", mm, ParseOptions::default()), None);
 /// // A thread mill's or an end mill's line, or a comment with no tool first, is none.
 /// assert_eq!(listed_tool("T5 D=8. CR=0. - thread mill", mm, ParseOptions::default()), None);
 /// assert_eq!(listed_tool("DRILL 6.8", mm, ParseOptions::default()), None);
 /// ```
 pub fn listed_tool(comment: &str, units: ProgramUnits, opts: ParseOptions) -> Option<ListedTool> {
-    let t = comment.trim();
-    let head = t.split(|c: char| c.is_whitespace() || c == '|').next()?;
-    let tool: u32 = head.strip_prefix(['T', 't', '#']).and_then(|n| n.parse().ok())?;
-    let rest = t[head.len()..].replace('|', " ");
+    let (tool, rest) = listed_number(comment)?;
+    let rest = rest.replace('|', " ");
     let upper = rest.to_uppercase();
     // Mastercam's `TAPRH`, `NO. 8-32`: as the comment reader reads them.
     let spaced =
@@ -662,7 +683,7 @@ pub fn listed_tool(comment: &str, units: ProgramUnits, opts: ParseOptions) -> Op
     if has("MILL") || spaced.contains("THREADMILL") {
         return None;
     }
-    if has("TAP") || has("TAPPING") {
+    if TAP_WORDS.iter().any(|w| has(w)) {
         let hand = if has("LH") || spaced.contains("LEFT HAND") {
             Some(crate::standards::Hand::Left)
         } else if has("RH") || spaced.contains("RIGHT HAND") {
@@ -683,6 +704,52 @@ pub fn listed_tool(comment: &str, units: ProgramUnits, opts: ParseOptions) -> Op
     }
     let diameter = drill_in_comment(&spaced.replace('#', "NO. "), units)?;
     Some(ListedTool { tool, kind: ListedKind::Drill { diameter } })
+}
+
+/// The tool's number a tool-list line begins with, and the rest of the line: `T5`, `#5`, `T=5`
+/// (Autodesk's and Mastercam's lists), `TOOL 5`, `TOOL - 5`, `TOOL NO. 5`, `TOOL NUMBER: 5`
+/// (SolidCAM's and hyperMILL's headers; threadcheck's default reading of their forms, which
+/// differ by post), `WZ 5` (German posts); `T5:` and `T5,` too.
+fn listed_number(comment: &str) -> Option<(u32, &str)> {
+    let t = comment.trim_start();
+    let digits = |s: &str| s.find(|c: char| !c.is_ascii_digit()).unwrap_or(s.len());
+    let number = |s: &str| -> Option<(u32, usize)> {
+        let n = digits(s);
+        let v = s[..n].parse().ok()?;
+        // The number ends the word: `T5`, `T5:`, not `T5X`.
+        let next = s[n..].chars().next();
+        next.is_none_or(|c| c.is_whitespace() || matches!(c, '|' | ':' | ',' | '-' | ')' | ';'))
+            .then_some((v, n))
+    };
+    let upper = t.to_ascii_uppercase();
+    // `TOOL …`/`WZ …` then the separators and words a header puts before the number.
+    for word in ["TOOL", "WZ"] {
+        if let Some(after) = upper.strip_prefix(word) {
+            let mut i = t.len() - after.len();
+            if !after.starts_with(|c: char| c.is_whitespace() || matches!(c, ':' | '-' | '#' | '=' | '.')) {
+                return None;
+            }
+            loop {
+                let rest = &upper[i..];
+                let skip = rest.len() - rest.trim_start_matches([' ', '\t', ':', '-', '#', '=', '.']).len();
+                i += skip;
+                let rest = &upper[i..];
+                match ["NUMBER", "NO", "NR", "NUM"].iter().find(|w| {
+                    rest.starts_with(**w) && !rest[w.len()..].starts_with(|c: char| c.is_ascii_alphanumeric())
+                }) {
+                    Some(w) => i += w.len(),
+                    None if skip > 0 => break,
+                    None => return None,
+                }
+            }
+            let (v, n) = number(&t[i..])?;
+            return Some((v, &t[i + n..]));
+        }
+    }
+    let head = t.strip_prefix(['T', 't', '#'])?;
+    let head = head.strip_prefix('=').unwrap_or(head);
+    let (v, n) = number(head)?;
+    Some((v, &head[n..]))
 }
 
 /// The tap a CAM tool list names for tool `tool` (the first line of the list that names it, see

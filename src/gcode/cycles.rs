@@ -1228,11 +1228,14 @@ fn mill_holes(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Result<(), Error
     let polar = b.get("@").is_some() || b.get("^").is_some();
     let positioned =
         xw.is_some() || yw.is_some() || modal.col.is_some() || linuxcnc && (zw.is_some() || polar);
+    if positioned && m.plane != 17 {
+        // The control drills along the plane's normal (Y in G18, X in G19); threadcheck's holes
+        // are along Z: a located refusal, not a hole misplaced.
+        let axis = if m.plane == 18 { "Y" } else { "X" };
+        return Err(m.err(b.line, col, format!("{name}: a canned cycle in the plane G{}, which drills along {axis}: threadcheck reads a machining centre's canned cycles in G17 (its drilling axis Z)", m.plane)));
+    }
     if linuxcnc && positioned {
         let refuse = |why: String| Err(m.err(b.line, col, format!("{name}: {why}")));
-        if m.plane != 17 {
-            return refuse(format!("a canned cycle in the plane G{}: threadcheck reads LinuxCNC's canned cycles in G17 (its drilling axis Z)", m.plane));
-        }
         if m.comp != 0 {
             return refuse("LinuxCNC refuses canned cycles with cutter compensation on (G41/G42): cancel it with G40 first".into());
         }
