@@ -278,6 +278,16 @@ fn taps_find_their_drills_in_their_own_work_offsets() {
     for (g, w) in got.iter().zip(want) {
         assert_eq!((g.0, g.1, g.2, g.3.as_str()), w, "{got:?}");
     }
+    // Each hole's place in machine coordinates, by hand from the G10 origins (issue 62): the
+    // G54 drill at X20 Y10 stands at (−380, −190), the G55 one at (−230, −190).
+    let machine: Vec<(f64, f64)> = hs
+        .iter()
+        .map(|h| {
+            let m = &h["drill"]["cycle"]["machine_xy"];
+            (m[0].as_f64().unwrap(), m[1].as_f64().unwrap())
+        })
+        .collect();
+    assert_eq!(machine, [(-380.0, -190.0), (-230.0, -190.0), (-230.0, -190.0), (-230.0, -190.0)]);
     assert!(v["notes"]
         .to_string()
         .contains("G10 L20 P2 read past: sets G54.1 P2's origin in machine coordinates"));

@@ -711,7 +711,9 @@ pub struct HoleCycle {
     pub work_offset: Option<String>,
     /// The hole's place in machine coordinates, when the program set its work offset's origin
     /// itself (Fanuc's and Haas's `G10 L2`/`L20`): a tap in one offset finds its drill in another.
-    #[serde(skip)]
+    /// LinuxCNC's holes are placed in machine coordinates (its offsets as the program sets them,
+    /// zero otherwise, as `rs274` runs it): the same place.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub machine_xy: Option<(f64, f64)>,
     /// The program's units at the cycle (what a diameter in its comments is written in).
     #[serde(skip)]

@@ -975,6 +975,7 @@ impl Motion {
             _ => h.line,
         };
         h.machine_xy = match (&self.work_offset, h.x, h.y) {
+            (_, Some(x), Some(y)) if self.dialect == Dialect::LinuxCnc && h.radial.is_none() => Some((x, y)),
             (Some(name), Some(x), Some(y)) => {
                 self.work_origins.get(name).and_then(|o| Some((x + o[0]?, y + o[1]?)))
             }
