@@ -1059,6 +1059,26 @@ fn solidcam_and_hypermill_tool_lists_name_the_tap_and_the_drill() {
     assert_eq!(v["holes"][0]["tap"]["designation"], "M8-6H");
 }
 
+/// Issue 62: Haas's own codes read under the default dialect are its evidence, named at their
+/// place with the choice that reads them: G187 (smoothness; no move) and M97 (a local
+/// subprogram, which Fanuc does not run).
+#[test]
+fn haas_codes_under_the_default_dialect_name_the_haas_choice() {
+    let program = "%\nO1000\nG20 G17 G90\nT1 M6 (TAP 1/4-20)\nG187 P1 E0.001\nG0 G54 X1. Y1. S500 M3\nG43 H1 Z1.\nG98 G84 Z-.5 R.1 F25.\nG80\nM30\n%\n";
+    let (code, v, err) = tap_text("g187.nc", program, "[tools]\n");
+    assert_eq!(code, 0, "{err}");
+    assert!(v["notes"].to_string().contains("g187.nc:5:1: G187 read past: Haas's smoothness and corner accuracy setting, which the fanuc dialect does not have (no move here): a Haas program is read with --dialect haas"), "{}", v["notes"]);
+    let m97 = program
+        .replace("G98 G84 Z-.5 R.1 F25.\n", "M97 P100\n")
+        .replace("M30\n", "M30\nN100 G98 G84 Z-.5 R.1 F25.\nM99\n");
+    let (code, _, err) = tap_text("m97.nc", &m97, "[tools]\n");
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("M97 read past: Haas's call of a local subprogram") && err.contains("--dialect haas"),
+        "{err}"
+    );
+}
+
 /// Issue 62: a Fanuc-family machining centre drills along the plane's normal, Y in G18: the
 /// cycle is refused at its place, not read as a hole along Z at (X10, Y-10).
 #[test]

@@ -485,6 +485,13 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
             71 | 72 if d == Dialect::Okuma => motion = Some((g, col)),
             70..=75 if fanuc_like || d == Dialect::LinuxCnc => one_shot = Some(g),
             c => match g_role(d, c, m.lathe()) {
+                // Haas's own code read in another Fanuc-family dialect: its evidence named.
+                GRole::Setting if c == 187 && d != Dialect::Haas => m.read_past(
+                    b.line,
+                    col,
+                    "G187",
+                    &format!("Haas's smoothness and corner accuracy setting, which the {} dialect does not have (no move here): a Haas program is read with ‹dialect› haas", d.name()),
+                ),
                 GRole::Setting => {}
                 GRole::Offset => {
                     offset = Some(format!("G{g}, a work offset"));
