@@ -303,14 +303,14 @@ const CASES: &[Case] = &[
         name: "sinumerik-cycle97-m5",
         dialect: "sinumerik",
         args: &[],
-        text: "; M20x2.5\nG97 S600 M5\nG0 X25 Z10\nCYCLE97(2.5,,0,-30,20,20,3,2,1.534,0.05,0,0,,1,,)\nM30\n",
+        text: "; M20x2.5\nG97 S600 M5\nG0 X25 Z10\nCYCLE97(2.5,,0,-30,20,20,3,2,1.534,0.05,0,0,,1,1,)\nM30\n",
         want: &[("control.spindle_stopped", 4)],
     },
     Case {
         name: "sinumerik-cycle97-m3",
         dialect: "sinumerik",
         args: &[],
-        text: "; M20x2.5\nG97 S600 M3\nG0 X25 Z10\nCYCLE97(2.5,,0,-30,20,20,3,2,1.534,0.05,0,0,,1,,)\nM30\n",
+        text: "; M20x2.5\nG97 S600 M3\nG0 X25 Z10\nCYCLE97(2.5,,0,-30,20,20,3,2,1.534,0.05,0,0,,1,1,)\nM30\n",
         want: &[],
     },
     Case {

@@ -42,13 +42,22 @@ fn wires_on_a_full_profile_give_the_standard_formula_and_the_x_moves_by_the_erro
     ]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let v = json(&o);
-    let helix = helix_m10();
-    let d2 = m - 3.0 * w + 0.866_025_404 * 1.5 + helix;
+    // The helix term is taken at the part's own d2 (issue 64), which it moves: d2 = M − 3w +
+    // 0.866025·P + h(d2), settled by repeating; it differs from the term at the basic d2 by
+    // hundredths of a micrometre here.
+    let (helix_basic, term) =
+        (helix_m10(), |d2: f64| threadcheck::wire_helix_term(d2, 1.5, 1.5, 30f64.to_radians(), w));
+    let mut d2 = m - 3.0 * w + 0.866_025_404 * 1.5 + helix_basic;
+    for _ in 0..5 {
+        d2 = m - 3.0 * w + 0.866_025_404 * 1.5 + term(d2);
+    }
+    let helix = term(d2);
+    assert!((helix - helix_basic).abs() < 1e-4 && helix != helix_basic, "{helix} {helix_basic}");
     let got = v["measured"]["pitch_diameter"].as_f64().unwrap();
-    assert!((got - d2).abs() < 1e-6, "d2 {got} against {d2}");
+    assert!((got - d2).abs() < 1e-9, "d2 {got} against {d2}");
     assert!(
-        (v["measured"]["over_wires"]["helix_term"].as_f64().unwrap() - helix).abs() < 1e-6,
-        "the helix term at the unrounded basic d2 9.025721"
+        (v["measured"]["over_wires"]["helix_term"].as_f64().unwrap() - helix).abs() < 1e-9,
+        "the helix term at the measured d2 {d2}"
     );
     let delta = 8.928 - d2;
     assert!((v["delta_pitch_diameter"].as_f64().unwrap() - delta).abs() < 1e-6);
@@ -59,12 +68,16 @@ fn wires_on_a_full_profile_give_the_standard_formula_and_the_x_moves_by_the_erro
 
 /// A partial-profile insert (r 0.04): its flanks are straight 60° where the wires touch them
 /// (best-size wires touch at the pitch line, far above the tip's radius), so a reading M that
-/// means d2 = 8.950 by the formula, M = 8.950 + 3w − 0.866025·P − the helix term, gives 8.950 from the
+/// means d2 = 8.950 by the formula, M = 8.950 + 3w − 0.866025·P − the helix term at 8.950, gives 8.950 from the
 /// as-cut flanks, the same as `--measured-d2 8.950`.
 #[test]
 fn a_partial_profile_reads_the_same_d2_from_wires_as_measured() {
     let w = 0.866;
-    let m = 8.950 + 3.0 * w - 0.866_025_404 * 1.5 - helix_m10();
+    // The helix term at the part's d2 8.950 (issue 64), the same contact model as at the basic d2.
+    let _ = helix_m10();
+    let m = 8.950 + 3.0 * w
+        - 0.866_025_404 * 1.5
+        - threadcheck::wire_helix_term(8.950, 1.5, 1.5, 30f64.to_radians(), w);
     let by_wires = json(&run(&[
         "correct",
         "--thread",

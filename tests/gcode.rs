@@ -254,12 +254,16 @@ fn sinumerik_cycle97_internal_cuts_outwards_from_the_tap_hole() {
     }
 }
 
-/// Issue 44: an empty VARI, NRC and NUMT of CYCLE97 are taken as 1 (outside with constant depth,
-/// one rough cut, a single start) and the program says so: TDEP 1.534 less FAL 0.05 in one rough
-/// cut to 1.484, the finishing cut at 1.534 and NID 1 idle pass.
+/// Issue 44: an empty NRC and NUMT of CYCLE97 are taken as 1 (one rough cut, a single start)
+/// and the program says so: TDEP 1.534 less FAL 0.05 in one rough cut to 1.484, the finishing
+/// cut at 1.534 and NID 1 idle pass. An empty VARI is refused (issue 64): the cycle's machining
+/// type is 1 to 4 and the control stops on any other.
 #[test]
-fn cycle97_empty_vari_nrc_numt_are_stated_defaults() {
-    let text = "G0 X25 Z10\nCYCLE97(2.5,,0,-30,20,20,3,2,1.534,0.05,0,0,,1,,)\nM30\n";
+fn cycle97_empty_nrc_numt_are_stated_defaults_and_an_empty_vari_is_refused() {
+    let empty_vari = "G0 X25 Z10\nCYCLE97(2.5,,0,-30,20,20,3,2,1.534,0.05,0,0,,1,,)\nM30\n";
+    let e = read_program(empty_vari, "d.mpf", Dialect::Sinumerik).unwrap_err().to_string();
+    assert!(e.starts_with("d.mpf:2:1: CYCLE97 VARI empty or 0: the control refuses the cycle"), "{e}");
+    let text = "G0 X25 Z10\nCYCLE97(2.5,,0,-30,20,20,3,2,1.534,0.05,0,0,,1,1,)\nM30\n";
     let p = read_program(text, "d.mpf", Dialect::Sinumerik).unwrap();
     let depths: Vec<f64> = p.passes.iter().map(|q| (20.0 - q.x_start) / 2.0).collect();
     assert_eq!(depths.len(), 3, "{depths:?}");
@@ -272,5 +276,5 @@ fn cycle97_empty_vari_nrc_numt_are_stated_defaults() {
         .chain(p.operations.iter().flat_map(|o| o.notes.iter()))
         .map(|n| n.to_string())
         .collect();
-    assert!(said.iter().any(|n| n.contains("CYCLE97 VARI, NRC, NUMT empty or 0: taken as 1")), "{said:#?}");
+    assert!(said.iter().any(|n| n.contains("CYCLE97 NRC, NUMT empty or 0: taken as 1")), "{said:#?}");
 }

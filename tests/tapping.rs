@@ -47,6 +47,26 @@ fn the_drill_is_checked_against_d1() {
     assert!((d1["deviation"].as_f64().unwrap() + 376.0).abs() < 1e-9, "{d1}");
 }
 
+/// Issue 64: 5/8-18 UNF-2B's D1 is 0.5650–0.5780 in (ASME B1.1); no fractional, number or letter
+/// drill lies within it (9/16 = 0.5625 under, 37/64 = 0.578125 over), so the drill named is the
+/// metric 14.5 mm (0.5709 in). The hole drilled 9/16 fails D1 by 0.0025 in.
+#[test]
+fn an_inch_tap_with_no_inch_drill_within_d1_is_offered_the_metric_one() {
+    let text = "G20 G17 G90 G94\nT5 M6\nG0 X0 Y0 S800 M3\nG43 H5 Z1.\nG98 G81 Z-1. R.1 F5.\nG80\nT6 M6\nG0 X0 Y0 S300 M3\nG43 H6 Z1.\nG98 G84 Z-.75 R.2 F16.6667\nG80\nM30\n";
+    let tools = "[tools]\n5 = \"drill:14.2875\"\n6 = \"tap:5/8-18 UNF-2B\"\n";
+    let (code, v, e) = tap(text, tools);
+    assert_eq!(code, 1, "{e}");
+    let h = &v["holes"][0];
+    let d1 = check(&v, "drill_diameter");
+    assert_eq!(d1["ok"], false, "{d1}");
+    let p = &h["drill_that_passes"];
+    assert_eq!(
+        (p["diameter"].as_f64(), p["name"].as_str(), p["source"].as_str()),
+        (Some(14.5), Some("14.5"), Some("metric-series")),
+        "{p}"
+    );
+}
+
 /// Feed per revolution (G99) must be the pitch: F1.4 is 0.1 mm/rev short. Per minute (G98) it
 /// must be S × P = 300 × 1.5 = 450 mm/min: F450 passes, F400 fails by 50.
 #[test]

@@ -223,9 +223,22 @@ pub fn correct(spec: &CorrectSpec) -> Result<CorrectReport, Error> {
             let m_computed = over_wires_of(&v, wire)?;
             // The wires ride higher across the helix than in the axial section: the exact contact
             // with the helicoidal flanks, the classical first-order term beside it.
-            let (d2b, half) = (t.pitch_diameter(), t.half_angle());
-            let helix = crate::geometry::wire::wire_helix_term(d2b, t.pitch, t.lead(), half, wire);
-            let classical = crate::geometry::wire::classical_wire_helix_term(d2b, t.lead(), half, wire);
+            // The term is taken at the part's own d2, the one the reading gives (issue 64; it was
+            // taken at the basic d2): a fixed point, d2 = d2_model + M + helix(d2) − M_computed,
+            // which settles in a few steps (the term changes by well under a nanometre a micrometre).
+            let half = t.half_angle();
+            let term = |d2: f64| crate::geometry::wire::wire_helix_term(d2, t.pitch, t.lead(), half, wire);
+            let mut at = d2_model + (m - m_computed);
+            for _ in 0..8 {
+                let next = d2_model + (m + term(at) - m_computed);
+                let settled = (next - at).abs() < 1e-12;
+                at = next;
+                if settled {
+                    break;
+                }
+            }
+            let helix = term(at);
+            let classical = crate::geometry::wire::classical_wire_helix_term(at, t.lead(), half, wire);
             notes.push(crate::ground::note::Note::from(format!(
                 "helix term {:+.4} mm added to M: the wire's exact contact with the helicoidal flanks, settled at its lowest inclination; the classical −(w/2)·cos β·cot β·tan² λ gives {:+.4} mm ({:+.2} µm apart)",
                 helix,

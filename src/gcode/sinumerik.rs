@@ -876,15 +876,12 @@ fn cycle97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
     };
     // An empty or zero VARI, NRC or NUMT: the cycle's own default, stated (a named default:
     // Siemens' screen form offers 1 for each; the Job planning manual does not print it).
-    let defaulted: Vec<(&str, &str)> = [
-        ("VARI", vari, "VARI 1, outside with constant depth"),
-        ("NRC", nrc, "NRC 1, one rough cut"),
-        ("NUMT", numt, "NUMT 1, a single start"),
-    ]
-    .into_iter()
-    .filter(|(_, v, _)| *v == 0.0)
-    .map(|(n, _, means)| (n, means))
-    .collect();
+    let defaulted: Vec<(&str, &str)> =
+        [("NRC", nrc, "NRC 1, one rough cut"), ("NUMT", numt, "NUMT 1, a single start")]
+            .into_iter()
+            .filter(|(_, v, _)| *v == 0.0)
+            .map(|(n, _, means)| (n, means))
+            .collect();
     if !defaulted.is_empty() {
         let names: Vec<&str> = defaulted.iter().map(|d| d.0).collect();
         let means: Vec<&str> = defaulted.iter().map(|d| d.1).collect();
@@ -898,7 +895,16 @@ fn cycle97(m: &mut Motion, b: &RBlock<'_>, w: &RWord<'_>) -> Result<(), Error> {
             ),
         );
     }
-    let vari = if vari == 0.0 { 1.0 } else { vari };
+    // VARI has no default: the cycle checks it is 1 to 4 and stops otherwise (issue 64; Siemens'
+    // cycle alarm 61002, "type of machining incorrectly defined", in its Cycles manual's list,
+    // which is not among the sources read here).
+    if vari == 0.0 {
+        return Err(b.werr(
+            &m.file,
+            w,
+            "CYCLE97 VARI empty or 0: the control refuses the cycle (its machining type is 1 to 4: 1 outside and 2 inside with constant depth, 3 outside and 4 inside with constant cross-section; cycle alarm 61002)",
+        ));
+    }
     if ![1.0, 2.0, 3.0, 4.0].contains(&vari) {
         return Err(b.werr(&m.file, w, format!("CYCLE97 VARI {vari} must be 1, 2, 3 or 4")));
     }

@@ -57,6 +57,12 @@ pub struct PassingDrill {
 /// let d1 = Limit { min: Some(8.376), max: Some(8.676) };
 /// let d = drill_that_passes(&BasicThread::metric(10.0, 1.5), d1, Resolution::Micrometre)?.unwrap();
 /// assert_eq!((d.middle, d.diameter), (8.526, Some(8.5)));
+/// // 5/8-18 UNF-2B: D1 0.5650 … 0.5780 in (ASME B1.1); no inch drill lies within (9/16 =
+/// // 0.5625, 37/64 = 0.5781), the 14.5 mm drill (0.5709 in) does.
+/// let d1 = Limit { min: Some(0.565 * 25.4), max: Some(0.578 * 25.4) };
+/// let unf = BasicThread { form: threadcheck::ThreadForm::Unified, nominal_diameter: 0.625 * 25.4, pitch: 25.4 / 18.0, ..BasicThread::metric(0.0, 1.0) };
+/// let d = drill_that_passes(&unf, d1, Resolution::TenThousandthInch)?.unwrap();
+/// assert_eq!((d.diameter, d.name.as_deref()), (Some(14.5), Some("14.5")));
 /// # Ok::<(), threadcheck::Error>(())
 /// ```
 pub fn drill_that_passes(
@@ -90,8 +96,10 @@ pub fn drill_that_passes(
             }
         }
         ThreadForm::Trapezoidal => pick(metric()),
+        // An inch thread takes an inch drill; where none of the gauges lies within D1 (5/8-18
+        // UNF-2B: 9/16 is under, 37/64 over), the metric drill that does (14.5 mm).
         ThreadForm::Unified | ThreadForm::Whitworth | ThreadForm::BspParallel | ThreadForm::Acme => {
-            pick(nearest_inch(middle, &within, &tables.inch_drills))
+            pick(nearest_inch(middle, &within, &tables.inch_drills).or_else(metric))
         }
         ThreadForm::Npt | ThreadForm::Iso7Taper => return Ok(None),
     };
