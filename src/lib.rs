@@ -99,6 +99,7 @@ pub use toolpath::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
 
 // Geometry: the insert, the sweep, the measurement.
 pub use geometry::boolean::UnionStrategy;
+pub use geometry::forming::{formed_minor, FormProfile, Formed};
 pub use geometry::helix::{Cutter, Helix};
 pub use geometry::insert::{Insert, InsertKind};
 pub use geometry::measure::{

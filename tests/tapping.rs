@@ -67,6 +67,50 @@ fn an_inch_tap_with_no_inch_drill_within_d1_is_offered_the_metric_one() {
     );
 }
 
+/// Issue 64: a form tap (`form-tap:`) needs a larger hole than a cutting tap. The tap makers'
+/// formula, hole = D − 0.0068·P·% (inch: D − 0.0068·%/TPI), gives a 1/2-13 at 65 % a Ø0.4660 in
+/// hole (0.5 − 0.0068·65/13 = 0.4660), and M10x1.5's window for 60–75 % 9.235–9.388 mm. In a Ø9.3
+/// hole the tap forms D1 ≈ 8.943 mm by volume constancy (derived by hand in `formed_minor`'s
+/// example); after the cutting tap's Ø8.5 drill the hole holds more metal than the teeth take.
+#[test]
+fn a_form_tap_is_checked_against_the_hole_it_needs() {
+    let text = "G21 G17 G90 G94\nT5 M6\nG0 X0 Y0 S1200 M3\nG43 H5 Z5.\nG98 G81 Z-25. R2. F150.\nG80\nT6 M6\nG0 X0 Y0 S400 M3\nG43 H6 Z5.\nG98 G84 Z-18. R3. F600.\nG80\nM30\n";
+    let tools = |drill: &str, tap: &str| format!("[tools]\n5 = \"drill:{drill}\"\n6 = \"{tap}\"\n");
+    let (code, v, e) = tap(text, &tools("9.3", "form-tap:M10x1.5-6H"));
+    assert_eq!(code, 0, "{e}");
+    let h = &v["holes"][0];
+    assert_eq!(h["tap"]["forming"], true);
+    let d = check(&v, "drill_diameter");
+    assert_eq!(
+        (d["min"].as_f64(), d["max"].as_f64(), &d["ok"]),
+        (Some(9.235), Some(9.388), &serde_json::Value::Bool(true))
+    );
+    let d1 = h["formed"]["minor_diameter"].as_f64().unwrap();
+    assert!((d1 - 8.943).abs() < 0.003, "{d1}");
+    assert!((h["formed"]["hole_for_65_percent"].as_f64().unwrap() - 9.337).abs() < 1e-9);
+    assert!((h["thread_percent"]["percent"].as_f64().unwrap() - 0.7 / (0.0068 * 1.5)).abs() < 1e-9);
+    // The cutting tap's drill under a form tap: refused as an overload, the passing drill named.
+    let (code, v, _) = tap(text, &tools("8.5", "form-tap:M10x1.5-6H"));
+    assert_eq!(code, 1);
+    let h = &v["holes"][0];
+    assert!(h["formed"]["minor_diameter"].is_null());
+    assert!(check(&v, "drill_diameter")["note"].as_str().unwrap().contains("the tap is overloaded"));
+    assert_eq!(h["drill_that_passes"]["diameter"].as_f64(), Some(9.3));
+    // The same Ø9.3 under a cutting tap fails D1 (8.376–8.676).
+    let (code, _, _) = tap(text, &tools("9.3", "tap:M10x1.5-6H"));
+    assert_eq!(code, 1);
+    // A comment that names a form tap makes it one.
+    let named = text.replace("T6 M6\n", "T6 M6 (FORM TAP M10X1.5)\n");
+    let (code, v, e) = tap(&named, "[tools]\n5 = \"drill:9.3\"\n");
+    assert_eq!(code, 0, "{e}");
+    assert_eq!(v["holes"][0]["tap"]["forming"], true);
+    // 1/2-13 UNC at 65 %: Ø0.4660 in.
+    let inch = text.replace("G21", "G20").replace("F600.", "F30.7692");
+    let (_, v, e) = tap(&inch, &tools("11.8364", "form-tap:1/2-13 UNC-2B"));
+    let hole = v["holes"][0]["formed"]["hole_for_65_percent"].as_f64().unwrap_or_else(|| panic!("{e}"));
+    assert!((hole / 25.4 - 0.4660).abs() < 5e-5, "{hole}");
+}
+
 /// Feed per revolution (G99) must be the pitch: F1.4 is 0.1 mm/rev short. Per minute (G98) it
 /// must be S × P = 300 × 1.5 = 450 mm/min: F450 passes, F400 fails by 50.
 #[test]

@@ -111,6 +111,26 @@ pub struct DrillInfo {
     pub point_given: bool,
 }
 
+/// What a form tap leaves in its hole (issue 64).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct FormedThread {
+    /// The minor diameter D1 the tap forms, mm, by volume constancy (`None` when the hole is
+    /// overfilled: the nut's teeth close before the displaced metal is placed).
+    pub minor_diameter: Option<f64>,
+    /// The hole the tap makers' formula gives for the middle of the band, mm:
+    /// D − 0.0068·P·% (in inch, D − 0.0068·%/TPI) at 65 %.
+    pub hole_for_65_percent: f64,
+}
+
+/// The band of percent thread form-tap makers recommend for their hole (a named default, the
+/// cutting band's 60–75 %), in their formula hole = D − 0.0068·P·%.
+pub const FORM_TAP_BAND: [f64; 2] = [60.0, 75.0];
+
+/// The tap makers' hole for a form tap: D − 0.0068·P·% (inch: D − 0.0068·%/TPI, the same), mm.
+pub fn form_tap_hole(thread: &crate::standards::BasicThread, percent: f64) -> f64 {
+    thread.nominal_diameter - 0.0068 * thread.pitch * percent
+}
+
 /// The tap of a tapping cycle.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct TapInfo {
@@ -126,6 +146,9 @@ pub struct TapInfo {
     pub chamfer_pitches: f64,
     /// The chamfer was given in the tool table (else the default).
     pub chamfer_given: bool,
+    /// A form (roll) tap (the tool table's `form-tap:`): the drill is checked against the hole
+    /// it needs, and D1 is what it forms.
+    pub forming: bool,
     /// The chamfer's length, mm (its pitches times the pitch).
     pub chamfer_length: f64,
     /// Z where the tap's full thread begins: its bottom plus the chamfer, mm (`None` when the
@@ -153,6 +176,10 @@ pub struct TappedHole {
     /// How much thread the drill leaves (a 60° tap's drill of known diameter; `None`
     /// otherwise): reported beside the checks, never failed (D1's limits are the check).
     pub thread_percent: Option<ThreadPercent>,
+    /// A form tap's thread: the minor diameter D1 it forms in the drilled hole, by volume
+    /// constancy (`None` for a cutting tap, or when the drill is not known).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub formed: Option<FormedThread>,
     /// The checks.
     pub checks: Vec<TapCheck>,
     /// Within every check.
@@ -431,7 +458,70 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
         let res = limits.resolution;
         let mut checks = Vec::new();
         let mut notes: Vec<String> = tap.why.iter().cloned().chain(drill_note).collect();
+        // A form tap's hole: the tap makers' window for 60–75 % of thread, not D1 (the tap forms
+        // D1 from the wall's metal).
+        let hole_window = if tap.forming {
+            let t = &des.thread;
+            crate::standards::tolerance::Limit {
+                min: Some(res.round(form_tap_hole(t, FORM_TAP_BAND[1]))),
+                max: Some(res.round(form_tap_hole(t, FORM_TAP_BAND[0]))),
+            }
+        } else {
+            limits.minor_diameter
+        };
+        let formed = match (&drill, tap.forming) {
+            (Some(DrillInfo { diameter: Some(dia), .. }), true) => {
+                let t = &des.thread;
+                let profile = crate::geometry::forming::FormProfile {
+                    p: t.pitch,
+                    r2: 0.5 * t.pitch_diameter(),
+                    tan_half: t.half_angle().tan(),
+                };
+                let minor = match crate::geometry::forming::formed_minor(&profile, t.nominal_diameter, *dia) {
+                    crate::geometry::forming::Formed::Minor(d1) => Some(d1),
+                    crate::geometry::forming::Formed::Overfilled => None,
+                };
+                Some(FormedThread { minor_diameter: minor, hole_for_65_percent: form_tap_hole(t, 65.0) })
+            }
+            _ => None,
+        };
+        if tap.forming {
+            notes.push(format!(
+                "a form tap: its hole is the tap makers' D − 0.0068·P·% for {}–{} % of thread (a named default), {}–{} mm; the tap forms D1 from the wall's metal, computed by volume constancy with a flat crest (a formed crest is cupped); ISO 965's and ASME B1.1's D1 limits are for cut threads, and a formed D1 at the usual 65 % lies over them (DIN 13-50 gives formed threads their own, not in the sources here): D1 is reported, not checked",
+                crate::ground::fmt::fmt_num(FORM_TAP_BAND[0]),
+                crate::ground::fmt::fmt_num(FORM_TAP_BAND[1]),
+                crate::ground::fmt::fmt_num(hole_window.min.unwrap_or(0.0)),
+                crate::ground::fmt::fmt_num(hole_window.max.unwrap_or(0.0)),
+            ));
+        }
         match &drill {
+            Some(DrillInfo { diameter: Some(dia), cycle, .. }) if tap.forming => {
+                let (lo, hi) = (hole_window.min, hole_window.max);
+                let v = res.round(*dia);
+                let below = lo.map_or(0.0, |lo| (v - lo).min(0.0));
+                let above = hi.map_or(0.0, |hi| (v - hi).max(0.0));
+                let dev = if below < 0.0 { below } else { above };
+                let d1 = formed.and_then(|f| f.minor_diameter);
+                checks.push(TapCheck {
+                    feature: TapFeature::DrillDiameter,
+                    ok: dev == 0.0 && d1.is_some(),
+                    value: Some(*dia),
+                    min: lo,
+                    max: hi,
+                    unit: "mm",
+                    deviation: (dev * 10_000.0).round() / 10.0,
+                    note: format!(
+                        "a form tap's hole (T{}, {} at line {}): {}",
+                        cycle.tool.map_or("?".to_string(), |t| t.to_string()),
+                        cycle.code,
+                        cycle.line,
+                        match d1 {
+                            Some(d1) => format!("the tap forms D1 {} mm in it", crate::ground::fmt::fmt_num((d1 * 1e4).round() / 1e4)),
+                            None => "the hole holds more metal than the thread's teeth take: the tap is overloaded (it breaks)".to_string(),
+                        }
+                    ),
+                });
+            }
             Some(DrillInfo { diameter: Some(dia), cycle, .. }) => {
                 let (lo, hi) = (limits.minor_diameter.min, limits.minor_diameter.max);
                 let v = res.round(*dia);
@@ -681,18 +771,31 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             }
         }
         notes.push(format!(
-            "the tapped thread's D2 and D are the tap's class {} (not computed); D1 is the drill's",
-            limits.class
+            "the tapped thread's D2 and D are the tap's class {} (not computed); D1 is {}",
+            limits.class,
+            if tap.forming { "what the form tap forms" } else { "the drill's" }
         ));
         let pass = checks.iter().all(|c| c.ok);
-        let thread_percent =
-            drill.as_ref().and_then(|d| d.diameter).and_then(|dia| thread_percent(&des.thread, dia));
+        // A form tap's percent is the tap makers' (D − hole)/(0.0068·P); a cutting tap's the charts'.
+        let thread_percent = drill.as_ref().and_then(|d| d.diameter).and_then(|dia| {
+            let cut = thread_percent(&des.thread, dia)?;
+            Some(if tap.forming {
+                ThreadPercent {
+                    percent: (des.thread.nominal_diameter - dia) / (0.0068 * des.thread.pitch),
+                    band: FORM_TAP_BAND,
+                    ..cut
+                }
+            } else {
+                cut
+            })
+        });
         if let Some(t) = thread_percent.filter(|t| t.percent < t.band[0] || t.percent > t.band[1]) {
             notes.push(format!(
-                "the drill leaves {} % of thread, outside the {}–{} % shop charts give for a cutting tap (a named default): {}",
+                "the drill leaves {} % of thread, outside the {}–{} % shop charts give for a {} tap (a named default): {}",
                 crate::ground::fmt::fmt_num((t.percent * 10.0).round() / 10.0),
                 crate::ground::fmt::fmt_num(t.band[0]),
                 crate::ground::fmt::fmt_num(t.band[1]),
+                if tap.forming { "form" } else { "cutting" },
                 if t.percent > t.band[1] {
                     "above it the tap's torque rises steeply for little more strength"
                 } else {
@@ -715,6 +818,7 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                 lead,
                 chamfer_pitches,
                 chamfer_given,
+                forming: tap.forming,
                 chamfer_length: chamfer,
                 full_thread_z: h.bottom.map(|z| z + chamfer),
                 minor_diameter: limits.minor_diameter,
@@ -722,11 +826,8 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             },
             drill,
             thread_percent,
-            drill_that_passes: crate::standards::drills::drill_that_passes(
-                &des.thread,
-                limits.minor_diameter,
-                res,
-            )?,
+            drill_that_passes: crate::standards::drills::drill_that_passes(&des.thread, hole_window, res)?,
+            formed,
             checks,
             pass,
             notes,
@@ -749,12 +850,22 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
     })
 }
 
+/// Whether a comment naming a tap says it forms the thread: FORM, FORMING, ROLL, FLUTELESS,
+/// GEWINDEFORMER or GEWINDEFURCHER among its words (`(FORM TAP M8)`, `(M6 ROLL TAP)`).
+fn says_forming(text: &str) -> bool {
+    text.to_uppercase()
+        .split(|c: char| !c.is_alphanumeric())
+        .any(|w| matches!(w, "FORM" | "FORMING" | "ROLL" | "FLUTELESS" | "GEWINDEFORMER" | "GEWINDEFURCHER"))
+}
+
 /// The tap of one tapping cycle, and where it came from.
 #[derive(Clone)]
 struct TapOf {
     designation: String,
     chamfer_pitches: f64,
     chamfer_given: bool,
+    /// A form tap (the tool table's `form-tap:`); a tap named otherwise cuts.
+    forming: bool,
     from: crate::analysis::naming::DesignationFrom,
     line: Option<usize>,
     why: Option<String>,
@@ -788,6 +899,7 @@ fn tap_of(
             designation: designation.clone(),
             chamfer_pitches: crate::analysis::tools::DEFAULT_TAP_CHAMFER_PITCHES,
             chamfer_given: false,
+            forming: false,
             from: DesignationFrom::Given,
             line: None,
             why: Some(match h.tool {
@@ -798,11 +910,12 @@ fn tap_of(
             }),
         });
     }
-    if let Some((_, Some((Tool::Tap { designation, chamfer_pitches, chamfer_given }, _)))) = table {
+    if let Some((_, Some((Tool::Tap { designation, chamfer_pitches, chamfer_given, forming }, _)))) = table {
         return Ok(TapOf {
             designation: designation.clone(),
             chamfer_pitches: *chamfer_pitches,
             chamfer_given: *chamfer_given,
+            forming: *forming,
             from: DesignationFrom::Tool,
             line: None,
             why: None,
@@ -866,13 +979,19 @@ fn tap_of(
             },
         };
         if let Some(n) = named {
+            // A comment (or tool list line) that says the tap forms: `(FORM TAP M8)`,
+            // `(ROLL TAP 1/4-20)`, `GEWINDEFORMER M10`.
+            let forming = n.from == DesignationFrom::Comment
+                && comments.iter().filter(|c| Some(c.line) == n.line).any(|c| says_forming(&c.text));
+            let why = if forming { format!("{}; a form tap, as the comment says", n.why) } else { n.why };
             return Ok(TapOf {
                 designation: n.designation,
                 chamfer_pitches: default,
                 chamfer_given: false,
+                forming,
                 from: n.from,
                 line: n.line,
-                why: Some(n.why),
+                why: Some(why),
             });
         }
     }

@@ -3,7 +3,8 @@
 //!
 //! ```toml
 //! # T number = "full", "partial", "partial:TIP_RADIUS" or an insert TOML file (relative to this file);
-//! # a tap "tap:DESIGNATION[:CHAMFER_PITCHES]", a drill "drill:DIAMETER" (the tapping check)
+//! # a tap "tap:DESIGNATION[:CHAMFER_PITCHES]" (a form tap "form-tap:…"), a drill
+//! # "drill:DIAMETER" (the tapping check)
 //! [tools]
 //! 3 = "full"
 //! 4 = "partial:0.05"
@@ -95,6 +96,9 @@ pub enum Tool {
         chamfer_pitches: f64,
         /// The chamfer was given (else the default).
         chamfer_given: bool,
+        /// A form (roll) tap (`form-tap:`): it displaces the metal into the thread, and its
+        /// hole is larger than a cutting tap's.
+        forming: bool,
     },
     /// A drill of this diameter, mm.
     Drill {
@@ -151,7 +155,8 @@ impl ToolTable {
                 .trim_start_matches(['T', 't'])
                 .parse()
                 .map_err(|_| ferr(format!("tool '{k}' is not a T number (write 3 = \"full\")")))?;
-            let tool = if let Some(rest) = v.strip_prefix("tap:") {
+            let forming = v.starts_with("form-tap:");
+            let tool = if let Some(rest) = v.strip_prefix("tap:").or_else(|| v.strip_prefix("form-tap:")) {
                 let (designation, chamfer) = match rest.rsplit_once(':') {
                     Some((d, c)) => (d, Some(c)),
                     None => (rest, None),
@@ -166,6 +171,7 @@ impl ToolTable {
                     designation: designation.trim().to_string(),
                     chamfer_pitches,
                     chamfer_given: chamfer.is_some(),
+                    forming,
                 }
             } else if let Some(rest) = v.strip_prefix("drill:") {
                 let (dia, point) = match rest.split_once(':') {

@@ -18,7 +18,8 @@ pub struct TapArgs {
     #[serde(skip)]
     #[allow(missing_docs)]
     pub file: ProgramArgs,
-    /// The tool table: each tap as T = "tap:M10x1.5-6H[:CHAMFER_PITCHES]", each drill as
+    /// The tool table: each tap as T = "tap:M10x1.5-6H[:CHAMFER_PITCHES]" (a form tap
+    /// "form-tap:M10x1.5-6H", checked against the larger hole it needs), each drill as
     /// T = "drill:8.5" (a file on the command line, its text through the API); a tap or drill it
     /// does not name is taken from the program's comments ((TAP M10X1.5), (DRILL 8.5)), else the
     /// tap is the standard size of its lead over its drill.

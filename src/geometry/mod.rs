@@ -6,6 +6,7 @@
 
 pub mod boolean;
 pub mod envelope;
+pub mod forming;
 pub mod helix;
 pub mod index;
 pub mod insert;

@@ -22,18 +22,18 @@ pub(crate) fn drill_source_words(s: DrillSource) -> &'static str {
     match s {
         DrillSource::Iso2306Coarse => "ISO 2306's tap drill",
         DrillSource::Iso2306Fine => "ISO 2306's fine-series tap drill",
-        DrillSource::MetricSeries => "the 0.1 mm drill nearest D1's middle",
-        DrillSource::InchGauge => "the inch drill nearest D1's middle",
+        DrillSource::MetricSeries => "the 0.1 mm drill nearest the middle",
+        DrillSource::InchGauge => "the inch drill nearest the middle",
     }
 }
 
 /// The drill that would pass, in words: `Ø8.5 mm (ISO 2306's tap drill); D1's middle 8.526 mm`.
-pub(crate) fn passing_drill_words(d: &PassingDrill) -> String {
+pub(crate) fn passing_drill_words(d: &PassingDrill, window: &str) -> String {
     match (&d.name, d.diameter, d.source) {
         (Some(name), Some(dia), Some(src)) => {
             let inch = src == DrillSource::InchGauge;
             format!(
-                "{} ({}{}); D1's middle {:.3} mm",
+                "{} ({}{}); {window}'s middle {:.3} mm",
                 if inch {
                     format!("{name}, {:.4} in", dia / crate::MM_PER_INCH)
                 } else {
@@ -44,7 +44,7 @@ pub(crate) fn passing_drill_words(d: &PassingDrill) -> String {
                 d.middle
             )
         }
-        _ => format!("Ø{:.3} mm, D1's middle (no stocked drill lies within D1)", d.middle),
+        _ => format!("Ø{:.3} mm, {window}'s middle (no stocked drill lies within it)", d.middle),
     }
 }
 
@@ -54,7 +54,8 @@ pub(crate) fn passing_drill_line(h: &crate::analysis::tapping::TappedHole) -> Op
     let drill_bad = h.checks.iter().any(|k| k.feature == TapFeature::DrillDiameter && !k.ok);
     let drill_unknown = h.drill.as_ref().is_none_or(|d| d.diameter.is_none());
     let pd = h.drill_that_passes.as_ref().filter(|_| drill_bad || drill_unknown)?;
-    Some(format!("a drill that passes: {}", passing_drill_words(pd)))
+    let window = if h.tap.forming { "the form tap's hole" } else { "D1" };
+    Some(format!("a drill that passes: {}", passing_drill_words(pd, window)))
 }
 
 /// The text `threadcheck tap` prints.
@@ -179,14 +180,36 @@ pub fn holes_text(r: &TapReport) -> String {
                 k.note
             );
         }
-        if let Some(t) = &h.thread_percent {
-            let _ = writeln!(
-                s,
-                "thread: {}; shops' band for a cutting tap {}–{} % (a named default)",
-                super::thread_percent_words(t),
-                fmt_num(t.band[0]),
-                fmt_num(t.band[1])
-            );
+        match (&h.thread_percent, h.tap.forming) {
+            (Some(t), false) => {
+                let _ = writeln!(
+                    s,
+                    "thread: {}; shops' band for a cutting tap {}–{} % (a named default)",
+                    super::thread_percent_words(t),
+                    fmt_num(t.band[0]),
+                    fmt_num(t.band[1])
+                );
+            }
+            (Some(t), true) => {
+                let _ = writeln!(
+                    s,
+                    "thread: {} % (the form-tap makers' percent, (D − hole)/(0.0068·P)); their band {}–{} % (a named default){}",
+                    fmt_num((t.percent * 10.0).round() / 10.0),
+                    fmt_num(t.band[0]),
+                    fmt_num(t.band[1]),
+                    match h.formed {
+                        Some(f) => format!(
+                            "; formed D1 {}, class D1 {}–{} (cut threads'); 65 % is a Ø{:.4} hole",
+                            f.minor_diameter.map_or("— (overfilled)".to_string(), |d| format!("{d:.4}")),
+                            h.tap.minor_diameter.min.map_or("—".to_string(), |v| format!("{v:.4}")),
+                            h.tap.minor_diameter.max.map_or("—".to_string(), |v| format!("{v:.4}")),
+                            f.hole_for_65_percent
+                        ),
+                        None => String::new(),
+                    }
+                );
+            }
+            (None, _) => {}
         }
         if let Some(line) = passing_drill_line(h) {
             let _ = writeln!(s, "{line}");
