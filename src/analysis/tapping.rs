@@ -211,6 +211,7 @@ fn hole_wall(
     t: &crate::standards::BasicThread,
     chamfer: f64,
     drill: f64,
+    crest: f64,
     tap_z: f64,
     drill_z: f64,
     point_deg: f64,
@@ -218,7 +219,9 @@ fn hole_wall(
     let p = t.pitch;
     let half = t.half_angle();
     let h = t.fundamental_height();
-    let (rd, rmaj) = (0.5 * drill, 0.5 * t.nominal_diameter);
+    // The thread's crest stands at the drill's wall for a cutting tap, at the D1 it forms,
+    // inside the wall, for a form tap.
+    let (rd, rc, rmaj) = (0.5 * drill, 0.5 * crest, 0.5 * t.nominal_diameter);
     let rmin = 0.5 * t_minor_basic(t);
     // The tap's tooth: the fundamental triangle's apex H/8 beyond D, flanks at the half angle.
     let apex = rmaj + h / 8.0;
@@ -237,7 +240,7 @@ fn hole_wall(
             } else {
                 f64::INFINITY
             };
-            rd.max(tooth.min(cone).min(rmaj))
+            rc.max(tooth.min(cone).min(rmaj))
         } else if z >= point_top {
             rd
         } else {
@@ -804,9 +807,12 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             ));
         }
         let wall = match (&drill, h.bottom) {
-            (Some(DrillInfo { diameter: Some(dia), cycle, point_angle, .. }), Some(tz)) => cycle
-                .bottom
-                .map_or_else(Vec::new, |dz| hole_wall(&des.thread, chamfer, *dia, tz, dz, *point_angle)),
+            (Some(DrillInfo { diameter: Some(dia), cycle, point_angle, .. }), Some(tz)) => {
+                cycle.bottom.map_or_else(Vec::new, |dz| {
+                    let crest = formed.and_then(|f| f.minor_diameter).unwrap_or(*dia);
+                    hole_wall(&des.thread, chamfer, *dia, crest, tz, dz, *point_angle)
+                })
+            }
             _ => Vec::new(),
         };
         holes.push(TappedHole {

@@ -450,7 +450,15 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
             11.0,
             "#1f5fa8",
             false,
-            format!("D1 of {}: {}", hole.tap.designation, fmt_limits(d1.min, d1.max, " mm")),
+            match hole.formed.and_then(|f| f.minor_diameter) {
+                Some(formed) => format!(
+                    "D1 formed {} mm; D1 of {} (cut threads'): {}",
+                    fmt_num((formed * 1e4).round() / 1e4),
+                    hole.tap.designation,
+                    fmt_limits(d1.min, d1.max, " mm")
+                ),
+                None => format!("D1 of {}: {}", hole.tap.designation, fmt_limits(d1.min, d1.max, " mm")),
+            },
         );
         ty += 4.0;
         for ck in &hole.checks {
@@ -502,7 +510,12 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
         let drill_unknown = hole.drill.as_ref().is_none_or(|d| d.diameter.is_none());
         if let Some(pd) = hole.drill_that_passes.as_ref() {
             ty += 6.0;
-            let head = if drill_ok && !drill_unknown { "the drill for D1" } else { "a drill that passes" };
+            let window = if hole.tap.forming { "the form tap's hole" } else { "D1" };
+            let head = if drill_ok && !drill_unknown {
+                format!("the drill for {window}")
+            } else {
+                "a drill that passes".to_string()
+            };
             let (what, why) = match (&pd.name, pd.diameter, pd.source) {
                 (Some(name), Some(dia), Some(src)) => (
                     if src == crate::standards::drills::DrillSource::InchGauge {
@@ -511,14 +524,14 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
                         format!("{head}: Ø{name} mm")
                     },
                     format!(
-                        "{}; D1's middle {:.3}",
+                        "{}; {window}'s middle {:.3}",
                         crate::report::tapping::drill_source_words(src),
                         pd.middle
                     ),
                 ),
                 _ => (
                     format!("{head}: Ø{:.3} mm", pd.middle),
-                    "D1's middle; no stocked drill lies within D1".into(),
+                    format!("{window}'s middle; no stocked drill lies within it"),
                 ),
             };
             let colour = if drill_ok && !drill_unknown { "#333" } else { ZONE };
