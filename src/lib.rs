@@ -99,7 +99,7 @@ pub use toolpath::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};
 
 // Geometry: the insert, the sweep, the measurement.
 pub use geometry::boolean::UnionStrategy;
-pub use geometry::forming::{formed_minor, FormProfile, Formed};
+pub use geometry::forming::{blank_for_crest, formed_minor, rolled_major, FormProfile, Formed, Rolled};
 pub use geometry::helix::{Cutter, Helix};
 pub use geometry::insert::{Insert, InsertKind};
 pub use geometry::measure::{
@@ -131,6 +131,7 @@ pub use analysis::percent::{thread_percent, ThreadPercent, THREAD_PERCENT_BAND};
 pub use analysis::picture::{Cut, Deviation, Picture};
 pub use analysis::process::MachineProfile;
 pub use analysis::program::{verify_program, verify_whole, Milled, Process, ProgramVerification};
+pub use analysis::rolled::{rolled_thread, RolledThread};
 pub use analysis::tapping::{tapping, TapCheck, TapFeature, TapReport, TapSpec, TappedHole};
 pub use analysis::threadmill::{thread_mill, ThreadMillReport, ThreadMillSpec};
 pub use analysis::tools::{InsertChoice, Tool, ToolTable};

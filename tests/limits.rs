@@ -270,3 +270,39 @@ fn a_missing_class_is_suggested_in_the_standards_own_words() {
         assert!(stdout(&o).contains(says), "{d}: {}", stdout(&o));
     }
 }
+
+/// Issue 64, rolled threads. M10x1.5-6g: the dies set d2 at 6g's middle 8.928; their crests form
+/// the root at 8.928 − 2H/3 = 8.062, the full crest stands at 8.928 + 3H/4 = 9.902 (H = 1.299).
+/// By hand, planar areas at their centroid radii: with the blank at d2 the groove below it
+/// (0.25 → 0.75 mm wide over 0.433 mm: 0.2165 mm² at r ≈ 4.28) is short of the tooth above it
+/// (0.75 → 0.1875 mm over 0.487 mm: 0.2283 mm² at r ≈ 4.69); a blank δ over the pitch radius moves
+/// 0.75·δ from one to the other: 0.2165·4.28 + 0.75δ·4.464 = (0.2283 − 0.75δ)·4.69, δ ≈ 0.021,
+/// blank ≈ 8.970 (shop charts give M10 roll blanks of about 8.95–9.0).
+#[test]
+fn a_rolled_thread_gives_its_blank_and_what_a_blank_gives() {
+    let o = run(&["limits", "M10x1.5-6g", "--rolled", "--json", "-"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let r = &v["rolled"];
+    assert!((r["pitch_diameter"].as_f64().unwrap() - 8.928).abs() < 1e-9);
+    assert!((r["root_diameter"].as_f64().unwrap() - (8.928 - 1.5 * 3f64.sqrt() / 3.0)).abs() < 1e-9);
+    assert!((r["full_crest"].as_f64().unwrap() - (8.928 + 0.75 * 1.5 * 3f64.sqrt() / 2.0)).abs() < 1e-9);
+    let blank = r["blank_for_full_crest"].as_f64().unwrap();
+    assert!((blank - 8.970).abs() < 0.003, "{blank}");
+    // 1-8 UNC-2A from a 0.912 in blank: short of the 0.9165 in that fills it, the major forms
+    // under 2A's smallest, 0.9830 in (ASME B1.1, LE = D): exit 1, the crest short.
+    let o = run(&["limits", "1-8 UNC-2A", "--blank", "0.912", "--json", "-"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let r = &v["rolled"];
+    let major = r["major_formed"].as_f64().unwrap() / 25.4;
+    assert!(major > 0.9135 && major < 0.9830, "{major}");
+    assert_eq!(
+        (&r["major_ok"], &r["crest_short"]),
+        (&serde_json::Value::Bool(false), &serde_json::Value::Bool(true))
+    );
+    // A nut is not rolled.
+    let o = run(&["limits", "M10x1.5-6H", "--rolled"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("a rolled thread is external"), "{}", stderr(&o));
+}

@@ -267,7 +267,9 @@ def test_correct_over_wires_follows_the_standard_formula():
     r = threadcheck.correct("M10x1.5-6g", insert="full", measured_m=m, wire=w)
     wires = r["measured"]["over_wires"]
     assert wires["helix_term"] == pytest.approx(-0.001733, abs=5e-6)
-    assert wires["helix_term_classical"] == pytest.approx(-0.75 * w * (p / (math.pi * 9.025721)) ** 2, abs=1e-7)
+    # The classical term at the part's own d2, which the reading gives (issue 64).
+    d2 = r["measured"]["pitch_diameter"]
+    assert wires["helix_term_classical"] == pytest.approx(-0.75 * w * (p / (math.pi * d2)) ** 2, abs=1e-7)
     assert r["measured"]["pitch_diameter"] == pytest.approx(m - 3 * w + 0.866025404 * p + wires["helix_term"], abs=1e-6)
     assert r["verdict"] == "fail"
     # The correction brings d2 to 8.928, the middle of 8.862–8.994.
@@ -287,6 +289,11 @@ def test_correct_matches_the_cli_and_a_coating_moves_the_limits():
     # The class after coating (a drawing that says so): every limit 40 µm down.
     after = threadcheck.limits("M10x1.5-6g", coating=0.010, coating_limits="after")["external"]
     assert after["pitch_diameter"] == {"max": 8.954, "min": 8.822}
+    # A rolled M10x1.5-6g: the dies at 6g's middle d2 8.928, the root 2H/3 under it
+    # (H = 1.299038), the blank near 8.970 (derived by hand in tests/limits.rs).
+    rolled = threadcheck.limits("M10x1.5-6g", rolled=True)["rolled"]
+    assert abs(rolled["root_diameter"] - (8.928 - 2 * 1.299038 / 3)) < 1e-6
+    assert abs(rolled["blank_for_full_crest"] - 8.970) < 0.003
 
 
 def test_capability_wear_alone_gives_the_derived_parts_per_edge():

@@ -180,13 +180,15 @@ def verify(thread: Optional[Threads] = None, program: Optional[str] = None, dial
 
 def limits(designation: Optional[str] = None, allow_nonstandard: bool = False,
            coating: Optional[float] = None, coating_limits: Optional[str] = None,
-        thread: Optional[str] = None) -> LimitsReport:
+        thread: Optional[str] = None, rolled: bool = False,
+        blank: Optional[float] = None) -> LimitsReport:
     """``threadcheck limits DESIGNATION --json``: basic sizes and limits of size, mm.
 
     The designation is given as ``designation`` or as ``thread``, as the other functions take it.
     ``coating`` (mm) gives the limits to cut to before a coat of that thickness;
     ``coating_limits`` (``"before"``, the standards' default, or ``"after"``) which limits the
-    class applies to.
+    class applies to. ``rolled`` adds a rolled external thread's blank (``rolled`` in the
+    report), ``blank`` (in the designation's units) the major diameter that blank forms.
     """
     report: LimitsReport = _json.loads(_run("limits", "json", dict(locals()))[0])
     return report

@@ -85,8 +85,8 @@ class VerifyReport(_Report, total=False):
     machine: Json
 
 
-class LimitsReport(TypedDict):
-    """``limits D --json``."""
+class _LimitsRequired(TypedDict):
+    """``limits D --json``: the keys always there."""
 
     designation: str
     form: str
@@ -99,6 +99,12 @@ class LimitsReport(TypedDict):
     basic: Json
     external: Optional[Json]
     internal: Optional[Json]
+
+
+class LimitsReport(_LimitsRequired, total=False):
+    """``limits D --json``; ``rolled`` with ``rolled=True`` or a ``blank``."""
+
+    rolled: Json
 
 
 class PassesReport(TypedDict, total=False):

@@ -18,6 +18,7 @@ pub mod percent;
 pub mod picture;
 pub mod process;
 pub mod program;
+pub mod rolled;
 pub mod taper;
 pub mod tapping;
 pub mod threadmill;

@@ -498,53 +498,38 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             ));
         }
         match &drill {
-            Some(DrillInfo { diameter: Some(dia), cycle, .. }) if tap.forming => {
+            Some(DrillInfo { diameter: Some(dia), cycle, .. }) => {
+                // A cutting tap's hole is D1 (the drill's), a form tap's the makers' window.
                 let (lo, hi) = (hole_window.min, hole_window.max);
                 let v = res.round(*dia);
                 let below = lo.map_or(0.0, |lo| (v - lo).min(0.0));
                 let above = hi.map_or(0.0, |hi| (v - hi).max(0.0));
                 let dev = if below < 0.0 { below } else { above };
+                let at = format!(
+                    "T{}, {} at line {}",
+                    cycle.tool.map_or("?".to_string(), |t| t.to_string()),
+                    cycle.code,
+                    cycle.line
+                );
                 let d1 = formed.and_then(|f| f.minor_diameter);
+                let (ok, note) = if tap.forming {
+                    let what = match d1 {
+                        Some(d1) => format!("the tap forms D1 {} mm in it", crate::ground::fmt::fmt_num((d1 * 1e4).round() / 1e4)),
+                        None => "the hole holds more metal than the thread's teeth take: the tap is overloaded (it breaks)".to_string(),
+                    };
+                    (dev == 0.0 && d1.is_some(), format!("a form tap's hole ({at}): {what}"))
+                } else {
+                    (dev == 0.0, format!("the tapped hole's minor diameter D1 is the drill's ({at})"))
+                };
                 checks.push(TapCheck {
                     feature: TapFeature::DrillDiameter,
-                    ok: dev == 0.0 && d1.is_some(),
+                    ok,
                     value: Some(*dia),
                     min: lo,
                     max: hi,
                     unit: "mm",
                     deviation: (dev * 10_000.0).round() / 10.0,
-                    note: format!(
-                        "a form tap's hole (T{}, {} at line {}): {}",
-                        cycle.tool.map_or("?".to_string(), |t| t.to_string()),
-                        cycle.code,
-                        cycle.line,
-                        match d1 {
-                            Some(d1) => format!("the tap forms D1 {} mm in it", crate::ground::fmt::fmt_num((d1 * 1e4).round() / 1e4)),
-                            None => "the hole holds more metal than the thread's teeth take: the tap is overloaded (it breaks)".to_string(),
-                        }
-                    ),
-                });
-            }
-            Some(DrillInfo { diameter: Some(dia), cycle, .. }) => {
-                let (lo, hi) = (limits.minor_diameter.min, limits.minor_diameter.max);
-                let v = res.round(*dia);
-                let below = lo.map_or(0.0, |lo| (v - lo).min(0.0));
-                let above = hi.map_or(0.0, |hi| (v - hi).max(0.0));
-                let dev = if below < 0.0 { below } else { above };
-                checks.push(TapCheck {
-                    feature: TapFeature::DrillDiameter,
-                    ok: dev == 0.0,
-                    value: Some(*dia),
-                    min: lo,
-                    max: hi,
-                    unit: "mm",
-                    deviation: (dev * 10_000.0).round() / 10.0,
-                    note: format!(
-                        "the tapped hole's minor diameter D1 is the drill's (T{}, {} at line {})",
-                        cycle.tool.map_or("?".to_string(), |t| t.to_string()),
-                        cycle.code,
-                        cycle.line
-                    ),
+                    note,
                 });
             }
             Some(DrillInfo { diameter: None, cycle, .. }) => notes.push(format!(

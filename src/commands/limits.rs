@@ -39,6 +39,14 @@ pub struct LimitsArgs {
     #[cfg_attr(feature = "cli", arg(long, value_name = "before|after"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub coating_limits: Option<CoatingLimits>,
+    /// A rolled external thread: the blank that fills its crest, by volume constancy (the dies
+    /// set d2 at the class's middle; stated).
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub rolled: bool,
+    /// A rolled thread's blank, in the designation's units (inches for Unified, mm for metric):
+    /// the major diameter it forms, checked against the class (implies ‹rolled›).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "DIAMETER", value_parser = super::args::finite))]
+    pub blank: Option<f64>,
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
     #[allow(missing_docs)]
@@ -79,13 +87,41 @@ impl Job for LimitsArgs {
         };
         let ext = coat(limits_for(&des, ThreadKind::External)?)?;
         let int = coat(limits_for(&des, ThreadKind::Internal)?)?;
+        let rolled = if self.rolled || self.blank.is_some() {
+            let ext = ext.as_ref().ok_or_else(|| {
+                Error::Input(format!(
+                    "{}: a rolled thread is external: give its external class ({})",
+                    des.text,
+                    match t.form {
+                        crate::standards::ThreadForm::IsoMetric => "6g, 6h, 4h …",
+                        crate::standards::ThreadForm::Unified => "1A, 2A, 3A",
+                        _ => "the designation's external class",
+                    }
+                ))
+            })?;
+            let unit = if t.form.is_inch() { crate::MM_PER_INCH } else { 1.0 };
+            Some(crate::analysis::rolled::rolled_thread(&des, ext, self.blank.map(|b| b * unit))?)
+        } else {
+            None
+        };
+        let outcome = match rolled.as_ref().and_then(|r| r.major_ok) {
+            Some(false) => Outcome::OutOfTolerance,
+            _ => Outcome::Pass,
+        };
+        let mut text = crate::report::limits::text(&des, ext.as_ref(), int.as_ref());
+        if let Some(r) = &rolled {
+            text.push_str(&crate::report::limits::rolled_text(&des, r));
+        }
         Ok(Outputs::new(
-            Outcome::Pass,
+            outcome,
             [
                 request.render(Document::Json, || {
-                    pretty(&crate::report::LimitsReport::new(&des, ext.as_ref(), int.as_ref()))
+                    pretty(
+                        &crate::report::LimitsReport::new(&des, ext.as_ref(), int.as_ref())
+                            .with_rolled(rolled.as_ref()),
+                    )
                 })?,
-                Some((Document::Text, crate::report::limits::text(&des, ext.as_ref(), int.as_ref()))),
+                Some((Document::Text, text)),
             ],
         ))
     }

@@ -102,11 +102,15 @@ pub fn formed_minor(profile: &FormProfile, major: f64, hole: f64) -> Formed {
         return Formed::Overfilled;
     }
     // The tooth's volume grows as its crest moves inward: bisect to the radius where it is
-    // the displaced volume (to 1e-12 mm).
-    let (mut lo, mut hi) = (apex, rh);
+    // the displaced volume.
+    Formed::Minor(2.0 * bisect(apex, rh, |r| profile.tooth_moment(r, rh) > displaced))
+}
+
+/// The point of [lo, hi] where `below` turns false, to 1e-13 mm: `below` holds under it.
+fn bisect(mut lo: f64, mut hi: f64, below: impl Fn(f64) -> bool) -> f64 {
     for _ in 0..100 {
         let mid = 0.5 * (lo + hi);
-        if profile.tooth_moment(mid, rh) > displaced {
+        if below(mid) {
             lo = mid;
         } else {
             hi = mid;
@@ -115,7 +119,41 @@ pub fn formed_minor(profile: &FormProfile, major: f64, hole: f64) -> Formed {
             break;
         }
     }
-    Formed::Minor(lo + hi)
+    0.5 * (lo + hi)
+}
+
+/// What rolling dies leave on a blank.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Rolled {
+    /// The crest forms at this major diameter, mm.
+    Major(f64),
+    /// The blank holds more metal than the thread's teeth: they close to a point (the dies
+    /// are overloaded; the crest laps over).
+    Overfilled,
+}
+
+/// The major diameter dies whose crests form the root at `root` (mm, a diameter) leave on a
+/// blank of `blank` mm, for `profile` (the bolt's tooth is the nut's groove of
+/// [`FormProfile`]): the tooth grown outward from the blank's surface until its volume is the
+/// volume the dies' teeth displace between the root and the surface.
+pub fn rolled_major(profile: &FormProfile, root: f64, blank: f64) -> Rolled {
+    let (rr, rb) = (0.5 * root, 0.5 * blank);
+    // The bolt's groove is the nut's tooth, its tooth the nut's groove.
+    let displaced = profile.tooth_moment(rr, rb);
+    if displaced <= 0.0 {
+        return Rolled::Major(blank);
+    }
+    let apex = profile.r2 + 0.25 * profile.p / profile.tan_half;
+    if apex <= rb || profile.groove_moment(rb, apex) < displaced {
+        return Rolled::Overfilled;
+    }
+    Rolled::Major(2.0 * bisect(rb, apex, |r| profile.groove_moment(rb, r) < displaced))
+}
+
+/// The blank, mm, on which the same dies form the crest at `crest` (mm): the blank whose
+/// displaced metal just fills the tooth to it.
+pub fn blank_for_crest(profile: &FormProfile, root: f64, crest: f64) -> f64 {
+    bisect(root, crest, |b| matches!(rolled_major(profile, root, b), Rolled::Major(m) if m < crest))
 }
 
 #[cfg(test)]

@@ -43,6 +43,9 @@ pub struct LimitsReport<'a> {
     pub external: Option<&'a crate::standards::tolerance::ThreadLimits>,
     /// The internal thread's limits.
     pub internal: Option<&'a crate::standards::tolerance::ThreadLimits>,
+    /// A rolled external thread's blank (`--rolled`, `--blank`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rolled: Option<&'a crate::analysis::rolled::RolledThread>,
 }
 
 impl<'a> LimitsReport<'a> {
@@ -76,7 +79,14 @@ impl<'a> LimitsReport<'a> {
             },
             external,
             internal,
+            rolled: None,
         }
+    }
+
+    /// With a rolled thread's blank.
+    pub fn with_rolled(mut self, rolled: Option<&'a crate::analysis::rolled::RolledThread>) -> Self {
+        self.rolled = rolled;
+        self
     }
 }
 
@@ -178,5 +188,57 @@ pub fn text(
         let example = if e == i { e } else { format!("{e} or {i}") };
         let _ = writeln!(s, "\nno class given: add one for limits, e.g. {example}");
     }
+    s
+}
+
+/// The text of a rolled thread's blank (`limits --rolled`), in mm and, for an inch form, inches.
+pub fn rolled_text(des: &crate::standards::Designation, r: &crate::analysis::rolled::RolledThread) -> String {
+    use std::fmt::Write as _;
+    let inch = des.thread.form.is_inch();
+    let v = |x: f64| {
+        if inch {
+            format!("{:.4} in ({x:.3} mm)", x / crate::MM_PER_INCH)
+        } else {
+            format!("{x:.3} mm")
+        }
+    };
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "
+rolled (volume constancy of the profile)"
+    );
+    let _ = writeln!(s, "  blank for the full crest            {}", v(r.blank_for_full_crest));
+    if let Some(b) = r.blank {
+        let formed = match (r.major_formed, r.overfilled) {
+            (_, true) => {
+                "overfilled: more metal than the teeth take, the crest laps over (the dies are overloaded)"
+                    .to_string()
+            }
+            (Some(m), false) => format!(
+                "major {} {}{}",
+                v(m),
+                if r.major_ok == Some(true) {
+                    "within the class"
+                } else {
+                    "OUTSIDE the class's major limits"
+                },
+                if r.crest_short == Some(true) {
+                    format!(", crest short of the full {}", v(r.full_crest))
+                } else {
+                    ", the crest full".to_string()
+                }
+            ),
+            (None, false) => String::new(),
+        };
+        let _ = writeln!(s, "  from a blank of {}: {formed}", v(b));
+    }
+    let _ = writeln!(
+        s,
+        "  note: named defaults: the dies set d2 at the class's middle, {}; their crests form the root at {} (H/3 under the pitch line, the rounded root's bottom, taken flat); the full crest {} (3H/8 over it)",
+        v(r.pitch_diameter),
+        v(r.root_diameter),
+        v(r.full_crest)
+    );
     s
 }
