@@ -1066,6 +1066,38 @@ fn the_page_says_what_the_control_will_refuse() {
     );
 }
 
+/// Issue 64 on the page, in Chromium, as a new user leaves its fields: a pasted program whose
+/// comment names a form tap (`(FORM TAP M10X1.5)`) over a Ø9.3 drill. The drill check's limits
+/// are the tap makers' hole for 60–75 % of thread, D − 0.0068·P·% = 9.235–9.388 mm (not 6H's D1
+/// 8.376–8.676, which Ø9.3 would fail), and the picture shows the D1 the tap forms beside the cut
+/// threads' limits.
+#[test]
+fn the_page_checks_a_form_tap_against_the_hole_it_needs() {
+    let seen = page_whole("page-form-tap", &data("programs/tapping/form-tap-m10.nc"), None);
+    assert_eq!(seen["console"], serde_json::json!([]));
+    assert_eq!(seen["verdict"], "IN TOLERANCE: every check passes");
+    let rows = seen["check_rows"].as_array().unwrap();
+    let drill = rows.iter().find(|r| r[0] == "drill diameter").unwrap_or_else(|| panic!("{rows:?}"));
+    assert_eq!(
+        (drill[2].as_str(), drill[3].as_str(), drill[4].as_str()),
+        (Some("9.3000"), Some("9.2350"), Some("9.3880")),
+        "{drill:?}"
+    );
+    assert!(
+        drill.as_array().unwrap().last().unwrap().as_str().unwrap().starts_with("a form tap's hole"),
+        "{drill:?}"
+    );
+    let picture: Vec<&str> =
+        seen["picture_text"].as_array().unwrap().iter().filter_map(|t| t.as_str()).collect();
+    assert!(
+        picture
+            .iter()
+            .any(|t| t.starts_with("D1 formed 8.94") && t.contains("(cut threads'): 8.376 – 8.676 mm")),
+        "{picture:?}"
+    );
+    assert!(picture.contains(&"the drill for the form tap's hole: Ø9.3 mm"), "{picture:?}");
+}
+
 /// Issue 45 on the page, in Chromium: the dialect list offers every dialect (Klartext among
 /// them), and a pasted Klartext plate read as Klartext gives its six tapped holes, each named by
 /// its comment and placed (X120 Y50: the pattern's 270° point turned by 90° and shifted), the

@@ -28,6 +28,8 @@ try {
   seen.headings = await page.$$eval(".operation h2", (hs) => hs.map((h) => h.textContent));
   seen.verdicts = await page.$$eval(".operation .verdict-small", (ps) => ps.map((p) => p.textContent));
   seen.tap_checks = await page.$$eval(".operation:nth-of-type(2) table.checks tbody tr", (rows) => rows.map((r) => r.cells[0].textContent));
+  // Every operation's check rows, each as its cells' text (issue 64: a form tap's hole).
+  seen.check_rows = await page.$$eval(".operation table.checks tbody tr", (rows) => rows.map((r) => [...r.cells].map((c) => c.textContent.trim())));
   // Issue 63: what the control will refuse, under the operation it concerns and in the picture.
   seen.control = await page.$$eval(".operation .control li", (ls) => ls.map((l) => ({ level: l.className, text: l.textContent })));
   // The picture is an <img> of the SVG the API gives: read that SVG as the page loaded it.
@@ -38,10 +40,12 @@ try {
     return {
       control: [...d.querySelectorAll("#control text")].map((t) => t.textContent.trim()),
       verdict: d.querySelector("#program-verdict text")?.textContent.trim() ?? null,
+      text: [...d.querySelectorAll("text")].map((t) => t.textContent.trim()),
     };
   }, svg);
   seen.picture_control = doc.control;
   seen.picture_verdict = doc.verdict;
+  seen.picture_text = doc.text;
   seen.shot = join(out, "whole.png");
   await page.screenshot({ path: seen.shot, fullPage: true });
 } finally {
