@@ -79,6 +79,9 @@ pub use standards::tolerance::{
     iso_limits, limits_for, AcmeClass, Bs84Class, CoatingLimits, GaugePlane, Iso228Class, IsoClass, Limit,
     TaperClass, ThreadLimits, TrClass, UnifiedClass, UnifiedSeries,
 };
+pub use standards::torque::{
+    material as torque_material, tapping_torque, Material, MaterialGroup, TapKind, MATERIALS,
+};
 pub use standards::{
     catalog, parse_designation, BasicThread, Catalog, ClassSpec, Designation, DesignationError, Hand,
     ParseOptions, ProfileKind, ThreadForm, ThreadKind, MM_PER_INCH,

@@ -111,6 +111,60 @@ fn a_form_tap_is_checked_against_the_hole_it_needs() {
     assert!((hole / 25.4 - 0.4660).abs() < 5e-5, "{hole}");
 }
 
+/// Issue 64: a cutting tap's torque by the tap maker's published equation and tables (Yamawa,
+/// technical information: Tc = tan θ · kc · K · (D − Do)² · (D + 2·Do) / 24 000 N·m; Ck 45 (C45)
+/// kc 3900 N/mm²; a plug hand tap in steel at a coarse pitch K 1.35, a spiral-fluted one 1.15).
+/// M10x1.5 after Ø8.5: tan 30° · 3900 · 1.35 · 2.25 · 27 / 24 000 = 7.694 N·m (issue 64's
+/// "≈ 7.7"); at S300 (m10-g84.nc) 7.694 · 2π · 300 / 60 000 = 0.2417 kW. A form tap's is not
+/// computed (the maker gives no equation for one).
+#[test]
+fn a_tap_s_torque_follows_the_tap_maker_s_equation() {
+    let dir = tempdir("tap-torque");
+    std::fs::write(dir.join("p.nc"), program()).unwrap();
+    std::fs::write(dir.join("tools.toml"), TOOLS).unwrap();
+    let args = |extra: &[&str]| {
+        let mut a =
+            vec!["tap", "--program", "p.nc", "--tools", "tools.toml", "--dialect", "fanuc", "--json", "-"];
+        a.extend_from_slice(extra);
+        run_in(&dir, &a)
+    };
+    let o = args(&["--material", "C45", "--tap-kind", "hand-plug"]);
+    assert!(o.status.code().unwrap() < 2, "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let t = &v["holes"][0]["torque"];
+    let want = 30f64.to_radians().tan() * 3900.0 * 1.35 * 2.25 * 27.0 / 24_000.0;
+    assert!((t["newton_metres"].as_f64().unwrap() - want).abs() < 1e-9, "{t}");
+    assert!((want - 7.694).abs() < 5e-4);
+    let s = v["holes"][0]["cycle"]["spindle"].as_f64().unwrap();
+    assert!(
+        (t["power_kw"].as_f64().unwrap() - want * 2.0 * std::f64::consts::PI * s / 60_000.0).abs() < 1e-12
+    );
+    assert_eq!(
+        (t["material"].as_str(), t["k"].as_f64(), &t["coarse"]),
+        (Some("Ck 45"), Some(1.35), &serde_json::Value::Bool(true))
+    );
+    // The default kind, spiral-fluted (K 1.15), said in the notes.
+    let o = args(&["--material", "ck45"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["holes"][0]["torque"]["k"].as_f64(), Some(1.15));
+    assert!(v["holes"][0]["notes"].to_string().contains("the tap is taken as spiral-fluted for its torque"));
+    // A material the table does not have, and a kind with no material: refused naming them.
+    let o = args(&["--material", "unobtainium"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("unknown material 'unobtainium': the tap maker's table has st44-2, ck15"),
+        "{}",
+        stderr(&o)
+    );
+    let o = args(&["--tap-kind", "hand-plug"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--tap-kind is for the torque, which needs the workpiece's --material"),
+        "{}",
+        stderr(&o)
+    );
+}
+
 /// Feed per revolution (G99) must be the pitch: F1.4 is 0.1 mm/rev short. Per minute (G98) it
 /// must be S × P = 300 × 1.5 = 450 mm/min: F450 passes, F400 fails by 50.
 #[test]
@@ -400,6 +454,7 @@ fn the_hole_wall_follows_the_tap_and_the_drill() {
         from_program: false,
         stock_bottom: None,
         tap: None,
+        torque: None,
     };
     let r = threadcheck::tapping(&spec).unwrap();
     let wall = &r.holes[0].wall;

@@ -716,3 +716,17 @@ def test_tap_given_serves_a_tool_no_table_names():
         threadcheck.tap(prog)
     r = threadcheck.tap(prog, tap="M10x1.5-6H")
     assert r["pass"] and r["holes"][0]["tap"]["designation_from"] == "given"
+
+
+def test_tap_torque_follows_the_tap_makers_equation():
+    # M10x1.5 after an Ø8.5 drill, a plug hand tap in C45 (Ck 45: kc 3900 N/mm², K 1.35):
+    # tan 30° · 3900 · 1.35 · 1.5² · (10 + 17) / 24 000 = 7.694 N·m; at S400, 7.694 · 2π · 400 / 60 000 kW.
+    program = ("G21 G17 G90 G94\nT5 M6\nG0 X0 Y0 S1200 M3\nG43 H5 Z5.\nG98 G81 Z-25. R2. F150.\nG80\n"
+               "T6 M6\nG0 X0 Y0 S400 M3\nG43 H6 Z5.\nG98 G84 Z-18. R3. F600.\nG80\nM30\n")
+    tools = '[tools]\n5 = "drill:8.5"\n6 = "tap:M10x1.5-6H"\n'
+    r = threadcheck.tap(program, tools=tools, dialect="fanuc", material="C45", tap_kind="hand-plug")
+    t = r["holes"][0]["torque"]
+    assert t["newton_metres"] == pytest.approx(math.tan(math.radians(30)) * 3900 * 1.35 * 2.25 * 27 / 24000, rel=1e-12)
+    assert t["power_kw"] == pytest.approx(t["newton_metres"] * 2 * math.pi * 400 / 60000, rel=1e-12)
+    with pytest.raises(ValueError, match="unknown material"):
+        threadcheck.tap(program, tools=tools, dialect="fanuc", material="unobtainium")

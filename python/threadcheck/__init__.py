@@ -363,7 +363,8 @@ def tap(program: str, tools: Optional[str] = None, dialect: Optional[str] = None
         allow_nonstandard: bool = False, default_units: Optional[str] = None,
         gcode_system: Optional[str] = None,
         machine_type: Optional[str] = None, stock_bottom: Optional[float] = None,
-        tap: Optional[str] = None) -> TapReport:
+        tap: Optional[str] = None, material: Optional[str] = None,
+        tap_kind: Optional[str] = None) -> TapReport:
     """``threadcheck tap --json``: a program's tapping cycles (G84, G74) against their taps and
     the drills that made the holes.
 
@@ -379,7 +380,10 @@ def tap(program: str, tools: Optional[str] = None, dialect: Optional[str] = None
     ``checks`` (``drill_diameter`` against D1 of the tap's class, ``feed`` against the lead,
     ``depth`` left for the chamfer, ``spindle``) and ``drill_that_passes`` (the middle of D1 and
     the nearest stocked drill within it: ISO 2306's tap drill for ISO metric taps); the dict's
-    ``pass`` is the verdict.
+    ``pass`` is the verdict. A form tap is ``"form-tap:M10x1.5-6H"``. ``material`` (``"c45"``,
+    ``"gg-25"``, …) adds each cutting tap's ``torque`` by the tap maker's equation, for taps of
+    ``tap_kind`` (``"hand-plug"``, ``"hand-bottoming"``, ``"spiral-fluted"``, the default, or
+    ``"spiral-pointed"``).
     """
     report: TapReport = _json.loads(_run("tap", "json", dict(locals()))[0])
     return report

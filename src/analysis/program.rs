@@ -245,6 +245,7 @@ pub fn verify_whole(
             from_program: true,
             stock_bottom: spec.stock_bottom,
             tap: None,
+            torque: None,
         };
         let mut r = crate::analysis::tapping::tapping(&t)?;
         // The program's notes are the report's, once.

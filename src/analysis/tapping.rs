@@ -49,6 +49,39 @@ pub struct TapSpec {
     /// (and no `in_spindle` in the table), or a T the tool table does not name; before the
     /// program's comments. A designation such as `M10x1.5-6H`.
     pub tap: Option<String>,
+    /// The workpiece's material and the taps' kind, for each hole's torque (`--material`,
+    /// `--tap-kind`; the kind's default spiral-fluted, stated); `None`: no torque.
+    pub torque: Option<TorqueSpec>,
+}
+
+/// What a hole's torque is computed for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TorqueSpec {
+    /// The workpiece's material (the tap maker's table 1).
+    pub material: &'static crate::standards::torque::Material,
+    /// The taps' kind.
+    pub kind: crate::standards::torque::TapKind,
+    /// The kind was given (else the default, stated).
+    pub kind_given: bool,
+}
+
+/// A cutting tap's torque at a hole (issue 64), by the tap maker's equation.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct TapTorque {
+    /// Tc, N·m.
+    pub newton_metres: f64,
+    /// Power at the spindle, kW, at the cycle's S (`None` without an S).
+    pub power_kw: Option<f64>,
+    /// The material (table 1's name) and its kc, N/mm².
+    pub material: &'static str,
+    /// kc, N/mm².
+    pub kc: f64,
+    /// The tap's kind.
+    pub tap_kind: crate::standards::torque::TapKind,
+    /// Table 2's K.
+    pub k: f64,
+    /// The pitch is the size's coarse one (else fine).
+    pub coarse: bool,
 }
 
 /// What a tapping check looks at.
@@ -176,6 +209,9 @@ pub struct TappedHole {
     /// How much thread the drill leaves (a 60° tap's drill of known diameter; `None`
     /// otherwise): reported beside the checks, never failed (D1's limits are the check).
     pub thread_percent: Option<ThreadPercent>,
+    /// The torque the tap needs (`--material`; a cutting tap whose drill is known), N·m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub torque: Option<TapTorque>,
     /// A form tap's thread: the minor diameter D1 it forms in the drilled hole, by volume
     /// constancy (`None` for a cutting tap, or when the drill is not known).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -309,7 +345,7 @@ fn same_place(d: &crate::gcode::HoleCycle, h: &crate::gcode::HoleCycle) -> bool 
 /// use threadcheck::{tapping, Dialect, ReadOptions, TapSpec, ToolTable};
 /// let program = "T0505\nG99 M3 S800\nG0 X0 Z5\nG83 Z-25 R2 Q5000 F0.1\nT0606\nG84 Z-18 R5 F1.5\nG80\nM30\n";
 /// let tools = ToolTable::from_toml("[tools]\n5 = \"drill:8.5\"\n6 = \"tap:M10x1.5-6H\"\n", "tools.toml", std::path::Path::new("."))?;
-/// let spec = TapSpec { program: (program.into(), "tap.nc".into()), dialect: Dialect::Fanuc, reading: ReadOptions::default(), tools, allow_nonstandard: false, from_program: false, stock_bottom: None, tap: None };
+/// let spec = TapSpec { program: (program.into(), "tap.nc".into()), dialect: Dialect::Fanuc, reading: ReadOptions::default(), tools, allow_nonstandard: false, from_program: false, stock_bottom: None, tap: None, torque: None };
 /// let r = tapping(&spec)?;
 /// assert!(r.pass); // Ø8.5 within D1 8.376–8.676; F1.5 = P; 25 − 18 = 7 ≥ 2.5·1.5
 /// # Ok::<(), threadcheck::Error>(())
@@ -791,6 +827,59 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                 }
             ));
         }
+        let torque = match (spec.torque, drill.as_ref().and_then(|d| d.diameter)) {
+            (Some(ts), Some(dia)) if !tap.forming => {
+                let t = &des.thread;
+                let coarse = is_coarse_pitch(t);
+                match ts.kind.k(ts.material.group, coarse) {
+                    Some(k) => {
+                        let nm = crate::standards::torque::tapping_torque(
+                            t.half_angle(),
+                            ts.material.kc,
+                            k,
+                            t.nominal_diameter,
+                            dia,
+                        );
+                        if !ts.kind_given {
+                            notes.push(format!(
+                                "the tap is taken as {} for its torque (a named default; give its kind)",
+                                ts.kind.name()
+                            ));
+                        }
+                        Some(TapTorque {
+                            newton_metres: nm,
+                            power_kw: h
+                                .spindle
+                                .filter(|s| *s > 0.0)
+                                .map(|s| nm * 2.0 * std::f64::consts::PI * s / 60_000.0),
+                            material: ts.material.name,
+                            kc: ts.material.kc,
+                            tap_kind: ts.kind,
+                            k,
+                            coarse,
+                        })
+                    }
+                    None => {
+                        notes.push(format!(
+                            "the tap maker's table gives no K for a {} tap in {} at a {} pitch: no torque",
+                            ts.kind.name(),
+                            ts.material.name,
+                            if coarse { "coarse" } else { "fine" }
+                        ));
+                        None
+                    }
+                }
+            }
+            (Some(_), Some(_)) => {
+                notes.push("a form tap's torque is not computed: the tap maker's equation is for cutting taps (a form tap's is two to three times as high, by the same maker)".to_string());
+                None
+            }
+            (Some(_), None) => {
+                notes.push("the drill is not known: no torque".to_string());
+                None
+            }
+            (None, _) => None,
+        };
         let wall = match (&drill, h.bottom) {
             (Some(DrillInfo { diameter: Some(dia), cycle, point_angle, .. }), Some(tz)) => {
                 cycle.bottom.map_or_else(Vec::new, |dz| {
@@ -819,6 +908,7 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             thread_percent,
             drill_that_passes: crate::standards::drills::drill_that_passes(&des.thread, hole_window, res)?,
             formed,
+            torque,
             checks,
             pass,
             notes,
@@ -847,6 +937,29 @@ fn says_forming(text: &str) -> bool {
     text.to_uppercase()
         .split(|c: char| !c.is_alphanumeric())
         .any(|w| matches!(w, "FORM" | "FORMING" | "ROLL" | "FLUTELESS" | "GEWINDEFORMER" | "GEWINDEFURCHER"))
+}
+
+/// Whether the thread's pitch is the coarse one of its size (ISO 261's coarse series, UNC):
+/// the tap maker's table 2 has a K for coarse and one for fine.
+fn is_coarse_pitch(t: &crate::standards::BasicThread) -> bool {
+    use crate::standards::ThreadForm;
+    match t.form {
+        ThreadForm::IsoMetric => crate::standards::data::catalog().ok().is_some_and(|c| {
+            c.iso.series.sizes.iter().any(|s| {
+                (s.d - t.nominal_diameter).abs() < 1e-9
+                    && s.coarse.is_some_and(|p| (p - t.pitch).abs() < 1e-9)
+            })
+        }),
+        _ => crate::analysis::naming::infer_designation(
+            t.pitch,
+            1,
+            t.nominal_diameter,
+            crate::standards::ThreadKind::Internal,
+            crate::gcode::ProgramUnits::Inch,
+            1,
+        )
+        .is_ok_and(|n| n.designation.contains("UNC")),
+    }
 }
 
 /// The tap of one tapping cycle, and where it came from.

@@ -51,6 +51,16 @@ pub struct TapArgs {
     /// in the tool table, or a T the tool table does not name), e.g. M10x1.5-6H
     #[cfg_attr(feature = "cli", arg(long, value_name = "DESIGNATION"))]
     pub tap: Option<String>,
+    /// The workpiece's material, for each hole's tapping torque and power by the tap maker's
+    /// equation (st44-2, ck15, ck35, ck45 or c45, ck60, 42crmo4, 42crmo4-30hrc, 42crmo4-40hrc,
+    /// x6crni18-10, c105w2, cuzn40, g-alsi8cu3, gg-25).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "MATERIAL"))]
+    pub material: Option<String>,
+    /// The taps' kind, for the torque: hand-plug, hand-bottoming, spiral-fluted (the default) or
+    /// spiral-pointed.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "KIND"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub tap_kind: Option<crate::standards::torque::TapKind>,
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
     #[allow(missing_docs)]
@@ -87,6 +97,19 @@ impl Job for TapArgs {
             from_program: true,
             stock_bottom: self.stock_bottom,
             tap: self.tap.clone(),
+            torque: match &self.material {
+                Some(m) => Some(crate::analysis::tapping::TorqueSpec {
+                    material: crate::standards::torque::material(m)?,
+                    kind: self.tap_kind.unwrap_or(crate::standards::torque::TapKind::SpiralFluted),
+                    kind_given: self.tap_kind.is_some(),
+                }),
+                None if self.tap_kind.is_some() => {
+                    return Err(Error::Input(
+                        "‹tap_kind› is for the torque, which needs the workpiece's ‹material›".into(),
+                    ))
+                }
+                None => None,
+            },
         };
         let r = crate::analysis::tapping::tapping(&spec)?;
         let inputs = self.file.inputs().into_iter().chain(self.tools.as_ref().and_then(Source::file));

@@ -211,6 +211,22 @@ pub fn holes_text(r: &TapReport) -> String {
             }
             (None, _) => {}
         }
+        if let Some(t) = &h.torque {
+            let _ = writeln!(
+                s,
+                "torque: {} N·m{} (the tap maker's equation: {}, kc {} N/mm²; {} tap, K {} for a {} pitch)",
+                fmt_num((t.newton_metres * 100.0).round() / 100.0),
+                t.power_kw.map_or(String::new(), |p| format!(
+                    ", {} kW at the spindle",
+                    fmt_num((p * 1000.0).round() / 1000.0)
+                )),
+                t.material,
+                fmt_num(t.kc),
+                t.tap_kind.name(),
+                fmt_num(t.k),
+                if t.coarse { "coarse" } else { "fine" }
+            );
+        }
         if let Some(line) = passing_drill_line(h) {
             let _ = writeln!(s, "{line}");
         }

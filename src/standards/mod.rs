@@ -10,6 +10,7 @@ pub mod data;
 pub mod designation;
 pub mod drills;
 pub mod tolerance;
+pub mod torque;
 
 pub use data::{catalog, Catalog, UnifiedSize};
 pub use designation::{parse_designation, ClassSpec, Designation, DesignationError, ParseOptions};
