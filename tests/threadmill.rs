@@ -861,6 +861,35 @@ fn the_edge_feed_reproduces_the_makers_example() {
     }
 }
 
+/// Issue 64 item 4: the feed per tooth at the edge, the milling formula fz = Vf / (n · z) with
+/// the edge's feed: the makers' example inside (8.30 in/min at the edge) with a three-tooth
+/// cutter at S3000 is 8.30 / (3000 · 3) = 0.000922 in (0.0234 mm) a tooth.
+#[test]
+fn the_feed_per_tooth_is_the_edge_feed_over_the_teeth() {
+    let dir = crate::tempdir("per-tooth");
+    let file = dir.join("int.nc");
+    std::fs::write(&file, nine_sixteen_18(0.09625, 2.84)).unwrap();
+    let v = nine_sixteen_json(&file, &["--cutter-teeth", "3"]);
+    let f = &v["feeds"][0];
+    let edge = 2.84 * 0.5625 / (0.5625 - 0.370) * 25.4;
+    let fz = f["per_tooth"].as_f64().unwrap();
+    assert!((fz - edge / 9000.0).abs() < 1e-9, "{f}");
+    assert!((fz / 25.4 - 0.000922).abs() < 5e-7, "{fz}");
+    assert_eq!(f["spindle"].as_f64(), Some(3000.0));
+    let out = crate::stdout(&crate::run(&[
+        "thread-mill",
+        "--program",
+        file.to_str().unwrap(),
+        "--cutter-diameter",
+        "9.398",
+        "--cutter-teeth",
+        "3",
+    ]));
+    assert!(out.contains("0.00092 in (0.0234 mm) a tooth at S3000"), "{out}");
+    // Without the teeth, none.
+    assert!(nine_sixteen_json(&file, &[])["feeds"][0]["per_tooth"].is_null());
+}
+
 /// Issue 64 item 1: a thread-milled hole's percent of thread from its bore: 9/16-18 in a
 /// Ø0.5 in (12.7 mm) bore, 76.98·TPI·(D − bore) = 76.98·18·0.0625 = 86.6 %.
 #[test]

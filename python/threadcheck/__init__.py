@@ -394,7 +394,8 @@ def thread_mill(program: str, thread: Optional[str] = None, cutter_diameter: Opt
                 cutter_row_pitch: Optional[float] = None, blank_diameter: Optional[float] = None,
                 comp_radius: Optional[float] = None, dialect: Optional[str] = None,
                 program_name: Optional[str] = None, allow_nonstandard: bool = False,
-        tools: Optional[str] = None, default_units: Optional[str] = None) -> ThreadMillReport:
+        tools: Optional[str] = None, default_units: Optional[str] = None,
+        cutter_teeth: Optional[int] = None) -> ThreadMillReport:
     """``threadcheck thread-mill --json``: the thread a thread-milling program leaves.
 
     ``program`` is the program's text (helical G2/G3 in G17, the cutter centre's path),
@@ -406,7 +407,8 @@ def thread_mill(program: str, thread: Optional[str] = None, cutter_diameter: Opt
     comments name for that T (a CAM post's tool list, ``(T5  D=8. CR=0. - thread mill)``; the
     shape options then raise ``ValueError``: they need ``cutter_diameter``); ``cutter_rows`` (1) and
     ``cutter_row_pitch`` (mm) a multi-form cutter's rows; ``blank_diameter`` the bore (default
-    the middle of D1); ``comp_radius`` the D register G41/G42 apply (mm). The dict has ``measured``,
+    the middle of D1); ``comp_radius`` the D register G41/G42 apply (mm); ``cutter_teeth`` the
+    cutter's teeth, for each helix's feed per tooth in ``feeds``. The dict has ``measured``,
     ``tooth_profile`` (the cutter's tooth alone), ``distortion_pitch_diameter_um``,
     ``distortion_flank_angles_deg``, ``helices``, ``checks`` (``lead`` among them) and ``pass``.
     """

@@ -277,6 +277,7 @@ pub fn verify_whole(
                 blank_diameter: None,
                 comp_radius: None,
                 reading: spec.reading.clone(),
+                teeth: None,
             };
             let mut r = crate::analysis::threadmill::thread_mill(&m)?;
             // The program's notes are the report's, once.

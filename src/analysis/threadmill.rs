@@ -61,6 +61,8 @@ pub struct ThreadMillSpec {
     /// machine, where its subprograms' files are (its toolpath and `allow_no_threading` are this
     /// check's own).
     pub reading: ReadOptions,
+    /// The cutter's teeth (flutes), for the feed per tooth at its edge (`None`: not given).
+    pub teeth: Option<u32>,
 }
 
 /// The thread a thread mill leaves, measured and checked.
@@ -139,6 +141,11 @@ pub struct HelixFeed {
     pub factor: f64,
     /// The program writes the feed in inches (a minute).
     pub inch: bool,
+    /// The spindle speed at the helix, rpm (`None`: the program gives none).
+    pub spindle: Option<f64>,
+    /// The feed per tooth at the edge, mm: edge / (S · teeth), when the cutter's teeth are
+    /// given (`--cutter-teeth`) and the spindle speed is known.
+    pub per_tooth: Option<f64>,
 }
 
 /// The edge feeds of the helices with a feed. The control moves the cutter's centre at F (the
@@ -155,6 +162,7 @@ fn edge_feeds(
     major: f64,
     cutter_diameter: f64,
     kind: ThreadKind,
+    teeth: Option<u32>,
 ) -> Vec<HelixFeed> {
     let factor = match kind {
         ThreadKind::Internal => major / (major - cutter_diameter),
@@ -166,8 +174,15 @@ fn edge_feeds(
     hs.iter()
         .filter_map(|h| {
             let centre = h.feed?;
-            let inch = moves.iter().find(|m| m.line == h.line).is_some_and(|m| m.units == ProgramUnits::Inch);
-            Some(HelixFeed { line: h.line, centre, edge: centre * factor, factor, inch })
+            let mv = moves.iter().find(|m| m.line == h.line);
+            let inch = mv.is_some_and(|m| m.units == ProgramUnits::Inch);
+            let spindle = mv.and_then(|m| m.spindle).filter(|s| *s > 0.0);
+            let edge = centre * factor;
+            let per_tooth = match (spindle, teeth) {
+                (Some(s), Some(z)) if z > 0 => Some(edge / (s * f64::from(z))),
+                _ => None,
+            };
+            Some(HelixFeed { line: h.line, centre, edge, factor, inch, spindle, per_tooth })
         })
         .collect()
 }
@@ -724,7 +739,7 @@ fn entry_and_exit(moves: &[Move], hs: &[Helix]) -> Vec<String> {
 /// let mut program = String::from("G17 G90 G40\nG0 X4 Y0 Z-14\n");
 /// for k in 1..=8 { program += &format!("G3 X4 Y0 Z{} I-4 J0 F200\n", -14.0 + 1.5 * k as f64); }
 /// let cutter = Some(Cutter::single_form(12.0, 60.0, 0.0));
-/// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: Some("M20x1.5-6H".into()), allow_nonstandard: false, cutter, tools: None, blank_diameter: None, comp_radius: None, reading: ReadOptions::default() };
+/// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: Some("M20x1.5-6H".into()), allow_nonstandard: false, cutter, tools: None, blank_diameter: None, comp_radius: None, reading: ReadOptions::default(), teeth: None };
 /// let r = thread_mill(&spec)?;
 /// assert!((r.measured.major_diameter - 20.0).abs() < 1e-4);
 /// # Ok::<(), threadcheck::Error>(())
@@ -1238,7 +1253,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
             100.0 * ratio
         ));
     }
-    let feeds = edge_feeds(&hs, &prog.moves, t.nominal_diameter, c.diameter, kind);
+    let feeds = edge_feeds(&hs, &prog.moves, t.nominal_diameter, c.diameter, kind, spec.teeth);
     // The moves after the last helix against the finished crest (a straight thread's: a taper
     // thread's crest is not one radius, and is not judged).
     let crest = match kind {

@@ -48,6 +48,10 @@ pub struct ThreadMillArgs {
     /// A multi-form cutter's row spacing, mm.
     #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
     pub cutter_row_pitch: Option<f64>,
+    /// The cutter's teeth (flutes), for each helix's feed per tooth at the edge (edge feed / (S ·
+    /// teeth)); any cutter, given or from a tool table or comment.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "N"))]
+    pub cutter_teeth: Option<u32>,
     /// The bore (internal) or blank (external) diameter, mm.
     #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
     pub blank_diameter: Option<f64>,
@@ -106,6 +110,12 @@ impl Job for ThreadMillArgs {
                 .with_rows(rows, self.cutter_row_pitch)
             })
             .transpose()?;
+        if self.cutter_teeth.is_some_and(|z| !(1..=100).contains(&z)) {
+            return Err(Error::Input(format!(
+                "‹cutter_teeth› {}: a whole number from 1 to 100",
+                self.cutter_teeth.unwrap_or(0)
+            )));
+        }
         let spec = ThreadMillSpec {
             program,
             dialect,
@@ -121,6 +131,7 @@ impl Job for ThreadMillArgs {
                 sub_files: self.file.sub_files(request.files),
                 ..Default::default()
             },
+            teeth: self.cutter_teeth,
         };
         let r = crate::analysis::threadmill::thread_mill(&spec)?;
         let inputs = self.file.inputs().into_iter().chain(self.tools.as_ref().and_then(Source::file));

@@ -332,6 +332,7 @@ impl St<'_> {
                 extra_turns: arc.map_or(0, |a| a.2),
                 units: ProgramUnits::of_scale(self.scale),
                 feed: if rapid { None } else { self.feed },
+                spindle: self.spindle,
             });
         }
         self.tangent = match arc {

@@ -131,6 +131,9 @@ pub struct Move {
     /// `None` for a rapid and where the program has not given one (or per revolution without S).
     #[serde(skip)]
     pub feed: Option<f64>,
+    /// The spindle speed in force, rpm (`None` where the program has not given one).
+    #[serde(skip)]
+    pub spindle: Option<f64>,
 }
 
 /// An open chain of synchronised moves (G32/G33 blocks one after the other): one helix.
@@ -696,6 +699,7 @@ impl Motion {
                     extra_turns: 0,
                     units,
                     feed,
+                    spindle: self.s,
                 });
                 self.stream_moves(false);
             }
@@ -819,6 +823,7 @@ impl Motion {
                     extra_turns,
                     units,
                     feed,
+                    spindle: self.s,
                 });
                 self.stream_moves(false);
             }

@@ -83,6 +83,7 @@ pub fn text(r: &ThreadMillReport) -> String {
         while j < r.feeds.len()
             && r.feeds[j].centre == f.centre
             && (r.feeds[j].factor - f.factor).abs() < 1e-9
+            && r.feeds[j].per_tooth == f.per_tooth
         {
             j += 1;
         }
@@ -94,9 +95,16 @@ pub fn text(r: &ThreadMillReport) -> String {
                 format!("{mm:.0} mm/min")
             }
         };
+        let tooth = match (f.per_tooth, f.spindle) {
+            (Some(fz), Some(sp)) if f.inch => {
+                format!("; {:.5} in ({fz:.4} mm) a tooth at S{}", fz / 25.4, crate::ground::fmt::fmt_num(sp))
+            }
+            (Some(fz), Some(sp)) => format!("; {fz:.4} mm a tooth at S{}", crate::ground::fmt::fmt_num(sp)),
+            _ => String::new(),
+        };
         let _ = writeln!(
             s,
-            "  feed ({lines}): {} at the cutter's centre is {} at its edge (× {:.3}, D/(D {} d))",
+            "  feed ({lines}): {} at the cutter's centre is {} at its edge (× {:.3}, D/(D {} d)){tooth}",
             per_min(f.centre),
             per_min(f.edge),
             f.factor,

@@ -681,7 +681,7 @@ pub fn taper_limits(t: &BasicThread, c: TaperClass) -> Result<ThreadLimits, Erro
                 n.d2[i],
                 n.gauge_length_basic[i],
                 "ISO 7-1 gauge-plane d2 and gauge length",
-                "one turn applied as for NPT: ISO 7-1's own tolerance on the gauge plane's position is not checked against its table here",
+                "one turn applied as for NPT: ISO 7-1's own tolerances on the gauge plane's position (±T1/2, ±T2/2, larger than a turn for the large sizes) are not checked: no public copy of its table was found (looked at: JIS B 0203's published size table, ISO 7-2's front matter, shop pages on ISO 7-1)",
             )
         }
         ThreadForm::IsoMetric
