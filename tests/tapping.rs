@@ -165,6 +165,110 @@ fn a_tap_s_torque_follows_the_tap_maker_s_equation() {
     );
 }
 
+/// Issue 64: the torque against the machine file's spindle. 7.694 N·m (above) against a spindle
+/// of 5 N·m and 0.2 kW: both exceeded (at S300, 0.2417 kW), a warning each, the verdict the
+/// thread's; a spindle of 20 N·m and 1 kW holds it; a machine file without either says so.
+#[test]
+fn a_tap_s_torque_is_held_against_the_machine_s_spindle() {
+    let dir = tempdir("tap-spindle");
+    std::fs::write(dir.join("p.nc"), program()).unwrap();
+    std::fs::write(dir.join("tools.toml"), TOOLS).unwrap();
+    std::fs::write(
+        dir.join("small.toml"),
+        "name = \"small\"\nspindle_torque_nm = 5\nspindle_power_kw = 0.2\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("big.toml"), "name = \"big\"\nspindle_torque_nm = 20\nspindle_power_kw = 1\n")
+        .unwrap();
+    std::fs::write(dir.join("bare.toml"), "name = \"bare\"\n").unwrap();
+    let run = |machine: &str| {
+        let o = run_in(
+            &dir,
+            &[
+                "tap",
+                "--program",
+                "p.nc",
+                "--tools",
+                "tools.toml",
+                "--dialect",
+                "fanuc",
+                "--material",
+                "C45",
+                "--tap-kind",
+                "hand-plug",
+                "--machine",
+                machine,
+                "--json",
+                "-",
+            ],
+        );
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        v["holes"][0].clone()
+    };
+    let h = run("small.toml");
+    assert_eq!(h["torque"]["exceeds_spindle"], true);
+    assert_eq!(
+        (h["torque"]["spindle_torque_nm"].as_f64(), h["torque"]["spindle_power_kw"].as_f64()),
+        (Some(5.0), Some(0.2))
+    );
+    let notes = h["notes"].to_string();
+    assert!(notes.contains("warning: the tap needs 7.69 N·m, more than the spindle's 5 N·m"), "{notes}");
+    assert!(
+        notes.contains("warning: the tap needs 0.242 kW at S300, more than the spindle's 0.2 kW"),
+        "{notes}"
+    );
+    assert_eq!(h["pass"], true);
+    let h = run("big.toml");
+    assert_eq!(h["torque"]["exceeds_spindle"], false);
+    assert!(!h["notes"].to_string().contains("warning:"));
+    let h = run("bare.toml");
+    assert!(h["notes"].to_string().contains("gives no spindle_torque_nm or spindle_power_kw"));
+}
+
+/// BSW is BS 84's coarse series: a BSW 1/2 tap (12 tpi) takes table 2's coarse K (a plug hand
+/// tap in steel, 1.35), a BSF 1/2 (16 tpi) its fine K (1.15).
+#[test]
+fn a_whitworth_tap_s_coarse_pitch_is_bsw() {
+    let k = |tap: &str, drill: &str| {
+        let text = program().replace("F1.5", if tap.starts_with("BSW") { "F2.1167" } else { "F1.5875" });
+        let (code, v, e) = tap_torque(&text, &format!("[tools]\n5 = \"drill:{drill}\"\n6 = \"tap:{tap}\"\n"));
+        assert!(code < 2, "{e}");
+        (v["holes"][0]["torque"]["k"].as_f64(), v["holes"][0]["torque"]["coarse"].as_bool())
+    };
+    assert_eq!(k("BSW 1/2 medium", "10.5"), (Some(1.35), Some(true)));
+    assert_eq!(k("BSF 1/2 medium", "11"), (Some(1.15), Some(false)));
+}
+
+/// [`tap`] with the torque of a plug hand tap in C45.
+fn tap_torque(text: &str, tools: &str) -> (i32, serde_json::Value, String) {
+    let dir = tempdir("tap-with");
+    std::fs::write(dir.join("p.nc"), text).unwrap();
+    std::fs::write(dir.join("tools.toml"), tools).unwrap();
+    let o = run_in(
+        &dir,
+        &[
+            "tap",
+            "--program",
+            "p.nc",
+            "--tools",
+            "tools.toml",
+            "--dialect",
+            "fanuc",
+            "--material",
+            "C45",
+            "--tap-kind",
+            "hand-plug",
+            "--allow-nonstandard",
+            "--json",
+            "-",
+        ],
+    );
+    let code = o.status.code().unwrap();
+    let v = if code < 2 { serde_json::from_slice(&o.stdout).unwrap() } else { serde_json::Value::Null };
+    (code, v, stderr(&o))
+}
+
 /// Feed per revolution (G99) must be the pitch: F1.4 is 0.1 mm/rev short. Per minute (G98) it
 /// must be S × P = 300 × 1.5 = 450 mm/min: F450 passes, F400 fails by 50.
 #[test]
@@ -455,6 +559,7 @@ fn the_hole_wall_follows_the_tap_and_the_drill() {
         stock_bottom: None,
         tap: None,
         torque: None,
+        machine: None,
     };
     let r = threadcheck::tapping(&spec).unwrap();
     let wall = &r.holes[0].wall;

@@ -918,3 +918,64 @@ fn a_helix_a_loop_repeats_is_one_line_with_its_count() {
         "{out}"
     );
 }
+
+/// Issues 63 and 64: radial passes against the thread's depth. A generator's passes 0.5 mm
+/// apart in a Ø14 bore for M16x2-6H with a Ø10 single-form cutter, its last increment not
+/// clamped: helix radii 2.5, 3, 3.5 reach 2.5 + 5 − 7 = 0.5, 1.0 and 1.5 mm past the bore. The
+/// thread's depth there to its fundamental triangle's root: (D2 + H − 14)/2 with D2 = 16 −
+/// 0.649519·2 = 14.701 and H = 0.866025·2 = 1.732051, 1.216513 mm: the last pass is 283.5 µm
+/// deeper. The comb's four passes (above), 0.25 to 1.0 mm, stay within it.
+#[test]
+fn radial_passes_deeper_than_the_thread_are_found() {
+    let p = data("programs/threadmill/m16x2-passes-too-deep.nc");
+    let o = run(&[
+        "thread-mill",
+        "--program",
+        p.to_str().unwrap(),
+        "--json",
+        "-",
+        "--thread",
+        "M16x2-6H",
+        "--cutter-diameter",
+        "10",
+        "--cutter-angle",
+        "60",
+        "--cutter-tip-radius",
+        "0",
+        "--blank-diameter",
+        "14",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let c = v["checks"].as_array().unwrap().iter().find(|c| c["feature"] == "radial_depth").unwrap();
+    let root = 0.5 * (16.0 - 0.649_519_05 * 2.0 + 0.866_025_4 * 2.0 - 14.0);
+    assert!((c["max"].as_f64().unwrap() - root).abs() < 1e-6, "{c}");
+    assert!((c["value"].as_f64().unwrap() - 1.5).abs() < 1e-9, "{c}");
+    assert_eq!(c["ok"], false);
+    assert!(c["note"].as_str().unwrap().contains("0.5000, 1.0000, 1.5000 mm past the bore Ø14.0000"), "{c}");
+    let p = data("programs/threadmill/m16x2-comb-4-passes.nc");
+    let o = run(&[
+        "thread-mill",
+        "--program",
+        p.to_str().unwrap(),
+        "--json",
+        "-",
+        "--thread",
+        "M16x2-6H",
+        "--cutter-diameter",
+        "11.9",
+        "--cutter-angle",
+        "60",
+        "--cutter-tip-radius",
+        "0",
+        "--cutter-rows",
+        "5",
+        "--cutter-row-pitch",
+        "2",
+        "--blank-diameter",
+        "14",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let c = v["checks"].as_array().unwrap().iter().find(|c| c["feature"] == "radial_depth").unwrap();
+    assert!((c["value"].as_f64().unwrap() - 1.0).abs() < 1e-9 && c["ok"] == true, "{c}");
+}

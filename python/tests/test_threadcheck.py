@@ -730,3 +730,10 @@ def test_tap_torque_follows_the_tap_makers_equation():
     assert t["power_kw"] == pytest.approx(t["newton_metres"] * 2 * math.pi * 400 / 60000, rel=1e-12)
     with pytest.raises(ValueError, match="unknown material"):
         threadcheck.tap(program, tools=tools, dialect="fanuc", material="unobtainium")
+    # A spindle of 5 N·m holds less than 7.694 N·m: a warning, the verdict the thread's.
+    r = threadcheck.tap(program, tools=tools, dialect="fanuc", material="C45", tap_kind="hand-plug",
+                        machine='name = "small"\nspindle_torque_nm = 5\n')
+    h = r["holes"][0]
+    assert h["torque"]["exceeds_spindle"] and h["torque"]["spindle_torque_nm"] == 5
+    assert any(n.startswith("warning: the tap needs 7.69 N·m, more than the spindle's 5 N·m") for n in h["notes"])
+    assert r["pass"]

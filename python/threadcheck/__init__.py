@@ -364,7 +364,7 @@ def tap(program: str, tools: Optional[str] = None, dialect: Optional[str] = None
         gcode_system: Optional[str] = None,
         machine_type: Optional[str] = None, stock_bottom: Optional[float] = None,
         tap: Optional[str] = None, material: Optional[str] = None,
-        tap_kind: Optional[str] = None) -> TapReport:
+        tap_kind: Optional[str] = None, machine: Optional[str] = None) -> TapReport:
     """``threadcheck tap --json``: a program's tapping cycles (G84, G74) against their taps and
     the drills that made the holes.
 
@@ -383,7 +383,9 @@ def tap(program: str, tools: Optional[str] = None, dialect: Optional[str] = None
     ``pass`` is the verdict. A form tap is ``"form-tap:M10x1.5-6H"``. ``material`` (``"c45"``,
     ``"gg-25"``, …) adds each cutting tap's ``torque`` by the tap maker's equation, for taps of
     ``tap_kind`` (``"hand-plug"``, ``"hand-bottoming"``, ``"spiral-fluted"``, the default, or
-    ``"spiral-pointed"``).
+    ``"spiral-pointed"``). ``machine`` is a machine file's TOML text: its ``type`` reads the
+    program, its ``spindle_torque_nm`` and ``spindle_power_kw`` hold each torque (``exceeds_spindle``
+    and a warning note when the tap asks more).
     """
     report: TapReport = _json.loads(_run("tap", "json", dict(locals()))[0])
     return report

@@ -125,6 +125,9 @@ pub enum CheckFeature {
     Lead,
     /// A multi-form thread mill's row pitch against the thread's pitch.
     RowPitch,
+    /// A thread mill's deepest radial pass, from the bore or blank, against the thread's depth
+    /// to its fundamental triangle's root (issues 63 and 64).
+    RadialDepth,
     /// A thread-milling helix's hand (its turning direction × its Z direction) against the
     /// designation's (issue 46).
     Hand,
@@ -153,6 +156,7 @@ impl CheckFeature {
             CheckFeature::RunOut => "run_out",
             CheckFeature::Lead => "lead",
             CheckFeature::RowPitch => "row_pitch",
+            CheckFeature::RadialDepth => "radial_depth",
             CheckFeature::Hand => "hand",
         }
     }
@@ -179,6 +183,7 @@ impl CheckFeature {
             CheckFeature::RunOut => "run-out room",
             CheckFeature::Lead => "helix lead",
             CheckFeature::RowPitch => "row pitch",
+            CheckFeature::RadialDepth => "radial depth",
             CheckFeature::Hand => "hand",
         }
     }
@@ -211,6 +216,7 @@ impl CheckFeature {
             CheckFeature::RunOut => "run-out room",
             CheckFeature::Lead => "lead per revolution",
             CheckFeature::RowPitch => "cutter row pitch",
+            CheckFeature::RadialDepth => "radial depth of the passes",
             CheckFeature::Hand => "hand of the helix",
         }
     }
@@ -227,7 +233,8 @@ impl CheckFeature {
             | CheckFeature::Crest
             | CheckFeature::RunOut
             | CheckFeature::Lead
-            | CheckFeature::RowPitch => CheckUnit::Mm,
+            | CheckFeature::RowPitch
+            | CheckFeature::RadialDepth => CheckUnit::Mm,
             CheckFeature::FlankAngle | CheckFeature::FlankClearance => CheckUnit::Degree,
             CheckFeature::SingleGroove | CheckFeature::ConstantSpindleSpeed | CheckFeature::Hand => {
                 CheckUnit::YesNo

@@ -49,6 +49,13 @@ pub struct MachineProfile {
     /// (`None`: the run-in check's named default).
     #[serde(default)]
     pub servo_time_constant_s: Option<f64>,
+    /// The spindle's torque, N·m, at the speeds it taps at (a spindle's rated S1 torque below
+    /// its base speed): a tap's torque is held against it (`None`: not checked, said).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spindle_torque_nm: Option<f64>,
+    /// The spindle's power, kW: a tap's power at its S is held against it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spindle_power_kw: Option<f64>,
 }
 
 impl MachineProfile {
@@ -63,6 +70,8 @@ impl MachineProfile {
             rapid_mm_min: 5000.0,
             machine_type: Some(crate::gcode::MachineType::Lathe),
             servo_time_constant_s: None,
+            spindle_torque_nm: None,
+            spindle_power_kw: None,
             rpm_per_pitch: vec![
                 (0.5, 950.0),
                 (1.0, 500.0),
@@ -112,6 +121,8 @@ impl MachineProfile {
             #[serde(rename = "type")]
             machine_type: Option<crate::gcode::MachineType>,
             servo_time_constant_s: Option<f64>,
+            spindle_torque_nm: Option<f64>,
+            spindle_power_kw: Option<f64>,
         }
         let arg = source;
         let f: File = toml::from_str(text).map_err(|e| crate::ground::error::toml_error(&e, text, arg))?;
@@ -131,12 +142,16 @@ impl MachineProfile {
             rpm_per_pitch: f.rpm_per_pitch,
             machine_type: f.machine_type,
             servo_time_constant_s: f.servo_time_constant_s,
+            spindle_torque_nm: f.spindle_torque_nm,
+            spindle_power_kw: f.spindle_power_kw,
         };
         let positive = |v: f64| v > 0.0 && v.is_finite();
         if !positive(m.rapid_mm_min)
             || m.max_rpm.is_some_and(|r| !positive(r))
             || m.max_feed_mm_min.is_some_and(|f| !positive(f))
             || m.servo_time_constant_s.is_some_and(|t| !positive(t))
+            || m.spindle_torque_nm.is_some_and(|t| !positive(t))
+            || m.spindle_power_kw.is_some_and(|p| !positive(p))
             || m.rpm_per_pitch.iter().any(|(up, rpm)| !positive(*up) || !positive(*rpm))
         {
             return Err(Error::File {

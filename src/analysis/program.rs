@@ -246,6 +246,7 @@ pub fn verify_whole(
             stock_bottom: spec.stock_bottom,
             tap: None,
             torque: None,
+            machine: spec.machine.clone(),
         };
         let mut r = crate::analysis::tapping::tapping(&t)?;
         // The program's notes are the report's, once.

@@ -52,6 +52,9 @@ pub struct TapSpec {
     /// The workpiece's material and the taps' kind, for each hole's torque (`--material`,
     /// `--tap-kind`; the kind's default spiral-fluted, stated); `None`: no torque.
     pub torque: Option<TorqueSpec>,
+    /// The machine the program runs on (`--machine`): its spindle's torque and power hold each
+    /// hole's torque (a warning when exceeded).
+    pub machine: Option<crate::analysis::process::MachineProfile>,
 }
 
 /// What a hole's torque is computed for.
@@ -82,6 +85,15 @@ pub struct TapTorque {
     pub k: f64,
     /// The pitch is the size's coarse one (else fine).
     pub coarse: bool,
+    /// The machine file's spindle torque, N·m, the torque is held against (`None`: not given).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spindle_torque_nm: Option<f64>,
+    /// The machine file's spindle power, kW, the power is held against (`None`: not given).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spindle_power_kw: Option<f64>,
+    /// The tap asks more torque or power than the machine file's spindle gives: a warning (the
+    /// spindle stalls or the tap breaks); the verdict is the thread's.
+    pub exceeds_spindle: bool,
 }
 
 /// What a tapping check looks at.
@@ -345,7 +357,7 @@ fn same_place(d: &crate::gcode::HoleCycle, h: &crate::gcode::HoleCycle) -> bool 
 /// use threadcheck::{tapping, Dialect, ReadOptions, TapSpec, ToolTable};
 /// let program = "T0505\nG99 M3 S800\nG0 X0 Z5\nG83 Z-25 R2 Q5000 F0.1\nT0606\nG84 Z-18 R5 F1.5\nG80\nM30\n";
 /// let tools = ToolTable::from_toml("[tools]\n5 = \"drill:8.5\"\n6 = \"tap:M10x1.5-6H\"\n", "tools.toml", std::path::Path::new("."))?;
-/// let spec = TapSpec { program: (program.into(), "tap.nc".into()), dialect: Dialect::Fanuc, reading: ReadOptions::default(), tools, allow_nonstandard: false, from_program: false, stock_bottom: None, tap: None, torque: None };
+/// let spec = TapSpec { program: (program.into(), "tap.nc".into()), dialect: Dialect::Fanuc, reading: ReadOptions::default(), tools, allow_nonstandard: false, from_program: false, stock_bottom: None, tap: None, torque: None, machine: None };
 /// let r = tapping(&spec)?;
 /// assert!(r.pass); // Ø8.5 within D1 8.376–8.676; F1.5 = P; 25 − 18 = 7 ≥ 2.5·1.5
 /// # Ok::<(), threadcheck::Error>(())
@@ -846,17 +858,50 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                                 ts.kind.name()
                             ));
                         }
+                        let power_kw = h
+                            .spindle
+                            .filter(|s| *s > 0.0)
+                            .map(|s| nm * 2.0 * std::f64::consts::PI * s / 60_000.0);
+                        let machine = spec.machine.as_ref();
+                        let spindle_torque_nm = machine.and_then(|m| m.spindle_torque_nm);
+                        let spindle_power_kw = machine.and_then(|m| m.spindle_power_kw);
+                        let over_torque = spindle_torque_nm.filter(|max| nm > *max);
+                        let over_power = match (power_kw, spindle_power_kw) {
+                            (Some(p), Some(max)) if p > max => Some((p, max)),
+                            _ => None,
+                        };
+                        let name = machine.map_or("", |m| m.name.as_str());
+                        if let Some(max) = over_torque {
+                            notes.push(format!(
+                                "warning: the tap needs {} N·m, more than the spindle's {} N·m (the machine file '{name}'): the spindle stalls or the tap breaks",
+                                crate::ground::fmt::fmt_num((nm * 100.0).round() / 100.0),
+                                crate::ground::fmt::fmt_num(max)
+                            ));
+                        }
+                        if let Some((p, max)) = over_power {
+                            notes.push(format!(
+                                "warning: the tap needs {} kW at S{}, more than the spindle's {} kW (the machine file '{name}')",
+                                crate::ground::fmt::fmt_num((p * 1000.0).round() / 1000.0),
+                                crate::ground::fmt::fmt_num(h.spindle.unwrap_or(0.0)),
+                                crate::ground::fmt::fmt_num(max)
+                            ));
+                        }
+                        if machine.is_some() && spindle_torque_nm.is_none() && spindle_power_kw.is_none() {
+                            notes.push(format!(
+                                "the machine file '{name}' gives no spindle_torque_nm or spindle_power_kw: the torque is not held against the spindle"
+                            ));
+                        }
                         Some(TapTorque {
                             newton_metres: nm,
-                            power_kw: h
-                                .spindle
-                                .filter(|s| *s > 0.0)
-                                .map(|s| nm * 2.0 * std::f64::consts::PI * s / 60_000.0),
+                            power_kw,
                             material: ts.material.name,
                             kc: ts.material.kc,
                             tap_kind: ts.kind,
                             k,
                             coarse,
+                            spindle_torque_nm,
+                            spindle_power_kw,
+                            exceeds_spindle: over_torque.is_some() || over_power.is_some(),
                         })
                     }
                     None => {
@@ -948,6 +993,14 @@ fn is_coarse_pitch(t: &crate::standards::BasicThread) -> bool {
             c.iso.series.sizes.iter().any(|s| {
                 (s.d - t.nominal_diameter).abs() < 1e-9
                     && s.coarse.is_some_and(|p| (p - t.pitch).abs() < 1e-9)
+            })
+        }),
+        // BSW is BS 84's coarse series (BSF its fine one): the size's BSW pitch.
+        ThreadForm::Whitworth => crate::standards::data::catalog().ok().is_some_and(|c| {
+            c.bsw.iter().any(|s| {
+                crate::standards::designation::inch_value(&s.size)
+                    .is_some_and(|d| (d * 25.4 - t.nominal_diameter).abs() < 1e-6)
+                    && (25.4 / s.tpi - t.pitch).abs() < 1e-9
             })
         }),
         _ => crate::analysis::naming::infer_designation(

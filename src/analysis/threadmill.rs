@@ -1245,6 +1245,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
             radii.len(),
             steps.join(", ")
         ));
+        cs.push(radial_depth_check(&t, kind, blank, 0.5 * c.diameter, &radii, limits.resolution));
     }
     let ratio = c.diameter / t.nominal_diameter;
     if ratio > 0.7 {
@@ -1317,4 +1318,51 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         basic,
         zone,
     })
+}
+
+/// The radial passes' depths from the bore (internal) or blank (external) against the thread's
+/// depth (issues 63 and 64: a generator whose last increment went 3 mm deep for a 2.5 mm thread):
+/// the deepest pass, the cutter's tip reach `rho` beyond its helix radius, may reach the
+/// fundamental triangle's root (D2 + H internal, d2 − H external: past it no flank of the
+/// profile's angle is left where the class wants it) and not beyond, at the standard's
+/// resolution. `radii` ascending.
+fn radial_depth_check(
+    t: &crate::standards::BasicThread,
+    kind: ThreadKind,
+    blank: f64,
+    rho: f64,
+    radii: &[f64],
+    resolution: crate::standards::tolerance::Resolution,
+) -> Check {
+    let h = t.fundamental_height();
+    let (depths, root): (Vec<f64>, f64) = match kind {
+        ThreadKind::Internal => {
+            (radii.iter().map(|r| r + rho - 0.5 * blank).collect(), 0.5 * (t.pitch_diameter() + h - blank))
+        }
+        ThreadKind::External => (
+            radii.iter().rev().map(|r| 0.5 * blank - (r - rho)).collect(),
+            0.5 * (blank - (t.pitch_diameter() - h)),
+        ),
+    };
+    let deepest = depths.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let ok = resolution.round(deepest) <= resolution.round(root);
+    let shown: Vec<String> = depths.iter().map(|d| format!("{d:.4}")).collect();
+    Check {
+        feature: crate::analysis::check::CheckFeature::RadialDepth,
+        kind: crate::analysis::check::CheckKind::Process,
+        value: deepest,
+        min: None,
+        max: Some(root),
+        ok,
+        deviation_um: if ok { 0.0 } else { ((deepest - root) * 1e4).round() / 10.0 },
+        note: Some(format!(
+            "the passes reach {} mm {} the {} Ø{blank:.4}; the thread is {root:.4} mm deep there to its fundamental triangle's root ({}), the deepest any pass may go{}",
+            shown.join(", "),
+            if kind == ThreadKind::Internal { "past" } else { "into" },
+            if kind == ThreadKind::Internal { "bore" } else { "blank" },
+            if kind == ThreadKind::Internal { "D2 + H" } else { "d2 − H" },
+            if ok { "" } else { ": the last pass cuts deeper than the thread" }
+        )),
+        unverified: None,
+    }
 }

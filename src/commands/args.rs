@@ -505,13 +505,20 @@ impl PlanArgs {
 
     /// The machine profile: a file, `training-lathe`, or a profile's TOML text.
     fn machine_profile(&self) -> Result<Option<crate::analysis::process::MachineProfile>, Error> {
-        use crate::analysis::process::MachineProfile;
-        match &self.machine {
-            None => Ok(None),
-            Some(Source::Path(p)) => MachineProfile::read(&p.display().to_string()).map(Some),
-            Some(Source::Text(t)) if t == "training-lathe" => MachineProfile::read(t).map(Some),
-            Some(Source::Text(t)) => MachineProfile::from_toml(t, "<machine>").map(Some),
-        }
+        machine_profile(self.machine.as_ref())
+    }
+}
+
+/// A machine profile given as a file, `training-lathe`, or a profile's TOML text.
+pub(crate) fn machine_profile(
+    machine: Option<&Source>,
+) -> Result<Option<crate::analysis::process::MachineProfile>, Error> {
+    use crate::analysis::process::MachineProfile;
+    match machine {
+        None => Ok(None),
+        Some(Source::Path(p)) => MachineProfile::read(&p.display().to_string()).map(Some),
+        Some(Source::Text(t)) if t == "training-lathe" => MachineProfile::read(t).map(Some),
+        Some(Source::Text(t)) => MachineProfile::from_toml(t, "<machine>").map(Some),
     }
 }
 

@@ -61,6 +61,11 @@ pub struct TapArgs {
     #[cfg_attr(feature = "cli", arg(long, value_name = "KIND"))]
     #[serde_as(as = "Option<DisplayFromStr>")]
     pub tap_kind: Option<crate::standards::torque::TapKind>,
+    /// The machine file (FILE.toml; its text through the API): its `type` reads the program,
+    /// its `spindle_torque_nm` and `spindle_power_kw` hold each tap's torque and power.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.toml", value_parser = Source::path))]
+    #[serde(deserialize_with = "super::args::source_text")]
+    pub machine: Option<Source>,
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
     #[allow(missing_docs)]
@@ -76,11 +81,14 @@ impl Job for TapArgs {
     /// Pass when every tapping cycle passes every check.
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
         let (program, dialect, from) = self.file.read("tap")?;
+        let machine = super::args::machine_profile(self.machine.as_ref())?;
+        let from_file = machine.as_ref().and_then(|m| m.machine_type).filter(|_| self.machine_type.is_none());
         let reading = ReadOptions {
             dialect_from: from,
             default_units: self.default_units,
             gcode_system: self.gcode_system,
-            machine_type: self.machine_type,
+            machine_type: self.machine_type.or(from_file),
+            machine_type_by: from_file.and(machine.as_ref()).map(|m| format!("'{}'", m.name)),
             sub_files: self.file.sub_files(request.files),
             ..Default::default()
         };
@@ -110,9 +118,15 @@ impl Job for TapArgs {
                 }
                 None => None,
             },
+            machine,
         };
         let r = crate::analysis::tapping::tapping(&spec)?;
-        let inputs = self.file.inputs().into_iter().chain(self.tools.as_ref().and_then(Source::file));
+        let inputs = self
+            .file
+            .inputs()
+            .into_iter()
+            .chain(self.tools.as_ref().and_then(Source::file))
+            .chain(self.machine.as_ref().and_then(Source::file));
         Ok(Outputs::new(
             Outcome::of(r.pass),
             [

@@ -226,6 +226,21 @@ pub fn holes_text(r: &TapReport) -> String {
                 fmt_num(t.k),
                 if t.coarse { "coarse" } else { "fine" }
             );
+            if t.spindle_torque_nm.is_some() || t.spindle_power_kw.is_some() {
+                let given: Vec<String> = [
+                    t.spindle_torque_nm.map(|v| format!("{} N·m", fmt_num(v))),
+                    t.spindle_power_kw.map(|v| format!("{} kW", fmt_num(v))),
+                ]
+                .into_iter()
+                .flatten()
+                .collect();
+                let _ = writeln!(
+                    s,
+                    "spindle: {} ({})",
+                    given.join(", "),
+                    if t.exceeds_spindle { "EXCEEDED: see the warning" } else { "within" }
+                );
+            }
         }
         if let Some(line) = passing_drill_line(h) {
             let _ = writeln!(s, "{line}");
