@@ -1098,6 +1098,23 @@ fn the_page_checks_a_form_tap_against_the_hole_it_needs() {
     assert!(picture.contains(&"the drill for the form tap's hole: Ø9.3 mm"), "{picture:?}");
 }
 
+/// Issue 65 item 2 on the page, in Chromium: a pasted LinuxCNC program in a `.nc` file whose
+/// modeline says `dialect=linuxcnc`, the dialect list left at "by the modeline or the file name":
+/// read as LinuxCNC (as Fanuc its G76's J is refused), in tolerance (the program
+/// `settings::LINUXCNC_AS_NC` derives), and the notes say the modeline chose it.
+#[test]
+fn the_page_reads_a_pasted_program_s_modeline() {
+    let seen = page_whole("page-modeline", &data("programs/settings/linuxcnc-modeline.nc"), None);
+    assert_eq!(seen["console"], serde_json::json!([]));
+    assert_eq!(seen["verdict"], "IN TOLERANCE: every check passes", "{seen}");
+    assert_eq!(
+        seen["headings"][0],
+        "Operation 1: G76 at line 9, M10X1.5-6g (named by the comment at line 3)"
+    );
+    let notes: Vec<&str> = seen["notes"].as_array().unwrap().iter().filter_map(|n| n.as_str()).collect();
+    assert!(notes.contains(&"read with the program's modeline (line 2): dialect linuxcnc"), "{notes:?}");
+}
+
 /// Issue 45 on the page, in Chromium: the dialect list offers every dialect (Klartext among
 /// them), and a pasted Klartext plate read as Klartext gives its six tapped holes, each named by
 /// its comment and placed (X120 Y50: the pattern's 270° point turned by 90° and shifted), the

@@ -896,3 +896,54 @@ fn regression_lsp_header_of_invalid_bytes_panicked() {
     let code = threadcheck::lsp_run(std::io::Cursor::new(input), &mut out).unwrap();
     assert_eq!(code, 1);
 }
+
+/// Issue 65 item 2: the language server reads the project file of a document saved on this
+/// computer and the modeline of any document, as `verify` does: `LINUXCNC_AS_NC` (a LinuxCNC
+/// program in a `.nc` file, unreadable as Fanuc) passes with either, and is unreadable at its
+/// G76's J without them.
+#[test]
+fn the_language_server_reads_the_project_file_and_the_modeline() {
+    let dir = tempdir("lsp-project");
+    let text = crate::settings::LINUXCNC_AS_NC;
+    std::fs::write(dir.join("part.nc"), text).unwrap();
+    let uri = format!("file://{}", dir.join("part.nc").display());
+    let modeline = text.replacen("%\n", "%\n(threadcheck: dialect=linuxcnc)\n", 1);
+    for (project, text, passes) in
+        [(false, text.to_string(), false), (true, text.to_string(), true), (false, modeline, true)]
+    {
+        if project {
+            std::fs::write(dir.join(".threadcheck.toml"), "dialect = \"linuxcnc\"\n").unwrap();
+        } else {
+            let _ = std::fs::remove_file(dir.join(".threadcheck.toml"));
+        }
+        let mut c = Client::start();
+        c.request(
+            1,
+            "initialize",
+            serde_json::json!({"capabilities": {}, "initializationOptions": {"insert": "full"}}),
+        );
+        c.notify("initialized", serde_json::json!({}));
+        c.notify(
+            "textDocument/didOpen",
+            serde_json::json!({"textDocument": {"uri": uri, "languageId": "gcode", "version": 1, "text": text}}),
+        );
+        let d = c.diagnostics();
+        let first = &d["diagnostics"][0];
+        if passes {
+            assert_eq!(first["severity"], 3, "the thread passes: {d}");
+            assert!(
+                first["message"].as_str().unwrap().starts_with("threadcheck: PASS turned M10X1.5-6g"),
+                "{d}"
+            );
+        } else {
+            assert_eq!(first["code"], "program.unreadable", "{d}");
+            assert!(
+                first["message"].as_str().unwrap().contains("word J is not part of the one-block G76"),
+                "{d}"
+            );
+        }
+        c.request(2, "shutdown", serde_json::Value::Null);
+        c.notify("exit", serde_json::Value::Null);
+        assert_eq!(c.child.wait().unwrap().code(), Some(0));
+    }
+}

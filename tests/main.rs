@@ -29,6 +29,7 @@ mod programs;
 mod properties;
 mod regressions;
 pub mod serve;
+mod settings;
 mod shop;
 mod sweep;
 mod tapping;

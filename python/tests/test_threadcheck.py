@@ -737,3 +737,24 @@ def test_tap_torque_follows_the_tap_makers_equation():
     assert h["torque"]["exceeds_spindle"] and h["torque"]["spindle_torque_nm"] == 5
     assert any(n.startswith("warning: the tap needs 7.69 N·m, more than the spindle's 5 N·m") for n in h["notes"])
     assert r["pass"]
+
+
+# Issue 65: a LinuxCNC lathe program (G7, the one-block G76 with I, J, K) that Fanuc's G76 refuses
+# (no J); read as LinuxCNC it cuts M10x1.5 in tolerance with a full-profile insert (the Rust
+# tests derive it).
+_LINUXCNC = ("%\n(M10X1.5 THREAD)\nG7 G18 G21 G90\nS500 M3\nG0 X9.85 Z2\nG1 Z-25 F0.1\nG0 X12 Z2\n"
+             "G76 P1.5 Z-20 I-2.15 J0.05 K1.84 Q29.5 R1.5 H1 E0 L0\nG0 X20 Z20\nM2\n%\n")
+
+
+def test_a_modeline_and_a_project_file_choose_the_dialect(tmp_path):
+    with pytest.raises(ValueError, match="word J is not part of the one-block G76"):
+        threadcheck.verify(program=_LINUXCNC, program_name="part.nc", insert="full")
+    modeline = _LINUXCNC.replace("%\n", "%\n(threadcheck: dialect=linuxcnc)\n", 1)
+    r = threadcheck.verify(program=modeline, program_name="part.nc", insert="full")
+    assert r["verdict"] == "pass" and r["dialect"] == "linuxcnc"
+    assert "read with the program's modeline (line 2): dialect linuxcnc" in r["notes"]
+    # The project file beside the file program_name names (Python may read the caller's files).
+    (tmp_path / ".threadcheck.toml").write_text('dialect = "linuxcnc"\n')
+    r = threadcheck.verify(program=_LINUXCNC, program_name=str(tmp_path / "part.nc"), insert="full")
+    assert r["verdict"] == "pass"
+    assert any(n.startswith("read with the project file ") and n.endswith(": dialect linuxcnc") for n in r["notes"])

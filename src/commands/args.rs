@@ -280,6 +280,11 @@ pub struct PlanArgs {
     #[cfg_attr(feature = "cli", arg(long, value_name = "DIR[:DIR…]", value_delimiter = ':'))]
     #[serde(skip)]
     pub subroutine_path: Vec<PathBuf>,
+    /// The program is an editor's document saved at `program_name` (the language server): its
+    /// project file is read as a file's is, though the server reads no other file by name.
+    #[cfg_attr(feature = "cli", arg(skip))]
+    #[serde(skip)]
+    pub saved_document: bool,
 }
 
 /// The folder a program file stands in (`.` for a bare file name).
@@ -390,8 +395,62 @@ impl PlanArgs {
             .collect()
     }
 
-    /// The verification the arguments describe; `files` says whether an insert may be a path.
+    /// What the program's project file and modeline set (nothing without a program).
+    pub(crate) fn settings(&self, files: super::Files) -> Result<super::settings::Settings, Error> {
+        let files = if self.saved_document { super::Files::Allowed } else { files };
+        program_settings(self.program.as_ref(), self.program_name.as_deref(), files)
+    }
+
+    /// The flags given that a project file or a modeline also sets, with their values' words.
+    pub(crate) fn given(&self) -> super::settings::Given {
+        super::settings::Given {
+            dialect: self.dialect.map(|d| d.name().to_string()),
+            machine_type: self.machine_type.map(|m| m.name().to_string()),
+            default_units: self.default_units.map(|u| u.name().to_string()),
+            machine: self.machine.as_ref().map(source_words),
+            tools: None,
+            thread: (!self.thread.is_empty()).then(|| self.thread.join(", ")),
+        }
+    }
+
+    /// These arguments with what `set` sets where no flag is given.
+    fn settled(&self, set: &super::settings::Settings) -> PlanArgs {
+        let mut me = self.clone();
+        me.dialect = me.dialect.or(set.dialect.as_ref().map(|d| d.0));
+        me.machine_type = me.machine_type.or(set.machine_type.as_ref().map(|m| m.0));
+        me.default_units = me.default_units.or(set.default_units.as_ref().map(|u| u.0));
+        if me.machine.is_none() {
+            me.machine = set.machine.as_ref().map(|m| Source::Path(m.0.clone()));
+        }
+        if me.thread.is_empty() {
+            me.thread = set.thread.as_ref().map(|t| t.0.clone()).unwrap_or_default();
+        }
+        me
+    }
+
+    /// The verification the arguments describe, with what the program's project file and
+    /// modeline set where no flag is given (each stated in the notes); `files` says whether an
+    /// insert may be a path.
     pub fn spec(&self, files: super::Files) -> Result<VerifySpec, Error> {
+        let set = self.settings(files)?;
+        if set.is_empty() {
+            return self.spec_as_given(files);
+        }
+        let mut s = self.settled(&set).spec_as_given(files)?;
+        if self.machine_type.is_none() {
+            if let Some((_, by)) = &set.machine_type {
+                s.reading.machine_type_by = Some(by.phrase());
+            }
+        }
+        if self.default_units.is_none() {
+            s.reading.default_units_by = set.default_units.as_ref().map(|(_, by)| by.phrase());
+        }
+        s.reading.settings_notes = set.notes(&self.given());
+        Ok(s)
+    }
+
+    /// The verification the arguments alone describe.
+    fn spec_as_given(&self, files: super::Files) -> Result<VerifySpec, Error> {
         let first = self.first_thread();
         let mut s = VerifySpec::new(first);
         s.internal = self.internal;
@@ -478,7 +537,7 @@ impl PlanArgs {
         // The machine file's type, unless the flag says otherwise.
         if let (None, Some(t)) = (self.machine_type, s.machine.as_ref().and_then(|m| m.machine_type)) {
             s.reading.machine_type = Some(t);
-            s.reading.machine_type_by = s.machine.as_ref().map(|m| format!("'{}'", m.name));
+            s.reading.machine_type_by = s.machine.as_ref().map(|m| format!("the machine file '{}'", m.name));
         }
         s.reading.block_delete = self.block_delete;
         s.validate()?;
@@ -506,6 +565,29 @@ impl PlanArgs {
     /// The machine profile: a file, `training-lathe`, or a profile's TOML text.
     fn machine_profile(&self) -> Result<Option<crate::analysis::process::MachineProfile>, Error> {
         machine_profile(self.machine.as_ref())
+    }
+}
+
+/// What a program's project file and modeline set: `program` its file or text, `name` what a
+/// text is called.
+fn program_settings(
+    program: Option<&Source>,
+    name: Option<&str>,
+    files: super::Files,
+) -> Result<super::settings::Settings, Error> {
+    use super::settings::Settings;
+    match program {
+        Some(Source::Path(p)) => Settings::of(Some(p), None, files),
+        Some(Source::Text(t)) => Settings::of(name.map(Path::new), Some(t), files),
+        None => Ok(Settings::default()),
+    }
+}
+
+/// A file argument's words in a note: its path, or `its text`.
+pub(crate) fn source_words(s: &Source) -> String {
+    match s {
+        Source::Path(p) => crate::ground::fmt::path_name(p),
+        Source::Text(_) => "(its text)".into(),
     }
 }
 
@@ -584,12 +666,24 @@ impl ProgramArgs {
         }
     }
 
-    /// The program's text and name, its dialect and how the dialect was chosen.
-    pub fn read(&self, command: &str) -> Result<((String, String), Dialect, DialectFrom), Error> {
+    /// What the program's project file and modeline set (nothing without a program).
+    pub(crate) fn settings(&self, files: super::Files) -> Result<super::settings::Settings, Error> {
+        program_settings(self.program.as_ref(), self.program_name.as_deref(), files)
+    }
+
+    /// The program's text and name, its dialect (the one given, else the one `set` sets, else
+    /// by its extension) and how the dialect was chosen.
+    pub fn read(
+        &self,
+        command: &str,
+        set: &super::settings::Settings,
+    ) -> Result<((String, String), Dialect, DialectFrom), Error> {
         let source =
             self.program.as_ref().ok_or_else(|| Error::Input(format!("{command} needs ‹program›")))?;
         let (shown, text) = source.load(self.program_name.as_deref().unwrap_or("<program>"))?;
-        let (dialect, from) = dialect_for(self.dialect, Path::new(&shown));
+        // A project file's or a modeline's dialect is stated by the settings' notes.
+        let dialect = self.dialect.or(set.dialect.as_ref().map(|d| d.0));
+        let (dialect, from) = dialect_for(dialect, Path::new(&shown));
         Ok(((text, shown), dialect, from))
     }
 

@@ -48,7 +48,8 @@ impl Job for MillArgs {
 
     /// Pass when the gouge and the leftover are within the tolerance.
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
-        let (program, dialect, _) = self.file.read("mill")?;
+        let set = self.file.settings(request.files)?;
+        let (program, dialect, _) = self.file.read("mill", &set)?;
         let target = match &self.target {
             None => return Err(Error::Input("mill needs ‹target› (its TOML)".into())),
             Some(Source::Path(p)) => Target::read(p)?,

@@ -31,6 +31,7 @@ mod limits;
 mod mill;
 mod passes;
 mod report;
+pub(crate) mod settings;
 mod sweep;
 mod tap;
 mod thread_mill;

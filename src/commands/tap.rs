@@ -80,19 +80,47 @@ impl Job for TapArgs {
 
     /// Pass when every tapping cycle passes every check.
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
-        let (program, dialect, from) = self.file.read("tap")?;
-        let machine = super::args::machine_profile(self.machine.as_ref())?;
-        let from_file = machine.as_ref().and_then(|m| m.machine_type).filter(|_| self.machine_type.is_none());
+        let set = self.file.settings(request.files)?;
+        let (program, dialect, from) = self.file.read("tap", &set)?;
+        let machine_source =
+            self.machine.clone().or_else(|| set.machine.as_ref().map(|m| Source::Path(m.0.clone())));
+        let tools_source =
+            self.tools.clone().or_else(|| set.tools.as_ref().map(|t| Source::Path(t.0.clone())));
+        let machine = super::args::machine_profile(machine_source.as_ref())?;
+        // The flag's machine type, else the project file's or the modeline's, else the machine
+        // file's.
+        let (machine_type, machine_type_by) = match (self.machine_type, &set.machine_type) {
+            (Some(t), _) => (Some(t), None),
+            (None, Some((t, by))) => (Some(*t), Some(by.phrase())),
+            (None, None) => match machine.as_ref().and_then(|m| m.machine_type.map(|t| (t, &m.name))) {
+                Some((t, name)) => (Some(t), Some(format!("the machine file '{name}'"))),
+                None => (None, None),
+            },
+        };
+        let settings_notes = set.notes(&super::settings::Given {
+            dialect: self.file.dialect.map(|d| d.name().to_string()),
+            machine_type: self.machine_type.map(|m| m.name().to_string()),
+            default_units: self.default_units.map(|u| u.name().to_string()),
+            machine: self.machine.as_ref().map(super::args::source_words),
+            tools: self.tools.as_ref().map(super::args::source_words),
+            thread: self.tap.clone(),
+        });
         let reading = ReadOptions {
             dialect_from: from,
-            default_units: self.default_units,
+            default_units: self.default_units.or(set.default_units.as_ref().map(|u| u.0)),
+            default_units_by: set
+                .default_units
+                .as_ref()
+                .filter(|_| self.default_units.is_none())
+                .map(|u| u.1.phrase()),
+            settings_notes,
             gcode_system: self.gcode_system,
-            machine_type: self.machine_type.or(from_file),
-            machine_type_by: from_file.and(machine.as_ref()).map(|m| format!("'{}'", m.name)),
+            machine_type,
+            machine_type_by,
             sub_files: self.file.sub_files(request.files),
             ..Default::default()
         };
-        let tools = match &self.tools {
+        let tools = match &tools_source {
             Some(t) => tool_table(t, request.files)?,
             None => crate::analysis::tools::ToolTable::none(),
         };
@@ -104,7 +132,7 @@ impl Job for TapArgs {
             allow_nonstandard: self.allow_nonstandard,
             from_program: true,
             stock_bottom: self.stock_bottom,
-            tap: self.tap.clone(),
+            tap: self.tap.clone().or_else(|| set.thread.as_ref().and_then(|t| t.0.first().cloned())),
             torque: match &self.material {
                 Some(m) => Some(crate::analysis::tapping::TorqueSpec {
                     material: crate::standards::torque::material(m)?,
@@ -125,8 +153,8 @@ impl Job for TapArgs {
             .file
             .inputs()
             .into_iter()
-            .chain(self.tools.as_ref().and_then(Source::file))
-            .chain(self.machine.as_ref().and_then(Source::file));
+            .chain(tools_source.as_ref().and_then(Source::file))
+            .chain(machine_source.as_ref().and_then(Source::file));
         Ok(Outputs::new(
             Outcome::of(r.pass),
             [

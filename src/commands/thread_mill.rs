@@ -77,9 +77,21 @@ impl Job for ThreadMillArgs {
 
     /// Pass when the milled thread is within every limit and the lead is right.
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
-        let (program, dialect, from) = self.file.read("thread-mill")?;
-        // Without ‹thread›, the thread the program names (a comment), else the size it cuts.
-        let designation = self.thread.clone();
+        let set = self.file.settings(request.files)?;
+        let (program, dialect, from) = self.file.read("thread-mill", &set)?;
+        // Without ‹thread›, the project file's or the modeline's, else the thread the program
+        // names (a comment), else the size it cuts.
+        let designation =
+            self.thread.clone().or_else(|| set.thread.as_ref().and_then(|t| t.0.first().cloned()));
+        let tools_source =
+            self.tools.clone().or_else(|| set.tools.as_ref().map(|t| Source::Path(t.0.clone())));
+        let settings_notes = set.notes(&super::settings::Given {
+            dialect: self.file.dialect.map(|d| d.name().to_string()),
+            default_units: self.default_units.map(|u| u.name().to_string()),
+            tools: self.tools.as_ref().map(super::args::source_words),
+            thread: self.thread.clone(),
+            ..Default::default()
+        });
         let rows = self.cutter_rows.unwrap_or(1);
         if !(1..=200).contains(&rows) {
             return Err(Error::Input(format!("‹cutter_rows› {rows}: a whole number from 1 to 200")));
@@ -122,19 +134,25 @@ impl Job for ThreadMillArgs {
             designation,
             allow_nonstandard: self.allow_nonstandard,
             cutter,
-            tools: self.tools.as_ref().map(|t| tool_table(t, request.files)).transpose()?,
+            tools: tools_source.as_ref().map(|t| tool_table(t, request.files)).transpose()?,
             blank_diameter: self.blank_diameter,
             comp_radius: self.comp_radius,
             reading: crate::gcode::ReadOptions {
                 dialect_from: from,
-                default_units: self.default_units,
+                default_units: self.default_units.or(set.default_units.as_ref().map(|u| u.0)),
+                default_units_by: set
+                    .default_units
+                    .as_ref()
+                    .filter(|_| self.default_units.is_none())
+                    .map(|u| u.1.phrase()),
                 sub_files: self.file.sub_files(request.files),
+                settings_notes,
                 ..Default::default()
             },
             teeth: self.cutter_teeth,
         };
         let r = crate::analysis::threadmill::thread_mill(&spec)?;
-        let inputs = self.file.inputs().into_iter().chain(self.tools.as_ref().and_then(Source::file));
+        let inputs = self.file.inputs().into_iter().chain(tools_source.as_ref().and_then(Source::file));
         Ok(Outputs::new(
             Outcome::of(r.pass),
             [

@@ -57,8 +57,9 @@ pub struct VerifyArgs {
     #[allow(missing_docs)]
     pub out: super::args::PictureArgs,
     /// Programs and folders to verify in one run (folders recursively, their files with the
-    /// dialects' extensions: .nc .ngc .mpf .spf .min .ssb .sub .tap .cnc .eia .gcode .iso), in
-    /// parallel: one line per operation, then a summary; exit status the worst.
+    /// dialects' extensions: .nc .ngc .mpf .spf .min .ssb .sub .tap .cnc .eia .gcode .iso, and
+    /// .h files that open a Klartext program), in parallel: one line per operation, then a
+    /// summary; exit status the worst.
     #[cfg_attr(feature = "cli", arg(value_name = "PROGRAM|FOLDER", conflicts_with_all = ["program", "final_x", "fix", "operation"]))]
     #[serde(skip)]
     pub programs: Vec<PathBuf>,
@@ -151,10 +152,14 @@ impl Job for VerifyArgs {
         // The pictures and the JSON's deviation samples are computed with the verification.
         spec.picture = [Document::Svg, Document::Html, Document::Json].into_iter().any(|d| request.wants(d));
         let tools = self.tools.as_ref().map(|t| tool_table(t, request.files)).transpose()?;
+        let (own_tools, threads) = self.project(&mut spec, request.files)?;
+        let tools = tools.or(own_tools);
         let mut inputs = self.plan.inputs();
         inputs.extend(self.tools.as_ref().and_then(Source::file));
         if let Some((source, dialect)) = &spec.program {
-            return Ok(self.run_program(&spec, source, *dialect, tools.as_ref(), request)?.reading(inputs));
+            return Ok(self
+                .run_program(&spec, source, *dialect, &threads, tools.as_ref(), request)?
+                .reading(inputs));
         }
         if request.wants(Document::Fix) {
             return Err(Error::Input("‹fix› corrects a program: give it with ‹program›".into()));
@@ -295,7 +300,7 @@ impl VerifyArgs {
         let files = program_files(&self.programs)?;
         if files.is_empty() {
             return Err(Error::Input(format!(
-                "no program in {} (looked for the extensions {})",
+                "no program in {} (looked for the extensions {}, and .h files that open a Klartext program)",
                 self.programs.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "),
                 crate::gcode::PROGRAM_EXTENSIONS.map(|e| format!(".{e}")).join(" ")
             )));
@@ -444,7 +449,14 @@ impl VerifyArgs {
         finder: Option<crate::gcode::SubFinder>,
     ) -> Result<(String, String, crate::analysis::program::ProgramVerification), Error> {
         let one = VerifyArgs {
-            plan: PlanArgs { program: Some(program), program_name: name, ..self.plan.clone() },
+            // An editor's document saved on this computer (its subprograms' files are found)
+            // reads its project file as a file does.
+            plan: PlanArgs {
+                program: Some(program),
+                program_name: name,
+                saved_document: finder.is_some(),
+                ..self.plan.clone()
+            },
             programs: Vec::new(),
             json_lines: None,
             sarif: None,
@@ -460,8 +472,33 @@ impl VerifyArgs {
         if finder.is_some() {
             spec.reading.sub_files = finder;
         }
+        let (own_tools, threads) = one.project(&mut spec, request.files)?;
+        let tools = tools.or(own_tools.as_ref());
         let (source, dialect) = spec.program.clone().ok_or_else(|| Error::Input("no program".into()))?;
-        one.verification(&spec, &source, dialect, tools)
+        one.verification(&spec, &source, dialect, &threads, tools)
+    }
+
+    /// What the program's project file sets beyond `spec` (its notes are `spec`'s): the tool
+    /// table it names when none is given (`None` when one is: the given one wins, said), and
+    /// the threads, the ones given, else its `[[threads]]` rule's or the modeline's.
+    fn project(
+        &self,
+        spec: &mut VerifySpec,
+        files: super::Files,
+    ) -> Result<(Option<crate::analysis::tools::ToolTable>, Vec<String>), Error> {
+        let set = self.plan.settings(files)?;
+        let threads = match (&self.plan.thread, &set.thread) {
+            (given, Some((t, _))) if given.is_empty() => t.clone(),
+            (given, _) => given.clone(),
+        };
+        let Some((path, _)) = &set.tools else { return Ok((None, threads)) };
+        if let Some(t) = &self.tools {
+            let given =
+                super::settings::Given { tools: Some(super::args::source_words(t)), ..self.plan.given() };
+            spec.reading.settings_notes = set.notes(&given);
+            return Ok((None, threads));
+        }
+        Ok((Some(tool_table(&Source::Path(path.clone()), files)?), threads))
     }
 
     /// One program verified: its name as shown and every thread it makes, checked.
@@ -470,6 +507,7 @@ impl VerifyArgs {
         spec: &VerifySpec,
         source: &ProgramSource,
         dialect: crate::gcode::Dialect,
+        threads: &[String],
         tools: Option<&crate::analysis::tools::ToolTable>,
     ) -> Result<(String, String, crate::analysis::program::ProgramVerification), Error> {
         let (shown, text) = source.load()?;
@@ -482,7 +520,7 @@ impl VerifyArgs {
             &text,
             &shown,
             dialect,
-            &self.plan.thread,
+            threads,
             &insert_for,
             tools,
         )?;
@@ -494,6 +532,7 @@ impl VerifyArgs {
         spec: &VerifySpec,
         source: &ProgramSource,
         dialect: crate::gcode::Dialect,
+        threads: &[String],
         tools: Option<&crate::analysis::tools::ToolTable>,
         request: &Request,
     ) -> Result<Outputs, Error> {
@@ -502,7 +541,7 @@ impl VerifyArgs {
                 "‹final_x› and ‹program› exclude each other: the program sets the passes".into(),
             ));
         }
-        let (shown, text, pv) = self.verification(spec, source, dialect, tools)?;
+        let (shown, text, pv) = self.verification(spec, source, dialect, threads, tools)?;
         Ok(Outputs::new(
             Outcome::of(pv.pass()),
             [

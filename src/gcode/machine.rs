@@ -117,7 +117,7 @@ pub(crate) fn decide(
         return read(MachineType::Mill, "read as a milling toolpath (G17, X and Y in the plane)".into());
     }
     if let Some(t) = given {
-        let source = by.map_or("‹machine_type›".to_string(), |f| format!("the machine file {f}"));
+        let source = by.map_or("‹machine_type›".to_string(), str::to_string);
         // The user's word wins: obeyed, with what in the program disagrees named.
         if t != MachineType::MillTurn {
             if let Some((b, _, what)) = first_showing(blocks, dialect, |m| m != t) {

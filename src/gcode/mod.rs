@@ -790,8 +790,13 @@ pub struct ReadOptions {
     /// The machine the program runs on; `None` takes it from the program's own evidence, else
     /// the dialect's default (a lathe), and the notes say which.
     pub machine_type: Option<MachineType>,
-    /// Where `machine_type` came from when not from the caller's flag: the machine file's name.
+    /// Where `machine_type` came from when not from the caller's flag, in words: `the machine
+    /// file 'vf2'`, `the project file x/.threadcheck.toml`.
     pub machine_type_by: Option<String>,
+    /// Where `default_units` came from when not from the caller's flag, in words.
+    pub default_units_by: Option<String>,
+    /// What the caller read its options from (a project file, a modeline), for the notes.
+    pub settings_notes: Vec<String>,
     /// The control's block-delete switch: on skips the blocks that begin with `/`; off (the
     /// default, stated when the program has such blocks) runs them.
     pub block_delete: bool,
@@ -1045,7 +1050,11 @@ fn read(
                     .into(),
             ));
         }
-        return klartext::read(text, file, &opts, out);
+        let mut p = klartext::read(text, file, &opts, out)?;
+        for n in opts.settings_notes.iter().rev() {
+            p.notes.insert(0, Note::from(n.clone()));
+        }
+        return Ok(p);
     }
     if let Some((line, column, message)) = machine::foreign_control(text, dialect) {
         return Err(perr(line, column, message));
@@ -1235,7 +1244,11 @@ fn read(
         Some(None) if !operations.is_empty() || !holes.is_empty() || !moves.is_empty() => Some(format!(
             "{codes}: read in mm, the default; an inch control's program needs ‹default_units› inch"
         )),
-        Some(Some(u)) => Some(format!("{codes}: read in {}, as ‹default_units› says", u.name())),
+        Some(Some(u)) => Some(format!(
+            "{codes}: read in {}, as {} says",
+            u.name(),
+            opts.default_units_by.as_deref().unwrap_or("‹default_units›")
+        )),
         _ => None,
     };
     // The system is a setting of the control, not in the program: say which one was read.
@@ -1288,6 +1301,9 @@ fn read(
         .rev()
     {
         notes.insert(0, Note::from(n));
+    }
+    for n in opts.settings_notes.iter().rev() {
+        notes.insert(0, Note::from(n.clone()));
     }
     if operations.is_empty() && !opts.allow_no_threading {
         let mut why = format!("no threading pass in the program (looked for {})", dialect.threading_words());

@@ -32,6 +32,8 @@ try {
   seen.check_rows = await page.$$eval(".operation table.checks tbody tr", (rows) => rows.map((r) => [...r.cells].map((c) => c.textContent.trim())));
   // Issue 63: what the control will refuse, under the operation it concerns and in the picture.
   seen.control = await page.$$eval(".operation .control li", (ls) => ls.map((l) => ({ level: l.className, text: l.textContent })));
+  // The program's notes (issue 65: where each option came from).
+  seen.notes = await page.$$eval("ul.notes li", (ls) => ls.map((l) => l.textContent));
   // The picture is an <img> of the SVG the API gives: read that SVG as the page loaded it.
   await page.waitForFunction(() => document.querySelector("#picture").complete && document.querySelector("#picture").src);
   const svg = await page.evaluate(async () => (await fetch(document.querySelector("#picture").src)).text());

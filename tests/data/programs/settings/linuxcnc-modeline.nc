@@ -1,0 +1,12 @@
+%
+(threadcheck: dialect=linuxcnc)
+(M10X1.5 THREAD)
+G7 G18 G21 G90
+S500 M3
+G0 X9.85 Z2
+G1 Z-25 F0.1
+G0 X12 Z2
+G76 P1.5 Z-20 I-2.15 J0.05 K1.84 Q29.5 R1.5 H1 E0 L0
+G0 X20 Z20
+M2
+%
