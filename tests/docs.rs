@@ -141,3 +141,117 @@ fn docs_commands_run() {
         assert!(ran.iter().any(|r| r.contains(must)), "no command '{must}' ran: {ran:#?}");
     }
 }
+
+/// Issue 65 item 4: the extensions a folder's programs are found by are one list: the walker's
+/// constant, the help of `verify PROGRAM|FOLDER`, the guide and the error of a folder without
+/// programs all name it, with Klartext's `.h`.
+#[test]
+fn the_program_extensions_are_one_list() {
+    let list = threadcheck::PROGRAM_EXTENSIONS.map(|e| format!(".{e}")).join(" ");
+    let help = stdout(&run(&["verify", "--help"])).split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(help.contains(&format!("{list}, and .h files that open a Klartext program")), "{help}");
+    let guide = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/guide/check-a-whole-program.md"),
+    )
+    .unwrap()
+    .split_whitespace()
+    .collect::<Vec<_>>()
+    .join(" ");
+    assert!(guide.contains(&format!("`{list}`, and `.h` files that open a Klartext program")), "{list}");
+    let dir = tempdir("extensions");
+    std::fs::create_dir(dir.join("empty")).unwrap();
+    let e = one_line_error(&run_in(&dir, &["verify", "empty"]));
+    assert!(
+        e.contains(&format!("(looked for the extensions {list}, and .h files that open a Klartext program)")),
+        "{e}"
+    );
+}
+
+/// The transcripts in the docs: a fenced block whose first line is `$ threadcheck …`, each such
+/// line in it with the lines it shows printed after it (up to the next `$` line).
+fn transcripts(text: &str) -> Vec<(Vec<String>, Vec<String>)> {
+    let mut out = Vec::new();
+    let mut block: Option<Vec<String>> = None;
+    for line in text.lines() {
+        if line.trim_start().starts_with("```") {
+            match block.take() {
+                // Each `$ threadcheck` line of a block opens a transcript of its own.
+                Some(lines) if lines.first().is_some_and(|l| l.starts_with("$ threadcheck ")) => {
+                    for (i, l) in lines.iter().enumerate() {
+                        if let Some(cmd) = l.strip_prefix("$ threadcheck ") {
+                            let shown =
+                                lines[i + 1..].iter().take_while(|l| !l.starts_with("$ ")).cloned().collect();
+                            out.push((words(cmd), shown));
+                        }
+                    }
+                }
+                Some(_) => {}
+                None => block = Some(Vec::new()),
+            }
+            continue;
+        }
+        if let Some(b) = &mut block {
+            b.push(line.to_string());
+        }
+    }
+    out
+}
+
+/// Issue 65 item 4: every transcript in the README and the docs prints what it shows: the lines
+/// shown are lines the command prints, one after another (a line `…` or `...` stands for any
+/// number of lines left out, and so do the lines before the first shown and after the last; a
+/// line ending ` …` for the printed line it begins). A change that moves a number moves the
+/// doc with it.
+#[test]
+fn docs_transcripts_print_what_they_show() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let scratch = tempdir("docs-transcripts");
+    for shared in ["tests", "profiles"] {
+        std::os::unix::fs::symlink(root.join(shared), scratch.join(shared)).unwrap();
+    }
+    std::fs::create_dir(scratch.join("reports")).unwrap();
+    let mut stale = Vec::new();
+    let mut seen = 0;
+    for file in docs() {
+        let name = file.strip_prefix(root).unwrap().display().to_string();
+        for (args, shown) in transcripts(&std::fs::read_to_string(&file).unwrap()) {
+            seen += 1;
+            let a: Vec<&str> = args.iter().map(String::as_str).collect();
+            let printed = stdout(&run_in(&scratch, &a));
+            let printed: Vec<&str> = printed.lines().collect();
+            // The first line shown may be any printed line; the ones after it follow it.
+            let mut at = 0;
+            let mut skipping = true;
+            for want in &shown {
+                if matches!(want.trim(), "…" | "...") {
+                    skipping = true;
+                    continue;
+                }
+                // A line cut short by the doc (`d2 …`) stands for the lines it begins.
+                let same = |p: &&str| match want.strip_suffix(" …") {
+                    Some(head) => p.starts_with(head),
+                    None => *p == want,
+                };
+                let found = if skipping {
+                    printed[at..].iter().position(|p| same(p)).map(|k| at + k)
+                } else {
+                    printed.get(at).filter(|p| same(p)).map(|_| at)
+                };
+                match found {
+                    Some(k) => at = k + 1,
+                    None => {
+                        stale.push(format!(
+                            "{name}: threadcheck {}:\n  shown:   {want}\n  printed: {}",
+                            args.join(" "),
+                            printed.get(at).unwrap_or(&"(nothing)")
+                        ));
+                        break;
+                    }
+                }
+                skipping = false;
+            }
+        }
+    }
+    assert!(seen >= 8, "the docs show {seen} transcripts");
+    assert!(stale.is_empty(), "transcripts that no longer print what they show:\n{}", stale.join("\n"));
+}

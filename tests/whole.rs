@@ -186,7 +186,7 @@ fn a_library_run_refuses_one_program_s_documents() {
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(
         one_line_error(&o),
-        "threadcheck: error: no program in empty (looked for the extensions .nc .ngc .mpf .spf .min .ssb .sub .tap .cnc .eia .gcode .iso)"
+        "threadcheck: error: no program in empty (looked for the extensions .nc .ngc .mpf .spf .min .ssb .sub .tap .cnc .eia .gcode .iso, and .h files that open a Klartext program)"
     );
     let o = run_in(&dir, &["verify", "empty", "--svg", "x.svg"]);
     assert_eq!(o.status.code(), Some(2));

@@ -138,10 +138,12 @@ pub fn filter(args: &FilterArgs) -> Result<Filtered, Error> {
     if let Some(e) = &checked.error {
         let e = words(e.trim_start_matches("error: "));
         lines.push(format!("threadcheck: not checked: {e}"));
-        messages.push(format!(
-            "threadcheck: {base} not checked: {}",
-            e.strip_prefix(&checked.file).unwrap_or(&e)
-        ));
+        // The place stays with the file's name: `part.ngc:8:22: not checked: …`.
+        let rest = e.strip_prefix(&checked.file).unwrap_or(&e);
+        messages.push(match rest.strip_prefix(':').and_then(place_and_message) {
+            Some((place, message)) => format!("threadcheck: {base}:{place}: not checked: {message}"),
+            None => format!("threadcheck: {base} not checked: {}", rest.trim_start_matches([':', ' '])),
+        });
     }
     let mut failing = 0;
     for o in checked.operations.iter().filter(|o| o.verdict != crate::analysis::check::Verdict::Pass) {
@@ -202,4 +204,12 @@ fn with_messages(bytes: &[u8], findings: &[String]) -> Vec<u8> {
     }
     out.extend_from_slice(&bytes[at..]);
     out
+}
+
+/// `8:22: word J …` as its place (`8:22`) and its message.
+fn place_and_message(rest: &str) -> Option<(&str, &str)> {
+    let mut parts = rest.splitn(3, ':');
+    let (line, column, message) = (parts.next()?, parts.next()?, parts.next()?);
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    (digits(line) && digits(column)).then(|| (&rest[..line.len() + 1 + column.len()], message.trim_start()))
 }
