@@ -124,6 +124,7 @@ pub use analysis::correct::{
 };
 pub use analysis::correction::{correction, deeper_words, Correction, Deeper};
 pub use analysis::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};
+pub use analysis::fusion::tool_table as fusion_tool_table;
 pub use analysis::lead::{lead_deviation, LeadDeviation};
 pub use analysis::mill::{mill, MillReport, MillSpec, Target};
 pub use analysis::naming::{

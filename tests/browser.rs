@@ -609,11 +609,37 @@ fn page_in_chromium() {
     let limits = seen["limits"].as_array().unwrap();
     let d2 = limits.iter().find(|r| r[1] == "pitch diameter").unwrap();
     assert_eq!((d2[2].as_str().unwrap(), d2[3].as_str().unwrap()), ("8.8620", "8.9940"));
+    // Rolled (issue 64): the dies set d2 at 6g's middle, 8.928, and form the root H/3 under the
+    // pitch line, 8.928 − (2/3)·0.866025·1.5 = 8.0620; the blank for the full crest beside them.
+    let rolled = seen["limits_rolled"].as_array().unwrap();
+    assert_eq!(rolled.len(), 3, "{rolled:?}");
+    assert_eq!(
+        (rolled[0][1].as_str(), rolled[0][2].as_str()),
+        (Some("pitch diameter the dies set"), Some("8.9280"))
+    );
+    assert_eq!((rolled[1][1].as_str(), rolled[1][2].as_str()), (Some("root the dies form"), Some("8.0620")));
+    assert_eq!(rolled[2][1], "blank for the full crest");
 
-    // Tap: the uploaded Sinumerik program's two CYCLE84 pass, as `tap` says; eight rows of checks.
+    // Tap: the uploaded Sinumerik program's two CYCLE84 pass, as `tap` says; eight rows of checks,
+    // and each hole's percent of thread, (10 − 8.5)/(0.01299·1.5) = 77.0 %, and the torque of a
+    // plug hand tap in Ck 45, tan 30° · 3900 · 1.35 · 1.5² · 27 / 24 000 = 7.69 N·m (issue 64).
     assert_eq!(seen["tap"], "IN TOLERANCE: 2 tapping cycles, 2 drilling cycles");
     let tap_rows = seen["tap_rows"].as_array().unwrap();
-    assert_eq!(tap_rows.len(), 8);
+    assert_eq!(tap_rows.len(), 12);
+    let percent: Vec<&serde_json::Value> = tap_rows.iter().filter(|r| r[2] == "thread %").collect();
+    assert_eq!(percent.len(), 2);
+    assert_eq!(
+        (percent[0][3].as_str(), percent[0][4].as_str(), percent[0][5].as_str()),
+        (Some("77.0"), Some("60"), Some("75"))
+    );
+    let torque: Vec<&serde_json::Value> = tap_rows.iter().filter(|r| r[2] == "torque N·m").collect();
+    assert_eq!(torque.len(), 2);
+    assert_eq!(torque[0][3], "7.69");
+    assert!(
+        torque[0][7].as_str().unwrap().contains("Ck 45, kc 3900 N/mm², hand-plug tap, K 1.35"),
+        "{:?}",
+        torque[0]
+    );
     let d1 = tap_rows.iter().find(|r| r[2] == "drill diameter").unwrap();
     assert_eq!(
         (d1[3].as_str(), d1[4].as_str(), d1[5].as_str()),

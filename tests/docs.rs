@@ -233,7 +233,7 @@ fn docs_transcripts_print_what_they_show() {
                     None => *p == want,
                 };
                 let found = if skipping {
-                    printed[at..].iter().position(|p| same(p)).map(|k| at + k)
+                    printed[at..].iter().position(&same).map(|k| at + k)
                 } else {
                     printed.get(at).filter(|p| same(p)).map(|_| at)
                 };

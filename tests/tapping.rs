@@ -219,6 +219,31 @@ fn a_tap_s_torque_is_held_against_the_machine_s_spindle() {
         "{notes}"
     );
     assert_eq!(h["pass"], true);
+    // The picture says it under the hole, with the percent of thread.
+    let o = run_in(
+        &dir,
+        &[
+            "tap",
+            "--program",
+            "p.nc",
+            "--tools",
+            "tools.toml",
+            "--dialect",
+            "fanuc",
+            "--material",
+            "C45",
+            "--tap-kind",
+            "hand-plug",
+            "--machine",
+            "small.toml",
+            "--svg",
+            "tap.svg",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(dir.join("tap.svg")).unwrap();
+    assert!(svg.contains("thread 77 % (shops' band 60–75 %)"), "{svg}");
+    assert!(svg.contains("torque 7.69 N·m, 0.242 kW; spindle 5 N·m, 0.2 kW: EXCEEDED"), "{svg}");
     let h = run("big.toml");
     assert_eq!(h["torque"]["exceeds_spindle"], false);
     assert!(!h["notes"].to_string().contains("warning:"));
@@ -760,4 +785,68 @@ fn the_percent_of_thread_is_the_charts() {
         ),
         "{notes}"
     );
+}
+
+/// Issue 65 item 3: a tool library in Fusion's JSON as `--tools`: its tap (`"tap right hand"`,
+/// DC 10, TP 1.5 mm: M10x1.5, 6H the standard's default class for a nut) and drill (DC 8.5, SIG
+/// 140: the point angle) under their `post-process.number`; an end mill passed by. In inches,
+/// DC 0.25 and TP 0.05 are 1/4-20 UNC-2B, named by the description (BSW 1/4 is that size too);
+/// `"tap left hand"` is left-hand. A library without its
+/// `data`, or not JSON, is refused at its place.
+#[test]
+fn a_fusion_tool_library_names_the_taps_and_drills() {
+    let dir = tempdir("fusion");
+    std::fs::write(dir.join("p.nc"), program()).unwrap();
+    let tool = |kind: &str, unit: &str, t: u32, geometry: &str| {
+        format!(
+            r#"{{"type": "{kind}", "unit": "{unit}", "description": "{kind} {t}", "geometry": {geometry}, "post-process": {{"number": {t}}}}}"#
+        )
+    };
+    let lib = |tools: &[String]| format!("{{\"data\": [{}]}}", tools.join(", "));
+    let tap = |name: &str, text: &str| {
+        std::fs::write(dir.join(name), text).unwrap();
+        let o =
+            run_in(&dir, &["tap", "--program", "p.nc", "--tools", name, "--dialect", "fanuc", "--json", "-"]);
+        match o.status.code().unwrap() {
+            2 => (2, serde_json::Value::Null, one_line_error(&o)),
+            code => (code, serde_json::from_slice(&o.stdout).unwrap(), stderr(&o)),
+        }
+    };
+    let metric = lib(&[
+        tool("flat end mill", "millimeters", 1, r#"{"DC": 10, "NOF": 3}"#),
+        tool("drill", "millimeters", 5, r#"{"DC": 8.5, "SIG": 140}"#),
+        tool("tap right hand", "millimeters", 6, r#"{"DC": 10, "TP": 1.5, "NOF": 3}"#),
+    ]);
+    let (code, v, e) = tap("lib.json", &metric);
+    assert_eq!(code, 0, "{e}");
+    let h = &v["holes"][0];
+    assert_eq!(
+        (h["tap"]["designation"].as_str(), h["tap"]["designation_from"].as_str()),
+        (Some("M10x1.5-6H"), Some("tool")),
+        "{h}"
+    );
+    assert_eq!(
+        (h["drill"]["diameter"].as_f64(), h["drill"]["point_angle"].as_f64()),
+        (Some(8.5), Some(140.0))
+    );
+    // A `.tools` file that holds the same JSON.
+    let (code, _, e) = tap("lib.tools", &metric);
+    assert_eq!(code, 0, "{e}");
+    // 1/4-20 UNC and BSW 1/4 are both Ø6.35 at 20 tpi: the description names it.
+    let inch = lib(&[
+        tool("drill", "inches", 5, r#"{"DC": 0.201}"#),
+        tool("tap left hand", "inches", 6, r#"{"DC": 0.25, "TP": 0.05}"#)
+            .replace("\"tap left hand 6\"", "\"1/4-20 UNC spiral point\""),
+    ]);
+    let (code, v, e) = tap("inch.json", &inch);
+    assert!(code < 2, "{e}");
+    let h = &v["holes"][0];
+    assert_eq!(h["tap"]["designation"], "1/4-20 UNC-2B-LH", "{h}");
+    assert!((h["drill"]["diameter"].as_f64().unwrap() - 0.201 * 25.4).abs() < 1e-9);
+    let (code, _, e) = tap("bad.json", "{\"tools\": []}");
+    assert_eq!(code, 2);
+    assert!(e.contains("bad.json: a Fusion tool library holds its tools in \"data\""), "{e}");
+    let (code, _, e) = tap("broken.json", "{\"data\": [\n  {\"type\": }\n]}");
+    assert_eq!(code, 2);
+    assert!(e.contains("broken.json:2:12: not JSON"), "{e}");
 }

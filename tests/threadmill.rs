@@ -979,3 +979,38 @@ fn radial_passes_deeper_than_the_thread_are_found() {
     let c = v["checks"].as_array().unwrap().iter().find(|c| c["feature"] == "radial_depth").unwrap();
     assert!((c["value"].as_f64().unwrap() - 1.0).abs() < 1e-9 && c["ok"] == true, "{c}");
 }
+
+/// Issue 65 item 3: a thread mill in a Fusion tool library (`"thread mill"`, DC 6, its
+/// `thread-profile-angle` 60°) under the program's T12 is the cutter `--cutter-diameter 6` gives:
+/// a single-form, sharp tooth; its major diameter 2(R + 3) = 20.0000 on the helices' R = 7.
+#[test]
+fn a_fusion_thread_mill_is_the_program_s_cutter() {
+    let dir = tempdir("fusion-tm");
+    std::fs::write(
+        dir.join("lib.json"),
+        r#"{"data": [{"type": "thread mill", "unit": "millimeters", "description": "TM 6", "geometry": {"DC": 6, "NOF": 3, "thread-profile-angle": 60}, "post-process": {"number": 12}}]}"#,
+    )
+    .unwrap();
+    let p = data("programs/threadmill/m20-dc6.nc");
+    let o = run_in(
+        &dir,
+        &[
+            "thread-mill",
+            "--program",
+            p.to_str().unwrap(),
+            "--thread",
+            "M20x1.5-6H",
+            "--tools",
+            "lib.json",
+            "--json",
+            "-",
+        ],
+    );
+    assert!(o.status.code().unwrap() < 2, "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(
+        v["cutter"],
+        serde_json::json!({"diameter": 6.0, "angle_deg": 60.0, "tip_radius": 0.0, "rows": 1, "row_pitch": 0.0})
+    );
+    assert!((v["measured"]["major_diameter"].as_f64().unwrap() - 20.0).abs() < 1e-4);
+}

@@ -758,3 +758,16 @@ def test_a_modeline_and_a_project_file_choose_the_dialect(tmp_path):
     r = threadcheck.verify(program=_LINUXCNC, program_name=str(tmp_path / "part.nc"), insert="full")
     assert r["verdict"] == "pass"
     assert any(n.startswith("read with the project file ") and n.endswith(": dialect linuxcnc") for n in r["notes"])
+
+
+def test_a_fusion_tool_library_is_a_tool_table():
+    # Fusion's JSON: T5 a Ø8.5 drill, T6 a right-hand tap DC 10, TP 1.5 (M10x1.5, 6H by default).
+    lib = json.dumps({"data": [
+        {"type": "drill", "unit": "millimeters", "geometry": {"DC": 8.5}, "post-process": {"number": 5}},
+        {"type": "tap right hand", "unit": "millimeters", "geometry": {"DC": 10, "TP": 1.5}, "post-process": {"number": 6}},
+    ]})
+    program = "G21 G17 G90 G95\nT5 M6\nG0 X0 Y0 S1200 M3\nG81 Z-25. R2. F0.1\nG80\nT6 M6\nS400 M3\nG84 Z-18. R3. F1.5\nG80\nM30\n"
+    r = threadcheck.tap(program, tools=lib, dialect="fanuc")
+    h = r["holes"][0]
+    assert h["tap"]["designation"] == "M10x1.5-6H" and h["tap"]["designation_from"] == "tool"
+    assert h["drill"]["diameter"] == 8.5 and r["pass"]

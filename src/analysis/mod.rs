@@ -9,6 +9,7 @@ pub mod correct;
 pub mod correction;
 pub mod cut_plan;
 pub mod fit;
+pub mod fusion;
 pub mod gouge;
 pub mod lead;
 pub mod made;

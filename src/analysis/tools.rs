@@ -227,6 +227,20 @@ impl ToolTable {
         })
     }
 
+    /// A table of `entries` (T, tool, how the source wrote it), from `source` (another
+    /// library's format: [`fusion_tool_table`](crate::fusion_tool_table)).
+    pub fn from_entries(source: &str, entries: Vec<(u32, Tool, String)>) -> ToolTable {
+        ToolTable {
+            source: crate::ground::fmt::shown_text(source),
+            tools: entries
+                .into_iter()
+                .map(|(t, tool, w)| (t, (tool, crate::ground::fmt::shown_text(&w))))
+                .collect(),
+            offsets: BTreeMap::new(),
+            in_spindle: None,
+        }
+    }
+
     /// No tool table: a program whose tools are named by its own comments, or by options.
     pub fn none() -> ToolTable {
         ToolTable {

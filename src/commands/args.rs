@@ -612,7 +612,22 @@ pub(crate) fn tool_table(
 ) -> Result<crate::analysis::tools::ToolTable, Error> {
     use crate::analysis::tools::ToolTable;
     match source {
-        Source::Path(p) => ToolTable::read(p),
+        // A Fusion tool library (JSON) or a tool table (TOML), by what the file holds.
+        Source::Path(p) => {
+            let text = crate::ground::input::read_text_bounded(
+                p,
+                crate::ground::bounds::MAX_DATA_FILE_BYTES,
+                "a tool table",
+            )?;
+            if crate::analysis::fusion::is_json(&text) {
+                crate::analysis::fusion::tool_table(&text, &p.display().to_string())
+            } else {
+                ToolTable::from_toml(&text, &p.display().to_string(), p.parent().unwrap_or(Path::new(".")))
+            }
+        }
+        Source::Text(text) if crate::analysis::fusion::is_json(text) => {
+            crate::analysis::fusion::tool_table(text, "<tools>")
+        }
         Source::Text(text) => {
             let table = ToolTable::from_toml(text, "<tools>", Path::new("."))?;
             if files == super::Files::Refused {

@@ -538,6 +538,58 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
                 );
             }
         }
+        // How much thread the drill leaves, and the torque the tap needs (issue 64).
+        if hole.thread_percent.is_some() || hole.torque.is_some() {
+            ty += 4.0;
+        }
+        if let Some(t) = &hole.thread_percent {
+            g = line(
+                g,
+                &mut ty,
+                11.0,
+                "#333",
+                false,
+                format!(
+                    "thread {} % (shops' band {}–{} %)",
+                    fmt_num((t.percent * 10.0).round() / 10.0),
+                    fmt_num(t.band[0]),
+                    fmt_num(t.band[1])
+                ),
+            );
+        }
+        if let Some(t) = &hole.torque {
+            let spindle = [
+                t.spindle_torque_nm.map(|v| format!("{} N·m", fmt_num(v))),
+                t.spindle_power_kw.map(|v| format!("{} kW", fmt_num(v))),
+            ]
+            .into_iter()
+            .flatten()
+            .collect::<Vec<_>>();
+            let against = if spindle.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    "; spindle {}{}",
+                    spindle.join(", "),
+                    if t.exceeds_spindle { ": EXCEEDED" } else { "" }
+                )
+            };
+            g = line(
+                g,
+                &mut ty,
+                11.0,
+                if t.exceeds_spindle { FAIL } else { "#333" },
+                t.exceeds_spindle,
+                format!(
+                    "torque {} N·m{}{against}",
+                    fmt_num((t.newton_metres * 100.0).round() / 100.0),
+                    t.power_kw.map_or(String::new(), |p| format!(
+                        ", {} kW",
+                        fmt_num((p * 1000.0).round() / 1000.0)
+                    ))
+                ),
+            );
+        }
         let drill_unknown = hole.drill.as_ref().is_none_or(|d| d.diameter.is_none());
         if let Some(pd) = hole.drill_that_passes.as_ref() {
             ty += 6.0;

@@ -427,7 +427,9 @@ $("limits-form").addEventListener("submit", async (ev) => {
   ev.preventDefault();
   clearResult("limits");
   try {
-    const l = JSON.parse(await api("limits", { thread: $("limits-thread").value.trim() }));
+    const args = { thread: $("limits-thread").value.trim() };
+    if ($("limits-rolled").checked) args.rolled = true;
+    const l = JSON.parse(await api("limits", args));
     const rows = [];
     for (const side of ["external", "internal"]) {
       const s = l[side];
@@ -436,6 +438,15 @@ $("limits-form").addEventListener("submit", async (ev) => {
         if (v && typeof v === "object" && "max" in v) {
           rows.push([side + " " + s.class, k.replaceAll("_", " "), fmt(v.min, 4), fmt(v.max, 4)]);
         }
+      }
+    }
+    // A rolled external thread (issue 64): the dies' pitch diameter, their root and the blank
+    // that fills the full crest, each one diameter (min and max alike).
+    if (l.rolled) {
+      const r = l.rolled;
+      for (const [k, v] of [["pitch diameter the dies set", r.pitch_diameter], ["root the dies form", r.root_diameter],
+        ["blank for the full crest", r.blank_for_full_crest]]) {
+        rows.push(["rolled", k, fmt(v, 4), fmt(v, 4)]);
       }
     }
     table($("limits-table"), ["thread", "size", "min, mm", "max, mm"], rows);
@@ -469,6 +480,11 @@ function tapArgs() {
   const args = programFrom("tap");
   // An empty table: the tools the program names.
   if ($("tap-tools").value.trim()) args.tools = $("tap-tools").value;
+  // The torque wants the workpiece; the tap's kind only with it.
+  if ($("tap-material").value) {
+    args.material = $("tap-material").value;
+    if ($("tap-kind").value) args.tap_kind = $("tap-kind").value;
+  }
   return args;
 }
 $("tap-form").addEventListener("submit", async (ev) => {
@@ -489,6 +505,21 @@ $("tap-form").addEventListener("submit", async (ev) => {
           : "";
         rows.push([`${h.cycle.code} line ${h.cycle.line}`, [h.tap.designation, "t"], [c.feature.replaceAll("_", " "), "t"],
           fmt(c.value, 4), fmt(c.min, 4), fmt(c.max, 4), c.ok ? ["ok", "ok"] : ["OUT", "out"], [c.note + better, "t"]]);
+      }
+      // Reported beside the checks, never failed (issue 64): how much thread the drill leaves,
+      // the torque the tap needs and the spindle it is held against.
+      const at = `${h.cycle.code} line ${h.cycle.line}`;
+      if (h.thread_percent) {
+        const p = h.thread_percent;
+        rows.push([at, [h.tap.designation, "t"], ["thread %", "t"], fmt(p.percent, 1), fmt(p.band[0], 0), fmt(p.band[1], 0), "",
+          ["% of thread the drill leaves (100 % = 0.6495·P a side); the shops' band, a named default", "t"]]);
+      }
+      if (h.torque) {
+        const t = h.torque;
+        const spindle = t.spindle_torque_nm !== undefined ? fmt(t.spindle_torque_nm, 2) : "—";
+        rows.push([at, [h.tap.designation, "t"], ["torque N·m", "t"], fmt(t.newton_metres, 2), "—", spindle,
+          t.exceeds_spindle ? ["OVER", "out"] : "",
+          [`the tap maker's equation: ${t.material}, kc ${t.kc} N/mm², ${t.tap_kind} tap, K ${t.k}` + (t.power_kw !== null ? `; ${fmt(t.power_kw, 3)} kW at the spindle` : ""), "t"]]);
       }
     }
     table($("tap-table"), ["cycle", "tap", "check", "value", "min", "max", "", "note"], rows);

@@ -184,6 +184,11 @@ try {
   await page.waitForSelector("#limits-table:not([hidden])");
   seen.limits = await page.$$eval("#limits-table tbody tr", (rows) => rows.map((r) => [...r.cells].map((c) => c.textContent)));
   await shot("limits");
+  // A rolled thread's blank (issue 64).
+  await page.check("#limits-rolled");
+  await page.click("#limits-button");
+  await page.waitForFunction(() => [...document.querySelectorAll("#limits-table tbody tr")].some((r) => r.cells[0].textContent === "rolled"));
+  seen.limits_rolled = await page.$$eval("#limits-table tbody tr", (rows) => rows.filter((r) => r.cells[0].textContent === "rolled").map((r) => [...r.cells].map((c) => c.textContent)));
 
   step = "tap";
   // 8. Tap: a program with its drilling and tapping cycles, uploaded; a tool table typed.
@@ -191,6 +196,9 @@ try {
   await page.setInputFiles("#tap-program-file", tapFile);
   await page.waitForFunction(() => document.getElementById("tap-program").value.length > 0);
   await page.fill("#tap-tools", '[tools]\n5 = "drill:8.5"\n6 = "tap:M10x1.5-6H"\n');
+  // The workpiece and the tap's kind: each hole's torque (issue 64).
+  await page.selectOption("#tap-material", "ck45");
+  await page.selectOption("#tap-kind", "hand-plug");
   await page.click("#tap-button");
   await page.waitForSelector("#tap-result:not([hidden])");
   await pictureLoaded("tap-picture");
