@@ -99,14 +99,22 @@ fn the_shell_words_are_split_as_a_shell_does() {
     );
 }
 
-#[test]
-fn docs_commands_run() {
+/// The folder the docs' commands run in: the repository's `tests/` and `profiles/` seen through
+/// links, and a `reports/` of its own.
+fn docs_scratch(tag: &str) -> crate::util::Scratch {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let scratch = tempdir("docs-commands");
+    let scratch = tempdir(tag);
     for shared in ["tests", "profiles"] {
         std::os::unix::fs::symlink(root.join(shared), scratch.join(shared)).unwrap();
     }
     std::fs::create_dir(scratch.join("reports")).unwrap();
+    scratch
+}
+
+#[test]
+fn docs_commands_run() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let scratch = docs_scratch("docs-commands");
     let mut ran = Vec::new();
     for file in docs() {
         let text = std::fs::read_to_string(&file).unwrap();
@@ -205,11 +213,7 @@ fn transcripts(text: &str) -> Vec<(Vec<String>, Vec<String>)> {
 #[test]
 fn docs_transcripts_print_what_they_show() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let scratch = tempdir("docs-transcripts");
-    for shared in ["tests", "profiles"] {
-        std::os::unix::fs::symlink(root.join(shared), scratch.join(shared)).unwrap();
-    }
-    std::fs::create_dir(scratch.join("reports")).unwrap();
+    let scratch = docs_scratch("docs-transcripts");
     let mut stale = Vec::new();
     let mut seen = 0;
     for file in docs() {

@@ -477,6 +477,27 @@ impl Client {
             self.notes.push(m);
         }
     }
+
+    /// A server started with `options`, one document (`uri`, `text`) opened, and its first
+    /// diagnostics.
+    fn with_document(options: serde_json::Value, uri: &str, text: &str) -> (Client, serde_json::Value) {
+        let mut c = Client::start();
+        c.request(1, "initialize", serde_json::json!({"capabilities": {}, "initializationOptions": options}));
+        c.notify("initialized", serde_json::json!({}));
+        c.notify(
+            "textDocument/didOpen",
+            serde_json::json!({"textDocument": {"uri": uri, "languageId": "gcode", "version": 1, "text": text}}),
+        );
+        let d = c.diagnostics();
+        (c, d)
+    }
+
+    /// `shutdown`, then `exit`: the server ends with 0.
+    fn finish(mut self) {
+        self.request(99, "shutdown", serde_json::Value::Null);
+        self.notify("exit", serde_json::Value::Null);
+        assert_eq!(self.child.wait().unwrap().code(), Some(0));
+    }
 }
 
 /// Issue 49 item 2: the language server through a scripted client exchange. The program is our
@@ -696,14 +717,7 @@ fn the_language_server_finds_subroutine_files() {
         ),
         (serde_json::json!({"insert": "full"}), false),
     ] {
-        let mut c = Client::start();
-        c.request(1, "initialize", serde_json::json!({"capabilities": {}, "initializationOptions": options}));
-        c.notify("initialized", serde_json::json!({}));
-        c.notify(
-            "textDocument/didOpen",
-            serde_json::json!({"textDocument": {"uri": uri, "languageId": "gcode", "version": 1, "text": text}}),
-        );
-        let d = c.diagnostics();
+        let (c, d) = Client::with_document(options, &uri, text);
         let first = &d["diagnostics"][0];
         if opened {
             assert_eq!(first["severity"], 3, "the thread passes: {d}");
@@ -717,9 +731,7 @@ fn the_language_server_finds_subroutine_files() {
             assert_eq!(first["code"], "program.unreadable", "{d}");
             assert_eq!(first["range"]["start"], serde_json::json!({"line": 6, "character": 0}), "{d}");
         }
-        c.request(2, "shutdown", serde_json::Value::Null);
-        c.notify("exit", serde_json::Value::Null);
-        assert_eq!(c.child.wait().unwrap().code(), Some(0));
+        c.finish();
     }
 }
 
@@ -916,18 +928,7 @@ fn the_language_server_reads_the_project_file_and_the_modeline() {
         } else {
             let _ = std::fs::remove_file(dir.join(".threadcheck.toml"));
         }
-        let mut c = Client::start();
-        c.request(
-            1,
-            "initialize",
-            serde_json::json!({"capabilities": {}, "initializationOptions": {"insert": "full"}}),
-        );
-        c.notify("initialized", serde_json::json!({}));
-        c.notify(
-            "textDocument/didOpen",
-            serde_json::json!({"textDocument": {"uri": uri, "languageId": "gcode", "version": 1, "text": text}}),
-        );
-        let d = c.diagnostics();
+        let (c, d) = Client::with_document(serde_json::json!({"insert": "full"}), &uri, &text);
         let first = &d["diagnostics"][0];
         if passes {
             assert_eq!(first["severity"], 3, "the thread passes: {d}");
@@ -942,8 +943,6 @@ fn the_language_server_reads_the_project_file_and_the_modeline() {
                 "{d}"
             );
         }
-        c.request(2, "shutdown", serde_json::Value::Null);
-        c.notify("exit", serde_json::Value::Null);
-        assert_eq!(c.child.wait().unwrap().code(), Some(0));
+        c.finish();
     }
 }

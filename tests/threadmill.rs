@@ -685,19 +685,11 @@ fn a_cam_program_s_tool_list_names_its_thread_mill_and_its_lead_in_arc_is_the_en
     assert_eq!(m["verdict"], "pass");
 }
 
-/// Issue 62: a comb (multi-form) cutter's program as shops write it: Ø11.9, 5 rows 2 mm apart, 4
-/// radial passes (R 1.3 to 2.05) of 3 one-turn helices each in a Ø14 bore for M16x2-6H. It was
-/// refused over the evaluation budget (9·10⁷ against 4·10⁷); the reach is now sought only where
-/// the cutter can pass the tooth profile's own and the bore. Against geometry computed here: the
-/// major diameter 2(R + ρ) = 2(2.05 + 5.95) = 16; the tooth profile's D2, 16 − 2·0.866025·P/2·…
-/// = D − 0.866025·P = 14.26795; the milled D2, twice the median over one pitch of heights of
-/// the reach max over ψ of R·cos ψ + √(ρ(z − zc(ψ))² − R²·sin² ψ), by brute force on a grid of
-/// ψ (every pass, every row), clamped to the bore: its groove is P/2 wide where half the heights
-/// reach past it.
-#[test]
-fn a_comb_cutter_s_passes_are_measured_within_the_budget() {
+/// `thread-mill` on the comb program below: Ø11.9, 5 rows 2 mm apart, in a Ø14 bore for
+/// M16x2-6H.
+fn run_comb() -> Output {
     let p = data("programs/threadmill/m16x2-comb-4-passes.nc");
-    let o = run(&[
+    run(&[
         "thread-mill",
         "--program",
         p.to_str().unwrap(),
@@ -717,7 +709,21 @@ fn a_comb_cutter_s_passes_are_measured_within_the_budget() {
         "2",
         "--blank-diameter",
         "14",
-    ]);
+    ])
+}
+
+/// Issue 62: a comb (multi-form) cutter's program as shops write it: Ø11.9, 5 rows 2 mm apart, 4
+/// radial passes (R 1.3 to 2.05) of 3 one-turn helices each in a Ø14 bore for M16x2-6H. It was
+/// refused over the evaluation budget (9·10⁷ against 4·10⁷); the reach is now sought only where
+/// the cutter can pass the tooth profile's own and the bore. Against geometry computed here: the
+/// major diameter 2(R + ρ) = 2(2.05 + 5.95) = 16; the tooth profile's D2, 16 − 2·0.866025·P/2·…
+/// = D − 0.866025·P = 14.26795; the milled D2, twice the median over one pitch of heights of
+/// the reach max over ψ of R·cos ψ + √(ρ(z − zc(ψ))² − R²·sin² ψ), by brute force on a grid of
+/// ψ (every pass, every row), clamped to the bore: its groove is P/2 wide where half the heights
+/// reach past it.
+#[test]
+fn a_comb_cutter_s_passes_are_measured_within_the_budget() {
+    let o = run_comb();
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v["helices"].as_array().unwrap().len(), 12);
@@ -953,28 +959,7 @@ fn radial_passes_deeper_than_the_thread_are_found() {
     assert!((c["value"].as_f64().unwrap() - 1.5).abs() < 1e-9, "{c}");
     assert_eq!(c["ok"], false);
     assert!(c["note"].as_str().unwrap().contains("0.5000, 1.0000, 1.5000 mm past the bore Ø14.0000"), "{c}");
-    let p = data("programs/threadmill/m16x2-comb-4-passes.nc");
-    let o = run(&[
-        "thread-mill",
-        "--program",
-        p.to_str().unwrap(),
-        "--json",
-        "-",
-        "--thread",
-        "M16x2-6H",
-        "--cutter-diameter",
-        "11.9",
-        "--cutter-angle",
-        "60",
-        "--cutter-tip-radius",
-        "0",
-        "--cutter-rows",
-        "5",
-        "--cutter-row-pitch",
-        "2",
-        "--blank-diameter",
-        "14",
-    ]);
+    let o = run_comb();
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let c = v["checks"].as_array().unwrap().iter().find(|c| c["feature"] == "radial_depth").unwrap();
     assert!((c["value"].as_f64().unwrap() - 1.0).abs() < 1e-9 && c["ok"] == true, "{c}");

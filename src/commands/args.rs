@@ -442,9 +442,7 @@ impl PlanArgs {
                 s.reading.machine_type_by = Some(by.phrase());
             }
         }
-        if self.default_units.is_none() {
-            s.reading.default_units_by = set.default_units.as_ref().map(|(_, by)| by.phrase());
-        }
+        s.reading.default_units_by = set.default_units(self.default_units).1;
         s.reading.settings_notes = set.notes(&self.given());
         Ok(s)
     }

@@ -138,6 +138,16 @@ impl Settings {
         Ok(s)
     }
 
+    /// The units of a program that sets none: the flag's (`given`), else the ones set here,
+    /// with where they came from (`None` for the flag's: nothing to say).
+    pub fn default_units(&self, given: Option<ProgramUnits>) -> (Option<ProgramUnits>, Option<String>) {
+        match (given, &self.default_units) {
+            (Some(u), _) => (Some(u), None),
+            (None, Some((u, by))) => (Some(*u), Some(by.phrase())),
+            (None, None) => (None, None),
+        }
+    }
+
     /// Nothing set.
     pub fn is_empty(&self) -> bool {
         self.dialect.is_none()

@@ -105,14 +105,11 @@ impl Job for TapArgs {
             tools: self.tools.as_ref().map(super::args::source_words),
             thread: self.tap.clone(),
         });
+        let (default_units, default_units_by) = set.default_units(self.default_units);
         let reading = ReadOptions {
             dialect_from: from,
-            default_units: self.default_units.or(set.default_units.as_ref().map(|u| u.0)),
-            default_units_by: set
-                .default_units
-                .as_ref()
-                .filter(|_| self.default_units.is_none())
-                .map(|u| u.1.phrase()),
+            default_units,
+            default_units_by,
             settings_notes,
             gcode_system: self.gcode_system,
             machine_type,

@@ -85,6 +85,7 @@ impl Job for ThreadMillArgs {
             self.thread.clone().or_else(|| set.thread.as_ref().and_then(|t| t.0.first().cloned()));
         let tools_source =
             self.tools.clone().or_else(|| set.tools.as_ref().map(|t| Source::Path(t.0.clone())));
+        let (default_units, default_units_by) = set.default_units(self.default_units);
         let settings_notes = set.notes(&super::settings::Given {
             dialect: self.file.dialect.map(|d| d.name().to_string()),
             default_units: self.default_units.map(|u| u.name().to_string()),
@@ -139,12 +140,8 @@ impl Job for ThreadMillArgs {
             comp_radius: self.comp_radius,
             reading: crate::gcode::ReadOptions {
                 dialect_from: from,
-                default_units: self.default_units.or(set.default_units.as_ref().map(|u| u.0)),
-                default_units_by: set
-                    .default_units
-                    .as_ref()
-                    .filter(|_| self.default_units.is_none())
-                    .map(|u| u.1.phrase()),
+                default_units,
+                default_units_by,
                 sub_files: self.file.sub_files(request.files),
                 settings_notes,
                 ..Default::default()
