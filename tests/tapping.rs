@@ -181,27 +181,28 @@ fn a_tap_s_torque_is_held_against_the_machine_s_spindle() {
     std::fs::write(dir.join("big.toml"), "name = \"big\"\nspindle_torque_nm = 20\nspindle_power_kw = 1\n")
         .unwrap();
     std::fs::write(dir.join("bare.toml"), "name = \"bare\"\n").unwrap();
+    // The plug hand tap in C45 on the machine file `machine`, with `out` (the JSON, or a picture).
+    let tap = |machine: &str, out: &[&str]| {
+        let mut a = vec![
+            "tap",
+            "--program",
+            "p.nc",
+            "--tools",
+            "tools.toml",
+            "--dialect",
+            "fanuc",
+            "--material",
+            "C45",
+            "--tap-kind",
+            "hand-plug",
+            "--machine",
+            machine,
+        ];
+        a.extend_from_slice(out);
+        run_in(&dir, &a)
+    };
     let run = |machine: &str| {
-        let o = run_in(
-            &dir,
-            &[
-                "tap",
-                "--program",
-                "p.nc",
-                "--tools",
-                "tools.toml",
-                "--dialect",
-                "fanuc",
-                "--material",
-                "C45",
-                "--tap-kind",
-                "hand-plug",
-                "--machine",
-                machine,
-                "--json",
-                "-",
-            ],
-        );
+        let o = tap(machine, &["--json", "-"]);
         assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
         let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
         v["holes"][0].clone()
@@ -220,26 +221,7 @@ fn a_tap_s_torque_is_held_against_the_machine_s_spindle() {
     );
     assert_eq!(h["pass"], true);
     // The picture says it under the hole, with the percent of thread.
-    let o = run_in(
-        &dir,
-        &[
-            "tap",
-            "--program",
-            "p.nc",
-            "--tools",
-            "tools.toml",
-            "--dialect",
-            "fanuc",
-            "--material",
-            "C45",
-            "--tap-kind",
-            "hand-plug",
-            "--machine",
-            "small.toml",
-            "--svg",
-            "tap.svg",
-        ],
-    );
+    let o = tap("small.toml", &["--svg", "tap.svg"]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let svg = std::fs::read_to_string(dir.join("tap.svg")).unwrap();
     assert!(svg.contains("thread 77 % (shops' band 60–75 %)"), "{svg}");
