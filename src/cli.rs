@@ -99,7 +99,9 @@ impl Cli {
         let dests = command.destinations();
         let mut wanted: Vec<Document> = dests.iter().map(|(d, _)| *d).collect();
         wanted.push(Document::Text);
-        let request = Request { wanted, files: Files::Allowed, reader: Audience::Cli };
+        // A run of many shows its progress when standard error is a terminal.
+        let progress = std::io::IsTerminal::is_terminal(&std::io::stderr());
+        let request = Request { wanted, files: Files::Allowed, reader: Audience::Cli, progress };
         let out = command.run(&request)?;
         Ok((deliver(&out, &dests, Audience::Cli)?, out.outcome))
     }

@@ -252,6 +252,7 @@ fn the_committed_report_regenerates_byte_for_byte() {
         wanted: vec![threadcheck::Document::Text],
         files: threadcheck::Files::Allowed,
         reader: threadcheck::Audience::Cli,
+        progress: false,
     };
     let out = threadcheck::Job::run(&report, &request).unwrap();
     threadcheck::deliver(&out, &[], threadcheck::Audience::Cli).unwrap();

@@ -946,3 +946,50 @@ fn the_language_server_reads_the_project_file_and_the_modeline() {
         c.finish();
     }
 }
+
+/// Runs `threadcheck ARGS` in `dir` under a pseudo-terminal (util-linux's `script`, as a person
+/// at a terminal runs it), standard output to /dev/null: what the terminal showed.
+fn at_a_terminal(dir: &Path, env: &[(&str, &str)], args: &str) -> String {
+    let bin = env!("CARGO_BIN_EXE_threadcheck");
+    let out = std::process::Command::new("script")
+        .args(["-q", "-e", "-c", &format!("{bin} {args} > /dev/null"), "/dev/null"])
+        .envs(env.iter().copied())
+        .current_dir(dir)
+        .output()
+        .expect("util-linux's `script` runs a command under a pseudo-terminal: install util-linux");
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// Issue 65: a run of many shows its progress on standard error when that is a terminal and
+/// the run passes its wait (a second; 0 here, through `THREADCHECK_PROGRESS_AFTER`), the bar
+/// counting the programs to the last and cleared at the end; a quick run at a terminal shows
+/// none, and a run whose standard error is not a terminal never does.
+#[test]
+fn a_run_of_many_shows_its_progress_at_a_terminal_only() {
+    let dir = library("progress");
+    let shown = at_a_terminal(&dir, &[("THREADCHECK_PROGRESS_AFTER", "0")], "verify lib");
+    assert!(shown.contains("3/3 programs"), "{shown:?}");
+    // Cleared at the end: the terminal's line erased after the last count.
+    let last = shown.rfind("3/3 programs").unwrap();
+    assert!(shown[last..].contains("\u{1b}[2K"), "{shown:?}");
+    let quick = at_a_terminal(&dir, &[], "verify lib");
+    assert!(!quick.contains("programs,"), "a run under a second drew a bar: {quick:?}");
+    let o = Command::new(env!("CARGO_BIN_EXE_threadcheck"))
+        .args(["verify", "lib"])
+        .env("THREADCHECK_PROGRESS_AFTER", "0")
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(!stderr(&o).contains("programs,"), "{}", stderr(&o));
+}
+
+/// Issue 65: each file a run writes is said on standard error (standard output keeps the
+/// document): `wrote m10.svg (N bytes)`, N the file's size.
+#[test]
+fn each_file_written_is_said_on_standard_error() {
+    let dir = tempdir("wrote");
+    let o = run_in(&dir, &["verify", "--thread", "M10x1.5-6g", "--svg", "m10.svg", "--json", "-"]);
+    let size = std::fs::metadata(dir.join("m10.svg")).unwrap().len();
+    assert!(stderr(&o).contains(&format!("wrote m10.svg ({size} bytes)\n")), "{}", stderr(&o));
+    assert!(stdout(&o).starts_with('{'), "{}", stdout(&o));
+}

@@ -119,7 +119,8 @@ pub fn filter(args: &FilterArgs) -> Result<Filtered, Error> {
         crate::ground::bounds::MAX_PROGRAM_BYTES,
         "the program",
     )?;
-    let request = Request { wanted: Vec::new(), files: Files::Allowed, reader: crate::Audience::Cli };
+    let request =
+        Request { wanted: Vec::new(), files: Files::Allowed, reader: crate::Audience::Cli, progress: false };
     let tools = args.tools.as_ref().map(|t| tool_table(t, Files::Allowed)).transpose()?;
     let verify = VerifyArgs {
         plan: args.plan.clone(),

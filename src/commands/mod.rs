@@ -30,6 +30,7 @@ mod fit;
 mod limits;
 mod mill;
 mod passes;
+mod progress;
 mod report;
 pub(crate) mod settings;
 mod sweep;
@@ -193,12 +194,15 @@ pub struct Request {
     pub files: Files,
     /// Who reads the messages: how they name arguments.
     pub reader: crate::Audience,
+    /// Whether a run of many draws its progress on standard error (the command line sets it
+    /// when that is a terminal; the bar appears after a second).
+    pub progress: bool,
 }
 
 impl Request {
     /// One document for the API or Python.
     pub fn api(document: Document, files: Files) -> Request {
-        Request { wanted: vec![document], files, reader: crate::Audience::Api }
+        Request { wanted: vec![document], files, reader: crate::Audience::Api, progress: false }
     }
 
     /// Whether `d` is asked for.

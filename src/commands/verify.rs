@@ -312,9 +312,16 @@ impl VerifyArgs {
         // (their lines only, never the verifications).
         let keep = request.wants(Document::Sarif) || request.wants(Document::Junit);
         let mut kept = Vec::new();
+        let progress = super::progress::Progress::new(request.progress, files.len());
         for chunk in files.chunks(64) {
-            let done: Vec<BatchProgram> =
-                chunk.par_iter().map(|file| self.one_of_many(file, tools.as_ref(), request)).collect();
+            let done: Vec<BatchProgram> = chunk
+                .par_iter()
+                .map(|file| {
+                    let p = self.one_of_many(file, tools.as_ref(), request);
+                    progress.inc();
+                    p
+                })
+                .collect();
             for p in &done {
                 summary.add(p);
                 text.push_str(&p.text());
@@ -327,6 +334,7 @@ impl VerifyArgs {
                 kept.extend(done);
             }
         }
+        progress.finish();
         text.push_str(&summary.text());
         if lines {
             jsonl.push_str(

@@ -72,11 +72,27 @@ pub fn deliver(out: &Outputs, dests: &[(Document, Dest)], reader: Audience) -> R
     files.extend(out.files.iter().cloned());
     crate::report::output::refuse_inputs(&files, &out.inputs)?;
     crate::report::output::write_all_atomic(&files)?;
-    Ok(Shown {
-        stdout: reader.words(out.document(shown).unwrap_or_default()),
-        stderr: match (shown, &out.aside) {
-            (Document::Json, Some(a)) => a.clone(),
-            _ => String::new(),
-        },
-    })
+    let mut stderr = match (shown, &out.aside) {
+        (Document::Json, Some(a)) => a.clone(),
+        _ => String::new(),
+    };
+    stderr.push_str(&written(&files));
+    Ok(Shown { stdout: reader.words(out.document(shown).unwrap_or_default()), stderr })
+}
+
+/// The files a run wrote, in words for standard error (standard output keeps the document
+/// alone): each one with its size, or, past five, how many and the folder that holds them.
+fn written(files: &[(PathBuf, Vec<u8>)]) -> String {
+    use crate::ground::fmt::path_name;
+    if files.len() <= 5 {
+        return files.iter().map(|(p, b)| format!("wrote {} ({} bytes)\n", path_name(p), b.len())).collect();
+    }
+    let bytes: usize = files.iter().map(|(_, b)| b.len()).sum();
+    let folder = files[0].0.parent().filter(|d| files.iter().all(|(p, _)| p.parent() == Some(*d)));
+    match folder {
+        Some(d) if !d.as_os_str().is_empty() => {
+            format!("wrote {} files in {} ({bytes} bytes)\n", files.len(), path_name(d))
+        }
+        _ => format!("wrote {} files ({bytes} bytes)\n", files.len()),
+    }
 }

@@ -635,8 +635,12 @@ impl<W: Write> Server<W> {
             let mine = stop.clone();
             let key = uri.clone();
             let spawned = std::thread::Builder::new().name("threadcheck-lsp-check".into()).spawn(move || {
-                let request =
-                    Request { wanted: Vec::new(), files: Files::Refused, reader: crate::Audience::Api };
+                let request = Request {
+                    wanted: Vec::new(),
+                    files: Files::Refused,
+                    reader: crate::Audience::Api,
+                    progress: false,
+                };
                 let checked = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                     mine.run(|| settings.for_editor(&name, text, (*tools).as_ref(), &request))
                 }));
