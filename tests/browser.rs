@@ -1164,3 +1164,57 @@ fn the_page_reads_a_klartext_program() {
         "{headings:?}"
     );
 }
+
+/// Every text of a picture as Chromium reads it (`tests/page/texts.mjs`).
+fn picture_texts(svg: &Path) -> Vec<String> {
+    let script = playwright().with_file_name("texts.mjs");
+    let o = std::process::Command::new("node").arg(&script).arg(chromium()).arg(svg).output().unwrap();
+    assert!(o.status.success(), "texts.mjs failed: {}", String::from_utf8_lossy(&o.stderr));
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
+/// What a text says in mm or µm outside the parentheses that follow an inch figure (`0.4500 in
+/// (11.4303 mm)`, `0.0015 in (38.4 µm)`, `+37.5 tenths (+95.3 µm)`): empty when the text is in
+/// inches throughout. The chip chart's mm² is its own unit (insert makers give chip areas so).
+fn metric_outside_inches(text: &str) -> Option<String> {
+    let mut rest = String::new();
+    let mut depth = 0;
+    for c in text.chars() {
+        match c {
+            '(' => depth += 1,
+            ')' => depth -= 1,
+            c if depth == 0 => rest.push(c),
+            _ => {}
+        }
+    }
+    let rest = rest.replace("mm²", "");
+    (rest.contains(" mm") || rest.contains("µm") || rest.ends_with("mm")).then_some(rest)
+}
+
+/// Issue 65: an inch report's picture is in inches in every text, checked in Chromium: our
+/// Haas program cutting 1/2-13 UNC-2A (its title, verdict, labels, check table, axes, deviation
+/// plot) and our inch tapping program (its places, depths, drill, feed, D1 and scale bar). The mm
+/// and µm stand only beside an inch figure, in parentheses.
+#[test]
+fn an_inch_picture_is_in_inches_in_every_text() {
+    let dir = tempdir("inch-texts");
+    let turned = dir.join("turned.svg");
+    let prog = data("programs/haas-g76-1-2-13-unc.nc");
+    let o = run(&["verify", "--program", prog.to_str().unwrap(), "--svg", turned.to_str().unwrap()]);
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let texts = picture_texts(&turned);
+    assert!(texts.iter().any(|t| t.contains("checks, lengths in inches")), "{texts:?}");
+    assert!(texts.iter().any(|t| t.contains("pitch diameter d2 0.0015 in (38.4 µm) over")), "{texts:?}");
+    assert!(texts.iter().any(|t| t == "0.4436 – 0.4485"), "{texts:?}");
+    let metric: Vec<String> = texts.iter().filter_map(|t| metric_outside_inches(t)).collect();
+    assert!(metric.is_empty(), "texts in mm in the inch picture: {metric:?}");
+    let tapped = dir.join("tapped.svg");
+    let prog = data("programs/tapping/quarter-20-inch.nc");
+    let o = run(&["tap", "--program", prog.to_str().unwrap(), "--svg", tapped.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let texts = picture_texts(&tapped);
+    assert!(texts.iter().any(|t| t.contains("G84 line 16, T4 at X1 Y1")), "{texts:?}");
+    assert!(texts.iter().any(|t| t.ends_with(" in") && t.starts_with("0.")), "no inch scale bar: {texts:?}");
+    let metric: Vec<String> = texts.iter().filter_map(|t| metric_outside_inches(t)).collect();
+    assert!(metric.is_empty(), "texts in mm in the inch tapping picture: {metric:?}");
+}

@@ -371,8 +371,8 @@ fn npt_program_gauge_plane_and_taper() {
     assert!((taper["value"].as_f64().unwrap() + 1.0 / 16.0).abs() < 1e-9);
 }
 
-/// `--units inch` gives the inch values beside the mm in the text and the SVG: 1/4-20 UNC-2A's
-/// d2 limits are 0.2127 and 0.2164 in (the check set).
+/// `--units inch` gives the report in inches with the mm beside them, in the text and the SVG:
+/// 1/4-20 UNC-2A's d2 limits are 0.2127 and 0.2164 in (ASME B1.1's table), 5.4026 and 5.4966 mm.
 #[test]
 fn units_inch_in_the_text_and_the_svg() {
     let dir = tempdir("units");
@@ -392,9 +392,12 @@ fn units_inch_in_the_text_and_the_svg() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let out = stdout(&o);
     let line = out.lines().find(|l| l.contains("✓ pitch diameter")).unwrap();
-    assert!(line.contains("0.21270") && line.contains("0.21640") && line.ends_with(" in"), "{line}");
+    let cells: Vec<&str> = line.split_whitespace().collect();
+    assert_eq!(cells[4..6], ["0.2127", "0.2164"], "{line}");
+    assert!(line.contains("5.4026") && line.contains("5.4966") && line.ends_with(" mm"), "{line}");
     let picture = std::fs::read_to_string(&svg).unwrap();
-    assert!(picture.contains(" in)"), "no inch label in the SVG");
+    assert!(picture.contains("d2 0.2") && picture.contains(" in (5."), "no inch label in the SVG");
+    assert!(picture.contains("0.2127 – 0.2164"), "the SVG's check table is not in inches");
     let e = run(&["verify", "--thread", "1/4-20 UNC-2A", "--units", "furlong"]);
     assert_eq!(e.status.code(), Some(2));
 }

@@ -571,26 +571,33 @@ fn units_inch_reach_the_header_the_measured_line_and_the_correction() {
         "full",
     ]);
     let out = crate::stdout(&o);
-    assert!(out.contains("final X22.8600 (0.90000 in)"), "{out}");
+    // Issue 65: in inches first, the mm beside them (X.9 is 22.86 mm).
+    assert!(out.contains("final X0.9000 (22.8600 mm)"), "{out}");
     let measured = out.lines().find(|l| l.contains("measured:")).unwrap();
-    assert!(measured.contains("thread depth") && measured.matches(" in)").count() >= 3, "{measured}");
+    assert!(measured.contains("thread depth") && measured.matches(" mm)").count() >= 3, "{measured}");
     let fix = out.lines().find(|l| l.contains("for mid-tolerance")).unwrap();
-    assert!(fix.contains("µm (") && fix.contains(" in, on the diameter"), "{fix}");
+    assert!(
+        fix.contains(" in (-") && fix.contains(" µm) off") && fix.contains(" mm) on the diameter"),
+        "{fix}"
+    );
 }
 
-/// Issue 28: an inch thread is read in inches by default (beside the mm); `--units mm` keeps
-/// the mm alone, and a metric thread stays in mm. 1/2-13 UNC: major diameter 0.5 in nominal, so
-/// the table's inch column reads 0.49… in.
+/// Issue 28: an inch thread is read in inches by default (issue 65: the mm beside them); `--units
+/// mm` keeps the mm alone, and a metric thread stays in mm. 1/2-13 UNC: major diameter 0.5 in
+/// nominal, so the table's first column reads 0.49… and the mm beside it 12.…
 #[test]
 fn inch_threads_default_to_inches() {
     let table = |args: &[&str]| crate::stdout(&crate::run(args));
     let unc = table(&["verify", "--thread", "1/2-13-UNC-2A", "--insert", "full"]);
     let major = unc.lines().find(|l| l.contains("major diameter")).unwrap();
-    assert!(major.trim_end().ends_with(" in") && major.contains(" 0.49"), "{major}");
+    assert!(
+        major.trim_end().ends_with(" mm") && major.contains(" 0.49") && major.contains(" 12."),
+        "{major}"
+    );
     let mm = table(&["verify", "--thread", "1/2-13-UNC-2A", "--insert", "full", "--units", "mm"]);
-    assert!(!mm.lines().any(|l| l.contains("major diameter") && l.trim_end().ends_with(" in")), "{mm}");
+    assert!(!mm.lines().any(|l| l.contains("major diameter") && l.contains(" 0.49")), "{mm}");
     let metric = table(&["verify", "--thread", "M10x1.5-6g", "--insert", "full"]);
-    assert!(!metric.contains(" in)") && !metric.lines().any(|l| l.trim_end().ends_with(" in")), "{metric}");
+    assert!(!metric.contains(" in)") && !metric.lines().any(|l| l.trim_end().ends_with(" mm")), "{metric}");
 }
 
 /// Issue 28: a flat root has no root radius. A full-profile Tr20x4 insert (ISO 2904: a flat
@@ -718,9 +725,9 @@ fn the_svg_says_the_next_step() {
 }
 
 /// Issue 28: inches reach the pictures and the page. 1/2-13 UNC-2A cut to X10.2 mm: the title
-/// gives 10.2/25.4 = 0.40157 in, the axes are in inches (`Z in`, `Ø in`), the deviation plot in
-/// ten-thousandths of an inch; the HTML has an inch column. The inch program's picture gives
-/// its correction in the program's own (inch) word.
+/// gives 10.2/25.4 = 0.4016 in (issue 65: the mm beside it), the axes are in inches (`Z in`,
+/// `Ø in`), the deviation plot in ten-thousandths of an inch; the HTML's table is in inches with
+/// a mm column. The inch program's picture gives its correction in the program's own (inch) word.
 #[test]
 fn inches_reach_the_svg_and_the_html() {
     let dir = crate::tempdir("inch-svg");
@@ -730,11 +737,17 @@ fn inches_reach_the_svg_and_the_html() {
     );
     assert_eq!(o.status.code(), Some(1), "{}", crate::stderr(&o));
     let svg = std::fs::read_to_string(dir.join("i.svg")).unwrap();
-    for s in ["last pass X10.2000 (0.40157 in)", "\nZ in\n", "\nØ in\n", "normal to it, 0.0001 in"] {
+    for s in ["last pass X0.4016 (10.2000 mm)", "\nZ in\n", "\nØ in\n", "normal to it, in tenths (0.0001 in)"]
+    {
         assert!(svg.contains(s), "{s} not in the SVG");
     }
     let html = std::fs::read_to_string(dir.join("i.html")).unwrap();
-    assert!(html.contains("<th>value, in</th>") && html.contains("(0.40157 in)"), "no inches in the HTML");
+    assert!(
+        html.contains("<th>value, in</th>")
+            && html.contains("<th>value, mm</th>")
+            && html.contains("X0.4016 in (10.2000 mm)"),
+        "no inches in the HTML"
+    );
     // Metric stays metric.
     let o = crate::run_in(&dir, &["verify", "--thread", "M10x1.5-6g", "--svg", "m.svg"]);
     assert!(o.status.code().is_some_and(|c| c < 2));

@@ -169,8 +169,8 @@ fn default_units_read_a_program_that_sets_none() {
     assert!(o.status.code() == Some(0) || o.status.code() == Some(1), "{}", stderr(&o));
     let out = stdout(&o);
     assert!(out.contains("the program sets no units (G20/G21) before it threads: read in inch"), "{out}");
-    // X0.2 in is the tip's diameter: 5.08 mm.
-    assert!(out.contains("final X5.0800"), "{out}");
+    // X0.2 in is the tip's diameter: 5.08 mm (given in inches first, issue 65).
+    assert!(out.contains("final X0.2000 (5.0800 mm)"), "{out}");
 }
 
 /// `verify --fix OUT` and the re-verification of OUT: (report before, report after, the fixed

@@ -832,3 +832,40 @@ fn a_fusion_tool_library_names_the_taps_and_drills() {
     assert_eq!(code, 2);
     assert!(e.contains("broken.json:2:12: not JSON"), "{e}");
 }
+
+/// Issues 64 and 65: an inch program's tapping report is in its inches. Our 1/4-20 program (G20)
+/// drills with a #7 drill (0.2010 in, the letter-and-number gauge) to Z-0.6 and taps to Z-0.5 at
+/// S500, F25. (500 × 0.05 in) and F24. on its second hole. The tap's point meets the drill's
+/// 118° point at D1 basic / 2 / tan 59° = (0.25 − 1.082532 × 0.05) / 2 / 1.664279 = 0.05885 in
+/// above its bottom; the room is 0.1 in. The picture's scale bar is a round length in inches.
+#[test]
+fn an_inch_program_s_tapping_report_is_in_inches() {
+    let prog = data("programs/tapping/quarter-20-inch.nc");
+    let dir = tempdir("tap-inch");
+    let svg = dir.join("t.svg");
+    let o = run(&["tap", "--program", prog.to_str().unwrap(), "--svg", svg.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("== G84 at line 16 (X1 Y1), tool T4, tap 1/4-20 UNC-2B"), "{out}");
+    assert!(out.contains("drilled by G81 at line 9, tool T3, Ø0.2010 (5.1054 mm), bottom Z-0.6"), "{out}");
+    let rows: Vec<&str> = out.lines().filter(|l| l.contains(" feed ")).collect();
+    assert!(
+        rows[0].contains("25.0       25.0       25.0     in/min; ") && rows[0].contains("= 500 × 0.05"),
+        "{}",
+        rows[0]
+    );
+    assert!(rows[1].contains("24.0") && rows[1].contains("-1.0 in/min"), "{}", rows[1]);
+    let depth = out.lines().find(|l| l.contains("depth below")).unwrap();
+    assert!(
+        depth.contains("0.1000     0.0588")
+            && depth.contains("in; the drill's bottom (Z-0.6) lies 0.1 in below the tap's (Z-0.5)"),
+        "{depth}"
+    );
+    assert!(depth.contains("point 0.05885 in above its bottom"), "{depth}");
+    assert!(!out.contains("Z-12.7") && !out.contains("635"), "{out}");
+    let picture = std::fs::read_to_string(&svg).unwrap();
+    let bar = tag_of(&picture, "scale-bar");
+    let inches = attr(bar, "data-mm").unwrap().parse::<f64>().unwrap() / 25.4;
+    assert!([0.1, 0.2, 0.5, 1.0].iter().any(|r| (inches - r).abs() < 1e-9), "a {inches} in scale bar");
+    assert!(picture.contains("D1 of 1/4-20 UNC-2B: 0.1960 – 0.2070 in"), "no inch D1 in the picture");
+}

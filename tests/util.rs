@@ -199,7 +199,7 @@ pub fn crossings(points: &str, y: f64) -> Vec<f64> {
 }
 
 /// A panel's scales read back from its tick labels: Z (mm) below it, the diameter (mm) at its
-/// right.
+/// right; an inch panel's (`Z in`) ticks read as the mm they stand for.
 pub struct Scales {
     /// Pixels per mm along Z.
     pub px_per_mm: f64,
@@ -212,7 +212,12 @@ pub struct Scales {
 impl Scales {
     /// The scales of the panel whose group is `id`.
     pub fn of(svg: &str, id: &str) -> Scales {
-        let ticks = tick_labels(svg, &format!("id=\"{id}\""));
+        let from = svg.find(&format!("id=\"{id}\"")).unwrap_or_else(|| panic!("no {id} in the SVG"));
+        let axes = &svg[from..];
+        let axes = &axes[axes.find("class=\"axes\"").expect("no axes")..];
+        let per = if axes[..axes.find("</g>").unwrap()].contains("\nZ in\n") { 25.4 } else { 1.0 };
+        let ticks: Vec<(f64, f64, f64)> =
+            tick_labels(svg, &format!("id=\"{id}\"")).into_iter().map(|(x, y, v)| (x, y, v * per)).collect();
         let z_row = ticks.iter().map(|t| t.1).fold(f64::NEG_INFINITY, f64::max);
         let z: Vec<_> = ticks.iter().filter(|t| t.1 == z_row).collect();
         let d: Vec<_> = ticks.iter().filter(|t| t.1 != z_row).collect();

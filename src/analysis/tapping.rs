@@ -635,7 +635,7 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                                 format!(
                                     "feed per minute: F must be S × lead = {} × {}",
                                     crate::ground::fmt::fmt_num(h.spindle.unwrap_or(0.0)),
-                                    crate::ground::fmt::fmt_num(lead)
+                                    in_units(h.units, lead).0
                                 )
                             },
                         });
@@ -703,22 +703,27 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
                         how
                     } else {
                         // A radial hole's bottoms are radii: written as the program's X.
+                        // In the program's units (an inch program's Z-0.5, not Z-12.7).
                         let at = |v: f64| match h.radial {
-                            Some(_) => format!("X{}", crate::ground::fmt::fmt_num(2.0 * v)),
-                            None => format!("Z{}", crate::ground::fmt::fmt_num(v)),
+                            Some(_) => format!("X{}", in_units(h.units, 2.0 * v).0),
+                            None => format!("Z{}", in_units(h.units, v).0),
+                        };
+                        let len = |v: f64| {
+                            let (n, u) = in_units(h.units, v);
+                            format!("{n} {u}")
                         };
                         format!(
-                            "the drill's bottom ({}) lies {} mm below the tap's ({}); the tap's point (Ø{}) meets the drill's {}° point {} mm above its bottom{}",
+                            "the drill's bottom ({}) lies {} below the tap's ({}); the tap's point (Ø{}) meets the drill's {}° point {} above its bottom{}",
                             at(db),
-                            crate::ground::fmt::fmt_num(room),
+                            len(room),
                             at(tb),
-                            crate::ground::fmt::fmt_num((point * 1e4).round() / 1e4),
+                            in_units(h.units, point).0,
                             crate::ground::fmt::fmt_num(d.point_angle),
-                            crate::ground::fmt::fmt_num((need * 1e4).round() / 1e4),
+                            len(need),
                             if ok {
                                 String::new()
                             } else {
-                                format!(", {} mm above the tap's bottom", crate::ground::fmt::fmt_num(((need - room) * 1e4).round() / 1e4))
+                                format!(", {} above the tap's bottom", len(need - room))
                             }
                         )
                     },
@@ -974,6 +979,17 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
         machine: prog.machine,
         stock_bottom: spec.stock_bottom.or(prog.stock_bottom.map(|s| s.0)),
     })
+}
+
+/// A length in a program's units, to their resolution's tenth (0.1 µm, 0.00001 in) without
+/// trailing zeros, and the unit: `("12.7", "mm")`, `("0.5", "in")`.
+fn in_units(units: crate::gcode::ProgramUnits, mm: f64) -> (String, &'static str) {
+    match units {
+        crate::gcode::ProgramUnits::Mm => (crate::ground::fmt::fmt_num((mm * 1e4).round() / 1e4), "mm"),
+        crate::gcode::ProgramUnits::Inch => {
+            (crate::ground::fmt::fmt_num((mm / crate::MM_PER_INCH * 1e5).round() / 1e5), "in")
+        }
+    }
 }
 
 /// Whether a comment naming a tap says it forms the thread: FORM, FORMING, ROLL, FLUTELESS,

@@ -76,6 +76,10 @@ pub struct ThreadMillReport {
     pub named: crate::analysis::naming::Named,
     /// Internal or external.
     pub kind: ThreadKind,
+    /// How the text and the picture give lengths: inch for a thread of an inch size (the
+    /// JSON stays in mm).
+    #[serde(skip)]
+    pub units: crate::analysis::verify::Units,
     /// The cutter.
     pub cutter: Cutter,
     /// The cutter's diameter over the thread's major (internal) diameter.
@@ -1294,6 +1298,11 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         designation: des.text.clone(),
         named,
         kind,
+        units: if t.form.is_inch() {
+            crate::analysis::verify::Units::Inch
+        } else {
+            crate::analysis::verify::Units::Mm
+        },
         cutter: c,
         cutter_ratio: ratio,
         helices: hs,

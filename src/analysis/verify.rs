@@ -101,7 +101,7 @@ pub enum Units {
     /// Millimetres.
     #[default]
     Mm,
-    /// Millimetres with inches beside them (the inch forms' tables print inches).
+    /// Inches, with the mm beside them (the inch forms' tables print inches).
     Inch,
 }
 

@@ -230,8 +230,8 @@ pub struct PlanArgs {
     /// The insert's side clearance angle, degrees: checks the leading flank against the helix.
     #[cfg_attr(feature = "cli", arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
     pub clearance_angle: Option<f64>,
-    /// Lengths in the text and the SVG: mm, or mm with inches beside them (default: inch for
-    /// threads of inch sizes (UN, Acme, NPT, BSW, BSP), else mm)
+    /// Lengths in the text, the SVG and the HTML: mm, or inches with the mm beside them (default:
+    /// inch for threads of inch sizes (UN, Acme, NPT, BSW, BSP), else mm)
     #[cfg_attr(feature = "cli", arg(long, value_name = "mm|inch"))]
     pub units: Option<Units>,
     /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma | mitsubishi | mazak | heidenhain | klartext (default:

@@ -59,8 +59,12 @@ pub struct Finding {
 
 /// A turned (or milled) check's sentence: `pitch diameter d2 22.5312 mm, limits 22.5670 …
 /// 22.6690 mm (−35.8 µm); low-z`.
-pub(crate) fn check_sentence(c: &crate::analysis::check::Check, kind: crate::ThreadKind) -> String {
-    let cells = super::check_cells(c);
+pub(crate) fn check_sentence(
+    c: &crate::analysis::check::Check,
+    kind: crate::ThreadKind,
+    lengths: super::Lengths,
+) -> String {
+    let cells = super::check_cells(c, lengths);
     let unit = if cells.unit.is_empty() { String::new() } else { format!(" {}", cells.unit) };
     let limits = match (cells.min.trim_start_matches('—'), cells.max.trim_start_matches('—')) {
         ("", "") => String::new(),
@@ -133,7 +137,7 @@ impl BatchProgram {
                             bad.iter()
                                 .map(|c| Finding {
                                     rule: format!("turned.{}", c.feature.name()),
-                                    message: check_sentence(c, v.kind),
+                                    message: check_sentence(c, v.kind, super::Lengths(v.units)),
                                 })
                                 .collect(),
                             v.checks
@@ -143,7 +147,7 @@ impl BatchProgram {
                                         rule: format!("turned.{}.unverified", c.feature.name()),
                                         message: format!(
                                             "unverified: {} ({})",
-                                            check_sentence(c, v.kind),
+                                            check_sentence(c, v.kind, super::Lengths(v.units)),
                                             c.unverified.as_deref()?
                                         ),
                                     })
@@ -225,7 +229,7 @@ impl BatchProgram {
                         .filter(|c| !c.ok)
                         .map(|c| Finding {
                             rule: format!("milled.{}", c.feature.name()),
-                            message: check_sentence(c, r.kind),
+                            message: check_sentence(c, r.kind, super::Lengths(r.units)),
                         })
                         .collect(),
                 },

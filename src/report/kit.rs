@@ -264,20 +264,20 @@ pub(crate) fn labels_of_dimensions(
         let check = checks.iter().find(|c| c.feature == feature);
         let ok = check.is_none_or(|c| c.ok);
         let name = feature.words(kind).rsplit(' ').next().unwrap_or("");
-        let line1 = if units == crate::analysis::verify::Units::Inch {
-            format!("{name} {d:.4} mm ({:.5} in)", d / 25.4)
-        } else {
-            format!("{name} {d:.4} mm")
-        };
+        // In the report's unit, the mm beside the inches; the limits and the deviation as the
+        // check table gives them.
+        let lengths = super::Lengths(units);
+        let line1 = format!("{name} {}", lengths.both(d));
         let line2 = check.map_or(String::new(), |c| {
+            let cells = super::check_cells(c, lengths);
             let lim = match (c.min, c.max) {
                 (None, None) => String::new(),
-                (min, max) => format!("[{}]", fmt_limits(min, max, "")),
+                (min, max) => format!("[{}]", shown_limits(min, max, &cells, "")),
             };
             if c.ok {
                 lim
             } else {
-                format!("{lim} {:+.1} µm", c.deviation_um)
+                format!("{lim} {}", cells.deviation)
             }
         });
         items.push((y, line1, line2, ok));
@@ -334,6 +334,38 @@ pub(crate) fn fmt_limits(min: Option<f64>, max: Option<f64>, unit: &str) -> Stri
         (None, Some(b)) => format!("≤ {}{unit}", fmt_limit(b)),
         (None, None) => String::new(),
     }
+}
+
+/// A pair of limits as a table shows them: in mm as the tables give them (`fmt_limits`), in
+/// inches the cells' own (`0.4436 – 0.4485`, `≥ 0.0000`).
+pub(crate) fn shown_limits(
+    min: Option<f64>,
+    max: Option<f64>,
+    cells: &super::CheckCells,
+    unit: &str,
+) -> String {
+    if cells.unit != "in" && cells.unit != "in/min" {
+        return fmt_limits(min, max, unit);
+    }
+    match (min, max) {
+        (Some(_), Some(_)) => format!("{} – {}{unit}", cells.min, cells.max),
+        (Some(_), None) => format!("≥ {}{unit}", cells.min),
+        (None, Some(_)) => format!("≤ {}{unit}", cells.max),
+        (None, None) => String::new(),
+    }
+}
+
+/// A band that names a section of a picture, `width` wide: its words in bold, wrapped (never
+/// cut), and the band's height.
+pub(crate) fn band(words: &str, width: f64) -> (Group, f64) {
+    let lines = wrap(words, 120);
+    let h = 34.0 + 19.0 * (lines.len().max(1) - 1) as f64;
+    let mut g =
+        Group::new().add(Rectangle::new().set("width", width).set("height", h).set("fill", "#eef1f5"));
+    for (i, l) in lines.into_iter().enumerate() {
+        g = g.add(text(20.0, 23.0 + 19.0 * i as f64, 15.0, l).set("font-weight", "bold"));
+    }
+    (g, h)
 }
 
 /// `s` cut to `n` characters with an ellipsis.

@@ -160,7 +160,12 @@ fn hovers(pv: &ProgramVerification) -> Vec<EditorHover> {
                     o.operation.passes.len()
                 );
                 for c in v.checks.iter().filter(|c| c.counts(v.gauge_only)) {
-                    let _ = writeln!(md, "- {} {}", mark(c.ok), check_sentence(c, v.kind));
+                    let _ = writeln!(
+                        md,
+                        "- {} {}",
+                        mark(c.ok),
+                        check_sentence(c, v.kind, super::Lengths(v.units))
+                    );
                 }
                 if let Some(c) = &v.correction {
                     let _ = write!(md, "\n{}\n", super::correction_text(c));
@@ -194,7 +199,12 @@ fn hovers(pv: &ProgramVerification) -> Vec<EditorHover> {
                     if r.pass { "PASS" } else { "FAIL" }
                 );
                 for c in &r.checks {
-                    let _ = writeln!(md, "- {} {}", mark(c.ok), check_sentence(c, r.kind));
+                    let _ = writeln!(
+                        md,
+                        "- {} {}",
+                        mark(c.ok),
+                        check_sentence(c, r.kind, super::Lengths(r.units))
+                    );
                 }
                 out.push(EditorHover { line: r.helices.first().map_or(1, |h| h.line), markdown: md });
             }

@@ -82,6 +82,71 @@ impl MeasuredReport {
     }
 }
 
+/// How a report writes a length: in the reader's unit, and in inch with the mm beside it where
+/// a reader might check it against a drawing in mm. Inches at the inch standards' resolution
+/// (0.0001 in: four decimals), millimetres at four decimals (0.1 µm).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Lengths(pub crate::analysis::verify::Units);
+
+impl Lengths {
+    /// Whether lengths are in inches.
+    pub(crate) fn inch(self) -> bool {
+        self.0 == crate::analysis::verify::Units::Inch
+    }
+
+    /// A length with its unit, the mm beside the inches: `12.6994 mm`, `0.5000 in (12.6994 mm)`.
+    pub(crate) fn both(self, mm: f64) -> String {
+        if self.inch() {
+            format!("{:.4} in ({mm:.4} mm)", mm / 25.4)
+        } else {
+            format!("{mm:.4} mm")
+        }
+    }
+
+    /// A diameter word or value as the program writes it (`X12.6994`, `X0.5000 (12.6994 mm)`):
+    /// `prefix` and the number, the mm beside in inch.
+    pub(crate) fn word(self, prefix: &str, mm: f64) -> String {
+        if self.inch() {
+            format!("{prefix}{:.4} ({mm:.4} mm)", mm / 25.4)
+        } else {
+            format!("{prefix}{mm:.4}")
+        }
+    }
+
+    /// A lead to six decimals with its unit: `1.500000 mm`, `0.076923 in (1.953846 mm)`.
+    pub(crate) fn lead(self, mm: f64) -> String {
+        if self.inch() {
+            format!("{:.6} in ({mm:.6} mm)", mm / 25.4)
+        } else {
+            format!("{mm:.6} mm")
+        }
+    }
+
+    /// A deviation's size, unsigned or `signed`: `38.4 µm`, `0.0015 in (38.4 µm)`; an inch
+    /// deviation under the inch resolution gets a fifth decimal rather than reading 0.0000.
+    pub(crate) fn deviation(self, um: f64, signed: bool) -> String {
+        let sign = |v: f64, d: usize| if signed { format!("{v:+.d$}") } else { format!("{:.d$}", v.abs()) };
+        if self.inch() {
+            let inch = um / 25_400.0;
+            let d = if (inch.abs() * 1e4).round() == 0.0 { 5 } else { 4 };
+            format!("{} in ({} µm)", sign(inch, d), sign(um, 1))
+        } else {
+            format!("{} µm", sign(um, 1))
+        }
+    }
+
+    /// A deviation in a table's cell, the reader's unit alone: `+38.4 µm`, `+0.0015 in`.
+    pub(crate) fn deviation_cell(self, um: f64) -> String {
+        if self.inch() {
+            let inch = um / 25_400.0;
+            let d = if (inch.abs() * 1e4).round() == 0.0 { 5 } else { 4 };
+            format!("{inch:+.d$} in")
+        } else {
+            format!("{um:+.1} µm")
+        }
+    }
+}
+
 /// A correction's new value at the program's increment: `0.2948` (inch), `0.930` (mm).
 fn correction_number(c: &crate::analysis::correction::Correction) -> String {
     match c.units {
@@ -201,9 +266,13 @@ pub struct CheckReport<'a> {
     shown: CheckCells,
 }
 
-pub(crate) fn check_cells(c: &crate::Check) -> CheckCells {
+pub(crate) fn check_cells(c: &crate::Check, lengths: Lengths) -> CheckCells {
     use crate::CheckUnit as U;
     let unit = c.feature.unit();
+    // In inch, lengths and feeds in inches (a length at the inch standards' 0.0001 in).
+    if lengths.inch() && matches!(unit, U::Mm | U::MmPerMin) {
+        return inch_cells(c, unit == U::MmPerMin);
+    }
     let prec = match unit {
         U::Mm => 4,
         U::Degree | U::Turn => 3,
@@ -249,6 +318,34 @@ pub(crate) fn check_cells(c: &crate::Check) -> CheckCells {
         U::Count | U::DiameterPerLength | U::YesNo => "",
     };
     CheckCells { value, min: lim(c.min), max: lim(c.max), deviation, unit }
+}
+
+/// The cells of a length (or a feed, `feed`) in inches: four decimals (a feed in in/min, one),
+/// the deviation in inches.
+fn inch_cells(c: &crate::Check, feed: bool) -> CheckCells {
+    let (prec, unit) = if feed { (1, "in/min") } else { (4, "in") };
+    // A length under the inch resolution but not nil (a crest's 0.001 mm) gets its fifth decimal.
+    let n = |v: f64| {
+        let inch = v / 25.4;
+        let p = if !feed && inch != 0.0 && (inch * 1e4).round() == 0.0 { 5 } else { prec };
+        format!("{inch:.p$}")
+    };
+    let over = match (c.min, c.max) {
+        (_, Some(max)) if c.value > max => c.value - max,
+        (Some(min), _) if c.value < min => c.value - min,
+        _ => 0.0,
+    };
+    let deviation = if c.ok && over != 0.0 {
+        "rounds to the limit".to_string()
+    } else if c.ok {
+        String::new()
+    } else if feed {
+        format!("{:+.1} in/min", over / 25.4)
+    } else {
+        Lengths(crate::analysis::verify::Units::Inch).deviation_cell(c.deviation_um)
+    };
+    let lim = |v: Option<f64>| v.map_or_else(|| "—".to_string(), n);
+    CheckCells { value: n(c.value), min: lim(c.min), max: lim(c.max), deviation, unit }
 }
 
 /// The JSON text of a report: pretty, with a final newline.

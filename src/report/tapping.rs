@@ -89,12 +89,67 @@ fn micron(v: f64) -> String {
     fmt_num((v * 1000.0).round() / 1000.0)
 }
 
+/// A length as the cycle's program writes it: mm to the micrometre, or, in an inch program, inches
+/// to the 0.0001 in its words carry (`Z-0.5` for Z-12.7 mm).
+fn word(c: &crate::gcode::HoleCycle, v: f64) -> String {
+    match c.units {
+        crate::gcode::ProgramUnits::Mm => micron(v),
+        crate::gcode::ProgramUnits::Inch => fmt_num((v / crate::MM_PER_INCH * 1e4).round() / 1e4),
+    }
+}
+
+/// In an inch program, a tapping check's unit in inches and its decimals (a length 0.0001 in, a
+/// feed per minute 0.1 in/min, per revolution 0.0001 in); `None` in a mm program or for a unit
+/// that is not a length's.
+fn tap_inch_unit(c: &crate::gcode::HoleCycle, unit: &str) -> Option<(&'static str, usize)> {
+    if c.units != crate::gcode::ProgramUnits::Inch {
+        return None;
+    }
+    match unit {
+        "mm" => Some(("in", 4)),
+        "mm/min" => Some(("in/min", 1)),
+        "mm/rev" => Some(("in/rev", 4)),
+        _ => None,
+    }
+}
+
+/// A failing tapping check's distance to its limit in the program's units: `+1.5 mm/min`,
+/// `-12.0 µm`; in inch `-1.0 in/min`, `-0.0005 in`.
+fn tap_off(c: &crate::gcode::HoleCycle, k: &crate::analysis::tapping::TapCheck) -> String {
+    let inch = c.units == crate::gcode::ProgramUnits::Inch;
+    match (k.unit, inch) {
+        ("mm/min", true) => format!("{:+.1} in/min", k.deviation / crate::MM_PER_INCH),
+        ("mm/min", false) => format!("{:+.1} mm/min", k.deviation),
+        ("mm/rev", true) => format!("{:+.5} in/rev", k.deviation / 1000.0 / crate::MM_PER_INCH),
+        _ => lengths(c).deviation_cell(k.deviation),
+    }
+}
+
+/// D1's limits as the hole's picture gives them: `8.376 – 8.676 mm` as the tables print them, or
+/// in an inch program `0.1960 – 0.2070 in`.
+fn d1_limits(c: &crate::gcode::HoleCycle, min: Option<f64>, max: Option<f64>) -> String {
+    if c.units == crate::gcode::ProgramUnits::Inch {
+        let n = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{:.4}", v / crate::MM_PER_INCH));
+        format!("{} – {} in", n(min), n(max))
+    } else {
+        fmt_limits(min, max, " mm")
+    }
+}
+
+/// How the cycle's report gives lengths: in its program's units, the mm beside inches.
+fn lengths(c: &crate::gcode::HoleCycle) -> super::Lengths {
+    super::Lengths(match c.units {
+        crate::gcode::ProgramUnits::Mm => crate::analysis::verify::Units::Mm,
+        crate::gcode::ProgramUnits::Inch => crate::analysis::verify::Units::Inch,
+    })
+}
+
 /// A machining centre's hole's place, ` (X20 Y15)`, when both are known (a lathe's holes on the
 /// axis have no Y): the holes of one pattern cycle share its line.
 fn place(c: &crate::gcode::HoleCycle) -> String {
     match (c.x, c.y, c.radial) {
-        (_, _, Some(r)) => format!(" (Z{} C{}, radial)", micron(r.z), micron(r.c_deg)),
-        (Some(x), Some(y), None) => format!(" (X{} Y{}{})", micron(x), micron(y), in_offset(c)),
+        (_, _, Some(r)) => format!(" (Z{} C{}, radial)", word(c, r.z), micron(r.c_deg)),
+        (Some(x), Some(y), None) => format!(" (X{} Y{}{})", word(c, x), word(c, y), in_offset(c)),
         _ => String::new(),
     }
 }
@@ -103,8 +158,8 @@ fn place(c: &crate::gcode::HoleCycle) -> String {
 /// radius 10 as the lathe's diameter).
 fn along(c: &crate::gcode::HoleCycle, v: f64) -> String {
     match c.radial {
-        Some(_) => format!("X{}", fmt_num(2.0 * v)),
-        None => format!("Z{}", fmt_num(v)),
+        Some(_) => format!("X{}", word(c, 2.0 * v)),
+        None => format!("Z{}", word(c, v)),
     }
 }
 
@@ -148,7 +203,10 @@ pub fn holes_text(r: &TapReport) -> String {
                     d.cycle.code,
                     line_of(&d.cycle),
                     d.cycle.tool.map_or(String::new(), |t| format!(", tool T{t}")),
-                    d.diameter.map_or(String::new(), |v| format!(", Ø{}", fmt_num(v))),
+                    d.diameter.map_or(String::new(), |v| match c.units {
+                        crate::gcode::ProgramUnits::Mm => format!(", Ø{}", fmt_num(v)),
+                        crate::gcode::ProgramUnits::Inch => format!(", {}", lengths(c).word("Ø", v)),
+                    }),
                     d.cycle.bottom.map_or(String::new(), |z| format!(", bottom {}", along(&d.cycle, z)))
                 );
             }
@@ -158,15 +216,18 @@ pub fn holes_text(r: &TapReport) -> String {
         }
         let _ = writeln!(s, "    check                value        min        max   off");
         for k in &h.checks {
-            let num = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{v:.4}"));
+            // In an inch program, its lengths and feeds in inches (the feed per minute to 0.1 in/min).
+            let (scale, prec, unit) = match tap_inch_unit(c, k.unit) {
+                Some((u, p)) => (1.0 / crate::MM_PER_INCH, p, u),
+                None => (1.0, 4, k.unit),
+            };
+            let num = |v: Option<f64>| v.map_or("—".to_string(), |v| format!("{:.prec$}", v * scale));
             let off = if k.ok {
                 String::new()
-            } else if k.unit == "mm/min" {
-                format!("{:+.1} mm/min", k.deviation)
             } else if k.feature == TapFeature::Spindle {
                 "wrong".to_string()
             } else {
-                format!("{:+.1} µm", k.deviation)
+                tap_off(c, k)
             };
             let _ = writeln!(
                 s,
@@ -176,7 +237,7 @@ pub fn holes_text(r: &TapReport) -> String {
                 num(k.value),
                 num(k.min),
                 num(k.max),
-                if k.unit.is_empty() { String::new() } else { format!("{}; ", k.unit) },
+                if unit.is_empty() { String::new() } else { format!("{unit}; ") },
                 k.note
             );
         }
@@ -324,9 +385,9 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
                     line_of(c),
                     c.tool.map_or(String::new(), |t| format!(", T{t}")),
                     match (c.x, c.y, c.radial) {
-                        (_, _, Some(r)) => format!(" at Z{} C{}", micron(r.z), micron(r.c_deg)),
+                        (_, _, Some(r)) => format!(" at Z{} C{}", word(c, r.z), micron(r.c_deg)),
                         (Some(x), Some(y), None) => {
-                            format!(" at X{} Y{}{}", micron(x), micron(y), in_offset(c))
+                            format!(" at X{} Y{}{}", word(c, x), word(c, y), in_offset(c))
                         }
                         _ => String::new(),
                     }
@@ -416,7 +477,7 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
                 g = mark(g, db, "#a35a00", format!("drill {}", along(c, db)));
             }
             if let Some(sb) = stock_end.filter(|_| !stock_with_tap) {
-                g = mark(g, sb, "#2b6e2b", format!("stock Z{}", fmt_num(sb)));
+                g = mark(g, sb, "#2b6e2b", format!("stock Z{}", word(c, sb)));
             }
             // The drill's diameter across the plain bore, between the tap's bottom and the
             // drill's point, with arrowheads.
@@ -457,7 +518,7 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
                     .add(head(xa, 1.0))
                     .add(head(xb, -1.0))
                     .add(
-                        text(cx, yd - 5.0, 11.0, format!("Ø{}", fmt_num(dia)))
+                        text(cx, yd - 5.0, 11.0, format!("Ø{}", word(c, dia)))
                             .set("text-anchor", "middle")
                             .set("fill", colour)
                             .set("font-weight", "bold"),
@@ -483,20 +544,30 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
             false,
             match hole.formed.and_then(|f| f.minor_diameter) {
                 Some(formed) => format!(
-                    "D1 formed {} mm; D1 of {} (cut threads'): {}",
-                    fmt_num((formed * 1e4).round() / 1e4),
+                    "D1 formed {}; D1 of {} (cut threads'): {}",
+                    match c.units {
+                        crate::gcode::ProgramUnits::Mm =>
+                            format!("{} mm", fmt_num((formed * 1e4).round() / 1e4)),
+                        crate::gcode::ProgramUnits::Inch => lengths(c).both(formed),
+                    },
                     hole.tap.designation,
-                    fmt_limits(d1.min, d1.max, " mm")
+                    d1_limits(c, d1.min, d1.max)
                 ),
-                None => format!("D1 of {}: {}", hole.tap.designation, fmt_limits(d1.min, d1.max, " mm")),
+                None => format!("D1 of {}: {}", hole.tap.designation, d1_limits(c, d1.min, d1.max)),
             },
         );
         ty += 4.0;
         for ck in &hole.checks {
             let word = crate::report::tapping::feature_name(ck.feature);
-            let val = ck.value.map_or(String::new(), |v| format!(" {}", fmt_num((v * 1e4).round() / 1e4)));
-            let unit = if ck.value.is_some() && !ck.unit.is_empty() {
-                format!(" {}", ck.unit)
+            let inch = tap_inch_unit(c, ck.unit);
+            let n = |v: f64| match inch {
+                Some((_, prec)) => format!("{:.prec$}", v / crate::MM_PER_INCH),
+                None => fmt_num((v * 1e4).round() / 1e4),
+            };
+            let shown_unit = inch.map_or(ck.unit, |(u, _)| u);
+            let val = ck.value.map_or(String::new(), |v| format!(" {}", n(v)));
+            let unit = if ck.value.is_some() && !shown_unit.is_empty() {
+                format!(" {shown_unit}")
             } else {
                 String::new()
             };
@@ -509,24 +580,22 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
                 !ck.ok,
                 format!("{} {word}{val}{unit}", if ck.ok { "✓" } else { "✗" }),
             );
+            let m = |v: f64| if inch.is_some() { n(v) } else { fmt_num(v) };
+            let range = |v: f64| if inch.is_some() { n(v) } else { fmt_limit(v) };
             let lim = if ck.min == ck.max {
-                ck.min.map_or(String::new(), |v| format!("must be {}", fmt_num(v)))
+                ck.min.map_or(String::new(), |v| format!("must be {}", m(v)))
             } else {
                 match (ck.min, ck.max) {
-                    (Some(a), Some(b)) => format!("limits {} – {}", fmt_limit(a), fmt_limit(b)),
-                    (Some(a), None) => format!("at least {}", fmt_num(a)),
-                    (None, Some(b)) => format!("at most {}", fmt_num(b)),
+                    (Some(a), Some(b)) => format!("limits {} – {}", range(a), range(b)),
+                    (Some(a), None) => format!("at least {}", m(a)),
+                    (None, Some(b)) => format!("at most {}", m(b)),
                     (None, None) => String::new(),
                 }
             };
-            let off = if ck.ok || ck.value.is_none() {
-                String::new()
-            } else if ck.unit == "mm/min" {
-                format!(", {:+.1} mm/min", ck.deviation)
-            } else {
-                format!(", {:+.1} µm", ck.deviation)
-            };
-            let lim = if lim.is_empty() || ck.unit.is_empty() { lim } else { format!("{lim} {}", ck.unit) };
+            let off =
+                if ck.ok || ck.value.is_none() { String::new() } else { format!(", {}", tap_off(c, ck)) };
+            let lim =
+                if lim.is_empty() || shown_unit.is_empty() { lim } else { format!("{lim} {shown_unit}") };
             if !lim.is_empty() || !off.is_empty() {
                 g = line(
                     g,
@@ -646,22 +715,27 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
     for g in holes {
         doc = doc.add(g);
     }
-    // The scale bar: one scale for every hole.
-    let bar = scale_bar_mm(s, 80.0);
-    let (bx, by) = (20.0, h - 40.0);
-    doc = doc
-        .add(
-            Line::new()
-                .set("id", "scale-bar")
-                .set("data-mm", bar)
-                .set("x1", bx)
-                .set("x2", format!("{:.3}", bx + bar * s))
-                .set("y1", by)
-                .set("y2", by)
-                .set("stroke", "black")
-                .set("stroke-width", 2),
-        )
-        .add(text(bx + bar * s + 8.0, by + 4.0, 11.0, format!("{} mm", fmt_num(bar))));
+    // The scale bar: one scale for every hole, a round length of the program's unit (1, 2 or 5
+    // × 10ⁿ mm or in); none when no hole was drawn (nothing to scale).
+    if shown.iter().any(|h| !h.wall.is_empty()) {
+        let inch = shown.iter().all(|h| h.cycle.units == crate::gcode::ProgramUnits::Inch);
+        let (per, unit) = if inch { (crate::MM_PER_INCH, "in") } else { (1.0, "mm") };
+        let bar = scale_bar_mm(s * per, 80.0);
+        let (bx, by) = (20.0, h - 40.0);
+        doc = doc
+            .add(
+                Line::new()
+                    .set("id", "scale-bar")
+                    .set("data-mm", bar * per)
+                    .set("x1", bx)
+                    .set("x2", format!("{:.3}", bx + bar * per * s))
+                    .set("y1", by)
+                    .set("y2", by)
+                    .set("stroke", "black")
+                    .set("stroke-width", 2),
+            )
+            .add(text(bx + bar * per * s + 8.0, by + 4.0, 11.0, format!("{} {unit}", fmt_num(bar))));
+    }
     let mut foot =
         String::from("D1 min and max of the tap's class dashed blue; the drill's point drawn at 118°");
     if r.holes.len() > shown.len() {

@@ -112,31 +112,45 @@ pub fn text(r: &ThreadMillReport) -> String {
         );
         k = j;
     }
+    // The thread's sizes in the report's unit (inches for an inch thread, the mm beside them).
+    let l = super::Lengths(r.units);
     let m = &r.measured;
     let _ = writeln!(
         s,
-        "\nas milled: D/d {:.4}, pitch diameter {:.4}, minor {:.4}, flanks {:.3}° / {:.3}°",
-        m.major_diameter, m.pitch_diameter, m.minor_diameter, m.flank_angles[0], m.flank_angles[1]
+        "\nas milled: D/d {}, pitch diameter {}, minor {}, flanks {:.3}° / {:.3}°",
+        l.both(m.major_diameter),
+        l.both(m.pitch_diameter),
+        l.both(m.minor_diameter),
+        m.flank_angles[0],
+        m.flank_angles[1]
     );
     if let Some(p) = &r.thread_percent {
-        let _ =
-            writeln!(s, "thread from the bore Ø{:.4}: {}", r.blank_diameter, super::thread_percent_words(p));
+        let _ = writeln!(
+            s,
+            "thread from the bore {}: {}",
+            l.word("Ø", r.blank_diameter),
+            super::thread_percent_words(p)
+        );
     }
     let t = &r.tooth_profile;
     let _ = writeln!(
         s,
-        "the tooth profile alone: pitch diameter {:.4}, flanks {:.3}° / {:.3}°",
-        t.pitch_diameter, t.flank_angles[0], t.flank_angles[1]
+        "the tooth profile alone: pitch diameter {}, flanks {:.3}° / {:.3}°",
+        l.both(t.pitch_diameter),
+        t.flank_angles[0],
+        t.flank_angles[1]
     );
     let _ = writeln!(
         s,
-        "profile distortion: pitch diameter {:+.1} µm, flank angles {:+.3}° / {:+.3}°\n",
-        r.distortion_pitch_diameter_um, r.distortion_flank_angles_deg[0], r.distortion_flank_angles_deg[1]
+        "profile distortion: pitch diameter {}, flank angles {:+.3}° / {:+.3}°\n",
+        l.deviation(r.distortion_pitch_diameter_um, true),
+        r.distortion_flank_angles_deg[0],
+        r.distortion_flank_angles_deg[1]
     );
     let _ = writeln!(s, "    check                         value       min       max   deviation");
     for k in &r.checks {
         // Every table's cells: yes/no in words, deviations in the check's own unit.
-        let c = super::check_cells(k);
+        let c = super::check_cells(k, super::Lengths(r.units));
         let _ = writeln!(
             s,
             "  {} {:<28} {:>8} {:>9} {:>9}   {}",
@@ -347,9 +361,8 @@ pub(crate) fn threadmill_document(r: &crate::analysis::threadmill::ThreadMillRep
         (crate::CheckFeature::MinorDiameter, m.minor_diameter),
     ];
     body = body.add(d1).add(dimension_lines(&items, &r.checks, &f, "section"));
-    sec = sec.add(body).add(axes(&f, true, crate::analysis::verify::Units::Mm));
-    let labels =
-        labels_of_dimensions(&items, &r.checks, r.kind, crate::analysis::verify::Units::Mm, &f, px0 - 14.0);
+    sec = sec.add(body).add(axes(&f, true, r.units));
+    let labels = labels_of_dimensions(&items, &r.checks, r.kind, r.units, &f, px0 - 14.0);
     // The legend under the section.
     let ly = f.y0 + f.h + 46.0;
     let mut legend = Group::new().set("id", "legend");
@@ -400,7 +413,7 @@ pub(crate) fn threadmill_document(r: &crate::analysis::threadmill::ThreadMillRep
     wbody = wbody.add(
         Polyline::new().set("points", strip).set("fill", "none").set("stroke", FAIL).set("stroke-width", 1.2),
     );
-    wid = wid.add(wbody).add(axes(&fs, false, crate::analysis::verify::Units::Mm));
+    wid = wid.add(wbody).add(axes(&fs, false, r.units));
     let mut v = 0.0;
     while v <= top + 1e-9 * step {
         let y = sy_of(v);
@@ -429,60 +442,62 @@ pub(crate) fn threadmill_document(r: &crate::analysis::threadmill::ThreadMillRep
     let verdict =
         if r.pass { "IN TOLERANCE".to_string() } else { format!("OUT OF TOLERANCE: {}", failed.join(", ")) };
     let d2n = if internal { "D2" } else { "d2" };
+    // The title and the verdict wrap (never cut): what they take past a line each moves the
+    // rest down.
+    // 17 px bold ran 8.5 px a character in Chromium (82 in 693 px): 88 fill some 750 of 900.
+    let title_lines = wrap(
+        &format!(
+            "{}: {} thread-milled with a Ø{} {} cutter",
+            file_name(&r.program),
+            r.designation,
+            fmt_num(r.cutter.diameter),
+            crate::report::threadmill::cutter_kind(&r.cutter)
+        ),
+        88,
+    );
+    let verdict_lines = wrap(&verdict, 95);
+    let extra = 22.0 * (title_lines.len() - 1) as f64 + 20.0 * (verdict_lines.len() - 1) as f64;
+    let h = h + extra;
     let mut doc = Document::new().set("viewBox", (0, 0, w, h)).set("width", w).set("height", h);
-    doc = doc
-        .add(Rectangle::new().set("width", w).set("height", h).set("fill", "white"))
-        .add(
-            text(
-                20.0,
-                30.0,
-                17.0,
-                shorten(
-                    &format!(
-                        "{}: {} thread-milled with a Ø{} {} cutter",
-                        file_name(&r.program),
-                        r.designation,
-                        fmt_num(r.cutter.diameter),
-                        crate::report::threadmill::cutter_kind(&r.cutter)
-                    ),
-                    // 17 px bold ran 8.5 px a character in Chromium (82 in 693 px): 88 fill some 750 of 900.
-                    88,
-                ),
-            )
-            .set("font-weight", "bold"),
-        )
-        .add(
-            text(20.0, 52.0, 15.0, shorten(&verdict, 95))
-                .set("font-weight", "bold")
-                .set("fill", if r.pass { ZONE } else { FAIL }),
-        )
-        .add(text(
-            20.0,
-            76.0,
-            13.0,
-            format!(
-                "{d2n} {:.4} mm as milled, {:.4} mm by the tooth profile alone: the helix widens the groove by {:+.1} µm",
-                r.measured.pitch_diameter, r.tooth_profile.pitch_diameter, r.distortion_pitch_diameter_um
-            ),
-        ))
-        .add(text(
-            20.0,
-            96.0,
-            13.0,
-            format!(
-                "flanks {:.3}° / {:.3}° ({:+.3}° / {:+.3}°); the cutter is {:.0} % of the thread's diameter",
-                r.measured.flank_angles[0],
-                r.measured.flank_angles[1],
-                r.distortion_flank_angles_deg[0],
-                r.distortion_flank_angles_deg[1],
-                100.0 * r.cutter_ratio
-            ),
-        ))
-        .add(sec)
-        .add(labels)
-        .add(legend)
-        .add(wid);
-    (doc, w, h)
+    doc = doc.add(Rectangle::new().set("width", w).set("height", h).set("fill", "white"));
+    let mut y = 30.0;
+    for l in title_lines {
+        doc = doc.add(text(20.0, y, 17.0, l).set("font-weight", "bold"));
+        y += 22.0;
+    }
+    for l in verdict_lines {
+        doc = doc.add(
+            text(20.0, y, 15.0, l).set("font-weight", "bold").set("fill", if r.pass { ZONE } else { FAIL }),
+        );
+        y += 20.0;
+    }
+    // The distortion and the flanks, wrapped to the picture (an inch report's run longer): at most
+    // three lines above the section's caption.
+    let l = super::Lengths(r.units);
+    let info = [
+        format!(
+            "{d2n} {} as milled, {} by the tooth profile alone: the helix widens the groove by {}",
+            l.both(r.measured.pitch_diameter),
+            l.both(r.tooth_profile.pitch_diameter),
+            l.deviation(r.distortion_pitch_diameter_um, true)
+        ),
+        format!(
+            "flanks {:.3}° / {:.3}° ({:+.3}° / {:+.3}°); the cutter is {:.0} % of the thread's diameter",
+            r.measured.flank_angles[0],
+            r.measured.flank_angles[1],
+            r.distortion_flank_angles_deg[0],
+            r.distortion_flank_angles_deg[1],
+            100.0 * r.cutter_ratio
+        ),
+    ];
+    let mut rest = Group::new().set("transform", format!("translate(0,{extra})"));
+    let lines: Vec<String> = info.iter().flat_map(|i| wrap(i, 110)).collect();
+    let step = if lines.len() > 2 { 18.0 } else { 20.0 };
+    for (i, line) in lines.into_iter().enumerate() {
+        rest = rest.add(text(20.0, 76.0 + step * i as f64, 13.0, line));
+    }
+    let rest = rest.add(sec).add(labels).add(legend).add(wid);
+    (doc.add(rest), w, h)
 }
 
 /// The thread-milling page: the verdict, the distortion, the section, the checks, the helices
@@ -509,7 +524,7 @@ pub fn threadmill_html(r: &crate::analysis::threadmill::ThreadMillReport) -> Str
     s.push_str("<h2>Checks</h2>\n<table><tr><th>feature</th><th>value</th><th>min</th><th>max</th><th>deviation</th><th>ok</th><th>note</th></tr>\n");
     for c in &r.checks {
         let (cls, word) = if c.ok { ("ok", "ok") } else { ("out", "OUT") };
-        s.push_str(&check_row(c, r.kind, &super::check_cells(c), "", cls, word));
+        s.push_str(&check_row(c, r.kind, &super::check_cells(c, super::Lengths(r.units)), "", cls, word));
     }
     s.push_str("</table>\n<h2>Helices</h2>\n<table><tr><th>line</th><th>radius mm</th><th>Z from</th><th>Z to</th><th>sweep °</th><th>lead mm/rev</th><th>milling</th></tr>\n");
     for h in &r.helices {

@@ -257,7 +257,11 @@ impl<'a> VerifyReport<'a> {
             hints: v.hints.iter().map(|h| HintReport { hint: h, text: hint_text(h) }).collect(),
             unverified: v.checks.iter().filter(|c| c.unverified.is_some()).map(|c| c.feature).collect(),
             limits: &v.limits,
-            checks: v.checks.iter().map(|c| CheckReport { check: c, shown: check_cells(c) }).collect(),
+            checks: v
+                .checks
+                .iter()
+                .map(|c| CheckReport { check: c, shown: check_cells(c, super::Lengths(v.units)) })
+                .collect(),
             verdict: Verdict::of(v.pass),
             gauge_only: v.gauge_only,
             helix_angle: v.helix_angle,
@@ -305,14 +309,15 @@ pub(crate) fn form_only_from_tip(v: &Verification) -> Option<f64> {
     })
 }
 
-/// The human report: a compact table of checks with ✓/✗ and deviations in µm.
-/// The text's check table: a row per check, with inches beside the lengths under `--units inch`.
-fn check_rows(s: &mut String, v: &Verification, inch: bool) {
+/// The text's check table: a row per check in the report's unit; in inch, each length's mm
+/// beside it (not the angles, the counts or the turns).
+fn check_rows(s: &mut String, v: &Verification, lengths: super::Lengths) {
+    let inch = lengths.inch();
     let _ = if inch {
         writeln!(
             s,
-            "\n    {:<16}{:>10}{:>10}{:>10}{:>12}  kind  {:>8}{:>8}{:>8} in",
-            "check", "value", "min", "max", "deviation", "value", "min", "max"
+            "\n    {:<16}{:>10}{:>10}{:>10}{:>12}  kind  {:>10}{:>10}{:>10} mm",
+            "check", "value in", "min", "max", "deviation", "value", "min", "max"
         )
     } else {
         writeln!(s, "\n    {:<16}{:>10}{:>10}{:>10}{:>12}  kind", "check", "value", "min", "max", "deviation")
@@ -328,7 +333,7 @@ fn check_rows(s: &mut String, v: &Verification, inch: bool) {
         } else {
             "·"
         };
-        let cells = check_cells(c);
+        let cells = check_cells(c, lengths);
         // A cell wider than its column ("rounds to the limit") keeps two spaces before it.
         let deviation = if cells.deviation.chars().count() > 10 {
             format!("  {}", cells.deviation)
@@ -345,11 +350,9 @@ fn check_rows(s: &mut String, v: &Verification, inch: bool) {
             deviation,
             c.kind.name()
         );
-        // Lengths in inches beside the mm (not the angles, the counts or the turns).
-        let length = c.feature.is_length();
-        if inch && length {
-            let i = |x: Option<f64>| x.map_or_else(|| "—".to_string(), |x| format!("{:.5}", x / 25.4));
-            let _ = write!(s, "  {:>8}{:>8}{:>8} in", i(Some(c.value)), i(c.min), i(c.max));
+        if inch && c.feature.is_length() {
+            let mm = check_cells(c, super::Lengths(crate::analysis::verify::Units::Mm));
+            let _ = write!(s, "  {:>10}{:>10}{:>10} mm", mm.value, mm.min, mm.max);
         }
         if let Some(n) = &c.note {
             let _ = write!(s, "  {n}");
@@ -409,64 +412,51 @@ pub fn verify_text(v: &Verification) -> String {
         },
         v.passes.len()
     );
-    let inch = v.units == crate::analysis::verify::Units::Inch;
-    // With --units inch, a length in inches beside the mm.
-    let also = |mm: f64| if inch { format!(" ({:.5} in)", mm / 25.4) } else { String::new() };
-    let also_um = |um: f64| if inch { format!(" ({:+.5} in)", um / 25_400.0) } else { String::new() };
+    // Lengths in the report's unit: in inch, the mm beside them.
+    let l = super::Lengths(v.units);
     let _ = writeln!(
         s,
-        "{} X{:.4}{}, final X{:.4}{}{}",
+        "{} {}, final {}{}",
         if v.kind == ThreadKind::External { "blank" } else { "bore" },
-        v.blank_diameter,
-        also(v.blank_diameter),
-        v.final_x,
-        also(v.final_x),
+        l.word("X", v.blank_diameter),
+        l.word("X", v.final_x),
         if v.final_x_solved {
             " (solved for mid-tolerance pitch diameter: use it as the cycle's X)"
         } else {
             ""
         }
     );
-    check_rows(&mut s, v, inch);
+    check_rows(&mut s, v, l);
     let m = &v.measurement;
     let _ = writeln!(
         s,
-        "\n  measured: thread depth {:.4}{}, flanks {:.3}°/{:.3}°{}{}",
-        m.thread_depth,
-        also(m.thread_depth),
+        "\n  measured: thread depth {}, flanks {:.3}°/{:.3}°{}{}",
+        l.both(m.thread_depth),
         m.flank_angles[0],
         m.flank_angles[1],
-        m.three_wire.map_or(String::new(), |w| format!(
-            ", M over {:.4}{} wires {:.4}{}",
-            w.wire,
-            also(w.wire),
-            w.m,
-            also(w.m)
-        )),
-        m.max_material_clearance.map_or(String::new(), |c| format!(
-            ", GO-gauge clearance {:+.1} µm{}",
-            c * 1000.0,
-            also_um(c * 1000.0)
-        ))
+        m.three_wire.map_or(String::new(), |w| format!(", M over {} wires {}", l.both(w.wire), l.both(w.m))),
+        m.max_material_clearance
+            .map_or(String::new(), |c| format!(", GO-gauge clearance {}", l.deviation(c * 1000.0, true)))
     );
     if let (Some(ld), Some(f)) = (&v.lead_deviation, v.functional_pitch_diameter) {
         let _ = writeln!(
             s,
-            "  lead {:.6} mm (the program's, at its {} {} increment) against {:.6} mm: {:+.2} µm over the {:.2} mm a gauge engages; functional pitch diameter {f:.4} ({:+.2} µm), what a GO gauge sees",
-            ld.program_lead,
+            "  lead {} (the program's, at its {} {} increment) against {}: {} over the {} a gauge engages; functional pitch diameter {} ({}), what a GO gauge sees",
+            l.lead(ld.program_lead),
             crate::ground::fmt::fmt_num(ld.increment),
             ld.units.name(),
-            ld.designation_lead,
-            ld.cumulative * 1000.0,
-            ld.length,
-            (f - m.pitch_diameter) * 1000.0
+            l.lead(ld.designation_lead),
+            l.deviation(ld.cumulative * 1000.0, true),
+            l.both(ld.length),
+            l.both(f),
+            l.deviation((f - m.pitch_diameter) * 1000.0, true)
         );
     }
     if let Some(t) = &v.thread_percent {
         let _ = writeln!(
             s,
-            "  thread from the bore Ø{:.4}: {}",
-            v.blank_diameter,
+            "  thread from the bore {}: {}",
+            l.word("Ø", v.blank_diameter),
             super::thread_percent_words(t)
         );
     }
@@ -511,13 +501,9 @@ pub fn verify_text(v: &Verification) -> String {
         let off = if let Some(gp) = failed(CheckFeature::GaugePlane) {
             format!("the gauge plane is {:+.3} turn from its basic position", gp.value)
         } else if let Some(d2) = failed(CheckFeature::PitchDiameter) {
-            format!("pitch diameter is {:+.1} µm{} off", d2.deviation_um, also_um(d2.deviation_um))
+            format!("pitch diameter is {} off", l.deviation(d2.deviation_um, true))
         } else if let Some(f) = failed(CheckFeature::FunctionalPitchDiameter) {
-            format!(
-                "the functional pitch diameter is {:+.1} µm{} off",
-                f.deviation_um,
-                also_um(f.deviation_um)
-            )
+            format!("the functional pitch diameter is {} off", l.deviation(f.deviation_um, true))
         } else {
             "the pitch diameter is off".to_string()
         };
@@ -525,13 +511,13 @@ pub fn verify_text(v: &Verification) -> String {
             Some(c) => {
                 let _ = writeln!(
                     s,
-                    "{off}: {} for mid-tolerance (the last pass at X{x:.4} mm{} on the diameter)",
+                    "{off}: {} for mid-tolerance (the last pass at X{} on the diameter)",
                     correction_text(c),
-                    if inch { format!(", {:.5} in,", x / 25.4) } else { String::new() }
+                    l.both(x)
                 );
             }
             None => {
-                let _ = writeln!(s, "{off}: program the last pass at X{x:.4}{} for mid-tolerance", also(x));
+                let _ = writeln!(s, "{off}: program the last pass at {} for mid-tolerance", l.word("X", x));
             }
         }
     }
@@ -1138,7 +1124,9 @@ pub(crate) fn legend(x: f64, y: f64, kind: ThreadKind) -> Group {
 /// The check table: every check in words, its value, limits, deviation and verdict.
 pub(crate) fn check_table(v: &Verification, x: f64, y: f64) -> (Group, f64) {
     let mut g = Group::new().set("id", "check-table");
-    g = g.add(text(x, y, 12.0, "checks").set("font-weight", "bold"));
+    let title =
+        if v.units == crate::analysis::verify::Units::Inch { "checks, lengths in inches" } else { "checks" };
+    g = g.add(text(x, y, 12.0, title).set("font-weight", "bold"));
     let cols = [x, x + 145.0, x + 195.0, x + 305.0, x + 365.0];
     let head = ["feature", "value", "limits", "off", ""];
     for (c, h) in cols.iter().zip(head) {
@@ -1155,17 +1143,17 @@ pub(crate) fn check_table(v: &Verification, x: f64, y: f64) -> (Group, f64) {
             "#8a6d00"
         };
         // Values, limits and deviations in the check's own unit (the text table's cells).
-        let cells = super::check_cells(c);
+        let cells = super::check_cells(c, super::Lengths(v.units));
         // Lengths carry their unit in the column's head; degrees stick to the number.
         let unit = match cells.unit {
-            "mm" | "" => String::new(),
+            "mm" | "in" | "" => String::new(),
             "°" => "°".to_string(),
             u => format!(" {u}"),
         };
         let value = format!("{}{}", cells.value, if unit == "°" { "°" } else { "" });
         let lim = match c.feature.unit() {
             crate::CheckUnit::YesNo => String::new(),
-            _ => fmt_limits(c.min, c.max, &unit),
+            _ => shown_limits(c.min, c.max, &cells, &unit),
         };
         // A passing value past its shown limit (within the standard's resolution): the text's
         // "rounds to the limit", short enough for the picture's column.
@@ -1260,11 +1248,11 @@ pub(crate) fn deviation_plot(
 ) -> Group {
     let f = Frame { x0: x, y0: y, w, h, z_min: 0.0, r_max: 0.0, scale: 1.0 };
     // The scale in µm, or in ten-thousandths of an inch (an inch shop's "tenths").
-    let (tick_per_um, unit_label) = match units {
-        crate::analysis::verify::Units::Mm => (1.0, "µm"),
-        crate::analysis::verify::Units::Inch => (1.0 / 2.54, "0.0001 in"),
+    let (tick_per_um, unit_label, title_unit) = match units {
+        crate::analysis::verify::Units::Mm => (1.0, "µm", "µm"),
+        crate::analysis::verify::Units::Inch => (1.0 / 2.54, "tenths", "in tenths (0.0001 in)"),
     };
-    let title = format!("deviation from the basic profile, normal to it, {unit_label}");
+    let title = format!("deviation from the basic profile, normal to it, {title_unit}");
     let (mut g, mut body) = panel(&f, "deviation-plot", &title);
     let dev = &pic.deviation;
     let (samples, mmc, lmc) = (&dev.as_cut, &dev.max_material, &dev.min_material);
@@ -1336,10 +1324,16 @@ pub(crate) fn deviation_plot(
                         .set("r", 2.5)
                         .set("fill", "#111"),
                 );
-                labels.push((
-                    px(mid.s),
-                    format!("flank {:+.1} {unit_label}", mid.deviation * um * tick_per_um),
-                ));
+                // In tenths, the µm beside them.
+                let value = match units {
+                    crate::analysis::verify::Units::Mm => format!("{:+.1} µm", mid.deviation * um),
+                    crate::analysis::verify::Units::Inch => format!(
+                        "{:+.1} {unit_label} ({:+.1} µm)",
+                        mid.deviation * um * tick_per_um,
+                        mid.deviation * um
+                    ),
+                };
+                labels.push((px(mid.s), format!("flank {value}")));
             } else {
                 labels.push((cx, name.to_string()));
             }
@@ -1431,26 +1425,19 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
     let pass = pv.pass();
     let mut head = Group::new()
         .set("id", "program-verdict")
-        .add(Rectangle::new().set("width", WIDTH).set("height", 1).set("fill", "white"))
-        .add(
-            text(
-                20.0,
-                30.0,
-                20.0,
-                shorten(
-                    &format!(
-                        "{} — {}: {}",
-                        label_name(&pv.program),
-                        program_verdict_words(pv),
-                        program_counts(pv)
-                    ),
-                    90,
-                ),
-            )
-            .set("fill", if pass { "#1d7a36" } else { FAIL })
-            .set("font-weight", "bold"),
+        .add(Rectangle::new().set("width", WIDTH).set("height", 1).set("fill", "white"));
+    // The headline wraps (a long program name never cuts the verdict off).
+    let mut y = 30.0;
+    let headline =
+        format!("{} — {}: {}", label_name(&pv.program), program_verdict_words(pv), program_counts(pv));
+    for l in wrap(&headline, 90) {
+        head = head.add(
+            text(20.0, y, 20.0, l)
+                .set("fill", if pass { "#1d7a36" } else { FAIL })
+                .set("font-weight", "bold"),
         );
-    let mut y = 56.0;
+        y += 26.0;
+    }
     for o in &pv.operations {
         let what = match &o.result {
             crate::analysis::verify::OperationResult::Verified(v) => {
@@ -1471,7 +1458,7 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
             "{}. {} at line {}, {}: {what}",
             o.operation.index, o.operation.cycle, o.operation.source_line, o.designation
         );
-        for l in wrap(&line, 125).into_iter().take(2) {
+        for l in wrap(&line, 125) {
             head =
                 head.add(text(20.0, y, 13.0, l).set("fill", if o.result.pass() { "#1d7a36" } else { FAIL }));
             y += 17.0;
@@ -1510,7 +1497,7 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
         None => {}
     }
     for (line, pass, _, _) in &more {
-        for l in wrap(line, 125).into_iter().take(2) {
+        for l in wrap(line, 125) {
             head = head.add(text(20.0, y, 13.0, l).set("fill", if *pass { "#1d7a36" } else { FAIL }));
             y += 17.0;
         }
@@ -1523,7 +1510,7 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
             let error = f.level == crate::gcode::Level::Error;
             let line =
                 format!("{} before the machine, {}", if error { "✗" } else { "!" }, control_sentence(f));
-            for l in wrap(&line, 125).into_iter().take(3) {
+            for l in wrap(&line, 125) {
                 g = g.add(text(20.0, y, 13.0, l).set("fill", if error { FAIL } else { WARN }));
                 y += 17.0;
             }
@@ -1535,42 +1522,37 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
         .add(Rectangle::new().set("width", WIDTH).set("height", y).set("fill", "white"))
         .add(head);
     for o in &pv.operations {
-        let head = shorten(
-            &format!(
-                "operation {} of {}: {} at line {} of {}{}",
-                o.operation.index,
-                pv.operations_in_program,
-                o.operation.cycle,
-                o.operation.source_line,
-                label_name(&pv.program),
-                o.operation.tool.map_or(String::new(), |t| format!(", tool T{t}"))
-            ),
-            120,
+        let head = format!(
+            "operation {} of {}: {} at line {} of {}{}",
+            o.operation.index,
+            pv.operations_in_program,
+            o.operation.cycle,
+            o.operation.source_line,
+            label_name(&pv.program),
+            o.operation.tool.map_or(String::new(), |t| format!(", tool T{t}"))
         );
+        let (band, band_h) = band(&head, WIDTH);
         let mut g = Group::new()
             .set("id", format!("operation-{}", o.operation.index))
             .set("transform", format!("translate(0,{y})"))
-            .add(Rectangle::new().set("width", WIDTH).set("height", 34).set("fill", "#eef1f5"))
-            .add(text(20.0, 23.0, 15.0, head).set("font-weight", "bold"));
+            .add(band);
         let h = match &o.result {
             crate::analysis::verify::OperationResult::Verified(v) => {
                 let (vg, height) = verification_group(v);
-                g = g.add(vg.set("transform", "translate(0,34)"));
-                34.0 + height
+                g = g.add(vg.set("transform", format!("translate(0,{band_h})")));
+                band_h + height
             }
             crate::analysis::verify::OperationResult::NoCut { reason, suggested_final_x } => {
                 let next = no_cut_next(*suggested_final_x).map_or(String::new(), |n| format!(" · next: {n}"));
-                for (i, l) in wrap(&format!("OUT OF TOLERANCE ({}): {reason}{next}", o.designation), 100)
-                    .iter()
-                    .enumerate()
-                {
+                let lines = wrap(&format!("OUT OF TOLERANCE ({}): {reason}{next}", o.designation), 100);
+                for (i, l) in lines.iter().enumerate() {
                     g = g.add(
-                        text(20.0, 64.0 + 20.0 * i as f64, 16.0, l.clone())
+                        text(20.0, band_h + 30.0 + 20.0 * i as f64, 16.0, l.clone())
                             .set("fill", FAIL)
                             .set("font-weight", "bold"),
                     );
                 }
-                110.0
+                (band_h + 76.0).max(band_h + 30.0 + 20.0 * lines.len() as f64 + 16.0)
             }
         };
         doc = doc.add(g);
@@ -1580,14 +1562,14 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
     let width = more.iter().filter_map(|m| m.3.as_ref()).map(|p| p.1).fold(WIDTH, f64::max);
     for (line, _, id, picture) in more {
         let Some((d, _, h)) = picture else { continue };
+        let (band, band_h) = band(&line, width);
         doc = doc.add(
             Group::new()
                 .set("id", format!("{id}-band"))
                 .set("transform", format!("translate(0,{y})"))
-                .add(Rectangle::new().set("width", width).set("height", 34).set("fill", "#eef1f5"))
-                .add(text(20.0, 23.0, 15.0, shorten(&line, 120)).set("font-weight", "bold")),
+                .add(band),
         );
-        y += 34.0;
+        y += band_h;
         doc = doc.add(d.set("id", id).set("x", 0).set("y", y));
         y += h;
     }
@@ -1603,7 +1585,8 @@ pub(crate) fn verdict_words(v: &Verification) -> String {
         .map(|c| {
             if c.feature.is_length() && c.deviation_um != 0.0 {
                 let dir = if c.deviation_um > 0.0 { "over" } else { "under" };
-                format!("{} {:.1} µm {dir}", c.feature.words(v.kind), c.deviation_um.abs())
+                let by = super::Lengths(v.units).deviation(c.deviation_um, false);
+                format!("{} {by} {dir}", c.feature.words(v.kind))
             } else {
                 c.feature.words(v.kind).to_string()
             }
@@ -1638,36 +1621,31 @@ pub(crate) fn verification_group(v: &Verification) -> (Group, f64) {
     let part =
         if v.kind == ThreadKind::External { "bolt (external thread)" } else { "nut (internal thread)" };
     let stock = if v.kind == ThreadKind::External { "blank" } else { "bore" };
-    let mut title = Group::new().set("id", "title").add(text(
-        20.0,
-        30.0,
-        20.0,
-        shorten(&format!("{} — {part}, class {}", v.designation.text, v.limits.class), 80),
-    ));
+    let mut title = Group::new().set("id", "title");
+    let mut yy = 30.0;
+    for l in wrap(&format!("{} — {part}, class {}", v.designation.text, v.limits.class), 80) {
+        title = title.add(text(20.0, yy, 20.0, l));
+        yy += 24.0;
+    }
+    yy += 20.0 - 24.0;
     let source = match &v.program {
         Some(p) => format!("program {}", label_name(p)),
         None => format!("infeed: {}", v.infeed),
     };
-    let inch = |mm: f64| match v.units {
-        crate::analysis::verify::Units::Mm => String::new(),
-        crate::analysis::verify::Units::Inch => format!(" ({:.5} in)", mm / 25.4),
-    };
+    let l = super::Lengths(v.units);
     let sub = format!(
-        "insert: {} · {} · {} passes · {stock} Ø{:.3}{} · last pass X{:.4}{}",
+        "insert: {} · {} · {} passes · {stock} {} · last pass {}",
         v.insert.name,
         source,
         v.passes.len(),
-        v.blank_diameter,
-        inch(v.blank_diameter),
-        v.final_x,
-        inch(v.final_x)
+        l.word("Ø", v.blank_diameter),
+        l.word("X", v.final_x),
     );
-    let mut yy = 50.0;
-    for l in wrap(&sub, 150).into_iter().take(2) {
+    for l in wrap(&sub, 150) {
         title = title.add(text(20.0, yy, 12.0, l));
         yy += 16.0;
     }
-    for l in wrap(&verdict_words(v), 110).into_iter().take(3) {
+    for l in wrap(&verdict_words(v), 110) {
         title = title.add(
             text(20.0, yy + 4.0, 15.0, l)
                 .set("fill", if v.pass { "#1d7a36" } else { FAIL })
@@ -1681,13 +1659,13 @@ pub(crate) fn verification_group(v: &Verification) -> (Group, f64) {
     match (&v.correction, v.suggested_final_x) {
         (Some(c), _) => next.push(format!("next: {}", super::correction_text(c))),
         (None, Some(x)) if !v.pass => next.push(format!(
-            "next: program the last pass at X{x:.4}{} for the middle of the d2 tolerance",
-            inch(x)
+            "next: program the last pass at {} for the middle of the d2 tolerance",
+            l.word("X", x)
         )),
         _ => {}
     }
     next.extend(v.hints.iter().map(|h| format!("hint: {}", super::hint_text(h))));
-    for l in next.iter().flat_map(|n| wrap(n, 120)).take(4) {
+    for l in next.iter().flat_map(|n| wrap(n, 120)) {
         title = title.add(text(20.0, yy + 4.0, 13.0, l).set("fill", "#1d1d1d").set("id", "next"));
         yy += 17.0;
     }
@@ -1755,22 +1733,17 @@ pub(crate) fn verification_body(v: &Verification, svg: &str, level: u8) -> Strin
     };
     let _ = writeln!(s, "<p class=\"verdict {cls}\">{words}{}{}</p>", esc(gauge), esc(&unverified));
     let stock = if v.kind == ThreadKind::External { "blank" } else { "bore" };
-    let inch = |mm: f64| match v.units {
-        crate::analysis::verify::Units::Mm => String::new(),
-        crate::analysis::verify::Units::Inch => format!(" ({:.5} in)", mm / 25.4),
-    };
+    let l = super::Lengths(v.units);
     let _ = writeln!(
         s,
-        "<p>{} {}, class {} · insert {} · {} passes · {stock} Ø{:.3} mm{} · last pass X{:.4}{}{}</p>",
+        "<p>{} {}, class {} · insert {} · {} passes · {stock} Ø{} · last pass X{}{}</p>",
         esc(&v.designation.text),
         v.kind.name(),
         esc(&v.limits.class),
         esc(&v.insert.name),
         v.passes.len(),
-        v.blank_diameter,
-        inch(v.blank_diameter),
-        v.final_x,
-        inch(v.final_x),
+        l.both(v.blank_diameter),
+        l.both(v.final_x),
         v.program.as_ref().map_or(String::new(), |p| format!(" · program {}", esc(&p.to_string())))
     );
     if let Some(x) = v.suggested_final_x {
@@ -1779,12 +1752,13 @@ pub(crate) fn verification_body(v: &Verification, svg: &str, level: u8) -> Strin
                 Some(c) => {
                     let _ = writeln!(
                         s,
-                        "<p>For the middle of the pitch-diameter tolerance: <b>{}</b> (the last pass at X{x:.4} mm on the diameter).</p>",
-                        esc(&super::correction_text(c))
+                        "<p>For the middle of the pitch-diameter tolerance: <b>{}</b> (the last pass at X{} on the diameter).</p>",
+                        esc(&super::correction_text(c)),
+                        l.both(x)
                     );
                 }
                 None => {
-                    let _ = writeln!(s, "<p>For the middle of the pitch-diameter tolerance, program the last pass at <b>X{x:.4}</b>{}.</p>", inch(x));
+                    let _ = writeln!(s, "<p>For the middle of the pitch-diameter tolerance, program the last pass at <b>X{}</b>.</p>", l.both(x));
                 }
             }
         }
@@ -1793,25 +1767,25 @@ pub(crate) fn verification_body(v: &Verification, svg: &str, level: u8) -> Strin
         let _ = writeln!(s, "<p class=\"form\">Hint: {}</p>", esc(&super::hint_text(hint)));
     }
     let _ = writeln!(s, "<div class=\"pic\">{svg}</div>");
-    let inch = v.units == crate::analysis::verify::Units::Inch;
+    let inch = l.inch();
     let _ = writeln!(s, "<{0}>Checks</{0}>", h(0));
     s.push_str(if inch {
-        "<table><tr><th>feature</th><th>value</th><th>min</th><th>max</th><th>value, in</th><th>deviation</th><th>ok</th><th>note</th></tr>\n"
+        "<table><tr><th>feature</th><th>value, in</th><th>min</th><th>max</th><th>value, mm</th><th>deviation</th><th>ok</th><th>note</th></tr>\n"
     } else {
         "<table><tr><th>feature</th><th>value</th><th>min</th><th>max</th><th>deviation</th><th>ok</th><th>note</th></tr>\n"
     });
     for c in &v.checks {
         let counts = c.counts(v.gauge_only);
-        let cells = super::check_cells(c);
+        let cells = super::check_cells(c, l);
         let (cls, word) = match (c.ok, counts) {
             _ if c.unverified.is_some() => ("form", "unverified"),
             (true, _) => ("ok", "ok"),
             (false, true) => ("out", "OUT"),
             (false, false) => ("form", "out (not counted)"),
         };
-        // Lengths in inches beside the mm, with --units inch (or an inch thread).
+        // In inch, each length's mm beside it.
         let in_cell = match (inch, c.feature.unit()) {
-            (true, crate::CheckUnit::Mm) => format!("<td class=\"n\">{:.5}</td>", c.value / 25.4),
+            (true, crate::CheckUnit::Mm) => format!("<td class=\"n\">{:.4}</td>", c.value),
             (true, _) => "<td></td>".to_string(),
             (false, _) => String::new(),
         };

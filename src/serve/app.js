@@ -182,8 +182,11 @@ function operationBlock(op, title, programLines) {
   line("verdict-small " + (pass ? "ok" : "out"), pass ? "IN TOLERANCE" : "OUT OF TOLERANCE");
   if (op.reason) line("reason", (op.made === "milled" ? "Not checked: " : "Nothing is cut: ") + op.reason);
   if (op.correction) line("correction", "Next: " + op.correction.text);
+  // A report in inch (its checks' cells say so): an X in inches, the mm beside it.
+  const inch = (op.checks || []).some((c) => c.shown && c.shown.unit === "in");
+  const x = (mm) => (inch ? fmt(mm / 25.4, 4) + " in (" + fmt(mm, 4) + " mm)" : fmt(mm, 4));
   if (!pass && op.suggested_final_x !== null && op.suggested_final_x !== undefined && !op.correction) {
-    line("correction", "Next: a last pass at X" + fmt(op.suggested_final_x, 4) + " puts d2 mid-tolerance");
+    line("correction", "Next: a last pass at X" + x(op.suggested_final_x) + " puts d2 mid-tolerance");
   }
   // A correction resting on an insert nobody chose is withheld: the next step is the insert.
   const withheld = !op.correction && (op.notes || []).find((n) => String(n).startsWith("no correction is offered"));
@@ -229,7 +232,7 @@ function operationBlock(op, title, programLines) {
       p.source_line ? String(p.source_line) : "—",
       p.source_line && programLines ? (programLines[p.source_line - 1] || "").trim() : "",
     ]);
-    const t = table(document.createElement("table"), ["pass", "start", "X", "Z", "depth", "line", "program"], rows);
+    const t = table(document.createElement("table"), ["pass", "start", "X, mm", "Z, mm", "depth, mm", "line", "program"], rows);
     t.className = "passes";
     div.appendChild(t);
   }
