@@ -1218,3 +1218,21 @@ fn an_inch_picture_is_in_inches_in_every_text() {
     let metric: Vec<String> = texts.iter().filter_map(|t| metric_outside_inches(t)).collect();
     assert!(metric.is_empty(), "texts in mm in the inch tapping picture: {metric:?}");
 }
+
+/// The page's notes name its own fields, never the API's keys: our Haas program pasted as it is
+/// is read as a lathe by its G18 (the page has no machine-type field: a modeline chooses
+/// otherwise) in Fanuc's G-code system A (the command line's flag chooses B or C); an inch
+/// thread's next step and table are in inches. Looked at in Chromium.
+#[test]
+fn the_page_s_notes_name_its_own_fields() {
+    let seen = page_whole("page-notes", &data("programs/haas-g76-1-2-13-unc.nc"), None);
+    assert_eq!(seen["console"], serde_json::json!([]));
+    let notes: Vec<&str> = seen["notes"].as_array().unwrap().iter().filter_map(|n| n.as_str()).collect();
+    let lathe = notes.iter().find(|n| n.starts_with("read as a lathe")).unwrap();
+    assert!(lathe.contains("(threadcheck: machine-type=…)"), "{lathe}");
+    let system = notes.iter().find(|n| n.contains("G-code system")).unwrap();
+    assert!(system.contains("needs the command line's --gcode-system b or c"), "{system}");
+    for n in &notes {
+        assert!(!n.contains("machine_type") && !n.contains("gcode_system") && !n.contains('‹'), "{n}");
+    }
+}

@@ -1339,3 +1339,33 @@ fn a_value_that_rounds_to_its_limit_fits_its_column() {
     let table = &svg[svg.find("check-table").unwrap()..];
     assert!(table.contains("\nat limit\n") && !table.contains("rounds to the limit"), "{table}");
 }
+
+/// Issue 65: a long program name wraps the picture's headline instead of cutting the verdict
+/// off (it once ended `…` before the verdict, and the next step stopped mid-sentence): every
+/// word of the headline, the operation's band and the verdict is in the picture, and nothing is
+/// cut with an ellipsis.
+#[test]
+fn a_long_program_name_wraps_the_headline() {
+    let dir = crate::tempdir("long-name");
+    let name =
+        format!("{}-1-2-13-unc-bolt-for-the-customer-drawing-4711-revision-c.nc", "very-long".repeat(8));
+    std::fs::copy(crate::data("programs/haas-g76-1-2-13-unc.nc"), dir.join(&name)).unwrap();
+    let o = crate::run_in(&dir, &["verify", "--program", &name, "--svg", "p.svg"]);
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", crate::stderr(&o));
+    let svg = std::fs::read_to_string(dir.join("p.svg")).unwrap();
+    assert!(!svg.contains('…'), "a text cut with an ellipsis");
+    let texts: Vec<String> = svg
+        .split("<text")
+        .skip(1)
+        .map(|p| p[p.find('>').unwrap() + 1..p.find("</text>").unwrap()].trim().to_string())
+        .collect();
+    // A word longer than a line (the name) breaks inside itself: compared without the spaces.
+    let all = texts.join("").replace(' ', "");
+    for words in [
+        format!("{name} (fanuc) — OUT OF TOLERANCE: 1 threading operation"),
+        format!("operation 1 of 1: G76 at line 8 of {name} (fanuc), tool T5"),
+    ] {
+        assert!(all.contains(&words.replace(' ', "")), "{words} is not whole in the picture: {texts:?}");
+    }
+    assert!(texts.iter().all(|t| t.chars().count() <= 150), "a line too long for the picture");
+}

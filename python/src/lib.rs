@@ -23,7 +23,7 @@ fn run(py: Python<'_>, command: &str, document: &str, args: &str) -> PyResult<(S
     let (command, args) = (command.to_string(), args.to_string());
     // The files this run reads are the ones `write_files` will not replace.
     threadcheck::forget_reads();
-    py.detach(move || run_request(&command, document, &args, Files::Allowed))
+    py.detach(move || run_request(&command, document, &args, Files::Allowed, threadcheck::Audience::Api))
         .map(|(body, outcome)| (body, outcome == Outcome::Pass))
         .map_err(value_error)
 }

@@ -478,12 +478,12 @@ commands! {
 }
 
 /// Runs the API command `name` on the JSON object `args` and answers with `document` and the
-/// outcome; messages name arguments by their keys.
+/// outcome; messages name arguments for `reader` (the API's keys, or the page's fields).
 ///
 /// ```
-/// use threadcheck::{run_request, Document, Files, Outcome};
+/// use threadcheck::{run_request, Audience, Document, Files, Outcome};
 /// let args = r#"{"thread": "M10x1.5-6g", "insert": "full"}"#;
-/// let (body, outcome) = run_request("verify", Document::Json, args, Files::Refused)?;
+/// let (body, outcome) = run_request("verify", Document::Json, args, Files::Refused, Audience::Api)?;
 /// assert_eq!(outcome, Outcome::Pass);
 /// let v: serde_json::Value = serde_json::from_str(&body).expect("JSON");
 /// assert_eq!(v["verdict"], "pass");
@@ -494,12 +494,13 @@ pub fn run_request(
     document: Document,
     args: &str,
     files: Files,
+    reader: crate::Audience,
 ) -> Result<(String, Outcome), Error> {
     let command = Command::from_api(name, args)?;
     Command::served(name, document)?;
-    let out = command.run(&Request::api(document, files))?;
+    let out = command.run(&Request { reader, ..Request::api(document, files) })?;
     let body = out
         .document(document)
         .ok_or_else(|| Error::Input(format!("{name} made no {} document for this input", document.name())))?;
-    Ok((crate::Audience::Api.words(body), out.outcome))
+    Ok((reader.words(body), out.outcome))
 }

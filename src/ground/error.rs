@@ -110,6 +110,32 @@ pub enum Audience {
     Cli,
     /// The JSON API and Python: `min_depth`.
     Api,
+    /// The shop's page (`serve`): its fields by their labels (`the Thread field`); a key the page
+    /// has no field for by the modeline that sets it, else by the command line's flag.
+    Page,
+}
+
+/// What the page calls a key: its field's label, or where the page's reader sets it instead.
+fn page_words(key: &str) -> String {
+    match key {
+        "program" => "the Program field".into(),
+        "thread" => "the Thread field".into(),
+        "dialect" => "the Dialect field".into(),
+        "insert" => "the Insert field".into(),
+        "tools" => "the Tool table field".into(),
+        "final_x" => "the Final X field".into(),
+        "coating" => "the Coating field".into(),
+        "coating_limits" => "'The class applies'".into(),
+        "gauge_only" => "the 'gauge only' box".into(),
+        "allow_nonstandard" => "the 'non-standard size' box".into(),
+        "internal" => "the 'internal' box".into(),
+        // The page reads a pasted program's modeline.
+        "machine_type" | "default_units" => {
+            format!("a modeline in the program's first lines, (threadcheck: {}=…),", key.replace('_', "-"))
+        }
+        // No field on the page: the command line's flag (a value may follow it).
+        k => format!("the command line's --{}", k.replace('_', "-")),
+    }
 }
 
 impl Audience {
@@ -122,12 +148,31 @@ impl Audience {
     /// assert_eq!(Audience::Cli.words(m), "--min-depth must not exceed the depth --x");
     /// assert_eq!(Audience::Api.words(m), "min_depth must not exceed the depth x");
     /// assert_eq!(Audience::Api.words("‹Not a key›"), "‹Not a key›");
+    /// assert_eq!(Audience::Page.words("‹min_depth› or ‹thread›"), "the command line's --min-depth or the Thread field");
+    /// assert_eq!(Audience::Page.words("use ‹insert› full"), "use Insert: full profile");
     /// ```
     pub fn words(self, text: &str) -> String {
-        name_keys(text, |key| match self {
+        let text = if self == Audience::Page { Audience::page_phrases(text) } else { text.to_string() };
+        name_keys(&text, |key| match self {
             Audience::Cli => format!("--{}", key.replace('_', "-")),
             Audience::Api => key.to_string(),
+            Audience::Page => page_words(key),
         })
+    }
+
+    /// The page's words for a key with the value it takes (`‹insert› full`, the Insert
+    /// field's choice), before the keys alone.
+    fn page_phrases(text: &str) -> String {
+        const PHRASES: [(&str, &str); 7] = [
+            ("‹insert› full", "Insert: full profile"),
+            ("give ‹insert› or ‹tools›", "choose the Insert or give a tool table"),
+            ("‹insert› or ‹tools›", "the Insert or a tool table"),
+            ("‹insert› partial:R", "Insert: partial, tip radius R"),
+            ("‹coating_limits› after", "'The class applies: after coating'"),
+            ("(‹allow_nonstandard›)", "(tick 'non-standard size')"),
+            ("‹allow_nonstandard›", "the 'non-standard size' box"),
+        ];
+        PHRASES.iter().fold(text.to_string(), |t, (from, to)| t.replace(from, to))
     }
 }
 

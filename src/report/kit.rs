@@ -368,29 +368,24 @@ pub(crate) fn band(words: &str, width: f64) -> (Group, f64) {
     (g, h)
 }
 
-/// `s` cut to `n` characters with an ellipsis.
-pub(crate) fn shorten(s: &str, n: usize) -> String {
-    if s.chars().count() <= n {
-        s.to_string()
-    } else {
-        s.chars().take(n - 1).collect::<String>() + "…"
-    }
-}
-
-/// `s` in lines of at most `n` characters, broken at spaces (the text reports wrap their prose
-/// with it too).
+/// `s` in lines of at most `n` characters, broken at spaces, a word longer than a line (a long
+/// file name) broken inside itself, never cut (the text reports wrap their prose with it too).
 pub(crate) fn wrap(s: &str, n: usize) -> Vec<String> {
+    let n = n.max(1);
     let mut lines = vec![String::new()];
     for word in s.split(' ') {
-        let last = lines.last_mut().map_or(0, |l| l.chars().count());
-        if last > 0 && last + 1 + word.chars().count() > n {
-            lines.push(String::new());
-        }
-        if let Some(l) = lines.last_mut() {
-            if !l.is_empty() {
-                l.push(' ');
+        let chars: Vec<char> = word.chars().collect();
+        for piece in chars.chunks(n) {
+            let last = lines.last_mut().map_or(0, |l| l.chars().count());
+            if last > 0 && last + 1 + piece.len() > n {
+                lines.push(String::new());
             }
-            l.push_str(&shorten(word, n));
+            if let Some(l) = lines.last_mut() {
+                if !l.is_empty() {
+                    l.push(' ');
+                }
+                l.extend(piece);
+            }
         }
     }
     lines

@@ -8,7 +8,8 @@ const $ = (id) => document.getElementById(id);
 async function api(path, args) {
   const r = await fetch("/api/" + path, {
     method: "POST",
-    headers: { "Content-Type": "application/json" },
+    // The server names the page's fields in its messages (the API's keys for other clients).
+    headers: { "Content-Type": "application/json", "X-Threadcheck-Reader": "page" },
     body: JSON.stringify(args),
   });
   const text = await r.text();
@@ -23,19 +24,9 @@ async function api(path, args) {
 function show(id, on) { $(id).hidden = !on; }
 
 /** The API's keys that an error may name, as the page's own controls. */
-const CONTROLS = [
-  [/\binsert full\b/g, "Insert: full profile"],
-  [/\bgive insert or tools\b/g, "choose the Insert or give a tool table"],
-  [/\bgauge_only\b/g, "the 'gauge only' box"],
-  [/\bcoating_limits after\b/g, "'The class applies: after coating'"],
-  [/\(allow_nonstandard\)/g, "(tick 'non-standard size')"],
-  [/\ballow_nonstandard\b/g, "the 'non-standard size' box"],
-];
-
 function fail(id, err) {
-  let message = err.message;
-  for (const [key, control] of CONTROLS) message = message.replace(key, control);
-  $(id).textContent = message;
+  // The server names the page's own fields in its messages (X-Threadcheck-Reader: page).
+  $(id).textContent = err.message;
   show(id, true);
 }
 
@@ -191,14 +182,10 @@ function operationBlock(op, title, programLines) {
   // A correction resting on an insert nobody chose is withheld: the next step is the insert.
   const withheld = !op.correction && (op.notes || []).find((n) => String(n).startsWith("no correction is offered"));
   if (withheld) {
-    let text = String(withheld);
-    for (const [key, control] of CONTROLS) text = text.replace(key, control);
-    line("correction", "Next: " + text);
+    line("correction", "Next: " + String(withheld));
   }
   for (const hint of op.hints || []) {
-    let text = hint.text || hint.message || JSON.stringify(hint);
-    for (const [key, control] of CONTROLS) text = text.replace(key, control);
-    line("hint", "Hint: " + text);
+    line("hint", "Hint: " + (hint.text || hint.message || JSON.stringify(hint)));
   }
   if (op.checks) {
     // The cells every table shows (the JSON's `shown`): yes/no in words, signed deviations,

@@ -427,6 +427,12 @@ async fn read_body(mut body: Body, options: &ServeOptions) -> Result<Vec<u8>, Bo
 /// One API request: checked, queued for a permit, its body read, computed on the blocking pool
 /// within the time budget, answered.
 async fn answer(shared: Arc<Shared>, command: &str, document: &str, req: Request) -> Response {
+    // The page says it asks (`X-Threadcheck-Reader: page`): its messages name its fields; any
+    // other client reads the API's keys.
+    let reader = match req.headers().get("x-threadcheck-reader").map(HeaderValue::as_bytes) {
+        Some(b"page") => crate::Audience::Page,
+        _ => crate::Audience::Api,
+    };
     if let Err(e) = Command::keys(command) {
         return error(StatusCode::NOT_FOUND, e.to_string());
     }
@@ -496,7 +502,7 @@ async fn answer(shared: Arc<Shared>, command: &str, document: &str, req: Request
         let r = if stopping.is_raised() {
             Err(Error::Cancelled)
         } else {
-            work_stop.run(|| run_request(&command, document, &args, Files::Refused))
+            work_stop.run(|| run_request(&command, document, &args, Files::Refused, reader))
         };
         drop(permit);
         r
@@ -519,7 +525,7 @@ async fn answer(shared: Arc<Shared>, command: &str, document: &str, req: Request
                 Error::Cancelled => StatusCode::SERVICE_UNAVAILABLE,
                 _ => StatusCode::BAD_REQUEST,
             };
-            error(status, e.one_line_for(crate::Audience::Api))
+            error(status, e.one_line_for(reader))
         }
         Ok(Ok(Ok((body, outcome)))) => {
             let outcome = match outcome {

@@ -274,7 +274,7 @@ fn parse_metric(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, D
                 ds,
                 de,
                 format!(
-                "M{d} is not an ISO 261 diameter (M1 to M68); nearest: {}; non-standard sizes are accepted when allowed (allow_nonstandard)",
+                "M{d} is not an ISO 261 diameter (M1 to M68); nearest: {}; non-standard sizes are accepted when allowed (‹allow_nonstandard›)",
                 if near.is_empty() { "none".into() } else { near.join(", ") }
             ),
             ));
@@ -324,7 +324,7 @@ fn parse_metric(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, D
                         ps,
                         pe,
                         format!(
-                            "{} mm is not an ISO 261 pitch for M{d}; standard pitches: {}; non-standard sizes are accepted when allowed (allow_nonstandard)",
+                            "{} mm is not an ISO 261 pitch for M{d}; standard pitches: {}; non-standard sizes are accepted when allowed (‹allow_nonstandard›)",
                             fmt_pitch(pitch),
                             standard_pitches(s)
                         ),
@@ -642,8 +642,8 @@ fn parse_acme(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, Des
         if !opts.allow_nonstandard {
             let std_tpi = ACME_SERIES.iter().find(|(sd, _)| (sd - d).abs() < 1e-9).map(|x| x.1);
             let msg = match std_tpi {
-                Some(t) => format!("{size_text}-{tpi_text} is not a standard Acme thread: the series has {t} tpi for this size; non-standard sizes are accepted when allowed (allow_nonstandard)"),
-                None => format!("{size_text} is not a size of the Acme series (1/4 to 5 in); non-standard sizes are accepted when allowed (allow_nonstandard)"),
+                Some(t) => format!("{size_text}-{tpi_text} is not a standard Acme thread: the series has {t} tpi for this size; non-standard sizes are accepted when allowed (‹allow_nonstandard›)"),
+                None => format!("{size_text} is not a size of the Acme series (1/4 to 5 in); non-standard sizes are accepted when allowed (‹allow_nonstandard›)"),
             };
             return Err(c.err(0, at, msg));
         }
@@ -729,10 +729,10 @@ fn parse_trapezoidal(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designati
         if !opts.allow_nonstandard {
             let msg = match listed {
                 Some(ps) => format!(
-                    "{pitch} mm is not an ISO 2902 pitch for Tr{d}; standard pitches: {}; non-standard sizes are accepted when allowed (allow_nonstandard)",
+                    "{pitch} mm is not an ISO 2902 pitch for Tr{d}; standard pitches: {}; non-standard sizes are accepted when allowed (‹allow_nonstandard›)",
                     ps.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(", ")
                 ),
-                None => format!("Tr{d} is not an ISO 2902 diameter (Tr8 to Tr300); non-standard sizes are accepted when allowed (allow_nonstandard)"),
+                None => format!("Tr{d} is not an ISO 2902 diameter (Tr8 to Tr300); non-standard sizes are accepted when allowed (‹allow_nonstandard›)"),
             };
             return Err(c.err(ds, fe, msg));
         }
@@ -858,7 +858,7 @@ fn parse_unified(c: &mut Cursor<'_>, opts: ParseOptions) -> Result<Designation, 
                 }
                 None => format!("the {} series has no size {size_text}", series.name(false)),
             };
-            return Err(c.err(ss, te, format!("{size_text}-{tpi_text} is not a standard {} thread: {what}; write UNS for a special thread, or non-standard sizes are accepted when allowed (allow_nonstandard)", series.name(false))));
+            return Err(c.err(ss, te, format!("{size_text}-{tpi_text} is not a standard {} thread: {what}; write UNS for a special thread, or non-standard sizes are accepted when allowed (‹allow_nonstandard›)", series.name(false))));
         }
         nonstandard = true;
     }
