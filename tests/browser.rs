@@ -643,7 +643,7 @@ fn page_in_chromium() {
     let d1 = tap_rows.iter().find(|r| r[2] == "drill diameter").unwrap();
     assert_eq!(
         (d1[3].as_str(), d1[4].as_str(), d1[5].as_str()),
-        (Some("8.5000"), Some("8.3760"), Some("8.6760"))
+        (Some("8.5000 mm"), Some("8.3760"), Some("8.6760"))
     );
     // Thread mill: the Ø14 cutter's distortion as the CLI gives it (+38.8 µm, README).
     let m = run(&[
@@ -1235,4 +1235,32 @@ fn the_page_s_notes_name_its_own_fields() {
     for n in &notes {
         assert!(!n.contains("machine_type") && !n.contains("gcode_system") && !n.contains('‹'), "{n}");
     }
+}
+
+/// Issue 64 on the page: an inch program's tapped holes in its inches on the Tap tab, each value
+/// with its unit: our 1/4-20 program's #7 drill 0.2010 in against 2B's D1 0.1960–0.2070 in (ASME
+/// B1.1), its feed 25.0 in/min (500 × 0.05 in) and the second hole's 24.0 in/min out.
+#[test]
+fn the_tap_tab_gives_an_inch_program_in_inches() {
+    let script = playwright().with_file_name("taptab.mjs");
+    let server = crate::serve::start(&[]);
+    let program = data("programs/tapping/quarter-20-inch.nc");
+    let o = std::process::Command::new("node")
+        .arg(&script)
+        .arg(&server.url)
+        .arg(chromium())
+        .arg(&program)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "taptab.mjs failed: {}", String::from_utf8_lossy(&o.stderr));
+    let seen: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(seen["console"], serde_json::json!([]));
+    let rows = seen["rows"].as_array().unwrap();
+    let cells = |line: &str, check: &str| -> Vec<String> {
+        let r = rows.iter().find(|r| r[0] == line && r[2] == check).unwrap();
+        r.as_array().unwrap().iter().map(|c| c.as_str().unwrap().to_string()).collect()
+    };
+    assert_eq!(cells("G84 line 16", "drill diameter")[3..7], ["0.2010 in", "0.1960", "0.2070", "ok"]);
+    assert_eq!(cells("G84 line 16", "feed")[3..7], ["25.0 in/min", "25.0", "25.0", "ok"]);
+    assert_eq!(cells("G84 line 17", "feed")[3..7], ["24.0 in/min", "25.0", "25.0", "OUT"]);
 }

@@ -868,4 +868,15 @@ fn an_inch_program_s_tapping_report_is_in_inches() {
     let inches = attr(bar, "data-mm").unwrap().parse::<f64>().unwrap() / 25.4;
     assert!([0.1, 0.2, 0.5, 1.0].iter().any(|r| (inches - r).abs() < 1e-9), "a {inches} in scale bar");
     assert!(picture.contains("D1 of 1/4-20 UNC-2B: 0.1960 – 0.2070 in"), "no inch D1 in the picture");
+    // The torque: 1/4-20 is UNC, the coarse series (table 2's coarse K; it was read as fine),
+    // and beside the N·m the lbf·in an inch shop reads (1 N·m = 8.850746 lbf·in).
+    let o = run(&["tap", "--program", prog.to_str().unwrap(), "--material", "ck45", "--json", "-"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let t = &v["holes"][0]["torque"];
+    assert_eq!((t["coarse"].as_bool(), t["k"].as_f64()), (Some(true), Some(1.15)), "{t}");
+    let nm = t["newton_metres"].as_f64().unwrap();
+    let text = stdout(&run(&["tap", "--program", prog.to_str().unwrap(), "--material", "ck45"]));
+    let line = text.lines().find(|l| l.starts_with("torque:")).unwrap();
+    let shown: f64 = line.split(" lbf·in)").next().unwrap().rsplit('(').next().unwrap().parse().unwrap();
+    assert!((shown - nm * 8.850746).abs() <= 0.05 + 1e-9, "{line}");
 }

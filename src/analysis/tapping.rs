@@ -1019,15 +1019,15 @@ fn is_coarse_pitch(t: &crate::standards::BasicThread) -> bool {
                     && (25.4 / s.tpi - t.pitch).abs() < 1e-9
             })
         }),
-        _ => crate::analysis::naming::infer_designation(
-            t.pitch,
-            1,
-            t.nominal_diameter,
-            crate::standards::ThreadKind::Internal,
-            crate::gcode::ProgramUnits::Inch,
-            1,
-        )
-        .is_ok_and(|n| n.designation.contains("UNC")),
+        // UNC is ASME B1.1's coarse series: the size's UNC threads per inch (a 1/4-20 was
+        // read as fine, its K 1.25 for 1.35: found on an inch program's torque).
+        ThreadForm::Unified => crate::standards::data::catalog().ok().is_some_and(|c| {
+            c.unified.iter().any(|s| {
+                (s.d * 25.4 - t.nominal_diameter).abs() < 1e-6
+                    && s.unc.is_some_and(|tpi| (25.4 / tpi - t.pitch).abs() < 1e-9)
+            })
+        }),
+        _ => false,
     }
 }
 

@@ -715,8 +715,8 @@ pub struct HoleCycle {
     /// zero otherwise, as `rs274` runs it): the same place.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub machine_xy: Option<(f64, f64)>,
-    /// The program's units at the cycle (what a diameter in its comments is written in).
-    #[serde(skip)]
+    /// The program's units at the cycle (what a diameter in its comments is written in, and
+    /// what its report gives lengths in; every number here stays in mm).
     pub units: ProgramUnits,
     /// A machining centre's canned cycle: the R level it feeds from, mm (Z, in the work offset's
     /// coordinates; Klartext's set-up clearance above the surface); `None` for G33.1, which starts where

@@ -94,6 +94,15 @@ impl Lengths {
         self.0 == crate::analysis::verify::Units::Inch
     }
 
+    /// A length's number in the reader's unit, four decimals: `12.6994`, `0.5000`.
+    pub(crate) fn number(self, mm: f64) -> String {
+        if self.inch() {
+            format!("{:.4}", mm / 25.4)
+        } else {
+            format!("{mm:.4}")
+        }
+    }
+
     /// A length with its unit, the mm beside the inches: `12.6994 mm`, `0.5000 in (12.6994 mm)`.
     pub(crate) fn both(self, mm: f64) -> String {
         if self.inch() {
@@ -284,31 +293,17 @@ pub(crate) fn check_cells(c: &crate::Check, lengths: Lengths) -> CheckCells {
         U::YesNo => (if c.value != 0.0 { "yes" } else { "no" }).to_string(),
         _ => format!("{:.prec$}", c.value),
     };
-    // Outside the limits: by how much, in the check's unit (lengths as the analysis measured
-    // them, to the true limit).
-    let over = match (c.min, c.max) {
-        (_, Some(max)) if c.value > max => c.value - max,
-        (Some(min), _) if c.value < min => c.value - min,
-        _ => 0.0,
-    };
-    let deviation = if c.ok && over != 0.0 {
-        // Within the limits at the standard's resolution only (1 µm; 0.0001 in): said, so that a
-        // value shown past its shown limit never passes without a word.
-        "rounds to the limit".to_string()
-    } else if c.ok {
-        String::new()
-    } else {
-        match unit {
-            U::Mm => format!("{:+.1} µm", c.deviation_um),
-            U::Degree => format!("{over:+.3}°"),
-            U::Turn => format!("{over:+.3} turn"),
-            U::DiameterPerLength => format!("{over:+.5}"),
-            U::Count => format!("{over:+.0}"),
-            U::Rpm => format!("{over:+.0} rpm"),
-            U::MmPerMin => format!("{over:+.0} mm/min"),
-            U::YesNo => String::new(),
-        }
-    };
+    let over = past_limit(c);
+    let deviation = deviation_words(c, || match unit {
+        U::Mm => format!("{:+.1} µm", c.deviation_um),
+        U::Degree => format!("{over:+.3}°"),
+        U::Turn => format!("{over:+.3} turn"),
+        U::DiameterPerLength => format!("{over:+.5}"),
+        U::Count => format!("{over:+.0}"),
+        U::Rpm => format!("{over:+.0} rpm"),
+        U::MmPerMin => format!("{over:+.0} mm/min"),
+        U::YesNo => String::new(),
+    });
     let unit = match unit {
         U::Mm => "mm",
         U::Degree => "°",
@@ -318,6 +313,27 @@ pub(crate) fn check_cells(c: &crate::Check, lengths: Lengths) -> CheckCells {
         U::Count | U::DiameterPerLength | U::YesNo => "",
     };
     CheckCells { value, min: lim(c.min), max: lim(c.max), deviation, unit }
+}
+
+/// Outside the limits: by how much, in the check's unit (lengths as the analysis measured them,
+/// to the true limit); 0 within them.
+fn past_limit(c: &crate::Check) -> f64 {
+    match (c.min, c.max) {
+        (_, Some(max)) if c.value > max => c.value - max,
+        (Some(min), _) if c.value < min => c.value - min,
+        _ => 0.0,
+    }
+}
+
+/// A check's deviation cell: empty within its limits, `outside()` past them, and `rounds to the
+/// limit` for a value past its limit that is within it at the standard's resolution (1 µm;
+/// 0.0001 in), so that a value shown past its shown limit never passes without a word.
+fn deviation_words(c: &crate::Check, outside: impl FnOnce() -> String) -> String {
+    match (c.ok, past_limit(c) != 0.0) {
+        (true, true) => "rounds to the limit".to_string(),
+        (true, false) => String::new(),
+        (false, _) => outside(),
+    }
 }
 
 /// The cells of a length (or a feed, `feed`) in inches: four decimals (a feed in in/min, one),
@@ -330,20 +346,13 @@ fn inch_cells(c: &crate::Check, feed: bool) -> CheckCells {
         let p = if !feed && inch != 0.0 && (inch * 1e4).round() == 0.0 { 5 } else { prec };
         format!("{inch:.p$}")
     };
-    let over = match (c.min, c.max) {
-        (_, Some(max)) if c.value > max => c.value - max,
-        (Some(min), _) if c.value < min => c.value - min,
-        _ => 0.0,
-    };
-    let deviation = if c.ok && over != 0.0 {
-        "rounds to the limit".to_string()
-    } else if c.ok {
-        String::new()
-    } else if feed {
-        format!("{:+.1} in/min", over / 25.4)
-    } else {
-        Lengths(crate::analysis::verify::Units::Inch).deviation_cell(c.deviation_um)
-    };
+    let deviation = deviation_words(c, || {
+        if feed {
+            format!("{:+.1} in/min", past_limit(c) / 25.4)
+        } else {
+            Lengths(crate::analysis::verify::Units::Inch).deviation_cell(c.deviation_um)
+        }
+    });
     let lim = |v: Option<f64>| v.map_or_else(|| "—".to_string(), n);
     CheckCells { value: n(c.value), min: lim(c.min), max: lim(c.max), deviation, unit }
 }

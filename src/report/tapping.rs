@@ -136,6 +136,9 @@ fn d1_limits(c: &crate::gcode::HoleCycle, min: Option<f64>, max: Option<f64>) ->
     }
 }
 
+/// Pound-force inches in a newton metre: 1 / (4.4482216152605 N × 0.0254 m).
+const LBF_IN_PER_NM: f64 = 8.850_745_791_327_185;
+
 /// How the cycle's report gives lengths: in its program's units, the mm beside inches.
 fn lengths(c: &crate::gcode::HoleCycle) -> super::Lengths {
     super::Lengths(match c.units {
@@ -259,12 +262,13 @@ pub fn holes_text(r: &TapReport) -> String {
                     fmt_num(t.band[0]),
                     fmt_num(t.band[1]),
                     match h.formed {
+                        // In the program's units (an inch program's inches, 0.0001 in).
                         Some(f) => format!(
-                            "; formed D1 {}, class D1 {}–{} (cut threads'); 65 % is a Ø{:.4} hole",
-                            f.minor_diameter.map_or("— (overfilled)".to_string(), |d| format!("{d:.4}")),
-                            h.tap.minor_diameter.min.map_or("—".to_string(), |v| format!("{v:.4}")),
-                            h.tap.minor_diameter.max.map_or("—".to_string(), |v| format!("{v:.4}")),
-                            f.hole_for_65_percent
+                            "; formed D1 {}, class D1 {}–{} (cut threads'); 65 % is a {} hole",
+                            f.minor_diameter.map_or("— (overfilled)".to_string(), |d| lengths(c).number(d)),
+                            h.tap.minor_diameter.min.map_or("—".to_string(), |v| lengths(c).number(v)),
+                            h.tap.minor_diameter.max.map_or("—".to_string(), |v| lengths(c).number(v)),
+                            lengths(c).word("Ø", f.hole_for_65_percent)
                         ),
                         None => String::new(),
                     }
@@ -275,8 +279,14 @@ pub fn holes_text(r: &TapReport) -> String {
         if let Some(t) = &h.torque {
             let _ = writeln!(
                 s,
-                "torque: {} N·m{} (the tap maker's equation: {}, kc {} N/mm²; {} tap, K {} for a {} pitch)",
+                "torque: {} N·m{}{} (the tap maker's equation: {}, kc {} N/mm²; {} tap, K {} for a {} pitch)",
                 fmt_num((t.newton_metres * 100.0).round() / 100.0),
+                // An inch program's shop reads torque in lbf·in (1 N·m = 8.850746 lbf·in).
+                if lengths(c).inch() {
+                    format!(" ({} lbf·in)", fmt_num((t.newton_metres * LBF_IN_PER_NM * 10.0).round() / 10.0))
+                } else {
+                    String::new()
+                },
                 t.power_kw.map_or(String::new(), |p| format!(
                     ", {} kW at the spindle",
                     fmt_num((p * 1000.0).round() / 1000.0)

@@ -493,8 +493,14 @@ $("tap-form").addEventListener("submit", async (ev) => {
         const better = c.feature === "drill_diameter" && !c.ok && pass && pass.name
           ? ` — a drill that passes: ${pass.source === "inch-gauge" ? pass.name : "Ø" + pass.name + " mm"} (${pass.source}; D1's middle ${pass.middle.toFixed(3)} mm)`
           : "";
+        // In the program's units (an inch program's in inches, its feed in in/min), unit beside.
+        const inch = h.cycle.units === "inch" && ["mm", "mm/min", "mm/rev"].includes(c.unit);
+        const unit = inch ? c.unit.replace("mm", "in") : c.unit;
+        const places = inch && c.unit === "mm/min" ? 1 : 4;
+        const v = (x) => fmt(inch && x !== null && x !== undefined ? x / 25.4 : x, places);
+        const withUnit = (x) => (x === null || x === undefined || !unit ? v(x) : v(x) + " " + unit);
         rows.push([`${h.cycle.code} line ${h.cycle.line}`, [h.tap.designation, "t"], [c.feature.replaceAll("_", " "), "t"],
-          fmt(c.value, 4), fmt(c.min, 4), fmt(c.max, 4), c.ok ? ["ok", "ok"] : ["OUT", "out"], [c.note + better, "t"]]);
+          withUnit(c.value), v(c.min), v(c.max), c.ok ? ["ok", "ok"] : ["OUT", "out"], [c.note + better, "t"]]);
       }
       // Reported beside the checks, never failed (issue 64): how much thread the drill leaves,
       // the torque the tap needs and the spindle it is held against.
@@ -509,7 +515,8 @@ $("tap-form").addEventListener("submit", async (ev) => {
         const spindle = t.spindle_torque_nm !== undefined ? fmt(t.spindle_torque_nm, 2) : "—";
         rows.push([at, [h.tap.designation, "t"], ["torque N·m", "t"], fmt(t.newton_metres, 2), "—", spindle,
           t.exceeds_spindle ? ["OVER", "out"] : "",
-          [`the tap maker's equation: ${t.material}, kc ${t.kc} N/mm², ${t.tap_kind} tap, K ${t.k}` + (t.power_kw !== null ? `; ${fmt(t.power_kw, 3)} kW at the spindle` : ""), "t"]]);
+          [(h.cycle.units === "inch" ? `${fmt(t.newton_metres * 8.850746, 1)} lbf·in; ` : "") +
+            `the tap maker's equation: ${t.material}, kc ${t.kc} N/mm², ${t.tap_kind} tap, K ${t.k}` + (t.power_kw !== null ? `; ${fmt(t.power_kw, 3)} kW at the spindle` : ""), "t"]]);
       }
     }
     table($("tap-table"), ["cycle", "tap", "check", "value", "min", "max", "", "note"], rows);
