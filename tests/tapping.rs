@@ -183,21 +183,8 @@ fn a_tap_s_torque_is_held_against_the_machine_s_spindle() {
     std::fs::write(dir.join("bare.toml"), "name = \"bare\"\n").unwrap();
     // The plug hand tap in C45 on the machine file `machine`, with `out` (the JSON, or a picture).
     let tap = |machine: &str, out: &[&str]| {
-        let mut a = vec![
-            "tap",
-            "--program",
-            "p.nc",
-            "--tools",
-            "tools.toml",
-            "--dialect",
-            "fanuc",
-            "--material",
-            "C45",
-            "--tap-kind",
-            "hand-plug",
-            "--machine",
-            machine,
-        ];
+        let mut a = PLUG_HAND_TAP_IN_C45.to_vec();
+        a.extend_from_slice(&["--machine", machine]);
         a.extend_from_slice(out);
         run_in(&dir, &a)
     };
@@ -247,30 +234,29 @@ fn a_whitworth_tap_s_coarse_pitch_is_bsw() {
     assert_eq!(k("BSF 1/2 medium", "11"), (Some(1.15), Some(false)));
 }
 
+/// `tap` on `p.nc` with `tools.toml` (Fanuc) for the torque of a plug hand tap in C45.
+const PLUG_HAND_TAP_IN_C45: [&str; 11] = [
+    "tap",
+    "--program",
+    "p.nc",
+    "--tools",
+    "tools.toml",
+    "--dialect",
+    "fanuc",
+    "--material",
+    "C45",
+    "--tap-kind",
+    "hand-plug",
+];
+
 /// [`tap`] with the torque of a plug hand tap in C45.
 fn tap_torque(text: &str, tools: &str) -> (i32, serde_json::Value, String) {
     let dir = tempdir("tap-with");
     std::fs::write(dir.join("p.nc"), text).unwrap();
     std::fs::write(dir.join("tools.toml"), tools).unwrap();
-    let o = run_in(
-        &dir,
-        &[
-            "tap",
-            "--program",
-            "p.nc",
-            "--tools",
-            "tools.toml",
-            "--dialect",
-            "fanuc",
-            "--material",
-            "C45",
-            "--tap-kind",
-            "hand-plug",
-            "--allow-nonstandard",
-            "--json",
-            "-",
-        ],
-    );
+    let mut args = PLUG_HAND_TAP_IN_C45.to_vec();
+    args.extend_from_slice(&["--allow-nonstandard", "--json", "-"]);
+    let o = run_in(&dir, &args);
     let code = o.status.code().unwrap();
     let v = if code < 2 { serde_json::from_slice(&o.stdout).unwrap() } else { serde_json::Value::Null };
     (code, v, stderr(&o))

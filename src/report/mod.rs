@@ -137,8 +137,7 @@ impl Lengths {
         let sign = |v: f64, d: usize| if signed { format!("{v:+.d$}") } else { format!("{:.d$}", v.abs()) };
         if self.inch() {
             let inch = um / 25_400.0;
-            let d = if (inch.abs() * 1e4).round() == 0.0 { 5 } else { 4 };
-            format!("{} in ({} µm)", sign(inch, d), sign(um, 1))
+            format!("{} in ({} µm)", sign(inch, inch_places(inch)), sign(um, 1))
         } else {
             format!("{} µm", sign(um, 1))
         }
@@ -148,7 +147,7 @@ impl Lengths {
     pub(crate) fn deviation_cell(self, um: f64) -> String {
         if self.inch() {
             let inch = um / 25_400.0;
-            let d = if (inch.abs() * 1e4).round() == 0.0 { 5 } else { 4 };
+            let d = inch_places(inch);
             format!("{inch:+.d$} in")
         } else {
             format!("{um:+.1} µm")
@@ -315,6 +314,16 @@ pub(crate) fn check_cells(c: &crate::Check, lengths: Lengths) -> CheckCells {
     CheckCells { value, min: lim(c.min), max: lim(c.max), deviation, unit }
 }
 
+/// The decimals an inch length is shown to: the inch standards' four (0.0001 in), five for one
+/// under that resolution that would otherwise read 0.0000 (a crest's 0.001 mm, a small deviation).
+fn inch_places(inch: f64) -> usize {
+    if (inch.abs() * 1e4).round() == 0.0 {
+        5
+    } else {
+        4
+    }
+}
+
 /// Outside the limits: by how much, in the check's unit (lengths as the analysis measured them,
 /// to the true limit); 0 within them.
 fn past_limit(c: &crate::Check) -> f64 {
@@ -343,7 +352,7 @@ fn inch_cells(c: &crate::Check, feed: bool) -> CheckCells {
     // A length under the inch resolution but not nil (a crest's 0.001 mm) gets its fifth decimal.
     let n = |v: f64| {
         let inch = v / 25.4;
-        let p = if !feed && inch != 0.0 && (inch * 1e4).round() == 0.0 { 5 } else { prec };
+        let p = if feed || inch == 0.0 { prec } else { inch_places(inch) };
         format!("{inch:.p$}")
     };
     let deviation = deviation_words(c, || {
