@@ -429,3 +429,66 @@ fn no_file_imports_itself_round_a_circle() {
     let circles: Vec<String> = t.circles.iter().map(|c| c.join(" → ")).collect();
     assert!(circles.is_empty(), "import circles:\n{}", circles.join("\n"));
 }
+
+/// Issue 60: no function of `src/` longer than this many lines, from its signature to its closing
+/// brace (a closure counts inside the function that holds it). A longer one does several things;
+/// each gets a name.
+const FUNCTION_LINES: usize = 200;
+
+/// Every function (free, in an `impl` or a trait, nested or in a unit test) of a file: its path
+/// and its length in lines, read by `syn` with the spans of `proc-macro2`'s `span-locations`.
+fn function_lengths(text: &str) -> Vec<(String, usize)> {
+    use syn::visit::Visit;
+    struct V(Vec<(String, usize)>);
+    impl V {
+        fn push(&mut self, sig: &syn::Signature, body: &syn::Block) {
+            let (start, end) = (sig.fn_token.span.start().line, body.brace_token.span.close().end().line);
+            self.0.push((sig.ident.to_string(), end - start + 1));
+        }
+    }
+    impl<'a> Visit<'a> for V {
+        fn visit_item_fn(&mut self, f: &'a syn::ItemFn) {
+            self.push(&f.sig, &f.block);
+            syn::visit::visit_item_fn(self, f);
+        }
+        fn visit_impl_item_fn(&mut self, f: &'a syn::ImplItemFn) {
+            self.push(&f.sig, &f.block);
+            syn::visit::visit_impl_item_fn(self, f);
+        }
+        fn visit_trait_item_fn(&mut self, f: &'a syn::TraitItemFn) {
+            if let Some(body) = &f.default {
+                self.push(&f.sig, body);
+            }
+            syn::visit::visit_trait_item_fn(self, f);
+        }
+    }
+    let file = syn::parse_file(text).expect("src/ parses as Rust");
+    let mut v = V(Vec::new());
+    v.visit_file(&file);
+    v.0
+}
+
+/// Issue 60: no function of `src/` over [`FUNCTION_LINES`] lines; each one over is named with
+/// its file and length. The reader is checked first on a function of known length.
+#[test]
+fn no_function_is_over_200_lines() {
+    let known = "fn a() {\n    let x = 1;\n    let _ = x;\n}\nimpl S { fn b(&self) {} }\n";
+    assert_eq!(function_lengths(known), vec![("a".to_string(), 4), ("b".to_string(), 1)]);
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut over = Vec::new();
+    let mut seen = 0;
+    for f in &files {
+        let text = std::fs::read_to_string(f).unwrap();
+        for (name, n) in function_lengths(&text) {
+            seen += 1;
+            if n > FUNCTION_LINES {
+                over.push(format!("{} {name}: {n} lines", f.strip_prefix(&src).unwrap().display()));
+            }
+        }
+    }
+    assert!(seen > 1000, "only {seen} functions read in src/");
+    over.sort();
+    assert!(over.is_empty(), "functions over {FUNCTION_LINES} lines:\n{}", over.join("\n"));
+}

@@ -364,6 +364,46 @@ fn same_place(d: &crate::gcode::HoleCycle, h: &crate::gcode::HoleCycle) -> bool 
 /// ```
 pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
     let (text, name) = &spec.program;
+    let prog = read_holes(spec)?;
+    let comments = if spec.from_program { crate::gcode::comments(text, spec.dialect) } else { Vec::new() };
+    let mut tap_by_tool: std::collections::HashMap<u32, TapOf> = std::collections::HashMap::new();
+    let mut drill_by_tool: std::collections::HashMap<u32, (f64, usize)> = std::collections::HashMap::new();
+    let mut holes = Vec::new();
+    for (i, h) in prog.holes.iter().enumerate() {
+        if h.kind != HoleKind::Tap {
+            continue;
+        }
+        let (drill, drill_note) = drill_of(spec, &prog, i, &comments, &mut drill_by_tool);
+        // A later cycle of the same tap takes what its first one found.
+        let tap = match h.tool.and_then(|t| tap_by_tool.get(&t)) {
+            Some(first) => first.clone(),
+            None => tap_of(spec, &prog, i, &comments, drill.as_ref().and_then(|d| d.diameter))?,
+        };
+        if let Some(t) = h.tool {
+            tap_by_tool.entry(t).or_insert_with(|| tap.clone());
+        }
+        holes.push(tapped_hole(spec, &prog, h, &tap, drill, drill_note)?);
+    }
+    let pass = holes.iter().all(|h| h.pass);
+    let drilled: Vec<crate::gcode::HoleCycle> =
+        prog.holes.iter().filter(|h| h.kind == HoleKind::Drill).cloned().collect();
+    Ok(TapReport {
+        program: name.clone(),
+        dialect: spec.dialect,
+        holes,
+        drills: drilled.len(),
+        drilled,
+        pass,
+        notes: prog.notes,
+        machine: prog.machine,
+        stock_bottom: spec.stock_bottom.or(prog.stock_bottom.map(|s| s.0)),
+    })
+}
+
+/// The program's hole cycles, the cycles that name no tool given the tool in the spindle;
+/// refused when it has no tapping cycle.
+fn read_holes(spec: &TapSpec) -> Result<crate::gcode::Program, Error> {
+    let (text, name) = &spec.program;
     let opts = ReadOptions { allow_no_threading: true, ..spec.reading.clone() };
     let mut prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
     // Cycles before the program calls a tool take the one the tool table says is in the spindle.
@@ -410,575 +450,645 @@ pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
             ),
         });
     }
-    let comments = if spec.from_program { crate::gcode::comments(text, spec.dialect) } else { Vec::new() };
-    let mut tap_by_tool: std::collections::HashMap<u32, TapOf> = std::collections::HashMap::new();
-    let mut drill_by_tool: std::collections::HashMap<u32, (f64, usize)> = std::collections::HashMap::new();
-    let mut holes = Vec::new();
-    for (i, h) in prog.holes.iter().enumerate() {
-        if h.kind != HoleKind::Tap {
-            continue;
+    Ok(prog)
+}
+
+/// The drill of the tapping cycle `prog.holes[i]`: the last drilling cycle before it at its
+/// position; its diameter from the tool table, else (a program verified whole) from a comment
+/// at its cycle, and the note that says so.
+fn drill_of(
+    spec: &TapSpec,
+    prog: &crate::gcode::Program,
+    i: usize,
+    comments: &[crate::gcode::Comment],
+    drill_by_tool: &mut std::collections::HashMap<u32, (f64, usize)>,
+) -> (Option<DrillInfo>, Option<String>) {
+    let h = &prog.holes[i];
+    let mut drill_note = None;
+    let drill =
+        prog.holes[..i].iter().rev().find(|d| d.kind == HoleKind::Drill && same_place(d, h)).map(|d| {
+            let (mut diameter, point) = match d.tool.and_then(|dt| spec.tools.tool(dt)) {
+                Some((Tool::Drill { diameter, point_angle }, _)) => (Some(*diameter), *point_angle),
+                Some((Tool::Insert(_) | Tool::Tap { .. }, _)) | None => (None, None),
+            };
+            if diameter.is_none() && spec.from_program {
+                // The comment at its cycle (back to the cycle before), else the one an earlier
+                // cycle of the same tool took.
+                let after = prog
+                    .holes
+                    .iter()
+                    .take_while(|o| o.main_line < d.main_line)
+                    .map(|o| o.main_line)
+                    .max()
+                    .unwrap_or(0);
+                // A CAM system's tool list that names the drill by its number first.
+                let listed = d.tool.and_then(|t| {
+                    comments.iter().find_map(|c| {
+                        match crate::analysis::naming::listed_tool(&c.text, d.units, ParseOptions::default())
+                        {
+                            Some(crate::analysis::naming::ListedTool {
+                                tool,
+                                kind: crate::analysis::naming::ListedKind::Drill { diameter },
+                            }) if tool == t => Some((diameter, c.line)),
+                            _ => None,
+                        }
+                    })
+                });
+                let found = listed
+                    .or_else(|| {
+                        comments.iter().rev().filter(|c| c.line > after && c.line <= d.main_line).find_map(
+                            |c| {
+                                crate::analysis::naming::drill_in_comment(&c.text, d.units)
+                                    .map(|v| (v, c.line))
+                            },
+                        )
+                    })
+                    .or_else(|| d.tool.and_then(|t| drill_by_tool.get(&t).copied()));
+                if let (Some(found), Some(t)) = (found, d.tool) {
+                    drill_by_tool.entry(t).or_insert(found);
+                }
+                if let Some((dia, line)) = found {
+                    diameter = Some(dia);
+                    drill_note = Some(format!(
+                        "the drill's diameter Ø{} is the comment's at line {line}",
+                        crate::ground::fmt::fmt_num(dia)
+                    ));
+                }
+            }
+            DrillInfo {
+                cycle: d.clone(),
+                diameter,
+                point_angle: point.unwrap_or(DRILL_POINT_DEG),
+                point_given: point.is_some(),
+            }
+        });
+    (drill, drill_note)
+}
+
+/// One tapping cycle checked against its tap and its drill.
+fn tapped_hole(
+    spec: &TapSpec,
+    prog: &crate::gcode::Program,
+    h: &HoleCycle,
+    tap: &TapOf,
+    drill: Option<DrillInfo>,
+    drill_note: Option<String>,
+) -> Result<TappedHole, Error> {
+    let name = &spec.program.1;
+    let perr = |message: String| Error::Program {
+        file: h.source_file.clone().unwrap_or_else(|| name.clone()),
+        line: h.line,
+        column: h.column,
+        message,
+    };
+    let (designation, chamfer_pitches, chamfer_given) =
+        (tap.designation.clone(), tap.chamfer_pitches, tap.chamfer_given);
+    let des = parse_designation(&designation, ParseOptions { allow_nonstandard: spec.allow_nonstandard })?;
+    let limits = limits_for(&des, ThreadKind::Internal)?.ok_or_else(|| {
+        perr(format!("tap {designation}: give the internal class the tap cuts, e.g. M10x1.5-6H"))
+    })?;
+    let lead = des.thread.lead();
+    let pitch = des.thread.pitch;
+    let res = limits.resolution;
+    let mut checks = Vec::new();
+    let mut notes: Vec<String> = tap.why.iter().cloned().chain(drill_note).collect();
+    let (hole_window, formed) = hole_window(&des.thread, &limits, tap.forming, drill.as_ref(), &mut notes);
+    drill_check(drill.as_ref(), hole_window, res, formed, tap.forming, &mut checks, &mut notes);
+    feed_check(h, lead, &mut checks, &mut notes);
+    let chamfer = chamfer_pitches * pitch;
+    depth_check(
+        spec,
+        prog,
+        h,
+        drill.as_ref(),
+        &des.thread,
+        chamfer,
+        (chamfer_pitches, chamfer_given, &designation),
+        &mut checks,
+        &mut notes,
+    );
+    spindle_check(spec, h, &des.thread, &designation, &mut checks, &mut notes);
+    notes.push(format!(
+        "the tapped thread's D2 and D are the tap's class {} (not computed); D1 is {}",
+        limits.class,
+        if tap.forming { "what the form tap forms" } else { "the drill's" }
+    ));
+    let pass = checks.iter().all(|c| c.ok);
+    let thread_percent = percent_of(&des.thread, drill.as_ref(), tap.forming, &mut notes);
+    let torque = torque_of(spec, h, &des.thread, drill.as_ref(), tap.forming, &mut notes);
+    let wall = match (&drill, h.bottom) {
+        (Some(DrillInfo { diameter: Some(dia), cycle, point_angle, .. }), Some(tz)) => {
+            cycle.bottom.map_or_else(Vec::new, |dz| {
+                let crest = formed.and_then(|f| f.minor_diameter).unwrap_or(*dia);
+                hole_wall(&des.thread, chamfer, *dia, crest, tz, dz, *point_angle)
+            })
         }
-        let perr = |message: String| Error::Program {
-            file: h.source_file.clone().unwrap_or_else(|| name.clone()),
-            line: h.line,
-            column: h.column,
-            message,
-        };
-        // The drill: the last drilling cycle before this tap at its position; its diameter from
-        // the tool table, else (a program verified whole) from a comment at its cycle.
-        let mut drill_note = None;
-        let drill =
-            prog.holes[..i].iter().rev().find(|d| d.kind == HoleKind::Drill && same_place(d, h)).map(|d| {
-                let (mut diameter, point) = match d.tool.and_then(|dt| spec.tools.tool(dt)) {
-                    Some((Tool::Drill { diameter, point_angle }, _)) => (Some(*diameter), *point_angle),
-                    Some((Tool::Insert(_) | Tool::Tap { .. }, _)) | None => (None, None),
+        _ => Vec::new(),
+    };
+    Ok(TappedHole {
+        cycle: h.clone(),
+        tap: TapInfo {
+            designation: des.text.clone(),
+            designation_from: tap.from,
+            designation_line: tap.line,
+            lead,
+            chamfer_pitches,
+            chamfer_given,
+            forming: tap.forming,
+            chamfer_length: chamfer,
+            full_thread_z: h.bottom.map(|z| z + chamfer),
+            minor_diameter: limits.minor_diameter,
+            pitch_diameter: limits.pitch_diameter,
+        },
+        drill,
+        thread_percent,
+        drill_that_passes: crate::standards::drills::drill_that_passes(&des.thread, hole_window, res)?,
+        formed,
+        torque,
+        checks,
+        pass,
+        notes,
+        wall,
+    })
+}
+
+/// A tapped hole's window for the drill: the class's D1, or for a form tap the makers' window for
+/// 60–75 % of thread; and what a form tap forms from the drill's hole.
+fn hole_window(
+    t: &crate::standards::BasicThread,
+    limits: &crate::standards::tolerance::ThreadLimits,
+    forming: bool,
+    drill: Option<&DrillInfo>,
+    notes: &mut Vec<String>,
+) -> (crate::standards::tolerance::Limit, Option<FormedThread>) {
+    let res = limits.resolution;
+    // A form tap's hole: the tap makers' window for 60–75 % of thread, not D1 (the tap forms
+    // D1 from the wall's metal).
+    let hole_window = if forming {
+        crate::standards::tolerance::Limit {
+            min: Some(res.round(form_tap_hole(t, FORM_TAP_BAND[1]))),
+            max: Some(res.round(form_tap_hole(t, FORM_TAP_BAND[0]))),
+        }
+    } else {
+        limits.minor_diameter
+    };
+    let formed = match (drill, forming) {
+        (Some(DrillInfo { diameter: Some(dia), .. }), true) => {
+            let profile = crate::geometry::forming::FormProfile {
+                p: t.pitch,
+                r2: 0.5 * t.pitch_diameter(),
+                tan_half: t.half_angle().tan(),
+            };
+            let minor = match crate::geometry::forming::formed_minor(&profile, t.nominal_diameter, *dia) {
+                crate::geometry::forming::Formed::Minor(d1) => Some(d1),
+                crate::geometry::forming::Formed::Overfilled => None,
+            };
+            Some(FormedThread { minor_diameter: minor, hole_for_65_percent: form_tap_hole(t, 65.0) })
+        }
+        _ => None,
+    };
+    if forming {
+        notes.push(format!(
+            "a form tap: its hole is the tap makers' D − 0.0068·P·% for {}–{} % of thread (a named default), {}–{} mm; the tap forms D1 from the wall's metal, computed by volume constancy with a flat crest (a formed crest is cupped); ISO 965's and ASME B1.1's D1 limits are for cut threads, and a formed D1 at the usual 65 % lies over them (DIN 13-50 gives formed threads their own, not in the sources here): D1 is reported, not checked",
+            crate::ground::fmt::fmt_num(FORM_TAP_BAND[0]),
+            crate::ground::fmt::fmt_num(FORM_TAP_BAND[1]),
+            crate::ground::fmt::fmt_num(hole_window.min.unwrap_or(0.0)),
+            crate::ground::fmt::fmt_num(hole_window.max.unwrap_or(0.0)),
+        ));
+    }
+    (hole_window, formed)
+}
+
+/// The drill's diameter against the hole's window (a note when the drill is not known).
+fn drill_check(
+    drill: Option<&DrillInfo>,
+    hole_window: crate::standards::tolerance::Limit,
+    res: crate::standards::tolerance::Resolution,
+    formed: Option<FormedThread>,
+    forming: bool,
+    checks: &mut Vec<TapCheck>,
+    notes: &mut Vec<String>,
+) {
+    match drill {
+        Some(DrillInfo { diameter: Some(dia), cycle, .. }) => {
+            // A cutting tap's hole is D1 (the drill's), a form tap's the makers' window.
+            let (lo, hi) = (hole_window.min, hole_window.max);
+            let v = res.round(*dia);
+            let below = lo.map_or(0.0, |lo| (v - lo).min(0.0));
+            let above = hi.map_or(0.0, |hi| (v - hi).max(0.0));
+            let dev = if below < 0.0 { below } else { above };
+            let at = format!(
+                "T{}, {} at line {}",
+                cycle.tool.map_or("?".to_string(), |t| t.to_string()),
+                cycle.code,
+                cycle.line
+            );
+            let d1 = formed.and_then(|f| f.minor_diameter);
+            let (ok, note) = if forming {
+                let what = match d1 {
+                    Some(d1) => format!("the tap forms D1 {} mm in it", crate::ground::fmt::fmt_num((d1 * 1e4).round() / 1e4)),
+                    None => "the hole holds more metal than the thread's teeth take: the tap is overloaded (it breaks)".to_string(),
                 };
-                if diameter.is_none() && spec.from_program {
-                    // The comment at its cycle (back to the cycle before), else the one an earlier
-                    // cycle of the same tool took.
-                    let after = prog
-                        .holes
-                        .iter()
-                        .take_while(|o| o.main_line < d.main_line)
-                        .map(|o| o.main_line)
-                        .max()
-                        .unwrap_or(0);
-                    // A CAM system's tool list that names the drill by its number first.
-                    let listed = d.tool.and_then(|t| {
-                        comments.iter().find_map(|c| {
-                            match crate::analysis::naming::listed_tool(
-                                &c.text,
-                                d.units,
-                                ParseOptions::default(),
-                            ) {
-                                Some(crate::analysis::naming::ListedTool {
-                                    tool,
-                                    kind: crate::analysis::naming::ListedKind::Drill { diameter },
-                                }) if tool == t => Some((diameter, c.line)),
-                                _ => None,
-                            }
-                        })
-                    });
-                    let found = listed
-                        .or_else(|| {
-                            comments
-                                .iter()
-                                .rev()
-                                .filter(|c| c.line > after && c.line <= d.main_line)
-                                .find_map(|c| {
-                                    crate::analysis::naming::drill_in_comment(&c.text, d.units)
-                                        .map(|v| (v, c.line))
-                                })
-                        })
-                        .or_else(|| d.tool.and_then(|t| drill_by_tool.get(&t).copied()));
-                    if let (Some(found), Some(t)) = (found, d.tool) {
-                        drill_by_tool.entry(t).or_insert(found);
-                    }
-                    if let Some((dia, line)) = found {
-                        diameter = Some(dia);
-                        drill_note = Some(format!(
-                            "the drill's diameter Ø{} is the comment's at line {line}",
-                            crate::ground::fmt::fmt_num(dia)
-                        ));
-                    }
-                }
-                DrillInfo {
-                    cycle: d.clone(),
-                    diameter,
-                    point_angle: point.unwrap_or(DRILL_POINT_DEG),
-                    point_given: point.is_some(),
-                }
+                (dev == 0.0 && d1.is_some(), format!("a form tap's hole ({at}): {what}"))
+            } else {
+                (dev == 0.0, format!("the tapped hole's minor diameter D1 is the drill's ({at})"))
+            };
+            checks.push(TapCheck {
+                feature: TapFeature::DrillDiameter,
+                ok,
+                value: Some(*dia),
+                min: lo,
+                max: hi,
+                unit: "mm",
+                deviation: (dev * 10_000.0).round() / 10.0,
+                note,
             });
-        // A later cycle of the same tap takes what its first one found.
-        let tap = match h.tool.and_then(|t| tap_by_tool.get(&t)) {
-            Some(first) => first.clone(),
-            None => tap_of(spec, &prog, i, &comments, drill.as_ref().and_then(|d| d.diameter))?,
-        };
-        if let Some(t) = h.tool {
-            tap_by_tool.entry(t).or_insert_with(|| tap.clone());
         }
-        let (designation, chamfer_pitches, chamfer_given) =
-            (tap.designation.clone(), tap.chamfer_pitches, tap.chamfer_given);
-        let des =
-            parse_designation(&designation, ParseOptions { allow_nonstandard: spec.allow_nonstandard })?;
-        let limits = limits_for(&des, ThreadKind::Internal)?.ok_or_else(|| {
-            perr(format!("tap {designation}: give the internal class the tap cuts, e.g. M10x1.5-6H"))
-        })?;
-        let lead = des.thread.lead();
-        let pitch = des.thread.pitch;
-        let res = limits.resolution;
-        let mut checks = Vec::new();
-        let mut notes: Vec<String> = tap.why.iter().cloned().chain(drill_note).collect();
-        // A form tap's hole: the tap makers' window for 60–75 % of thread, not D1 (the tap forms
-        // D1 from the wall's metal).
-        let hole_window = if tap.forming {
-            let t = &des.thread;
-            crate::standards::tolerance::Limit {
-                min: Some(res.round(form_tap_hole(t, FORM_TAP_BAND[1]))),
-                max: Some(res.round(form_tap_hole(t, FORM_TAP_BAND[0]))),
+        Some(DrillInfo { diameter: None, cycle, .. }) => notes.push(format!(
+            "the hole is drilled by {} at line {} with {}, which the tool table does not give as a drill (write drill:DIAMETER): D1 is not checked",
+            cycle.code,
+            cycle.line,
+            cycle.tool.map_or("no tool".to_string(), |t| format!("T{t}"))
+        )),
+        None => notes.push(
+            "no drilling cycle precedes this tap at its position: D1 (the drill's diameter) and the depth are not checked"
+                .to_string(),
+        ),
+    }
+}
+
+/// The feed against the lead: per revolution, or S × lead per minute.
+fn feed_check(h: &HoleCycle, lead: f64, checks: &mut Vec<TapCheck>, notes: &mut Vec<String>) {
+    // The feed.
+    match h.feed {
+        Some(f) => {
+            let mode = if h.feed_per_rev { "per revolution" } else { "per minute" };
+            if h.feed_mode_assumed {
+                notes.push(format!(
+                    "the program sets no feed mode before {}: feed {mode} assumed, the control's power-on state ({})",
+                    h.code,
+                    if h.feed_per_rev { "a lathe's G99" } else { "a machining centre's G94" }
+                ));
+            }
+            let expected = if h.feed_per_rev { Some(lead) } else { h.spindle.map(|s| s * lead) };
+            match expected {
+                Some(e) => {
+                    let (tol, unit) = if h.feed_per_rev { (0.0005, "mm/rev") } else { (0.5, "mm/min") };
+                    let off = f - e;
+                    let ok = off.abs() <= tol + 1e-9;
+                    checks.push(TapCheck {
+                        feature: TapFeature::Feed,
+                        ok,
+                        value: Some(f),
+                        min: Some(e),
+                        max: Some(e),
+                        unit,
+                        deviation: if ok {
+                            0.0
+                        } else if h.feed_per_rev {
+                            off * 1000.0
+                        } else {
+                            off
+                        },
+                        note: if h.feed_per_rev {
+                            format!(
+                                "feed per revolution: {} must be the lead, {} mm",
+                                match h.feed_word.as_str() {
+                                    "MPIT" => "MPIT's coarse pitch",
+                                    w => w,
+                                },
+                                crate::ground::fmt::fmt_num(lead)
+                            )
+                        } else {
+                            format!(
+                                "feed per minute: F must be S × lead = {} × {}",
+                                crate::ground::fmt::fmt_num(h.spindle.unwrap_or(0.0)),
+                                in_units(h.units, lead).0
+                            )
+                        },
+                    });
+                }
+                None => notes
+                    .push(format!("{} feeds per minute with no S in force: the feed is not checked", h.code)),
+            }
+        }
+        None => notes.push(format!("{} has no F: the feed is not checked", h.code)),
+    }
+}
+
+/// The room below the tap: its point against the drill's point cone (a through hole passes).
+#[allow(clippy::too_many_arguments)]
+fn depth_check(
+    spec: &TapSpec,
+    prog: &crate::gcode::Program,
+    h: &HoleCycle,
+    drill: Option<&DrillInfo>,
+    t: &crate::standards::BasicThread,
+    chamfer: f64,
+    (chamfer_pitches, chamfer_given, designation): (f64, bool, &str),
+    checks: &mut Vec<TapCheck>,
+    notes: &mut Vec<String>,
+) {
+    // The depth.
+    if !chamfer_given {
+        notes.push(format!(
+            "the tap's chamfer is taken as {} pitches = {} mm (form C, ISO 8830; give tap:{designation}:PITCHES)",
+            crate::ground::fmt::fmt_num(chamfer_pitches),
+            crate::ground::fmt::fmt_num(chamfer)
+        ));
+    }
+    if let (Some(d), Some(tb)) = (drill, h.bottom) {
+        if let Some(db) = d.cycle.bottom {
+            // The tap's point, where its chamfer starts at the basic minor diameter (or the
+            // drill's, when the drill is smaller), meets the drill's point cone that far above
+            // the drill's bottom (issue 46: the chamfer's length is not the room it needs).
+            let basic_minor = t_minor_basic(&*t);
+            let point = d.diameter.map_or(basic_minor, |dia| dia.min(basic_minor));
+            let half = (0.5 * d.point_angle).to_radians().tan();
+            let need = 0.5 * point / half;
+            let room = tb - db;
+            // A through hole: the drill's full diameter passes the stock's bottom, and the tap
+            // has nothing below it to meet.
+            // The stock's bottom: the caller's, else the one the program declares
+            // (Klartext's BLK FORM 0.1).
+            // (A Z: a radial hole's axis does not meet it.)
+            let stock_bottom =
+                spec.stock_bottom.or(prog.stock_bottom.map(|s| s.0)).filter(|_| h.radial.is_none());
+            let through = match (stock_bottom, d.diameter) {
+                (Some(sb), Some(dia)) => db + 0.5 * dia / half <= sb + 1e-9,
+                _ => false,
+            };
+            let ok = through || room >= need - 1e-9;
+            let how = if through {
+                format!(
+                    "a through hole: the drill's full diameter passes the stock's bottom (Z{}) at Z{}, so nothing lies below the tap",
+                    match (spec.stock_bottom, prog.stock_bottom) {
+                        (None, Some((z, line))) => format!("{}, BLK FORM at line {line}", crate::ground::fmt::fmt_num(z)),
+                        _ => crate::ground::fmt::fmt_num(stock_bottom.unwrap_or(0.0)),
+                    },
+                    crate::ground::fmt::fmt_num(((db + 0.5 * d.diameter.unwrap_or(0.0) / half) * 1e4).round() / 1e4)
+                )
+            } else {
+                String::new()
+            };
+            checks.push(TapCheck {
+                feature: TapFeature::Depth,
+                ok,
+                value: Some(room),
+                min: Some((need * 1e4).round() / 1e4),
+                max: None,
+                unit: "mm",
+                deviation: if ok { 0.0 } else { ((room - need) * 1e4).round() / 10.0 },
+                note: if through {
+                    how
+                } else {
+                    // A radial hole's bottoms are radii: written as the program's X.
+                    // In the program's units (an inch program's Z-0.5, not Z-12.7).
+                    let at = |v: f64| match h.radial {
+                        Some(_) => format!("X{}", in_units(h.units, 2.0 * v).0),
+                        None => format!("Z{}", in_units(h.units, v).0),
+                    };
+                    let len = |v: f64| {
+                        let (n, u) = in_units(h.units, v);
+                        format!("{n} {u}")
+                    };
+                    format!(
+                        "the drill's bottom ({}) lies {} below the tap's ({}); the tap's point (Ø{}) meets the drill's {}° point {} above its bottom{}",
+                        at(db),
+                        len(room),
+                        at(tb),
+                        in_units(h.units, point).0,
+                        crate::ground::fmt::fmt_num(d.point_angle),
+                        len(need),
+                        if ok {
+                            String::new()
+                        } else {
+                            format!(", {} above the tap's bottom", len(need - room))
+                        }
+                    )
+                },
+            });
+            if !d.point_given {
+                notes.push(format!(
+                    "the drill's point angle is taken as {}°, a twist drill's (a named default; drill:DIAMETER:ANGLE in the tool table gives it)",
+                    crate::ground::fmt::fmt_num(DRILL_POINT_DEG)
+                ));
+            }
+        }
+    }
+}
+
+/// The spindle's direction against the thread's hand and the cycle's.
+fn spindle_check(
+    spec: &TapSpec,
+    h: &HoleCycle,
+    t: &crate::standards::BasicThread,
+    designation: &str,
+    checks: &mut Vec<TapCheck>,
+    notes: &mut Vec<String>,
+) {
+    // The spindle.
+    // G84 taps right-hand, G74 left-hand, CYCLE84 as its pitch's sign says; LinuxCNC's
+    // G33.1 and Sinumerik's CYCLE840 tap the way the spindle turns.
+    let hand = h.hand.unwrap_or(t.hand);
+    let want = match hand {
+        Hand::Right => SpindleDir::Cw,
+        Hand::Left => SpindleDir::Ccw,
+    };
+    let hand_ok = t.hand == hand;
+    // A Haas control starts the spindle itself for its tapping cycles: clockwise for G84,
+    // counter-clockwise for G184 ("It is not necessary to start the spindle CW before this
+    // canned cycle", the lathe's G84 page; the mill's G84 the same, a named reading); G95 and
+    // G186 turn the live tool, whatever the main spindle does (HAAS-L84).
+    let spindle_dir = match (spec.dialect, h.code.as_str(), h.spindle_dir) {
+        (Dialect::Haas, "G84" | "G184", Some(SpindleDir::Stopped) | None) => {
+            let (dir, turn, code) = if h.code == "G84" {
+                (SpindleDir::Cw, "clockwise", "M3")
+            } else {
+                (SpindleDir::Ccw, "counter-clockwise", "M4")
+            };
+            notes.push(format!(
+                "the Haas control starts the spindle {turn} for {} itself: the spindle is taken as {turn} ({code})",
+                h.code
+            ));
+            Some(dir)
+        }
+        (Dialect::Haas, "G95" | "G186" | "G195" | "G196", _) => {
+            let (dir, words) = if matches!(h.code.as_str(), "G95" | "G195") {
+                (SpindleDir::Cw, "clockwise")
+            } else {
+                (SpindleDir::Ccw, "counter-clockwise")
+            };
+            notes.push(format!(
+                "{} is the Haas lathe's live-tool rigid tapping: the control turns the live tool {words} itself, whatever the main spindle does",
+                h.code
+            ));
+            Some(dir)
+        }
+        (_, _, d) => d,
+    };
+    match spindle_dir {
+        Some(dir) => checks.push(TapCheck {
+            feature: TapFeature::Spindle,
+            ok: dir == want && hand_ok,
+            value: None,
+            min: None,
+            max: None,
+            unit: "",
+            deviation: 0.0,
+            note: format!(
+                "{}{} taps a {}-hand thread with the spindle {}; the spindle is {}{}",
+                h.code,
+                if h.code == "CYCLE84" { format!(" (the sign of {})", h.feed_word) } else { String::new() },
+                if hand == Hand::Right { "right" } else { "left" },
+                if want == SpindleDir::Cw { "clockwise (M3)" } else { "counter-clockwise (M4)" },
+                match dir {
+                    SpindleDir::Cw => "clockwise (M3)",
+                    SpindleDir::Ccw => "counter-clockwise (M4)",
+                    SpindleDir::Stopped => "stopped (M5)",
+                },
+                if hand_ok {
+                    String::new()
+                } else {
+                    format!(", and the tap {designation} is of the other hand")
+                }
+            ),
+        }),
+        None => notes.push(format!("no M3 or M4 before {}: the spindle's direction is not checked", h.code)),
+    }
+}
+
+/// The drill's % of thread (the tap makers' for a form tap), with a note outside its band.
+fn percent_of(
+    t: &crate::standards::BasicThread,
+    drill: Option<&DrillInfo>,
+    forming: bool,
+    notes: &mut Vec<String>,
+) -> Option<ThreadPercent> {
+    // A form tap's percent is the tap makers' (D − hole)/(0.0068·P); a cutting tap's the charts'.
+    let percent = drill.and_then(|d| d.diameter).and_then(|dia| {
+        let cut = thread_percent(t, dia)?;
+        Some(if forming {
+            ThreadPercent {
+                percent: (t.nominal_diameter - dia) / (0.0068 * t.pitch),
+                band: FORM_TAP_BAND,
+                ..cut
             }
         } else {
-            limits.minor_diameter
-        };
-        let formed = match (&drill, tap.forming) {
-            (Some(DrillInfo { diameter: Some(dia), .. }), true) => {
-                let t = &des.thread;
-                let profile = crate::geometry::forming::FormProfile {
-                    p: t.pitch,
-                    r2: 0.5 * t.pitch_diameter(),
-                    tan_half: t.half_angle().tan(),
-                };
-                let minor = match crate::geometry::forming::formed_minor(&profile, t.nominal_diameter, *dia) {
-                    crate::geometry::forming::Formed::Minor(d1) => Some(d1),
-                    crate::geometry::forming::Formed::Overfilled => None,
-                };
-                Some(FormedThread { minor_diameter: minor, hole_for_65_percent: form_tap_hole(t, 65.0) })
-            }
-            _ => None,
-        };
-        if tap.forming {
-            notes.push(format!(
-                "a form tap: its hole is the tap makers' D − 0.0068·P·% for {}–{} % of thread (a named default), {}–{} mm; the tap forms D1 from the wall's metal, computed by volume constancy with a flat crest (a formed crest is cupped); ISO 965's and ASME B1.1's D1 limits are for cut threads, and a formed D1 at the usual 65 % lies over them (DIN 13-50 gives formed threads their own, not in the sources here): D1 is reported, not checked",
-                crate::ground::fmt::fmt_num(FORM_TAP_BAND[0]),
-                crate::ground::fmt::fmt_num(FORM_TAP_BAND[1]),
-                crate::ground::fmt::fmt_num(hole_window.min.unwrap_or(0.0)),
-                crate::ground::fmt::fmt_num(hole_window.max.unwrap_or(0.0)),
-            ));
-        }
-        match &drill {
-            Some(DrillInfo { diameter: Some(dia), cycle, .. }) => {
-                // A cutting tap's hole is D1 (the drill's), a form tap's the makers' window.
-                let (lo, hi) = (hole_window.min, hole_window.max);
-                let v = res.round(*dia);
-                let below = lo.map_or(0.0, |lo| (v - lo).min(0.0));
-                let above = hi.map_or(0.0, |hi| (v - hi).max(0.0));
-                let dev = if below < 0.0 { below } else { above };
-                let at = format!(
-                    "T{}, {} at line {}",
-                    cycle.tool.map_or("?".to_string(), |t| t.to_string()),
-                    cycle.code,
-                    cycle.line
-                );
-                let d1 = formed.and_then(|f| f.minor_diameter);
-                let (ok, note) = if tap.forming {
-                    let what = match d1 {
-                        Some(d1) => format!("the tap forms D1 {} mm in it", crate::ground::fmt::fmt_num((d1 * 1e4).round() / 1e4)),
-                        None => "the hole holds more metal than the thread's teeth take: the tap is overloaded (it breaks)".to_string(),
-                    };
-                    (dev == 0.0 && d1.is_some(), format!("a form tap's hole ({at}): {what}"))
-                } else {
-                    (dev == 0.0, format!("the tapped hole's minor diameter D1 is the drill's ({at})"))
-                };
-                checks.push(TapCheck {
-                    feature: TapFeature::DrillDiameter,
-                    ok,
-                    value: Some(*dia),
-                    min: lo,
-                    max: hi,
-                    unit: "mm",
-                    deviation: (dev * 10_000.0).round() / 10.0,
-                    note,
-                });
-            }
-            Some(DrillInfo { diameter: None, cycle, .. }) => notes.push(format!(
-                "the hole is drilled by {} at line {} with {}, which the tool table does not give as a drill (write drill:DIAMETER): D1 is not checked",
-                cycle.code,
-                cycle.line,
-                cycle.tool.map_or("no tool".to_string(), |t| format!("T{t}"))
-            )),
-            None => notes.push(
-                "no drilling cycle precedes this tap at its position: D1 (the drill's diameter) and the depth are not checked"
-                    .to_string(),
-            ),
-        }
-        // The feed.
-        match h.feed {
-            Some(f) => {
-                let mode = if h.feed_per_rev { "per revolution" } else { "per minute" };
-                if h.feed_mode_assumed {
-                    notes.push(format!(
-                        "the program sets no feed mode before {}: feed {mode} assumed, the control's power-on state ({})",
-                        h.code,
-                        if h.feed_per_rev { "a lathe's G99" } else { "a machining centre's G94" }
-                    ));
-                }
-                let expected = if h.feed_per_rev { Some(lead) } else { h.spindle.map(|s| s * lead) };
-                match expected {
-                    Some(e) => {
-                        let (tol, unit) = if h.feed_per_rev { (0.0005, "mm/rev") } else { (0.5, "mm/min") };
-                        let off = f - e;
-                        let ok = off.abs() <= tol + 1e-9;
-                        checks.push(TapCheck {
-                            feature: TapFeature::Feed,
-                            ok,
-                            value: Some(f),
-                            min: Some(e),
-                            max: Some(e),
-                            unit,
-                            deviation: if ok {
-                                0.0
-                            } else if h.feed_per_rev {
-                                off * 1000.0
-                            } else {
-                                off
-                            },
-                            note: if h.feed_per_rev {
-                                format!(
-                                    "feed per revolution: {} must be the lead, {} mm",
-                                    match h.feed_word.as_str() {
-                                        "MPIT" => "MPIT's coarse pitch",
-                                        w => w,
-                                    },
-                                    crate::ground::fmt::fmt_num(lead)
-                                )
-                            } else {
-                                format!(
-                                    "feed per minute: F must be S × lead = {} × {}",
-                                    crate::ground::fmt::fmt_num(h.spindle.unwrap_or(0.0)),
-                                    in_units(h.units, lead).0
-                                )
-                            },
-                        });
-                    }
-                    None => notes.push(format!(
-                        "{} feeds per minute with no S in force: the feed is not checked",
-                        h.code
-                    )),
-                }
-            }
-            None => notes.push(format!("{} has no F: the feed is not checked", h.code)),
-        }
-        // The depth.
-        let chamfer = chamfer_pitches * pitch;
-        if !chamfer_given {
-            notes.push(format!(
-                "the tap's chamfer is taken as {} pitches = {} mm (form C, ISO 8830; give tap:{designation}:PITCHES)",
-                crate::ground::fmt::fmt_num(chamfer_pitches),
-                crate::ground::fmt::fmt_num(chamfer)
-            ));
-        }
-        if let (Some(d), Some(tb)) = (&drill, h.bottom) {
-            if let Some(db) = d.cycle.bottom {
-                // The tap's point, where its chamfer starts at the basic minor diameter (or the
-                // drill's, when the drill is smaller), meets the drill's point cone that far above
-                // the drill's bottom (issue 46: the chamfer's length is not the room it needs).
-                let basic_minor = t_minor_basic(&des.thread);
-                let point = d.diameter.map_or(basic_minor, |dia| dia.min(basic_minor));
-                let half = (0.5 * d.point_angle).to_radians().tan();
-                let need = 0.5 * point / half;
-                let room = tb - db;
-                // A through hole: the drill's full diameter passes the stock's bottom, and the tap
-                // has nothing below it to meet.
-                // The stock's bottom: the caller's, else the one the program declares
-                // (Klartext's BLK FORM 0.1).
-                // (A Z: a radial hole's axis does not meet it.)
-                let stock_bottom =
-                    spec.stock_bottom.or(prog.stock_bottom.map(|s| s.0)).filter(|_| h.radial.is_none());
-                let through = match (stock_bottom, d.diameter) {
-                    (Some(sb), Some(dia)) => db + 0.5 * dia / half <= sb + 1e-9,
-                    _ => false,
-                };
-                let ok = through || room >= need - 1e-9;
-                let how = if through {
-                    format!(
-                        "a through hole: the drill's full diameter passes the stock's bottom (Z{}) at Z{}, so nothing lies below the tap",
-                        match (spec.stock_bottom, prog.stock_bottom) {
-                            (None, Some((z, line))) => format!("{}, BLK FORM at line {line}", crate::ground::fmt::fmt_num(z)),
-                            _ => crate::ground::fmt::fmt_num(stock_bottom.unwrap_or(0.0)),
-                        },
-                        crate::ground::fmt::fmt_num(((db + 0.5 * d.diameter.unwrap_or(0.0) / half) * 1e4).round() / 1e4)
-                    )
-                } else {
-                    String::new()
-                };
-                checks.push(TapCheck {
-                    feature: TapFeature::Depth,
-                    ok,
-                    value: Some(room),
-                    min: Some((need * 1e4).round() / 1e4),
-                    max: None,
-                    unit: "mm",
-                    deviation: if ok { 0.0 } else { ((room - need) * 1e4).round() / 10.0 },
-                    note: if through {
-                        how
-                    } else {
-                        // A radial hole's bottoms are radii: written as the program's X.
-                        // In the program's units (an inch program's Z-0.5, not Z-12.7).
-                        let at = |v: f64| match h.radial {
-                            Some(_) => format!("X{}", in_units(h.units, 2.0 * v).0),
-                            None => format!("Z{}", in_units(h.units, v).0),
-                        };
-                        let len = |v: f64| {
-                            let (n, u) = in_units(h.units, v);
-                            format!("{n} {u}")
-                        };
-                        format!(
-                            "the drill's bottom ({}) lies {} below the tap's ({}); the tap's point (Ø{}) meets the drill's {}° point {} above its bottom{}",
-                            at(db),
-                            len(room),
-                            at(tb),
-                            in_units(h.units, point).0,
-                            crate::ground::fmt::fmt_num(d.point_angle),
-                            len(need),
-                            if ok {
-                                String::new()
-                            } else {
-                                format!(", {} above the tap's bottom", len(need - room))
-                            }
-                        )
-                    },
-                });
-                if !d.point_given {
-                    notes.push(format!(
-                        "the drill's point angle is taken as {}°, a twist drill's (a named default; drill:DIAMETER:ANGLE in the tool table gives it)",
-                        crate::ground::fmt::fmt_num(DRILL_POINT_DEG)
-                    ));
-                }
-            }
-        }
-        // The spindle.
-        // G84 taps right-hand, G74 left-hand, CYCLE84 as its pitch's sign says; LinuxCNC's
-        // G33.1 and Sinumerik's CYCLE840 tap the way the spindle turns.
-        let hand = h.hand.unwrap_or(des.thread.hand);
-        let want = match hand {
-            Hand::Right => SpindleDir::Cw,
-            Hand::Left => SpindleDir::Ccw,
-        };
-        let hand_ok = des.thread.hand == hand;
-        // A Haas control starts the spindle itself for its tapping cycles: clockwise for G84,
-        // counter-clockwise for G184 ("It is not necessary to start the spindle CW before this
-        // canned cycle", the lathe's G84 page; the mill's G84 the same, a named reading); G95 and
-        // G186 turn the live tool, whatever the main spindle does (HAAS-L84).
-        let spindle_dir = match (spec.dialect, h.code.as_str(), h.spindle_dir) {
-            (Dialect::Haas, "G84" | "G184", Some(SpindleDir::Stopped) | None) => {
-                let (dir, turn, code) = if h.code == "G84" {
-                    (SpindleDir::Cw, "clockwise", "M3")
-                } else {
-                    (SpindleDir::Ccw, "counter-clockwise", "M4")
-                };
-                notes.push(format!(
-                    "the Haas control starts the spindle {turn} for {} itself: the spindle is taken as {turn} ({code})",
-                    h.code
-                ));
-                Some(dir)
-            }
-            (Dialect::Haas, "G95" | "G186" | "G195" | "G196", _) => {
-                let (dir, words) = if matches!(h.code.as_str(), "G95" | "G195") {
-                    (SpindleDir::Cw, "clockwise")
-                } else {
-                    (SpindleDir::Ccw, "counter-clockwise")
-                };
-                notes.push(format!(
-                    "{} is the Haas lathe's live-tool rigid tapping: the control turns the live tool {words} itself, whatever the main spindle does",
-                    h.code
-                ));
-                Some(dir)
-            }
-            (_, _, d) => d,
-        };
-        match spindle_dir {
-            Some(dir) => checks.push(TapCheck {
-                feature: TapFeature::Spindle,
-                ok: dir == want && hand_ok,
-                value: None,
-                min: None,
-                max: None,
-                unit: "",
-                deviation: 0.0,
-                note: format!(
-                    "{}{} taps a {}-hand thread with the spindle {}; the spindle is {}{}",
-                    h.code,
-                    if h.code == "CYCLE84" {
-                        format!(" (the sign of {})", h.feed_word)
-                    } else {
-                        String::new()
-                    },
-                    if hand == Hand::Right { "right" } else { "left" },
-                    if want == SpindleDir::Cw { "clockwise (M3)" } else { "counter-clockwise (M4)" },
-                    match dir {
-                        SpindleDir::Cw => "clockwise (M3)",
-                        SpindleDir::Ccw => "counter-clockwise (M4)",
-                        SpindleDir::Stopped => "stopped (M5)",
-                    },
-                    if hand_ok {
-                        String::new()
-                    } else {
-                        format!(", and the tap {designation} is of the other hand")
-                    }
-                ),
-            }),
-            None => {
-                notes.push(format!("no M3 or M4 before {}: the spindle's direction is not checked", h.code))
-            }
-        }
+            cut
+        })
+    });
+    if let Some(p) = percent.filter(|p| p.percent < p.band[0] || p.percent > p.band[1]) {
         notes.push(format!(
-            "the tapped thread's D2 and D are the tap's class {} (not computed); D1 is {}",
-            limits.class,
-            if tap.forming { "what the form tap forms" } else { "the drill's" }
-        ));
-        let pass = checks.iter().all(|c| c.ok);
-        // A form tap's percent is the tap makers' (D − hole)/(0.0068·P); a cutting tap's the charts'.
-        let thread_percent = drill.as_ref().and_then(|d| d.diameter).and_then(|dia| {
-            let cut = thread_percent(&des.thread, dia)?;
-            Some(if tap.forming {
-                ThreadPercent {
-                    percent: (des.thread.nominal_diameter - dia) / (0.0068 * des.thread.pitch),
-                    band: FORM_TAP_BAND,
-                    ..cut
-                }
+            "the drill leaves {} % of thread, outside the {}–{} % shop charts give for a {} tap (a named default): {}",
+            crate::ground::fmt::fmt_num((p.percent * 10.0).round() / 10.0),
+            crate::ground::fmt::fmt_num(p.band[0]),
+            crate::ground::fmt::fmt_num(p.band[1]),
+            if forming { "form" } else { "cutting" },
+            if p.percent > p.band[1] {
+                "above it the tap's torque rises steeply for little more strength"
             } else {
-                cut
-            })
-        });
-        if let Some(t) = thread_percent.filter(|t| t.percent < t.band[0] || t.percent > t.band[1]) {
-            notes.push(format!(
-                "the drill leaves {} % of thread, outside the {}–{} % shop charts give for a {} tap (a named default): {}",
-                crate::ground::fmt::fmt_num((t.percent * 10.0).round() / 10.0),
-                crate::ground::fmt::fmt_num(t.band[0]),
-                crate::ground::fmt::fmt_num(t.band[1]),
-                if tap.forming { "form" } else { "cutting" },
-                if t.percent > t.band[1] {
-                    "above it the tap's torque rises steeply for little more strength"
-                } else {
-                    "below it the thread holds less"
-                }
-            ));
-        }
-        let torque = match (spec.torque, drill.as_ref().and_then(|d| d.diameter)) {
-            (Some(ts), Some(dia)) if !tap.forming => {
-                let t = &des.thread;
-                let coarse = is_coarse_pitch(t);
-                match ts.kind.k(ts.material.group, coarse) {
-                    Some(k) => {
-                        let nm = crate::standards::torque::tapping_torque(
-                            t.half_angle(),
-                            ts.material.kc,
-                            k,
-                            t.nominal_diameter,
-                            dia,
-                        );
-                        if !ts.kind_given {
-                            notes.push(format!(
-                                "the tap is taken as {} for its torque (a named default; give its kind)",
-                                ts.kind.name()
-                            ));
-                        }
-                        let power_kw = h
-                            .spindle
-                            .filter(|s| *s > 0.0)
-                            .map(|s| nm * 2.0 * std::f64::consts::PI * s / 60_000.0);
-                        let machine = spec.machine.as_ref();
-                        let spindle_torque_nm = machine.and_then(|m| m.spindle_torque_nm);
-                        let spindle_power_kw = machine.and_then(|m| m.spindle_power_kw);
-                        let over_torque = spindle_torque_nm.filter(|max| nm > *max);
-                        let over_power = match (power_kw, spindle_power_kw) {
-                            (Some(p), Some(max)) if p > max => Some((p, max)),
-                            _ => None,
-                        };
-                        let name = machine.map_or("", |m| m.name.as_str());
-                        if let Some(max) = over_torque {
-                            notes.push(format!(
-                                "warning: the tap needs {} N·m, more than the spindle's {} N·m (the machine file '{name}'): the spindle stalls or the tap breaks",
-                                crate::ground::fmt::fmt_num((nm * 100.0).round() / 100.0),
-                                crate::ground::fmt::fmt_num(max)
-                            ));
-                        }
-                        if let Some((p, max)) = over_power {
-                            notes.push(format!(
-                                "warning: the tap needs {} kW at S{}, more than the spindle's {} kW (the machine file '{name}')",
-                                crate::ground::fmt::fmt_num((p * 1000.0).round() / 1000.0),
-                                crate::ground::fmt::fmt_num(h.spindle.unwrap_or(0.0)),
-                                crate::ground::fmt::fmt_num(max)
-                            ));
-                        }
-                        if machine.is_some() && spindle_torque_nm.is_none() && spindle_power_kw.is_none() {
-                            notes.push(format!(
-                                "the machine file '{name}' gives no spindle_torque_nm or spindle_power_kw: the torque is not held against the spindle"
-                            ));
-                        }
-                        Some(TapTorque {
-                            newton_metres: nm,
-                            power_kw,
-                            material: ts.material.name,
-                            kc: ts.material.kc,
-                            tap_kind: ts.kind,
-                            k,
-                            coarse,
-                            spindle_torque_nm,
-                            spindle_power_kw,
-                            exceeds_spindle: over_torque.is_some() || over_power.is_some(),
-                        })
-                    }
-                    None => {
-                        notes.push(format!(
-                            "the tap maker's table gives no K for a {} tap in {} at a {} pitch: no torque",
-                            ts.kind.name(),
-                            ts.material.name,
-                            if coarse { "coarse" } else { "fine" }
-                        ));
-                        None
-                    }
-                }
+                "below it the thread holds less"
             }
-            (Some(_), Some(_)) => {
-                notes.push("a form tap's torque is not computed: the tap maker's equation is for cutting taps (a form tap's is two to three times as high, by the same maker)".to_string());
-                None
-            }
-            (Some(_), None) => {
-                notes.push("the drill is not known: no torque".to_string());
-                None
-            }
-            (None, _) => None,
-        };
-        let wall = match (&drill, h.bottom) {
-            (Some(DrillInfo { diameter: Some(dia), cycle, point_angle, .. }), Some(tz)) => {
-                cycle.bottom.map_or_else(Vec::new, |dz| {
-                    let crest = formed.and_then(|f| f.minor_diameter).unwrap_or(*dia);
-                    hole_wall(&des.thread, chamfer, *dia, crest, tz, dz, *point_angle)
-                })
-            }
-            _ => Vec::new(),
-        };
-        holes.push(TappedHole {
-            cycle: h.clone(),
-            tap: TapInfo {
-                designation: des.text.clone(),
-                designation_from: tap.from,
-                designation_line: tap.line,
-                lead,
-                chamfer_pitches,
-                chamfer_given,
-                forming: tap.forming,
-                chamfer_length: chamfer,
-                full_thread_z: h.bottom.map(|z| z + chamfer),
-                minor_diameter: limits.minor_diameter,
-                pitch_diameter: limits.pitch_diameter,
-            },
-            drill,
-            thread_percent,
-            drill_that_passes: crate::standards::drills::drill_that_passes(&des.thread, hole_window, res)?,
-            formed,
-            torque,
-            checks,
-            pass,
-            notes,
-            wall,
-        });
+        ));
     }
-    let pass = holes.iter().all(|h| h.pass);
-    let drilled: Vec<crate::gcode::HoleCycle> =
-        prog.holes.iter().filter(|h| h.kind == HoleKind::Drill).cloned().collect();
-    Ok(TapReport {
-        program: name.clone(),
-        dialect: spec.dialect,
-        holes,
-        drills: drilled.len(),
-        drilled,
-        pass,
-        notes: prog.notes,
-        machine: prog.machine,
-        stock_bottom: spec.stock_bottom.or(prog.stock_bottom.map(|s| s.0)),
-    })
+    percent
+}
+
+/// The tap maker's torque for a cutting tap, held against the machine's spindle.
+fn torque_of(
+    spec: &TapSpec,
+    h: &HoleCycle,
+    t: &crate::standards::BasicThread,
+    drill: Option<&DrillInfo>,
+    forming: bool,
+    notes: &mut Vec<String>,
+) -> Option<TapTorque> {
+    match (spec.torque, drill.and_then(|d| d.diameter)) {
+        (Some(ts), Some(dia)) if !forming => {
+            let coarse = is_coarse_pitch(t);
+            match ts.kind.k(ts.material.group, coarse) {
+                Some(k) => {
+                    let nm = crate::standards::torque::tapping_torque(
+                        t.half_angle(),
+                        ts.material.kc,
+                        k,
+                        t.nominal_diameter,
+                        dia,
+                    );
+                    if !ts.kind_given {
+                        notes.push(format!(
+                            "the tap is taken as {} for its torque (a named default; give its kind)",
+                            ts.kind.name()
+                        ));
+                    }
+                    let power_kw = h
+                        .spindle
+                        .filter(|s| *s > 0.0)
+                        .map(|s| nm * 2.0 * std::f64::consts::PI * s / 60_000.0);
+                    let machine = spec.machine.as_ref();
+                    let spindle_torque_nm = machine.and_then(|m| m.spindle_torque_nm);
+                    let spindle_power_kw = machine.and_then(|m| m.spindle_power_kw);
+                    let over_torque = spindle_torque_nm.filter(|max| nm > *max);
+                    let over_power = match (power_kw, spindle_power_kw) {
+                        (Some(p), Some(max)) if p > max => Some((p, max)),
+                        _ => None,
+                    };
+                    let name = machine.map_or("", |m| m.name.as_str());
+                    if let Some(max) = over_torque {
+                        notes.push(format!(
+                            "warning: the tap needs {} N·m, more than the spindle's {} N·m (the machine file '{name}'): the spindle stalls or the tap breaks",
+                            crate::ground::fmt::fmt_num((nm * 100.0).round() / 100.0),
+                            crate::ground::fmt::fmt_num(max)
+                        ));
+                    }
+                    if let Some((p, max)) = over_power {
+                        notes.push(format!(
+                            "warning: the tap needs {} kW at S{}, more than the spindle's {} kW (the machine file '{name}')",
+                            crate::ground::fmt::fmt_num((p * 1000.0).round() / 1000.0),
+                            crate::ground::fmt::fmt_num(h.spindle.unwrap_or(0.0)),
+                            crate::ground::fmt::fmt_num(max)
+                        ));
+                    }
+                    if machine.is_some() && spindle_torque_nm.is_none() && spindle_power_kw.is_none() {
+                        notes.push(format!(
+                            "the machine file '{name}' gives no spindle_torque_nm or spindle_power_kw: the torque is not held against the spindle"
+                        ));
+                    }
+                    Some(TapTorque {
+                        newton_metres: nm,
+                        power_kw,
+                        material: ts.material.name,
+                        kc: ts.material.kc,
+                        tap_kind: ts.kind,
+                        k,
+                        coarse,
+                        spindle_torque_nm,
+                        spindle_power_kw,
+                        exceeds_spindle: over_torque.is_some() || over_power.is_some(),
+                    })
+                }
+                None => {
+                    notes.push(format!(
+                        "the tap maker's table gives no K for a {} tap in {} at a {} pitch: no torque",
+                        ts.kind.name(),
+                        ts.material.name,
+                        if coarse { "coarse" } else { "fine" }
+                    ));
+                    None
+                }
+            }
+        }
+        (Some(_), Some(_)) => {
+            notes.push("a form tap's torque is not computed: the tap maker's equation is for cutting taps (a form tap's is two to three times as high, by the same maker)".to_string());
+            None
+        }
+        (Some(_), None) => {
+            notes.push("the drill is not known: no torque".to_string());
+            None
+        }
+        (None, _) => None,
+    }
 }
 
 /// A length in a program's units, to their resolution's tenth (0.1 µm, 0.00001 in) without
