@@ -753,219 +753,16 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     let opts = ReadOptions { moves: true, allow_no_threading: true, ..spec.reading.clone() };
     let prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
     let mut notes: Vec<String> = prog.notes.iter().map(|n| n.to_string()).collect();
-    // The tool of the first helix: its cutter and its compensation from the table.
-    let first_helix = prog.moves.iter().find(|m| m.arc.is_some() && (m.to[2] - m.from[2]).abs() > 1e-9);
-    let first_tool = first_helix.and_then(|m| m.tool);
-    // Else the thread mill the program's comments name for that tool.
-    let commented = match (spec.cutter, first_helix) {
-        (None, Some(m)) => cutter_in_comments(text, spec.dialect, spec.tools.as_ref(), m),
-        _ => None,
-    };
-    let c = match (spec.cutter, &spec.tools, commented) {
-        (Some(c), _, _) => c,
-        (None, _, Some(found)) => {
-            notes.push(found.note(first_tool.unwrap_or(0)));
-            found.cutter
-        }
-        (None, Some(tt), None) => {
-            let t = first_tool.ok_or_else(|| {
-                Error::Input(
-                    "the program names no tool before its helices: give the cutter (‹cutter_diameter›)"
-                        .into(),
-                )
-            })?;
-            match tt.tool(t) {
-                Some((crate::analysis::tools::Tool::Insert(crate::analysis::tools::InsertChoice::File(p)), _)) => {
-                    let text = crate::ground::input::read_text_bounded(p, crate::ground::bounds::MAX_DATA_FILE_BYTES, "a thread mill's file")?;
-                    Cutter::from_toml(&text, &p.display().to_string())?
-                }
-                Some((crate::analysis::tools::Tool::Insert(crate::analysis::tools::InsertChoice::Toml { name, text }), _)) => {
-                    Cutter::from_toml(text, name)?
-                }
-                Some((_, written)) => {
-                    return Err(Error::Input(format!(
-                        "tool T{t} is \"{written}\" in {}, not a thread mill's file (write {t} = \"thread-mill.toml\")",
-                        tt.source
-                    )))
-                }
-                None => return Err(Error::Input(format!("tool T{t} of the helices is not in {}", tt.source))),
-            }
-        }
-        (None, None, None) => {
-            return Err(Error::Input(match first_tool {
-                Some(t) => format!("give the cutter: ‹cutter_diameter›, a tool table (‹tools›), or a comment naming T{t} a thread mill, such as (T{t} THREAD MILL D8)"),
-                None => "give the cutter: ‹cutter_diameter› or a tool table (‹tools›)".into(),
-            }))
-        }
-    };
-    // A TNC compensates RL/RR by the tool table's radius, which is the cutter's: a Klartext
-    // program's helices (its thread-milling cycles' among them) need no D register.
-    let tnc = spec.dialect == crate::gcode::Dialect::Klartext;
-    let tnc_comp = (tnc && spec.comp_radius.is_none() && prog.moves.iter().any(|m| m.comp != 0)).then(|| {
-        notes.push(format!(
-            "RL/RR compensate by the cutter's radius, {} mm, as a TNC takes it from its tool table (‹comp_radius› gives another)",
-            crate::ground::fmt::fmt_num(0.5 * c.diameter)
-        ));
-        0.5 * c.diameter
-    });
-    let comp = match (spec.comp_radius.or(tnc_comp), &spec.tools, first_tool) {
-        (Some(d), _, _) => Some(d),
-        (None, Some(tt), Some(t)) => Some(tt.offset(t).unwrap_or_else(|| {
-            if prog.moves.iter().any(|m| m.comp != 0) {
-                notes.push(format!(
-                    "no [offsets] entry for T{t} in {}: the compensation is taken as 0.0 mm",
-                    tt.source
-                ));
-            }
-            0.0
-        })),
-        _ => None,
-    };
-    if !(c.diameter.is_finite() && c.diameter > 0.0 && c.diameter < 1000.0) {
-        return Err(Error::Input(format!("cutter diameter {} mm: a positive length under 1 m", c.diameter)));
-    }
-    if !(c.angle_deg.is_finite() && c.angle_deg > 0.0 && c.angle_deg < 180.0) {
-        return Err(Error::Input(format!("cutter angle {}°: from over 0 to under 180", c.angle_deg)));
-    }
-    if !(c.tip_radius.is_finite() && c.tip_radius >= 0.0 && c.tip_radius < 0.5 * c.diameter) {
-        return Err(Error::Input(format!(
-            "cutter tip radius {} mm: from 0 to under the cutter's radius",
-            c.tip_radius
-        )));
-    }
+    let (c, first_tool) = cutter_of(spec, &prog, &mut notes)?;
+    let comp = compensation(spec, &prog, c, first_tool, &mut notes)?;
     let opts = ParseOptions { allow_nonstandard: spec.allow_nonstandard };
-    if let Some(d) = comp.filter(|d| !(d.is_finite() && *d >= 0.0)) {
-        return Err(Error::Input(format!("compensation {d} mm must be a length ≥ 0")));
-    }
-    // The helices, read once: the thread's name may come from them.
-    let hs = helices(&prog.moves, name, comp, &mut notes)?;
-    let named = match &spec.designation {
-        Some(d) => crate::analysis::naming::Named::given(d),
-        None => name_milled(text, spec.dialect, &prog.moves, &hs, (c.diameter, c.angle_deg), opts, name)?,
-    };
-    if !named.why.is_empty() {
-        notes.push(named.why.clone());
-    }
-    let des = parse_designation(&named.designation, opts)?;
-    let kind = match (&des.external, &des.internal) {
-        (None, Some(_)) => ThreadKind::Internal,
-        (Some(_), None) | (None, None) => ThreadKind::External,
-        // Both sides named (an NPT size, `6H/6g`): the side the helices cut, inside the
-        // thread's diameter or outside it.
-        (Some(_), Some(_)) => {
-            let inside = hs.first().is_some_and(|h| 2.0 * h.radius < des.thread.nominal_diameter);
-            let kind = if inside { ThreadKind::Internal } else { ThreadKind::External };
-            notes.push(format!(
-                "{} names both sides: the helices run {} its diameter, so its {} thread is checked",
-                des.text,
-                if inside { "inside" } else { "outside" },
-                kind.name()
-            ));
-            kind
-        }
-    };
+    let (hs, named, des, kind, limits) = thread_of(spec, &prog, c, comp, opts, &mut notes)?;
     let internal = kind == ThreadKind::Internal;
-    let limits =
-        limits_for(&des, kind)?.ok_or_else(|| Error::Input("the designation needs its class".into()))?;
     let t = des.thread;
     let p = t.pitch;
-    // A taper thread's helices spiral along its cone; a parallel thread's lie on circles.
     let taper = crate::analysis::taper::taper_of(&limits, kind, p);
-    let mut hs = match taper {
-        Some(_) => {
-            notes.push(crate::analysis::taper::TAPER_FACE_NOTE.into());
-            if hs.iter().any(|h| h.radius_change != 0.0) {
-                notes.push("each helix arc whose end lies off its start's circle is swept as a spiral, its radius linear in the angle (a named reading: the controls' spiral interpolation)".into());
-            }
-            hs
-        }
-        None => circular(hs, name, &mut notes)?,
-    };
-    notes.extend(entry_and_exit(&prog.moves, &hs));
-    if let Some(d) = comp {
-        if hs.iter().any(|h| (h.radius - h.programmed_radius).abs() > 1e-12)
-            && (d - 0.5 * c.diameter).abs() > 1e-3
-        {
-            notes.push(format!(
-                "the compensation {d} mm is not the cutter's radius {} mm: the helix radius follows the D register, and so does the thread",
-                crate::ground::fmt::fmt_num(0.5 * c.diameter)
-            ));
-        }
-    }
-    // Compensation on the wrong side: an internal thread is milled with the cutter's centre
-    // inside its programmed path (G41 with G3, G42 with G2), an external one outside it.
-    if let Some(h) = hs.iter().find(|h| {
-        let out = h.radius - h.programmed_radius;
-        if internal {
-            out > 1e-9
-        } else {
-            out < -1e-9
-        }
-    }) {
-        return Err(Error::Program {
-            file: name.clone(),
-            line: h.line,
-            column: 1,
-            message: format!(
-                "the compensation puts the cutter's centre {} mm {} the programmed helix (radius {} mm), {}: {}",
-                crate::ground::fmt::fmt_num((h.radius - h.programmed_radius).abs()),
-                if internal { "outside" } else { "inside" },
-                crate::ground::fmt::fmt_num(h.programmed_radius),
-                if internal { "into the bore's wall" } else { "into the blank" },
-                if internal {
-                    "an internal thread is milled with the cutter inside its path (G41 with G3, G42 with G2)"
-                } else {
-                    "an external thread is milled with the cutter outside its path (G42 with G3, G41 with G2)"
-                }
-            ),
-        });
-    }
-    let Some(first) = hs.first().cloned() else {
-        return Err(Error::Program {
-            file: name.clone(),
-            line: 1,
-            column: 1,
-            message: "no helix in the program (G2/G3 with a Z change in G17): nothing is thread-milled"
-                .into(),
-        });
-    };
-    // Climb milling (spindle clockwise): an internal thread's cutter goes counter-clockwise
-    // (G3), an external one's clockwise (G2).
-    for h in &mut hs {
-        h.climb = (h.sweep_deg > 0.0) == internal;
-    }
-    let blank = match spec.blank_diameter {
-        Some(b) if !(b.is_finite() && b > 0.0) => {
-            return Err(Error::Input(format!("blank diameter {b} mm must be positive")))
-        }
-        Some(b) => b,
-        None => {
-            let lim = if internal { limits.minor_diameter } else { limits.major_diameter };
-            let (b, from) = match (lim.min, lim.max) {
-                (Some(a), Some(b)) => (0.5 * (a + b), "the middle of the class's"),
-                (Some(a), None) | (None, Some(a)) => (a, "the class's"),
-                // A taper thread: the basic cone's diameter at its gauge plane, a cylinder (as
-                // `verify` turns it).
-                (None, None) if internal => {
-                    (t.minor_diameter_internal(), "a cylinder at the gauge plane's basic")
-                }
-                (None, None) => (t.nominal_diameter, "a cylinder at the gauge plane's basic"),
-            };
-            notes.push(format!(
-                "the {} is taken as Ø{b:.4}, {from} {}{} (‹blank_diameter› sets it)",
-                if internal { "bore" } else { "blank" },
-                if internal { "D1" } else { "d" },
-                if lim.min.is_some() && lim.max.is_some() {
-                    " limits"
-                } else if lim.min.is_some() || lim.max.is_some() {
-                    " limit"
-                } else {
-                    ""
-                }
-            ));
-            b
-        }
-    };
+    let (hs, first) = prepared_helices(hs, taper, &prog.moves, comp, c, internal, name, &mut notes)?;
+    let blank = blank_of(spec.blank_diameter, &limits, &t, internal, &mut notes)?;
     // The tooth reaches the depth of the thread's fundamental triangle, deeper than any
     // standard thread (an NPT's 0.8·P and a Whitworth's 0.64·P passed the 0.625·P taken before,
     // so the neck cut their crests flat).
@@ -975,165 +772,21 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         crate::ground::fmt::fmt_num((tooth_depth * 1e4).round() / 1e4)
     ));
     let neck = (0.5 * c.diameter - tooth_depth).max(0.0);
-    // The section: around the helices' middle height, a whole number of leads from a crossing.
-    // A multi-form cutter's rows reach `span` above the helices.
-    let z_lo = hs.iter().map(|h| h.z[0].min(h.z[1])).fold(f64::INFINITY, f64::min);
-    let z_hi = hs.iter().map(|h| h.z[0].max(h.z[1])).fold(f64::NEG_INFINITY, f64::max) + c.span();
-    if z_hi - z_lo < 4.0 * p {
-        return Err(Error::Program {
-            file: name.clone(),
-            line: first.line,
-            column: 1,
-            message: format!(
-                "the helices (and the cutter's rows) span {:.3} mm of Z, under the four pitches ({:.3} mm) a groove is measured in{}",
-                z_hi - z_lo,
-                4.0 * p,
-                if c.rows == 1 {
-                    // A comb (multi-form) cutter's rows each cut the thread a row pitch higher.
-                    format!(
-                        "; if the cutter is a comb (multi-form) one, its rows reach higher: give them (‹cutter_rows› and ‹cutter_row_pitch› {}, or rows and row_pitch in the thread mill's file)",
-                        crate::ground::fmt::fmt_num(p)
-                    )
-                } else {
-                    String::new()
-                }
-            ),
-        });
-    }
-    // A taper thread is measured where its gauge would read it (the face at Z0), which the
-    // helices must cut two pitches either side of.
-    let z_mid = match taper {
-        Some((_, z_meas, _)) => {
-            if z_meas - 2.0 * p < z_lo - 1e-9 || z_meas + 2.0 * p > z_hi + 1e-9 {
-                return Err(Error::Program {
-                    file: name.clone(),
-                    line: first.line,
-                    column: 1,
-                    message: format!(
-                        "the helices (and the cutter's rows) span Z{} to Z{}: a taper thread is measured at Z{} ({}, the face taken at Z0), which they do not reach two pitches ({} mm) either side of",
-                        crate::ground::fmt::fmt_num(z_lo),
-                        crate::ground::fmt::fmt_num(z_hi),
-                        crate::ground::fmt::fmt_num(z_meas),
-                        if internal { "four pitches into the fitting" } else { "the gauge plane, L1 from the small end" },
-                        crate::ground::fmt::fmt_num(2.0 * p)
-                    ),
-                });
-            }
-            z_meas
-        }
-        None => 0.5 * (z_lo + z_hi),
-    };
-    let n = 1600usize;
-    let zs: Vec<f64> = (0..=n).map(|i| z_mid - 2.0 * p + 4.0 * p * i as f64 / n as f64).collect();
-    // The section's cost is counted before it is cut (10 000 one-turn helices stacked
-    // 0.0006 mm apart took 372 s): the helix pieces and turns that reach each height.
-    let bound = 0.5 * blank;
-    let beyond = bound;
-    let cost = section_cost(&hs, &c, neck, &zs, internal, beyond);
-    if !(cost <= crate::ground::bounds::MAX_SECTION_EVALS as f64) {
-        return Err(Error::Program {
-            file: name.clone(),
-            line: first.line,
-            column: 1,
-            message: format!(
-                "{} helices from here cut the measured section: cutting it takes {} evaluations of the cutter's reach, more than the {} threadcheck allows (about a second)",
-                hs.len(),
-                crate::ground::fmt::fmt_shown((cost / 1e6).round() * 1e6),
-                crate::ground::fmt::fmt_shown(crate::ground::bounds::MAX_SECTION_EVALS as f64)
-            ),
-        });
-    }
-    let section = |only_psi0: bool| -> Vec<Point> {
-        zs.par_iter()
-            .map(|&z| {
-                let r = reach(&hs, &c, neck, z, internal, only_psi0, beyond);
-                let v = match (r, internal) {
-                    (Some(r), true) => r.max(bound),
-                    (Some(r), false) => r.min(bound),
-                    (None, _) => bound,
-                };
-                // A taper thread's section sheared level along its cone (its pitch line level).
-                Point::new(z, v - taper.map_or(0.0, |(_, _, slope)| slope * (z - z_mid)))
-            })
-            .collect()
-    };
-    let profile = section(false);
-    let tooth = section(true);
-    let ms = match taper {
-        // A taper thread's maximum material is its gauge plane's, not a parallel profile's.
-        Some(_) => MeasureSetup { mmc_pitch_diameter: None, ..MeasureSetup::for_class(&t, kind, &limits) },
-        None => MeasureSetup::for_class(&t, kind, &limits),
-    };
-    // A section that holds no thread to measure is the helices' fault: said at their first line,
-    // with the starts they cut when the designation has more.
-    let phases = start_phases(&hs, t.lead());
-    let at_helices = |e: Error| match e {
-        Error::Geometry(m) => {
-            let starts = if (phases.len() as u32) < t.starts {
-                format!(
-                    "; the helices cut {} of the {} starts {} has, a pitch ({} mm) apart",
-                    phases.len(),
-                    t.starts,
-                    des.text,
-                    crate::ground::fmt::fmt_num(t.pitch)
-                )
-            } else {
-                String::new()
-            };
-            Error::Program {
-                file: name.clone(),
-                line: first.line,
-                column: 1,
-                message: format!("the thread the helices from here mill cannot be measured: {m}{starts}"),
-            }
-        }
-        e => e,
-    };
-    let mut measured = measure(&ms, &profile, z_mid).map_err(at_helices)?;
-    let mut tooth_m = measure(&ms, &tooth, z_mid).map_err(at_helices)?;
-    // The root radius is the envelope's own curvature at its deepest point, from the exact reach
-    // (the sampled section's 3.75 µm spacing cannot resolve a root of a few µm).
-    let root_of = |pts: &[Point], only_psi0: bool| -> Option<f64> {
-        let deepest = |p: &&Point| if internal { p.r } else { -p.r };
-        let near: Vec<&Point> = pts.iter().filter(|p| (p.z - z_mid).abs() <= 0.5 * t.pitch).collect();
-        let at = near.iter().copied().max_by(|a, b| deepest(a).total_cmp(&deepest(b)))?;
-        let r_at = |z: f64| {
-            reach(
-                &hs,
-                &c,
-                neck,
-                z,
-                internal,
-                only_psi0,
-                if internal { f64::NEG_INFINITY } else { f64::INFINITY },
-            )
-            .map(|r| if internal { r } else { -r })
-        };
-        let dz = 4.0 * t.pitch / 1600.0;
-        let (z0, _) = crate::geometry::measure::golden_min(
-            &|z| r_at(z).map_or(f64::INFINITY, |r| -r),
-            at.z - dz,
-            at.z + dz,
-            80,
-        );
-        let radius = |h: f64| -> Option<f64> {
-            let (r0, rp, rm) = (r_at(z0)?, r_at(z0 + h)?, r_at(z0 - h)?);
-            let second = (rp + rm - 2.0 * r0) / (h * h);
-            (second < 0.0).then(|| 1.0 / -second)
-        };
-        // A corner (a sharp tooth's tip alone) gives a "radius" that halves with the step: 0.
-        let (a, b) = (radius(2e-4)?, radius(1e-4)?);
-        Some(if b < 0.75 * a { 0.0 } else { b })
-    };
-    if let Some((_, _, slope)) = taper {
-        // The flanks as they stand to the axis (the section was sheared level along the cone).
-        measured.flank_angles = crate::analysis::taper::true_flank_angles(measured.flank_angles, slope, kind);
-        tooth_m.flank_angles = crate::analysis::taper::true_flank_angles(tooth_m.flank_angles, slope, kind);
-        notes.push("taper thread: measured along its cone (the section sheared level by the taper), the flank angles as they stand to the axis".into());
-    }
-    measured.root_radius = root_of(&profile, false).or(measured.root_radius);
-    tooth_m.root_radius = root_of(&tooth, true).or(tooth_m.root_radius);
-    notes.push("the root radius is the envelope's curvature at its deepest point, from the cutter's exact reach (0.1 µm either side; 0 where it is a corner)".into());
+    let sweep = Sweep { hs: &hs, c: &c, neck, internal };
+    let z_mid = section_middle(&sweep, p, taper, &first, name)?;
+    let (zs, profile, tooth) = cut_sections(&sweep, blank, taper, z_mid, p, &first, name)?;
+    let (measured, tooth_m, phases) = measure_sections(
+        &sweep,
+        (&profile, &tooth),
+        &des,
+        kind,
+        &limits,
+        taper,
+        z_mid,
+        &first,
+        name,
+        &mut notes,
+    )?;
     // A taper thread's cone: the gauge plane from the pitch diameter measured at Z{z_mid}, the
     // taper from the helices' spiral (the diameter's change per mm of depth).
     let cone = taper.map(|(gp, _, _)| {
@@ -1143,96 +796,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         crate::analysis::taper::cone_of(gp, kind, z_mid, measured.pitch_diameter, measured_taper, p)
     });
     let mut cs = checks(&measured, &limits, &t, kind, measured.root_pockets <= 1, cone);
-    // The lead each turn cuts against the designation's, at the program's resolution.
-    let lead_err =
-        turn_leads(&hs)
-            .iter()
-            .map(|(_, l)| l - t.lead())
-            .fold(0.0f64, |a, e| if e.abs() > a.abs() { e } else { a });
-    // Sums of rounded Z travels: nanometres are the arithmetic's, not the program's.
-    let lead_err = (lead_err * 1e9).round() / 1e9;
-    let lead_ok = lead_err.abs() <= 0.0005 + 1e-9;
-    cs.push(Check {
-        feature: crate::analysis::check::CheckFeature::Lead,
-        kind: crate::analysis::check::CheckKind::Process,
-        value: t.lead() + lead_err,
-        min: Some(t.lead()),
-        max: Some(t.lead()),
-        ok: lead_ok,
-        deviation_um: if lead_ok { 0.0 } else { (lead_err * 1e4).round() / 10.0 },
-        note: Some("the Z travel of each turn of the helices against the designation's lead".into()),
-        unverified: None,
-    });
-    // The starts: each helix's Z where it crosses the +X half-plane, modulo the lead; a
-    // multi-start thread's starts lie a pitch apart (issue 46).
-    if t.starts > 1 || phases.len() > 1 {
-        cs.push(starts_of(&phases, &t));
-    }
-    // The hand: in G17, looking down the tool axis, a right-hand helix turns counter-clockwise
-    // (G3) rising or clockwise (G2) falling, inside a bore or outside a blank alike
-    // (../shared/notes/machining-centres.md §3.2, after Heidenhain's helix table).
-    let hand_of = |h: &crate::geometry::helix::Helix| {
-        if (h.z[1] > h.z[0]) == (h.sweep_deg > 0.0) {
-            crate::standards::Hand::Right
-        } else {
-            crate::standards::Hand::Left
-        }
-    };
-    let other_hand = hs.iter().find(|h| hand_of(h) != t.hand);
-    let hand_name = |h: crate::standards::Hand| match h {
-        crate::standards::Hand::Right => "right",
-        crate::standards::Hand::Left => "left",
-    };
-    cs.push(Check {
-        feature: crate::analysis::check::CheckFeature::Hand,
-        kind: crate::analysis::check::CheckKind::Size,
-        value: if other_hand.is_none() { 1.0 } else { 0.0 },
-        min: None,
-        max: None,
-        ok: other_hand.is_none(),
-        deviation_um: 0.0,
-        note: Some(match other_hand {
-            None => format!(
-                "every helix cuts a {}-hand thread, the designation's",
-                hand_name(t.hand)
-            ),
-            Some(h) => format!(
-                "the helix at line {} turns {} going {} in Z: a {}-hand thread, the designation {} is {}-hand",
-                h.line,
-                if h.sweep_deg > 0.0 { "counter-clockwise (G3)" } else { "clockwise (G2)" },
-                if h.z[1] > h.z[0] { "up" } else { "down" },
-                hand_name(hand_of(h)),
-                des.text,
-                hand_name(t.hand)
-            ),
-        }),
-        unverified: None,
-    });
-    if c.rows > 1 {
-        // Each row cuts the groove its neighbour cuts one pitch along: the rows must lie a pitch
-        // apart, at the standard's resolution.
-        let off = c.row_pitch - p;
-        let ok = limits.resolution.round(c.row_pitch) == limits.resolution.round(p);
-        cs.push(Check {
-            feature: crate::analysis::check::CheckFeature::RowPitch,
-            kind: crate::analysis::check::CheckKind::Process,
-            value: c.row_pitch,
-            min: Some(p),
-            max: Some(p),
-            ok,
-            deviation_um: if ok { 0.0 } else { (off * 1e4).round() / 10.0 },
-            note: Some(format!(
-                "the {} rows of the multi-form cutter must lie one pitch apart; each cuts its neighbour's groove",
-                c.rows
-            )),
-            unverified: None,
-        });
-        notes.push(format!(
-            "a multi-form cutter of {} rows {} mm apart, the first at the programmed point and the others above it (a named default)",
-            c.rows,
-            crate::ground::fmt::fmt_num(c.row_pitch)
-        ));
-    }
+    process_checks(&mut cs, &hs, &phases, &des, c, &limits, &mut notes);
     if hs.iter().any(|h| !h.climb) {
         notes.push("conventional milling on some helices (climb milling wants G3 for a nut, G2 for a bolt, spindle M3)".into());
     }
@@ -1327,6 +891,603 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         basic,
         zone,
     })
+}
+
+/// The cutter of the helices: the one given, else the thread mill the program's comments name for
+/// the first helix's tool, else the tool table's; and that tool.
+fn cutter_of(
+    spec: &ThreadMillSpec,
+    prog: &crate::gcode::Program,
+    notes: &mut Vec<String>,
+) -> Result<(Cutter, Option<u32>), Error> {
+    let text = &spec.program.0;
+    // The tool of the first helix: its cutter and its compensation from the table.
+    let first_helix = prog.moves.iter().find(|m| m.arc.is_some() && (m.to[2] - m.from[2]).abs() > 1e-9);
+    let first_tool = first_helix.and_then(|m| m.tool);
+    // Else the thread mill the program's comments name for that tool.
+    let commented = match (spec.cutter, first_helix) {
+        (None, Some(m)) => cutter_in_comments(text, spec.dialect, spec.tools.as_ref(), m),
+        _ => None,
+    };
+    let c = match (spec.cutter, &spec.tools, commented) {
+        (Some(c), _, _) => c,
+        (None, _, Some(found)) => {
+            notes.push(found.note(first_tool.unwrap_or(0)));
+            found.cutter
+        }
+        (None, Some(tt), None) => {
+            let t = first_tool.ok_or_else(|| {
+                Error::Input(
+                    "the program names no tool before its helices: give the cutter (‹cutter_diameter›)"
+                        .into(),
+                )
+            })?;
+            match tt.tool(t) {
+                Some((crate::analysis::tools::Tool::Insert(crate::analysis::tools::InsertChoice::File(p)), _)) => {
+                    let text = crate::ground::input::read_text_bounded(p, crate::ground::bounds::MAX_DATA_FILE_BYTES, "a thread mill's file")?;
+                    Cutter::from_toml(&text, &p.display().to_string())?
+                }
+                Some((crate::analysis::tools::Tool::Insert(crate::analysis::tools::InsertChoice::Toml { name, text }), _)) => {
+                    Cutter::from_toml(text, name)?
+                }
+                Some((_, written)) => {
+                    return Err(Error::Input(format!(
+                        "tool T{t} is \"{written}\" in {}, not a thread mill's file (write {t} = \"thread-mill.toml\")",
+                        tt.source
+                    )))
+                }
+                None => return Err(Error::Input(format!("tool T{t} of the helices is not in {}", tt.source))),
+            }
+        }
+        (None, None, None) => {
+            return Err(Error::Input(match first_tool {
+                Some(t) => format!("give the cutter: ‹cutter_diameter›, a tool table (‹tools›), or a comment naming T{t} a thread mill, such as (T{t} THREAD MILL D8)"),
+                None => "give the cutter: ‹cutter_diameter› or a tool table (‹tools›)".into(),
+            }))
+        }
+    };
+    Ok((c, first_tool))
+}
+
+/// The cutter checked, and the compensation the helices are read with: the one given, a TNC's
+/// tool radius, else the tool table's offset.
+fn compensation(
+    spec: &ThreadMillSpec,
+    prog: &crate::gcode::Program,
+    c: Cutter,
+    first_tool: Option<u32>,
+    notes: &mut Vec<String>,
+) -> Result<Option<f64>, Error> {
+    // A TNC compensates RL/RR by the tool table's radius, which is the cutter's: a Klartext
+    // program's helices (its thread-milling cycles' among them) need no D register.
+    let tnc = spec.dialect == crate::gcode::Dialect::Klartext;
+    let tnc_comp = (tnc && spec.comp_radius.is_none() && prog.moves.iter().any(|m| m.comp != 0)).then(|| {
+        notes.push(format!(
+            "RL/RR compensate by the cutter's radius, {} mm, as a TNC takes it from its tool table (‹comp_radius› gives another)",
+            crate::ground::fmt::fmt_num(0.5 * c.diameter)
+        ));
+        0.5 * c.diameter
+    });
+    let comp = match (spec.comp_radius.or(tnc_comp), &spec.tools, first_tool) {
+        (Some(d), _, _) => Some(d),
+        (None, Some(tt), Some(t)) => Some(tt.offset(t).unwrap_or_else(|| {
+            if prog.moves.iter().any(|m| m.comp != 0) {
+                notes.push(format!(
+                    "no [offsets] entry for T{t} in {}: the compensation is taken as 0.0 mm",
+                    tt.source
+                ));
+            }
+            0.0
+        })),
+        _ => None,
+    };
+    if !(c.diameter.is_finite() && c.diameter > 0.0 && c.diameter < 1000.0) {
+        return Err(Error::Input(format!("cutter diameter {} mm: a positive length under 1 m", c.diameter)));
+    }
+    if !(c.angle_deg.is_finite() && c.angle_deg > 0.0 && c.angle_deg < 180.0) {
+        return Err(Error::Input(format!("cutter angle {}°: from over 0 to under 180", c.angle_deg)));
+    }
+    if !(c.tip_radius.is_finite() && c.tip_radius >= 0.0 && c.tip_radius < 0.5 * c.diameter) {
+        return Err(Error::Input(format!(
+            "cutter tip radius {} mm: from 0 to under the cutter's radius",
+            c.tip_radius
+        )));
+    }
+    if let Some(d) = comp.filter(|d| !(d.is_finite() && *d >= 0.0)) {
+        return Err(Error::Input(format!("compensation {d} mm must be a length ≥ 0")));
+    }
+    Ok(comp)
+}
+
+/// The helices and the thread they mill: its designation (given, else named from the program),
+/// the side it is on and its class's limits.
+#[allow(clippy::type_complexity)]
+fn thread_of(
+    spec: &ThreadMillSpec,
+    prog: &crate::gcode::Program,
+    c: Cutter,
+    comp: Option<f64>,
+    opts: ParseOptions,
+    notes: &mut Vec<String>,
+) -> Result<
+    (Vec<Helix>, crate::analysis::naming::Named, crate::standards::Designation, ThreadKind, ThreadLimits),
+    Error,
+> {
+    let (text, name) = &spec.program;
+    // The helices, read once: the thread's name may come from them.
+    let hs = helices(&prog.moves, name, comp, notes)?;
+    let named = match &spec.designation {
+        Some(d) => crate::analysis::naming::Named::given(d),
+        None => name_milled(text, spec.dialect, &prog.moves, &hs, (c.diameter, c.angle_deg), opts, name)?,
+    };
+    if !named.why.is_empty() {
+        notes.push(named.why.clone());
+    }
+    let des = parse_designation(&named.designation, opts)?;
+    let kind = match (&des.external, &des.internal) {
+        (None, Some(_)) => ThreadKind::Internal,
+        (Some(_), None) | (None, None) => ThreadKind::External,
+        // Both sides named (an NPT size, `6H/6g`): the side the helices cut, inside the
+        // thread's diameter or outside it.
+        (Some(_), Some(_)) => {
+            let inside = hs.first().is_some_and(|h| 2.0 * h.radius < des.thread.nominal_diameter);
+            let kind = if inside { ThreadKind::Internal } else { ThreadKind::External };
+            notes.push(format!(
+                "{} names both sides: the helices run {} its diameter, so its {} thread is checked",
+                des.text,
+                if inside { "inside" } else { "outside" },
+                kind.name()
+            ));
+            kind
+        }
+    };
+    let limits =
+        limits_for(&des, kind)?.ok_or_else(|| Error::Input("the designation needs its class".into()))?;
+    Ok((hs, named, des, kind, limits))
+}
+
+/// The helices as they are swept: on circles (a spiral for a taper thread), the compensation on
+/// its side, climb milling marked; and the first.
+#[allow(clippy::too_many_arguments)]
+fn prepared_helices(
+    hs: Vec<Helix>,
+    taper: Option<crate::analysis::taper::Taper>,
+    moves: &[Move],
+    comp: Option<f64>,
+    c: Cutter,
+    internal: bool,
+    name: &str,
+    notes: &mut Vec<String>,
+) -> Result<(Vec<Helix>, Helix), Error> {
+    let mut hs = match taper {
+        Some(_) => {
+            notes.push(crate::analysis::taper::TAPER_FACE_NOTE.into());
+            if hs.iter().any(|h| h.radius_change != 0.0) {
+                notes.push("each helix arc whose end lies off its start's circle is swept as a spiral, its radius linear in the angle (a named reading: the controls' spiral interpolation)".into());
+            }
+            hs
+        }
+        None => circular(hs, name, notes)?,
+    };
+    notes.extend(entry_and_exit(moves, &hs));
+    if let Some(d) = comp {
+        if hs.iter().any(|h| (h.radius - h.programmed_radius).abs() > 1e-12)
+            && (d - 0.5 * c.diameter).abs() > 1e-3
+        {
+            notes.push(format!(
+                "the compensation {d} mm is not the cutter's radius {} mm: the helix radius follows the D register, and so does the thread",
+                crate::ground::fmt::fmt_num(0.5 * c.diameter)
+            ));
+        }
+    }
+    // Compensation on the wrong side: an internal thread is milled with the cutter's centre
+    // inside its programmed path (G41 with G3, G42 with G2), an external one outside it.
+    if let Some(h) = hs.iter().find(|h| {
+        let out = h.radius - h.programmed_radius;
+        if internal {
+            out > 1e-9
+        } else {
+            out < -1e-9
+        }
+    }) {
+        return Err(Error::Program {
+            file: name.to_string(),
+            line: h.line,
+            column: 1,
+            message: format!(
+                "the compensation puts the cutter's centre {} mm {} the programmed helix (radius {} mm), {}: {}",
+                crate::ground::fmt::fmt_num((h.radius - h.programmed_radius).abs()),
+                if internal { "outside" } else { "inside" },
+                crate::ground::fmt::fmt_num(h.programmed_radius),
+                if internal { "into the bore's wall" } else { "into the blank" },
+                if internal {
+                    "an internal thread is milled with the cutter inside its path (G41 with G3, G42 with G2)"
+                } else {
+                    "an external thread is milled with the cutter outside its path (G42 with G3, G41 with G2)"
+                }
+            ),
+        });
+    }
+    let Some(first) = hs.first().cloned() else {
+        return Err(Error::Program {
+            file: name.to_string(),
+            line: 1,
+            column: 1,
+            message: "no helix in the program (G2/G3 with a Z change in G17): nothing is thread-milled"
+                .into(),
+        });
+    };
+    // Climb milling (spindle clockwise): an internal thread's cutter goes counter-clockwise
+    // (G3), an external one's clockwise (G2).
+    for h in &mut hs {
+        h.climb = (h.sweep_deg > 0.0) == internal;
+    }
+    Ok((hs, first))
+}
+
+/// The bore (internal) or blank (external) diameter: the one given, else the middle of the
+/// class's D1 or d limits.
+fn blank_of(
+    given: Option<f64>,
+    limits: &ThreadLimits,
+    t: &crate::standards::BasicThread,
+    internal: bool,
+    notes: &mut Vec<String>,
+) -> Result<f64, Error> {
+    let blank = match given {
+        Some(b) if !(b.is_finite() && b > 0.0) => {
+            return Err(Error::Input(format!("blank diameter {b} mm must be positive")))
+        }
+        Some(b) => b,
+        None => {
+            let lim = if internal { limits.minor_diameter } else { limits.major_diameter };
+            let (b, from) = match (lim.min, lim.max) {
+                (Some(a), Some(b)) => (0.5 * (a + b), "the middle of the class's"),
+                (Some(a), None) | (None, Some(a)) => (a, "the class's"),
+                // A taper thread: the basic cone's diameter at its gauge plane, a cylinder (as
+                // `verify` turns it).
+                (None, None) if internal => {
+                    (t.minor_diameter_internal(), "a cylinder at the gauge plane's basic")
+                }
+                (None, None) => (t.nominal_diameter, "a cylinder at the gauge plane's basic"),
+            };
+            notes.push(format!(
+                "the {} is taken as Ø{b:.4}, {from} {}{} (‹blank_diameter› sets it)",
+                if internal { "bore" } else { "blank" },
+                if internal { "D1" } else { "d" },
+                if lim.min.is_some() && lim.max.is_some() {
+                    " limits"
+                } else if lim.min.is_some() || lim.max.is_some() {
+                    " limit"
+                } else {
+                    ""
+                }
+            ));
+            b
+        }
+    };
+    Ok(blank)
+}
+
+/// The height the section is measured about: the helices' middle, or a taper thread's gauge
+/// point; refused when the helices span under four pitches or miss a taper's gauge point.
+fn section_middle(
+    sweep: &Sweep,
+    p: f64,
+    taper: Option<crate::analysis::taper::Taper>,
+    first: &Helix,
+    name: &str,
+) -> Result<f64, Error> {
+    let (hs, c, internal) = (sweep.hs, sweep.c, sweep.internal);
+    // The section: around the helices' middle height, a whole number of leads from a crossing.
+    // A multi-form cutter's rows reach `span` above the helices.
+    let z_lo = hs.iter().map(|h| h.z[0].min(h.z[1])).fold(f64::INFINITY, f64::min);
+    let z_hi = hs.iter().map(|h| h.z[0].max(h.z[1])).fold(f64::NEG_INFINITY, f64::max) + c.span();
+    if z_hi - z_lo < 4.0 * p {
+        return Err(Error::Program {
+            file: name.to_string(),
+            line: first.line,
+            column: 1,
+            message: format!(
+                "the helices (and the cutter's rows) span {:.3} mm of Z, under the four pitches ({:.3} mm) a groove is measured in{}",
+                z_hi - z_lo,
+                4.0 * p,
+                if c.rows == 1 {
+                    // A comb (multi-form) cutter's rows each cut the thread a row pitch higher.
+                    format!(
+                        "; if the cutter is a comb (multi-form) one, its rows reach higher: give them (‹cutter_rows› and ‹cutter_row_pitch› {}, or rows and row_pitch in the thread mill's file)",
+                        crate::ground::fmt::fmt_num(p)
+                    )
+                } else {
+                    String::new()
+                }
+            ),
+        });
+    }
+    // A taper thread is measured where its gauge would read it (the face at Z0), which the
+    // helices must cut two pitches either side of.
+    let z_mid = match taper {
+        Some((_, z_meas, _)) => {
+            if z_meas - 2.0 * p < z_lo - 1e-9 || z_meas + 2.0 * p > z_hi + 1e-9 {
+                return Err(Error::Program {
+                    file: name.to_string(),
+                    line: first.line,
+                    column: 1,
+                    message: format!(
+                        "the helices (and the cutter's rows) span Z{} to Z{}: a taper thread is measured at Z{} ({}, the face taken at Z0), which they do not reach two pitches ({} mm) either side of",
+                        crate::ground::fmt::fmt_num(z_lo),
+                        crate::ground::fmt::fmt_num(z_hi),
+                        crate::ground::fmt::fmt_num(z_meas),
+                        if internal { "four pitches into the fitting" } else { "the gauge plane, L1 from the small end" },
+                        crate::ground::fmt::fmt_num(2.0 * p)
+                    ),
+                });
+            }
+            z_meas
+        }
+        None => 0.5 * (z_lo + z_hi),
+    };
+    Ok(z_mid)
+}
+
+/// The axial sections the helices leave (the whole cutter's and its tooth's at the helices'
+/// own phase alone), four pitches about `z_mid`, their cost bounded first.
+#[allow(clippy::type_complexity)]
+fn cut_sections(
+    sweep: &Sweep,
+    blank: f64,
+    taper: Option<crate::analysis::taper::Taper>,
+    z_mid: f64,
+    p: f64,
+    first: &Helix,
+    name: &str,
+) -> Result<(Vec<f64>, Vec<Point>, Vec<Point>), Error> {
+    let (hs, c, neck, internal) = (sweep.hs, sweep.c, sweep.neck, sweep.internal);
+    let n = 1600usize;
+    let zs: Vec<f64> = (0..=n).map(|i| z_mid - 2.0 * p + 4.0 * p * i as f64 / n as f64).collect();
+    // The section's cost is counted before it is cut (10 000 one-turn helices stacked
+    // 0.0006 mm apart took 372 s): the helix pieces and turns that reach each height.
+    let bound = 0.5 * blank;
+    let beyond = bound;
+    let cost = section_cost(hs, c, neck, &zs, internal, beyond);
+    if !(cost <= crate::ground::bounds::MAX_SECTION_EVALS as f64) {
+        return Err(Error::Program {
+            file: name.to_string(),
+            line: first.line,
+            column: 1,
+            message: format!(
+                "{} helices from here cut the measured section: cutting it takes {} evaluations of the cutter's reach, more than the {} threadcheck allows (about a second)",
+                hs.len(),
+                crate::ground::fmt::fmt_shown((cost / 1e6).round() * 1e6),
+                crate::ground::fmt::fmt_shown(crate::ground::bounds::MAX_SECTION_EVALS as f64)
+            ),
+        });
+    }
+    let section = |only_psi0: bool| -> Vec<Point> {
+        zs.par_iter()
+            .map(|&z| {
+                let r = reach(hs, c, neck, z, internal, only_psi0, beyond);
+                let v = match (r, internal) {
+                    (Some(r), true) => r.max(bound),
+                    (Some(r), false) => r.min(bound),
+                    (None, _) => bound,
+                };
+                // A taper thread's section sheared level along its cone (its pitch line level).
+                Point::new(z, v - taper.map_or(0.0, |(_, _, slope)| slope * (z - z_mid)))
+            })
+            .collect()
+    };
+    let profile = section(false);
+    let tooth = section(true);
+    Ok((zs, profile, tooth))
+}
+
+/// The milled thread and the tooth profile measured, their root radii from the exact reach, a
+/// taper thread's flanks as they stand to the axis; and the helices' starts.
+#[allow(clippy::too_many_arguments)]
+fn measure_sections(
+    sweep: &Sweep,
+    (profile, tooth): (&[Point], &[Point]),
+    des: &crate::standards::Designation,
+    kind: ThreadKind,
+    limits: &ThreadLimits,
+    taper: Option<crate::analysis::taper::Taper>,
+    z_mid: f64,
+    first: &Helix,
+    name: &str,
+    notes: &mut Vec<String>,
+) -> Result<(Measurement, Measurement, Vec<f64>), Error> {
+    let (hs, c, neck, internal) = (sweep.hs, sweep.c, sweep.neck, sweep.internal);
+    let t = des.thread;
+    let ms = match taper {
+        // A taper thread's maximum material is its gauge plane's, not a parallel profile's.
+        Some(_) => MeasureSetup { mmc_pitch_diameter: None, ..MeasureSetup::for_class(&t, kind, limits) },
+        None => MeasureSetup::for_class(&t, kind, limits),
+    };
+    // A section that holds no thread to measure is the helices' fault: said at their first line,
+    // with the starts they cut when the designation has more.
+    let phases = start_phases(hs, t.lead());
+    let at_helices = |e: Error| match e {
+        Error::Geometry(m) => {
+            let starts = if (phases.len() as u32) < t.starts {
+                format!(
+                    "; the helices cut {} of the {} starts {} has, a pitch ({} mm) apart",
+                    phases.len(),
+                    t.starts,
+                    des.text,
+                    crate::ground::fmt::fmt_num(t.pitch)
+                )
+            } else {
+                String::new()
+            };
+            Error::Program {
+                file: name.to_string(),
+                line: first.line,
+                column: 1,
+                message: format!("the thread the helices from here mill cannot be measured: {m}{starts}"),
+            }
+        }
+        e => e,
+    };
+    let mut measured = measure(&ms, profile, z_mid).map_err(at_helices)?;
+    let mut tooth_m = measure(&ms, tooth, z_mid).map_err(at_helices)?;
+    // The root radius is the envelope's own curvature at its deepest point, from the exact reach
+    // (the sampled section's 3.75 µm spacing cannot resolve a root of a few µm).
+    let root_of = |pts: &[Point], only_psi0: bool| -> Option<f64> {
+        let deepest = |p: &&Point| if internal { p.r } else { -p.r };
+        let near: Vec<&Point> = pts.iter().filter(|p| (p.z - z_mid).abs() <= 0.5 * t.pitch).collect();
+        let at = near.iter().copied().max_by(|a, b| deepest(a).total_cmp(&deepest(b)))?;
+        let r_at = |z: f64| {
+            reach(
+                hs,
+                c,
+                neck,
+                z,
+                internal,
+                only_psi0,
+                if internal { f64::NEG_INFINITY } else { f64::INFINITY },
+            )
+            .map(|r| if internal { r } else { -r })
+        };
+        let dz = 4.0 * t.pitch / 1600.0;
+        let (z0, _) = crate::geometry::measure::golden_min(
+            &|z| r_at(z).map_or(f64::INFINITY, |r| -r),
+            at.z - dz,
+            at.z + dz,
+            80,
+        );
+        let radius = |h: f64| -> Option<f64> {
+            let (r0, rp, rm) = (r_at(z0)?, r_at(z0 + h)?, r_at(z0 - h)?);
+            let second = (rp + rm - 2.0 * r0) / (h * h);
+            (second < 0.0).then(|| 1.0 / -second)
+        };
+        // A corner (a sharp tooth's tip alone) gives a "radius" that halves with the step: 0.
+        let (a, b) = (radius(2e-4)?, radius(1e-4)?);
+        Some(if b < 0.75 * a { 0.0 } else { b })
+    };
+    if let Some((_, _, slope)) = taper {
+        // The flanks as they stand to the axis (the section was sheared level along the cone).
+        measured.flank_angles = crate::analysis::taper::true_flank_angles(measured.flank_angles, slope, kind);
+        tooth_m.flank_angles = crate::analysis::taper::true_flank_angles(tooth_m.flank_angles, slope, kind);
+        notes.push("taper thread: measured along its cone (the section sheared level by the taper), the flank angles as they stand to the axis".into());
+    }
+    measured.root_radius = root_of(profile, false).or(measured.root_radius);
+    tooth_m.root_radius = root_of(tooth, true).or(tooth_m.root_radius);
+    notes.push("the root radius is the envelope's curvature at its deepest point, from the cutter's exact reach (0.1 µm either side; 0 where it is a corner)".into());
+    Ok((measured, tooth_m, phases))
+}
+
+/// The process checks of the helices: the lead of each turn, the starts, the hand, a comb
+/// cutter's row pitch.
+fn process_checks(
+    cs: &mut Vec<Check>,
+    hs: &[Helix],
+    phases: &[f64],
+    des: &crate::standards::Designation,
+    c: Cutter,
+    limits: &ThreadLimits,
+    notes: &mut Vec<String>,
+) {
+    let t = des.thread;
+    let p = t.pitch;
+    // The lead each turn cuts against the designation's, at the program's resolution.
+    let lead_err =
+        turn_leads(hs)
+            .iter()
+            .map(|(_, l)| l - t.lead())
+            .fold(0.0f64, |a, e| if e.abs() > a.abs() { e } else { a });
+    // Sums of rounded Z travels: nanometres are the arithmetic's, not the program's.
+    let lead_err = (lead_err * 1e9).round() / 1e9;
+    let lead_ok = lead_err.abs() <= 0.0005 + 1e-9;
+    cs.push(Check {
+        feature: crate::analysis::check::CheckFeature::Lead,
+        kind: crate::analysis::check::CheckKind::Process,
+        value: t.lead() + lead_err,
+        min: Some(t.lead()),
+        max: Some(t.lead()),
+        ok: lead_ok,
+        deviation_um: if lead_ok { 0.0 } else { (lead_err * 1e4).round() / 10.0 },
+        note: Some("the Z travel of each turn of the helices against the designation's lead".into()),
+        unverified: None,
+    });
+    // The starts: each helix's Z where it crosses the +X half-plane, modulo the lead; a
+    // multi-start thread's starts lie a pitch apart (issue 46).
+    if t.starts > 1 || phases.len() > 1 {
+        cs.push(starts_of(phases, &t));
+    }
+    // The hand: in G17, looking down the tool axis, a right-hand helix turns counter-clockwise
+    // (G3) rising or clockwise (G2) falling, inside a bore or outside a blank alike
+    // (../shared/notes/machining-centres.md §3.2, after Heidenhain's helix table).
+    let hand_of = |h: &crate::geometry::helix::Helix| {
+        if (h.z[1] > h.z[0]) == (h.sweep_deg > 0.0) {
+            crate::standards::Hand::Right
+        } else {
+            crate::standards::Hand::Left
+        }
+    };
+    let other_hand = hs.iter().find(|h| hand_of(h) != t.hand);
+    let hand_name = |h: crate::standards::Hand| match h {
+        crate::standards::Hand::Right => "right",
+        crate::standards::Hand::Left => "left",
+    };
+    cs.push(Check {
+        feature: crate::analysis::check::CheckFeature::Hand,
+        kind: crate::analysis::check::CheckKind::Size,
+        value: if other_hand.is_none() { 1.0 } else { 0.0 },
+        min: None,
+        max: None,
+        ok: other_hand.is_none(),
+        deviation_um: 0.0,
+        note: Some(match other_hand {
+            None => format!(
+                "every helix cuts a {}-hand thread, the designation's",
+                hand_name(t.hand)
+            ),
+            Some(h) => format!(
+                "the helix at line {} turns {} going {} in Z: a {}-hand thread, the designation {} is {}-hand",
+                h.line,
+                if h.sweep_deg > 0.0 { "counter-clockwise (G3)" } else { "clockwise (G2)" },
+                if h.z[1] > h.z[0] { "up" } else { "down" },
+                hand_name(hand_of(h)),
+                des.text,
+                hand_name(t.hand)
+            ),
+        }),
+        unverified: None,
+    });
+    if c.rows > 1 {
+        // Each row cuts the groove its neighbour cuts one pitch along: the rows must lie a pitch
+        // apart, at the standard's resolution.
+        let off = c.row_pitch - p;
+        let ok = limits.resolution.round(c.row_pitch) == limits.resolution.round(p);
+        cs.push(Check {
+            feature: crate::analysis::check::CheckFeature::RowPitch,
+            kind: crate::analysis::check::CheckKind::Process,
+            value: c.row_pitch,
+            min: Some(p),
+            max: Some(p),
+            ok,
+            deviation_um: if ok { 0.0 } else { (off * 1e4).round() / 10.0 },
+            note: Some(format!(
+                "the {} rows of the multi-form cutter must lie one pitch apart; each cuts its neighbour's groove",
+                c.rows
+            )),
+            unverified: None,
+        });
+        notes.push(format!(
+            "a multi-form cutter of {} rows {} mm apart, the first at the programmed point and the others above it (a named default)",
+            c.rows,
+            crate::ground::fmt::fmt_num(c.row_pitch)
+        ));
+    }
+}
+
+/// What sweeps the section: the helices, the cutter, its neck's radius and the thread's side.
+struct Sweep<'a> {
+    hs: &'a [Helix],
+    c: &'a Cutter,
+    neck: f64,
+    internal: bool,
 }
 
 /// The radial passes' depths from the bore (internal) or blank (external) against the thread's
