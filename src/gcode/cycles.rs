@@ -165,357 +165,22 @@ const THREADING: [f64; 5] = [32.0, 33.0, 76.0, 78.0, 92.0];
 /// and returns its motion code.
 pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
     let d = m.dialect;
-    let mut motion = None;
-    let mut one_shot = None;
-    let mut offset = None;
-    let mut unknown: Vec<(f64, usize)> = Vec::new();
+    let mut acc = Codes::default();
     let fanuc_like = fanuc_like(d);
-    // A dialect without unit codes (Heidenhain) matches none (no G code is negative).
-    let inch_codes = d.unit_codes().map_or((-1.0, -1.0), |(i, mm)| (f64::from(i), f64::from(mm)));
     for (g, col) in b.gs() {
         if g < 0.0 {
             return Err(m.err(b.line, col, "G with no code"));
         }
         if g.fract() != 0.0 {
-            let base = g.trunc();
-            match (d, g) {
-                // Applied by the dialect (linuxcnc.rs) after the modal codes.
-                (Dialect::LinuxCnc, 92.1 | 92.2 | 92.3) => one_shot = Some(g),
-                (Dialect::LinuxCnc, 59.1 | 59.2 | 59.3) => {}
-                (Dialect::LinuxCnc, 33.1) => {
-                    // Rigid tapping: recorded for `threadcheck tap`, read past by the rest.
-                    let (x, y, z) = m.target(b);
-                    let feed = b.get("K").map(|w| m.len(w));
-                    m.push_synced_tap("G33.1", b.line, col, (x.or(m.x), y.or(m.y)), z, feed, "K")?;
-                    // LinuxCNC moves the tap in a straight line to X Y Z: X or Y away from
-                    // where it stands drags it sideways (its documentation: preposition X and
-                    // Y, give only Z).
-                    let from = [m.x, m.y];
-                    let sideways: Vec<String> = [("X", x, from[0]), ("Y", y, from[1])]
-                        .iter()
-                        .filter_map(|(n, to, at)| match (to, at) {
-                            (Some(to), Some(at)) if (to - at).abs() > 1e-6 => Some(format!(
-                                "{n} from {} to {}",
-                                crate::ground::fmt::fmt_num(*at),
-                                crate::ground::fmt::fmt_num(*to)
-                            )),
-                            _ => None,
-                        })
-                        .collect();
-                    if !sideways.is_empty() {
-                        m.flag(
-                            super::ControlRule::TapMovesSideways,
-                            "G33.1",
-                            b.line,
-                            col,
-                            format!("the tap moves {} as it feeds to the bottom", sideways.join(" and ")),
-                        );
-                    }
-                    m.read_past(
-                        b.line,
-                        col,
-                        "G33.1",
-                        "rigid tapping (threadcheck tap checks it); it returns to its start",
-                    );
-                    one_shot = Some(g);
-                }
-                // The additional work offsets (G54.1 P1…P48/300): a work offset as G54…G59 are.
-                (Dialect::Fanuc | Dialect::Mitsubishi | Dialect::Mazak, 54.1) => {
-                    if let Some(name) = work_offset_name(d, g, b) {
-                        m.work_offset = Some(name);
-                    }
-                    offset = Some(format!("G{g}, a work offset"));
-                }
-                // A machining centre's programmable mirror image (SIE-ISO p.3-65): G51.1 X… Y…
-                // mirrors the positions about the axis values given, G50.1 cancels them.
-                (_, 51.1) if fanuc_like && !m.lathe() => {
-                    one_shot = Some(g);
-                    for (i, axis) in ["X", "Y"].iter().enumerate() {
-                        if let Some(w) = b.get(axis) {
-                            m.mirror[i] = Some(m.len(w));
-                        }
-                    }
-                    if b.get("Z").is_some() {
-                        return Err(m.err(
-                            b.line,
-                            col,
-                            "G51.1 Z: a mirrored tool axis is not read (X and Y are)",
-                        ));
-                    }
-                }
-                (_, 50.1) if fanuc_like && !m.lathe() => {
-                    one_shot = Some(g);
-                    let (x, y) = (b.get("X").is_some(), b.get("Y").is_some());
-                    if x || !y {
-                        m.mirror[0] = None;
-                    }
-                    if y || !x {
-                        m.mirror[1] = None;
-                    }
-                }
-                // The roughing cycles of type 2 run their profile subroutine (Q) as G71 and G72
-                // do: read past, named.
-                (Dialect::LinuxCnc, 71.1 | 72.1) => one_shot = Some(g),
-                // Arc centres absolute (G90.1) or incremental (G91.1): a lathe's arcs are kept as
-                // chords of the turned contour, so the mode is named, not needed.
-                (Dialect::LinuxCnc, 90.1 | 91.1) => {
-                    m.arc_centres_absolute = g == 90.1;
-                    if m.lathe() {
-                        m.read_past(
-                            b.line,
-                            col,
-                            &format!("G{g}"),
-                            "the arc centres' distance mode; the turned contour's arcs are read as chords",
-                        );
-                    }
-                }
-                _ if THREADING.contains(&base) => {
-                    return Err(m.err(
-                        b.line,
-                        col,
-                        format!("G{g} is not G{base}: threadcheck reads G{base} and does not read G{g}"),
-                    ))
-                }
-                // A lathe's polar coordinate interpolation (F0i-TF: G12.1 on, G13.1 off): a live
-                // tool mills the face in X and C.
-                (_, 12.1) if fanuc_like && m.lathe_program() => polar(m, b.line, col, "G12.1"),
-                (_, 13.1) if fanuc_like && m.lathe_program() => polar_off(m, b.line, col, "G13.1"),
-                // G7.1, G42.1, G43.1 and kin: not lathe threading; the block is read for position.
-                _ => {}
-            }
+            decimal_code(m, b, g, col, &mut acc)?;
             continue;
         }
-        // Systems B and C keep the feed modes and the return levels apart in every section
-        // (F0i-TF's G-code list: G94/G95 feed per minute/revolution, G98/G99 the drilling
-        // cycles' initial and R level), as a machining centre does.
-        if d.fanuc_family() && m.gsystem != super::GCodeSystem::A && g.fract() == 0.0 {
-            match g as u32 {
-                94 | 95 => {
-                    m.feed_per_rev = Some(g == 95.0);
-                    continue;
-                }
-                98 | 99 => {
-                    m.return_to_r = g == 99.0;
-                    continue;
-                }
-                _ => {}
-            }
-        }
-        // A program of G-code system B or C: its code in system A's terms.
-        let g = if d.fanuc_family() {
-            match m.gsystem.to_a(g as u32) {
-                // System A has no G91 on a lathe (U and W are its increments).
-                SystemCode::A(91) if m.gsystem == super::GCodeSystem::A && m.lathe() => {
-                    unknown.push((g, col));
-                    continue;
-                }
-                SystemCode::A(a) => f64::from(a),
-                SystemCode::Absolute => {
-                    m.absolute = true;
-                    continue;
-                }
-                SystemCode::Incremental => {
-                    m.absolute = false;
-                    continue;
-                }
-                SystemCode::Setting => continue,
-                // System A's thread cutting in a program read in B or C (which write G33): never
-                // dropped, refused at its place.
-                SystemCode::Foreign if g == 32.0 => {
-                    return Err(m.err(
-                        b.line,
-                        col,
-                        format!(
-                            "G32 is thread cutting in Fanuc G-code system A; this program is read in system {} (thread cutting G33), so the G32 would not cut a thread: give ‹gcode_system› a if the control runs system A",
-                            m.gsystem.name()
-                        ),
-                    ));
-                }
-                SystemCode::Foreign => {
-                    unknown.push((g, col));
-                    continue;
-                }
-            }
-        } else {
-            g
+        let Some(g) = in_system_a(m, b, g, col, &mut acc)? else {
+            continue;
         };
-        if m.plane == 17 || m.mill_reading() {
-            match g as u32 {
-                40 => m.comp = 0,
-                41 => m.comp = 1,
-                42 => m.comp = 2,
-                _ => {}
-            }
-        } else if matches!(g as u32, 40..=42) {
-            m.nose_comp = g as u8 - 40;
-        }
-        match g as u32 {
-            // G112/G113: G12.1/G13.1 as Fanuc's lathes also write them (Haas: G112, XY to XC).
-            112 if fanuc_like && m.lathe_program() => polar(m, b.line, col, "G112"),
-            113 if fanuc_like && m.lathe_program() => polar_off(m, b.line, col, "G113"),
-            // Heidenhain's thread cycle G31 (heidenhain.rs); its G32, the simple thread cycle,
-            // is refused by name; its G76 is no threading code.
-            31 if d == Dialect::Heidenhain => motion = Some((g, col)),
-            32 if d == Dialect::Heidenhain => {
-                return Err(m.err(
-                    b.line,
-                    col,
-                    "G32 (Heidenhain's simple thread cycle) is not supported: its word list is not in the pages read; write G31 (the thread cycle) or G33 (single thread paths)",
-                ))
-            }
-            76 if d == Dialect::Heidenhain => unknown.push((g, col)),
-            // A machining centre's peck drilling, left-hand tapping and fine boring.
-            73 | 74 | 76 if fanuc_like && !m.lathe() => motion = Some((g, col)),
-            // LinuxCNC's G73 is chip-breaking drilling and its G74 left-hand tapping on every
-            // machine (its lathe cycles are G70–G72 and G76).
-            73 | 74 if d == Dialect::LinuxCnc => motion = Some((g, col)),
-            0 | 1 | 2 | 3 | 32 | 33 | 76 => motion = Some((g, col)),
-            92 if d == Dialect::LinuxCnc => one_shot = Some(g),
-            92 if fanuc_like && b.has("S") && !["X", "Z", "U", "W", "F", "E", "R"].iter().any(|w| b.has(w)) => {
-                m.read_past(
-                    b.line,
-                    col,
-                    &format!("G92 S{}", b.get("S").map_or(0.0, |w| w.v)),
-                    "a spindle speed clamp, as G-code systems B and C write it (system A, which this dialect reads, writes G50 S); it cuts no thread",
-                );
-                one_shot = Some(g);
-            }
-            // A machining centre's local coordinate system, kept per axis until changed; G52 X0 Y0
-            // Z0 cancels it.
-            52 if fanuc_like && !m.lathe() => {
-                one_shot = Some(g);
-                for (i, axis) in ["X", "Y", "Z"].iter().enumerate() {
-                    if let Some(w) = b.get(axis) {
-                        m.local[i] = m.len(w);
-                    }
-                }
-            }
-            // A machining centre's coordinate rotation in G17: about X Y (the current point when
-            // not given) by R degrees counter-clockwise; G69 ends it.
-            68 if fanuc_like && !m.lathe() => {
-                one_shot = Some(g);
-                let centre = |axis: &str, now: Option<f64>| b.get(axis).map(|w| m.len(w)).or(now);
-                let (Some(cx), Some(cy)) = (centre("X", m.x), centre("Y", m.y)) else {
-                    return Err(m.err(b.line, col, "G68 without X and Y rotates about the current point, which is not known here: give the centre"));
-                };
-                if m.plane != 17 {
-                    return Err(m.err(b.line, col, format!("G68 under G{}: threadcheck reads rotation in the plane G17", m.plane)));
-                }
-                m.rotation = Some((cx, cy, b.get("R").map_or(0.0, |w| w.v)));
-            }
-            69 if fanuc_like && !m.lathe() => m.rotation = None,
-            // A machining centre's polar coordinates (F16MC 9.2): under G16 in G17, X is the
-            // radius and Y the angle (degrees) about the work zero; G15 ends them.
-            16 if fanuc_like && !m.lathe() => {
-                if m.plane != 17 {
-                    return Err(m.err(b.line, col, format!("G16 under G{}: threadcheck reads polar coordinates in the plane G17", m.plane)));
-                }
-                m.polar = Some((None, None));
-            }
-            15 if fanuc_like && !m.lathe() => m.polar = None,
-            // Scaling moves every later position by a factor about a centre: not read.
-            51 if fanuc_like && !m.lathe() => {
-                return Err(m.err(b.line, col, "G51 (scaling) is not read: the positions under it would be wrong (G51.1, the mirror image, is)"));
-            }
-            // Haas's bolt-hole patterns on a mill (../shared/notes/machining-centres.md §2).
-            70..=72 if d == Dialect::Haas && !m.lathe() => one_shot = Some(g),
-            // A machining centre's G92: the current point gets the given coordinates.
-            92 if fanuc_like && !m.lathe() => {
-                one_shot = Some(g);
-                offset = Some("G92, a coordinate system set at the current point".to_string());
-            }
-            92 => motion = Some((g, col)),
-            78 if d.fanuc_family() => {
-                return Err(m.err(
-                    b.line,
-                    col,
-                    "G78 is not a code of Fanuc G-code system A, which this program is read in: a control set to system B reads it as the threading cycle (G92 in A), one set to system C as the multiple threading cycle (G76 in A); give ‹gcode_system› b or c (the EMCO training lathe's G78 box cycle is not supported)",
-                ))
-            }
-            78 if fanuc_like || d == Dialect::Sinumerik => {
-                return Err(m.err(
-                    b.line,
-                    col,
-                    "G78 (the EMCO training-lathe thread cycle) is not supported: its word format is not published; write G92 or G76",
-                ))
-            }
-            50 if fanuc_like && m.lathe() => one_shot = Some(g),
-            // Feed modes (the tapping check reads them): G98/G99 on a lathe (and in a lathe-based
-            // mill-turn's milling sections in system A), G94/G95 in G17.
-            98 if fanuc_like && m.g98_is_feed() => m.feed_per_rev = Some(false),
-            99 if fanuc_like && m.g98_is_feed() => m.feed_per_rev = Some(true),
-            // A machining centre's G98/G99: the canned cycles' return level.
-            98 if fanuc_like || d == Dialect::LinuxCnc => m.return_to_r = false,
-            99 if fanuc_like || d == Dialect::LinuxCnc => m.return_to_r = true,
-            94 if fanuc_like && (m.plane == 17 || !m.lathe()) => m.feed_per_rev = Some(false),
-            95 if fanuc_like && (m.plane == 17 || !m.lathe()) => m.feed_per_rev = Some(true),
-            // Sinumerik's feed modes hold in every plane.
-            94 if matches!(d, Dialect::Sinumerik | Dialect::Heidenhain) => m.feed_per_rev = Some(false),
-            95 if matches!(d, Dialect::Sinumerik | Dialect::Heidenhain) => m.feed_per_rev = Some(true),
-            // LinuxCNC: G94 units per minute, G95 units per revolution (its `_units_per_rev`).
-            94 if d == Dialect::LinuxCnc => m.feed_per_rev = Some(false),
-            95 if d == Dialect::LinuxCnc => m.feed_per_rev = Some(true),
-            90 | 94 if fanuc_like && m.lathe() => motion = Some((g, col)),
-            30 => one_shot = Some(g),
-            7 if d == Dialect::LinuxCnc => m.diameter = true,
-            8 if d == Dialect::LinuxCnc => m.diameter = false,
-            c if f64::from(c) == inch_codes.0 => m.set_scale(25.4),
-            c if f64::from(c) == inch_codes.1 => m.set_scale(1.0),
-            700 if d == Dialect::Sinumerik => m.set_scale(25.4),
-            710 if d == Dialect::Sinumerik => m.set_scale(1.0),
-            90 => m.absolute = true,
-            91 => m.absolute = false,
-            96 => m.css = true,
-            97 => m.css = false,
-            17 => {
-                m.plane = 17;
-                m.plane_changed();
-            }
-            18 => {
-                m.plane = 18;
-                m.plane_changed();
-            }
-            19 => {
-                m.plane = 19;
-                m.plane_changed();
-            }
-            80 => motion = Some((80.0, col)),
-            4 | 28 | 53 => one_shot = Some(g),
-            // Okuma's compound threading cycles (okuma.rs).
-            71 | 72 if d == Dialect::Okuma => motion = Some((g, col)),
-            70..=75 if fanuc_like || d == Dialect::LinuxCnc => one_shot = Some(g),
-            c => match g_role(d, c, m.lathe()) {
-                // Haas's own code read in another Fanuc-family dialect: its evidence named.
-                GRole::Setting if c == 187 && d != Dialect::Haas => m.read_past(
-                    b.line,
-                    col,
-                    "G187",
-                    &format!("Haas's smoothness and corner accuracy setting, which the {} dialect does not have (no move here): a Haas program is read with ‹dialect› haas", d.name()),
-                ),
-                GRole::Setting => {}
-                GRole::Offset => {
-                    offset = Some(format!("G{g}, a work offset"));
-                    if let Some(name) = work_offset_name(d, g, b) {
-                        m.work_offset = Some(name);
-                    }
-                }
-                GRole::Data => {
-                    one_shot = Some(g);
-                    offset = Some(format!("G{g}, data setting"));
-                    if c == 10 && !m.lathe() {
-                        set_work_origin(m, b, col);
-                    }
-                }
-                GRole::Coordinates => {
-                    if c == 10 || c == 52 {
-                        one_shot = Some(g);
-                    }
-                }
-                GRole::OtherCycle | GRole::BoxCycle => motion = Some((g, col)),
-                GRole::Unknown => unknown.push((g, col)),
-            },
-        }
+        whole_code(m, b, g, col, &mut acc)?;
     }
+    let Codes { motion, one_shot, offset, unknown } = acc;
     // Under G16 the block's X is the radius and Y the angle: remembered, so that a block that
     // gives one takes the other from before (the move itself is made in `Motion::target`).
     if let Some((r0, a0)) = m.polar {
@@ -606,6 +271,378 @@ pub(crate) fn modal(m: &mut Motion, b: &RBlock<'_>) -> Result<Modal, Error> {
         m.tool = Some(if fanuc_like && v >= 100 { v / 100 } else { v });
     }
     Ok(Modal { motion: m.motion, col: motion.map(|x| x.1), one_shot })
+}
+
+/// What a block's G codes set that the block's move needs: its motion code and column, a
+/// one-shot code, what lost the position, and the codes not known.
+#[derive(Default)]
+struct Codes {
+    motion: Option<(f64, usize)>,
+    one_shot: Option<f64>,
+    offset: Option<String>,
+    unknown: Vec<(f64, usize)>,
+}
+
+/// A G code with a decimal (G33.1, G54.1, G51.1…): applied, or refused where it is a threading
+/// code's variant.
+fn decimal_code(m: &mut Motion, b: &RBlock<'_>, g: f64, col: usize, acc: &mut Codes) -> Result<(), Error> {
+    let d = m.dialect;
+    let fanuc_like = fanuc_like(d);
+    let base = g.trunc();
+    match (d, g) {
+        // Applied by the dialect (linuxcnc.rs) after the modal codes.
+        (Dialect::LinuxCnc, 92.1 | 92.2 | 92.3) => acc.one_shot = Some(g),
+        (Dialect::LinuxCnc, 59.1 | 59.2 | 59.3) => {}
+        (Dialect::LinuxCnc, 33.1) => {
+            // Rigid tapping: recorded for `threadcheck tap`, read past by the rest.
+            let (x, y, z) = m.target(b);
+            let feed = b.get("K").map(|w| m.len(w));
+            m.push_synced_tap("G33.1", b.line, col, (x.or(m.x), y.or(m.y)), z, feed, "K")?;
+            // LinuxCNC moves the tap in a straight line to X Y Z: X or Y away from
+            // where it stands drags it sideways (its documentation: preposition X and
+            // Y, give only Z).
+            let from = [m.x, m.y];
+            let sideways: Vec<String> = [("X", x, from[0]), ("Y", y, from[1])]
+                .iter()
+                .filter_map(|(n, to, at)| match (to, at) {
+                    (Some(to), Some(at)) if (to - at).abs() > 1e-6 => Some(format!(
+                        "{n} from {} to {}",
+                        crate::ground::fmt::fmt_num(*at),
+                        crate::ground::fmt::fmt_num(*to)
+                    )),
+                    _ => None,
+                })
+                .collect();
+            if !sideways.is_empty() {
+                m.flag(
+                    super::ControlRule::TapMovesSideways,
+                    "G33.1",
+                    b.line,
+                    col,
+                    format!("the tap moves {} as it feeds to the bottom", sideways.join(" and ")),
+                );
+            }
+            m.read_past(
+                b.line,
+                col,
+                "G33.1",
+                "rigid tapping (threadcheck tap checks it); it returns to its start",
+            );
+            acc.one_shot = Some(g);
+        }
+        // The additional work offsets (G54.1 P1…P48/300): a work offset as G54…G59 are.
+        (Dialect::Fanuc | Dialect::Mitsubishi | Dialect::Mazak, 54.1) => {
+            if let Some(name) = work_offset_name(d, g, b) {
+                m.work_offset = Some(name);
+            }
+            acc.offset = Some(format!("G{g}, a work offset"));
+        }
+        // A machining centre's programmable mirror image (SIE-ISO p.3-65): G51.1 X… Y…
+        // mirrors the positions about the axis values given, G50.1 cancels them.
+        (_, 51.1) if fanuc_like && !m.lathe() => {
+            acc.one_shot = Some(g);
+            for (i, axis) in ["X", "Y"].iter().enumerate() {
+                if let Some(w) = b.get(axis) {
+                    m.mirror[i] = Some(m.len(w));
+                }
+            }
+            if b.get("Z").is_some() {
+                return Err(m.err(b.line, col, "G51.1 Z: a mirrored tool axis is not read (X and Y are)"));
+            }
+        }
+        (_, 50.1) if fanuc_like && !m.lathe() => {
+            acc.one_shot = Some(g);
+            let (x, y) = (b.get("X").is_some(), b.get("Y").is_some());
+            if x || !y {
+                m.mirror[0] = None;
+            }
+            if y || !x {
+                m.mirror[1] = None;
+            }
+        }
+        // The roughing cycles of type 2 run their profile subroutine (Q) as G71 and G72
+        // do: read past, named.
+        (Dialect::LinuxCnc, 71.1 | 72.1) => acc.one_shot = Some(g),
+        // Arc centres absolute (G90.1) or incremental (G91.1): a lathe's arcs are kept as
+        // chords of the turned contour, so the mode is named, not needed.
+        (Dialect::LinuxCnc, 90.1 | 91.1) => {
+            m.arc_centres_absolute = g == 90.1;
+            if m.lathe() {
+                m.read_past(
+                    b.line,
+                    col,
+                    &format!("G{g}"),
+                    "the arc centres' distance mode; the turned contour's arcs are read as chords",
+                );
+            }
+        }
+        _ if THREADING.contains(&base) => {
+            return Err(m.err(
+                b.line,
+                col,
+                format!("G{g} is not G{base}: threadcheck reads G{base} and does not read G{g}"),
+            ))
+        }
+        // A lathe's polar coordinate interpolation (F0i-TF: G12.1 on, G13.1 off): a live
+        // tool mills the face in X and C.
+        (_, 12.1) if fanuc_like && m.lathe_program() => polar(m, b.line, col, "G12.1"),
+        (_, 13.1) if fanuc_like && m.lathe_program() => polar_off(m, b.line, col, "G13.1"),
+        // G7.1, G42.1, G43.1 and kin: not lathe threading; the block is read for position.
+        _ => {}
+    }
+    Ok(())
+}
+
+/// A whole G code in Fanuc G-code system A's terms (`None` when a system B or C code was applied
+/// or noted here); other dialects' codes as they are.
+fn in_system_a(
+    m: &mut Motion,
+    b: &RBlock<'_>,
+    g: f64,
+    col: usize,
+    acc: &mut Codes,
+) -> Result<Option<f64>, Error> {
+    let d = m.dialect;
+    // Systems B and C keep the feed modes and the return levels apart in every section
+    // (F0i-TF's G-code list: G94/G95 feed per minute/revolution, G98/G99 the drilling
+    // cycles' initial and R level), as a machining centre does.
+    if d.fanuc_family() && m.gsystem != super::GCodeSystem::A && g.fract() == 0.0 {
+        match g as u32 {
+            94 | 95 => {
+                m.feed_per_rev = Some(g == 95.0);
+                return Ok(None);
+            }
+            98 | 99 => {
+                m.return_to_r = g == 99.0;
+                return Ok(None);
+            }
+            _ => {}
+        }
+    }
+    // A program of G-code system B or C: its code in system A's terms.
+    let g = if d.fanuc_family() {
+        match m.gsystem.to_a(g as u32) {
+            // System A has no G91 on a lathe (U and W are its increments).
+            SystemCode::A(91) if m.gsystem == super::GCodeSystem::A && m.lathe() => {
+                acc.unknown.push((g, col));
+                return Ok(None);
+            }
+            SystemCode::A(a) => f64::from(a),
+            SystemCode::Absolute => {
+                m.absolute = true;
+                return Ok(None);
+            }
+            SystemCode::Incremental => {
+                m.absolute = false;
+                return Ok(None);
+            }
+            SystemCode::Setting => return Ok(None),
+            // System A's thread cutting in a program read in B or C (which write G33): never
+            // dropped, refused at its place.
+            SystemCode::Foreign if g == 32.0 => {
+                return Err(m.err(
+                    b.line,
+                    col,
+                    format!(
+                        "G32 is thread cutting in Fanuc G-code system A; this program is read in system {} (thread cutting G33), so the G32 would not cut a thread: give ‹gcode_system› a if the control runs system A",
+                        m.gsystem.name()
+                    ),
+                ));
+            }
+            SystemCode::Foreign => {
+                acc.unknown.push((g, col));
+                return Ok(None);
+            }
+        }
+    } else {
+        g
+    };
+    Ok(Some(g))
+}
+
+/// A whole G code applied: compensation, modes, planes, coordinate systems, or the block's motion.
+fn whole_code(m: &mut Motion, b: &RBlock<'_>, g: f64, col: usize, acc: &mut Codes) -> Result<(), Error> {
+    let d = m.dialect;
+    let fanuc_like = fanuc_like(d);
+    // A dialect without unit codes (Heidenhain) matches none (no G code is negative).
+    let inch_codes = d.unit_codes().map_or((-1.0, -1.0), |(i, mm)| (f64::from(i), f64::from(mm)));
+    if m.plane == 17 || m.mill_reading() {
+        match g as u32 {
+            40 => m.comp = 0,
+            41 => m.comp = 1,
+            42 => m.comp = 2,
+            _ => {}
+        }
+    } else if matches!(g as u32, 40..=42) {
+        m.nose_comp = g as u8 - 40;
+    }
+    match g as u32 {
+        // G112/G113: G12.1/G13.1 as Fanuc's lathes also write them (Haas: G112, XY to XC).
+        112 if fanuc_like && m.lathe_program() => polar(m, b.line, col, "G112"),
+        113 if fanuc_like && m.lathe_program() => polar_off(m, b.line, col, "G113"),
+        // Heidenhain's thread cycle G31 (heidenhain.rs); its G32, the simple thread cycle,
+        // is refused by name; its G76 is no threading code.
+        31 if d == Dialect::Heidenhain => acc.motion = Some((g, col)),
+        32 if d == Dialect::Heidenhain => {
+            return Err(m.err(
+                b.line,
+                col,
+                "G32 (Heidenhain's simple thread cycle) is not supported: its word list is not in the pages read; write G31 (the thread cycle) or G33 (single thread paths)",
+            ))
+        }
+        76 if d == Dialect::Heidenhain => acc.unknown.push((g, col)),
+        // A machining centre's peck drilling, left-hand tapping and fine boring.
+        73 | 74 | 76 if fanuc_like && !m.lathe() => acc.motion = Some((g, col)),
+        // LinuxCNC's G73 is chip-breaking drilling and its G74 left-hand tapping on every
+        // machine (its lathe cycles are G70–G72 and G76).
+        73 | 74 if d == Dialect::LinuxCnc => acc.motion = Some((g, col)),
+        0 | 1 | 2 | 3 | 32 | 33 | 76 => acc.motion = Some((g, col)),
+        92 if d == Dialect::LinuxCnc => acc.one_shot = Some(g),
+        92 if fanuc_like && b.has("S") && !["X", "Z", "U", "W", "F", "E", "R"].iter().any(|w| b.has(w)) => {
+            m.read_past(
+                b.line,
+                col,
+                &format!("G92 S{}", b.get("S").map_or(0.0, |w| w.v)),
+                "a spindle speed clamp, as G-code systems B and C write it (system A, which this dialect reads, writes G50 S); it cuts no thread",
+            );
+            acc.one_shot = Some(g);
+        }
+        // A machining centre's local coordinate system, kept per axis until changed; G52 X0 Y0
+        // Z0 cancels it.
+        52 if fanuc_like && !m.lathe() => {
+            acc.one_shot = Some(g);
+            for (i, axis) in ["X", "Y", "Z"].iter().enumerate() {
+                if let Some(w) = b.get(axis) {
+                    m.local[i] = m.len(w);
+                }
+            }
+        }
+        // A machining centre's coordinate rotation in G17: about X Y (the current point when
+        // not given) by R degrees counter-clockwise; G69 ends it.
+        68 if fanuc_like && !m.lathe() => {
+            acc.one_shot = Some(g);
+            let centre = |axis: &str, now: Option<f64>| b.get(axis).map(|w| m.len(w)).or(now);
+            let (Some(cx), Some(cy)) = (centre("X", m.x), centre("Y", m.y)) else {
+                return Err(m.err(b.line, col, "G68 without X and Y rotates about the current point, which is not known here: give the centre"));
+            };
+            if m.plane != 17 {
+                return Err(m.err(b.line, col, format!("G68 under G{}: threadcheck reads rotation in the plane G17", m.plane)));
+            }
+            m.rotation = Some((cx, cy, b.get("R").map_or(0.0, |w| w.v)));
+        }
+        69 if fanuc_like && !m.lathe() => m.rotation = None,
+        // A machining centre's polar coordinates (F16MC 9.2): under G16 in G17, X is the
+        // radius and Y the angle (degrees) about the work zero; G15 ends them.
+        16 if fanuc_like && !m.lathe() => {
+            if m.plane != 17 {
+                return Err(m.err(b.line, col, format!("G16 under G{}: threadcheck reads polar coordinates in the plane G17", m.plane)));
+            }
+            m.polar = Some((None, None));
+        }
+        15 if fanuc_like && !m.lathe() => m.polar = None,
+        // Scaling moves every later position by a factor about a centre: not read.
+        51 if fanuc_like && !m.lathe() => {
+            return Err(m.err(b.line, col, "G51 (scaling) is not read: the positions under it would be wrong (G51.1, the mirror image, is)"));
+        }
+        // Haas's bolt-hole patterns on a mill (../shared/notes/machining-centres.md §2).
+        70..=72 if d == Dialect::Haas && !m.lathe() => acc.one_shot = Some(g),
+        // A machining centre's G92: the current point gets the given coordinates.
+        92 if fanuc_like && !m.lathe() => {
+            acc.one_shot = Some(g);
+            acc.offset = Some("G92, a coordinate system set at the current point".to_string());
+        }
+        92 => acc.motion = Some((g, col)),
+        78 if d.fanuc_family() => {
+            return Err(m.err(
+                b.line,
+                col,
+                "G78 is not a code of Fanuc G-code system A, which this program is read in: a control set to system B reads it as the threading cycle (G92 in A), one set to system C as the multiple threading cycle (G76 in A); give ‹gcode_system› b or c (the EMCO training lathe's G78 box cycle is not supported)",
+            ))
+        }
+        78 if fanuc_like || d == Dialect::Sinumerik => {
+            return Err(m.err(
+                b.line,
+                col,
+                "G78 (the EMCO training-lathe thread cycle) is not supported: its word format is not published; write G92 or G76",
+            ))
+        }
+        50 if fanuc_like && m.lathe() => acc.one_shot = Some(g),
+        // Feed modes (the tapping check reads them): G98/G99 on a lathe (and in a lathe-based
+        // mill-turn's milling sections in system A), G94/G95 in G17.
+        98 if fanuc_like && m.g98_is_feed() => m.feed_per_rev = Some(false),
+        99 if fanuc_like && m.g98_is_feed() => m.feed_per_rev = Some(true),
+        // A machining centre's G98/G99: the canned cycles' return level.
+        98 if fanuc_like || d == Dialect::LinuxCnc => m.return_to_r = false,
+        99 if fanuc_like || d == Dialect::LinuxCnc => m.return_to_r = true,
+        94 if fanuc_like && (m.plane == 17 || !m.lathe()) => m.feed_per_rev = Some(false),
+        95 if fanuc_like && (m.plane == 17 || !m.lathe()) => m.feed_per_rev = Some(true),
+        // Sinumerik's feed modes hold in every plane.
+        94 if matches!(d, Dialect::Sinumerik | Dialect::Heidenhain) => m.feed_per_rev = Some(false),
+        95 if matches!(d, Dialect::Sinumerik | Dialect::Heidenhain) => m.feed_per_rev = Some(true),
+        // LinuxCNC: G94 units per minute, G95 units per revolution (its `_units_per_rev`).
+        94 if d == Dialect::LinuxCnc => m.feed_per_rev = Some(false),
+        95 if d == Dialect::LinuxCnc => m.feed_per_rev = Some(true),
+        90 | 94 if fanuc_like && m.lathe() => acc.motion = Some((g, col)),
+        30 => acc.one_shot = Some(g),
+        7 if d == Dialect::LinuxCnc => m.diameter = true,
+        8 if d == Dialect::LinuxCnc => m.diameter = false,
+        c if f64::from(c) == inch_codes.0 => m.set_scale(25.4),
+        c if f64::from(c) == inch_codes.1 => m.set_scale(1.0),
+        700 if d == Dialect::Sinumerik => m.set_scale(25.4),
+        710 if d == Dialect::Sinumerik => m.set_scale(1.0),
+        90 => m.absolute = true,
+        91 => m.absolute = false,
+        96 => m.css = true,
+        97 => m.css = false,
+        17 => {
+            m.plane = 17;
+            m.plane_changed();
+        }
+        18 => {
+            m.plane = 18;
+            m.plane_changed();
+        }
+        19 => {
+            m.plane = 19;
+            m.plane_changed();
+        }
+        80 => acc.motion = Some((80.0, col)),
+        4 | 28 | 53 => acc.one_shot = Some(g),
+        // Okuma's compound threading cycles (okuma.rs).
+        71 | 72 if d == Dialect::Okuma => acc.motion = Some((g, col)),
+        70..=75 if fanuc_like || d == Dialect::LinuxCnc => acc.one_shot = Some(g),
+        c => match g_role(d, c, m.lathe()) {
+            // Haas's own code read in another Fanuc-family dialect: its evidence named.
+            GRole::Setting if c == 187 && d != Dialect::Haas => m.read_past(
+                b.line,
+                col,
+                "G187",
+                &format!("Haas's smoothness and corner accuracy setting, which the {} dialect does not have (no move here): a Haas program is read with ‹dialect› haas", d.name()),
+            ),
+            GRole::Setting => {}
+            GRole::Offset => {
+                acc.offset = Some(format!("G{g}, a work offset"));
+                if let Some(name) = work_offset_name(d, g, b) {
+                    m.work_offset = Some(name);
+                }
+            }
+            GRole::Data => {
+                acc.one_shot = Some(g);
+                acc.offset = Some(format!("G{g}, data setting"));
+                if c == 10 && !m.lathe() {
+                    set_work_origin(m, b, col);
+                }
+            }
+            GRole::Coordinates => {
+                if c == 10 || c == 52 {
+                    acc.one_shot = Some(g);
+                }
+            }
+            GRole::OtherCycle | GRole::BoxCycle => acc.motion = Some((g, col)),
+            GRole::Unknown => acc.unknown.push((g, col)),
+        },
+    }
+    Ok(())
 }
 
 /// The work offset a block selects, by one name per offset: `G54`…`G59`; Fanuc's `G54.1 P3`;
