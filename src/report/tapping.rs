@@ -349,7 +349,6 @@ pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
 /// The tap picture as a document with its width and height, for a program's picture to stack.
 pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document, f64, f64) {
     use super::kit::text;
-    use crate::analysis::tapping::TapFeature;
     use crate::ground::fmt::fmt_num;
     let shown: Vec<_> = r.holes.iter().take(TAP_PANELS).collect();
     let panel_w = 300.0;
@@ -371,6 +370,7 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
     // Below the holes: D1, the checks with their limits, the drill that passes; the picture
     // ends under the longest of these.
     let text_top = y0 + (tall * s).max(60.0) + 30.0;
+    let frame = Frame { panel_w, box_w, s, wide, y0, text_top };
     let mut text_bottom = text_top;
     let mut holes = Vec::new();
     let verdict = if r.pass {
@@ -380,333 +380,8 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
         format!("OUT OF TOLERANCE: {bad} of {} tapping cycles", r.holes.len())
     };
     for (k, hole) in shown.iter().enumerate() {
-        let x0 = 20.0 + panel_w * k as f64;
-        let cx = x0 + 0.5 * box_w + 10.0;
-        let c = &hole.cycle;
-        let mut g = Group::new().set("id", format!("hole-{k}"));
-        g = g.add(
-            text(
-                x0,
-                80.0,
-                12.0,
-                format!(
-                    "{} line {}{}{}",
-                    c.code,
-                    line_of(c),
-                    c.tool.map_or(String::new(), |t| format!(", T{t}")),
-                    match (c.x, c.y, c.radial) {
-                        (_, _, Some(r)) => format!(" at Z{} C{}", word(c, r.z), micron(r.c_deg)),
-                        (Some(x), Some(y), None) => {
-                            format!(" at X{} Y{}{}", word(c, x), word(c, y), in_offset(c))
-                        }
-                        _ => String::new(),
-                    }
-                ),
-            )
-            .set("font-weight", "bold"),
-        );
-        g = g.add(text(x0, 96.0, 12.0, format!("tap {}", hole.tap.designation)));
-        let drill_check = hole.checks.iter().find(|k| k.feature == TapFeature::DrillDiameter);
-        let drill_ok = drill_check.is_none_or(|k| k.ok);
-        let d1 = &hole.tap.minor_diameter;
-        if hole.wall.is_empty() {
-            g = g.add(text(x0, y0 + 20.0, 12.0, "the drill's diameter or a bottom"));
-            g = g.add(text(x0, y0 + 36.0, 12.0, "is not known: not drawn"));
-        } else {
-            let top = hole.wall.first().map_or(0.0, |p| p.z);
-            let bottom = hole.wall.last().map_or(0.0, |p| p.z);
-            let y = |z: f64| y0 + (top - z) * s;
-            let x = |r: f64| cx + r * s;
-            let half_w = 0.8 * wide * s;
-            // The stock: down to its bottom face when known (a through hole opens there).
-            // The stock's bottom face is a Z: a radial hole's axis does not meet it.
-            let stock_end =
-                r.stock_bottom.filter(|sb| c.radial.is_none() && *sb < top && *sb > bottom - 12.0 / s);
-            let stock_h = stock_end.map_or(y(bottom) - y0 + 12.0, |sb| y(sb) - y0);
-            g = g.add(
-                Rectangle::new()
-                    .set("id", format!("hole-{k}-stock"))
-                    .set("x", format!("{:.2}", cx - half_w))
-                    .set("y", format!("{y0:.2}"))
-                    .set("width", format!("{:.2}", 2.0 * half_w))
-                    .set("height", format!("{stock_h:.2}"))
-                    .set("fill", "#b8c7d9"),
-            );
-            let mut pts: Vec<String> =
-                hole.wall.iter().map(|p| format!("{:.2},{:.2}", x(p.r), y(p.z))).collect();
-            pts.extend(hole.wall.iter().rev().map(|p| format!("{:.2},{:.2}", x(-p.r), y(p.z))));
-            g = g.add(
-                Polygon::new()
-                    .set("id", format!("hole-{k}-wall"))
-                    .set("points", pts.join(" "))
-                    .set("fill", "white")
-                    .set("stroke", "black")
-                    .set("stroke-width", 0.8),
-            );
-            for (v, which) in [(d1.min, "min"), (d1.max, "max")] {
-                let Some(v) = v else { continue };
-                for (sign, side) in [(-1.0, "left"), (1.0, "right")] {
-                    g = g.add(
-                        Line::new()
-                            .set("id", format!("hole-{k}-d1-{which}-{side}"))
-                            .set("x1", format!("{:.3}", x(sign * 0.5 * v)))
-                            .set("x2", format!("{:.3}", x(sign * 0.5 * v)))
-                            .set("y1", format!("{y0:.2}"))
-                            .set("y2", format!("{:.2}", y(bottom)))
-                            .set("stroke", "#1f5fa8")
-                            .set("stroke-width", 0.7)
-                            .set("stroke-dasharray", "3 3"),
-                    );
-                }
-            }
-            let mark = |g: Group, z: f64, colour: &str, label: String| -> Group {
-                g.add(
-                    Line::new()
-                        .set("x1", format!("{:.2}", cx - half_w))
-                        .set("x2", format!("{:.2}", cx + half_w + 6.0))
-                        .set("y1", format!("{:.2}", y(z)))
-                        .set("y2", format!("{:.2}", y(z)))
-                        .set("stroke", colour.to_string())
-                        .set("stroke-width", 0.8)
-                        .set("stroke-dasharray", "5 3"),
-                )
-                .add(text(cx + half_w + 8.0, y(z) + 4.0, 11.0, label).set("fill", colour.to_string()))
-            };
-            // The stock's bottom on the same height as the tap's (or near it, under a label's
-            // height) is said in the tap's label, so the two never overlap.
-            let stock_with_tap =
-                stock_end.is_some_and(|sb| c.bottom.is_some_and(|tz| (y(tz) - y(sb)).abs() < 12.0));
-            if let Some(tz) = c.bottom {
-                let label = if stock_with_tap { "tap = stock" } else { "tap" };
-                g = mark(g, tz, "#333", format!("{label} {}", along(c, tz)));
-                if let Some(f) = hole.tap.full_thread_z {
-                    g = mark(g, f, "#777", format!("full {}", along(c, f)));
-                }
-            }
-            if let Some(db) = hole.drill.as_ref().and_then(|d| d.cycle.bottom) {
-                g = mark(g, db, "#a35a00", format!("drill {}", along(c, db)));
-            }
-            if let Some(sb) = stock_end.filter(|_| !stock_with_tap) {
-                g = mark(g, sb, "#2b6e2b", format!("stock Z{}", word(c, sb)));
-            }
-            // The drill's diameter across the plain bore, between the tap's bottom and the
-            // drill's point, with arrowheads.
-            if let (Some(dia), Some(tz), Some(db)) = (
-                hole.drill.as_ref().and_then(|d| d.diameter),
-                c.bottom,
-                hole.drill.as_ref().and_then(|d| d.cycle.bottom),
-            ) {
-                let point = db + 0.5 * dia / (59f64).to_radians().tan();
-                let yd = y(0.5 * (tz.min(top) + point.max(db)));
-                let colour = if drill_ok { "#1f5fbf" } else { FAIL };
-                let (xa, xb) = (x(-0.5 * dia), x(0.5 * dia));
-                let head = |tip: f64, dir: f64| {
-                    Polygon::new()
-                        .set(
-                            "points",
-                            format!(
-                                "{tip:.2},{yd:.2} {:.2},{:.2} {:.2},{:.2}",
-                                tip + 7.0 * dir,
-                                yd - 3.0,
-                                tip + 7.0 * dir,
-                                yd + 3.0
-                            ),
-                        )
-                        .set("fill", colour)
-                };
-                g = g
-                    .add(
-                        Line::new()
-                            .set("id", format!("hole-{k}-drill-dimension"))
-                            .set("x1", format!("{xa:.3}"))
-                            .set("x2", format!("{xb:.3}"))
-                            .set("y1", format!("{yd:.2}"))
-                            .set("y2", format!("{yd:.2}"))
-                            .set("stroke", colour)
-                            .set("stroke-width", 1.0),
-                    )
-                    .add(head(xa, 1.0))
-                    .add(head(xb, -1.0))
-                    .add(
-                        text(cx, yd - 5.0, 11.0, format!("Ø{}", word(c, dia)))
-                            .set("text-anchor", "middle")
-                            .set("fill", colour)
-                            .set("font-weight", "bold"),
-                    );
-            }
-            g = g.add(
-                text(cx + half_w + 8.0, y0 + 10.0, 11.0, format!("top {}", along(c, top)))
-                    .set("fill", "#555"),
-            );
-        }
-        // Under the hole: the drill against D1, the checks with their limits, a drill that passes.
-        let mut ty = text_top;
-        let line = |g: Group, ty: &mut f64, size: f64, colour: &str, bold: bool, s: String| -> Group {
-            let t = text(x0, *ty, size, s).set("fill", colour.to_string());
-            *ty += if size >= 12.0 { 15.0 } else { 19.0 };
-            g.add(if bold { t.set("font-weight", "bold") } else { t })
-        };
-        g = line(
-            g,
-            &mut ty,
-            11.0,
-            "#1f5fa8",
-            false,
-            match hole.formed.and_then(|f| f.minor_diameter) {
-                Some(formed) => format!(
-                    "D1 formed {}; D1 of {} (cut threads'): {}",
-                    match c.units {
-                        crate::gcode::ProgramUnits::Mm =>
-                            format!("{} mm", fmt_num((formed * 1e4).round() / 1e4)),
-                        crate::gcode::ProgramUnits::Inch => lengths(c).both(formed),
-                    },
-                    hole.tap.designation,
-                    d1_limits(c, d1.min, d1.max)
-                ),
-                None => format!("D1 of {}: {}", hole.tap.designation, d1_limits(c, d1.min, d1.max)),
-            },
-        );
-        ty += 4.0;
-        for ck in &hole.checks {
-            let word = crate::report::tapping::feature_name(ck.feature);
-            let inch = tap_inch_unit(c, ck.unit);
-            let n = |v: f64| match inch {
-                Some((_, prec)) => format!("{:.prec$}", v / crate::MM_PER_INCH),
-                None => fmt_num((v * 1e4).round() / 1e4),
-            };
-            let shown_unit = inch.map_or(ck.unit, |(u, _)| u);
-            let val = ck.value.map_or(String::new(), |v| format!(" {}", n(v)));
-            let unit = if ck.value.is_some() && !shown_unit.is_empty() {
-                format!(" {shown_unit}")
-            } else {
-                String::new()
-            };
-            let colour = if ck.ok { ZONE } else { FAIL };
-            g = line(
-                g,
-                &mut ty,
-                12.0,
-                colour,
-                !ck.ok,
-                format!("{} {word}{val}{unit}", if ck.ok { "✓" } else { "✗" }),
-            );
-            let m = |v: f64| if inch.is_some() { n(v) } else { fmt_num(v) };
-            let range = |v: f64| if inch.is_some() { n(v) } else { fmt_limit(v) };
-            let lim = if ck.min == ck.max {
-                ck.min.map_or(String::new(), |v| format!("must be {}", m(v)))
-            } else {
-                match (ck.min, ck.max) {
-                    (Some(a), Some(b)) => format!("limits {} – {}", range(a), range(b)),
-                    (Some(a), None) => format!("at least {}", m(a)),
-                    (None, Some(b)) => format!("at most {}", m(b)),
-                    (None, None) => String::new(),
-                }
-            };
-            let off =
-                if ck.ok || ck.value.is_none() { String::new() } else { format!(", {}", tap_off(c, ck)) };
-            let lim =
-                if lim.is_empty() || shown_unit.is_empty() { lim } else { format!("{lim} {shown_unit}") };
-            if !lim.is_empty() || !off.is_empty() {
-                g = line(
-                    g,
-                    &mut ty,
-                    10.0,
-                    if ck.ok { "#555" } else { FAIL },
-                    false,
-                    format!("    {lim}{off}"),
-                );
-            }
-        }
-        // How much thread the drill leaves, and the torque the tap needs (issue 64).
-        if hole.thread_percent.is_some() || hole.torque.is_some() {
-            ty += 4.0;
-        }
-        if let Some(t) = &hole.thread_percent {
-            g = line(
-                g,
-                &mut ty,
-                11.0,
-                "#333",
-                false,
-                format!(
-                    "thread {} % (shops' band {}–{} %)",
-                    fmt_num((t.percent * 10.0).round() / 10.0),
-                    fmt_num(t.band[0]),
-                    fmt_num(t.band[1])
-                ),
-            );
-        }
-        if let Some(t) = &hole.torque {
-            let spindle = [
-                t.spindle_torque_nm.map(|v| format!("{} N·m", fmt_num(v))),
-                t.spindle_power_kw.map(|v| format!("{} kW", fmt_num(v))),
-            ]
-            .into_iter()
-            .flatten()
-            .collect::<Vec<_>>();
-            let against = if spindle.is_empty() {
-                String::new()
-            } else {
-                format!(
-                    "; spindle {}{}",
-                    spindle.join(", "),
-                    if t.exceeds_spindle { ": EXCEEDED" } else { "" }
-                )
-            };
-            g = line(
-                g,
-                &mut ty,
-                11.0,
-                if t.exceeds_spindle { FAIL } else { "#333" },
-                t.exceeds_spindle,
-                format!(
-                    "torque {} N·m{}{against}",
-                    fmt_num((t.newton_metres * 100.0).round() / 100.0),
-                    t.power_kw.map_or(String::new(), |p| format!(
-                        ", {} kW",
-                        fmt_num((p * 1000.0).round() / 1000.0)
-                    ))
-                ),
-            );
-        }
-        let drill_unknown = hole.drill.as_ref().is_none_or(|d| d.diameter.is_none());
-        if let Some(pd) = hole.drill_that_passes.as_ref() {
-            ty += 6.0;
-            let window = if hole.tap.forming { "the form tap's hole" } else { "D1" };
-            let head = if drill_ok && !drill_unknown {
-                format!("the drill for {window}")
-            } else {
-                "a drill that passes".to_string()
-            };
-            let (what, why) = match (&pd.name, pd.diameter, pd.source) {
-                (Some(name), Some(dia), Some(src)) => (
-                    if src == crate::standards::drills::DrillSource::InchGauge {
-                        format!("{head}: {name} ({:.4} in)", dia / crate::MM_PER_INCH)
-                    } else {
-                        format!("{head}: Ø{name} mm")
-                    },
-                    format!(
-                        "{}; {window}'s middle {:.3}",
-                        crate::report::tapping::drill_source_words(src),
-                        pd.middle
-                    ),
-                ),
-                _ => (
-                    format!("{head}: Ø{:.3} mm", pd.middle),
-                    format!("{window}'s middle; no stocked drill lies within it"),
-                ),
-            };
-            let colour = if drill_ok && !drill_unknown { "#333" } else { ZONE };
-            g = g.add(
-                text(x0, ty, 12.0, what)
-                    .set("fill", colour)
-                    .set("font-weight", "bold")
-                    .set("id", format!("hole-{k}-passing-drill")),
-            );
-            ty += 14.0;
-            g = g.add(text(x0, ty, 10.0, why).set("fill", "#555"));
-        }
-        text_bottom = text_bottom.max(ty);
+        let (g, bottom) = hole_panel(r, k, hole, frame);
+        text_bottom = text_bottom.max(bottom);
         holes.push(g);
     }
     let h = text_bottom + 70.0;
@@ -753,6 +428,370 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
     }
     doc = doc.add(text(20.0, h - 14.0, 11.0, foot).set("fill", "#555"));
     (doc, w, h)
+}
+
+/// Where a tap picture's panels stand: one scale for every panel, the holes' top and the text's.
+#[derive(Clone, Copy)]
+struct Frame {
+    panel_w: f64,
+    box_w: f64,
+    /// Pixels per mm.
+    s: f64,
+    /// The widest hole's diameter, mm.
+    wide: f64,
+    y0: f64,
+    text_top: f64,
+}
+
+/// One tapped hole's panel: its heading, its section and the lines under it; and where they end.
+fn hole_panel(
+    r: &crate::analysis::tapping::TapReport,
+    k: usize,
+    hole: &crate::analysis::tapping::TappedHole,
+    frame: Frame,
+) -> (Group, f64) {
+    use super::kit::text;
+    use crate::analysis::tapping::TapFeature;
+    let Frame { panel_w, box_w, y0, text_top, .. } = frame;
+    let x0 = 20.0 + panel_w * k as f64;
+    let cx = x0 + 0.5 * box_w + 10.0;
+    let c = &hole.cycle;
+    let mut g = Group::new().set("id", format!("hole-{k}"));
+    g = g.add(
+        text(
+            x0,
+            80.0,
+            12.0,
+            format!(
+                "{} line {}{}{}",
+                c.code,
+                line_of(c),
+                c.tool.map_or(String::new(), |t| format!(", T{t}")),
+                match (c.x, c.y, c.radial) {
+                    (_, _, Some(r)) => format!(" at Z{} C{}", word(c, r.z), micron(r.c_deg)),
+                    (Some(x), Some(y), None) => {
+                        format!(" at X{} Y{}{}", word(c, x), word(c, y), in_offset(c))
+                    }
+                    _ => String::new(),
+                }
+            ),
+        )
+        .set("font-weight", "bold"),
+    );
+    g = g.add(text(x0, 96.0, 12.0, format!("tap {}", hole.tap.designation)));
+    let drill_check = hole.checks.iter().find(|k| k.feature == TapFeature::DrillDiameter);
+    let drill_ok = drill_check.is_none_or(|k| k.ok);
+    if hole.wall.is_empty() {
+        g = g.add(text(x0, y0 + 20.0, 12.0, "the drill's diameter or a bottom"));
+        g = g.add(text(x0, y0 + 36.0, 12.0, "is not known: not drawn"));
+    } else {
+        g = hole_section(g, r, k, hole, frame, cx, drill_ok);
+    }
+    panel_lines(g, k, hole, (x0, text_top), drill_ok)
+}
+
+/// A tapped hole's axial section, true to scale: the stock, the hole's wall, D1's limits, the
+/// bottoms, the drill's diameter dimensioned.
+fn hole_section(
+    mut g: Group,
+    r: &crate::analysis::tapping::TapReport,
+    k: usize,
+    hole: &crate::analysis::tapping::TappedHole,
+    frame: Frame,
+    cx: f64,
+    drill_ok: bool,
+) -> Group {
+    use super::kit::text;
+    let Frame { s, wide, y0, .. } = frame;
+    let c = &hole.cycle;
+    let d1 = &hole.tap.minor_diameter;
+    let top = hole.wall.first().map_or(0.0, |p| p.z);
+    let bottom = hole.wall.last().map_or(0.0, |p| p.z);
+    let y = |z: f64| y0 + (top - z) * s;
+    let x = |r: f64| cx + r * s;
+    let half_w = 0.8 * wide * s;
+    // The stock: down to its bottom face when known (a through hole opens there).
+    // The stock's bottom face is a Z: a radial hole's axis does not meet it.
+    let stock_end = r.stock_bottom.filter(|sb| c.radial.is_none() && *sb < top && *sb > bottom - 12.0 / s);
+    let stock_h = stock_end.map_or(y(bottom) - y0 + 12.0, |sb| y(sb) - y0);
+    g = g.add(
+        Rectangle::new()
+            .set("id", format!("hole-{k}-stock"))
+            .set("x", format!("{:.2}", cx - half_w))
+            .set("y", format!("{y0:.2}"))
+            .set("width", format!("{:.2}", 2.0 * half_w))
+            .set("height", format!("{stock_h:.2}"))
+            .set("fill", "#b8c7d9"),
+    );
+    let mut pts: Vec<String> = hole.wall.iter().map(|p| format!("{:.2},{:.2}", x(p.r), y(p.z))).collect();
+    pts.extend(hole.wall.iter().rev().map(|p| format!("{:.2},{:.2}", x(-p.r), y(p.z))));
+    g = g.add(
+        Polygon::new()
+            .set("id", format!("hole-{k}-wall"))
+            .set("points", pts.join(" "))
+            .set("fill", "white")
+            .set("stroke", "black")
+            .set("stroke-width", 0.8),
+    );
+    for (v, which) in [(d1.min, "min"), (d1.max, "max")] {
+        let Some(v) = v else { continue };
+        for (sign, side) in [(-1.0, "left"), (1.0, "right")] {
+            g = g.add(
+                Line::new()
+                    .set("id", format!("hole-{k}-d1-{which}-{side}"))
+                    .set("x1", format!("{:.3}", x(sign * 0.5 * v)))
+                    .set("x2", format!("{:.3}", x(sign * 0.5 * v)))
+                    .set("y1", format!("{y0:.2}"))
+                    .set("y2", format!("{:.2}", y(bottom)))
+                    .set("stroke", "#1f5fa8")
+                    .set("stroke-width", 0.7)
+                    .set("stroke-dasharray", "3 3"),
+            );
+        }
+    }
+    let mark = |g: Group, z: f64, colour: &str, label: String| -> Group {
+        g.add(
+            Line::new()
+                .set("x1", format!("{:.2}", cx - half_w))
+                .set("x2", format!("{:.2}", cx + half_w + 6.0))
+                .set("y1", format!("{:.2}", y(z)))
+                .set("y2", format!("{:.2}", y(z)))
+                .set("stroke", colour.to_string())
+                .set("stroke-width", 0.8)
+                .set("stroke-dasharray", "5 3"),
+        )
+        .add(text(cx + half_w + 8.0, y(z) + 4.0, 11.0, label).set("fill", colour.to_string()))
+    };
+    // The stock's bottom on the same height as the tap's (or near it, under a label's
+    // height) is said in the tap's label, so the two never overlap.
+    let stock_with_tap = stock_end.is_some_and(|sb| c.bottom.is_some_and(|tz| (y(tz) - y(sb)).abs() < 12.0));
+    if let Some(tz) = c.bottom {
+        let label = if stock_with_tap { "tap = stock" } else { "tap" };
+        g = mark(g, tz, "#333", format!("{label} {}", along(c, tz)));
+        if let Some(f) = hole.tap.full_thread_z {
+            g = mark(g, f, "#777", format!("full {}", along(c, f)));
+        }
+    }
+    if let Some(db) = hole.drill.as_ref().and_then(|d| d.cycle.bottom) {
+        g = mark(g, db, "#a35a00", format!("drill {}", along(c, db)));
+    }
+    if let Some(sb) = stock_end.filter(|_| !stock_with_tap) {
+        g = mark(g, sb, "#2b6e2b", format!("stock Z{}", word(c, sb)));
+    }
+    // The drill's diameter across the plain bore, between the tap's bottom and the
+    // drill's point, with arrowheads.
+    if let (Some(dia), Some(tz), Some(db)) = (
+        hole.drill.as_ref().and_then(|d| d.diameter),
+        c.bottom,
+        hole.drill.as_ref().and_then(|d| d.cycle.bottom),
+    ) {
+        let point = db + 0.5 * dia / (59f64).to_radians().tan();
+        let yd = y(0.5 * (tz.min(top) + point.max(db)));
+        let colour = if drill_ok { "#1f5fbf" } else { FAIL };
+        let (xa, xb) = (x(-0.5 * dia), x(0.5 * dia));
+        let head = |tip: f64, dir: f64| {
+            Polygon::new()
+                .set(
+                    "points",
+                    format!(
+                        "{tip:.2},{yd:.2} {:.2},{:.2} {:.2},{:.2}",
+                        tip + 7.0 * dir,
+                        yd - 3.0,
+                        tip + 7.0 * dir,
+                        yd + 3.0
+                    ),
+                )
+                .set("fill", colour)
+        };
+        g = g
+            .add(
+                Line::new()
+                    .set("id", format!("hole-{k}-drill-dimension"))
+                    .set("x1", format!("{xa:.3}"))
+                    .set("x2", format!("{xb:.3}"))
+                    .set("y1", format!("{yd:.2}"))
+                    .set("y2", format!("{yd:.2}"))
+                    .set("stroke", colour)
+                    .set("stroke-width", 1.0),
+            )
+            .add(head(xa, 1.0))
+            .add(head(xb, -1.0))
+            .add(
+                text(cx, yd - 5.0, 11.0, format!("Ø{}", word(c, dia)))
+                    .set("text-anchor", "middle")
+                    .set("fill", colour)
+                    .set("font-weight", "bold"),
+            );
+    }
+    g = g.add(text(cx + half_w + 8.0, y0 + 10.0, 11.0, format!("top {}", along(c, top))).set("fill", "#555"));
+    g
+}
+
+/// The lines under a hole's section: D1, the checks with their limits, % of thread and torque,
+/// a drill that passes; and where they end.
+fn panel_lines(
+    mut g: Group,
+    k: usize,
+    hole: &crate::analysis::tapping::TappedHole,
+    (x0, text_top): (f64, f64),
+    drill_ok: bool,
+) -> (Group, f64) {
+    use super::kit::text;
+    use crate::ground::fmt::fmt_num;
+    let c = &hole.cycle;
+    let d1 = &hole.tap.minor_diameter;
+    // Under the hole: the drill against D1, the checks with their limits, a drill that passes.
+    let mut ty = text_top;
+    let line = |g: Group, ty: &mut f64, size: f64, colour: &str, bold: bool, s: String| -> Group {
+        let t = text(x0, *ty, size, s).set("fill", colour.to_string());
+        *ty += if size >= 12.0 { 15.0 } else { 19.0 };
+        g.add(if bold { t.set("font-weight", "bold") } else { t })
+    };
+    g = line(
+        g,
+        &mut ty,
+        11.0,
+        "#1f5fa8",
+        false,
+        match hole.formed.and_then(|f| f.minor_diameter) {
+            Some(formed) => format!(
+                "D1 formed {}; D1 of {} (cut threads'): {}",
+                match c.units {
+                    crate::gcode::ProgramUnits::Mm => format!("{} mm", fmt_num((formed * 1e4).round() / 1e4)),
+                    crate::gcode::ProgramUnits::Inch => lengths(c).both(formed),
+                },
+                hole.tap.designation,
+                d1_limits(c, d1.min, d1.max)
+            ),
+            None => format!("D1 of {}: {}", hole.tap.designation, d1_limits(c, d1.min, d1.max)),
+        },
+    );
+    ty += 4.0;
+    for ck in &hole.checks {
+        let word = crate::report::tapping::feature_name(ck.feature);
+        let inch = tap_inch_unit(c, ck.unit);
+        let n = |v: f64| match inch {
+            Some((_, prec)) => format!("{:.prec$}", v / crate::MM_PER_INCH),
+            None => fmt_num((v * 1e4).round() / 1e4),
+        };
+        let shown_unit = inch.map_or(ck.unit, |(u, _)| u);
+        let val = ck.value.map_or(String::new(), |v| format!(" {}", n(v)));
+        let unit = if ck.value.is_some() && !shown_unit.is_empty() {
+            format!(" {shown_unit}")
+        } else {
+            String::new()
+        };
+        let colour = if ck.ok { ZONE } else { FAIL };
+        g = line(
+            g,
+            &mut ty,
+            12.0,
+            colour,
+            !ck.ok,
+            format!("{} {word}{val}{unit}", if ck.ok { "✓" } else { "✗" }),
+        );
+        let m = |v: f64| if inch.is_some() { n(v) } else { fmt_num(v) };
+        let range = |v: f64| if inch.is_some() { n(v) } else { fmt_limit(v) };
+        let lim = if ck.min == ck.max {
+            ck.min.map_or(String::new(), |v| format!("must be {}", m(v)))
+        } else {
+            match (ck.min, ck.max) {
+                (Some(a), Some(b)) => format!("limits {} – {}", range(a), range(b)),
+                (Some(a), None) => format!("at least {}", m(a)),
+                (None, Some(b)) => format!("at most {}", m(b)),
+                (None, None) => String::new(),
+            }
+        };
+        let off = if ck.ok || ck.value.is_none() { String::new() } else { format!(", {}", tap_off(c, ck)) };
+        let lim = if lim.is_empty() || shown_unit.is_empty() { lim } else { format!("{lim} {shown_unit}") };
+        if !lim.is_empty() || !off.is_empty() {
+            g = line(g, &mut ty, 10.0, if ck.ok { "#555" } else { FAIL }, false, format!("    {lim}{off}"));
+        }
+    }
+    // How much thread the drill leaves, and the torque the tap needs (issue 64).
+    if hole.thread_percent.is_some() || hole.torque.is_some() {
+        ty += 4.0;
+    }
+    if let Some(t) = &hole.thread_percent {
+        g = line(
+            g,
+            &mut ty,
+            11.0,
+            "#333",
+            false,
+            format!(
+                "thread {} % (shops' band {}–{} %)",
+                fmt_num((t.percent * 10.0).round() / 10.0),
+                fmt_num(t.band[0]),
+                fmt_num(t.band[1])
+            ),
+        );
+    }
+    if let Some(t) = &hole.torque {
+        let spindle = [
+            t.spindle_torque_nm.map(|v| format!("{} N·m", fmt_num(v))),
+            t.spindle_power_kw.map(|v| format!("{} kW", fmt_num(v))),
+        ]
+        .into_iter()
+        .flatten()
+        .collect::<Vec<_>>();
+        let against = if spindle.is_empty() {
+            String::new()
+        } else {
+            format!("; spindle {}{}", spindle.join(", "), if t.exceeds_spindle { ": EXCEEDED" } else { "" })
+        };
+        g = line(
+            g,
+            &mut ty,
+            11.0,
+            if t.exceeds_spindle { FAIL } else { "#333" },
+            t.exceeds_spindle,
+            format!(
+                "torque {} N·m{}{against}",
+                fmt_num((t.newton_metres * 100.0).round() / 100.0),
+                t.power_kw
+                    .map_or(String::new(), |p| format!(", {} kW", fmt_num((p * 1000.0).round() / 1000.0)))
+            ),
+        );
+    }
+    let drill_unknown = hole.drill.as_ref().is_none_or(|d| d.diameter.is_none());
+    if let Some(pd) = hole.drill_that_passes.as_ref() {
+        ty += 6.0;
+        let window = if hole.tap.forming { "the form tap's hole" } else { "D1" };
+        let head = if drill_ok && !drill_unknown {
+            format!("the drill for {window}")
+        } else {
+            "a drill that passes".to_string()
+        };
+        let (what, why) = match (&pd.name, pd.diameter, pd.source) {
+            (Some(name), Some(dia), Some(src)) => (
+                if src == crate::standards::drills::DrillSource::InchGauge {
+                    format!("{head}: {name} ({:.4} in)", dia / crate::MM_PER_INCH)
+                } else {
+                    format!("{head}: Ø{name} mm")
+                },
+                format!(
+                    "{}; {window}'s middle {:.3}",
+                    crate::report::tapping::drill_source_words(src),
+                    pd.middle
+                ),
+            ),
+            _ => (
+                format!("{head}: Ø{:.3} mm", pd.middle),
+                format!("{window}'s middle; no stocked drill lies within it"),
+            ),
+        };
+        let colour = if drill_ok && !drill_unknown { "#333" } else { ZONE };
+        g = g.add(
+            text(x0, ty, 12.0, what)
+                .set("fill", colour)
+                .set("font-weight", "bold")
+                .set("id", format!("hole-{k}-passing-drill")),
+        );
+        ty += 14.0;
+        g = g.add(text(x0, ty, 10.0, why).set("fill", "#555"));
+    }
+    (g, ty)
 }
 
 /// `threadcheck tap --html`: one self-contained page: the verdict, the holes' sections, and per
