@@ -1062,6 +1062,119 @@ fn read(
     if dialect == Dialect::Dyna {
         dyna::prescan(text).map_err(|(l, c, m)| perr(l, c, m))?;
     }
+    let (blocks, names, delete_note, order_note) = prepared_blocks(text, file, dialect, &opts, &perr)?;
+    let fanuc_family = dialect.fanuc_family();
+    if let Some(sys) = opts.gcode_system.filter(|s| !fanuc_family && *s != GCodeSystem::A) {
+        return Err(Error::Input(format!(
+            "G-code system {} is a setting of Fanuc-family lathe controls (fanuc, mitsubishi, mazak): a {} program has one G-code list (leave ‹gcode_system› out)",
+            sys.name(),
+            dialect.name()
+        )));
+    }
+    let machine =
+        machine::decide(&blocks, dialect, opts.machine_type, opts.machine_type_by.as_deref(), opts.moves)
+            .map_err(|(l, c, msg)| perr(l, c, msg))?;
+    let lathe = machine.machine_type == MachineType::Lathe;
+    let (gsystem, system_evidence, overruled) = gcode_system(&blocks, dialect, &opts, lathe, &perr)?;
+    let mut m = motion::Motion::new(dialect, file, opts.moves, machine.machine_type == MachineType::Mill);
+    if machine.machine_type == MachineType::MillTurn {
+        m.set_mill_turn(machine::starts_as_mill(&blocks, dialect));
+    }
+    if let Some(out) = out {
+        m.stream_to(out);
+    }
+    m.gsystem = gsystem;
+    if let Some(u) = opts.default_units {
+        m.scale = u.mm();
+    }
+    let mut language = dialect::Language::of(dialect);
+    if dialect == Dialect::LinuxCnc {
+        language.arithmetic = match opts.linuxcnc {
+            LinuxCncRelease::Current => expr::Arithmetic::LinuxCnc,
+            LinuxCncRelease::Before29 => expr::Arithmetic::LinuxCncBefore29,
+        };
+    }
+    interp::run(
+        &blocks,
+        language,
+        rules(dialect).as_mut(),
+        &mut m,
+        &names,
+        opts.budget.unwrap_or_default(),
+        opts.main,
+    )?;
+    m.file = file.to_string();
+    let sub_note = (names.len() > 1).then(|| {
+        format!(
+            "subprograms read from files beside the program, where the control finds them: {}",
+            names[1..].join(", ")
+        )
+    });
+    let units_assumed = (!m.units_set).then_some(opts.default_units);
+    let holes = std::mem::take(&mut m.holes);
+    let control = std::mem::take(&mut m.control);
+    let stock = m.stock;
+    let (operations, skipped, mut notes, moves, read_past) = m.finish();
+    notes.extend(order_note.map(Note::from));
+    notes.extend(sub_note.map(Note::from));
+    let (dialect_note, units_note, system_note, model_note, encoding_note, machine_note) = reading_notes(
+        (text, file, dialect),
+        &opts,
+        &machine,
+        (gsystem, system_evidence, overruled),
+        units_assumed,
+        (!operations.is_empty(), !operations.is_empty() || !holes.is_empty() || !moves.is_empty()),
+    );
+    for n in [machine_note, units_note, dialect_note, system_note, model_note, encoding_note, delete_note]
+        .into_iter()
+        .flatten()
+        .rev()
+    {
+        notes.insert(0, Note::from(n));
+    }
+    for n in opts.settings_notes.iter().rev() {
+        notes.insert(0, Note::from(n.clone()));
+    }
+    if operations.is_empty() && !opts.allow_no_threading {
+        let mut why = format!("no threading pass in the program (looked for {})", dialect.threading_words());
+        let (mut line, mut col) = (1, 1);
+        if let Some((l, c, hint)) = no_thread_hint(&notes) {
+            (line, col) = (l, c);
+            why.push_str(&format!("; {hint}"));
+        } else if let Some(h) = holes.iter().find(|h| h.kind == HoleKind::Tap) {
+            // A tapping program given to a turning check: name the command that reads it.
+            (line, col) = (h.line, h.column);
+            why.push_str(&format!("; {} taps a hole: threadcheck tap checks tapping cycles", h.code));
+        }
+        return Err(perr(line, col, why));
+    }
+    let passes = operations.iter().flat_map(|o| o.passes.iter().copied()).collect();
+    Ok(Program {
+        passes,
+        operations,
+        skipped_blocks: skipped,
+        read_past_blocks: read_past,
+        notes,
+        moves,
+        holes,
+        machine,
+        stock,
+        stock_bottom: None,
+        control,
+    })
+}
+
+/// The program's blocks as the control runs them: lexed, with the subprogram files the control
+/// finds, block delete applied or said, in N order when asked (else a word where N goes back);
+/// the files' names, and the block-delete and order notes.
+#[allow(clippy::type_complexity)]
+fn prepared_blocks(
+    text: &str,
+    file: &str,
+    dialect: Dialect,
+    opts: &ReadOptions,
+    perr: &dyn Fn(usize, usize, String) -> Error,
+) -> Result<(Vec<lexer::Block>, Vec<String>, Option<String>, Option<String>), Error> {
     let mut blocks = lexer::lex(text, dialect).map_err(|(l, c, m)| perr(l, c, m))?;
     // Subprograms in other files, where the control finds them: their blocks follow the
     // program's own, each marked with its file.
@@ -1129,18 +1242,20 @@ fn read(
         keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         blocks = keyed.into_iter().map(|k| k.2).collect();
     }
+    Ok((blocks, names, delete_note, order_note))
+}
+
+/// The Fanuc G-code system a program is read in: the one given, else its words' evidence
+/// (system A where G32 outweighs it); the evidence, and what overruled it.
+#[allow(clippy::type_complexity)]
+fn gcode_system(
+    blocks: &[lexer::Block],
+    dialect: Dialect,
+    opts: &ReadOptions,
+    lathe: bool,
+    perr: &dyn Fn(usize, usize, String) -> Error,
+) -> Result<(GCodeSystem, Option<(usize, usize, String, &'static str)>, Option<String>), Error> {
     let fanuc_family = dialect.fanuc_family();
-    if let Some(sys) = opts.gcode_system.filter(|s| !fanuc_family && *s != GCodeSystem::A) {
-        return Err(Error::Input(format!(
-            "G-code system {} is a setting of Fanuc-family lathe controls (fanuc, mitsubishi, mazak): a {} program has one G-code list (leave ‹gcode_system› out)",
-            sys.name(),
-            dialect.name()
-        )));
-    }
-    let machine =
-        machine::decide(&blocks, dialect, opts.machine_type, opts.machine_type_by.as_deref(), opts.moves)
-            .map_err(|(l, c, msg)| perr(l, c, msg))?;
-    let lathe = machine.machine_type == MachineType::Lathe;
     // G32, system A's thread cutting (B and C write G33), outweighs a G91 (often only in
     // `G28 G91 X0 Z0`): the system is never inferred from G91 alone against it.
     let g32 = blocks.iter().find_map(|b| {
@@ -1149,7 +1264,7 @@ fn read(
     let mut overruled: Option<String> = None;
     let (gsystem, system_evidence) = match opts.gcode_system {
         Some(s) => (s, None),
-        None if fanuc_family && lathe => match system_evidence(&blocks) {
+        None if fanuc_family && lathe => match system_evidence(blocks) {
             Some(e) if g32.is_some() => {
                 let (l, c) = g32.unwrap_or_default();
                 overruled = Some(format!(
@@ -1180,47 +1295,25 @@ fn read(
         },
         None => (GCodeSystem::A, None),
     };
-    let mut m = motion::Motion::new(dialect, file, opts.moves, machine.machine_type == MachineType::Mill);
-    if machine.machine_type == MachineType::MillTurn {
-        m.set_mill_turn(machine::starts_as_mill(&blocks, dialect));
-    }
-    if let Some(out) = out {
-        m.stream_to(out);
-    }
-    m.gsystem = gsystem;
-    if let Some(u) = opts.default_units {
-        m.scale = u.mm();
-    }
-    let mut language = dialect::Language::of(dialect);
-    if dialect == Dialect::LinuxCnc {
-        language.arithmetic = match opts.linuxcnc {
-            LinuxCncRelease::Current => expr::Arithmetic::LinuxCnc,
-            LinuxCncRelease::Before29 => expr::Arithmetic::LinuxCncBefore29,
-        };
-    }
-    interp::run(
-        &blocks,
-        language,
-        rules(dialect).as_mut(),
-        &mut m,
-        &names,
-        opts.budget.unwrap_or_default(),
-        opts.main,
-    )?;
-    m.file = file.to_string();
-    let sub_note = (names.len() > 1).then(|| {
-        format!(
-            "subprograms read from files beside the program, where the control finds them: {}",
-            names[1..].join(", ")
-        )
-    });
-    let units_assumed = (!m.units_set).then_some(opts.default_units);
-    let holes = std::mem::take(&mut m.holes);
-    let control = std::mem::take(&mut m.control);
-    let stock = m.stock;
-    let (operations, skipped, mut notes, moves, read_past) = m.finish();
-    notes.extend(order_note.map(Note::from));
-    notes.extend(sub_note.map(Note::from));
+    Ok((gsystem, system_evidence, overruled))
+}
+
+/// What the reading took that the program does not say: the dialect, the units, the G-code
+/// system, the Fanuc model for its kin, a comment's encoding, the machine.
+#[allow(clippy::type_complexity)]
+fn reading_notes(
+    (text, file, dialect): (&str, &str, Dialect),
+    opts: &ReadOptions,
+    machine: &MachineReading,
+    (gsystem, system_evidence, mut overruled): (
+        GCodeSystem,
+        Option<(usize, usize, String, &'static str)>,
+        Option<String>,
+    ),
+    units_assumed: Option<Option<ProgramUnits>>,
+    (threads, reads_anything): (bool, bool),
+) -> (Option<String>, Option<String>, Option<String>, Option<String>, Option<String>, Option<String>) {
+    let fanuc_family = dialect.fanuc_family();
     let extension = std::path::Path::new(file).extension().and_then(|e| e.to_str()).unwrap_or("");
     let dialect_note = match opts.dialect_from {
         DialectFrom::Given => None,
@@ -1241,7 +1334,7 @@ fn read(
     };
     let units_note = match units_assumed {
         // A tap's or thread mill's program too: its holes and helices are in the same units.
-        Some(None) if !operations.is_empty() || !holes.is_empty() || !moves.is_empty() => Some(format!(
+        Some(None) if reads_anything => Some(format!(
             "{codes}: read in mm, the default; an inch control's program needs ‹default_units› inch"
         )),
         Some(Some(u)) => Some(format!(
@@ -1258,7 +1351,7 @@ fn read(
         ),
         None => "as ‹gcode_system› says".to_string(),
     };
-    let system_note = (fanuc_family && !operations.is_empty()).then(|| match gsystem {
+    let system_note = (fanuc_family && threads).then(|| match gsystem {
         GCodeSystem::A => match overruled.take() {
             Some(why) => why,
             None => "read in Fanuc G-code system A (G92 the threading cycle, G76 the multiple one, G32 thread cutting); a control set to system B or C needs ‹gcode_system› b or c".to_string(),
@@ -1268,7 +1361,7 @@ fn read(
     });
     // Mitsubishi and Mazak are read as the Fanuc model: say so wherever they thread.
     let model_note = match dialect {
-        Dialect::Mitsubishi | Dialect::Mazak => (!operations.is_empty()).then(|| format!(
+        Dialect::Mitsubishi | Dialect::Mazak => (threads).then(|| format!(
             "{} read as the Fanuc model (G32, G92, the two-block G76, macro B), the format this control is reported to accept; its own extensions are not read (a named default: its threading pages were not read)",
             dialect.name()
         )),
@@ -1295,43 +1388,7 @@ fn read(
             Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak | Dialect::LinuxCnc
         ))
     .then(|| machine.reason.clone());
-    for n in [machine_note, units_note, dialect_note, system_note, model_note, encoding_note, delete_note]
-        .into_iter()
-        .flatten()
-        .rev()
-    {
-        notes.insert(0, Note::from(n));
-    }
-    for n in opts.settings_notes.iter().rev() {
-        notes.insert(0, Note::from(n.clone()));
-    }
-    if operations.is_empty() && !opts.allow_no_threading {
-        let mut why = format!("no threading pass in the program (looked for {})", dialect.threading_words());
-        let (mut line, mut col) = (1, 1);
-        if let Some((l, c, hint)) = no_thread_hint(&notes) {
-            (line, col) = (l, c);
-            why.push_str(&format!("; {hint}"));
-        } else if let Some(h) = holes.iter().find(|h| h.kind == HoleKind::Tap) {
-            // A tapping program given to a turning check: name the command that reads it.
-            (line, col) = (h.line, h.column);
-            why.push_str(&format!("; {} taps a hole: threadcheck tap checks tapping cycles", h.code));
-        }
-        return Err(perr(line, col, why));
-    }
-    let passes = operations.iter().flat_map(|o| o.passes.iter().copied()).collect();
-    Ok(Program {
-        passes,
-        operations,
-        skipped_blocks: skipped,
-        read_past_blocks: read_past,
-        notes,
-        moves,
-        holes,
-        machine,
-        stock,
-        stock_bottom: None,
-        control,
-    })
+    (dialect_note, units_note, system_note, model_note, encoding_note, machine_note)
 }
 
 /// The dialect table: the rules each dialect's module implements, with a fresh modal state.
