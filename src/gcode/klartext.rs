@@ -747,6 +747,75 @@ fn tool(st: &mut St<'_>, b: &KBlock, up: &str) -> Result<Flow, KErr> {
 /// The lines and arcs: `L`, `LP`, `C`, `CR`, `CT`, `CP`, and the pole `CC`.
 fn path(st: &mut St<'_>, b: &KBlock, kind: &str) -> Result<Flow, KErr> {
     let ws = words(&b.text, kind.len(), b.col);
+    let PathWords { target, given, rapid, dr, radius, pr, pa, ipa, ipr, m99, mb, machine } =
+        path_words(st, b, kind, &ws)?;
+    if kind == "CC" {
+        // The pole: the point given, or the position when none is.
+        let c = if given[0] || given[1] {
+            [target[0], target[1]]
+        } else {
+            if !(st.known[0] && st.known[1]) {
+                return Err((
+                    b.line,
+                    b.col,
+                    "CC without X and Y takes the position, which the program has not set".into(),
+                ));
+            }
+            [st.pos[0], st.pos[1]]
+        };
+        st.cc = Some(c);
+        return Ok(Flow::Next);
+    }
+    let ends = m_words(st, b, &ws)?;
+    if let Some(col) = mb {
+        // The retract's height is the machine's (MAX: the travel limit): Z unknown until the
+        // program sets it again; nothing is cut on the way.
+        st.known[2] = false;
+        st.read_past(b.line, col, "M140 MB", "a retract along the tool axis (MB MAX: to the travel limit); Z is taken as unknown until the program sets it");
+        return Ok(if ends { Flow::End } else { Flow::Next });
+    }
+    if let Some((col, code)) = machine {
+        // Positions in the machine's coordinates: not the program's, so unknown after it.
+        for (known, given) in st.known.iter_mut().zip(given) {
+            if given {
+                *known = false;
+            }
+        }
+        st.read_past(b.line, col, &format!("M{code}"), "a move in machine coordinates (M91: the machine datum, M92: the machine's reference point): the axes it moves are taken as unknown until the program sets them");
+        return Ok(if ends { Flow::End } else { Flow::Next });
+    }
+    path_move(
+        st,
+        b,
+        kind,
+        &PathWords { target, given, rapid, dr, radius, pr, pa, ipa, ipr, m99, mb, machine },
+    )?;
+    if let Some(col) = m99 {
+        let here = st.pos;
+        run_cycle(st, here, b.line, col, None)?;
+    }
+    Ok(if ends { Flow::End } else { Flow::Next })
+}
+
+/// What a path block's words give: the target, which axes it names, rapid, the arc's direction,
+/// radius and polar words, an M99, a retract (MB) and a machine-coordinate M91/M92.
+struct PathWords {
+    target: [f64; 3],
+    given: [bool; 3],
+    rapid: bool,
+    dr: Option<f64>,
+    radius: Option<f64>,
+    pr: Option<f64>,
+    pa: Option<f64>,
+    ipa: Option<f64>,
+    ipr: Option<f64>,
+    m99: Option<usize>,
+    mb: Option<usize>,
+    machine: Option<(usize, String)>,
+}
+
+/// A path block's words read (rotary axes, feeds and compensation set on the way).
+fn path_words(st: &mut St<'_>, b: &KBlock, kind: &str, ws: &[KWord]) -> Result<PathWords, KErr> {
     let mut target = st.pos;
     let mut given = [false; 3];
     let (mut rapid, mut dr, mut radius, mut pr, mut pa, mut ipa, mut ipr) =
@@ -831,41 +900,12 @@ fn path(st: &mut St<'_>, b: &KBlock, kind: &str) -> Result<Flow, KErr> {
             }
         }
     }
-    if kind == "CC" {
-        // The pole: the point given, or the position when none is.
-        let c = if given[0] || given[1] {
-            [target[0], target[1]]
-        } else {
-            if !(st.known[0] && st.known[1]) {
-                return Err((
-                    b.line,
-                    b.col,
-                    "CC without X and Y takes the position, which the program has not set".into(),
-                ));
-            }
-            [st.pos[0], st.pos[1]]
-        };
-        st.cc = Some(c);
-        return Ok(Flow::Next);
-    }
-    let ends = m_words(st, b, &ws)?;
-    if let Some(col) = mb {
-        // The retract's height is the machine's (MAX: the travel limit): Z unknown until the
-        // program sets it again; nothing is cut on the way.
-        st.known[2] = false;
-        st.read_past(b.line, col, "M140 MB", "a retract along the tool axis (MB MAX: to the travel limit); Z is taken as unknown until the program sets it");
-        return Ok(if ends { Flow::End } else { Flow::Next });
-    }
-    if let Some((col, code)) = machine {
-        // Positions in the machine's coordinates: not the program's, so unknown after it.
-        for (known, given) in st.known.iter_mut().zip(given) {
-            if given {
-                *known = false;
-            }
-        }
-        st.read_past(b.line, col, &format!("M{code}"), "a move in machine coordinates (M91: the machine datum, M92: the machine's reference point): the axes it moves are taken as unknown until the program sets them");
-        return Ok(if ends { Flow::End } else { Flow::Next });
-    }
+    Ok(PathWords { target, given, rapid, dr, radius, pr, pa, ipa, ipr, m99, mb, machine })
+}
+
+/// A path block's move: a line (L, LP) or an arc (C, CP, CR, CT) from the position.
+fn path_move(st: &mut St<'_>, b: &KBlock, kind: &str, pw: &PathWords) -> Result<(), KErr> {
+    let &PathWords { target, given, rapid, dr, radius, pr, pa, ipa, ipr, .. } = pw;
     let needs_pos = |st: &St<'_>| -> Result<(), KErr> {
         if st.known[0] && st.known[1] {
             Ok(())
@@ -998,11 +1038,7 @@ fn path(st: &mut St<'_>, b: &KBlock, kind: &str) -> Result<Flow, KErr> {
         }
         _ => unreachable!("path kinds"),
     }
-    if let Some(col) = m99 {
-        let here = st.pos;
-        run_cycle(st, here, b.line, col, None)?;
-    }
-    Ok(if ends { Flow::End } else { Flow::Next })
+    Ok(())
 }
 
 /// Radius and angle (degrees) of `p` about `c`.
@@ -1195,43 +1231,7 @@ fn fn_block(st: &mut St<'_>, b: &KBlock, up: &str, labels: &HashMap<String, usiz
 /// `CYCL DEF n NAME` with its Q lines, the dotted cycles 7 and 10, and `CYCL CALL …`.
 fn cycle(st: &mut St<'_>, b: &KBlock, up: &str) -> Result<Flow, KErr> {
     if let Some(rest) = up.strip_prefix("CYCL CALL") {
-        let rest = rest.trim();
-        if rest.starts_with("PAT") {
-            let (pts, _) = st.pattern.clone().ok_or((
-                b.line,
-                b.col,
-                "CYCL CALL PAT without a PATTERN DEF before it".to_string(),
-            ))?;
-            for p in pts {
-                run_cycle(st, [p[0], p[1], st.pos[2]], b.line, b.col, Some(p[2]))?;
-            }
-        } else if let Some(pos) = rest.strip_prefix("POS") {
-            let off = up.len() - pos.len();
-            let ws = words(&b.text, off, b.col);
-            let mut p = st.pos;
-            for w in &ws {
-                match axis_word(&w.name) {
-                    Some((k, false)) => p[k] = st.len(w, b.line)?,
-                    Some((k, true)) => p[k] = st.pos[k] + st.len(w, b.line)?,
-                    None => {}
-                }
-            }
-            for k in 0..3 {
-                st.known[k] = true;
-            }
-            st.pos = p;
-            m_words(st, b, &ws)?;
-            run_cycle(st, p, b.line, b.col, None)?;
-        } else {
-            if !(st.known[0] && st.known[1]) {
-                return Err((b.line, b.col, "CYCL CALL at a position the program has not set".into()));
-            }
-            let ws = words(&b.text, 9, b.col);
-            m_words(st, b, &ws)?;
-            let here = st.pos;
-            run_cycle(st, here, b.line, b.col, None)?;
-        }
-        return Ok(Flow::Next);
+        return cycle_call(st, b, up, rest);
     }
     let rest = up
         .strip_prefix("CYCL DEF")
@@ -1244,84 +1244,8 @@ fn cycle(st: &mut St<'_>, b: &KBlock, up: &str) -> Result<Flow, KErr> {
         None => (num_text.parse::<u32>().ok(), None),
     };
     let major = major.ok_or((b.line, b.col, format!("CYCL DEF {rest}: the cycle's number")))?;
-    match (major, minor) {
-        (7, Some(0)) | (10, Some(0)) => return Ok(Flow::Next),
-        (7, Some(1..=3)) => {
-            // 7.1 X+10 (IX: an increment of the shift).
-            let ws = words(&b.text, up.find(&num_text).unwrap_or(0) + num_text.len(), b.col);
-            for w in &ws {
-                if w.name == "#" || w.val.starts_with('#') {
-                    return Err((
-                        b.line,
-                        w.col,
-                        "CYCL DEF 7 with a datum table row (#n) is not read: write the shift as X, Y, Z"
-                            .into(),
-                    ));
-                }
-                let Some((k, inc)) = axis_word(&w.name) else {
-                    return Err((
-                        b.line,
-                        w.col,
-                        format!("CYCL DEF 7: {}{} is not a shift of X, Y or Z", w.name, w.val),
-                    ));
-                };
-                let v = st.len(w, b.line)?;
-                st.shift[k] = if inc { st.shift[k] + v } else { v };
-            }
-            return Ok(Flow::Next);
-        }
-        (10, Some(1)) => {
-            let ws = words(&b.text, up.find("10.1").unwrap_or(0) + 4, b.col);
-            for w in &ws {
-                match w.name.as_str() {
-                    "ROT" => st.rot_deg = st.value(w, b.line)?,
-                    "IROT" => st.rot_deg += st.value(w, b.line)?,
-                    _ => {
-                        return Err((
-                            b.line,
-                            w.col,
-                            format!("CYCL DEF 10.1: {}{} (ROT or IROT expected)", w.name, w.val),
-                        ))
-                    }
-                }
-            }
-            return Ok(Flow::Next);
-        }
-        (8 | 11 | 26, _) => {
-            let what = match major {
-                8 => "MIRROR IMAGE (a mirrored helix or tap changes hand)",
-                _ => "SCALING",
-            };
-            if minor.is_none_or(|m| m == 0) {
-                return Err((
-                    b.line,
-                    b.col,
-                    format!(
-                        "CYCL DEF {major} {what} is not read: positions and hands under it would be wrong"
-                    ),
-                ));
-            }
-            return Ok(Flow::Next);
-        }
-        (19, _) => {
-            let zero = minor == Some(0)
-                || b.text.split_whitespace().skip(3).all(|w| {
-                    w.trim_start_matches(|c: char| c.is_ascii_alphabetic())
-                        .trim_start_matches(['+', '-'])
-                        .parse::<f64>()
-                        .is_ok_and(|v| v == 0.0)
-                });
-            if !zero {
-                return Err((
-                    b.line,
-                    b.col,
-                    "CYCL DEF 19 WORKING PLANE tilts the plane: a thread's axis that is not Z is not read"
-                        .into(),
-                ));
-            }
-            return Ok(Flow::Next);
-        }
-        _ => {}
+    if coordinate_cycle(st, b, up, &num_text, (major, minor))? {
+        return Ok(Flow::Next);
     }
     // A cycle with Q parameters: evaluated now, in order; each also a Q-parameter after it.
     let mut q = HashMap::new();
@@ -1349,6 +1273,146 @@ fn cycle(st: &mut St<'_>, b: &KBlock, up: &str) -> Result<Flow, KErr> {
         st.q.insert(p.q as i64, v);
     }
     let def = CycleDef { number: major, name, q, line: b.line, col: b.col };
+    machining_cycle(st, b, def)?;
+    Ok(Flow::Next)
+}
+
+/// `CYCL CALL`, `CYCL CALL PAT` and `CYCL CALL POS`: the cycle in force run where they say.
+fn cycle_call(st: &mut St<'_>, b: &KBlock, up: &str, rest: &str) -> Result<Flow, KErr> {
+    let rest = rest.trim();
+    if rest.starts_with("PAT") {
+        let (pts, _) = st.pattern.clone().ok_or((
+            b.line,
+            b.col,
+            "CYCL CALL PAT without a PATTERN DEF before it".to_string(),
+        ))?;
+        for p in pts {
+            run_cycle(st, [p[0], p[1], st.pos[2]], b.line, b.col, Some(p[2]))?;
+        }
+    } else if let Some(pos) = rest.strip_prefix("POS") {
+        let off = up.len() - pos.len();
+        let ws = words(&b.text, off, b.col);
+        let mut p = st.pos;
+        for w in &ws {
+            match axis_word(&w.name) {
+                Some((k, false)) => p[k] = st.len(w, b.line)?,
+                Some((k, true)) => p[k] = st.pos[k] + st.len(w, b.line)?,
+                None => {}
+            }
+        }
+        for k in 0..3 {
+            st.known[k] = true;
+        }
+        st.pos = p;
+        m_words(st, b, &ws)?;
+        run_cycle(st, p, b.line, b.col, None)?;
+    } else {
+        if !(st.known[0] && st.known[1]) {
+            return Err((b.line, b.col, "CYCL CALL at a position the program has not set".into()));
+        }
+        let ws = words(&b.text, 9, b.col);
+        m_words(st, b, &ws)?;
+        let here = st.pos;
+        run_cycle(st, here, b.line, b.col, None)?;
+    }
+    return Ok(Flow::Next);
+}
+
+/// The coordinate transformation cycles (7 datum shift, 10 rotation; 8, 11, 26 mirror and
+/// scaling and 19 a tilted plane refused): applied, `true`; `false` for any other cycle.
+fn coordinate_cycle(
+    st: &mut St<'_>,
+    b: &KBlock,
+    up: &str,
+    num_text: &str,
+    (major, minor): (u32, Option<u32>),
+) -> Result<bool, KErr> {
+    match (major, minor) {
+        (7, Some(0)) | (10, Some(0)) => return Ok(true),
+        (7, Some(1..=3)) => {
+            // 7.1 X+10 (IX: an increment of the shift).
+            let ws = words(&b.text, up.find(num_text).unwrap_or(0) + num_text.len(), b.col);
+            for w in &ws {
+                if w.name == "#" || w.val.starts_with('#') {
+                    return Err((
+                        b.line,
+                        w.col,
+                        "CYCL DEF 7 with a datum table row (#n) is not read: write the shift as X, Y, Z"
+                            .into(),
+                    ));
+                }
+                let Some((k, inc)) = axis_word(&w.name) else {
+                    return Err((
+                        b.line,
+                        w.col,
+                        format!("CYCL DEF 7: {}{} is not a shift of X, Y or Z", w.name, w.val),
+                    ));
+                };
+                let v = st.len(w, b.line)?;
+                st.shift[k] = if inc { st.shift[k] + v } else { v };
+            }
+            return Ok(true);
+        }
+        (10, Some(1)) => {
+            let ws = words(&b.text, up.find("10.1").unwrap_or(0) + 4, b.col);
+            for w in &ws {
+                match w.name.as_str() {
+                    "ROT" => st.rot_deg = st.value(w, b.line)?,
+                    "IROT" => st.rot_deg += st.value(w, b.line)?,
+                    _ => {
+                        return Err((
+                            b.line,
+                            w.col,
+                            format!("CYCL DEF 10.1: {}{} (ROT or IROT expected)", w.name, w.val),
+                        ))
+                    }
+                }
+            }
+            return Ok(true);
+        }
+        (8 | 11 | 26, _) => {
+            let what = match major {
+                8 => "MIRROR IMAGE (a mirrored helix or tap changes hand)",
+                _ => "SCALING",
+            };
+            if minor.is_none_or(|m| m == 0) {
+                return Err((
+                    b.line,
+                    b.col,
+                    format!(
+                        "CYCL DEF {major} {what} is not read: positions and hands under it would be wrong"
+                    ),
+                ));
+            }
+            return Ok(true);
+        }
+        (19, _) => {
+            let zero = minor == Some(0)
+                || b.text.split_whitespace().skip(3).all(|w| {
+                    w.trim_start_matches(|c: char| c.is_ascii_alphabetic())
+                        .trim_start_matches(['+', '-'])
+                        .parse::<f64>()
+                        .is_ok_and(|v| v == 0.0)
+                });
+            if !zero {
+                return Err((
+                    b.line,
+                    b.col,
+                    "CYCL DEF 19 WORKING PLANE tilts the plane: a thread's axis that is not Z is not read"
+                        .into(),
+                ));
+            }
+            return Ok(true);
+        }
+        _ => {}
+    }
+    Ok(false)
+}
+
+/// A machining cycle's definition kept for its calls (a pattern cycle runs the one before it at
+/// its points), its words checked first; a cycle that makes no thread is read past.
+fn machining_cycle(st: &mut St<'_>, b: &KBlock, def: CycleDef) -> Result<(), KErr> {
+    let major = def.number;
     match major {
         220 | 221 => {
             let Some(target) = st.cycle.clone() else {
@@ -1436,7 +1500,7 @@ fn cycle(st: &mut St<'_>, b: &KBlock, up: &str) -> Result<Flow, KErr> {
             st.cycle = Some(def);
         }
     }
-    Ok(Flow::Next)
+    Ok(())
 }
 
 /// The points of the pattern cycles 220 (polar) and 221 (Cartesian).
