@@ -371,48 +371,7 @@ fn layout(
         column: col,
         message: msg,
     };
-    // Programs in one file.
-    let headers: Vec<usize> =
-        blocks.iter().enumerate().filter(|(_, b)| b.header.is_some()).map(|(i, _)| i).collect();
-    if lang.headers_split_programs {
-        {
-            // Fanuc: the first O-number program is the main one (a leading header names it).
-            // Sinumerik: subprograms follow the main program, each after its name.
-            // A training simulator's set-up lines (`[BILLET …`) may stand before it.
-            let setup_only = |b: &Block| {
-                b.words.is_empty()
-                    && b.stmts.is_empty()
-                    && !b.past.is_empty()
-                    && b.past.iter().all(|p| matches!(p.kind, PastKind::Billet { .. } | PastKind::Simulator))
-            };
-            let first_is_main = lang.leading_header_is_main
-                && headers.first().is_some_and(|&h| blocks[..h].iter().all(setup_only));
-            // Several O-programs in one file: every one is a program; the main one is chosen
-            // below (the one no other calls, or --main).
-            let several = first_is_main && headers.len() >= 2;
-            let sub_headers: &[usize] = if first_is_main && !several { &headers[1..] } else { &headers[..] };
-            l.main_end = sub_headers.first().copied().unwrap_or(blocks.len());
-            for i in 0..l.main_end {
-                l.section[i] = (0, l.main_end);
-            }
-            for (k, &h) in sub_headers.iter().enumerate() {
-                let end = sub_headers.get(k + 1).copied().unwrap_or(blocks.len());
-                let name = blocks[h].header.clone().unwrap_or_default();
-                if l.subs.insert(name.clone(), (h + 1, end)).is_some() {
-                    return Err(perr(&blocks[h], 1, format!("subprogram {name} is defined twice")));
-                }
-                for i in h..end {
-                    l.section[i] = (h + 1, end);
-                }
-            }
-            choose_main(blocks, &headers, several, first_is_main, main, &mut l, m)?;
-        }
-    } else if let Some(o) = main {
-        return Err(Error::Input(format!(
-            "‹main› O{o}: the {} dialect has no O-numbered programs to choose from",
-            m.dialect.name()
-        )));
-    }
+    split_programs(blocks, lang, m, main, &mut l, &perr)?;
     // Sequence numbers and labels, per section; repeated numbers are warned.
     let mut seen: HashMap<(usize, u64), usize> = HashMap::new();
     for (i, b) in blocks.iter().enumerate() {
@@ -472,117 +431,7 @@ fn layout(
                     None => return Err(perr(b, *col, format!("END{id} without WHILE … DO{id}"))),
                 },
                 Stmt::O { name, kw, col, .. } => {
-                    let close = |want: &[OKw],
-                                 ostack: &mut Vec<(usize, String, OKw)>|
-                     -> Result<(usize, OKw), Error> {
-                        match ostack.last() {
-                            Some((j, n, k)) if n == name && want.contains(k) => {
-                                let r = (*j, *k);
-                                ostack.pop();
-                                Ok(r)
-                            }
-                            Some((_, n, k)) => Err(perr(
-                                b,
-                                *col,
-                                format!(
-                                    "o{name} {} inside o{n} {}: O-word blocks must nest",
-                                    okw(*kw),
-                                    okw(*k)
-                                ),
-                            )),
-                            None => Err(perr(b, *col, format!("o{name} {} has no opening block", okw(*kw)))),
-                        }
-                    };
-                    match kw {
-                        OKw::Sub | OKw::While | OKw::Do | OKw::If | OKw::Repeat => {
-                            // A `while` that closes a `do` of the same name.
-                            if *kw == OKw::While {
-                                if let Some((j, n, OKw::Do)) = ostack.last() {
-                                    if n == name {
-                                        let j = *j;
-                                        ostack.pop();
-                                        l.pair.insert(j, i);
-                                        l.pair.insert(i, j);
-                                        continue;
-                                    }
-                                }
-                            }
-                            if *kw != OKw::Sub {
-                                let scope =
-                                    ostack.iter().rev().find(|(_, _, k)| *k == OKw::Sub).map(|(j, _, _)| *j);
-                                if let Some(first) = opened.insert((scope, name.clone()), b.line) {
-                                    return Err(perr(
-                                        b,
-                                        *col,
-                                        format!(
-                                            "o{name} {}: the label o{name} already opens a block at line {first}, and LinuxCNC refuses a label used twice (\"duplicate O-word label\"): give each loop and branch a label of its own",
-                                            okw(*kw)
-                                        ),
-                                    ));
-                                }
-                            }
-                            ostack.push((i, name.clone(), *kw));
-                        }
-                        OKw::EndSub => {
-                            let (j, _) = close(&[OKw::Sub], &mut ostack)?;
-                            l.pair.insert(j, i);
-                            // The endsub itself runs (it returns, and sets #<_value>).
-                            l.subs.insert(name.clone(), (j + 1, i + 1));
-                        }
-                        OKw::EndWhile => {
-                            let (j, _) = close(&[OKw::While], &mut ostack)?;
-                            l.pair.insert(j, i);
-                            l.pair.insert(i, j);
-                        }
-                        OKw::EndRepeat => {
-                            let (j, _) = close(&[OKw::Repeat], &mut ostack)?;
-                            l.pair.insert(j, i);
-                            l.pair.insert(i, j);
-                        }
-                        OKw::ElseIf | OKw::Else => {
-                            let (j, _) = close(&[OKw::If, OKw::ElseIf], &mut ostack)?;
-                            l.next_branch.insert(j, i);
-                            ostack.push((i, name.clone(), if *kw == OKw::Else { OKw::ElseIf } else { *kw }));
-                        }
-                        OKw::EndIf => {
-                            let (j, _) = close(&[OKw::If, OKw::ElseIf], &mut ostack)?;
-                            l.next_branch.insert(j, i);
-                            // Every branch head of the chain leads to this endif.
-                            let mut k = j;
-                            loop {
-                                l.endif.insert(k, i);
-                                match l.next_branch.iter().find(|(_, &v)| v == k) {
-                                    Some((&prev, _)) => k = prev,
-                                    None => break,
-                                }
-                            }
-                        }
-                        OKw::Break | OKw::Continue => {
-                            // LinuxCNC breaks out of while and do loops only: a repeat loop's
-                            // name is no label for break or continue (interp_o_word.cc).
-                            if ostack.iter().rev().any(|(_, n, k)| n == name && *k == OKw::Repeat) {
-                                return Err(perr(
-                                    b,
-                                    *col,
-                                    format!("o{name} {}: o{name} is a repeat loop, and LinuxCNC breaks out of and continues while and do loops only", okw(*kw)),
-                                ));
-                            }
-                            let head = ostack
-                                .iter()
-                                .rev()
-                                .find(|(_, n, k)| n == name && matches!(k, OKw::While | OKw::Do))
-                                .map(|(j, _, _)| *j)
-                                .ok_or_else(|| {
-                                    perr(
-                                        b,
-                                        *col,
-                                        format!("o{name} {} outside a loop named o{name}", okw(*kw)),
-                                    )
-                                })?;
-                            l.loop_of.insert(i, head);
-                        }
-                        OKw::Call | OKw::Return => {}
-                    }
+                    pair_o_word(&mut l, &mut ostack, &mut opened, (i, b), (name, kw, col), &perr)?;
                 }
                 Stmt::Assign { .. }
                 | Stmt::Goto { .. }
@@ -599,6 +448,173 @@ fn layout(
         return Err(perr(&blocks[*j], 1, format!("o{n} {} is never closed", okw(*k))));
     }
     Ok(l)
+}
+
+/// Programs in one file: the main program's blocks and each subprogram's, by their headers (the
+/// main one chosen where several are programs); `main` refused where the dialect has none.
+fn split_programs(
+    blocks: &[Block],
+    lang: Language,
+    m: &mut Motion,
+    main: Option<u32>,
+    l: &mut Layout,
+    perr: &dyn Fn(&Block, usize, String) -> Error,
+) -> Result<(), Error> {
+    // Programs in one file.
+    let headers: Vec<usize> =
+        blocks.iter().enumerate().filter(|(_, b)| b.header.is_some()).map(|(i, _)| i).collect();
+    if lang.headers_split_programs {
+        {
+            // Fanuc: the first O-number program is the main one (a leading header names it).
+            // Sinumerik: subprograms follow the main program, each after its name.
+            // A training simulator's set-up lines (`[BILLET …`) may stand before it.
+            let setup_only = |b: &Block| {
+                b.words.is_empty()
+                    && b.stmts.is_empty()
+                    && !b.past.is_empty()
+                    && b.past.iter().all(|p| matches!(p.kind, PastKind::Billet { .. } | PastKind::Simulator))
+            };
+            let first_is_main = lang.leading_header_is_main
+                && headers.first().is_some_and(|&h| blocks[..h].iter().all(setup_only));
+            // Several O-programs in one file: every one is a program; the main one is chosen
+            // below (the one no other calls, or --main).
+            let several = first_is_main && headers.len() >= 2;
+            let sub_headers: &[usize] = if first_is_main && !several { &headers[1..] } else { &headers[..] };
+            l.main_end = sub_headers.first().copied().unwrap_or(blocks.len());
+            for i in 0..l.main_end {
+                l.section[i] = (0, l.main_end);
+            }
+            for (k, &h) in sub_headers.iter().enumerate() {
+                let end = sub_headers.get(k + 1).copied().unwrap_or(blocks.len());
+                let name = blocks[h].header.clone().unwrap_or_default();
+                if l.subs.insert(name.clone(), (h + 1, end)).is_some() {
+                    return Err(perr(&blocks[h], 1, format!("subprogram {name} is defined twice")));
+                }
+                for i in h..end {
+                    l.section[i] = (h + 1, end);
+                }
+            }
+            choose_main(blocks, &headers, several, first_is_main, main, l, m)?;
+        }
+    } else if let Some(o) = main {
+        return Err(Error::Input(format!(
+            "‹main› O{o}: the {} dialect has no O-numbered programs to choose from",
+            m.dialect.name()
+        )));
+    }
+    Ok(())
+}
+
+/// The O-word blocks (LinuxCNC) paired: each closing block with its opening one, a branch with
+/// the next, a break with its loop; a label used twice or blocks that do not nest refused.
+#[allow(clippy::type_complexity)]
+fn pair_o_word(
+    l: &mut Layout,
+    ostack: &mut Vec<(usize, String, OKw)>,
+    opened: &mut HashMap<(Option<usize>, String), usize>,
+    (i, b): (usize, &Block),
+    (name, kw, col): (&String, &OKw, &usize),
+    perr: &dyn Fn(&Block, usize, String) -> Error,
+) -> Result<(), Error> {
+    let close = |want: &[OKw], ostack: &mut Vec<(usize, String, OKw)>| -> Result<(usize, OKw), Error> {
+        match ostack.last() {
+            Some((j, n, k)) if n == name && want.contains(k) => {
+                let r = (*j, *k);
+                ostack.pop();
+                Ok(r)
+            }
+            Some((_, n, k)) => Err(perr(
+                b,
+                *col,
+                format!("o{name} {} inside o{n} {}: O-word blocks must nest", okw(*kw), okw(*k)),
+            )),
+            None => Err(perr(b, *col, format!("o{name} {} has no opening block", okw(*kw)))),
+        }
+    };
+    match kw {
+        OKw::Sub | OKw::While | OKw::Do | OKw::If | OKw::Repeat => {
+            // A `while` that closes a `do` of the same name.
+            if *kw == OKw::While {
+                if let Some((j, n, OKw::Do)) = ostack.last() {
+                    if n == name {
+                        let j = *j;
+                        ostack.pop();
+                        l.pair.insert(j, i);
+                        l.pair.insert(i, j);
+                        return Ok(());
+                    }
+                }
+            }
+            if *kw != OKw::Sub {
+                let scope = ostack.iter().rev().find(|(_, _, k)| *k == OKw::Sub).map(|(j, _, _)| *j);
+                if let Some(first) = opened.insert((scope, name.clone()), b.line) {
+                    return Err(perr(
+                        b,
+                        *col,
+                        format!(
+                            "o{name} {}: the label o{name} already opens a block at line {first}, and LinuxCNC refuses a label used twice (\"duplicate O-word label\"): give each loop and branch a label of its own",
+                            okw(*kw)
+                        ),
+                    ));
+                }
+            }
+            ostack.push((i, name.clone(), *kw));
+        }
+        OKw::EndSub => {
+            let (j, _) = close(&[OKw::Sub], ostack)?;
+            l.pair.insert(j, i);
+            // The endsub itself runs (it returns, and sets #<_value>).
+            l.subs.insert(name.clone(), (j + 1, i + 1));
+        }
+        OKw::EndWhile => {
+            let (j, _) = close(&[OKw::While], ostack)?;
+            l.pair.insert(j, i);
+            l.pair.insert(i, j);
+        }
+        OKw::EndRepeat => {
+            let (j, _) = close(&[OKw::Repeat], ostack)?;
+            l.pair.insert(j, i);
+            l.pair.insert(i, j);
+        }
+        OKw::ElseIf | OKw::Else => {
+            let (j, _) = close(&[OKw::If, OKw::ElseIf], ostack)?;
+            l.next_branch.insert(j, i);
+            ostack.push((i, name.clone(), if *kw == OKw::Else { OKw::ElseIf } else { *kw }));
+        }
+        OKw::EndIf => {
+            let (j, _) = close(&[OKw::If, OKw::ElseIf], ostack)?;
+            l.next_branch.insert(j, i);
+            // Every branch head of the chain leads to this endif.
+            let mut k = j;
+            loop {
+                l.endif.insert(k, i);
+                match l.next_branch.iter().find(|(_, &v)| v == k) {
+                    Some((&prev, _)) => k = prev,
+                    None => break,
+                }
+            }
+        }
+        OKw::Break | OKw::Continue => {
+            // LinuxCNC breaks out of while and do loops only: a repeat loop's
+            // name is no label for break or continue (interp_o_word.cc).
+            if ostack.iter().rev().any(|(_, n, k)| n == name && *k == OKw::Repeat) {
+                return Err(perr(
+                    b,
+                    *col,
+                    format!("o{name} {}: o{name} is a repeat loop, and LinuxCNC breaks out of and continues while and do loops only", okw(*kw)),
+                ));
+            }
+            let head = ostack
+                .iter()
+                .rev()
+                .find(|(_, n, k)| n == name && matches!(k, OKw::While | OKw::Do))
+                .map(|(j, _, _)| *j)
+                .ok_or_else(|| perr(b, *col, format!("o{name} {} outside a loop named o{name}", okw(*kw))))?;
+            l.loop_of.insert(i, head);
+        }
+        OKw::Call | OKw::Return => {}
+    }
+    Ok(())
 }
 
 fn okw(k: OKw) -> &'static str {
