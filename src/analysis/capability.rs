@@ -167,32 +167,7 @@ fn phi(z: f64) -> f64 {
 /// # Ok::<(), threadcheck::Error>(())
 /// ```
 pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
-    let nonneg = |v: f64, what: &str, max: f64| {
-        if v.is_finite() && v >= 0.0 && v <= max {
-            Ok(())
-        } else {
-            Err(Error::Input(format!(
-                "{what} {} mm: must be from 0 to {} mm",
-                crate::ground::fmt::fmt_shown(v),
-                crate::ground::fmt::fmt_num(max)
-            )))
-        }
-    };
-    nonneg(spec.x_sigma, "‹x_sigma›", 1.0)?;
-    nonneg(spec.tip_radius_tol, "‹tip_radius_tol›", 1.0)?;
-    nonneg(spec.wear_per_part, "‹wear_per_part›", 1.0)?;
-    // Under a nanometre a part the edge would last beyond any count (1e-300 printed
-    // 18446744073709551615 parts, a saturated integer).
-    if spec.wear_per_part > 0.0 && spec.wear_per_part < MIN_WEAR_PER_PART {
-        return Err(Error::Input(format!(
-            "‹wear_per_part› {} mm: a wear is 0 or at least {} mm (1 nm) a part",
-            crate::ground::fmt::fmt_shown(spec.wear_per_part),
-            crate::ground::fmt::fmt_shown(MIN_WEAR_PER_PART)
-        )));
-    }
-    if !(2..=MAX_SAMPLES).contains(&spec.samples) {
-        return Err(Error::Input(format!("‹samples› {}: must be from 2 to {MAX_SAMPLES}", spec.samples)));
-    }
+    checked_inputs(spec)?;
     let (recut, v) = Recut::new(&spec.verify)?;
     // The work is bounded before it starts: each sample costs a fixed part and a part per pass.
     let work = spec.samples.saturating_mul(recut.pass_count() + SAMPLE_OVERHEAD_PASSES);
@@ -230,33 +205,7 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
                 .into(),
         ));
     };
-    let stop = crate::ground::cancel::current();
-    let runs: Vec<Result<Sampled, Error>> = (0..spec.samples)
-        .into_par_iter()
-        .map(|i| {
-            if let Some(stop) = &stop {
-                stop.check()?;
-            }
-            // One stream per sample: the draws do not depend on which thread takes it.
-            let mut rng = ChaCha8Rng::seed_from_u64(spec.seed);
-            rng.set_stream(i as u64);
-            let z: f64 = StandardNormal.sample(&mut rng);
-            let u: f64 = rng.random();
-            let dx = spec.x_sigma * z;
-            let r = tip.map(|(r, t)| r + t * (2.0 * u - 1.0));
-            let c = recut.cut(dx, r)?;
-            Ok((c.checks.iter().map(|c| c.value).collect(), c.checks.iter().map(|c| c.ok).collect(), c.pass))
-        })
-        .collect();
-    let mut values: Vec<Vec<f64>> = Vec::with_capacity(spec.samples);
-    let mut oks: Vec<Vec<bool>> = Vec::with_capacity(spec.samples);
-    let mut passed = 0usize;
-    for r in runs {
-        let (vals, ok, pass) = r?;
-        values.push(vals);
-        oks.push(ok);
-        passed += usize::from(pass);
-    }
+    let (values, oks, passed) = sampled(spec, &recut, tip)?;
     let nominal = recut.cut(0.0, None)?;
     let n = spec.samples as f64;
     // Every sample carries the nominal cut's checks, in its order.
@@ -266,36 +215,7 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
         if c.kind != CheckKind::Size || !same_checks {
             continue;
         }
-        let xs: Vec<f64> = values.iter().map(|v| v[k]).collect();
-        let mean = xs.iter().sum::<f64>() / n;
-        let sigma = (xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
-        // Under 0.1 nm the spread is float noise, not variation.
-        let spread = sigma > 1e-7;
-        let cp = match (c.min, c.max) {
-            (Some(a), Some(b)) if spread => Some((b - a) / (6.0 * sigma)),
-            _ => None,
-        };
-        let sides: Vec<f64> =
-            [c.max.map(|b| b - mean), c.min.map(|a| mean - a)].into_iter().flatten().collect();
-        let cpk = (spread && !sides.is_empty())
-            .then(|| sides.iter().fold(f64::INFINITY, |m, s| m.min(*s)) / (3.0 * sigma));
-        let out = oks.iter().filter(|o| !o[k]).count() as f64;
-        let ppm_normal = spread.then(|| {
-            1e6 * (c.min.map_or(0.0, |a| phi((a - mean) / sigma))
-                + c.max.map_or(0.0, |b| phi((mean - b) / sigma)))
-        });
-        sizes.push(SizeCapability {
-            feature: c.feature,
-            note: c.note.clone(),
-            min: c.min,
-            max: c.max,
-            mean,
-            sigma,
-            cp,
-            cpk,
-            ppm_counted: 1e6 * out / n,
-            ppm_normal,
-        });
+        sizes.push(size_capability(c, k, &values, &oks));
     }
     let d2 = sizes
         .iter()
@@ -391,4 +311,113 @@ pub fn capability(spec: &CapabilitySpec) -> Result<CapabilityReport, Error> {
         cpk_uncertainty,
         notes,
     })
+}
+
+/// The spec's spreads, wear and sample count within their bounds.
+fn checked_inputs(spec: &CapabilitySpec) -> Result<(), Error> {
+    let nonneg = |v: f64, what: &str, max: f64| {
+        if v.is_finite() && v >= 0.0 && v <= max {
+            Ok(())
+        } else {
+            Err(Error::Input(format!(
+                "{what} {} mm: must be from 0 to {} mm",
+                crate::ground::fmt::fmt_shown(v),
+                crate::ground::fmt::fmt_num(max)
+            )))
+        }
+    };
+    nonneg(spec.x_sigma, "‹x_sigma›", 1.0)?;
+    nonneg(spec.tip_radius_tol, "‹tip_radius_tol›", 1.0)?;
+    nonneg(spec.wear_per_part, "‹wear_per_part›", 1.0)?;
+    // Under a nanometre a part the edge would last beyond any count (1e-300 printed
+    // 18446744073709551615 parts, a saturated integer).
+    if spec.wear_per_part > 0.0 && spec.wear_per_part < MIN_WEAR_PER_PART {
+        return Err(Error::Input(format!(
+            "‹wear_per_part› {} mm: a wear is 0 or at least {} mm (1 nm) a part",
+            crate::ground::fmt::fmt_shown(spec.wear_per_part),
+            crate::ground::fmt::fmt_shown(MIN_WEAR_PER_PART)
+        )));
+    }
+    if !(2..=MAX_SAMPLES).contains(&spec.samples) {
+        return Err(Error::Input(format!("‹samples› {}: must be from 2 to {MAX_SAMPLES}", spec.samples)));
+    }
+    Ok(())
+}
+
+/// Every sample cut: each check's value and verdict per part, and how many parts passed. One
+/// random stream per sample, so the draws do not depend on the threads.
+#[allow(clippy::type_complexity)]
+fn sampled(
+    spec: &CapabilitySpec,
+    recut: &Recut,
+    tip: Option<(f64, f64)>,
+) -> Result<(Vec<Vec<f64>>, Vec<Vec<bool>>, usize), Error> {
+    let stop = crate::ground::cancel::current();
+    let runs: Vec<Result<Sampled, Error>> = (0..spec.samples)
+        .into_par_iter()
+        .map(|i| {
+            if let Some(stop) = &stop {
+                stop.check()?;
+            }
+            // One stream per sample: the draws do not depend on which thread takes it.
+            let mut rng = ChaCha8Rng::seed_from_u64(spec.seed);
+            rng.set_stream(i as u64);
+            let z: f64 = StandardNormal.sample(&mut rng);
+            let u: f64 = rng.random();
+            let dx = spec.x_sigma * z;
+            let r = tip.map(|(r, t)| r + t * (2.0 * u - 1.0));
+            let c = recut.cut(dx, r)?;
+            Ok((c.checks.iter().map(|c| c.value).collect(), c.checks.iter().map(|c| c.ok).collect(), c.pass))
+        })
+        .collect();
+    let mut values: Vec<Vec<f64>> = Vec::with_capacity(spec.samples);
+    let mut oks: Vec<Vec<bool>> = Vec::with_capacity(spec.samples);
+    let mut passed = 0usize;
+    for r in runs {
+        let (vals, ok, pass) = r?;
+        values.push(vals);
+        oks.push(ok);
+        passed += usize::from(pass);
+    }
+    Ok((values, oks, passed))
+}
+
+/// One size check's capability over the samples (its `k`th value in each): mean, σ, Cp, Cpk
+/// and ppm counted and from the normal model.
+fn size_capability(
+    c: &crate::analysis::check::Check,
+    k: usize,
+    values: &[Vec<f64>],
+    oks: &[Vec<bool>],
+) -> SizeCapability {
+    let n = values.len() as f64;
+    let xs: Vec<f64> = values.iter().map(|v| v[k]).collect();
+    let mean = xs.iter().sum::<f64>() / n;
+    let sigma = (xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+    // Under 0.1 nm the spread is float noise, not variation.
+    let spread = sigma > 1e-7;
+    let cp = match (c.min, c.max) {
+        (Some(a), Some(b)) if spread => Some((b - a) / (6.0 * sigma)),
+        _ => None,
+    };
+    let sides: Vec<f64> = [c.max.map(|b| b - mean), c.min.map(|a| mean - a)].into_iter().flatten().collect();
+    let cpk = (spread && !sides.is_empty())
+        .then(|| sides.iter().fold(f64::INFINITY, |m, s| m.min(*s)) / (3.0 * sigma));
+    let out = oks.iter().filter(|o| !o[k]).count() as f64;
+    let ppm_normal = spread.then(|| {
+        1e6 * (c.min.map_or(0.0, |a| phi((a - mean) / sigma))
+            + c.max.map_or(0.0, |b| phi((mean - b) / sigma)))
+    });
+    SizeCapability {
+        feature: c.feature,
+        note: c.note.clone(),
+        min: c.min,
+        max: c.max,
+        mean,
+        sigma,
+        cp,
+        cpk,
+        ppm_counted: 1e6 * out / n,
+        ppm_normal,
+    }
 }

@@ -1064,6 +1064,19 @@ fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64, detail: bool) -> Me
         Some((v, c, n, line)) if v > 0.0 => (v, Some(Spot { x: c.z, y: c.r, z, t: n.t, line })),
         _ => (0.0, None),
     };
+    let (deviation, leftover, leftover_at) = leftover(curve, lm, r, detail);
+    Measured {
+        report: LevelReport { z, moves: lm.segs.len(), gouge, gouge_at, leftover, leftover_at },
+        profile,
+        deviation,
+        samples: curve.p.clone(),
+    }
+}
+
+/// The leftover of a level: each target sample's distance to the swept path less r (exact for
+/// every one with `detail`), and the largest, refined on the exact curve, with where it is.
+fn leftover(curve: &Curve<'_>, lm: &LevelMoves, r: f64, detail: bool) -> (Vec<f64>, f64, Option<Spot>) {
+    let z = lm.z;
     // The leftover: target samples against the path, the largest refined on the exact curve.
     let path = PathSegments::new(
         lm.segs.iter().filter(|(a, b, _)| a.distance(*b) > 1e-12).map(|&(a, b, _)| (a, b)).collect(),
@@ -1119,12 +1132,7 @@ fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64, detail: bool) -> Me
         }
         None => (0.0, None),
     };
-    Measured {
-        report: LevelReport { z, moves: lm.segs.len(), gouge, gouge_at, leftover, leftover_at },
-        profile,
-        deviation,
-        samples: curve.p.clone(),
-    }
+    (deviation, leftover, leftover_at)
 }
 
 /// Runs the check: expands the program, measures every level against the target.
@@ -1148,19 +1156,8 @@ fn measure_level(curve: &Curve<'_>, lm: &LevelMoves, r: f64, detail: bool) -> Me
 /// # Ok::<(), threadcheck::Error>(())
 /// ```
 pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
+    checked_inputs(spec)?;
     let d = spec.tool_diameter;
-    if !(d.is_finite() && d > 0.0) {
-        return Err(Error::Input(format!("tool diameter {d} mm must be a positive length")));
-    }
-    if d > MAX_TOOL_DIAMETER {
-        return Err(Error::Input(format!(
-            "tool diameter {} mm: threadcheck checks cutters up to {MAX_TOOL_DIAMETER} mm",
-            crate::ground::fmt::fmt_num(d)
-        )));
-    }
-    if !(spec.tolerance.is_finite() && spec.tolerance >= 0.0) {
-        return Err(Error::Input(format!("tolerance {} mm must be a length ≥ 0", spec.tolerance)));
-    }
     let r = 0.5 * d;
     let (text, name) = &spec.program;
     let opts = ReadOptions {
@@ -1253,37 +1250,7 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
     if all.is_empty() {
         return Err(Error::Input(format!("{name}: no feed move (G1, G2, G3) to check")));
     }
-    let air: Vec<f64> = all.iter().map(|l| l.1.z).filter(|&z| z >= top - 1e-9).collect();
-    if !air.is_empty() {
-        notes.push(crate::ground::note::Note::from(format!(
-            "{} level{} at or above the part's top Z{} cut air and {} left out (Z{} … Z{})",
-            air.len(),
-            if air.len() == 1 { "" } else { "s" },
-            crate::ground::fmt::fmt_num(top),
-            if air.len() == 1 { "is" } else { "are" },
-            crate::ground::fmt::fmt_num(air[air.len() - 1]),
-            crate::ground::fmt::fmt_num(air[0]),
-        )));
-    }
-    let below = all.iter().filter(|l| l.1.z < top - 1e-9 && !cuts(l.1.z)).count();
-    if below > 0 {
-        notes.push(crate::ground::note::Note::from(format!(
-            "{below} level{} below the part's bottom Z{} left out",
-            if below == 1 { "" } else { "s" },
-            crate::ground::fmt::fmt_num(bottom.unwrap_or(0.0))
-        )));
-    }
-    let cut: Vec<(usize, std::sync::Arc<LevelMoves>)> = all.into_iter().filter(|l| cuts(l.1.z)).collect();
-    if let (Some(bottom), Some(deepest)) = (bottom, cut.last()) {
-        if deepest.1.z > bottom + 1e-9 {
-            notes.push(crate::ground::note::Note::from(format!(
-                "the target reaches down to Z{} but the deepest level cut is Z{}: {} mm of it is never machined",
-                crate::ground::fmt::fmt_num(bottom),
-                crate::ground::fmt::fmt_num(deepest.1.z),
-                crate::ground::fmt::fmt_num(deepest.1.z - bottom)
-            )));
-        }
-    }
+    let cut = levels_cut(all, top, bottom, &cuts, &mut notes);
     notes.push(crate::ground::note::Note::from(
         "each level is checked against the target at its own Z (the section its tool bottom cuts); the tool's flank also passes the sections above it",
     ));
@@ -1357,4 +1324,65 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
         notes,
         picture,
     })
+}
+
+/// The tool's diameter and the tolerance within their bounds.
+fn checked_inputs(spec: &MillSpec) -> Result<(), Error> {
+    let d = spec.tool_diameter;
+    if !(d.is_finite() && d > 0.0) {
+        return Err(Error::Input(format!("tool diameter {d} mm must be a positive length")));
+    }
+    if d > MAX_TOOL_DIAMETER {
+        return Err(Error::Input(format!(
+            "tool diameter {} mm: threadcheck checks cutters up to {MAX_TOOL_DIAMETER} mm",
+            crate::ground::fmt::fmt_num(d)
+        )));
+    }
+    if !(spec.tolerance.is_finite() && spec.tolerance >= 0.0) {
+        return Err(Error::Input(format!("tolerance {} mm must be a length ≥ 0", spec.tolerance)));
+    }
+    Ok(())
+}
+
+/// The levels that cut the part, deepest last; the levels in air or below the part's bottom,
+/// and a target reaching below the deepest level, noted.
+fn levels_cut(
+    all: Vec<(usize, std::sync::Arc<LevelMoves>)>,
+    top: f64,
+    bottom: Option<f64>,
+    cuts: &dyn Fn(f64) -> bool,
+    notes: &mut Vec<crate::ground::note::Note>,
+) -> Vec<(usize, std::sync::Arc<LevelMoves>)> {
+    let air: Vec<f64> = all.iter().map(|l| l.1.z).filter(|&z| z >= top - 1e-9).collect();
+    if !air.is_empty() {
+        notes.push(crate::ground::note::Note::from(format!(
+            "{} level{} at or above the part's top Z{} cut air and {} left out (Z{} … Z{})",
+            air.len(),
+            if air.len() == 1 { "" } else { "s" },
+            crate::ground::fmt::fmt_num(top),
+            if air.len() == 1 { "is" } else { "are" },
+            crate::ground::fmt::fmt_num(air[air.len() - 1]),
+            crate::ground::fmt::fmt_num(air[0]),
+        )));
+    }
+    let below = all.iter().filter(|l| l.1.z < top - 1e-9 && !cuts(l.1.z)).count();
+    if below > 0 {
+        notes.push(crate::ground::note::Note::from(format!(
+            "{below} level{} below the part's bottom Z{} left out",
+            if below == 1 { "" } else { "s" },
+            crate::ground::fmt::fmt_num(bottom.unwrap_or(0.0))
+        )));
+    }
+    let cut: Vec<(usize, std::sync::Arc<LevelMoves>)> = all.into_iter().filter(|l| cuts(l.1.z)).collect();
+    if let (Some(bottom), Some(deepest)) = (bottom, cut.last()) {
+        if deepest.1.z > bottom + 1e-9 {
+            notes.push(crate::ground::note::Note::from(format!(
+                "the target reaches down to Z{} but the deepest level cut is Z{}: {} mm of it is never machined",
+                crate::ground::fmt::fmt_num(bottom),
+                crate::ground::fmt::fmt_num(deepest.1.z),
+                crate::ground::fmt::fmt_num(deepest.1.z - bottom)
+            )));
+        }
+    }
+    cut
 }

@@ -365,76 +365,9 @@ pub(crate) fn threadmill_document(r: &crate::analysis::threadmill::ThreadMillRep
     let labels = labels_of_dimensions(&items, &r.checks, r.kind, r.units, &f, px0 - 14.0);
     // The legend under the section.
     let ly = f.y0 + f.h + 46.0;
-    let mut legend = Group::new().set("id", "legend");
-    let mut lx = 20.0;
-    for (name, colour, dash, fill) in [
-        ("as milled", "#111", "", false),
-        ("tooth profile alone", "#a35a00", "3 3", false),
-        ("basic profile", "#555", "6 4", false),
-        ("tolerance zone (D2)", ZONE, "", true),
-        ("D1 limits", "#1f5fa8", "1 3", false),
-    ] {
-        legend = if fill {
-            legend.add(
-                Rectangle::new()
-                    .set("x", lx)
-                    .set("y", ly - 8.0)
-                    .set("width", 24)
-                    .set("height", 9)
-                    .set("fill", colour)
-                    .set("fill-opacity", 0.35),
-            )
-        } else {
-            legend.add(
-                Line::new()
-                    .set("x1", lx)
-                    .set("x2", lx + 24.0)
-                    .set("y1", ly - 4.0)
-                    .set("y2", ly - 4.0)
-                    .set("stroke", colour)
-                    .set("stroke-width", 1.4)
-                    .set("stroke-dasharray", dash),
-            )
-        };
-        legend = legend.add(text(lx + 30.0, ly, 11.0, name));
-        lx += 30.0 + 6.6 * name.chars().count() as f64 + 22.0;
-    }
-    // The groove's widening along Z, on the section's own Z scale.
-    let widen = &r.widening_um;
-    let peak = widen.iter().map(|p| p.1).fold(0.0f64, f64::max);
-    let step = tick_step(peak.max(1e-3), 4.0);
-    let top = (peak / step).ceil().max(1.0) * step;
-    let (sy, sh) = (ly + 56.0, 120.0);
-    let fs = Frame::new(px0, sy, pw, sh, (z0, z1), (0.0, 1e-9));
-    let sy_of = |v: f64| sy + sh - v / top * sh;
-    let strip = pixel_points(widen.iter().map(|&(z, v)| (f.x(z), sy_of(v))));
-    let (mut wid, mut wbody) =
-        panel(&fs, "widening", "the helix's widening of the groove beyond the tooth profile alone");
-    wbody = wbody.add(
-        Polyline::new().set("points", strip).set("fill", "none").set("stroke", FAIL).set("stroke-width", 1.2),
-    );
-    wid = wid.add(wbody).add(axes(&fs, false, r.units));
-    let mut v = 0.0;
-    while v <= top + 1e-9 * step {
-        let y = sy_of(v);
-        wid = wid
-            .add(
-                Line::new()
-                    .set("x1", px0 - 4.0)
-                    .set("x2", px0)
-                    .set("y1", y)
-                    .set("y2", y)
-                    .set("stroke", "#333"),
-            )
-            .add(text(px0 - 6.0, y + 3.0, 9.0, tick_label(v, step)).set("text-anchor", "end"));
-        v += step;
-    }
-    wid = wid
-        .add(text(px0 - 6.0, sy - 6.0, 9.0, "µm, radial").set("text-anchor", "end"))
-        .add(text(20.0, sy + 0.5 * sh - 6.0, 11.0, "0 on crests and roots,"))
-        .add(text(20.0, sy + 0.5 * sh + 8.0, 11.0, "which the tooth alone"))
-        .add(text(20.0, sy + 0.5 * sh + 22.0, 11.0, "shapes; the flanks widen"));
-    let h = sy + sh + 50.0;
+    let legend = legend(ly);
+    let (wid, bottom) = widening(r, &f, (px0, pw), ly, (z0, z1));
+    let h = bottom + 50.0;
     let mut failed: Vec<&str> = r.checks.iter().filter(|k| !k.ok).map(|k| k.feature.words(r.kind)).collect();
     if !r.after_finish.gouges.is_empty() {
         failed.push("a move after the last helix cuts the thread");
@@ -498,6 +431,93 @@ pub(crate) fn threadmill_document(r: &crate::analysis::threadmill::ThreadMillRep
     }
     let rest = rest.add(sec).add(labels).add(legend).add(wid);
     (doc.add(rest), w, h)
+}
+
+/// The legend under the thread-milling picture's section, its baseline at `ly`.
+fn legend(ly: f64) -> Group {
+    use super::kit::text;
+    let mut legend = Group::new().set("id", "legend");
+    let mut lx = 20.0;
+    for (name, colour, dash, fill) in [
+        ("as milled", "#111", "", false),
+        ("tooth profile alone", "#a35a00", "3 3", false),
+        ("basic profile", "#555", "6 4", false),
+        ("tolerance zone (D2)", ZONE, "", true),
+        ("D1 limits", "#1f5fa8", "1 3", false),
+    ] {
+        legend = if fill {
+            legend.add(
+                Rectangle::new()
+                    .set("x", lx)
+                    .set("y", ly - 8.0)
+                    .set("width", 24)
+                    .set("height", 9)
+                    .set("fill", colour)
+                    .set("fill-opacity", 0.35),
+            )
+        } else {
+            legend.add(
+                Line::new()
+                    .set("x1", lx)
+                    .set("x2", lx + 24.0)
+                    .set("y1", ly - 4.0)
+                    .set("y2", ly - 4.0)
+                    .set("stroke", colour)
+                    .set("stroke-width", 1.4)
+                    .set("stroke-dasharray", dash),
+            )
+        };
+        legend = legend.add(text(lx + 30.0, ly, 11.0, name));
+        lx += 30.0 + 6.6 * name.chars().count() as f64 + 22.0;
+    }
+    legend
+}
+
+/// The groove's widening along Z under the section, on its Z scale; and where the panel ends.
+fn widening(
+    r: &crate::analysis::threadmill::ThreadMillReport,
+    f: &Frame,
+    (px0, pw): (f64, f64),
+    ly: f64,
+    (z0, z1): (f64, f64),
+) -> (Group, f64) {
+    use super::kit::text;
+    // The groove's widening along Z, on the section's own Z scale.
+    let widen = &r.widening_um;
+    let peak = widen.iter().map(|p| p.1).fold(0.0f64, f64::max);
+    let step = tick_step(peak.max(1e-3), 4.0);
+    let top = (peak / step).ceil().max(1.0) * step;
+    let (sy, sh) = (ly + 56.0, 120.0);
+    let fs = Frame::new(px0, sy, pw, sh, (z0, z1), (0.0, 1e-9));
+    let sy_of = |v: f64| sy + sh - v / top * sh;
+    let strip = pixel_points(widen.iter().map(|&(z, v)| (f.x(z), sy_of(v))));
+    let (mut wid, mut wbody) =
+        panel(&fs, "widening", "the helix's widening of the groove beyond the tooth profile alone");
+    wbody = wbody.add(
+        Polyline::new().set("points", strip).set("fill", "none").set("stroke", FAIL).set("stroke-width", 1.2),
+    );
+    wid = wid.add(wbody).add(axes(&fs, false, r.units));
+    let mut v = 0.0;
+    while v <= top + 1e-9 * step {
+        let y = sy_of(v);
+        wid = wid
+            .add(
+                Line::new()
+                    .set("x1", px0 - 4.0)
+                    .set("x2", px0)
+                    .set("y1", y)
+                    .set("y2", y)
+                    .set("stroke", "#333"),
+            )
+            .add(text(px0 - 6.0, y + 3.0, 9.0, tick_label(v, step)).set("text-anchor", "end"));
+        v += step;
+    }
+    wid = wid
+        .add(text(px0 - 6.0, sy - 6.0, 9.0, "µm, radial").set("text-anchor", "end"))
+        .add(text(20.0, sy + 0.5 * sh - 6.0, 11.0, "0 on crests and roots,"))
+        .add(text(20.0, sy + 0.5 * sh + 8.0, 11.0, "which the tooth alone"))
+        .add(text(20.0, sy + 0.5 * sh + 22.0, 11.0, "shapes; the flanks widen"));
+    (wid, sy + sh)
 }
 
 /// The thread-milling page: the verdict, the distortion, the section, the checks, the helices
