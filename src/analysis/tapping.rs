@@ -802,7 +802,7 @@ fn depth_check(
             // The tap's point, where its chamfer starts at the basic minor diameter (or the
             // drill's, when the drill is smaller), meets the drill's point cone that far above
             // the drill's bottom (issue 46: the chamfer's length is not the room it needs).
-            let basic_minor = t_minor_basic(&*t);
+            let basic_minor = t_minor_basic(t);
             let point = d.diameter.map_or(basic_minor, |dia| dia.min(basic_minor));
             let half = (0.5 * d.point_angle).to_radians().tan();
             let need = 0.5 * point / half;

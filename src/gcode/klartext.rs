@@ -1315,7 +1315,7 @@ fn cycle_call(st: &mut St<'_>, b: &KBlock, up: &str, rest: &str) -> Result<Flow,
         let here = st.pos;
         run_cycle(st, here, b.line, b.col, None)?;
     }
-    return Ok(Flow::Next);
+    Ok(Flow::Next)
 }
 
 /// The coordinate transformation cycles (7 datum shift, 10 rotation; 8, 11, 26 mirror and
