@@ -303,7 +303,7 @@ fn main() {
         "# The bounded computations at their largest allowed input\n\n\
          Written by `cargo bench --bench bounds` (issue 42): each case runs the release binary three\n\
          times; the best wall time and the largest peak resident memory of the process. The bounds\n\
-         are in `src/ground/bounds.rs` and `src/analysis/capability.rs`; each is checked before the\n\
+         are in `src/ground/bounds.rs` and `src/analysis/study/capability.rs`; each is checked before the\n\
          work starts (or, for the interpreter and the mill's formulas, counted as it goes), and\n\
          reaching it is a one-line refusal with its place.\n\n",
     );

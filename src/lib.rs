@@ -113,19 +113,9 @@ pub use geometry::sweep::{pass_metrics, sweep, PassMetrics, Section, Sweep, Swee
 pub use geometry::wire::{classical_wire_helix_term, wire_helix_term};
 
 // The computations.
-pub use analysis::capability::{capability, CapabilityReport, CapabilitySpec, Histogram, SizeCapability};
-pub use analysis::catalogue::{cases as catalogue_cases, run as run_catalogue, Case, CatalogueSpec};
 pub use analysis::check::{checks, Check, CheckFeature, CheckKind, CheckUnit, Verdict};
-pub use analysis::compare::{compare, CompareChoice, Comparison, Ground, Recommendation};
 pub use analysis::control::{before_machine, ControlFinding};
-pub use analysis::correct::{
-    correct, CorrectReport, CorrectSpec, GaugeResult, Measured, MeasuredState, Pickup, WearOffset,
-    WireReading,
-};
-pub use analysis::correction::{correction, deeper_words, Correction, Deeper};
-pub use analysis::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};
 pub use analysis::fusion::tool_table as fusion_tool_table;
-pub use analysis::lead::{lead_deviation, LeadDeviation};
 pub use analysis::mill::{mill, MillReport, MillSpec, Target};
 pub use analysis::naming::{
     designation_in_comment, drill_in_comment, infer_designation, listed_tool, thread_mill_in_comment,
@@ -136,10 +126,22 @@ pub use analysis::picture::{Cut, Deviation, Picture};
 pub use analysis::process::MachineProfile;
 pub use analysis::program::{verify_program, verify_whole, Milled, Process, ProgramVerification};
 pub use analysis::rolled::{rolled_thread, RolledThread};
-pub use analysis::tapping::{tapping, TapCheck, TapFeature, TapReport, TapSpec, TappedHole};
-pub use analysis::threadmill::{thread_mill, ThreadMillReport, ThreadMillSpec};
+pub use analysis::study::capability::{
+    capability, CapabilityReport, CapabilitySpec, Histogram, SizeCapability,
+};
+pub use analysis::study::compare::{compare, CompareChoice, Comparison, Ground, Recommendation};
+pub use analysis::study::correct::{
+    correct, CorrectReport, CorrectSpec, GaugeResult, Measured, MeasuredState, Pickup, WearOffset,
+    WireReading,
+};
+pub use analysis::study::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};
+pub use analysis::study::sweep::{cases as catalogue_cases, run as run_catalogue, Case, CatalogueSpec};
+pub use analysis::tap::{tapping, TapCheck, TapFeature, TapReport, TapSpec, TappedHole};
+pub use analysis::thread_mill::{thread_mill, ThreadMillReport, ThreadMillSpec};
 pub use analysis::tools::{InsertChoice, Tool, ToolTable};
-pub use analysis::verify::{
+pub use analysis::turn::correction::{correction, deeper_words, Correction, Deeper};
+pub use analysis::turn::lead::{lead_deviation, LeadDeviation};
+pub use analysis::turn::verify::{
     default_blank, default_pass_count, program_passes, read_program_text, reference_groove, text_of, verify,
     ProgramLabel, ProgramSource, Units, Verification, VerifySpec,
 };

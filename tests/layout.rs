@@ -288,7 +288,7 @@ fn every_api_key_is_a_flag_of_its_command() {
     }
 }
 
-/// The module path of each file of `src/` (`analysis/verify.rs` → `analysis::verify`,
+/// The module path of each file of `src/` (`analysis/turn/verify.rs` → `analysis::turn::verify`,
 /// `gcode/mod.rs` → `gcode`), with the file.
 fn modules() -> Vec<(String, String)> {
     src_code()
@@ -363,9 +363,9 @@ fn imports() -> std::collections::BTreeMap<String, std::collections::BTreeSet<St
 fn no_file_imports_itself_round_a_circle() {
     let graph = imports();
     assert!(
-        graph.get("analysis::verify").is_some_and(|d| d.contains("analysis::check")),
+        graph.get("analysis::turn::verify").is_some_and(|d| d.contains("analysis::check")),
         "the imports were not read: {:?}",
-        graph.get("analysis::verify")
+        graph.get("analysis::turn::verify")
     );
     // Tarjan's strongly connected components: each of more than one file is a circle.
     struct T<'a> {
@@ -491,4 +491,36 @@ fn no_function_is_over_200_lines() {
     assert!(seen > 1000, "only {seen} functions read in src/");
     over.sort();
     assert!(over.is_empty(), "functions over {FUNCTION_LINES} lines:\n{}", over.join("\n"));
+}
+
+/// Issue 60: `docs/architecture.md` describes the tree as it is: every folder of `src/` has a
+/// row of its layout table (`| `analysis/turn/` | …`), and every file of `analysis/` is named
+/// in it, so a folder or a process added without a word there fails here.
+#[test]
+fn architecture_names_every_folder() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let doc = std::fs::read_to_string(root.join("docs/architecture.md")).unwrap();
+    let src = root.join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut folders: Vec<String> = files
+        .iter()
+        .filter_map(|f| f.parent())
+        .filter(|d| *d != src)
+        .map(|d| format!("{}/", d.strip_prefix(&src).unwrap().to_string_lossy().replace('\\', "/")))
+        .collect();
+    folders.sort();
+    folders.dedup();
+    assert!(folders.len() >= 12, "only {} folders read: {folders:?}", folders.len());
+    let missing: Vec<&String> = folders.iter().filter(|d| !doc.contains(&format!("| `{d}` |"))).collect();
+    assert!(missing.is_empty(), "folders of src/ without a row in docs/architecture.md: {missing:?}");
+    let unnamed: Vec<String> = files
+        .iter()
+        .filter(|f| f.starts_with(src.join("analysis")))
+        .filter_map(|f| f.file_stem().map(|s| s.to_string_lossy().into_owned()))
+        .filter(|stem| {
+            stem != "mod" && !doc.contains(&format!("`{stem}`")) && !doc.contains(&format!("`{stem}.rs`"))
+        })
+        .collect();
+    assert!(unnamed.is_empty(), "files of analysis/ docs/architecture.md does not name: {unnamed:?}");
 }

@@ -390,7 +390,7 @@ pub fn functional_check(
     value: f64,
     limits: &ThreadLimits,
     kind: ThreadKind,
-    ld: crate::analysis::lead::LeadDeviation,
+    ld: crate::analysis::turn::lead::LeadDeviation,
 ) -> Check {
     let lim = match kind {
         ThreadKind::External => Limit { min: None, max: limits.pitch_diameter.max },

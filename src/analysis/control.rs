@@ -11,7 +11,7 @@
 //! warning is said and leaves the verdict to the checks.
 
 use crate::analysis::made::Process;
-use crate::analysis::tapping::{TapFeature, TapReport};
+use crate::analysis::tap::{TapFeature, TapReport};
 use crate::gcode::{Alarm, ControlRule, Dialect, HoleKind, Level, Operation, Program, SpindleDir};
 use serde::Serialize;
 
@@ -146,7 +146,7 @@ pub fn before_machine(
 /// "the thread is ruined"); `max` the machine file's fastest feed, mm/min.
 fn feed_limit(
     dialect: Dialect,
-    th: &crate::analysis::tapping::TappedHole,
+    th: &crate::analysis::tap::TappedHole,
     machine: &str,
     max: f64,
 ) -> Option<ControlFinding> {
@@ -180,7 +180,7 @@ fn feed_limit(
 /// The findings of a thread-milled thread: each move after its last helix that cuts the
 /// finished thread, with how deep, and the moves under compensation that were not judged said
 /// once.
-pub fn milled(r: &crate::analysis::threadmill::ThreadMillReport, dialect: Dialect) -> Vec<ControlFinding> {
+pub fn milled(r: &crate::analysis::thread_mill::ThreadMillReport, dialect: Dialect) -> Vec<ControlFinding> {
     r.after_finish
         .gouges
         .iter()
@@ -209,7 +209,7 @@ pub fn milled(r: &crate::analysis::threadmill::ThreadMillReport, dialect: Dialec
 
 /// A tap's feed in the other feed mode's convention: under a per-minute mode F is the lead,
 /// under a per-revolution mode F is S × lead (FreeCAD's posts, #5714 and #31599).
-fn feed_convention(dialect: Dialect, th: &crate::analysis::tapping::TappedHole) -> Option<ControlFinding> {
+fn feed_convention(dialect: Dialect, th: &crate::analysis::tap::TappedHole) -> Option<ControlFinding> {
     let h = &th.cycle;
     let k = th.checks.iter().find(|k| k.feature == TapFeature::Feed && !k.ok)?;
     let f = k.value?;

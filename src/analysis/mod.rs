@@ -1,17 +1,13 @@
 //! The computations: plain data in, plain data out, no text for a reader.
+//!
+//! By process: [`program`] (a whole program: every thread it makes, one verdict) above the
+//! processes, [`turn`] (a turned thread), [`tap`], [`thread_mill`] and [`mill`] (contours); what
+//! they share beside them; the studies of a turned thread in [`study`].
 
-pub mod capability;
-pub mod catalogue;
 pub mod check;
-pub mod compare;
 pub mod control;
-pub mod correct;
-pub mod correction;
-pub mod cut_plan;
-pub mod fit;
 pub mod fusion;
 pub mod gouge;
-pub mod lead;
 pub mod made;
 pub mod mill;
 pub mod naming;
@@ -20,8 +16,9 @@ pub mod picture;
 pub mod process;
 pub mod program;
 pub mod rolled;
+pub mod study;
+pub mod tap;
 pub mod taper;
-pub mod tapping;
-pub mod threadmill;
+pub mod thread_mill;
 pub mod tools;
-pub mod verify;
+pub mod turn;

@@ -9,10 +9,10 @@
 //! is not known (no tool table names the helix's tool as a thread mill) is reported as not
 //! checked, which fails: nothing a program makes is passed unseen.
 
-use crate::analysis::tapping::TapSpec;
-use crate::analysis::threadmill::{ThreadMillReport, ThreadMillSpec};
+use crate::analysis::tap::TapSpec;
+use crate::analysis::thread_mill::{ThreadMillReport, ThreadMillSpec};
 use crate::analysis::tools::{Tool, ToolTable};
-use crate::analysis::verify::{InsertFor, OperationVerdict, ProgramLabel, TurnedProgram, VerifySpec};
+use crate::analysis::turn::verify::{InsertFor, OperationVerdict, ProgramLabel, TurnedProgram, VerifySpec};
 use crate::gcode::{Dialect, HoleKind, ReadOptions};
 use crate::Error;
 
@@ -38,7 +38,7 @@ pub struct ProgramVerification {
     /// The machine the program was read for, and why.
     pub machine: crate::gcode::MachineReading,
     /// Its tapping cycles, checked (`verify_whole`; `None` when it has none).
-    pub tapped: Option<crate::analysis::tapping::TapReport>,
+    pub tapped: Option<crate::analysis::tap::TapReport>,
     /// Its thread-milled thread (`verify_whole`; `None` when it has no helix).
     pub milled: Option<Milled>,
     /// What the control will refuse and what the post got wrong (`verify_whole`): an error
@@ -107,7 +107,7 @@ pub fn verify_program(
     threads: &[String],
     insert_for: &InsertFor<'_>,
 ) -> Result<ProgramVerification, Error> {
-    crate::analysis::verify::turned_program(spec, text, name, dialect, threads, insert_for)
+    crate::analysis::turn::verify::turned_program(spec, text, name, dialect, threads, insert_for)
         .map(ProgramVerification::of)
 }
 
@@ -248,7 +248,7 @@ pub fn verify_whole(
             torque: None,
             machine: spec.machine.clone(),
         };
-        let mut r = crate::analysis::tapping::tapping(&t)?;
+        let mut r = crate::analysis::tap::tapping(&t)?;
         // The program's notes are the report's, once.
         r.notes.clear();
         pv.tapped = Some(r);
@@ -263,7 +263,7 @@ pub fn verify_whole(
             _ => false,
         };
         let cutter_known =
-            in_table || crate::analysis::threadmill::cutter_in_comments(text, dialect, tools, h).is_some();
+            in_table || crate::analysis::thread_mill::cutter_in_comments(text, dialect, tools, h).is_some();
         pv.milled = Some(if cutter_known {
             let m = ThreadMillSpec {
                 program: (text.to_string(), name.to_string()),
@@ -280,7 +280,7 @@ pub fn verify_whole(
                 reading: spec.reading.clone(),
                 teeth: None,
             };
-            let mut r = crate::analysis::threadmill::thread_mill(&m)?;
+            let mut r = crate::analysis::thread_mill::thread_mill(&m)?;
             // The program's notes are the report's, once.
             let program: Vec<String> = prog.notes.iter().map(ToString::to_string).collect();
             r.notes.retain(|n| !program.contains(n));

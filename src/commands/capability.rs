@@ -3,7 +3,7 @@
 
 use super::args::PlanArgs;
 use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
-use crate::analysis::capability::CapabilitySpec;
+use crate::analysis::study::capability::CapabilitySpec;
 use crate::Error;
 use serde::Deserialize;
 
@@ -65,7 +65,7 @@ impl Job for CapabilityArgs {
     /// when every sampled part passes).
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
         self.plan.one_thread("capability")?;
-        let verify = crate::analysis::verify::VerifySpec {
+        let verify = crate::analysis::turn::verify::VerifySpec {
             operation: self.operation,
             gauge_only: self.gauge_only,
             ..self.plan.spec(request.files)?
@@ -76,7 +76,7 @@ impl Job for CapabilityArgs {
         spec.wear_per_part = self.wear_per_part.unwrap_or(0.0);
         spec.samples = self.samples.unwrap_or(spec.samples);
         spec.seed = self.seed.unwrap_or(spec.seed);
-        let r = crate::analysis::capability::capability(&spec)?;
+        let r = crate::analysis::study::capability::capability(&spec)?;
         let d2 = r.sizes.iter().find(|s| s.feature == crate::analysis::check::CheckFeature::PitchDiameter);
         let capable = match d2.and_then(|d| d.cpk) {
             Some(cpk) => cpk >= CAPABLE_CPK,

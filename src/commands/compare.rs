@@ -2,7 +2,7 @@
 
 use super::args::{JsonArg, PlanArgs};
 use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
-use crate::analysis::compare::CompareChoice;
+use crate::analysis::study::compare::CompareChoice;
 use crate::toolpath::passes::Schedule;
 use crate::Error;
 use serde::Deserialize;
@@ -49,7 +49,7 @@ impl Job for CompareArgs {
                 "compare's table is in mm: ‹units› gives inches in verify's text and pictures".into(),
             ));
         }
-        let spec = crate::analysis::verify::VerifySpec {
+        let spec = crate::analysis::turn::verify::VerifySpec {
             picture: request.wants(Document::Html),
             ..self.plan.spec(request.files)?
         };
@@ -71,7 +71,7 @@ impl Job for CompareArgs {
                 Some(Schedule::Explicit(self.plan.depths.clone()))
             },
         };
-        let c = crate::analysis::compare::compare(&spec, &modified, &choice)?;
+        let c = crate::analysis::study::compare::compare(&spec, &modified, &choice)?;
         Ok(Outputs::new(
             Outcome::Pass,
             [

@@ -2,7 +2,7 @@
 
 use super::args::{JsonArg, PlanArgs};
 use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
-use crate::analysis::correct::{CorrectSpec, GaugeResult, Measured};
+use crate::analysis::study::correct::{CorrectSpec, GaugeResult, Measured};
 use crate::Error;
 use serde::Deserialize;
 use serde_with::{serde_as, DisplayFromStr};
@@ -90,12 +90,12 @@ impl Job for CorrectArgs {
 
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
         self.plan.one_thread("correct")?;
-        let verify = crate::analysis::verify::VerifySpec {
+        let verify = crate::analysis::turn::verify::VerifySpec {
             operation: self.operation,
             ..self.plan.spec(request.files)?
         };
         let spec = CorrectSpec { verify, measured: self.measured()?, pickup_z: self.pickup_z };
-        let r = crate::analysis::correct::correct(&spec)?;
+        let r = crate::analysis::study::correct::correct(&spec)?;
         let outcome = match r.verdict() {
             crate::analysis::check::Verdict::Pass => Outcome::Pass,
             crate::analysis::check::Verdict::Fail => Outcome::OutOfTolerance,

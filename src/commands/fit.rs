@@ -2,7 +2,7 @@
 
 use super::args::{dialect_for, JsonArg, Source};
 use super::{pretty, Dest, Document, Files, Job, Outcome, Outputs, Request};
-use crate::analysis::fit::{FitSide, FitSpec};
+use crate::analysis::study::fit::{FitSide, FitSpec};
 use crate::analysis::tools::InsertChoice;
 use crate::gcode::Dialect;
 use crate::Error;
@@ -123,7 +123,7 @@ impl Job for FitArgs {
             )?,
             nut: side("nut", &self.nut_program, self.nut_dialect, self.nut_final_x, &self.nut_insert, f)?,
         };
-        let r = crate::analysis::fit::fit(&spec)?;
+        let r = crate::analysis::study::fit::fit(&spec)?;
         let inserts = [&self.bolt_insert, &self.nut_insert].into_iter().filter_map(|i| match i {
             Some(InsertChoice::File(p)) => Some(p.clone()),
             _ => None,

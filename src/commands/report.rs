@@ -31,9 +31,9 @@ impl Job for ReportArgs {
     /// `infeed-comparison`: every strategy compared on the report's threads with a full- and a
     /// partial-profile insert; the page and its pictures are the run's files.
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
-        use crate::analysis::compare::{compare, REPORT_THREADS};
+        use crate::analysis::study::compare::{compare, REPORT_THREADS};
         use crate::analysis::tools::InsertChoice;
-        use crate::analysis::verify::VerifySpec;
+        use crate::analysis::turn::verify::VerifySpec;
         match self.name {
             ReportName::InfeedComparison => {
                 let inserts = [

@@ -2,7 +2,7 @@
 
 use super::args::JsonArg;
 use super::{Dest, Document, Job, Outcome, Outputs, Request};
-use crate::analysis::catalogue::CatalogueSpec;
+use crate::analysis::study::sweep::CatalogueSpec;
 use crate::standards::ThreadForm;
 use crate::toolpath::passes::{InfeedChoice, Schedule};
 use crate::Error;
@@ -165,14 +165,14 @@ impl Job for SweepArgs {
         let json = request.wants(Document::Json);
         let export_wanted = self.export_placements.is_some();
         let start = std::time::Instant::now();
-        let cases = crate::analysis::catalogue::cases(&spec)?;
+        let cases = crate::analysis::study::sweep::cases(&spec)?;
         if cases.is_empty() {
             return Err(Error::Input("the catalogue selection is empty".into()));
         }
         // Each case becomes its lines as soon as it is verified, in parallel: no verification is
         // kept, so memory stays at one case per thread.
         let lines =
-            crate::analysis::catalogue::run_map(&cases, |c, r| -> Result<(bool, String, String), Error> {
+            crate::analysis::study::sweep::run_map(&cases, |c, r| -> Result<(bool, String, String), Error> {
                 let mut out = String::new();
                 let mut export = String::new();
                 let ok = match r {
@@ -254,8 +254,8 @@ impl Job for SweepArgs {
 
 fn placements_line(
     label: &str,
-    spec: &crate::analysis::verify::VerifySpec,
-    v: &crate::analysis::verify::Verification,
+    spec: &crate::analysis::turn::verify::VerifySpec,
+    v: &crate::analysis::turn::verify::Verification,
 ) -> Result<String, Error> {
     let t = &v.designation.thread;
     let setup = crate::geometry::sweep::SweepSetup {
@@ -293,7 +293,7 @@ fn placements_line(
     let mut whole = f64::INFINITY;
     for _ in 0..5 {
         let start = std::time::Instant::now();
-        std::hint::black_box(crate::analysis::verify::verify(spec)?.pass);
+        std::hint::black_box(crate::analysis::turn::verify::verify(spec)?.pass);
         whole = whole.min(start.elapsed().as_secs_f64());
     }
     let ring = |r: &[crate::Point]| r.iter().map(|p| [p.z, p.r]).collect::<Vec<_>>();

@@ -2,7 +2,7 @@
 
 use super::args::{tool_table, ProgramArgs, Source};
 use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
-use crate::analysis::tapping::TapSpec;
+use crate::analysis::tap::TapSpec;
 use crate::gcode::{GCodeSystem, ProgramUnits, ReadOptions};
 use crate::Error;
 use serde::Deserialize;
@@ -131,7 +131,7 @@ impl Job for TapArgs {
             stock_bottom: self.stock_bottom,
             tap: self.tap.clone().or_else(|| set.thread.as_ref().and_then(|t| t.0.first().cloned())),
             torque: match &self.material {
-                Some(m) => Some(crate::analysis::tapping::TorqueSpec {
+                Some(m) => Some(crate::analysis::tap::TorqueSpec {
                     material: crate::standards::torque::material(m)?,
                     kind: self.tap_kind.unwrap_or(crate::standards::torque::TapKind::SpiralFluted),
                     kind_given: self.tap_kind.is_some(),
@@ -145,7 +145,7 @@ impl Job for TapArgs {
             },
             machine,
         };
-        let r = crate::analysis::tapping::tapping(&spec)?;
+        let r = crate::analysis::tap::tapping(&spec)?;
         let inputs = self
             .file
             .inputs()
@@ -156,9 +156,9 @@ impl Job for TapArgs {
             Outcome::of(r.pass),
             [
                 request.render(Document::Json, || pretty(&r))?,
-                request.render(Document::Svg, || Ok(crate::report::tapping::tap_svg(&r)))?,
-                request.render(Document::Html, || Ok(crate::report::tapping::tap_html(&r)))?,
-                Some((Document::Text, crate::report::tapping::text(&r))),
+                request.render(Document::Svg, || Ok(crate::report::tap::tap_svg(&r)))?,
+                request.render(Document::Html, || Ok(crate::report::tap::tap_html(&r)))?,
+                Some((Document::Text, crate::report::tap::text(&r))),
             ],
         )
         .reading(inputs))

@@ -2,7 +2,7 @@
 
 use super::args::{tool_table, ProgramArgs, Source};
 use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
-use crate::analysis::threadmill::ThreadMillSpec;
+use crate::analysis::thread_mill::ThreadMillSpec;
 use crate::geometry::helix::Cutter;
 use crate::Error;
 use serde::Deserialize;
@@ -148,16 +148,16 @@ impl Job for ThreadMillArgs {
             },
             teeth: self.cutter_teeth,
         };
-        let r = crate::analysis::threadmill::thread_mill(&spec)?;
+        let r = crate::analysis::thread_mill::thread_mill(&spec)?;
         let inputs = self.file.inputs().into_iter().chain(tools_source.as_ref().and_then(Source::file));
         Ok(Outputs::new(
             Outcome::of(r.pass),
             [
                 request
-                    .render(Document::Json, || pretty(&crate::report::threadmill::ThreadMillJson::of(&r)))?,
-                request.render(Document::Svg, || Ok(crate::report::threadmill::threadmill_svg(&r)))?,
-                request.render(Document::Html, || Ok(crate::report::threadmill::threadmill_html(&r)))?,
-                Some((Document::Text, crate::report::threadmill::text(&r))),
+                    .render(Document::Json, || pretty(&crate::report::thread_mill::ThreadMillJson::of(&r)))?,
+                request.render(Document::Svg, || Ok(crate::report::thread_mill::threadmill_svg(&r)))?,
+                request.render(Document::Html, || Ok(crate::report::thread_mill::threadmill_html(&r)))?,
+                Some((Document::Text, crate::report::thread_mill::text(&r))),
             ],
         )
         .reading(inputs))

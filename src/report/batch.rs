@@ -9,7 +9,7 @@ use crate::analysis::check::Verdict;
 use crate::analysis::naming::DesignationFrom;
 use crate::analysis::program::ProgramVerification;
 use crate::analysis::program::{Milled, Process};
-use crate::analysis::verify::OperationResult;
+use crate::analysis::turn::verify::OperationResult;
 use quick_xml::events::{BytesDecl, BytesText, Event};
 use quick_xml::Writer;
 use serde::Serialize;
@@ -78,7 +78,7 @@ pub(crate) fn check_sentence(
 }
 
 /// A tapping check's sentence: `feed 1.2000 mm/rev, limits 1.2500 … 1.2500 (−50.0 µm); …`.
-pub(crate) fn tap_sentence(k: &crate::analysis::tapping::TapCheck) -> String {
+pub(crate) fn tap_sentence(k: &crate::analysis::tap::TapCheck) -> String {
     let num = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.4}"));
     let unit = if k.unit.is_empty() { String::new() } else { format!(" {}", k.unit) };
     let value = k.value.map_or(String::new(), |v| format!(" {v:.4}{unit}"));
@@ -96,7 +96,7 @@ pub(crate) fn tap_sentence(k: &crate::analysis::tapping::TapCheck) -> String {
         format!(" ({:+.1} µm)", k.deviation)
     };
     let note = if k.note.is_empty() { String::new() } else { format!("; {}", k.note) };
-    format!("{}{value}{limits}{dev}{note}", crate::report::tapping::feature_name(k.feature))
+    format!("{}{value}{limits}{dev}{note}", crate::report::tap::feature_name(k.feature))
 }
 
 /// One program of a run: its verdict and operations, or the one line that says why it could
@@ -192,7 +192,7 @@ impl BatchProgram {
                     .checks
                     .iter()
                     .filter(|c| !c.ok)
-                    .map(|c| crate::report::tapping::feature_name(c.feature).to_string())
+                    .map(|c| crate::report::tap::feature_name(c.feature).to_string())
                     .collect(),
                 findings: h
                     .checks

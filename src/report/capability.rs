@@ -1,8 +1,8 @@
 //! The `capability` report: JSON (docs/json.md), the text, the pitch diameter's histogram
 //! against its limits (SVG) and a small HTML page with it.
 
-use crate::analysis::capability::{CapabilityReport, Histogram, SizeCapability};
 use crate::analysis::check::CheckFeature;
+use crate::analysis::study::capability::{CapabilityReport, Histogram, SizeCapability};
 use crate::report::kit::{esc, page};
 use crate::report::{correction_text, CorrectionReport};
 use serde::Serialize;
@@ -17,7 +17,7 @@ pub struct CapabilityJson<'a> {
     pub kind: &'static str,
     /// The program, when one was read.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub program: Option<&'a crate::analysis::verify::ProgramLabel>,
+    pub program: Option<&'a crate::analysis::turn::verify::ProgramLabel>,
     /// The last pass's tip diameter as programmed (or planned), mm.
     pub final_x: f64,
     /// X repeatability, one σ on the diameter, mm.

@@ -2,7 +2,7 @@
 //! report, and the committed infeed-comparison page.
 
 use super::kit::*;
-use crate::analysis::compare::{Comparison, Ground, Recommendation, Summary};
+use crate::analysis::study::compare::{Comparison, Ground, Recommendation, Summary};
 use crate::standards::ThreadKind;
 use std::fmt::Write as _;
 

@@ -2,7 +2,7 @@
 //! small HTML page.
 
 use crate::analysis::check::Verdict;
-use crate::analysis::correct::{CorrectReport, MeasuredState, Pickup, WearOffset};
+use crate::analysis::study::correct::{CorrectReport, MeasuredState, Pickup, WearOffset};
 use crate::report::kit::{esc, page};
 use crate::report::{correction_text, CorrectionReport};
 use crate::standards::tolerance::Limit;
@@ -29,7 +29,7 @@ pub struct CorrectJson<'a> {
     pub kind: &'static str,
     /// The program, when one was read.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub program: Option<&'a crate::analysis::verify::ProgramLabel>,
+    pub program: Option<&'a crate::analysis::turn::verify::ProgramLabel>,
     /// `pass` when the part is in tolerance (or for a pick-up alone), else `fail`.
     pub verdict: Verdict,
     /// The pitch diameter's limits, mm (before coating, with `--coating`).
@@ -135,9 +135,9 @@ fn lines(r: &CorrectReport) -> (String, Vec<String>) {
             (None, Some(g)) => out.push(format!(
                 "gauge: {}",
                 match g {
-                    crate::analysis::correct::GaugeResult::GoFails => "GO fails",
-                    crate::analysis::correct::GaugeResult::NogoEnters => "NO-GO enters",
-                    crate::analysis::correct::GaugeResult::Ok => "GO enters, NO-GO does not",
+                    crate::analysis::study::correct::GaugeResult::GoFails => "GO fails",
+                    crate::analysis::study::correct::GaugeResult::NogoEnters => "NO-GO enters",
+                    crate::analysis::study::correct::GaugeResult::Ok => "GO enters, NO-GO does not",
                 }
             )),
             (None, None) => {}

@@ -1,6 +1,6 @@
 //! The fit of a bolt and a nut for a reader: the JSON report, the text and the picture.
 
-use crate::analysis::fit::{FitReport, FitVerdict};
+use crate::analysis::study::fit::{FitReport, FitVerdict};
 use crate::ground::plane::Point;
 /// `fit --json` (docs/json.md).
 #[derive(Clone, Debug, serde::Serialize)]

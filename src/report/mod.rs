@@ -2,7 +2,6 @@
 
 pub mod batch;
 pub mod capability;
-pub mod catalogue;
 pub mod compare;
 pub mod correct;
 pub mod fit;
@@ -12,13 +11,14 @@ pub mod lsp;
 pub mod mill;
 pub(crate) mod output;
 pub mod passes;
-pub mod tapping;
-pub mod threadmill;
+pub mod sweep;
+pub mod tap;
+pub mod thread_mill;
 pub mod verify;
 
-pub use catalogue::{CaseError, PlacementsLine};
 pub use limits::LimitsReport;
 pub use passes::PassesReport;
+pub use sweep::{CaseError, PlacementsLine};
 pub use verify::{
     program_text, read_past_text, verify_text, CorrectionReport, ProgramReport, ThreadReport, VerifyReport,
 };
@@ -86,12 +86,12 @@ impl MeasuredReport {
 /// a reader might check it against a drawing in mm. Inches at the inch standards' resolution
 /// (0.0001 in: four decimals), millimetres at four decimals (0.1 µm).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Lengths(pub crate::analysis::verify::Units);
+pub(crate) struct Lengths(pub crate::analysis::turn::verify::Units);
 
 impl Lengths {
     /// Whether lengths are in inches.
     pub(crate) fn inch(self) -> bool {
-        self.0 == crate::analysis::verify::Units::Inch
+        self.0 == crate::analysis::turn::verify::Units::Inch
     }
 
     /// A length's number in the reader's unit, four decimals: `12.6994`, `0.5000`.
@@ -156,7 +156,7 @@ impl Lengths {
 }
 
 /// A correction's new value at the program's increment: `0.2948` (inch), `0.930` (mm).
-fn correction_number(c: &crate::analysis::correction::Correction) -> String {
+fn correction_number(c: &crate::analysis::turn::correction::Correction) -> String {
     match c.units {
         crate::gcode::ProgramUnits::Mm => format!("{:.3}", c.value),
         crate::gcode::ProgramUnits::Inch => format!("{:.4}", c.value),
@@ -165,7 +165,7 @@ fn correction_number(c: &crate::analysis::correction::Correction) -> String {
 
 /// A correction's new word as the program would write it: `X0.2948`, `K0.930`, `TDEP=0.930`,
 /// `R24=0.930`.
-pub fn correction_word(c: &crate::analysis::correction::Correction) -> String {
+pub fn correction_word(c: &crate::analysis::turn::correction::Correction) -> String {
     use crate::gcode::WordForm;
     match c.form {
         WordForm::Number | WordForm::Expression => format!("{}{}", c.word, correction_number(c)),
@@ -177,7 +177,7 @@ pub fn correction_word(c: &crate::analysis::correction::Correction) -> String {
 
 /// What replaces the word in place to apply a correction: the whole word (`X19.452`), or a
 /// call's argument alone (`1.597`); `None` where it cannot be rewritten in place.
-pub fn correction_replacement(c: &crate::analysis::correction::Correction) -> Option<String> {
+pub fn correction_replacement(c: &crate::analysis::turn::correction::Correction) -> Option<String> {
     use crate::gcode::WordForm;
     match c.form {
         WordForm::Number => Some(correction_word(c)),
@@ -206,7 +206,7 @@ pub fn hint_text(h: &crate::analysis::check::Hint) -> String {
 }
 
 /// The sentence of a correction: `change X19.462 at line 12 to X19.452 (mm, diameter)`.
-pub fn correction_text(c: &crate::analysis::correction::Correction) -> String {
+pub fn correction_text(c: &crate::analysis::turn::correction::Correction) -> String {
     let what = match c.means {
         crate::gcode::WordMeans::Diameter => "diameter",
         crate::gcode::WordMeans::Radius => "radius",
@@ -359,7 +359,7 @@ fn inch_cells(c: &crate::Check, feed: bool) -> CheckCells {
         if feed {
             format!("{:+.1} in/min", past_limit(c) / 25.4)
         } else {
-            Lengths(crate::analysis::verify::Units::Inch).deviation_cell(c.deviation_um)
+            Lengths(crate::analysis::turn::verify::Units::Inch).deviation_cell(c.deviation_um)
         }
     });
     let lim = |v: Option<f64>| v.map_or_else(|| "—".to_string(), n);

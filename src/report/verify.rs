@@ -9,8 +9,8 @@ use super::*;
 use crate::analysis::check::{CheckFeature, Verdict};
 use crate::analysis::picture::Picture;
 use crate::analysis::program::ProgramVerification;
-use crate::analysis::verify::OperationResult;
-use crate::analysis::verify::Verification;
+use crate::analysis::turn::verify::OperationResult;
+use crate::analysis::turn::verify::Verification;
 use crate::geometry::insert::Insert;
 use crate::geometry::measure::{DeviationSample, ProfileRegion};
 use crate::ground::plane::{rad, Point};
@@ -88,7 +88,7 @@ pub struct InsertReport<'a> {
 #[derive(Clone, Debug, Serialize)]
 pub struct PlanReport<'a> {
     /// The program and its dialect, `None` for a generated plan.
-    pub program: Option<&'a crate::analysis::verify::ProgramLabel>,
+    pub program: Option<&'a crate::analysis::turn::verify::ProgramLabel>,
     /// The infeed: the options' for a generated plan; for a program's passes the one they
     /// follow (`null` when they follow no single one).
     pub infeed: Option<Infeed>,
@@ -188,7 +188,7 @@ pub struct VerifyReport<'a> {
     /// X helps: a start missing).
     pub suggested_final_x: Option<f64>,
     /// A program lead that matches the designation's only after rounding, and its effect.
-    pub lead_deviation: Option<&'a crate::analysis::lead::LeadDeviation>,
+    pub lead_deviation: Option<&'a crate::analysis::turn::lead::LeadDeviation>,
     /// The correction in the program's own word, when d2 is off.
     pub correction: Option<CorrectionReport<'a>>,
     /// What failing form checks say about the insert or the infeed.
@@ -289,7 +289,7 @@ pub struct HintReport<'a> {
 pub struct CorrectionReport<'a> {
     /// The word, its new value and place.
     #[serde(flatten)]
-    pub correction: &'a crate::analysis::correction::Correction,
+    pub correction: &'a crate::analysis::turn::correction::Correction,
     /// What to do, in words.
     pub text: String,
 }
@@ -351,7 +351,7 @@ fn check_rows(s: &mut String, v: &Verification, lengths: super::Lengths) {
             c.kind.name()
         );
         if inch && c.feature.is_length() {
-            let mm = check_cells(c, super::Lengths(crate::analysis::verify::Units::Mm));
+            let mm = check_cells(c, super::Lengths(crate::analysis::turn::verify::Units::Mm));
             let _ = write!(s, "  {:>10}{:>10}{:>10} mm", mm.value, mm.min, mm.max);
         }
         if let Some(n) = &c.note {
@@ -363,8 +363,8 @@ fn check_rows(s: &mut String, v: &Verification, lengths: super::Lengths) {
 
 /// What a program's passes follow, in words: `flank 30° infeed, constant area √n × 0.4 mm a side
 /// for 5 passes`.
-fn cut_plan_text(c: &crate::analysis::cut_plan::CutPlan) -> String {
-    use crate::analysis::cut_plan::DepthLaw;
+fn cut_plan_text(c: &crate::analysis::turn::cut_plan::CutPlan) -> String {
+    use crate::analysis::turn::cut_plan::DepthLaw;
     let infeed = match c.infeed {
         Some(i) => format!("{i} infeed"),
         None => "no single infeed".to_string(),
@@ -643,7 +643,7 @@ pub enum OperationReport<'a> {
         made: crate::analysis::program::Process,
         /// The hole's keys.
         #[serde(flatten)]
-        hole: &'a crate::analysis::tapping::TappedHole,
+        hole: &'a crate::analysis::tap::TappedHole,
         /// `pass` or `fail`.
         verdict: Verdict,
     },
@@ -653,7 +653,7 @@ pub enum OperationReport<'a> {
         made: crate::analysis::program::Process,
         /// The report's keys.
         #[serde(flatten)]
-        report: Box<crate::report::threadmill::ThreadMillJson<'a>>,
+        report: Box<crate::report::thread_mill::ThreadMillJson<'a>>,
     },
     /// Helices whose cutter is not known: not checked, failing.
     NotChecked {
@@ -680,7 +680,7 @@ pub(crate) fn no_cut_next(suggested_final_x: Option<f64>) -> Option<String> {
 #[derive(Clone, Debug, Serialize)]
 pub struct ProgramReport<'a> {
     /// The program's name and dialect.
-    pub program: &'a crate::analysis::verify::ProgramLabel,
+    pub program: &'a crate::analysis::turn::verify::ProgramLabel,
     /// The dialect.
     pub dialect: crate::gcode::Dialect,
     /// The worst verdict.
@@ -709,14 +709,16 @@ impl<'a> ProgramReport<'a> {
             .map(|o| {
                 let operation = OperationInfo::of(&o.operation);
                 match &o.result {
-                    crate::analysis::verify::OperationResult::Verified(v) => OperationReport::Verified {
-                        made: crate::analysis::program::Process::Turned,
-                        report: Box::new(VerifyReport::of(v)),
-                        operation,
-                        designation_from: o.named.from,
-                        designation_line: o.named.line,
-                    },
-                    crate::analysis::verify::OperationResult::NoCut { reason, suggested_final_x } => {
+                    crate::analysis::turn::verify::OperationResult::Verified(v) => {
+                        OperationReport::Verified {
+                            made: crate::analysis::program::Process::Turned,
+                            report: Box::new(VerifyReport::of(v)),
+                            operation,
+                            designation_from: o.named.from,
+                            designation_line: o.named.line,
+                        }
+                    }
+                    crate::analysis::turn::verify::OperationResult::NoCut { reason, suggested_final_x } => {
                         OperationReport::NoCut {
                             made: crate::analysis::program::Process::Turned,
                             suggested_final_x: *suggested_final_x,
@@ -744,7 +746,7 @@ impl<'a> ProgramReport<'a> {
             .chain(pv.milled.iter().map(|m| match m {
                 crate::analysis::program::Milled::Checked(r) => OperationReport::Milled {
                     made: crate::analysis::program::Process::Milled,
-                    report: Box::new(crate::report::threadmill::ThreadMillJson::of(r)),
+                    report: Box::new(crate::report::thread_mill::ThreadMillJson::of(r)),
                 },
                 crate::analysis::program::Milled::NotChecked { line, reason } => {
                     OperationReport::NotChecked {
@@ -845,8 +847,8 @@ pub fn program_text(pv: &crate::analysis::program::ProgramVerification) -> Strin
             op.passes.len()
         );
         match &o.result {
-            crate::analysis::verify::OperationResult::Verified(v) => s.push_str(&verify_text(v)),
-            crate::analysis::verify::OperationResult::NoCut { reason, suggested_final_x } => {
+            crate::analysis::turn::verify::OperationResult::Verified(v) => s.push_str(&verify_text(v)),
+            crate::analysis::turn::verify::OperationResult::NoCut { reason, suggested_final_x } => {
                 let _ =
                     writeln!(s, "{}: nothing to measure\n\nverdict: FAIL (no cut: {reason})", o.designation);
                 if !o.named.why.is_empty() {
@@ -871,13 +873,13 @@ pub fn program_text(pv: &crate::analysis::program::ProgramVerification) -> Strin
             t.drills,
             if t.drills == 1 { "" } else { "s" }
         );
-        s.push_str(&crate::report::tapping::holes_text(t));
+        s.push_str(&crate::report::tap::holes_text(t));
         s.push('\n');
     }
     match &pv.milled {
         Some(crate::analysis::program::Milled::Checked(r)) => {
             let _ = writeln!(s, "== milled: {} helices\n", r.helices.len());
-            s.push_str(&crate::report::threadmill::text(r));
+            s.push_str(&crate::report::thread_mill::text(r));
             s.push('\n');
         }
         Some(crate::analysis::program::Milled::NotChecked { line, reason }) => {
@@ -1124,8 +1126,11 @@ pub(crate) fn legend(x: f64, y: f64, kind: ThreadKind) -> Group {
 /// The check table: every check in words, its value, limits, deviation and verdict.
 pub(crate) fn check_table(v: &Verification, x: f64, y: f64) -> (Group, f64) {
     let mut g = Group::new().set("id", "check-table");
-    let title =
-        if v.units == crate::analysis::verify::Units::Inch { "checks, lengths in inches" } else { "checks" };
+    let title = if v.units == crate::analysis::turn::verify::Units::Inch {
+        "checks, lengths in inches"
+    } else {
+        "checks"
+    };
     g = g.add(text(x, y, 12.0, title).set("font-weight", "bold"));
     let cols = [x, x + 145.0, x + 195.0, x + 305.0, x + 365.0];
     let head = ["feature", "value", "limits", "off", ""];
@@ -1240,7 +1245,7 @@ pub(crate) fn chip_chart(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Gr
 /// contour-measuring machine reports it, with the values at the flank midpoints.
 pub(crate) fn deviation_plot(
     pic: &Picture,
-    units: crate::analysis::verify::Units,
+    units: crate::analysis::turn::verify::Units,
     x: f64,
     y: f64,
     w: f64,
@@ -1249,8 +1254,8 @@ pub(crate) fn deviation_plot(
     let f = Frame { x0: x, y0: y, w, h, z_min: 0.0, r_max: 0.0, scale: 1.0 };
     // The scale in µm, or in ten-thousandths of an inch (an inch shop's "tenths").
     let (tick_per_um, unit_label, title_unit) = match units {
-        crate::analysis::verify::Units::Mm => (1.0, "µm", "µm"),
-        crate::analysis::verify::Units::Inch => (1.0 / 2.54, "tenths", "in tenths (0.0001 in)"),
+        crate::analysis::turn::verify::Units::Mm => (1.0, "µm", "µm"),
+        crate::analysis::turn::verify::Units::Inch => (1.0 / 2.54, "tenths", "in tenths (0.0001 in)"),
     };
     let title = format!("deviation from the basic profile, normal to it, {title_unit}");
     let (mut g, mut body) = panel(&f, "deviation-plot", &title);
@@ -1326,8 +1331,8 @@ pub(crate) fn deviation_plot(
                 );
                 // In tenths, the µm beside them.
                 let value = match units {
-                    crate::analysis::verify::Units::Mm => format!("{:+.1} µm", mid.deviation * um),
-                    crate::analysis::verify::Units::Inch => format!(
+                    crate::analysis::turn::verify::Units::Mm => format!("{:+.1} µm", mid.deviation * um),
+                    crate::analysis::turn::verify::Units::Inch => format!(
                         "{:+.1} {unit_label} ({:+.1} µm)",
                         mid.deviation * um * tick_per_um,
                         mid.deviation * um
@@ -1416,8 +1421,8 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
     // (unless the control's findings need the program's heading).
     if pv.operations.is_empty() && pv.control.is_empty() {
         match (&pv.tapped, &pv.milled) {
-            (Some(t), None | Some(Milled::NotChecked { .. })) => return crate::report::tapping::tap_svg(t),
-            (None, Some(Milled::Checked(r))) => return crate::report::threadmill::threadmill_svg(r),
+            (Some(t), None | Some(Milled::NotChecked { .. })) => return crate::report::tap::tap_svg(t),
+            (None, Some(Milled::Checked(r))) => return crate::report::thread_mill::threadmill_svg(r),
             _ => {}
         }
     }
@@ -1440,14 +1445,14 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
     }
     for o in &pv.operations {
         let what = match &o.result {
-            crate::analysis::verify::OperationResult::Verified(v) => {
+            crate::analysis::turn::verify::OperationResult::Verified(v) => {
                 let mut w = verdict_words(v);
                 if let Some(c) = &v.correction {
                     w.push_str(&format!(" · next: {}", super::correction_text(c)));
                 }
                 w
             }
-            crate::analysis::verify::OperationResult::NoCut { reason, suggested_final_x } => {
+            crate::analysis::turn::verify::OperationResult::NoCut { reason, suggested_final_x } => {
                 match no_cut_next(*suggested_final_x) {
                     Some(next) => format!("OUT OF TOLERANCE: {reason} · next: {next}"),
                     None => format!("OUT OF TOLERANCE: {reason}"),
@@ -1473,7 +1478,7 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
             if n == 1 { "" } else { "s" },
             if t.pass { "IN TOLERANCE" } else { "OUT OF TOLERANCE" }
         );
-        let (d, w, h) = crate::report::tapping::tap_document(t);
+        let (d, w, h) = crate::report::tap::tap_document(t);
         more.push((line, t.pass, "tapped", Some((d, w, h))));
     }
     match &pv.milled {
@@ -1483,7 +1488,7 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
                 r.designation,
                 if r.pass { "IN TOLERANCE" } else { "OUT OF TOLERANCE" }
             );
-            let (d, w, h) = crate::report::threadmill::threadmill_document(r);
+            let (d, w, h) = crate::report::thread_mill::threadmill_document(r);
             more.push((line, r.pass, "milled", Some((d, w, h))));
         }
         Some(Milled::NotChecked { line, reason }) => {
@@ -1537,12 +1542,12 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
             .set("transform", format!("translate(0,{y})"))
             .add(band);
         let h = match &o.result {
-            crate::analysis::verify::OperationResult::Verified(v) => {
+            crate::analysis::turn::verify::OperationResult::Verified(v) => {
                 let (vg, height) = verification_group(v);
                 g = g.add(vg.set("transform", format!("translate(0,{band_h})")));
                 band_h + height
             }
-            crate::analysis::verify::OperationResult::NoCut { reason, suggested_final_x } => {
+            crate::analysis::turn::verify::OperationResult::NoCut { reason, suggested_final_x } => {
                 let next = no_cut_next(*suggested_final_x).map_or(String::new(), |n| format!(" · next: {n}"));
                 let lines = wrap(&format!("OUT OF TOLERANCE ({}): {reason}{next}", o.designation), 100);
                 for (i, l) in lines.iter().enumerate() {
@@ -1903,8 +1908,8 @@ pub fn program_html(pv: &ProgramVerification) -> String {
             if t.holes.len() == 1 { "" } else { "s" },
             if t.pass { "IN TOLERANCE" } else { "OUT OF TOLERANCE" }
         );
-        let _ = writeln!(body, "<pre class=\"wrap\">{}</pre>", esc(&crate::report::tapping::holes_text(t)));
-        let _ = writeln!(body, "<div class=\"pic\">{}</div>", crate::report::tapping::tap_svg(t));
+        let _ = writeln!(body, "<pre class=\"wrap\">{}</pre>", esc(&crate::report::tap::holes_text(t)));
+        let _ = writeln!(body, "<div class=\"pic\">{}</div>", crate::report::tap::tap_svg(t));
     }
     match &pv.milled {
         Some(crate::analysis::program::Milled::Checked(r)) => {
@@ -1914,9 +1919,9 @@ pub fn program_html(pv: &ProgramVerification) -> String {
                 esc(&r.designation),
                 if r.pass { "IN TOLERANCE" } else { "OUT OF TOLERANCE" }
             );
-            let _ = writeln!(body, "<pre class=\"wrap\">{}</pre>", esc(&crate::report::threadmill::text(r)));
+            let _ = writeln!(body, "<pre class=\"wrap\">{}</pre>", esc(&crate::report::thread_mill::text(r)));
             let _ =
-                writeln!(body, "<div class=\"pic\">{}</div>", crate::report::threadmill::threadmill_svg(r));
+                writeln!(body, "<div class=\"pic\">{}</div>", crate::report::thread_mill::threadmill_svg(r));
         }
         Some(crate::analysis::program::Milled::NotChecked { line, reason }) => {
             let _ = writeln!(

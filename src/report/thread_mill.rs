@@ -1,7 +1,7 @@
 //! The thread-milling check's text (its JSON is the report itself).
 
 use super::kit::*;
-use crate::analysis::threadmill::ThreadMillReport;
+use crate::analysis::thread_mill::ThreadMillReport;
 use crate::geometry::helix::{Cutter, Helix};
 use crate::ground::fmt::fmt_num;
 use crate::ground::plane::{rad, Point};
@@ -212,7 +212,7 @@ pub struct ThreadMillJson<'a> {
     /// The helices.
     pub helices: &'a [Helix],
     /// The feed at the cutter's edge of each helix with a known feed.
-    pub feeds: &'a [crate::analysis::threadmill::HelixFeed],
+    pub feeds: &'a [crate::analysis::thread_mill::HelixFeed],
     /// What the moves after the last helix do to the finished thread: the gouges and the moves
     /// under compensation not judged (issue 63).
     pub after_finish: &'a crate::analysis::gouge::AfterFinish,
@@ -272,13 +272,15 @@ impl<'a> ThreadMillJson<'a> {
 /// tooth profile alone (brown dashed), D1's limits (blue dotted), and the measured D, D2 and D1
 /// dimensioned with their values and limits (red with the deviation when out); below it, the
 /// helix's widening of the groove (radial µm) against the same Z.
-pub fn threadmill_svg(r: &crate::analysis::threadmill::ThreadMillReport) -> String {
+pub fn threadmill_svg(r: &crate::analysis::thread_mill::ThreadMillReport) -> String {
     threadmill_document(r).0.to_string()
 }
 
 /// The thread-milling picture as a document with its width and height, for a program's picture
 /// to stack.
-pub(crate) fn threadmill_document(r: &crate::analysis::threadmill::ThreadMillReport) -> (Document, f64, f64) {
+pub(crate) fn threadmill_document(
+    r: &crate::analysis::thread_mill::ThreadMillReport,
+) -> (Document, f64, f64) {
     use super::kit::text;
     use crate::ground::fmt::fmt_num;
     let w = 900.0;
@@ -384,7 +386,7 @@ pub(crate) fn threadmill_document(r: &crate::analysis::threadmill::ThreadMillRep
             file_name(&r.program),
             r.designation,
             fmt_num(r.cutter.diameter),
-            crate::report::threadmill::cutter_kind(&r.cutter)
+            crate::report::thread_mill::cutter_kind(&r.cutter)
         ),
         88,
     );
@@ -475,7 +477,7 @@ fn legend(ly: f64) -> Group {
 
 /// The groove's widening along Z under the section, on its Z scale; and where the panel ends.
 fn widening(
-    r: &crate::analysis::threadmill::ThreadMillReport,
+    r: &crate::analysis::thread_mill::ThreadMillReport,
     f: &Frame,
     (px0, pw): (f64, f64),
     ly: f64,
@@ -522,7 +524,7 @@ fn widening(
 
 /// The thread-milling page: the verdict, the distortion, the section, the checks, the helices
 /// and the notes.
-pub fn threadmill_html(r: &crate::analysis::threadmill::ThreadMillReport) -> String {
+pub fn threadmill_html(r: &crate::analysis::thread_mill::ThreadMillReport) -> String {
     let mut s = String::new();
     let (cls, words) = if r.pass { ("ok", "IN TOLERANCE") } else { ("out", "OUT OF TOLERANCE") };
     let _ = writeln!(s, "<h1>{} thread-milled</h1>", esc(&r.designation));
@@ -532,7 +534,7 @@ pub fn threadmill_html(r: &crate::analysis::threadmill::ThreadMillReport) -> Str
         "<p>{} · Ø{} mm {} cutter, {}° tooth, tip r{} mm ({:.0} % of the diameter) · profile distortion {:+.1} µm on the pitch diameter, flanks {:+.3}° / {:+.3}°</p>",
         esc(&r.program),
         crate::ground::fmt::fmt_num(r.cutter.diameter),
-        esc(&crate::report::threadmill::cutter_kind(&r.cutter)),
+        esc(&crate::report::thread_mill::cutter_kind(&r.cutter)),
         crate::ground::fmt::fmt_num(r.cutter.angle_deg),
         crate::ground::fmt::fmt_num(r.cutter.tip_radius),
         100.0 * r.cutter_ratio,

@@ -1,7 +1,7 @@
 //! The tapping check's text (its JSON is the report itself, `TapReport` derives `Serialize`).
 
 use super::kit::*;
-use crate::analysis::tapping::{TapFeature, TapReport};
+use crate::analysis::tap::{TapFeature, TapReport};
 use crate::ground::fmt::fmt_num;
 use crate::standards::drills::{DrillSource, PassingDrill};
 use std::fmt::Write as _;
@@ -50,7 +50,7 @@ pub(crate) fn passing_drill_words(d: &PassingDrill, window: &str) -> String {
 
 /// `a drill that passes: …` for a hole whose drill fails D1 or is not known; `None` when the
 /// drill passes (or the tap is a taper pipe tap).
-pub(crate) fn passing_drill_line(h: &crate::analysis::tapping::TappedHole) -> Option<String> {
+pub(crate) fn passing_drill_line(h: &crate::analysis::tap::TappedHole) -> Option<String> {
     let drill_bad = h.checks.iter().any(|k| k.feature == TapFeature::DrillDiameter && !k.ok);
     let drill_unknown = h.drill.as_ref().is_none_or(|d| d.diameter.is_none());
     let pd = h.drill_that_passes.as_ref().filter(|_| drill_bad || drill_unknown)?;
@@ -115,7 +115,7 @@ fn tap_inch_unit(c: &crate::gcode::HoleCycle, unit: &str) -> Option<(&'static st
 
 /// A failing tapping check's distance to its limit in the program's units: `+1.5 mm/min`,
 /// `-12.0 µm`; in inch `-1.0 in/min`, `-0.0005 in`.
-fn tap_off(c: &crate::gcode::HoleCycle, k: &crate::analysis::tapping::TapCheck) -> String {
+fn tap_off(c: &crate::gcode::HoleCycle, k: &crate::analysis::tap::TapCheck) -> String {
     let inch = c.units == crate::gcode::ProgramUnits::Inch;
     match (k.unit, inch) {
         ("mm/min", true) => format!("{:+.1} in/min", k.deviation / crate::MM_PER_INCH),
@@ -142,8 +142,8 @@ const LBF_IN_PER_NM: f64 = 8.850_745_791_327_185;
 /// How the cycle's report gives lengths: in its program's units, the mm beside inches.
 fn lengths(c: &crate::gcode::HoleCycle) -> super::Lengths {
     super::Lengths(match c.units {
-        crate::gcode::ProgramUnits::Mm => crate::analysis::verify::Units::Mm,
-        crate::gcode::ProgramUnits::Inch => crate::analysis::verify::Units::Inch,
+        crate::gcode::ProgramUnits::Mm => crate::analysis::turn::verify::Units::Mm,
+        crate::gcode::ProgramUnits::Inch => crate::analysis::turn::verify::Units::Inch,
     })
 }
 
@@ -342,12 +342,12 @@ const TAP_PANELS: usize = 4;
 /// chamfer, the plain bore and the drill's point), D1's limits dashed blue, the drill's diameter
 /// dimensioned across the plain bore (red when out of D1), the tap's and the drill's bottoms,
 /// the checks with their limits, and the drill that would pass.
-pub fn tap_svg(r: &crate::analysis::tapping::TapReport) -> String {
+pub fn tap_svg(r: &crate::analysis::tap::TapReport) -> String {
     tap_document(r).0.to_string()
 }
 
 /// The tap picture as a document with its width and height, for a program's picture to stack.
-pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document, f64, f64) {
+pub(crate) fn tap_document(r: &crate::analysis::tap::TapReport) -> (Document, f64, f64) {
     use super::kit::text;
     use crate::ground::fmt::fmt_num;
     let shown: Vec<_> = r.holes.iter().take(TAP_PANELS).collect();
@@ -355,7 +355,7 @@ pub(crate) fn tap_document(r: &crate::analysis::tapping::TapReport) -> (Document
     let w = (40.0 + panel_w * shown.len().max(1) as f64).max(760.0);
     let (box_h, box_w) = (420.0, panel_w - 120.0);
     // One scale for every panel: the deepest hole's height and the widest drill fit.
-    let span = |hole: &crate::analysis::tapping::TappedHole| {
+    let span = |hole: &crate::analysis::tap::TappedHole| {
         let z = hole.wall.iter().map(|p| p.z);
         let (lo, hi) = z.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
         (
@@ -445,13 +445,13 @@ struct Frame {
 
 /// One tapped hole's panel: its heading, its section and the lines under it; and where they end.
 fn hole_panel(
-    r: &crate::analysis::tapping::TapReport,
+    r: &crate::analysis::tap::TapReport,
     k: usize,
-    hole: &crate::analysis::tapping::TappedHole,
+    hole: &crate::analysis::tap::TappedHole,
     frame: Frame,
 ) -> (Group, f64) {
     use super::kit::text;
-    use crate::analysis::tapping::TapFeature;
+    use crate::analysis::tap::TapFeature;
     let Frame { panel_w, box_w, y0, text_top, .. } = frame;
     let x0 = 20.0 + panel_w * k as f64;
     let cx = x0 + 0.5 * box_w + 10.0;
@@ -494,9 +494,9 @@ fn hole_panel(
 /// bottoms, the drill's diameter dimensioned.
 fn hole_section(
     mut g: Group,
-    r: &crate::analysis::tapping::TapReport,
+    r: &crate::analysis::tap::TapReport,
     k: usize,
-    hole: &crate::analysis::tapping::TappedHole,
+    hole: &crate::analysis::tap::TappedHole,
     frame: Frame,
     cx: f64,
     drill_ok: bool,
@@ -632,7 +632,7 @@ fn hole_section(
 fn panel_lines(
     mut g: Group,
     k: usize,
-    hole: &crate::analysis::tapping::TappedHole,
+    hole: &crate::analysis::tap::TappedHole,
     (x0, text_top): (f64, f64),
     drill_ok: bool,
 ) -> (Group, f64) {
@@ -668,7 +668,7 @@ fn panel_lines(
     );
     ty += 4.0;
     for ck in &hole.checks {
-        let word = crate::report::tapping::feature_name(ck.feature);
+        let word = crate::report::tap::feature_name(ck.feature);
         let inch = tap_inch_unit(c, ck.unit);
         let n = |v: f64| match inch {
             Some((_, prec)) => format!("{:.prec$}", v / crate::MM_PER_INCH),
@@ -772,7 +772,7 @@ fn panel_lines(
                 },
                 format!(
                     "{}; {window}'s middle {:.3}",
-                    crate::report::tapping::drill_source_words(src),
+                    crate::report::tap::drill_source_words(src),
                     pd.middle
                 ),
             ),
@@ -796,7 +796,7 @@ fn panel_lines(
 
 /// `threadcheck tap --html`: one self-contained page: the verdict, the holes' sections, and per
 /// tapping cycle its tap, its drill, its checks and its notes.
-pub fn tap_html(r: &crate::analysis::tapping::TapReport) -> String {
+pub fn tap_html(r: &crate::analysis::tap::TapReport) -> String {
     use crate::ground::fmt::fmt_num;
     let mut s = String::new();
     let (cls, words) = if r.pass { ("ok", "IN TOLERANCE") } else { ("out", "OUT OF TOLERANCE") };
@@ -848,7 +848,7 @@ pub fn tap_html(r: &crate::analysis::tapping::TapReport) -> String {
             let _ = writeln!(
                 s,
                 "<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"{cls}\">{word}</td><td>{}</td></tr>",
-                esc(crate::report::tapping::feature_name(k.feature)),
+                esc(crate::report::tap::feature_name(k.feature)),
                 num(k.value),
                 num(k.min),
                 num(k.max),
@@ -857,7 +857,7 @@ pub fn tap_html(r: &crate::analysis::tapping::TapReport) -> String {
             );
         }
         s.push_str("</table>\n");
-        if let Some(line) = crate::report::tapping::passing_drill_line(h) {
+        if let Some(line) = crate::report::tap::passing_drill_line(h) {
             let _ = writeln!(s, "<p class=\"next\">{}</p>", esc(&line));
         }
         for n in &h.notes {

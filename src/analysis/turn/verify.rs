@@ -263,7 +263,7 @@ pub struct Verification {
     pub schedule: Schedule,
     /// For a program's passes, the infeed and depth law read back from them (`infeed` and
     /// `schedule` are then the options', which the passes did not follow).
-    pub cut_plan: Option<crate::analysis::cut_plan::CutPlan>,
+    pub cut_plan: Option<crate::analysis::turn::cut_plan::CutPlan>,
     /// An internal 60° thread's percent of thread from its bore (the charts' figure, issue 64).
     pub thread_percent: Option<crate::analysis::percent::ThreadPercent>,
     /// Blank or bore diameter, mm.
@@ -305,10 +305,10 @@ pub struct Verification {
     pub process: Option<crate::analysis::process::ProcessReport>,
     /// A program's lead that matches the designation's only after rounding to the program's
     /// increment: the difference and its pitch-diameter equivalent.
-    pub lead_deviation: Option<crate::analysis::lead::LeadDeviation>,
+    pub lead_deviation: Option<crate::analysis::turn::lead::LeadDeviation>,
     /// The change of the program's own depth word that puts d2 mid-tolerance, when d2 (or the
     /// gauge plane, or the functional d2) is off and the program has such a word.
-    pub correction: Option<crate::analysis::correction::Correction>,
+    pub correction: Option<crate::analysis::turn::correction::Correction>,
     /// The functional (virtual) pitch diameter where the lead deviates: the measured d2 plus
     /// (external) or less (internal) the lead error's equivalent, mm.
     pub functional_pitch_diameter: Option<f64>,
@@ -327,7 +327,7 @@ pub struct Verification {
 pub(crate) struct DepthAt {
     word: crate::gcode::DepthWord,
     units: crate::gcode::ProgramUnits,
-    also: Vec<crate::analysis::correction::Place>,
+    also: Vec<crate::analysis::turn::correction::Place>,
     alike: bool,
     /// The X words that set the operation's passes.
     pass_x_words: Vec<crate::gcode::PassXWord>,
@@ -336,12 +336,12 @@ pub(crate) struct DepthAt {
 impl DepthAt {
     /// The same change in the other starts' cycles (a word written otherwise in one of them is
     /// not rewritten in place), and the earlier passes that cut deeper than the new value.
-    fn apply_to(&self, c: &mut crate::analysis::correction::Correction, kind: ThreadKind) {
+    fn apply_to(&self, c: &mut crate::analysis::turn::correction::Correction, kind: ThreadKind) {
         c.also = self.also.clone();
         if !self.alike {
             c.form = crate::gcode::WordForm::Expression;
         }
-        c.deeper = crate::analysis::correction::deeper_words(c, &self.pass_x_words, kind);
+        c.deeper = crate::analysis::turn::correction::deeper_words(c, &self.pass_x_words, kind);
     }
 }
 
@@ -349,9 +349,9 @@ impl Verification {
     /// The correction in the program's words that moves the pitch diameter by `delta_d2` mm (+
     /// larger): `None` for a generated plan, or where no correction is offered (the starts are
     /// wrong, the program sets no depth word).
-    pub fn correction_for(&self, delta_d2: f64) -> Option<crate::analysis::correction::Correction> {
+    pub fn correction_for(&self, delta_d2: f64) -> Option<crate::analysis::turn::correction::Correction> {
         let d = self.depth.as_ref()?;
-        let mut c = crate::analysis::correction::correction(&d.word, d.units, self.kind, delta_d2);
+        let mut c = crate::analysis::turn::correction::correction(&d.word, d.units, self.kind, delta_d2);
         d.apply_to(&mut c, self.kind);
         Some(c)
     }
@@ -552,7 +552,7 @@ pub fn program_passes(
     };
     let off_helix = off_helix_segments(op, t);
     for (p, _) in op.passes.iter().zip(&off_helix).filter(|(_, off)| !**off) {
-        if let Err(inc) = crate::analysis::lead::lead_deviation(p.lead, op.units, t, 0.0) {
+        if let Err(inc) = crate::analysis::turn::lead::lead_deviation(p.lead, op.units, t, 0.0) {
             let u = op.units;
             let in_units = |mm: f64| match u {
                 crate::gcode::ProgramUnits::Mm => format!("{mm:.4} mm"),
@@ -561,7 +561,7 @@ pub fn program_passes(
             // A lead that matches once read in inches: the program is an inch control's.
             let inch = crate::gcode::ProgramUnits::Inch;
             let hint = if u == crate::gcode::ProgramUnits::Mm
-                && crate::analysis::lead::lead_deviation(p.lead * inch.mm(), inch, t, 0.0).is_ok()
+                && crate::analysis::turn::lead::lead_deviation(p.lead * inch.mm(), inch, t, 0.0).is_ok()
             {
                 "; read in inches it is the designation's (G20, or ‹default_units› inch if the program sets no units)"
                     .to_string()
@@ -606,7 +606,7 @@ fn off_helix_segments(op: &crate::gcode::Operation, t: &crate::standards::BasicT
     let off: Vec<bool> = op
         .passes
         .iter()
-        .map(|q| crate::analysis::lead::lead_deviation(q.lead, op.units, t, 0.0).is_err())
+        .map(|q| crate::analysis::turn::lead::lead_deviation(q.lead, op.units, t, 0.0).is_err())
         .collect();
     let some_on = off.iter().any(|o| !o);
     op.passes.iter().zip(off).map(|(p, o)| o && some_on && (p.x_end - p.x_start).abs() > 1e-9).collect()
@@ -939,7 +939,7 @@ struct Given {
     passes: Vec<Pass>,
     depth_word: Option<crate::gcode::DepthWord>,
     units: crate::gcode::ProgramUnits,
-    lead: Option<crate::analysis::lead::LeadDeviation>,
+    lead: Option<crate::analysis::turn::lead::LeadDeviation>,
     label: ProgramLabel,
     notes: Vec<crate::ground::note::Note>,
 }
@@ -1053,7 +1053,7 @@ fn judge(
     kind: ThreadKind,
     cone: Option<crate::analysis::check::Cone>,
     taper: bool,
-    lead_deviation: Option<crate::analysis::lead::LeadDeviation>,
+    lead_deviation: Option<crate::analysis::turn::lead::LeadDeviation>,
 ) -> (Vec<crate::analysis::check::Check>, Option<f64>) {
     // The lead error's equivalent: the functional pitch diameter has more material than the
     // measured one (larger on a bolt, smaller in a nut); on a taper thread the gauge stands off
@@ -1121,7 +1121,7 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
     let program_label = given.as_ref().map(|g| g.label.clone());
     let lead_deviation = given.as_ref().and_then(|g| g.lead);
     let depth_word = given.as_ref().and_then(|g| g.depth_word.clone().map(|w| (w, g.units)));
-    let cut_plan = given.as_ref().map(|g| crate::analysis::cut_plan::cut_plan(&g.passes));
+    let cut_plan = given.as_ref().map(|g| crate::analysis::turn::cut_plan::cut_plan(&g.passes));
     let (final_x, solved, cut) = if let Some(g) = given {
         notes.extend(g.notes);
         let final_x = last_head(&g.passes).x_at(mr.z_of(&g.passes));
@@ -1161,7 +1161,9 @@ fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error
     let delta = mr.target_at(cut.z_ref) - m.pitch_diameter;
     let suggested = d2_off.then_some(final_x + delta);
     let correction = match (d2_off, &depth_word) {
-        (true, Some((w, units))) => Some(crate::analysis::correction::correction(w, *units, kind, delta)),
+        (true, Some((w, units))) => {
+            Some(crate::analysis::turn::correction::correction(w, *units, kind, delta))
+        }
         _ => None,
     };
     if spec.gauge_only {
@@ -1687,9 +1689,9 @@ fn verify_given(
         ),
     };
     let used = on_part.min(engagement);
-    let lead = crate::analysis::lead::lead_deviation(last.lead, op.units, &r.designation.thread, used)
+    let lead = crate::analysis::turn::lead::lead_deviation(last.lead, op.units, &r.designation.thread, used)
         .unwrap_or(None)
-        .map(|d| crate::analysis::lead::LeadDeviation { pass_length, engagement, ..d });
+        .map(|d| crate::analysis::turn::lead::LeadDeviation { pass_length, engagement, ..d });
     if let Some(d) = &lead {
         let whole = d.pitch_diameter_equivalent * pass_length / used.max(1e-9);
         notes.push(crate::ground::note::Note::from(format!(
@@ -1742,7 +1744,7 @@ fn verify_given(
     // written alike; otherwise it is said for the first and the others are named.
     if let Some(d) = v.depth.as_mut() {
         for w in &op.start_words {
-            d.also.push(crate::analysis::correction::Place { line: w.line, column: w.column });
+            d.also.push(crate::analysis::turn::correction::Place { line: w.line, column: w.column });
             d.alike &= w.written == d.word.written && w.form == d.word.form;
         }
         d.pass_x_words = op.pass_x_words.clone();
@@ -1825,7 +1827,8 @@ fn name_turned(
         .filter(|c| c.line <= after)
         .find(|c| {
             crate::analysis::naming::designation_in_comment(&c.text, opts).is_some_and(|f| {
-                crate::analysis::lead::lead_deviation(lead, op.units, &f.designation.thread, 1.0).is_ok()
+                crate::analysis::turn::lead::lead_deviation(lead, op.units, &f.designation.thread, 1.0)
+                    .is_ok()
             })
         })
         .map(|c| c.line);

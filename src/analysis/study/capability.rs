@@ -13,8 +13,8 @@
 //! - a part is predicted out when its pitch diameter's mean ± 3σ leaves the limits.
 
 use crate::analysis::check::{CheckFeature, CheckKind};
-use crate::analysis::correction::Correction;
-use crate::analysis::verify::{Recut, Verification, VerifySpec};
+use crate::analysis::turn::correction::Correction;
+use crate::analysis::turn::verify::{Recut, Verification, VerifySpec};
 use crate::standards::ThreadKind;
 use crate::Error;
 use rand::{RngExt, SeedableRng};

@@ -5,8 +5,8 @@
 //! diameter moves one for one with the final X.
 
 use crate::analysis::check::Verdict;
-use crate::analysis::correction::Correction;
-use crate::analysis::verify::{verify, Verification, VerifySpec};
+use crate::analysis::turn::correction::Correction;
+use crate::analysis::turn::verify::{verify, Verification, VerifySpec};
 use crate::standards::ThreadKind;
 use crate::toolpath::passes::Pass;
 use crate::Error;
