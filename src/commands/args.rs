@@ -434,11 +434,20 @@ impl PlanArgs {
     /// modeline set where no flag is given (each stated in the notes); `files` says whether an
     /// insert may be a path.
     pub fn spec(&self, files: super::Files) -> Result<VerifySpec, Error> {
-        let set = self.settings(files)?;
+        self.spec_with(&self.settings(files)?, files)
+    }
+
+    /// [`spec`](Self::spec) with the project file and modeline already read (`set`): a run
+    /// reads them once per program.
+    pub(crate) fn spec_with(
+        &self,
+        set: &super::settings::Settings,
+        files: super::Files,
+    ) -> Result<VerifySpec, Error> {
         if set.is_empty() {
             return self.spec_as_given(files);
         }
-        let mut s = self.settled(&set).spec_as_given(files)?;
+        let mut s = self.settled(set).spec_as_given(files)?;
         if self.machine_type.is_none() {
             if let Some((_, by)) = &set.machine_type {
                 s.reading.machine_type_by = Some(by.phrase());

@@ -144,7 +144,9 @@ impl Job for VerifyArgs {
         if self.plan.program.is_none() {
             self.plan.need_thread("verify")?;
         }
-        let mut spec = self.plan.spec(request.files)?;
+        // The program's project file and modeline, read once for the spec and the project.
+        let set = self.plan.settings(request.files)?;
+        let mut spec = self.plan.spec_with(&set, request.files)?;
         spec.gauge_only = self.gauge_only;
         spec.metrics = !self.no_pass_metrics;
         spec.operation = self.operation;
@@ -152,7 +154,7 @@ impl Job for VerifyArgs {
         // The pictures and the JSON's deviation samples are computed with the verification.
         spec.picture = [Document::Svg, Document::Html, Document::Json].into_iter().any(|d| request.wants(d));
         let tools = self.tools.as_ref().map(|t| tool_table(t, request.files)).transpose()?;
-        let (own_tools, threads) = self.project(&mut spec, request.files)?;
+        let (own_tools, threads) = self.project(&mut spec, &set, request.files)?;
         let tools = tools.or(own_tools);
         let mut inputs = self.plan.inputs();
         inputs.extend(self.tools.as_ref().and_then(Source::file));
@@ -472,7 +474,8 @@ impl VerifyArgs {
             format: None,
             ..self.clone()
         };
-        let mut spec = one.plan.spec(request.files)?;
+        let set = one.plan.settings(request.files)?;
+        let mut spec = one.plan.spec_with(&set, request.files)?;
         spec.gauge_only = self.gauge_only;
         spec.stock_bottom = self.stock_bottom;
         spec.metrics = false;
@@ -480,7 +483,7 @@ impl VerifyArgs {
         if finder.is_some() {
             spec.reading.sub_files = finder;
         }
-        let (own_tools, threads) = one.project(&mut spec, request.files)?;
+        let (own_tools, threads) = one.project(&mut spec, &set, request.files)?;
         let tools = tools.or(own_tools.as_ref());
         let (source, dialect) = spec.program.clone().ok_or_else(|| Error::Input("no program".into()))?;
         one.verification(&spec, &source, dialect, &threads, tools)
@@ -492,9 +495,9 @@ impl VerifyArgs {
     fn project(
         &self,
         spec: &mut VerifySpec,
+        set: &super::settings::Settings,
         files: super::Files,
     ) -> Result<(Option<crate::analysis::tools::ToolTable>, Vec<String>), Error> {
-        let set = self.plan.settings(files)?;
         let threads = match (&self.plan.thread, &set.thread) {
             (given, Some((t, _))) if given.is_empty() => t.clone(),
             (given, _) => given.clone(),
