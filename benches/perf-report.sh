@@ -145,8 +145,8 @@ def incl(name):
 parts = [("sweep (lower envelope of 60 imprints)", "threadcheck::geometry::sweep::sweep ["),
          ("measure (pitch line, flanks, root, three-wire, maximum-material search)", "threadcheck::geometry::measure::measure ["),
          ("checks", "threadcheck::analysis::check::checks ["),
-         ("resolve (designation, limits, insert, blank)", "threadcheck::analysis::turn::verify::resolve [")]
-whole = incl("threadcheck::analysis::turn::verify::verify [")
+         ("resolve (designation, limits, insert, blank)", "threadcheck::analysis::turn::resolve::resolve [")]
+whole = incl("threadcheck::analysis::turn::program::verify [")
 w("callgrind on the one-thread bench (`verify M10x1.5-6g, 12 passes`, final X given, no per-pass chip metrics), "
   "instructions inside `verify`:\n")
 w("| part | share |")

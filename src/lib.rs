@@ -141,7 +141,7 @@ pub use analysis::thread_mill::{thread_mill, ThreadMillReport, ThreadMillSpec};
 pub use analysis::tools::{InsertChoice, Tool, ToolTable};
 pub use analysis::turn::correction::{correction, deeper_words, Correction, Deeper};
 pub use analysis::turn::lead::{lead_deviation, LeadDeviation};
-pub use analysis::turn::verify::{
+pub use analysis::turn::{
     default_blank, default_pass_count, program_passes, read_program_text, reference_groove, text_of, verify,
     ProgramLabel, ProgramSource, Units, Verification, VerifySpec,
 };

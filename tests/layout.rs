@@ -288,7 +288,7 @@ fn every_api_key_is_a_flag_of_its_command() {
     }
 }
 
-/// The module path of each file of `src/` (`analysis/turn/verify.rs` → `analysis::turn::verify`,
+/// The module path of each file of `src/` (`analysis/turn/core.rs` → `analysis::turn::core`,
 /// `gcode/mod.rs` → `gcode`), with the file.
 fn modules() -> Vec<(String, String)> {
     src_code()
@@ -363,9 +363,9 @@ fn imports() -> std::collections::BTreeMap<String, std::collections::BTreeSet<St
 fn no_file_imports_itself_round_a_circle() {
     let graph = imports();
     assert!(
-        graph.get("analysis::turn::verify").is_some_and(|d| d.contains("analysis::check")),
+        graph.get("analysis::turn::core").is_some_and(|d| d.contains("analysis::check")),
         "the imports were not read: {:?}",
-        graph.get("analysis::turn::verify")
+        graph.get("analysis::turn::core")
     );
     // Tarjan's strongly connected components: each of more than one file is a circle.
     struct T<'a> {

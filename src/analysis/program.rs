@@ -12,7 +12,7 @@
 use crate::analysis::tap::TapSpec;
 use crate::analysis::thread_mill::{ThreadMillReport, ThreadMillSpec};
 use crate::analysis::tools::{Tool, ToolTable};
-use crate::analysis::turn::verify::{InsertFor, OperationVerdict, ProgramLabel, TurnedProgram, VerifySpec};
+use crate::analysis::turn::{InsertFor, OperationVerdict, ProgramLabel, TurnedProgram, VerifySpec};
 use crate::gcode::{Dialect, HoleKind, ReadOptions};
 use crate::Error;
 
@@ -107,7 +107,7 @@ pub fn verify_program(
     threads: &[String],
     insert_for: &InsertFor<'_>,
 ) -> Result<ProgramVerification, Error> {
-    crate::analysis::turn::verify::turned_program(spec, text, name, dialect, threads, insert_for)
+    crate::analysis::turn::turned_program(spec, text, name, dialect, threads, insert_for)
         .map(ProgramVerification::of)
 }
 

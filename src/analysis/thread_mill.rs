@@ -79,7 +79,7 @@ pub struct ThreadMillReport {
     /// How the text and the picture give lengths: inch for a thread of an inch size (the
     /// JSON stays in mm).
     #[serde(skip)]
-    pub units: crate::analysis::turn::verify::Units,
+    pub units: crate::analysis::turn::Units,
     /// The cutter.
     pub cutter: Cutter,
     /// The cutter's diameter over the thread's major (internal) diameter.
@@ -863,9 +863,9 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         named,
         kind,
         units: if t.form.is_inch() {
-            crate::analysis::turn::verify::Units::Inch
+            crate::analysis::turn::Units::Inch
         } else {
-            crate::analysis::turn::verify::Units::Mm
+            crate::analysis::turn::Units::Mm
         },
         cutter: c,
         cutter_ratio: ratio,

@@ -3,7 +3,7 @@
 //! API ([`Source`]), and the readers both sides use.
 
 use crate::analysis::tools::InsertChoice;
-use crate::analysis::turn::verify::{ProgramSource, Units, VerifySpec};
+use crate::analysis::turn::{ProgramSource, Units, VerifySpec};
 use crate::gcode::{Dialect, DialectFrom, GCodeSystem, LinuxCncRelease, ProgramUnits};
 use crate::standards::tolerance::CoatingLimits;
 use crate::toolpath::passes::{InfeedChoice, Schedule};
@@ -342,9 +342,7 @@ fn sub_finder(dirs: Vec<PathBuf>) -> crate::gcode::SubFinder {
             if let Some(path) = found {
                 // Named as the program is (`lib/thr.ngc`), without the `./` of its own folder.
                 let shown = path.strip_prefix(".").unwrap_or(&path).display().to_string();
-                return Some(
-                    crate::analysis::turn::verify::read_program_text(&path).map(|text| (shown, text)),
-                );
+                return Some(crate::analysis::turn::read_program_text(&path).map(|text| (shown, text)));
             }
         }
         None

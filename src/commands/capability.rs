@@ -65,7 +65,7 @@ impl Job for CapabilityArgs {
     /// when every sampled part passes).
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
         self.plan.one_thread("capability")?;
-        let verify = crate::analysis::turn::verify::VerifySpec {
+        let verify = crate::analysis::turn::VerifySpec {
             operation: self.operation,
             gauge_only: self.gauge_only,
             ..self.plan.spec(request.files)?

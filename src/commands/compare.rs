@@ -49,7 +49,7 @@ impl Job for CompareArgs {
                 "compare's table is in mm: ‹units› gives inches in verify's text and pictures".into(),
             ));
         }
-        let spec = crate::analysis::turn::verify::VerifySpec {
+        let spec = crate::analysis::turn::VerifySpec {
             picture: request.wants(Document::Html),
             ..self.plan.spec(request.files)?
         };

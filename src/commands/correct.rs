@@ -90,10 +90,8 @@ impl Job for CorrectArgs {
 
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
         self.plan.one_thread("correct")?;
-        let verify = crate::analysis::turn::verify::VerifySpec {
-            operation: self.operation,
-            ..self.plan.spec(request.files)?
-        };
+        let verify =
+            crate::analysis::turn::VerifySpec { operation: self.operation, ..self.plan.spec(request.files)? };
         let spec = CorrectSpec { verify, measured: self.measured()?, pickup_z: self.pickup_z };
         let r = crate::analysis::study::correct::correct(&spec)?;
         let outcome = match r.verdict() {

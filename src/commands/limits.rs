@@ -76,7 +76,7 @@ impl Job for LimitsArgs {
         let t = &des.thread;
         let coat = |l: Option<ThreadLimits>| {
             l.map(|l| {
-                crate::analysis::turn::verify::coated(
+                crate::analysis::turn::coated(
                     l,
                     t,
                     self.coating.unwrap_or(0.0),

@@ -48,8 +48,8 @@ impl Job for PassesArgs {
             self.plan.need_thread("passes")?;
         }
         let spec = self.plan.spec(request.files)?;
-        let thread_of = |spec: &crate::analysis::turn::verify::VerifySpec| -> Result<_, Error> {
-            let r = crate::analysis::turn::verify::resolve(spec)?;
+        let thread_of = |spec: &crate::analysis::turn::VerifySpec| -> Result<_, Error> {
+            let r = crate::analysis::turn::resolve(spec)?;
             Ok((r.designation, r.kind, r.limits.class))
         };
         let json =
@@ -81,12 +81,12 @@ impl Job for PassesArgs {
                 // With the final X given, the plan is laid out without cutting it.
                 let (thread, passes, blank, final_x) = match spec.final_x {
                     Some(x) => {
-                        let r = crate::analysis::turn::verify::resolve(&spec)?;
+                        let r = crate::analysis::turn::resolve(&spec)?;
                         let passes = r.plan(x).generate()?;
                         ((r.designation, r.kind, r.limits.class), passes, r.blank, x)
                     }
                     None => {
-                        let v = crate::analysis::turn::verify::verify(&spec)?;
+                        let v = crate::analysis::turn::verify(&spec)?;
                         ((v.designation, v.kind, v.limits.class), v.passes, v.blank_diameter, v.final_x)
                     }
                 };

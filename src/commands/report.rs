@@ -33,7 +33,7 @@ impl Job for ReportArgs {
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
         use crate::analysis::study::compare::{compare, REPORT_THREADS};
         use crate::analysis::tools::InsertChoice;
-        use crate::analysis::turn::verify::VerifySpec;
+        use crate::analysis::turn::VerifySpec;
         match self.name {
             ReportName::InfeedComparison => {
                 let inserts = [

@@ -254,8 +254,8 @@ impl Job for SweepArgs {
 
 fn placements_line(
     label: &str,
-    spec: &crate::analysis::turn::verify::VerifySpec,
-    v: &crate::analysis::turn::verify::Verification,
+    spec: &crate::analysis::turn::VerifySpec,
+    v: &crate::analysis::turn::Verification,
 ) -> Result<String, Error> {
     let t = &v.designation.thread;
     let setup = crate::geometry::sweep::SweepSetup {
@@ -293,7 +293,7 @@ fn placements_line(
     let mut whole = f64::INFINITY;
     for _ in 0..5 {
         let start = std::time::Instant::now();
-        std::hint::black_box(crate::analysis::turn::verify::verify(spec)?.pass);
+        std::hint::black_box(crate::analysis::turn::verify(spec)?.pass);
         whole = whole.min(start.elapsed().as_secs_f64());
     }
     let ring = |r: &[crate::Point]| r.iter().map(|p| [p.z, p.r]).collect::<Vec<_>>();

@@ -3,7 +3,7 @@
 use super::args::{tool_table, PlanArgs, Source};
 use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
 use crate::analysis::tools::InsertChoice;
-use crate::analysis::turn::verify::{ProgramSource, VerifySpec};
+use crate::analysis::turn::{ProgramSource, VerifySpec};
 use crate::Error;
 use serde::Deserialize;
 use std::path::PathBuf;
@@ -166,7 +166,7 @@ impl Job for VerifyArgs {
         if request.wants(Document::Fix) {
             return Err(Error::Input("‹fix› corrects a program: give it with ‹program›".into()));
         }
-        let v = crate::analysis::turn::verify::verify(&spec)?;
+        let v = crate::analysis::turn::verify(&spec)?;
         Ok(Outputs::new(
             Outcome::of(v.pass),
             [
@@ -410,12 +410,12 @@ impl VerifyArgs {
                     .iter()
                     .filter_map(|o| match &o.result {
                         // A correction in a subprogram's file is not this document's to edit.
-                        crate::analysis::turn::verify::OperationResult::Verified(_)
+                        crate::analysis::turn::OperationResult::Verified(_)
                             if o.operation.source_file.is_some() =>
                         {
                             None
                         }
-                        crate::analysis::turn::verify::OperationResult::Verified(v) => {
+                        crate::analysis::turn::OperationResult::Verified(v) => {
                             let c = v.correction.as_ref()?;
                             let edits = correction_edits(c, &shown).ok()?;
                             Some(EditorFix {
@@ -424,7 +424,7 @@ impl VerifyArgs {
                                 edits,
                             })
                         }
-                        crate::analysis::turn::verify::OperationResult::NoCut { .. } => None,
+                        crate::analysis::turn::OperationResult::NoCut { .. } => None,
                     })
                     .collect();
                 EditorView::of(&pv, fixes)
@@ -625,7 +625,7 @@ fn fixed_program(
 ) -> Result<String, Error> {
     let mut edits = Vec::new();
     for o in &pv.operations {
-        let crate::analysis::turn::verify::OperationResult::Verified(v) = &o.result else {
+        let crate::analysis::turn::OperationResult::Verified(v) = &o.result else {
             continue;
         };
         let Some(c) = &v.correction else { continue };

@@ -9,7 +9,7 @@ use crate::analysis::check::Verdict;
 use crate::analysis::naming::DesignationFrom;
 use crate::analysis::program::ProgramVerification;
 use crate::analysis::program::{Milled, Process};
-use crate::analysis::turn::verify::OperationResult;
+use crate::analysis::turn::OperationResult;
 use quick_xml::events::{BytesDecl, BytesText, Event};
 use quick_xml::Writer;
 use serde::Serialize;

@@ -17,7 +17,7 @@ pub struct CapabilityJson<'a> {
     pub kind: &'static str,
     /// The program, when one was read.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub program: Option<&'a crate::analysis::turn::verify::ProgramLabel>,
+    pub program: Option<&'a crate::analysis::turn::ProgramLabel>,
     /// The last pass's tip diameter as programmed (or planned), mm.
     pub final_x: f64,
     /// X repeatability, one σ on the diameter, mm.

@@ -29,7 +29,7 @@ pub struct CorrectJson<'a> {
     pub kind: &'static str,
     /// The program, when one was read.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub program: Option<&'a crate::analysis::turn::verify::ProgramLabel>,
+    pub program: Option<&'a crate::analysis::turn::ProgramLabel>,
     /// `pass` when the part is in tolerance (or for a pick-up alone), else `fail`.
     pub verdict: Verdict,
     /// The pitch diameter's limits, mm (before coating, with `--coating`).

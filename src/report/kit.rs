@@ -119,11 +119,11 @@ pub(crate) fn tick_label(v: f64, step: f64) -> String {
 }
 
 /// Axes of a panel: Z (mm) ticks below it, diameter (mm, twice the radius) ticks on its right.
-pub(crate) fn axes(f: &Frame, diameter_axis: bool, units: crate::analysis::turn::verify::Units) -> Group {
+pub(crate) fn axes(f: &Frame, diameter_axis: bool, units: crate::analysis::turn::Units) -> Group {
     // Ticks at round numbers of the reader's unit: mm, or inches (the frame stays in mm).
     let (per, name) = match units {
-        crate::analysis::turn::verify::Units::Mm => (1.0, "mm"),
-        crate::analysis::turn::verify::Units::Inch => (25.4, "in"),
+        crate::analysis::turn::Units::Mm => (1.0, "mm"),
+        crate::analysis::turn::Units::Inch => (25.4, "in"),
     };
     let mut g = Group::new().set("class", "axes");
     let (z0, z1) = f.z_range();
@@ -250,7 +250,7 @@ pub(crate) fn labels_of_dimensions(
     items_in: &[(crate::CheckFeature, f64)],
     checks: &[crate::Check],
     kind: ThreadKind,
-    units: crate::analysis::turn::verify::Units,
+    units: crate::analysis::turn::Units,
     f: &Frame,
     right: f64,
 ) -> Group {
@@ -400,7 +400,7 @@ pub(crate) fn file_name(program: &str) -> String {
 }
 
 /// The file name of a program label, with its dialect (`dir/p.nc (fanuc)` → `p.nc (fanuc)`).
-pub(crate) fn label_name(label: &crate::analysis::turn::verify::ProgramLabel) -> String {
+pub(crate) fn label_name(label: &crate::analysis::turn::ProgramLabel) -> String {
     format!("{} ({})", file_name(&label.file), label.dialect.name())
 }
 

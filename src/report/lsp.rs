@@ -7,7 +7,7 @@ use super::batch::{check_sentence, tap_sentence, BatchProgram};
 use crate::analysis::check::Verdict;
 use crate::analysis::program::Milled;
 use crate::analysis::program::ProgramVerification;
-use crate::analysis::turn::verify::OperationResult;
+use crate::analysis::turn::OperationResult;
 use crate::gcode::WordEdit;
 use std::fmt::Write as _;
 

@@ -86,12 +86,12 @@ impl MeasuredReport {
 /// a reader might check it against a drawing in mm. Inches at the inch standards' resolution
 /// (0.0001 in: four decimals), millimetres at four decimals (0.1 µm).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Lengths(pub crate::analysis::turn::verify::Units);
+pub(crate) struct Lengths(pub crate::analysis::turn::Units);
 
 impl Lengths {
     /// Whether lengths are in inches.
     pub(crate) fn inch(self) -> bool {
-        self.0 == crate::analysis::turn::verify::Units::Inch
+        self.0 == crate::analysis::turn::Units::Inch
     }
 
     /// A length's number in the reader's unit, four decimals: `12.6994`, `0.5000`.
@@ -359,7 +359,7 @@ fn inch_cells(c: &crate::Check, feed: bool) -> CheckCells {
         if feed {
             format!("{:+.1} in/min", past_limit(c) / 25.4)
         } else {
-            Lengths(crate::analysis::turn::verify::Units::Inch).deviation_cell(c.deviation_um)
+            Lengths(crate::analysis::turn::Units::Inch).deviation_cell(c.deviation_um)
         }
     });
     let lim = |v: Option<f64>| v.map_or_else(|| "—".to_string(), n);

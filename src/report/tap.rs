@@ -142,8 +142,8 @@ const LBF_IN_PER_NM: f64 = 8.850_745_791_327_185;
 /// How the cycle's report gives lengths: in its program's units, the mm beside inches.
 fn lengths(c: &crate::gcode::HoleCycle) -> super::Lengths {
     super::Lengths(match c.units {
-        crate::gcode::ProgramUnits::Mm => crate::analysis::turn::verify::Units::Mm,
-        crate::gcode::ProgramUnits::Inch => crate::analysis::turn::verify::Units::Inch,
+        crate::gcode::ProgramUnits::Mm => crate::analysis::turn::Units::Mm,
+        crate::gcode::ProgramUnits::Inch => crate::analysis::turn::Units::Inch,
     })
 }
 

@@ -9,8 +9,8 @@ use super::*;
 use crate::analysis::check::{CheckFeature, Verdict};
 use crate::analysis::picture::Picture;
 use crate::analysis::program::ProgramVerification;
-use crate::analysis::turn::verify::OperationResult;
-use crate::analysis::turn::verify::Verification;
+use crate::analysis::turn::OperationResult;
+use crate::analysis::turn::Verification;
 use crate::geometry::insert::Insert;
 use crate::geometry::measure::{DeviationSample, ProfileRegion};
 use crate::ground::plane::{rad, Point};
@@ -88,7 +88,7 @@ pub struct InsertReport<'a> {
 #[derive(Clone, Debug, Serialize)]
 pub struct PlanReport<'a> {
     /// The program and its dialect, `None` for a generated plan.
-    pub program: Option<&'a crate::analysis::turn::verify::ProgramLabel>,
+    pub program: Option<&'a crate::analysis::turn::ProgramLabel>,
     /// The infeed: the options' for a generated plan; for a program's passes the one they
     /// follow (`null` when they follow no single one).
     pub infeed: Option<Infeed>,
@@ -351,7 +351,7 @@ fn check_rows(s: &mut String, v: &Verification, lengths: super::Lengths) {
             c.kind.name()
         );
         if inch && c.feature.is_length() {
-            let mm = check_cells(c, super::Lengths(crate::analysis::turn::verify::Units::Mm));
+            let mm = check_cells(c, super::Lengths(crate::analysis::turn::Units::Mm));
             let _ = write!(s, "  {:>10}{:>10}{:>10} mm", mm.value, mm.min, mm.max);
         }
         if let Some(n) = &c.note {
@@ -680,7 +680,7 @@ pub(crate) fn no_cut_next(suggested_final_x: Option<f64>) -> Option<String> {
 #[derive(Clone, Debug, Serialize)]
 pub struct ProgramReport<'a> {
     /// The program's name and dialect.
-    pub program: &'a crate::analysis::turn::verify::ProgramLabel,
+    pub program: &'a crate::analysis::turn::ProgramLabel,
     /// The dialect.
     pub dialect: crate::gcode::Dialect,
     /// The worst verdict.
@@ -709,16 +709,14 @@ impl<'a> ProgramReport<'a> {
             .map(|o| {
                 let operation = OperationInfo::of(&o.operation);
                 match &o.result {
-                    crate::analysis::turn::verify::OperationResult::Verified(v) => {
-                        OperationReport::Verified {
-                            made: crate::analysis::program::Process::Turned,
-                            report: Box::new(VerifyReport::of(v)),
-                            operation,
-                            designation_from: o.named.from,
-                            designation_line: o.named.line,
-                        }
-                    }
-                    crate::analysis::turn::verify::OperationResult::NoCut { reason, suggested_final_x } => {
+                    crate::analysis::turn::OperationResult::Verified(v) => OperationReport::Verified {
+                        made: crate::analysis::program::Process::Turned,
+                        report: Box::new(VerifyReport::of(v)),
+                        operation,
+                        designation_from: o.named.from,
+                        designation_line: o.named.line,
+                    },
+                    crate::analysis::turn::OperationResult::NoCut { reason, suggested_final_x } => {
                         OperationReport::NoCut {
                             made: crate::analysis::program::Process::Turned,
                             suggested_final_x: *suggested_final_x,
@@ -847,8 +845,8 @@ pub fn program_text(pv: &crate::analysis::program::ProgramVerification) -> Strin
             op.passes.len()
         );
         match &o.result {
-            crate::analysis::turn::verify::OperationResult::Verified(v) => s.push_str(&verify_text(v)),
-            crate::analysis::turn::verify::OperationResult::NoCut { reason, suggested_final_x } => {
+            crate::analysis::turn::OperationResult::Verified(v) => s.push_str(&verify_text(v)),
+            crate::analysis::turn::OperationResult::NoCut { reason, suggested_final_x } => {
                 let _ =
                     writeln!(s, "{}: nothing to measure\n\nverdict: FAIL (no cut: {reason})", o.designation);
                 if !o.named.why.is_empty() {
@@ -1126,11 +1124,8 @@ pub(crate) fn legend(x: f64, y: f64, kind: ThreadKind) -> Group {
 /// The check table: every check in words, its value, limits, deviation and verdict.
 pub(crate) fn check_table(v: &Verification, x: f64, y: f64) -> (Group, f64) {
     let mut g = Group::new().set("id", "check-table");
-    let title = if v.units == crate::analysis::turn::verify::Units::Inch {
-        "checks, lengths in inches"
-    } else {
-        "checks"
-    };
+    let title =
+        if v.units == crate::analysis::turn::Units::Inch { "checks, lengths in inches" } else { "checks" };
     g = g.add(text(x, y, 12.0, title).set("font-weight", "bold"));
     let cols = [x, x + 145.0, x + 195.0, x + 305.0, x + 365.0];
     let head = ["feature", "value", "limits", "off", ""];
@@ -1245,7 +1240,7 @@ pub(crate) fn chip_chart(v: &Verification, x: f64, y: f64, w: f64, h: f64) -> Gr
 /// contour-measuring machine reports it, with the values at the flank midpoints.
 pub(crate) fn deviation_plot(
     pic: &Picture,
-    units: crate::analysis::turn::verify::Units,
+    units: crate::analysis::turn::Units,
     x: f64,
     y: f64,
     w: f64,
@@ -1254,8 +1249,8 @@ pub(crate) fn deviation_plot(
     let f = Frame { x0: x, y0: y, w, h, z_min: 0.0, r_max: 0.0, scale: 1.0 };
     // The scale in µm, or in ten-thousandths of an inch (an inch shop's "tenths").
     let (tick_per_um, unit_label, title_unit) = match units {
-        crate::analysis::turn::verify::Units::Mm => (1.0, "µm", "µm"),
-        crate::analysis::turn::verify::Units::Inch => (1.0 / 2.54, "tenths", "in tenths (0.0001 in)"),
+        crate::analysis::turn::Units::Mm => (1.0, "µm", "µm"),
+        crate::analysis::turn::Units::Inch => (1.0 / 2.54, "tenths", "in tenths (0.0001 in)"),
     };
     let title = format!("deviation from the basic profile, normal to it, {title_unit}");
     let (mut g, mut body) = panel(&f, "deviation-plot", &title);
@@ -1331,8 +1326,8 @@ pub(crate) fn deviation_plot(
                 );
                 // In tenths, the µm beside them.
                 let value = match units {
-                    crate::analysis::turn::verify::Units::Mm => format!("{:+.1} µm", mid.deviation * um),
-                    crate::analysis::turn::verify::Units::Inch => format!(
+                    crate::analysis::turn::Units::Mm => format!("{:+.1} µm", mid.deviation * um),
+                    crate::analysis::turn::Units::Inch => format!(
                         "{:+.1} {unit_label} ({:+.1} µm)",
                         mid.deviation * um * tick_per_um,
                         mid.deviation * um
@@ -1445,14 +1440,14 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
     }
     for o in &pv.operations {
         let what = match &o.result {
-            crate::analysis::turn::verify::OperationResult::Verified(v) => {
+            crate::analysis::turn::OperationResult::Verified(v) => {
                 let mut w = verdict_words(v);
                 if let Some(c) = &v.correction {
                     w.push_str(&format!(" · next: {}", super::correction_text(c)));
                 }
                 w
             }
-            crate::analysis::turn::verify::OperationResult::NoCut { reason, suggested_final_x } => {
+            crate::analysis::turn::OperationResult::NoCut { reason, suggested_final_x } => {
                 match no_cut_next(*suggested_final_x) {
                     Some(next) => format!("OUT OF TOLERANCE: {reason} · next: {next}"),
                     None => format!("OUT OF TOLERANCE: {reason}"),
@@ -1542,12 +1537,12 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
             .set("transform", format!("translate(0,{y})"))
             .add(band);
         let h = match &o.result {
-            crate::analysis::turn::verify::OperationResult::Verified(v) => {
+            crate::analysis::turn::OperationResult::Verified(v) => {
                 let (vg, height) = verification_group(v);
                 g = g.add(vg.set("transform", format!("translate(0,{band_h})")));
                 band_h + height
             }
-            crate::analysis::turn::verify::OperationResult::NoCut { reason, suggested_final_x } => {
+            crate::analysis::turn::OperationResult::NoCut { reason, suggested_final_x } => {
                 let next = no_cut_next(*suggested_final_x).map_or(String::new(), |n| format!(" · next: {n}"));
                 let lines = wrap(&format!("OUT OF TOLERANCE ({}): {reason}{next}", o.designation), 100);
                 for (i, l) in lines.iter().enumerate() {

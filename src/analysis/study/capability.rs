@@ -14,7 +14,7 @@
 
 use crate::analysis::check::{CheckFeature, CheckKind};
 use crate::analysis::turn::correction::Correction;
-use crate::analysis::turn::verify::{Recut, Verification, VerifySpec};
+use crate::analysis::turn::{Recut, Verification, VerifySpec};
 use crate::standards::ThreadKind;
 use crate::Error;
 use rand::{RngExt, SeedableRng};

@@ -6,7 +6,7 @@
 //! alone.
 
 use crate::analysis::check::CheckFeature;
-use crate::analysis::turn::verify::{verify, Verification, VerifySpec};
+use crate::analysis::turn::{verify, Verification, VerifySpec};
 use crate::ground::plane::deg;
 use crate::toolpath::passes::{Infeed, InfeedChoice, Schedule};
 use crate::Error;

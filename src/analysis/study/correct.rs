@@ -6,7 +6,7 @@
 
 use crate::analysis::check::Verdict;
 use crate::analysis::turn::correction::Correction;
-use crate::analysis::turn::verify::{verify, Verification, VerifySpec};
+use crate::analysis::turn::{verify, Verification, VerifySpec};
 use crate::standards::ThreadKind;
 use crate::toolpath::passes::Pass;
 use crate::Error;

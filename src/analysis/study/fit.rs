@@ -4,7 +4,7 @@
 
 use crate::analysis::program::verify_program;
 use crate::analysis::tools::InsertChoice;
-use crate::analysis::turn::verify::{verify, OperationResult, Verification, VerifySpec};
+use crate::analysis::turn::{verify, OperationResult, Verification, VerifySpec};
 use crate::ground::plane::Point;
 use crate::Error;
 

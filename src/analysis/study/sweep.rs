@@ -3,7 +3,7 @@
 //! insert, infeed and schedule asked for, in parallel.
 
 use crate::analysis::tools::InsertChoice;
-use crate::analysis::turn::verify::{verify, Verification, VerifySpec};
+use crate::analysis::turn::{verify, Verification, VerifySpec};
 use crate::standards::{catalog, ThreadForm};
 use crate::toolpath::passes::{InfeedChoice, Schedule};
 use crate::Error;
