@@ -1167,10 +1167,49 @@ fn the_page_reads_a_klartext_program() {
 
 /// Every text of a picture as Chromium reads it (`tests/page/texts.mjs`).
 fn picture_texts(svg: &Path) -> Vec<String> {
+    picture_texts_in(svg, None)
+}
+
+/// The texts of a picture inside the elements `selector` names (every text without one).
+fn picture_texts_in(svg: &Path, selector: Option<&str>) -> Vec<String> {
     let script = playwright().with_file_name("texts.mjs");
-    let o = std::process::Command::new("node").arg(&script).arg(chromium()).arg(svg).output().unwrap();
+    let mut cmd = std::process::Command::new("node");
+    cmd.arg(&script).arg(chromium()).arg(svg);
+    cmd.args(selector);
+    let o = cmd.output().unwrap();
     assert!(o.status.success(), "texts.mjs failed: {}", String::from_utf8_lossy(&o.stderr));
     serde_json::from_slice(&o.stdout).unwrap()
+}
+
+/// Issue 63: the picture shows each control finding under the operation it concerns (and all
+/// of them in the program's head). Our shaft with two threads, the second started 0.83 mm before
+/// the face at S2500: its Z axis needs δ1 = t1·V·(−1 − ln 0.01) = 0.033 s × 62.5 mm/s × 3.6052
+/// = 7.44 mm (Fanuc's run-in, t1 the named default), so the run-in warning stands under the
+/// second operation's band alone; our LinuxCNC G33.1 that moves X as it feeds has its error
+/// under the tapped band. Read in Chromium.
+#[test]
+fn each_control_finding_stands_under_its_operation() {
+    let dir = tempdir("control-in-picture");
+    let svg = dir.join("two.svg");
+    let prog = data("programs/control/two-threads-one-short.nc");
+    let o = run(&["verify", "--program", prog.to_str().unwrap(), "--svg", svg.to_str().unwrap()]);
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let first = picture_texts_in(&svg, Some("#operation-1-control"));
+    assert!(first.is_empty(), "{first:?}");
+    let second = picture_texts_in(&svg, Some("#operation-2-control")).join(" ");
+    assert!(second.starts_with("! before the machine, line 15 (G76): the first pass starts"), "{second}");
+    assert!(second.contains("the Z axis needs 7.44 mm"), "{second}");
+    let head = picture_texts_in(&svg, Some("#control")).join(" ");
+    assert!(head.contains("line 15 (G76)"), "{head}");
+    let svg = dir.join("tap.svg");
+    let prog = data("programs/control/sideways-tap.ngc");
+    let o = run(&["verify", "--program", prog.to_str().unwrap(), "--svg", svg.to_str().unwrap()]);
+    assert!(o.status.code().is_some_and(|c| c < 3), "{}", stderr(&o));
+    let tapped = picture_texts_in(&svg, Some("#tapped-control")).join(" ");
+    assert!(
+        tapped.starts_with("✗ before the machine, line 6 (G33.1): the tap moves X from 0 to 5"),
+        "{tapped}"
+    );
 }
 
 /// What a text says in mm or µm outside the parentheses that follow an inch figure (`0.4500 in

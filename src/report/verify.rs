@@ -1536,6 +1536,20 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
             .set("id", format!("operation-{}", o.operation.index))
             .set("transform", format!("translate(0,{y})"))
             .add(band);
+        // The control's findings on this operation, under its band (issue 63: each by the
+        // operation it concerns; the program's head lists them all).
+        let (found, found_h) = findings_group(
+            pv.control.iter().filter(|f| {
+                f.made == crate::analysis::made::Process::Turned
+                    && f.file == o.operation.source_file
+                    && turned_owner(pv, f.line) == Some(o.operation.index)
+            }),
+            format!("operation-{}-control", o.operation.index),
+        );
+        if found_h > 0.0 {
+            g = g.add(found.set("transform", format!("translate(0,{band_h})")));
+        }
+        let band_h = band_h + found_h;
         let h = match &o.result {
             crate::analysis::turn::OperationResult::Verified(v) => {
                 let (vg, height) = verification_group(v);
@@ -1563,17 +1577,54 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
     for (line, _, id, picture) in more {
         let Some((d, _, h)) = picture else { continue };
         let (band, band_h) = band(&line, width);
-        doc = doc.add(
-            Group::new()
-                .set("id", format!("{id}-band"))
-                .set("transform", format!("translate(0,{y})"))
-                .add(band),
-        );
-        y += band_h;
+        let made = if id == "tapped" {
+            crate::analysis::made::Process::Tapped
+        } else {
+            crate::analysis::made::Process::Milled
+        };
+        let (found, found_h) =
+            findings_group(pv.control.iter().filter(|f| f.made == made), format!("{id}-control"));
+        let mut banded = Group::new()
+            .set("id", format!("{id}-band"))
+            .set("transform", format!("translate(0,{y})"))
+            .add(band);
+        if found_h > 0.0 {
+            banded = banded.add(found.set("transform", format!("translate(0,{band_h})")));
+        }
+        doc = doc.add(banded);
+        y += band_h + found_h;
         doc = doc.add(d.set("id", id).set("x", 0).set("y", y));
         y += h;
     }
     doc.set("viewBox", (0, 0, width, y)).set("width", width).set("height", y).to_string()
+}
+
+/// The turned operation a finding at `line` concerns: the last one that starts at or before it.
+fn turned_owner(pv: &crate::analysis::program::ProgramVerification, line: usize) -> Option<usize> {
+    pv.operations
+        .iter()
+        .filter(|o| o.operation.source_line <= line)
+        .max_by_key(|o| o.operation.source_line)
+        .map(|o| o.operation.index)
+}
+
+/// An operation's control findings as lines under its band (an error in the failing colour, a
+/// warning in amber), and their height (0 with none).
+fn findings_group<'a>(
+    findings: impl Iterator<Item = &'a crate::analysis::control::ControlFinding>,
+    id: String,
+) -> (Group, f64) {
+    let mut g = Group::new().set("id", id);
+    let mut y = 0.0;
+    for f in findings {
+        let error = f.level == crate::gcode::Level::Error;
+        let line = format!("{} before the machine, {}", if error { "✗" } else { "!" }, control_sentence(f));
+        for l in wrap(&line, 125) {
+            y += 17.0;
+            g = g.add(text(20.0, y, 13.0, l).set("fill", if error { FAIL } else { WARN }));
+        }
+    }
+    (g, if y > 0.0 { y + 8.0 } else { 0.0 })
 }
 
 /// The verdict in a machinist's words.

@@ -1,0 +1,16 @@
+(two threads on one shaft, the second's run-in shorter than its Z axis needs at S2500)
+(faced at Z0 first)
+G97 S600 M3
+G0 X36 Z0
+G1 X-1 F0.2
+(M20X1.5-6G)
+G0 X22 Z10
+G76 P010060 Q100 R0.05
+G76 X18.16 Z-20 P920 Q300 F1.5
+G0 X40 Z5
+(M32X1.5-6G)
+G97 S2500 M3
+G0 X34 Z1
+G76 P010060 Q100 R0.05
+G76 X30.16 Z-20 P920 Q300 F1.5
+M30
