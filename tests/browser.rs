@@ -1201,6 +1201,14 @@ fn each_control_finding_stands_under_its_operation() {
     assert!(second.contains("the Z axis needs 7.44 mm"), "{second}");
     let head = picture_texts_in(&svg, Some("#control")).join(" ");
     assert!(head.contains("line 15 (G76)"), "{head}");
+    // The page (--html): the warning under operation 2's heading, before operation 1's none.
+    let html = dir.join("two.html");
+    let o = run(&["verify", "--program", prog.to_str().unwrap(), "--html", html.to_str().unwrap()]);
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let page = std::fs::read_to_string(&html).unwrap();
+    let at = |s: &str| page.find(s).unwrap_or_else(|| panic!("no {s} in the page"));
+    let warning = at("! before the machine, line 15 (G76)");
+    assert!(warning > at("Operation 2 of 2") && page.matches("before the machine").count() == 1);
     let svg = dir.join("tap.svg");
     let prog = data("programs/control/sideways-tap.ngc");
     let o = run(&["verify", "--program", prog.to_str().unwrap(), "--svg", svg.to_str().unwrap()]);

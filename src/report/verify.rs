@@ -1627,6 +1627,23 @@ fn findings_group<'a>(
     (g, if y > 0.0 { y + 8.0 } else { 0.0 })
 }
 
+/// An operation's control findings as paragraphs of the page (an error as a failing verdict, a
+/// warning in the notes' colour).
+fn control_html<'a>(findings: impl Iterator<Item = &'a crate::analysis::control::ControlFinding>) -> String {
+    let mut out = String::new();
+    for f in findings {
+        let error = f.level == crate::gcode::Level::Error;
+        let _ = writeln!(
+            out,
+            "<p class=\"{}\">{} before the machine, {}</p>",
+            if error { "out" } else { "form" },
+            if error { "✗" } else { "!" },
+            esc(&control_sentence(f))
+        );
+    }
+    out
+}
+
 /// The verdict in a machinist's words.
 pub(crate) fn verdict_words(v: &Verification) -> String {
     let failed: Vec<String> = v
@@ -1930,6 +1947,11 @@ pub fn program_html(pv: &ProgramVerification) -> String {
             op.tool.map_or(String::new(), |t| format!(", tool T{t}")),
             esc(&o.designation)
         );
+        body.push_str(&control_html(pv.control.iter().filter(|f| {
+            f.made == crate::analysis::made::Process::Turned
+                && f.file == op.source_file
+                && turned_owner(pv, f.line) == Some(op.index)
+        })));
         for n in &op.notes {
             let _ = writeln!(body, "<p class=\"form\">{}</p>", esc(&n.to_string()));
         }
@@ -1954,6 +1976,9 @@ pub fn program_html(pv: &ProgramVerification) -> String {
             if t.holes.len() == 1 { "" } else { "s" },
             if t.pass { "IN TOLERANCE" } else { "OUT OF TOLERANCE" }
         );
+        body.push_str(&control_html(
+            pv.control.iter().filter(|f| f.made == crate::analysis::made::Process::Tapped),
+        ));
         let _ = writeln!(body, "<pre class=\"wrap\">{}</pre>", esc(&crate::report::tap::holes_text(t)));
         let _ = writeln!(body, "<div class=\"pic\">{}</div>", crate::report::tap::tap_svg(t));
     }
@@ -1965,6 +1990,9 @@ pub fn program_html(pv: &ProgramVerification) -> String {
                 esc(&r.designation),
                 if r.pass { "IN TOLERANCE" } else { "OUT OF TOLERANCE" }
             );
+            body.push_str(&control_html(
+                pv.control.iter().filter(|f| f.made == crate::analysis::made::Process::Milled),
+            ));
             let _ = writeln!(body, "<pre class=\"wrap\">{}</pre>", esc(&crate::report::thread_mill::text(r)));
             let _ =
                 writeln!(body, "<div class=\"pic\">{}</div>", crate::report::thread_mill::threadmill_svg(r));
