@@ -525,6 +525,17 @@ fn drill_of(
     (drill, drill_note)
 }
 
+/// An error at a tapping cycle's place: its line and column in the file it stands in (a
+/// subprogram's, or the program's `name`).
+fn at_cycle(h: &HoleCycle, name: &str, message: String) -> Error {
+    Error::Program {
+        file: h.source_file.clone().unwrap_or_else(|| name.to_string()),
+        line: h.line,
+        column: h.column,
+        message,
+    }
+}
+
 /// One tapping cycle checked against its tap and its drill.
 fn tapped_hole(
     spec: &TapSpec,
@@ -535,12 +546,7 @@ fn tapped_hole(
     drill_note: Option<String>,
 ) -> Result<TappedHole, Error> {
     let name = &spec.program.1;
-    let perr = |message: String| Error::Program {
-        file: h.source_file.clone().unwrap_or_else(|| name.clone()),
-        line: h.line,
-        column: h.column,
-        message,
-    };
+    let perr = |message: String| at_cycle(h, name, message);
     let (designation, chamfer_pitches, chamfer_given) =
         (tap.designation.clone(), tap.chamfer_pitches, tap.chamfer_given);
     let des = parse_designation(&designation, ParseOptions { allow_nonstandard: spec.allow_nonstandard })?;
@@ -1168,12 +1174,7 @@ fn tap_of(
     use crate::analysis::naming::{from_comments, infer_designation, DesignationFrom};
     let h = &prog.holes[i];
     let name = &spec.program.1;
-    let perr = |message: String| Error::Program {
-        file: h.source_file.clone().unwrap_or_else(|| name.clone()),
-        line: h.line,
-        column: h.column,
-        message,
-    };
+    let perr = |message: String| at_cycle(h, name, message);
     let table = h.tool.map(|t| (t, spec.tools.tool(t)));
     // A cycle whose tool is not known (it names none, or one the table does not name): the tap
     // given (`--tap`).
