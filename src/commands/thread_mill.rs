@@ -155,8 +155,8 @@ impl Job for ThreadMillArgs {
             [
                 request
                     .render(Document::Json, || pretty(&crate::report::thread_mill::ThreadMillJson::of(&r)))?,
-                request.render(Document::Svg, || Ok(crate::report::thread_mill::threadmill_svg(&r)))?,
-                request.render(Document::Html, || Ok(crate::report::thread_mill::threadmill_html(&r)))?,
+                request.render(Document::Svg, || Ok(crate::report::thread_mill::thread_mill_svg(&r)))?,
+                request.render(Document::Html, || Ok(crate::report::thread_mill::thread_mill_html(&r)))?,
                 Some((Document::Text, crate::report::thread_mill::text(&r))),
             ],
         )

@@ -272,13 +272,13 @@ impl<'a> ThreadMillJson<'a> {
 /// tooth profile alone (brown dashed), D1's limits (blue dotted), and the measured D, D2 and D1
 /// dimensioned with their values and limits (red with the deviation when out); below it, the
 /// helix's widening of the groove (radial µm) against the same Z.
-pub fn threadmill_svg(r: &crate::analysis::thread_mill::ThreadMillReport) -> String {
-    threadmill_document(r).0.to_string()
+pub fn thread_mill_svg(r: &crate::analysis::thread_mill::ThreadMillReport) -> String {
+    thread_mill_document(r).0.to_string()
 }
 
 /// The thread-milling picture as a document with its width and height, for a program's picture
 /// to stack.
-pub(crate) fn threadmill_document(
+pub(crate) fn thread_mill_document(
     r: &crate::analysis::thread_mill::ThreadMillReport,
 ) -> (Document, f64, f64) {
     use super::kit::text;
@@ -524,7 +524,7 @@ fn widening(
 
 /// The thread-milling page: the verdict, the distortion, the section, the checks, the helices
 /// and the notes.
-pub fn threadmill_html(r: &crate::analysis::thread_mill::ThreadMillReport) -> String {
+pub fn thread_mill_html(r: &crate::analysis::thread_mill::ThreadMillReport) -> String {
     let mut s = String::new();
     let (cls, words) = if r.pass { ("ok", "IN TOLERANCE") } else { ("out", "OUT OF TOLERANCE") };
     let _ = writeln!(s, "<h1>{} thread-milled</h1>", esc(&r.designation));
@@ -542,7 +542,7 @@ pub fn threadmill_html(r: &crate::analysis::thread_mill::ThreadMillReport) -> St
         r.distortion_flank_angles_deg[0],
         r.distortion_flank_angles_deg[1]
     );
-    let _ = writeln!(s, "<div class=\"pic\">{}</div>", threadmill_svg(r));
+    let _ = writeln!(s, "<div class=\"pic\">{}</div>", thread_mill_svg(r));
     s.push_str("<h2>Checks</h2>\n<table><tr><th>feature</th><th>value</th><th>min</th><th>max</th><th>deviation</th><th>ok</th><th>note</th></tr>\n");
     for c in &r.checks {
         let (cls, word) = if c.ok { ("ok", "ok") } else { ("out", "OUT") };

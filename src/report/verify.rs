@@ -1417,7 +1417,7 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
     if pv.operations.is_empty() && pv.control.is_empty() {
         match (&pv.tapped, &pv.milled) {
             (Some(t), None | Some(Milled::NotChecked { .. })) => return crate::report::tap::tap_svg(t),
-            (None, Some(Milled::Checked(r))) => return crate::report::thread_mill::threadmill_svg(r),
+            (None, Some(Milled::Checked(r))) => return crate::report::thread_mill::thread_mill_svg(r),
             _ => {}
         }
     }
@@ -1483,7 +1483,7 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
                 r.designation,
                 if r.pass { "IN TOLERANCE" } else { "OUT OF TOLERANCE" }
             );
-            let (d, w, h) = crate::report::thread_mill::threadmill_document(r);
+            let (d, w, h) = crate::report::thread_mill::thread_mill_document(r);
             more.push((line, r.pass, "milled", Some((d, w, h))));
         }
         Some(Milled::NotChecked { line, reason }) => {
@@ -1995,7 +1995,7 @@ pub fn program_html(pv: &ProgramVerification) -> String {
             ));
             let _ = writeln!(body, "<pre class=\"wrap\">{}</pre>", esc(&crate::report::thread_mill::text(r)));
             let _ =
-                writeln!(body, "<div class=\"pic\">{}</div>", crate::report::thread_mill::threadmill_svg(r));
+                writeln!(body, "<div class=\"pic\">{}</div>", crate::report::thread_mill::thread_mill_svg(r));
         }
         Some(crate::analysis::program::Milled::NotChecked { line, reason }) => {
             let _ = writeln!(
