@@ -27,7 +27,7 @@ pub struct VerifySpec {
     /// Infeed; `None` picks [`InfeedChoice::Modified`]: flank infeed at half the thread angle less
     /// 0.5°.
     pub infeed: Option<InfeedChoice>,
-    /// Cutting passes; `None` uses [`default_pass_count`].
+    /// Cutting passes; `None` uses [`default_pass_count`](super::resolve::default_pass_count).
     pub passes: Option<usize>,
     /// Depth of the first pass, mm (sets the pass count instead).
     pub first_depth: Option<f64>,
@@ -47,7 +47,7 @@ pub struct VerifySpec {
     /// Tip diameter of the last pass, mm; `None` solves for the middle of the pitch-diameter
     /// tolerance.
     pub final_x: Option<f64>,
-    /// Blank (external) or bore (internal) diameter, mm; `None` uses [`default_blank`].
+    /// Blank (external) or bore (internal) diameter, mm; `None` uses [`default_blank`](super::resolve::default_blank).
     pub blank_diameter: Option<f64>,
     /// Leave form checks out of the verdict.
     pub gauge_only: bool,
