@@ -377,6 +377,79 @@ const CASES: &[Case] = &[
         text: "(M20X1.5-6H)\nG17 G21 G90 G40 G94\nT12 M6 (THREAD MILL D8)\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-16\nG1 X6 Y0 F100\nG3 X6 Y0 Z-14.5 I-6 J0\nG3 X6 Y0 Z-13 I-6 J0\nG3 X6 Y0 Z-11.5 I-6 J0\nG3 X6 Y0 Z-10 I-6 J0\nG3 X6 Y0 Z-8.5 I-6 J0\nG3 X6 Y0 Z-7 I-6 J0\nG3 X6 Y0 Z-5.5 I-6 J0\nG3 X6 Y0 Z-4 I-6 J0\nG1 X0 Y0\nG0 Z5\nM30\n",
         want: &[],
     },
+    // ---- A thread mill's return helix (line 16) on the same M20x1.5-6H, its teeth 0.737 mm
+    // past the crest at radius 6. Back down along the thread's own helix (G2 falling, a right
+    // hand, 1.5 mm a turn) it follows the groove; written with the other hand (G3 falling) it
+    // drifts 2 × 1.5 = 3 mm off the groove in its turn; at 12 mm a turn (one G2 turn from Z-4 to
+    // Z-16) it drifts 12 − 1.5 = 10.5 mm: both cut through the flanks (FreeCAD #7855).
+    Case {
+        name: "mill-return-helix-along-the-thread",
+        dialect: "fanuc",
+        args: &[],
+        text: "(M20X1.5-6H)\nG17 G21 G90 G40 G94\nT12 M6 (THREAD MILL D8)\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-16\nG1 X6 Y0 F100\nG3 X6 Y0 Z-14.5 I-6 J0\nG3 X6 Y0 Z-13 I-6 J0\nG3 X6 Y0 Z-11.5 I-6 J0\nG3 X6 Y0 Z-10 I-6 J0\nG3 X6 Y0 Z-8.5 I-6 J0\nG3 X6 Y0 Z-7 I-6 J0\nG3 X6 Y0 Z-5.5 I-6 J0\nG3 X6 Y0 Z-4 I-6 J0\nG2 X6 Y0 Z-5.5 I-6 J0\nG1 X0 Y0\nG0 Z5\nM30\n",
+        want: &[],
+    },
+    Case {
+        name: "mill-return-helix-other-hand",
+        dialect: "fanuc",
+        args: &[],
+        text: "(M20X1.5-6H)\nG17 G21 G90 G40 G94\nT12 M6 (THREAD MILL D8)\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-16\nG1 X6 Y0 F100\nG3 X6 Y0 Z-14.5 I-6 J0\nG3 X6 Y0 Z-13 I-6 J0\nG3 X6 Y0 Z-11.5 I-6 J0\nG3 X6 Y0 Z-10 I-6 J0\nG3 X6 Y0 Z-8.5 I-6 J0\nG3 X6 Y0 Z-7 I-6 J0\nG3 X6 Y0 Z-5.5 I-6 J0\nG3 X6 Y0 Z-4 I-6 J0\nG3 X6 Y0 Z-5.5 I-6 J0\nG1 X0 Y0\nG0 Z5\nM30\n",
+        want: &[("post.mill_return_helix", 16)],
+    },
+    Case {
+        name: "mill-return-helix-fast",
+        dialect: "fanuc",
+        args: &[],
+        text: "(M20X1.5-6H)\nG17 G21 G90 G40 G94\nT12 M6 (THREAD MILL D8)\nS3000 M3\nG0 X0 Y0 Z5\nG0 Z-16\nG1 X6 Y0 F100\nG3 X6 Y0 Z-14.5 I-6 J0\nG3 X6 Y0 Z-13 I-6 J0\nG3 X6 Y0 Z-11.5 I-6 J0\nG3 X6 Y0 Z-10 I-6 J0\nG3 X6 Y0 Z-8.5 I-6 J0\nG3 X6 Y0 Z-7 I-6 J0\nG3 X6 Y0 Z-5.5 I-6 J0\nG3 X6 Y0 Z-4 I-6 J0\nG2 X6 Y0 Z-16 I-6 J0\nG1 X0 Y0\nG0 Z5\nM30\n",
+        want: &[("post.mill_return_helix", 16)],
+    },
+    // ---- A tap a post wrote as a drilling cycle: the CAM tool list names T6 a tap. G81 leaves
+    // the hole at rapid and G83 between its pecks, neither reversing the spindle (Fanuc's and
+    // LinuxCNC's drilling cycles: the tap is torn out); G85 feeds out turning forward, which
+    // only a self-reversing tapping head survives (a warning). LinuxCNC runs all of them: a
+    // post's mistake, not a refusal (rs274 below). The drill T5 in G83 is no finding.
+    Case {
+        name: "fanuc-mc-tap-in-g81",
+        dialect: "fanuc",
+        args: &[],
+        text: "G21 G17 G90 G94\n(T6 | M8X1.25 TAP | D=8.)\nT6 M6\nM3 S500\nG0 X0 Y0 Z5\nG81 Z-10 R2 F625\nG80\nM30\n",
+        want: &[("post.tap_in_drill_cycle", 6)],
+    },
+    Case {
+        name: "fanuc-mc-tap-in-g83-pecks",
+        dialect: "fanuc",
+        args: &[],
+        text: "G21 G17 G90 G94\n(T5 | 6.8 DRILL | D=6.8)\n(T6 | M8X1.25 TAP | D=8.)\nT5 M6\nM3 S1500\nG0 X0 Y0 Z5\nG83 Z-15 R2 Q4 F150\nG80\nT6 M6\nM3 S500\nG0 X0 Y0 Z5\nG83 Z-10 R2 Q3 F625\nG80\nM30\n",
+        want: &[("post.tap_in_drill_cycle", 12)],
+    },
+    Case {
+        name: "fanuc-mc-tap-in-g85",
+        dialect: "fanuc",
+        args: &[],
+        text: "G21 G17 G90 G94\n(T6 | M8X1.25 TAP | D=8.)\nT6 M6\nM3 S500\nG0 X0 Y0 Z5\nG85 Z-10 R2 F625\nG80\nM30\n",
+        want: &[("post.tap_in_boring_cycle", 6)],
+    },
+    Case {
+        name: "fanuc-mc-drill-then-tap",
+        dialect: "fanuc",
+        args: &[],
+        text: "G21 G17 G90 G94\n(T5 | 6.8 DRILL | D=6.8)\n(T6 | M8X1.25 TAP | D=8.)\nT5 M6\nM3 S1500\nG0 X0 Y0 Z5\nG83 Z-15 R2 Q4 F150\nG80\nT6 M6\nM3 S500\nG0 X0 Y0 Z5\nG84 Z-10 R2 F625\nG80\nM30\n",
+        want: &[],
+    },
+    Case {
+        name: "lc-tap-in-g81",
+        dialect: "linuxcnc",
+        args: &[],
+        text: "G21 G17 G90 G94\n(T6 | M8X1.25 TAP | D=8.)\nT6 M6\nM3 S500\nG0 X0 Y0 Z5\nG81 Z-10 R2 F625\nG80\nM2\n",
+        want: &[("post.tap_in_drill_cycle", 6)],
+    },
+    Case {
+        name: "lc-tap-in-g83-pecks",
+        dialect: "linuxcnc",
+        args: &[],
+        text: "G21 G17 G90 G94\n(T6 | M8X1.25 TAP | D=8.)\nT6 M6\nM3 S500\nG0 X0 Y0 Z5\nG83 Z-10 R2 Q3 F625\nG80\nM2\n",
+        want: &[("post.tap_in_drill_cycle", 6)],
+    },
     // ---- Two findings in one program, in the report's order: the reader's (the tap moved
     // sideways) first, then the tapping cycles'.
     Case {
@@ -617,4 +690,93 @@ fn a_tap_faster_than_the_axes_follow() {
     let at_400 = Case { text: c.text.replace("S600", "S400").replace("F750", "F500").leak(), ..*c };
     assert_eq!(found(&verify(&at_400, &["--machine", m]).1), vec![]);
     assert_eq!(found(&verify(c, &[]).1), vec![]);
+}
+
+/// The tap's holder from the machine file: M8x1.25 at S600 wants F750 (S × lead). F727.5 is
+/// 3 % under it: a rigid holder (the default, said) takes up nothing and fails it; a floating
+/// (tension-compression) holder takes up to 5 %, down to 750 × 0.95 = 712.5, and passes it,
+/// said; F705 (6 % under) fails either way, and F751 (over) too.
+#[test]
+fn a_floating_holder_takes_up_a_small_under_feed() {
+    let dir = tempdir("holder");
+    let floating = dir.join("floating.toml");
+    std::fs::write(&floating, "name = \"vmc\"\ntype = \"mill\"\ntap_holder = \"floating\"\n").unwrap();
+    let rigid = dir.join("rigid.toml");
+    std::fs::write(&rigid, "name = \"vmc\"\ntype = \"mill\"\ntap_holder = \"rigid\"\n").unwrap();
+    let base = CASES.iter().find(|c| c.name == "fanuc-mc-g84-right").unwrap();
+    let feed = |f: &str, machine: Option<&std::path::Path>| {
+        let c = Case { text: base.text.replace("F750", f).leak(), ..*base };
+        let extra: Vec<&str> = machine.map_or(vec![], |m| vec!["--machine", m.to_str().unwrap()]);
+        let (_, v) = verify(&c, &extra);
+        let op = &v["operations"][0];
+        let check = op["checks"].as_array().unwrap().iter().find(|k| k["feature"] == "feed").unwrap().clone();
+        let notes: Vec<String> =
+            op["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap().to_string()).collect();
+        (check, notes)
+    };
+    let (k, notes) = feed("F727.5", None);
+    assert_eq!(k["ok"], false);
+    assert!(notes.iter().any(|n| n.contains("3.0 % under the lead: a rigid holder is assumed")), "{notes:?}");
+    let (k, _) = feed("F727.5", Some(&rigid));
+    assert_eq!((k["ok"].clone(), k["deviation"].clone()), (false.into(), (-22.5).into()));
+    let (k, notes) = feed("F727.5", Some(&floating));
+    assert_eq!(
+        (k["ok"].clone(), k["min"].clone(), k["max"].clone()),
+        (true.into(), 712.5.into(), 750.0.into())
+    );
+    assert!(notes.iter().any(|n| n.contains("3.0 % under the lead: the floating")), "{notes:?}");
+    // 705 − 712.5 = −7.5 mm/min past the floating holder's limit.
+    let (k, _) = feed("F705", Some(&floating));
+    assert_eq!((k["ok"].clone(), k["deviation"].clone()), (false.into(), (-7.5).into()));
+    let (k, _) = feed("F751", Some(&floating));
+    assert_eq!((k["ok"].clone(), k["deviation"].clone()), (false.into(), 1.0.into()));
+    // The limit exactly met passes.
+    let (k, _) = feed("F712.5", Some(&floating));
+    assert_eq!(k["ok"], true);
+}
+
+/// The Z axis's acceleration from the machine file: at S2500 × lead 1.5 the feed is
+/// V = 62.5 mm/s. At 2000 mm/s² the ramp takes 62.5² / 4000 = 0.98 mm, less than the servo's
+/// 7.44 mm: the servo's figure stands, and the assumption now names only t1. At 200 mm/s² it
+/// takes 62.5² / 400 = 9.77 mm, which the finding then asks for.
+#[test]
+fn the_run_in_takes_the_axis_acceleration() {
+    let c = CASES.iter().find(|c| c.name == "fanuc-run-in-short").unwrap();
+    let (_, v) = verify(c, &[]);
+    let assumed = v["control"][0]["assumed"].as_str().unwrap();
+    assert!(assumed.contains("acceleration not limited"), "{assumed}");
+    let dir = tempdir("acceleration");
+    let at = |a: &str| {
+        let m = dir.join(format!("lathe-{a}.toml"));
+        std::fs::write(&m, format!("name = \"lathe\"\nz_acceleration_mm_s2 = {a}\n")).unwrap();
+        verify(c, &["--machine", m.to_str().unwrap()]).1["control"][0].clone()
+    };
+    let f = at("2000");
+    assert!(f["message"].as_str().unwrap().contains("needs 7.44 mm to reach"), "{f}");
+    assert!(!f["assumed"].as_str().unwrap().contains("acceleration"), "{f}");
+    let f = at("200");
+    let m = f["message"].as_str().unwrap();
+    assert!(m.contains("needs 9.77 mm to accelerate to the threading feed at its 200 mm/s²"), "{m}");
+    assert!(m.contains("start the passes 9.77 mm or more"), "{m}");
+}
+
+/// A return helix's finding says how far it drifts and how deep its teeth reach: the other
+/// hand drifts 1.5 + 1.5 = 3 mm in its turn; the teeth reach 6 + 4 − 18.526 / 2 = 0.737 mm
+/// past the crest.
+#[test]
+fn a_return_helix_says_its_hand_and_drift() {
+    let c = CASES.iter().find(|c| c.name == "mill-return-helix-other-hand").unwrap();
+    let (code, v) = verify(c, &[]);
+    assert_eq!(code, 1);
+    let m = v["control"][0]["message"].as_str().unwrap();
+    assert!(m.contains("is a left-hand helix on a right-hand thread"), "{m}");
+    assert!(
+        m.contains("drifts 3.000 mm off the groove") && m.contains("0.737 mm past the thread's crest"),
+        "{m}"
+    );
+    let c = CASES.iter().find(|c| c.name == "mill-return-helix-fast").unwrap();
+    let m = verify(c, &[]).1["control"][0]["message"].as_str().unwrap().to_string();
+    // Z-4 to Z-16 in one clockwise turn: 12 mm a turn, 12 − 1.5 = 10.5 mm off the groove.
+    assert!(m.contains("moves 12 mm per revolution where the thread's lead is 1.5 mm"), "{m}");
+    assert!(m.contains("drifts 10.500 mm"), "{m}");
 }

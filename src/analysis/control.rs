@@ -88,7 +88,10 @@ pub fn before_machine(
     tapped: Option<&TapReport>,
     machine: Option<&crate::analysis::process::MachineProfile>,
 ) -> Vec<ControlFinding> {
-    let servo_time_constant = machine.and_then(|m| m.servo_time_constant_s);
+    let axis = Axis {
+        servo_time_constant: machine.and_then(|m| m.servo_time_constant_s),
+        acceleration: machine.and_then(|m| m.z_acceleration_mm_s2),
+    };
     let mut out: Vec<ControlFinding> = prog
         .control
         .iter()
@@ -102,7 +105,7 @@ pub fn before_machine(
         })
         .collect();
     for op in &prog.operations {
-        out.extend(turned(op, dialect, servo_time_constant));
+        out.extend(turned(op, dialect, axis));
     }
     for h in prog.holes.iter().filter(|h| h.kind == HoleKind::Tap) {
         let at = (h.line, h.column);
@@ -181,7 +184,43 @@ fn feed_limit(
 /// finished thread, with how deep, and the moves under compensation that were not judged said
 /// once.
 pub fn milled(r: &crate::analysis::thread_mill::ThreadMillReport, dialect: Dialect) -> Vec<ControlFinding> {
-    r.after_finish
+    let num = crate::ground::fmt::fmt_num;
+    let crossings = r.crossings.iter().map(|c| {
+        let hand = |h: crate::standards::Hand| match h {
+            crate::standards::Hand::Right => "right",
+            crate::standards::Hand::Left => "left",
+        };
+        let how = match c.other_hand {
+            Some(h) => format!(
+                "is a {}-hand helix on a {}-hand thread",
+                hand(h),
+                hand(if h == crate::standards::Hand::Left {
+                    crate::standards::Hand::Right
+                } else {
+                    crate::standards::Hand::Left
+                })
+            ),
+            None => format!(
+                "moves {} mm per revolution where the thread's lead is {} mm",
+                num((c.lead * 1e4).round() / 1e4),
+                num(c.thread_lead)
+            ),
+        };
+        ControlFinding::new(
+            dialect,
+            ControlRule::MillReturnHelix,
+            Process::Milled,
+            c.code,
+            (c.line, 1),
+            format!(
+                "the helix at line {} {how}: it drifts {:.3} mm off the groove it starts in, with its teeth {:.3} mm past the thread's crest: it cuts through the flanks; return along the thread's own helix (the same hand and lead) or lift the teeth out of the groove first",
+                c.line, c.drift, c.depth
+            ),
+        )
+    });
+    let mut out: Vec<ControlFinding> = crossings.collect();
+    let gouges = r
+        .after_finish
         .gouges
         .iter()
         .map(|g| {
@@ -203,8 +242,9 @@ pub fn milled(r: &crate::analysis::thread_mill::ThreadMillReport, dialect: Diale
                     g.depth
                 ),
             )
-        })
-        .collect()
+        });
+    out.extend(gouges);
+    out
 }
 
 /// A tap's feed in the other feed mode's convention: under a per-minute mode F is the lead,
@@ -251,7 +291,7 @@ fn feed_convention(dialect: Dialect, th: &crate::analysis::tap::TappedHole) -> O
 
 /// A threading operation's findings: the spindle stopped or at S0, and a run-in shorter than
 /// the Z axis needs to reach the synchronised feed.
-fn turned(op: &Operation, dialect: Dialect, servo_time_constant: Option<f64>) -> Vec<ControlFinding> {
+fn turned(op: &Operation, dialect: Dialect, axis: Axis) -> Vec<ControlFinding> {
     let at = (op.source_line, op.source_column);
     let mut out = Vec::new();
     let mut push = |rule: ControlRule, message: String, assumed: Option<String>| {
@@ -273,26 +313,44 @@ fn turned(op: &Operation, dialect: Dialect, servo_time_constant: Option<f64>) ->
     if op.spindle.s == Some(0.0) && !op.spindle.constant_surface_speed {
         push(ControlRule::SpindleSpeedZero, format!("{} at S0: the spindle does not turn", op.cycle), None);
     }
-    if let Some(RunIn { start, end, run_in, need, rpm }) = run_in(op, servo_time_constant) {
-        let t1 = servo_time_constant.unwrap_or(ASSUMED_SERVO_TIME_CONSTANT_S);
+    if let Some(RunIn { start, end, run_in, need, rpm, by_acceleration }) = run_in(op, axis) {
+        let t1 = axis.servo_time_constant.unwrap_or(ASSUMED_SERVO_TIME_CONSTANT_S);
         let num = crate::ground::fmt::fmt_num;
+        let how = match by_acceleration {
+            Some(a) => format!(
+                "to accelerate to the threading feed at its {} mm/s² (V²/(2a), longer than the servo's lag t1·V·(−1 − ln a))",
+                num(a)
+            ),
+            None => format!(
+                "to reach the threading feed within {} % of the lead (Fanuc's run-in δ1 = t1·V·(−1 − ln a))",
+                num(ALLOWED_LEAD_ERROR * 100.0)
+            ),
+        };
         push(
             ControlRule::RunInShort,
             format!(
-                "the first pass starts at Z{start:.3}, {:.2} mm before the part's end at Z{end:.3}; at S{} × lead {} the Z axis needs {:.2} mm to reach the threading feed within {} % of the lead (Fanuc's run-in δ1 = t1·V·(−1 − ln a)): the first threads' lead is short; start the passes {:.2} mm or more before the part",
+                "the first pass starts at Z{start:.3}, {:.2} mm before the part's end at Z{end:.3}; at S{} × lead {} the Z axis needs {:.2} mm {how}: the first threads' lead is short; start the passes {:.2} mm or more before the part",
                 run_in,
                 num(rpm),
                 num(op.lead()),
                 need,
-                num(ALLOWED_LEAD_ERROR * 100.0),
                 need
             ),
-            servo_time_constant.is_none().then(|| {
-                format!(
-                    "servo time constant t1 = {} s (a named default; the machine file's servo_time_constant_s gives the machine's)",
-                    num(t1)
-                )
-            }),
+            {
+                let assumed: Vec<String> = [
+                    axis.servo_time_constant.is_none().then(|| format!(
+                        "servo time constant t1 = {} s (a named default; the machine file's servo_time_constant_s gives the machine's)",
+                        num(t1)
+                    )),
+                    axis.acceleration.is_none().then(|| {
+                        "the Z axis's acceleration not limited (the machine file's z_acceleration_mm_s2 gives it)".to_string()
+                    }),
+                ]
+                .into_iter()
+                .flatten()
+                .collect();
+                (!assumed.is_empty()).then(|| assumed.join("; "))
+            },
         );
     }
     out
@@ -306,13 +364,23 @@ struct RunIn {
     run_in: f64,
     need: f64,
     rpm: f64,
+    /// The acceleration (mm/s²) whose V²/(2a) is the need, where longer than the servo's lag.
+    by_acceleration: Option<f64>,
+}
+
+/// What the machine file says of the Z axis: its servo time constant (s) and its
+/// acceleration (mm/s²), each where given.
+#[derive(Clone, Copy, Debug)]
+struct Axis {
+    servo_time_constant: Option<f64>,
+    acceleration: Option<f64>,
 }
 
 /// The run-in of an operation's first pass against what the Z axis needs, where the program
 /// faced or chamfered the part's end before the thread (the contour's X move nearest the
 /// passes' start, over the stretch the thread is cut in) and the spindle speed is known;
 /// `None` when long enough or not known.
-fn run_in(op: &Operation, servo_time_constant: Option<f64>) -> Option<RunIn> {
+fn run_in(op: &Operation, axis: Axis) -> Option<RunIn> {
     let rpm = op.spindle.s.filter(|s| *s > 0.0 && !op.spindle.constant_surface_speed)?;
     let first = op.passes.first()?;
     let dir = first.feed_direction();
@@ -346,8 +414,89 @@ fn run_in(op: &Operation, servo_time_constant: Option<f64>) -> Option<RunIn> {
         return None;
     }
     let run_in = (first.z_start - end) * -dir;
-    let t1 = servo_time_constant.unwrap_or(ASSUMED_SERVO_TIME_CONSTANT_S);
+    let t1 = axis.servo_time_constant.unwrap_or(ASSUMED_SERVO_TIME_CONSTANT_S);
     let v = rpm * lead / 60.0;
-    let need = t1 * v * (-1.0 - ALLOWED_LEAD_ERROR.ln());
-    (run_in > 1e-6 && run_in + 1e-9 < need).then_some(RunIn { start: first.z_start, end, run_in, need, rpm })
+    let lag = t1 * v * (-1.0 - ALLOWED_LEAD_ERROR.ln());
+    // At a limited acceleration the axis covers V²/(2a) before it runs at the feed.
+    let ramp = axis.acceleration.map(|a| (a, v * v / (2.0 * a)));
+    let (need, by_acceleration) = match ramp {
+        Some((a, d)) if d > lag => (d, Some(a)),
+        _ => (lag, None),
+    };
+    (run_in > 1e-6 && run_in + 1e-9 < need).then_some(RunIn {
+        start: first.z_start,
+        end,
+        run_in,
+        need,
+        rpm,
+        by_acceleration,
+    })
+}
+
+/// The drilling and boring cycles a tap runs in (a post that wrote a tap's operation as a
+/// drilling cycle): the cycle's T is the tool table's tap, or one a CAM tool list names as a
+/// tap (a comment line such as `T6 | M8X1.25 TAP`). A drilling cycle leaves the hole at rapid
+/// (G73 and G83 between pecks too) or with the spindle stopped (G86–G88): the tap is pulled
+/// out without reversing, an error. A boring cycle feeds out with the spindle turning forward
+/// (G85, G89): only a self-reversing tapping head survives it, a warning.
+pub fn taps_in_drill_cycles(
+    prog: &Program,
+    dialect: Dialect,
+    tools: Option<&crate::analysis::tools::ToolTable>,
+    comments: &[crate::gcode::Comment],
+    allow_nonstandard: bool,
+) -> Vec<ControlFinding> {
+    use crate::analysis::naming::{listed_tool, ListedKind};
+    use crate::analysis::tools::Tool;
+    let opts = crate::standards::ParseOptions { allow_nonstandard };
+    let mut out = Vec::new();
+    for h in prog.holes.iter().filter(|h| h.kind == HoleKind::Drill) {
+        let Some(t) = h.tool else { continue };
+        let table = tools.and_then(|tt| tt.tool(t)).map(|x| x.0);
+        let why = match table {
+            Some(Tool::Tap { designation, .. }) => format!("T{t} is the tool table's tap {designation}"),
+            Some(_) => continue,
+            None => {
+                let listed = comments.iter().find_map(|c| {
+                    listed_tool(&c.text, h.units, opts).filter(|l| l.tool == t).map(|l| (l.kind, c.line))
+                });
+                match listed {
+                    Some((ListedKind::Tap { .. }, line)) => {
+                        format!("T{t} is a tap in the program's tool list at line {line}")
+                    }
+                    _ => continue,
+                }
+            }
+        };
+        let code = h.code.as_str();
+        let (rule, how) = match code {
+            "G85" | "G89" => (
+                ControlRule::TapInBoringCycle,
+                "feeds out of the hole with the spindle still turning forward: a plain tap strips the thread it cut; only a self-reversing tapping head (which reverses as the spindle pulls back) runs so",
+            ),
+            "G86" | "G87" | "G88" => (
+                ControlRule::TapInDrillCycle,
+                "stops the spindle at the bottom and leaves the hole without turning it back: the tap is pulled out of its thread and strips it",
+            ),
+            "G73" | "G83" => (
+                ControlRule::TapInDrillCycle,
+                "retracts at rapid between its pecks and at the end without reversing the spindle: the tap is pulled out of its thread and strips it or breaks",
+            ),
+            _ => (
+                ControlRule::TapInDrillCycle,
+                "leaves the hole at rapid without reversing the spindle: the tap is pulled out of its thread and strips it or breaks",
+            ),
+        };
+        let mut f = ControlFinding::new(
+            dialect,
+            rule,
+            Process::Tapped,
+            code,
+            (h.line, h.column),
+            format!("{why}, and {code} {how}; tap with G84 (G74 for a left-hand tap)"),
+        );
+        f.file.clone_from(&h.source_file);
+        out.push(f);
+    }
+    out
 }

@@ -136,3 +136,72 @@ fn is_radial_exit(m: &Move, c: [f64; 2], kind: ThreadKind) -> bool {
     };
     (cos * want) >= RADIAL_EXIT_DEG.to_radians().cos()
 }
+
+/// How far a helix may drift axially from the thread's groove over its own travel before it
+/// crosses the grooves rather than follows them, mm (a named default: ten times the programs'
+/// 1 µm resolution, above the drift of arcs written in rounded quarters).
+pub const RETURN_DRIFT_MM: f64 = 0.01;
+
+/// A helix that crosses the thread's grooves where it should follow them: a return helix
+/// written with the other hand, or at a lead that is not the thread's, its teeth in the
+/// thread (FreeCAD #7855: the return helix "passes right through the work piece").
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Crossing {
+    /// Its program line.
+    pub line: usize,
+    /// `G2` or `G3`.
+    pub code: &'static str,
+    /// How deep its teeth reach past the thread's crest, radially, mm.
+    pub depth: f64,
+    /// Its hand, where it is the other one than the thread's (`None`: the thread's own).
+    pub other_hand: Option<crate::standards::Hand>,
+    /// The lead it moves at, mm per revolution (Z travel over its turns).
+    pub lead: f64,
+    /// The thread's lead, mm.
+    pub thread_lead: f64,
+    /// How far it drifts axially from the groove it starts in over its own travel, mm.
+    pub drift: f64,
+}
+
+/// The helices of `helices` that cross the grooves of a thread of `lead` (mm) and `hand`
+/// instead of following them, with their teeth (tip radius `tip`) reaching past its crest
+/// radius `crest` (mm from the helices' axis) by more than [`GOUGE_TOLERANCE_MM`].
+pub fn crossing_helices(
+    helices: &[Helix],
+    lead: f64,
+    hand: crate::standards::Hand,
+    kind: ThreadKind,
+    tip: f64,
+    crest: f64,
+) -> Vec<Crossing> {
+    helices
+        .iter()
+        .filter_map(|h| {
+            let dz = h.z[1] - h.z[0];
+            let turns = h.sweep_deg / 360.0;
+            // A right-hand helix rises turning counter-clockwise (G3) and falls turning
+            // clockwise (G2): its Z travel has the sign of its sweep.
+            let sign = match hand {
+                crate::standards::Hand::Right => 1.0,
+                crate::standards::Hand::Left => -1.0,
+            };
+            let drift = (dz - sign * lead * turns).abs();
+            let past = match kind {
+                ThreadKind::Internal => h.radius.max(h.radius + h.radius_change) + tip - crest,
+                ThreadKind::External => crest - (h.radius.min(h.radius + h.radius_change) - tip),
+            };
+            (drift > RETURN_DRIFT_MM && past > GOUGE_TOLERANCE_MM).then(|| Crossing {
+                line: h.line,
+                code: if h.sweep_deg > 0.0 { "G3" } else { "G2" },
+                depth: past,
+                other_hand: (dz != 0.0 && (dz > 0.0) != (sign * turns > 0.0)).then_some(match hand {
+                    crate::standards::Hand::Right => crate::standards::Hand::Left,
+                    crate::standards::Hand::Left => crate::standards::Hand::Right,
+                }),
+                lead: if turns != 0.0 { (dz / turns).abs() } else { 0.0 },
+                thread_lead: lead,
+                drift,
+            })
+        })
+        .collect()
+}

@@ -14,6 +14,11 @@
 //! rpm_per_pitch = [[0.5, 950], [1.0, 500]]
 //! # optional: the Z axis's servo time constant, s (the run-in check; default 0.033)
 //! servo_time_constant_s = 0.02
+//! # optional: the Z axis's acceleration, mm/s² (the run-in check: V²/(2a) when longer)
+//! z_acceleration_mm_s2 = 2000
+//! # optional: the taps' holder, "rigid" (the feed is held exact) or "floating" (a
+//! # tension-compression holder: an under-feed up to 5 % is taken up, said)
+//! tap_holder = "floating"
 //! ```
 
 use crate::analysis::check::{Check, CheckKind};
@@ -56,6 +61,23 @@ pub struct MachineProfile {
     /// The spindle's power, kW: a tap's power at its S is held against it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spindle_power_kw: Option<f64>,
+    /// The Z axis's acceleration, mm/s²: the run-in check takes the distance it needs to reach
+    /// the threading feed, V²/(2a), where longer than the servo's (`None`: not used, said).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub z_acceleration_mm_s2: Option<f64>,
+    /// The taps' holder (`None`: rigid assumed where it changes a result, said).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tap_holder: Option<TapHolder>,
+}
+
+/// How a tap is held.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TapHolder {
+    /// A rigid holder (a collet or a synchro holder): the feed must be the lead exactly.
+    Rigid,
+    /// A floating (tension-compression) holder: its axial float takes up a small under-feed.
+    Floating,
 }
 
 impl MachineProfile {
@@ -72,6 +94,8 @@ impl MachineProfile {
             servo_time_constant_s: None,
             spindle_torque_nm: None,
             spindle_power_kw: None,
+            z_acceleration_mm_s2: None,
+            tap_holder: None,
             rpm_per_pitch: vec![
                 (0.5, 950.0),
                 (1.0, 500.0),
@@ -123,6 +147,8 @@ impl MachineProfile {
             servo_time_constant_s: Option<f64>,
             spindle_torque_nm: Option<f64>,
             spindle_power_kw: Option<f64>,
+            z_acceleration_mm_s2: Option<f64>,
+            tap_holder: Option<TapHolder>,
         }
         let arg = source;
         let f: File = toml::from_str(text).map_err(|e| crate::ground::error::toml_error(&e, text, arg))?;
@@ -144,6 +170,8 @@ impl MachineProfile {
             servo_time_constant_s: f.servo_time_constant_s,
             spindle_torque_nm: f.spindle_torque_nm,
             spindle_power_kw: f.spindle_power_kw,
+            z_acceleration_mm_s2: f.z_acceleration_mm_s2,
+            tap_holder: f.tap_holder,
         };
         let positive = |v: f64| v > 0.0 && v.is_finite();
         if !positive(m.rapid_mm_min)
@@ -152,6 +180,7 @@ impl MachineProfile {
             || m.servo_time_constant_s.is_some_and(|t| !positive(t))
             || m.spindle_torque_nm.is_some_and(|t| !positive(t))
             || m.spindle_power_kw.is_some_and(|p| !positive(p))
+            || m.z_acceleration_mm_s2.is_some_and(|a| !positive(a))
             || m.rpm_per_pitch.iter().any(|(up, rpm)| !positive(*up) || !positive(*rpm))
         {
             return Err(Error::File {

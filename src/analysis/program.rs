@@ -211,7 +211,15 @@ pub fn verify_whole(
     }
     let taps = prog.holes.iter().any(|h| h.kind == HoleKind::Tap);
     let helix = prog.moves.iter().find(|m| m.arc.is_some() && (m.to[2] - m.from[2]).abs() > 1e-9);
-    if prog.operations.is_empty() && !taps && helix.is_none() {
+    // A tap a post wrote as a drilling cycle: the program's one thread-making operation, wrong.
+    let taps_drilled = crate::analysis::control::taps_in_drill_cycles(
+        &prog,
+        dialect,
+        tools,
+        &crate::gcode::comments(text, dialect),
+        spec.allow_nonstandard,
+    );
+    if prog.operations.is_empty() && !taps && helix.is_none() && taps_drilled.is_empty() {
         let (line, column, hint) = crate::gcode::no_thread_hint(&prog.notes)
             .map_or((1, 1, String::new()), |(l, c, h)| (l, c, format!("; {h}")));
         return Err(Error::Program {
@@ -255,6 +263,7 @@ pub fn verify_whole(
     }
     pv.control =
         crate::analysis::control::before_machine(&prog, dialect, pv.tapped.as_ref(), spec.machine.as_ref());
+    pv.control.extend(taps_drilled);
     if let Some(h) = helix {
         // The thread mill: the helix's tool in the table, as a thread mill's file, else the one
         // the program's comments name for it.

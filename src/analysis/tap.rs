@@ -560,7 +560,7 @@ fn tapped_hole(
     let mut notes: Vec<String> = tap.why.iter().cloned().chain(drill_note).collect();
     let (hole_window, formed) = hole_window(&des.thread, &limits, tap.forming, drill.as_ref(), &mut notes);
     drill_check(drill.as_ref(), hole_window, res, formed, tap.forming, &mut checks, &mut notes);
-    feed_check(h, lead, &mut checks, &mut notes);
+    feed_check(h, lead, spec.machine.as_ref().and_then(|m| m.tap_holder), &mut checks, &mut notes);
     let chamfer = chamfer_pitches * pitch;
     depth_check(
         spec,
@@ -723,8 +723,20 @@ fn drill_check(
     }
 }
 
-/// The feed against the lead: per revolution, or S × lead per minute.
-fn feed_check(h: &HoleCycle, lead: f64, checks: &mut Vec<TapCheck>, notes: &mut Vec<String>) {
+/// The under-feed a floating (tension-compression) holder takes up, a fraction of the feed:
+/// the 2 to 5 % tap makers allow such holders, at its top (a named default).
+pub const FLOATING_UNDERFEED_MAX: f64 = 0.05;
+
+/// The feed against the lead: per revolution, or S × lead per minute; a floating holder
+/// (`holder`, the machine file's) takes up an under-feed to [`FLOATING_UNDERFEED_MAX`].
+fn feed_check(
+    h: &HoleCycle,
+    lead: f64,
+    holder: Option<crate::analysis::process::TapHolder>,
+    checks: &mut Vec<TapCheck>,
+    notes: &mut Vec<String>,
+) {
+    use crate::analysis::process::TapHolder;
     // The feed.
     match h.feed {
         Some(f) => {
@@ -740,13 +752,35 @@ fn feed_check(h: &HoleCycle, lead: f64, checks: &mut Vec<TapCheck>, notes: &mut 
             match expected {
                 Some(e) => {
                     let (tol, unit) = if h.feed_per_rev { (0.0005, "mm/rev") } else { (0.5, "mm/min") };
-                    let off = f - e;
+                    // A floating holder's float takes up an under-feed; a rigid one nothing.
+                    let floating = holder == Some(TapHolder::Floating);
+                    let min = if floating { e * (1.0 - FLOATING_UNDERFEED_MAX) } else { e };
+                    let off = if f < min { f - min } else { (f - e).max(0.0) };
                     let ok = off.abs() <= tol + 1e-9;
+                    let under = (e - f) / e;
+                    if floating && f < e - tol && ok {
+                        notes.push(format!(
+                            "{} at line {} feeds {:.1} % under the lead: the floating (tension-compression) holder the machine file gives (tap_holder) takes up an under-feed of up to {} %",
+                            h.code,
+                            h.line,
+                            100.0 * under,
+                            100.0 * FLOATING_UNDERFEED_MAX
+                        ));
+                    } else if holder.is_none() && !ok && under > 0.0 && under <= FLOATING_UNDERFEED_MAX + 1e-9
+                    {
+                        notes.push(format!(
+                            "{} at line {} feeds {:.1} % under the lead: a rigid holder is assumed, which takes up nothing; a floating (tension-compression) holder takes up to {} % (the machine file's tap_holder = \"floating\")",
+                            h.code,
+                            h.line,
+                            100.0 * under,
+                            100.0 * FLOATING_UNDERFEED_MAX
+                        ));
+                    }
                     checks.push(TapCheck {
                         feature: TapFeature::Feed,
                         ok,
                         value: Some(f),
-                        min: Some(e),
+                        min: Some(if floating { (min * 1e6).round() / 1e6 } else { e }),
                         max: Some(e),
                         unit,
                         deviation: if ok {

@@ -92,6 +92,10 @@ pub struct ThreadMillReport {
     /// What the moves after the last helix do to the finished thread (issue 63).
     #[serde(skip)]
     pub after_finish: crate::analysis::gouge::AfterFinish,
+    /// The helices that cross the thread's grooves instead of following them: a return helix
+    /// of the other hand or another lead, its teeth in the thread (issue 63).
+    #[serde(skip)]
+    pub crossings: Vec<crate::analysis::gouge::Crossing>,
     /// An internal 60° thread's percent of thread from its bore (the charts' figure, issue 64).
     pub thread_percent: Option<crate::analysis::percent::ThreadPercent>,
     /// The bore or blank diameter, mm.
@@ -829,10 +833,13 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         ThreadKind::Internal => 0.5 * measured.minor_diameter,
         ThreadKind::External => 0.5 * measured.major_diameter,
     };
-    let after_finish = if taper.is_none() {
-        crate::analysis::gouge::after_finish(&prog.moves, &hs, kind, 0.5 * c.diameter, crest)
+    let (after_finish, crossings) = if taper.is_none() {
+        (
+            crate::analysis::gouge::after_finish(&prog.moves, &hs, kind, 0.5 * c.diameter, crest),
+            crate::analysis::gouge::crossing_helices(&hs, t.lead(), t.hand, kind, 0.5 * c.diameter, crest),
+        )
     } else {
-        crate::analysis::gouge::AfterFinish::default()
+        (crate::analysis::gouge::AfterFinish::default(), Vec::new())
     };
     let unfed: Vec<String> = hs.iter().filter(|h| h.feed.is_none()).map(|h| h.line.to_string()).collect();
     if !unfed.is_empty() {
@@ -843,7 +850,8 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     }
     // A move after the last helix that cuts the finished thread scraps it, whatever the
     // helices measured.
-    let pass = crate::analysis::check::verdict(&cs, false) && after_finish.gouges.is_empty();
+    let pass =
+        crate::analysis::check::verdict(&cs, false) && after_finish.gouges.is_empty() && crossings.is_empty();
     let span = (zs[0], zs[zs.len() - 1]);
     let (basic, zone) = crate::analysis::picture::Zone {
         thread: &t,
@@ -872,6 +880,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         helices: hs,
         feeds,
         after_finish,
+        crossings,
         thread_percent: match kind {
             ThreadKind::Internal => crate::analysis::percent::thread_percent(&t, blank),
             ThreadKind::External => None,

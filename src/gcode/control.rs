@@ -48,11 +48,20 @@ pub enum ControlRule {
     MillGouge,
     /// A tap's synchronised feed, S × lead, beyond the fastest feed the machine's axes follow.
     SyncFeedLimit,
+    /// A thread mill's helix that crosses the thread's grooves instead of following them: a
+    /// return helix of the other hand or another lead, its teeth in the thread.
+    MillReturnHelix,
+    /// A tap in a drilling cycle that retracts at rapid or with the spindle stopped (G73,
+    /// G81–G83, G86–G88): the tap is pulled out without reversing.
+    TapInDrillCycle,
+    /// A tap in a boring cycle that feeds out with the spindle still turning forward (G85,
+    /// G89): only a self-reversing tapping head survives it.
+    TapInBoringCycle,
 }
 
 impl ControlRule {
     /// Every rule, in the order the reports list them.
-    pub const ALL: [ControlRule; 11] = [
+    pub const ALL: [ControlRule; 14] = [
         ControlRule::SpindleStopped,
         ControlRule::SpindleSpeedZero,
         ControlRule::FeedZero,
@@ -61,7 +70,10 @@ impl ControlRule {
         ControlRule::FeedWordInSync,
         ControlRule::TapMovesSideways,
         ControlRule::TapFeedConvention,
+        ControlRule::TapInDrillCycle,
+        ControlRule::TapInBoringCycle,
         ControlRule::MillGouge,
+        ControlRule::MillReturnHelix,
         ControlRule::SyncFeedLimit,
         ControlRule::RunInShort,
     ];
@@ -81,13 +93,16 @@ impl ControlRule {
             ControlRule::FeedWordInSync => "control.feed_word_in_sync",
             ControlRule::MillGouge => "post.mill_gouge",
             ControlRule::SyncFeedLimit => "control.sync_feed_limit",
+            ControlRule::MillReturnHelix => "post.mill_return_helix",
+            ControlRule::TapInDrillCycle => "post.tap_in_drill_cycle",
+            ControlRule::TapInBoringCycle => "post.tap_in_boring_cycle",
         }
     }
 
     /// Its level.
     pub fn level(self) -> Level {
         match self {
-            ControlRule::RunInShort => Level::Warning,
+            ControlRule::RunInShort | ControlRule::TapInBoringCycle => Level::Warning,
             _ => Level::Error,
         }
     }
@@ -127,6 +142,15 @@ impl ControlRule {
             }
             ControlRule::MillGouge => {
                 "A thread mill's move after its last helix (a retract along Z, a return circle, a move across the grooves) whose teeth reach past the finished thread's crest: it cuts the thread just made."
+            }
+            ControlRule::MillReturnHelix => {
+                "A thread mill's helix that crosses the thread's grooves instead of following them (a return helix written with the other hand, or at another lead) with its teeth in the thread: it cuts through the flanks."
+            }
+            ControlRule::TapInDrillCycle => {
+                "A tap (the tool table's, or a CAM tool list's) in a drilling cycle that leaves the hole at rapid or with the spindle stopped (G73, G81, G82, G83, G86, G87, G88): the tap is pulled out without reversing and strips the thread or breaks; tap with G84 (G74 left-hand)."
+            }
+            ControlRule::TapInBoringCycle => {
+                "A tap in a boring cycle that feeds out of the hole with the spindle still turning forward (G85, G89): only a self-reversing tapping head survives it; a plain tap strips the thread."
             }
         }
     }

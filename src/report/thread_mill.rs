@@ -173,6 +173,20 @@ pub fn text(r: &ThreadMillReport) -> String {
     if !r.after_finish.gouges.is_empty() {
         failed.push("a move after the last helix cuts the thread");
     }
+    for c in &r.crossings {
+        let _ = writeln!(
+            s,
+            "  ✗ line {} ({}) crosses the thread's grooves ({} mm per revolution{}), its teeth {:.3} mm past the crest",
+            c.line,
+            c.code,
+            crate::ground::fmt::fmt_num((c.lead * 1e4).round() / 1e4),
+            if c.other_hand.is_some() { ", the other hand" } else { "" },
+            c.depth
+        );
+    }
+    if !r.crossings.is_empty() {
+        failed.push("a helix crosses the thread");
+    }
     if let (Some(first), n) = (r.after_finish.compensated.first(), r.after_finish.compensated.len()) {
         let _ = writeln!(
             s,
@@ -373,6 +387,9 @@ pub(crate) fn thread_mill_document(
     let mut failed: Vec<&str> = r.checks.iter().filter(|k| !k.ok).map(|k| k.feature.words(r.kind)).collect();
     if !r.after_finish.gouges.is_empty() {
         failed.push("a move after the last helix cuts the thread");
+    }
+    if !r.crossings.is_empty() {
+        failed.push("a helix crosses the thread");
     }
     let verdict =
         if r.pass { "IN TOLERANCE".to_string() } else { format!("OUT OF TOLERANCE: {}", failed.join(", ")) };
