@@ -450,6 +450,37 @@ const CASES: &[Case] = &[
         text: "G21 G17 G90 G94\n(T6 | M8X1.25 TAP | D=8.)\nT6 M6\nM3 S500\nG0 X0 Y0 Z5\nG83 Z-10 R2 Q3 F625\nG80\nM2\n",
         want: &[("post.tap_in_drill_cycle", 6)],
     },
+    // ---- A tapping cycle under G96: its S is a surface speed (150 m/min), and on the centre
+    // line the spindle runs to its clamp (G50 S2000, LinuxCNC's D2000). LinuxCNC runs it
+    // (rs274 below); Beckhoff's controls refuse it (20636); after G97 S500 it is the program's.
+    Case {
+        name: "fanuc-lathe-g84-under-g96",
+        dialect: "fanuc",
+        args: &[],
+        text: "G21 G18 G90 G99\n(M8X1.25 TAP)\nT0606\nG50 S2000\nG96 S150 M3\nG0 X0 Z5\nG84 Z-10 R2 F1.25\nG80\nM30\n",
+        want: &[("control.css_at_tap", 7)],
+    },
+    Case {
+        name: "fanuc-lathe-g84-after-g97",
+        dialect: "fanuc",
+        args: &[],
+        text: "G21 G18 G90 G99\n(M8X1.25 TAP)\nT0606\nG50 S2000\nG96 S150 M3\nG97 S500\nG0 X0 Z5\nG84 Z-10 R2 F1.25\nG80\nM30\n",
+        want: &[],
+    },
+    Case {
+        name: "lc-g33.1-under-g96",
+        dialect: "linuxcnc",
+        args: &[],
+        text: "G21 G17 G90 G94\n(M8x1.25 tap)\nG96 S150 D2000 M3\nG0 X0 Y0 Z5\nG33.1 Z-10 K1.25\nM2\n",
+        want: &[("control.css_at_tap", 5)],
+    },
+    Case {
+        name: "lc-g84-under-g96-per-minute",
+        dialect: "linuxcnc",
+        args: &[],
+        text: "G21 G17 G90 G94\n(M8x1.25 tap)\nG96 S150 D2000 M3\nG0 X0 Y0 Z5\nG84 Z-10 R2 F625\nG80\nM2\n",
+        want: &[("control.css_at_tap", 5)],
+    },
     // ---- Two findings in one program, in the report's order: the reader's (the tap moved
     // sideways) first, then the tapping cycles'.
     Case {

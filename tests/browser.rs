@@ -1207,8 +1207,12 @@ fn each_control_finding_stands_under_its_operation() {
     assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
     let page = std::fs::read_to_string(&html).unwrap();
     let at = |s: &str| page.find(s).unwrap_or_else(|| panic!("no {s} in the page"));
-    let warning = at("! before the machine, line 15 (G76)");
-    assert!(warning > at("Operation 2 of 2") && page.matches("before the machine").count() == 1);
+    // Once under the headline (every finding, as the picture gives them), once under
+    // operation 2's heading.
+    let warning = "! before the machine, line 15 (G76)";
+    let (head, under) = (at(warning), page.rfind(warning).unwrap());
+    assert!(head < at("Operation 1 of 2") && under > at("Operation 2 of 2"));
+    assert_eq!(page.matches("before the machine, line").count(), 2);
     let svg = dir.join("tap.svg");
     let prog = data("programs/control/sideways-tap.ngc");
     let o = run(&["verify", "--program", prog.to_str().unwrap(), "--svg", svg.to_str().unwrap()]);
@@ -1218,6 +1222,35 @@ fn each_control_finding_stands_under_its_operation() {
         tapped.starts_with("✗ before the machine, line 6 (G33.1): the tap moves X from 0 to 5"),
         "{tapped}"
     );
+}
+
+/// Issue 63: a post that wrote a tap's operation as a peck drilling cycle. Our program's CAM
+/// tool list names T6 an M8x1.25 tap, and T6 runs in G83: the program has no other thread, and
+/// the picture and the page say the program will not run as written, with the finding under
+/// the headline, as Chromium shows them.
+#[test]
+fn a_tap_in_a_drilling_cycle_heads_the_picture_and_the_page() {
+    let dir = tempdir("tap-in-g83");
+    let prog = data("programs/control/tap-in-peck-cycle.nc");
+    let (svg, html) = (dir.join("p.svg"), dir.join("p.html"));
+    let o = run(&[
+        "verify",
+        "--program",
+        prog.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+        "--html",
+        html.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let finding = "✗ before the machine, line 17 (G83): T6 is a tap in the program's tool list at line 5, and G83 retracts at rapid";
+    let head = picture_texts_in(&svg, None);
+    assert!(head[0].contains("WILL NOT RUN AS WRITTEN"), "{head:?}");
+    assert!(picture_texts_in(&svg, Some("#control")).join(" ").starts_with(finding), "{head:?}");
+    let page = picture_texts_in(&html, None);
+    let verdict = page.iter().position(|t| t.starts_with("WILL NOT RUN AS WRITTEN")).expect("the verdict");
+    let said = page.iter().position(|t| t.starts_with(finding)).unwrap_or_else(|| panic!("{page:?}"));
+    assert!(verdict < said, "{page:?}");
 }
 
 /// What a text says in mm or µm outside the parentheses that follow an inch figure (`0.4500 in

@@ -126,8 +126,31 @@ pub fn before_machine(
                 ),
             );
         }
-        if h.spindle == Some(0.0) {
+        if h.spindle == Some(0.0) && !h.constant_surface_speed {
             flag(ControlRule::SpindleSpeedZero, format!("{} at S0: the spindle does not turn", h.code));
+        }
+        // A Haas lathe's live-tool tapping (G95, G186) turns the live tool, not the spindle
+        // G96 governs.
+        let live_tool = dialect == Dialect::Haas && matches!(h.code.as_str(), "G95" | "G186");
+        if h.constant_surface_speed && !live_tool {
+            flag(
+                ControlRule::CssAtTap,
+                format!(
+                    "{} under G96 (constant surface speed): S{} is a surface speed, and the spindle turns at what the hole's diameter makes of it{}; {}: give the tap its speed with G97 S… before the cycle",
+                    h.code,
+                    h.spindle.map_or("?".to_string(), crate::ground::fmt::fmt_num),
+                    if h.x.is_some_and(|x| x.abs() < 1e-9) {
+                        " (on the centre line, X0, the fastest the clamp allows: G50 S, else the spindle's top speed)"
+                    } else {
+                        ""
+                    },
+                    if h.feed_per_rev {
+                        "the tap cuts at a speed the program never chose"
+                    } else {
+                        "a feed per minute no longer matches the spindle's speed, and the tap is torn"
+                    }
+                ),
+            );
         }
         if h.feed == Some(0.0) {
             flag(
@@ -154,7 +177,7 @@ fn feed_limit(
     max: f64,
 ) -> Option<ControlFinding> {
     let h = &th.cycle;
-    let s = h.spindle.filter(|s| *s > 0.0)?;
+    let s = h.spindle.filter(|s| *s > 0.0 && !h.constant_surface_speed)?;
     let feed = s * th.tap.lead;
     if feed <= max + 1e-9 {
         return None;
@@ -254,7 +277,7 @@ fn feed_convention(dialect: Dialect, th: &crate::analysis::tap::TappedHole) -> O
     let k = th.checks.iter().find(|k| k.feature == TapFeature::Feed && !k.ok)?;
     let f = k.value?;
     let lead = th.tap.lead;
-    let s = h.spindle.filter(|s| *s > 0.0)?;
+    let s = h.spindle.filter(|s| *s > 0.0 && !h.constant_surface_speed)?;
     let num = crate::ground::fmt::fmt_num;
     let message = if !h.feed_per_rev && (f - lead).abs() <= 0.0005 {
         format!(

@@ -748,7 +748,16 @@ fn feed_check(
                     if h.feed_per_rev { "a lathe's G99" } else { "a machining centre's G94" }
                 ));
             }
-            let expected = if h.feed_per_rev { Some(lead) } else { h.spindle.map(|s| s * lead) };
+            // Under G96 S is a surface speed, m/min (ft/min), not the spindle's rpm.
+            let rpm = h.spindle.filter(|_| !h.constant_surface_speed);
+            if h.constant_surface_speed && !h.feed_per_rev {
+                notes.push(format!(
+                    "{} runs under G96: its S is a surface speed, not the spindle's rpm, and its feed per minute is not checked against S × lead",
+                    h.code
+                ));
+                return;
+            }
+            let expected = if h.feed_per_rev { Some(lead) } else { rpm.map(|s| s * lead) };
             match expected {
                 Some(e) => {
                     let (tol, unit) = if h.feed_per_rev { (0.0005, "mm/rev") } else { (0.5, "mm/min") };

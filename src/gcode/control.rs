@@ -51,6 +51,9 @@ pub enum ControlRule {
     /// A thread mill's helix that crosses the thread's grooves instead of following them: a
     /// return helix of the other hand or another lead, its teeth in the thread.
     MillReturnHelix,
+    /// A tapping cycle under G96 (constant surface speed): its S is a surface speed, and the
+    /// spindle runs at whatever the diameter makes of it (at the centre, the clamp).
+    CssAtTap,
     /// A tap in a drilling cycle that retracts at rapid or with the spindle stopped (G73,
     /// G81–G83, G86–G88): the tap is pulled out without reversing.
     TapInDrillCycle,
@@ -61,10 +64,11 @@ pub enum ControlRule {
 
 impl ControlRule {
     /// Every rule, in the order the reports list them.
-    pub const ALL: [ControlRule; 14] = [
+    pub const ALL: [ControlRule; 15] = [
         ControlRule::SpindleStopped,
         ControlRule::SpindleSpeedZero,
         ControlRule::FeedZero,
+        ControlRule::CssAtTap,
         ControlRule::SyncUnderCompensation,
         ControlRule::TapPeckQ,
         ControlRule::FeedWordInSync,
@@ -94,6 +98,7 @@ impl ControlRule {
             ControlRule::MillGouge => "post.mill_gouge",
             ControlRule::SyncFeedLimit => "control.sync_feed_limit",
             ControlRule::MillReturnHelix => "post.mill_return_helix",
+            ControlRule::CssAtTap => "control.css_at_tap",
             ControlRule::TapInDrillCycle => "post.tap_in_drill_cycle",
             ControlRule::TapInBoringCycle => "post.tap_in_boring_cycle",
         }
@@ -145,6 +150,9 @@ impl ControlRule {
             }
             ControlRule::MillReturnHelix => {
                 "A thread mill's helix that crosses the thread's grooves instead of following them (a return helix written with the other hand, or at another lead) with its teeth in the thread: it cuts through the flanks."
+            }
+            ControlRule::CssAtTap => {
+                "A tapping cycle under G96 (constant surface speed): its S is a surface speed, so the tap turns at what the diameter makes of it (on the centre line, the spindle's clamp) and a feed per minute no longer matches it; Beckhoff's controls refuse it (20636)."
             }
             ControlRule::TapInDrillCycle => {
                 "A tap (the tool table's, or a CAM tool list's) in a drilling cycle that leaves the hole at rapid or with the spindle stopped (G73, G81, G82, G83, G86, G87, G88): the tap is pulled out without reversing and strips the thread or breaks; tap with G84 (G74 left-hand)."

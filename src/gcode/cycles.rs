@@ -1241,6 +1241,7 @@ fn push_hole_at(
         main_line: 0,
         machine_xy: None,
         rigid,
+        constant_surface_speed: m.css,
         r_level: None,
     })
 }

@@ -1669,6 +1669,7 @@ fn run_with(
         main_line: line,
         machine_xy: None,
         rigid: false,
+        constant_surface_speed: false,
         units,
         // The set-up clearance Q200 above the surface: where the cycle feeds from.
         r_level: Some(st.to_work([p[0], p[1], top + q(200) * s])[2]),

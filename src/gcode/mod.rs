@@ -697,6 +697,10 @@ pub struct HoleCycle {
     pub tool: Option<u32>,
     /// M29 rigid tapping.
     pub rigid: bool,
+    /// G96 (constant surface speed) in force at the cycle: its S is a surface speed, and the
+    /// spindle's speed follows the diameter (absent from the JSON when not).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub constant_surface_speed: bool,
     /// The subprogram file it stands in, when not the program's own (its line is that file's).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub source_file: Option<String>,

@@ -1041,6 +1041,7 @@ impl Motion {
             main_line: 0,
             machine_xy: None,
             rigid: true,
+            constant_surface_speed: self.css,
             r_level: None,
         })
     }

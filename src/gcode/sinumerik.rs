@@ -550,6 +550,7 @@ fn hole(s: &State, m: &mut Motion, call: &HoleCall, line: usize) -> Result<(), E
         main_line: 0,
         machine_xy: None,
         rigid: call.name == "CYCLE84",
+        constant_surface_speed: false,
         r_level: None,
     })?;
     m.lose_position(line, &format!("{}(…)", call.name), false, true);

@@ -930,7 +930,21 @@ pub(crate) fn program_counts(pv: &crate::analysis::program::ProgramVerification)
     let n = pv.operations.len();
     let tapped = pv.tapped.as_ref().map_or(0, |t| t.holes.len());
     let milled = usize::from(pv.milled.is_some());
-    if tapped + milled == 0 {
+    // A program whose only thread is a tap a post wrote as a drilling cycle.
+    let drilled = pv
+        .control
+        .iter()
+        .filter(|f| {
+            matches!(
+                f.rule,
+                r if r == crate::gcode::ControlRule::TapInDrillCycle.id()
+                    || r == crate::gcode::ControlRule::TapInBoringCycle.id()
+            )
+        })
+        .count();
+    if n + tapped + milled == 0 && drilled > 0 {
+        plural(drilled, "tap in a drilling or boring cycle", "taps in drilling or boring cycles")
+    } else if tapped + milled == 0 {
         format!("{n} threading operation{}", if n == 1 { "" } else { "s" })
     } else {
         process_counts(n, tapped, milled)
@@ -1926,8 +1940,15 @@ pub fn verify_html(v: &Verification) -> String {
 pub fn program_html(pv: &ProgramVerification) -> String {
     let title = format!("threadcheck: {}", pv.program);
     let mut body = format!("<h1>{}</h1>\n", esc(&title));
-    let (cls, words) = if pv.pass() { ("ok", "IN TOLERANCE") } else { ("out", "OUT OF TOLERANCE") };
+    let cls = if pv.pass() { "ok" } else { "out" };
+    let words = program_verdict_words(pv);
     let _ = writeln!(body, "<p class=\"verdict {cls}\">{words}: {}</p>", esc(&program_counts(pv)));
+    // Every finding under the headline, as the picture gives them; each again under its
+    // operation's heading below, where the page has one.
+    if !pv.control.is_empty() {
+        body.push_str("<h2>Before the machine</h2>\n");
+        body.push_str(&control_html(pv.control.iter()));
+    }
     if !pv.notes.is_empty() {
         body.push_str("<ul class=\"notes\">\n");
         for n in &pv.notes {
