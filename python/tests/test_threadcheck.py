@@ -771,3 +771,38 @@ def test_a_fusion_tool_library_is_a_tool_table():
     h = r["holes"][0]
     assert h["tap"]["designation"] == "M10x1.5-6H" and h["tap"]["designation_from"] == "tool"
     assert h["drill"]["diameter"] == 8.5 and r["pass"]
+
+
+TAP_UNDER_G96 = """G21 G18 G90 G99
+(M8X1.25 TAP)
+T0606
+G50 S2000
+G96 S150 M3
+G0 X0 Z5
+G84 Z-10 R2 F1.25
+G80
+M30
+"""
+
+
+def test_the_controls_refusals_reach_python():
+    # Issue 63: a tap under G96 turns at the clamp on the centre line: an error at its line
+    # that fails the program.
+    r = threadcheck.verify(program=TAP_UNDER_G96, dialect="fanuc")
+    found = [(f["rule"], f["level"], f["line"]) for f in r["control"]]
+    assert found == [("control.css_at_tap", "error", 7)]
+    assert r["verdict"] == "fail"
+
+
+def test_a_floating_holder_from_the_machine_file():
+    # M8x1.25 at S600 wants F750; F727.5 is 3 % under it: a rigid holder fails it, a
+    # floating one takes up to 5 % (750 x 0.95 = 712.5).
+    program = "G17 G21 G90 G94\nT5 M6 (TAP M8X1.25)\nS600 M3\nG0 X0 Y0 Z5\nG84 Z-10 R2 F727.5\nG80\nM30\n"
+
+    def feed(machine):
+        r = threadcheck.tap(program, dialect="fanuc", machine=machine)
+        return next(c for c in r["holes"][0]["checks"] if c["feature"] == "feed")
+
+    assert feed('name = "vmc"\ntype = "mill"\n')["ok"] is False
+    floating = feed('name = "vmc"\ntype = "mill"\ntap_holder = "floating"\n')
+    assert (floating["ok"], floating["min"], floating["max"]) == (True, 712.5, 750.0)

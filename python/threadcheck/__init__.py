@@ -385,7 +385,8 @@ def tap(program: str, tools: Optional[str] = None, dialect: Optional[str] = None
     ``tap_kind`` (``"hand-plug"``, ``"hand-bottoming"``, ``"spiral-fluted"``, the default, or
     ``"spiral-pointed"``). ``machine`` is a machine file's TOML text: its ``type`` reads the
     program, its ``spindle_torque_nm`` and ``spindle_power_kw`` hold each torque (``exceeds_spindle``
-    and a warning note when the tap asks more).
+    and a warning note when the tap asks more), its ``tap_holder = "floating"`` lets the ``feed``
+    check take an under-feed of up to 5 % (a tension-compression holder), said in the hole's notes.
     """
     report: TapReport = _json.loads(_run("tap", "json", dict(locals()))[0])
     return report
