@@ -158,6 +158,7 @@ pub use report::output::write_files;
 pub use commands::{
     deliver, filter, run_request, ApiArgs, CapabilityArgs, Command, CompareArgs, CorrectArgs, Dest, Document,
     Files, FilterArgs, Filtered, FitArgs, FormSet, InsertSet, Job, JsonArg, LimitsArgs, MillArgs, NoShared,
-    ONumber, Outcome, Outputs, PassesArgs, PlanArgs, ProgramArgs, ReportArgs, ReportName, Request, SeriesSet,
-    Shown, Source, SweepArgs, TapArgs, ThreadMillArgs, VerifyArgs, CAPABLE_CPK,
+    ONumber, Outcome, Outputs, PassesArgs, PlanArgs, ProgramArgs, ReadingArgs, ReportArgs, ReportName,
+    Request, SeriesSet, SharedArgs, Shown, Source, SweepArgs, TapArgs, ThreadMillArgs, VerifyArgs,
+    CAPABLE_CPK,
 };

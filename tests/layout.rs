@@ -524,3 +524,77 @@ fn architecture_names_every_folder() {
         .collect();
     assert!(unnamed.is_empty(), "files of analysis/ docs/architecture.md does not name: {unnamed:?}");
 }
+
+/// Issue 60, read once: the program-reading flags are declared in one struct of `commands/`
+/// (`ReadingArgs`), and every command that reads a program takes each of them, on the command
+/// line and through the API.
+#[test]
+fn the_reading_flags_are_declared_once_and_taken_by_every_reader() {
+    use clap::Subcommand;
+    const READING: [&str; 7] = [
+        "dialect",
+        "default_units",
+        "main",
+        "linuxcnc_release",
+        "gcode_system",
+        "machine_type",
+        "block_delete",
+    ];
+    // Each struct clap reads flags into: its name and its body.
+    let flag_structs: Vec<(String, String)> = src_code()
+        .into_iter()
+        .filter(|(f, _)| f.starts_with("commands/"))
+        .flat_map(|(_, code)| {
+            code.split("derive(clap::Args))]")
+                .skip(1)
+                .filter_map(|after| {
+                    let at = after.find("pub struct ")? + "pub struct ".len();
+                    let name: String = after[at..].chars().take_while(|c| c.is_alphanumeric()).collect();
+                    let body = &after[at..];
+                    Some((name, body[..body.find("\n}").unwrap_or(body.len())].to_string()))
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    assert!(flag_structs.len() > 5, "{flag_structs:?}");
+    for key in READING.iter().chain(&["subroutine_path"]) {
+        let declared: Vec<&str> = flag_structs
+            .iter()
+            .filter(|(_, body)| body.contains(&format!("pub {key}:")))
+            .map(|(name, _)| name.as_str())
+            .collect();
+        assert_eq!(declared, vec!["ReadingArgs"], "{key} is declared in {declared:?}");
+    }
+    let cli = threadcheck::Command::augment_subcommands(clap::Command::new("threadcheck"));
+    for name in ["verify", "passes", "compare", "correct", "capability", "tap", "thread-mill", "mill"] {
+        let sub = cli.find_subcommand(name).unwrap();
+        let ids: Vec<&str> = sub.get_arguments().map(|a| a.get_id().as_str()).collect();
+        let keys = threadcheck::Command::keys(name).unwrap();
+        for key in READING {
+            assert!(ids.contains(&key), "{name} has no --{}", key.replace('_', "-"));
+            assert!(keys.contains(&key), "{name}'s API takes no {key}");
+        }
+        assert!(ids.contains(&"subroutine_path"), "{name} has no --subroutine-path");
+    }
+}
+
+/// The reading flags do in the other commands that read a program what they do in verify: a
+/// system-B G78 (the threading cycle) is refused in system A by `thread-mill` naming its own
+/// `--gcode-system` (it named verify's before it took the flag), and read past with
+/// `--gcode-system b` (it then says what it lacks: the cutter).
+#[test]
+fn thread_mill_reads_with_verifys_flags() {
+    let prog = crate::data("programs/fanuc-system-b-g78.nc");
+    let p = prog.to_str().unwrap();
+    let o = crate::run(&["thread-mill", "--program", p]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = crate::stderr(&o);
+    assert!(
+        e.contains(":7:1: G78 is not a code of Fanuc G-code system A")
+            && e.contains("give --gcode-system b or c"),
+        "{e}"
+    );
+    let o = crate::run(&["thread-mill", "--program", p, "--gcode-system", "b"]);
+    let e = crate::stderr(&o);
+    assert!(!e.contains("G78") && e.contains("give the cutter"), "{e}");
+}

@@ -21,6 +21,7 @@ fuzz_target!(|data: &[u8]| {
             tool_diameter: 6.0,
             target: target.clone(),
             tolerance: 0.05,
+            reading: Default::default(),
         };
         let _ = mill(&spec);
     }

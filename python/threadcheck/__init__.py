@@ -345,13 +345,19 @@ def compare(thread: str, insert: Optional[str] = None, final_x: Optional[float] 
 
 def mill(program: str, target: str, tool_diameter: float, dialect: Optional[str] = None,
          tolerance: Optional[float] = None, n_order: bool = False,
-         program_name: Optional[str] = None, svg: Optional[PathLike] = None) -> MillReport:
+         program_name: Optional[str] = None, svg: Optional[PathLike] = None,
+         default_units: Optional[str] = None, gcode_system: Optional[str] = None,
+         machine_type: Optional[str] = None, main: Optional[str] = None,
+         linuxcnc_release: Optional[str] = None, block_delete: bool = False) -> MillReport:
     """``threadcheck mill --json``: a milling program's text against a target curve.
 
     ``target`` is the target's TOML text (``x``, ``y`` in ``t`` and ``z``, ``t``, ``material``,
     optional ``z``), ``tool_diameter`` and ``tolerance`` (0.01) in mm. The dict has
     ``verdict``, ``gouge_max``, ``leftover_max`` and the levels. ``svg`` writes the worst
     level's picture.
+    The program is read as ``verify`` reads it: ``default_units``, ``gcode_system``,
+    ``machine_type``, ``main``, ``linuxcnc_release`` and ``block_delete`` mean what they mean
+    there.
     """
     values = dict(locals())
     files = {"svg": values.pop("svg")}
@@ -364,7 +370,9 @@ def tap(program: str, tools: Optional[str] = None, dialect: Optional[str] = None
         gcode_system: Optional[str] = None,
         machine_type: Optional[str] = None, stock_bottom: Optional[float] = None,
         tap: Optional[str] = None, material: Optional[str] = None,
-        tap_kind: Optional[str] = None, machine: Optional[str] = None) -> TapReport:
+        tap_kind: Optional[str] = None, machine: Optional[str] = None,
+        main: Optional[str] = None, linuxcnc_release: Optional[str] = None,
+        block_delete: bool = False) -> TapReport:
     """``threadcheck tap --json``: a program's tapping cycles (G84, G74) against their taps and
     the drills that made the holes.
 
@@ -387,6 +395,9 @@ def tap(program: str, tools: Optional[str] = None, dialect: Optional[str] = None
     program, its ``spindle_torque_nm`` and ``spindle_power_kw`` hold each torque (``exceeds_spindle``
     and a warning note when the tap asks more), its ``tap_holder = "floating"`` lets the ``feed``
     check take an under-feed of up to 5 % (a tension-compression holder), said in the hole's notes.
+    The program is read as ``verify`` reads it: ``default_units``, ``gcode_system``,
+    ``machine_type``, ``main``, ``linuxcnc_release`` and ``block_delete`` mean what they mean
+    there.
     """
     report: TapReport = _json.loads(_run("tap", "json", dict(locals()))[0])
     return report
@@ -398,7 +409,9 @@ def thread_mill(program: str, thread: Optional[str] = None, cutter_diameter: Opt
                 comp_radius: Optional[float] = None, dialect: Optional[str] = None,
                 program_name: Optional[str] = None, allow_nonstandard: bool = False,
         tools: Optional[str] = None, default_units: Optional[str] = None,
-        cutter_teeth: Optional[int] = None) -> ThreadMillReport:
+        cutter_teeth: Optional[int] = None, gcode_system: Optional[str] = None,
+        machine_type: Optional[str] = None, main: Optional[str] = None,
+        linuxcnc_release: Optional[str] = None, block_delete: bool = False) -> ThreadMillReport:
     """``threadcheck thread-mill --json``: the thread a thread-milling program leaves.
 
     ``program`` is the program's text (helical G2/G3 in G17, the cutter centre's path),
@@ -414,6 +427,9 @@ def thread_mill(program: str, thread: Optional[str] = None, cutter_diameter: Opt
     cutter's teeth, for each helix's feed per tooth in ``feeds``. The dict has ``measured``,
     ``tooth_profile`` (the cutter's tooth alone), ``distortion_pitch_diameter_um``,
     ``distortion_flank_angles_deg``, ``helices``, ``checks`` (``lead`` among them) and ``pass``.
+    The program is read as ``verify`` reads it: ``default_units``, ``gcode_system``,
+    ``machine_type``, ``main``, ``linuxcnc_release`` and ``block_delete`` mean what they mean
+    there.
     """
     report: ThreadMillReport = _json.loads(_run("thread-mill", "json", dict(locals()))[0])
     return report

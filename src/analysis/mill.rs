@@ -666,6 +666,9 @@ pub struct MillSpec {
     pub target: Target,
     /// Allowed gouge and leftover, mm.
     pub tolerance: f64,
+    /// How the program is read: its machine, units, G-code system, main program, subprograms'
+    /// folders (its toolpath and N order are this check's own).
+    pub reading: ReadOptions,
 }
 
 /// One level's moves: (from, to, line), centres in the XY plane.
@@ -1150,7 +1153,7 @@ fn leftover(curve: &Curve<'_>, lm: &LevelMoves, r: f64, detail: bool) -> (Vec<f6
 /// prog.push_str("G0 Z2\nM30\n");
 /// let target = Target::from_toml("x = \"20*cos(t)\"\ny = \"20*sin(t)\"\nt = [0, 360]\nmaterial = \"inside\"", "boss.toml")?;
 /// let spec = MillSpec { program: (prog, "boss.nc".into()), dialect: Dialect::Fanuc, n_order: false,
-///                       tool_diameter: 6.0, target, tolerance: 0.01 };
+///                       tool_diameter: 6.0, target, tolerance: 0.01, reading: Default::default() };
 /// let r = mill(&spec)?;
 /// assert!((r.gouge_max - 23.0 * (1.0 - 5f64.to_radians().cos())).abs() < 1e-7);
 /// # Ok::<(), threadcheck::Error>(())
@@ -1160,12 +1163,8 @@ pub fn mill(spec: &MillSpec) -> Result<MillReport, Error> {
     let d = spec.tool_diameter;
     let r = 0.5 * d;
     let (text, name) = &spec.program;
-    let opts = ReadOptions {
-        moves: true,
-        allow_no_threading: true,
-        n_order: spec.n_order,
-        ..ReadOptions::default()
-    };
+    let opts =
+        ReadOptions { moves: true, allow_no_threading: true, n_order: spec.n_order, ..spec.reading.clone() };
     let top = spec.target.top();
     let bottom = spec.target.z.map(|z| z[0]);
     // Levels above the part cut air, levels below its bottom are left out: neither is measured.

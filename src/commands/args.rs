@@ -135,6 +135,111 @@ pub struct JsonArg {
     pub json: Option<String>,
 }
 
+/// How a program is read: the flags of every command that reads one (verify, passes, compare,
+/// correct, capability, tap, thread-mill, mill), declared here once. The API and Python take
+/// them as keys beside the command's own.
+#[serde_as]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ReadingArgs {
+    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma | mitsubishi | mazak | heidenhain | klartext (default:
+    /// the program's extension names it, .ngc linuxcnc, .mpf/.spf sinumerik, .min/.ssb/.sub okuma, .h klartext;
+    /// else fanuc)
+    #[cfg_attr(feature = "cli", arg(long))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub dialect: Option<Dialect>,
+    /// The units of a program that sets neither G20 nor G21 (the control's default).
+    #[cfg_attr(feature = "cli", arg(long, value_name = "mm|inch"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub default_units: Option<ProgramUnits>,
+    /// The main program of a file that holds several O-programs (default: the one no other
+    /// calls; the output says which)
+    #[cfg_attr(feature = "cli", arg(long, value_name = "O-NUMBER"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub main: Option<ONumber>,
+    /// The LinuxCNC release whose comparisons (EQ, NE, LE, GE) a linuxcnc program follows:
+    /// current (2.9.0 and later, within 1e-6; the default) or before-2.9 (EQ and NE within 1e-4,
+    /// as Debian 12's linuxcnc-uspace package does)
+    #[cfg_attr(feature = "cli", arg(long, value_name = "current|before-2.9"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub linuxcnc_release: Option<LinuxCncRelease>,
+    /// The G-code system a Fanuc-family lathe control (fanuc, mitsubishi, mazak) is set to: a (G92
+    /// threading cycle), b (G78 threading cycle, G92 coordinates) or c (G21 threading cycle, G78
+    /// multiple cycle). Default: the program's own words (a G91 is B's or C's: b), else a.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "a|b|c"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub gcode_system: Option<GCodeSystem>,
+    /// The machine the program runs on: lathe, mill (a machining centre; G90/G91 absolute and
+    /// incremental, G98/G99 return levels, G73/G74/G76 drilling, left-hand tapping, fine
+    /// boring) or mill-turn (each section by its plane: G18 a lathe's, G17/G19 a mill's).
+    /// Default: the machine file's `type`, else the program's own evidence (G17/G18, T12 M6 or
+    /// T0101, a drilling cycle's return level, U/W; both kinds: mill-turn), else a lathe; the
+    /// notes say which and why. A block that contradicts a lathe or mill given is refused.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "lathe|mill|mill-turn"))]
+    #[serde_as(as = "Option<DisplayFromStr>")]
+    pub machine_type: Option<crate::gcode::MachineType>,
+    /// The control's block-delete switch on: skip the program's blocks that begin with `/`
+    /// (default off: they run, and the notes say so).
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub block_delete: bool,
+    /// Folders where a LinuxCNC program's `o<name> call` finds `name.ngc` (its INI's
+    /// SUBROUTINE_PATH, `:` between folders), after the program's own folder, where Fanuc's
+    /// `M98 P2000` finds the file of O2000 too.
+    #[cfg_attr(feature = "cli", arg(long, value_name = "DIR[:DIR…]", value_delimiter = ':'))]
+    #[serde(skip)]
+    pub subroutine_path: Vec<PathBuf>,
+}
+
+impl ReadingArgs {
+    /// How the program is read: these flags, else what its project file or modeline sets
+    /// (`set`), else the machine file's `type` (`machine`), each said where it came from. The
+    /// dialect's choice, the subprograms' folders and the settings' notes are the caller's.
+    pub(crate) fn options(
+        &self,
+        set: &super::settings::Settings,
+        machine: Option<&crate::analysis::process::MachineProfile>,
+    ) -> crate::gcode::ReadOptions {
+        let (machine_type, machine_type_by) = match (self.machine_type, &set.machine_type) {
+            (Some(t), _) => (Some(t), None),
+            (None, Some((t, by))) => (Some(*t), Some(by.phrase())),
+            (None, None) => match machine.and_then(|m| m.machine_type.map(|t| (t, &m.name))) {
+                Some((t, name)) => (Some(t), Some(format!("the machine file '{name}'"))),
+                None => (None, None),
+            },
+        };
+        let (default_units, default_units_by) = set.default_units(self.default_units);
+        crate::gcode::ReadOptions {
+            default_units,
+            default_units_by,
+            main: self.main.map(|o| o.0),
+            linuxcnc: self.linuxcnc_release.unwrap_or_default(),
+            gcode_system: self.gcode_system,
+            machine_type,
+            machine_type_by,
+            block_delete: self.block_delete,
+            ..Default::default()
+        }
+    }
+
+    /// The flags given (by their keys) that describe a program: refused without one.
+    pub(crate) fn given_keys(&self) -> Vec<&'static str> {
+        [
+            ("dialect", self.dialect.is_some()),
+            ("default_units", self.default_units.is_some()),
+            ("main", self.main.is_some()),
+            ("gcode_system", self.gcode_system.is_some()),
+            ("linuxcnc_release", self.linuxcnc_release.is_some()),
+            ("machine_type", self.machine_type.is_some()),
+            ("block_delete", self.block_delete),
+            ("subroutine_path", !self.subroutine_path.is_empty()),
+        ]
+        .into_iter()
+        .filter_map(|(k, given)| given.then_some(k))
+        .collect()
+    }
+}
+
 /// The thread and its plan, or its program: the arguments of verify, passes, compare, correct
 /// and capability.
 #[serde_as]
@@ -234,52 +339,10 @@ pub struct PlanArgs {
     /// inch for threads of inch sizes (UN, Acme, NPT, BSW, BSP), else mm)
     #[cfg_attr(feature = "cli", arg(long, value_name = "mm|inch"))]
     pub units: Option<Units>,
-    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma | mitsubishi | mazak | heidenhain | klartext (default:
-    /// the program's extension names it, .ngc linuxcnc, .mpf/.spf sinumerik, .min/.ssb/.sub okuma, .h klartext;
-    /// else fanuc)
-    #[cfg_attr(feature = "cli", arg(long))]
-    #[serde_as(as = "Option<DisplayFromStr>")]
-    pub dialect: Option<Dialect>,
-    /// The units of a program that sets neither G20 nor G21 (the control's default).
-    #[cfg_attr(feature = "cli", arg(long, value_name = "mm|inch"))]
-    #[serde_as(as = "Option<DisplayFromStr>")]
-    pub default_units: Option<ProgramUnits>,
-    /// The main program of a file that holds several O-programs (default: the one no other
-    /// calls; the output says which)
-    #[cfg_attr(feature = "cli", arg(long, value_name = "O-NUMBER"))]
-    #[serde_as(as = "Option<DisplayFromStr>")]
-    pub main: Option<ONumber>,
-    /// The LinuxCNC release whose comparisons (EQ, NE, LE, GE) a linuxcnc program follows:
-    /// current (2.9.0 and later, within 1e-6; the default) or before-2.9 (EQ and NE within 1e-4,
-    /// as Debian 12's linuxcnc-uspace package does)
-    #[cfg_attr(feature = "cli", arg(long, value_name = "current|before-2.9"))]
-    #[serde_as(as = "Option<DisplayFromStr>")]
-    pub linuxcnc_release: Option<LinuxCncRelease>,
-    /// The G-code system a Fanuc-family lathe control (fanuc, mitsubishi, mazak) is set to: a (G92
-    /// threading cycle), b (G78 threading cycle, G92 coordinates) or c (G21 threading cycle, G78
-    /// multiple cycle). Default: the program's own words (a G91 is B's or C's: b), else a.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "a|b|c"))]
-    #[serde_as(as = "Option<DisplayFromStr>")]
-    pub gcode_system: Option<GCodeSystem>,
-    /// The machine the program runs on: lathe, mill (a machining centre; G90/G91 absolute and
-    /// incremental, G98/G99 return levels, G73/G74/G76 drilling, left-hand tapping, fine
-    /// boring) or mill-turn (each section by its plane: G18 a lathe's, G17/G19 a mill's).
-    /// Default: the machine file's `type`, else the program's own evidence (G17/G18, T12 M6 or
-    /// T0101, a drilling cycle's return level, U/W; both kinds: mill-turn), else a lathe; the
-    /// notes say which and why. A block that contradicts a lathe or mill given is refused.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "lathe|mill|mill-turn"))]
-    #[serde_as(as = "Option<DisplayFromStr>")]
-    pub machine_type: Option<crate::gcode::MachineType>,
-    /// The control's block-delete switch on: skip the program's blocks that begin with `/`
-    /// (default off: they run, and the notes say so).
-    #[cfg_attr(feature = "cli", arg(long))]
-    pub block_delete: bool,
-    /// Folders where a LinuxCNC program's `o<name> call` finds `name.ngc` (its INI's
-    /// SUBROUTINE_PATH, `:` between folders), after the program's own folder, where Fanuc's
-    /// `M98 P2000` finds the file of O2000 too.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "DIR[:DIR…]", value_delimiter = ':'))]
+    #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
-    pub subroutine_path: Vec<PathBuf>,
+    #[allow(missing_docs)]
+    pub reading: ReadingArgs,
     /// The program is an editor's document saved at `program_name` (the language server): its
     /// project file is read as a file's is, though the server reads no other file by name.
     #[cfg_attr(feature = "cli", arg(skip))]
@@ -404,9 +467,9 @@ impl PlanArgs {
     /// The flags given that a project file or a modeline also sets, with their values' words.
     pub(crate) fn given(&self) -> super::settings::Given {
         super::settings::Given {
-            dialect: self.dialect.map(|d| d.name().to_string()),
-            machine_type: self.machine_type.map(|m| m.name().to_string()),
-            default_units: self.default_units.map(|u| u.name().to_string()),
+            dialect: self.reading.dialect.map(|d| d.name().to_string()),
+            machine_type: self.reading.machine_type.map(|m| m.name().to_string()),
+            default_units: self.reading.default_units.map(|u| u.name().to_string()),
             machine: self.machine.as_ref().map(source_words),
             tools: None,
             thread: (!self.thread.is_empty()).then(|| self.thread.join(", ")),
@@ -416,9 +479,7 @@ impl PlanArgs {
     /// These arguments with what `set` sets where no flag is given.
     fn settled(&self, set: &super::settings::Settings) -> PlanArgs {
         let mut me = self.clone();
-        me.dialect = me.dialect.or(set.dialect.as_ref().map(|d| d.0));
-        me.machine_type = me.machine_type.or(set.machine_type.as_ref().map(|m| m.0));
-        me.default_units = me.default_units.or(set.default_units.as_ref().map(|u| u.0));
+        me.reading.dialect = me.reading.dialect.or(set.dialect.as_ref().map(|d| d.0));
         if me.machine.is_none() {
             me.machine = set.machine.as_ref().map(|m| Source::Path(m.0.clone()));
         }
@@ -443,21 +504,19 @@ impl PlanArgs {
         files: super::Files,
     ) -> Result<VerifySpec, Error> {
         if set.is_empty() {
-            return self.spec_as_given(files);
+            return self.spec_as_given(set, files);
         }
-        let mut s = self.settled(set).spec_as_given(files)?;
-        if self.machine_type.is_none() {
-            if let Some((_, by)) = &set.machine_type {
-                s.reading.machine_type_by = Some(by.phrase());
-            }
-        }
-        s.reading.default_units_by = set.default_units(self.default_units).1;
+        let mut s = self.settled(set).spec_as_given(set, files)?;
         s.reading.settings_notes = set.notes(&self.given());
         Ok(s)
     }
 
-    /// The verification the arguments alone describe.
-    fn spec_as_given(&self, files: super::Files) -> Result<VerifySpec, Error> {
+    /// The verification the arguments describe, with `set`'s reading where they give none.
+    fn spec_as_given(
+        &self,
+        set: &super::settings::Settings,
+        files: super::Files,
+    ) -> Result<VerifySpec, Error> {
         let first = self.first_thread();
         let mut s = VerifySpec::new(first);
         s.internal = self.internal;
@@ -506,29 +565,24 @@ impl PlanArgs {
                     Source::Path(p) => p.clone(),
                     Source::Text(_) => PathBuf::from(&name),
                 };
-                let (dialect, from) = dialect_for(self.dialect, &shown);
+                let (dialect, from) = dialect_for(self.reading.dialect, &shown);
                 s.program = Some((source.program(&name), dialect));
                 s.reading.dialect_from = from;
                 // A program read from a file finds its subprograms' files where the control
                 // would: its own folder, then the subroutine path.
                 if let (Source::Path(p), super::Files::Allowed) = (source, files) {
-                    s.reading.sub_files = Some(sub_finder_in(program_folder(p), &self.subroutine_path));
+                    s.reading.sub_files =
+                        Some(sub_finder_in(program_folder(p), &self.reading.subroutine_path));
                 }
             }
             None => {
-                let given = [
-                    ("dialect", self.dialect.is_some()),
-                    ("default_units", self.default_units.is_some()),
-                    ("main", self.main.is_some()),
-                    ("program_name", self.program_name.is_some()),
-                    ("gcode_system", self.gcode_system.is_some()),
-                    ("linuxcnc_release", self.linuxcnc_release.is_some()),
-                    ("machine_type", self.machine_type.is_some()),
-                    ("block_delete", self.block_delete),
-                    ("subroutine_path", !self.subroutine_path.is_empty()),
-                    ("machine", self.machine.is_some()),
-                ];
-                if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
+                let mut given = self.reading.given_keys();
+                given.extend(
+                    [("program_name", self.program_name.is_some()), ("machine", self.machine.is_some())]
+                        .into_iter()
+                        .filter_map(|(k, g)| g.then_some(k)),
+                );
+                if let Some(key) = given.first() {
                     return Err(Error::Input(format!(
                         "‹{key}› describes a program: give the program with ‹program› too"
                     )));
@@ -536,17 +590,11 @@ impl PlanArgs {
             }
         }
         s.machine = self.machine_profile()?;
-        s.reading.default_units = self.default_units;
-        s.reading.main = self.main.map(|o| o.0);
-        s.reading.linuxcnc = self.linuxcnc_release.unwrap_or_default();
-        s.reading.gcode_system = self.gcode_system;
-        s.reading.machine_type = self.machine_type;
-        // The machine file's type, unless the flag says otherwise.
-        if let (None, Some(t)) = (self.machine_type, s.machine.as_ref().and_then(|m| m.machine_type)) {
-            s.reading.machine_type = Some(t);
-            s.reading.machine_type_by = s.machine.as_ref().map(|m| format!("the machine file '{}'", m.name));
-        }
-        s.reading.block_delete = self.block_delete;
+        s.reading = crate::gcode::ReadOptions {
+            dialect_from: s.reading.dialect_from,
+            sub_files: s.reading.sub_files.take(),
+            ..self.reading.options(set, s.machine.as_ref())
+        };
         s.validate()?;
         Ok(s)
     }
@@ -662,17 +710,10 @@ pub struct ProgramArgs {
     /// What messages call a program given as text; its extension chooses the dialect.
     #[cfg_attr(feature = "cli", arg(skip))]
     pub program_name: Option<String>,
-    /// fanuc | haas | sinumerik | linuxcnc | dyna | okuma | mitsubishi | mazak | heidenhain | klartext (default: by
-    /// the extension, else fanuc)
-    #[cfg_attr(feature = "cli", arg(long))]
-    #[serde_as(as = "Option<DisplayFromStr>")]
-    pub dialect: Option<Dialect>,
-    /// Folders where a LinuxCNC program's `o<name> call` finds `name.ngc` (its INI's
-    /// SUBROUTINE_PATH, `:` between folders), after the program's own folder, where Fanuc's
-    /// `M98 P2000` finds the file of O2000 too.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "DIR[:DIR…]", value_delimiter = ':'))]
+    #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
-    pub subroutine_path: Vec<PathBuf>,
+    #[allow(missing_docs)]
+    pub reading: ReadingArgs,
 }
 
 impl ProgramArgs {
@@ -682,7 +723,7 @@ impl ProgramArgs {
     pub fn sub_files(&self, files: super::Files) -> Option<crate::gcode::SubFinder> {
         match (&self.program, files) {
             (Some(Source::Path(p)), super::Files::Allowed) => {
-                Some(sub_finder_in(program_folder(p), &self.subroutine_path))
+                Some(sub_finder_in(program_folder(p), &self.reading.subroutine_path))
             }
             _ => None,
         }
@@ -704,7 +745,7 @@ impl ProgramArgs {
             self.program.as_ref().ok_or_else(|| Error::Input(format!("{command} needs ‹program›")))?;
         let (shown, text) = source.load(self.program_name.as_deref().unwrap_or("<program>"))?;
         // A project file's or a modeline's dialect is stated by the settings' notes.
-        let dialect = self.dialect.or(set.dialect.as_ref().map(|d| d.0));
+        let dialect = self.reading.dialect.or(set.dialect.as_ref().map(|d| d.0));
         let (dialect, from) = dialect_for(dialect, Path::new(&shown));
         Ok(((text, shown), dialect, from))
     }

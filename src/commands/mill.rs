@@ -49,7 +49,7 @@ impl Job for MillArgs {
     /// Pass when the gouge and the leftover are within the tolerance.
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
         let set = self.file.settings(request.files)?;
-        let (program, dialect, _) = self.file.read("mill", &set)?;
+        let (program, dialect, from) = self.file.read("mill", &set)?;
         let target = match &self.target {
             None => return Err(Error::Input("mill needs ‹target› (its TOML)".into())),
             Some(Source::Path(p)) => Target::read(p)?,
@@ -64,6 +64,17 @@ impl Job for MillArgs {
                 .ok_or_else(|| Error::Input("mill needs ‹tool_diameter› (mm)".into()))?,
             target,
             tolerance: self.tolerance.unwrap_or(0.01),
+            reading: crate::gcode::ReadOptions {
+                dialect_from: from,
+                sub_files: self.file.sub_files(request.files),
+                settings_notes: set.notes(&super::settings::Given {
+                    dialect: self.file.reading.dialect.map(|d| d.name().to_string()),
+                    machine_type: self.file.reading.machine_type.map(|m| m.name().to_string()),
+                    default_units: self.file.reading.default_units.map(|u| u.name().to_string()),
+                    ..Default::default()
+                }),
+                ..self.file.reading.options(&set, None)
+            },
         };
         let r = crate::analysis::mill::mill(&spec)?;
         let inputs = self.file.inputs().into_iter().chain(self.target.as_ref().and_then(Source::file));

@@ -39,7 +39,7 @@ mod thread_mill;
 mod verify;
 mod write;
 
-pub use args::{JsonArg, ONumber, PlanArgs, ProgramArgs, Source};
+pub use args::{JsonArg, ONumber, PlanArgs, ProgramArgs, ReadingArgs, Source};
 pub use capability::{CapabilityArgs, CAPABLE_CPK};
 pub use compare::CompareArgs;
 pub use correct::CorrectArgs;
@@ -290,15 +290,54 @@ pub trait Job {
 /// ([`Shared`](ApiArgs::Shared)), which clap flattens into it.
 pub trait ApiArgs: serde::de::DeserializeOwned + Sized {
     /// The arguments shared with other commands: [`PlanArgs`], [`ProgramArgs`] or [`NoShared`].
-    type Shared: serde::de::DeserializeOwned;
+    type Shared: SharedArgs;
     /// Where they sit in the struct.
     fn shared_mut(&mut self) -> Option<&mut Self::Shared>;
 
-    /// The keys the command takes.
+    /// The keys the command takes: the shared arguments', the program-reading flags' where
+    /// they read a program ([`ReadingArgs`]), its own.
     fn keys() -> Vec<&'static str> {
         let shared = serde_aux::serde_introspection::serde_introspect::<Self::Shared>();
         let own = serde_aux::serde_introspection::serde_introspect::<Self>();
-        shared.iter().chain(own).copied().collect()
+        shared.iter().chain(reading_keys::<Self::Shared>()).chain(own).copied().collect()
+    }
+}
+
+/// Arguments that several commands share; those that read a program hold the reading flags.
+pub trait SharedArgs: serde::de::DeserializeOwned {
+    /// They read a program, and hold its reading flags.
+    const READS: bool;
+    /// Where the program-reading flags sit (`None` when they read none).
+    fn reading_mut(&mut self) -> Option<&mut args::ReadingArgs>;
+}
+
+impl SharedArgs for PlanArgs {
+    const READS: bool = true;
+    fn reading_mut(&mut self) -> Option<&mut args::ReadingArgs> {
+        Some(&mut self.reading)
+    }
+}
+
+impl SharedArgs for ProgramArgs {
+    const READS: bool = true;
+    fn reading_mut(&mut self) -> Option<&mut args::ReadingArgs> {
+        Some(&mut self.reading)
+    }
+}
+
+impl SharedArgs for NoShared {
+    const READS: bool = false;
+    fn reading_mut(&mut self) -> Option<&mut args::ReadingArgs> {
+        None
+    }
+}
+
+/// The reading flags' keys where `S` reads a program.
+fn reading_keys<S: SharedArgs>() -> &'static [&'static str] {
+    if S::READS {
+        serde_aux::serde_introspection::serde_introspect::<args::ReadingArgs>()
+    } else {
+        &[]
     }
 }
 
@@ -315,10 +354,16 @@ fn from_map<T: ApiArgs>(name: &str, map: Map<String, Value>) -> Result<T, Error>
         return Err(Error::Input(format!("{name} takes no argument '{k}'; it takes {}", keys.join(", "))));
     }
     let shared_keys = serde_aux::serde_introspection::serde_introspect::<T::Shared>();
+    let reading_keys = reading_keys::<T::Shared>();
+    let (reading, rest): (Map<String, Value>, Map<String, Value>) =
+        map.into_iter().filter(|(_, v)| !v.is_null()).partition(|(k, _)| reading_keys.contains(&k.as_str()));
     let (shared, own): (Map<String, Value>, Map<String, Value>) =
-        map.into_iter().filter(|(_, v)| !v.is_null()).partition(|(k, _)| shared_keys.contains(&k.as_str()));
+        rest.into_iter().partition(|(k, _)| shared_keys.contains(&k.as_str()));
     let mut args: T = typed(name, own)?;
-    let shared: T::Shared = typed(name, shared)?;
+    let mut shared: T::Shared = typed(name, shared)?;
+    if let Some(r) = shared.reading_mut() {
+        *r = typed(name, reading)?;
+    }
     if let Some(s) = args.shared_mut() {
         *s = shared;
     }

@@ -3,7 +3,7 @@
 use super::args::{tool_table, ProgramArgs, Source};
 use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
 use crate::analysis::tap::TapSpec;
-use crate::gcode::{GCodeSystem, ProgramUnits, ReadOptions};
+use crate::gcode::ReadOptions;
 use crate::Error;
 use serde::Deserialize;
 use serde_with::{serde_as, DisplayFromStr};
@@ -29,20 +29,6 @@ pub struct TapArgs {
     /// Accept a diameter/pitch pair outside the standard series.
     #[cfg_attr(feature = "cli", arg(long))]
     pub allow_nonstandard: bool,
-    /// The units of a program that sets neither G20 nor G21.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "mm|inch"))]
-    #[serde_as(as = "Option<DisplayFromStr>")]
-    pub default_units: Option<ProgramUnits>,
-    /// The G-code system of a Fanuc-family control (fanuc, mitsubishi, mazak): a (the default),
-    /// b or c.
-    #[cfg_attr(feature = "cli", arg(long, value_name = "a|b|c"))]
-    #[serde_as(as = "Option<DisplayFromStr>")]
-    pub gcode_system: Option<GCodeSystem>,
-    /// The machine the program runs on: lathe, mill or mill-turn (default: the machine file's
-    /// `type`, else the program's evidence, else a lathe; the notes say which and why).
-    #[cfg_attr(feature = "cli", arg(long, value_name = "lathe|mill|mill-turn"))]
-    #[serde_as(as = "Option<DisplayFromStr>")]
-    pub machine_type: Option<crate::gcode::MachineType>,
     /// Z of the stock's bottom face, mm: a hole whose drill passes it with its full diameter is a
     /// through hole, whose depth needs no room below the tap.
     #[cfg_attr(feature = "cli", arg(long, value_name = "Z", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
@@ -87,35 +73,19 @@ impl Job for TapArgs {
         let tools_source =
             self.tools.clone().or_else(|| set.tools.as_ref().map(|t| Source::Path(t.0.clone())));
         let machine = super::args::machine_profile(machine_source.as_ref())?;
-        // The flag's machine type, else the project file's or the modeline's, else the machine
-        // file's.
-        let (machine_type, machine_type_by) = match (self.machine_type, &set.machine_type) {
-            (Some(t), _) => (Some(t), None),
-            (None, Some((t, by))) => (Some(*t), Some(by.phrase())),
-            (None, None) => match machine.as_ref().and_then(|m| m.machine_type.map(|t| (t, &m.name))) {
-                Some((t, name)) => (Some(t), Some(format!("the machine file '{name}'"))),
-                None => (None, None),
-            },
-        };
         let settings_notes = set.notes(&super::settings::Given {
-            dialect: self.file.dialect.map(|d| d.name().to_string()),
-            machine_type: self.machine_type.map(|m| m.name().to_string()),
-            default_units: self.default_units.map(|u| u.name().to_string()),
+            dialect: self.file.reading.dialect.map(|d| d.name().to_string()),
+            machine_type: self.file.reading.machine_type.map(|m| m.name().to_string()),
+            default_units: self.file.reading.default_units.map(|u| u.name().to_string()),
             machine: self.machine.as_ref().map(super::args::source_words),
             tools: self.tools.as_ref().map(super::args::source_words),
             thread: self.tap.clone(),
         });
-        let (default_units, default_units_by) = set.default_units(self.default_units);
         let reading = ReadOptions {
             dialect_from: from,
-            default_units,
-            default_units_by,
             settings_notes,
-            gcode_system: self.gcode_system,
-            machine_type,
-            machine_type_by,
             sub_files: self.file.sub_files(request.files),
-            ..Default::default()
+            ..self.file.reading.options(&set, machine.as_ref())
         };
         let tools = match &tools_source {
             Some(t) => tool_table(t, request.files)?,

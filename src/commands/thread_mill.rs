@@ -6,7 +6,7 @@ use crate::analysis::thread_mill::ThreadMillSpec;
 use crate::geometry::helix::Cutter;
 use crate::Error;
 use serde::Deserialize;
-use serde_with::{serde_as, DisplayFromStr};
+use serde_with::serde_as;
 
 /// The arguments of `thread-mill`.
 #[serde_as]
@@ -59,10 +59,6 @@ pub struct ThreadMillArgs {
     /// the left (G41) or right (G42) of the programmed helix.
     #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
     pub comp_radius: Option<f64>,
-    /// The units of a program that sets neither G20 nor G21 (default mm, stated).
-    #[cfg_attr(feature = "cli", arg(long, value_name = "mm|inch"))]
-    #[serde_as(as = "Option<DisplayFromStr>")]
-    pub default_units: Option<crate::gcode::ProgramUnits>,
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
     #[allow(missing_docs)]
@@ -85,10 +81,10 @@ impl Job for ThreadMillArgs {
             self.thread.clone().or_else(|| set.thread.as_ref().and_then(|t| t.0.first().cloned()));
         let tools_source =
             self.tools.clone().or_else(|| set.tools.as_ref().map(|t| Source::Path(t.0.clone())));
-        let (default_units, default_units_by) = set.default_units(self.default_units);
         let settings_notes = set.notes(&super::settings::Given {
-            dialect: self.file.dialect.map(|d| d.name().to_string()),
-            default_units: self.default_units.map(|u| u.name().to_string()),
+            dialect: self.file.reading.dialect.map(|d| d.name().to_string()),
+            machine_type: self.file.reading.machine_type.map(|m| m.name().to_string()),
+            default_units: self.file.reading.default_units.map(|u| u.name().to_string()),
             tools: self.tools.as_ref().map(super::args::source_words),
             thread: self.thread.clone(),
             ..Default::default()
@@ -140,11 +136,9 @@ impl Job for ThreadMillArgs {
             comp_radius: self.comp_radius,
             reading: crate::gcode::ReadOptions {
                 dialect_from: from,
-                default_units,
-                default_units_by,
                 sub_files: self.file.sub_files(request.files),
                 settings_notes,
-                ..Default::default()
+                ..self.file.reading.options(&set, None)
             },
             teeth: self.cutter_teeth,
         };

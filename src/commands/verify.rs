@@ -402,7 +402,7 @@ impl VerifyArgs {
         use crate::report::lsp::{EditorFix, EditorView};
         // A document saved on this computer finds its subprograms' files as the program does.
         let own = std::path::Path::new(name).parent().filter(|d| d.is_absolute() && d.is_dir());
-        let finder = own.map(|d| super::args::sub_finder_in(d, &self.plan.subroutine_path));
+        let finder = own.map(|d| super::args::sub_finder_in(d, &self.plan.reading.subroutine_path));
         match self.verify_one_finding(Source::Text(text), Some(name.to_string()), tools, request, finder) {
             Ok((shown, _, pv)) => {
                 let fixes = pv

@@ -475,7 +475,7 @@ impl<W: Write> Server<W> {
                 .map_err(|e| e.one_line_for(crate::Audience::Api))?,
         );
         let mut settings = args;
-        settings.plan.subroutine_path = subroutine_path;
+        settings.plan.reading.subroutine_path = subroutine_path;
         self.settings = Arc::new(settings);
         Ok(())
     }
