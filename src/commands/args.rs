@@ -316,7 +316,9 @@ pub struct PlanArgs {
     /// Tip diameter of the last pass (default: what puts the pitch diameter mid-tolerance).
     #[cfg_attr(feature = "cli", arg(long, value_name = "DIA", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
     pub final_x: Option<f64>,
-    /// Blank (external) or bore (internal) diameter, mm.
+    /// Blank (external) or bore (internal) diameter, mm (default: the middle of the class's major
+    /// diameter limits (external) or D1 limits (internal); with a full-profile insert that tops
+    /// the crest, d + 0.1 or D1 − 0.1).
     #[cfg_attr(feature = "cli", arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
     pub blank_diameter: Option<f64>,
     /// Take the passes from this G-code program (a file on the command line, its text through
@@ -332,7 +334,8 @@ pub struct PlanArgs {
     #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.toml|training-lathe", value_parser = Source::path))]
     #[serde(deserialize_with = "source_text")]
     pub machine: Option<Source>,
-    /// The insert's side clearance angle, degrees: checks the leading flank against the helix.
+    /// The insert's side clearance angle, degrees: checks the leading flank against the helix
+    /// (default: not given, the leading flank's clearance is not checked).
     #[cfg_attr(feature = "cli", arg(long, value_name = "DEG", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
     pub clearance_angle: Option<f64>,
     /// Lengths in the text, the SVG and the HTML: mm, or inches with the mm beside them (default:

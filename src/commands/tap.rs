@@ -30,7 +30,8 @@ pub struct TapArgs {
     #[cfg_attr(feature = "cli", arg(long))]
     pub allow_nonstandard: bool,
     /// Z of the stock's bottom face, mm: a hole whose drill passes it with its full diameter is a
-    /// through hole, whose depth needs no room below the tap.
+    /// through hole, whose depth needs no room below the tap (default: the program's own stock
+    /// definition, Klartext's BLK FORM, else every hole blind).
     #[cfg_attr(feature = "cli", arg(long, value_name = "Z", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
     pub stock_bottom: Option<f64>,
     /// The tap of the tapping cycles whose tool is not known (no T before them and no in_spindle

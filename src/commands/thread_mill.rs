@@ -45,18 +45,21 @@ pub struct ThreadMillArgs {
     /// --cutter-row-pitch).
     #[cfg_attr(feature = "cli", arg(long, value_name = "N"))]
     pub cutter_rows: Option<u32>,
-    /// A multi-form cutter's row spacing, mm.
+    /// A multi-form cutter's row spacing, mm (no default: a cutter of more rows needs it).
     #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
     pub cutter_row_pitch: Option<f64>,
     /// The cutter's teeth (flutes), for each helix's feed per tooth at the edge (edge feed / (S ·
-    /// teeth)); any cutter, given or from a tool table or comment.
+    /// teeth)); any cutter, given or from a tool table or comment (default: not given, the feed
+    /// per tooth is not computed).
     #[cfg_attr(feature = "cli", arg(long, value_name = "N"))]
     pub cutter_teeth: Option<u32>,
-    /// The bore (internal) or blank (external) diameter, mm.
+    /// The bore (internal) or blank (external) diameter, mm (default: the middle of the class's D1
+    /// limits (internal) or major diameter limits (external), stated).
     #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
     pub blank_diameter: Option<f64>,
     /// The value G41/G42 compensate by (the D register), mm: the cutter centre runs that far to
-    /// the left (G41) or right (G42) of the programmed helix.
+    /// the left (G41) or right (G42) of the programmed helix (default: the tool table's
+    /// `[offsets]`; a helix under compensation without either is refused).
     #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
     pub comp_radius: Option<f64>,
     #[cfg_attr(feature = "cli", command(flatten))]

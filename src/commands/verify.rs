@@ -41,7 +41,8 @@ pub struct VerifyArgs {
     #[cfg_attr(feature = "cli", arg(long))]
     pub gauge_only: bool,
     /// Z of the stock's bottom face, mm: a tapped hole whose drill passes it with its full
-    /// diameter is a through hole, whose depth needs no room below the tap.
+    /// diameter is a through hole, whose depth needs no room below the tap (default: the
+    /// program's own stock definition, Klartext's BLK FORM, else every hole blind).
     #[cfg_attr(feature = "cli", arg(long, value_name = "Z", allow_hyphen_values = true, value_parser = crate::commands::args::finite))]
     pub stock_bottom: Option<f64>,
     /// Skip the per-pass chip and edge metrics: a faster verdict.

@@ -2,6 +2,20 @@
 //! fact it breaks; the CLI prints it and exits with code 2.
 
 /// Everything that can go wrong before a verdict.
+///
+/// A message names the argument it concerns by its key (`‹min_depth›`, see [`Audience`]):
+/// shown (`Display`, `to_string`) as a library caller passes it, `min_depth`; the command line,
+/// the API and the page name it their own way with [`one_line_for`](Error::one_line_for).
+///
+/// ```
+/// use threadcheck::{Audience, Error};
+/// let e = Error::Input("‹min_depth› must not exceed the thread's depth".into());
+/// assert_eq!(e.to_string(), "min_depth must not exceed the thread's depth");
+/// assert_eq!(e.one_line_for(Audience::Cli), "--min-depth must not exceed the thread's depth");
+/// let e = Error::Program { file: "a.nc".into(), line: 3, column: 1, message: "give ‹gcode_system› b".into() };
+/// assert_eq!(e.to_string(), "a.nc:3:1: give gcode_system b");
+/// assert_eq!(e.one_line_for(Audience::Cli), "a.nc:3:1: give --gcode-system b");
+/// ```
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
@@ -9,7 +23,7 @@ pub enum Error {
     #[error(transparent)]
     Designation(#[from] DesignationError),
     /// A G-code program that cannot be read or expanded, with its place.
-    #[error("{file}:{line}:{column}: {message}")]
+    #[error("{file}:{line}:{column}: {}", Audience::Api.words(message))]
     Program {
         /// File name as given.
         file: String,
@@ -21,7 +35,7 @@ pub enum Error {
         message: String,
     },
     /// A TOML file (insert, plan) that cannot be read, with its place.
-    #[error("{file}: {message}")]
+    #[error("{file}: {}", Audience::Api.words(message))]
     File {
         /// File name as given.
         file: String,
@@ -29,10 +43,10 @@ pub enum Error {
         message: String,
     },
     /// Geometry that cannot exist or cannot be cut (a tip radius too large, no crest left, …).
-    #[error("{0}")]
+    #[error("{}", Audience::Api.words(.0))]
     Geometry(String),
     /// An option value or combination that makes no sense.
-    #[error("{0}")]
+    #[error("{}", Audience::Api.words(.0))]
     Input(String),
     /// The embedded data is broken (a build defect, never the user's input).
     #[error("embedded data: {0}")]
@@ -88,6 +102,8 @@ impl Error {
                 out.push_str(": ");
                 out.push_str(&one_line(&source.to_string()));
             }
+            // The message as written, its keys for the reader to name (one_line_for).
+            Error::Geometry(message) | Error::Input(message) => out = one_line(message),
             _ => out = one_line(&self.to_string()),
         }
         out
