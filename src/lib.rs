@@ -95,7 +95,7 @@ pub use gcode::{
     MachineType, Operation, PassXWord, Program, ProgramUnits, RadialPlace, ReadOptions, Spindle, SpindleDir,
     SubFinder, WordEdit, WordForm, WordMeans, XWords,
 };
-pub use gcode::{Alarm, ControlEvent, ControlRule, Level, PROGRAM_EXTENSIONS};
+pub use gcode::{Alarm, ControlEvent, ControlRule, Facts, Level, PROGRAM_EXTENSIONS};
 
 // Toolpaths: passes, generated plans, infeeds and depth schedules.
 pub use toolpath::passes::{Infeed, InfeedChoice, Pass, PlanSpec, Schedule};

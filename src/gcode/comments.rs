@@ -18,35 +18,6 @@ pub struct Comment {
     pub text: String,
 }
 
-/// The comment forms of a dialect: `(…)` on the line, `;` to the line's end, `[…]`.
-#[derive(Clone, Copy)]
-struct Forms {
-    parentheses: bool,
-    semicolon: bool,
-    brackets: bool,
-}
-
-fn forms(dialect: Dialect) -> Forms {
-    match dialect {
-        // Fanuc's family, Haas, Okuma and Dyna: `(…)`; `;` ends a block there.
-        Dialect::Fanuc
-        | Dialect::Haas
-        | Dialect::Okuma
-        | Dialect::Mitsubishi
-        | Dialect::Mazak
-        | Dialect::Dyna => Forms { parentheses: true, semicolon: false, brackets: false },
-        // LinuxCNC: `(…)` and `;` to the line's end.
-        Dialect::LinuxCnc => Forms { parentheses: true, semicolon: true, brackets: false },
-        // Sinumerik: `;` to the line's end (parentheses are expressions and calls).
-        Dialect::Sinumerik => Forms { parentheses: false, semicolon: true, brackets: false },
-        // Heidenhain DIN: `[…]`, and `(…)` as its Fanuc-like blocks read them.
-        Dialect::Heidenhain => Forms { parentheses: true, semicolon: false, brackets: true },
-        // Klartext: `;` to the line's end (the cycles' parameter names are read too, and name
-        // no thread).
-        Dialect::Klartext => Forms { parentheses: false, semicolon: true, brackets: false },
-    }
-}
-
 /// Every comment of `text` in `dialect`, in order. An unclosed `(` or `[` runs to the line's
 /// end (the lexer refuses such a line where it is read).
 ///
@@ -59,7 +30,7 @@ fn forms(dialect: Dialect) -> Forms {
 /// assert_eq!(s[0].text, " THREAD M24x2");
 /// ```
 pub fn comments(text: &str, dialect: Dialect) -> Vec<Comment> {
-    let f = forms(dialect);
+    let f = dialect.facts().comments;
     let mut out = Vec::new();
     for (i, line) in text.lines().enumerate() {
         if dialect == Dialect::Klartext {

@@ -540,18 +540,7 @@ fn heidenhain_line(
 
 /// The expression syntax of a dialect.
 pub fn syntax_of(d: Dialect) -> Syntax {
-    match d {
-        Dialect::Fanuc
-        | Dialect::Haas
-        | Dialect::Okuma
-        | Dialect::Mitsubishi
-        | Dialect::Mazak
-        | Dialect::Heidenhain
-        | Dialect::Klartext => Syntax::MacroB,
-        Dialect::LinuxCnc => Syntax::LinuxCnc,
-        Dialect::Dyna => Syntax::Dyna,
-        Dialect::Sinumerik => Syntax::Sinumerik,
-    }
+    d.facts().syntax
 }
 
 /// One line of a bracket dialect, blanks removed, with the column of every kept character.
@@ -873,17 +862,7 @@ fn keyword(
     let c = &s.c;
     let syntax = syntax_of(dialect);
     let col = s.col_at(i);
-    let macro_b = match dialect {
-        Dialect::Fanuc
-        | Dialect::Haas
-        | Dialect::Dyna
-        | Dialect::Okuma
-        | Dialect::Mitsubishi
-        | Dialect::Mazak
-        | Dialect::Heidenhain
-        | Dialect::Klartext => true,
-        Dialect::Sinumerik | Dialect::LinuxCnc => false,
-    };
+    let macro_b = dialect.facts().macro_b_keywords;
     let refuse = |m: String| Err((ln, col, m));
     let mut j = i + w.len();
     // The keywords may be run together with what follows (`GOTO10`, `END1`, `DO1`).
@@ -1448,34 +1427,12 @@ fn sinumerik_word(
 
 /// LinuxCNC's `;` starts a comment to the line's end; elsewhere it ends a block (EOB).
 fn semicolon_ends_line(dialect: Dialect) -> bool {
-    match dialect {
-        Dialect::LinuxCnc => true,
-        Dialect::Fanuc
-        | Dialect::Haas
-        | Dialect::Sinumerik
-        | Dialect::Dyna
-        | Dialect::Okuma
-        | Dialect::Mitsubishi
-        | Dialect::Mazak
-        | Dialect::Heidenhain
-        | Dialect::Klartext => false,
-    }
+    dialect.facts().semicolon_ends_line
 }
 
 /// O-words are LinuxCNC's flow control (`o100 sub`), program numbers elsewhere.
 fn o_words_are_flow(dialect: Dialect) -> bool {
-    match dialect {
-        Dialect::LinuxCnc => true,
-        Dialect::Fanuc
-        | Dialect::Haas
-        | Dialect::Sinumerik
-        | Dialect::Dyna
-        | Dialect::Okuma
-        | Dialect::Mitsubishi
-        | Dialect::Mazak
-        | Dialect::Heidenhain
-        | Dialect::Klartext => false,
-    }
+    dialect.facts().o_words_are_flow
 }
 
 #[cfg(test)]

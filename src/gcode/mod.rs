@@ -22,6 +22,7 @@ mod dialect;
 mod dyna;
 mod edit;
 pub(crate) mod expr;
+mod facts;
 mod fanuc;
 mod haas;
 mod heidenhain;
@@ -43,6 +44,7 @@ use serde::Serialize;
 pub use comments::{comments, Comment};
 pub use control::{alarm, Alarm, ControlEvent, ControlRule, Level};
 pub use edit::{rewrite_words, WordEdit};
+pub use facts::Facts;
 pub use machine::{MachineReading, MachineType};
 pub use motion::Move;
 
@@ -112,18 +114,7 @@ impl Dialect {
 
     /// The dialect's command-line name.
     pub fn name(self) -> &'static str {
-        match self {
-            Dialect::Fanuc => "fanuc",
-            Dialect::Haas => "haas",
-            Dialect::Sinumerik => "sinumerik",
-            Dialect::LinuxCnc => "linuxcnc",
-            Dialect::Dyna => "dyna",
-            Dialect::Okuma => "okuma",
-            Dialect::Mitsubishi => "mitsubishi",
-            Dialect::Mazak => "mazak",
-            Dialect::Heidenhain => "heidenhain",
-            Dialect::Klartext => "klartext",
-        }
+        self.facts().name
     }
 
     /// Reads a dialect name.
@@ -153,63 +144,25 @@ impl Dialect {
     /// ```
     pub fn by_extension(path: &std::path::Path) -> Option<Dialect> {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
-        match ext.as_str() {
-            "ngc" => Some(Dialect::LinuxCnc),
-            "mpf" | "spf" => Some(Dialect::Sinumerik),
-            // OSP main programs and subprograms.
-            "min" | "ssb" | "sub" => Some(Dialect::Okuma),
-            // TNC conversational programs.
-            "h" => Some(Dialect::Klartext),
-            _ => None,
-        }
+        Dialect::ALL.into_iter().find(|d| d.facts().extensions.contains(&ext.as_str()))
     }
 
     /// The G codes that set inch and mm units: G70/G71 on Sinumerik (which also reads
     /// G700/G710), G20/G21 elsewhere; none on Heidenhain's lathe controls, whose unit is a
-    /// machine setting (G20 and G21 define the blank there).
+    /// machine setting (G20 and G21 define the blank there), nor in Klartext (BEGIN PGM's).
     pub fn unit_codes(self) -> Option<(u32, u32)> {
-        match self {
-            Dialect::Sinumerik => Some((70, 71)),
-            Dialect::Fanuc
-            | Dialect::Haas
-            | Dialect::LinuxCnc
-            | Dialect::Dyna
-            | Dialect::Okuma
-            | Dialect::Mitsubishi
-            | Dialect::Mazak => Some((20, 21)),
-            // The unit is BEGIN PGM's (MM or INCH).
-            Dialect::Heidenhain | Dialect::Klartext => None,
-        }
+        self.facts().unit_codes
     }
 
     /// Whether the dialect is read as the Fanuc model with its G-code systems A, B and C
     /// (`--gcode-system`): Fanuc itself, and the controls reported compatible with it.
     pub fn fanuc_family(self) -> bool {
-        match self {
-            Dialect::Fanuc | Dialect::Mitsubishi | Dialect::Mazak => true,
-            Dialect::Haas
-            | Dialect::Sinumerik
-            | Dialect::LinuxCnc
-            | Dialect::Dyna
-            | Dialect::Okuma
-            | Dialect::Heidenhain
-            | Dialect::Klartext => false,
-        }
+        self.facts().fanuc_family
     }
 
     /// What threading this dialect reads, for messages.
     pub(crate) fn threading_words(self) -> &'static str {
-        match self {
-            Dialect::Fanuc => "G32, G92 and G76",
-            Dialect::Haas => "G32, G92 and G76",
-            Dialect::Sinumerik => "G33, CYCLE97, L96 and L97",
-            Dialect::LinuxCnc => "G33 and G76",
-            Dialect::Dyna => "none: the Dyna THREAD cycle is not supported",
-            Dialect::Okuma => "G33 and the compound cycles G71 and G72",
-            Dialect::Mitsubishi | Dialect::Mazak => "G32, G92 and G76 (the Fanuc model)",
-            Dialect::Heidenhain => "G31 and G33",
-            Dialect::Klartext => "turned threads: a Klartext program taps (cycles 206, 207, 209) and mills threads (262 to 265, 267, CP helices) instead",
-        }
+        self.facts().threading_words
     }
 }
 
