@@ -623,7 +623,8 @@ fn the_feed_convention_names_the_factor() {
 #[test]
 fn findings_reach_sarif_with_their_levels_and_text_with_their_lines() {
     let dir = tempdir("before-machine-sarif");
-    for name in ["lc-g33.1-x-move", "fanuc-run-in-short"] {
+    for name in ["lc-g33.1-x-move", "fanuc-run-in-short", "fanuc-mc-tap-in-g85", "fanuc-lathe-g84-under-g96"]
+    {
         let c = CASES.iter().find(|c| c.name == name).unwrap();
         std::fs::write(
             dir.join(format!("{name}.{}", if c.dialect == "linuxcnc" { "ngc" } else { "nc" })),
@@ -637,6 +638,15 @@ fn findings_reach_sarif_with_their_levels_and_text_with_their_lines() {
     let run_in = results.iter().find(|r| r["ruleId"] == "control.run_in_short").expect("the run-in warning");
     assert_eq!(run_in["level"], "warning");
     assert_eq!(run_in["locations"][0]["physicalLocation"]["region"]["startLine"], 9);
+    // Each rule at its own level and line: the tap in G85 a warning at line 6, the tap under
+    // G96 an error at line 7.
+    for (rule, level, line) in
+        [("post.tap_in_boring_cycle", "warning", 6), ("control.css_at_tap", "error", 7)]
+    {
+        let r = results.iter().find(|r| r["ruleId"] == rule).unwrap_or_else(|| panic!("no {rule}"));
+        assert_eq!(r["level"], level, "{r}");
+        assert_eq!(r["locations"][0]["physicalLocation"]["region"]["startLine"], line, "{r}");
+    }
     let rules = v["runs"][0]["tool"]["driver"]["rules"].as_array().unwrap();
     let rule = rules.iter().find(|r| r["id"] == "control.run_in_short").unwrap();
     assert!(rule["shortDescription"]["text"].as_str().unwrap().contains("synchronised feed"), "{rule}");
@@ -810,4 +820,26 @@ fn a_return_helix_says_its_hand_and_drift() {
     // Z-4 to Z-16 in one clockwise turn: 12 mm a turn, 12 − 1.5 = 10.5 mm off the groove.
     assert!(m.contains("moves 12 mm per revolution where the thread's lead is 1.5 mm"), "{m}");
     assert!(m.contains("drifts 10.500 mm"), "{m}");
+}
+
+/// A program whose only thread is a tap a post wrote as a peck drilling cycle fails a run of
+/// many programs too (it was counted as no operation and passed the run): its own line in the
+/// text, the JSON Lines and SARIF, at the cycle's line.
+#[test]
+fn a_tap_in_a_drilling_cycle_fails_a_run_of_many() {
+    let dir = tempdir("tap-in-drill-batch");
+    std::fs::copy(data("programs/control/tap-in-peck-cycle.nc"), dir.join("flange.nc")).unwrap();
+    let o = run_in(&dir, &["verify", "."]);
+    assert_eq!(o.status.code(), Some(1), "{}", stdout(&o));
+    let text = stdout(&o);
+    assert!(
+        text.contains("flange.nc:17: FAIL tapped —: before the machine: post.tap_in_drill_cycle"),
+        "{text}"
+    );
+    assert!(text.contains("1 program read, 1 operation: 0 pass, 1 fail"), "{text}");
+    let o = run_in(&dir, &["verify", ".", "--format", "sarif"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let r = &v["runs"][0]["results"][0];
+    assert_eq!((r["ruleId"].as_str(), r["level"].as_str()), (Some("post.tap_in_drill_cycle"), Some("error")));
+    assert_eq!(r["locations"][0]["physicalLocation"]["region"]["startLine"], 17);
 }

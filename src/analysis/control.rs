@@ -209,20 +209,8 @@ fn feed_limit(
 pub fn milled(r: &crate::analysis::thread_mill::ThreadMillReport, dialect: Dialect) -> Vec<ControlFinding> {
     let num = crate::ground::fmt::fmt_num;
     let crossings = r.crossings.iter().map(|c| {
-        let hand = |h: crate::standards::Hand| match h {
-            crate::standards::Hand::Right => "right",
-            crate::standards::Hand::Left => "left",
-        };
         let how = match c.other_hand {
-            Some(h) => format!(
-                "is a {}-hand helix on a {}-hand thread",
-                hand(h),
-                hand(if h == crate::standards::Hand::Left {
-                    crate::standards::Hand::Right
-                } else {
-                    crate::standards::Hand::Left
-                })
-            ),
+            Some(h) => format!("is a {}-hand helix on a {}-hand thread", h.name(), h.other().name()),
             None => format!(
                 "moves {} mm per revolution where the thread's lead is {} mm",
                 num((c.lead * 1e4).round() / 1e4),

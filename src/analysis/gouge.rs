@@ -194,10 +194,7 @@ pub fn crossing_helices(
                 line: h.line,
                 code: if h.sweep_deg > 0.0 { "G3" } else { "G2" },
                 depth: past,
-                other_hand: (dz != 0.0 && (dz > 0.0) != (sign * turns > 0.0)).then_some(match hand {
-                    crate::standards::Hand::Right => crate::standards::Hand::Left,
-                    crate::standards::Hand::Left => crate::standards::Hand::Right,
-                }),
+                other_hand: (dz != 0.0 && (dz > 0.0) != (sign * turns > 0.0)).then_some(hand.other()),
                 lead: if turns != 0.0 { (dz / turns).abs() } else { 0.0 },
                 thread_lead: lead,
                 drift,

@@ -1435,10 +1435,6 @@ fn process_checks(
         }
     };
     let other_hand = hs.iter().find(|h| hand_of(h) != t.hand);
-    let hand_name = |h: crate::standards::Hand| match h {
-        crate::standards::Hand::Right => "right",
-        crate::standards::Hand::Left => "left",
-    };
     cs.push(Check {
         feature: crate::analysis::check::CheckFeature::Hand,
         kind: crate::analysis::check::CheckKind::Size,
@@ -1450,16 +1446,16 @@ fn process_checks(
         note: Some(match other_hand {
             None => format!(
                 "every helix cuts a {}-hand thread, the designation's",
-                hand_name(t.hand)
+                crate::standards::Hand::name(t.hand)
             ),
             Some(h) => format!(
                 "the helix at line {} turns {} going {} in Z: a {}-hand thread, the designation {} is {}-hand",
                 h.line,
                 if h.sweep_deg > 0.0 { "counter-clockwise (G3)" } else { "clockwise (G2)" },
                 if h.z[1] > h.z[0] { "up" } else { "down" },
-                hand_name(hand_of(h)),
+                crate::standards::Hand::name(hand_of(h)),
                 des.text,
-                hand_name(t.hand)
+                crate::standards::Hand::name(t.hand)
             ),
         }),
         unverified: None,

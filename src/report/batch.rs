@@ -251,18 +251,40 @@ impl BatchProgram {
                 },
             }
         }));
-        // What the control will refuse or runs badly, with the operation it concerns (the
-        // same process at the same line; else the program's first).
+        // What the control will refuse or runs badly, with the operation it concerns: a milled
+        // thread's own at any line, a tapped hole's at its line, a turned operation's the last
+        // one that starts at or before it in its file (as the picture places them). One that
+        // concerns none of them (a tap a post wrote as a drilling cycle) is a line of its own,
+        // never dropped.
         for f in &pv.control {
-            let at = operations
-                .iter()
-                .position(|o| {
-                    // A milled thread is one operation: its findings are its own at any line.
-                    o.made == f.made
-                        && (f.made == Process::Milled || (o.line == f.line && o.in_file == f.file))
-                })
-                .unwrap_or(0);
-            let Some(o) = operations.get_mut(at) else { continue };
+            let same = |o: &BatchOperation| o.made == f.made && o.in_file == f.file;
+            let at = match f.made {
+                Process::Milled => operations.iter().position(|o| o.made == Process::Milled),
+                Process::Tapped => operations.iter().position(|o| same(o) && o.line == f.line),
+                Process::Turned => operations
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, o)| same(o) && o.line <= f.line)
+                    .max_by_key(|(_, o)| o.line)
+                    .map(|(i, _)| i),
+            };
+            let at = at.unwrap_or_else(|| {
+                operations.push(BatchOperation {
+                    unverified: Vec::new(),
+                    warnings: Vec::new(),
+                    made: f.made,
+                    line: f.line,
+                    in_file: f.file.clone(),
+                    column: f.column,
+                    designation: String::new(),
+                    designation_from: None,
+                    verdict: Verdict::Pass,
+                    failed: Vec::new(),
+                    findings: Vec::new(),
+                });
+                operations.len() - 1
+            });
+            let o = &mut operations[at];
             let finding =
                 Finding { rule: f.rule.to_string(), message: crate::report::verify::control_sentence(f) };
             if f.level == crate::gcode::Level::Error {

@@ -65,10 +65,7 @@ impl<'a> LimitsReport<'a> {
             pitch: t.pitch,
             lead: t.lead(),
             starts: t.starts,
-            hand: match t.hand {
-                Hand::Left => "left",
-                Hand::Right => "right",
-            },
+            hand: t.hand.name(),
             nonstandard: des.nonstandard,
             basic: BasicReport {
                 major_diameter,

@@ -24,7 +24,6 @@ pub use verify::{
 };
 
 pub(crate) use crate::ground::fmt::fmt_num;
-use crate::standards::Hand;
 use crate::toolpath::passes::Schedule;
 use serde::Serialize;
 

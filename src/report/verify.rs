@@ -14,7 +14,6 @@ use crate::analysis::turn::Verification;
 use crate::geometry::insert::Insert;
 use crate::geometry::measure::{DeviationSample, ProfileRegion};
 use crate::ground::plane::{rad, Point};
-use crate::standards::Hand;
 use crate::standards::ThreadKind;
 use crate::toolpath::passes::Infeed;
 use serde::Serialize;
@@ -62,10 +61,7 @@ impl<'a> ThreadReport<'a> {
             pitch: t.pitch,
             lead: t.lead(),
             starts: t.starts,
-            hand: match t.hand {
-                Hand::Left => "left",
-                Hand::Right => "right",
-            },
+            hand: t.hand.name(),
             class,
         }
     }

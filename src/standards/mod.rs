@@ -220,6 +220,24 @@ pub enum Hand {
     Left,
 }
 
+impl Hand {
+    /// `right` or `left`, as the JSON and the reports name it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Hand::Right => "right",
+            Hand::Left => "left",
+        }
+    }
+
+    /// The other hand.
+    pub fn other(self) -> Hand {
+        match self {
+            Hand::Right => Hand::Left,
+            Hand::Left => Hand::Right,
+        }
+    }
+}
+
 /// A thread's basic size: form, nominal (major) diameter, pitch and starts.
 ///
 /// All lengths in mm. For Whitworth and BSP threads the pitch is `25.4 / tpi` exactly.
