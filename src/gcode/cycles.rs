@@ -997,15 +997,7 @@ pub(crate) fn other_block(m: &mut Motion, b: &RBlock<'_>, modal: &Modal) -> Resu
 /// The dialects read with Fanuc's codes (G-code system A on a lathe, the M-series' on a
 /// machining centre): Fanuc's family and Haas.
 fn fanuc_like(d: Dialect) -> bool {
-    match d {
-        Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => true,
-        Dialect::Sinumerik
-        | Dialect::LinuxCnc
-        | Dialect::Dyna
-        | Dialect::Okuma
-        | Dialect::Heidenhain
-        | Dialect::Klartext => false,
-    }
+    d.facts().fanuc_codes
 }
 
 /// Records a Fanuc or Haas drilling or tapping cycle's hole (one per block that gives a

@@ -29,6 +29,10 @@ pub struct Facts {
     pub unit_codes: Option<(u32, u32)>,
     /// Read as the Fanuc model with its G-code systems A, B and C (`--gcode-system`).
     pub fanuc_family: bool,
+    /// Read with Fanuc's codes (G-code system A on a lathe, the M-series' on a machining
+    /// centre: U and W incremental on a lathe, the wear offset an X on the diameter): the Fanuc
+    /// family and Haas.
+    pub fanuc_codes: bool,
     /// What threading it reads, for messages.
     pub threading_words: &'static str,
     /// Its comment forms.
@@ -54,6 +58,7 @@ const FANUC_MODEL: Facts = Facts {
     extensions: &[],
     unit_codes: Some((20, 21)),
     fanuc_family: true,
+    fanuc_codes: true,
     threading_words: "G32, G92 and G76",
     comments: PARENTHESES,
     syntax: Syntax::MacroB,
@@ -82,6 +87,7 @@ impl Dialect {
                 extensions: &["mpf", "spf"],
                 unit_codes: Some((70, 71)),
                 fanuc_family: false,
+                fanuc_codes: false,
                 threading_words: "G33, CYCLE97, L96 and L97",
                 comments: SEMICOLON,
                 syntax: Syntax::Sinumerik,
@@ -95,6 +101,7 @@ impl Dialect {
                 extensions: &["ngc"],
                 unit_codes: Some((20, 21)),
                 fanuc_family: false,
+                fanuc_codes: false,
                 threading_words: "G33 and G76",
                 comments: CommentForms { parentheses: true, semicolon: true, brackets: false },
                 syntax: Syntax::LinuxCnc,
@@ -105,6 +112,7 @@ impl Dialect {
             Dialect::Dyna => &Facts {
                 name: "dyna",
                 fanuc_family: false,
+                fanuc_codes: false,
                 threading_words: "none: the Dyna THREAD cycle is not supported",
                 syntax: Syntax::Dyna,
                 ..FANUC_MODEL
@@ -114,6 +122,7 @@ impl Dialect {
                 name: "okuma",
                 extensions: &["min", "ssb", "sub"],
                 fanuc_family: false,
+                fanuc_codes: false,
                 threading_words: "G33 and the compound cycles G71 and G72",
                 ..FANUC_MODEL
             },
@@ -130,6 +139,7 @@ impl Dialect {
                 name: "heidenhain",
                 unit_codes: None,
                 fanuc_family: false,
+                fanuc_codes: false,
                 threading_words: "G31 and G33",
                 comments: CommentForms { parentheses: true, semicolon: false, brackets: true },
                 ..FANUC_MODEL
@@ -141,6 +151,7 @@ impl Dialect {
                 extensions: &["h"],
                 unit_codes: None,
                 fanuc_family: false,
+                fanuc_codes: false,
                 threading_words: "turned threads: a Klartext program taps (cycles 206, 207, 209) and mills threads (262 to 265, 267, CP helices) instead",
                 comments: SEMICOLON,
                 ..FANUC_MODEL
@@ -181,5 +192,7 @@ mod tests {
         assert_eq!(Dialect::Klartext.facts().syntax, Syntax::MacroB);
         assert!(Dialect::Heidenhain.facts().comments.brackets);
         assert!(!Dialect::Haas.facts().fanuc_family && Dialect::Mitsubishi.facts().fanuc_family);
+        let codes: Vec<Dialect> = Dialect::ALL.into_iter().filter(|d| d.facts().fanuc_codes).collect();
+        assert_eq!(codes, [Dialect::Fanuc, Dialect::Haas, Dialect::Mitsubishi, Dialect::Mazak]);
     }
 }

@@ -559,17 +559,9 @@ impl Motion {
     /// Target position of a block: X/Y/Z absolute or incremental, U/W incremental
     /// (Fanuc, Haas). Program coordinates are machine coordinates less the G92 offset.
     pub fn target(&self, b: &RBlock<'_>) -> (Option<f64>, Option<f64>, Option<f64>) {
-        let uw = match self.dialect {
-            // U and W are incremental X and Z on a lathe only.
-            Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => self.lathe(),
-            // OSP programs incremental moves with G91; Heidenhain's U is G31's thread depth.
-            Dialect::Sinumerik
-            | Dialect::LinuxCnc
-            | Dialect::Dyna
-            | Dialect::Okuma
-            | Dialect::Heidenhain
-            | Dialect::Klartext => false,
-        };
+        // U and W are incremental X and Z on a lathe with Fanuc's codes only (OSP programs
+        // incremental moves with G91; Heidenhain's U is G31's thread depth).
+        let uw = self.dialect.facts().fanuc_codes && self.lathe();
         let (mut x, mut y, mut z) = (None, None, None);
         // G16: X the radius and Y the angle about the work zero (remembered in `cycles::modal`).
         let polar = self.polar.filter(|_| b.get("X").is_some() || b.get("Y").is_some());

@@ -351,20 +351,10 @@ pub fn correct(spec: &CorrectSpec) -> Result<CorrectReport, Error> {
 /// Whether the control's tool wear offset is an X on the diameter that the report can name:
 /// the Fanuc family's (Fanuc, Haas: the X wear of the tool's offset, diameter in diameter mode).
 fn wear_offset_in_x(d: crate::gcode::Dialect) -> bool {
-    use crate::gcode::Dialect;
-    match d {
-        // Mitsubishi and Mazak are read as the Fanuc model, their wear offsets with it.
-        Dialect::Fanuc | Dialect::Haas | Dialect::Mitsubishi | Dialect::Mazak => true,
-        // Sinumerik's wear is a length per tool edge whose diameter or radius meaning depends on
-        // machine data; LinuxCNC's and Dyna's tables are not modelled.
-        // Okuma OSP's and Heidenhain's wear offsets are not modelled here either.
-        Dialect::Sinumerik
-        | Dialect::LinuxCnc
-        | Dialect::Dyna
-        | Dialect::Okuma
-        | Dialect::Heidenhain
-        | Dialect::Klartext => false,
-    }
+    // Mitsubishi and Mazak are read as the Fanuc model, their wear offsets with it. Sinumerik's
+    // wear is a length per tool edge whose diameter or radius meaning depends on machine data;
+    // LinuxCNC's, Dyna's, Okuma OSP's and Heidenhain's wear offsets are not modelled.
+    d.facts().fanuc_codes
 }
 
 fn positive(v: f64, what: &str) -> Result<(), Error> {
