@@ -46,7 +46,7 @@ fn groove(passes: &[Pass]) -> f64 {
 /// designation, limits, plan, sweep, measure (with three-wire M and the maximum-material check)
 /// and checks, with the final X given and no per-pass chip metrics.
 fn one_thread(c: &mut Criterion) {
-    let mut spec = threadcheck::VerifySpec::new("M10x1.5-6g");
+    let mut spec = threadcheck::VerifySpec::of("M10x1.5-6g").unwrap();
     spec.passes = Some(12);
     spec.final_x = Some(7.709);
     spec.metrics = false;
@@ -138,7 +138,8 @@ fn capability(c: &mut Criterion) {
     g.sample_size(10);
     g.bench_function("M10x1.5-6g, 10 000 samples, X scatter and tip radius", |b| {
         b.iter(|| {
-            let mut spec = threadcheck::CapabilitySpec::new(threadcheck::VerifySpec::new("M10x1.5-6g"));
+            let mut spec =
+                threadcheck::CapabilitySpec::new(threadcheck::VerifySpec::of("M10x1.5-6g").unwrap());
             spec.x_sigma = 0.008;
             spec.tip_radius_tol = 0.01;
             black_box(threadcheck::capability(&spec).unwrap())

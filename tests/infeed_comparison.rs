@@ -177,7 +177,7 @@ fn incremental_alternating_nests_like_flank_infeed() {
 }
 
 fn compare_sharp(schedule_n: usize) -> threadcheck::Comparison {
-    let mut spec = VerifySpec::new("M10x1.5-6g");
+    let mut spec = VerifySpec::of("M10x1.5-6g").unwrap();
     spec.insert = InsertChoice::Partial { tip_radius: 0.0 };
     spec.passes = Some(schedule_n);
     threadcheck::compare(&spec, &[29.5], &Default::default()).unwrap()

@@ -527,7 +527,8 @@ fn architecture_names_every_folder() {
 
 /// Issue 60, read once: the program-reading flags are declared in one struct of `commands/`
 /// (`ReadingArgs`), and every command that reads a program takes each of them, on the command
-/// line and through the API.
+/// line and through the API; so is the designation-reading flag (`SeriesArgs`), taken by every
+/// command that reads a thread.
 #[test]
 fn the_reading_flags_are_declared_once_and_taken_by_every_reader() {
     use clap::Subcommand;
@@ -576,6 +577,25 @@ fn the_reading_flags_are_declared_once_and_taken_by_every_reader() {
         }
         assert!(ids.contains(&"subroutine_path"), "{name} has no --subroutine-path");
     }
+    // How a designation is read: declared once, in SeriesArgs, and taken by every command that
+    // reads one (mill reads none).
+    let declared: Vec<&str> = flag_structs
+        .iter()
+        .filter(|(_, body)| body.contains("pub allow_nonstandard:"))
+        .map(|(name, _)| name.as_str())
+        .collect();
+    assert_eq!(declared, vec!["SeriesArgs"], "allow_nonstandard is declared in {declared:?}");
+    for name in
+        ["verify", "passes", "compare", "correct", "capability", "limits", "fit", "tap", "thread-mill"]
+    {
+        let sub = cli.find_subcommand(name).unwrap();
+        assert!(
+            sub.get_arguments().any(|a| a.get_id() == "allow_nonstandard"),
+            "{name} has no --allow-nonstandard"
+        );
+        let keys = threadcheck::Command::keys(name).unwrap();
+        assert!(keys.contains(&"allow_nonstandard"), "{name}'s API takes no allow_nonstandard");
+    }
 }
 
 /// The reading flags do in the other commands that read a program what they do in verify: a
@@ -597,4 +617,38 @@ fn thread_mill_reads_with_verifys_flags() {
     let o = crate::run(&["thread-mill", "--program", p, "--gcode-system", "b"]);
     let e = crate::stderr(&o);
     assert!(!e.contains("G78") && e.contains("give the cutter"), "{e}");
+}
+
+/// Issue 60, read once: a designation is parsed where it enters and carried parsed after that —
+/// a flag's, a project file's or a modeline's by its command (`SeriesArgs::parse`), a comment's,
+/// a CAM tool list's or an inferred size's by `naming`, a tool library's description by
+/// `fusion`, a tool table's tap where its hole is checked, the catalogue's sizes by the sweep,
+/// `VerifySpec::of`'s for a library caller. A parse anywhere else is a second one.
+#[test]
+fn a_designation_is_parsed_where_it_enters() {
+    const ENTRIES: [&str; 7] = [
+        "commands/args.rs",
+        "analysis/naming.rs",
+        "analysis/fusion.rs",
+        "analysis/tap.rs",
+        "analysis/study/sweep.rs",
+        "analysis/turn/spec.rs",
+        "standards/designation.rs",
+    ];
+    let parsing: Vec<String> = src_code()
+        .into_iter()
+        .filter(|(f, code)| code.contains("parse_designation(") && !ENTRIES.contains(&f.as_str()))
+        .map(|(f, _)| f)
+        .collect();
+    assert!(parsing.is_empty(), "a designation parsed again in {parsing:?}");
+    // And the specs carry it parsed.
+    for (file, field) in [
+        ("analysis/turn/spec.rs", "pub designation: Option<Designation>,"),
+        ("analysis/naming.rs", "pub designation: Designation,"),
+        ("analysis/thread_mill.rs", "pub designation: Option<crate::standards::Designation>,"),
+        ("analysis/study/fit.rs", "pub thread: Designation,"),
+    ] {
+        let code = src_code().into_iter().find(|(f, _)| f == file).map(|(_, c)| c).unwrap_or_default();
+        assert!(code.contains(field), "{file} carries no parsed designation ({field})");
+    }
 }

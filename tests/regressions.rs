@@ -15,7 +15,7 @@ fn unified_sizes_are_compared_at_a_ten_thousandth_of_an_inch() {
         let spec = VerifySpec {
             insert: InsertChoice::Full,
             final_x: Some(final_x),
-            ..VerifySpec::new("1/2-13 UNC-2A")
+            ..VerifySpec::of("1/2-13 UNC-2A").unwrap()
         };
         verify(&spec).unwrap()
     };
@@ -607,10 +607,11 @@ fn inch_threads_default_to_inches() {
 #[test]
 fn a_flat_root_reports_no_root_radius() {
     for d in ["Tr20x4-7e", "1/2-10 ACME-2G"] {
-        let v = verify(&VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new(d) }).unwrap();
+        let v = verify(&VerifySpec { insert: InsertChoice::Full, ..VerifySpec::of(d).unwrap() }).unwrap();
         assert_eq!(v.measurement.root_radius, None, "{d}");
     }
-    let m10 = verify(&VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M10x1.5-6g") }).unwrap();
+    let m10 =
+        verify(&VerifySpec { insert: InsertChoice::Full, ..VerifySpec::of("M10x1.5-6g").unwrap() }).unwrap();
     let r = m10.measurement.root_radius.unwrap();
     assert!((r - 1.5 / (4.0 * 3f64.sqrt())).abs() < 1e-6, "{r}");
 }
@@ -788,7 +789,8 @@ fn taper_threads_report_true_flanks_and_d2_at_the_gauge_plane() {
         [("1/2-14 NPT", 30.0, 0.77843 * 25.4), ("R 1/2", 27.5, 19.793), ("Rc 1/2", 27.5, 19.793)]
     {
         let v =
-            verify(&VerifySpec { insert: InsertChoice::Full, metrics: false, ..VerifySpec::new(d) }).unwrap();
+            verify(&VerifySpec { insert: InsertChoice::Full, metrics: false, ..VerifySpec::of(d).unwrap() })
+                .unwrap();
         let [a, b] = v.measurement.flank_angles;
         assert!((a - half).abs() < 1e-6 && (b - half).abs() < 1e-6, "{d}: {a} / {b}");
         assert!(

@@ -419,7 +419,7 @@ proptest! {
 /// same passes, where they once lost this crest in rounding-wide gaps.)
 #[test]
 fn whitworth_nut_full_insert_tops_the_crest() {
-    let mut spec = threadcheck::VerifySpec::new("BSW 7/16 medium");
+    let mut spec = threadcheck::VerifySpec::of("BSW 7/16 medium").unwrap();
     spec.internal = true;
     spec.insert = threadcheck::InsertChoice::Full;
     spec.infeed = Some("alternating:27.5".parse().unwrap());

@@ -33,8 +33,9 @@ const SIZES: [&str; 8] = [
 ];
 
 fuzz_target!(|c: Case| {
-    let mut s = VerifySpec::new(SIZES[c.size as usize % SIZES.len()]);
-    s.internal = c.internal && !s.designation.starts_with("G") && !s.designation.starts_with("BSW");
+    let size = SIZES[c.size as usize % SIZES.len()];
+    let mut s = VerifySpec::of(size).expect("a standard size");
+    s.internal = c.internal && !size.starts_with("G") && !size.starts_with("BSW");
     s.insert = match c.insert % 3 {
         0 => InsertChoice::Full,
         _ => InsertChoice::Partial { tip_radius: f64::from(c.tip % 100) * 0.002 },
@@ -55,9 +56,7 @@ fuzz_target!(|c: Case| {
     s.tolerance = 1e-3;
     if c.final_offset != 0 {
         // Around the basic root: ±0.33 mm on the diameter in 10 µm steps.
-        let base = threadcheck::parse_designation(&s.designation, threadcheck::ParseOptions::default())
-            .map(|d| d.thread.minor_diameter_external())
-            .unwrap_or(8.0);
+        let base = s.designation.as_ref().map_or(8.0, |d| d.thread.minor_diameter_external());
         s.final_x = Some(base + f64::from(c.final_offset % 33) * 0.01);
     }
     if c.blank_offset != 0 {

@@ -462,7 +462,7 @@ fn flank_checks(m: &Measurement, thread: &BasicThread) -> Vec<Check> {
 
 /// ```
 /// use threadcheck::{checks, verify, CheckFeature, InsertChoice, ThreadKind, VerifySpec};
-/// let v = verify(&VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M10x1.5-6g") })?;
+/// let v = verify(&VerifySpec { insert: InsertChoice::Full, ..VerifySpec::of("M10x1.5-6g")? })?;
 /// let again = checks(&v.measurement, &v.limits, &v.designation.thread, ThreadKind::External, true, None);
 /// let d2 = again.iter().find(|c| c.feature == CheckFeature::PitchDiameter).expect("a d2 check");
 /// assert_eq!((d2.min, d2.max), (Some(8.862), Some(8.994))); // ISO 965-2

@@ -85,7 +85,7 @@ pub fn tool_table(text: &str, source: &str) -> Result<ToolTable, Error> {
                     0,
                     Some(angle),
                 ) {
-                    Ok(n) => n.designation,
+                    Ok(n) => n.designation.text,
                     Err(_) => match described(description, d, p) {
                         Some(n) => n,
                         None => continue,

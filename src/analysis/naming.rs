@@ -44,8 +44,9 @@ impl DesignationFrom {
 /// An operation's designation (with the class it is checked against) and where it came from.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Named {
-    /// The designation with its class, in the parser's form.
-    pub designation: String,
+    /// The designation with its class, parsed (its text in the parser's form).
+    #[serde(serialize_with = "text_of")]
+    pub designation: Designation,
     /// Where it came from.
     pub from: DesignationFrom,
     /// The line of the comment (or of the operation, for an inferred one); `None` when given.
@@ -55,15 +56,15 @@ pub struct Named {
     pub why: String,
 }
 
+/// A designation written as its text.
+fn text_of<S: serde::Serializer>(d: &Designation, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(&d.text)
+}
+
 impl Named {
     /// A designation the user gave.
-    pub fn given(designation: &str) -> Named {
-        Named {
-            designation: designation.to_string(),
-            from: DesignationFrom::Given,
-            line: None,
-            why: String::new(),
-        }
+    pub fn given(designation: Designation) -> Named {
+        Named { designation, from: DesignationFrom::Given, line: None, why: String::new() }
     }
 }
 
@@ -251,10 +252,10 @@ fn spellings(words: &[&str], capitals: bool) -> Vec<String> {
 /// The designation of `found` with the class `kind` is checked against: its own, the same
 /// letters in the side's case when the comment is in capitals (`6G` on a bar is 6g), else the
 /// standard's default class.
-fn with_class(found: &Found, kind: ThreadKind, opts: ParseOptions) -> (String, String) {
+fn with_class(found: &Found, kind: ThreadKind, opts: ParseOptions) -> (Designation, String) {
     let d = &found.designation;
     if d.class(kind).is_some() {
-        return (found.text.clone(), String::new());
+        return (d.clone(), String::new());
     }
     // A comment is read without regard to case (a shop writes `M24X2-6G deburr after` for a
     // bolt): the class takes the case the standard writes for the side the operation cuts.
@@ -267,26 +268,27 @@ fn with_class(found: &Found, kind: ThreadKind, opts: ParseOptions) -> (String, S
                 ThreadKind::Internal => class.to_ascii_uppercase(),
             };
             let text = format!("{}-{cased}", &found.text[..k]);
-            if parse_designation(&text, opts).is_ok_and(|e| e.class(kind).is_some()) {
+            if let Some(cased_one) = parse_designation(&text, opts).ok().filter(|e| e.class(kind).is_some()) {
                 let why = format!(
                     "comments are read without regard to case: its class {class} is read as {cased}, the {} class (the operation's side decides)",
                     kind.name()
                 );
-                return (text, why);
+                return (cased_one, why);
             }
         }
     }
     if d.external.is_none() && d.internal.is_none() {
         let text = d.with_example_class(kind);
-        if text != found.text {
+        // The example class is the standard's own: it parses whenever the size did.
+        if let Some(classed) = (text != found.text).then(|| parse_designation(&text, opts).ok()).flatten() {
             return (
-                text,
+                classed,
                 format!("the comment names no class: the standard's default for an {} thread", kind.name()),
             );
         }
     }
     // A class of the other side: kept, and refused where the operation's side is checked.
-    (found.text.clone(), String::new())
+    (d.clone(), String::new())
 }
 
 /// The nearest comment at or above `upto` (and below `after`, exclusive) that names a thread.
@@ -321,14 +323,14 @@ pub fn from_comments(
 /// ```
 /// use threadcheck::{infer_designation, ProgramUnits, ThreadKind};
 /// let n = infer_designation(2.0, 1, 23.9, ThreadKind::External, ProgramUnits::Mm, 12)?;
-/// assert_eq!(n.designation, "M24x2-6g");
+/// assert_eq!(n.designation.text, "M24x2-6g");
 /// let two = infer_designation(3.0, 2, 24.1, ThreadKind::External, ProgramUnits::Mm, 12)?;
-/// assert_eq!(two.designation, "M24xPh3P1.5-6g");
+/// assert_eq!(two.designation.text, "M24xPh3P1.5-6g");
 /// let u = infer_designation(25.4 / 13.0, 1, 12.7, ThreadKind::Internal, ProgramUnits::Inch, 12)?;
-/// assert_eq!(u.designation, "1/2-13 UNC-2B");
+/// assert_eq!(u.designation.text, "1/2-13 UNC-2B");
 /// // 12 tpi on Ø12.67: BSW 1/2, not 9/16-12 UNC (Ø14.29, beyond a thread depth).
 /// let w = infer_designation(25.4 / 12.0, 1, 12.67, ThreadKind::External, ProgramUnits::Inch, 12)?;
-/// assert_eq!(w.designation, "BSW 1/2 medium");
+/// assert_eq!(w.designation.text, "BSW 1/2 medium");
 /// // 8 tpi on Ø25.4 is 1-8 UNC and BSW 1 alike: refused, naming both.
 /// let e = infer_designation(25.4 / 8.0, 1, 25.3, ThreadKind::External, ProgramUnits::Inch, 12).unwrap_err();
 /// assert!(e.to_string().contains("1-8 UNC") && e.to_string().contains("BSW 1"));
@@ -459,7 +461,7 @@ pub fn infer_designation_with(
     };
     let series = fits[0].0;
     let d = parse_designation(&size, ParseOptions::default())?;
-    let designation = d.with_example_class(kind);
+    let designation = parse_designation(&d.with_example_class(kind), ParseOptions::default())?;
     let why = format!(
         "{designation}: inferred from the operation at line {line} (lead {lead:.4} mm{of_starts}, major diameter about Ø{major:.3}: the nearest {series} size of that pitch, no other series within a thread depth{by_angle}; the class is its standard's default for an {} thread; name the thread in a comment or with ‹thread› to check another)",
         kind.name()
@@ -632,8 +634,8 @@ pub enum ListedKind {
     },
     /// A tap.
     Tap {
-        /// Its designation where the line writes one (`NO. 8-32 TAPRH`).
-        designation: Option<String>,
+        /// Its designation where the line writes one (`NO. 8-32 TAPRH`), parsed.
+        designation: Option<Designation>,
         /// Its diameter, mm (`D=8`), for the cycle's pitch to complete.
         diameter: Option<f64>,
         /// Its hand where the line says it.
@@ -654,17 +656,19 @@ pub enum ListedKind {
 /// let l = listed_tool("#7 D=6.8 - ZMIN=-16 - drill", mm, ParseOptions::default());
 /// assert_eq!(l, Some(ListedTool { tool: 7, kind: ListedKind::Drill { diameter: 6.8 } }));
 /// let l = listed_tool(" T5 | NO. 8-32 TAPRH | H5 ", ProgramUnits::Inch, ParseOptions::default()).unwrap();
-/// assert_eq!(l.kind, ListedKind::Tap { designation: Some("#8-32 UNC-2B".into()), diameter: None, hand: Some(Hand::Right) });
+/// assert!(matches!(&l.kind, ListedKind::Tap { designation: Some(d), diameter: None, hand: Some(Hand::Right) } if d.text == "#8-32 UNC-2B"));
 /// let l = listed_tool(" T4 | NO. 29 DRILL | H4 ", ProgramUnits::Inch, ParseOptions::default()).unwrap();
 /// assert_eq!(l.tool, 4);
 /// assert!(matches!(l.kind, ListedKind::Drill { diameter } if (diameter - 3.4544).abs() < 1e-9));
 /// // SolidCAM's and hyperMILL's headers: the tool's number after TOOL.
 /// let l = listed_tool("TOOL 3 - TAP M8X1.25 - DIA 8.", mm, ParseOptions::default()).unwrap();
-/// assert_eq!((l.tool, l.kind), (3, ListedKind::Tap { designation: Some("M8X1.25-6H".into()), diameter: None, hand: None }));
+/// assert!(matches!(&l.kind, ListedKind::Tap { designation: Some(d), diameter: None, hand: None } if d.text == "M8X1.25-6H"));
+/// assert_eq!(l.tool, 3);
 /// let l = listed_tool("TOOL NUMBER: 4  DRILL D6.8", mm, ParseOptions::default()).unwrap();
 /// assert_eq!((l.tool, l.kind), (4, ListedKind::Drill { diameter: 6.8 }));
 /// let l = listed_tool("T12: GEWINDEBOHRER M10", mm, ParseOptions::default()).unwrap();
-/// assert_eq!((l.tool, l.kind), (12, ListedKind::Tap { designation: Some("M10-6H".into()), diameter: None, hand: None }));
+/// assert!(matches!(&l.kind, ListedKind::Tap { designation: Some(d), diameter: None, hand: None } if d.text == "M10-6H"));
+/// assert_eq!(l.tool, 12);
 /// assert_eq!(listed_tool("TOOLING CHECK - TAP M8", mm, ParseOptions::default()), None);
 /// // A thread mill's or an end mill's line, or a comment with no tool first, is none.
 /// assert_eq!(listed_tool("T5 D=8. CR=0. - thread mill", mm, ParseOptions::default()), None);

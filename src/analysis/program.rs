@@ -94,8 +94,9 @@ impl ProgramVerification {
 /// use threadcheck::{verify_program, InsertChoice, VerifySpec};
 /// use threadcheck::Dialect;
 /// let text = "G0 X22 Z5\nG76 P011060 Q100 R0.05\nG76 X18.16 Z-20 P920 Q350 F1.5\n";
-/// let spec = VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M20x1.5-6g") };
-/// let r = verify_program(&spec, text, "m20.nc", Dialect::Fanuc, &["M20x1.5-6g".to_string()], &|_| None)?;
+/// let spec = VerifySpec { insert: InsertChoice::Full, ..VerifySpec::of("M20x1.5-6g")? };
+/// let m20 = spec.designation.clone().into_iter().collect::<Vec<_>>();
+/// let r = verify_program(&spec, text, "m20.nc", Dialect::Fanuc, &m20, &|_| None)?;
 /// assert_eq!(r.operations.len(), 1);
 /// # Ok::<(), threadcheck::Error>(())
 /// ```
@@ -104,7 +105,7 @@ pub fn verify_program(
     text: &str,
     name: &str,
     dialect: crate::gcode::Dialect,
-    threads: &[String],
+    threads: &[crate::standards::Designation],
     insert_for: &InsertFor<'_>,
 ) -> Result<ProgramVerification, Error> {
     crate::analysis::turn::turned_program(spec, text, name, dialect, threads, insert_for)
@@ -180,7 +181,7 @@ fn contents(prog: &crate::gcode::Program) -> String {
 /// let text = "(M20X1.5-6G)\nG99 G0 X22 Z5\nG76 P010060 Q100 R0.05\nG76 X18.16 Z-20 P920 Q300 F1.5\n\
 ///             T0505 (DRILL 6.8)\nG97 S900 M3\nG0 X0 Z5\nG83 Z-25 R2 Q5000 F0.1\nG80\n\
 ///             T0606 (TAP M8X1.25)\nG0 X0 Z8\nG84 Z-16 R5 F1.25\nG80\nM30\n";
-/// let spec = VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("") };
+/// let spec = VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new(None) };
 /// let r = verify_whole(&spec, text, "part.nc", Dialect::Fanuc, &[], &|_| None, None)?;
 /// assert_eq!(r.operations.len(), 1);
 /// let tapped = r.tapped.as_ref().expect("a tapping cycle");
@@ -193,7 +194,7 @@ pub fn verify_whole(
     text: &str,
     name: &str,
     dialect: Dialect,
-    threads: &[String],
+    threads: &[crate::standards::Designation],
     insert_for: &InsertFor<'_>,
     tools: Option<&ToolTable>,
 ) -> Result<ProgramVerification, Error> {

@@ -1312,7 +1312,7 @@ fn tap_of(
                 && comments.iter().filter(|c| Some(c.line) == n.line).any(|c| says_forming(&c.text));
             let why = if forming { format!("{}; a form tap, as the comment says", n.why) } else { n.why };
             return Ok(TapOf {
-                designation: n.designation,
+                designation: n.designation.text,
                 chamfer_pitches: default,
                 chamfer_given: false,
                 forming,

@@ -30,7 +30,7 @@ use crate::geometry::helix::{reach, section_cost};
 use crate::geometry::helix::{Cutter, Helix};
 use crate::geometry::measure::{measure, MeasureSetup, Measurement};
 use crate::standards::tolerance::{limits_for, ThreadLimits};
-use crate::standards::{parse_designation, ParseOptions, ThreadKind};
+use crate::standards::{ParseOptions, ThreadKind};
 use crate::{Error, Point};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -42,9 +42,9 @@ pub struct ThreadMillSpec {
     pub program: (String, String),
     /// Its dialect.
     pub dialect: Dialect,
-    /// The thread with its class; `None` takes the one the program names (the nearest comment
-    /// above the first helix, else the standard size its lead and diameter cut).
-    pub designation: Option<String>,
+    /// The thread with its class, parsed; `None` takes the one the program names (the nearest
+    /// comment above the first helix, else the standard size its lead and diameter cut).
+    pub designation: Option<crate::standards::Designation>,
     /// Accept sizes outside the standard series.
     pub allow_nonstandard: bool,
     /// The cutter; `None` takes the helix's tool from `tools`.
@@ -222,7 +222,7 @@ fn name_milled(
     let comments = crate::gcode::comments(text, dialect);
     let r = first.radius;
     if let Some(n) = from_comments(&comments, 0, first.line, ThreadKind::Internal, opts) {
-        let d = parse_designation(&n.designation, opts)?.thread.nominal_diameter;
+        let d = n.designation.thread.nominal_diameter;
         let external = (2.0 * r - cutter - d).abs() < (2.0 * r + cutter - d).abs();
         if !external {
             return Ok(n);
@@ -747,7 +747,7 @@ fn entry_and_exit(moves: &[Move], hs: &[Helix]) -> Vec<String> {
 /// let mut program = String::from("G17 G90 G40\nG0 X4 Y0 Z-14\n");
 /// for k in 1..=8 { program += &format!("G3 X4 Y0 Z{} I-4 J0 F200\n", -14.0 + 1.5 * k as f64); }
 /// let cutter = Some(Cutter::single_form(12.0, 60.0, 0.0));
-/// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: Some("M20x1.5-6H".into()), allow_nonstandard: false, cutter, tools: None, blank_diameter: None, comp_radius: None, reading: ReadOptions::default(), teeth: None };
+/// let spec = ThreadMillSpec { program: (program, "mill.nc".into()), dialect: Dialect::Fanuc, designation: Some(threadcheck::parse_designation("M20x1.5-6H", Default::default())?), allow_nonstandard: false, cutter, tools: None, blank_diameter: None, comp_radius: None, reading: ReadOptions::default(), teeth: None };
 /// let r = thread_mill(&spec)?;
 /// assert!((r.measured.major_diameter - 20.0).abs() < 1e-4);
 /// # Ok::<(), threadcheck::Error>(())
@@ -1026,13 +1026,13 @@ fn thread_of(
     // The helices, read once: the thread's name may come from them.
     let hs = helices(&prog.moves, name, comp, notes)?;
     let named = match &spec.designation {
-        Some(d) => crate::analysis::naming::Named::given(d),
+        Some(d) => crate::analysis::naming::Named::given(d.clone()),
         None => name_milled(text, spec.dialect, &prog.moves, &hs, (c.diameter, c.angle_deg), opts, name)?,
     };
     if !named.why.is_empty() {
         notes.push(named.why.clone());
     }
-    let des = parse_designation(&named.designation, opts)?;
+    let des = named.designation.clone();
     let kind = match (&des.external, &des.internal) {
         (None, Some(_)) => ThreadKind::Internal,
         (Some(_), None) | (None, None) => ThreadKind::External,

@@ -6,6 +6,7 @@ use crate::analysis::tools::InsertChoice;
 use crate::analysis::turn::{ProgramSource, Units, VerifySpec};
 use crate::gcode::{Dialect, DialectFrom, GCodeSystem, LinuxCncRelease, ProgramUnits};
 use crate::standards::tolerance::CoatingLimits;
+use crate::standards::{parse_designation, Designation, ParseOptions};
 use crate::toolpath::passes::{InfeedChoice, Schedule};
 use crate::Error;
 use serde::Deserialize;
@@ -255,9 +256,10 @@ pub struct PlanArgs {
     /// The internal thread (else external; implied by an upper-case class alone).
     #[cfg_attr(feature = "cli", arg(long))]
     pub internal: bool,
-    /// Accept a diameter/pitch pair outside the standard series.
-    #[cfg_attr(feature = "cli", arg(long))]
-    pub allow_nonstandard: bool,
+    /// How the designations are read.
+    #[cfg_attr(feature = "cli", command(flatten))]
+    #[serde(skip)]
+    pub series: SeriesArgs,
     /// full | partial[:TIP_RADIUS] | FILE.toml (default partial, r0.04 mm)
     #[cfg_attr(feature = "cli", arg(long))]
     #[serde_as(as = "Option<DisplayFromStr>")]
@@ -416,11 +418,6 @@ fn sub_finder(dirs: Vec<PathBuf>) -> crate::gcode::SubFinder {
 }
 
 impl PlanArgs {
-    /// The first designation, or none.
-    pub fn first_thread(&self) -> &str {
-        self.thread.first().map_or("", String::as_str)
-    }
-
     /// Whether the insert was chosen (else a tool table's, else the default).
     pub fn insert_given(&self) -> bool {
         self.insert.is_some() || self.insert_toml.is_some()
@@ -496,34 +493,35 @@ impl PlanArgs {
     /// modeline set where no flag is given (each stated in the notes); `files` says whether an
     /// insert may be a path.
     pub fn spec(&self, files: super::Files) -> Result<VerifySpec, Error> {
-        self.spec_with(&self.settings(files)?, files)
+        self.spec_with(&self.settings(files)?, files).map(|(s, _)| s)
     }
 
     /// [`spec`](Self::spec) with the project file and modeline already read (`set`): a run
-    /// reads them once per program.
+    /// reads them once per program. With every thread given, each parsed once (the spec's
+    /// designation is the first).
     pub(crate) fn spec_with(
         &self,
         set: &super::settings::Settings,
         files: super::Files,
-    ) -> Result<VerifySpec, Error> {
+    ) -> Result<(VerifySpec, Vec<Designation>), Error> {
         if set.is_empty() {
             return self.spec_as_given(set, files);
         }
-        let mut s = self.settled(set).spec_as_given(set, files)?;
+        let (mut s, threads) = self.settled(set).spec_as_given(set, files)?;
         s.reading.settings_notes = set.notes(&self.given());
-        Ok(s)
+        Ok((s, threads))
     }
 
-    /// The verification the arguments describe, with `set`'s reading where they give none.
+    /// The verification the arguments describe, with `set`'s reading where they give none, and
+    /// the threads given, parsed.
     fn spec_as_given(
         &self,
         set: &super::settings::Settings,
         files: super::Files,
-    ) -> Result<VerifySpec, Error> {
-        let first = self.first_thread();
-        let mut s = VerifySpec::new(first);
+    ) -> Result<(VerifySpec, Vec<Designation>), Error> {
+        let mut s = VerifySpec::new(None);
         s.internal = self.internal;
-        s.allow_nonstandard = self.allow_nonstandard;
+        s.allow_nonstandard = self.series.allow_nonstandard;
         s.insert = self.insert_choice(files)?.unwrap_or(InsertChoice::Partial { tip_radius: 0.04 });
         s.infeed = self.infeed;
         s.passes = self.passes;
@@ -550,10 +548,6 @@ impl PlanArgs {
         s.final_x = self.final_x;
         s.blank_diameter = self.blank_diameter;
         s.clearance_angle = self.clearance_angle;
-        // An inch thread is read in inches beside the mm; a designation that does not parse is
-        // reported where it is resolved.
-        s.units = self.units.unwrap_or_else(|| VerifySpec::default_units(first, self.allow_nonstandard));
-        s.units_given = self.units.is_some();
         match &self.program {
             Some(source) => {
                 if let Source::Text(text) = source {
@@ -599,7 +593,13 @@ impl PlanArgs {
             ..self.reading.options(set, s.machine.as_ref())
         };
         s.validate()?;
-        Ok(s)
+        // Each designation parsed here, once; the rest receives the parse.
+        let threads = self.thread.iter().map(|t| self.series.parse(t)).collect::<Result<Vec<_>, Error>>()?;
+        s.designation = threads.first().cloned();
+        // An inch thread is read in inches beside the mm.
+        s.units = self.units.unwrap_or_else(|| VerifySpec::default_units(s.designation.as_ref()));
+        s.units_given = self.units.is_some();
+        Ok((s, threads))
     }
 
     /// The insert chosen: `insert` (a path where files may be read) or `insert_toml`.
@@ -786,23 +786,56 @@ impl PictureArgs {
     }
 }
 
+/// How a command reads a designation: the flags of every command that takes a thread (verify,
+/// passes, compare, correct, capability, limits, fit, tap, thread-mill), declared here once. The
+/// API and Python take them as keys beside the command's own.
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+#[derive(Clone, Copy, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SeriesArgs {
+    /// Accept a diameter/pitch pair outside the standard series.
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub allow_nonstandard: bool,
+}
+
+impl SeriesArgs {
+    /// The parser's options these flags set.
+    pub fn options(self) -> ParseOptions {
+        ParseOptions { allow_nonstandard: self.allow_nonstandard }
+    }
+
+    /// `text` parsed, once: the rest of the run receives the parse.
+    pub fn parse(self, text: &str) -> Result<Designation, Error> {
+        parse_designation(text, self.options())
+    }
+}
+
 /// Implements [`ApiArgs`](super::ApiArgs) for a command's arguments: `shares field: Type` for a
-/// command that flattens shared arguments into its own, `shares nothing` for one that does not.
+/// command that flattens shared arguments into its own, `shares nothing` for one that does not;
+/// `reads thread at path` where its [`SeriesArgs`] sit, for one that reads a designation.
 macro_rules! api_args {
-    ($args:ty, shares $field:ident: $shared:ty) => {
+    ($args:ty, shares $field:ident: $shared:ty $(, reads thread at $($series:ident).+)?) => {
         impl $crate::commands::ApiArgs for $args {
             type Shared = $shared;
             fn shared_mut(&mut self) -> Option<&mut $shared> {
                 Some(&mut self.$field)
             }
+            $($crate::commands::args::api_args!(@series $($series).+);)?
         }
     };
-    ($args:ty, shares nothing) => {
+    ($args:ty, shares nothing $(, reads thread at $($series:ident).+)?) => {
         impl $crate::commands::ApiArgs for $args {
             type Shared = $crate::commands::NoShared;
             fn shared_mut(&mut self) -> Option<&mut $crate::commands::NoShared> {
                 None
             }
+            $($crate::commands::args::api_args!(@series $($series).+);)?
+        }
+    };
+    (@series $($series:ident).+) => {
+        const SERIES: bool = true;
+        fn series_mut(&mut self) -> Option<&mut $crate::commands::args::SeriesArgs> {
+            Some(&mut self.$($series).+)
         }
     };
 }

@@ -35,7 +35,7 @@ pub struct CompareArgs {
     pub out: JsonArg,
 }
 
-super::args::api_args!(CompareArgs, shares plan: PlanArgs);
+super::args::api_args!(CompareArgs, shares plan: PlanArgs, reads thread at plan.series);
 
 impl Job for CompareArgs {
     const NAME: &'static str = "compare";
@@ -54,10 +54,7 @@ impl Job for CompareArgs {
             ..self.plan.spec(request.files)?
         };
         let modified = if self.modified.is_empty() {
-            let des = crate::standards::parse_designation(
-                &spec.designation,
-                crate::standards::ParseOptions { allow_nonstandard: spec.allow_nonstandard },
-            )?;
+            let des = spec.designation.as_ref().ok_or_else(crate::standards::designation::none_given)?;
             let half = 0.5 * des.thread.form.flank_angle();
             vec![half - 0.5, half - 3.0]
         } else {

@@ -19,9 +19,10 @@ pub struct FitArgs {
     /// A fit designation, e.g. M10x1.5-6H/6g.
     #[cfg_attr(feature = "cli", arg(long, required = true))]
     pub thread: Option<String>,
-    /// Accept a diameter/pitch pair outside the standard series.
-    #[cfg_attr(feature = "cli", arg(long))]
-    pub allow_nonstandard: bool,
+    /// How the designation is read.
+    #[cfg_attr(feature = "cli", command(flatten))]
+    #[serde(skip)]
+    pub series: super::SeriesArgs,
     /// The bolt's program (else a generated plan).
     #[cfg_attr(feature = "cli", arg(long, value_name = "FILE", conflicts_with = "bolt_final_x", value_parser = Source::path))]
     #[serde(deserialize_with = "super::args::source_text")]
@@ -62,7 +63,7 @@ pub struct FitArgs {
     pub out: JsonArg,
 }
 
-super::args::api_args!(FitArgs, shares nothing);
+super::args::api_args!(FitArgs, shares nothing, reads thread at series);
 
 /// One side of the pair: its program (read), or its plan's final X, and its insert.
 fn side(
@@ -107,12 +108,12 @@ impl Job for FitArgs {
     fn run(&self, request: &Request) -> Result<Outputs, Error> {
         let thread = self
             .thread
-            .clone()
+            .as_deref()
             .ok_or_else(|| Error::Input("fit needs ‹thread›, a fit such as M10x1.5-6H/6g".into()))?;
+        let thread = self.series.parse(thread)?;
         let f = request.files;
         let spec = FitSpec {
             thread,
-            allow_nonstandard: self.allow_nonstandard,
             bolt: side(
                 "bolt",
                 &self.bolt_program,

@@ -2,7 +2,7 @@
 
 use super::{pretty, Dest, Document, Job, Outcome, Outputs, Request};
 use crate::standards::tolerance::{limits_for, CoatingLimits, ThreadLimits};
-use crate::standards::{parse_designation, ParseOptions, ThreadKind};
+use crate::standards::ThreadKind;
 use crate::Error;
 use serde::Deserialize;
 use serde_with::{serde_as, DisplayFromStr};
@@ -27,9 +27,10 @@ pub struct LimitsArgs {
     /// The designation as an option, as the other commands take it.
     #[cfg_attr(feature = "cli", arg(long))]
     pub thread: Option<String>,
-    /// Accept a diameter/pitch pair outside the standard series.
-    #[cfg_attr(feature = "cli", arg(long))]
-    pub allow_nonstandard: bool,
+    /// How the designation is read.
+    #[cfg_attr(feature = "cli", command(flatten))]
+    #[serde(skip)]
+    pub series: super::SeriesArgs,
     /// The limits to cut to before a coating of this thickness, mm (plating, anodizing;
     /// default 0).
     #[cfg_attr(feature = "cli", arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = super::args::finite))]
@@ -72,7 +73,7 @@ impl Job for LimitsArgs {
                 }))
             }
         };
-        let des = parse_designation(designation, ParseOptions { allow_nonstandard: self.allow_nonstandard })?;
+        let des = self.series.parse(designation)?;
         let t = &des.thread;
         let coat = |l: Option<ThreadLimits>| {
             l.map(|l| {
@@ -131,4 +132,4 @@ impl Job for LimitsArgs {
     }
 }
 
-super::args::api_args!(LimitsArgs, shares nothing);
+super::args::api_args!(LimitsArgs, shares nothing, reads thread at series);

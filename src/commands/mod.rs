@@ -39,7 +39,7 @@ mod thread_mill;
 mod verify;
 mod write;
 
-pub use args::{JsonArg, ONumber, PlanArgs, ProgramArgs, ReadingArgs, Source};
+pub use args::{JsonArg, ONumber, PlanArgs, ProgramArgs, ReadingArgs, SeriesArgs, Source};
 pub use capability::{CapabilityArgs, CAPABLE_CPK};
 pub use compare::CompareArgs;
 pub use correct::CorrectArgs;
@@ -294,12 +294,36 @@ pub trait ApiArgs: serde::de::DeserializeOwned + Sized {
     /// Where they sit in the struct.
     fn shared_mut(&mut self) -> Option<&mut Self::Shared>;
 
+    /// The command reads a designation, and holds the flags that say how ([`SeriesArgs`]).
+    const SERIES: bool = false;
+
+    /// Where the designation-reading flags sit (`None` for a command that reads none).
+    fn series_mut(&mut self) -> Option<&mut args::SeriesArgs> {
+        None
+    }
+
     /// The keys the command takes: the shared arguments', the program-reading flags' where
-    /// they read a program ([`ReadingArgs`]), its own.
+    /// they read a program ([`ReadingArgs`]), the designation-reading flags' where they read a
+    /// thread ([`SeriesArgs`]), its own.
     fn keys() -> Vec<&'static str> {
         let shared = serde_aux::serde_introspection::serde_introspect::<Self::Shared>();
         let own = serde_aux::serde_introspection::serde_introspect::<Self>();
-        shared.iter().chain(reading_keys::<Self::Shared>()).chain(own).copied().collect()
+        shared
+            .iter()
+            .chain(reading_keys::<Self::Shared>())
+            .chain(series_keys::<Self>())
+            .chain(own)
+            .copied()
+            .collect()
+    }
+}
+
+/// The designation-reading flags' keys where `T` reads a thread.
+fn series_keys<T: ApiArgs>() -> &'static [&'static str] {
+    if T::SERIES {
+        serde_aux::serde_introspection::serde_introspect::<args::SeriesArgs>()
+    } else {
+        &[]
     }
 }
 
@@ -355,8 +379,11 @@ fn from_map<T: ApiArgs>(name: &str, map: Map<String, Value>) -> Result<T, Error>
     }
     let shared_keys = serde_aux::serde_introspection::serde_introspect::<T::Shared>();
     let reading_keys = reading_keys::<T::Shared>();
+    let series_keys = series_keys::<T>();
+    let (series, rest): (Map<String, Value>, Map<String, Value>) =
+        map.into_iter().filter(|(_, v)| !v.is_null()).partition(|(k, _)| series_keys.contains(&k.as_str()));
     let (reading, rest): (Map<String, Value>, Map<String, Value>) =
-        map.into_iter().filter(|(_, v)| !v.is_null()).partition(|(k, _)| reading_keys.contains(&k.as_str()));
+        rest.into_iter().partition(|(k, _)| reading_keys.contains(&k.as_str()));
     let (shared, own): (Map<String, Value>, Map<String, Value>) =
         rest.into_iter().partition(|(k, _)| shared_keys.contains(&k.as_str()));
     let mut args: T = typed(name, own)?;
@@ -366,6 +393,9 @@ fn from_map<T: ApiArgs>(name: &str, map: Map<String, Value>) -> Result<T, Error>
     }
     if let Some(s) = args.shared_mut() {
         *s = shared;
+    }
+    if let Some(s) = args.series_mut() {
+        *s = typed(name, series)?;
     }
     Ok(args)
 }

@@ -32,7 +32,7 @@ pub struct PassesArgs {
     pub out: JsonArg,
 }
 
-super::args::api_args!(PassesArgs, shares plan: PlanArgs);
+super::args::api_args!(PassesArgs, shares plan: PlanArgs, reads thread at plan.series);
 
 impl Job for PassesArgs {
     const NAME: &'static str = "passes";
@@ -70,7 +70,7 @@ impl Job for PassesArgs {
             Some((source, dialect)) => {
                 let (shown, text) = source.load()?;
                 let prog = crate::gcode::read_program_with(&text, &shown, *dialect, spec.reading.clone())?;
-                let thread = if spec.designation.is_empty() { None } else { Some(thread_of(&spec)?) };
+                let thread = if spec.designation.is_none() { None } else { Some(thread_of(&spec)?) };
                 let source = PassesSource::Program { shown: &shown, dialect: *dialect, program: &prog };
                 (
                     json(thread.as_ref(), &prog.passes, Some(&prog))?,

@@ -43,7 +43,7 @@ impl Job for ReportArgs {
                 let mut runs = Vec::new();
                 for d in REPORT_THREADS {
                     for (iname, choice) in &inserts {
-                        let spec = VerifySpec { insert: choice.clone(), picture: true, ..VerifySpec::new(d) };
+                        let spec = VerifySpec { insert: choice.clone(), picture: true, ..VerifySpec::of(d)? };
                         runs.push((d, *iname, compare(&spec, &[29.5, 27.0], &Default::default())?));
                     }
                 }

@@ -26,9 +26,10 @@ pub struct TapArgs {
     #[cfg_attr(feature = "cli", arg(long, value_name = "FILE.toml", value_parser = Source::path))]
     #[serde(deserialize_with = "super::args::source_text")]
     pub tools: Option<Source>,
-    /// Accept a diameter/pitch pair outside the standard series.
-    #[cfg_attr(feature = "cli", arg(long))]
-    pub allow_nonstandard: bool,
+    /// How the designation is read.
+    #[cfg_attr(feature = "cli", command(flatten))]
+    #[serde(skip)]
+    pub series: super::SeriesArgs,
     /// Z of the stock's bottom face, mm: a hole whose drill passes it with its full diameter is a
     /// through hole, whose depth needs no room below the tap (default: the program's own stock
     /// definition, Klartext's BLK FORM, else every hole blind).
@@ -59,7 +60,7 @@ pub struct TapArgs {
     pub out: super::args::PictureArgs,
 }
 
-super::args::api_args!(TapArgs, shares file: ProgramArgs);
+super::args::api_args!(TapArgs, shares file: ProgramArgs, reads thread at series);
 
 impl Job for TapArgs {
     const NAME: &'static str = "tap";
@@ -97,7 +98,7 @@ impl Job for TapArgs {
             dialect,
             reading,
             tools,
-            allow_nonstandard: self.allow_nonstandard,
+            allow_nonstandard: self.series.allow_nonstandard,
             from_program: true,
             stock_bottom: self.stock_bottom,
             tap: self.tap.clone().or_else(|| set.thread.as_ref().and_then(|t| t.0.first().cloned())),

@@ -22,9 +22,10 @@ pub struct ThreadMillArgs {
     /// comment above its first helix, else the standard size of the helix's lead and diameter).
     #[cfg_attr(feature = "cli", arg(long))]
     pub thread: Option<String>,
-    /// Accept a diameter/pitch pair outside the standard series.
-    #[cfg_attr(feature = "cli", arg(long))]
-    pub allow_nonstandard: bool,
+    /// How the designation is read.
+    #[cfg_attr(feature = "cli", command(flatten))]
+    #[serde(skip)]
+    pub series: super::SeriesArgs,
     /// The cutter's diameter over its tooth's tip, mm (else the tool table's thread mill, else the
     /// one the program's comments name for the helices' tool: `(T5 D=8. … - thread mill)`).
     #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
@@ -68,7 +69,7 @@ pub struct ThreadMillArgs {
     pub out: super::args::PictureArgs,
 }
 
-super::args::api_args!(ThreadMillArgs, shares file: ProgramArgs);
+super::args::api_args!(ThreadMillArgs, shares file: ProgramArgs, reads thread at series);
 
 impl Job for ThreadMillArgs {
     const NAME: &'static str = "thread-mill";
@@ -128,13 +129,16 @@ impl Job for ThreadMillArgs {
                 self.cutter_teeth.unwrap_or(0)
             )));
         }
+        let tools = tools_source.as_ref().map(|t| tool_table(t, request.files)).transpose()?;
+        // The thread given, parsed once.
+        let designation = designation.map(|d| self.series.parse(&d)).transpose()?;
         let spec = ThreadMillSpec {
             program,
             dialect,
             designation,
-            allow_nonstandard: self.allow_nonstandard,
+            allow_nonstandard: self.series.allow_nonstandard,
             cutter,
-            tools: tools_source.as_ref().map(|t| tool_table(t, request.files)).transpose()?,
+            tools,
             blank_diameter: self.blank_diameter,
             comp_radius: self.comp_radius,
             reading: crate::gcode::ReadOptions {

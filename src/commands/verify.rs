@@ -86,7 +86,7 @@ pub struct VerifyArgs {
     pub format: Option<String>,
 }
 
-super::args::api_args!(VerifyArgs, shares plan: PlanArgs);
+super::args::api_args!(VerifyArgs, shares plan: PlanArgs, reads thread at plan.series);
 
 impl Job for VerifyArgs {
     const NAME: &'static str = "verify";
@@ -147,7 +147,7 @@ impl Job for VerifyArgs {
         }
         // The program's project file and modeline, read once for the spec and the project.
         let set = self.plan.settings(request.files)?;
-        let mut spec = self.plan.spec_with(&set, request.files)?;
+        let (mut spec, threads) = self.plan.spec_with(&set, request.files)?;
         spec.gauge_only = self.gauge_only;
         spec.metrics = !self.no_pass_metrics;
         spec.operation = self.operation;
@@ -155,7 +155,7 @@ impl Job for VerifyArgs {
         // The pictures and the JSON's deviation samples are computed with the verification.
         spec.picture = [Document::Svg, Document::Html, Document::Json].into_iter().any(|d| request.wants(d));
         let tools = self.tools.as_ref().map(|t| tool_table(t, request.files)).transpose()?;
-        let (own_tools, threads) = self.project(&mut spec, &set, request.files)?;
+        let own_tools = self.project(&mut spec, &set, request.files)?;
         let tools = tools.or(own_tools);
         let mut inputs = self.plan.inputs();
         inputs.extend(self.tools.as_ref().and_then(Source::file));
@@ -476,7 +476,7 @@ impl VerifyArgs {
             ..self.clone()
         };
         let set = one.plan.settings(request.files)?;
-        let mut spec = one.plan.spec_with(&set, request.files)?;
+        let (mut spec, threads) = one.plan.spec_with(&set, request.files)?;
         spec.gauge_only = self.gauge_only;
         spec.stock_bottom = self.stock_bottom;
         spec.metrics = false;
@@ -484,33 +484,28 @@ impl VerifyArgs {
         if finder.is_some() {
             spec.reading.sub_files = finder;
         }
-        let (own_tools, threads) = one.project(&mut spec, &set, request.files)?;
+        let own_tools = one.project(&mut spec, &set, request.files)?;
         let tools = tools.or(own_tools.as_ref());
         let (source, dialect) = spec.program.clone().ok_or_else(|| Error::Input("no program".into()))?;
         one.verification(&spec, &source, dialect, &threads, tools)
     }
 
     /// What the program's project file sets beyond `spec` (its notes are `spec`'s): the tool
-    /// table it names when none is given (`None` when one is: the given one wins, said), and
-    /// the threads, the ones given, else its `[[threads]]` rule's or the modeline's.
+    /// table it names when none is given (`None` when one is: the given one wins, said).
     fn project(
         &self,
         spec: &mut VerifySpec,
         set: &super::settings::Settings,
         files: super::Files,
-    ) -> Result<(Option<crate::analysis::tools::ToolTable>, Vec<String>), Error> {
-        let threads = match (&self.plan.thread, &set.thread) {
-            (given, Some((t, _))) if given.is_empty() => t.clone(),
-            (given, _) => given.clone(),
-        };
-        let Some((path, _)) = &set.tools else { return Ok((None, threads)) };
+    ) -> Result<Option<crate::analysis::tools::ToolTable>, Error> {
+        let Some((path, _)) = &set.tools else { return Ok(None) };
         if let Some(t) = &self.tools {
             let given =
                 super::settings::Given { tools: Some(super::args::source_words(t)), ..self.plan.given() };
             spec.reading.settings_notes = set.notes(&given);
-            return Ok((None, threads));
+            return Ok(None);
         }
-        Ok((Some(tool_table(&Source::Path(path.clone()), files)?), threads))
+        Ok(Some(tool_table(&Source::Path(path.clone()), files)?))
     }
 
     /// One program verified: its name as shown and every thread it makes, checked.
@@ -519,7 +514,7 @@ impl VerifyArgs {
         spec: &VerifySpec,
         source: &ProgramSource,
         dialect: crate::gcode::Dialect,
-        threads: &[String],
+        threads: &[crate::standards::Designation],
         tools: Option<&crate::analysis::tools::ToolTable>,
     ) -> Result<(String, String, crate::analysis::program::ProgramVerification), Error> {
         let (shown, text) = source.load()?;
@@ -544,7 +539,7 @@ impl VerifyArgs {
         spec: &VerifySpec,
         source: &ProgramSource,
         dialect: crate::gcode::Dialect,
-        threads: &[String],
+        threads: &[crate::standards::Designation],
         tools: Option<&crate::analysis::tools::ToolTable>,
         request: &Request,
     ) -> Result<Outputs, Error> {

@@ -168,7 +168,7 @@ impl BatchProgram {
                     line: o.operation.source_line,
                     in_file: o.operation.source_file.clone(),
                     column: o.operation.source_column,
-                    designation: o.designation.clone(),
+                    designation: o.named.designation.text.clone(),
                     designation_from: Some(o.named.from),
                     verdict,
                     failed,

@@ -150,7 +150,8 @@ fn hovers(pv: &ProgramVerification) -> Vec<EditorHover> {
     let mut out = Vec::new();
     // Hovers on the document's own lines: an operation in a subprogram's file has none here.
     for o in pv.operations.iter().filter(|o| o.operation.source_file.is_none()) {
-        let mut md = format!("**{} {}** (turned, {})", o.operation.cycle, o.designation, o.named.why);
+        let mut md =
+            format!("**{} {}** (turned, {})", o.operation.cycle, o.named.designation.text, o.named.why);
         match &o.result {
             OperationResult::Verified(v) => {
                 let _ = write!(

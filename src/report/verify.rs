@@ -716,7 +716,7 @@ impl<'a> ProgramReport<'a> {
                         OperationReport::NoCut {
                             made: crate::analysis::program::Process::Turned,
                             suggested_final_x: *suggested_final_x,
-                            thread: DesignationOnly { designation: &o.designation },
+                            thread: DesignationOnly { designation: &o.named.designation.text },
                             checks: [NoCutCheck {
                                 feature: "cut",
                                 kind: crate::analysis::check::CheckKind::Size,
@@ -843,8 +843,11 @@ pub fn program_text(pv: &crate::analysis::program::ProgramVerification) -> Strin
         match &o.result {
             crate::analysis::turn::OperationResult::Verified(v) => s.push_str(&verify_text(v)),
             crate::analysis::turn::OperationResult::NoCut { reason, suggested_final_x } => {
-                let _ =
-                    writeln!(s, "{}: nothing to measure\n\nverdict: FAIL (no cut: {reason})", o.designation);
+                let _ = writeln!(
+                    s,
+                    "{}: nothing to measure\n\nverdict: FAIL (no cut: {reason})",
+                    o.named.designation.text
+                );
                 if !o.named.why.is_empty() {
                     let _ = writeln!(s, "note: {}", o.named.why);
                 }
@@ -1466,7 +1469,7 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
         };
         let line = format!(
             "{}. {} at line {}, {}: {what}",
-            o.operation.index, o.operation.cycle, o.operation.source_line, o.designation
+            o.operation.index, o.operation.cycle, o.operation.source_line, o.named.designation.text
         );
         for l in wrap(&line, 125) {
             head =
@@ -1568,7 +1571,8 @@ pub fn program_svg(pv: &crate::analysis::program::ProgramVerification) -> String
             }
             crate::analysis::turn::OperationResult::NoCut { reason, suggested_final_x } => {
                 let next = no_cut_next(*suggested_final_x).map_or(String::new(), |n| format!(" · next: {n}"));
-                let lines = wrap(&format!("OUT OF TOLERANCE ({}): {reason}{next}", o.designation), 100);
+                let lines =
+                    wrap(&format!("OUT OF TOLERANCE ({}): {reason}{next}", o.named.designation.text), 100);
                 for (i, l) in lines.iter().enumerate() {
                     g = g.add(
                         text(20.0, band_h + 30.0 + 20.0 * i as f64, 16.0, l.clone())
@@ -1962,7 +1966,7 @@ pub fn program_html(pv: &ProgramVerification) -> String {
             esc(&op.cycle),
             op.source_line,
             op.tool.map_or(String::new(), |t| format!(", tool T{t}")),
-            esc(&o.designation)
+            esc(&o.named.designation.text)
         );
         body.push_str(&control_html(pv.control.iter().filter(|f| {
             f.made == crate::analysis::made::Process::Turned

@@ -59,6 +59,13 @@ impl Designation {
     }
 }
 
+/// The designation as the parser reads it (`M10x1.5-6g`).
+impl fmt::Display for Designation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.text)
+    }
+}
+
 /// A tolerance class of one of the supported standards.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ClassSpec {
@@ -187,7 +194,7 @@ pub fn parse_designation(text: &str, opts: ParseOptions) -> Result<Designation, 
     let text = text.trim();
     let mut c = Cursor { text, pos: 0 };
     if text.is_empty() {
-        return Err(c.err(0, 0, "empty designation; expected e.g. M10x1.5-6g, BSW 1/2 or G1/2 A").into());
+        return Err(none_given_at(&c));
     }
     // ISO 965 writes the series letter upper case; a lower-case `m` before a digit can only
     // mean it (the class letters keep their case: 6g and 6H are different sides).
@@ -235,6 +242,15 @@ pub fn parse_designation(text: &str, opts: ParseOptions) -> Result<Designation, 
             )
             .into())
     }
+}
+
+/// The refusal of a thread asked for and not given: an empty designation.
+pub fn none_given() -> crate::Error {
+    none_given_at(&Cursor { text: "", pos: 0 })
+}
+
+fn none_given_at(c: &Cursor<'_>) -> crate::Error {
+    c.err(0, 0, "empty designation; expected e.g. M10x1.5-6g, BSW 1/2 or G1/2 A").into()
 }
 
 fn fmt_pitch(p: f64) -> String {

@@ -158,7 +158,7 @@ fn phi(z: f64) -> f64 {
 /// use threadcheck::{capability, CapabilitySpec, InsertChoice, VerifySpec};
 /// // A full-profile M10x1.5-6g plan centred in 8.862–8.994 (T = 132 µm) with σx = 11 µm:
 /// // Cpk = (T/2)/(3σ) = 66/33 = 2.0, within the Monte Carlo's error.
-/// let mut spec = CapabilitySpec::new(VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M10x1.5-6g") });
+/// let mut spec = CapabilitySpec::new(VerifySpec { insert: InsertChoice::Full, ..VerifySpec::of("M10x1.5-6g")? });
 /// spec.x_sigma = 0.011;
 /// spec.samples = 2000;
 /// let r = capability(&spec)?;

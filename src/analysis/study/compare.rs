@@ -233,7 +233,7 @@ fn summarise(label: &str, schedule: &str, v: &Verification) -> Summary {
 /// ```
 /// use threadcheck::{compare, CompareChoice};
 /// use threadcheck::{InsertChoice, VerifySpec};
-/// let base = VerifySpec { insert: InsertChoice::Full, final_x: Some(8.2), ..VerifySpec::new("M10x1.5-6g") };
+/// let base = VerifySpec { insert: InsertChoice::Full, final_x: Some(8.2), ..VerifySpec::of("M10x1.5-6g")? };
 /// // Radial, flank, one modified angle and alternating, each with two schedules.
 /// let c = compare(&base, &[29.5], &CompareChoice::default())?;
 /// assert_eq!(c.runs.len(), 8);
@@ -261,10 +261,7 @@ pub fn compare(base: &VerifySpec, modified: &[f64], choice: &CompareChoice) -> R
             verify(&s)?.final_x
         }
     };
-    let des = crate::parse_designation(
-        &base.designation,
-        crate::ParseOptions { allow_nonstandard: base.allow_nonstandard },
-    )?;
+    let des = base.designation.clone().ok_or_else(crate::standards::designation::none_given)?;
     let half = 0.5 * des.thread.form.flank_angle();
     let infeeds = match choice.infeed {
         Some(c) => {

@@ -173,7 +173,7 @@ impl CorrectReport {
 /// use threadcheck::{correct, CorrectSpec, InsertChoice, Measured, VerifySpec};
 /// // A full-profile M10x1.5-6g plan; the part measures d2 = 9.010, 16 µm over 8.994.
 /// let spec = CorrectSpec {
-///     verify: VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M10x1.5-6g") },
+///     verify: VerifySpec { insert: InsertChoice::Full, ..VerifySpec::of("M10x1.5-6g")? },
 ///     measured: Some(Measured::PitchDiameter(9.010)),
 ///     pickup_z: None,
 /// };

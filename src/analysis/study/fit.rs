@@ -6,6 +6,7 @@ use crate::analysis::program::verify_program;
 use crate::analysis::tools::InsertChoice;
 use crate::analysis::turn::{verify, OperationResult, Verification, VerifySpec};
 use crate::ground::plane::Point;
+use crate::standards::Designation;
 use crate::Error;
 
 /// How one part of the pair is cut.
@@ -22,10 +23,9 @@ pub struct FitSide {
 /// What `fit` needs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FitSpec {
-    /// A fit designation, e.g. `M10x1.5-6H/6g`.
-    pub thread: String,
-    /// Accept sizes outside the standard series.
-    pub allow_nonstandard: bool,
+    /// A fit designation, e.g. `M10x1.5-6H/6g`, parsed (sizes outside the standard series
+    /// are the parser's to accept).
+    pub thread: Designation,
     /// The bolt.
     pub bolt: FitSide,
     /// The nut.
@@ -57,11 +57,11 @@ pub struct FitReport {
 fn side(spec: &FitSpec, s: &FitSide, internal: bool) -> Result<Verification, Error> {
     let v = VerifySpec {
         internal,
-        allow_nonstandard: spec.allow_nonstandard,
+        allow_nonstandard: spec.thread.nonstandard,
         insert: s.insert.clone(),
         final_x: s.final_x,
         metrics: false,
-        ..VerifySpec::new(&spec.thread)
+        ..VerifySpec::new(Some(spec.thread.clone()))
     };
     match &s.program {
         None => verify(&v),
@@ -90,15 +90,13 @@ fn side(spec: &FitSpec, s: &FitSide, internal: bool) -> Result<Verification, Err
 /// use threadcheck::{fit, FitSide, FitSpec};
 /// use threadcheck::InsertChoice;
 /// let side = FitSide { insert: InsertChoice::Full, final_x: None, program: None };
-/// let r = fit(&FitSpec { thread: "M10x1.5-6H/6g".into(), allow_nonstandard: false, bolt: side.clone(), nut: side })?;
+/// let thread = threadcheck::parse_designation("M10x1.5-6H/6g", Default::default())?;
+/// let r = fit(&FitSpec { thread, bolt: side.clone(), nut: side })?;
 /// assert!(r.fits && r.clearance_um > 0.0);
 /// # Ok::<(), threadcheck::Error>(())
 /// ```
 pub fn fit(spec: &FitSpec) -> Result<FitReport, Error> {
-    let des = crate::parse_designation(
-        &spec.thread,
-        crate::ParseOptions { allow_nonstandard: spec.allow_nonstandard },
-    )?;
+    let des = &spec.thread;
     if des.external.is_none() || des.internal.is_none() {
         return Err(Error::Input(format!(
             "'{}' names no fit: give the nut's and the bolt's classes, e.g. M10x1.5-6H/6g",

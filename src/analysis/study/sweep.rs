@@ -226,6 +226,8 @@ pub fn cases(spec: &CatalogueSpec) -> Result<Vec<Case>, Error> {
     let mut out = Vec::new();
     for &form in &spec.forms {
         for (designation, p, internal) in threads(spec, form)? {
+            // Parsed once for every case of the thread.
+            let parsed = crate::parse_designation(&designation, crate::ParseOptions::default())?;
             let mut inserts = Vec::new();
             if spec.full {
                 inserts.push(("full".to_string(), InsertChoice::Full));
@@ -250,7 +252,7 @@ pub fn cases(spec: &CatalogueSpec) -> Result<Vec<Case>, Error> {
                 for kind in &spec.infeeds {
                     let infeed = kind.resolve(form.flank_angle());
                     for schedule in &spec.schedules {
-                        let mut v = VerifySpec::new(&designation);
+                        let mut v = VerifySpec::new(Some(parsed.clone()));
                         v.internal = internal;
                         v.insert = insert.clone();
                         v.infeed = Some(*kind);

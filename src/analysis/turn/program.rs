@@ -7,7 +7,7 @@ use super::resolve::*;
 use super::spec::*;
 use crate::analysis::check::verdict;
 use crate::analysis::tools::InsertChoice;
-use crate::standards::{parse_designation, ParseOptions, ThreadKind};
+use crate::standards::ThreadKind;
 use crate::toolpath::passes::Pass;
 use crate::Error;
 
@@ -43,9 +43,8 @@ impl OperationResult {
 pub struct OperationVerdict {
     /// The operation as the program cuts it.
     pub operation: crate::gcode::Operation,
-    /// The designation it was verified against.
-    pub designation: String,
-    /// Where the designation came from (given, a comment, inferred) and how it was read.
+    /// The designation it was verified against: where it came from (given, a comment,
+    /// inferred) and how it was read.
     pub named: crate::analysis::naming::Named,
     /// The verdict.
     pub result: OperationResult,
@@ -92,7 +91,7 @@ pub fn verify_operation(
                 metrics: false,
                 picture: false,
                 machine: None,
-                designation: r.designation.text.clone(),
+                designation: Some(r.designation.clone()),
                 ..spec.clone()
             };
             // Passes nowhere near the designation's size: no final X is offered (it would plunge
@@ -572,7 +571,7 @@ pub fn turned_program(
     text: &str,
     name: &str,
     dialect: crate::gcode::Dialect,
-    threads: &[String],
+    threads: &[crate::standards::Designation],
     insert_for: &InsertFor<'_>,
 ) -> Result<TurnedProgram, Error> {
     let prog = crate::gcode::read_program_with(text, name, dialect, spec.reading.clone())?;
@@ -605,17 +604,13 @@ pub fn turned_program(
                 crate::standards::designation::ParseOptions { allow_nonstandard: spec.allow_nonstandard },
                 name,
             )?,
-            [one] => crate::analysis::naming::Named::given(one),
-            many => crate::analysis::naming::Named::given(&many[i]),
+            [one] => crate::analysis::naming::Named::given(one.clone()),
+            many => crate::analysis::naming::Named::given(many[i].clone()),
         };
-        let designation = named.designation.clone();
+        let designation = &named.designation;
         let mut s = VerifySpec {
-            units: if spec.units_given {
-                spec.units
-            } else {
-                VerifySpec::default_units(&designation, spec.allow_nonstandard)
-            },
-            designation: designation.clone(),
+            units: if spec.units_given { spec.units } else { VerifySpec::default_units(Some(designation)) },
+            designation: Some(designation.clone()),
             program: None,
             operation: None,
             final_x: None,
@@ -659,8 +654,7 @@ pub fn turned_program(
                 let opts =
                     crate::standards::designation::ParseOptions { allow_nonstandard: spec.allow_nonstandard };
                 let cut = name_turned(op, None, &[], spec.internal, opts, name).ok()?;
-                let size = |d: &str| parse_designation(d, opts).ok().map(|d| d.thread);
-                let (a, b) = (size(&cut.designation)?, size(&designation)?);
+                let (a, b) = (cut.designation.thread, designation.thread);
                 let same = a.form == b.form
                     && (a.nominal_diameter - b.nominal_diameter).abs() < 1e-6
                     && (a.pitch - b.pitch).abs() < 1e-6
@@ -707,7 +701,7 @@ pub fn turned_program(
             }
             v.pass = verdict(&v.checks, v.gauge_only);
         }
-        operations.push(OperationVerdict { operation: op.clone(), designation, named, result });
+        operations.push(OperationVerdict { operation: op.clone(), named, result });
     }
     Ok(TurnedProgram { prog, label, operations, operations_in_program: n })
 }
@@ -723,9 +717,7 @@ pub(crate) fn assumed_insert(op: &crate::gcode::Operation, spec: &VerifySpec) ->
         InsertChoice::Full,
         "the full-profile insert of the thread's pitch, the one the passes' depth is written for".to_string(),
     );
-    let Ok(des) =
-        parse_designation(&spec.designation, ParseOptions { allow_nonstandard: spec.allow_nonstandard })
-    else {
+    let Some(des) = &spec.designation else {
         return full;
     };
     let t = des.thread;
@@ -841,7 +833,7 @@ pub fn unverified_by_assumed_insert(v: &mut Verification) {
 /// ```
 /// use threadcheck::{verify, InsertChoice, VerifySpec};
 /// // A full-profile insert, the final X solved for the middle of 6g's d2 band (8.862–8.994).
-/// let v = verify(&VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M10x1.5-6g") })?;
+/// let v = verify(&VerifySpec { insert: InsertChoice::Full, ..VerifySpec::of("M10x1.5-6g")? })?;
 /// assert!(v.pass);
 /// assert!((v.measurement.pitch_diameter - 8.928).abs() < 1e-3);
 /// # Ok::<(), threadcheck::Error>(())

@@ -6,7 +6,7 @@ use crate::analysis::tools::InsertChoice;
 use crate::geometry::insert::{Insert, InsertKind};
 use crate::ground::bounds::MAX_DATA_FILE_BYTES;
 use crate::standards::tolerance::{limits_for, ThreadLimits};
-use crate::standards::{parse_designation, Designation, ParseOptions, ProfileKind, ThreadKind};
+use crate::standards::{Designation, ProfileKind, ThreadKind};
 use crate::toolpath::passes::{Infeed, InfeedChoice, PlanSpec};
 use crate::{BasicThread, Error};
 
@@ -250,8 +250,7 @@ pub fn resolve(spec: &VerifySpec) -> Result<Resolved, Error> {
     {
         return Err(Error::Input(format!("chord tolerance {} mm must be from 1e-6 to 0.01", spec.tolerance)));
     }
-    let des =
-        parse_designation(&spec.designation, ParseOptions { allow_nonstandard: spec.allow_nonstandard })?;
+    let des = spec.designation.clone().ok_or_else(crate::standards::designation::none_given)?;
     let kind = resolve_kind(&des, spec.internal)?;
     let limits = limits_for(&des, kind)?.ok_or_else(|| Error::Input("no class".into()))?;
     let t = des.thread;

@@ -15,8 +15,9 @@ use std::path::PathBuf;
 /// Everything `verify` needs; the CLI fills it from its options.
 #[derive(Clone, Debug, PartialEq)]
 pub struct VerifySpec {
-    /// Designation with a class (`M10x1.5-6g`).
-    pub designation: String,
+    /// The thread with its class (`M10x1.5-6g`), parsed once where it was given; `None` when a
+    /// program names its own threads.
+    pub designation: Option<Designation>,
     /// Verify the internal thread (else external, unless the designation names only an internal
     /// class).
     pub internal: bool,
@@ -123,8 +124,9 @@ impl VerifySpec {
     ///
     /// ```
     /// use threadcheck::VerifySpec;
-    /// let spec = VerifySpec { passes: Some(0), ..VerifySpec::new("M10x1.5-6g") };
+    /// let spec = VerifySpec { passes: Some(0), ..VerifySpec::of("M10x1.5-6g")? };
     /// assert_eq!(spec.validate().map_err(|e| e.to_string()), Err("passes 0: a thread needs at least one pass".into()));
+    /// # Ok::<(), threadcheck::Error>(())
     /// ```
     pub fn validate(&self) -> Result<(), Error> {
         if self.passes == Some(0) {
@@ -174,19 +176,32 @@ impl VerifySpec {
     }
 
     /// The units a designation is reported in by default: inches beside the mm for the inch
-    /// forms (UN, Acme, NPT, BSW, BSP), else mm; a designation that does not parse gets mm (its
-    /// error is reported where it is resolved).
-    pub fn default_units(designation: &str, allow_nonstandard: bool) -> Units {
-        match parse_designation(designation, ParseOptions { allow_nonstandard }) {
-            Ok(d) if d.thread.form.is_inch() => Units::Inch,
+    /// forms (UN, Acme, NPT, BSW, BSP), else mm (and for none).
+    pub fn default_units(designation: Option<&Designation>) -> Units {
+        match designation {
+            Some(d) if d.thread.form.is_inch() => Units::Inch,
             _ => Units::Mm,
         }
     }
 
-    /// A spec with the defaults for everything but the designation.
-    pub fn new(designation: &str) -> VerifySpec {
+    /// A spec for the thread `designation` names, its size in its standard series, with the
+    /// defaults for everything else.
+    ///
+    /// ```
+    /// use threadcheck::VerifySpec;
+    /// assert_eq!(VerifySpec::of("M10x1.5-6g")?.designation.map(|d| d.thread.pitch), Some(1.5));
+    /// assert!(VerifySpec::of("M10x1.3-6g").is_err()); // not an ISO 261 pitch for M10
+    /// # Ok::<(), threadcheck::Error>(())
+    /// ```
+    pub fn of(designation: &str) -> Result<VerifySpec, Error> {
+        Ok(VerifySpec::new(Some(parse_designation(designation, ParseOptions::default())?)))
+    }
+
+    /// A spec with the defaults for everything but the designation (`None`: a program names its
+    /// threads).
+    pub fn new(designation: Option<Designation>) -> VerifySpec {
         VerifySpec {
-            designation: designation.to_string(),
+            designation,
             internal: false,
             allow_nonstandard: false,
             insert: InsertChoice::Partial { tip_radius: 0.04 },
@@ -226,7 +241,7 @@ impl VerifySpec {
     /// use threadcheck::{verify, InsertChoice, VerifySpec};
     /// use threadcheck::Dialect;
     /// let g76 = "G0 X22 Z5\nG76 P010060 Q100 R0.02\nG76 X18.2 Z-20 P900 Q300 F1.5\n";
-    /// let spec = VerifySpec { insert: InsertChoice::Full, ..VerifySpec::new("M20x1.5-6g") };
+    /// let spec = VerifySpec { insert: InsertChoice::Full, ..VerifySpec::of("M20x1.5-6g")? };
     /// let v = verify(&spec.with_program_text("post.nc", g76, Dialect::Fanuc))?;
     /// // A full-profile tip at X18.2 leaves d2 = 18.2 + 0.57735·1.5 = 19.066: 72 µm over 6g.
     /// assert!(!v.pass);
