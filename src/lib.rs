@@ -69,7 +69,7 @@ mod toolpath;
 pub use ground::cancel::{check as check_cancelled, Cancel};
 pub use ground::error::{one_line, Audience, CliFlags, Error, Result};
 pub use ground::fmt::{path_name, shown_text};
-pub use ground::note::{Note, NoteKind, Place};
+pub use ground::note::{Marked, Note, NoteKind, Place};
 pub use ground::plane::{Arc, Point, DEFAULT_TOLERANCE, MIN_TOLERANCE};
 
 // Standards: designations, forms, classes and their limits of size.
@@ -143,7 +143,7 @@ pub use analysis::turn::correction::{correction, deeper_words, Correction, Deepe
 pub use analysis::turn::lead::{lead_deviation, LeadDeviation};
 pub use analysis::turn::{
     default_blank, default_pass_count, program_passes, read_program_text, reference_groove, text_of, verify,
-    ProgramLabel, ProgramSource, Units, Verification, VerifySpec,
+    OperationResult, OperationVerdict, ProgramLabel, ProgramSource, Units, Verification, VerifySpec,
 };
 
 pub use lsp::{lsp, run as lsp_run, LspArgs, MAX_OPEN_DOCUMENTS};

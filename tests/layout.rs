@@ -652,3 +652,25 @@ fn a_designation_is_parsed_where_it_enters() {
         assert!(code.contains(field), "{file} carries no parsed designation ({field})");
     }
 }
+
+/// Issue 60, one name for one thing: a note carries its argument as data (`‹insert›`), and each
+/// reader gets it in its own words — a library caller printing a note (`to_string`) the key the
+/// API and Python take, the command line its flag; the marked text is the reports' to render.
+#[test]
+fn a_library_caller_reads_notes_in_its_own_words() {
+    use threadcheck::{verify_program, Dialect, InsertChoice, VerifySpec};
+    let text = "(M20X1.5-6G)\nG0 X22 Z5\nG76 P011060 Q100 R0.05\nG76 X18.16 Z-20 P920 Q350 F1.5\n";
+    let assumed = |_: &threadcheck::Operation| Some((InsertChoice::Full, "no tool known".to_string(), true));
+    let pv = verify_program(&VerifySpec::new(None), text, "m20.nc", Dialect::Fanuc, &[], &assumed).unwrap();
+    let threadcheck::OperationResult::Verified(v) = &pv.operations[0].result else { panic!("not cut") };
+    let note = v.notes.iter().find(|n| n.message.contains("insert assumed")).expect("the insert's note");
+    let library = note.to_string();
+    assert!(library.contains("choose with insert or tools") && !library.contains('‹'), "{library}");
+    assert!(note.marked().to_string().contains("choose with ‹insert› or ‹tools›"), "{}", note.marked());
+    let dir = crate::tempdir("notes");
+    let path = dir.join("m20.nc");
+    std::fs::write(&path, text).unwrap();
+    let o = crate::run(&["verify", "--program", path.to_str().unwrap()]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("choose with --insert or --tools"), "{out}");
+}

@@ -292,8 +292,8 @@ pub fn verify_whole(
             };
             let mut r = crate::analysis::thread_mill::thread_mill(&m)?;
             // The program's notes are the report's, once.
-            let program: Vec<String> = prog.notes.iter().map(ToString::to_string).collect();
-            r.notes.retain(|n| !program.contains(n));
+            let program: Vec<String> = prog.notes.iter().map(|n| n.marked().to_string()).collect();
+            r.notes.retain(|n| !program.contains(&n.marked().to_string()));
             pv.control.extend(crate::analysis::control::milled(&r, dialect));
             Milled::Checked(Box::new(r))
         } else {

@@ -233,7 +233,7 @@ pub struct TappedHole {
     /// Within every check.
     pub pass: bool,
     /// What was assumed or could not be checked.
-    pub notes: Vec<String>,
+    pub notes: Vec<crate::ground::note::Note>,
     /// The hole's wall in its axial half-section (z, r), mm, from the top (Z0, or six pitches
     /// above the tap's bottom when that lies above Z0) down to the drill's point: the tap's
     /// thread (the basic profile's flanks, cut off at the drill's radius), its chamfer's cone
@@ -613,7 +613,7 @@ fn tapped_hole(
         torque,
         checks,
         pass,
-        notes,
+        notes: notes.into_iter().map(crate::ground::note::Note::from).collect(),
         wall,
     })
 }

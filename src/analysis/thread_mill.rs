@@ -115,7 +115,7 @@ pub struct ThreadMillReport {
     /// Every check passes, and no move after the last helix cuts the thread.
     pub pass: bool,
     /// What was assumed.
-    pub notes: Vec<String>,
+    pub notes: Vec<crate::ground::note::Note>,
     /// The measured axial section (z, r), mm, over four pitches.
     #[serde(skip)]
     pub profile: Vec<Point>,
@@ -756,7 +756,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
     let (text, name) = &spec.program;
     let opts = ReadOptions { moves: true, allow_no_threading: true, ..spec.reading.clone() };
     let prog = crate::gcode::read_program_with(text, name, spec.dialect, opts)?;
-    let mut notes: Vec<String> = prog.notes.iter().map(|n| n.to_string()).collect();
+    let mut notes: Vec<String> = prog.notes.iter().map(|n| n.marked().to_string()).collect();
     let (c, first_tool) = cutter_of(spec, &prog, &mut notes)?;
     let comp = compensation(spec, &prog, c, first_tool, &mut notes)?;
     let opts = ParseOptions { allow_nonstandard: spec.allow_nonstandard };
@@ -893,7 +893,7 @@ pub fn thread_mill(spec: &ThreadMillSpec) -> Result<ThreadMillReport, Error> {
         limits,
         checks: cs,
         pass,
-        notes,
+        notes: notes.into_iter().map(crate::ground::note::Note::from).collect(),
         widening_um: profile.iter().zip(&tooth).map(|(a, b)| (a.z, (a.r - b.r).abs() * 1000.0)).collect(),
         profile,
         tooth_points: tooth,

@@ -69,18 +69,51 @@ impl From<&str> for Note {
     }
 }
 
+/// A note as a library caller reads it: an argument named by its key (`blank_diameter`), as
+/// the API and Python name it.
+///
+/// ```
+/// use threadcheck::Note;
+/// let n = Note::at("part.nc", 12, 1, "the blank is the stock the program declares (‹blank_diameter› overrides)");
+/// assert_eq!(n.to_string(), "part.nc:12:1: the blank is the stock the program declares (blank_diameter overrides)");
+/// assert_eq!(n.marked().to_string(), "part.nc:12:1: the blank is the stock the program declares (‹blank_diameter› overrides)");
+/// ```
 impl fmt::Display for Note {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let message = crate::ground::error::Audience::Api.words(&self.message);
         match &self.place {
-            Some(p) => write!(f, "{}:{}:{}: {}", p.file, p.line, p.column, self.message),
-            None => f.write_str(&self.message),
+            Some(p) => write!(f, "{}:{}:{}: {message}", p.file, p.line, p.column),
+            None => f.write_str(&message),
         }
     }
 }
 
+/// A note with its arguments still marked (`‹blank_diameter›`), for the layer that renders
+/// them for its reader: the command line's flag, the page's field, the API's key.
+#[derive(Clone, Copy, Debug)]
+pub struct Marked<'a>(&'a Note);
+
+impl Note {
+    /// This note with its arguments still marked, for the reports ([`Marked`]).
+    pub fn marked(&self) -> Marked<'_> {
+        Marked(self)
+    }
+}
+
+impl fmt::Display for Marked<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.0.place {
+            Some(p) => write!(f, "{}:{}:{}: {}", p.file, p.line, p.column, self.0.message),
+            None => f.write_str(&self.0.message),
+        }
+    }
+}
+
+/// A report's document is rendered for its reader after it is written: the JSON carries the
+/// marks.
 impl Serialize for Note {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.collect_str(self)
+        s.collect_str(&self.marked())
     }
 }
 

@@ -149,7 +149,7 @@ pub fn capability_text(r: &CapabilityReport) -> String {
         let _ = writeln!(s, "  in the program: {}", correction_text(c));
     }
     for n in r.notes.iter().chain(&v.notes) {
-        let _ = writeln!(s, "note: {n}");
+        let _ = writeln!(s, "note: {}", n.marked());
     }
     s
 }

@@ -192,7 +192,7 @@ pub fn correct_text(r: &CorrectReport) -> String {
     }
     let _ = writeln!(s, "\n{verdict}");
     for n in r.verification.notes.iter().chain(&r.notes) {
-        let _ = writeln!(s, "note: {n}");
+        let _ = writeln!(s, "note: {}", n.marked());
     }
     s
 }
@@ -209,7 +209,7 @@ pub fn correct_html(r: &CorrectReport) -> String {
     }
     let _ = writeln!(s, "</ul>\n<h2>Notes</h2>\n<ul class=\"notes\">");
     for n in r.verification.notes.iter().chain(&r.notes) {
-        let _ = writeln!(s, "<li>{}</li>", esc(&n.to_string()));
+        let _ = writeln!(s, "<li>{}</li>", esc(&n.marked().to_string()));
     }
     s.push_str("</ul>\n");
     page(&format!("threadcheck correct {}", r.verification.designation.text), &s)

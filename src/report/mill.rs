@@ -93,7 +93,7 @@ pub fn text(r: &MillReport) -> String {
         }
     );
     for n in &r.notes {
-        let _ = writeln!(s, "note: {n}");
+        let _ = writeln!(s, "note: {}", n.marked());
     }
     s
 }

@@ -132,7 +132,7 @@ pub fn text(source: PassesSource<'_>, passes: &[crate::toolpath::passes::Pass]) 
                 read_past_text(prog.read_past_blocks),
             );
             for n in &prog.notes {
-                let _ = writeln!(s, "note: {n}");
+                let _ = writeln!(s, "note: {}", n.marked());
             }
         }
         PassesSource::Plan { designation, kind, blank, final_x } => {
@@ -173,7 +173,7 @@ pub fn text(source: PassesSource<'_>, passes: &[crate::toolpath::passes::Pass]) 
                     op.passes.len()
                 );
                 for n in &op.notes {
-                    let _ = writeln!(s, "  note: {n}");
+                    let _ = writeln!(s, "  note: {}", n.marked());
                 }
                 s.push_str(head);
                 for p in &op.passes {

@@ -76,7 +76,7 @@ pub fn text(r: &TapReport) -> String {
         let _ = writeln!(s, "\nprogram verdict: {}", if r.pass { "PASS" } else { "FAIL" });
     }
     for n in &r.notes {
-        let _ = writeln!(s, "note: {n}");
+        let _ = writeln!(s, "note: {}", n.marked());
     }
     s
 }
@@ -328,7 +328,7 @@ pub fn holes_text(r: &TapReport) -> String {
             }
         );
         for n in &h.notes {
-            let _ = writeln!(s, "note: {n}");
+            let _ = writeln!(s, "note: {}", n.marked());
         }
     }
     s
@@ -861,11 +861,11 @@ pub fn tap_html(r: &crate::analysis::tap::TapReport) -> String {
             let _ = writeln!(s, "<p class=\"next\">{}</p>", esc(&line));
         }
         for n in &h.notes {
-            let _ = writeln!(s, "<p class=\"form\">{}</p>", esc(n));
+            let _ = writeln!(s, "<p class=\"form\">{}</p>", esc(&n.marked().to_string()));
         }
     }
     for n in &r.notes {
-        let _ = writeln!(s, "<p class=\"form\">{}</p>", esc(&n.to_string()));
+        let _ = writeln!(s, "<p class=\"form\">{}</p>", esc(&n.marked().to_string()));
     }
     page(&format!("threadcheck: {} tapped", r.program), &s)
 }

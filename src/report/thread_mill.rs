@@ -200,7 +200,7 @@ pub fn text(r: &ThreadMillReport) -> String {
         if r.pass { "PASS".to_string() } else { format!("FAIL ({})", failed.join(", ")) }
     );
     for n in &r.notes {
-        let _ = writeln!(s, "note: {n}");
+        let _ = writeln!(s, "note: {}", n.marked());
     }
     s
 }
@@ -249,7 +249,7 @@ pub struct ThreadMillJson<'a> {
     /// `pass` or `fail`.
     pub verdict: crate::analysis::check::Verdict,
     /// What was assumed.
-    pub notes: &'a [String],
+    pub notes: &'a [crate::ground::note::Note],
 }
 
 impl<'a> ThreadMillJson<'a> {
@@ -581,7 +581,7 @@ pub fn thread_mill_html(r: &crate::analysis::thread_mill::ThreadMillReport) -> S
     }
     s.push_str("</table>\n");
     for n in &r.notes {
-        let _ = writeln!(s, "<p class=\"form\">{}</p>", esc(n));
+        let _ = writeln!(s, "<p class=\"form\">{}</p>", esc(&n.marked().to_string()));
     }
     page(&format!("threadcheck: {} thread-milled", r.designation), &s)
 }

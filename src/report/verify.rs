@@ -521,7 +521,7 @@ pub fn verify_text(v: &Verification) -> String {
         let _ = writeln!(s, "hint: {}", hint_text(h));
     }
     for n in &v.notes {
-        let _ = writeln!(s, "note: {n}");
+        let _ = writeln!(s, "note: {}", n.marked());
     }
     s
 }
@@ -855,7 +855,7 @@ pub fn program_text(pv: &crate::analysis::program::ProgramVerification) -> Strin
                     let _ = writeln!(s, "next: {next}");
                 }
                 for note in &op.notes {
-                    let _ = writeln!(s, "note: {note}");
+                    let _ = writeln!(s, "note: {}", note.marked());
                 }
             }
         }
@@ -887,7 +887,7 @@ pub fn program_text(pv: &crate::analysis::program::ProgramVerification) -> Strin
     }
     s.push_str(&control_text(&pv.control));
     for note in &pv.notes {
-        let _ = writeln!(s, "note: {note}");
+        let _ = writeln!(s, "note: {}", note.marked());
     }
     let tapped = pv.tapped.as_ref().map_or(0, |t| t.holes.len());
     let milled = usize::from(pv.milled.is_some());
@@ -1918,7 +1918,7 @@ pub(crate) fn verification_body(v: &Verification, svg: &str, level: u8) -> Strin
     if !v.notes.is_empty() {
         let _ = writeln!(s, "<{0}>Notes and assumptions</{0}>\n<ul class=\"notes\">", h(0));
         for n in &v.notes {
-            let _ = writeln!(s, "<li>{}</li>", esc(&n.to_string()));
+            let _ = writeln!(s, "<li>{}</li>", esc(&n.marked().to_string()));
         }
         s.push_str("</ul>\n");
     }
@@ -1952,7 +1952,7 @@ pub fn program_html(pv: &ProgramVerification) -> String {
     if !pv.notes.is_empty() {
         body.push_str("<ul class=\"notes\">\n");
         for n in &pv.notes {
-            let _ = writeln!(body, "<li>{}</li>", esc(&n.to_string()));
+            let _ = writeln!(body, "<li>{}</li>", esc(&n.marked().to_string()));
         }
         body.push_str("</ul>\n");
     }
@@ -1974,7 +1974,7 @@ pub fn program_html(pv: &ProgramVerification) -> String {
                 && turned_owner(pv, f.line) == Some(op.index)
         })));
         for n in &op.notes {
-            let _ = writeln!(body, "<p class=\"form\">{}</p>", esc(&n.to_string()));
+            let _ = writeln!(body, "<p class=\"form\">{}</p>", esc(&n.marked().to_string()));
         }
         match &o.result {
             OperationResult::Verified(v) => {
