@@ -159,6 +159,6 @@ pub use commands::{
     deliver, filter, run_request, ApiArgs, CapabilityArgs, Command, CompareArgs, CorrectArgs, Dest, Document,
     Files, FilterArgs, Filtered, FitArgs, FormSet, InsertSet, Job, JsonArg, LimitsArgs, MillArgs, NoShared,
     ONumber, Outcome, Outputs, PassesArgs, PlanArgs, ProgramArgs, ReadingArgs, ReportArgs, ReportName,
-    Request, SeriesArgs, SeriesSet, SharedArgs, Shown, Source, SweepArgs, TapArgs, ThreadMillArgs,
+    Request, SeriesSet, SharedArgs, Shown, Source, StandardArgs, SweepArgs, TapArgs, ThreadMillArgs,
     VerifyArgs, CAPABLE_CPK,
 };

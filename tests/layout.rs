@@ -527,7 +527,7 @@ fn architecture_names_every_folder() {
 
 /// Issue 60, read once: the program-reading flags are declared in one struct of `commands/`
 /// (`ReadingArgs`), and every command that reads a program takes each of them, on the command
-/// line and through the API; so is the designation-reading flag (`SeriesArgs`), taken by every
+/// line and through the API; so is the designation-reading flag (`StandardArgs`), taken by every
 /// command that reads a thread.
 #[test]
 fn the_reading_flags_are_declared_once_and_taken_by_every_reader() {
@@ -577,14 +577,14 @@ fn the_reading_flags_are_declared_once_and_taken_by_every_reader() {
         }
         assert!(ids.contains(&"subroutine_path"), "{name} has no --subroutine-path");
     }
-    // How a designation is read: declared once, in SeriesArgs, and taken by every command that
+    // How a designation is read: declared once, in StandardArgs, and taken by every command that
     // reads one (mill reads none).
     let declared: Vec<&str> = flag_structs
         .iter()
         .filter(|(_, body)| body.contains("pub allow_nonstandard:"))
         .map(|(name, _)| name.as_str())
         .collect();
-    assert_eq!(declared, vec!["SeriesArgs"], "allow_nonstandard is declared in {declared:?}");
+    assert_eq!(declared, vec!["StandardArgs"], "allow_nonstandard is declared in {declared:?}");
     for name in
         ["verify", "passes", "compare", "correct", "capability", "limits", "fit", "tap", "thread-mill"]
     {
@@ -620,7 +620,7 @@ fn thread_mill_reads_with_verifys_flags() {
 }
 
 /// Issue 60, read once: a designation is parsed where it enters and carried parsed after that —
-/// a flag's, a project file's or a modeline's by its command (`SeriesArgs::parse`), a comment's,
+/// a flag's, a project file's or a modeline's by its command (`StandardArgs::parse`), a comment's,
 /// a CAM tool list's or an inferred size's by `naming`, a tool library's description by
 /// `fusion`, a tool table's tap where its hole is checked, the catalogue's sizes by the sweep,
 /// `VerifySpec::of`'s for a library caller. A parse anywhere else is a second one.

@@ -259,7 +259,7 @@ pub struct PlanArgs {
     /// How the designations are read.
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
-    pub series: SeriesArgs,
+    pub standard: StandardArgs,
     /// full | partial[:TIP_RADIUS] | FILE.toml (default partial, r0.04 mm)
     #[cfg_attr(feature = "cli", arg(long))]
     #[serde_as(as = "Option<DisplayFromStr>")]
@@ -521,7 +521,7 @@ impl PlanArgs {
     ) -> Result<(VerifySpec, Vec<Designation>), Error> {
         let mut s = VerifySpec::new(None);
         s.internal = self.internal;
-        s.allow_nonstandard = self.series.allow_nonstandard;
+        s.allow_nonstandard = self.standard.allow_nonstandard;
         s.insert = self.insert_choice(files)?.unwrap_or(InsertChoice::Partial { tip_radius: 0.04 });
         s.infeed = self.infeed;
         s.passes = self.passes;
@@ -594,7 +594,8 @@ impl PlanArgs {
         };
         s.validate()?;
         // Each designation parsed here, once; the rest receives the parse.
-        let threads = self.thread.iter().map(|t| self.series.parse(t)).collect::<Result<Vec<_>, Error>>()?;
+        let threads =
+            self.thread.iter().map(|t| self.standard.parse(t)).collect::<Result<Vec<_>, Error>>()?;
         s.designation = threads.first().cloned();
         // An inch thread is read in inches beside the mm.
         s.units = self.units.unwrap_or_else(|| VerifySpec::default_units(s.designation.as_ref()));
@@ -792,13 +793,13 @@ impl PictureArgs {
 #[cfg_attr(feature = "cli", derive(clap::Args))]
 #[derive(Clone, Copy, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields, default)]
-pub struct SeriesArgs {
+pub struct StandardArgs {
     /// Accept a diameter/pitch pair outside the standard series.
     #[cfg_attr(feature = "cli", arg(long))]
     pub allow_nonstandard: bool,
 }
 
-impl SeriesArgs {
+impl StandardArgs {
     /// The parser's options these flags set.
     pub fn options(self) -> ParseOptions {
         ParseOptions { allow_nonstandard: self.allow_nonstandard }
@@ -812,30 +813,30 @@ impl SeriesArgs {
 
 /// Implements [`ApiArgs`](super::ApiArgs) for a command's arguments: `shares field: Type` for a
 /// command that flattens shared arguments into its own, `shares nothing` for one that does not;
-/// `reads thread at path` where its [`SeriesArgs`] sit, for one that reads a designation.
+/// `reads thread at path` where its [`StandardArgs`] sit, for one that reads a designation.
 macro_rules! api_args {
-    ($args:ty, shares $field:ident: $shared:ty $(, reads thread at $($series:ident).+)?) => {
+    ($args:ty, shares $field:ident: $shared:ty $(, reads thread at $($standard:ident).+)?) => {
         impl $crate::commands::ApiArgs for $args {
             type Shared = $shared;
             fn shared_mut(&mut self) -> Option<&mut $shared> {
                 Some(&mut self.$field)
             }
-            $($crate::commands::args::api_args!(@series $($series).+);)?
+            $($crate::commands::args::api_args!(@standard $($standard).+);)?
         }
     };
-    ($args:ty, shares nothing $(, reads thread at $($series:ident).+)?) => {
+    ($args:ty, shares nothing $(, reads thread at $($standard:ident).+)?) => {
         impl $crate::commands::ApiArgs for $args {
             type Shared = $crate::commands::NoShared;
             fn shared_mut(&mut self) -> Option<&mut $crate::commands::NoShared> {
                 None
             }
-            $($crate::commands::args::api_args!(@series $($series).+);)?
+            $($crate::commands::args::api_args!(@standard $($standard).+);)?
         }
     };
-    (@series $($series:ident).+) => {
-        const SERIES: bool = true;
-        fn series_mut(&mut self) -> Option<&mut $crate::commands::args::SeriesArgs> {
-            Some(&mut self.$($series).+)
+    (@standard $($standard:ident).+) => {
+        const READS_THREAD: bool = true;
+        fn standard_mut(&mut self) -> Option<&mut $crate::commands::args::StandardArgs> {
+            Some(&mut self.$($standard).+)
         }
     };
 }

@@ -55,7 +55,7 @@ pub struct CapabilityArgs {
     pub out: super::args::PictureArgs,
 }
 
-super::args::api_args!(CapabilityArgs, shares plan: PlanArgs, reads thread at plan.series);
+super::args::api_args!(CapabilityArgs, shares plan: PlanArgs, reads thread at plan.standard);
 
 impl Job for CapabilityArgs {
     const NAME: &'static str = "capability";

@@ -35,7 +35,7 @@ pub struct CompareArgs {
     pub out: JsonArg,
 }
 
-super::args::api_args!(CompareArgs, shares plan: PlanArgs, reads thread at plan.series);
+super::args::api_args!(CompareArgs, shares plan: PlanArgs, reads thread at plan.standard);
 
 impl Job for CompareArgs {
     const NAME: &'static str = "compare";

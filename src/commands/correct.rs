@@ -62,7 +62,7 @@ pub struct CorrectArgs {
     pub out: JsonArg,
 }
 
-super::args::api_args!(CorrectArgs, shares plan: PlanArgs, reads thread at plan.series);
+super::args::api_args!(CorrectArgs, shares plan: PlanArgs, reads thread at plan.standard);
 
 impl CorrectArgs {
     /// The one measurement given, if any.

@@ -22,7 +22,7 @@ pub struct FitArgs {
     /// How the designation is read.
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
-    pub series: super::SeriesArgs,
+    pub standard: super::StandardArgs,
     /// The bolt's program (else a generated plan).
     #[cfg_attr(feature = "cli", arg(long, value_name = "FILE", conflicts_with = "bolt_final_x", value_parser = Source::path))]
     #[serde(deserialize_with = "super::args::source_text")]
@@ -63,7 +63,7 @@ pub struct FitArgs {
     pub out: JsonArg,
 }
 
-super::args::api_args!(FitArgs, shares nothing, reads thread at series);
+super::args::api_args!(FitArgs, shares nothing, reads thread at standard);
 
 /// One side of the pair: its program (read), or its plan's final X, and its insert.
 fn side(
@@ -110,7 +110,7 @@ impl Job for FitArgs {
             .thread
             .as_deref()
             .ok_or_else(|| Error::Input("fit needs ‹thread›, a fit such as M10x1.5-6H/6g".into()))?;
-        let thread = self.series.parse(thread)?;
+        let thread = self.standard.parse(thread)?;
         let f = request.files;
         let spec = FitSpec {
             thread,

@@ -30,7 +30,7 @@ pub struct LimitsArgs {
     /// How the designation is read.
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
-    pub series: super::SeriesArgs,
+    pub standard: super::StandardArgs,
     /// The limits to cut to before a coating of this thickness, mm (plating, anodizing;
     /// default 0).
     #[cfg_attr(feature = "cli", arg(long, value_name = "MM", allow_hyphen_values = true, value_parser = super::args::finite))]
@@ -73,7 +73,7 @@ impl Job for LimitsArgs {
                 }))
             }
         };
-        let des = self.series.parse(designation)?;
+        let des = self.standard.parse(designation)?;
         let t = &des.thread;
         let coat = |l: Option<ThreadLimits>| {
             l.map(|l| {
@@ -132,4 +132,4 @@ impl Job for LimitsArgs {
     }
 }
 
-super::args::api_args!(LimitsArgs, shares nothing, reads thread at series);
+super::args::api_args!(LimitsArgs, shares nothing, reads thread at standard);

@@ -39,7 +39,7 @@ mod thread_mill;
 mod verify;
 mod write;
 
-pub use args::{JsonArg, ONumber, PlanArgs, ProgramArgs, ReadingArgs, SeriesArgs, Source};
+pub use args::{JsonArg, ONumber, PlanArgs, ProgramArgs, ReadingArgs, Source, StandardArgs};
 pub use capability::{CapabilityArgs, CAPABLE_CPK};
 pub use compare::CompareArgs;
 pub use correct::CorrectArgs;
@@ -294,24 +294,24 @@ pub trait ApiArgs: serde::de::DeserializeOwned + Sized {
     /// Where they sit in the struct.
     fn shared_mut(&mut self) -> Option<&mut Self::Shared>;
 
-    /// The command reads a designation, and holds the flags that say how ([`SeriesArgs`]).
-    const SERIES: bool = false;
+    /// The command reads a designation, and holds the flags that say how ([`StandardArgs`]).
+    const READS_THREAD: bool = false;
 
     /// Where the designation-reading flags sit (`None` for a command that reads none).
-    fn series_mut(&mut self) -> Option<&mut args::SeriesArgs> {
+    fn standard_mut(&mut self) -> Option<&mut args::StandardArgs> {
         None
     }
 
     /// The keys the command takes: the shared arguments', the program-reading flags' where
     /// they read a program ([`ReadingArgs`]), the designation-reading flags' where they read a
-    /// thread ([`SeriesArgs`]), its own.
+    /// thread ([`StandardArgs`]), its own.
     fn keys() -> Vec<&'static str> {
         let shared = serde_aux::serde_introspection::serde_introspect::<Self::Shared>();
         let own = serde_aux::serde_introspection::serde_introspect::<Self>();
         shared
             .iter()
             .chain(reading_keys::<Self::Shared>())
-            .chain(series_keys::<Self>())
+            .chain(standard_keys::<Self>())
             .chain(own)
             .copied()
             .collect()
@@ -319,9 +319,9 @@ pub trait ApiArgs: serde::de::DeserializeOwned + Sized {
 }
 
 /// The designation-reading flags' keys where `T` reads a thread.
-fn series_keys<T: ApiArgs>() -> &'static [&'static str] {
-    if T::SERIES {
-        serde_aux::serde_introspection::serde_introspect::<args::SeriesArgs>()
+fn standard_keys<T: ApiArgs>() -> &'static [&'static str] {
+    if T::READS_THREAD {
+        serde_aux::serde_introspection::serde_introspect::<args::StandardArgs>()
     } else {
         &[]
     }
@@ -379,9 +379,9 @@ fn from_map<T: ApiArgs>(name: &str, map: Map<String, Value>) -> Result<T, Error>
     }
     let shared_keys = serde_aux::serde_introspection::serde_introspect::<T::Shared>();
     let reading_keys = reading_keys::<T::Shared>();
-    let series_keys = series_keys::<T>();
-    let (series, rest): (Map<String, Value>, Map<String, Value>) =
-        map.into_iter().filter(|(_, v)| !v.is_null()).partition(|(k, _)| series_keys.contains(&k.as_str()));
+    let standard_keys = standard_keys::<T>();
+    let (standard, rest): (Map<String, Value>, Map<String, Value>) =
+        map.into_iter().filter(|(_, v)| !v.is_null()).partition(|(k, _)| standard_keys.contains(&k.as_str()));
     let (reading, rest): (Map<String, Value>, Map<String, Value>) =
         rest.into_iter().partition(|(k, _)| reading_keys.contains(&k.as_str()));
     let (shared, own): (Map<String, Value>, Map<String, Value>) =
@@ -394,8 +394,8 @@ fn from_map<T: ApiArgs>(name: &str, map: Map<String, Value>) -> Result<T, Error>
     if let Some(s) = args.shared_mut() {
         *s = shared;
     }
-    if let Some(s) = args.series_mut() {
-        *s = typed(name, series)?;
+    if let Some(s) = args.standard_mut() {
+        *s = typed(name, standard)?;
     }
     Ok(args)
 }

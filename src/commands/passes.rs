@@ -32,7 +32,7 @@ pub struct PassesArgs {
     pub out: JsonArg,
 }
 
-super::args::api_args!(PassesArgs, shares plan: PlanArgs, reads thread at plan.series);
+super::args::api_args!(PassesArgs, shares plan: PlanArgs, reads thread at plan.standard);
 
 impl Job for PassesArgs {
     const NAME: &'static str = "passes";

@@ -29,7 +29,7 @@ pub struct TapArgs {
     /// How the designation is read.
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
-    pub series: super::SeriesArgs,
+    pub standard: super::StandardArgs,
     /// Z of the stock's bottom face, mm: a hole whose drill passes it with its full diameter is a
     /// through hole, whose depth needs no room below the tap (default: the program's own stock
     /// definition, Klartext's BLK FORM, else every hole blind).
@@ -60,7 +60,7 @@ pub struct TapArgs {
     pub out: super::args::PictureArgs,
 }
 
-super::args::api_args!(TapArgs, shares file: ProgramArgs, reads thread at series);
+super::args::api_args!(TapArgs, shares file: ProgramArgs, reads thread at standard);
 
 impl Job for TapArgs {
     const NAME: &'static str = "tap";
@@ -98,7 +98,7 @@ impl Job for TapArgs {
             dialect,
             reading,
             tools,
-            allow_nonstandard: self.series.allow_nonstandard,
+            allow_nonstandard: self.standard.allow_nonstandard,
             from_program: true,
             stock_bottom: self.stock_bottom,
             tap: self.tap.clone().or_else(|| set.thread.as_ref().and_then(|t| t.0.first().cloned())),

@@ -25,7 +25,7 @@ pub struct ThreadMillArgs {
     /// How the designation is read.
     #[cfg_attr(feature = "cli", command(flatten))]
     #[serde(skip)]
-    pub series: super::SeriesArgs,
+    pub standard: super::StandardArgs,
     /// The cutter's diameter over its tooth's tip, mm (else the tool table's thread mill, else the
     /// one the program's comments name for the helices' tool: `(T5 D=8. … - thread mill)`).
     #[cfg_attr(feature = "cli", arg(long, value_name = "MM", value_parser = crate::commands::args::finite))]
@@ -69,7 +69,7 @@ pub struct ThreadMillArgs {
     pub out: super::args::PictureArgs,
 }
 
-super::args::api_args!(ThreadMillArgs, shares file: ProgramArgs, reads thread at series);
+super::args::api_args!(ThreadMillArgs, shares file: ProgramArgs, reads thread at standard);
 
 impl Job for ThreadMillArgs {
     const NAME: &'static str = "thread-mill";
@@ -131,12 +131,12 @@ impl Job for ThreadMillArgs {
         }
         let tools = tools_source.as_ref().map(|t| tool_table(t, request.files)).transpose()?;
         // The thread given, parsed once.
-        let designation = designation.map(|d| self.series.parse(&d)).transpose()?;
+        let designation = designation.map(|d| self.standard.parse(&d)).transpose()?;
         let spec = ThreadMillSpec {
             program,
             dialect,
             designation,
-            allow_nonstandard: self.series.allow_nonstandard,
+            allow_nonstandard: self.standard.allow_nonstandard,
             cutter,
             tools,
             blank_diameter: self.blank_diameter,

@@ -86,7 +86,7 @@ pub struct VerifyArgs {
     pub format: Option<String>,
 }
 
-super::args::api_args!(VerifyArgs, shares plan: PlanArgs, reads thread at plan.series);
+super::args::api_args!(VerifyArgs, shares plan: PlanArgs, reads thread at plan.standard);
 
 impl Job for VerifyArgs {
     const NAME: &'static str = "verify";
