@@ -622,7 +622,7 @@ fn thread_mill_reads_with_verifys_flags() {
 /// Issue 60, read once: a designation is parsed where it enters and carried parsed after that —
 /// a flag's, a project file's or a modeline's by its command (`StandardArgs::parse`), a comment's,
 /// a CAM tool list's or an inferred size's by `naming`, a tool library's description by
-/// `fusion`, a tool table's tap where its hole is checked, the catalogue's sizes by the sweep,
+/// `fusion`, a tool table's tap where a hole takes it, the catalogue's sizes by the sweep,
 /// `VerifySpec::of`'s for a library caller. A parse anywhere else is a second one.
 #[test]
 fn a_designation_is_parsed_where_it_enters() {
@@ -647,6 +647,7 @@ fn a_designation_is_parsed_where_it_enters() {
         ("analysis/naming.rs", "pub designation: Designation,"),
         ("analysis/thread_mill.rs", "pub designation: Option<crate::standards::Designation>,"),
         ("analysis/study/fit.rs", "pub thread: Designation,"),
+        ("analysis/tap.rs", "pub tap: Option<crate::standards::Designation>,"),
     ] {
         let code = src_code().into_iter().find(|(f, _)| f == file).map(|(_, c)| c).unwrap_or_default();
         assert!(code.contains(field), "{file} carries no parsed designation ({field})");

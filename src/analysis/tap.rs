@@ -47,8 +47,8 @@ pub struct TapSpec {
     pub stock_bottom: Option<f64>,
     /// The tap of the tapping cycles whose tool is not known (`--tap`): one that names no tool
     /// (and no `in_spindle` in the table), or a T the tool table does not name; before the
-    /// program's comments. A designation such as `M10x1.5-6H`.
-    pub tap: Option<String>,
+    /// program's comments. A designation such as `M10x1.5-6H`, parsed.
+    pub tap: Option<crate::standards::Designation>,
     /// The workpiece's material and the taps' kind, for each hole's torque (`--material`,
     /// `--tap-kind`; the kind's default spiral-fluted, stated); `None`: no torque.
     pub torque: Option<TorqueSpec>,
@@ -547,10 +547,9 @@ fn tapped_hole(
 ) -> Result<TappedHole, Error> {
     let name = &spec.program.1;
     let perr = |message: String| at_cycle(h, name, message);
-    let (designation, chamfer_pitches, chamfer_given) =
-        (tap.designation.clone(), tap.chamfer_pitches, tap.chamfer_given);
-    let des = parse_designation(&designation, ParseOptions { allow_nonstandard: spec.allow_nonstandard })?;
-    let limits = limits_for(&des, ThreadKind::Internal)?.ok_or_else(|| {
+    let (des, chamfer_pitches, chamfer_given) = (&tap.designation, tap.chamfer_pitches, tap.chamfer_given);
+    let designation = &des.text;
+    let limits = limits_for(des, ThreadKind::Internal)?.ok_or_else(|| {
         perr(format!("tap {designation}: give the internal class the tap cuts, e.g. M10x1.5-6H"))
     })?;
     let lead = des.thread.lead();
@@ -569,11 +568,11 @@ fn tapped_hole(
         drill.as_ref(),
         &des.thread,
         chamfer,
-        (chamfer_pitches, chamfer_given, &designation),
+        (chamfer_pitches, chamfer_given, designation),
         &mut checks,
         &mut notes,
     );
-    spindle_check(spec, h, &des.thread, &designation, &mut checks, &mut notes);
+    spindle_check(spec, h, &des.thread, designation, &mut checks, &mut notes);
     notes.push(format!(
         "the tapped thread's D2 and D are the tap's class {} (not computed); D1 is {}",
         limits.class,
@@ -1193,7 +1192,7 @@ fn is_coarse_pitch(t: &crate::standards::BasicThread) -> bool {
 /// The tap of one tapping cycle, and where it came from.
 #[derive(Clone)]
 struct TapOf {
-    designation: String,
+    designation: crate::standards::Designation,
     chamfer_pitches: f64,
     chamfer_given: bool,
     /// A form tap (the tool table's `form-tap:`); a tap named otherwise cuts.
@@ -1238,8 +1237,11 @@ fn tap_of(
         });
     }
     if let Some((_, Some((Tool::Tap { designation, chamfer_pitches, chamfer_given, forming }, _)))) = table {
+        // The tool table's tap enters here: parsed once for its hole.
+        let designation =
+            parse_designation(designation, ParseOptions { allow_nonstandard: spec.allow_nonstandard })?;
         return Ok(TapOf {
-            designation: designation.clone(),
+            designation,
             chamfer_pitches: *chamfer_pitches,
             chamfer_given: *chamfer_given,
             forming: *forming,
@@ -1312,7 +1314,7 @@ fn tap_of(
                 && comments.iter().filter(|c| Some(c.line) == n.line).any(|c| says_forming(&c.text));
             let why = if forming { format!("{}; a form tap, as the comment says", n.why) } else { n.why };
             return Ok(TapOf {
-                designation: n.designation.text,
+                designation: n.designation,
                 chamfer_pitches: default,
                 chamfer_given: false,
                 forming,

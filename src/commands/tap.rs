@@ -93,6 +93,9 @@ impl Job for TapArgs {
             Some(t) => tool_table(t, request.files)?,
             None => crate::analysis::tools::ToolTable::none(),
         };
+        // The tap given, else the project file's or the modeline's thread: parsed once.
+        let tap = self.tap.clone().or_else(|| set.thread.as_ref().and_then(|t| t.0.first().cloned()));
+        let tap = tap.map(|t| self.standard.parse(&t)).transpose()?;
         let spec = TapSpec {
             program,
             dialect,
@@ -101,7 +104,7 @@ impl Job for TapArgs {
             allow_nonstandard: self.standard.allow_nonstandard,
             from_program: true,
             stock_bottom: self.stock_bottom,
-            tap: self.tap.clone().or_else(|| set.thread.as_ref().and_then(|t| t.0.first().cloned())),
+            tap,
             torque: match &self.material {
                 Some(m) => Some(crate::analysis::tap::TorqueSpec {
                     material: crate::standards::torque::material(m)?,
