@@ -16,24 +16,24 @@ use crate::toolpath::passes::Pass;
 use crate::Error;
 
 /// The passes of one program operation, with what to say about them.
-pub(crate) struct Given {
-    pub(crate) passes: Vec<Pass>,
-    pub(crate) depth_word: Option<crate::gcode::DepthWord>,
-    pub(crate) units: crate::gcode::ProgramUnits,
-    pub(crate) lead: Option<crate::analysis::turn::lead::LeadDeviation>,
-    pub(crate) label: ProgramLabel,
-    pub(crate) notes: Vec<crate::ground::note::Note>,
+pub(super) struct Given {
+    pub(super) passes: Vec<Pass>,
+    pub(super) depth_word: Option<crate::gcode::DepthWord>,
+    pub(super) units: crate::gcode::ProgramUnits,
+    pub(super) lead: Option<crate::analysis::turn::lead::LeadDeviation>,
+    pub(super) label: ProgramLabel,
+    pub(super) notes: Vec<crate::ground::note::Note>,
 }
 
 /// What measuring a cut needs: the sweep's setup, the measurement's, and a taper thread's cone
 /// (measured along it: the section sheared so the cone's pitch line runs level).
-pub(crate) struct Measurer<'a> {
-    pub(crate) r: &'a Resolved,
-    pub(crate) t: &'a crate::standards::BasicThread,
-    pub(crate) setup: SweepSetup<'a>,
-    pub(crate) ms: MeasureSetup<'a>,
-    pub(crate) taper: Option<Taper>,
-    pub(crate) mid: Option<f64>,
+pub(super) struct Measurer<'a> {
+    pub(super) r: &'a Resolved,
+    pub(super) t: &'a crate::standards::BasicThread,
+    pub(super) setup: SweepSetup<'a>,
+    pub(super) ms: MeasureSetup<'a>,
+    pub(super) taper: Option<Taper>,
+    pub(super) mid: Option<f64>,
 }
 
 impl Measurer<'_> {
@@ -106,7 +106,7 @@ impl Measurer<'_> {
 
 /// The gauge plane of a taper thread: where the pitch cone reaches the basic gauge diameter, from
 /// the pitch diameter measured at the cut's groove and the taper, against its basic distance.
-pub(crate) fn gauge_cone(
+pub(super) fn gauge_cone(
     taper: Option<Taper>,
     kind: ThreadKind,
     cut: &Cut,
@@ -127,7 +127,7 @@ pub(crate) fn gauge_cone(
 /// The checks of a measured cut: sizes and form, a taper's gauge plane (stood off by the lead
 /// error's share), and the functional pitch diameter when the program's lead is off; with the
 /// functional pitch diameter.
-pub(crate) fn judge(
+pub(super) fn judge(
     m: &Measurement,
     limits: &ThreadLimits,
     t: &crate::standards::BasicThread,
@@ -167,7 +167,7 @@ pub(crate) fn judge(
 
 /// The verification of a resolved spec, with the passes of a program operation or its own plan.
 /// A cut that leaves nothing to measure is an [`Error::Geometry`].
-pub(crate) fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error> {
+pub(super) fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verification, Error> {
     let spec = &r.spec;
     if spec.taper != 0.0 {
         return Err(Error::Input("‹taper› lays out a tapered pass plan for `passes`; verify takes a taper thread's taper from its designation (NPT, ISO 7-1) or from a program".into()));
@@ -316,7 +316,7 @@ pub(crate) fn verify_core(r: &Resolved, given: Option<Given>) -> Result<Verifica
 }
 
 /// What a verification's pictures draw, computed from it.
-pub(crate) fn picture_of(v: &Verification) -> Result<crate::analysis::picture::Picture, Error> {
+pub(super) fn picture_of(v: &Verification) -> Result<crate::analysis::picture::Picture, Error> {
     crate::analysis::picture::picture(&crate::analysis::picture::Cut {
         thread: &v.designation.thread,
         kind: v.kind,
@@ -331,7 +331,7 @@ pub(crate) fn picture_of(v: &Verification) -> Result<crate::analysis::picture::P
 
 /// The notes a measurement adds: the pitch diameter after a coating of `coating` mm, and a
 /// pitch line found on the flank lines extended.
-pub(crate) fn measured_notes(
+pub(super) fn measured_notes(
     m: &Measurement,
     (coating, rule): (f64, crate::standards::tolerance::CoatingLimits),
     t: &crate::standards::BasicThread,

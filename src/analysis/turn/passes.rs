@@ -126,7 +126,7 @@ pub fn program_passes(
 /// taper segment whose axial lead is not the designation's while another pass of the operation
 /// cuts at it (a chained run-out steeper than 45° whose F the control takes along X, a LinuxCNC
 /// G33 taper whose K runs along the path). It is swept as it moves; a note says so.
-pub(crate) fn off_helix_segments(
+pub(super) fn off_helix_segments(
     op: &crate::gcode::Operation,
     t: &crate::standards::BasicThread,
 ) -> Vec<bool> {
@@ -139,11 +139,11 @@ pub(crate) fn off_helix_segments(
     op.passes.iter().zip(off).map(|(p, o)| o && some_on && (p.x_end - p.x_start).abs() > 1e-9).collect()
 }
 
-pub(crate) struct Cut {
-    pub(crate) passes: Vec<Pass>,
-    pub(crate) section: Section,
-    pub(crate) z_ref: f64,
-    pub(crate) measurement: Measurement,
+pub(super) struct Cut {
+    pub(super) passes: Vec<Pass>,
+    pub(super) section: Section,
+    pub(super) z_ref: f64,
+    pub(super) measurement: Measurement,
 }
 
 /// The side a turned operation's passes cut: inward pass by pass from a bar (external), outward

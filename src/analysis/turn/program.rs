@@ -112,7 +112,7 @@ pub fn verify_operation(
 /// The side the passes cut (inward pass by pass from a bar, outward in a bore) must be the
 /// designation's: a contradiction is refused at the operation's line, never verified as the
 /// other side.
-pub(crate) fn side_agrees(
+pub(super) fn side_agrees(
     r: &Resolved,
     op: &crate::gcode::Operation,
     passes: &[Pass],
@@ -146,7 +146,7 @@ pub(crate) fn side_agrees(
 }
 
 /// How a refusal of a designation of another size ends (the inferred one is said after it).
-pub(crate) const MISFIT_END: &str = "check the thread";
+pub(super) const MISFIT_END: &str = "check the thread";
 
 /// Where the designation is not the thread the passes cut. Both sides of the profile are
 /// compared, each against one thread depth on the radius (plus, on a taper, what the cone changes
@@ -156,7 +156,7 @@ pub(crate) const MISFIT_END: &str = "check the thread";
 /// another size and no correction would be safe; off on the root alone, the program cuts this
 /// size too deep or too shallow, which the checks show. The last pass's line and what to say,
 /// naming both diameters.
-pub(crate) fn diameter_misfit(
+pub(super) fn diameter_misfit(
     r: &Resolved,
     op: &crate::gcode::Operation,
     passes: &[Pass],
@@ -198,7 +198,7 @@ pub(crate) fn diameter_misfit(
 }
 
 /// [`diameter_misfit`] as a refusal at the last pass's line.
-pub(crate) fn diameter_agrees(
+pub(super) fn diameter_agrees(
     r: &Resolved,
     op: &crate::gcode::Operation,
     passes: &[Pass],
@@ -225,7 +225,7 @@ pub(crate) fn diameter_agrees(
 /// a collar) the outermost (a bore: innermost) is the blank, so chamfers and a run-in beyond the
 /// part's end do not hide the journal. Distances from the axis (a tool beyond it writes X negative). `None`
 /// when no feed move covers the pass.
-pub(crate) fn program_blank(op: &crate::gcode::Operation, kind: ThreadKind) -> Option<(f64, usize)> {
+pub(super) fn program_blank(op: &crate::gcode::Operation, kind: ThreadKind) -> Option<(f64, usize)> {
     let passes = &op.passes;
     if passes.is_empty() {
         return None;
@@ -324,7 +324,7 @@ pub(crate) fn program_blank(op: &crate::gcode::Operation, kind: ThreadKind) -> O
 }
 
 /// One program operation verified; passes that cut nothing are an [`Error::Geometry`].
-pub(crate) fn verify_given(
+pub(super) fn verify_given(
     r: &Resolved,
     op: &crate::gcode::Operation,
     label: &ProgramLabel,
@@ -480,7 +480,7 @@ pub(crate) fn verify_given(
 /// to the operation before) that names a thread, else the nearest one higher up whose lead is
 /// the operation's, else the standard size of its lead and diameter (the last pass's tip is on
 /// d3 ≈ d − 1.2269·P on a bar, on D in a bore).
-pub(crate) fn name_turned(
+pub(super) fn name_turned(
     op: &crate::gcode::Operation,
     before: Option<&crate::gcode::Operation>,
     comments: &[crate::gcode::Comment],
@@ -711,7 +711,7 @@ pub fn turned_program(
 /// insert (tip r0.04: the flanks on the basic d2 put the tip H − 2r(1/sin α − 1) beyond d2 on the
 /// diameter), the one whose tip position lies nearer the deepest pass; the full one on a tie or
 /// when the designation cannot be read here (the verification then says why). With what to say.
-pub(crate) fn assumed_insert(op: &crate::gcode::Operation, spec: &VerifySpec) -> (InsertChoice, String) {
+pub(super) fn assumed_insert(op: &crate::gcode::Operation, spec: &VerifySpec) -> (InsertChoice, String) {
     const TIP: f64 = 0.04;
     let full = (
         InsertChoice::Full,
@@ -751,7 +751,7 @@ pub(crate) fn assumed_insert(op: &crate::gcode::Operation, spec: &VerifySpec) ->
 /// The insert a program's passes could equally be written for, beside the one assumed (the
 /// full-profile insert of the pitch and the default partial one), and the pitch diameter it
 /// leaves (`None` when it cannot cut this thread).
-pub(crate) fn other_candidate(
+pub(super) fn other_candidate(
     spec: &VerifySpec,
     op: &crate::gcode::Operation,
     label: &ProgramLabel,
@@ -858,7 +858,7 @@ pub fn verify(spec: &VerifySpec) -> Result<Verification, Error> {
 }
 
 /// The index of the operation `operation` (1-based) names in `prog`, or of its only one.
-pub(crate) fn operation_index(
+pub(super) fn operation_index(
     prog: &crate::gcode::Program,
     shown: &str,
     operation: Option<usize>,

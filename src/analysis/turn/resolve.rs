@@ -33,7 +33,7 @@ pub fn default_blank(thread: &BasicThread, kind: ThreadKind, limits: &ThreadLimi
     }
 }
 
-pub(crate) fn resolve_kind(des: &Designation, internal: bool) -> Result<ThreadKind, Error> {
+pub(super) fn resolve_kind(des: &Designation, internal: bool) -> Result<ThreadKind, Error> {
     let kind = if internal || (des.external.is_none() && des.internal.is_some()) {
         ThreadKind::Internal
     } else {
@@ -50,7 +50,7 @@ pub(crate) fn resolve_kind(des: &Designation, internal: bool) -> Result<ThreadKi
     Ok(kind)
 }
 
-pub(crate) fn build_insert(
+pub(super) fn build_insert(
     choice: &InsertChoice,
     t: &BasicThread,
     kind: ThreadKind,
@@ -106,7 +106,7 @@ pub(crate) fn build_insert(
 }
 
 /// Width of a closed outline at height `y` (extent of its crossings of that level), mm.
-pub(crate) fn width_at(outline: &[crate::Point], y: f64) -> f64 {
+pub(super) fn width_at(outline: &[crate::Point], y: f64) -> f64 {
     let n = outline.len();
     let zs: Vec<f64> = (0..n)
         .filter_map(|i| crate::ground::plane::cross_at_level(outline[i], outline[(i + 1) % n], y))
@@ -121,7 +121,7 @@ pub(crate) fn width_at(outline: &[crate::Point], y: f64) -> f64 {
 
 /// A first guess of the final X that puts d2 at `target`: the insert's depth for basic d2,
 /// moved by the wanted pitch-diameter change (X and d2 move one for one).
-pub(crate) fn initial_final_x(t: &BasicThread, kind: ThreadKind, ins: &Insert, target: f64) -> f64 {
+pub(super) fn initial_final_x(t: &BasicThread, kind: ThreadKind, ins: &Insert, target: f64) -> f64 {
     let delta = target - t.pitch_diameter();
     let (variant, base) = match kind {
         ThreadKind::External => (ProfileKind::BoltDesign, t.nominal_diameter),
@@ -158,7 +158,7 @@ pub struct Resolved {
     pub infeed: Infeed,
     /// Notes so far.
     pub notes: Vec<crate::ground::note::Note>,
-    pub(crate) spec: VerifySpec,
+    pub(super) spec: VerifySpec,
 }
 
 impl Resolved {

@@ -330,25 +330,25 @@ pub struct Verification {
     pub hints: Vec<crate::analysis::check::Hint>,
     /// The program's word that sets the final depth, for a correction by any amount
     /// ([`Verification::correction_for`]).
-    pub(crate) depth: Option<DepthAt>,
+    pub(super) depth: Option<DepthAt>,
 }
 
 /// A program operation's depth word, its units, and the same word in the cycles of its other
 /// starts (with whether they are written alike).
 #[derive(Clone, Debug)]
-pub(crate) struct DepthAt {
-    pub(crate) word: crate::gcode::DepthWord,
-    pub(crate) units: crate::gcode::ProgramUnits,
-    pub(crate) also: Vec<crate::analysis::turn::correction::Place>,
-    pub(crate) alike: bool,
+pub(super) struct DepthAt {
+    pub(super) word: crate::gcode::DepthWord,
+    pub(super) units: crate::gcode::ProgramUnits,
+    pub(super) also: Vec<crate::analysis::turn::correction::Place>,
+    pub(super) alike: bool,
     /// The X words that set the operation's passes.
-    pub(crate) pass_x_words: Vec<crate::gcode::PassXWord>,
+    pub(super) pass_x_words: Vec<crate::gcode::PassXWord>,
 }
 
 impl DepthAt {
     /// The same change in the other starts' cycles (a word written otherwise in one of them is
     /// not rewritten in place), and the earlier passes that cut deeper than the new value.
-    pub(crate) fn apply_to(&self, c: &mut crate::analysis::turn::correction::Correction, kind: ThreadKind) {
+    pub(super) fn apply_to(&self, c: &mut crate::analysis::turn::correction::Correction, kind: ThreadKind) {
         c.also = self.also.clone();
         if !self.alike {
             c.form = crate::gcode::WordForm::Expression;
