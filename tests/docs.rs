@@ -259,3 +259,121 @@ fn docs_transcripts_print_what_they_show() {
     assert!(seen >= 8, "the docs show {seen} transcripts");
     assert!(stale.is_empty(), "transcripts that no longer print what they show:\n{}", stale.join("\n"));
 }
+
+/// Issue 60's "the committed reports regenerate byte for byte": every picture and page the
+/// README and the guides show from `reports/` is what the command they give draws today (the
+/// infeed comparison is held by its own test). A change to a picture regenerates them.
+#[test]
+fn the_committed_pictures_are_what_their_commands_draw() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = crate::tempdir("pictures");
+    let out = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    // (the command, the flag that writes the document, the committed file).
+    let pictures: [(&[&str], &str, &str); 10] = [
+        (&["verify", "--thread", "M10x1.5-6g"], "--svg", "m10x1.5-6g-partial.svg"),
+        (&["verify", "--thread", "M10x1.5-6g"], "--html", "m10x1.5-6g-partial.html"),
+        (&["verify", "--thread", "M10x1.5-6g", "--insert", "full"], "--svg", "m10x1.5-6g-full.svg"),
+        (&["verify", "--thread", "1/2-13 UNC-2A", "--final-x", "10.2"], "--svg", "unc-1_2-13-2a-inch.svg"),
+        (
+            &[
+                "verify",
+                "--thread",
+                "M20x1.5-6g",
+                "--program",
+                "tests/data/programs/fanuc-g76-timing.nc",
+                "--insert",
+                "full",
+            ],
+            "--svg",
+            "m20x1.5-g76-program.svg",
+        ),
+        (
+            &[
+                "capability",
+                "--thread",
+                "M10x1.5-6g",
+                "--x-sigma",
+                "0.008",
+                "--tip-radius-tol",
+                "0.01",
+                "--wear-per-part",
+                "0.0005",
+                "--gauge-only",
+            ],
+            "--svg",
+            "capability-m10x1.5-6g.svg",
+        ),
+        (
+            &["fit", "--thread", "M10x1.5-6H/6g", "--bolt-insert", "full", "--nut-insert", "full"],
+            "--svg",
+            "fit-m10x1.5-6H-6g.svg",
+        ),
+        (
+            &[
+                "tap",
+                "--program",
+                "tests/data/programs/tapping/m10-g84.nc",
+                "--tools",
+                "tests/data/programs/tapping/tools-80.toml",
+            ],
+            "--svg",
+            "tap-m10-drill80.svg",
+        ),
+        (
+            &[
+                "thread-mill",
+                "--program",
+                "tests/data/programs/threadmill/m20-dc14.nc",
+                "--thread",
+                "M20x1.5-6H",
+                "--cutter-diameter",
+                "14",
+            ],
+            "--svg",
+            "thread-mill-m20-dc14.svg",
+        ),
+        (
+            &[
+                "mill",
+                "--program",
+                "tests/data/programs/milling/seed002-cardioid-cam.nc",
+                "--dialect",
+                "dyna",
+                "--n-order",
+                "--tool-diameter",
+                "6",
+                "--target",
+                "tests/data/targets/cardioid.toml",
+            ],
+            "--svg",
+            "mill-cardioid-cam.svg",
+        ),
+    ];
+    let mut stale = Vec::new();
+    for (args, flag, name) in pictures {
+        let path = out(name);
+        let mut all = args.to_vec();
+        all.extend([flag, path.as_str()]);
+        let o = crate::run_in(root, &all);
+        let fresh =
+            std::fs::read(&path).unwrap_or_else(|_| panic!("{all:?} wrote no {name}: {}", crate::stderr(&o)));
+        let committed = std::fs::read(root.join("reports").join(name)).unwrap_or_default();
+        if fresh != committed {
+            let words: Vec<String> = args
+                .iter()
+                .map(|a| if a.contains(' ') { format!("\"{a}\"") } else { a.to_string() })
+                .collect();
+            stale.push(format!("threadcheck {} {flag} reports/{name}", words.join(" ")));
+        }
+    }
+    // The worked example's text is the command's standard output.
+    let o = crate::run_in(root, &["verify", "--thread", "M10x1.5-6g"]);
+    if o.stdout != std::fs::read(root.join("reports/m10x1.5-6g-partial.txt")).unwrap_or_default() {
+        stale.push("threadcheck verify --thread M10x1.5-6g > reports/m10x1.5-6g-partial.txt".into());
+    }
+    assert!(
+        stale.is_empty(),
+        "committed pictures no longer what their commands draw; regenerate:\n{}",
+        stale.join("\n")
+    );
+}
