@@ -136,7 +136,7 @@ pub use analysis::study::correct::{
 };
 pub use analysis::study::fit::{fit, FitReport, FitSide, FitSpec, FitVerdict};
 pub use analysis::study::sweep::{cases as catalogue_cases, run as run_catalogue, Case, CatalogueSpec};
-pub use analysis::tap::{tapping, TapCheck, TapFeature, TapReport, TapSpec, TappedHole};
+pub use analysis::tap::{tap, TapCheck, TapFeature, TapReport, TapSpec, TappedHole};
 pub use analysis::thread_mill::{thread_mill, ThreadMillReport, ThreadMillSpec};
 pub use analysis::tools::{InsertChoice, Tool, ToolTable};
 pub use analysis::turn::correction::{correction, deeper_words, Correction, Deeper};

@@ -554,7 +554,7 @@ fn the_hole_wall_follows_the_tap_and_the_drill() {
         torque: None,
         machine: None,
     };
-    let r = threadcheck::tapping(&spec).unwrap();
+    let r = threadcheck::tap(&spec).unwrap();
     let wall = &r.holes[0].wall;
     let full: Vec<f64> = wall.iter().filter(|p| p.z > -14.25 && p.z < -1.0).map(|p| p.r).collect();
     let (lo, hi) = full.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));

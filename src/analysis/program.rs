@@ -171,7 +171,7 @@ fn contents(prog: &crate::gcode::Program) -> String {
 
 /// Verifies every thread a program makes: its turned operations as
 /// [`verify_program`](crate::verify_program) does, its tapping cycles as
-/// [`tapping`](crate::tapping) does, its helices as [`thread_mill`](crate::thread_mill) does.
+/// [`tap`](crate::tap) does, its helices as [`thread_mill`](crate::thread_mill) does.
 /// `threads` (empty: the program names them) are the turned operations'; `tools` gives the
 /// inserts, taps, drills and thread mills by T number.
 ///
@@ -257,7 +257,7 @@ pub fn verify_whole(
             torque: None,
             machine: spec.machine.clone(),
         };
-        let mut r = crate::analysis::tap::tapping(&t)?;
+        let mut r = crate::analysis::tap::tap(&t)?;
         // The program's notes are the report's, once.
         r.notes.clear();
         pv.tapped = Some(r);

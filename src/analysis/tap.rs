@@ -354,15 +354,15 @@ fn same_place(d: &crate::gcode::HoleCycle, h: &crate::gcode::HoleCycle) -> bool 
 /// Reads the program's drilling and tapping cycles and checks each tapping cycle.
 ///
 /// ```
-/// use threadcheck::{tapping, Dialect, ReadOptions, TapSpec, ToolTable};
+/// use threadcheck::{tap, Dialect, ReadOptions, TapSpec, ToolTable};
 /// let program = "T0505\nG99 M3 S800\nG0 X0 Z5\nG83 Z-25 R2 Q5000 F0.1\nT0606\nG84 Z-18 R5 F1.5\nG80\nM30\n";
 /// let tools = ToolTable::from_toml("[tools]\n5 = \"drill:8.5\"\n6 = \"tap:M10x1.5-6H\"\n", "tools.toml", std::path::Path::new("."))?;
 /// let spec = TapSpec { program: (program.into(), "tap.nc".into()), dialect: Dialect::Fanuc, reading: ReadOptions::default(), tools, allow_nonstandard: false, from_program: false, stock_bottom: None, tap: None, torque: None, machine: None };
-/// let r = tapping(&spec)?;
+/// let r = tap(&spec)?;
 /// assert!(r.pass); // Ø8.5 within D1 8.376–8.676; F1.5 = P; 25 − 18 = 7 ≥ 2.5·1.5
 /// # Ok::<(), threadcheck::Error>(())
 /// ```
-pub fn tapping(spec: &TapSpec) -> Result<TapReport, Error> {
+pub fn tap(spec: &TapSpec) -> Result<TapReport, Error> {
     let (text, name) = &spec.program;
     let prog = read_holes(spec)?;
     let comments = if spec.from_program { crate::gcode::comments(text, spec.dialect) } else { Vec::new() };

@@ -120,7 +120,7 @@ impl Job for TapArgs {
             },
             machine,
         };
-        let r = crate::analysis::tap::tapping(&spec)?;
+        let r = crate::analysis::tap::tap(&spec)?;
         let inputs = self
             .file
             .inputs()
