@@ -843,3 +843,22 @@ fn a_tap_in_a_drilling_cycle_fails_a_run_of_many() {
     assert_eq!((r["ruleId"].as_str(), r["level"].as_str()), (Some("post.tap_in_drill_cycle"), Some("error")));
     assert_eq!(r["locations"][0]["physicalLocation"]["region"]["startLine"], 17);
 }
+
+/// A run of many programs names a warning on its operation's line of text, as its JSON Lines and
+/// SARIF do (the text named failures only; a warning does not fail the operation): the run-in
+/// 0.827 mm against 7.436 mm needed at S2500 (above), and nothing where 4.827 mm stand against
+/// 2.380 mm at S800.
+#[test]
+fn a_run_of_many_names_each_warning_in_its_text() {
+    let dir = tempdir("before-machine-text");
+    for (name, file) in [("fanuc-run-in-short", "short.nc"), ("fanuc-run-in-enough", "enough.nc")] {
+        let c = CASES.iter().find(|c| c.name == name).unwrap();
+        std::fs::write(dir.join(file), c.text).unwrap();
+    }
+    let o = run_in(&dir, &["verify", "."]);
+    let text = stdout(&o);
+    let line =
+        |file: &str| text.lines().find(|l| l.contains(file)).unwrap_or_else(|| panic!("{text}")).to_string();
+    assert!(line("short.nc").ends_with("; warning before the machine: control.run_in_short"), "{text}");
+    assert!(!line("enough.nc").contains("warning"), "{text}");
+}

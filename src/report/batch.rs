@@ -317,8 +317,9 @@ impl BatchProgram {
         }
     }
 
-    /// Its lines of text: one per operation (`file:line: FAIL tapped M8X1.25-6H (comment): feed`),
-    /// or the error's.
+    /// Its lines of text: one per operation (`file:line: FAIL tapped M8X1.25-6H (comment): feed`,
+    /// with `; warning before the machine: RULE` where the control runs it badly), or the
+    /// error's.
     pub fn text(&self) -> String {
         let mut s = String::new();
         if let Some(e) = &self.error {
@@ -329,9 +330,17 @@ impl BatchProgram {
             let from = o.designation_from.map_or(String::new(), |f| format!(" ({})", f.name()));
             let failed =
                 if o.failed.is_empty() { String::new() } else { format!(": {}", o.failed.join(", ")) };
+            // What the control runs and the thread suffers from: named as the JSON Lines and
+            // SARIF name it (a warning does not fail the operation).
+            let warned = if o.warnings.is_empty() {
+                String::new()
+            } else {
+                let rules: Vec<&str> = o.warnings.iter().map(|w| w.rule.as_str()).collect();
+                format!("; warning before the machine: {}", rules.join(", "))
+            };
             let _ = writeln!(
                 s,
-                "{}:{}: {} {} {}{from}{failed}",
+                "{}:{}: {} {} {}{from}{failed}{warned}",
                 o.in_file.as_deref().unwrap_or(&self.file),
                 o.line,
                 if o.verdict == Verdict::Pass { "PASS" } else { "FAIL" },
